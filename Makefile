@@ -1,0 +1,103 @@
+# tilesim -- one Makefile.  Sources are found by wildcard: a new file needs no edit.
+#
+#   make                 ./tile and ./bench (optimised)
+#   make check           every test, built with -Werror and ASan+UBSan
+#   make bench           the paper's experiments: CSV and SVG under plots/
+#   make bench-tile      the tiler's speed and memory figures
+#   make valgrind        the tests under valgrind, without sanitizers
+#   make install PREFIX=/usr/local
+#   make clean
+
+CC      ?= cc
+PREFIX  ?= /usr/local
+CFLAGS  ?= -O2 -g
+WARN     = -Wall -Wextra -Wpedantic -Wshadow -Wstrict-prototypes -Wmissing-prototypes
+# -ffp-contract=off: no fused multiply-add, so every build of a tile weight
+# rounds the same way (the solver's exactness rests on it).
+BASE     = -std=c11 -D_POSIX_C_SOURCE=200809L -ffp-contract=off -fno-math-errno \
+           -Iutil -Imp -Isim -Ialgo $(WARN)
+LDLIBS   = -lm -pthread
+SAN      = -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
+CHKFLAGS = -O1 -g -Werror $(SAN)
+
+# Library sources: every .c under these folders except the MPI backend,
+# which only mpicc can build (make mpi).
+LIBDIRS  = util mp sim algo
+LIBSRC   = $(filter-out %mpi.c,$(wildcard $(addsuffix /*.c,$(LIBDIRS))))
+# Programs: prog/NAME.c holds main; prog/NAME_*.c are linked into NAME only.
+PROGS    = $(basename $(notdir $(filter-out $(wildcard prog/*_*.c),$(wildcard prog/*.c))))
+# The SVG plotter, plots/*.c, builds to build/plot.
+PLOTSRC  = $(wildcard plots/*.c)
+PLOT     = $(if $(PLOTSRC),build/plot)
+TESTS    = $(basename $(notdir $(wildcard tests/test_*.c)))
+TESTLIB  = $(filter-out $(wildcard tests/test_*.c),$(wildcard tests/*.c))
+
+REL = build/rel
+CHK = build/chk
+relobj = $(patsubst %.c,$(REL)/%.o,$(1))
+chkobj = $(patsubst %.c,$(CHK)/%.o,$(1))
+
+all: $(PROGS) $(PLOT)
+
+$(REL)/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(CC) $(BASE) $(CFLAGS) -MMD -MP -c $< -o $@
+
+$(CHK)/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(CC) $(BASE) $(CHKFLAGS) -MMD -MP -c $< -o $@
+
+$(REL)/libtilesim.a: $(call relobj,$(LIBSRC))
+	@rm -f $@
+	$(AR) rcs $@ $^
+
+$(CHK)/libtilesim.a: $(call chkobj,$(LIBSRC))
+	@rm -f $@
+	$(AR) rcs $@ $^
+
+define prog_rules
+$(1): $(call relobj,prog/$(1).c $(wildcard prog/$(1)_*.c)) $(REL)/libtilesim.a
+	$$(CC) $$(CFLAGS) -o $$@ $$^ $$(LDLIBS)
+$(CHK)/$(1): $(call chkobj,prog/$(1).c $(wildcard prog/$(1)_*.c)) $(CHK)/libtilesim.a
+	$$(CC) $$(CHKFLAGS) -o $$@ $$^ $$(LDLIBS)
+endef
+$(foreach p,$(PROGS),$(eval $(call prog_rules,$(p))))
+
+build/plot: $(call relobj,$(PLOTSRC)) $(REL)/libtilesim.a
+	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
+$(CHK)/plot: $(call chkobj,$(PLOTSRC)) $(CHK)/libtilesim.a
+	$(CC) $(CHKFLAGS) -o $@ $^ $(LDLIBS)
+
+$(CHK)/tests/%: $(CHK)/tests/%.o $(call chkobj,$(TESTLIB)) $(CHK)/libtilesim.a
+	$(CC) $(CHKFLAGS) -o $@ $^ $(LDLIBS)
+
+# The tests and the sanitized programs the command-line tests drive.
+check: $(addprefix $(CHK)/tests/,$(TESTS)) $(addprefix $(CHK)/,$(PROGS)) $(if $(PLOTSRC),$(CHK)/plot)
+	@sh tests/run.sh $(CHK) $(addprefix $(CHK)/tests/,$(TESTS)) $(wildcard tests/cli_*.sh)
+
+# The same tests, built without sanitizers, under valgrind.
+VG = build/vg
+$(VG)/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(CC) $(BASE) -O1 -g -MMD -MP -c $< -o $@
+$(VG)/libtilesim.a: $(patsubst %.c,$(VG)/%.o,$(LIBSRC))
+	@rm -f $@
+	$(AR) rcs $@ $^
+$(VG)/tests/%: $(VG)/tests/%.o $(patsubst %.c,$(VG)/%.o,$(TESTLIB)) $(VG)/libtilesim.a
+	$(CC) -g -o $@ $^ $(LDLIBS)
+valgrind: $(addprefix $(VG)/tests/,$(TESTS))
+	@VALGRIND="valgrind -q --error-exitcode=99 --leak-check=full" \
+	  sh tests/run.sh $(VG) $(addprefix $(VG)/tests/,$(TESTS))
+
+install: all
+	mkdir -p $(DESTDIR)$(PREFIX)/bin
+	cp $(PROGS) $(DESTDIR)$(PREFIX)/bin/
+	$(if $(PLOT),cp build/plot $(DESTDIR)$(PREFIX)/bin/tilesim-plot)
+
+clean:
+	rm -rf build $(PROGS)
+
+.PHONY: all check valgrind install clean
+.SECONDARY:
+
+-include $(shell find build -name '*.d' 2>/dev/null)

@@ -1,0 +1,89 @@
+/* mp.h -- the small message-passing interface the algorithm is written against.
+ *
+ * Nothing here says what runs it.  The simulator (sim/), POSIX threads and MPI
+ * each implement these calls behind the same handle, so the paper's algorithm
+ * (algo/par*.c) is written once and runs unmodified on all of them.
+ *
+ * A program is one entry function per rank with a user pointer (mp_proc).
+ * Ranks share no memory through this interface: a message is copied out of
+ * the sender's buffer at mp_send and into the receiver's at mp_recv.
+ * Messages between one pair of ranks are received in the order they were
+ * sent (MPI's non-overtaking rule); every backend guarantees it. */
+#ifndef MP_H
+#define MP_H
+
+#include <stddef.h>
+
+typedef struct mp mp;   /* one rank's handle on the machine (opaque) */
+
+enum { MP_ANY = -1 };   /* wildcard for the source or the tag of mp_recv/mp_probe */
+
+/* Status codes: MP_OK, or a negative error. */
+enum {
+  MP_OK = 0,
+  MP_EDEADLOCK = -1,  /* every live rank waits in recv and nothing is in flight */
+  MP_ERANK = -2,      /* no such rank */
+  MP_ETRUNC = -3,     /* the message is longer than the buffer (it is consumed) */
+  MP_EARG = -4,       /* bad argument: negative tag, negative compute, ... */
+  MP_ESTOPPED = -5    /* the run was stopped (deadlock or error): return now */
+};
+
+typedef struct {
+  int source;   /* sending rank */
+  int tag;      /* the message's tag (>= 0) */
+  size_t len;   /* its length in bytes */
+} mp_status;
+
+typedef void (*mp_main)(mp *self, void *ud);
+
+typedef struct {
+  mp_main main;   /* rank r runs procs[r].main(self, procs[r].ud) */
+  void *ud;
+} mp_proc;
+
+int    mp_rank(const mp *self);   /* 0 .. mp_size-1 */
+int    mp_size(const mp *self);
+
+/* Send len bytes to rank dst with tag >= 0.  Buffered: returns at once, the
+ * buffer may be reused.  MP_OK, MP_ERANK, MP_EARG or MP_ESTOPPED. */
+int    mp_send(mp *self, int dst, int tag, const void *buf, size_t len);
+
+/* Block until a message from src (or MP_ANY) with tag (or MP_ANY) is there,
+ * copy it into buf (cap bytes) and fill *st (st may be NULL).  Among several
+ * matching messages the one that arrived first is taken, ties in a fixed
+ * order, so any-source receives resolve the same way on every run of a
+ * deterministic backend.  MP_OK, MP_ETRUNC, MP_EDEADLOCK or MP_ESTOPPED. */
+int    mp_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status *st);
+
+/* Non-blocking: 1 and *st filled if a matching message can be received now,
+ * 0 if not, or a negative error. */
+int    mp_probe(mp *self, int src, int tag, mp_status *st);
+
+/* Charge `units` of work to this rank (simulated: units * c seconds of its
+ * processor).  A no-op on real backends.  MP_OK or MP_EARG (units < 0). */
+int    mp_compute(mp *self, double units);
+
+/* Seconds: simulated time on the simulator, wall time since the run began on
+ * real backends. */
+double mp_time(const mp *self);
+
+/* "deadlock", "no such rank", ... */
+const char *mp_strerror(int code);
+
+/* --- private part: what a backend fills in ------------------------------ */
+
+typedef struct mp_ops {
+  int (*send)(mp *, int dst, int tag, const void *buf, size_t len);
+  int (*recv)(mp *, int src, int tag, void *buf, size_t cap, mp_status *st);
+  int (*probe)(mp *, int src, int tag, mp_status *st);
+  int (*compute)(mp *, double units);
+  double (*time)(const mp *);
+} mp_ops;
+
+/* A backend's per-rank state begins with this struct. */
+struct mp {
+  const mp_ops *ops;
+  int rank, size;
+};
+
+#endif

@@ -1,0 +1,27 @@
+#!/bin/sh
+# run.sh BUILD TEST... -- run every test (programs and tests/cli_*.sh scripts),
+# echo their output, and end with the line "N passed, N failed".
+# Each test ends its output with "NAME: P passed, F failed"; a test that dies
+# without that line counts as one failure.  Exit status 1 on any failure.
+build=$1; shift
+passed=0; failed=0
+for t in "$@"; do
+  case $t in
+    *.sh) out=$(BUILD=$build sh "$t" 2>&1); rc=$? ;;
+    *)    out=$(${VALGRIND:-} "$t" 2>&1); rc=$? ;;
+  esac
+  printf '%s\n' "$out"
+  line=$(printf '%s\n' "$out" | grep -E '^[A-Za-z0-9_.-]+: [0-9]+ passed, [0-9]+ failed$' | tail -n 1)
+  if [ -n "$line" ]; then
+    p=$(printf '%s' "$line" | sed -E 's/.*: ([0-9]+) passed, ([0-9]+) failed/\1/')
+    f=$(printf '%s' "$line" | sed -E 's/.*: ([0-9]+) passed, ([0-9]+) failed/\2/')
+    passed=$((passed + p)); failed=$((failed + f))
+    if [ "$rc" -ne 0 ] && [ "$f" -eq 0 ]; then
+      echo "$t: exit status $rc"; failed=$((failed + 1))
+    fi
+  else
+    echo "$t: died (exit status $rc) before its summary line"; failed=$((failed + 1))
+  fi
+done
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]
