@@ -1,0 +1,375 @@
+/* contour.c -- reading and checking contour stacks.
+ *
+ * Everything is validated before any work: each error names the file, the
+ * line and the offending value.  What users expect to be repaired is repaired
+ * and reported: a repeated closing point, consecutive duplicate points, and
+ * clockwise contours (every contour is made counter-clockwise seen from +z, so
+ * both contours of a pair run the same way and the band does not twist). */
+#include "contour.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "xmem.h"
+
+typedef struct {
+  const char *name;
+  char *err;
+  size_t errlen;
+  FILE *notes;
+  const char *prefix;
+} reader;
+
+static int fail(reader *r, int line, const char *fmt, ...) {
+  va_list ap;
+  int k = line > 0 ? snprintf(r->err, r->errlen, "%s:%d: ", r->name, line)
+                   : snprintf(r->err, r->errlen, "%s: ", r->name);
+  if (k < 0) k = 0;
+  if ((size_t)k < r->errlen) {
+    va_start(ap, fmt);
+    vsnprintf(r->err + k, r->errlen - (size_t)k, fmt, ap);
+    va_end(ap);
+  }
+  return -1;
+}
+
+static void note(reader *r, int line, const char *fmt, ...) {
+  va_list ap;
+  if (!r->notes) return;
+  fprintf(r->notes, "%s: %s:%d: ", r->prefix, r->name, line);
+  va_start(ap, fmt);
+  vfprintf(r->notes, fmt, ap);
+  va_end(ap);
+  fputc('\n', r->notes);
+}
+
+/* A token as it may be shown in a message: printable, at most 40 bytes. */
+static const char *shown(const char *s, size_t len, char *buf, size_t cap) {
+  size_t j = 0;
+  for (size_t i = 0; i < len && j + 5 < cap; i++) {
+    unsigned char ch = (unsigned char)s[i];
+    if (i == 40) {
+      memcpy(buf + j, "...", 3);
+      j += 3;
+      break;
+    }
+    if (isprint(ch)) buf[j++] = (char)ch;
+    else j += (size_t)snprintf(buf + j, cap - j, "\\x%02x", ch);
+  }
+  buf[j] = 0;
+  return buf;
+}
+
+/* Split a line into whitespace-separated tokens (at most max). */
+typedef struct { const char *s; size_t len; } token;
+
+static int tokens(const char *line, size_t len, token *t, int max) {
+  int n = 0;
+  size_t i = 0;
+  while (i < len) {
+    while (i < len && (line[i] == ' ' || line[i] == '\t')) i++;
+    if (i >= len) break;
+    size_t j = i;
+    while (j < len && line[j] != ' ' && line[j] != '\t') j++;
+    if (n < max) t[n].s = line + i, t[n].len = j - i;
+    n++;
+    i = j;
+  }
+  return n;
+}
+
+/* 0 and *v if the token is a whole finite number; 1 if it is a number but not
+ * finite; -1 if it is not a number. */
+static int number(token t, double *v) {
+  char buf[64], *end;
+  if (t.len == 0 || t.len >= sizeof buf) return -1;
+  memcpy(buf, t.s, t.len);
+  buf[t.len] = 0;
+  errno = 0;
+  *v = strtod(buf, &end);
+  if (end != buf + t.len) return -1;
+  if (!isfinite(*v)) return 1;
+  return 0;
+}
+
+/* A contour as read, before repair. */
+typedef struct {
+  double z;
+  int line, want, have;   /* header line, announced and read point counts */
+  vec2 *pt;
+  int *ptline;            /* line of each point, for notes */
+  int cap;
+} raw;
+
+static void raw_push(raw *c, vec2 p, int line) {
+  if (c->have == c->cap) {
+    c->cap = c->cap ? 2 * c->cap : 64;
+    c->pt = xreallocarray(c->pt, (size_t)c->cap, sizeof *c->pt);
+    c->ptline = xreallocarray(c->ptline, (size_t)c->cap, sizeof *c->ptline);
+  }
+  c->pt[c->have] = p;
+  c->ptline[c->have++] = line;
+}
+
+/* Repair and check one contour; on success move it into *out. */
+static int finish(reader *r, raw *c, contour *out, int *reversed) {
+  int n = c->have, k = 0;
+  /* Consecutive duplicates, then a repeated closing point. */
+  for (int i = 0; i < n; i++) {
+    if (k > 0 && c->pt[i].x == c->pt[k - 1].x && c->pt[i].y == c->pt[k - 1].y) {
+      note(r, c->ptline[i], "dropped a duplicate of the point before (%.17g %.17g)",
+           c->pt[i].x, c->pt[i].y);
+      continue;
+    }
+    c->pt[k] = c->pt[i];
+    c->ptline[k++] = c->ptline[i];
+  }
+  while (k > 1 && c->pt[k - 1].x == c->pt[0].x && c->pt[k - 1].y == c->pt[0].y) {
+    note(r, c->ptline[k - 1], "dropped the repeated closing point (%.17g %.17g)",
+         c->pt[k - 1].x, c->pt[k - 1].y);
+    k--;
+  }
+  if (k < 3)
+    return fail(r, c->line, "contour has %d distinct point%s, needs at least 3 (z=%.17g)",
+                k, k == 1 ? "" : "s", c->z);
+  if (geom_collinear(c->pt, k))
+    return fail(r, c->line, "all %d points of the contour are collinear (z=%.17g)", k, c->z);
+  if (geom_area2(c->pt, k) < 0) {
+    geom_reverse(c->pt, k);
+    (*reversed)++;
+  }
+  out->z = c->z;
+  out->n = k;
+  out->pt = xreallocarray(c->pt, (size_t)k, sizeof *c->pt);
+  out->line = c->line;
+  free(c->ptline);
+  memset(c, 0, sizeof *c);
+  return 0;
+}
+
+static int by_z(const void *a, const void *b) {
+  const contour *p = *(const contour *const *)a, *q = *(const contour *const *)b;
+  if (p->z != q->z) return p->z < q->z ? -1 : 1;
+  return p->line - q->line;
+}
+
+/* Two contours on one slice: report the later one in file order, naming the
+ * first contour on that slice. */
+static int same_slice(reader *r, const contour *cs, int n) {
+  const contour **o = xmallocarray((size_t)n, sizeof *o);
+  const contour *bad = NULL;
+  for (int i = 0; i < n; i++) o[i] = &cs[i];
+  qsort(o, (size_t)n, sizeof *o, by_z);
+  for (int i = 1; i < n; i++)
+    if (o[i]->z == o[i - 1]->z && (!bad || o[i]->line < bad->line)) bad = o[i];
+  free(o);
+  if (!bad) return 0;
+  int first = 0;
+  while (cs[first].z != bad->z) first++;
+  return fail(r, bad->line,
+              "slice z=%.17g already has a contour (line %d); several contours per "
+              "slice are not supported yet (%.17g)", bad->z, cs[first].line, bad->z);
+}
+
+static void free_contours(contour *cs, int n) {
+  for (int i = 0; i < n; i++) free(cs[i].pt);
+  free(cs);
+}
+
+int contour_parse(const char *text, size_t len, const char *name,
+                  contour_stack *out, FILE *notes, const char *prefix,
+                  char *err, size_t errlen) {
+  reader rd = {name, err, errlen, notes, prefix ? prefix : "tilesim"};
+  reader *r = &rd;
+  contour *cs = NULL;
+  int ncs = 0, capcs = 0, line = 0, reversed = 0, rc = -1, last_want = 0;
+  raw cur = {0};
+  int open = 0;   /* reading the points of `cur` */
+  char vb[200];
+
+  memset(out, 0, sizeof *out);
+  if (len == 0) {
+    fail(r, 1, "empty file, no contours");
+    goto done;
+  }
+  size_t pos = 0;
+  while (pos < len) {
+    size_t end = pos;
+    while (end < len && text[end] != '\n') end++;
+    size_t ll = end;
+    line++;
+    if (ll - pos > CONTOUR_MAX_LINE) {
+      fail(r, line, "line longer than %d bytes (%zu bytes)", CONTOUR_MAX_LINE, ll - pos);
+      goto done;
+    }
+    if (ll > pos && text[ll - 1] == '\r') ll--;
+    for (size_t i = pos; i < ll; i++) {
+      unsigned char ch = (unsigned char)text[i];
+      if ((ch < 32 && ch != '\t') || ch == 127) {
+        fail(r, line, "binary data, not a contour file (byte 0x%02x)", ch);
+        goto done;
+      }
+    }
+    const char *s = text + pos;
+    size_t sl = ll - pos;
+    pos = end + 1;
+    token t[4];
+    int nt = tokens(s, sl, t, 4);
+    if (nt == 0 || t[0].s[0] == '#') continue;
+
+    int is_header = t[0].len == 1 && t[0].s[0] == 'C';
+    if (open && is_header) {
+      fail(r, line, "the contour at line %d announced %d points but has %d (next header: %s)",
+           cur.line, cur.want, cur.have, shown(s, sl, vb, sizeof vb));
+      goto done;
+    }
+    if (!open && !is_header) {
+      if (ncs > 0)
+        fail(r, line, "more point lines than the %d announced at line %d (%s)",
+             last_want, cs[ncs - 1].line, shown(s, sl, vb, sizeof vb));
+      else
+        fail(r, line, "expected a header 'C <points> <z>' (%s)", shown(s, sl, vb, sizeof vb));
+      goto done;
+    }
+    if (is_header) {
+      double nv, z;
+      if (nt != 3) {
+        fail(r, line, "garbled header, expected 'C <points> <z>' (%s)", shown(s, sl, vb, sizeof vb));
+        goto done;
+      }
+      if (number(t[1], &nv) != 0 || nv != floor(nv) || nv < 1) {
+        fail(r, line, "bad point count in header, expected a positive integer (%s)",
+             shown(t[1].s, t[1].len, vb, sizeof vb));
+        goto done;
+      }
+      if (nv > CONTOUR_MAX_POINTS) {
+        fail(r, line, "point count too large, at most %d (%s)", CONTOUR_MAX_POINTS,
+             shown(t[1].s, t[1].len, vb, sizeof vb));
+        goto done;
+      }
+      int k = number(t[2], &z);
+      if (k != 0) {
+        fail(r, line, k > 0 ? "z is not finite (%s)" : "z is not a number (%s)",
+             shown(t[2].s, t[2].len, vb, sizeof vb));
+        goto done;
+      }
+      cur.z = z;
+      cur.line = line;
+      cur.want = (int)nv;
+      cur.have = 0;
+      open = 1;
+      continue;
+    }
+    /* A point line. */
+    if (nt != 2) {
+      fail(r, line, "expected a point 'x y' (%s)", shown(s, sl, vb, sizeof vb));
+      goto done;
+    }
+    vec2 p;
+    for (int i = 0; i < 2; i++) {
+      double v;
+      int k = number(t[i], &v);
+      if (k != 0) {
+        fail(r, line, k > 0 ? "%c is not finite (%s)" : "%c is not a number (%s)",
+             i ? 'y' : 'x', shown(t[i].s, t[i].len, vb, sizeof vb));
+        goto done;
+      }
+      if (i) p.y = v;
+      else p.x = v;
+    }
+    raw_push(&cur, p, line);
+    if (cur.have == cur.want) {
+      if (ncs == capcs) {
+        capcs = capcs ? 2 * capcs : 16;
+        cs = xreallocarray(cs, (size_t)capcs, sizeof *cs);
+      }
+      last_want = cur.want;
+      if (finish(r, &cur, &cs[ncs], &reversed) != 0) goto done;
+      ncs++;
+      open = 0;
+    }
+  }
+  if (open) {
+    fail(r, line, "the contour at line %d announced %d points but has %d (end of file)",
+         cur.line, cur.want, cur.have);
+    goto done;
+  }
+  if (ncs == 0) {
+    fail(r, line, "no contours in the file (only comments or blank lines)");
+    goto done;
+  }
+  /* Slices: one contour each (found by sorting), z strictly monotone. */
+  if (same_slice(r, cs, ncs) != 0) goto done;
+  for (int i = 2; i < ncs; i++)
+    if ((cs[i].z > cs[i - 1].z) != (cs[1].z > cs[0].z)) {
+      fail(r, cs[i].line,
+           "z goes back: contours must come in increasing or decreasing z (%.17g after %.17g)",
+           cs[i].z, cs[i - 1].z);
+      goto done;
+    }
+  if (ncs < 2) {
+    fail(r, cs[0].line, "only one contour; tiling needs at least 2 (z=%.17g)", cs[0].z);
+    goto done;
+  }
+  if (reversed && notes)
+    fprintf(notes, "%s: %s: %d of %d contours ran clockwise; reversed to counter-clockwise\n",
+            r->prefix, name, reversed, ncs);
+  out->n = ncs;
+  out->c = cs;
+  cs = NULL;
+  rc = 0;
+done:
+  free(cur.pt);
+  free(cur.ptline);
+  if (rc != 0) free_contours(cs, ncs);
+  return rc;
+}
+
+int contour_read(const char *path, contour_stack *out, FILE *notes,
+                 const char *prefix, char *err, size_t errlen) {
+  int stdin_ = strcmp(path, "-") == 0;
+  FILE *f = stdin_ ? stdin : fopen(path, "rb");
+  memset(out, 0, sizeof *out);
+  if (!f) {
+    snprintf(err, errlen, "%s: cannot open (%s)", path, strerror(errno));
+    return -1;
+  }
+  size_t len = 0, cap = 1 << 16;
+  char *buf = xmalloc(cap);
+  for (;;) {
+    size_t got = fread(buf + len, 1, cap - len, f);
+    len += got;
+    if (got == 0) break;
+    if (len == cap) buf = xrealloc(buf, cap *= 2);
+  }
+  int bad = ferror(f);
+  int e = errno;
+  if (!stdin_) fclose(f);
+  if (bad) {
+    snprintf(err, errlen, "%s: cannot read (%s)", path, strerror(e));
+    free(buf);
+    return -1;
+  }
+  int rc = contour_parse(buf, len, stdin_ ? "<stdin>" : path, out, notes, prefix, err, errlen);
+  free(buf);
+  return rc;
+}
+
+int contour_write(FILE *f, const contour_stack *s) {
+  for (int i = 0; i < s->n; i++) {
+    const contour *c = &s->c[i];
+    fprintf(f, "C %d %.17g\n", c->n, c->z);
+    for (int j = 0; j < c->n; j++) fprintf(f, "%.17g %.17g\n", c->pt[j].x, c->pt[j].y);
+  }
+  return ferror(f) ? -1 : 0;
+}
+
+void contour_stack_free(contour_stack *s) {
+  free_contours(s->c, s->n);
+  s->c = NULL;
+  s->n = 0;
+}

@@ -1,0 +1,49 @@
+/* contour.h -- contour stacks: reading, checking and repairing .contours files.
+ *
+ * Format (shared/data/README.md): a line "C <n> <z>" opens a contour of n
+ * points in the plane z; the next n lines are its points "x y".  Lines
+ * starting with '#' are comments; blank lines are skipped.  The closing point
+ * is not repeated.  Contours are tiled in file order, each with the next. */
+#ifndef CONTOUR_H
+#define CONTOUR_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "geom.h"
+
+typedef struct {
+  double z;       /* the contour's plane */
+  int n;          /* points, after repair (>= 3, not all collinear) */
+  vec2 *pt;       /* counter-clockwise seen from +z; closing point not repeated */
+  int line;       /* line of its "C" header in the file */
+} contour;
+
+typedef struct {
+  int n;          /* contours, in file order (>= 2), z strictly monotone */
+  contour *c;
+} contour_stack;
+
+enum { CONTOUR_MAX_LINE = 4096 };        /* longer lines are rejected */
+enum { CONTOUR_MAX_POINTS = 10000000 };  /* per contour */
+
+/* Read the stack in `path` ("-" is standard input).  Repairs (a repeated
+ * closing point, consecutive duplicate points, clockwise contours) are
+ * reported as lines "PREFIX: FILE:LINE: ..." on `notes` (NULL: silent).
+ * Returns 0, or -1 with "FILE:LINE: what is wrong (value)" in err; nothing
+ * is allocated on failure.  The caller frees with contour_stack_free. */
+int contour_read(const char *path, contour_stack *out, FILE *notes,
+                 const char *prefix, char *err, size_t errlen);
+
+/* The same from memory: `name` is used in messages. */
+int contour_parse(const char *text, size_t len, const char *name,
+                  contour_stack *out, FILE *notes, const char *prefix,
+                  char *err, size_t errlen);
+
+/* Write a stack in the same format (%.17g: reading it back is exact).
+ * Returns 0 or -1 on a write error. */
+int contour_write(FILE *f, const contour_stack *s);
+
+void contour_stack_free(contour_stack *s);
+
+#endif

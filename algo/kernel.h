@@ -1,0 +1,26 @@
+/* kernel.h -- one anti-diagonal of the dynamic program (paper, section 4).
+ *
+ * Node (r, c) lies on diagonal k = r + c.  Its cost is
+ *     C(r,c) = min(C(r-1,c) + V(r-1,c), C(r,c-1) + H(r,c-1))
+ * (Fig. 11): both predecessors lie on diagonal k-1, so all nodes of a
+ * diagonal are independent and a diagonal can be split between processors
+ * (Fig. 12, 13).  Ties go to the vertical edge, everywhere: one global rule. */
+#ifndef KERNEL_H
+#define KERNEL_H
+
+#include <stdint.h>
+
+#include "weights.h"
+
+/* Evaluate nodes (k-c, c) for columns c = a..b of diagonal k.
+ * prev[] and cur[] are indexed by column.  prev[a-1 .. b] must be readable
+ * and hold +inf for nodes outside the band.  Writes cur[a..b] and
+ * ceil((b-a+1)/64) words of bits: bit i of the block is 1 when node a+i
+ * took its vertical in-edge (from (r-1, c)), 0 for the horizontal one. */
+void kernel_diag(const weights *w, int k, int a, int b, const double *prev, double *cur,
+                 uint64_t *bits);
+
+/* Words of bits for a run of len nodes. */
+static inline int64_t kernel_words(int64_t len) { return (len + 63) >> 6; }
+
+#endif

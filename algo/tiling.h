@@ -1,0 +1,51 @@
+/* tiling.h -- the exact optimal tiling between two contours: the minimum-cost
+ * acceptable path over ALL start rows, in O(mn log m) (Fuchs, Kedem, Uselton;
+ * the paper's serial algorithm, section 3.2).
+ *
+ *   shortestpath(G): mu(0) by one DP on the 2m x n planar graph; mu(m) is its
+ *   copy m rows down; then findallpaths(0, m): mu(mid), mid = (lo+hi)/2, is
+ *   computed only inside the band between mu(lo) and mu(hi), and the two
+ *   halves recurse.  The answer is the cheapest mu(i), ties to the smaller i.
+ *
+ * The smaller contour is doubled (its points are the rows), so the recursion
+ * runs over its points. */
+#ifndef TILING_H
+#define TILING_H
+
+#include <stdint.h>
+
+#include "band.h"
+#include "weights.h"
+
+typedef struct {
+  double cost;       /* the optimum: quanta * quantum */
+  double quanta;     /* the optimum in quanta, an exact integer */
+  double quantum;    /* see weights.h */
+  int start;         /* its start row in the rows contour */
+  int m, n;          /* rows and columns of the graph, m <= n */
+  int transposed;    /* 0: the rows are the first contour of the pair; 1: the second */
+  int *col;          /* the optimal path, col[t] for t = 0..m+n (band.h) */
+  band_count count;  /* work done */
+} tiling;
+
+/* Solve with the rows and columns of w as they are (no transposition).
+ * Fills *out; free with tiling_free. */
+void tiling_solve_w(const weights *w, tiling *out);
+
+/* Solve the pair (P: np points at zp, Q: nq points at zq), rows = the smaller
+ * contour (P when np == nq).  table as in weights_new. */
+void tiling_solve(const vec2 *P, int np, double zp, const vec2 *Q, int nq, double zq,
+                  cost_kind kind, int table, tiling *out);
+
+void tiling_free(tiling *t);
+
+/* The tiles of the path, in path order: for t = 1..m+n, tile[t-1] gets the
+ * indices (into P and Q of the pair, not rows/columns) of the triangle the
+ * t-th step adds: {edge start, edge end, apex} and on[t-1] = 0 when the edge
+ * lies on P, 1 when on Q. */
+void tiling_tiles(const tiling *t, int (*tile)[3], unsigned char *on);
+
+/* The start row the divide and conquer gives the two halves of (lo, hi). */
+static inline int tiling_mid(int lo, int hi) { return lo + (hi - lo) / 2; }
+
+#endif
