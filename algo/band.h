@@ -17,7 +17,10 @@
  * upper path U = mu(lo) and on or above the lower path L = mu(hi); on diagonal
  * k it is a run of columns [a_k, b_k].  Where the band pinches to one node on
  * two consecutive diagonals, the edge between them is a cut edge that every
- * path takes (section 8, Fig. 23): it is joined without being evaluated. */
+ * path takes (section 8, Fig. 23): it is joined without being evaluated.
+ * Where U and L run together for many diagonals, the whole run is joined at
+ * once: its cost is the difference of U's prefix sums (exact: weights.h), its
+ * nodes are U's. */
 #ifndef BAND_H
 #define BAND_H
 
@@ -26,8 +29,9 @@
 #include "weights.h"
 
 typedef struct {
-  int start;   /* the path runs from (start, 0) to (start+m, n) */
-  int *col;    /* col[t] for t = 0..m+n: column of its node on diagonal start+t */
+  int start;     /* the path runs from (start, 0) to (start+m, n) */
+  int *col;      /* col[t] for t = 0..m+n: column of its node on diagonal start+t */
+  double *cum;   /* cum[t]: its cost in quanta from (start, 0) to that node */
 } path;
 
 /* Columns [*a, *b] of the band for start row s on diagonal k (s <= k <= s+m+n),
@@ -61,11 +65,12 @@ typedef struct band_ws band_ws;   /* DP arrays and edge bits, reused */
 band_ws *band_ws_new(int m, int n);
 void band_ws_free(band_ws *ws);
 
-/* The minimum-cost path for start row s inside the band (U, L): writes its
- * columns to col[0..m+n] and returns its cost in quanta.  Ties: the vertical
- * in-edge.  Adds to *count. */
+/* The minimum-cost path for start row s inside the band (U, L): fills
+ * P->col[0..m+n] and P->cum[0..m+n] (the caller owns both arrays), sets
+ * P->start = s and returns its cost in quanta.  Ties: the vertical in-edge.
+ * U and L need col and cum.  Adds to *count. */
 double band_solve(const weights *w, band_ws *ws, int s, const path *U, const path *L,
-                  int *col, band_count *count);
+                  path *P, band_count *count);
 
 /* The number of nodes the band's dynamic program evaluates (cut edges
  * excluded): the size |W| of section 7.1. */

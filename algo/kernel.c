@@ -121,6 +121,47 @@ static void diag_span(const weights *w, int k, int a, int b, const double *restr
   }
 }
 
+/* Table row s: column c pairs with row r = (s - c) mod m; area: V(r, c) and
+ * H(r, c-1); span: |R_r C_c|, the weight of both in-edges of node (r, c)
+ * (weights.h says which diagonals each row serves).  Within a run of c where
+ * r does not wrap, the reversed row arrays are read forwards. */
+CLONES
+static void table_chunk(const weights *w, int r, int c0, int len, double *restrict tv,
+                        double *restrict th) {
+  /* rows r, r-1, ..., at reversed index 2m+1-r+i */
+  int base = 2 * w->m + 1 - r;
+  const double *restrict rx = w->rx + base, *restrict ry = w->ry + base;
+  const double *restrict rex = w->rex + base, *restrict rey = w->rey + base;
+  const double *restrict ree = w->ree + base;
+  const double *restrict cx = w->cx + 1 + c0, *restrict cy = w->cy + 1 + c0;
+  const double *restrict cfx = w->cfx + c0, *restrict cfy = w->cfy + c0;
+  const double *restrict cff = w->cff + c0;
+  double sc = w->sc, h2 = w->h2;
+  tv += c0;
+  if (w->kind == COST_SPAN) {
+    /* |R_{r'} C_c|: the in-edge weight of node (r', c). */
+    for (int i = 0; i < len; i++) tv[i] = weights_len(rx[i], ry[i], cx[i], cy[i], h2, sc);
+    return;
+  }
+  th += c0;
+  for (int i = 0; i < len; i++) {
+    tv[i] = weights_tri(ree[i], rex[i], rey[i], rx[i], ry[i], cx[i], cy[i], sc);
+    /* H(r', c-1): edge C_{c-1} C_c (column index c-1, stored at c), apex R_{r'}. */
+    th[i] = weights_tri(cff[i], cfx[i], cfy[i], cx[i - 1], cy[i - 1], rx[i], ry[i], sc);
+  }
+}
+
+void kernel_table_row(const weights *w, int s, double *tv, double *th) {
+  int m = w->m, n = w->n;
+  for (int c = 0; c <= n;) {
+    int r = ((s - c) % m + m) % m;
+    int len = r + 1 < n + 1 - c ? r + 1 : n + 1 - c;
+    table_chunk(w, r, c, len, tv, th);
+    c += len;
+  }
+  if (th && w->kind == COST_AREA) th[0] = 0;   /* column 0 has no horizontal in-edge */
+}
+
 void kernel_diag(const weights *w, int k, int a, int b, const double *prev, double *cur,
                  uint64_t *bits) {
   if (w->tv)

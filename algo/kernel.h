@@ -20,6 +20,11 @@
 void kernel_diag(const weights *w, int k, int a, int b, const double *prev, double *cur,
                  uint64_t *bits);
 
+/* Fill row s (0 <= s < m) of w's tables (weights.h): tv[c], and th[c] for
+ * area.  Vectorised like the kernel, with the same arithmetic, so a table
+ * entry is bit-identical to the weight computed on the fly. */
+void kernel_table_row(const weights *w, int s, double *tv, double *th);
+
 /* Words of bits for a run of len nodes. */
 static inline int64_t kernel_words(int64_t len) { return (len + 63) >> 6; }
 

@@ -11,11 +11,13 @@ typedef struct {
   band_ws *ws;
   tiling *out;
   int *pool;     /* column arrays for the recursion stack */
-  int depth;
+  double *cpool; /* and their prefix sums */
 } solver;
 
-static int *colbuf(solver *s, int level) {
-  return s->pool + (size_t)level * (size_t)(s->w->m + s->w->n + 1);
+/* The path arrays of recursion level `level`. */
+static path pathbuf(solver *s, int level) {
+  size_t len = (size_t)(s->w->m + s->w->n + 1);
+  return (path){0, s->pool + (size_t)level * len, s->cpool + (size_t)level * len};
 }
 
 static void consider(solver *s, int start, double quanta, const int *col) {
@@ -33,8 +35,8 @@ static void findall(solver *s, const path *U, const path *L, int level) {
   int lo = U->start, hi = L->start;
   if (hi - lo < 2) return;
   int mid = tiling_mid(lo, hi);
-  path P = {mid, colbuf(s, level)};
-  double q = band_solve(s->w, s->ws, mid, U, L, P.col, &s->out->count);
+  path P = pathbuf(s, level);
+  double q = band_solve(s->w, s->ws, mid, U, L, &P, &s->out->count);
   consider(s, mid, q, P.col);
   findall(s, U, &P, level + 1);
   findall(s, &P, L, level + 1);
@@ -47,19 +49,21 @@ void tiling_solve_w(const weights *w, tiling *out) {
   out->n = n;
   out->quantum = weights_quantum(w);
   out->col = xmallocarray((size_t)(m + n + 1), sizeof *out->col);
-  solver s = {w, band_ws_new(m, n), out, NULL, 0};
+  solver s = {w, band_ws_new(m, n), out, NULL, NULL};
   int levels = 2;
   for (int x = m; x > 1; x >>= 1) levels++;
   s.pool = xmallocarray((size_t)levels * (size_t)(m + n + 1), sizeof *s.pool);
+  s.cpool = xmallocarray((size_t)levels * (size_t)(m + n + 1), sizeof *s.cpool);
 
-  path mu0 = {0, colbuf(&s, 0)};
-  out->quanta = band_solve(w, s.ws, 0, NULL, NULL, mu0.col, &out->count);
+  path mu0 = pathbuf(&s, 0);
+  out->quanta = band_solve(w, s.ws, 0, NULL, NULL, &mu0, &out->count);
   out->start = 0;
   memcpy(out->col, mu0.col, (size_t)(m + n + 1) * sizeof *mu0.col);
-  path mum = {m, mu0.col};   /* mu(m): the same path, m rows down */
+  path mum = {m, mu0.col, mu0.cum};   /* mu(m): the same path, m rows down */
   findall(&s, &mu0, &mum, 1);
   out->cost = out->quanta * out->quantum;
   free(s.pool);
+  free(s.cpool);
   band_ws_free(s.ws);
 }
 

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "kernel.h"
 #include "xmem.h"
 
 const char *cost_name(cost_kind k) { return k == COST_SPAN ? "span" : "area"; }
@@ -87,20 +88,9 @@ weights *weights_new(const vec2 *R, int m, double zr, const vec2 *C, int n, doub
     int nt = kind == COST_AREA ? 2 : 1;
     w->tv = xmallocarray(nt * cells, sizeof(double));
     w->th = kind == COST_AREA ? w->tv + cells : w->tv;
-    for (int s = 0; s < m; s++) {
-      double *tv = w->tv + (size_t)s * (n + 1), *th = w->th + (size_t)s * (n + 1);
-      for (int c = 0; c <= n; c++) {
-        /* tv row s serves diagonals k = s+1 (mod m): node (k-c, c) has the
-         * vertical in-edge V(k-1-c, c).  th row s serves k = s (mod m): the
-         * horizontal in-edge H(k-c, c-1).  For span both are |R_r C_c|. */
-        if (kind == COST_AREA) {
-          tv[c] = weights_v(w, s - c, c);
-          th[c] = c > 0 ? weights_h(w, s - c, c - 1) : 0;
-        } else {
-          tv[c] = weights_v(w, s - c - 1, c);
-        }
-      }
-    }
+    for (int s = 0; s < m; s++)
+      kernel_table_row(w, s, w->tv + (size_t)s * (n + 1),
+                       kind == COST_AREA ? w->th + (size_t)s * (n + 1) : NULL);
   }
   return w;
 }
@@ -132,3 +122,12 @@ double weights_h(const weights *w, int i, int j) {
 
 double weights_quantum(const weights *w) { return w->quantum; }
 int weights_has_table(const weights *w) { return w->tv != NULL; }
+
+double weights_in(const weights *w, int k, int c, int vertical) {
+  if (w->tv) {
+    if (w->kind == COST_SPAN) return w->tv[(size_t)mod(k, w->m) * ((size_t)w->n + 1) + (size_t)c];
+    if (vertical) return w->tv[(size_t)mod(k - 1, w->m) * ((size_t)w->n + 1) + (size_t)c];
+    return w->th[(size_t)mod(k, w->m) * ((size_t)w->n + 1) + (size_t)c];
+  }
+  return vertical ? weights_v(w, k - c - 1, c) : weights_h(w, k - c, c - 1);
+}

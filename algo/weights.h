@@ -88,4 +88,9 @@ static inline double weights_len(double ax, double ay, double px, double py, dou
   return weights_round(sqrt((dx * dx + dy * dy) + h2) * sc);
 }
 
+/* The weight of the in-edge of node (k-c, c) on diagonal k: from (k-c-1, c)
+ * (vertical, V(k-c-1, c)) or from (k-c, c-1) (horizontal, H(k-c, c-1)).
+ * From the tables when there are some. */
+double weights_in(const weights *w, int k, int c, int vertical);
+
 #endif

@@ -51,6 +51,17 @@ static void check_weights(rng *g) {
         }
       CHECK(bad == 0, "%s weights: %d disagree with the 3D formula (m=%d n=%d)",
             cost_name((cost_kind)kind), bad, m, n);
+      /* The tables, entry by entry, against the weights computed on the fly. */
+      for (int k = 1; k <= 2 * m + n; k++)
+        for (int c = 0; c <= n; c++) {
+          if (k - c < 0 || k - c > 2 * m) continue;
+          for (int vert = 0; vert < 2; vert++) {
+            if ((vert && k - c < 1) || (!vert && c < 1)) continue;
+            double x = weights_in(wt, k, c, vert);
+            double y = vert ? weights_v(w, k - c - 1, c) : weights_h(w, k - c, c - 1);
+            if (x != y) badt++;
+          }
+        }
       CHECK(badt == 0, "table and on-the-fly weights differ in %d places", badt);
       CHECK(q > 0 && q < 1e-6, "quantum %g", q);
       weights_free(w);
