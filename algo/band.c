@@ -56,6 +56,7 @@ static int shared_until(int m, int n, int s, const path *U, const path *L, int t
   const int *uc = U->col + du, *lc = L->col + dl;
   if (uc[t - 1] != lc[t - 1]) return t - 1;
   int u = t;
+  while (u + 16 <= end + 1 && memcmp(uc + u, lc + u, 16 * sizeof *uc) == 0) u += 16;
   while (u <= end && uc[u] == lc[u]) u++;
   return u - 1;
 }

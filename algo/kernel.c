@@ -1,11 +1,13 @@
 /* kernel.c -- the anti-diagonal kernel, in three variants (weights from the
  * per-diagonal tables, area on the fly, span on the fly).
  *
- * Each variant runs over blocks of 64 nodes: a loop the compiler vectorises
- * computes the costs and one flag byte per node, then the flags are packed
- * into one word (section 7.3: the incoming edge, one bit per node).  On x86-64
- * each variant is also compiled for AVX2 and picked when the CPU has it; no
- * fused multiply-add is used, so both give bit-identical results. */
+ * The portable version runs over blocks of 64 nodes: a loop the compiler
+ * vectorises computes the costs and one flag byte per node, then the flags
+ * are packed into one word (section 7.3: the incoming edge, one bit per
+ * node).  On x86-64 with AVX2, hand-written versions take four nodes at a
+ * time and put the comparison mask straight into the word.  Every version
+ * does the same IEEE operations in the same order (no fused multiply-add),
+ * so all give bit-identical costs and bits. */
 #include "kernel.h"
 
 #include <string.h>
@@ -15,6 +17,12 @@
 #define CLONES __attribute__((target_clones("avx2", "default")))
 #else
 #define CLONES
+#endif
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define HAVE_AVX2_KERNEL 1
+#include <immintrin.h>
+#define AVX2 __attribute__((target("avx2")))
 #endif
 
 /* Pack n <= 64 flag bytes (0 or 1) into a word, flag i to bit i. */
@@ -32,7 +40,6 @@ static inline uint64_t pack(const uint8_t *f, int n) {
   return w;
 }
 
-CLONES
 static void diag_table(const weights *w, int k, int a, int b, const double *restrict prev,
                        double *restrict cur, uint64_t *restrict bits) {
   size_t stride = (size_t)w->n + 1;
@@ -51,7 +58,6 @@ static void diag_table(const weights *w, int k, int a, int b, const double *rest
   }
 }
 
-CLONES
 static void diag_span_table(const weights *w, int k, int a, int b,
                             const double *restrict prev, double *restrict cur,
                             uint64_t *restrict bits) {
@@ -70,7 +76,6 @@ static void diag_span_table(const weights *w, int k, int a, int b,
 }
 
 /* Row r of node (k-c, c) is stored at index 2m+1-r = base + c. */
-CLONES
 static void diag_area(const weights *w, int k, int a, int b, const double *restrict prev,
                       double *restrict cur, uint64_t *restrict bits) {
   int base = 2 * w->m + 1 - k;
@@ -100,7 +105,6 @@ static void diag_area(const weights *w, int k, int a, int b, const double *restr
   }
 }
 
-CLONES
 static void diag_span(const weights *w, int k, int a, int b, const double *restrict prev,
                       double *restrict cur, uint64_t *restrict bits) {
   int base = 2 * w->m + 1 - k;
@@ -162,10 +166,159 @@ void kernel_table_row(const weights *w, int s, double *tv, double *th) {
   if (th && w->kind == COST_AREA) th[0] = 0;   /* column 0 has no horizontal in-edge */
 }
 
+#ifdef HAVE_AVX2_KERNEL
+/* Four nodes at a time; the scalar tail does exactly the portable version's
+ * arithmetic.  `word`/`nb` collect the bits of the current 64-node block. */
+#define PUT_BITS(mask, count)                                                  \
+  do {                                                                         \
+    word |= (uint64_t)(mask) << nb;                                            \
+    nb += (count);                                                             \
+    if (nb == 64) *bits++ = word, word = 0, nb = 0;                            \
+  } while (0)
+
+AVX2 static void diag_table_avx2(const weights *w, int k, int a, int b, const double *prev,
+                                 double *cur, uint64_t *bits) {
+  size_t stride = (size_t)w->n + 1;
+  const double *tv = w->tv + (size_t)((k - 1) % w->m) * stride;
+  const double *th = w->th + (size_t)(k % w->m) * stride;
+  uint64_t word = 0;
+  int nb = 0, c = a;
+  for (; c + 3 <= b; c += 4) {
+    __m256d up = _mm256_add_pd(_mm256_loadu_pd(prev + c), _mm256_loadu_pd(tv + c));
+    __m256d left = _mm256_add_pd(_mm256_loadu_pd(prev + c - 1), _mm256_loadu_pd(th + c));
+    __m256d le = _mm256_cmp_pd(up, left, _CMP_LE_OQ);
+    _mm256_storeu_pd(cur + c, _mm256_blendv_pd(left, up, le));
+    PUT_BITS(_mm256_movemask_pd(le), 4);
+  }
+  for (; c <= b; c++) {
+    double up = prev[c] + tv[c], left = prev[c - 1] + th[c];
+    cur[c] = up <= left ? up : left;
+    PUT_BITS(up <= left, 1);
+  }
+  if (nb) *bits = word;
+}
+
+AVX2 static void diag_span_table_avx2(const weights *w, int k, int a, int b,
+                                      const double *prev, double *cur, uint64_t *bits) {
+  const double *ts = w->tv + (size_t)(k % w->m) * ((size_t)w->n + 1);
+  uint64_t word = 0;
+  int nb = 0, c = a;
+  for (; c + 3 <= b; c += 4) {
+    __m256d up = _mm256_loadu_pd(prev + c), left = _mm256_loadu_pd(prev + c - 1);
+    __m256d le = _mm256_cmp_pd(up, left, _CMP_LE_OQ);
+    _mm256_storeu_pd(cur + c, _mm256_add_pd(_mm256_blendv_pd(left, up, le), _mm256_loadu_pd(ts + c)));
+    PUT_BITS(_mm256_movemask_pd(le), 4);
+  }
+  for (; c <= b; c++) {
+    double up = prev[c], left = prev[c - 1];
+    cur[c] = (up <= left ? up : left) + ts[c];
+    PUT_BITS(up <= left, 1);
+  }
+  if (nb) *bits = word;
+}
+
+/* weights_round(sqrt(ee + cz*cz) * sc) with cz = ex (py - ay) - ey (px - ax),
+ * four at a time, operation for operation as weights_tri. */
+AVX2 static inline __m256d tri4(__m256d ee, __m256d ex, __m256d ey, __m256d ax, __m256d ay,
+                                __m256d px, __m256d py, __m256d sc) {
+  const __m256d big = _mm256_set1_pd(0x1p52);
+  __m256d dx = _mm256_sub_pd(px, ax), dy = _mm256_sub_pd(py, ay);
+  __m256d cz = _mm256_sub_pd(_mm256_mul_pd(ex, dy), _mm256_mul_pd(ey, dx));
+  __m256d q = _mm256_mul_pd(_mm256_sqrt_pd(_mm256_add_pd(ee, _mm256_mul_pd(cz, cz))), sc);
+  return _mm256_sub_pd(_mm256_add_pd(q, big), big);
+}
+
+#define L4(p) _mm256_loadu_pd(p)
+
+AVX2 static void diag_area_avx2(const weights *w, int k, int a, int b, const double *prev,
+                                double *cur, uint64_t *bits) {
+  int base = 2 * w->m + 1 - k;
+  const double *rx = w->rx + base, *ry = w->ry + base, *rex = w->rex + base;
+  const double *rey = w->rey + base, *ree = w->ree + base;
+  const double *cx = w->cx + 1, *cy = w->cy + 1, *cfx = w->cfx + 1, *cfy = w->cfy + 1;
+  const double *cff = w->cff + 1;
+  double sc = w->sc;
+  __m256d sc4 = _mm256_set1_pd(sc);
+  uint64_t word = 0;
+  int nb = 0, c = a;
+  for (; c + 3 <= b; c += 4) {
+    __m256d v = tri4(L4(ree + c + 1), L4(rex + c + 1), L4(rey + c + 1), L4(rx + c + 1),
+                     L4(ry + c + 1), L4(cx + c), L4(cy + c), sc4);
+    __m256d h = tri4(L4(cff + c - 1), L4(cfx + c - 1), L4(cfy + c - 1), L4(cx + c - 1),
+                     L4(cy + c - 1), L4(rx + c), L4(ry + c), sc4);
+    __m256d up = _mm256_add_pd(L4(prev + c), v), left = _mm256_add_pd(L4(prev + c - 1), h);
+    __m256d le = _mm256_cmp_pd(up, left, _CMP_LE_OQ);
+    _mm256_storeu_pd(cur + c, _mm256_blendv_pd(left, up, le));
+    PUT_BITS(_mm256_movemask_pd(le), 4);
+  }
+  for (; c <= b; c++) {
+    double v = weights_tri(ree[c + 1], rex[c + 1], rey[c + 1], rx[c + 1], ry[c + 1], cx[c],
+                           cy[c], sc);
+    double h = weights_tri(cff[c - 1], cfx[c - 1], cfy[c - 1], cx[c - 1], cy[c - 1], rx[c],
+                           ry[c], sc);
+    double up = prev[c] + v, left = prev[c - 1] + h;
+    cur[c] = up <= left ? up : left;
+    PUT_BITS(up <= left, 1);
+  }
+  if (nb) *bits = word;
+}
+
+AVX2 static void diag_span_avx2(const weights *w, int k, int a, int b, const double *prev,
+                                double *cur, uint64_t *bits) {
+  int base = 2 * w->m + 1 - k;
+  const double *rx = w->rx + base, *ry = w->ry + base;
+  const double *cx = w->cx + 1, *cy = w->cy + 1;
+  double sc = w->sc, h2 = w->h2;
+  const __m256d big = _mm256_set1_pd(0x1p52), sc4 = _mm256_set1_pd(sc), h24 = _mm256_set1_pd(h2);
+  uint64_t word = 0;
+  int nb = 0, c = a;
+  for (; c + 3 <= b; c += 4) {
+    __m256d dx = _mm256_sub_pd(L4(cx + c), L4(rx + c)), dy = _mm256_sub_pd(L4(cy + c), L4(ry + c));
+    __m256d d2 = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)), h24);
+    __m256d q = _mm256_mul_pd(_mm256_sqrt_pd(d2), sc4);
+    __m256d s4 = _mm256_sub_pd(_mm256_add_pd(q, big), big);
+    __m256d up = L4(prev + c), left = L4(prev + c - 1);
+    __m256d le = _mm256_cmp_pd(up, left, _CMP_LE_OQ);
+    _mm256_storeu_pd(cur + c, _mm256_add_pd(_mm256_blendv_pd(left, up, le), s4));
+    PUT_BITS(_mm256_movemask_pd(le), 4);
+  }
+  for (; c <= b; c++) {
+    double s1 = weights_len(rx[c], ry[c], cx[c], cy[c], h2, sc);
+    double up = prev[c], left = prev[c - 1];
+    cur[c] = (up <= left ? up : left) + s1;
+    PUT_BITS(up <= left, 1);
+  }
+  if (nb) *bits = word;
+}
+#endif
+
+typedef void diag_fn(const weights *, int, int, int, const double *, double *, uint64_t *);
+
+/* -1: not yet decided; 0: portable; 1: AVX2. */
+static int simd = -1;
+
+int kernel_simd(int want) {
+#ifdef HAVE_AVX2_KERNEL
+  if (simd < 0) simd = __builtin_cpu_supports("avx2") ? 1 : 0;
+  if (want >= 0) simd = want && __builtin_cpu_supports("avx2");
+  return simd;
+#else
+  (void)want;
+  return simd = 0;
+#endif
+}
+
 void kernel_diag(const weights *w, int k, int a, int b, const double *prev, double *cur,
                  uint64_t *bits) {
-  if (w->tv)
-    (w->kind == COST_AREA ? diag_table : diag_span_table)(w, k, a, b, prev, cur, bits);
+  diag_fn *f;
+  if (simd < 0) kernel_simd(-1);
+#ifdef HAVE_AVX2_KERNEL
+  if (simd)
+    f = w->tv ? (w->kind == COST_AREA ? diag_table_avx2 : diag_span_table_avx2)
+              : (w->kind == COST_AREA ? diag_area_avx2 : diag_span_avx2);
   else
-    (w->kind == COST_AREA ? diag_area : diag_span)(w, k, a, b, prev, cur, bits);
+#endif
+    f = w->tv ? (w->kind == COST_AREA ? diag_table : diag_span_table)
+              : (w->kind == COST_AREA ? diag_area : diag_span);
+  f(w, k, a, b, prev, cur, bits);
 }

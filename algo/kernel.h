@@ -25,6 +25,11 @@ void kernel_diag(const weights *w, int k, int a, int b, const double *prev, doub
  * entry is bit-identical to the weight computed on the fly. */
 void kernel_table_row(const weights *w, int s, double *tv, double *th);
 
+/* Which version runs: want = 1 asks for the SIMD one (AVX2, if the CPU has
+ * it), 0 for the portable one, -1 only asks.  Returns 1 if SIMD is in use.
+ * All versions give bit-identical results; tests compare them. */
+int kernel_simd(int want);
+
 /* Words of bits for a run of len nodes. */
 static inline int64_t kernel_words(int64_t len) { return (len + 63) >> 6; }
 

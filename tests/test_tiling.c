@@ -7,6 +7,7 @@
 
 #include "check.h"
 #include "gen.h"
+#include "kernel.h"
 #include "naive.h"
 #include "rng.h"
 #include "tiling.h"
@@ -169,9 +170,14 @@ static void compare(rng *g, shape sh, int maxn, int brute, int count) {
     weights *wr = weights_new(P, np, zp, Q, nq, zq, kind, 0);
     int rs;
     double ref = brute ? naive_brute(wr, &rs) : naive_dp(wr, &rs);
-    tiling t, tt;
+    tiling t, tt, tg;
     tiling_solve(P, np, zp, Q, nq, zq, kind, 0, &t);
     tiling_solve(P, np, zp, Q, nq, zq, kind, 1, &tt);
+    /* The portable kernel against the SIMD one, when there is one. */
+    int simd = kernel_simd(-1);
+    kernel_simd(!simd);
+    tiling_solve(P, np, zp, Q, nq, zq, kind, trial & 1, &tg);
+    kernel_simd(simd);
     char what[96];
     snprintf(what, sizeof what, "%s %s m=%d n=%d trial %d", shape_name[sh], cost_name(kind), np, nq, trial);
     if (t.quanta != ref) mism++;
@@ -179,6 +185,10 @@ static void compare(rng *g, shape sh, int maxn, int brute, int count) {
     CHECK(t.quanta == tt.quanta && t.start == tt.start &&
               memcmp(t.col, tt.col, sizeof *t.col * (size_t)(t.m + t.n + 1)) == 0,
           "%s: table and on-the-fly kernels differ", what);
+    tiling *same = trial & 1 ? &tt : &t;
+    CHECK(tg.quanta == same->quanta && tg.start == same->start &&
+              memcmp(tg.col, same->col, sizeof *t.col * (size_t)(t.m + t.n + 1)) == 0,
+          "%s: portable and SIMD kernels differ", what);
     CHECK(t.transposed == (nq < np) && t.m == (np < nq ? np : nq), "%s: orientation", what);
     weights *ws = t.transposed ? weights_new(Q, nq, zq, P, np, zp, kind, 0) : wr;
     check_path(&t, ws, what);
@@ -187,6 +197,7 @@ static void compare(rng *g, shape sh, int maxn, int brute, int count) {
     weights_free(wr);
     tiling_free(&t);
     tiling_free(&tt);
+    tiling_free(&tg);
     if (mism > 5) break;   /* enough said */
   }
   free(P);
@@ -195,6 +206,7 @@ static void compare(rng *g, shape sh, int maxn, int brute, int count) {
 
 int main(void) {
   rng g;
+  printf("test_tiling: SIMD kernel %s\n", kernel_simd(-1) ? "available" : "not available");
   rng_seed(&g, 20261121);
   check_weights(&g);
   for (int sh = STAR; sh <= SHIFTED; sh++) {

@@ -1,0 +1,58 @@
+/* cap.c -- ear clipping (Meisters' two-ears theorem: a simple polygon always
+ * has an ear, so clipping one at a time ends after n-2 ears). */
+#include "cap.h"
+
+#include <stdlib.h>
+
+#include "xmem.h"
+
+static double cross(vec2 a, vec2 b, vec2 c) {
+  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+}
+
+static int same(vec2 a, vec2 b) { return a.x == b.x && a.y == b.y; }
+
+/* Is vertex b (between a and c) an ear: convex, and no reflex vertex of the
+ * remaining polygon inside or on triangle abc? */
+static int is_ear(const vec2 *p, const int *next, const int *prev, int ib) {
+  int ia = prev[ib], ic = next[ib];
+  vec2 a = p[ia], b = p[ib], c = p[ic];
+  if (cross(a, b, c) <= 0) return 0;
+  for (int j = next[ic]; j != ia; j = next[j]) {
+    vec2 q = p[j];
+    if (cross(p[prev[j]], q, p[next[j]]) > 0) continue;   /* convex: cannot be inside */
+    if (same(q, a) || same(q, b) || same(q, c)) continue;
+    if (cross(a, b, q) >= 0 && cross(b, c, q) >= 0 && cross(c, a, q) >= 0) return 0;
+  }
+  return 1;
+}
+
+int cap_triangulate(const vec2 *p, int n, int (*tri)[3]) {
+  int *next = xmallocarray((size_t)n, sizeof *next), *prev = xmallocarray((size_t)n, sizeof *prev);
+  for (int i = 0; i < n; i++) next[i] = (i + 1) % n, prev[i] = (i + n - 1) % n;
+  int left = n, nt = 0, i = 0, miss = 0;
+  while (left > 3) {
+    /* After a full turn without an ear (a polygon that is not simple, or
+     * rounding), clip the vertex anyway: convex ones first. */
+    int force = miss >= left, ear = is_ear(p, next, prev, i);
+    if (!ear && force && miss < 2 * left) ear = cross(p[prev[i]], p[i], p[next[i]]) > 0;
+    if (!ear && miss >= 2 * left) ear = 1;
+    if (ear) {
+      tri[nt][0] = prev[i], tri[nt][1] = i, tri[nt][2] = next[i];
+      nt++;
+      next[prev[i]] = next[i];
+      prev[next[i]] = prev[i];
+      i = prev[i];   /* the neighbours may have become ears */
+      left--;
+      miss = 0;
+    } else {
+      i = next[i];
+      miss++;
+    }
+  }
+  tri[nt][0] = prev[i], tri[nt][1] = i, tri[nt][2] = next[i];
+  nt++;
+  free(next);
+  free(prev);
+  return nt;
+}

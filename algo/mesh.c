@@ -1,0 +1,123 @@
+/* mesh.c -- triangles from tilings and caps; area and volume. */
+#include "mesh.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#include "cap.h"
+#include "xmem.h"
+
+void mesh_init(mesh *me, const contour_stack *s) {
+  me->nv = 0;
+  me->base = xmallocarray((size_t)s->n, sizeof *me->base);
+  for (int i = 0; i < s->n; i++) me->base[i] = me->nv, me->nv += s->c[i].n;
+  me->v = xmallocarray((size_t)me->nv, sizeof *me->v);
+  for (int i = 0; i < s->n; i++)
+    for (int j = 0; j < s->c[i].n; j++)
+      me->v[me->base[i] + j] = (vec3){s->c[i].pt[j].x, s->c[i].pt[j].y, s->c[i].z};
+  me->nt = 0;
+  me->cap = 0;
+  me->t = NULL;
+}
+
+void mesh_free(mesh *me) {
+  free(me->v);
+  free(me->t);
+  free(me->base);
+  me->v = NULL, me->t = NULL, me->base = NULL;
+}
+
+static void add(mesh *me, int a, int b, int c) {
+  if (me->nt == me->cap) {
+    me->cap = me->cap ? 2 * me->cap : 1024;
+    me->t = xreallocarray(me->t, (size_t)me->cap, sizeof *me->t);
+  }
+  me->t[me->nt][0] = a, me->t[me->nt][1] = b, me->t[me->nt][2] = c;
+  me->nt++;
+}
+
+static vec3 sub(vec3 a, vec3 b) { return (vec3){a.x - b.x, a.y - b.y, a.z - b.z}; }
+static vec3 crs(vec3 a, vec3 b) {
+  return (vec3){a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+static double dot(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
+double mesh_tri_area(const mesh *me, int t) {
+  vec3 a = me->v[me->t[t][0]], b = me->v[me->t[t][1]], c = me->v[me->t[t][2]];
+  vec3 x = crs(sub(b, a), sub(c, a));
+  return 0.5 * sqrt(dot(x, x));
+}
+
+/* The triangle's share of the volume, about the origin o. */
+static double tri_volume(const mesh *me, int t, vec3 o) {
+  vec3 a = sub(me->v[me->t[t][0]], o), b = sub(me->v[me->t[t][1]], o), c = sub(me->v[me->t[t][2]], o);
+  return dot(a, crs(b, c)) / 6;
+}
+
+void mesh_add_band(mesh *me, const contour_stack *s, int i, const tiling *t, double *area,
+                   double *volume) {
+  const contour *P = &s->c[i], *Q = &s->c[i + 1];
+  int steps = t->m + t->n, first = me->nt;
+  int (*tile)[3] = xmallocarray((size_t)steps, sizeof *tile);
+  unsigned char *on = xmalloc((size_t)steps);
+  tiling_tiles(t, tile, on);
+  for (int k = 0; k < steps; k++) {
+    /* The edge x_a x_b lies on one contour, the apex y on the other.  Seen
+     * from outside, a counter-clockwise contour's edge with the apex above
+     * it runs x_a, x_b, y; with the apex below, the other way. */
+    const contour *X = on[k] ? Q : P, *Y = on[k] ? P : Q;
+    int bx = me->base[on[k] ? i + 1 : i], by = me->base[on[k] ? i : i + 1];
+    int xa = bx + tile[k][0], xb = bx + tile[k][1], y = by + tile[k][2];
+    if (Y->z > X->z) add(me, xa, xb, y);
+    else add(me, xb, xa, y);
+  }
+  free(tile);
+  free(on);
+
+  /* Area, and the volume of the slab: the band plus the two contour planes
+   * (a plane at height z, normal +-z, adds +-z A / 3), about a point o on the
+   * lower plane so the sum does not cancel. */
+  const contour *lo = P->z < Q->z ? P : Q, *hi = P->z < Q->z ? Q : P;
+  vec3 o = {lo->pt[0].x, lo->pt[0].y, lo->z};
+  double ar = 0, vol = 0;
+  for (int k = first; k < me->nt; k++) ar += mesh_tri_area(me, k), vol += tri_volume(me, k, o);
+  vol += (hi->z - lo->z) * 0.5 * geom_area2(hi->pt, hi->n) / 3;
+  *area = ar;
+  *volume = vol;
+}
+
+double mesh_add_caps(mesh *me, const contour_stack *s) {
+  double ar = 0;
+  for (int e = 0; e < 2; e++) {
+    int i = e ? s->n - 1 : 0, other = e ? s->n - 2 : 1;
+    const contour *c = &s->c[i];
+    int (*tri)[3] = xmallocarray((size_t)c->n, sizeof *tri);
+    int nt = cap_triangulate(c->pt, c->n, tri);
+    /* Counter-clockwise triangles face +z: right for the top, reversed for the bottom. */
+    int top = c->z > s->c[other].z, b = me->base[i];
+    for (int k = 0; k < nt; k++) {
+      if (top) add(me, b + tri[k][0], b + tri[k][1], b + tri[k][2]);
+      else add(me, b + tri[k][0], b + tri[k][2], b + tri[k][1]);
+      ar += mesh_tri_area(me, me->nt - 1);
+    }
+    free(tri);
+  }
+  return ar;
+}
+
+double mesh_area(const mesh *me) {
+  double a = 0;
+  for (int k = 0; k < me->nt; k++) a += mesh_tri_area(me, k);
+  return a;
+}
+
+double mesh_volume(const mesh *me) {
+  vec3 o = {0, 0, 0};
+  if (me->nv) {
+    for (int k = 0; k < me->nv; k++) o.x += me->v[k].x, o.y += me->v[k].y, o.z += me->v[k].z;
+    o.x /= me->nv, o.y /= me->nv, o.z /= me->nv;
+  }
+  double v = 0;
+  for (int k = 0; k < me->nt; k++) v += tri_volume(me, k, o);
+  return v;
+}
