@@ -48,7 +48,7 @@ void band_ws_free(band_ws *ws) {
 
 /* The last t' >= t such that U and L share their nodes on diagonals
  * s+t-1 .. s+t', or t-1 if they do not share s+t-1 and s+t. */
-static int shared_until(int m, int n, int s, const path *U, const path *L, int t) {
+static int shared_until(int m, int n, int s, const gpath *U, const gpath *L, int t) {
   if (!U || !L) return t - 1;
   int du = s - U->start, dl = s - L->start;   /* U's index = t + du, L's = t + dl */
   if (t - 1 + dl < 0) return t - 1;
@@ -61,8 +61,8 @@ static int shared_until(int m, int n, int s, const path *U, const path *L, int t
   return u - 1;
 }
 
-double band_solve(const weights *w, band_ws *ws, int s, const path *U, const path *L,
-                  path *P, band_count *count) {
+double band_solve(const weights *w, band_ws *ws, int s, const gpath *U, const gpath *L,
+                  gpath *P, band_count *count) {
   int m = w->m, n = w->n, T = m + n, nruns = 0;
   double *prev = ws->prev, *cur = ws->cur;
   XASSERT(m == ws->m && n == ws->n);
@@ -152,7 +152,7 @@ double band_solve(const weights *w, band_ws *ws, int s, const path *U, const pat
   return cost;
 }
 
-int64_t band_size(int m, int n, int s, const path *U, const path *L) {
+int64_t band_size(int m, int n, int s, const gpath *U, const gpath *L) {
   int64_t size = 0;
   int pa = 0, pb = 0;
   for (int t = 1; t <= m + n; t++) {

@@ -32,12 +32,12 @@ typedef struct {
   int start;     /* the path runs from (start, 0) to (start+m, n) */
   int *col;      /* col[t] for t = 0..m+n: column of its node on diagonal start+t */
   double *cum;   /* cum[t]: its cost in quanta from (start, 0) to that node */
-} path;
+} gpath;
 
 /* Columns [*a, *b] of the band for start row s on diagonal k (s <= k <= s+m+n),
  * bounded above by U (U->start < s) and below by L (L->start > s); either may be
  * NULL for the edge of the graph. */
-static inline void band_range(int m, int n, int s, const path *U, const path *L, int k,
+static inline void band_range(int m, int n, int s, const gpath *U, const gpath *L, int k,
                               int *a, int *b) {
   int hi = k - s < n ? k - s : n;          /* row >= s */
   int lo = k - s - m > 0 ? k - s - m : 0;  /* row <= s+m */
@@ -69,12 +69,12 @@ void band_ws_free(band_ws *ws);
  * P->col[0..m+n] and P->cum[0..m+n] (the caller owns both arrays), sets
  * P->start = s and returns its cost in quanta.  Ties: the vertical in-edge.
  * U and L need col and cum.  Adds to *count. */
-double band_solve(const weights *w, band_ws *ws, int s, const path *U, const path *L,
-                  path *P, band_count *count);
+double band_solve(const weights *w, band_ws *ws, int s, const gpath *U, const gpath *L,
+                  gpath *P, band_count *count);
 
 /* The number of nodes the band's dynamic program evaluates (cut edges
  * excluded): the size |W| of section 7.1. */
-int64_t band_size(int m, int n, int s, const path *U, const path *L);
+int64_t band_size(int m, int n, int s, const gpath *U, const gpath *L);
 
 /* 1 if the single in-band edge into the pinch node on diagonal k is
  * vertical: the band is one node wide on diagonals k-1 and k. */

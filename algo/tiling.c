@@ -15,9 +15,9 @@ typedef struct {
 } solver;
 
 /* The path arrays of recursion level `level`. */
-static path pathbuf(solver *s, int level) {
+static gpath pathbuf(solver *s, int level) {
   size_t len = (size_t)(s->w->m + s->w->n + 1);
-  return (path){0, s->pool + (size_t)level * len, s->cpool + (size_t)level * len};
+  return (gpath){0, s->pool + (size_t)level * len, s->cpool + (size_t)level * len};
 }
 
 static void consider(solver *s, int start, double quanta, const int *col) {
@@ -31,11 +31,11 @@ static void consider(solver *s, int start, double quanta, const int *col) {
 
 /* findallpaths(lo, hi): every mu(i), lo < i < hi, between U = mu(lo) and
  * L = mu(hi). */
-static void findall(solver *s, const path *U, const path *L, int level) {
+static void findall(solver *s, const gpath *U, const gpath *L, int level) {
   int lo = U->start, hi = L->start;
   if (hi - lo < 2) return;
   int mid = tiling_mid(lo, hi);
-  path P = pathbuf(s, level);
+  gpath P = pathbuf(s, level);
   double q = band_solve(s->w, s->ws, mid, U, L, &P, &s->out->count);
   consider(s, mid, q, P.col);
   findall(s, U, &P, level + 1);
@@ -55,11 +55,11 @@ void tiling_solve_w(const weights *w, tiling *out) {
   s.pool = xmallocarray((size_t)levels * (size_t)(m + n + 1), sizeof *s.pool);
   s.cpool = xmallocarray((size_t)levels * (size_t)(m + n + 1), sizeof *s.cpool);
 
-  path mu0 = pathbuf(&s, 0);
+  gpath mu0 = pathbuf(&s, 0);
   out->quanta = band_solve(w, s.ws, 0, NULL, NULL, &mu0, &out->count);
   out->start = 0;
   memcpy(out->col, mu0.col, (size_t)(m + n + 1) * sizeof *mu0.col);
-  path mum = {m, mu0.col, mu0.cum};   /* mu(m): the same path, m rows down */
+  gpath mum = {m, mu0.col, mu0.cum};   /* mu(m): the same path, m rows down */
   findall(&s, &mu0, &mum, 1);
   out->cost = out->quanta * out->quantum;
   free(s.pool);
