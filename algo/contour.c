@@ -183,7 +183,12 @@ static void free_contours(contour *cs, int n) {
 int contour_parse(const char *text, size_t len, const char *name,
                   contour_stack *out, FILE *notes, const char *prefix,
                   char *err, size_t errlen) {
-  reader rd = {name, err, errlen, notes, prefix ? prefix : "tilesim"};
+  /* Notes are held back and shown only if the file is accepted: a rejected
+   * file gets its one-line error and nothing else. */
+  char *held = NULL;
+  size_t heldlen = 0;
+  FILE *hold = notes ? open_memstream(&held, &heldlen) : NULL;
+  reader rd = {name, err, errlen, hold, prefix ? prefix : "tilesim"};
   reader *r = &rd;
   contour *cs = NULL;
   int ncs = 0, capcs = 0, line = 0, reversed = 0, rc = -1, last_want = 0;
@@ -315,8 +320,8 @@ int contour_parse(const char *text, size_t len, const char *name,
     fail(r, cs[0].line, "only one contour; tiling needs at least 2 (z=%.17g)", cs[0].z);
     goto done;
   }
-  if (reversed && notes)
-    fprintf(notes, "%s: %s: %d of %d contours ran clockwise; reversed to counter-clockwise\n",
+  if (reversed && hold)
+    fprintf(hold, "%s: %s: %d of %d contours ran clockwise; reversed to counter-clockwise\n",
             r->prefix, name, reversed, ncs);
   out->n = ncs;
   out->c = cs;
@@ -326,6 +331,11 @@ done:
   free(cur.pt);
   free(cur.ptline);
   if (rc != 0) free_contours(cs, ncs);
+  if (hold) {
+    fclose(hold);
+    if (rc == 0 && heldlen) fwrite(held, 1, heldlen, notes);
+    free(held);
+  }
   return rc;
 }
 

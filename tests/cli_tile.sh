@@ -1,0 +1,96 @@
+#!/bin/sh
+# cli_tile.sh -- ./tile from the outside: every bad input gets a one-line
+# "tile: FILE:LINE: what (value)" message, exit status 1 and no output file;
+# bad usage gets the usage line and exit status 2; good runs are
+# byte-identical from run to run.  Runs the sanitized build in $BUILD.
+TILE=${BUILD:-build/chk}/tile
+DATA=tests/data/slicerrt
+T=$(mktemp -d /tmp/tilesim-cli.XXXXXX)
+trap 'rm -rf "$T"' EXIT
+pass=0; fail=0
+ok()  { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "cli_tile: $*"; }
+
+# expect_error NAME CONTENT EXPECTED-MESSAGE-SUBSTRING
+expect_error() {
+  name=$1; printf '%b' "$2" > "$T/$name.contours"
+  "$TILE" "$T/$name.contours" -o "$T/$name.obj" > "$T/out" 2> "$T/err"; rc=$?
+  [ $rc -eq 1 ] && ok || bad "$name: exit status $rc, expected 1"
+  [ "$(wc -l < "$T/err")" -eq 1 ] && ok || bad "$name: stderr is not one line: $(cat "$T/err")"
+  grep -qF "tile: $T/$name.contours:$3" "$T/err" && ok || bad "$name: stderr '$(cat "$T/err")' lacks 'tile: FILE:$3'"
+  [ ! -e "$T/$name.obj" ] && ok || bad "$name: output file written"
+  [ -z "$(ls "$T" | grep tmp)" ] && ok || bad "$name: temporary file left"
+}
+
+P3='0 0\n1 0\n0 1\n'
+expect_error empty        ''                                  '1: empty file'
+expect_error comments     '# nothing\n\n'                     '2: no contours'
+expect_error noheader     '1 2\n'                             "1: expected a header 'C <points> <z>' (1 2)"
+expect_error garbled      "C 3\n$P3"                          '1: garbled header'
+expect_error badcount     "C x 0\n$P3"                        '1: bad point count in header, expected a positive integer (x)'
+expect_error badz         "C 3 z\n$P3"                        '1: z is not a number (z)'
+expect_error nanz         "C 3 nan\n$P3"                      '1: z is not finite (nan)'
+expect_error infpoint     "C 3 0\n0 0\ninf 0\n0 1\n"          '3: x is not finite (inf)'
+expect_error nanpoint     "C 3 0\n0 0\n1 nan\n0 1\n"          '3: y is not finite (nan)'
+expect_error nonnumeric   "C 3 0\n0 0\n1 abc\n0 1\n"          '3: y is not a number (abc)'
+expect_error fewer        "C 4 0\n$P3"                        '4: the contour at line 1 announced 4 points but has 3 (end of file)'
+expect_error fewer2       "C 4 0\n${P3}C 3 1\n$P3"            '5: the contour at line 1 announced 4 points but has 3'
+expect_error more         "C 3 0\n${P3}2 2\n"                 '5: more point lines than the 3 announced at line 1 (2 2)'
+expect_error twopoints    "C 3 0\n0 0\n1 0\n1 0\nC 3 1\n$P3"  '1: contour has 2 distinct points, needs at least 3'
+expect_error collinear    "C 3 0\n0 0\n1 1\n2 2\nC 3 1\n$P3"  '1: all 3 points of the contour are collinear'
+expect_error sameslice    "C 3 1\n${P3}C 3 1\n$P3"            '5: slice z=1 already has a contour (line 1); several contours per slice are not supported yet (1)'
+expect_error goesback     "C 3 0\n${P3}C 3 2\n${P3}C 3 1\n$P3" '9: z goes back'
+expect_error onecontour   "C 3 0\n$P3"                        '1: only one contour; tiling needs at least 2'
+expect_error binary       "C 3 0\n\001\002\003\n"             '2: binary data, not a contour file (byte 0x01)'
+expect_error nulbyte      "C 3 0\n0 0\n1\000 0\n"             '3: binary data, not a contour file (byte 0x00)'
+long=$(head -c 5000 /dev/zero | tr '\0' '7')
+expect_error longline     "C 3 0\n$long 0\n"                  '2: line longer than 4096 bytes (5002 bytes)'
+expect_error realtwoper   "$(cat $DATA/tinypatient_0.contours)\n" '29: slice z=-123.75 already has a contour (line 1)'
+
+# A file that cannot be read.
+"$TILE" "$T/missing.contours" > /dev/null 2> "$T/err"; rc=$?
+[ $rc -eq 1 ] && grep -qF "tile: $T/missing.contours: cannot open (No such file or directory)" "$T/err" && ok || bad "missing file: $rc $(cat "$T/err")"
+"$TILE" "$T" > /dev/null 2> "$T/err"; rc=$?
+[ $rc -eq 1 ] && grep -qF "tile: $T: cannot read" "$T/err" && ok || bad "directory: $rc $(cat "$T/err")"
+# Random binary garbage never crashes.
+for seed in 1 2 3 4 5; do
+  head -c 3000 /dev/urandom > "$T/garbage.contours"
+  "$TILE" "$T/garbage.contours" > /dev/null 2> "$T/err"; rc=$?
+  [ $rc -eq 1 ] && [ "$(wc -l < "$T/err")" -eq 1 ] && ok || bad "garbage: exit $rc: $(head -c 300 "$T/err")"
+done
+
+# Bad usage: the usage line and exit status 2.
+usage() {
+  "$TILE" "$@" > /dev/null 2> "$T/err"; rc=$?
+  [ $rc -eq 2 ] && grep -q '^usage: tile STACK' "$T/err" && ok || bad "usage '$*': exit $rc: $(cat "$T/err")"
+}
+usage
+usage --bogus $DATA/tinypatient_1.contours
+usage $DATA/tinypatient_1.contours -o
+usage $DATA/tinypatient_1.contours --cost volume
+usage $DATA/tinypatient_1.contours -o "$T/out.xyz"
+usage $DATA/tinypatient_1.contours $DATA/prostate_1.contours
+"$TILE" --help > "$T/out" 2>&1 && grep -q '^usage: tile' "$T/out" && ok || bad "--help"
+
+# Good runs: the report, deterministic, the mesh formats.
+"$TILE" $DATA/prostate_2.contours -q --caps -o "$T/a.obj" > "$T/a.csv" 2> "$T/err" && ok || bad "prostate_2 failed: $(cat "$T/err")"
+[ ! -s "$T/err" ] && ok || bad "-q still printed: $(cat "$T/err")"
+head -1 "$T/a.csv" | grep -qx 'pair,z0,z1,m,n,cost,area,volume,nodes' && ok || bad "CSV header: $(head -1 "$T/a.csv")"
+[ "$(grep -c '^[0-9]' "$T/a.csv")" -eq 18 ] && ok || bad "expected 18 pair rows"
+tail -1 "$T/a.csv" | grep -q '^mesh,' && ok || bad "--caps: no mesh row"
+"$TILE" $DATA/prostate_2.contours -q --caps -o "$T/b.obj" > "$T/b.csv" && cmp -s "$T/a.csv" "$T/b.csv" && cmp -s "$T/a.obj" "$T/b.obj" && ok || bad "two runs differ"
+for f in ply stl; do
+  "$TILE" $DATA/prostate_2.contours -q --caps -o "$T/a.$f" > /dev/null && "$TILE" $DATA/prostate_2.contours -q --caps -o "$T/b.$f" > /dev/null && cmp -s "$T/a.$f" "$T/b.$f" && ok || bad "$f: two runs differ"
+done
+# Vertices are shared between bands: one per contour point, as the CSV counts them.
+nv=$(awk -F, '/^[0-9]/{s+=$4; last=$5} END{print s+last}' "$T/a.csv")
+[ "$(grep -c '^v ' "$T/a.obj")" -eq "$nv" ] && ok || bad "OBJ has $(grep -c '^v ' "$T/a.obj") vertices, the contours $nv points"
+# The notes on repaired input, and reading from standard input.
+"$TILE" - < $DATA/tinypatient_1.contours > "$T/c.csv" 2> "$T/err" && ok || bad "stdin"
+grep -q 'tile: <stdin>:6: dropped the repeated closing point' "$T/err" && ok || bad "no repair note: $(cat "$T/err")"
+"$TILE" $DATA/tinypatient_1.contours --cost span -q > "$T/d.csv" && ok || bad "--cost span"
+! cmp -s "$T/c.csv" "$T/d.csv" && ok || bad "span and area costs give the same report"
+# Under --cost area a band's cost is the sum of its triangles' areas.
+awk -F, '/^[0-9]/{ d=$6-$7; if (d<0) d=-d; if (d > 1e-9*$6) bad=1 } END{exit bad}' "$T/a.csv" && ok || bad "cost and area disagree"
+echo "cli_tile: $pass passed, $fail failed"
+[ $fail -eq 0 ]

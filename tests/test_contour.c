@@ -1,0 +1,198 @@
+/* test_contour.c -- reading contour stacks: what is repaired, what is
+ * rejected, and that every rejection names the line and the value. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "contour.h"
+#include "xmem.h"
+
+/* Parse text; return the error (or "" on success) and the notes. */
+static int parse(const char *text, size_t len, contour_stack *s, char *err, char *notes,
+                 size_t cap) {
+  char *buf = NULL;
+  size_t blen = 0;
+  FILE *f = open_memstream(&buf, &blen);
+  err[0] = 0;
+  int rc = contour_parse(text, len, "t.contours", s, f, "tile", err, 512);
+  fclose(f);
+  snprintf(notes, cap, "%s", buf ? buf : "");
+  free(buf);
+  return rc;
+}
+
+typedef struct {
+  const char *text;
+  int line;            /* the line the message must name (0: none) */
+  const char *words;   /* must appear in the message */
+  const char *value;   /* must appear in the message, in parentheses */
+} bad;
+
+static const bad cases[] = {
+    {"", 1, "empty file", NULL},
+    {"# only a comment\n\n   \n", 3, "no contours", NULL},
+    {"1 2\n", 1, "expected a header", "1 2"},
+    {"C 3\n0 0\n1 0\n0 1\n", 1, "garbled header", "C 3"},
+    {"C 3 0 7\n0 0\n1 0\n0 1\n", 1, "garbled header", "C 3 0 7"},
+    {"C three 0\n", 1, "bad point count", "three"},
+    {"C 2.5 0\n", 1, "bad point count", "2.5"},
+    {"C 0 0\n", 1, "bad point count", "0"},
+    {"C -4 0\n", 1, "bad point count", "-4"},
+    {"C 99999999999 0\n", 1, "point count too large", "99999999999"},
+    {"C 3 zed\n", 1, "z is not a number", "zed"},
+    {"C 3 nan\n", 1, "z is not finite", "nan"},
+    {"C 3 inf\n", 1, "z is not finite", "inf"},
+    {"C 3 1e999\n0 0\n1 0\n0 1\n", 1, "z is not finite", "1e999"},
+    {"C 3 0\n0 0\n1 x\n0 1\n", 3, "y is not a number", "x"},
+    {"C 3 0\n0 0\nNaN 0\n0 1\n", 3, "x is not finite", "NaN"},
+    {"C 3 0\n0 0\n1 -inf\n0 1\n", 3, "y is not finite", "-inf"},
+    {"C 3 0\n0 0\n1 0 5\n0 1\n", 3, "expected a point", "1 0 5"},
+    {"C 3 0\n0 0\n1\n0 1\n", 3, "expected a point", "1"},
+    {"C 4 0\n0 0\n1 0\n0 1\nC 3 1\n0 0\n1 0\n0 1\n", 5, "announced 4 points but has 3", NULL},
+    {"C 4 0\n0 0\n1 0\n0 1\n", 4, "announced 4 points but has 3 (end of file)", NULL},
+    {"C 3 0\n0 0\n1 0\n0 1\n5 5\n", 5, "more point lines than the 3 announced at line 1", "5 5"},
+    {"C 3 0\n0 0\n1 0\n0 0\n", 1, "2 distinct points, needs at least 3", NULL},
+    {"C 3 0\n0 0\n0 0\n0 0\n", 1, "1 distinct point, needs at least 3", NULL},
+    {"C 4 0\n0 0\n1 1\n2 2\n3 3\n", 1, "collinear", NULL},
+    {"C 4 0\n0 0\n1 1\n0 0\n1 1\n", 1, "collinear", NULL},
+    {"C 3 2\n0 0\n1 0\n0 1\nC 3 2\n0 0\n2 0\n0 2\n", 5, "slice z=2 already has a contour (line 1)", "2"},
+    {"C 3 0\n0 0\n1 0\n0 1\nC 3 1\n0 0\n1 0\n0 1\nC 3 0\n0 0\n1 0\n0 1\n", 9,
+     "slice z=0 already has a contour (line 1)", "0"},
+    {"C 3 0\n0 0\n1 0\n0 1\nC 3 2\n0 0\n1 0\n0 1\nC 3 1\n0 0\n1 0\n0 1\n", 9, "z goes back", "1 after 2"},
+    {"C 3 0\n0 0\n1 0\n0 1\n", 1, "only one contour", NULL},
+    {"C 3 0\n0 0\n1\x01 0\n0 1\n", 3, "binary data", "byte 0x01"},
+    {"C 3 0\n\x7f\x45LF\n", 2, "binary data", "byte 0x7f"},
+};
+
+static void check_bad(void) {
+  char err[512], notes[4096];
+  int n = (int)(sizeof cases / sizeof cases[0]);
+  for (int i = 0; i < n; i++) {
+    contour_stack s;
+    const bad *b = &cases[i];
+    int rc = parse(b->text, strlen(b->text), &s, err, notes, sizeof notes);
+    char want[64];
+    snprintf(want, sizeof want, "t.contours:%d: ", b->line);
+    CHECK(rc == -1, "case %d: accepted (%s)", i, b->text);
+    CHECK(strncmp(err, want, strlen(want)) == 0, "case %d: message '%s' should begin '%s'", i, err, want);
+    CHECK(strstr(err, b->words) != NULL, "case %d: message '%s' lacks '%s'", i, err, b->words);
+    if (b->value) {
+      char v[128];
+      snprintf(v, sizeof v, "(%s)", b->value);
+      CHECK(strstr(err, v) != NULL, "case %d: message '%s' lacks the value '%s'", i, err, v);
+    }
+    CHECK(strchr(err, '\n') == NULL, "case %d: message is not one line", i);
+    CHECK(s.n == 0 && s.c == NULL, "case %d: output left behind", i);
+  }
+  /* A NUL byte, a line too long, and a file that is not there. */
+  char nul[] = "C 3 0\n0 0\n1 0\0\n0 1\n";
+  contour_stack s;
+  CHECK(parse(nul, sizeof nul - 1, &s, err, notes, sizeof notes) == -1 &&
+            strstr(err, "t.contours:3: binary data") && strstr(err, "0x00"),
+        "NUL byte: '%s'", err);
+  size_t L = CONTOUR_MAX_LINE + 100;
+  char *lng = xmalloc(L + 20);
+  memcpy(lng, "C 3 0\n", 6);
+  memset(lng + 6, '1', L);
+  memcpy(lng + 6 + L, "\n", 2);
+  CHECK(parse(lng, strlen(lng), &s, err, notes, sizeof notes) == -1 &&
+            strstr(err, "t.contours:2: line longer than"),
+        "long line: '%s'", err);
+  free(lng);
+  CHECK(contour_read("/nonexistent/x.contours", &s, NULL, "tile", err, sizeof err) == -1 &&
+            strstr(err, "/nonexistent/x.contours: cannot open (No such file or directory)"),
+        "missing file: '%s'", err);
+  CHECK(contour_read("/tmp", &s, NULL, "tile", err, sizeof err) == -1 && strstr(err, "/tmp: cannot read"),
+        "a directory: '%s'", err);
+}
+
+static void check_good(void) {
+  char err[512], notes[4096];
+  contour_stack s;
+  /* Comments, blank lines, CRLF, tabs, exponents; the second contour runs
+   * clockwise, repeats its closing point and has a duplicate. */
+  const char *t =
+      "# a stack\r\n"
+      "C 4 0.5\r\n"
+      "0 0\r\n"
+      "2 0\n"
+      "\t2\t2 \n"
+      "0 2e0\n"
+      "\n"
+      "  # between contours\n"
+      "C 6 1.5\n"
+      "0 0\n"
+      "0 2\n"
+      "0 2\n"
+      "2 2\n"
+      "2 0\n"
+      "0 0\n";
+  int rc = parse(t, strlen(t), &s, err, notes, sizeof notes);
+  CHECK(rc == 0, "good file rejected: %s", err);
+  if (rc != 0) return;
+  CHECK(s.n == 2 && s.c[0].n == 4 && s.c[1].n == 4, "contours %d, points %d %d", s.n,
+        s.n > 0 ? s.c[0].n : -1, s.n > 1 ? s.c[1].n : -1);
+  CHECK(s.c[0].z == 0.5 && s.c[1].z == 1.5 && s.c[0].line == 2 && s.c[1].line == 9, "z or lines");
+  CHECK(geom_area2(s.c[1].pt, s.c[1].n) > 0, "clockwise contour not reversed");
+  CHECK(s.c[1].pt[0].x == 0 && s.c[1].pt[0].y == 0 && s.c[1].pt[1].x == 2 && s.c[1].pt[1].y == 0,
+        "reversed contour should keep its first point and run (0,0) (2,0) ...");
+  CHECK(s.c[0].pt[2].x == 2 && s.c[0].pt[2].y == 2, "tabs");
+  CHECK(strstr(notes, "tile: t.contours:12: dropped a duplicate of the point before (0 2)") != NULL,
+        "notes lack the duplicate: %s", notes);
+  CHECK(strstr(notes, "tile: t.contours:15: dropped the repeated closing point (0 0)") != NULL,
+        "notes lack the closing point: %s", notes);
+  CHECK(strstr(notes, "1 of 2 contours ran clockwise; reversed to counter-clockwise") != NULL,
+        "notes lack the reversal: %s", notes);
+  /* Written and read back: the same stack, exactly. */
+  char *buf = NULL;
+  size_t blen = 0;
+  FILE *f = open_memstream(&buf, &blen);
+  contour_write(f, &s);
+  fclose(f);
+  contour_stack s2;
+  CHECK(parse(buf, blen, &s2, err, notes, sizeof notes) == 0, "write/read: %s", err);
+  int same = s2.n == s.n;
+  for (int i = 0; same && i < s.n; i++) {
+    same &= s.c[i].n == s2.c[i].n && s.c[i].z == s2.c[i].z;
+    for (int j = 0; same && j < s.c[i].n; j++)
+      same &= s.c[i].pt[j].x == s2.c[i].pt[j].x && s.c[i].pt[j].y == s2.c[i].pt[j].y;
+  }
+  CHECK(same, "written stack reads back different");
+  CHECK(notes[0] == 0, "a clean stack gave notes: %s", notes);
+  free(buf);
+  contour_stack_free(&s2);
+  contour_stack_free(&s);
+  /* Decreasing z is fine. */
+  const char *d = "C 3 5\n0 0\n1 0\n0 1\nC 3 4\n0 0\n1 0\n0 1\nC 3 -1\n0 0\n1 0\n0 1\n";
+  CHECK(parse(d, strlen(d), &s, err, notes, sizeof notes) == 0 && s.n == 3, "decreasing z: %s", err);
+  contour_stack_free(&s);
+}
+
+/* The real stacks read cleanly (tinypatient_0 has two contours per slice). */
+static void check_real(void) {
+  const char *ok[] = {"prostate_0", "prostate_1", "prostate_2", "prostate_3",
+                      "prostate_4", "prostate_5", "tinypatient_1"};
+  char err[512], path[256];
+  for (int i = 0; i < 7; i++) {
+    contour_stack s;
+    snprintf(path, sizeof path, "tests/data/slicerrt/%s.contours", ok[i]);
+    int rc = contour_read(path, &s, NULL, "tile", err, sizeof err);
+    CHECK(rc == 0, "%s: %s", path, err);
+    for (int j = 0; rc == 0 && j < s.n; j++)
+      CHECK(geom_area2(s.c[j].pt, s.c[j].n) > 0, "%s contour %d not counter-clockwise", path, j);
+    if (rc == 0) contour_stack_free(&s);
+  }
+  contour_stack s;
+  CHECK(contour_read("tests/data/slicerrt/tinypatient_0.contours", &s, NULL, "tile", err, sizeof err) == -1 &&
+            strstr(err, "tinypatient_0.contours:29: slice z=-123.75 already has a contour (line 1)"),
+        "tinypatient_0: %s", err);
+}
+
+int main(void) {
+  check_bad();
+  check_good();
+  check_real();
+  return check_done("test_contour");
+}
