@@ -1,0 +1,72 @@
+/* split.c -- the diagonal split and the processor allocation. */
+#include "split.h"
+
+#include <string.h>
+
+int split_active(int len, int p, int d) {
+  int q = len / (d > 0 ? d : 1);
+  if (q > p) q = p;
+  return q < 1 ? 1 : q;
+}
+
+void split_positions(int len, int q, int *N) {
+  N[0] = 0;
+  for (int i = 1; i <= q; i++) N[i] = (len - N[i - 1]) / (q - i + 1) + N[i - 1];
+}
+
+int split_owner(int a, int b, int q, int c) {
+  /* Invert the N_i formula: the first i with N_{i+1} > c - a.  The runs
+   * differ in length by at most one, so start from the even guess. */
+  int len = b - a + 1, pos = c - a;
+  int N[2];
+  int i = (int)((int64_t)pos * q / len);
+  for (;;) {
+    /* N_i and N_{i+1} in closed form: N_i = floor(i * len / q) for this recurrence. */
+    N[0] = (int)((int64_t)i * len / q);
+    N[1] = (int)((int64_t)(i + 1) * len / q);
+    if (pos < N[0]) i--;
+    else if (pos >= N[1]) i++;
+    else return i;
+  }
+}
+
+int split_slaves(split_alloc how, int p, int64_t w_above, int64_t w_below, int paths_above,
+                 int paths_below) {
+  if (how == ALLOC_HALF) return (p + 1) / 2;
+  if (paths_below <= 0) return 0;
+  if (paths_above <= 0) return p;
+  int64_t tot = w_above + w_below;
+  int below = tot > 0 ? (int)((2 * (int64_t)p * w_below + tot) / (2 * tot)) : (p + 1) / 2;
+  if (below < 1) below = 1;
+  if (below > p - 1) below = p - 1;
+  return below;
+}
+
+int64_t split_region(int m, int n, const gpath *U, const gpath *L) {
+  int lo = U->start, hi = L->start;
+  if (hi - lo < 2) return 0;
+  /* Nodes on or below U and on or above L, diagonal by diagonal, over the
+   * diagonals the inner paths use (lo+1 .. hi-1+m+n). */
+  int64_t size = 0;
+  int pa = -1, pb = -1;
+  for (int k = lo + 1; k <= hi - 1 + m + n; k++) {
+    int t = k - lo, uc = t <= m + n ? U->col[t] : n;
+    int tl = k - hi, lc = tl >= 0 ? L->col[tl] : 0;
+    int a = lc, b = uc;
+    if (k - (hi - 1) - m > a) a = k - (hi - 1) - m;   /* row <= hi-1+m */
+    if (k - (lo + 1) < b) b = k - (lo + 1);           /* row >= lo+1 */
+    if (a > b) continue;
+    if (!(a == b && pa == pb && pa >= 0)) size += b - a + 1;
+    pa = a, pb = b;
+  }
+  return size;
+}
+
+const char *split_alloc_name(split_alloc a) { return a == ALLOC_SIZE ? "size" : "half"; }
+
+int split_alloc_parse(const char *s, split_alloc *a) {
+  if (strcmp(s, "half") == 0) *a = ALLOC_HALF;
+  else if (strcmp(s, "size") == 0) *a = ALLOC_SIZE;
+  else return -1;
+  return 0;
+}

@@ -1,0 +1,234 @@
+/* bench_tiler.c -- ./bench --tiler: how fast the exact tiler is, and how much
+ * memory it takes.
+ *
+ *   bench --tiler [--points N[,N...]] [--naive N] [--input STACK]... [--cost area|span]
+ *                 [--seed S] [--repeat R]
+ *
+ * One CSV row per case: a generated pair of N-point contours (the paper's
+ * "somewhat random" star-shaped contours, section 6), the naive
+ * one-DP-per-start reference on the same pair, or a whole contour stack.
+ * Each case runs in a child process, so peak_mb is that case's own peak
+ * resident memory.  `cost` is the optimum (for a stack, the sum over its
+ * pairs): a checksum that shows a fast wrong answer. */
+#include "bench_tiler.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "contour.h"
+#include "gen.h"
+#include "naive.h"
+#include "tiling.h"
+#include "wallclock.h"
+#include "xmem.h"
+
+typedef struct {
+  char name[64];
+  int m, n;
+  int runs;
+  double wall;          /* best of `runs`, seconds */
+  double nodes, paths;
+  double cost;
+} row;
+
+static double peak_mb(void) {
+  struct rusage ru;
+  getrusage(RUSAGE_SELF, &ru);
+  return ru.ru_maxrss / 1024.0;   /* Linux reports kilobytes */
+}
+
+static void pair_of(int n, unsigned long long seed, vec2 **P, vec2 **Q) {
+  rng g;
+  rng_seed(&g, seed);
+  *P = xmallocarray((size_t)n, sizeof **P);
+  *Q = xmallocarray((size_t)n, sizeof **Q);
+  gen_star(&g, *P, n, 0, 0, 100, 0.3);
+  gen_star(&g, *Q, n, 5, -3, 90, 0.3);
+}
+
+static void run_exact(row *r, int n, unsigned long long seed, cost_kind kind, int repeat) {
+  vec2 *P, *Q;
+  pair_of(n, seed, &P, &Q);
+  snprintf(r->name, sizeof r->name, "exact");
+  r->m = r->n = n;
+  r->runs = n <= 1000 ? repeat : 1;
+  r->wall = 1e300;
+  for (int i = 0; i < r->runs; i++) {
+    tiling t;
+    double t0 = wallclock();
+    tiling_solve(P, n, 0, Q, n, 2.5, kind, -1, &t);
+    double dt = wallclock() - t0;
+    if (dt < r->wall) r->wall = dt;
+    r->nodes = (double)t.count.nodes;
+    r->paths = (double)t.count.paths;
+    r->cost = t.cost;
+    tiling_free(&t);
+  }
+  free(P);
+  free(Q);
+}
+
+static void run_naive(row *r, int n, unsigned long long seed, cost_kind kind) {
+  vec2 *P, *Q;
+  pair_of(n, seed, &P, &Q);
+  snprintf(r->name, sizeof r->name, "naive");
+  r->m = r->n = n;
+  r->runs = 1;
+  double t0 = wallclock();
+  weights *w = weights_new(P, n, 0, Q, n, 2.5, kind, 0);
+  int start;
+  double q = naive_dp(w, &start);
+  r->wall = wallclock() - t0;
+  r->cost = q * weights_quantum(w);
+  r->nodes = (double)n * (n + 1) * (n + 1);   /* m DPs of (m+1)(n+1) nodes */
+  r->paths = n;
+  weights_free(w);
+  free(P);
+  free(Q);
+}
+
+static int run_stack(row *r, const char *file, cost_kind kind) {
+  contour_stack s;
+  char err[512];
+  if (contour_read(file, &s, NULL, "bench", err, sizeof err) != 0) {
+    fprintf(stderr, "bench: %s\n", err);
+    return -1;
+  }
+  const char *base = strrchr(file, '/');
+  snprintf(r->name, sizeof r->name, "stack:%s", base ? base + 1 : file);
+  r->m = s.n;   /* contours */
+  r->n = 0;     /* points in all */
+  for (int i = 0; i < s.n; i++) r->n += s.c[i].n;
+  r->runs = 1;
+  r->nodes = r->paths = r->cost = 0;
+  double t0 = wallclock();
+  for (int i = 0; i + 1 < s.n; i++) {
+    tiling t;
+    const contour *P = &s.c[i], *Q = &s.c[i + 1];
+    tiling_solve(P->pt, P->n, P->z, Q->pt, Q->n, Q->z, kind, -1, &t);
+    r->nodes += (double)t.count.nodes;
+    r->paths += (double)t.count.paths;
+    r->cost += t.cost;
+    tiling_free(&t);
+  }
+  r->wall = wallclock() - t0;
+  contour_stack_free(&s);
+  return 0;
+}
+
+typedef enum { EXACT, NAIVE, STACK } kind_of_case;
+
+/* Run one case in a child; print its row.  Returns 0 or -1. */
+static int one(kind_of_case what, int n, const char *file, unsigned long long seed,
+               cost_kind kind, int repeat, row *out) {
+  int fd[2];
+  if (pipe(fd) != 0) return -1;
+  fflush(stdout);
+  pid_t pid = fork();
+  if (pid < 0) return -1;
+  if (pid == 0) {
+    row r;
+    memset(&r, 0, sizeof r);
+    int rc = 0;
+    if (what == EXACT) run_exact(&r, n, seed, kind, repeat);
+    else if (what == NAIVE) run_naive(&r, n, seed, kind);
+    else rc = run_stack(&r, file, kind);
+    double mb = peak_mb();
+    if (rc == 0 && write(fd[1], &r, sizeof r) == (ssize_t)sizeof r &&
+        write(fd[1], &mb, sizeof mb) == (ssize_t)sizeof mb)
+      _exit(0);
+    _exit(1);
+  }
+  close(fd[1]);
+  double mb = 0;
+  int ok = read(fd[0], out, sizeof *out) == (ssize_t)sizeof *out &&
+           read(fd[0], &mb, sizeof mb) == (ssize_t)sizeof mb;
+  close(fd[0]);
+  int st;
+  waitpid(pid, &st, 0);
+  if (!ok || !WIFEXITED(st) || WEXITSTATUS(st) != 0) return -1;
+  printf("%s,%d,%d,%d,%.6f,%.0f,%.4g,%.0f,%.1f,%.17g\n", out->name, out->m, out->n, out->runs,
+         out->wall, out->nodes, out->nodes / out->wall, out->paths, mb, out->cost);
+  fflush(stdout);
+  return 0;
+}
+
+static int usage(const char *why) {
+  if (why) fprintf(stderr, "bench: %s\n", why);
+  fprintf(stderr, "usage: bench --tiler [--points N[,N...]] [--naive N] [--input STACK]... "
+                  "[--cost area|span] [--seed S] [--repeat R]\n");
+  return 2;
+}
+
+int bench_tiler(int argc, char **argv) {
+  int points[16], npoints = 0, naive = -1, repeat = 20;
+  const char *inputs[16];
+  int ninputs = 0;
+  unsigned long long seed = 1993;
+  cost_kind kind = COST_AREA;
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+    if (strcmp(a, "--points") == 0 && v) {
+      for (char *p = (char *)v; *p && npoints < 16;) {
+        char *e;
+        long x = strtol(p, &e, 10);
+        if (e == p || x < 3 || x > 100000) return usage("--points takes numbers from 3 to 100000");
+        points[npoints++] = (int)x;
+        p = *e == ',' ? e + 1 : e;
+        if (*e && *e != ',') return usage("--points takes a list like 500,5000");
+      }
+      i++;
+    } else if (strcmp(a, "--naive") == 0 && v) {
+      naive = atoi(v);
+      if (naive < 3 || naive > 5000) return usage("--naive takes a number from 3 to 5000");
+      i++;
+    } else if (strcmp(a, "--input") == 0 && v) {
+      if (ninputs == 16) return usage("at most 16 --input stacks");
+      inputs[ninputs++] = v;
+      i++;
+    } else if (strcmp(a, "--cost") == 0 && v) {
+      if (cost_parse(v, &kind) != 0) return usage("--cost is area or span");
+      i++;
+    } else if (strcmp(a, "--seed") == 0 && v) {
+      seed = strtoull(v, NULL, 10);
+      i++;
+    } else if (strcmp(a, "--repeat") == 0 && v) {
+      repeat = atoi(v);
+      if (repeat < 1) return usage("--repeat takes a positive number");
+      i++;
+    } else {
+      return usage(NULL);
+    }
+  }
+  if (npoints == 0 && naive < 0 && ninputs == 0) {   /* the figures */
+    points[npoints++] = 500;
+    points[npoints++] = 5000;
+    naive = 500;
+    inputs[ninputs++] = "tests/data/slicerrt/prostate_0.contours";
+  }
+  printf("case,m,n,runs,wall_s,nodes,nodes_per_s,paths,peak_mb,cost\n");
+  row r, ex500 = {0}, nv = {0};
+  for (int i = 0; i < npoints; i++) {
+    if (one(EXACT, points[i], NULL, seed, kind, repeat, &r) != 0) return 1;
+    if (naive == points[i]) ex500 = r;
+  }
+  if (naive > 0) {
+    if (one(NAIVE, naive, NULL, seed, kind, 1, &nv) != 0) return 1;
+    if (ex500.wall > 0 && ex500.cost != nv.cost) {
+      fprintf(stderr, "bench: the exact solver and the naive reference disagree: %.17g, %.17g\n",
+              ex500.cost, nv.cost);
+      return 1;
+    }
+  }
+  for (int i = 0; i < ninputs; i++)
+    if (one(STACK, 0, inputs[i], seed, kind, 1, &r) != 0) return 1;
+  if (ex500.wall > 0 && nv.wall > 0)
+    fprintf(stderr, "bench: at %d x %d the exact solver is %.0f times faster than the naive "
+                    "reference (%.0f times fewer nodes), with the same optimum %.17g\n",
+            naive, naive, nv.wall / ex500.wall, nv.nodes / ex500.nodes, nv.cost);
+  return 0;
+}

@@ -1,0 +1,8 @@
+/* bench_tiler.h -- ./bench --tiler: the exact tiler's speed and memory. */
+#ifndef BENCH_TILER_H
+#define BENCH_TILER_H
+
+/* argv[0] is "--tiler"; returns the exit status. */
+int bench_tiler(int argc, char **argv);
+
+#endif
