@@ -1,0 +1,817 @@
+/* sim.c -- the discrete-event simulator: ranks as coroutines, the timing model, errors.
+ *
+ * Reading order: the profiles (the one place for the machine's costs), the
+ * data (messages, mailboxes, channels, ranks), scheduling (who runs next),
+ * the mp calls (compute, send, recv, probe), then sim_run's main loop and
+ * the deadlock report.  The timing model itself is specified in sim.h.
+ *
+ * Scheduling is a conservative sequential discrete-event loop.  Every rank
+ * that can act is queued in `q` under the time it will act at; the running
+ * rank is always the earliest.  When its clock moves past the next queued
+ * time, or it blocks in recv, it switches directly to the earliest queued
+ * rank (no trip through a scheduler); only when the queue is empty does
+ * control return to sim_run, which then has either finished or found a
+ * deadlock.  A rank whose clock moves but stays strictly earliest goes on
+ * without a switch: exactly what queueing it and popping it would do.
+ *
+ *   time -->      0        m        2m       3m
+ *   rank 0      send--.                      recv<-.
+ *   rank 1      recv   `->recv, send--.            |
+ *   rank 2      recv                  `->recv, send'
+ *
+ * A blocked rank is queued only once a matching message is on its way, at
+ * that message's arrival time (moved earlier if an earlier matching message
+ * is sent later).  Nothing queued and ranks still alive means deadlock. */
+#include "sim.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "coro.h"
+#include "evq.h"
+#include "trace.h"
+#include "wallclock.h"
+#include "xmem.h"
+
+/* ==== the profiles ======================================================== */
+
+/* "tc2000": one BBN TC2000 node (Motorola 88100, 20 MHz) per processor,
+ * message queues simulated in shared memory, modelled as one bus.
+ * PLACEHOLDER COSTS: a later issue calibrates c, m, per_byte and local
+ * against the paper's figures; the LogGP values only mirror m. */
+static void profile_tc2000(sim_config *cfg) {
+  *cfg = (sim_config){0};
+  cfg->procs = 1;
+  cfg->place = NULL;
+  cfg->c = 50e-6;          /* seconds per compute unit */
+  cfg->m = 100e-6;         /* seconds per message */
+  cfg->per_byte = 0;       /* seconds per byte */
+  cfg->local = 0;          /* seconds per message on one processor */
+  cfg->net = SIM_NET_BUS;
+  cfg->L = 100e-6;         /* LogGP latency */
+  cfg->o = 0;              /* LogGP overhead */
+  cfg->g = 0;              /* LogGP gap */
+  cfg->G = 0;              /* LogGP gap per byte */
+  cfg->stack = 0;
+  cfg->warn = stderr;
+}
+
+/* "unit": whole seconds, for reading a trace by eye. */
+static void profile_unit(sim_config *cfg) {
+  profile_tc2000(cfg);
+  cfg->c = 1;
+  cfg->m = 1;
+  cfg->L = 1;
+}
+
+void sim_config_init(sim_config *cfg) { profile_tc2000(cfg); }
+
+int sim_profile(const char *name, sim_config *cfg) {
+  if (strcmp(name, "tc2000") == 0)
+    profile_tc2000(cfg);
+  else if (strcmp(name, "unit") == 0)
+    profile_unit(cfg);
+  else
+    return -1;
+  return 0;
+}
+
+static const char *const net_names[] = {"ideal", "bus", "loggp"};
+
+const char *sim_net_name(sim_net net) {
+  return (unsigned)net < sizeof net_names / sizeof *net_names ? net_names[net] : "?";
+}
+
+int sim_net_parse(const char *name, sim_net *net) {
+  for (unsigned i = 0; i < sizeof net_names / sizeof *net_names; i++) {
+    if (strcmp(name, net_names[i]) == 0) {
+      *net = (sim_net)i;
+      return 0;
+    }
+  }
+  return -1;
+}
+
+/* ==== data ================================================================ */
+
+enum {
+  MSG_INLINE = 64,             /* payloads up to this many bytes live in the message */
+  STOPPED_CALLS_MAX = 1000000, /* calls after a stop before a rank is abandoned */
+  PROBE_SPINS_MAX = 1000000    /* fruitless probes at one clock before we stop */
+};
+
+typedef struct msg msg;
+struct msg {
+  msg *prev, *next;        /* in the receiver's mailbox, by (arrival, seq) */
+  double sent;             /* the sender's clock at mp_send */
+  double arrival;          /* when it can be received */
+  uint64_t seq;            /* send order, machine-wide; the message id in traces */
+  int src, tag;
+  size_t len;
+  unsigned char *data;     /* inl, or a heap block for longer payloads */
+  unsigned char inl[MSG_INLINE];
+};
+
+typedef struct {
+  int dst;                 /* -1: empty slot */
+  double last;             /* the latest arrival sent on src -> dst */
+} chan;
+
+enum { R_READY, R_BLOCKED, R_DONE, R_ABANDONED };
+
+typedef struct rank rank;
+struct rank {
+  struct mp base;          /* first: an mp * is a rank * */
+  sim *s;
+  coro *co;
+  int proc;
+  int state;               /* R_* */
+  double now;              /* the rank's clock */
+  /* blocked in recv: */
+  int wait_src, wait_tag;  /* what it waits for (MP_ANY = -1) */
+  double wake;             /* the time it is queued to wake at, INFINITY if none */
+  int deadlocked;          /* woken by the deadlock report */
+  msg *head, *tail;        /* mailbox: messages sent to it, sent or arrived */
+  chan *chans;             /* last arrival per destination, open addressing */
+  int nchan, capchan;
+  long stopped_calls;      /* mp calls since the run stopped */
+  long probe_spins;        /* fruitless probes in a row at probe_at */
+  double probe_at;
+  sim_rank_stats st;
+};
+
+struct sim {
+  sim_config cfg;
+  int n;                   /* ranks */
+  int *place;
+  rank *ranks;
+  double *busy;            /* per processor: busy_until */
+  double *nic;             /* per processor: LogGP NIC free time */
+  double bus_free;         /* SIM_NET_BUS */
+  evq *q;                  /* ranks that can act, by (time, seq) */
+  uint64_t seq;            /* the next sequence number (events and messages) */
+  double gtime;            /* the time of the latest event started: never decreases */
+  coro *main;              /* sim_run's own context */
+  const mp_proc *procs;
+  int live;                /* ranks neither done nor abandoned */
+  int stopped;             /* deadlock or error: every mp call fails at once */
+  int ran;
+  msg *pool;               /* free messages */
+  FILE *tcsv, *tjson;
+  trace *tr;
+  char *errs;              /* the errors quoted so far, "; then "-separated */
+  int nshown;              /* how many */
+  sim_stats st;
+};
+
+/* ==== errors and warnings ================================================= */
+
+static char *vformat(const char *fmt, va_list ap) {
+  va_list aq;
+  va_copy(aq, ap);
+  int n = vsnprintf(NULL, 0, fmt, aq);
+  va_end(aq);
+  XASSERT(n >= 0);
+  char *buf = xmalloc((size_t)n + 1);
+  vsnprintf(buf, (size_t)n + 1, fmt, ap);
+  return buf;
+}
+
+#if defined(__GNUC__)
+#define PRINTF(a, b) __attribute__((format(printf, a, b)))
+#else
+#define PRINTF(a, b)
+#endif
+
+enum { ERRS_SHOWN = 3 }; /* errors quoted in sim_run's message; the rest are counted */
+
+/* Append an error message to the run's report (owned by the report after). */
+static void add_error(sim *s, char *text, int always) {
+  s->st.errors++;
+  if (s->nshown >= ERRS_SHOWN && !always) {
+    free(text);
+    return;
+  }
+  size_t old = s->errs ? strlen(s->errs) : 0, add = strlen(text);
+  s->errs = xrealloc(s->errs, old + add + 8);
+  if (old) memcpy(s->errs + old, "; then ", 7), old += 7;
+  memcpy(s->errs + old, text, add + 1);
+  s->nshown++;
+  free(text);
+}
+
+/* An error of the run: sim_run will return -1 and quote it. */
+static PRINTF(2, 3) void fail(sim *s, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  add_error(s, vformat(fmt, ap), 0);
+  va_end(ap);
+}
+
+static PRINTF(2, 3) void warn(sim *s, const char *fmt, ...) {
+  s->st.warnings++;
+  if (!s->cfg.warn) return;
+  va_list ap;
+  va_start(ap, fmt);
+  fputs("sim: warning: ", s->cfg.warn);
+  vfprintf(s->cfg.warn, fmt, ap);
+  fputc('\n', s->cfg.warn);
+  va_end(ap);
+}
+
+/* ==== messages, mailboxes, channels ======================================= */
+
+static msg *msg_new(sim *s, size_t len) {
+  msg *m = s->pool;
+  if (m)
+    s->pool = m->next;
+  else
+    m = xmalloc(sizeof *m);
+  m->data = len <= MSG_INLINE ? m->inl : xmalloc(len);
+  return m;
+}
+
+static void msg_free(sim *s, msg *m) {
+  if (m->data != m->inl) free(m->data);
+  m->next = s->pool;
+  s->pool = m;
+}
+
+/* Insert m into d's mailbox by (arrival, seq); its seq is the largest yet. */
+static void box_insert(rank *d, msg *m) {
+  msg *p = d->tail;
+  while (p && p->arrival > m->arrival) p = p->prev;
+  m->prev = p;
+  m->next = p ? p->next : d->head;
+  if (m->next)
+    m->next->prev = m;
+  else
+    d->tail = m;
+  if (p)
+    p->next = m;
+  else
+    d->head = m;
+}
+
+static void box_unlink(rank *r, msg *m) {
+  if (m->prev)
+    m->prev->next = m->next;
+  else
+    r->head = m->next;
+  if (m->next)
+    m->next->prev = m->prev;
+  else
+    r->tail = m->prev;
+}
+
+static inline int matches(const msg *m, int src, int tag) {
+  return (src < 0 || m->src == src) && (tag < 0 || m->tag == tag);
+}
+
+/* The earliest (arrival, seq) message matching src and tag, or NULL. */
+static msg *box_find(const rank *r, int src, int tag) {
+  for (msg *m = r->head; m; m = m->next)
+    if (matches(m, src, tag)) return m;
+  return NULL;
+}
+
+static inline unsigned chan_hash(int dst, int cap) {
+  return ((unsigned)dst * 2654435761u) & (unsigned)(cap - 1);
+}
+
+static void chan_grow(rank *r) {
+  int cap = r->capchan ? 2 * r->capchan : 4;
+  chan *old = r->chans, *t = xmallocarray((size_t)cap, sizeof *t);
+  for (int i = 0; i < cap; i++) t[i].dst = -1;
+  for (int i = 0; i < r->capchan; i++) {
+    if (old[i].dst < 0) continue;
+    unsigned h = chan_hash(old[i].dst, cap);
+    while (t[h].dst >= 0) h = (h + 1) & (unsigned)(cap - 1);
+    t[h] = old[i];
+  }
+  free(old);
+  r->chans = t;
+  r->capchan = cap;
+}
+
+/* The latest arrival on the channel r -> dst (-infinity if none yet). */
+static double *chan_last(rank *r, int dst) {
+  if (2 * (r->nchan + 1) > r->capchan) chan_grow(r);
+  unsigned h = chan_hash(dst, r->capchan);
+  while (r->chans[h].dst >= 0) {
+    if (r->chans[h].dst == dst) return &r->chans[h].last;
+    h = (h + 1) & (unsigned)(r->capchan - 1);
+  }
+  r->chans[h].dst = dst;
+  r->chans[h].last = -INFINITY;
+  r->nchan++;
+  return &r->chans[h].last;
+}
+
+/* ==== scheduling ========================================================== */
+
+/* The running rank r gives way to the earliest queued rank (or to sim_run
+ * when none is queued); returns when r is resumed. */
+static void give_way(sim *s, rank *r) {
+  double t;
+  int id = evq_pop(s->q, &t);
+  if (id == r->base.rank) {
+    s->gtime = t;
+    return;
+  }
+  s->st.switches++;
+  if (id < 0) {
+    coro_switch(r->co, s->main);
+    return;
+  }
+  XASSERT(t >= s->gtime);
+  s->gtime = t;
+  coro_switch(r->co, s->ranks[id].co);
+}
+
+/* r's clock has moved on.  Go on if it is still strictly the earliest (what
+ * queueing and popping it would give), else queue it and give way. */
+static inline void moved(sim *s, rank *r) {
+  if (r->now < evq_min(s->q)) {
+    s->gtime = r->now;
+    return;
+  }
+  evq_set(s->q, r->base.rank, r->now, s->seq++);
+  give_way(s, r);
+}
+
+/* Reserve r's processor for dur seconds from r's clock on; the start. */
+static inline double reserve(sim *s, rank *r, double dur) {
+  double start = r->now, *busy = &s->busy[r->proc];
+  if (*busy > start) start = *busy;
+  *busy = start + dur;
+  return start;
+}
+
+/* The rank that does not stop calling after the run stopped. */
+static void abandon(sim *s, rank *r) {
+  fail(s, "rank %d kept calling after the run stopped (%d calls); abandoned it", r->base.rank,
+       STOPPED_CALLS_MAX);
+  r->state = R_ABANDONED;
+  s->live--;
+  give_way(s, r);
+  xpanic("an abandoned rank was resumed");
+}
+
+static int stopped_call(sim *s, rank *r) {
+  if (++r->stopped_calls >= STOPPED_CALLS_MAX) abandon(s, r);
+  return MP_ESTOPPED;
+}
+
+/* ==== the mp calls ======================================================== */
+
+static int sim_compute(mp *self, double units) {
+  rank *r = (rank *)self;
+  sim *s = r->s;
+  if (s->stopped) return stopped_call(s, r);
+  s->st.events++;
+  r->probe_spins = 0;
+  if (!(units >= 0) || isinf(units)) {
+    fail(s, "rank %d: mp_compute(%g): units must be finite and >= 0", r->base.rank, units);
+    return MP_EARG;
+  }
+  double d = units * s->cfg.c, t0 = r->now, start = reserve(s, r, d);
+  r->st.units += units;
+  r->st.compute += d;
+  r->st.cpu_wait += start - t0;
+  if (s->tr) {
+    if (start > t0) trace_span(s->tr, "cpuwait", r->base.rank, r->proc, t0, start - t0, -1, -1);
+    trace_span(s->tr, "compute", r->base.rank, r->proc, start, d, -1, -1);
+  }
+  r->now = start + d;
+  if (r->now > t0) moved(s, r);
+  return MP_OK;
+}
+
+static int sim_send(mp *self, int dst, int tag, const void *buf, size_t len) {
+  rank *r = (rank *)self;
+  sim *s = r->s;
+  if (s->stopped) return stopped_call(s, r);
+  s->st.events++;
+  r->probe_spins = 0;
+  if (dst < 0 || dst >= s->n) {
+    fail(s, "rank %d: mp_send to rank %d, which does not exist (%d ranks)", r->base.rank, dst,
+         s->n);
+    return MP_ERANK;
+  }
+  if (tag < 0) {
+    fail(s, "rank %d: mp_send to rank %d with tag %d: tags are >= 0", r->base.rank, dst, tag);
+    return MP_EARG;
+  }
+  if (len && !buf) {
+    fail(s, "rank %d: mp_send of %zu bytes from a NULL buffer", r->base.rank, len);
+    return MP_EARG;
+  }
+  const sim_config *c = &s->cfg;
+  rank *d = &s->ranks[dst];
+  double before = r->now, t0 = r->now, o = 0, arrival;
+  if (d->proc == r->proc) {
+    arrival = t0 + c->local;
+  } else if (c->net == SIM_NET_BUS) {
+    double start = t0 > s->bus_free ? t0 : s->bus_free;
+    s->bus_free = start + c->m + (double)len * c->per_byte;
+    arrival = s->bus_free;
+  } else if (c->net == SIM_NET_IDEAL) {
+    arrival = t0 + c->m + (double)len * c->per_byte;
+  } else {
+    o = c->o;
+    double start = reserve(s, r, o);
+    r->st.cpu_wait += start - t0;
+    r->st.overhead += o;
+    if (s->tr && start > t0)
+      trace_span(s->tr, "cpuwait", r->base.rank, r->proc, t0, start - t0, -1, -1);
+    t0 = start;
+    r->now = start + o;
+    double *nic = &s->nic[r->proc], inject = r->now > *nic ? r->now : *nic;
+    *nic = inject + c->g;
+    arrival = inject + (len > 1 ? (double)(len - 1) * c->G : 0) + c->L;
+  }
+  double *last = chan_last(r, dst);
+  if (arrival < *last) arrival = *last; /* non-overtaking */
+  *last = arrival;
+
+  msg *m = msg_new(s, len);
+  m->sent = t0;
+  m->arrival = arrival;
+  m->seq = s->seq++;
+  m->src = r->base.rank;
+  m->tag = tag;
+  m->len = len;
+  if (len) memcpy(m->data, buf, len);
+  box_insert(d, m);
+
+  r->st.sent++;
+  r->st.bytes_sent += (long long)len;
+  if (tag < SIM_TAGS) r->st.sent_tag[tag]++;
+  s->st.messages++;
+  s->st.bytes += (long long)len;
+  if (s->tr) trace_send(s->tr, r->base.rank, r->proc, t0, o, dst, tag, len, m->seq, arrival);
+
+  /* A receiver blocked on a matching message wakes when the earliest arrives. */
+  if (d->state == R_BLOCKED && arrival < d->wake && matches(m, d->wait_src, d->wait_tag)) {
+    d->wake = arrival;
+    evq_set(s->q, dst, arrival, s->seq++);
+  }
+  if (r->now > before) moved(s, r);
+  return MP_OK;
+}
+
+/* Check recv's and probe's source and tag. */
+static int check_match_args(sim *s, rank *r, const char *call, int src, int tag) {
+  if (src < MP_ANY || src >= s->n) {
+    fail(s, "rank %d: %s from rank %d, which does not exist (%d ranks)", r->base.rank, call, src,
+         s->n);
+    return MP_ERANK;
+  }
+  if (tag < MP_ANY) {
+    fail(s, "rank %d: %s with tag %d: tags are >= 0 or MP_ANY", r->base.rank, call, tag);
+    return MP_EARG;
+  }
+  return MP_OK;
+}
+
+static int sim_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status *st) {
+  rank *r = (rank *)self;
+  sim *s = r->s;
+  if (s->stopped) return stopped_call(s, r);
+  s->st.events++;
+  r->probe_spins = 0;
+  int rc = check_match_args(s, r, "mp_recv", src, tag);
+  if (rc != MP_OK) return rc;
+  if (cap && !buf) {
+    fail(s, "rank %d: mp_recv into a NULL buffer of %zu bytes", r->base.rank, cap);
+    return MP_EARG;
+  }
+  msg *m = box_find(r, src, tag);
+  if (!m || m->arrival > r->now) {
+    /* Block: queued at the first matching arrival if one is on its way,
+     * else not queued until a matching send queues it. */
+    double since = r->now;
+    r->state = R_BLOCKED;
+    r->wait_src = src;
+    r->wait_tag = tag;
+    r->wake = INFINITY;
+    if (m) {
+      r->wake = m->arrival;
+      evq_set(s->q, r->base.rank, m->arrival, s->seq++);
+    }
+    give_way(s, r);
+    r->state = R_READY;
+    double t = s->stopped ? (s->gtime > since ? s->gtime : since) : r->wake;
+    r->now = t;
+    r->st.recv_wait += t - since;
+    if (s->tr && t > since) trace_span(s->tr, "wait", r->base.rank, r->proc, since, t - since, src, tag);
+    if (s->stopped) return r->deadlocked ? MP_EDEADLOCK : MP_ESTOPPED;
+    XASSERT(t == s->gtime);
+    m = box_find(r, src, tag);
+    XASSERT(m && m->arrival <= r->now);
+  }
+  box_unlink(r, m);
+
+  double before = r->now, t0 = r->now, o = 0;
+  if (s->cfg.net == SIM_NET_LOGGP && s->ranks[m->src].proc != r->proc) {
+    o = s->cfg.o;
+    double start = reserve(s, r, o);
+    r->st.cpu_wait += start - t0;
+    r->st.overhead += o;
+    if (s->tr && start > t0)
+      trace_span(s->tr, "cpuwait", r->base.rank, r->proc, t0, start - t0, -1, -1);
+    t0 = start;
+    r->now = start + o;
+  }
+  size_t n = m->len <= cap ? m->len : cap;
+  if (n) memcpy(buf, m->data, n);
+  if (st) *st = (mp_status){m->src, m->tag, m->len};
+  r->st.received++;
+  r->st.bytes_received += (long long)m->len;
+  s->st.received++;
+  if (s->tr) trace_recv(s->tr, r->base.rank, r->proc, t0, o, m->src, m->tag, m->len, m->seq);
+  rc = MP_OK;
+  if (m->len > cap) {
+    warn(s, "rank %d: mp_recv truncated a %zu-byte message from rank %d (tag %d) to %zu bytes",
+         r->base.rank, m->len, m->src, m->tag, cap);
+    rc = MP_ETRUNC;
+  }
+  msg_free(s, m);
+  if (r->now > before) moved(s, r);
+  return rc;
+}
+
+static int sim_probe(mp *self, int src, int tag, mp_status *st) {
+  rank *r = (rank *)self;
+  sim *s = r->s;
+  if (s->stopped) return stopped_call(s, r);
+  s->st.events++;
+  int rc = check_match_args(s, r, "mp_probe", src, tag);
+  if (rc != MP_OK) return rc;
+  msg *m = box_find(r, src, tag);
+  if (m && m->arrival <= r->now) {
+    r->probe_spins = 0;
+    if (st) *st = (mp_status){m->src, m->tag, m->len};
+    return 1;
+  }
+  if (r->probe_at != r->now) {
+    r->probe_at = r->now;
+    r->probe_spins = 0;
+  }
+  if (++r->probe_spins >= PROBE_SPINS_MAX) {
+    fail(s,
+         "rank %d called mp_probe %d times at t=%.9g without its clock moving: nothing "
+         "new can arrive (compute between probes, or recv); run stopped",
+         r->base.rank, PROBE_SPINS_MAX, r->now);
+    s->stopped = 1;
+    return MP_ESTOPPED;
+  }
+  return 0;
+}
+
+static double sim_time(const mp *self) { return ((const rank *)self)->now; }
+
+static const mp_ops sim_ops = {sim_send, sim_recv, sim_probe, sim_compute, sim_time};
+
+/* ==== the machine ========================================================= */
+
+sim *sim_new(const sim_config *cfg, int nranks, char *err, size_t errlen) {
+  if (nranks < 1) {
+    snprintf(err, errlen, "sim: %d ranks: need at least 1", nranks);
+    return NULL;
+  }
+  if (cfg->procs < 1) {
+    snprintf(err, errlen, "sim: %d processors: need at least 1", cfg->procs);
+    return NULL;
+  }
+  const struct {
+    const char *name;
+    double v;
+  } costs[] = {{"c", cfg->c},          {"m", cfg->m}, {"per_byte", cfg->per_byte},
+               {"local", cfg->local},  {"L", cfg->L}, {"o", cfg->o},
+               {"g", cfg->g},          {"G", cfg->G}};
+  for (size_t i = 0; i < sizeof costs / sizeof *costs; i++) {
+    if (!(costs[i].v >= 0) || isinf(costs[i].v)) {
+      snprintf(err, errlen, "sim: cost %s = %g: must be finite and >= 0", costs[i].name,
+               costs[i].v);
+      return NULL;
+    }
+  }
+  if ((unsigned)cfg->net > SIM_NET_LOGGP) {
+    snprintf(err, errlen, "sim: unknown network model %d", (int)cfg->net);
+    return NULL;
+  }
+  if (cfg->place) {
+    for (int r = 0; r < nranks; r++) {
+      if (cfg->place[r] < 0 || cfg->place[r] >= cfg->procs) {
+        snprintf(err, errlen, "sim: place[%d] = %d: processors are 0..%d", r, cfg->place[r],
+                 cfg->procs - 1);
+        return NULL;
+      }
+    }
+  }
+  sim *s = xcalloc(1, sizeof *s);
+  s->cfg = *cfg;
+  s->n = nranks;
+  s->place = xmallocarray((size_t)nranks, sizeof *s->place);
+  for (int r = 0; r < nranks; r++) s->place[r] = cfg->place ? cfg->place[r] : r % cfg->procs;
+  s->cfg.place = s->place;
+  s->ranks = xcalloc((size_t)nranks, sizeof *s->ranks);
+  for (int r = 0; r < nranks; r++) {
+    rank *k = &s->ranks[r];
+    k->base = (struct mp){&sim_ops, r, nranks};
+    k->s = s;
+    k->proc = s->place[r];
+    k->st.proc = k->proc;
+    k->wake = INFINITY;
+  }
+  s->busy = xcalloc((size_t)cfg->procs, sizeof *s->busy);
+  s->nic = xcalloc((size_t)cfg->procs, sizeof *s->nic);
+  s->q = evq_new(nranks);
+  s->st.ranks = nranks;
+  s->st.procs = cfg->procs;
+  return s;
+}
+
+void sim_trace(sim *s, FILE *csv, FILE *json) {
+  s->tcsv = csv;
+  s->tjson = json;
+}
+
+/* Every rank runs this on its own stack. */
+static coro *rank_main(void *ud) {
+  rank *r = ud;
+  sim *s = r->s;
+  s->procs[r->base.rank].main(&r->base, s->procs[r->base.rank].ud);
+  r->state = R_DONE;
+  r->st.done = 1;
+  r->st.finish = r->now;
+  if (r->now > s->st.makespan) s->st.makespan = r->now;
+  if (s->tr) trace_finish(s->tr, r->base.rank, r->proc, r->now);
+  s->live--;
+  s->st.switches++;
+  double t;
+  int id = evq_pop(s->q, &t);
+  if (id < 0) return s->main;
+  XASSERT(t >= s->gtime);
+  s->gtime = t;
+  return s->ranks[id].co;
+}
+
+static const char *peer_name(int v, char *buf, size_t len) {
+  if (v < 0) return "any";
+  snprintf(buf, len, "%d", v);
+  return buf;
+}
+
+/* Every live rank waits in recv and nothing is on its way: say who waits for
+ * what, and stop the run. */
+static void report_deadlock(sim *s) {
+  enum { SHOWN = 16 };
+  size_t cap = 64 + SHOWN * 64, len = 0;
+  char *buf = xmalloc(cap), a[16], b[16];
+  len += (size_t)snprintf(buf, cap, "deadlock at t=%.9g:", s->gtime);
+  int blocked = 0;
+  for (int i = 0; i < s->n; i++) {
+    rank *r = &s->ranks[i];
+    if (r->state != R_BLOCKED) continue;
+    r->deadlocked = 1;
+    if (blocked++ < SHOWN)
+      len += (size_t)snprintf(buf + len, cap - len, "%s rank %d waits in recv(src=%s, tag=%s)",
+                              blocked > 1 ? ";" : "", i, peer_name(r->wait_src, a, sizeof a),
+                              peer_name(r->wait_tag, b, sizeof b));
+  }
+  if (blocked > SHOWN)
+    snprintf(buf + len, cap - len, "; and %d more ranks", blocked - SHOWN);
+  s->st.deadlock = 1;
+  s->stopped = 1;
+  add_error(s, buf, 1); /* always quoted: it is often the consequence of the others */
+}
+
+/* Count and report what was sent and never received; free it. */
+static void sweep_unread(sim *s) {
+  for (int i = 0; i < s->n; i++) {
+    rank *r = &s->ranks[i];
+    if (!r->head) continue;
+    long long count = 0;
+    for (msg *m = r->head; m; m = m->next) count++;
+    r->st.unread = count;
+    s->st.unread += count;
+    warn(s, "rank %d finished with %lld unread message%s (first from rank %d, tag %d)", i, count,
+         count == 1 ? "" : "s", r->head->src, r->head->tag);
+    while (r->head) {
+      msg *m = r->head;
+      r->head = m->next;
+      msg_free(s, m);
+    }
+    r->tail = NULL;
+  }
+}
+
+int sim_run(sim *s, const mp_proc *procs, char *err, size_t errlen) {
+  if (s->ran) {
+    snprintf(err, errlen, "sim_run: this machine has run already");
+    return -1;
+  }
+  s->ran = 1;
+  for (int i = 0; i < s->n; i++) {
+    if (!procs[i].main) {
+      snprintf(err, errlen, "sim_run: rank %d has no main function", i);
+      return -1;
+    }
+  }
+  double w0 = wallclock();
+  s->procs = procs;
+  s->tr = trace_new(s->tcsv, s->tjson);
+  s->main = coro_main_new();
+  char cerr[256];
+  int made = 0;
+  for (; made < s->n; made++) {
+    rank *r = &s->ranks[made];
+    r->co = coro_new(rank_main, r, s->cfg.stack, cerr, sizeof cerr);
+    if (!r->co) {
+      fail(s, "sim_run: rank %d: %s", made, cerr);
+      break;
+    }
+  }
+  if (made == s->n) {
+    if (s->tr) trace_begin(s->tr, s->n, s->place, s->cfg.procs);
+    for (int i = 0; i < s->n; i++) evq_set(s->q, i, 0.0, s->seq++);
+    s->live = s->n;
+    for (;;) {
+      double t;
+      int id = evq_pop(s->q, &t);
+      if (id >= 0) {
+        XASSERT(t >= s->gtime);
+        s->gtime = t;
+        s->st.switches++;
+        coro_switch(s->main, s->ranks[id].co);
+        continue;
+      }
+      if (s->live == 0) break;
+      /* Nothing can act and ranks are alive: all of them wait in recv. */
+      if (!s->stopped) report_deadlock(s);
+      int woken = 0;
+      for (int i = 0; i < s->n; i++) {
+        if (s->ranks[i].state != R_BLOCKED) continue;
+        evq_set(s->q, i, s->gtime, s->seq++);
+        woken++;
+      }
+      XASSERT(woken > 0);
+    }
+    sweep_unread(s);
+    if (s->tr && trace_end(s->tr, cerr, sizeof cerr) != 0) fail(s, "sim_run: %s", cerr);
+  }
+  for (int i = 0; i < made; i++) {
+    coro_free(s->ranks[i].co);
+    s->ranks[i].co = NULL;
+  }
+  coro_free(s->main);
+  s->main = NULL;
+  s->st.wall_s = wallclock() - w0;
+  if (!s->st.errors) return 0;
+  if (s->st.errors > s->nshown)
+    snprintf(err, errlen, "%s (%lld errors in all)", s->errs, s->st.errors);
+  else
+    snprintf(err, errlen, "%s", s->errs);
+  return -1;
+}
+
+const sim_rank_stats *sim_rank(const sim *s, int i) {
+  XASSERT(i >= 0 && i < s->n);
+  return &s->ranks[i].st;
+}
+
+const sim_stats *sim_stats_get(const sim *s) { return &s->st; }
+
+void sim_free(sim *s) {
+  if (!s) return;
+  for (int i = 0; i < s->n; i++) {
+    rank *r = &s->ranks[i];
+    coro_free(r->co);
+    while (r->head) {
+      msg *m = r->head;
+      r->head = m->next;
+      msg_free(s, m);
+    }
+    free(r->chans);
+  }
+  while (s->pool) {
+    msg *m = s->pool;
+    s->pool = m->next;
+    free(m);
+  }
+  coro_free(s->main);
+  trace_free(s->tr);
+  evq_free(s->q);
+  free(s->ranks);
+  free(s->place);
+  free(s->busy);
+  free(s->nic);
+  free(s->errs);
+  free(s);
+}

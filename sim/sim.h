@@ -1,0 +1,184 @@
+/* sim.h -- a deterministic discrete-event simulator of a message-passing multiprocessor.
+ *
+ * It runs an mp program (mp.h): every rank is a coroutine on its own stack,
+ * placed on one of `procs` simulated processors, and the simulator charges
+ * simulated time for computing (mp_compute) and for messages, after the
+ * BBN TC2000 runs of Johnson, Livadas & Talele (1993).  Simulated time is
+ * exact and deterministic: events are ordered by (simulated time, sequence
+ * number), the host clock never touches it, and two runs with the same
+ * inputs give byte-identical results and traces.
+ *
+ * THE TIMING MODEL (the algorithm's calibration depends on exactly this)
+ *
+ *   Clocks.  Each rank has a clock `now` (mp_time), from 0.  Each processor
+ *   has `busy_until`.  Actions are executed in global (time, seq) order: a
+ *   rank acts only when its `now` is the earliest pending time; ties go to
+ *   the rank that was queued first.
+ *
+ *   Compute.  mp_compute(u): start = max(now, busy_until[proc]);
+ *   end = start + u*c; busy_until[proc] = end; now = end.  Ranks that share
+ *   a processor share its time, first come first served (the paper's
+ *   1-processor run has master and slave on one CPU).  Waiting in recv does
+ *   not hold the processor.
+ *
+ *   Sends are buffered: mp_send returns at once (LogGP: after o), and the
+ *   message arrives at `arrival`:
+ *     same processor   arrival = now + local, in every network model; it
+ *                      never touches the network (no m, per_byte, o, g, L, G).
+ *     SIM_NET_IDEAL    arrival = now + m + len*per_byte (no contention).
+ *     SIM_NET_BUS      one message in flight in the whole machine at a time,
+ *                      later ones queue (the paper's pessimistic model of
+ *                      section 7.2, and the TC2000's message queues simulated
+ *                      in shared memory):
+ *                        start = max(now, bus_free);
+ *                        bus_free = start + m + len*per_byte; arrival = bus_free.
+ *     SIM_NET_LOGGP    the sender's processor is busy o, reserved like compute:
+ *                        s = max(now, busy_until[proc]); busy_until = s + o;
+ *                        now = s + o;
+ *                        inject = max(now, nic_free[proc]);
+ *                        nic_free[proc] = inject + g;
+ *                        arrival = inject + (len > 1 ? (len-1)*G : 0) + L.
+ *   Non-overtaking: messages between one pair of ranks are received in send
+ *   order, whatever the model: arrival = max(arrival, last arrival on the
+ *   same (src, dst) channel).
+ *
+ *   Receive.  mp_recv(src, tag): among the matching messages (src or MP_ANY,
+ *   tag or MP_ANY) the earliest by (arrival, seq) is taken, seq being the
+ *   order of the sends.  If it has arrived (arrival <= now) it is taken at
+ *   once; otherwise the rank blocks until a matching message arrives and
+ *   now = that arrival (the earliest matching one).  LogGP, and a message
+ *   from another processor: the receiver's processor is then busy o:
+ *   s = max(now, busy_until[proc]); busy_until = now = s + o.
+ *   mp_probe(src, tag) never blocks and sees the messages with arrival <= now.
+ *
+ *   End.  A rank that returns from its main has finished at its now; the
+ *   makespan is the latest finish.
+ *
+ *   Statistics identity: finish = compute + cpu_wait + overhead + recv_wait
+ *   for every rank that returns normally (the only ways its clock moves).
+ *
+ * ERRORS
+ *
+ *   Deadlock: when every live rank waits in mp_recv and no matching message
+ *   is in flight, the run stops; sim_run returns -1 with a message naming
+ *   each blocked rank and what it waits for, e.g.
+ *     deadlock at t=0.0042: rank 1 waits in recv(src=any, tag=3); rank 2 ...
+ *   Each blocked mp_recv returns MP_EDEADLOCK, so the rank can clean up and
+ *   return; from then on every mp call returns MP_ESTOPPED at once.  A rank
+ *   that keeps calling after that (1,000,000 calls) is abandoned: its stack
+ *   is dropped without unwinding, and the run reports it.
+ *
+ *   A send to a rank that does not exist (MP_ERANK), a negative tag or a
+ *   negative or non-finite compute (MP_EARG), a recv or probe naming a rank
+ *   that does not exist (MP_ERANK): the call fails, the rank goes on, and
+ *   sim_run returns -1 naming the rank and the bad argument.
+ *
+ *   Warnings (counted in sim_stats.warnings; printed to cfg.warn unless it is
+ *   NULL) do not fail the run: a message longer than the recv buffer (the
+ *   recv returns MP_ETRUNC, the first cap bytes are copied, the message is
+ *   consumed), and messages never received by the end of the run:
+ *     sim: warning: rank 3 finished with 2 unread messages (first from rank 1, tag 4)
+ *
+ *   A rank that calls mp_probe 1,000,000 times in a row at the same clock,
+ *   with nothing else in between, can never see a new message (time does not
+ *   move unless it computes): the run is stopped with an error.
+ *
+ * Usage:
+ *   sim_config cfg; sim_config_init(&cfg); cfg.procs = 8;
+ *   sim *s = sim_new(&cfg, nranks, err, sizeof err);
+ *   if (sim_run(s, procs, err, sizeof err) != 0) ...;
+ *   double t = sim_stats_get(s)->makespan;
+ *   sim_free(s); */
+#ifndef SIM_H
+#define SIM_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "mp.h"
+
+typedef enum { SIM_NET_IDEAL, SIM_NET_BUS, SIM_NET_LOGGP } sim_net;
+
+typedef struct {
+  int procs;          /* processors >= 1 */
+  const int *place;   /* place[r] = processor of rank r (copied); NULL: r % procs */
+  double c;           /* simulated seconds per compute unit */
+  double m;           /* seconds per message (ideal, bus) */
+  double per_byte;    /* seconds per byte (ideal, bus) */
+  double local;       /* seconds per message between ranks on one processor */
+  sim_net net;        /* how messages between processors are charged */
+  double L, o, g, G;  /* LogGP: latency, overhead, gap, gap per byte (seconds) */
+  size_t stack;       /* coroutine stack bytes per rank, 0 = 256 KiB */
+  FILE *warn;         /* warnings go here (default stderr); NULL: quiet */
+} sim_config;
+
+/* The default profile, "tc2000".  Every field is set; change any. */
+void sim_config_init(sim_config *cfg);
+
+/* Fill cfg with a named profile: "tc2000" (the default; its costs are
+ * placeholders until calibrated) or "unit" (c = m = L = 1 s, for reading
+ * traces by eye).  0, or -1 for an unknown name (cfg untouched). */
+int sim_profile(const char *name, sim_config *cfg);
+
+/* "ideal", "bus", "loggp"; sim_net_parse gives 0, or -1 for another name. */
+const char *sim_net_name(sim_net net);
+int sim_net_parse(const char *name, sim_net *net);
+
+typedef struct sim sim;
+
+/* A machine for nranks ranks (>= 1) under cfg (copied, place included).
+ * NULL and a message in err (errlen bytes) if cfg is invalid: procs < 1, a
+ * negative or non-finite cost, place[r] outside 0..procs-1, an unknown net. */
+sim *sim_new(const sim_config *cfg, int nranks, char *err, size_t errlen);
+
+/* Write the timeline of the run to csv and/or json (either may be NULL; see
+ * trace.h for the formats).  Call before sim_run; the streams stay the
+ * caller's to close. */
+void sim_trace(sim *s, FILE *csv, FILE *json);
+
+/* Run procs[0..nranks-1] to completion.  Once per sim.  0, or -1 and a
+ * message in err: deadlock, a bad argument to an mp call, a stack that could
+ * not be mapped, a trace that could not be written.  Statistics are
+ * available either way. */
+int sim_run(sim *s, const mp_proc *procs, char *err, size_t errlen);
+
+enum { SIM_TAGS = 16 };   /* per-tag send counts for tags 0..SIM_TAGS-1 */
+
+typedef struct {
+  int proc;                 /* the processor it ran on */
+  int done;                 /* 1 once its main returned */
+  double finish;            /* its clock when its main returned */
+  double units;             /* compute units charged */
+  double compute;           /* seconds computing: the sum of units * c */
+  double cpu_wait;          /* seconds waiting for its (shared) processor */
+  double overhead;          /* seconds of LogGP send and receive overhead o */
+  double recv_wait;         /* seconds blocked in mp_recv */
+  long long sent, received; /* messages */
+  long long bytes_sent, bytes_received;
+  long long sent_tag[SIM_TAGS];  /* messages sent with tag 0..SIM_TAGS-1 */
+  long long unread;         /* messages sent to it and never received */
+} sim_rank_stats;
+
+typedef struct {
+  int ranks, procs;
+  double makespan;          /* the latest finish, simulated seconds */
+  long long events;         /* mp calls simulated (send, recv, probe, compute) */
+  long long switches;       /* context switches between coroutines */
+  long long messages;       /* messages sent */
+  long long received;       /* messages received */
+  long long bytes;          /* bytes sent */
+  long long unread;         /* messages never received */
+  long long warnings;       /* warnings (truncations, unread messages) */
+  long long errors;         /* errors (bad arguments, deadlock, ...) */
+  int deadlock;             /* 1 if the run ended in a deadlock */
+  double wall_s;            /* host seconds sim_run took (reporting only) */
+} sim_stats;
+
+/* Statistics of one rank (0 <= rank < nranks) and of the run.  Valid until
+ * sim_free; all zero before sim_run. */
+const sim_rank_stats *sim_rank(const sim *s, int rank);
+const sim_stats *sim_stats_get(const sim *s);
+
+void sim_free(sim *s);   /* NULL is fine */
+
+#endif

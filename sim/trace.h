@@ -1,0 +1,59 @@
+/* trace.h -- the simulator's timeline, as CSV rows and Chrome trace-event JSON.
+ *
+ * The simulator calls these as it processes each action, so rows come in
+ * processing order (by event time, not always by their own time stamp: a
+ * wait is written when it ends).  Both outputs are byte-identical across
+ * runs with the same inputs: times are printed in fixed formats.
+ *
+ * CSV, one row per action, header
+ *   time,rank,proc,event,peer,tag,bytes,duration,msg,arrival
+ * with times in simulated seconds (%.9f) and these events:
+ *   compute   time = start, duration = units * c
+ *   cpuwait   time = when the rank wanted its processor, duration = the wait
+ *             for another rank on the same processor to finish its turn
+ *   send      peer = destination, duration = LogGP's o (else 0), msg = the
+ *             message's id, arrival = when it arrives at the destination
+ *   wait      blocked in recv: peer/tag = what it waits for ("any" for
+ *             MP_ANY), duration = how long
+ *   recv      peer = source, duration = LogGP's o (else 0), msg = the id
+ *   finish    the rank's main returned
+ *
+ * JSON (Perfetto, chrome://tracing): {"traceEvents":[...]} with one pid per
+ * processor and one tid per rank (named by "M" metadata), "X" slices for
+ * compute, cpuwait, wait, send and recv, times in microseconds (%.3f), and a
+ * flow arrow ("s" at the send, "f" bound to the recv) for every message that
+ * is received, so the picture shows who waited for whom. */
+#ifndef TRACE_H
+#define TRACE_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+typedef struct trace trace;
+
+/* A trace writing to csv and/or json (either may be NULL; both NULL gives
+ * NULL).  The streams stay the caller's: trace_free does not close them. */
+trace *trace_new(FILE *csv, FILE *json);
+
+/* The header row and the JSON metadata: processor and rank names. */
+void trace_begin(trace *tr, int nranks, const int *place, int nprocs);
+
+/* A span of time on a rank: kind is "compute", "cpuwait" or "wait"; for
+ * "wait", peer and tag say what it waits for (-1: any); else pass -1. */
+void trace_span(trace *tr, const char *kind, int rank, int proc, double start, double dur,
+                int peer, int tag);
+
+void trace_send(trace *tr, int rank, int proc, double t, double dur, int dst, int tag,
+                size_t len, uint64_t msg, double arrival);
+void trace_recv(trace *tr, int rank, int proc, double t, double dur, int src, int tag,
+                size_t len, uint64_t msg);
+void trace_finish(trace *tr, int rank, int proc, double t);
+
+/* Close the JSON array and flush both streams.  0, or -1 and a message in
+ * err if a write failed. */
+int trace_end(trace *tr, char *err, size_t errlen);
+
+void trace_free(trace *tr);   /* NULL is fine */
+
+#endif
