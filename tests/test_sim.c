@@ -700,7 +700,9 @@ static void rfail(rprog *p, const char *fmt, int a, int b) {
   if (!p->wrong++) snprintf(p->why, sizeof p->why, fmt, a, b);
 }
 
+/* Payload: the message id (bytes 0-3), the send time (8-15), a pattern. */
 static void fill(unsigned char *buf, int i, double sent, size_t len) {
+  memset(buf, 0, 16);
   memcpy(buf, &i, sizeof i);
   memcpy(buf + 8, &sent, sizeof sent);
   for (size_t j = 16; j < len; j++) buf[j] = (unsigned char)(i * 31 + (int)j);
