@@ -1,0 +1,49 @@
+/* bench.c -- tilesim's benchmarks: pick a mode, it prints CSV on stdout.
+ *
+ * main only dispatches: each mode lives in its own prog/bench_*.c, parses
+ * its own options and returns the exit status (0, 1 for a failed run, 2 for
+ * bad usage).  To add a mode, add a row to `modes`. */
+#include <stdio.h>
+#include <string.h>
+
+#include "bench_ring.h"
+
+typedef struct {
+  const char *opt;                    /* the option that selects the mode */
+  int (*run)(int argc, char **argv);  /* gets the whole command line */
+  const char *help;
+} mode;
+
+static const mode modes[] = {
+    {"--ring", bench_ring_main,
+     "P --laps K [--net ideal|bus|loggp] [--m S] [--c S] [--work U] [--profile NAME]\n"
+     "      [--trace-csv FILE] [--trace-json FILE]\n"
+     "      a token ring of P ranks on P processors, K laps: simulator speed"},
+    {"--switch", bench_switch_main,
+     "N\n"
+     "      two coroutines switching N times: ns per context switch"},
+};
+enum { NMODES = sizeof modes / sizeof *modes };
+
+static void usage(FILE *f) {
+  fputs("usage: bench --help | bench MODE ...   (modes:", f);
+  for (int i = 0; i < NMODES; i++) fprintf(f, " %s", modes[i].opt);
+  fputs(")\n", f);
+}
+
+static void help(void) {
+  puts("bench -- tilesim's benchmarks; each mode prints CSV with a header row.\n");
+  for (int i = 0; i < NMODES; i++) printf("  bench %s %s\n\n", modes[i].opt, modes[i].help);
+}
+
+int main(int argc, char **argv) {
+  if (argc >= 2 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0)) {
+    help();
+    return 0;
+  }
+  for (int i = 0; argc >= 2 && i < NMODES; i++)
+    if (strcmp(argv[1], modes[i].opt) == 0) return modes[i].run(argc, argv);
+  if (argc >= 2) fprintf(stderr, "bench: unknown mode '%s'\n", argv[1]);
+  usage(stderr);
+  return 2;
+}
