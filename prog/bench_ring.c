@@ -22,8 +22,8 @@
 #include "xmem.h"
 
 static const char ring_usage[] =
-    "usage: bench --ring P --laps K [--net ideal|bus|loggp] [--m S] [--c S] [--work U]\n"
-    "             [--profile NAME] [--trace-csv FILE] [--trace-json FILE]\n";
+    "usage: bench --ring P --laps K [--net ideal|bus|loggp] [--m S] [--c S] [--work U] "
+    "[--profile NAME] [--trace-csv FILE] [--trace-json FILE]\n";
 static const char switch_usage[] = "usage: bench --switch N\n";
 
 /* ---- option values ------------------------------------------------------ */
@@ -157,13 +157,12 @@ int bench_ring_main(int argc, char **argv) {
   if (rc != 0) {
     fprintf(stderr, "bench: %s\n", err);
     status = 1;
-  }
-  if (g.failed || g.token != (long long)procs * laps) {
+  } else if (g.failed || g.token != (long long)procs * laps) {
     fprintf(stderr, "bench: wrong checksum %lld, expected %lld\n", g.token,
             (long long)procs * laps);
     status = 1;
-  }
-  if (cfg.net != SIM_NET_LOGGP) {
+  } else if (cfg.net != SIM_NET_LOGGP) {
+    /* One message at a time around the ring: P*K hops of work*c + m each. */
     double want = (double)procs * (double)laps * (work * cfg.c + (procs > 1 ? cfg.m : cfg.local));
     double diff = st->makespan - want;
     if (diff < 0) diff = -diff;
