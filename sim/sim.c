@@ -14,10 +14,15 @@
  * deadlock.  A rank whose clock moves but stays strictly earliest goes on
  * without a switch: exactly what queueing it and popping it would do.
  *
- *   time -->      0        m        2m       3m
- *   rank 0      send--.                      recv<-.
- *   rank 1      recv   `->recv, send--.            |
- *   rank 2      recv                  `->recv, send'
+ *   A token ring on the bus model, messages costing m:
+ *
+ *   time -->  0            m            2m           3m
+ *   rank 0    send--.  recv (blocked, not queued)    .->recv
+ *   rank 1    recv  '---->recv send--.               |
+ *   rank 2    recv                   '---->recv send-'
+ *
+ *   Each send queues the blocked receiver at the arrival time; each recv
+ *   that finds nothing there switches to the earliest queued rank.
  *
  * A blocked rank is queued only once a matching message is on its way, at
  * that message's arrival time (moved earlier if an earlier matching message
@@ -197,7 +202,10 @@ static void add_error(sim *s, char *text, int always) {
   }
   size_t old = s->errs ? strlen(s->errs) : 0, add = strlen(text);
   s->errs = xrealloc(s->errs, old + add + 8);
-  if (old) memcpy(s->errs + old, "; then ", 7), old += 7;
+  if (old) {
+    memcpy(s->errs + old, "; then ", 7);
+    old += 7;
+  }
   memcpy(s->errs + old, text, add + 1);
   s->nshown++;
   free(text);

@@ -1,0 +1,52 @@
+#!/bin/sh
+# cli_bench.sh -- ./bench's command line: modes, CSV, checksums, bad usage.
+# Run by make check with BUILD=build/chk (the sanitized build).
+bench=${BUILD:-build/chk}/bench
+passed=0; failed=0
+ok()   { passed=$((passed + 1)); }
+fail() { failed=$((failed + 1)); echo "cli_bench: $*"; }
+
+# A ring: header, one row, the checksum P*K, exit 0.
+out=$("$bench" --ring 5 --laps 7 --net ideal --m 0.25 --c 0.125 --work 2 2>&1); rc=$?
+[ $rc -eq 0 ] && ok || fail "--ring 5 --laps 7 exited $rc: $out"
+printf '%s\n' "$out" | head -n 1 | grep -q '^procs,laps,net,m,c,work,messages,sim_time,.*wall_s,messages_per_s,.*checksum$' \
+  && ok || fail "ring header: $out"
+row=$(printf '%s\n' "$out" | sed -n 2p)
+case $row in
+  5,7,ideal,0.25,0.125,2,35,17.500000000,*,35) ok ;;  # 35 hops of 2*0.125 + 0.25
+  *) fail "ring row: $row" ;;
+esac
+
+for net in bus loggp; do
+  "$bench" --ring 3 --laps 4 --net $net >/dev/null 2>&1 && ok || fail "--net $net failed"
+done
+
+# A trace from the command line parses as JSON-ish and has a CSV header.
+tmp=${TMPDIR:-/tmp}/cli_bench.$$
+"$bench" --ring 3 --laps 2 --profile unit --trace-csv "$tmp.csv" --trace-json "$tmp.json" >/dev/null 2>&1 \
+  && ok || fail "traced ring failed"
+head -n 1 "$tmp.csv" 2>/dev/null | grep -q '^time,rank,proc,event,' && ok || fail "trace CSV header"
+grep -q '"traceEvents"' "$tmp.json" 2>/dev/null && tail -n 1 "$tmp.json" | grep -q '^]}$' \
+  && ok || fail "trace JSON shape"
+rm -f "$tmp.csv" "$tmp.json"
+
+# The switch mode.
+out=$("$bench" --switch 1000 2>&1); rc=$?
+[ $rc -eq 0 ] && printf '%s\n' "$out" | head -n 1 | grep -q '^backend,switches,wall_s,ns_per_switch$' \
+  && ok || fail "--switch 1000: $out"
+
+# Bad usage: a usage line on stderr, exit 2, nothing on stdout.
+for args in "" "--frob" "--ring" "--ring 0 --laps 1" "--ring 4" "--ring 4 --laps x" \
+            "--ring 4 --laps 2 --net token" "--ring 4 --laps 2 --m -1" \
+            "--ring 4 --laps 2 --bogus 1" "--ring 4 --laps 2 --profile nope" "--switch" "--switch 1"; do
+  # shellcheck disable=SC2086
+  "$bench" $args >"$tmp.out" 2>"$tmp.err"; rc=$?
+  if [ $rc -eq 2 ] && [ ! -s "$tmp.out" ] && grep -q '^usage: bench' "$tmp.err"; then ok
+  else fail "bench $args: exit $rc, stderr: $(cat "$tmp.err")"; fi
+done
+rm -f "$tmp.out" "$tmp.err"
+
+"$bench" --help | grep -q -- '--ring P --laps K' && ok || fail "--help does not list --ring"
+
+echo "cli_bench: $passed passed, $failed failed"
+[ $failed -eq 0 ]
