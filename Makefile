@@ -89,6 +89,11 @@ valgrind: $(addprefix $(VG)/tests/,$(TESTS))
 	@VALGRIND="valgrind -q --error-exitcode=99 --leak-check=full" \
 	  sh tests/run.sh $(VG) $(addprefix $(VG)/tests/,$(TESTS))
 
+# The tiler's speed and memory (issue figures: 500 x 500, 5000 x 5000, the naive
+# reference, the whole prostate_0 stack).
+bench-tile: bench
+	./bench --tiler
+
 install: all
 	mkdir -p $(DESTDIR)$(PREFIX)/bin
 	cp $(PROGS) $(DESTDIR)$(PREFIX)/bin/
@@ -97,7 +102,7 @@ install: all
 clean:
 	rm -rf build $(PROGS)
 
-.PHONY: all check valgrind install clean
+.PHONY: all check valgrind bench-tile install clean
 .SECONDARY:
 
 -include $(shell find build -name '*.d' 2>/dev/null)

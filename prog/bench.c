@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "bench_ring.h"
+#include "bench_tiler.h"
 
 typedef struct {
   const char *opt;                    /* the option that selects the mode */
@@ -22,6 +23,11 @@ static const mode modes[] = {
     {"--switch", bench_switch_main,
      "N\n"
      "      two coroutines switching N times: ns per context switch"},
+    {"--tiler", bench_tiler,
+     "[--points N[,N...]] [--naive N] [--input STACK]... [--cost area|span]\n"
+     "      [--seed S] [--repeat R]\n"
+     "      the exact serial tiler's speed and peak memory, the naive reference beside it\n"
+     "      (no options: 500 and 5000 points, the naive reference at 500, prostate_0)"},
 };
 enum { NMODES = sizeof modes / sizeof *modes };
 

@@ -170,7 +170,7 @@ int bench_tiler(int argc, char **argv) {
   int ninputs = 0;
   unsigned long long seed = 1993;
   cost_kind kind = COST_AREA;
-  for (int i = 1; i < argc; i++) {
+  for (int i = 2; i < argc; i++) {   /* argv[1] is --tiler */
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
     if (strcmp(a, "--points") == 0 && v) {
       for (char *p = (char *)v; *p && npoints < 16;) {

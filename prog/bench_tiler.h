@@ -2,7 +2,7 @@
 #ifndef BENCH_TILER_H
 #define BENCH_TILER_H
 
-/* argv[0] is "--tiler"; returns the exit status. */
+/* The whole command line (argv[1] is "--tiler"); returns the exit status. */
 int bench_tiler(int argc, char **argv);
 
 #endif

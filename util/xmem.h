@@ -5,7 +5,7 @@
 #include <stddef.h>
 
 /* Allocate, or print the size asked for and abort: out of memory is not an
- * error any caller can mend.  xfree(NULL) is fine, like free(). */
+ * error any caller can mend.  Free with free(). */
 void *xmalloc(size_t size);
 void *xcalloc(size_t count, size_t size);
 void *xrealloc(void *p, size_t size);
