@@ -15,14 +15,14 @@ WARN     = -Wall -Wextra -Wpedantic -Wshadow -Wstrict-prototypes -Wmissing-proto
 # -ffp-contract=off: no fused multiply-add, so every build of a tile weight
 # rounds the same way (the solver's exactness rests on it).
 BASE     = -std=c11 -D_POSIX_C_SOURCE=200809L -ffp-contract=off -fno-math-errno \
-           -Iutil -Imp -Isim -Ialgo $(WARN)
+           -Iutil -Imp -Isim -Ialgo -Irun $(WARN)
 LDLIBS   = -lm -pthread
 SAN      = -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
 CHKFLAGS = -O1 -g -Werror $(SAN)
 
 # Library sources: every .c under these folders except the MPI backend,
 # which only mpicc can build (make mpi).
-LIBDIRS  = util mp sim algo
+LIBDIRS  = util mp sim algo run
 LIBSRC   = $(filter-out %mpi.c,$(wildcard $(addsuffix /*.c,$(LIBDIRS))))
 # Programs: prog/NAME.c holds main; prog/NAME_*.c are linked into NAME only.
 PROGS    = $(basename $(notdir $(filter-out $(wildcard prog/*_*.c),$(wildcard prog/*.c))))

@@ -46,13 +46,11 @@ void band_ws_free(band_ws *ws) {
   free(ws);
 }
 
-/* The last t' >= t such that U and L share their nodes on diagonals
- * s+t-1 .. s+t', or t-1 if they do not share s+t-1 and s+t. */
-static int shared_until(int m, int n, int s, const gpath *U, const gpath *L, int t) {
+int band_shared_until(int m, int n, int s, const gpath *U, const gpath *L, int t) {
   if (!U || !L) return t - 1;
   int du = s - U->start, dl = s - L->start;   /* U's index = t + du, L's = t + dl */
-  if (t - 1 + dl < 0) return t - 1;
-  int end = m + n - du < m + n ? m + n - du : m + n;   /* U must exist */
+  int end = m + n - du;   /* U exists on diagonals s+t for t <= end, L for t >= -dl */
+  if (t > end || t - 1 + dl < 0) return t - 1;
   const int *uc = U->col + du, *lc = L->col + dl;
   if (uc[t - 1] != lc[t - 1]) return t - 1;
   int u = t;
@@ -76,7 +74,7 @@ double band_solve(const weights *w, band_ws *ws, int s, const gpath *U, const gp
     band_range(m, n, s, U, L, k, &a, &b);
     XASSERT(a <= b && (a == pa || a == pa + 1) && (b == pb || b == pb + 1));
     if (a == b && pa == pb) {
-      int t1 = shared_until(m, n, s, U, L, t);
+      int t1 = band_shared_until(m, n, s, U, L, t);
       if (t1 > t) {
         /* U and L run together over diagonals s+t-1 .. s+t1: join the run. */
         int du = s - U->start;

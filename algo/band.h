@@ -72,6 +72,11 @@ void band_ws_free(band_ws *ws);
 double band_solve(const weights *w, band_ws *ws, int s, const gpath *U, const gpath *L,
                   gpath *P, band_count *count);
 
+/* The last t' >= t such that U and L share their nodes on diagonals
+ * s+t-1 .. s+t' (a run every path for s takes, joined from U's prefix sums),
+ * or t-1 if they do not share s+t-1 and s+t. */
+int band_shared_until(int m, int n, int s, const gpath *U, const gpath *L, int t);
+
 /* The number of nodes the band's dynamic program evaluates (cut edges
  * excluded): the size |W| of section 7.1. */
 int64_t band_size(int m, int n, int s, const gpath *U, const gpath *L);

@@ -1,6 +1,7 @@
 /* tiling.c -- divide and conquer over non-crossing paths (section 3.2). */
 #include "tiling.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -9,23 +10,26 @@
 typedef struct {
   const weights *w;
   band_ws *ws;
-  tiling *out;
-  int *pool;     /* column arrays for the recursion stack */
-  double *cpool; /* and their prefix sums */
+  tiling_best *best;
+  band_count *count;
+  int levels;
+  int **pool;      /* the columns of the path at each recursion level */
+  double **cpool;  /* and their prefix sums (one allocation each, so that a
+                      read past one path's end is caught, not another's) */
 } solver;
 
 /* The path arrays of recursion level `level`. */
 static gpath pathbuf(solver *s, int level) {
-  size_t len = (size_t)(s->w->m + s->w->n + 1);
-  return (gpath){0, s->pool + (size_t)level * len, s->cpool + (size_t)level * len};
+  XASSERT(level < s->levels);
+  return (gpath){0, s->pool[level], s->cpool[level]};
 }
 
 static void consider(solver *s, int start, double quanta, const int *col) {
-  tiling *o = s->out;
-  if (quanta < o->quanta || (quanta == o->quanta && start < o->start)) {
-    o->quanta = quanta;
-    o->start = start;
-    memcpy(o->col, col, (size_t)(s->w->m + s->w->n + 1) * sizeof *col);
+  tiling_best *b = s->best;
+  if (quanta < b->quanta || (quanta == b->quanta && start < b->start)) {
+    b->quanta = quanta;
+    b->start = start;
+    memcpy(b->col, col, (size_t)(s->w->m + s->w->n + 1) * sizeof *col);
   }
 }
 
@@ -36,10 +40,42 @@ static void findall(solver *s, const gpath *U, const gpath *L, int level) {
   if (hi - lo < 2) return;
   int mid = tiling_mid(lo, hi);
   gpath P = pathbuf(s, level);
-  double q = band_solve(s->w, s->ws, mid, U, L, &P, &s->out->count);
+  double q = band_solve(s->w, s->ws, mid, U, L, &P, s->count);
   consider(s, mid, q, P.col);
   findall(s, U, &P, level + 1);
   findall(s, &P, L, level + 1);
+}
+
+static int levels(int m) {
+  int k = 2;
+  for (int x = m; x > 1; x >>= 1) k++;
+  return k;
+}
+
+static void solver_init(solver *s, const weights *w, band_ws *ws, tiling_best *best,
+                        band_count *count) {
+  size_t len = (size_t)(w->m + w->n + 1);
+  int lv = levels(w->m);
+  *s = (solver){w, ws, best, count, lv, xmallocarray((size_t)lv, sizeof(int *)),
+                xmallocarray((size_t)lv, sizeof(double *))};
+  for (int i = 0; i < lv; i++) {
+    s->pool[i] = xmallocarray(len, sizeof(int));
+    s->cpool[i] = xmallocarray(len, sizeof(double));
+  }
+}
+
+static void solver_done(solver *s) {
+  for (int i = 0; i < s->levels; i++) free(s->pool[i]), free(s->cpool[i]);
+  free(s->pool);
+  free(s->cpool);
+}
+
+void tiling_range(const weights *w, band_ws *ws, const gpath *U, const gpath *L,
+                  tiling_best *best, band_count *count) {
+  solver s;
+  solver_init(&s, w, ws, best, count);
+  findall(&s, U, L, 0);
+  solver_done(&s);
 }
 
 void tiling_solve_w(const weights *w, tiling *out) {
@@ -49,22 +85,21 @@ void tiling_solve_w(const weights *w, tiling *out) {
   out->n = n;
   out->quantum = weights_quantum(w);
   out->col = xmallocarray((size_t)(m + n + 1), sizeof *out->col);
-  solver s = {w, band_ws_new(m, n), out, NULL, NULL};
-  int levels = 2;
-  for (int x = m; x > 1; x >>= 1) levels++;
-  s.pool = xmallocarray((size_t)levels * (size_t)(m + n + 1), sizeof *s.pool);
-  s.cpool = xmallocarray((size_t)levels * (size_t)(m + n + 1), sizeof *s.cpool);
-
+  tiling_best best = {HUGE_VAL, 0, out->col};
+  band_ws *ws = band_ws_new(m, n);
+  solver s;
+  solver_init(&s, w, ws, &best, &out->count);
+  /* shortestpath(G): mu(0) on the whole graph, mu(m) its copy m rows down. */
   gpath mu0 = pathbuf(&s, 0);
-  out->quanta = band_solve(w, s.ws, 0, NULL, NULL, &mu0, &out->count);
-  out->start = 0;
-  memcpy(out->col, mu0.col, (size_t)(m + n + 1) * sizeof *mu0.col);
-  gpath mum = {m, mu0.col, mu0.cum};   /* mu(m): the same path, m rows down */
+  double q = band_solve(w, ws, 0, NULL, NULL, &mu0, &out->count);
+  consider(&s, 0, q, mu0.col);
+  gpath mum = {m, mu0.col, mu0.cum};
   findall(&s, &mu0, &mum, 1);
+  solver_done(&s);
+  band_ws_free(ws);
+  out->quanta = best.quanta;
+  out->start = best.start;
   out->cost = out->quanta * out->quantum;
-  free(s.pool);
-  free(s.cpool);
-  band_ws_free(s.ws);
 }
 
 void tiling_solve(const vec2 *P, int np, double zp, const vec2 *Q, int nq, double zq,

@@ -39,6 +39,20 @@ void tiling_solve(const vec2 *P, int np, double zp, const vec2 *Q, int nq, doubl
 
 void tiling_free(tiling *t);
 
+/* The best of mu(i), U->start < i < L->start, between U and L, by the same
+ * divide and conquer (findallpaths): what a group of one slave solves on its
+ * own (paper, section 5).  best->col must hold m+n+1 ints; best->quanta must
+ * be set by the caller (HUGE_VAL, or a best already known: a path replaces
+ * it only if cheaper, or as cheap with a smaller start). */
+typedef struct {
+  double quanta;   /* in quanta */
+  int start;
+  int *col;
+} tiling_best;
+
+void tiling_range(const weights *w, band_ws *ws, const gpath *U, const gpath *L,
+                  tiling_best *best, band_count *count);
+
 /* The tiles of the path, in path order: for t = 1..m+n, tile[t-1] gets the
  * indices (into P and Q of the pair, not rows/columns) of the triangle the
  * t-th step adds: {edge start, edge end, apex} and on[t-1] = 0 when the edge

@@ -1,0 +1,398 @@
+/* par_slave.c -- a slave: findonepath on its share of each diagonal, the
+ * exchange of run-boundary costs, backtracking by message (paper, section 5),
+ * and the whole band alone for a one-slave group. */
+#include "par_slave.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "band.h"
+#include "kernel.h"
+#include "tiling.h"
+#include "xmem.h"
+
+enum { D_NORMAL, D_SINGLE, D_RUN };   /* how a diagonal is computed */
+
+typedef struct {
+  mp *mp;
+  par_slave_arg *arg;
+  int rank;
+  par_buf in, out;
+  size_t maxlen;
+  /* The pair. */
+  int m, n, d;
+  vec2 *R, *C;
+  weights *w;
+  band_ws *ws;
+  gpath U, L;          /* the group's bounds, each with its own arrays */
+  int hasU, hasL;
+  /* One path task: per diagonal t = 0..m+n. */
+  unsigned char *type;
+  int *a, *b, *q;      /* band columns and active slaves */
+  int *c0;             /* first column of my run, or -1 */
+  int *run0;           /* for D_RUN diagonals: the first diagonal of the run */
+  int64_t *woff;       /* my bits for diagonal t start at this word */
+  uint64_t *bits;
+  int64_t bitcap;
+  double *prev, *cur;  /* costs by column, index -1 .. n+1 */
+  int *pcol;           /* a backtrack piece */
+  double *pw;
+  int first_path;      /* the test hook counts only the first path */
+} slave;
+
+#define TRY(call)                                                              \
+  do {                                                                         \
+    int rc_ = (call);                                                          \
+    if (rc_ < 0) return fail(S, rc_, #call);                                   \
+  } while (0)
+
+static int fail(slave *S, int rc, const char *what) {
+  if (!S->arg->failed)
+    snprintf(S->arg->err, sizeof S->arg->err, "slave %d: %s: %s", S->rank, what, mp_strerror(rc));
+  S->arg->failed = 1;
+  return -1;
+}
+
+static void free_pair(slave *S) {
+  weights_free(S->w);
+  band_ws_free(S->ws);
+  free(S->R), free(S->C);
+  free(S->U.col), free(S->U.cum), free(S->L.col), free(S->L.cum);
+  free(S->type), free(S->a), free(S->b), free(S->q), free(S->c0), free(S->run0), free(S->woff);
+  free(S->bits);
+  if (S->prev) free(S->prev - 1);
+  if (S->cur) free(S->cur - 1);
+  free(S->pcol), free(S->pw);
+  slave keep = *S;
+  memset(S, 0, sizeof *S);
+  S->mp = keep.mp, S->arg = keep.arg, S->rank = keep.rank, S->in = keep.in, S->out = keep.out;
+  S->first_path = keep.first_path;
+}
+
+/* POINTS: header {m, n, kind, d} and {zr, zc}, then the points. */
+static int points(slave *S, par_rd *r) {
+  free_pair(S);
+  int m = par_get_i32(r), n = par_get_i32(r);
+  cost_kind kind = (cost_kind)par_get_i32(r);
+  S->d = par_get_i32(r);
+  double zr = par_get_f64(r), zc = par_get_f64(r);
+  S->m = m, S->n = n;
+  S->maxlen = par_maxlen(m, n);
+  mp_status st;
+  TRY(par_recv(S->mp, 0, PAR_TAG_POINTS, &S->in, S->maxlen, &st));
+  par_rd pr = {S->in.b, S->in.b + S->in.len};
+  S->R = xmallocarray((size_t)m, sizeof *S->R);
+  S->C = xmallocarray((size_t)n, sizeof *S->C);
+  par_get_f64s(&pr, (double *)S->R, 2 * m);
+  par_get_f64s(&pr, (double *)S->C, 2 * n);
+  S->w = weights_new(S->R, m, zr, S->C, n, zc, kind, -1);
+  S->ws = band_ws_new(m, n);
+  size_t T1 = (size_t)(m + n + 1);
+  S->U.col = xmallocarray(T1, sizeof(int)), S->U.cum = xmallocarray(T1, sizeof(double));
+  S->L.col = xmallocarray(T1, sizeof(int)), S->L.cum = xmallocarray(T1, sizeof(double));
+  S->type = xmalloc(T1);
+  S->a = xmallocarray(T1, sizeof(int)), S->b = xmallocarray(T1, sizeof(int));
+  S->q = xmallocarray(T1, sizeof(int)), S->c0 = xmallocarray(T1, sizeof(int));
+  S->run0 = xmallocarray(T1, sizeof(int)), S->woff = xmallocarray(T1, sizeof(int64_t));
+  S->prev = (double *)xmallocarray((size_t)n + 3, sizeof(double)) + 1;
+  S->cur = (double *)xmallocarray((size_t)n + 3, sizeof(double)) + 1;
+  S->pcol = xmallocarray(T1, sizeof(int));
+  S->pw = xmallocarray(T1, sizeof(double));
+  return 0;
+}
+
+/* BOUND: {start, as} + columns + prefix sums. */
+static void bound(slave *S, par_rd *r) {
+  int start = par_get_i32(r), as = par_get_i32(r), T1 = S->m + S->n + 1;
+  gpath *p = as == PAR_AS_B ? &S->L : &S->U;
+  p->start = start;
+  par_get_i32s(r, p->col, T1);
+  par_get_f64s(r, p->cum, T1);
+  if (as == PAR_AS_BOTH) {   /* mu(0) as T, and as B its copy m rows down */
+    S->L.start = start + S->m;
+    memcpy(S->L.col, p->col, (size_t)T1 * sizeof *p->col);
+    memcpy(S->L.cum, p->cum, (size_t)T1 * sizeof *p->cum);
+  }
+  if (as & PAR_AS_T) S->hasU = 1;
+  if (as & PAR_AS_B) S->hasL = 1;
+}
+
+/* The columns slave j of q owns on diagonal t (j < q), or an empty range. */
+static void owned(const slave *S, int t, int j, int *u0, int *u1) {
+  if (S->type[t] != D_NORMAL) {   /* a single node: the group's first slave */
+    *u0 = j == 0 ? S->a[t] : 1, *u1 = j == 0 ? S->a[t] : 0;
+    return;
+  }
+  int a = S->a[t], len = S->b[t] - a + 1, q = S->q[t];
+  if (j >= q) {
+    *u0 = 1, *u1 = 0;
+    return;
+  }
+  /* N_j = floor(j len / q): the paper's recurrence in closed form (split.h). */
+  *u0 = a + (int)((int64_t)j * len / q);
+  *u1 = a + (int)((int64_t)(j + 1) * len / q) - 1;
+}
+
+static int owner(const slave *S, int t, int c) {
+  if (S->type[t] != D_NORMAL) return 0;
+  return split_owner(S->a[t], S->b[t], S->q[t], c);
+}
+
+/* Before computing normal diagonal t: send the costs of diagonal t-1 that
+ * others need, then receive those I need (sends never block). */
+static int exchange(slave *S, int t, int g0, int j) {
+  int a = S->a[t], b = S->b[t], pa = S->a[t - 1], pb = S->b[t - 1];
+  int sends = 0, recvs = 0;
+  int u0, u1;
+  owned(S, t - 1, j, &u0, &u1);
+  if (u0 <= u1) {
+    /* Slaves i of diagonal t need columns [own0_i - 1, own1_i]: only those
+     * whose runs touch [u0, u1 + 1] can need mine. */
+    int lo = owner(S, t, u0 < a ? a : u0 > b ? b : u0);
+    int hi = owner(S, t, u1 + 1 < a ? a : u1 + 1 > b ? b : u1 + 1);
+    for (int i = lo; i <= hi; i++) {
+      if (i == j) continue;
+      int n0, n1;
+      owned(S, t, i, &n0, &n1);
+      n0 = n0 - 1 > u0 ? n0 - 1 : u0;
+      n1 = n1 < u1 ? n1 : u1;
+      if (n0 > n1) continue;
+      par_buf_reset(&S->out);
+      par_put_i32(&S->out, t);
+      par_put_i32(&S->out, n0);
+      par_put_i32(&S->out, n1);
+      par_put_f64s(&S->out, S->prev + n0, n1 - n0 + 1);
+      TRY(par_send(S->mp, &S->arg->counts, PAR_BOUNDARY, g0 + i, PAR_TAG_BOUNDARY, &S->out));
+      sends++;
+    }
+  }
+  int c0, c1;
+  owned(S, t, j, &c0, &c1);
+  if (c0 <= c1) {
+    /* I need [c0-1, c1] of diagonal t-1; outside its band they are +inf. */
+    int n0 = c0 - 1 < pa ? pa : c0 - 1, n1 = c1 < pb ? c1 : pb;
+    if (c0 - 1 < pa) S->prev[c0 - 1] = HUGE_VAL;
+    if (c1 > pb) S->prev[c1] = HUGE_VAL;
+    if (n0 <= n1) {
+      int lo = owner(S, t - 1, n0), hi = owner(S, t - 1, n1);
+      for (int o = lo; o <= hi; o++) {
+        if (o == j) continue;
+        int v0, v1;
+        owned(S, t - 1, o, &v0, &v1);
+        v0 = v0 > n0 ? v0 : n0;
+        v1 = v1 < n1 ? v1 : n1;
+        if (v0 > v1) continue;
+        mp_status st;
+        TRY(par_recv(S->mp, g0 + o, PAR_TAG_BOUNDARY, &S->in, S->maxlen, &st));
+        par_rd r = {S->in.b, S->in.b + S->in.len};
+        int tt = par_get_i32(&r), x0 = par_get_i32(&r), x1 = par_get_i32(&r);
+        if (tt != t || x0 != v0 || x1 != v1)
+          xpanic("slave %d: boundary from %d for t=%d [%d,%d], expected t=%d [%d,%d]", S->rank,
+                 g0 + o, tt, x0, x1, t, v0, v1);
+        par_get_f64s(&r, S->prev + v0, v1 - v0 + 1);
+        recvs++;
+      }
+    }
+  }
+  if (S->first_path && S->arg->diag_sends && t < S->arg->diag_len) S->arg->diag_sends[t] += sends;
+  if (S->first_path && S->arg->diag_recvs && t < S->arg->diag_len) S->arg->diag_recvs[t] += recvs;
+  return 0;
+}
+
+/* Send the piece pcol/pw for diagonals t_hi down to t_hi-len+1 to the master. */
+static int send_piece(slave *S, int t_hi, int len) {
+  par_buf_reset(&S->out);
+  par_put_i32(&S->out, t_hi);
+  par_put_i32(&S->out, len);
+  par_put_i32s(&S->out, S->pcol, len);
+  par_put_f64s(&S->out, S->pw, len);
+  return par_send(S->mp, &S->arg->counts, PAR_BACKTRACK, 0, PAR_TAG_PIECE, &S->out);
+}
+
+/* Backtrack from node (t, c), which is mine (Fig. 14), until the path leaves
+ * my nodes or reaches the start node. */
+static int backtrack(slave *S, int s, int t, int c, int g0, int j) {
+  int len = 0, t_hi = t, du = s - S->U.start;
+  while (t > 0 && owner(S, t, c) == j) {
+    int k = s + t;
+    if (S->type[t] == D_RUN) {   /* a run joined from T: its nodes and weights are T's */
+      int t0 = S->run0[t];
+      for (int u = t; u >= t0; u--) {
+        S->pcol[len] = S->U.col[u + du];
+        S->pw[len++] = S->U.cum[u + du] - S->U.cum[u - 1 + du];
+      }
+      t = t0 - 1;
+      c = S->U.col[t + du];
+      continue;
+    }
+    int vert;
+    if (S->type[t] == D_SINGLE) {
+      vert = band_cut_vertical(S->a[t - 1], S->a[t]);
+    } else {
+      int i = c - S->c0[t];
+      vert = (int)((S->bits[S->woff[t] + (i >> 6)] >> (i & 63)) & 1);
+    }
+    S->pcol[len] = c;
+    S->pw[len++] = weights_in(S->w, k, c, vert);
+    if (!vert) c--;
+    t--;
+  }
+  if (t == 0) {
+    S->pcol[len] = 0;
+    S->pw[len++] = 0;
+    return send_piece(S, t_hi, len);
+  }
+  TRY(send_piece(S, t_hi, len));
+  par_buf_reset(&S->out);
+  par_put_i32(&S->out, t);
+  par_put_i32(&S->out, c);
+  return par_send(S->mp, &S->arg->counts, PAR_BACKTRACK, g0 + owner(S, t, c), PAR_TAG_BACK, &S->out);
+}
+
+/* findonepath(s) with the group's slaves g0..g0+p-1 (sections 4 and 5). */
+static int path_task(slave *S, int s, int bounded, int g0, int p) {
+  int m = S->m, n = S->n, T = m + n, j = S->rank - g0;
+  const gpath *U = bounded ? &S->U : NULL, *L = bounded ? &S->L : NULL;
+  int64_t wo = 0;
+  S->type[0] = D_SINGLE, S->a[0] = S->b[0] = 0, S->q[0] = 1;
+  S->prev[-1] = S->prev[0] = S->prev[1] = HUGE_VAL;
+  if (j == 0) S->prev[0] = 0;
+  int pa = 0, pb = 0;
+  for (int t = 1; t <= T; t++) {
+    int k = s + t, a, b;
+    band_range(m, n, s, U, L, k, &a, &b);
+    if (a == b && pa == pb) {
+      int t1 = band_shared_until(m, n, s, U, L, t);
+      if (t1 > t) {   /* a run where T and B coincide: joined at once */
+        int du = s - U->start;
+        for (int u = t; u <= t1; u++) {
+          S->type[u] = D_RUN, S->run0[u] = t, S->q[u] = 1;
+          S->a[u] = S->b[u] = U->col[u + du];
+        }
+        if (j == 0) {
+          double v = S->prev[pa] + (U->cum[t1 + du] - U->cum[t - 1 + du]);
+          pa = pb = S->a[t1];
+          S->prev[pa - 1] = S->prev[pa + 1] = HUGE_VAL;
+          S->prev[pa] = v;
+        }
+        pa = pb = S->a[t1];
+        t = t1;
+        continue;
+      }
+      /* A cut edge (section 8): joined by the group's first slave. */
+      S->type[t] = D_SINGLE, S->a[t] = S->b[t] = a, S->q[t] = 1;
+      if (j == 0) {
+        double v = S->prev[pa] + weights_in(S->w, k, a, band_cut_vertical(pa, a));
+        S->prev[a - 1] = S->prev[a + 1] = HUGE_VAL;
+        S->prev[a] = v;
+      }
+      pa = pb = a;
+      continue;
+    }
+    S->type[t] = D_NORMAL, S->a[t] = a, S->b[t] = b;
+    S->q[t] = split_active(b - a + 1, p, S->d);
+    if (exchange(S, t, g0, j) != 0) return -1;
+    int c0, c1;
+    owned(S, t, j, &c0, &c1);
+    S->c0[t] = c0;
+    if (c0 <= c1) {
+      int64_t words = kernel_words(c1 - c0 + 1);
+      if (wo + words > S->bitcap) {
+        S->bitcap = 2 * (wo + words) + 1024;
+        S->bits = xreallocarray(S->bits, (size_t)S->bitcap, sizeof *S->bits);
+      }
+      kernel_diag(S->w, k, c0, c1, S->prev, S->cur, S->bits + wo);
+      S->woff[t] = wo;
+      wo += words;
+      S->arg->counts.nodes += (uint64_t)(c1 - c0 + 1);
+      TRY(par_compute(S->mp, &S->arg->counts, (uint64_t)(c1 - c0 + 1)));
+    }
+    double *x = S->prev;
+    S->prev = S->cur;
+    S->cur = x;
+    pa = a, pb = b;
+  }
+  S->first_path = 0;
+  if (j == 0) S->arg->counts.paths++;
+  /* The terminal node (s+m, n) is alone on its diagonal: the first slave's. */
+  if (j == 0 && backtrack(S, s, T, n, g0, j) != 0) return -1;
+  for (;;) {   /* wait for control, or the end (BACK with t < 0, from the master) */
+    mp_status st;
+    TRY(par_recv(S->mp, MP_ANY, PAR_TAG_BACK, &S->in, S->maxlen, &st));
+    par_rd r = {S->in.b, S->in.b + S->in.len};
+    int t = par_get_i32(&r);
+    if (t < 0) return 0;
+    int c = par_get_i32(&r);
+    if (backtrack(S, s, t, c, g0, j) != 0) return -1;
+  }
+}
+
+/* A group of one: every path between T and B by the serial divide and
+ * conquer; only the best goes to the master (section 5). */
+static int local_task(slave *S) {
+  int T1 = S->m + S->n + 1;
+  tiling_best best = {HUGE_VAL, 0, S->pcol};
+  band_count cnt = {0, 0, 0};
+  tiling_range(S->w, S->ws, &S->U, &S->L, &best, &cnt);
+  S->arg->counts.nodes += cnt.nodes;
+  S->arg->counts.paths += cnt.paths;
+  TRY(par_compute(S->mp, &S->arg->counts, cnt.nodes));
+  par_buf_reset(&S->out);
+  par_put_i32(&S->out, best.start);
+  par_put_f64(&S->out, best.quanta);
+  par_put_i32s(&S->out, best.col, T1);
+  return par_send(S->mp, &S->arg->counts, PAR_CONTROL, 0, PAR_TAG_RESULT, &S->out);
+}
+
+static int report(slave *S) {
+  par_counts *c = &S->arg->counts;
+  par_buf_reset(&S->out);
+  for (int k = 0; k < PAR_KINDS; k++) par_put_f64(&S->out, (double)c->msgs[k]);
+  for (int k = 0; k < PAR_KINDS; k++) par_put_f64(&S->out, (double)c->bytes[k]);
+  par_put_f64(&S->out, (double)c->nodes);
+  par_put_f64(&S->out, (double)c->units);
+  par_put_f64(&S->out, (double)c->paths);
+  par_counts_add(&S->arg->total, c);
+  memset(c, 0, sizeof *c);
+  return par_send(S->mp, c, -1, 0, PAR_TAG_STATS, &S->out);
+}
+
+void par_slave(mp *self, void *ud) {
+  slave S0, *S = &S0;
+  memset(S, 0, sizeof *S);
+  S->mp = self;
+  S->arg = ud;
+  S->rank = mp_rank(self);
+  S->first_path = 1;
+  S->maxlen = 64;
+  for (;;) {
+    mp_status st;
+    int rc = par_recv(self, 0, MP_ANY, &S->in, S->maxlen, &st);
+    if (rc < 0) {
+      fail(S, rc, "waiting for the master");
+      break;
+    }
+    par_rd r = {S->in.b, S->in.b + S->in.len};
+    if (st.tag == PAR_TAG_POINTS) {
+      if (points(S, &r) != 0) break;
+    } else if (st.tag == PAR_TAG_BOUND) {
+      bound(S, &r);
+    } else if (st.tag == PAR_TAG_TASK) {
+      int what = par_get_i32(&r);
+      if (what == PAR_TASK_QUIT) break;
+      if (what == PAR_TASK_REPORT) {
+        if (report(S) != 0) break;
+        continue;
+      }
+      int s = par_get_i32(&r), bounded = par_get_i32(&r), g0 = par_get_i32(&r), p = par_get_i32(&r);
+      if (what == PAR_TASK_PATH ? path_task(S, s, bounded, g0, p) : local_task(S)) break;
+    } else {
+      xpanic("slave %d: unexpected tag %d from the master", S->rank, st.tag);
+    }
+  }
+  free_pair(S);
+  par_buf_free(&S->in);
+  par_buf_free(&S->out);
+}
