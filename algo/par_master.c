@@ -287,6 +287,7 @@ void par_master(mp *self, void *ud) {
   for (int i = 0; i < arg->npairs; i++) {
     memset(&arg->pairs[i].master, 0, sizeof arg->pairs[i].master);
     if (one_pair(M, &arg->pairs[i], arg->kind) != 0) break;
+    if (arg->progress) arg->progress(arg->progress_ud, i + 1, arg->npairs);
   }
   for (int r = 1; r <= M->S; r++) send_task(M, PAR_TASK_QUIT, 0, 0, 0, 0, r);
   for (int i = 0; i < M->npaths; i++) {

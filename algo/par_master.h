@@ -33,6 +33,9 @@ typedef struct {
   par_options opt;
   int failed;          /* 1 if an mp call failed */
   char err[160];
+  /* Optional: called after each pair (on the host, for a progress line). */
+  void (*progress)(void *ud, int done, int total);
+  void *progress_ud;
 } par_master_arg;
 
 /* The master's main: ud is a par_master_arg.  The slaves are ranks

@@ -87,7 +87,9 @@ static int points(slave *S, par_rd *r) {
   S->C = xmallocarray((size_t)n, sizeof *S->C);
   par_get_f64s(&pr, (double *)S->R, 2 * m);
   par_get_f64s(&pr, (double *)S->C, 2 * n);
-  S->w = weights_new(S->R, m, zr, S->C, n, zc, kind, -1);
+  /* A slave of many evaluates about 1/S of the nodes: fewer than the 2 m n
+   * weights a table holds.  Tables pay only when the slaves are few. */
+  S->w = weights_new(S->R, m, zr, S->C, n, zc, kind, mp_size(S->mp) - 1 <= 4 ? -1 : 0);
   S->ws = band_ws_new(m, n);
   size_t T1 = (size_t)(m + n + 1);
   S->U.col = xmallocarray(T1, sizeof(int)), S->U.cum = xmallocarray(T1, sizeof(double));
@@ -130,9 +132,8 @@ static void owned(const slave *S, int t, int j, int *u0, int *u1) {
     *u0 = 1, *u1 = 0;
     return;
   }
-  /* N_j = floor(j len / q): the paper's recurrence in closed form (split.h). */
-  *u0 = a + (int)((int64_t)j * len / q);
-  *u1 = a + (int)((int64_t)(j + 1) * len / q) - 1;
+  *u0 = a + split_n(len, q, j);   /* the paper's N_j (split.h) */
+  *u1 = a + split_n(len, q, j + 1) - 1;
 }
 
 static int owner(const slave *S, int t, int c) {

@@ -15,19 +15,10 @@ void split_positions(int len, int q, int *N) {
 }
 
 int split_owner(int a, int b, int q, int c) {
-  /* Invert the N_i formula: the first i with N_{i+1} > c - a.  The runs
-   * differ in length by at most one, so start from the even guess. */
-  int len = b - a + 1, pos = c - a;
-  int N[2];
-  int i = (int)((int64_t)pos * q / len);
-  for (;;) {
-    /* N_i and N_{i+1} in closed form: N_i = floor(i * len / q) for this recurrence. */
-    N[0] = (int)((int64_t)i * len / q);
-    N[1] = (int)((int64_t)(i + 1) * len / q);
-    if (pos < N[0]) i--;
-    else if (pos >= N[1]) i++;
-    else return i;
-  }
+  /* Positions 0 .. (q-r)x-1 go x at a time to slaves 0 .. q-r-1, the rest
+   * x+1 at a time to the last r (split_n). */
+  int len = b - a + 1, pos = c - a, x = len / q, r = len % q, first = (q - r) * x;
+  return pos < first ? pos / x : q - r + (pos - first) / (x + 1);
 }
 
 int split_slaves(split_alloc how, int p, int64_t w_above, int64_t w_below, int paths_above,

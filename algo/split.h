@@ -22,6 +22,15 @@ int split_active(int len, int p, int d);
  * diagonal (counted from its first column).  Writes N[0..q]. */
 void split_positions(int len, int q, int *N);
 
+/* The same N_i in closed form: with len = a q + r (0 <= r < q), the first
+ * q - r slaves get a nodes and the last r get a + 1, so
+ * N_i = i a + max(0, i - (q - r)).  (test_split checks it against the
+ * recurrence.) */
+static inline int split_n(int len, int q, int i) {
+  int a = len / q, r = len % q, extra = i - (q - r);
+  return i * a + (extra > 0 ? extra : 0);
+}
+
 /* The slave (0-based in the group) that computes column c of a diagonal whose
  * band is [a, b], split q ways. */
 int split_owner(int a, int b, int q, int c);

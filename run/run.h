@@ -18,7 +18,24 @@ typedef struct {
   FILE *trace_csv, *trace_json;   /* a timeline, or NULL */
   int *diag_sends, *diag_recvs;   /* test hook, see par_slave.h (or NULL) */
   int diag_len;
+  void (*progress)(void *ud, int done, int total);   /* after each pair, or NULL */
+  void *progress_ud;
 } run_config;
+
+/* A run_config with the defaults: 1 processor, the tc2000 machine, half
+ * allocation, d = 1, area cost. */
+void run_config_init(run_config *rc);
+
+/* Take one command-line option of the machine or the algorithm:
+ *   --procs P  --alloc half|size  --min-diag d  --machine NAME  --net ideal|bus|loggp
+ *   --m S  --c S  --per-byte S  --local S  --L S  --o S  --g S  --G S
+ * (--machine sets every machine parameter; give it before the others).
+ * Returns 1 if opt is one of these (val consumed), 0 if not, -1 for a bad
+ * value, with a message in err. */
+int run_option(run_config *rc, const char *opt, const char *val, char *err, size_t errlen);
+
+/* The usage text of those options, one per line, indented. */
+extern const char run_options_help[];
 
 /* The ranks for P processors: max(2, P). */
 static inline int run_ranks(int procs) { return procs < 2 ? 2 : procs; }

@@ -92,5 +92,29 @@ grep -q 'tile: <stdin>:6: dropped the repeated closing point' "$T/err" && ok || 
 ! cmp -s "$T/c.csv" "$T/d.csv" && ok || bad "span and area costs give the same report"
 # Under --cost area a band's cost is the sum of its triangles' areas.
 awk -F, '/^[0-9]/{ d=$6-$7; if (d<0) d=-d; if (d > 1e-9*$6) bad=1 } END{exit bad}' "$T/a.csv" && ok || bad "cost and area disagree"
+# The parallel algorithm on the simulated machine: the same report as the
+# serial solver in the first nine columns, the same mesh, and deterministic.
+"$TILE" $DATA/prostate_3.contours -q > "$T/ser.csv" -o "$T/ser.obj" && ok || bad "serial prostate_3"
+for args in "--procs 1" "--procs 2 --alloc size" "--procs 7 --min-diag 20 --net ideal" "--procs 16 --alloc size --min-diag 80 --net loggp --L 1e-4 --o 2e-5"; do
+  "$TILE" $DATA/prostate_3.contours -q $args -o "$T/par.obj" > "$T/par.csv" 2> "$T/err" && ok || bad "$args: $(cat "$T/err")"
+  cut -d, -f1-9 "$T/par.csv" | tail -n +2 | cmp -s - "$(tail -n +2 "$T/ser.csv" > "$T/ser9"; echo "$T/ser9")" && ok || bad "$args: the report differs from the serial one"
+  cmp -s "$T/par.obj" "$T/ser.obj" && ok || bad "$args: the mesh differs from the serial one"
+  head -1 "$T/par.csv" | grep -qx 'pair,z0,z1,m,n,cost,area,volume,nodes,procs,sim_time,msg_boundary,msg_backtrack,msg_bounds,msg_control,bytes' && ok || bad "$args: header $(head -1 "$T/par.csv")"
+done
+"$TILE" $DATA/prostate_3.contours -q --procs 5 --trace "$T/t1.json" > "$T/p1.csv" && "$TILE" $DATA/prostate_3.contours -q --procs 5 --trace "$T/t2.json" > "$T/p2.csv" && ok || bad "--trace"
+cmp -s "$T/p1.csv" "$T/p2.csv" && cmp -s "$T/t1.json" "$T/t2.json" && ok || bad "two parallel runs or traces differ"
+head -1 "$T/t1.json" | grep -q '^{.*"traceEvents":\[$' && tail -c 4 "$T/t1.json" | grep -q ']}' && ok || bad "the JSON trace is not a traceEvents object"
+"$TILE" $DATA/prostate_3.contours -q --procs 3 --trace "$T/t.csv" > /dev/null && head -1 "$T/t.csv" | grep -q '^time,rank' && ok || bad "CSV trace"
+awk -F, 'NR>1 && $11 <= 0 {bad=1} END{exit bad}' "$T/p1.csv" && ok || bad "a pair without simulated time"
+usage $DATA/tinypatient_1.contours --procs 0
+usage $DATA/tinypatient_1.contours --procs x
+usage $DATA/tinypatient_1.contours --procs 4 --alloc third
+usage $DATA/tinypatient_1.contours --procs 4 --min-diag 0
+usage $DATA/tinypatient_1.contours --procs 4 --net token-ring
+usage $DATA/tinypatient_1.contours --procs 4 --m -1
+usage $DATA/tinypatient_1.contours --procs 4 --c nan
+usage $DATA/tinypatient_1.contours --procs 4 --machine cray
+usage $DATA/tinypatient_1.contours --trace "$T/x.json"
+[ ! -e "$T/x.json" ] && ok || bad "a trace written after bad usage"
 echo "cli_tile: $pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -209,7 +209,10 @@ static void check_stats(rng *g) {
     char err[300];
     sim *s = sim_new(&cfg, nr, err, sizeof err);
     par_pair pr = mkpair(P, np, 0, Q, nq, 2);
-    par_master_arg marg = {1, &pr, COST_AREA, {ALLOC_SIZE, 1}, 0, ""};
+    par_master_arg marg;
+    memset(&marg, 0, sizeof marg);
+    marg.npairs = 1, marg.pairs = &pr, marg.kind = COST_AREA;
+    marg.opt = (par_options){ALLOC_SIZE, 1};
     par_slave_arg sarg[16];
     memset(sarg, 0, sizeof sarg);
     mp_proc procv[16];
