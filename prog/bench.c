@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "bench_paper.h"
 #include "bench_ring.h"
 #include "bench_tiler.h"
 
@@ -31,14 +32,11 @@ static const mode modes[] = {
 };
 enum { NMODES = sizeof modes / sizeof *modes };
 
-static void usage(FILE *f) {
-  fputs("usage: bench --help | bench MODE ...   (modes:", f);
-  for (int i = 0; i < NMODES; i++) fprintf(f, " %s", modes[i].opt);
-  fputs(")\n", f);
-}
-
 static void help(void) {
-  puts("bench -- tilesim's benchmarks; each mode prints CSV with a header row.\n");
+  puts("usage: bench [OPTIONS]   (the paper's experiments)\n"
+       "       bench MODE ...     (a benchmark mode, below)\n\n"
+       "bench -- tilesim's benchmarks; each prints CSV with a header row.\n");
+  printf("  bench %s\n\n", bench_paper_help);
   for (int i = 0; i < NMODES; i++) printf("  bench %s %s\n\n", modes[i].opt, modes[i].help);
 }
 
@@ -49,7 +47,6 @@ int main(int argc, char **argv) {
   }
   for (int i = 0; argc >= 2 && i < NMODES; i++)
     if (strcmp(argv[1], modes[i].opt) == 0) return modes[i].run(argc, argv);
-  if (argc >= 2) fprintf(stderr, "bench: unknown mode '%s'\n", argv[1]);
-  usage(stderr);
-  return 2;
+  /* No mode: the paper's experiments, which check their own options. */
+  return bench_paper(argc, argv);
 }

@@ -162,8 +162,10 @@ int bench_ring_main(int argc, char **argv) {
             (long long)procs * laps);
     status = 1;
   } else if (cfg.net != SIM_NET_LOGGP) {
-    /* One message at a time around the ring: P*K hops of work*c + m each. */
-    double want = (double)procs * (double)laps * (work * cfg.c + (procs > 1 ? cfg.m : cfg.local));
+    /* One message at a time around the ring: P*K hops of work*c + m (and the
+     * token's bytes) each. */
+    double hop = procs > 1 ? cfg.m + (double)sizeof g.token * cfg.per_byte : cfg.local;
+    double want = (double)procs * (double)laps * (work * cfg.c + hop);
     double diff = st->makespan - want;
     if (diff < 0) diff = -diff;
     if (diff > 1e-9 * want) {

@@ -7,7 +7,7 @@ ok()   { passed=$((passed + 1)); }
 fail() { failed=$((failed + 1)); echo "cli_bench: $*"; }
 
 # A ring: header, one row, the checksum P*K, exit 0.
-out=$("$bench" --ring 5 --laps 7 --net ideal --m 0.25 --c 0.125 --work 2 2>&1); rc=$?
+out=$("$bench" --ring 5 --laps 7 --profile unit --net ideal --m 0.25 --c 0.125 --work 2 2>&1); rc=$?
 [ $rc -eq 0 ] && ok || fail "--ring 5 --laps 7 exited $rc: $out"
 printf '%s\n' "$out" | head -n 1 | grep -q '^procs,laps,net,m,c,work,messages,sim_time,.*wall_s,messages_per_s,.*checksum$' \
   && ok || fail "ring header: $out"
@@ -36,9 +36,11 @@ out=$("$bench" --switch 1000 2>&1); rc=$?
   && ok || fail "--switch 1000: $out"
 
 # Bad usage: a usage line on stderr, exit 2, nothing on stdout.
-for args in "" "--frob" "--ring" "--ring 0 --laps 1" "--ring 4" "--ring 4 --laps x" \
+for args in "--frob" "--ring" "--ring 0 --laps 1" "--ring 4" "--ring 4 --laps x" \
             "--ring 4 --laps 2 --net token" "--ring 4 --laps 2 --m -1" \
-            "--ring 4 --laps 2 --bogus 1" "--ring 4 --laps 2 --profile nope" "--switch" "--switch 1"; do
+            "--ring 4 --laps 2 --bogus 1" "--ring 4 --laps 2 --profile nope" "--switch" "--switch 1" \
+            "--procs 0" "--procs 1..x" "--points 2" "--alloc third" "--min-diag 0" "--m -1" "--jobs 0" \
+            "--tiler --points 1" "--procs 4 --net token"; do
   # shellcheck disable=SC2086
   "$bench" $args >"$tmp.out" 2>"$tmp.err"; rc=$?
   if [ $rc -eq 2 ] && [ ! -s "$tmp.out" ] && grep -q '^usage: bench' "$tmp.err"; then ok

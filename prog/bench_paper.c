@@ -1,0 +1,388 @@
+/* bench_paper.c -- the paper's experiments: speedup against processors for
+ * contours of 100..500 points (Fig. 16, 18/19), time against processors for
+ * d = 20..100 (Fig. 20/21), on the simulated machine.
+ *
+ *   bench [--procs LIST] [--points LIST] [--alloc half|size[,..]] [--min-diag LIST]
+ *         [--m LIST] [--c LIST] [--net MODEL] [--machine NAME] [--seed S]
+ *         [--input STACK [--pair K]] [-o FILE] [--jobs N]
+ *
+ * LIST is comma-separated numbers and ranges a..b.  Every combination is a
+ * run; speedup = T(1)/T(P) for the same configuration (P = 1 is run, and not
+ * printed, when the list lacks it).  Generated pairs are the same for every
+ * configuration with the same points and seed ("generated in a somewhat
+ * random fashion", section 6); their optimum, `cost`, is the same on every
+ * row of a pair and doubles as a checksum. */
+#include "bench_paper.h"
+
+#include <errno.h>
+#include <math.h>
+#include <poll.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "contour.h"
+#include "gen.h"
+#include "run.h"
+#include "wallclock.h"
+#include "xmem.h"
+
+const char bench_paper_help[] =
+    "[--procs LIST] [--points LIST] [--alloc half|size[,...]] [--min-diag LIST]\n"
+    "      [--m LIST] [--c LIST] [--net ideal|bus|loggp] [--machine NAME] [--seed S]\n"
+    "      [--input STACK [--pair K]] [-o FILE] [--jobs N]\n"
+    "      the paper's experiments (no mode option): every combination is a run;\n"
+    "      LIST is numbers and ranges, e.g. 1..16 or 100,200,300.  Defaults: points\n"
+    "      100,200,300,400,500, procs 1..16, alloc half, min-diag 1, the tc2000 machine";
+
+enum { MAXV = 256 };
+
+typedef struct {
+  int n;
+  double v[MAXV];
+} list;
+
+/* "1..16,20,24" into l (integers, or any numbers when !whole). */
+static int parse_list(const char *s, list *l, int whole, double lo, double hi) {
+  l->n = 0;
+  const char *p = s;
+  while (*p) {
+    char *e;
+    double a, b;
+    if (whole) {   /* strtod would read "1..16" as "1." then ".16" */
+      a = b = (double)strtol(p, &e, 10);
+      if (e == p) return -1;
+      p = e;
+      if (p[0] == '.' && p[1] == '.') {
+        b = (double)strtol(p + 2, &e, 10);
+        if (e == p + 2) return -1;
+        p = e;
+      }
+    } else {
+      a = b = strtod(p, &e);
+      if (e == p) return -1;
+      p = e;
+    }
+    if (!(a >= lo && b <= hi && a <= b) || (whole && (a != floor(a) || b != floor(b)))) return -1;
+    for (double x = a; x <= b; x += 1) {
+      if (l->n == MAXV) return -1;
+      l->v[l->n++] = x;
+      if (!whole) break;
+    }
+    if (*p == ',') p++;
+    else if (*p) return -1;
+  }
+  return l->n > 0 ? 0 : -1;
+}
+
+typedef struct {
+  int points, procs, alloc, d, hidden, pairid;
+  double m, c;
+} job;
+
+typedef struct {   /* what a run sends back to the parent */
+  double sim_time, wall, cost;
+  uint64_t msgs[PAR_KINDS], bytes, nodes;
+  int ok;
+  char err[200];
+} outcome;
+
+typedef struct {
+  const job *jobs;
+  int njobs;
+  run_config base;
+  unsigned long long seed;
+  contour_stack *input;
+  int pair;
+} plan;
+
+static void make_pair(const plan *pl, int points, vec2 **P, int *np, double *zp, vec2 **Q, int *nq,
+                      double *zq) {
+  if (pl->input) {
+    const contour *a = &pl->input->c[pl->pair], *b = &pl->input->c[pl->pair + 1];
+    *P = a->pt, *np = a->n, *zp = a->z, *Q = b->pt, *nq = b->n, *zq = b->z;
+    return;
+  }
+  rng g;
+  rng_seed(&g, pl->seed * 1000003ULL + (unsigned long long)points);
+  *P = xmallocarray((size_t)points, sizeof **P);
+  *Q = xmallocarray((size_t)points, sizeof **Q);
+  gen_star(&g, *P, points, 0, 0, 100, 0.3);
+  gen_star(&g, *Q, points, 4 * rng_uniform(&g) - 2, 4 * rng_uniform(&g) - 2, 95, 0.3);
+  *np = *nq = points, *zp = 0, *zq = 5;
+}
+
+static outcome one_run(const plan *pl, const job *jb) {
+  outcome o;
+  memset(&o, 0, sizeof o);
+  vec2 *P, *Q;
+  int np, nq;
+  double zp, zq;
+  make_pair(pl, jb->points, &P, &np, &zp, &Q, &nq, &zq);
+  run_config rc = pl->base;
+  rc.procs = jb->procs;
+  rc.opt.alloc = (split_alloc)jb->alloc;
+  rc.opt.min_diag = jb->d;
+  rc.machine.m = jb->m;
+  rc.machine.c = jb->c;
+  rc.machine.warn = NULL;
+  par_pair pr;
+  memset(&pr, 0, sizeof pr);
+  pr.P = P, pr.np = np, pr.zp = zp, pr.Q = Q, pr.nq = nq, pr.zq = zq;
+  double t0 = wallclock();
+  o.ok = run_sim(&rc, &pr, 1, NULL, o.err, sizeof o.err) == 0;
+  o.wall = wallclock() - t0;
+  if (o.ok) {
+    o.sim_time = pr.time;
+    o.cost = pr.t.cost;
+    o.nodes = pr.counts.nodes;
+    for (int k = 0; k < PAR_KINDS; k++) o.msgs[k] = pr.counts.msgs[k], o.bytes += pr.counts.bytes[k];
+    tiling_free(&pr.t);
+  }
+  if (!pl->input) free(P), free(Q);
+  return o;
+}
+
+/* Run every job, on `jobs` forked workers (job i on worker i mod jobs); the
+ * outcomes come back in job order whatever the workers' speed. */
+static int run_all(const plan *pl, outcome *out, int jobs, int progress) {
+  if (jobs > pl->njobs) jobs = pl->njobs;
+  if (jobs <= 1) {
+    for (int i = 0; i < pl->njobs; i++) {
+      out[i] = one_run(pl, &pl->jobs[i]);
+      if (progress) fprintf(stderr, "\rbench: %d of %d runs", i + 1, pl->njobs);
+    }
+    return 0;
+  }
+  fflush(stdout);
+  fflush(stderr);
+  int *fd = xmallocarray((size_t)jobs, sizeof *fd);
+  pid_t *pid = xmallocarray((size_t)jobs, sizeof *pid);
+  for (int w = 0; w < jobs; w++) {
+    int p[2];
+    if (pipe(p) != 0) return -1;
+    pid[w] = fork();
+    if (pid[w] < 0) return -1;
+    if (pid[w] == 0) {
+      close(p[0]);
+      for (int i = w; i < pl->njobs; i += jobs) {
+        outcome o = one_run(pl, &pl->jobs[i]);
+        if (write(p[1], &o, sizeof o) != (ssize_t)sizeof o) _exit(1);
+      }
+      _exit(0);
+    }
+    close(p[1]);
+    fd[w] = p[0];
+  }
+  int done = 0, *next = xcalloc((size_t)jobs, sizeof *next), bad = 0;
+  for (int w = 0; w < jobs; w++) next[w] = w;
+  struct pollfd *pf = xmallocarray((size_t)jobs, sizeof *pf);
+  while (done < pl->njobs && !bad) {
+    for (int w = 0; w < jobs; w++) pf[w] = (struct pollfd){next[w] < pl->njobs ? fd[w] : -1, POLLIN, 0};
+    if (poll(pf, (nfds_t)jobs, -1) < 0) {
+      if (errno == EINTR) continue;
+      bad = 1;
+      break;
+    }
+    for (int w = 0; w < jobs; w++) {
+      if (!(pf[w].revents & (POLLIN | POLLHUP))) continue;
+      size_t got = 0;
+      char *dst = (char *)&out[next[w]];
+      while (got < sizeof(outcome)) {
+        ssize_t k = read(fd[w], dst + got, sizeof(outcome) - got);
+        if (k <= 0) break;
+        got += (size_t)k;
+      }
+      if (got != sizeof(outcome)) {
+        bad = 1;
+        break;
+      }
+      next[w] += jobs;
+      done++;
+      if (progress) fprintf(stderr, "\rbench: %d of %d runs", done, pl->njobs);
+    }
+  }
+  for (int w = 0; w < jobs; w++) {
+    close(fd[w]);
+    int st;
+    waitpid(pid[w], &st, 0);
+    if (!WIFEXITED(st) || WEXITSTATUS(st) != 0) bad = 1;
+  }
+  free(fd), free(pid), free(next), free(pf);
+  return bad ? -1 : 0;
+}
+
+static int usage(const char *why, const char *val) {
+  if (why) {
+    fprintf(stderr, "bench: %s", why);
+    if (val) fprintf(stderr, " (%s)", val);
+    fputc('\n', stderr);
+  }
+  fprintf(stderr, "usage: bench [--procs LIST] [--points LIST] [--alloc half|size[,...]] "
+                  "[--min-diag LIST] [--m LIST] [--c LIST] [--net MODEL] [--machine NAME] "
+                  "[--seed S] [--input STACK [--pair K]] [-o FILE] [--jobs N]\n");
+  return 2;
+}
+
+int bench_paper(int argc, char **argv) {
+  list procs = {0}, points = {0}, diags = {0}, ms = {0}, cs = {0};
+  int allocs[2] = {ALLOC_HALF, -1}, nalloc = 1, jobs = 1, pairk = 0;
+  const char *outpath = NULL, *input = NULL;
+  unsigned long long seed = 1993;
+  run_config rc;
+  run_config_init(&rc);
+  char err[300];
+  for (int i = 1; i < argc; i++) {
+    const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+    if (!v) return usage("an option needs a value", a);
+    if (strcmp(a, "--procs") == 0) {
+      if (parse_list(v, &procs, 1, 1, 4096) != 0) return usage("--procs takes a list of 1..4096", v);
+    } else if (strcmp(a, "--points") == 0) {
+      if (parse_list(v, &points, 1, 3, 100000) != 0) return usage("--points takes a list of 3..100000", v);
+    } else if (strcmp(a, "--min-diag") == 0) {
+      if (parse_list(v, &diags, 1, 1, 1e9) != 0) return usage("--min-diag takes a list of numbers >= 1", v);
+    } else if (strcmp(a, "--m") == 0 || strcmp(a, "--c") == 0) {
+      if (parse_list(v, a[2] == 'm' ? &ms : &cs, 0, 0, 1e9) != 0)
+        return usage("--m and --c take a list of seconds >= 0", v);
+    } else if (strcmp(a, "--alloc") == 0) {
+      nalloc = 0;
+      char buf[64];
+      snprintf(buf, sizeof buf, "%s", v);
+      for (char *t = strtok(buf, ","); t; t = strtok(NULL, ",")) {
+        split_alloc x;
+        if (split_alloc_parse(t, &x) != 0 || nalloc == 2) return usage("--alloc takes half, size or both", v);
+        allocs[nalloc++] = (int)x;
+      }
+      if (nalloc == 0) return usage("--alloc takes half, size or both", v);
+    } else if (strcmp(a, "--seed") == 0) {
+      char *e;
+      seed = strtoull(v, &e, 10);
+      if (*e || e == v) return usage("--seed takes a whole number", v);
+    } else if (strcmp(a, "--jobs") == 0) {
+      char *e;
+      long j = strtol(v, &e, 10);
+      if (*e || e == v || j < 1 || j > 256) return usage("--jobs takes 1..256", v);
+      jobs = (int)j;
+    } else if (strcmp(a, "--input") == 0) {
+      input = v;
+    } else if (strcmp(a, "--pair") == 0) {
+      char *e;
+      long k = strtol(v, &e, 10);
+      if (*e || e == v || k < 0) return usage("--pair takes a pair number, 0 or more", v);
+      pairk = (int)k;
+    } else if (strcmp(a, "-o") == 0) {
+      outpath = v;
+    } else {
+      int k = run_option(&rc, a, v, err, sizeof err);
+      if (k < 0) return usage(err, NULL);
+      if (k == 0) return usage("unknown option", a);
+    }
+    i++;
+  }
+  if (procs.n == 0) parse_list("1..16", &procs, 1, 1, 4096);
+  if (points.n == 0) parse_list("100,200,300,400,500", &points, 1, 3, 100000);
+  if (diags.n == 0) parse_list("1", &diags, 1, 1, 1e9);
+  if (ms.n == 0) ms.n = 1, ms.v[0] = rc.machine.m;
+  if (cs.n == 0) cs.n = 1, cs.v[0] = rc.machine.c;
+
+  contour_stack stack = {0, NULL};
+  if (input) {
+    if (contour_read(input, &stack, NULL, "bench", err, sizeof err) != 0) {
+      fprintf(stderr, "bench: %s\n", err);
+      return 1;
+    }
+    if (pairk + 1 >= stack.n) {
+      fprintf(stderr, "bench: %s has %d pairs, no pair %d\n", input, stack.n - 1, pairk);
+      contour_stack_free(&stack);
+      return 1;
+    }
+    points.n = 1;
+    points.v[0] = stack.c[pairk].n;
+  }
+
+  /* The runs, and a P = 1 run for each configuration that lacks one. */
+  int has1 = 0;
+  for (int i = 0; i < procs.n; i++) has1 |= procs.v[i] == 1;
+  int per = procs.n + !has1;
+  int njobs = points.n * nalloc * diags.n * ms.n * cs.n * per;
+  job *jb = xmallocarray((size_t)njobs, sizeof *jb);
+  int k = 0, cfg = 0;
+  for (int a = 0; a < points.n; a++)
+    for (int b = 0; b < nalloc; b++)
+      for (int d = 0; d < diags.n; d++)
+        for (int x = 0; x < ms.n; x++)
+          for (int y = 0; y < cs.n; y++, cfg++) {
+            for (int p = 0; p < per; p++) {
+              int P = p < procs.n ? (int)procs.v[p] : 1;
+              jb[k++] = (job){(int)points.v[a], P, allocs[b], (int)diags.v[d], p >= procs.n, cfg,
+                              ms.v[x], cs.v[y]};
+            }
+          }
+  plan pl = {jb, njobs, rc, seed, input ? &stack : NULL, pairk};
+  outcome *o = xcalloc((size_t)njobs, sizeof *o);
+  int progress = isatty(2);
+  int rcode = run_all(&pl, o, jobs, progress);
+  if (progress) fputs("\r\033[K", stderr);
+  for (int i = 0; rcode == 0 && i < njobs; i++)
+    if (!o[i].ok) {
+      fprintf(stderr, "bench: the run with %d points on %d processors failed: %s\n", jb[i].points,
+              jb[i].procs, o[i].err);
+      rcode = -1;
+    }
+  if (rcode != 0) {
+    if (rcode < 0 && !o[0].err[0]) fprintf(stderr, "bench: a worker failed\n");
+    free(jb), free(o);
+    contour_stack_free(&stack);
+    return 1;
+  }
+
+  FILE *f = stdout;
+  char *tmp = NULL;
+  if (outpath) {   /* a temporary file beside it, renamed when complete */
+    size_t len = strlen(outpath) + 16;
+    tmp = xmalloc(len);
+    snprintf(tmp, len, "%s.tmpXXXXXX", outpath);
+    int fdo = mkstemp(tmp);
+    if (fdo < 0 || !(f = fdopen(fdo, "w"))) {
+      fprintf(stderr, "bench: %s: cannot create a temporary file beside it (%s)\n", outpath, strerror(errno));
+      free(tmp), free(jb), free(o);
+      contour_stack_free(&stack);
+      return 1;
+    }
+  }
+  fprintf(f, "points,procs,alloc,min_diag,net,m,c,seed,sim_time,speedup,efficiency,messages,bytes,"
+             "nodes,cost,wall_s,msg_boundary,msg_backtrack,msg_bounds,msg_control,input,pair\n");
+  for (int i = 0; i < njobs; i++) {
+    if (jb[i].hidden) continue;
+    double t1 = 0;   /* T(1) of the same configuration */
+    for (int j = 0; j < njobs; j++)
+      if (jb[j].pairid == jb[i].pairid && jb[j].procs == 1) t1 = o[j].sim_time;
+    double sp = t1 / o[i].sim_time;
+    uint64_t msgs = 0;
+    for (int q = 0; q < PAR_KINDS; q++) msgs += o[i].msgs[q];
+    fprintf(f, "%d,%d,%s,%d,%s,%.9g,%.9g,%llu,%.9f,%.6f,%.6f,%llu,%llu,%llu,%.17g,%.6f,%llu,%llu,%llu,%llu,%s,%d\n",
+            jb[i].points, jb[i].procs, split_alloc_name((split_alloc)jb[i].alloc), jb[i].d,
+            sim_net_name(rc.machine.net), jb[i].m, jb[i].c, seed, o[i].sim_time, sp, sp / jb[i].procs,
+            (unsigned long long)msgs, (unsigned long long)o[i].bytes, (unsigned long long)o[i].nodes,
+            o[i].cost, o[i].wall, (unsigned long long)o[i].msgs[PAR_BOUNDARY],
+            (unsigned long long)o[i].msgs[PAR_BACKTRACK], (unsigned long long)o[i].msgs[PAR_BOUNDS],
+            (unsigned long long)o[i].msgs[PAR_CONTROL], input ? input : "generated", input ? pairk : 0);
+  }
+  int wbad = 0;
+  if (outpath) {
+    wbad = fflush(f) != 0 || ferror(f);
+    if (fclose(f) != 0) wbad = 1;
+    if (!wbad && rename(tmp, outpath) != 0) wbad = 1;
+    if (wbad) {
+      fprintf(stderr, "bench: %s: cannot write (%s)\n", outpath, strerror(errno));
+      unlink(tmp);
+    }
+    free(tmp);
+  }
+  free(jb);
+  free(o);
+  contour_stack_free(&stack);
+  return wbad ? 1 : 0;
+}
