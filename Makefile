@@ -15,7 +15,7 @@ WARN     = -Wall -Wextra -Wpedantic -Wshadow -Wstrict-prototypes -Wmissing-proto
 # -ffp-contract=off: no fused multiply-add, so every build of a tile weight
 # rounds the same way (the solver's exactness rests on it).
 BASE     = -std=c11 -D_POSIX_C_SOURCE=200809L -ffp-contract=off -fno-math-errno \
-           -Iutil -Imp -Isim -Ialgo -Irun $(WARN)
+           -Iutil -Imp -Isim -Ialgo -Irun -Iplots $(WARN)
 LDLIBS   = -lm -pthread
 SAN      = -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
 CHKFLAGS = -O1 -g -Werror $(SAN)
@@ -37,7 +37,10 @@ CHK = build/chk
 relobj = $(patsubst %.c,$(REL)/%.o,$(1))
 chkobj = $(patsubst %.c,$(CHK)/%.o,$(1))
 
-all: $(PROGS) $(PLOT)
+# Programs build into build/bin and are copied to the root when they change,
+# so that `make bench` can be the experiments rather than the program.
+all: $(addprefix build/bin/,$(PROGS)) $(PLOT)
+	@for p in $(PROGS); do cmp -s build/bin/$$p $$p || cp -f build/bin/$$p $$p; done
 
 $(REL)/%.o: %.c
 	@mkdir -p $(dir $@)
@@ -56,7 +59,8 @@ $(CHK)/libtilesim.a: $(call chkobj,$(LIBSRC))
 	$(AR) rcs $@ $^
 
 define prog_rules
-$(1): $(call relobj,prog/$(1).c $(wildcard prog/$(1)_*.c)) $(REL)/libtilesim.a
+build/bin/$(1): $(call relobj,prog/$(1).c $(wildcard prog/$(1)_*.c)) $(REL)/libtilesim.a
+	@mkdir -p build/bin
 	$$(CC) $$(CFLAGS) -o $$@ $$^ $$(LDLIBS)
 $(CHK)/$(1): $(call chkobj,prog/$(1).c $(wildcard prog/$(1)_*.c)) $(CHK)/libtilesim.a
 	$$(CC) $$(CHKFLAGS) -o $$@ $$^ $$(LDLIBS)
@@ -89,20 +93,53 @@ valgrind: $(addprefix $(VG)/tests/,$(TESTS))
 	@VALGRIND="valgrind -q --error-exitcode=99 --leak-check=full" \
 	  sh tests/run.sh $(VG) $(addprefix $(VG)/tests/,$(TESTS))
 
+# The main job: the paper's experiments on the simulated machine, as CSV and
+# SVG under plots/, and the claims of sections 6 and 7 checked against them.
+JOBS ?= 2
+PLOTS = build/plot lines
+bench: all
+	./bench --alloc half,size --jobs $(JOBS) -o plots/speedup.csv
+	./bench --points 500 --alloc size --min-diag 20,40,60,80,100 --jobs $(JOBS) -o plots/min_diag.csv
+	./bench --model -o plots/model.csv
+	./bench --glass -o plots/glass.contours
+	$(PLOTS) plots/speedup.csv -x procs -y speedup --series points --where alloc=half --yzero \
+	  --title "Fig. 16: speedup, half of the processors to each subgraph" \
+	  --xlabel processors --ylabel "speedup T(1)/T(P)" -o plots/fig16_speedup_half.svg
+	$(PLOTS) plots/speedup.csv -x procs -y speedup --series points --where alloc=size --yzero \
+	  --title "Fig. 18/19: speedup, processors by subgraph size" \
+	  --xlabel processors --ylabel "speedup T(1)/T(P)" -o plots/fig18_speedup_size.svg
+	$(PLOTS) plots/speedup.csv -x procs -y speedup --series alloc --where points=500 --yzero \
+	  --title "500 points: half against size allocation" \
+	  --xlabel processors --ylabel "speedup T(1)/T(P)" -o plots/fig19_half_vs_size.svg
+	$(PLOTS) plots/min_diag.csv -x procs -y sim_time --series min_diag --yzero \
+	  --title "Fig. 20: time, 500 points, at least d nodes a diagonal" \
+	  --xlabel processors --ylabel "simulated time (s)" -o plots/fig20_time_min_diag.svg
+	$(PLOTS) plots/min_diag.csv -x procs -y speedup --series min_diag --yzero \
+	  --title "Fig. 21: speedup, 500 points, at least d nodes a diagonal" \
+	  --xlabel processors --ylabel "speedup T(1)/T(P)" -o plots/fig21_speedup_min_diag.svg
+	$(PLOTS) plots/model.csv -x slaves -y sim_per_diag,model_per_diag --series diag \
+	  --labels simulated,model --yzero \
+	  --title "Section 7.2: time per diagonal of D nodes; model cD/p + 2m(p-1)" \
+	  --xlabel "slaves p" --ylabel "seconds per diagonal" -o plots/model_per_diagonal.svg
+	build/plot surface plots/glass.contours \
+	  --title "Fig. 17: the contours of a glass, and the surface tilesim derives" -o plots/fig17_glass.svg
+	./bench --claims plots/speedup.csv plots/min_diag.csv > plots/claims.csv
+	@cat plots/claims.csv
+
 # The tiler's speed and memory (issue figures: 500 x 500, 5000 x 5000, the naive
 # reference, the whole prostate_0 stack).
-bench-tile: bench
+bench-tile: all
 	./bench --tiler
 
 install: all
 	mkdir -p $(DESTDIR)$(PREFIX)/bin
-	cp $(PROGS) $(DESTDIR)$(PREFIX)/bin/
+	cp $(addprefix build/bin/,$(PROGS)) $(DESTDIR)$(PREFIX)/bin/
 	$(if $(PLOT),cp build/plot $(DESTDIR)$(PREFIX)/bin/tilesim-plot)
 
 clean:
 	rm -rf build $(PROGS)
 
-.PHONY: all check valgrind bench-tile install clean
+.PHONY: all check valgrind bench bench-tile install clean
 .SECONDARY:
 
 -include $(shell find build -name '*.d' 2>/dev/null)

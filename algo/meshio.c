@@ -2,16 +2,13 @@
 #include "meshio.h"
 
 #include <ctype.h>
-#include <errno.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
-#include "xmem.h"
+#include "atomicfile.h"
 
 meshio_format meshio_format_of(const char *file) {
   const char *dot = strrchr(file, '.');
@@ -87,37 +84,10 @@ int meshio_write(const mesh *me, const char *file, char *err, size_t errlen) {
     snprintf(err, errlen, "%s: unknown mesh format (use .obj, .ply or .stl)", file);
     return -1;
   }
-  size_t len = strlen(file);
-  char *tmp = xmalloc(len + 16);
-  snprintf(tmp, len + 16, "%s.tmpXXXXXX", file);
-  int fd = mkstemp(tmp);
-  if (fd < 0) {
-    snprintf(err, errlen, "%s: cannot create a temporary file beside it (%s)", file, strerror(errno));
-    free(tmp);
-    return -1;
-  }
-  mode_t um = umask(0);   /* mkstemp makes 0600; give the file the usual mode */
-  umask(um);
-  fchmod(fd, 0666 & ~um);
-  FILE *f = fdopen(fd, "wb");
-  if (!f) {
-    snprintf(err, errlen, "%s: %s", file, strerror(errno));
-    close(fd);
-    unlink(tmp);
-    free(tmp);
-    return -1;
-  }
-  if (fmt == MESHIO_OBJ) obj(f, me);
-  else if (fmt == MESHIO_PLY) ply(f, me);
-  else stl(f, me);
-  int bad = fflush(f) != 0 || ferror(f);
-  int e = errno;
-  if (fclose(f) != 0 && !bad) bad = 1, e = errno;
-  if (!bad && rename(tmp, file) != 0) bad = 1, e = errno;
-  if (bad) {
-    snprintf(err, errlen, "%s: cannot write (%s)", file, strerror(e));
-    unlink(tmp);
-  }
-  free(tmp);
-  return bad ? -1 : 0;
+  atomicfile a;
+  if (atomicfile_open(&a, file, "wb", err, errlen) != 0) return -1;
+  if (fmt == MESHIO_OBJ) obj(a.f, me);
+  else if (fmt == MESHIO_PLY) ply(a.f, me);
+  else stl(a.f, me);
+  return atomicfile_close(&a, 1, err, errlen);
 }

@@ -87,6 +87,8 @@ void par_counts_add(par_counts *into, const par_counts *c);
 typedef struct {
   split_alloc alloc;   /* processor allocation: half (section 4) or size (7.1) */
   int min_diag;        /* d: at least d nodes of a diagonal per slave (7.2), >= 1 */
+  int only_mu0;        /* stop after mu(0) (the section 7.2 experiment); the
+                          result is then mu(0), not the optimum */
 } par_options;
 
 /* --- message packing: ints and doubles in order, native byte order ------- */

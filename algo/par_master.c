@@ -134,6 +134,7 @@ static int finished(master *M, int gi) {
     TRY(par_send(M->mp, M->own, PAR_CONTROL, r, PAR_TAG_BACK, &M->out));
   }
   consider(M, G.mid, P->cum[T], P->col);
+  if (G.lo < 0 && M->arg->opt.only_mu0) return 0;
   if (G.lo < 0) {   /* mu(0): T for everyone, and B as its copy m rows down */
     gpath *Pm = new_path(M, M->m);
     memcpy(Pm->col, P->col, (size_t)(T + 1) * sizeof *P->col);
@@ -245,6 +246,7 @@ static int one_pair(master *M, par_pair *pr, cost_kind kind) {
 
   /* Everyone's counters for this pair. */
   pr->counts = pr->master;
+  double first = 0, last = 0;
   for (int r = 1; r <= M->S; r++) TRY(send_task(M, PAR_TASK_REPORT, 0, 0, 0, 0, r));
   for (int i = 0; i < M->S; i++) {
     mp_status st;
@@ -256,8 +258,12 @@ static int one_pair(master *M, par_pair *pr, cost_kind kind) {
     c.nodes = (uint64_t)par_get_f64(&r);
     c.units = (uint64_t)par_get_f64(&r);
     c.paths = (uint64_t)par_get_f64(&r);
+    double f0 = par_get_f64(&r), f1 = par_get_f64(&r);
+    if (i == 0 || f0 < first) first = f0;
+    if (i == 0 || f1 > last) last = f1;
     par_counts_add(&pr->counts, &c);
   }
+  pr->mu0_time = last - first;
   pr->t.count.nodes = pr->counts.nodes;
   pr->t.count.paths = pr->counts.paths;
   for (int i = 0; i < M->npaths; i++) {

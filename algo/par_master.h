@@ -22,6 +22,8 @@ typedef struct {
                           t.count.nodes and t.count.paths summed over the slaves */
   double time;         /* the master's clock from sending the points to holding the
                           optimum (simulated seconds on the simulator) */
+  double mu0_time;     /* the slaves' time on the diagonals of mu(0): from the
+                          first one's task to the last one's last diagonal */
   par_counts counts;   /* every rank's counters for this pair, master included */
   par_counts master;   /* the master's own */
 } par_pair;

@@ -256,6 +256,7 @@ static int backtrack(slave *S, int s, int t, int c, int g0, int j) {
 static int path_task(slave *S, int s, int bounded, int g0, int p) {
   int m = S->m, n = S->n, T = m + n, j = S->rank - g0;
   const gpath *U = bounded ? &S->U : NULL, *L = bounded ? &S->L : NULL;
+  if (!bounded) S->arg->fp_start = mp_time(S->mp);
   int64_t wo = 0;
   S->type[0] = D_SINGLE, S->a[0] = S->b[0] = 0, S->q[0] = 1;
   S->prev[-1] = S->prev[0] = S->prev[1] = HUGE_VAL;
@@ -315,6 +316,7 @@ static int path_task(slave *S, int s, int bounded, int g0, int p) {
     S->cur = x;
     pa = a, pb = b;
   }
+  if (!bounded) S->arg->fp_end = mp_time(S->mp);
   S->first_path = 0;
   if (j == 0) S->arg->counts.paths++;
   /* The terminal node (s+m, n) is alone on its diagonal: the first slave's. */
@@ -355,6 +357,8 @@ static int report(slave *S) {
   par_put_f64(&S->out, (double)c->nodes);
   par_put_f64(&S->out, (double)c->units);
   par_put_f64(&S->out, (double)c->paths);
+  par_put_f64(&S->out, S->arg->fp_start);
+  par_put_f64(&S->out, S->arg->fp_end);
   par_counts_add(&S->arg->total, c);
   memset(c, 0, sizeof *c);
   return par_send(S->mp, c, -1, 0, PAR_TAG_STATS, &S->out);

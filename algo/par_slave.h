@@ -12,6 +12,8 @@ typedef struct {
   /* Filled by the slave: */
   par_counts counts;   /* since the last STATS report */
   par_counts total;    /* since the start */
+  double fp_start, fp_end;   /* the first path of the current pair: when its
+                                task came, when my last diagonal was done */
   int failed;          /* 1 if an mp call failed (deadlock, stop) */
   char err[160];
   /* Optional, for tests: if diag_sends is set, the BOUNDARY messages this

@@ -6,6 +6,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "bench_claims.h"
+#include "bench_model.h"
 #include "bench_paper.h"
 #include "bench_ring.h"
 #include "bench_tiler.h"
@@ -24,6 +26,16 @@ static const mode modes[] = {
     {"--switch", bench_switch_main,
      "N\n"
      "      two coroutines switching N times: ns per context switch"},
+    {"--model", bench_model,
+     "[--diag LIST] [--procs LIST] [--m S] [--c S] [--net MODEL] [-o FILE]\n"
+     "      section 7.2: the simulated time per diagonal of mu(0), D nodes a diagonal,\n"
+     "      against the paper's cD/p + 2m(p-1) (defaults: D 100,250,500, procs 2..16)"},
+    {"--glass", bench_glass,
+     "[--slices N] [--points N] [-o FILE]\n"
+     "      the contours of a wine glass (the paper's Fig. 17), as a .contours stack"},
+    {"--claims", bench_claims,
+     "SPEEDUP.csv [MIN_DIAG.csv] [--require LIST]\n"
+     "      the paper's seven claims (sections 6, 7), checked against the sweeps"},
     {"--tiler", bench_tiler,
      "[--points N[,N...]] [--naive N] [--input STACK]... [--cost area|span]\n"
      "      [--seed S] [--repeat R]\n"

@@ -23,6 +23,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "atomicfile.h"
+#include "bench_list.h"
 #include "contour.h"
 #include "gen.h"
 #include "run.h"
@@ -36,46 +38,6 @@ const char bench_paper_help[] =
     "      the paper's experiments (no mode option): every combination is a run;\n"
     "      LIST is numbers and ranges, e.g. 1..16 or 100,200,300.  Defaults: points\n"
     "      100,200,300,400,500, procs 1..16, alloc half, min-diag 1, the tc2000 machine";
-
-enum { MAXV = 256 };
-
-typedef struct {
-  int n;
-  double v[MAXV];
-} list;
-
-/* "1..16,20,24" into l (integers, or any numbers when !whole). */
-static int parse_list(const char *s, list *l, int whole, double lo, double hi) {
-  l->n = 0;
-  const char *p = s;
-  while (*p) {
-    char *e;
-    double a, b;
-    if (whole) {   /* strtod would read "1..16" as "1." then ".16" */
-      a = b = (double)strtol(p, &e, 10);
-      if (e == p) return -1;
-      p = e;
-      if (p[0] == '.' && p[1] == '.') {
-        b = (double)strtol(p + 2, &e, 10);
-        if (e == p + 2) return -1;
-        p = e;
-      }
-    } else {
-      a = b = strtod(p, &e);
-      if (e == p) return -1;
-      p = e;
-    }
-    if (!(a >= lo && b <= hi && a <= b) || (whole && (a != floor(a) || b != floor(b)))) return -1;
-    for (double x = a; x <= b; x += 1) {
-      if (l->n == MAXV) return -1;
-      l->v[l->n++] = x;
-      if (!whole) break;
-    }
-    if (*p == ',') p++;
-    else if (*p) return -1;
-  }
-  return l->n > 0 ? 0 : -1;
-}
 
 typedef struct {
   int points, procs, alloc, d, hidden, pairid;
@@ -227,7 +189,7 @@ static int usage(const char *why, const char *val) {
 }
 
 int bench_paper(int argc, char **argv) {
-  list procs = {0}, points = {0}, diags = {0}, ms = {0}, cs = {0};
+  bench_list procs = {0}, points = {0}, diags = {0}, ms = {0}, cs = {0};
   int allocs[2] = {ALLOC_HALF, -1}, nalloc = 1, jobs = 1, pairk = 0;
   const char *outpath = NULL, *input = NULL;
   unsigned long long seed = 1993;
@@ -238,13 +200,13 @@ int bench_paper(int argc, char **argv) {
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
     if (!v) return usage("an option needs a value", a);
     if (strcmp(a, "--procs") == 0) {
-      if (parse_list(v, &procs, 1, 1, 4096) != 0) return usage("--procs takes a list of 1..4096", v);
+      if (bench_list_parse(v, &procs, 1, 1, 4096) != 0) return usage("--procs takes a list of 1..4096", v);
     } else if (strcmp(a, "--points") == 0) {
-      if (parse_list(v, &points, 1, 3, 100000) != 0) return usage("--points takes a list of 3..100000", v);
+      if (bench_list_parse(v, &points, 1, 3, 100000) != 0) return usage("--points takes a list of 3..100000", v);
     } else if (strcmp(a, "--min-diag") == 0) {
-      if (parse_list(v, &diags, 1, 1, 1e9) != 0) return usage("--min-diag takes a list of numbers >= 1", v);
+      if (bench_list_parse(v, &diags, 1, 1, 1e9) != 0) return usage("--min-diag takes a list of numbers >= 1", v);
     } else if (strcmp(a, "--m") == 0 || strcmp(a, "--c") == 0) {
-      if (parse_list(v, a[2] == 'm' ? &ms : &cs, 0, 0, 1e9) != 0)
+      if (bench_list_parse(v, a[2] == 'm' ? &ms : &cs, 0, 0, 1e9) != 0)
         return usage("--m and --c take a list of seconds >= 0", v);
     } else if (strcmp(a, "--alloc") == 0) {
       nalloc = 0;
@@ -281,9 +243,9 @@ int bench_paper(int argc, char **argv) {
     }
     i++;
   }
-  if (procs.n == 0) parse_list("1..16", &procs, 1, 1, 4096);
-  if (points.n == 0) parse_list("100,200,300,400,500", &points, 1, 3, 100000);
-  if (diags.n == 0) parse_list("1", &diags, 1, 1, 1e9);
+  if (procs.n == 0) bench_list_parse("1..16", &procs, 1, 1, 4096);
+  if (points.n == 0) bench_list_parse("100,200,300,400,500", &points, 1, 3, 100000);
+  if (diags.n == 0) bench_list_parse("1", &diags, 1, 1, 1e9);
   if (ms.n == 0) ms.n = 1, ms.v[0] = rc.machine.m;
   if (cs.n == 0) cs.n = 1, cs.v[0] = rc.machine.c;
 
@@ -339,18 +301,15 @@ int bench_paper(int argc, char **argv) {
   }
 
   FILE *f = stdout;
-  char *tmp = NULL;
+  atomicfile af = {NULL, NULL, NULL};
   if (outpath) {   /* a temporary file beside it, renamed when complete */
-    size_t len = strlen(outpath) + 16;
-    tmp = xmalloc(len);
-    snprintf(tmp, len, "%s.tmpXXXXXX", outpath);
-    int fdo = mkstemp(tmp);
-    if (fdo < 0 || !(f = fdopen(fdo, "w"))) {
-      fprintf(stderr, "bench: %s: cannot create a temporary file beside it (%s)\n", outpath, strerror(errno));
-      free(tmp), free(jb), free(o);
+    if (atomicfile_open(&af, outpath, "w", err, sizeof err) != 0) {
+      fprintf(stderr, "bench: %s\n", err);
+      free(jb), free(o);
       contour_stack_free(&stack);
       return 1;
     }
+    f = af.f;
   }
   fprintf(f, "points,procs,alloc,min_diag,net,m,c,seed,sim_time,speedup,efficiency,messages,bytes,"
              "nodes,cost,wall_s,msg_boundary,msg_backtrack,msg_bounds,msg_control,input,pair\n");
@@ -371,15 +330,9 @@ int bench_paper(int argc, char **argv) {
             (unsigned long long)o[i].msgs[PAR_CONTROL], input ? input : "generated", input ? pairk : 0);
   }
   int wbad = 0;
-  if (outpath) {
-    wbad = fflush(f) != 0 || ferror(f);
-    if (fclose(f) != 0) wbad = 1;
-    if (!wbad && rename(tmp, outpath) != 0) wbad = 1;
-    if (wbad) {
-      fprintf(stderr, "bench: %s: cannot write (%s)\n", outpath, strerror(errno));
-      unlink(tmp);
-    }
-    free(tmp);
+  if (outpath && atomicfile_close(&af, 1, err, sizeof err) != 0) {
+    fprintf(stderr, "bench: %s\n", err);
+    wbad = 1;
   }
   free(jb);
   free(o);

@@ -15,6 +15,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "atomicfile.h"
 #include "contour.h"
 #include "mesh.h"
 #include "meshio.h"
@@ -67,40 +68,29 @@ static void progress(void *ud, int done, int total) {
 
 /* The parallel run of the whole stack, one simulation; fills the pairs. */
 static int run_parallel(run_config *rc, const contour_stack *s, par_pair *pr, const char *trace) {
-  char err[512], *tmp = NULL;
-  FILE *tf = NULL;
+  char err[512];
+  atomicfile tf = {NULL, NULL, NULL};
   for (int i = 0; i + 1 < s->n; i++) {
     memset(&pr[i], 0, sizeof pr[i]);
     pr[i].P = s->c[i].pt, pr[i].np = s->c[i].n, pr[i].zp = s->c[i].z;
     pr[i].Q = s->c[i + 1].pt, pr[i].nq = s->c[i + 1].n, pr[i].zq = s->c[i + 1].z;
   }
   if (trace) {   /* written beside the target, renamed into place when complete */
-    size_t len = strlen(trace) + 16;
-    tmp = xmalloc(len);
-    snprintf(tmp, len, "%s.tmpXXXXXX", trace);
-    int fd = mkstemp(tmp);
-    if (fd < 0 || !(tf = fdopen(fd, "w"))) {
-      fprintf(stderr, "tile: %s: cannot create a temporary file beside it (%s)\n", trace, strerror(errno));
-      if (fd >= 0) close(fd), unlink(tmp);
-      free(tmp);
+    if (atomicfile_open(&tf, trace, "w", err, sizeof err) != 0) {
+      fprintf(stderr, "tile: %s\n", err);
       return -1;
     }
     size_t tl = strlen(trace);
-    if (tl >= 5 && strcmp(trace + tl - 5, ".json") == 0) rc->trace_json = tf;
-    else rc->trace_csv = tf;
+    if (tl >= 5 && strcmp(trace + tl - 5, ".json") == 0) rc->trace_json = tf.f;
+    else rc->trace_csv = tf.f;
   }
   if (isatty(2) && s->n > 2) rc->progress = progress;
   int res = run_sim(rc, pr, s->n - 1, NULL, err, sizeof err);
   if (rc->progress) fputs("\r\033[K", stderr);
   if (res != 0) fprintf(stderr, "tile: the simulated run failed: %s\n", err);
-  if (tf) {
-    int bad = fclose(tf) != 0;
-    if (res == 0 && (bad || rename(tmp, trace) != 0)) {
-      fprintf(stderr, "tile: %s: cannot write (%s)\n", trace, strerror(errno));
-      res = -1;
-    }
-    if (res != 0) unlink(tmp);
-    free(tmp);
+  if (tf.f && atomicfile_close(&tf, res == 0, err, sizeof err) != 0 && res == 0) {
+    fprintf(stderr, "tile: %s\n", err);
+    res = -1;
   }
   return res;
 }

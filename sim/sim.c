@@ -49,9 +49,9 @@
  *   c = 50 us per node: a node is two triangle areas and a comparison, about
  *       1,000 cycles of the 20 MHz Motorola 88100 with its square root in
  *       software.
- *   m = 250 us per message, on a bus: the paper's message queues were
+ *   m = 275 us per message, on a bus: the paper's message queues were
  *       simulated in the TC2000's shared memory, so a message is a locked
- *       enqueue and dequeue, one at a time, and later ones wait; 250 us puts
+ *       enqueue and dequeue, one at a time, and later ones wait; 275 us puts
  *       the speedup's flattening and decline near 12 processors (section 6).
  *   per_byte = 2.6e-8 s: the butterfly switch's 38 MB/s.
  *   local = 0: master and slave on one processor exchange for free.
@@ -61,11 +61,11 @@ static void profile_tc2000(sim_config *cfg) {
   cfg->procs = 1;
   cfg->place = NULL;
   cfg->c = 50e-6;          /* seconds per compute unit (a node) */
-  cfg->m = 250e-6;         /* seconds per message */
+  cfg->m = 275e-6;         /* seconds per message */
   cfg->per_byte = 2.6e-8;  /* seconds per byte */
   cfg->local = 0;          /* seconds per message on one processor */
   cfg->net = SIM_NET_BUS;
-  cfg->L = 250e-6;         /* LogGP latency */
+  cfg->L = 275e-6;         /* LogGP latency */
   cfg->o = 0;              /* LogGP overhead */
   cfg->g = 0;              /* LogGP gap */
   cfg->G = 0;              /* LogGP gap per byte */

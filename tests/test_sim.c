@@ -985,7 +985,7 @@ static void test_config(void) {
   CHECK(sim_net_parse("ring", &net) == -1, "parse accepted 'ring'");
   CHECK(strcmp(sim_net_name(SIM_NET_BUS), "bus") == 0, "name of bus");
   CHECK(sim_profile("tc2000", &cfg) == 0 && cfg.net == SIM_NET_BUS && cfg.c == 50e-6 &&
-            cfg.m == 250e-6 && cfg.per_byte == 2.6e-8 && cfg.local == 0,
+            cfg.m == 275e-6 && cfg.per_byte == 2.6e-8 && cfg.local == 0,
         "tc2000 profile");
   CHECK(sim_profile("unit", &cfg) == 0 && cfg.c == 1 && cfg.m == 1 && cfg.per_byte == 0, "unit profile");
   CHECK(sim_profile("nope", &cfg) == -1, "unknown profile accepted");
