@@ -123,6 +123,12 @@ bench: all
 	  --xlabel "slaves p" --ylabel "seconds per diagonal" -o plots/model_per_diagonal.svg
 	build/plot surface plots/glass.contours \
 	  --title "Fig. 17: the contours of a glass, and the surface tilesim derives" -o plots/fig17_glass.svg
+	./bench --input tests/data/slicerrt/prostate_0.contours --pair 40 --alloc half,size --jobs $(JOBS) \
+	  -o plots/real_speedup.csv
+	$(PLOTS) plots/real_speedup.csv -x procs -y speedup --series alloc --yzero \
+	  --title "A real pair (prostate_0, slices 40-41, 512 and 506 points)" \
+	  --xlabel processors --ylabel "speedup T(1)/T(P)" -o plots/real_half_vs_size.svg
+	./bench --claims plots/real_speedup.csv > plots/real_claims.csv
 	./bench --claims plots/speedup.csv plots/min_diag.csv > plots/claims.csv
 	@cat plots/claims.csv
 
