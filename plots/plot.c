@@ -31,6 +31,44 @@ static int usage(const char *why, const char *val) {
   return 2;
 }
 
+/* Write an SVG through draw(f, ud) to out, atomically; 0, or 1 after a message. */
+static int write_svg(const char *out, void (*draw)(FILE *f, void *ud), void *ud) {
+  char err[400];
+  atomicfile af;
+  if (atomicfile_open(&af, out, "w", err, sizeof err) != 0) {
+    fprintf(stderr, "plot: %s\n", err);
+    return 1;
+  }
+  draw(af.f, ud);
+  if (atomicfile_close(&af, 1, err, sizeof err) != 0) {
+    fprintf(stderr, "plot: %s\n", err);
+    return 1;
+  }
+  return 0;
+}
+
+typedef struct {
+  const svgchart_opts *o;
+  const svgchart_series *s;
+  int ns;
+} chart;
+
+static void draw_chart(FILE *f, void *ud) {
+  const chart *c = ud;
+  svgchart_write(f, c->o, c->s, c->ns);
+}
+
+typedef struct {
+  const char *title;
+  const contour_stack *s;
+  const mesh *me;
+} picture;
+
+static void draw_surface(FILE *f, void *ud) {
+  const picture *p = ud;
+  svgsurface_write(f, p->title, p->s, p->me);
+}
+
 typedef struct { double x, y; } xy;
 static int by_x(const void *a, const void *b) {
   const xy *p = a, *q = b;
@@ -129,15 +167,8 @@ static int lines(int argc, char **argv) {
       s[i] = (svgchart_series){names[i], n, x, y, k > 0};
     }
   o.xint = 1;
-  atomicfile af;
-  int rc = 0;
-  if (atomicfile_open(&af, out, "w", err, sizeof err) != 0) {
-    fprintf(stderr, "plot: %s\n", err);
-    rc = 1;
-  } else {
-    svgchart_write(af.f, &o, s, ns);
-    if (atomicfile_close(&af, 1, err, sizeof err) != 0) fprintf(stderr, "plot: %s\n", err), rc = 1;
-  }
+  chart c = {&o, s, ns};
+  int rc = write_svg(out, draw_chart, &c);
   for (int i = 0; i < ns; i++) free((void *)s[i].x), free((void *)s[i].y);
   free(s), free(names), free(sv);
   csvtab_free(&t);
@@ -176,15 +207,8 @@ static int surface(int argc, char **argv) {
     tiling_free(&t);
   }
   if (caps) mesh_add_caps(&me, &s);
-  atomicfile af;
-  int rc = 0;
-  if (atomicfile_open(&af, out, "w", err, sizeof err) != 0) {
-    fprintf(stderr, "plot: %s\n", err);
-    rc = 1;
-  } else {
-    svgsurface_write(af.f, title, &s, &me);
-    if (atomicfile_close(&af, 1, err, sizeof err) != 0) fprintf(stderr, "plot: %s\n", err), rc = 1;
-  }
+  picture p = {title, &s, &me};
+  int rc = write_svg(out, draw_surface, &p);
   mesh_free(&me);
   contour_stack_free(&s);
   return rc;

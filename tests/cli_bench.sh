@@ -50,5 +50,14 @@ rm -f "$tmp.out" "$tmp.err"
 
 "$bench" --help | grep -q -- '--ring P --laps K' && ok || fail "--help does not list --ring"
 
+# --model: the section 7.2 experiment; one row per (D, P), the model's formula.
+out=$("$bench" --model --diag 40 --procs 2,4 --net ideal --m 0.001 --c 0.0001 2>&1); rc=$?
+[ $rc -eq 0 ] && [ "$(printf '%s\n' "$out" | wc -l)" -eq 3 ] && ok || fail "--model: $out"
+# model = c D / p + m (p - 1): 40 nodes, p = 3 slaves: 0.0001*40/3 + 0.001*2
+printf '%s\n' "$out" | awk -F, '$1==40 && $2==4 { d = $10 - (0.0001*40/3 + 0.002); exit (d < -1e-9 || d > 1e-9) }' && ok || fail "--model formula: $out"
+# --glass: a valid stack that ./tile accepts.
+"$bench" --glass --slices 6 --points 12 -o "$tmp.contours" && "${BUILD:-build/chk}/tile" "$tmp.contours" -q --caps > "$tmp.out" && [ "$(grep -c '^[0-9]' "$tmp.out")" -eq 5 ] && ok || fail "--glass"
+rm -f "$tmp.contours" "$tmp.out"
+
 echo "cli_bench: $passed passed, $failed failed"
 [ $failed -eq 0 ]

@@ -1,0 +1,47 @@
+#!/bin/sh
+# cli_plot.sh -- build/plot: line charts and the surface picture are
+# well-formed SVG with what was asked for; bad usage and bad input fail
+# cleanly; the same input gives the same bytes.
+PLOT=${BUILD:-build/chk}/plot
+T=$(mktemp -d /tmp/tilesim-plot.XXXXXX)
+trap 'rm -rf "$T"' EXIT
+pass=0; fail=0
+ok()  { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "cli_plot: $*"; }
+
+cat > "$T/a.csv" <<'CSV'
+points,procs,alloc,speedup,model
+100,1,half,1.0,1.0
+100,2,half,1.5,1.9
+100,3,half,2.0,2.6
+200,1,half,1.0,1.0
+200,3,half,2.5,2.8
+200,2,half,1.8,1.9
+100,2,size,9,9
+CSV
+"$PLOT" lines "$T/a.csv" -x procs -y speedup --series points --where alloc=half --title "T <&>" --yzero -o "$T/a.svg" && ok || bad "lines failed"
+head -1 "$T/a.svg" | grep -q '^<svg xmlns="http://www.w3.org/2000/svg"' && tail -1 "$T/a.svg" | grep -q '^</svg>$' && ok || bad "not an SVG document"
+[ "$(grep -c '<polyline' "$T/a.svg")" -eq 2 ] && ok || bad "expected 2 lines (points 100 and 200)"
+grep -q '>points=100<' "$T/a.svg" && grep -q '>points=200<' "$T/a.svg" && ok || bad "legend"
+grep -q 'T &lt;&amp;&gt;' "$T/a.svg" && ok || bad "title not escaped"
+[ "$(grep -c '<circle' "$T/a.svg")" -eq 6 ] && ok || bad "the size row should be filtered out (6 markers)"
+# points sorted by x: 200's rows come 1, 3, 2 in the file, its line 1, 2, 3 left to right
+grep '<polyline' "$T/a.svg" | sed -n 2p | sed 's/.*points="//; s/".*//' | tr ' ' '\n' | cut -d, -f1 |
+  awk 'NR > 1 && $1 <= last { bad = 1 } { last = $1 } END { exit bad || NR != 3 }' && ok || bad "a line's points are not in x order"
+"$PLOT" lines "$T/a.csv" -x procs -y speedup,model --series points --labels sim,model -o "$T/b.svg" && [ "$(grep -c 'stroke-dasharray' "$T/b.svg")" -ge 2 ] && grep -q '>points=100, model<' "$T/b.svg" && ok || bad "two y columns"
+"$PLOT" lines "$T/a.csv" -x procs -y speedup --series points --where alloc=half --title "T <&>" --yzero -o "$T/a2.svg" && cmp -s "$T/a.svg" "$T/a2.svg" && ok || bad "two runs differ"
+# errors
+"$PLOT" lines "$T/a.csv" -x nope -y speedup -o "$T/c.svg" 2> "$T/err"; [ $? -eq 1 ] && grep -q 'not in its header' "$T/err" && [ ! -e "$T/c.svg" ] && ok || bad "unknown column"
+"$PLOT" lines "$T/missing.csv" -x procs -y speedup -o "$T/c.svg" 2> "$T/err"; [ $? -eq 1 ] && grep -q 'cannot open' "$T/err" && ok || bad "missing CSV"
+printf 'a,b\n1,2,3\n' > "$T/bad.csv"
+"$PLOT" lines "$T/bad.csv" -x a -y b -o "$T/c.svg" 2> "$T/err"; [ $? -eq 1 ] && grep -q 'bad.csv:2: 3 fields' "$T/err" && ok || bad "ragged CSV: $(cat "$T/err")"
+for args in "" "frob" "lines" "lines $T/a.csv -x procs" "surface" "lines $T/a.csv -x procs -y speedup --bogus 1 -o $T/c.svg"; do
+  # shellcheck disable=SC2086
+  "$PLOT" $args > /dev/null 2> "$T/err"; [ $? -eq 2 ] && grep -q '^usage: plot' "$T/err" && ok || bad "usage '$args'"
+done
+# the surface of a real stack, with caps
+"$PLOT" surface tests/data/slicerrt/tinypatient_1.contours --caps --title glass -o "$T/s.svg" && ok || bad "surface failed"
+[ "$(grep -c '<polygon points=' "$T/s.svg")" -gt 10 ] && [ "$(grep -c '<polygon fill="none"' "$T/s.svg")" -eq 3 ] && ok || bad "surface: triangles and 3 contours expected"
+"$PLOT" surface tests/data/slicerrt/tinypatient_0.contours -o "$T/s2.svg" 2> "$T/err"; [ $? -eq 1 ] && grep -q 'tinypatient_0.contours:29' "$T/err" && [ ! -e "$T/s2.svg" ] && ok || bad "bad stack"
+echo "cli_plot: $pass passed, $fail failed"
+[ $fail -eq 0 ]
