@@ -38,7 +38,7 @@ int bench_model(int argc, char **argv) {
   run_config rc;
   run_config_init(&rc);
   char err[300];
-  for (int i = 2; i < argc; i++) {
+  for (int i = 2; i < argc; i += 2) {   /* every option takes a value */
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
     if (!v) return usage("an option needs a value", a);
     if (strcmp(a, "--diag") == 0) {
@@ -52,7 +52,6 @@ int bench_model(int argc, char **argv) {
       if (k < 0) return usage(err, NULL);
       if (k == 0 || strcmp(a, "--procs") == 0) return usage("unknown option", a);
     }
-    i++;
   }
   if (diags.n == 0) bench_list_parse("100,250,500", &diags, 1, 4, 5000);
   if (procs.n == 0) bench_list_parse("2..16", &procs, 1, 1, 4096);
@@ -106,7 +105,7 @@ int bench_model(int argc, char **argv) {
 int bench_glass(int argc, char **argv) {
   int slices = 24, points = 96;
   const char *outpath = NULL;
-  for (int i = 2; i < argc; i++) {
+  for (int i = 2; i < argc; i += 2) {   /* every option takes a value */
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
     char *e = NULL;
     long x = v ? strtol(v, &e, 10) : 0;
@@ -115,7 +114,6 @@ int bench_glass(int argc, char **argv) {
     else if (strcmp(a, "--slices") == 0 && !*e && x >= 3 && x <= 10000) slices = (int)x;
     else if (strcmp(a, "--points") == 0 && !*e && x >= 3 && x <= 100000) points = (int)x;
     else return usage("unknown option or bad value", a);
-    i++;
   }
   contour_stack s;
   gen_glass(&s, slices, points);

@@ -196,7 +196,7 @@ int bench_paper(int argc, char **argv) {
   run_config rc;
   run_config_init(&rc);
   char err[300];
-  for (int i = 1; i < argc; i++) {
+  for (int i = 1; i < argc; i += 2) {   /* every option takes a value */
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
     if (!v) return usage("an option needs a value", a);
     if (strcmp(a, "--procs") == 0) {
@@ -241,7 +241,6 @@ int bench_paper(int argc, char **argv) {
       if (k < 0) return usage(err, NULL);
       if (k == 0) return usage("unknown option", a);
     }
-    i++;
   }
   if (procs.n == 0) bench_list_parse("1..16", &procs, 1, 1, 4096);
   if (points.n == 0) bench_list_parse("100,200,300,400,500", &points, 1, 3, 100000);
