@@ -190,8 +190,85 @@ static void check_real(void) {
         "tinypatient_0: %s", err);
 }
 
+/* Random mutations of valid stacks: every input is either rejected with one
+ * line naming the file, or accepted as a stack that keeps every promise of
+ * contour.h.  Never a crash (ASan and UBSan watch). */
+static void check_fuzz(void) {
+  static const char *seeds[] = {
+      "C 4 0\n0 0\n2 0\n2 2\n0 2\nC 3 1.5\n0 0\n2 0\n1 2\n",
+      "# c\nC 5 -1\n1e0 2\n-3.5 4\n0 0\n7 -2\n1 1\n\nC 4 2\n0 0\n0 3\n3 3\n3 0\n0 0\n",
+  };
+  static const char alphabet[] = "C0123456789.-+eE#\n \t\rinfnaxC\0\x01\xff";
+  unsigned long long x = 88172645463325252ULL;
+  int broken = 0, accepted = 0;
+  char err[512], notes[4096], buf[512];
+  for (int it = 0; it < 4000; it++) {
+    const char *seed = seeds[it % 2];
+    size_t len = strlen(seed);
+    memcpy(buf, seed, len);
+    int muts = 1 + (int)((x >> 7) % 4);
+    for (int k = 0; k < muts; k++) {
+      x ^= x << 13, x ^= x >> 7, x ^= x << 17;
+      size_t at = len ? (size_t)(x % len) : 0;
+      switch ((x >> 32) % 5) {
+      case 0:   /* overwrite a byte */
+        if (len) buf[at] = alphabet[(x >> 40) % (sizeof alphabet - 1)];
+        break;
+      case 1:   /* insert a byte */
+        if (len + 1 < sizeof buf) {
+          memmove(buf + at + 1, buf + at, len - at);
+          buf[at] = alphabet[(x >> 40) % (sizeof alphabet - 1)];
+          len++;
+        }
+        break;
+      case 2:   /* delete a run */
+        if (len) {
+          size_t n = 1 + (x >> 44) % 6;
+          if (at + n > len) n = len - at;
+          memmove(buf + at, buf + at + n, len - at - n);
+          len -= n;
+        }
+        break;
+      case 3:   /* duplicate a run */
+        if (len && len + 12 < sizeof buf) {
+          size_t n = 1 + (x >> 44) % 12;
+          if (at + n > len) n = len - at;
+          memmove(buf + at + n, buf + at, len - at);
+          len += n;
+        }
+        break;
+      default:   /* truncate */
+        len = at;
+      }
+    }
+    contour_stack s;
+    int rc = parse(buf, len, &s, err, notes, sizeof notes);
+    if (rc != 0) {
+      if (strncmp(err, "t.contours:", 11) != 0 || strchr(err, '\n')) broken++;
+      continue;
+    }
+    accepted++;
+    int okst = s.n >= 2;
+    for (int i = 0; i < s.n; i++) {
+      const contour *c = &s.c[i];
+      okst &= c->n >= 3 && isfinite(c->z) && geom_area2(c->pt, c->n) >= 0 && !geom_collinear(c->pt, c->n);
+      for (int j = 0; j < c->n; j++) {
+        okst &= isfinite(c->pt[j].x) && isfinite(c->pt[j].y);
+        const vec2 *q = &c->pt[(j + 1) % c->n];
+        okst &= !(q->x == c->pt[j].x && q->y == c->pt[j].y);   /* no consecutive duplicates */
+      }
+      if (i > 0) okst &= c->z != s.c[i - 1].z;
+    }
+    if (!okst) broken++;
+    contour_stack_free(&s);
+  }
+  CHECK(broken == 0, "%d of 4000 mutated inputs broke the reader's promises", broken);
+  CHECK(accepted > 50 && accepted < 3950, "fuzzing reached both outcomes (%d accepted)", accepted);
+}
+
 int main(void) {
   check_bad();
+  check_fuzz();
   check_good();
   check_real();
   return check_done("test_contour");
