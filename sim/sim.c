@@ -369,6 +369,17 @@ static inline double reserve(sim *s, rank *r, double dur) {
   return start;
 }
 
+/* LogGP's overhead: r's processor is busy o from r's clock on (after any
+ * wait for it); r's clock moves to its end.  Returns when it began. */
+static double overhead(sim *s, rank *r, double o) {
+  double t0 = r->now, start = reserve(s, r, o);
+  r->st.cpu_wait += start - t0;
+  r->st.overhead += o;
+  if (s->tr && start > t0) trace_span(s->tr, "cpuwait", r->base.rank, r->proc, t0, start - t0, -1, -1);
+  r->now = start + o;
+  return start;
+}
+
 /* The rank that does not stop calling after the run stopped. */
 static void abandon(sim *s, rank *r) {
   fail(s, "rank %d kept calling after the run stopped (%d calls); abandoned it", r->base.rank,
@@ -441,13 +452,7 @@ static int sim_send(mp *self, int dst, int tag, const void *buf, size_t len) {
     arrival = t0 + c->m + (double)len * c->per_byte;
   } else {
     o = c->o;
-    double start = reserve(s, r, o);
-    r->st.cpu_wait += start - t0;
-    r->st.overhead += o;
-    if (s->tr && start > t0)
-      trace_span(s->tr, "cpuwait", r->base.rank, r->proc, t0, start - t0, -1, -1);
-    t0 = start;
-    r->now = start + o;
+    t0 = overhead(s, r, o);
     double *nic = &s->nic[r->proc], inject = r->now > *nic ? r->now : *nic;
     *nic = inject + c->g;
     arrival = inject + (len > 1 ? (double)(len - 1) * c->G : 0) + c->L;
@@ -537,13 +542,7 @@ static int sim_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status
   double before = r->now, t0 = r->now, o = 0;
   if (s->cfg.net == SIM_NET_LOGGP && s->ranks[m->src].proc != r->proc) {
     o = s->cfg.o;
-    double start = reserve(s, r, o);
-    r->st.cpu_wait += start - t0;
-    r->st.overhead += o;
-    if (s->tr && start > t0)
-      trace_span(s->tr, "cpuwait", r->base.rank, r->proc, t0, start - t0, -1, -1);
-    t0 = start;
-    r->now = start + o;
+    t0 = overhead(s, r, o);
   }
   size_t n = m->len <= cap ? m->len : cap;
   if (n) memcpy(buf, m->data, n);
