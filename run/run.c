@@ -1,4 +1,5 @@
-/* run.c -- the parallel algorithm on the simulated machine. */
+/* run.c -- the parallel algorithm on a backend: options, and the drivers
+ * for the simulated machine and for threads (MPI's is run_mpi.c). */
 #include "run.h"
 
 #include <stddef.h>
@@ -7,18 +8,48 @@
 
 #include "par_slave.h"
 #include "xmem.h"
+#ifdef TILESIM_MPI
+#include "run_mpi.h"
+#endif
+
+const char *run_backend_name(run_backend b) {
+  static const char *const name[] = {"sim", "threads", "mpi"};
+  return (unsigned)b < sizeof name / sizeof *name ? name[b] : "?";
+}
+
+int run_backend_ranks(run_backend b) {
+#ifdef TILESIM_MPI
+  if (b == RUN_MPI) return run_mpi_size();
+#else
+  (void)b;
+#endif
+  return 0;
+}
 
 void run_config_init(run_config *rc) {
   memset(rc, 0, sizeof *rc);
   rc->procs = 1;
+#ifdef TILESIM_MPI
+  rc->backend = RUN_MPI;
+#else
+  rc->backend = RUN_SIM;
+#endif
   sim_config_init(&rc->machine);
+  mpt_config_init(&rc->threads);
   rc->opt.alloc = ALLOC_HALF;
   rc->opt.min_diag = 1;
   rc->kind = COST_AREA;
 }
 
 const char run_options_help[] =
-    "  --procs P          simulated processors (P = 1: master and slave share one)\n"
+    "  --procs P          processors (P = 1: master and slave share one); ranks max(2, P)\n"
+#ifdef TILESIM_MPI
+    "  --backend NAME     mpi (default: the ranks of mpirun), sim or threads\n"
+#else
+    "  --backend NAME     sim (default: the simulated machine, simulated seconds) or\n"
+    "                     threads (a thread per rank, wall-clock seconds)\n"
+#endif
+    "  --spin S           threads: seconds a waiting rank spins before it sleeps\n"
     "  --alloc half|size  processor allocation: half (section 4) or by size (7.1)\n"
     "  --min-diag d       at least d nodes of a diagonal per slave (7.2); default 1\n"
     "  --machine NAME     machine profile: tc2000 (default) or unit\n"
@@ -57,6 +88,33 @@ int run_option(run_config *rc, const char *opt, const char *val, char *err, size
   if (strcmp(opt, "--procs") == 0) return integer(opt, val, 1, 4096, &rc->procs, err, errlen);
   if (strcmp(opt, "--min-diag") == 0)
     return integer(opt, val, 1, 1 << 30, &rc->opt.min_diag, err, errlen);
+  if (strcmp(opt, "--backend") == 0) {
+    if (strcmp(val, "sim") == 0) rc->backend = RUN_SIM;
+    else if (strcmp(val, "threads") == 0) rc->backend = RUN_THREADS;
+#ifdef TILESIM_MPI
+    else if (strcmp(val, "mpi") == 0) rc->backend = RUN_MPI;
+#endif
+    else {
+#ifdef TILESIM_MPI
+      snprintf(err, errlen, "--backend is mpi, sim or threads (%s)", val);
+#else
+      snprintf(err, errlen, "--backend is sim or threads (%s); mpi needs the MPI build, make mpi",
+               val);
+#endif
+      return -1;
+    }
+    return 1;
+  }
+  if (strcmp(opt, "--spin") == 0) {
+    double v;
+    if (seconds(opt, val, &v, err, errlen) < 0) return -1;
+    if (v > 10) {
+      snprintf(err, errlen, "--spin takes at most 10 seconds (%s)", val);
+      return -1;
+    }
+    rc->threads.spin_ns = (long)(v * 1e9 + 0.5);
+    return 1;
+  }
   if (strcmp(opt, "--alloc") == 0) {
     if (split_alloc_parse(val, &rc->opt.alloc) == 0) return 1;
     snprintf(err, errlen, "--alloc is half or size (%s)", val);
@@ -88,6 +146,45 @@ int run_option(run_config *rc, const char *opt, const char *val, char *err, size
   return 0;
 }
 
+/* The master's and the slaves' arguments and the mp program of nr ranks. */
+typedef struct {
+  par_master_arg marg;
+  par_slave_arg *sarg;   /* [nr]; sarg[0] unused */
+  mp_proc *procs;        /* [nr] */
+  int nr;
+} program;
+
+static void program_init(program *p, const run_config *rc, par_pair *pairs, int npairs, int nr) {
+  p->marg = (par_master_arg){npairs, pairs, rc->kind, rc->opt, 0, "", rc->progress, rc->progress_ud};
+  p->nr = nr;
+  p->sarg = xcalloc((size_t)nr, sizeof *p->sarg);
+  p->procs = xmallocarray((size_t)nr, sizeof *p->procs);
+  p->procs[0] = (mp_proc){par_master, &p->marg};
+  for (int r = 1; r < nr; r++) {
+    p->sarg[r].diag_sends = rc->diag_sends;
+    p->sarg[r].diag_recvs = rc->diag_recvs;
+    p->sarg[r].diag_len = rc->diag_len;
+    p->procs[r] = (mp_proc){par_slave, &p->sarg[r]};
+  }
+}
+
+/* After the run (res from the backend): a failure of the master or of a
+ * slave becomes the error.  Frees p; returns res. */
+static int program_finish(program *p, int res, char *err, size_t errlen) {
+  if (res == 0 && p->marg.failed) {
+    snprintf(err, errlen, "%s", p->marg.err);
+    res = -1;
+  }
+  for (int r = 1; res == 0 && r < p->nr; r++)
+    if (p->sarg[r].failed) {
+      snprintf(err, errlen, "%s", p->sarg[r].err);
+      res = -1;
+    }
+  free(p->sarg);
+  free(p->procs);
+  return res;
+}
+
 int run_sim(const run_config *rc, par_pair *pairs, int npairs, sim_stats *stats, char *err,
             size_t errlen) {
   int P = rc->procs, nr = run_ranks(P);
@@ -100,29 +197,41 @@ int run_sim(const run_config *rc, par_pair *pairs, int npairs, sim_stats *stats,
   free(place);
   if (!s) return -1;
   if (rc->trace_csv || rc->trace_json) sim_trace(s, rc->trace_csv, rc->trace_json);
-  par_master_arg marg = {npairs, pairs, rc->kind, rc->opt, 0, "", rc->progress, rc->progress_ud};
-  par_slave_arg *sarg = xcalloc((size_t)nr, sizeof *sarg);
-  mp_proc *procs = xmallocarray((size_t)nr, sizeof *procs);
-  procs[0] = (mp_proc){par_master, &marg};
-  for (int r = 1; r < nr; r++) {
-    sarg[r].diag_sends = rc->diag_sends;
-    sarg[r].diag_recvs = rc->diag_recvs;
-    sarg[r].diag_len = rc->diag_len;
-    procs[r] = (mp_proc){par_slave, &sarg[r]};
-  }
-  int res = sim_run(s, procs, err, errlen);
-  if (res == 0 && marg.failed) {
-    snprintf(err, errlen, "%s", marg.err);
-    res = -1;
-  }
-  for (int r = 1; res == 0 && r < nr; r++)
-    if (sarg[r].failed) {
-      snprintf(err, errlen, "%s", sarg[r].err);
-      res = -1;
-    }
+  program p;
+  program_init(&p, rc, pairs, npairs, nr);
+  int res = program_finish(&p, sim_run(s, p.procs, err, errlen), err, errlen);
   if (stats) *stats = *sim_stats_get(s);
   sim_free(s);
-  free(sarg);
-  free(procs);
   return res;
+}
+
+int run_threads(const run_config *rc, par_pair *pairs, int npairs, mpt_stats *stats, char *err,
+                size_t errlen) {
+  int nr = run_ranks(rc->procs);
+  mpt_config cfg = rc->threads;
+  cfg.warn = rc->machine.warn;
+  mpt *t = mpt_new(&cfg, nr, err, errlen);
+  if (!t) return -1;
+  program p;
+  program_init(&p, rc, pairs, npairs, nr);
+  int res = program_finish(&p, mpt_run(t, p.procs, err, errlen), err, errlen);
+  if (stats) *stats = *mpt_stats_get(t);
+  mpt_free(t);
+  return res;
+}
+
+int run_pairs(const run_config *rc, par_pair *pairs, int npairs, char *err, size_t errlen) {
+  switch (rc->backend) {
+  case RUN_SIM: return run_sim(rc, pairs, npairs, NULL, err, errlen);
+  case RUN_THREADS: return run_threads(rc, pairs, npairs, NULL, err, errlen);
+  case RUN_MPI:
+#ifdef TILESIM_MPI
+    return run_mpi_pairs(rc, pairs, npairs, err, errlen);
+#else
+    break;
+#endif
+  }
+  snprintf(err, errlen, "run: backend %s is not built in (make mpi builds the MPI programs)",
+           run_backend_name(rc->backend));
+  return -1;
 }

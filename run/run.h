@@ -1,6 +1,13 @@
 /* run.h -- running the parallel algorithm (algo/par_*.c) on a backend: the
- * simulated machine (sim/) for now.  The algorithm itself knows nothing of
- * what runs it; this is where ranks meet processors. */
+ * simulated machine (sim/), POSIX threads (mp/threads.h) or, in the MPI
+ * build, MPI processes (run_mpi.h).  The algorithm itself knows nothing of
+ * what runs it; this is where ranks meet processors.
+ *
+ * Ranks: P processors run max(2, P) ranks, rank 0 the master.  On the
+ * simulator P = 1 puts master and slave on one simulated processor.  On
+ * threads and MPI there is no processor to share: P = 1 and P = 2 both run
+ * the master and one slave, and the operating system places them; the
+ * times are real seconds. */
 #ifndef RUN_H
 #define RUN_H
 
@@ -8,11 +15,27 @@
 
 #include "par_master.h"
 #include "sim.h"
+#include "threads.h"
+
+typedef enum {
+  RUN_SIM,       /* the simulated machine: simulated seconds */
+  RUN_THREADS,   /* one POSIX thread per rank: wall-clock seconds */
+  RUN_MPI        /* one MPI process per rank (MPI build only): wall-clock seconds */
+} run_backend;
+
+/* "sim", "threads", "mpi". */
+const char *run_backend_name(run_backend b);
+
+/* How many ranks the backend can run: 0 for no limit (sim, threads); for
+ * MPI the size of the mpirun (0 outside the MPI build). */
+int run_backend_ranks(run_backend b);
 
 typedef struct {
   int procs;            /* P >= 1: P = 1 puts master and slave on one processor,
                            P >= 2 gives the master one and P-1 slaves one each */
+  run_backend backend;  /* what runs the ranks (default: sim; mpi in MPI builds) */
   sim_config machine;   /* the machine model (procs and place are set here) */
+  mpt_config threads;   /* the threads backend's settings */
   par_options opt;
   cost_kind kind;
   FILE *trace_csv, *trace_json;   /* a timeline, or NULL */
@@ -22,13 +45,14 @@ typedef struct {
   void *progress_ud;
 } run_config;
 
-/* A run_config with the defaults: 1 processor, the tc2000 machine, half
- * allocation, d = 1, area cost. */
+/* A run_config with the defaults: 1 processor, the simulator (MPI in an
+ * MPI build) with the tc2000 machine, half allocation, d = 1, area cost. */
 void run_config_init(run_config *rc);
 
 /* Take one command-line option of the machine or the algorithm:
  *   --procs P  --alloc half|size  --min-diag d  --machine NAME  --net ideal|bus|loggp
  *   --m S  --c S  --per-byte S  --local S  --L S  --o S  --g S  --G S
+ *   --backend sim|threads (|mpi in MPI builds)  --spin S (threads)
  * (--machine sets every machine parameter; give it before the others).
  * Returns 1 if opt is one of these (val consumed), 0 if not, -1 for a bad
  * value, with a message in err. */
@@ -45,5 +69,15 @@ static inline int run_ranks(int procs) { return procs < 2 ? 2 : procs; }
  * message.  *stats (may be NULL) gets the simulator's statistics. */
 int run_sim(const run_config *rc, par_pair *pairs, int npairs, sim_stats *stats, char *err,
             size_t errlen);
+
+/* The same on POSIX threads, one run for all the pairs: par_pair.time is
+ * wall-clock seconds (the master's, from sending a pair's points to holding
+ * its optimum).  rc->machine is not used.  *stats (may be NULL) gets the
+ * backend's statistics. */
+int run_threads(const run_config *rc, par_pair *pairs, int npairs, mpt_stats *stats, char *err,
+                size_t errlen);
+
+/* The pairs on rc->backend: run_sim, run_threads or (MPI build) run_mpi_pairs. */
+int run_pairs(const run_config *rc, par_pair *pairs, int npairs, char *err, size_t errlen);
 
 #endif

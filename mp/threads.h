@@ -1,0 +1,116 @@
+/* threads.h -- the message-passing interface (mp.h) on POSIX threads: one
+ * thread per rank, real message queues, real time.
+ *
+ * The same mp program that runs on the simulator (sim/) runs here unchanged:
+ * every rank is a thread of this process, a message is copied into the
+ * receiver's mailbox at mp_send and out of it at mp_recv, mp_compute does
+ * nothing (the work a rank does is the work it really does), and mp_time is
+ * wall-clock seconds since the run began.
+ *
+ * SEMANTICS (mp.h's contract, as this backend keeps it)
+ *
+ *   Mailboxes.  Each rank has one, in arrival order: a send appends under
+ *   the receiver's lock.  Messages between one pair of ranks therefore
+ *   arrive, and are received, in send order; a recv takes the first message
+ *   in its mailbox that matches (src or MP_ANY, tag or MP_ANY), i.e. the
+ *   earliest arrival.  Which of two racing senders arrives first is the
+ *   machine's business: it may change from run to run (mp.h only promises
+ *   determinism of deterministic backends; the paper's algorithm gives the
+ *   same result whatever the order).
+ *
+ *   Waiting.  A recv that finds nothing spins, watching its mailbox's
+ *   arrival counter, for a bounded time (cfg.spin_ns; pause instructions,
+ *   or sched_yield while more threads are awake than there are
+ *   processors), and only then sleeps on a condition variable.  A
+ *   condition-variable wake-up costs microseconds (tens of them in a
+ *   virtual machine), more than the work between two of the algorithm's
+ *   boundary messages; a short spin catches those messages within a
+ *   cache-line transfer.  A rank that waits long (the master, mostly)
+ *   sleeps and leaves its core to the others.
+ *
+ *   Deadlock.  When every live thread sleeps in recv with no matching
+ *   message in its mailbox (messages are never in flight here: a send
+ *   delivers at once), the run is stopped: each of those recvs returns
+ *   MP_EDEADLOCK, every later mp call MP_ESTOPPED, and mpt_run returns -1
+ *   with a message naming each blocked rank and what it waits for:
+ *     deadlock after 0.0042 s: rank 1 waits in recv(src=any, tag=3); rank 2 ...
+ *   A rank must return once its calls fail; one that loops forever keeps
+ *   the run from ending (threads cannot be abandoned the way the
+ *   simulator abandons a coroutine).
+ *
+ *   Errors, as on the simulator: a send to, or a recv or probe from, a rank
+ *   that does not exist (MP_ERANK), a negative tag, a negative or non-finite
+ *   compute, a NULL buffer with a length (MP_EARG): the call fails, the rank
+ *   goes on, and mpt_run returns -1 naming the rank and the argument.
+ *
+ *   Warnings (counted in mpt_stats.warnings, printed to cfg.warn unless it is
+ *   NULL): a message longer than the recv buffer (MP_ETRUNC, the first cap
+ *   bytes copied, the message consumed), and messages never received:
+ *     threads: warning: rank 3 finished with 2 unread messages (first from rank 1, tag 4)
+ *
+ * Usage:
+ *   mpt_config cfg; mpt_config_init(&cfg);
+ *   mpt *t = mpt_new(&cfg, nranks, err, sizeof err);
+ *   if (mpt_run(t, procs, err, sizeof err) != 0) ...;
+ *   double wall = mpt_stats_get(t)->wall_s;
+ *   mpt_free(t); */
+#ifndef THREADS_H
+#define THREADS_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "mp.h"
+
+typedef struct {
+  long spin_ns;   /* how long a waiting recv watches its mailbox before it
+                     sleeps, nanoseconds (>= 0; 0: sleep at once) */
+  FILE *warn;     /* warnings go here (default stderr); NULL: quiet */
+} mpt_config;
+
+/* The defaults: spin_ns = 50 us, warn = stderr. */
+void mpt_config_init(mpt_config *cfg);
+
+typedef struct mpt mpt;
+
+/* A machine of nranks (>= 1) threads under cfg (copied).  NULL and a
+ * message in err if nranks < 1 or spin_ns < 0. */
+mpt *mpt_new(const mpt_config *cfg, int nranks, char *err, size_t errlen);
+
+/* Run procs[0..nranks-1], one thread each, and return when every one has
+ * returned.  Once per machine.  0, or -1 and a message in err: deadlock, a
+ * bad argument to an mp call, a thread that could not be started.
+ * Statistics are available either way. */
+int mpt_run(mpt *t, const mp_proc *procs, char *err, size_t errlen);
+
+typedef struct {
+  int done;                   /* 1 once its main returned */
+  double finish;              /* wall seconds from the start when it returned */
+  double recv_wait;           /* wall seconds inside mp_recv without a message */
+  long long sleeps;           /* recvs that went to sleep after spinning */
+  long long sent, received;   /* messages */
+  long long bytes_sent, bytes_received;
+  long long unread;           /* messages sent to it and never received */
+} mpt_rank_stats;
+
+typedef struct {
+  int ranks;
+  double wall_s;              /* seconds from the start to the last return */
+  long long messages;         /* messages sent */
+  long long received;         /* messages received */
+  long long bytes;            /* bytes sent */
+  long long unread;           /* messages never received */
+  long long sleeps;           /* recvs that slept, all ranks */
+  long long warnings;         /* truncations, unread messages */
+  long long errors;           /* bad arguments, deadlock, ... */
+  int deadlock;               /* 1 if the run ended in a deadlock */
+} mpt_stats;
+
+/* Statistics of one rank (0 <= rank < nranks) and of the run: valid after
+ * mpt_run, until mpt_free; all zero before. */
+const mpt_rank_stats *mpt_rank(const mpt *t, int rank);
+const mpt_stats *mpt_stats_get(const mpt *t);
+
+void mpt_free(mpt *t);   /* NULL is fine */
+
+#endif
