@@ -1,17 +1,23 @@
 /* bench_paper.c -- the paper's experiments: speedup against processors for
  * contours of 100..500 points (Fig. 16, 18/19), time against processors for
- * d = 20..100 (Fig. 20/21), on the simulated machine.
+ * d = 20..100 (Fig. 20/21), on the simulated machine or, with --backend
+ * threads, measured on this one.
  *
  *   bench [--procs LIST] [--points LIST] [--alloc half|size[,..]] [--min-diag LIST]
  *         [--m LIST] [--c LIST] [--net MODEL] [--machine NAME] [--seed S]
- *         [--input STACK [--pair K]] [-o FILE] [--jobs N]
+ *         [--input STACK [--pair K]] [-o FILE] [--jobs N] [--backend sim|threads]
  *
  * LIST is comma-separated numbers and ranges a..b.  Every combination is a
  * run; speedup = T(1)/T(P) for the same configuration (P = 1 is run, and not
  * printed, when the list lacks it).  Generated pairs are the same for every
  * configuration with the same points and seed ("generated in a somewhat
  * random fashion", section 6); their optimum, `cost`, is the same on every
- * row of a pair and doubles as a checksum. */
+ * row of a pair and doubles as a checksum.
+ *
+ * With --backend threads (or mpi in bench-mpi) the sim_time column holds
+ * the wall-clock seconds measured here, the backend column says so, and
+ * net, m and c are left empty: they describe only the simulated machine.
+ * Runs are then one at a time (--jobs 1), each alone on the cores. */
 #include "bench_paper.h"
 
 #include <errno.h>
@@ -34,10 +40,12 @@
 const char bench_paper_help[] =
     "[--procs LIST] [--points LIST] [--alloc half|size[,...]] [--min-diag LIST]\n"
     "      [--m LIST] [--c LIST] [--net ideal|bus|loggp] [--machine NAME] [--seed S]\n"
-    "      [--input STACK [--pair K]] [-o FILE] [--jobs N]\n"
+    "      [--input STACK [--pair K]] [-o FILE] [--jobs N] [--backend sim|threads]\n"
     "      the paper's experiments (no mode option): every combination is a run;\n"
     "      LIST is numbers and ranges, e.g. 1..16 or 100,200,300.  Defaults: points\n"
-    "      100,200,300,400,500, procs 1..16, alloc half, min-diag 1, the tc2000 machine";
+    "      100,200,300,400,500, procs 1..16, alloc half, min-diag 1, the tc2000 machine.\n"
+    "      --backend threads runs them on threads here: sim_time is then wall-clock\n"
+    "      seconds (the backend column says which)";
 
 typedef struct {
   int points, procs, alloc, d, hidden, pairid;
@@ -60,6 +68,15 @@ typedef struct {
   int pair;
 } plan;
 
+void bench_make_pair(unsigned long long seed, int points, vec2 **P, vec2 **Q) {
+  rng g;
+  rng_seed(&g, seed * 1000003ULL + (unsigned long long)points);
+  *P = xmallocarray((size_t)points, sizeof **P);
+  *Q = xmallocarray((size_t)points, sizeof **Q);
+  gen_star(&g, *P, points, 0, 0, 100, 0.3);
+  gen_star(&g, *Q, points, 4 * rng_uniform(&g) - 2, 4 * rng_uniform(&g) - 2, 95, 0.3);
+}
+
 static void make_pair(const plan *pl, int points, vec2 **P, int *np, double *zp, vec2 **Q, int *nq,
                       double *zq) {
   if (pl->input) {
@@ -67,12 +84,7 @@ static void make_pair(const plan *pl, int points, vec2 **P, int *np, double *zp,
     *P = a->pt, *np = a->n, *zp = a->z, *Q = b->pt, *nq = b->n, *zq = b->z;
     return;
   }
-  rng g;
-  rng_seed(&g, pl->seed * 1000003ULL + (unsigned long long)points);
-  *P = xmallocarray((size_t)points, sizeof **P);
-  *Q = xmallocarray((size_t)points, sizeof **Q);
-  gen_star(&g, *P, points, 0, 0, 100, 0.3);
-  gen_star(&g, *Q, points, 4 * rng_uniform(&g) - 2, 4 * rng_uniform(&g) - 2, 95, 0.3);
+  bench_make_pair(pl->seed, points, P, Q);
   *np = *nq = points, *zp = 0, *zq = 5;
 }
 
@@ -94,7 +106,7 @@ static outcome one_run(const plan *pl, const job *jb) {
   memset(&pr, 0, sizeof pr);
   pr.P = P, pr.np = np, pr.zp = zp, pr.Q = Q, pr.nq = nq, pr.zq = zq;
   double t0 = wallclock();
-  o.ok = run_sim(&rc, &pr, 1, NULL, o.err, sizeof o.err) == 0;
+  o.ok = run_pairs(&rc, &pr, 1, o.err, sizeof o.err) == 0;
   o.wall = wallclock() - t0;
   if (o.ok) {
     o.sim_time = pr.time;
@@ -184,7 +196,7 @@ static int usage(const char *why, const char *val) {
   }
   fprintf(stderr, "usage: bench [--procs LIST] [--points LIST] [--alloc half|size[,...]] "
                   "[--min-diag LIST] [--m LIST] [--c LIST] [--net MODEL] [--machine NAME] "
-                  "[--seed S] [--input STACK [--pair K]] [-o FILE] [--jobs N]\n");
+                  "[--seed S] [--input STACK [--pair K]] [-o FILE] [--jobs N] [--backend sim|threads]\n");
   return 2;
 }
 
@@ -242,7 +254,17 @@ int bench_paper(int argc, char **argv) {
       if (k == 0) return usage("unknown option", a);
     }
   }
+  if (rc.backend != RUN_SIM && jobs > 1)
+    return usage("--jobs runs simulations side by side; measured runs (--backend threads) go one at a time", NULL);
   if (procs.n == 0) bench_list_parse("1..16", &procs, 1, 1, 4096);
+  int limit = run_backend_ranks(rc.backend);
+  for (int i = 0; limit > 0 && i < procs.n; i++)
+    if (run_ranks((int)procs.v[i]) > limit) {
+      char msg[160];
+      snprintf(msg, sizeof msg, "--procs %d needs %d ranks; the %s run has %d", (int)procs.v[i],
+               run_ranks((int)procs.v[i]), run_backend_name(rc.backend), limit);
+      return usage(msg, NULL);
+    }
   if (points.n == 0) bench_list_parse("100,200,300,400,500", &points, 1, 3, 100000);
   if (diags.n == 0) bench_list_parse("1", &diags, 1, 1, 1e9);
   if (ms.n == 0) ms.n = 1, ms.v[0] = rc.machine.m;
@@ -311,7 +333,7 @@ int bench_paper(int argc, char **argv) {
     f = af.f;
   }
   fprintf(f, "points,procs,alloc,min_diag,net,m,c,seed,sim_time,speedup,efficiency,messages,bytes,"
-             "nodes,cost,wall_s,msg_boundary,msg_backtrack,msg_bounds,msg_control,input,pair\n");
+             "nodes,cost,wall_s,msg_boundary,msg_backtrack,msg_bounds,msg_control,input,pair,backend\n");
   for (int i = 0; i < njobs; i++) {
     if (jb[i].hidden) continue;
     double t1 = 0;   /* T(1) of the same configuration */
@@ -320,13 +342,17 @@ int bench_paper(int argc, char **argv) {
     double sp = t1 / o[i].sim_time;
     uint64_t msgs = 0;
     for (int q = 0; q < PAR_KINDS; q++) msgs += o[i].msgs[q];
-    fprintf(f, "%d,%d,%s,%d,%s,%.9g,%.9g,%llu,%.9f,%.6f,%.6f,%llu,%llu,%llu,%.17g,%.6f,%llu,%llu,%llu,%llu,%s,%d\n",
+    char machine[96] = ",,";   /* net, m, c: the simulated machine's, or empty */
+    if (rc.backend == RUN_SIM)
+      snprintf(machine, sizeof machine, "%s,%.9g,%.9g", sim_net_name(rc.machine.net), jb[i].m, jb[i].c);
+    fprintf(f, "%d,%d,%s,%d,%s,%llu,%.9f,%.6f,%.6f,%llu,%llu,%llu,%.17g,%.6f,%llu,%llu,%llu,%llu,%s,%d,%s\n",
             jb[i].points, jb[i].procs, split_alloc_name((split_alloc)jb[i].alloc), jb[i].d,
-            sim_net_name(rc.machine.net), jb[i].m, jb[i].c, seed, o[i].sim_time, sp, sp / jb[i].procs,
+            machine, seed, o[i].sim_time, sp, sp / jb[i].procs,
             (unsigned long long)msgs, (unsigned long long)o[i].bytes, (unsigned long long)o[i].nodes,
             o[i].cost, o[i].wall, (unsigned long long)o[i].msgs[PAR_BOUNDARY],
             (unsigned long long)o[i].msgs[PAR_BACKTRACK], (unsigned long long)o[i].msgs[PAR_BOUNDS],
-            (unsigned long long)o[i].msgs[PAR_CONTROL], input ? input : "generated", input ? pairk : 0);
+            (unsigned long long)o[i].msgs[PAR_CONTROL], input ? input : "generated", input ? pairk : 0,
+            run_backend_name(rc.backend));
   }
   int wbad = 0;
   if (outpath && atomicfile_close(&af, 1, err, sizeof err) != 0) {

@@ -1,14 +1,15 @@
 /* tile.c -- ./tile: contours in, the optimal tiling out (CSV report and a mesh).
  *
  *   tile STACK [-o OUT.obj|OUT.ply|OUT.stl] [--cost area|span] [--caps] [-q]
- *        [--procs P [--alloc half|size] [--min-diag d] [--machine NAME]
- *         [--net ideal|bus|loggp] [--m S] [--c S] ... [--trace FILE]]
+ *        [--procs P [--backend sim|threads] [--alloc half|size] [--min-diag d]
+ *         [--machine NAME] [--net ideal|bus|loggp] [--m S] [--c S] ... [--trace FILE]]
  *
  * Every contour is tiled with the next one in file order.  Without --procs
  * the serial solver does it (algo/tiling.h); with --procs the paper's
- * parallel algorithm does, on the simulated machine (run/run.h), and each
- * row also gives the pair's simulated time and messages.  The result, path
- * and mesh are the same either way. */
+ * parallel algorithm does (run/run.h): on the simulated machine, or on
+ * threads with --backend threads, or on MPI processes in the MPI build
+ * (tile-mpi, `make mpi`), and each row also gives the pair's time and
+ * messages.  The result, path and mesh are the same either way. */
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -22,11 +23,15 @@
 #include "run.h"
 #include "tiling.h"
 #include "xmem.h"
+#ifdef TILESIM_MPI
+#include "run_mpi.h"
+#endif
 
 static const char usage_line[] =
     "usage: tile STACK [-o OUT.obj|OUT.ply|OUT.stl] [--cost area|span] [--caps] [-q]\n"
-    "            [--procs P [--alloc half|size] [--min-diag d] [--machine NAME]\n"
-    "             [--net ideal|bus|loggp] [--m S] [--c S] [--trace FILE.csv|FILE.json]]\n";
+    "            [--procs P [--backend sim|threads] [--alloc half|size] [--min-diag d]\n"
+    "             [--machine NAME] [--net ideal|bus|loggp] [--m S] [--c S]\n"
+    "             [--trace FILE.csv|FILE.json]]\n";
 
 static void usage(FILE *f) {
   fputs(usage_line, f);
@@ -42,14 +47,18 @@ static void usage(FILE *f) {
         "  -q, --quiet        no notes about repaired input on stderr\n"
         "  -h, --help         this text\n"
         "\n"
-        "The parallel algorithm (Johnson, Livadas, Talele 1993) on the simulated machine:\n",
+        "The parallel algorithm (Johnson, Livadas, Talele 1993) on a machine: simulated,\n"
+        "threads, or MPI processes (tile-mpi under mpirun; --procs defaults to all ranks):\n",
         f);
   fputs(run_options_help, f);
-  fputs("  --trace FILE       the timeline: CSV, or Chrome trace JSON if FILE ends in .json\n"
+  fputs("  --trace FILE       the simulated timeline: CSV, or Chrome trace JSON (.json)\n"
         "\n"
         "CSV on stdout: pair,z0,z1,m,n,cost,area,volume,nodes; with --procs also\n"
-        "procs,sim_time,msg_boundary,msg_backtrack,msg_bounds,msg_control,bytes;\n"
-        "with --caps a last row 'mesh' with the whole mesh's area and enclosed volume.\n",
+        "procs,sim_time,msg_boundary,msg_backtrack,msg_bounds,msg_control,bytes,backend.\n"
+        "sim_time is the master's time from sending the pair's points to holding its\n"
+        "optimum: simulated seconds when backend is sim, wall-clock seconds measured on\n"
+        "this machine when it is threads or mpi.  With --caps a last row 'mesh' with the\n"
+        "whole mesh's area and enclosed volume.\n",
         f);
 }
 
@@ -66,7 +75,7 @@ static void progress(void *ud, int done, int total) {
   fprintf(stderr, "\rtile: pair %d of %d", done, total);
 }
 
-/* The parallel run of the whole stack, one simulation; fills the pairs. */
+/* The parallel run of the whole stack, one run of the backend; fills the pairs. */
 static int run_parallel(run_config *rc, const contour_stack *s, par_pair *pr, const char *trace) {
   char err[512];
   atomicfile tf = {NULL, NULL, NULL};
@@ -85,9 +94,9 @@ static int run_parallel(run_config *rc, const contour_stack *s, par_pair *pr, co
     else rc->trace_csv = tf.f;
   }
   if (isatty(2) && s->n > 2) rc->progress = progress;
-  int res = run_sim(rc, pr, s->n - 1, NULL, err, sizeof err);
+  int res = run_pairs(rc, pr, s->n - 1, err, sizeof err);
   if (rc->progress) fputs("\r\033[K", stderr);
-  if (res != 0) fprintf(stderr, "tile: the simulated run failed: %s\n", err);
+  if (res != 0) fprintf(stderr, "tile: the parallel run (%s) failed: %s\n", run_backend_name(rc->backend), err);
   if (tf.f && atomicfile_close(&tf, res == 0, err, sizeof err) != 0 && res == 0) {
     fprintf(stderr, "tile: %s\n", err);
     res = -1;
@@ -95,9 +104,9 @@ static int run_parallel(run_config *rc, const contour_stack *s, par_pair *pr, co
   return res;
 }
 
-int main(int argc, char **argv) {
+static int tile_main(int argc, char **argv) {
   const char *in = NULL, *out = NULL, *trace = NULL;
-  int caps = 0, quiet = 0, parallel = 0;
+  int caps = 0, quiet = 0, parallel = 0, backend_given = 0;
   run_config rc;
   run_config_init(&rc);
   rc.machine.warn = stderr;
@@ -128,6 +137,7 @@ int main(int argc, char **argv) {
         return bad_usage("unknown option (%s)", a);
       }
       if (strcmp(a, "--procs") == 0) parallel = 1;
+      if (strcmp(a, "--backend") == 0) backend_given = 1;
       i++;
     } else if (in) {
       return bad_usage("one contour stack at a time (%s)", a);
@@ -136,7 +146,19 @@ int main(int argc, char **argv) {
     }
   }
   if (!in) return bad_usage("%s", "no contour stack given");
+  if (!parallel && rc.backend == RUN_MPI && run_backend_ranks(RUN_MPI) >= 2) {
+    parallel = 1;   /* tile-mpi under mpirun -np N: the N ranks */
+    rc.procs = run_backend_ranks(RUN_MPI);
+  }
   if (trace && !parallel) return bad_usage("%s", "--trace needs --procs (it traces the simulated machine)");
+  if (trace && rc.backend != RUN_SIM) return bad_usage("%s", "--trace traces the simulated machine (--backend sim)");
+  if (backend_given && !parallel) return bad_usage("%s", "--backend needs --procs");
+  if (parallel && run_backend_ranks(rc.backend) > 0 && run_ranks(rc.procs) > run_backend_ranks(rc.backend)) {
+    char msg[160];
+    snprintf(msg, sizeof msg, "--procs %d needs %d ranks; the %s run has %d", rc.procs,
+             run_ranks(rc.procs), run_backend_name(rc.backend), run_backend_ranks(rc.backend));
+    return bad_usage("%s", msg);
+  }
 
   contour_stack s;
   if (contour_read(in, &s, quiet ? NULL : stderr, "tile", err, sizeof err) != 0) {
@@ -161,7 +183,7 @@ int main(int argc, char **argv) {
   double total_cost = 0;
   unsigned long long total_nodes = 0;
   printf("pair,z0,z1,m,n,cost,area,volume,nodes%s\n",
-         parallel ? ",procs,sim_time,msg_boundary,msg_backtrack,msg_bounds,msg_control,bytes" : "");
+         parallel ? ",procs,sim_time,msg_boundary,msg_backtrack,msg_bounds,msg_control,bytes,backend" : "");
   for (int i = 0; i < npairs; i++) {
     const contour *P = &s.c[i], *Q = &s.c[i + 1];
     tiling t;
@@ -175,10 +197,10 @@ int main(int argc, char **argv) {
       const par_counts *c = &pr[i].counts;
       uint64_t bytes = 0;
       for (int k = 0; k < PAR_KINDS; k++) bytes += c->bytes[k];
-      printf(",%d,%.9f,%llu,%llu,%llu,%llu,%llu", rc.procs, pr[i].time,
+      printf(",%d,%.9f,%llu,%llu,%llu,%llu,%llu,%s", rc.procs, pr[i].time,
              (unsigned long long)c->msgs[PAR_BOUNDARY], (unsigned long long)c->msgs[PAR_BACKTRACK],
              (unsigned long long)c->msgs[PAR_BOUNDS], (unsigned long long)c->msgs[PAR_CONTROL],
-             (unsigned long long)bytes);
+             (unsigned long long)bytes, run_backend_name(rc.backend));
     }
     putchar('\n');
     total_cost += t.cost;
@@ -190,7 +212,7 @@ int main(int argc, char **argv) {
   if (caps) {
     mesh_add_caps(&me, &s);
     printf("mesh,%.17g,%.17g,,,%.17g,%.17g,%.17g,%llu%s\n", s.c[0].z, s.c[s.n - 1].z, total_cost,
-           mesh_area(&me), mesh_volume(&me), total_nodes, parallel ? ",,,,,,," : "");
+           mesh_area(&me), mesh_volume(&me), total_nodes, parallel ? ",,,,,,,," : "");
   }
   if (fflush(stdout) != 0) {
     fprintf(stderr, "tile: cannot write the report (%s)\n", strerror(errno));
@@ -205,3 +227,11 @@ int main(int argc, char **argv) {
   contour_stack_free(&s);
   return rcode;
 }
+
+#ifdef TILESIM_MPI
+/* tile-mpi: rank 0 runs tile_main with the master on MPI; the others serve
+ * as slaves until it is done. */
+int main(int argc, char **argv) { return run_mpi_main(argc, argv, tile_main); }
+#else
+int main(int argc, char **argv) { return tile_main(argc, argv); }
+#endif

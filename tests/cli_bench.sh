@@ -40,13 +40,22 @@ for args in "--frob" "--ring" "--ring 0 --laps 1" "--ring 4" "--ring 4 --laps x"
             "--ring 4 --laps 2 --net token" "--ring 4 --laps 2 --m -1" \
             "--ring 4 --laps 2 --bogus 1" "--ring 4 --laps 2 --profile nope" "--switch" "--switch 1" \
             "--procs 0" "--procs 1..x" "--points 2" "--alloc third" "--min-diag 0" "--m -1" "--jobs 0" \
-            "--tiler --points 1" "--procs 4 --net token"; do
+            "--tiler --points 1" "--procs 4 --net token" "--backend mpi" "--backend threads --jobs 2"; do
   # shellcheck disable=SC2086
   "$bench" $args >"$tmp.out" 2>"$tmp.err"; rc=$?
   if [ $rc -eq 2 ] && [ ! -s "$tmp.out" ] && grep -q '^usage: bench' "$tmp.err"; then ok
   else fail "bench $args: exit $rc, stderr: $(cat "$tmp.err")"; fi
 done
 rm -f "$tmp.out" "$tmp.err"
+
+# Measured runs on threads: the same optimum as the simulator's, a backend column.
+out=$("$bench" --points 60 --procs 1,3 --backend threads 2>&1); rc=$?
+sim=$("$bench" --points 60 --procs 3 2>&1)
+[ $rc -eq 0 ] && [ "$(printf '%s\n' "$out" | tail -n +2 | wc -l)" -eq 2 ] && ok || fail "--backend threads: $out"
+printf '%s\n' "$out" | awk -F, 'NR>1 && ($23 != "threads" || $9 <= 0 || $5 != "") {bad=1} END{exit bad}' \
+  && ok || fail "--backend threads rows: $out"
+[ "$(printf '%s\n' "$out" | tail -1 | cut -d, -f15)" = "$(printf '%s\n' "$sim" | tail -1 | cut -d, -f15)" ] \
+  && ok || fail "threads and sim optima differ: $out / $sim"
 
 "$bench" --help | grep -q -- '--ring P --laps K' && ok || fail "--help does not list --ring"
 

@@ -99,7 +99,15 @@ for args in "--procs 1" "--procs 2 --alloc size" "--procs 7 --min-diag 20 --net 
   "$TILE" $DATA/prostate_3.contours -q $args -o "$T/par.obj" > "$T/par.csv" 2> "$T/err" && ok || bad "$args: $(cat "$T/err")"
   cut -d, -f1-9 "$T/par.csv" | tail -n +2 | cmp -s - "$(tail -n +2 "$T/ser.csv" > "$T/ser9"; echo "$T/ser9")" && ok || bad "$args: the report differs from the serial one"
   cmp -s "$T/par.obj" "$T/ser.obj" && ok || bad "$args: the mesh differs from the serial one"
-  head -1 "$T/par.csv" | grep -qx 'pair,z0,z1,m,n,cost,area,volume,nodes,procs,sim_time,msg_boundary,msg_backtrack,msg_bounds,msg_control,bytes' && ok || bad "$args: header $(head -1 "$T/par.csv")"
+  head -1 "$T/par.csv" | grep -qx 'pair,z0,z1,m,n,cost,area,volume,nodes,procs,sim_time,msg_boundary,msg_backtrack,msg_bounds,msg_control,bytes,backend' && ok || bad "$args: header $(head -1 "$T/par.csv")"
+  awk -F, 'NR>1 && $17 != "sim" {bad=1} END{exit bad}' "$T/par.csv" && ok || bad "$args: backend column is not sim"
+done
+# The same algorithm on threads: the same report and mesh, real times.
+for args in "--procs 1" "--procs 3" "--procs 6 --alloc size --min-diag 20" "--procs 16"; do
+  "$TILE" $DATA/prostate_3.contours -q $args --backend threads -o "$T/thr.obj" > "$T/thr.csv" 2> "$T/err" && ok || bad "threads $args: $(cat "$T/err")"
+  cut -d, -f1-9 "$T/thr.csv" | tail -n +2 | cmp -s - "$T/ser9" && ok || bad "threads $args: the report differs from the serial one"
+  cmp -s "$T/thr.obj" "$T/ser.obj" && ok || bad "threads $args: the mesh differs from the serial one"
+  awk -F, 'NR>1 && ($17 != "threads" || $11 <= 0) {bad=1} END{exit bad}' "$T/thr.csv" && ok || bad "threads $args: backend or time column"
 done
 "$TILE" $DATA/prostate_3.contours -q --procs 5 --trace "$T/t1.json" > "$T/p1.csv" && "$TILE" $DATA/prostate_3.contours -q --procs 5 --trace "$T/t2.json" > "$T/p2.csv" && ok || bad "--trace"
 cmp -s "$T/p1.csv" "$T/p2.csv" && cmp -s "$T/t1.json" "$T/t2.json" && ok || bad "two parallel runs or traces differ"
@@ -115,6 +123,11 @@ usage $DATA/tinypatient_1.contours --procs 4 --m -1
 usage $DATA/tinypatient_1.contours --procs 4 --c nan
 usage $DATA/tinypatient_1.contours --procs 4 --machine cray
 usage $DATA/tinypatient_1.contours --trace "$T/x.json"
+usage $DATA/tinypatient_1.contours --backend threads
+usage $DATA/tinypatient_1.contours --procs 2 --backend mpi
+usage $DATA/tinypatient_1.contours --procs 2 --backend cluster
+usage $DATA/tinypatient_1.contours --procs 2 --backend threads --trace "$T/x.json"
+usage $DATA/tinypatient_1.contours --procs 2 --backend threads --spin -1
 [ ! -e "$T/x.json" ] && ok || bad "a trace written after bad usage"
 echo "cli_tile: $pass passed, $fail failed"
 [ $fail -eq 0 ]
