@@ -5,6 +5,8 @@
 #   make bench           the paper's experiments: CSV and SVG under plots/
 #   make bench-tile      the tiler's speed and memory figures
 #   make valgrind        the tests under valgrind, without sanitizers
+#   make mpi             ./tile-mpi and ./bench-mpi with mpicc (mpirun -np P ...)
+#   make simgrid         the simulator against SimGrid's SMPI (tests/simgrid.sh)
 #   make install PREFIX=/usr/local
 #   make clean
 
@@ -24,6 +26,16 @@ CHKFLAGS = -O1 -g -Werror $(SAN)
 # which only mpicc can build (make mpi).
 LIBDIRS  = util mp sim algo run
 LIBSRC   = $(filter-out %mpi.c,$(wildcard $(addsuffix /*.c,$(LIBDIRS))))
+# The MPI build (make mpi): every library source, the MPI backend included,
+# and tile and bench from their usual sources, by $(MPICC) with -DTILESIM_MPI
+# into $(MPIDIR).  Not sanitized; warnings as everywhere.  make check runs an
+# MPI test when $(MPICC) is on the PATH.
+MPICC   ?= mpicc
+MPIDIR  ?= build/mpi
+MPIFLAGS = -O2 -g -DTILESIM_MPI
+MPISRC   = $(wildcard $(addsuffix /*.c,$(LIBDIRS)))
+MPIPROGS = tile bench
+HAVE_MPICC := $(shell command -v $(MPICC) 2>/dev/null)
 # Programs: prog/NAME.c holds main; prog/NAME_*.c are linked into NAME only.
 PROGS    = $(basename $(notdir $(filter-out $(wildcard prog/*_*.c),$(wildcard prog/*.c))))
 # The SVG plotter, plots/*.c, builds to build/plot.
@@ -75,9 +87,37 @@ $(CHK)/plot: $(call chkobj,$(PLOTSRC)) $(CHK)/libtilesim.a
 $(CHK)/tests/%: $(CHK)/tests/%.o $(call chkobj,$(TESTLIB)) $(CHK)/libtilesim.a
 	$(CC) $(CHKFLAGS) -o $@ $^ $(LDLIBS)
 
-# The tests and the sanitized programs the command-line tests drive.
-check: $(addprefix $(CHK)/tests/,$(TESTS)) $(addprefix $(CHK)/,$(PROGS)) $(if $(PLOTSRC),$(CHK)/plot)
+# The tests and the sanitized programs the command-line tests drive (and,
+# where mpicc is, the MPI programs for tests/cli_mpi.sh).
+check: $(addprefix $(CHK)/tests/,$(TESTS)) $(addprefix $(CHK)/,$(PROGS)) $(if $(PLOTSRC),$(CHK)/plot) \
+       $(if $(HAVE_MPICC),mpi-bins)
 	@sh tests/run.sh $(CHK) $(addprefix $(CHK)/tests/,$(TESTS)) $(wildcard tests/cli_*.sh)
+
+# The MPI programs: build/mpi/bin/NAME-mpi, copied to ./NAME-mpi; and the
+# MPI backend's contract test (tests/mpi/contract.c, run by tests/cli_mpi.sh).
+$(MPIDIR)/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(MPICC) $(BASE) $(MPIFLAGS) -MMD -MP -c $< -o $@
+$(MPIDIR)/libtilesim.a: $(patsubst %.c,$(MPIDIR)/%.o,$(MPISRC))
+	@rm -f $@
+	$(AR) rcs $@ $^
+define mpi_rules
+$(MPIDIR)/bin/$(1)-mpi: $(patsubst %.c,$(MPIDIR)/%.o,prog/$(1).c $(wildcard prog/$(1)_*.c)) $(MPIDIR)/libtilesim.a
+	@mkdir -p $(MPIDIR)/bin
+	$$(MPICC) $$(MPIFLAGS) -o $$@ $$^ $$(LDLIBS)
+endef
+$(foreach p,$(MPIPROGS),$(eval $(call mpi_rules,$(p))))
+$(MPIDIR)/bin/contract-mpi: $(MPIDIR)/tests/mpi/contract.o $(MPIDIR)/libtilesim.a
+	@mkdir -p $(MPIDIR)/bin
+	$(MPICC) $(MPIFLAGS) -o $@ $^ $(LDLIBS)
+mpi-bins: $(foreach p,$(MPIPROGS),$(MPIDIR)/bin/$(p)-mpi) $(MPIDIR)/bin/contract-mpi
+mpi: mpi-bins
+	@for p in $(MPIPROGS); do cmp -s $(MPIDIR)/bin/$$p-mpi $$p-mpi || cp -f $(MPIDIR)/bin/$$p-mpi $$p-mpi; done
+
+# SimGrid: the same MPI programs built by smpicc, run under smpirun against
+# the simulator's ideal network (tests/simgrid.sh says how).
+simgrid: all
+	sh tests/simgrid.sh
 
 # The same tests, built without sanitizers, under valgrind.
 VG = build/vg
@@ -143,9 +183,9 @@ install: all
 	$(if $(PLOT),cp build/plot $(DESTDIR)$(PREFIX)/bin/tilesim-plot)
 
 clean:
-	rm -rf build $(PROGS)
+	rm -rf build $(PROGS) $(addsuffix -mpi,$(MPIPROGS))
 
-.PHONY: all check valgrind bench bench-tile install clean
+.PHONY: all check valgrind bench bench-tile install clean mpi mpi-bins simgrid
 .SECONDARY:
 
 -include $(shell find build -name '*.d' 2>/dev/null)

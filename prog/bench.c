@@ -11,6 +11,9 @@
 #include "bench_paper.h"
 #include "bench_ring.h"
 #include "bench_tiler.h"
+#ifdef TILESIM_MPI
+#include "run_mpi.h"
+#endif
 
 typedef struct {
   const char *opt;                    /* the option that selects the mode */
@@ -52,7 +55,7 @@ static void help(void) {
   for (int i = 0; i < NMODES; i++) printf("  bench %s %s\n\n", modes[i].opt, modes[i].help);
 }
 
-int main(int argc, char **argv) {
+static int bench_main(int argc, char **argv) {
   if (argc >= 2 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0)) {
     help();
     return 0;
@@ -62,3 +65,11 @@ int main(int argc, char **argv) {
   /* No mode: the paper's experiments, which check their own options. */
   return bench_paper(argc, argv);
 }
+
+#ifdef TILESIM_MPI
+/* bench-mpi: rank 0 runs bench_main with --backend mpi the default; the
+ * others serve as slaves until it is done. */
+int main(int argc, char **argv) { return run_mpi_main(argc, argv, bench_main); }
+#else
+int main(int argc, char **argv) { return bench_main(argc, argv); }
+#endif

@@ -277,8 +277,13 @@ int bench_paper(int argc, char **argv) {
   }
   if (rc.backend != RUN_SIM && jobs > 1)
     return usage("--jobs runs simulations side by side; measured runs (--backend threads) go one at a time", NULL);
-  if (procs.n == 0) bench_list_parse("1..16", &procs, 1, 1, 4096);
   int limit = run_backend_ranks(rc.backend);
+  if (procs.n == 0 && limit > 0) {   /* bench-mpi: the processes mpirun gave */
+    char all[32];
+    snprintf(all, sizeof all, "1..%d", limit);
+    bench_list_parse(all, &procs, 1, 1, 4096);
+  }
+  if (procs.n == 0) bench_list_parse("1..16", &procs, 1, 1, 4096);
   for (int i = 0; limit > 0 && i < procs.n; i++)
     if (run_ranks((int)procs.v[i]) > limit) {
       char msg[160];
