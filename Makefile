@@ -36,6 +36,7 @@ MPIFLAGS = -O2 -g -DTILESIM_MPI
 MPISRC   = $(wildcard $(addsuffix /*.c,$(LIBDIRS)))
 MPIPROGS = tile bench
 HAVE_MPICC := $(shell command -v $(MPICC) 2>/dev/null)
+HAVE_SMPICC := $(shell command -v smpicc 2>/dev/null)
 # Programs: prog/NAME.c holds main; prog/NAME_*.c are linked into NAME only.
 PROGS    = $(basename $(notdir $(filter-out $(wildcard prog/*_*.c),$(wildcard prog/*.c))))
 # The SVG plotter, plots/*.c, builds to build/plot.
@@ -88,9 +89,10 @@ $(CHK)/tests/%: $(CHK)/tests/%.o $(call chkobj,$(TESTLIB)) $(CHK)/libtilesim.a
 	$(CC) $(CHKFLAGS) -o $@ $^ $(LDLIBS)
 
 # The tests and the sanitized programs the command-line tests drive (and,
-# where mpicc is, the MPI programs for tests/cli_mpi.sh).
+# where mpicc and smpicc are, the MPI programs for tests/cli_mpi.sh and
+# tests/cli_simgrid.sh).
 check: $(addprefix $(CHK)/tests/,$(TESTS)) $(addprefix $(CHK)/,$(PROGS)) $(if $(PLOTSRC),$(CHK)/plot) \
-       $(if $(HAVE_MPICC),mpi-bins)
+       $(if $(HAVE_MPICC),mpi-bins) $(if $(HAVE_SMPICC),smpi-bins)
 	@sh tests/run.sh $(CHK) $(addprefix $(CHK)/tests/,$(TESTS)) $(wildcard tests/cli_*.sh)
 
 # The MPI programs: build/mpi/bin/NAME-mpi, copied to ./NAME-mpi; and the
@@ -114,10 +116,12 @@ mpi-bins: $(foreach p,$(MPIPROGS),$(MPIDIR)/bin/$(p)-mpi) $(MPIDIR)/bin/contract
 mpi: mpi-bins
 	@for p in $(MPIPROGS); do cmp -s $(MPIDIR)/bin/$$p-mpi $$p-mpi || cp -f $(MPIDIR)/bin/$$p-mpi $$p-mpi; done
 
-# SimGrid: the same MPI programs built by smpicc, run under smpirun against
-# the simulator's ideal network (tests/simgrid.sh says how).
-simgrid: all
-	sh tests/simgrid.sh
+# SimGrid: the same MPI programs built by smpicc into build/smpi, run under
+# smpirun against the simulator's ideal network (tests/simgrid.sh says how).
+smpi-bins:
+	$(MAKE) mpi-bins MPICC=smpicc MPIDIR=build/smpi
+simgrid: all smpi-bins
+	NOBUILD=1 sh tests/simgrid.sh
 
 # The same tests, built without sanitizers, under valgrind.
 VG = build/vg
@@ -185,7 +189,7 @@ install: all
 clean:
 	rm -rf build $(PROGS) $(addsuffix -mpi,$(MPIPROGS))
 
-.PHONY: all check valgrind bench bench-tile install clean mpi mpi-bins simgrid
+.PHONY: all check valgrind bench bench-tile install clean mpi mpi-bins smpi-bins simgrid
 .SECONDARY:
 
 -include $(shell find build -name '*.d' 2>/dev/null)
