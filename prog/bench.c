@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "bench_calibrate.h"
 #include "bench_claims.h"
 #include "bench_model.h"
 #include "bench_paper.h"
@@ -39,6 +40,12 @@ static const mode modes[] = {
     {"--claims", bench_claims,
      "SPEEDUP.csv [MIN_DIAG.csv] [--require LIST]\n"
      "      the paper's seven claims (sections 6, 7), checked against the sweeps"},
+    {"--calibrate", bench_calibrate,
+     "[--points N] [--procs LIST] [--repeat R] [--seed S] [--messages K]\n"
+     "      this host's seconds per node (c) and per message (m, per_byte) measured,\n"
+     "      the --net ideal --m --c --per-byte options that make the simulator model it,\n"
+     "      and its predictions beside the threads backend's times (defaults: 2000\n"
+     "      points, procs 1,2,3, fastest of 10 runs)"},
     {"--tiler", bench_tiler,
      "[--points N[,N...]] [--naive N] [--input STACK]... [--cost area|span]\n"
      "      [--seed S] [--repeat R]\n"

@@ -18,7 +18,7 @@
  * the wall-clock seconds measured here, the backend column says so, and
  * net, m and c are left empty: they describe only the simulated machine.
  * Runs are then one at a time (--jobs 1), each alone on the cores, and each
- * job is run --repeat R times (default 5; 1 on the simulator, which is
+ * job is run --repeat R times (default 10; 1 on the simulator, which is
  * deterministic): the fastest is reported, since what else runs on the
  * machine only ever adds time, and every repetition must give the same
  * optimum. */
@@ -50,7 +50,7 @@ const char bench_paper_help[] =
     "      LIST is numbers and ranges, e.g. 1..16 or 100,200,300.  Defaults: points\n"
     "      100,200,300,400,500, procs 1..16, alloc half, min-diag 1, the tc2000 machine.\n"
     "      --backend threads runs them on threads here: sim_time is then wall-clock\n"
-    "      seconds (the backend column says which), the fastest of R runs (default 5)";
+    "      seconds (the backend column says which), the fastest of R runs (default 10)";
 
 typedef struct {
   int points, procs, alloc, d, hidden, pairid;
@@ -329,7 +329,7 @@ int bench_paper(int argc, char **argv) {
                               ms.v[x], cs.v[y]};
             }
           }
-  if (repeat == 0) repeat = rc.backend == RUN_SIM ? 1 : 5;
+  if (repeat == 0) repeat = rc.backend == RUN_SIM ? 1 : 10;
   plan pl = {jb, njobs, rc, seed, repeat, input ? &stack : NULL, pairk};
   outcome *o = xcalloc((size_t)njobs, sizeof *o);
   int progress = isatty(2);
