@@ -160,7 +160,7 @@ int bench_calibrate(int argc, char **argv) {
   int points = 2000, repeat = 10, messages = 100000;
   unsigned long long seed = 1993;
   bench_list procs = {0};
-  for (int i = 2; i < argc; i++) {
+  for (int i = 2; i < argc; i += 2) {   /* an option and its value */
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
     char *e;
     if (!v) return usage("an option needs a value", a);
@@ -184,7 +184,6 @@ int bench_calibrate(int argc, char **argv) {
     } else {
       return usage("unknown option", a);
     }
-    i++;
   }
   if (procs.n == 0) bench_list_parse("1,2,3", &procs, 1, 1, 64);
   char err[300];
