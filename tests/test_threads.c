@@ -379,9 +379,12 @@ static void test_random(void) {
     static rprog p;
     memset(&p, 0, sizeof p);
     p.nmsg = rng_int(&r, 1, RMAX_MSGS);
-    for (int i = 0; i < p.nmsg; i++)
-      p.msgs[i] = (rmsg){rng_int(&r, 0, n - 1), rng_int(&r, 0, n - 1), rng_int(&r, 0, 4),
-                         (size_t)rng_int(&r, 4, RMAX_LEN)};
+    for (int i = 0; i < p.nmsg; i++) {   /* one draw a statement: the same program from every compiler */
+      p.msgs[i].src = rng_int(&r, 0, n - 1);
+      p.msgs[i].dst = rng_int(&r, 0, n - 1);
+      p.msgs[i].tag = rng_int(&r, 0, 4);
+      p.msgs[i].len = (size_t)rng_int(&r, 4, RMAX_LEN);
+    }
     for (int k = 0; k < n; k++) p.mode[k] = rng_int(&r, 0, 2);
     int rc;
     mpt *t = run(n, seed % 3 == 0 ? 0 : 50000, random_main, &p, &rc, err, sizeof err);
@@ -435,9 +438,13 @@ static void test_par_random(rng *g) {
   vec2 *P = xmallocarray(120, sizeof *P), *Q = xmallocarray(120, sizeof *Q);
   int bad = 0, failed = 0, runs = 0, seen[17] = {0};
   for (int pair = 0; pair < 36; pair++) {
-    int np = rng_int(g, 3, pair % 6 == 5 ? 120 : 50), nq = rng_int(g, 3, 60);
+    int np = rng_int(g, 3, pair % 6 == 5 ? 120 : 50);
+    int nq = rng_int(g, 3, 60);
     gen_star(g, P, np, 0, 0, 10, 0.4);
-    gen_star(g, Q, nq, rng_uniform(g) * 3, rng_uniform(g) * 3, 6 + 6 * rng_uniform(g), 0.4);
+    double cx = rng_uniform(g) * 3;
+    double cy = rng_uniform(g) * 3;
+    double r = 6 + 6 * rng_uniform(g);
+    gen_star(g, Q, nq, cx, cy, r, 0.4);
     tiling ser;
     tiling_solve(P, np, 0, Q, nq, 2, COST_AREA, -1, &ser);
     for (int i = 0; i < 3; i++) {
