@@ -19,9 +19,10 @@
  * net, m and c are left empty: they describe only the simulated machine.
  * Runs are then one at a time (--jobs 1), each alone on the cores, and each
  * job is run --repeat R times (default 10; 1 on the simulator, which is
- * deterministic): the fastest is reported, since what else runs on the
- * machine only ever adds time, and every repetition must give the same
- * optimum. */
+ * deterministic), in rounds (every job once, then every job again): the
+ * fastest is reported, since what else runs on the machine only ever adds
+ * time, and every repetition must give the same optimum.  wall_s is then
+ * the job's R runs together. */
 #include "bench_paper.h"
 
 #include <errno.h>
@@ -99,6 +100,7 @@ static void make_pair(const plan *pl, int points, vec2 **P, int *np, double *zp,
   *np = *nq = points, *zp = 0, *zq = 5;
 }
 
+/* One run of a job. */
 static outcome one_run(const plan *pl, const job *jb) {
   outcome o;
   memset(&o, 0, sizeof o);
@@ -113,41 +115,58 @@ static outcome one_run(const plan *pl, const job *jb) {
   rc.machine.m = jb->m;
   rc.machine.c = jb->c;
   rc.machine.warn = NULL;
+  par_pair pr;
+  memset(&pr, 0, sizeof pr);
+  pr.P = P, pr.np = np, pr.zp = zp, pr.Q = Q, pr.nq = nq, pr.zq = zq;
   double t0 = wallclock();
-  o.ok = 1;
-  for (int rep = 0; o.ok && rep < pl->repeat; rep++) {
-    par_pair pr;
-    memset(&pr, 0, sizeof pr);
-    pr.P = P, pr.np = np, pr.zp = zp, pr.Q = Q, pr.nq = nq, pr.zq = zq;
-    o.ok = run_pairs(&rc, &pr, 1, o.err, sizeof o.err) == 0;
-    if (!o.ok) break;
-    if (rep > 0 && (pr.t.cost != o.cost || pr.counts.nodes != o.nodes)) {   /* a checksum */
-      snprintf(o.err, sizeof o.err, "run %d of %d gave optimum %.17g (%llu nodes), run 1 %.17g (%llu)",
-               rep + 1, pl->repeat, pr.t.cost, (unsigned long long)pr.counts.nodes, o.cost,
-               (unsigned long long)o.nodes);
-      o.ok = 0;
-    }
-    if (rep == 0 || pr.time < o.sim_time) o.sim_time = pr.time;
+  o.ok = run_pairs(&rc, &pr, 1, o.err, sizeof o.err) == 0;
+  o.wall = wallclock() - t0;
+  if (o.ok) {
+    o.sim_time = pr.time;
     o.cost = pr.t.cost;
     o.nodes = pr.counts.nodes;
-    o.bytes = 0;
     for (int k = 0; k < PAR_KINDS; k++) o.msgs[k] = pr.counts.msgs[k], o.bytes += pr.counts.bytes[k];
     tiling_free(&pr.t);
   }
-  o.wall = wallclock() - t0;
   if (!pl->input) free(P), free(Q);
   return o;
+}
+
+/* Fold run `rep` (0-based) of a job into *acc: the fastest time, the wall
+ * times summed, and the optimum checked against the first run's. */
+static void fold(outcome *acc, const outcome *o, int rep, int repeat) {
+  if (rep == 0 || !acc->ok) {
+    if (rep == 0) *acc = *o;
+    return;
+  }
+  if (!o->ok) {
+    double wall = acc->wall;
+    *acc = *o;
+    acc->wall += wall;
+    return;
+  }
+  if (o->cost != acc->cost || o->nodes != acc->nodes) {   /* a checksum */
+    snprintf(acc->err, sizeof acc->err, "run %d of %d gave optimum %.17g (%llu nodes), run 1 %.17g (%llu)",
+             rep + 1, repeat, o->cost, (unsigned long long)o->nodes, acc->cost,
+             (unsigned long long)acc->nodes);
+    acc->ok = 0;
+  }
+  if (o->sim_time < acc->sim_time) acc->sim_time = o->sim_time;
+  acc->wall += o->wall;
 }
 
 /* Run every job, on `jobs` forked workers (job i on worker i mod jobs); the
  * outcomes come back in job order whatever the workers' speed. */
 static int run_all(const plan *pl, outcome *out, int jobs, int progress) {
   if (jobs > pl->njobs) jobs = pl->njobs;
-  if (jobs <= 1) {
-    for (int i = 0; i < pl->njobs; i++) {
-      out[i] = one_run(pl, &pl->jobs[i]);
-      if (progress) fprintf(stderr, "\rbench: %d of %d runs", i + 1, pl->njobs);
-    }
+  if (jobs <= 1) {   /* in rounds: every job once, then again, so that a slow
+                        spell of the machine touches all jobs alike */
+    for (int rep = 0; rep < pl->repeat; rep++)
+      for (int i = 0; i < pl->njobs; i++) {
+        outcome o = one_run(pl, &pl->jobs[i]);
+        fold(&out[i], &o, rep, pl->repeat);
+        if (progress) fprintf(stderr, "\rbench: %d of %d runs", rep * pl->njobs + i + 1, pl->njobs * pl->repeat);
+      }
     return 0;
   }
   fflush(stdout);
@@ -162,7 +181,11 @@ static int run_all(const plan *pl, outcome *out, int jobs, int progress) {
     if (pid[w] == 0) {
       close(p[0]);
       for (int i = w; i < pl->njobs; i += jobs) {
-        outcome o = one_run(pl, &pl->jobs[i]);
+        outcome o;
+        for (int rep = 0; rep < pl->repeat; rep++) {
+          outcome x = one_run(pl, &pl->jobs[i]);
+          fold(&o, &x, rep, pl->repeat);
+        }
         if (write(p[1], &o, sizeof o) != (ssize_t)sizeof o) _exit(1);
       }
       _exit(0);
