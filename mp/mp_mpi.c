@@ -50,11 +50,13 @@ void mpm_config_init(mpm_config *cfg) {
 enum { CT_REPORT = 1, CT_STOP, CT_END, CT_FINAL, CT_EXPECT };   /* ctl tags */
 enum { ST_RUNNING, ST_BLOCKED, ST_DONE };                       /* reported states */
 
-/* Waiting: busy polls, then polls with sched_yield, then with sleeps; a
- * rank blocked this long reports it (MPI only). */
+/* Waiting: busy polls, then polls with sched_yield, then with sleeps of an
+ * eighth of the wait so far within [SLEEP_MIN_S, SLEEP_MAX_S]; a rank
+ * blocked REPORT_S reports it (MPI only). */
 #define BUSY_S 50e-6
 #define YIELD_S 2e-3
-#define SLEEP_NS 50000L
+#define SLEEP_MIN_S 50e-6
+#define SLEEP_MAX_S 1e-3
 #define REPORT_S 2e-3
 
 typedef struct msg msg;
@@ -347,7 +349,13 @@ static void backoff(const mpm *m, double since) {
     sched_yield();
     return;
   }
-  struct timespec ts = {0, SLEEP_NS};
+  /* Sleep an eighth of the wait so far, 50 us to 1 ms: a long wait (the
+   * master's, mostly) wakes rarely and leaves the cores to the ranks that
+   * work, and answers within an eighth of its length. */
+  double d = (w - YIELD_S) / 8;
+  if (d < SLEEP_MIN_S) d = SLEEP_MIN_S;
+  if (d > SLEEP_MAX_S) d = SLEEP_MAX_S;
+  struct timespec ts = {0, (long)(d * 1e9)};
   nanosleep(&ts, NULL);
 }
 
