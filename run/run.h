@@ -35,7 +35,8 @@ typedef struct {
                            P >= 2 gives the master one and P-1 slaves one each */
   run_backend backend;  /* what runs the ranks (default: sim; mpi in MPI builds) */
   sim_config machine;   /* the machine model (procs and place are set here) */
-  mpt_config threads;   /* the threads backend's settings */
+  mpt_config threads;   /* the threads backend's settings (its warnings go
+                           where machine.warn says, as every backend's do) */
   par_options opt;
   cost_kind kind;
   FILE *trace_csv, *trace_json;   /* a timeline, or NULL */
