@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "randprog.h"
 #include "mp.h"
 #include "rng.h"
 #include "sim.h"
@@ -676,103 +677,7 @@ static void test_many_ranks(void) {
   sim_free(s);
 }
 
-/* ==== random matching programs ============================================ */
-
-enum { RMAX_MSGS = 300, RMAX_RANKS = 12, RMIN_LEN = 16, RMAX_LEN = 120 };
-
-typedef struct {
-  int src, dst, tag;
-  size_t len;
-} rmsg;
-
-typedef struct {
-  int nmsg;
-  rmsg msgs[RMAX_MSGS];      /* the global order */
-  int mode[RMAX_RANKS];      /* 0: recv(src, tag), 1: (any, any), 2: (src, any) */
-  uint64_t seed;
-  int delivered[RMAX_MSGS];  /* times each message was received */
-  int wrong;                 /* content, order or time errors */
-  char why[256];
-  double units[RMAX_RANKS];  /* units each rank charged */
-} rprog;
-
-static void rfail(rprog *p, const char *fmt, int a, int b) {
-  if (!p->wrong++) snprintf(p->why, sizeof p->why, fmt, a, b);
-}
-
-/* Payload: the message id (bytes 0-3), the send time (8-15), a pattern. */
-static void fill(unsigned char *buf, int i, double sent, size_t len) {
-  memset(buf, 0, 16);
-  memcpy(buf, &i, sizeof i);
-  memcpy(buf + 8, &sent, sizeof sent);
-  for (size_t j = 16; j < len; j++) buf[j] = (unsigned char)(i * 31 + (int)j);
-}
-
-/* Each rank walks the global order: its sends, and its receives. */
-static void random_main(mp *self, void *ud) {
-  rprog *p = ud;
-  int me = mp_rank(self);
-  rng r;
-  rng_seed(&r, p->seed * 1000 + (uint64_t)me);
-  unsigned char buf[RMAX_LEN];
-  double last = 0;
-  for (int i = 0; i < p->nmsg; i++) {
-    const rmsg *m = &p->msgs[i];
-    if (m->src != me && m->dst != me) continue;
-    if (rng_int(&r, 0, 2) == 0) {
-      double u = rng_int(&r, 0, 12) * 0.25;
-      p->units[me] += u;
-      if (mp_compute(self, u) != MP_OK) rfail(p, "rank %d: compute failed at %d", me, i);
-    }
-    if (m->src == me) {
-      fill(buf, i, mp_time(self), m->len);
-      if (mp_send(self, m->dst, m->tag, buf, m->len) != MP_OK)
-        rfail(p, "rank %d: send %d failed", me, i);
-    }
-    if (m->dst == me) {
-      int mode = p->mode[me];
-      mp_status st;
-      memset(buf, 0, sizeof buf);
-      int rc = mp_recv(self, mode == 1 ? MP_ANY : m->src, mode == 0 ? m->tag : MP_ANY, buf,
-                       sizeof buf, &st);
-      if (rc != MP_OK) {
-        rfail(p, "rank %d: recv %d failed", me, i);
-        return;
-      }
-      int k;
-      double sent;
-      memcpy(&k, buf, sizeof k);
-      memcpy(&sent, buf + 8, sizeof sent);
-      if (k < 0 || k >= p->nmsg) {
-        rfail(p, "rank %d: got message id %d", me, k);
-        continue;
-      }
-      p->delivered[k]++;
-      const rmsg *got = &p->msgs[k];
-      if (got->dst != me || st.source != got->src || st.tag != got->tag || st.len != got->len)
-        rfail(p, "rank %d: message %d has the wrong envelope", me, k);
-      if (mode != 1 && k != i) rfail(p, "rank %d: expected message %d", me, i);
-      unsigned char want[RMAX_LEN];
-      fill(want, k, sent, got->len);
-      if (memcmp(want, buf, got->len) != 0) rfail(p, "rank %d: message %d corrupted", me, k);
-      if (mp_time(self) < sent) rfail(p, "rank %d: message %d received before it was sent", me, k);
-    }
-    if (mp_time(self) < last) rfail(p, "rank %d: clock went back at %d", me, i);
-    last = mp_time(self);
-  }
-}
-
-static void random_program(rprog *p, rng *r, int nranks) {
-  p->nmsg = rng_int(r, 1, RMAX_MSGS);
-  for (int i = 0; i < p->nmsg; i++) {
-    rmsg *m = &p->msgs[i];
-    m->src = rng_int(r, 0, nranks - 1);
-    m->dst = rng_int(r, 0, nranks - 1);
-    m->tag = rng_int(r, 0, 4);
-    m->len = (size_t)rng_int(r, RMIN_LEN, RMAX_LEN);
-  }
-  for (int k = 0; k < nranks; k++) p->mode[k] = rng_int(r, 0, 2);
-}
+/* ==== random matching programs (tests/randprog.c) ======================== */
 
 static double fraction(rng *r) { return rng_int(r, 0, 8) * 0.125; }
 
@@ -782,26 +687,24 @@ static void test_random(void) {
   for (uint64_t seed = 1; seed <= 240; seed++) {
     rng r;
     rng_seed(&r, seed);
-    int nranks = rng_int(&r, 2, RMAX_RANKS);
-    static rprog p;
-    memset(&p, 0, sizeof p);
-    p.seed = seed;
-    random_program(&p, &r, nranks);
+    int nranks = rng_int(&r, 2, RANDPROG_RANKS);
+    static randprog p;
+    randprog_make(&p, seed, nranks);
     sim_config cfg = config(nets[seed % 3], rng_int(&r, 1, nranks));
-    int place[RMAX_RANKS];
+    int place[RANDPROG_RANKS];
     for (int k = 0; k < nranks; k++) place[k] = rng_int(&r, 0, cfg.procs - 1);
     cfg.place = place;
     cfg.c = fraction(&r), cfg.m = fraction(&r), cfg.per_byte = fraction(&r) / 64;
     cfg.local = fraction(&r) / 4, cfg.L = fraction(&r), cfg.o = fraction(&r) / 2;
     cfg.g = fraction(&r), cfg.G = fraction(&r) / 64;
     int rc;
-    sim *s = run(&cfg, nranks, random_main, &p, &rc, err, sizeof err);
+    sim *s = run(&cfg, nranks, randprog_main, &p, &rc, err, sizeof err);
     runs++;
-    int undelivered = 0;
-    for (int i = 0; i < p.nmsg; i++) undelivered += p.delivered[i] != 1;
+    const char *why;
+    int failures = randprog_failures(&p, &why);
     const sim_stats *st = sim_stats_get(s);
-    int ok = rc == 0 && !p.wrong && !undelivered && st->messages == p.nmsg &&
-             st->received == p.nmsg && st->unread == 0 && st->warnings == 0;
+    int ok = rc == 0 && !failures && st->messages == p.nmsg && st->received == p.nmsg && st->unread == 0 &&
+             st->warnings == 0;
     /* The statistics add up, exactly (binary fractions). */
     long long sent = 0, recvd = 0, bsent = 0, brecvd = 0, bytags = 0;
     for (int k = 0; k < nranks; k++) {
@@ -815,10 +718,10 @@ static void test_random(void) {
     }
     if (sent != p.nmsg || recvd != p.nmsg || bsent != brecvd || bytags != p.nmsg) ok = 0;
     if (!ok && failed_runs++ < 3)
-      CHECK(0, "random seed %llu (%s, %d ranks, %d procs, %d messages): rc %d (%s), %s, "
-               "%d undelivered, %lld/%lld/%lld sent/received/unread",
-            (unsigned long long)seed, sim_net_name(cfg.net), nranks, cfg.procs, p.nmsg, rc, err,
-            p.wrong ? p.why : "content ok", undelivered, st->messages, st->received, st->unread);
+      CHECK(0, "random seed %llu (%s, %d ranks, %d procs, %d messages): rc %d (%s), %d failures (%s), "
+               "%lld/%lld/%lld sent/received/unread",
+            (unsigned long long)seed, sim_net_name(cfg.net), nranks, cfg.procs, p.nmsg, rc, err, failures,
+            why, st->messages, st->received, st->unread);
     sim_free(s);
   }
   CHECK(failed_runs == 0, "%d of %d random programs failed", failed_runs, runs);

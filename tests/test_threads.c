@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "randprog.h"
 #include "contour.h"
 #include "gen.h"
 #include "rng.h"
@@ -312,62 +313,7 @@ static void test_many(void) {
   mpt_free(t);
 }
 
-/* ==== random matching programs ============================================ */
-
-enum { RMAX_MSGS = 300, RMAX_RANKS = 12, RMAX_LEN = 120 };
-
-typedef struct {
-  int src, dst, tag;
-  size_t len;
-} rmsg;
-
-typedef struct {
-  int nmsg;
-  rmsg msgs[RMAX_MSGS];      /* the global order */
-  int mode[RMAX_RANKS];      /* 0: recv(src, tag), 1: (any, any), 2: (src, any) */
-  int delivered[RMAX_MSGS];  /* times each message was received (by its receiver only) */
-  int wrong[RMAX_RANKS];     /* content, envelope or order errors */
-} rprog;
-
-static void fill(unsigned char *buf, int id, size_t len) {
-  memcpy(buf, &id, sizeof id);
-  for (size_t j = sizeof id; j < len; j++) buf[j] = (unsigned char)(id * 31 + (int)j);
-}
-
-/* Each rank walks the global order: its sends, and its receives; a recv
- * by (src, tag) or (src, any) must get exactly message i (FIFO per pair). */
-static void random_main(mp *self, void *ud) {
-  rprog *p = ud;
-  int me = mp_rank(self);
-  unsigned char buf[RMAX_LEN], want[RMAX_LEN];
-  for (int i = 0; i < p->nmsg; i++) {
-    const rmsg *m = &p->msgs[i];
-    if (m->src == me) {
-      fill(buf, i, m->len);
-      if (mp_send(self, m->dst, m->tag, buf, m->len) != MP_OK) p->wrong[me]++;
-    }
-    if (m->dst == me) {
-      int mode = p->mode[me], k = -1;
-      mp_status st;
-      if (mp_recv(self, mode == 1 ? MP_ANY : m->src, mode == 0 ? m->tag : MP_ANY, buf, sizeof buf, &st) !=
-          MP_OK) {
-        p->wrong[me]++;
-        return;
-      }
-      memcpy(&k, buf, sizeof k);
-      if (k < 0 || k >= p->nmsg) {
-        p->wrong[me]++;
-        continue;
-      }
-      p->delivered[k]++;   /* k's receiver is me: no other thread writes it */
-      const rmsg *got = &p->msgs[k];
-      if (got->dst != me || st.source != got->src || st.tag != got->tag || st.len != got->len) p->wrong[me]++;
-      if (mode != 1 && k != i) p->wrong[me]++;
-      fill(want, k, got->len);
-      if (memcmp(want, buf, got->len) != 0) p->wrong[me]++;
-    }
-  }
-}
+/* ==== random matching programs (tests/randprog.c) ======================== */
 
 static void test_random(void) {
   char err[512];
@@ -375,31 +321,22 @@ static void test_random(void) {
   for (uint64_t seed = 1; seed <= 60; seed++) {
     rng r;
     rng_seed(&r, seed);
-    int n = rng_int(&r, 2, RMAX_RANKS);
-    static rprog p;
-    memset(&p, 0, sizeof p);
-    p.nmsg = rng_int(&r, 1, RMAX_MSGS);
-    for (int i = 0; i < p.nmsg; i++) {   /* one draw a statement: the same program from every compiler */
-      p.msgs[i].src = rng_int(&r, 0, n - 1);
-      p.msgs[i].dst = rng_int(&r, 0, n - 1);
-      p.msgs[i].tag = rng_int(&r, 0, 4);
-      p.msgs[i].len = (size_t)rng_int(&r, 4, RMAX_LEN);
-    }
-    for (int k = 0; k < n; k++) p.mode[k] = rng_int(&r, 0, 2);
+    int n = rng_int(&r, 2, RANDPROG_RANKS);
+    static randprog p;
+    randprog_make(&p, seed, n);
     int rc;
-    mpt *t = run(n, seed % 3 == 0 ? 0 : 50000, random_main, &p, &rc, err, sizeof err);
+    mpt *t = run(n, seed % 3 == 0 ? 0 : 50000, randprog_main, &p, &rc, err, sizeof err);
     const mpt_stats *st = mpt_stats_get(t);
-    int wrong = 0, undelivered = 0;
-    for (int k = 0; k < n; k++) wrong += p.wrong[k];
-    for (int i = 0; i < p.nmsg; i++) undelivered += p.delivered[i] != 1;
+    const char *why;
+    int failures = randprog_failures(&p, &why);
     long long bs = 0, br = 0;
     for (int k = 0; k < n; k++) bs += mpt_rank(t, k)->bytes_sent, br += mpt_rank(t, k)->bytes_received;
     runs++;
-    if (!(rc == 0 && !wrong && !undelivered && st->messages == p.nmsg && st->received == p.nmsg &&
-          st->unread == 0 && bs == br) &&
+    if (!(rc == 0 && !failures && st->messages == p.nmsg && st->received == p.nmsg && st->unread == 0 &&
+          bs == br) &&
         failed++ < 3)
-      CHECK(0, "random seed %llu (%d ranks, %d messages): rc %d (%s), %d wrong, %d undelivered",
-            (unsigned long long)seed, n, p.nmsg, rc, err, wrong, undelivered);
+      CHECK(0, "random seed %llu (%d ranks, %d messages): rc %d (%s), %d failures (%s)",
+            (unsigned long long)seed, n, p.nmsg, rc, err, failures, why);
     mpt_free(t);
   }
   CHECK(failed == 0, "%d of %d random programs failed", failed, runs);
