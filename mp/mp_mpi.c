@@ -32,6 +32,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "errlog.h"
 #include "xmem.h"
 
 #if defined(SMPI_H)
@@ -96,9 +97,8 @@ struct mpm {
   int reported;                /* the state last reported: ST_* */
   long long reported_arrivals; /* arrivals at that report */
   int wait_src, wait_tag;      /* what a blocked recv waits for */
-  /* Errors of this rank. */
-  char errs[512];
-  int nshown;
+  /* Errors of this rank (rank 0: of the run). */
+  errlog errs;
   mpm_stats st;                /* this rank's; rank 0's becomes the run's */
   /* Rank 0: the coordinator's view. */
   int *cstate, *cwsrc, *cwtag; /* [n] each rank's last reported state, wait */
@@ -115,14 +115,9 @@ struct mpm {
 #define PRINTF(a, b)
 #endif
 
-enum { ERRS_SHOWN = 3 };
-
 static void add_error(mpm *m, const char *text, int always) {
   m->st.errors++;
-  if (m->nshown >= ERRS_SHOWN && !always) return;
-  size_t old = strlen(m->errs);
-  snprintf(m->errs + old, sizeof m->errs - old, "%s%s", old ? "; then " : "", text);
-  m->nshown++;
+  errlog_add(&m->errs, text, always);
 }
 
 static PRINTF(2, 3) void fail(mpm *m, const char *fmt, ...) {
@@ -627,7 +622,7 @@ static void pack_final(const mpm *m, unsigned char *b) {
   f.sent = m->st.messages, f.received = m->st.received, f.bytes = m->st.bytes;
   f.unread = m->st.unread, f.warnings = m->st.warnings, f.errors = m->st.errors;
   f.deadlock = m->st.deadlock;
-  snprintf(f.errs, sizeof f.errs, "%s", m->errs);
+  snprintf(f.errs, sizeof f.errs, "%s", m->errs.text ? m->errs.text : "");
   memcpy(b, &f, sizeof f);
   memcpy(b + sizeof f, m->sent_to, 8 * (size_t)m->n);
   memcpy(b + sizeof f + 8 * (size_t)m->n, m->got_from, 8 * (size_t)m->n);
@@ -678,12 +673,7 @@ static void finish(mpm *m) {
     tot.messages += f.sent, tot.received += f.received, tot.bytes += f.bytes;
     tot.unread += f.unread, tot.warnings += f.warnings, tot.errors += f.errors;
     tot.deadlock |= f.deadlock;
-    if (f.errs[0]) {   /* quote the first few; the count says the rest */
-      size_t old = strlen(m->errs);
-      if (m->nshown < ERRS_SHOWN)
-        snprintf(m->errs + old, sizeof m->errs - old, "%s%s", old ? "; then " : "", f.errs);
-      m->nshown++;
-    }
+    if (f.errs[0]) errlog_add(&m->errs, f.errs, 0);   /* the first few; the count says the rest */
     got++;
   }
 #if SIMGRID
@@ -718,12 +708,7 @@ int mpm_run(mpm *m, mp_main main, void *ud, char *err, size_t errlen) {
   finish(m);
   drain_pool(m);
   m->st.wall_s = now(m);
-  if (!m->st.errors) return 0;
-  if (m->st.errors > ERRS_SHOWN)
-    snprintf(err, errlen, "%s (%lld errors in all)", m->errs, m->st.errors);
-  else
-    snprintf(err, errlen, "%s", m->errs);
-  return -1;
+  return errlog_report(&m->errs, m->st.errors, err, errlen);
 }
 
 const mpm_stats *mpm_stats_get(const mpm *m) { return &m->st; }
@@ -739,5 +724,6 @@ void mpm_free(mpm *m) {
   free(m->req), free(m->pbuf), free(m->idx);
   free(m->sent_to), free(m->got_from);
   free(m->cstate), free(m->cwsrc), free(m->cwtag), free(m->S), free(m->A);
+  errlog_free(&m->errs);
   free(m);
 }

@@ -33,6 +33,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "errlog.h"
 #include "wallclock.h"
 #include "xmem.h"
 
@@ -88,8 +89,7 @@ struct mpt {
   pthread_mutex_t g;
   int live;                    /* ranks whose main has not returned */
   int sleeping;                /* ranks sleeping in recv without a matching message */
-  char *errs;                  /* the errors quoted so far, "; then "-separated */
-  int nshown;
+  errlog errs;                 /* the errors quoted in mpt_run's message */
   int ran;
   mpt_stats st;                /* errors and warnings under g; the rest after the run */
 };
@@ -102,20 +102,9 @@ struct mpt {
 #define PRINTF(a, b)
 #endif
 
-enum { ERRS_SHOWN = 3 };   /* errors quoted in mpt_run's message; the rest are counted */
-
-/* Record an error of the run (caller holds g). */
 static void add_error_locked(mpt *t, const char *text, int always) {
   t->st.errors++;
-  if (t->nshown >= ERRS_SHOWN && !always) return;
-  size_t old = t->errs ? strlen(t->errs) : 0, add = strlen(text);
-  t->errs = xrealloc(t->errs, old + add + 8);
-  if (old) {
-    memcpy(t->errs + old, "; then ", 7);
-    old += 7;
-  }
-  memcpy(t->errs + old, text, add + 1);
-  t->nshown++;
+  errlog_add(&t->errs, text, always);
 }
 
 static PRINTF(2, 3) void fail(mpt *t, const char *fmt, ...) {
@@ -536,12 +525,7 @@ int mpt_run(mpt *t, const mp_proc *procs, char *err, size_t errlen) {
     t->st.bytes += rs->bytes_sent;
     t->st.sleeps += rs->sleeps;
   }
-  if (!t->st.errors) return 0;
-  if (t->st.errors > t->nshown)
-    snprintf(err, errlen, "%s (%lld errors in all)", t->errs, t->st.errors);
-  else
-    snprintf(err, errlen, "%s", t->errs);
-  return -1;
+  return errlog_report(&t->errs, t->st.errors, err, errlen);
 }
 
 const mpt_rank_stats *mpt_rank(const mpt *t, int i) {
@@ -567,6 +551,6 @@ void mpt_free(mpt *t) {
   pthread_mutex_destroy(&t->gate_mu);
   pthread_cond_destroy(&t->gate_cv);
   free(t->ranks);
-  free(t->errs);
+  errlog_free(&t->errs);
   free(t);
 }

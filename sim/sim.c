@@ -37,6 +37,7 @@
 
 #include "coro.h"
 #include "evq.h"
+#include "errlog.h"
 #include "trace.h"
 #include "wallclock.h"
 #include "xmem.h"
@@ -177,8 +178,7 @@ struct sim {
   msg *pool;               /* free messages */
   FILE *tcsv, *tjson;
   trace *tr;
-  char *errs;              /* the errors quoted so far, "; then "-separated */
-  int nshown;              /* how many */
+  errlog errs;             /* the errors quoted in sim_run's message */
   sim_stats st;
 };
 
@@ -201,23 +201,9 @@ static char *vformat(const char *fmt, va_list ap) {
 #define PRINTF(a, b)
 #endif
 
-enum { ERRS_SHOWN = 3 }; /* errors quoted in sim_run's message; the rest are counted */
-
-/* Append an error message to the run's report (owned by the report after). */
 static void add_error(sim *s, char *text, int always) {
   s->st.errors++;
-  if (s->nshown >= ERRS_SHOWN && !always) {
-    free(text);
-    return;
-  }
-  size_t old = s->errs ? strlen(s->errs) : 0, add = strlen(text);
-  s->errs = xrealloc(s->errs, old + add + 8);
-  if (old) {
-    memcpy(s->errs + old, "; then ", 7);
-    old += 7;
-  }
-  memcpy(s->errs + old, text, add + 1);
-  s->nshown++;
+  errlog_add(&s->errs, text, always);
   free(text);
 }
 
@@ -790,12 +776,7 @@ int sim_run(sim *s, const mp_proc *procs, char *err, size_t errlen) {
   coro_free(s->main);
   s->main = NULL;
   s->st.wall_s = wallclock() - w0;
-  if (!s->st.errors) return 0;
-  if (s->st.errors > s->nshown)
-    snprintf(err, errlen, "%s (%lld errors in all)", s->errs, s->st.errors);
-  else
-    snprintf(err, errlen, "%s", s->errs);
-  return -1;
+  return errlog_report(&s->errs, s->st.errors, err, errlen);
 }
 
 const sim_rank_stats *sim_rank(const sim *s, int i) {
@@ -829,6 +810,6 @@ void sim_free(sim *s) {
   free(s->place);
   free(s->busy);
   free(s->nic);
-  free(s->errs);
+  errlog_free(&s->errs);
   free(s);
 }
