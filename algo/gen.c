@@ -57,6 +57,7 @@ static double glass_radius(double t) {
 
 void gen_glass(contour_stack *s, int slices, int points) {
   s->n = slices;
+  s->nslices = slices;
   s->c = xcalloc((size_t)slices, sizeof *s->c);
   for (int i = 0; i < slices; i++) {
     double t = (double)i / (slices - 1);
@@ -64,6 +65,7 @@ void gen_glass(contour_stack *s, int slices, int points) {
     c->z = 2.0 * t;
     c->n = points;
     c->line = 0;
+    c->slice = i;
     c->pt = xmallocarray((size_t)points, sizeof *c->pt);
     /* A slightly oval section, turning a little with height, so the tiler
      * has real choices to make. */

@@ -1,10 +1,12 @@
-/* contour.c -- reading and checking contour stacks.
+/* contour.c -- reading and checking contour stacks; grouping them into slices.
  *
  * Everything is validated before any work: each error names the file, the
  * line and the offending value.  What users expect to be repaired is repaired
- * and reported: a repeated closing point, consecutive duplicate points, and
+ * and reported: a repeated closing point, consecutive duplicate points,
  * clockwise contours (every contour is made counter-clockwise seen from +z, so
- * both contours of a pair run the same way and the band does not twist). */
+ * both contours of a pair run the same way and the band does not twist; with
+ * several contours on a slice surface/ orients them by nesting instead), and
+ * z values that differ by jitter within one slice (snapped to one value). */
 #include "contour.h"
 
 #include <ctype.h>
@@ -138,10 +140,12 @@ static int finish(reader *r, raw *c, contour *out, int *reversed) {
                 k, k == 1 ? "" : "s", c->z);
   if (geom_collinear(c->pt, k))
     return fail(r, c->line, "all %d points of the contour are collinear (z=%.17g)", k, c->z);
-  if (geom_area2(c->pt, k) < 0) {
+  out->cw = geom_area2(c->pt, k) < 0;
+  if (out->cw) {
     geom_reverse(c->pt, k);
     (*reversed)++;
   }
+  out->slice = 0;
   out->z = c->z;
   out->n = k;
   out->pt = xreallocarray(c->pt, (size_t)k, sizeof *c->pt);
@@ -157,22 +161,84 @@ static int by_z(const void *a, const void *b) {
   return p->line - q->line;
 }
 
-/* Two contours on one slice: report the later one in file order, naming the
- * first contour on that slice. */
-static int same_slice(reader *r, const contour *cs, int n) {
-  const contour **o = xmallocarray((size_t)n, sizeof *o);
-  const contour *bad = NULL;
+static int by_double(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return x < y ? -1 : x > y;
+}
+
+/* Slices.  Sorted by z, the contours split into slices where the gap to the
+ * next z is at least a tenth of the slice spacing S; S is the median of the
+ * gaps that are at least 1% of the largest (so jitter of a few contours does
+ * not pull it down).  The contours of a slice take one z, the lower median of
+ * theirs (an input value, whatever the file order), and the snapping is
+ * reported.  Returns the number of slices. */
+static int group_slices(reader *r, contour *cs, int n) {
+  contour **o = xmallocarray((size_t)n, sizeof *o);
+  double *gap = xmallocarray((size_t)n, sizeof *gap);
   for (int i = 0; i < n; i++) o[i] = &cs[i];
   qsort(o, (size_t)n, sizeof *o, by_z);
+  int ng = 0;
+  double big = 0;
   for (int i = 1; i < n; i++)
-    if (o[i]->z == o[i - 1]->z && (!bad || o[i]->line < bad->line)) bad = o[i];
+    if (o[i]->z > o[i - 1]->z) {
+      double g = o[i]->z - o[i - 1]->z;
+      if (g > big) big = g;
+      gap[ng++] = g;
+    }
+  int nk = 0;
+  for (int i = 0; i < ng; i++)
+    if (gap[i] >= big / 100) gap[nk++] = gap[i];
+  qsort(gap, (size_t)nk, sizeof *gap, by_double);
+  double spacing = nk ? gap[nk / 2] : 0, tol = spacing / 10;
+  int nslices = 0, snapped = 0, first = 0;
+  double worst = 0;
+  for (int i = 0, j; i < n; i = j) {
+    for (j = i + 1; j < n && (o[j]->z == o[j - 1]->z || o[j]->z - o[j - 1]->z < tol); j++) {}
+    double z = o[i + (j - i - 1) / 2]->z;
+    for (int k = i; k < j; k++) {
+      if (o[k]->z != z) {
+        double d = fabs(o[k]->z - z);
+        if (!snapped || o[k]->line < first) first = o[k]->line;
+        if (d > worst) worst = d;
+        snapped++;
+        o[k]->z = z;
+      }
+      o[k]->slice = nslices;
+    }
+    nslices++;
+  }
+  if (snapped)
+    note(r, first,
+         "snapped the z of %d contour%s to their slice's (at most %.3g away; slices are about "
+         "%.3g apart)", snapped, snapped == 1 ? "" : "s", worst, spacing);
+  free(gap);
   free(o);
-  if (!bad) return 0;
-  int first = 0;
-  while (cs[first].z != bad->z) first++;
-  return fail(r, bad->line,
-              "slice z=%.17g already has a contour (line %d); several contours per "
-              "slice are not supported yet (%.17g)", bad->z, cs[first].line, bad->z);
+  return nslices;
+}
+
+int contour_stack_pairs(const contour_stack *s, const char *name, char *err, size_t errlen) {
+  reader rd = {name, err, errlen, NULL, NULL};
+  const contour *cs = s->c, *bad = NULL;
+  int n = s->n;
+  /* Two contours on one slice: report the later one in file order, naming
+   * the first contour on that slice. */
+  for (int i = 0; i < n; i++)
+    for (int j = 0; j < i && !bad; j++)
+      if (cs[j].slice == cs[i].slice) bad = &cs[i];
+  if (bad) {
+    int first = 0;
+    while (cs[first].slice != bad->slice) first++;
+    return fail(&rd, bad->line,
+                "slice z=%.17g already has a contour (line %d); this program tiles each "
+                "contour with the next and needs one contour per slice (%.17g)",
+                bad->z, cs[first].line, bad->z);
+  }
+  for (int i = 2; i < n; i++)
+    if ((cs[i].z > cs[i - 1].z) != (cs[1].z > cs[0].z))
+      return fail(&rd, cs[i].line,
+                  "z goes back: contours must come in increasing or decreasing z (%.17g after %.17g)",
+                  cs[i].z, cs[i - 1].z);
+  return 0;
 }
 
 static void free_contours(contour *cs, int n) {
@@ -307,24 +373,24 @@ int contour_parse(const char *text, size_t len, const char *name,
     fail(r, line, "no contours in the file (only comments or blank lines)");
     goto done;
   }
-  /* Slices: one contour each (found by sorting), z strictly monotone. */
-  if (same_slice(r, cs, ncs) != 0) goto done;
-  for (int i = 2; i < ncs; i++)
-    if ((cs[i].z > cs[i - 1].z) != (cs[1].z > cs[0].z)) {
-      fail(r, cs[i].line,
-           "z goes back: contours must come in increasing or decreasing z (%.17g after %.17g)",
-           cs[i].z, cs[i - 1].z);
-      goto done;
-    }
   if (ncs < 2) {
     fail(r, cs[0].line, "only one contour; tiling needs at least 2 (z=%.17g)", cs[0].z);
     goto done;
   }
-  if (reversed && hold)
+  int nslices = group_slices(r, cs, ncs);
+  if (nslices < 2) {
+    fail(r, cs[0].line, "all %d contours lie on one slice; tiling needs at least 2 (z=%.17g)",
+         ncs, cs[0].z);
+    goto done;
+  }
+  /* With several contours on a slice, surface/ orients them by nesting and
+   * reports what it changed. */
+  if (reversed && hold && nslices == ncs)
     fprintf(hold, "%s: %s: %d of %d contours ran clockwise; reversed to counter-clockwise\n",
             r->prefix, name, reversed, ncs);
   out->n = ncs;
   out->c = cs;
+  out->nslices = nslices;
   cs = NULL;
   rc = 0;
 done:
@@ -382,4 +448,5 @@ void contour_stack_free(contour_stack *s) {
   free_contours(s->c, s->n);
   s->c = NULL;
   s->n = 0;
+  s->nslices = 0;
 }

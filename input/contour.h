@@ -3,7 +3,14 @@
  * Format (shared/data/README.md): a line "C <n> <z>" opens a contour of n
  * points in the plane z; the next n lines are its points "x y".  Lines
  * starting with '#' are comments; blank lines are skipped.  The closing point
- * is not repeated.  Contours are tiled in file order, each with the next. */
+ * is not repeated.
+ *
+ * Slices.  Contours whose z agree to within a tenth of the slice spacing form
+ * one slice, whatever their order in the file (contour_parse groups them and
+ * snaps their z to one value); a slice may hold any number of contours.
+ * ./tile makes one surface of the whole stack (surface/stack.h); the programs
+ * that tile each contour with the next in file order (bench --input, bench
+ * --tiler, plot surface) ask contour_stack_pairs for one contour per slice. */
 #ifndef CONTOUR_H
 #define CONTOUR_H
 
@@ -17,19 +24,22 @@ typedef struct {
   int n;          /* points, after repair (>= 3, not all collinear) */
   vec2 *pt;       /* counter-clockwise seen from +z; closing point not repeated */
   int line;       /* line of its "C" header in the file */
+  int slice;      /* its slice, 0 .. nslices-1 in increasing z */
+  int cw;         /* 1 if the file gave it clockwise (it was reversed) */
 } contour;
 
 typedef struct {
-  int n;          /* contours, in file order (>= 2), z strictly monotone */
+  int n;          /* contours, in file order (>= 2) */
   contour *c;
+  int nslices;    /* slices (>= 2); contours of one slice share their z exactly */
 } contour_stack;
 
 enum { CONTOUR_MAX_LINE = 4096 };        /* longer lines are rejected */
 enum { CONTOUR_MAX_POINTS = 10000000 };  /* per contour */
 
 /* Read the stack in `path` ("-" is standard input).  Repairs (a repeated
- * closing point, consecutive duplicate points, clockwise contours) are
- * reported as lines "PREFIX: FILE:LINE: ..." on `notes` (NULL: silent).
+ * closing point, consecutive duplicate points, clockwise contours when every
+ * slice has one contour, z values snapped to their slice) are reported as lines "PREFIX: FILE:LINE: ..." on `notes` (NULL: silent).
  * Returns 0, or -1 with "FILE:LINE: what is wrong (value)" in err; nothing
  * is allocated on failure.  The caller frees with contour_stack_free. */
 int contour_read(const char *path, contour_stack *out, FILE *notes,
@@ -43,6 +53,11 @@ int contour_parse(const char *text, size_t len, const char *name,
 /* Write a stack in the same format (%.17g: reading it back is exact).
  * Returns 0 or -1 on a write error. */
 int contour_write(FILE *f, const contour_stack *s);
+
+/* For the programs that tile each contour with the next in file order: 0
+ * if every slice has one contour and z runs monotone through the file; else
+ * -1 and "NAME:LINE: what (value)" in err. */
+int contour_stack_pairs(const contour_stack *s, const char *name, char *err, size_t errlen);
 
 void contour_stack_free(contour_stack *s);
 

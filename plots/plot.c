@@ -197,6 +197,11 @@ static int surface(int argc, char **argv) {
     fprintf(stderr, "plot: %s\n", err);
     return 1;
   }
+  if (contour_stack_pairs(&s, in, err, sizeof err) != 0) {
+    fprintf(stderr, "plot: %s\n", err);
+    contour_stack_free(&s);
+    return 1;
+  }
   mesh me;
   mesh_init(&me, &s);
   for (int i = 0; i + 1 < s.n; i++) {

@@ -324,9 +324,11 @@ int bench_paper(int argc, char **argv) {
   if (ms.n == 0) ms.n = 1, ms.v[0] = rc.machine.m;
   if (cs.n == 0) cs.n = 1, cs.v[0] = rc.machine.c;
 
-  contour_stack stack = {0, NULL};
+  contour_stack stack = {0, NULL, 0};
   if (input) {
-    if (contour_read(input, &stack, NULL, "bench", err, sizeof err) != 0) {
+    if (contour_read(input, &stack, NULL, "bench", err, sizeof err) != 0 ||
+        contour_stack_pairs(&stack, input, err, sizeof err) != 0) {
+      if (stack.c) contour_stack_free(&stack);
       fprintf(stderr, "bench: %s\n", err);
       return 1;
     }

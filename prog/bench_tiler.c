@@ -98,6 +98,11 @@ static int run_stack(row *r, const char *file, cost_kind kind) {
     fprintf(stderr, "bench: %s\n", err);
     return -1;
   }
+  if (contour_stack_pairs(&s, file, err, sizeof err) != 0) {
+    fprintf(stderr, "bench: %s\n", err);
+    contour_stack_free(&s);
+    return -1;
+  }
   const char *base = strrchr(file, '/');
   snprintf(r->name, sizeof r->name, "stack:%s", base ? base + 1 : file);
   r->m = s.n;   /* contours */

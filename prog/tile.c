@@ -161,10 +161,22 @@ static int tile_main(int argc, char **argv) {
   }
 
   contour_stack s;
-  if (contour_read(in, &s, quiet ? NULL : stderr, "tile", err, sizeof err) != 0) {
+  /* Notes on repaired input are held back until the input is accepted: a
+   * refused file gets its one-line message and nothing else. */
+  char *held = NULL;
+  size_t heldlen = 0;
+  FILE *notes = quiet ? NULL : open_memstream(&held, &heldlen);
+  int bad = contour_read(in, &s, notes, "tile", err, sizeof err) != 0 ||
+            contour_stack_pairs(&s, strcmp(in, "-") == 0 ? "<stdin>" : in, err, sizeof err) != 0;
+  if (notes) fclose(notes);
+  if (bad) {
     fprintf(stderr, "tile: %s\n", err);
+    if (s.c) contour_stack_free(&s);
+    free(held);
     return 1;
   }
+  if (heldlen) fwrite(held, 1, heldlen, stderr);
+  free(held);
   int npairs = s.n - 1, rcode = 0;
   par_pair *pr = NULL;
   if (parallel) {

@@ -38,9 +38,10 @@ expect_error fewer2       "C 4 0\n${P3}C 3 1\n$P3"            '5: the contour at
 expect_error more         "C 3 0\n${P3}2 2\n"                 '5: more point lines than the 3 announced at line 1 (2 2)'
 expect_error twopoints    "C 3 0\n0 0\n1 0\n1 0\nC 3 1\n$P3"  '1: contour has 2 distinct points, needs at least 3'
 expect_error collinear    "C 3 0\n0 0\n1 1\n2 2\nC 3 1\n$P3"  '1: all 3 points of the contour are collinear'
-expect_error sameslice    "C 3 1\n${P3}C 3 1\n$P3"            '5: slice z=1 already has a contour (line 1); several contours per slice are not supported yet (1)'
+expect_error sameslice    "C 3 1\n${P3}C 3 2\n${P3}C 3 1\n2 2\n3 2\n2 3\n"            '9: slice z=1 already has a contour (line 1)'
 expect_error goesback     "C 3 0\n${P3}C 3 2\n${P3}C 3 1\n$P3" '9: z goes back'
 expect_error onecontour   "C 3 0\n$P3"                        '1: only one contour; tiling needs at least 2'
+expect_error oneslice     "C 3 0\n${P3}C 3 0\n2 2\n3 2\n2 3\n"   '1: all 2 contours lie on one slice; tiling needs at least 2'
 expect_error binary       "C 3 0\n\001\002\003\n"             '2: binary data, not a contour file (byte 0x01)'
 expect_error nulbyte      "C 3 0\n0 0\n1\000 0\n"             '3: binary data, not a contour file (byte 0x00)'
 long=$(head -c 5000 /dev/zero | tr '\0' '7')

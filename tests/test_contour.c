@@ -57,11 +57,8 @@ static const bad cases[] = {
     {"C 3 0\n0 0\n0 0\n0 0\n", 1, "1 distinct point, needs at least 3", NULL},
     {"C 4 0\n0 0\n1 1\n2 2\n3 3\n", 1, "collinear", NULL},
     {"C 4 0\n0 0\n1 1\n0 0\n1 1\n", 1, "collinear", NULL},
-    {"C 3 2\n0 0\n1 0\n0 1\nC 3 2\n0 0\n2 0\n0 2\n", 5, "slice z=2 already has a contour (line 1)", "2"},
-    {"C 3 0\n0 0\n1 0\n0 1\nC 3 1\n0 0\n1 0\n0 1\nC 3 0\n0 0\n1 0\n0 1\n", 9,
-     "slice z=0 already has a contour (line 1)", "0"},
-    {"C 3 0\n0 0\n1 0\n0 1\nC 3 2\n0 0\n1 0\n0 1\nC 3 1\n0 0\n1 0\n0 1\n", 9, "z goes back", "1 after 2"},
     {"C 3 0\n0 0\n1 0\n0 1\n", 1, "only one contour", NULL},
+    {"C 3 2\n0 0\n1 0\n0 1\nC 3 2\n5 0\n6 0\n5 1\n", 1, "all 2 contours lie on one slice", NULL},
     {"C 3 0\n0 0\n1\x01 0\n0 1\n", 3, "binary data", "byte 0x01"},
     {"C 3 0\n\x7f\x45LF\n", 2, "binary data", "byte 0x7f"},
 };
@@ -184,10 +181,69 @@ static void check_real(void) {
       CHECK(geom_area2(s.c[j].pt, s.c[j].n) > 0, "%s contour %d not counter-clockwise", path, j);
     if (rc == 0) contour_stack_free(&s);
   }
+  /* tinypatient_0: two contours on each of 9 slices; not a stack of pairs. */
   contour_stack s;
-  CHECK(contour_read("tests/data/slicerrt/tinypatient_0.contours", &s, NULL, "tile", err, sizeof err) == -1 &&
-            strstr(err, "tinypatient_0.contours:29: slice z=-123.75 already has a contour (line 1)"),
-        "tinypatient_0: %s", err);
+  int rc = contour_read("tests/data/slicerrt/tinypatient_0.contours", &s, NULL, "tile", err, sizeof err);
+  CHECK(rc == 0 && s.n == 18 && s.nslices == 9, "tinypatient_0: %s", err);
+  if (rc != 0) return;
+  int per[9] = {0};
+  for (int j = 0; j < s.n; j++)
+    if (s.c[j].slice >= 0 && s.c[j].slice < 9) per[s.c[j].slice]++;
+  for (int k = 0; k < 9; k++) CHECK(per[k] == 2, "tinypatient_0 slice %d has %d contours", k, per[k]);
+  CHECK(contour_stack_pairs(&s, "tp0", err, sizeof err) == -1 &&
+            strstr(err, "tp0:29: slice z=-123.75 already has a contour (line 1)"),
+        "tinypatient_0 as pairs: %s", err);
+  contour_stack_free(&s);
+}
+
+/* Slices: any order, any number of contours; z jitter within a tenth of the
+ * spacing is snapped to one value (the lower median) and reported; the
+ * pairs check gives the old rules. */
+static void check_slices(void) {
+  char err[512], notes[4096];
+  contour_stack s;
+  /* Slices at 0, 3, 6 (given out of order), the one at 3 with jitter. */
+  const char *t = "C 3 6\n0 0\n1 0\n0 1\n"
+                  "C 3 3.001\n0 0\n1 0\n0 1\n"
+                  "C 3 0\n0 0\n1 0\n0 1\n"
+                  "C 3 2.999\n5 0\n6 0\n5 1\n"
+                  "C 3 3\n9 0\n10 0\n9 1\n";
+  int rc = parse(t, strlen(t), &s, err, notes, sizeof notes);
+  CHECK(rc == 0 && s.n == 5 && s.nslices == 3, "jittered stack: %s (%d slices)", err, rc == 0 ? s.nslices : -1);
+  if (rc == 0) {
+    int want[5] = {2, 1, 0, 1, 1};
+    for (int i = 0; i < 5; i++) CHECK(s.c[i].slice == want[i], "contour %d on slice %d", i, s.c[i].slice);
+    CHECK(s.c[1].z == 3 && s.c[3].z == 3 && s.c[4].z == 3 && s.c[0].z == 6 && s.c[2].z == 0,
+          "snapped z: %g %g %g", s.c[1].z, s.c[3].z, s.c[4].z);
+    CHECK(strstr(notes, "tile: t.contours:5: snapped the z of 2 contours to their slice's") != NULL,
+          "snapping note: %s", notes);
+    CHECK(contour_stack_pairs(&s, "t.contours", err, sizeof err) == -1 &&
+              strstr(err, "t.contours:13: slice z=3 already has a contour (line 5)"),
+          "pairs: %s", err);
+    contour_stack_free(&s);
+  }
+  /* Uneven spacing is kept; z going back is fine for a stack, not for pairs. */
+  const char *u = "C 3 0\n0 0\n1 0\n0 1\nC 3 2\n0 0\n1 0\n0 1\nC 3 1\n0 0\n1 0\n0 1\n"
+                  "C 3 1.3\n0 0\n1 0\n0 1\n";
+  rc = parse(u, strlen(u), &s, err, notes, sizeof notes);
+  CHECK(rc == 0 && s.nslices == 4 && notes[0] == 0, "uneven: %s %s", err, notes);
+  if (rc == 0) {
+    CHECK(s.c[0].slice == 0 && s.c[1].slice == 3 && s.c[2].slice == 1 && s.c[3].slice == 2, "uneven slices");
+    CHECK(contour_stack_pairs(&s, "t.contours", err, sizeof err) == -1 &&
+              strstr(err, "t.contours:9: z goes back") && strstr(err, "(1 after 2)"),
+          "pairs: %s", err);
+    contour_stack_free(&s);
+  }
+  /* A clockwise contour on a slice with another: no reversal note here (the
+   * surface orients by nesting), but the flag is kept. */
+  const char *w = "C 3 0\n0 0\n0 1\n1 0\nC 3 0\n5 0\n6 0\n5 1\nC 3 1\n0 0\n1 0\n0 1\n";
+  rc = parse(w, strlen(w), &s, err, notes, sizeof notes);
+  CHECK(rc == 0 && s.c[0].cw == 1 && s.c[1].cw == 0 && strstr(notes, "clockwise") == NULL,
+        "clockwise flag: %s %s", err, notes);
+  if (rc == 0) {
+    CHECK(geom_area2(s.c[0].pt, 3) > 0, "still made counter-clockwise");
+    contour_stack_free(&s);
+  }
 }
 
 /* Random mutations of valid stacks: every input is either rejected with one
@@ -248,7 +304,7 @@ static void check_fuzz(void) {
       continue;
     }
     accepted++;
-    int okst = s.n >= 2;
+    int okst = s.n >= 2 && s.nslices >= 2;
     for (int i = 0; i < s.n; i++) {
       const contour *c = &s.c[i];
       okst &= c->n >= 3 && isfinite(c->z) && geom_area2(c->pt, c->n) >= 0 && !geom_collinear(c->pt, c->n);
@@ -257,7 +313,10 @@ static void check_fuzz(void) {
         const vec2 *q = &c->pt[(j + 1) % c->n];
         okst &= !(q->x == c->pt[j].x && q->y == c->pt[j].y);   /* no consecutive duplicates */
       }
-      if (i > 0) okst &= c->z != s.c[i - 1].z;
+      okst &= c->slice >= 0 && c->slice < s.nslices;
+      for (int j = 0; j < s.n; j++)   /* one z per slice, slices in increasing z */
+        okst &= (s.c[j].slice == c->slice) == (s.c[j].z == c->z) &&
+                (s.c[j].slice < c->slice) == (s.c[j].z < c->z);
     }
     if (!okst) broken++;
     contour_stack_free(&s);
@@ -271,5 +330,6 @@ int main(void) {
   check_fuzz();
   check_good();
   check_real();
+  check_slices();
   return check_done("test_contour");
 }

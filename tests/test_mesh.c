@@ -65,7 +65,7 @@ static double simpson_volume(const contour *P, const contour *Q, const tiling *t
 }
 
 static void random_stack(rng *g, contour_stack *s, int shape) {
-  s->n = rng_int(g, 2, 6);
+  s->n = s->nslices = rng_int(g, 2, 6);
   s->c = xcalloc((size_t)s->n, sizeof *s->c);
   double z = rng_uniform(g) * 10, dz = rng_int(g, 0, 1) ? 1 + rng_uniform(g) : -(1 + rng_uniform(g));
   for (int i = 0; i < s->n; i++) {
@@ -75,6 +75,7 @@ static void random_stack(rng *g, contour_stack *s, int shape) {
     if (shape == 0) gen_star(g, c->pt, c->n, rng_uniform(g), rng_uniform(g), 5 + 3 * rng_uniform(g), 0.45);
     else gen_regular(c->pt, c->n, 0, 0, 4, rng_uniform(g));
     c->z = z;
+    c->slice = dz > 0 ? i : s->n - 1 - i;
     z += dz;
   }
 }
@@ -121,12 +122,13 @@ static void check_stacks(rng *g) {
 
 /* A prism of identical regular polygons: volume = area x height, exactly. */
 static void check_prism(void) {
-  contour_stack s = {3, xcalloc(3, sizeof(contour))};
+  contour_stack s = {3, xcalloc(3, sizeof(contour)), 3};
   for (int i = 0; i < 3; i++) {
     s.c[i].n = 12;
     s.c[i].pt = xmallocarray(12, sizeof(vec2));
     gen_regular(s.c[i].pt, 12, 1, 2, 3, 0.1);
     s.c[i].z = 2.0 * i;
+    s.c[i].slice = i;
   }
   mesh me;
   mesh_init(&me, &s);
