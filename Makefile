@@ -4,6 +4,7 @@
 #   make check           every test, built with -Werror and ASan+UBSan
 #   make bench           the paper's experiments: CSV and SVG under plots/
 #   make bench-tile      the tiler's speed and memory figures
+#   make bench-load      the threads (and MPI) backends beside busy loops
 #   make valgrind        the tests under valgrind, without sanitizers
 #   make mpi             ./tile-mpi and ./bench-mpi with mpicc (mpirun -np P ...)
 #   make simgrid         the simulator against SimGrid's SMPI (tests/simgrid.sh)
@@ -181,6 +182,11 @@ bench: all
 bench-tile: all
 	./bench --tiler
 
+# The threads and MPI backends' waiting under outside load (issue 14, item 5):
+# runs alone and beside two busy loops (tests/bench_load.sh says what to set).
+bench-load: all
+	sh tests/bench_load.sh
+
 install: all
 	mkdir -p $(DESTDIR)$(PREFIX)/bin
 	cp $(addprefix build/bin/,$(PROGS)) $(DESTDIR)$(PREFIX)/bin/
@@ -189,7 +195,7 @@ install: all
 clean:
 	rm -rf build $(PROGS) $(addsuffix -mpi,$(MPIPROGS))
 
-.PHONY: all check valgrind bench bench-tile install clean mpi mpi-bins smpi-bins simgrid
+.PHONY: all check valgrind bench bench-tile bench-load install clean mpi mpi-bins smpi-bins simgrid
 .SECONDARY:
 
 -include $(shell find build -name '*.d' 2>/dev/null)

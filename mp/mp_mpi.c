@@ -25,15 +25,18 @@
 #include "mp_mpi.h"
 
 #include <math.h>
-#include <sched.h>
 #include <stdarg.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
+#include "cpuload.h"
 #include "errlog.h"
 #include "xmem.h"
+#if defined(__linux__)
+#include <sys/prctl.h>
+#endif
 
 #if defined(SMPI_H)
 #define SIMGRID 1   /* SimGrid's SMPI: blocking receives, explicit compute */
@@ -51,14 +54,17 @@ void mpm_config_init(mpm_config *cfg) {
 enum { CT_REPORT = 1, CT_STOP, CT_END, CT_FINAL, CT_EXPECT };   /* ctl tags */
 enum { ST_RUNNING, ST_BLOCKED, ST_DONE };                       /* reported states */
 
-/* Waiting: busy polls, then polls with sched_yield, then with sleeps of an
- * eighth of the wait so far within [SLEEP_MIN_S, SLEEP_MAX_S]; a rank
- * blocked REPORT_S reports it (MPI only). */
+/* Waiting: busy polls for BUSY_S while the machine has a processor for
+ * every runnable thread (cpuload.h), then polls with sched_yield up to
+ * YIELD_S unless a yield lately gave the processor away for long, then (or
+ * else) polls with sleeps of an eighth of the wait so far within
+ * [SLEEP_MIN_S, SLEEP_MAX_S]; a rank blocked REPORT_S reports it (MPI only). */
 #define BUSY_S 50e-6
 #define YIELD_S 2e-3
-#define SLEEP_MIN_S 50e-6
+#define SLEEP_MIN_S 20e-6
 #define SLEEP_MAX_S 1e-3
 #define REPORT_S 2e-3
+#define TIMER_SLACK_NS 2000   /* Linux: a sleep of SLEEP_MIN_S is not 50 us longer */
 
 typedef struct msg msg;
 struct msg {
@@ -78,6 +84,8 @@ struct mpm {
   struct mp base;              /* first: an mp * is an mpm * */
   mpm_config cfg;
   MPI_Comm data, ctl;
+  cpuload load;                /* the machine's runnable threads, sampled */
+  int cpus;                    /* processors this process may use */
   int n, me;
   int ran;
   double t0;
@@ -336,18 +344,29 @@ static void poll_once(mpm *m) {
   reap(m);
 }
 
-/* Between two polls of a wait that began at `since`. */
-static void backoff(const mpm *m, double since) {
+/* Between two polls of a wait that began at `since`.
+ *   Poll again at once during the first BUSY_S, but only while no more
+ *   threads are runnable on the machine than there are processors: this
+ *   rank then has a processor nobody else wants.
+ *   Else, up to YIELD_S, sched_yield: with more ranks than cores the
+ *   processor goes to another rank, likely the one that will send.  But a
+ *   yield gives the processor to whatever else is runnable, for a whole
+ *   time slice if that is another program's busy thread: once a yield came
+ *   back late (cpuload_yield), no yields for a while.
+ *   Else sleep an eighth of the wait so far, SLEEP_MIN_S to SLEEP_MAX_S: a
+ *   long wait (the master's, mostly) wakes rarely and answers within an
+ *   eighth of its length, and never holds a processor another wants. */
+static void backoff(mpm *m, double since) {
   double w = now(m) - since;
-  if (w < BUSY_S) return;
-  if (w < YIELD_S) {
-    sched_yield();
+  if (w < BUSY_S) {
+    int running = cpuload_running(&m->load, 1, NULL);
+    if (running < 0 || running <= m->cpus) return;
+  }
+  if (w < YIELD_S && !cpuload_hogged(&m->load)) {
+    cpuload_yield(&m->load);
     return;
   }
-  /* Sleep an eighth of the wait so far, 50 us to 1 ms: a long wait (the
-   * master's, mostly) wakes rarely and leaves the cores to the ranks that
-   * work, and answers within an eighth of its length. */
-  double d = (w - YIELD_S) / 8;
+  double d = w / 8;
   if (d < SLEEP_MIN_S) d = SLEEP_MIN_S;
   if (d > SLEEP_MAX_S) d = SLEEP_MAX_S;
   struct timespec ts = {0, (long)(d * 1e9)};
@@ -542,6 +561,11 @@ mpm *mpm_new(const mpm_config *cfg, MPI_Comm data, MPI_Comm ctl, int nranks, cha
   mpm *m = xcalloc(1, sizeof *m);
   m->base = (struct mp){&mpm_ops, me, nranks};
   m->cfg = *cfg;
+  cpuload_init(&m->load);
+  m->cpus = cpuload_cpus();
+#if defined(__linux__) && defined(PR_SET_TIMERSLACK)
+  prctl(PR_SET_TIMERSLACK, (unsigned long)TIMER_SLACK_NS, 0UL, 0UL, 0UL);
+#endif
   m->data = data;
   m->ctl = ctl;
   m->n = nranks;

@@ -22,12 +22,16 @@
  *   probed message), in the order MPI matches them: per-pair FIFO is MPI's
  *   non-overtaking rule, and a recv takes the first message in the mailbox
  *   that matches, the earliest arrival.  Waiting is a poll of MPI_Iprobe:
- *   busy for 50 us, then with sched_yield up to 2 ms, then with sleeps of
- *   an eighth of the wait so far (50 us to 1 ms), so that a rank that waits
- *   long (the master) leaves the cores to those that work.  (Open MPI's
- *   own mpi_yield_when_idle, which --oversubscribe turns on, makes every
- *   empty MPI_Iprobe a sched_yield system call: the boundary exchange then
- *   slows down several times; run with --mca mpi_yield_when_idle 0.)
+ *   busy for 50 us while the machine has a processor for every runnable
+ *   thread (mp/cpuload.h), then with sched_yield up to 2 ms unless a yield
+ *   lately came back late (another program's busy thread took the
+ *   processor for a time slice), then with sleeps of an eighth of the wait
+ *   so far (20 us to 1 ms), so that a rank that waits long (the master)
+ *   leaves the cores to those that work, and no rank polls or yields
+ *   against busy programs.  (Open MPI's own mpi_yield_when_idle, which
+ *   --oversubscribe turns on, makes every empty MPI_Iprobe a sched_yield
+ *   system call: the boundary exchange then slows down several times; run
+ *   with --mca mpi_yield_when_idle 0.)
  *
  *   Deadlock (MPI): a rank that has waited 2 ms in recv reports to rank 0
  *   that it is blocked, with its counts of messages sent to and pulled from

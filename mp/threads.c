@@ -33,6 +33,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "cpuload.h"
 #include "errlog.h"
 #include "wallclock.h"
 #include "xmem.h"
@@ -66,6 +67,7 @@ struct rank {
   int sleeping;                /* registered as sleeping in recv (counted in t->sleeping) */
   int wait_src, wait_tag;      /* what it sleeps for */
   int deadlocked;              /* its recv is to return MP_EDEADLOCK */
+  double woken_at;             /* wallclock() when a sender woke it */
   /* Owned by the rank's own thread. */
   mpt_rank_stats st;
   /* Pad: ranks' mailboxes on separate cache lines. */
@@ -79,7 +81,8 @@ struct mpt {
   const mp_proc *procs;
   atomic_int stopped;          /* deadlock: every mp call fails at once */
   atomic_int awake;            /* live - sleeping, for the spinners to read */
-  int cpus;                    /* online processors */
+  int cpus;                    /* processors this process may use */
+  cpuload load;                /* the machine's runnable threads, sampled */
   double t0;                   /* wallclock() at the start */
   /* The start gate: threads wait here until all are created. */
   pthread_mutex_t gate_mu;
@@ -253,6 +256,7 @@ static int mpt_send(mp *self, int dst, int tag, const void *buf, size_t len) {
     t->sleeping--;
     atomic_fetch_add_explicit(&t->awake, 1, memory_order_relaxed);
     pthread_mutex_unlock(&t->g);
+    d->woken_at = wallclock();
     pthread_cond_signal(&d->cv);
   }
   pthread_mutex_unlock(&d->mu);
@@ -292,31 +296,51 @@ static int deliver(rank *r, msg *m, void *buf, size_t cap, mp_status *st) {
   return rc;
 }
 
+/* How a waiting rank waits, now (cpuload.h says what else runs). */
+enum { W_SLEEP, W_PAUSE, W_YIELD };
+
+static int how_to_wait(mpt *t) {
+  int awake = atomic_load_explicit(&t->awake, memory_order_relaxed), others;
+  cpuload_running(&t->load, awake, &others);
+  if (awake <= t->cpus - others) return W_PAUSE;   /* a processor of its own */
+  if (others == 0 && !cpuload_hogged(&t->load))
+    return W_YIELD;                                /* only our own threads want it */
+  return W_SLEEP;                                  /* other programs want it */
+}
+
 /* Watch r's arrival counter until it moves from `seen`, the run stops or
- * spin_ns pass; 1 if it moved.  While no more threads are awake than there
- * are processors, a pause instruction between looks: the sender runs on
- * another core and the message is seen within a cache-line transfer.  With
- * more awake than processors (the master still spinning beside two slaves
- * on two cores, or sixteen ranks on two), sched_yield, so that the thread
- * that will send gets the core.  Pausing rather than yielding when there is
- * room matters for a second reason: a thread that gives up and sleeps is
- * woken on an idle core, so two ranks the scheduler put on one core part. */
+ * spin_ns pass; 1 if it moved.  How, decided again now and then:
+ *   pause  while no more of this machine's threads are awake (computing or
+ *          spinning) than there are processors other programs leave idle:
+ *          the sender runs on another core and the message is seen within a
+ *          cache-line transfer;
+ *   yield  while more are awake than there are processors but nothing else
+ *          runs on the machine (sixteen ranks on two cores): sched_yield
+ *          hands the processor to another of our threads, likely the one
+ *          that will send (unless a yield lately took long: then a thread
+ *          that does not give the processor back got it, cpuload_yield);
+ *   sleep  at once while other programs want the processors: a spinner or
+ *          yielder would take the processor from a thread that works,
+ *          perhaps the one it waits for, for a whole time slice; the sender
+ *          wakes a sleeper instead. */
 static int spin(rank *r, unsigned seen) {
   mpt *t = r->t;
   if (t->cfg.spin_ns <= 0) return 0;
-  double until = wallclock() + (double)t->cfg.spin_ns * 1e-9;
-  int crowded = 0;
-  for (long i = 1;; i++) {
+  double now = wallclock(), until = now + (double)t->cfg.spin_ns * 1e-9;
+  int how = how_to_wait(t);
+  for (long i = 1; how != W_SLEEP; i++) {
     if (atomic_load_explicit(&r->arrivals, memory_order_acquire) != seen) return 1;
-    if (crowded)
-      sched_yield();
+    if (how == W_YIELD)
+      cpuload_yield(&t->load);
     else
       cpu_relax();
-    if ((i & 31) == 0) {   /* now and then: the clock, the run, the crowd */
-      if (wallclock() >= until || stopped(t)) return 0;
-      crowded = atomic_load_explicit(&t->awake, memory_order_relaxed) > t->cpus;
+    if ((i & 31) == 0 || how == W_YIELD) {   /* now and then: the clock, the run, the room */
+      now = wallclock();
+      if (now >= until || stopped(t)) return 0;
+      how = how_to_wait(t);
     }
   }
+  return 0;
 }
 
 static int mpt_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status *st) {
@@ -371,7 +395,12 @@ static int mpt_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status
       wake_all(t);
       pthread_mutex_lock(&r->mu);
     }
+    r->woken_at = -1;
     while (r->sleeping && !stopped(t)) pthread_cond_wait(&r->cv, &r->mu);
+    if (r->woken_at >= 0) {
+      r->st.wakes++;
+      r->st.wake_s += wallclock() - r->woken_at;
+    }
     int was_dead = r->deadlocked;
     r->deadlocked = 0;
     pthread_mutex_unlock(&r->mu);
@@ -430,8 +459,8 @@ mpt *mpt_new(const mpt_config *cfg, int nranks, char *err, size_t errlen) {
   }
   atomic_init(&t->stopped, 0);
   atomic_init(&t->awake, 0);
-  long cpus = sysconf(_SC_NPROCESSORS_ONLN);
-  t->cpus = cpus >= 1 && cpus < 1 << 20 ? (int)cpus : 1;
+  t->cpus = cpuload_cpus();
+  cpuload_init(&t->load);
   pthread_mutex_init(&t->g, NULL);
   pthread_mutex_init(&t->gate_mu, NULL);
   pthread_cond_init(&t->gate_cv, NULL);
@@ -524,6 +553,8 @@ int mpt_run(mpt *t, const mp_proc *procs, char *err, size_t errlen) {
     t->st.received += rs->received;
     t->st.bytes += rs->bytes_sent;
     t->st.sleeps += rs->sleeps;
+    t->st.wakes += rs->wakes;
+    t->st.wake_s += rs->wake_s;
   }
   return errlog_report(&t->errs, t->st.errors, err, errlen);
 }

@@ -19,14 +19,27 @@
  *   same result whatever the order).
  *
  *   Waiting.  A recv that finds nothing spins, watching its mailbox's
- *   arrival counter, for a bounded time (cfg.spin_ns; pause instructions,
- *   or sched_yield while more threads are awake than there are
- *   processors), and only then sleeps on a condition variable.  A
- *   condition-variable wake-up costs microseconds (tens of them in a
+ *   arrival counter, for a bounded time (cfg.spin_ns), and only then
+ *   sleeps on a condition variable; the sender wakes it.  How it spins is
+ *   decided again and again from what runs on the machine (mp/cpuload.h:
+ *   the runnable threads machine-wide, sampled every 5 ms from
+ *   /proc/loadavg where there is one):
+ *     pause instructions while no more of this run's threads are awake
+ *       than there are processors that other programs leave idle;
+ *     sched_yield while more of them are awake than there are processors
+ *       but nothing else wants the processors (16 ranks on 2 cores), so
+ *       that the rank that will send gets the processor;
+ *     no spin at all, straight to sleep, while other programs' threads
+ *       want the processors (or a yield lately came back late): a spinner
+ *       or yielder would take the processor from a thread that works,
+ *       perhaps the very one it waits for, for whole time slices.
+ *   A condition-variable wake-up costs microseconds (tens of them in a
  *   virtual machine), more than the work between two of the algorithm's
  *   boundary messages; a short spin catches those messages within a
  *   cache-line transfer.  A rank that waits long (the master, mostly)
- *   sleeps and leaves its core to the others.
+ *   sleeps and leaves its core to the others.  Beside busy programs the
+ *   waits all sleep, and a run takes a small multiple of its time alone
+ *   (make bench-load) instead of a hundred times it.
  *
  *   Deadlock.  When every live thread sleeps in recv with no matching
  *   message in its mailbox (messages are never in flight here: a send
@@ -64,7 +77,8 @@
 
 typedef struct {
   long spin_ns;   /* how long a waiting recv watches its mailbox before it
-                     sleeps, nanoseconds (>= 0; 0: sleep at once) */
+                     sleeps, nanoseconds (>= 0; 0: sleep at once), while
+                     the machine has room for spinning (above) */
   FILE *warn;     /* warnings go here (default stderr); NULL: quiet */
 } mpt_config;
 
@@ -88,6 +102,9 @@ typedef struct {
   double finish;              /* wall seconds from the start when it returned */
   double recv_wait;           /* wall seconds inside mp_recv without a message */
   long long sleeps;           /* recvs that went to sleep after spinning */
+  long long wakes;            /* of those, woken by a sender's message */
+  double wake_s;              /* wall seconds from those senders' signals to
+                                 the sleepers running again (wake-up latency) */
   long long sent, received;   /* messages */
   long long bytes_sent, bytes_received;
   long long unread;           /* messages sent to it and never received */
@@ -101,6 +118,8 @@ typedef struct {
   long long bytes;            /* bytes sent */
   long long unread;           /* messages never received */
   long long sleeps;           /* recvs that slept, all ranks */
+  long long wakes;            /* sleepers woken by a message, all ranks */
+  double wake_s;              /* their wake-up latencies, summed */
   long long warnings;         /* truncations, unread messages */
   long long errors;           /* bad arguments, deadlock, ... */
   int deadlock;               /* 1 if the run ended in a deadlock */
