@@ -547,6 +547,17 @@ fail:
   return -1;
 }
 
+void sl_stack_clean(sl_stack *st) {
+  for (int i = 0; i < st->n; i++) {
+    sl_contour *c = &st->c[i];
+    int m = 0;
+    for (int j = 0; j < c->n; j++)
+      if (m == 0 || c->x[j] != c->x[m - 1] || c->y[j] != c->y[m - 1]) c->x[m] = c->x[j], c->y[m] = c->y[j], m++;
+    while (m > 1 && c->x[m - 1] == c->x[0] && c->y[m - 1] == c->y[0]) m--;
+    c->n = m;
+  }
+}
+
 void sl_stack_scramble(const sl_stack *in, unsigned long long seed, sl_stack *out) {
   rng r;
   rng_seed(&r, seed);

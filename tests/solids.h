@@ -81,6 +81,10 @@ int sl_stack_write(const sl_stack *st, const char *path);
  * left 0 / NAN).  0, or -1 with a message in err. */
 int sl_stack_read(const char *path, sl_stack *st, char *err, size_t errlen);
 
+/* Drop what ./tile repairs: consecutive repeated points, and a repeated
+ * closing point.  In place. */
+void sl_stack_clean(sl_stack *st);
+
 /* A second encoding of the same stack: on every slice the contours shuffled,
  * each one's start point turned and its winding reversed; a repeated closing
  * point is dropped first.  From seed; z and the points themselves unchanged. */

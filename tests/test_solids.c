@@ -289,6 +289,8 @@ static void test_io(const char *dir) {
   CHECK(t.nslice == 9 && t.n == 18 && t.c[0].n == 27, "tinypatient_0: %d slices, %d contours", t.nslice, t.n);
   sl_stack_scramble(&t, 1, &c);
   CHECK(c.n == 18 && c.nslice == 9 && (c.c[0].n == 26 || c.c[1].n == 26), "tinypatient_0 scrambled: closing point kept");
+  sl_stack_clean(&t);
+  CHECK(t.c[0].n == 26 && t.c[1].n == 5, "tinypatient_0 cleaned: %d and %d points", t.c[0].n, t.c[1].n);
   sl_stack_free(&c), sl_stack_free(&t);
   unlink(path);
   sl_stack_free(&a), sl_stack_free(&b);
@@ -445,21 +447,154 @@ static void path_of(char *buf, size_t n, const char *base, const char *ext) {
   snprintf(buf, n, "%s/%s%s", tmpdir, base, ext);
 }
 
-/* Tile one solid's stack and check everything. */
-static void e2e_solid(const char *tile, int s, int uneven) {
+/* Judge a mesh and report of solid s's stack st (planes z[0..K)): the
+ * checks above, and the volume.  Returns the mesh's volume and area. */
+static void judge(const char *name, int s, const sl_stack *st, const double *z, int K, const char *obj,
+                  const char *csv, double *vol, double *area) {
+  mc_report r;
+  mc_fidelity f;
+  check_mesh(name, obj, st, s, 1, &r, &f);
+  /* The volume: the solid's between the first and last planes.  The mesh
+   * differs by the polygons' deficit (about (2 pi / N)^2 / 6 = 0.16% at
+   * N = 64), the linear bands between curved slices (~0.1%), and where the
+   * topology changes (branches, caps of parts that begin between two
+   * planes: a fraction of a band each, a band being 1-2% at 72 slices). */
+  double v = solid_volume(s, z[0], z[K - 1]), e = (r.volume - v) / v;
+  CHECK(fabs(e) < 0.02, "%s: mesh volume %.9g, the solid's %.9g (%+.2f%%)", name, r.volume, v, 100 * e);
+  printf("cli_solids: %-32s %2d slices %3d contours: volume %+.3f%% of the solid's, %d components\n", name, K, st->n,
+         100 * e, r.ncomp);
+  check_report(name, csv, &r, &f);
+  *vol = r.volume, *area = r.area;
+  mc_report_free(&r), mc_fidelity_free(&f);
+}
+
+static void solid_stack(int s, int uneven, double **z, int *K, sl_stack *st) {
+  *K = solid_get(s)->multi ? K_MULTI : K_SINGLE;
+  *z = xmallocarray((size_t)*K, sizeof **z);
+  solid_planes(s, *K, uneven, *z);
+  solid_slice(s, *z, *K, N_POINTS, 1, st);
+}
+
+/* Tile one solid's stack and check everything; its volume and area, or NAN. */
+static void e2e_solid(const char *tile, int s, int uneven, double *vol, double *area) {
   const solid_info *in = solid_get(s);
-  int K = in->multi ? K_MULTI : K_SINGLE;
   char name[96], base[96], stack[512], obj[512], csv[512], errf[512];
   snprintf(name, sizeof name, "%s %s", in->name, uneven ? "uneven" : "even");
   snprintf(base, sizeof base, "%s_%d", in->name, uneven);
   path_of(obj, sizeof obj, base, ".obj"), path_of(csv, sizeof csv, base, ".csv");
   path_of(errf, sizeof errf, base, ".err"), path_of(stack, sizeof stack, base, ".contours");
-  double *z = xmallocarray((size_t)K, sizeof *z);
-  solid_planes(s, K, uneven, z);
+  double *z;
+  int K;
   sl_stack st;
-  solid_slice(s, z, K, N_POINTS, 1, &st);
+  solid_stack(s, uneven, &z, &K, &st);
   CHECK(sl_stack_write(&st, stack) == 0, "%s: cannot write %s", name, stack);
   char *argv[] = {(char *)tile, stack, "--caps", "-q", "-o", obj, NULL};
+  int rc = run(argv, csv, errf);
+  char line[512];
+  firstline(errf, line, sizeof line);
+  CHECK(rc == 0, "%s: ./tile exit status %d: %s", name, rc, line);
+  *vol = *area = NAN;
+  if (rc == 0) judge(name, s, &st, z, K, obj, csv, vol, area);
+  unlink(obj), unlink(csv), unlink(errf), unlink(stack);
+  sl_stack_free(&st);
+  free(z);
+}
+
+/* The solids whose surface is made of parts with one contour per slice each
+ * (two separate spheres; a sphere and its cavity; and the ball in it): tile
+ * every part alone with ./tile as it is, turn the cavities' surfaces inside
+ * out, and put the meshes and reports together.  That surface must pass
+ * every check, which tests the checks' multi-component paths today; and,
+ * once ./tile takes the whole stack (issue 9), whose junctions here are all
+ * one to one or ends, its mesh must have this one's volume and area. */
+static int decomposable(int s) {
+  return s == solid_find("spheres_separate") || s == solid_find("hollow_sphere") || s == solid_find("island");
+}
+
+static void e2e_decomposed(const char *tile, int s, int uneven, double *vol, double *area) {
+  const solid_info *in = solid_get(s);
+  int sep = s == solid_find("spheres_separate");
+  char name[96], stack[512], obj[512], csv[512], errf[512], mobj[512], mcsv[512];
+  snprintf(name, sizeof name, "%s %s by parts", in->name, uneven ? "uneven" : "even");
+  path_of(stack, sizeof stack, "part", ".contours"), path_of(obj, sizeof obj, "part", ".obj");
+  path_of(csv, sizeof csv, "part", ".csv"), path_of(errf, sizeof errf, "part", ".err");
+  path_of(mobj, sizeof mobj, "merged", ".obj"), path_of(mcsv, sizeof mcsv, "merged", ".csv");
+  double *z;
+  int K;
+  sl_stack st;
+  solid_stack(s, uneven, &z, &K, &st);
+  int nparts = 0, base = 0, ok = 1;
+  double meshvol = 0;
+  FILE *fo = fopen(mobj, "w"), *fc = fopen(mcsv, "w");
+  CHECK(fo && fc, "cannot write %s, %s", mobj, mcsv);
+  if (!fo || !fc) {
+    ok = 0;
+    goto done;
+  }
+  fprintf(fc, "pair,z0,z1,volume\n");
+  /* The parts: by depth (outer, cavity, island), or left and right. */
+  for (int i = 0; i < st.n; i++) {
+    int p = sep ? st.c[i].x[0] > 0 : st.c[i].depth;
+    if (p >= nparts) nparts = p + 1;
+  }
+  for (int p = 0; p < nparts && ok; p++) {
+    sl_stack sub = st;   /* the contours of part p, one per slice */
+    sub.c = xmallocarray((size_t)st.n, sizeof *sub.c);
+    sub.n = 0;
+    int flip = 0;
+    for (int i = 0; i < st.n; i++)
+      if ((sep ? st.c[i].x[0] > 0 : st.c[i].depth) == p) sub.c[sub.n++] = st.c[i], flip = st.c[i].depth % 2;
+    ok = sl_stack_write(&sub, stack) == 0;
+    free(sub.c);
+    char *argv[] = {(char *)tile, stack, "--caps", "-q", "-o", obj, NULL};
+    int rc = ok ? run(argv, csv, errf) : -1;
+    CHECK(rc == 0, "%s: ./tile exit status %d on part %d", name, rc, p);
+    mc_mesh m;
+    csvtab t;
+    char err[512];
+    if (rc != 0 || mc_read(obj, &m, err, sizeof err) != 0) { ok = 0; break; }
+    for (int v = 0; v < m.nv; v++) fprintf(fo, "v %.17g %.17g %.17g\n", m.v[3 * v], m.v[3 * v + 1], m.v[3 * v + 2]);
+    for (int i = 0; i < m.nt; i++)   /* a cavity's surface faces into it */
+      fprintf(fo, "f %d %d %d\n", base + m.t[3 * i] + 1, base + m.t[3 * i + (flip ? 2 : 1)] + 1,
+              base + m.t[3 * i + (flip ? 1 : 2)] + 1);
+    base += m.nv;
+    mc_free(&m);
+    if (csvtab_read(csv, &t, err, sizeof err) != 0) { ok = 0; break; }
+    int cz0 = csvtab_col(&t, "z0"), cz1 = csvtab_col(&t, "z1"), cv = csvtab_col(&t, "volume");
+    for (int i = 0; ok && i < t.nrow; i++) {
+      double v = (flip ? -1 : 1) * strtod(t.cell[i][cv], NULL);
+      if (strcmp(t.cell[i][0], "mesh") == 0) meshvol += v;
+      else fprintf(fc, "%s,%s,%s,%.17g\n", t.cell[i][0], t.cell[i][cz0], t.cell[i][cz1], v);
+    }
+    csvtab_free(&t);
+  }
+  fprintf(fc, "mesh,,,%.17g\n", meshvol);
+done:
+  if (fo) fclose(fo);
+  if (fc) fclose(fc);
+  *vol = *area = NAN;
+  CHECK(ok, "%s: a part could not be tiled or read", name);
+  if (ok) judge(name, s, &st, z, K, mobj, mcsv, vol, area);
+  unlink(stack), unlink(obj), unlink(csv), unlink(errf), unlink(mobj), unlink(mcsv);
+  sl_stack_free(&st);
+  free(z);
+}
+
+/* A real stack: a closed, outward surface of ncomp components of Euler
+ * characteristic 2, through every input segment (after the repairs ./tile
+ * makes), and the report's identity. */
+static void e2e_real(const char *tile, const char *path, int ncomp) {
+  const char *name = strrchr(path, '/') ? strrchr(path, '/') + 1 : path;
+  char obj[512], csv[512], errf[512], err[512];
+  path_of(obj, sizeof obj, "real", ".obj"), path_of(csv, sizeof csv, "real", ".csv");
+  path_of(errf, sizeof errf, "real", ".err");
+  sl_stack st;
+  if (sl_stack_read(path, &st, err, sizeof err) != 0) {
+    CHECK(0, "%s", err);
+    return;
+  }
+  sl_stack_clean(&st);
+  char *argv[] = {(char *)tile, (char *)path, "--caps", "-q", "-o", obj, NULL};
   int rc = run(argv, csv, errf);
   char line[512];
   firstline(errf, line, sizeof line);
@@ -467,22 +602,15 @@ static void e2e_solid(const char *tile, int s, int uneven) {
   if (rc == 0) {
     mc_report r;
     mc_fidelity f;
-    check_mesh(name, obj, &st, s, 1, &r, &f);
-    /* The volume: the solid's between the first and last planes.  The mesh
-     * differs by the polygons' deficit (about (2 pi / N)^2 / 6 = 0.16% at
-     * N = 64), the linear bands between curved slices (~0.1%), and where
-     * the topology changes (branches, caps of parts that begin between two
-     * planes: at most a band each, ~1% at the spacings used). */
-    double v = solid_volume(s, z[0], z[K - 1]), e = (r.volume - v) / v;
-    CHECK(fabs(e) < 0.02, "%s: mesh volume %.9g, the solid's %.9g (%+.2f%%)", name, r.volume, v, 100 * e);
-    printf("cli_solids: %-28s %2d slices %3d contours: volume %+.3f%% of the solid's, %d components\n", name, K, st.n,
-           100 * e, r.ncomp);
+    check_mesh(name, obj, &st, -1, 1, &r, &f);
+    int chi2 = r.ncomp == ncomp;
+    for (int c = 0; c < r.ncomp; c++) chi2 &= r.chi[c] == 2;
+    CHECK(chi2, "%s: %d components (expected %d, each of Euler characteristic 2)", name, r.ncomp, ncomp);
     check_report(name, csv, &r, &f);
     mc_report_free(&r), mc_fidelity_free(&f);
   }
-  unlink(obj), unlink(csv), unlink(errf), unlink(stack);
+  unlink(obj), unlink(csv), unlink(errf);
   sl_stack_free(&st);
-  free(z);
 }
 
 /* The other mesh formats: PLY the same mesh exactly, STL the same surface. */
@@ -536,8 +664,10 @@ static void e2e_encoding(const char *tile, const char *name, const char *orig, c
     char l1[512], l2[512];
     firstline(e1, l1, sizeof l1), firstline(e2, l2, sizeof l2);
     CHECK(r1 == 0 && r2 == 0, "%s: ./tile exit status %d (%s), on the second encoding %d (%s)", name, r1, l1, r2, l2);
-    CHECK(same_file(c1, c2), "%s: the second encoding (seed %llu) changes the report", name, seed);
-    CHECK(same_file(o1, o2), "%s: the second encoding (seed %llu) changes the mesh", name, seed);
+    if (r1 == 0 && r2 == 0) {
+      CHECK(same_file(c1, c2), "%s: the second encoding (seed %llu) changes the report", name, seed);
+      CHECK(same_file(o1, o2), "%s: the second encoding (seed %llu) changes the mesh", name, seed);
+    }
     sl_stack_free(&sc);
   }
   unlink(enc), unlink(o1), unlink(o2), unlink(c1), unlink(c2), unlink(e1), unlink(e2);
@@ -550,13 +680,27 @@ static int e2e(const char *tile) {
     CHECK(0, "no program %s", tile);
     return check_done("cli_solids");
   }
-  for (int s = 0; s < solid_count(); s++) {
-    if (solid_get(s)->multi && !all) continue;
-    for (int uneven = 0; uneven < 2; uneven++) e2e_solid(tile, s, uneven);
-  }
+  for (int s = 0; s < solid_count(); s++)
+    for (int uneven = 0; uneven < 2; uneven++) {
+      double v = NAN, a = NAN, vd, ad;
+      if (!solid_get(s)->multi || all) e2e_solid(tile, s, uneven, &v, &a);
+      if (!decomposable(s)) continue;
+      e2e_decomposed(tile, s, uneven, &vd, &ad);
+      if (all)
+        CHECK(rel(v, vd) < 1e-8 && rel(a, ad) < 1e-8, "%s: volume %.17g and area %.17g, but tiled part by part %.17g and %.17g",
+              solid_get(s)->name, v, a, vd, ad);
+    }
   e2e_formats(tile);
-  if (all) {   /* second encodings: tinypatient_0 and every multi-contour stack */
+  const char *real[] = {"tinypatient_1", "prostate_1", "prostate_2", "prostate_3", "prostate_4", "prostate_5"};
+  for (int i = 0; i < 6; i++) {
+    char path[256];
+    snprintf(path, sizeof path, "tests/data/slicerrt/%s.contours", real[i]);
+    e2e_real(tile, path, 1);
+  }
+  if (all) {   /* tinypatient_0: two structures, each a stack of one contour a slice */
     const char *tp = "tests/data/slicerrt/tinypatient_0.contours";
+    e2e_real(tile, tp, 2);
+    /* second encodings: tinypatient_0 and every solid's stack */
     sl_stack st;
     char err[512];
     CHECK(sl_stack_read(tp, &st, err, sizeof err) == 0, "%s", err);
@@ -564,11 +708,9 @@ static int e2e(const char *tile) {
     sl_stack_free(&st);
     for (int s = 0; s < solid_count(); s++) {
       const solid_info *in = solid_get(s);
-      if (!in->multi) continue;
-      int K = K_MULTI;
-      double *z = xmallocarray((size_t)K, sizeof *z);
-      solid_planes(s, K, 1, z);
-      solid_slice(s, z, K, N_POINTS, 1, &st);
+      double *z;
+      int K;
+      solid_stack(s, 1, &z, &K, &st);
       char orig[512];
       path_of(orig, sizeof orig, "orig", ".contours");
       CHECK(sl_stack_write(&st, orig) == 0, "cannot write %s", orig);
@@ -612,6 +754,7 @@ static int tool_check(const char *mesh, const char *stack, const char *solid) {
     fprintf(stderr, "test_solids: %s\n", err);
     return 1;
   }
+  sl_stack_clean(&st);
   int s = solid ? solid_find(solid) : -1;
   mc_report r;
   mc_fidelity f;
