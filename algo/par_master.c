@@ -11,33 +11,8 @@
 #include "band.h"
 #include "xmem.h"
 
-typedef struct {
-  int g0, p;           /* slaves g0 .. g0+p-1 */
-  int lo, hi;          /* the paths lo+1 .. hi-1 are its to find; lo < 0: mu(0) */
-  const gpath *U, *L;  /* its bounds T = mu(lo), B = mu(hi) */
-  int mid;             /* the path it computes (PATH) */
-  int live;
-  int *col;            /* the path being backtracked to us */
-  double *w;
-  int have;
-} group;
-
-typedef struct {
-  mp *mp;
-  par_master_arg *arg;
-  par_pair *pr;
-  int S;               /* slaves */
-  int m, n, T;
-  par_buf in, out;
-  size_t maxlen;
-  group *g;
-  int ng, gcap, live;
-  int *group_of;       /* slave rank -> its group, or -1 */
-  gpath **paths;       /* every path computed, freed at the end of the pair */
-  int npaths, pcap;
-  tiling_best best;
-  par_counts *own;
-} master;
+typedef par_group group;
+typedef par_master_ctx master;
 
 #define TRY(call)                                                              \
   do {                                                                         \

@@ -13,34 +13,7 @@
 #include "tiling.h"
 #include "xmem.h"
 
-enum { D_NORMAL, D_SINGLE, D_RUN };   /* how a diagonal is computed */
-
-typedef struct {
-  mp *mp;
-  par_slave_arg *arg;
-  int rank;
-  par_buf in, out;
-  size_t maxlen;
-  /* The pair. */
-  int m, n, d;
-  vec2 *R, *C;
-  weights *w;
-  band_ws *ws;
-  gpath U, L;          /* the group's bounds, each with its own arrays */
-  int hasU, hasL;
-  /* One path task: per diagonal t = 0..m+n. */
-  unsigned char *type;
-  int *a, *b, *q;      /* band columns and active slaves */
-  int *c0;             /* first column of my run, or -1 */
-  int *run0;           /* for D_RUN diagonals: the first diagonal of the run */
-  int64_t *woff;       /* my bits for diagonal t start at this word */
-  uint64_t *bits;
-  int64_t bitcap;
-  double *prev, *cur;  /* costs by column, index -1 .. n+1 */
-  int *pcol;           /* a backtrack piece */
-  double *pw;
-  int first_path;      /* the test hook counts only the first path */
-} slave;
+typedef par_slave_ctx slave;
 
 #define TRY(call)                                                              \
   do {                                                                         \
@@ -123,7 +96,7 @@ static void bound(slave *S, par_rd *r) {
 
 /* The columns slave j of q owns on diagonal t (j < q), or an empty range. */
 static void owned(const slave *S, int t, int j, int *u0, int *u1) {
-  if (S->type[t] != D_NORMAL) {   /* a single node: the group's first slave */
+  if (S->type[t] != PAR_D_NORMAL) {   /* a single node: the group's first slave */
     *u0 = j == 0 ? S->a[t] : 1, *u1 = j == 0 ? S->a[t] : 0;
     return;
   }
@@ -137,7 +110,7 @@ static void owned(const slave *S, int t, int j, int *u0, int *u1) {
 }
 
 static int owner(const slave *S, int t, int c) {
-  if (S->type[t] != D_NORMAL) return 0;
+  if (S->type[t] != PAR_D_NORMAL) return 0;
   return split_owner(S->a[t], S->b[t], S->q[t], c);
 }
 
@@ -218,7 +191,7 @@ static int backtrack(slave *S, int s, int t, int c, int g0, int j) {
   int len = 0, t_hi = t, du = s - S->U.start;
   while (t > 0 && owner(S, t, c) == j) {
     int k = s + t;
-    if (S->type[t] == D_RUN) {   /* a run joined from T: its nodes and weights are T's */
+    if (S->type[t] == PAR_D_RUN) {   /* a run joined from T: its nodes and weights are T's */
       int t0 = S->run0[t];
       for (int u = t; u >= t0; u--) {
         S->pcol[len] = S->U.col[u + du];
@@ -229,7 +202,7 @@ static int backtrack(slave *S, int s, int t, int c, int g0, int j) {
       continue;
     }
     int vert;
-    if (S->type[t] == D_SINGLE) {
+    if (S->type[t] == PAR_D_SINGLE) {
       vert = band_cut_vertical(S->a[t - 1], S->a[t]);
     } else {
       int i = c - S->c0[t];
@@ -258,7 +231,7 @@ static int path_task(slave *S, int s, int bounded, int g0, int p) {
   const gpath *U = bounded ? &S->U : NULL, *L = bounded ? &S->L : NULL;
   if (!bounded) S->arg->fp_start = mp_time(S->mp);
   int64_t wo = 0;
-  S->type[0] = D_SINGLE, S->a[0] = S->b[0] = 0, S->q[0] = 1;
+  S->type[0] = PAR_D_SINGLE, S->a[0] = S->b[0] = 0, S->q[0] = 1;
   S->prev[-1] = S->prev[0] = S->prev[1] = HUGE_VAL;
   if (j == 0) S->prev[0] = 0;
   int pa = 0, pb = 0;
@@ -270,7 +243,7 @@ static int path_task(slave *S, int s, int bounded, int g0, int p) {
       if (t1 > t) {   /* a run where T and B coincide: joined at once */
         int du = s - U->start;
         for (int u = t; u <= t1; u++) {
-          S->type[u] = D_RUN, S->run0[u] = t, S->q[u] = 1;
+          S->type[u] = PAR_D_RUN, S->run0[u] = t, S->q[u] = 1;
           S->a[u] = S->b[u] = U->col[u + du];
         }
         if (j == 0) {
@@ -284,7 +257,7 @@ static int path_task(slave *S, int s, int bounded, int g0, int p) {
         continue;
       }
       /* A cut edge (section 8): joined by the group's first slave. */
-      S->type[t] = D_SINGLE, S->a[t] = S->b[t] = a, S->q[t] = 1;
+      S->type[t] = PAR_D_SINGLE, S->a[t] = S->b[t] = a, S->q[t] = 1;
       if (j == 0) {
         double v = S->prev[pa] + weights_in(S->w, k, a, band_cut_vertical(pa, a));
         S->prev[a - 1] = S->prev[a + 1] = HUGE_VAL;
@@ -293,7 +266,7 @@ static int path_task(slave *S, int s, int bounded, int g0, int p) {
       pa = pb = a;
       continue;
     }
-    S->type[t] = D_NORMAL, S->a[t] = a, S->b[t] = b;
+    S->type[t] = PAR_D_NORMAL, S->a[t] = a, S->b[t] = b;
     S->q[t] = split_active(b - a + 1, p, S->d);
     if (exchange(S, t, g0, j) != 0) return -1;
     int c0, c1;

@@ -27,4 +27,40 @@ typedef struct {
 /* The slave's main: ud is a par_slave_arg.  Serves pairs until QUIT. */
 void par_slave(mp *self, void *ud);
 
+/* --- private part: the slave's state, for the variants (par_block.c) ---- */
+
+#include <stdint.h>
+
+#include "band.h"
+#include "weights.h"
+
+enum { PAR_D_NORMAL, PAR_D_SINGLE, PAR_D_RUN };   /* how a diagonal is computed */
+
+typedef struct par_slave_ctx {
+  mp *mp;
+  par_slave_arg *arg;
+  int rank;
+  par_buf in, out;
+  size_t maxlen;
+  /* The pair. */
+  int m, n, d;
+  vec2 *R, *C;
+  weights *w;
+  band_ws *ws;
+  gpath U, L;          /* the group's bounds, each with its own arrays */
+  int hasU, hasL;
+  /* One path task: per diagonal t = 0..m+n. */
+  unsigned char *type;
+  int *a, *b, *q;      /* band columns and active slaves */
+  int *c0;             /* first column of my run, or -1 */
+  int *run0;           /* for PAR_D_RUN diagonals: the first diagonal of the run */
+  int64_t *woff;       /* my bits for diagonal t start at this word */
+  uint64_t *bits;
+  int64_t bitcap;
+  double *prev, *cur;  /* costs by column, index -1 .. n+1 */
+  int *pcol;           /* a backtrack piece */
+  double *pw;
+  int first_path;      /* the test hook counts only the first path */
+} par_slave_ctx;
+
 #endif
