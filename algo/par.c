@@ -11,6 +11,15 @@ const char *par_kind_name(par_kind k) {
   return k < PAR_KINDS ? name[k] : "?";
 }
 
+const char *par_schedule_name(par_schedule s) { return s == PAR_DYNAMIC ? "dynamic" : "static"; }
+
+int par_schedule_parse(const char *s, par_schedule *out) {
+  if (strcmp(s, "static") == 0) *out = PAR_STATIC;
+  else if (strcmp(s, "dynamic") == 0) *out = PAR_DYNAMIC;
+  else return -1;
+  return 0;
+}
+
 void par_counts_add(par_counts *into, const par_counts *c) {
   for (int k = 0; k < PAR_KINDS; k++) into->msgs[k] += c->msgs[k], into->bytes[k] += c->bytes[k];
   into->nodes += c->nodes;

@@ -84,12 +84,29 @@ typedef struct {
 
 void par_counts_add(par_counts *into, const par_counts *c);
 
+/* How the master gives out the work: the paper's fixed groups, halved at
+ * each path (section 4), or bands as tasks to whichever slaves are free
+ * (par_dynamic.h). */
+typedef enum { PAR_STATIC, PAR_DYNAMIC } par_schedule;
+
 typedef struct {
-  split_alloc alloc;   /* processor allocation: half (section 4) or size (7.1) */
+  split_alloc alloc;   /* processor allocation: half (section 4), size (7.1) or
+                          fit (size, capped by what the band can use: par_fit.h) */
   int min_diag;        /* d: at least d nodes of a diagonal per slave (7.2), >= 1 */
   int only_mu0;        /* stop after mu(0) (the section 7.2 experiment); the
                           result is then mu(0), not the optimum */
+  int block;           /* k: run-boundary costs every k diagonals (par_block.h);
+                          0 or 1: every diagonal, the paper's */
+  par_schedule schedule;   /* PAR_STATIC (the paper's) or PAR_DYNAMIC */
 } par_options;
+
+/* 1 if the options are the paper's own algorithm (no variant). */
+static inline int par_is_paper(const par_options *o) {
+  return o->block <= 1 && o->schedule == PAR_STATIC && o->alloc != ALLOC_FIT;
+}
+
+const char *par_schedule_name(par_schedule s);   /* "static", "dynamic" */
+int par_schedule_parse(const char *s, par_schedule *out);   /* 0, or -1 */
 
 /* --- message packing: ints and doubles in order, native byte order ------- */
 

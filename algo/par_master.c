@@ -9,6 +9,8 @@
 #include <string.h>
 
 #include "band.h"
+#include "par_dynamic.h"
+#include "par_fit.h"
 #include "xmem.h"
 
 typedef par_group group;
@@ -17,17 +19,19 @@ typedef par_master_ctx master;
 #define TRY(call)                                                              \
   do {                                                                         \
     int rc_ = (call);                                                          \
-    if (rc_ < 0) return fail(M, rc_, #call);                                   \
+    if (rc_ < 0) return par_master_fail(M, rc_, #call);                                   \
   } while (0)
 
-static int fail(master *M, int rc, const char *what) {
+int par_master_fail(master *M, int rc, const char *what) {
   if (!M->arg->failed)
     snprintf(M->arg->err, sizeof M->arg->err, "master: %s: %s", what, mp_strerror(rc));
   M->arg->failed = 1;
   return -1;
 }
 
-static gpath *new_path(master *M, int start) {
+int par_master_charge(master *M, uint64_t units) { return par_compute(M->mp, M->own, units); }
+
+gpath *par_master_path(master *M, int start) {
   if (M->npaths == M->pcap) {
     M->pcap = M->pcap ? 2 * M->pcap : 16;
     M->paths = xreallocarray(M->paths, (size_t)M->pcap, sizeof *M->paths);
@@ -52,7 +56,7 @@ static int send_task(master *M, int what, int s, int bounded, int g0, int p, int
   return par_send(M->mp, M->own, kind, to, PAR_TAG_TASK, &M->out);
 }
 
-static int send_bound(master *M, const gpath *P, int as, int to) {
+int par_master_send_bound(master *M, const gpath *P, int as, int to) {
   par_buf_reset(&M->out);
   par_put_i32(&M->out, P->start);
   par_put_i32(&M->out, as);
@@ -70,7 +74,7 @@ static int dispatch(master *M, int g0, int p, int lo, int hi, const gpath *U, co
   int gi = M->ng++;
   group *G = &M->g[gi];
   memset(G, 0, sizeof *G);
-  *G = (group){g0, p, lo, hi, U, L, lo < 0 ? 0 : tiling_mid(lo, hi), 1, NULL, NULL, 0};
+  *G = (group){g0, p, lo, hi, U, L, lo < 0 ? 0 : tiling_mid(lo, hi), 1, NULL, NULL, 0, NULL, 0};
   M->live++;
   for (int r = g0; r < g0 + p; r++) M->group_of[r] = gi;
   if (p == 1 && lo >= 0) return send_task(M, PAR_TASK_LOCAL, 0, 1, g0, 1, g0);
@@ -78,6 +82,27 @@ static int dispatch(master *M, int g0, int p, int lo, int hi, const gpath *U, co
   G->w = xmallocarray((size_t)M->T + 1, sizeof *G->w);
   for (int r = g0; r < g0 + p; r++) TRY(send_task(M, PAR_TASK_PATH, G->mid, lo >= 0, g0, p, r));
   return 0;
+}
+
+int par_master_group(master *M, const int *ranks, int p, int lo, int hi, const gpath *U,
+                     const gpath *L, int local) {
+  if (M->ng == M->gcap) {
+    M->gcap = M->gcap ? 2 * M->gcap : 16;
+    M->g = xreallocarray(M->g, (size_t)M->gcap, sizeof *M->g);
+  }
+  int gi = M->ng++;
+  group *G = &M->g[gi];
+  memset(G, 0, sizeof *G);
+  *G = (group){ranks[0], p, lo, hi, U, L, lo < 0 ? 0 : tiling_mid(lo, hi), 1, NULL, NULL, 0, NULL, 0};
+  G->ranks = xmallocarray((size_t)p, sizeof *G->ranks);
+  memcpy(G->ranks, ranks, (size_t)p * sizeof *ranks);
+  M->live++;
+  for (int i = 0; i < p; i++) M->group_of[ranks[i]] = gi;
+  if (!local) {
+    G->col = xmallocarray((size_t)M->T + 1, sizeof *G->col);
+    G->w = xmallocarray((size_t)M->T + 1, sizeof *G->w);
+  }
+  return gi;
 }
 
 static void consider(master *M, int start, double quanta, const int *col) {
@@ -95,45 +120,53 @@ static int finished(master *M, int gi) {
   int T = M->T;
   M->g[gi].live = 0;
   M->live--;
-  gpath *P = new_path(M, G.mid);
+  gpath *P = par_master_path(M, G.mid);
   P->col[0] = G.col[0];
   P->cum[0] = 0;
   for (int t = 1; t <= T; t++) P->col[t] = G.col[t], P->cum[t] = P->cum[t - 1] + G.w[t];
   free(M->g[gi].col);
   free(M->g[gi].w);
-  TRY(par_compute(M->mp, M->own, (uint64_t)T + 1));
+  TRY(par_master_charge(M, (uint64_t)T + 1));
   par_buf_reset(&M->out);
   par_put_i32(&M->out, -1);
-  for (int r = G.g0; r < G.g0 + G.p; r++) {
+  for (int i = 0; i < G.p; i++) {
+    int r = par_master_member(&G, i);
     M->group_of[r] = -1;
     TRY(par_send(M->mp, M->own, PAR_CONTROL, r, PAR_TAG_BACK, &M->out));
   }
+  free(M->g[gi].ranks);
+  M->g[gi].ranks = NULL;
   consider(M, G.mid, P->cum[T], P->col);
   if (G.lo < 0 && M->arg->opt.only_mu0) return 0;
+  if (M->arg->opt.schedule == PAR_DYNAMIC) return par_dynamic_path(M, &G, P);
   if (G.lo < 0) {   /* mu(0): T for everyone, and B as its copy m rows down */
-    gpath *Pm = new_path(M, M->m);
+    gpath *Pm = par_master_path(M, M->m);
     memcpy(Pm->col, P->col, (size_t)(T + 1) * sizeof *P->col);
     memcpy(Pm->cum, P->cum, (size_t)(T + 1) * sizeof *P->cum);
-    for (int r = G.g0; r < G.g0 + G.p; r++) TRY(send_bound(M, P, PAR_AS_BOTH, r));
-    return dispatch(M, G.g0, G.p, 0, M->m, P, Pm);
+    int p = G.p;
+    if (M->arg->opt.alloc == ALLOC_FIT) p = par_fit_cap(M, 0, M->m, P, Pm, p);
+    if (p < 0) return -1;
+    for (int r = G.g0; r < G.g0 + p; r++) TRY(par_master_send_bound(M, P, PAR_AS_BOTH, r));
+    return dispatch(M, G.g0, p, 0, M->m, P, Pm);
   }
   /* Paths below mu(mid): (mid, hi), bounded by T = mu(mid); above: (lo, mid),
    * bounded by B = mu(mid). */
   int below_paths = G.hi - G.mid - 1, above_paths = G.mid - G.lo - 1;
   int64_t wa = 0, wb = 0;
-  if (M->arg->opt.alloc == ALLOC_SIZE) {
+  if (M->arg->opt.alloc != ALLOC_HALF) {
     wa = split_region(M->m, M->n, G.U, P);
     wb = split_region(M->m, M->n, P, G.L);
-    TRY(par_compute(M->mp, M->own, 2 * ((uint64_t)T + 1)));
+    TRY(par_master_charge(M, 2 * ((uint64_t)T + 1)));
   }
-  int nb = split_slaves(M->arg->opt.alloc, G.p, wa, wb, above_paths, below_paths);
+  int nb = split_slaves(M->arg->opt.alloc, G.p, wa, wb, above_paths, below_paths), na = G.p - nb;
+  if (M->arg->opt.alloc == ALLOC_FIT && par_fit_split(M, &G, P, &nb, &na) != 0) return -1;
   if (below_paths > 0 && nb > 0) {
-    for (int r = G.g0; r < G.g0 + nb; r++) TRY(send_bound(M, P, PAR_AS_T, r));
+    for (int r = G.g0; r < G.g0 + nb; r++) TRY(par_master_send_bound(M, P, PAR_AS_T, r));
     TRY(dispatch(M, G.g0, nb, G.mid, G.hi, P, G.L));
   }
-  if (above_paths > 0 && G.p - nb > 0) {
-    for (int r = G.g0 + nb; r < G.g0 + G.p; r++) TRY(send_bound(M, P, PAR_AS_B, r));
-    TRY(dispatch(M, G.g0 + nb, G.p - nb, G.lo, G.mid, G.U, P));
+  if (above_paths > 0 && na > 0) {
+    for (int r = G.g0 + nb; r < G.g0 + nb + na; r++) TRY(par_master_send_bound(M, P, PAR_AS_B, r));
+    TRY(dispatch(M, G.g0 + nb, na, G.lo, G.mid, G.U, P));
   }
   return 0;
 }
@@ -165,7 +198,9 @@ static int result(master *M, int src) {
   M->g[gi].live = 0;
   M->live--;
   M->group_of[src] = -1;
-  return 0;
+  free(M->g[gi].ranks);
+  M->g[gi].ranks = NULL;
+  return M->arg->opt.schedule == PAR_DYNAMIC ? par_dynamic_local(M, M->g[gi].est) : 0;
 }
 
 /* One pair: the whole protocol of par.h. */
@@ -195,6 +230,7 @@ static int one_pair(master *M, par_pair *pr, cost_kind kind) {
     par_put_i32(&M->out, M->arg->opt.min_diag);
     par_put_f64(&M->out, zr);
     par_put_f64(&M->out, zc);
+    if (M->arg->opt.block > 1) par_put_i32(&M->out, M->arg->opt.block);   /* par_block.h */
     TRY(par_send(M->mp, M->own, PAR_CONTROL, r, PAR_TAG_POINTS, &M->out));
     par_buf_reset(&M->out);
     par_put_f64s(&M->out, (const double *)R, 2 * m);
@@ -202,7 +238,14 @@ static int one_pair(master *M, par_pair *pr, cost_kind kind) {
     TRY(par_send(M->mp, M->own, PAR_CONTROL, r, PAR_TAG_POINTS, &M->out));
   }
   /* shortestpath: mu(0) with every slave, then findallpaths(0, m). */
-  TRY(dispatch(M, 1, M->S, -1, -1, NULL, NULL));
+  if (M->arg->opt.schedule == PAR_DYNAMIC) {
+    TRY(par_dynamic_begin(M));
+  } else {
+    int p = M->S;
+    if (M->arg->opt.alloc == ALLOC_FIT) p = par_fit_cap(M, -1, -1, NULL, NULL, p);
+    if (p < 0) return -1;
+    TRY(dispatch(M, 1, p, -1, -1, NULL, NULL));
+  }
   while (M->live > 0) {
     mp_status st;
     TRY(par_recv(M->mp, MP_ANY, MP_ANY, &M->in, M->maxlen, &st));
@@ -214,6 +257,7 @@ static int one_pair(master *M, par_pair *pr, cost_kind kind) {
       xpanic("master: unexpected tag %d from rank %d", st.tag, st.source);
     }
   }
+  par_dynamic_end(M);
   pr->time = mp_time(M->mp) - t0;
   pr->t.quanta = M->best.quanta;
   pr->t.start = M->best.start;
@@ -276,7 +320,8 @@ void par_master(mp *self, void *ud) {
     free(M->paths[i]->cum);
     free(M->paths[i]);
   }
-  for (int i = 0; i < M->ng; i++) free(M->g[i].col), free(M->g[i].w);
+  for (int i = 0; i < M->ng; i++) free(M->g[i].col), free(M->g[i].w), free(M->g[i].ranks);
+  par_dynamic_end(M);
   free(M->paths);
   free(M->g);
   free(M->group_of);

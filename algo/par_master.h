@@ -55,6 +55,8 @@ typedef struct {
   int *col;            /* the path being backtracked to us */
   double *w;
   int have;
+  int *ranks;          /* its slaves' ranks, or NULL for g0 .. g0+p-1 */
+  int64_t est;         /* --schedule dynamic: its estimated work, in nodes */
 } par_group;
 
 typedef struct par_master_ctx {
@@ -72,6 +74,22 @@ typedef struct par_master_ctx {
   int npaths, pcap;
   tiling_best best;
   par_counts *own;
+  struct par_dyn *dyn; /* --schedule dynamic's state (par_dynamic.c) */
 } par_master_ctx;
+
+/* Shared with the variants (par_fit.c, par_dynamic.c). */
+static inline int par_master_member(const par_group *G, int i) {
+  return G->ranks ? G->ranks[i] : G->g0 + i;
+}
+/* The master's bookkeeping (assembling paths, measuring bands): every unit
+ * of it is charged here, and only here.  0 or a negative mp status. */
+int par_master_charge(par_master_ctx *M, uint64_t units);
+int par_master_fail(par_master_ctx *M, int rc, const char *what);   /* -1 */
+gpath *par_master_path(par_master_ctx *M, int start);   /* a new path, freed with the pair */
+int par_master_send_bound(par_master_ctx *M, const gpath *P, int as, int to);
+/* A new live group of the p slaves ranks[] (copied) for the paths lo+1 ..
+ * hi-1 between U and L; path arrays for a PATH task.  Returns its index. */
+int par_master_group(par_master_ctx *M, const int *ranks, int p, int lo, int hi, const gpath *U,
+                     const gpath *L, int local);
 
 #endif

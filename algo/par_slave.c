@@ -10,6 +10,7 @@
 
 #include "band.h"
 #include "kernel.h"
+#include "par_block.h"
 #include "tiling.h"
 #include "xmem.h"
 
@@ -18,10 +19,10 @@ typedef par_slave_ctx slave;
 #define TRY(call)                                                              \
   do {                                                                         \
     int rc_ = (call);                                                          \
-    if (rc_ < 0) return fail(S, rc_, #call);                                   \
+    if (rc_ < 0) return par_slave_fail(S, rc_, #call);                                   \
   } while (0)
 
-static int fail(slave *S, int rc, const char *what) {
+int par_slave_fail(slave *S, int rc, const char *what) {
   if (!S->arg->failed)
     snprintf(S->arg->err, sizeof S->arg->err, "slave %d: %s: %s", S->rank, what, mp_strerror(rc));
   S->arg->failed = 1;
@@ -38,6 +39,8 @@ static void free_pair(slave *S) {
   if (S->prev) free(S->prev - 1);
   if (S->cur) free(S->cur - 1);
   free(S->pcol), free(S->pw);
+  free(S->grp);
+  par_block_free(S->blk);
   slave keep = *S;
   memset(S, 0, sizeof *S);
   S->mp = keep.mp, S->arg = keep.arg, S->rank = keep.rank, S->in = keep.in, S->out = keep.out;
@@ -51,6 +54,7 @@ static int points(slave *S, par_rd *r) {
   cost_kind kind = (cost_kind)par_get_i32(r);
   S->d = par_get_i32(r);
   double zr = par_get_f64(r), zc = par_get_f64(r);
+  S->k = r->end - r->p >= 4 ? par_get_i32(r) : 1;   /* --block k (par_block.h) */
   S->m = m, S->n = n;
   S->maxlen = par_maxlen(m, n);
   mp_status st;
@@ -75,6 +79,8 @@ static int points(slave *S, par_rd *r) {
   S->cur = (double *)xmallocarray((size_t)n + 3, sizeof(double)) + 1;
   S->pcol = xmallocarray(T1, sizeof(int));
   S->pw = xmallocarray(T1, sizeof(double));
+  S->grp = xmallocarray((size_t)mp_size(S->mp), sizeof *S->grp);
+  if (S->k > 1) S->blk = par_block_new(m, n);
   return 0;
 }
 
@@ -110,13 +116,14 @@ static void owned(const slave *S, int t, int j, int *u0, int *u1) {
 }
 
 static int owner(const slave *S, int t, int c) {
+  if (S->k > 1) return par_block_owner(S, t, c);
   if (S->type[t] != PAR_D_NORMAL) return 0;
   return split_owner(S->a[t], S->b[t], S->q[t], c);
 }
 
 /* Before computing normal diagonal t: send the costs of diagonal t-1 that
  * others need, then receive those I need (sends never block). */
-static int exchange(slave *S, int t, int g0, int j) {
+static int exchange(slave *S, int t, int j) {
   int a = S->a[t], b = S->b[t], pa = S->a[t - 1], pb = S->b[t - 1];
   int sends = 0, recvs = 0;
   int u0, u1;
@@ -138,7 +145,7 @@ static int exchange(slave *S, int t, int g0, int j) {
       par_put_i32(&S->out, n0);
       par_put_i32(&S->out, n1);
       par_put_f64s(&S->out, S->prev + n0, n1 - n0 + 1);
-      TRY(par_send(S->mp, &S->arg->counts, PAR_BOUNDARY, g0 + i, PAR_TAG_BOUNDARY, &S->out));
+      TRY(par_send(S->mp, &S->arg->counts, PAR_BOUNDARY, S->grp[i], PAR_TAG_BOUNDARY, &S->out));
       sends++;
     }
   }
@@ -159,12 +166,12 @@ static int exchange(slave *S, int t, int g0, int j) {
         v1 = v1 < n1 ? v1 : n1;
         if (v0 > v1) continue;
         mp_status st;
-        TRY(par_recv(S->mp, g0 + o, PAR_TAG_BOUNDARY, &S->in, S->maxlen, &st));
+        TRY(par_recv(S->mp, S->grp[o], PAR_TAG_BOUNDARY, &S->in, S->maxlen, &st));
         par_rd r = {S->in.b, S->in.b + S->in.len};
         int tt = par_get_i32(&r), x0 = par_get_i32(&r), x1 = par_get_i32(&r);
         if (tt != t || x0 != v0 || x1 != v1)
           xpanic("slave %d: boundary from %d for t=%d [%d,%d], expected t=%d [%d,%d]", S->rank,
-                 g0 + o, tt, x0, x1, t, v0, v1);
+                 S->grp[o], tt, x0, x1, t, v0, v1);
         par_get_f64s(&r, S->prev + v0, v1 - v0 + 1);
         recvs++;
       }
@@ -187,7 +194,7 @@ static int send_piece(slave *S, int t_hi, int len) {
 
 /* Backtrack from node (t, c), which is mine (Fig. 14), until the path leaves
  * my nodes or reaches the start node. */
-static int backtrack(slave *S, int s, int t, int c, int g0, int j) {
+static int backtrack(slave *S, int s, int t, int c, int j) {
   int len = 0, t_hi = t, du = s - S->U.start;
   while (t > 0 && owner(S, t, c) == j) {
     int k = s + t;
@@ -222,14 +229,46 @@ static int backtrack(slave *S, int s, int t, int c, int g0, int j) {
   par_buf_reset(&S->out);
   par_put_i32(&S->out, t);
   par_put_i32(&S->out, c);
-  return par_send(S->mp, &S->arg->counts, PAR_BACKTRACK, g0 + owner(S, t, c), PAR_TAG_BACK, &S->out);
+  return par_send(S->mp, &S->arg->counts, PAR_BACKTRACK, S->grp[owner(S, t, c)], PAR_TAG_BACK, &S->out);
 }
 
-/* findonepath(s) with the group's slaves g0..g0+p-1 (sections 4 and 5). */
-static int path_task(slave *S, int s, int bounded, int g0, int p) {
-  int m = S->m, n = S->n, T = m + n, j = S->rank - g0;
-  const gpath *U = bounded ? &S->U : NULL, *L = bounded ? &S->L : NULL;
-  if (!bounded) S->arg->fp_start = mp_time(S->mp);
+/* Diagonal t of path s is a pinch (one node, as was t-1): join the run where
+ * T and B coincide, or the single cut edge (section 8); the group's first
+ * slave carries the cost.  Returns the last diagonal joined. */
+int par_slave_pinch(slave *S, int s, const gpath *U, const gpath *L, int j, int t, int a, int *pa,
+                    int *pb) {
+  int m = S->m, n = S->n, k = s + t;
+  int t1 = band_shared_until(m, n, s, U, L, t);
+  if (t1 > t) {   /* a run where T and B coincide: joined at once */
+    int du = s - U->start;
+    for (int u = t; u <= t1; u++) {
+      S->type[u] = PAR_D_RUN, S->run0[u] = t, S->q[u] = 1;
+      S->a[u] = S->b[u] = U->col[u + du];
+    }
+    if (j == 0) {
+      double v = S->prev[*pa] + (U->cum[t1 + du] - U->cum[t - 1 + du]);
+      int c = S->a[t1];
+      S->prev[c - 1] = S->prev[c + 1] = HUGE_VAL;
+      S->prev[c] = v;
+    }
+    *pa = *pb = S->a[t1];
+    return t1;
+  }
+  /* A cut edge (section 8): joined by the group's first slave. */
+  S->type[t] = PAR_D_SINGLE, S->a[t] = S->b[t] = a, S->q[t] = 1;
+  if (j == 0) {
+    double v = S->prev[*pa] + weights_in(S->w, k, a, band_cut_vertical(*pa, a));
+    S->prev[a - 1] = S->prev[a + 1] = HUGE_VAL;
+    S->prev[a] = v;
+  }
+  *pa = *pb = a;
+  return t;
+}
+
+/* The paper's sweep over diagonals 1..m+n of path s: each split among the
+ * active slaves (N_i, at least d nodes each), one exchange per diagonal. */
+static int paper_sweep(slave *S, int s, const gpath *U, const gpath *L, int j, int p) {
+  int m = S->m, n = S->n, T = m + n;
   int64_t wo = 0;
   S->type[0] = PAR_D_SINGLE, S->a[0] = S->b[0] = 0, S->q[0] = 1;
   S->prev[-1] = S->prev[0] = S->prev[1] = HUGE_VAL;
@@ -239,36 +278,12 @@ static int path_task(slave *S, int s, int bounded, int g0, int p) {
     int k = s + t, a, b;
     band_range(m, n, s, U, L, k, &a, &b);
     if (a == b && pa == pb) {
-      int t1 = band_shared_until(m, n, s, U, L, t);
-      if (t1 > t) {   /* a run where T and B coincide: joined at once */
-        int du = s - U->start;
-        for (int u = t; u <= t1; u++) {
-          S->type[u] = PAR_D_RUN, S->run0[u] = t, S->q[u] = 1;
-          S->a[u] = S->b[u] = U->col[u + du];
-        }
-        if (j == 0) {
-          double v = S->prev[pa] + (U->cum[t1 + du] - U->cum[t - 1 + du]);
-          pa = pb = S->a[t1];
-          S->prev[pa - 1] = S->prev[pa + 1] = HUGE_VAL;
-          S->prev[pa] = v;
-        }
-        pa = pb = S->a[t1];
-        t = t1;
-        continue;
-      }
-      /* A cut edge (section 8): joined by the group's first slave. */
-      S->type[t] = PAR_D_SINGLE, S->a[t] = S->b[t] = a, S->q[t] = 1;
-      if (j == 0) {
-        double v = S->prev[pa] + weights_in(S->w, k, a, band_cut_vertical(pa, a));
-        S->prev[a - 1] = S->prev[a + 1] = HUGE_VAL;
-        S->prev[a] = v;
-      }
-      pa = pb = a;
+      t = par_slave_pinch(S, s, U, L, j, t, a, &pa, &pb);
       continue;
     }
     S->type[t] = PAR_D_NORMAL, S->a[t] = a, S->b[t] = b;
     S->q[t] = split_active(b - a + 1, p, S->d);
-    if (exchange(S, t, g0, j) != 0) return -1;
+    if (exchange(S, t, j) != 0) return -1;
     int c0, c1;
     owned(S, t, j, &c0, &c1);
     S->c0[t] = c0;
@@ -289,11 +304,24 @@ static int path_task(slave *S, int s, int bounded, int g0, int p) {
     S->cur = x;
     pa = a, pb = b;
   }
+  return 0;
+}
+
+/* findonepath(s) with the group's slaves S->grp[0 .. p-1] (sections 4 and 5):
+ * the paper's sweep, or the blocked wavefront (par_block.h) with --block
+ * k > 1; then backtracking. */
+static int path_task(slave *S, int s, int bounded, int p) {
+  int n = S->n, T = S->m + n, j = 0;
+  while (j < p && S->grp[j] != S->rank) j++;
+  if (j == p) xpanic("slave %d: a task for a group without it", S->rank);
+  const gpath *U = bounded ? &S->U : NULL, *L = bounded ? &S->L : NULL;
+  if (!bounded) S->arg->fp_start = mp_time(S->mp);
+  if ((S->k > 1 ? par_block_sweep(S, s, U, L, j, p) : paper_sweep(S, s, U, L, j, p)) != 0) return -1;
   if (!bounded) S->arg->fp_end = mp_time(S->mp);
   S->first_path = 0;
   if (j == 0) S->arg->counts.paths++;
   /* The terminal node (s+m, n) is alone on its diagonal: the first slave's. */
-  if (j == 0 && backtrack(S, s, T, n, g0, j) != 0) return -1;
+  if (owner(S, T, n) == j && backtrack(S, s, T, n, j) != 0) return -1;
   for (;;) {   /* wait for control, or the end (BACK with t < 0, from the master) */
     mp_status st;
     TRY(par_recv(S->mp, MP_ANY, PAR_TAG_BACK, &S->in, S->maxlen, &st));
@@ -301,7 +329,7 @@ static int path_task(slave *S, int s, int bounded, int g0, int p) {
     int t = par_get_i32(&r);
     if (t < 0) return 0;
     int c = par_get_i32(&r);
-    if (backtrack(S, s, t, c, g0, j) != 0) return -1;
+    if (backtrack(S, s, t, c, j) != 0) return -1;
   }
 }
 
@@ -349,7 +377,7 @@ void par_slave(mp *self, void *ud) {
     mp_status st;
     int rc = par_recv(self, 0, MP_ANY, &S->in, S->maxlen, &st);
     if (rc < 0) {
-      fail(S, rc, "waiting for the master");
+      par_slave_fail(S, rc, "waiting for the master");
       break;
     }
     par_rd r = {S->in.b, S->in.b + S->in.len};
@@ -365,7 +393,12 @@ void par_slave(mp *self, void *ud) {
         continue;
       }
       int s = par_get_i32(&r), bounded = par_get_i32(&r), g0 = par_get_i32(&r), p = par_get_i32(&r);
-      if (what == PAR_TASK_PATH ? path_task(S, s, bounded, g0, p) : local_task(S)) break;
+      if (p < 1 || p >= mp_size(self)) xpanic("slave %d: a group of %d slaves", S->rank, p);
+      if (g0 > 0)   /* slaves g0 .. g0+p-1 */
+        for (int i = 0; i < p; i++) S->grp[i] = g0 + i;
+      else          /* a list of ranks (--schedule dynamic, par_dynamic.h) */
+        par_get_i32s(&r, S->grp, p);
+      if (what == PAR_TASK_PATH ? path_task(S, s, bounded, p) : local_task(S)) break;
     } else {
       xpanic("slave %d: unexpected tag %d from the master", S->rank, st.tag);
     }

@@ -61,6 +61,15 @@ typedef struct par_slave_ctx {
   int *pcol;           /* a backtrack piece */
   double *pw;
   int first_path;      /* the test hook counts only the first path */
+  int *grp;            /* the group of the current task: its slaves' ranks */
+  int k;               /* --block k: diagonals between exchanges (1: the paper's) */
+  struct par_block *blk;   /* the blocked wavefront's state (k > 1), par_block.h */
 } par_slave_ctx;
+
+/* Shared with par_block.c: record a failed mp call (returns -1), and join a
+ * pinch of path s at diagonal t (returns its last diagonal; see par_slave.c). */
+int par_slave_fail(par_slave_ctx *S, int rc, const char *what);
+int par_slave_pinch(par_slave_ctx *S, int s, const gpath *U, const gpath *L, int j, int t, int a,
+                    int *pa, int *pb);
 
 #endif

@@ -53,11 +53,25 @@ int64_t split_region(int m, int n, const gpath *U, const gpath *L) {
   return size;
 }
 
-const char *split_alloc_name(split_alloc a) { return a == ALLOC_SIZE ? "size" : "half"; }
+int split_usable(int m, int n, int s, const gpath *U, const gpath *L, int d) {
+  int most = 1, pa = 0, pb = 0;
+  for (int t = 1; t <= m + n; t++) {
+    int a, b;
+    band_range(m, n, s, U, L, s + t, &a, &b);
+    if (!(a == b && pa == pb) && (b - a + 1) / d > most) most = (b - a + 1) / d;
+    pa = a, pb = b;
+  }
+  return most;
+}
+
+const char *split_alloc_name(split_alloc a) {
+  return a == ALLOC_SIZE ? "size" : a == ALLOC_FIT ? "fit" : "half";
+}
 
 int split_alloc_parse(const char *s, split_alloc *a) {
   if (strcmp(s, "half") == 0) *a = ALLOC_HALF;
   else if (strcmp(s, "size") == 0) *a = ALLOC_SIZE;
+  else if (strcmp(s, "fit") == 0) *a = ALLOC_FIT;
   else return -1;
   return 0;
 }

@@ -10,7 +10,7 @@
 
 #include "band.h"
 
-typedef enum { ALLOC_HALF, ALLOC_SIZE } split_alloc;
+typedef enum { ALLOC_HALF, ALLOC_SIZE, ALLOC_FIT } split_alloc;
 
 /* The slaves active on a diagonal of `len` nodes in a group of p slaves, when
  * each must be given at least d nodes (d = 1: everyone while there are nodes
@@ -36,9 +36,10 @@ static inline int split_n(int len, int q, int i) {
 int split_owner(int a, int b, int q, int c);
 
 /* Slaves for the paths below mu(mid), i.e. (mid, hi), out of p >= 2; the rest
- * take the paths above, (lo, mid).  half: ceil(p/2) (section 4).  size: in
- * proportion to the nodes of the two subgraphs (section 7.1), at least one
- * each when both have paths; a side without paths gets none. */
+ * take the paths above, (lo, mid).  half: ceil(p/2) (section 4).  size (and
+ * fit, before its caps: par_fit.h): in proportion to the nodes of the two
+ * subgraphs (section 7.1), at least one each when both have paths; a side
+ * without paths gets none. */
 int split_slaves(split_alloc how, int p, int64_t w_above, int64_t w_below, int paths_above,
                  int paths_below);
 
@@ -47,7 +48,12 @@ int split_slaves(split_alloc how, int p, int64_t w_above, int64_t w_below, int p
  * 0 when there are no such paths. */
 int64_t split_region(int m, int n, const gpath *U, const gpath *L);
 
-const char *split_alloc_name(split_alloc a);
+/* The most slaves any diagonal of the band (s, U, L) keeps busy when each
+ * must have at least d nodes: max over its diagonals of split_active(len,
+ * oo, d), pinches excluded, at least 1. */
+int split_usable(int m, int n, int s, const gpath *U, const gpath *L, int d);
+
+const char *split_alloc_name(split_alloc a);   /* "half", "size", "fit" */
 int split_alloc_parse(const char *s, split_alloc *a);
 
 #endif

@@ -38,6 +38,8 @@ void run_config_init(run_config *rc) {
   mpt_config_init(&rc->threads);
   rc->opt.alloc = ALLOC_HALF;
   rc->opt.min_diag = 1;
+  rc->opt.block = 1;
+  rc->opt.schedule = PAR_STATIC;
   rc->kind = COST_AREA;
 }
 
@@ -50,8 +52,11 @@ const char run_options_help[] =
     "                     threads (a thread per rank, wall-clock seconds)\n"
 #endif
     "  --spin S           threads: seconds a waiting rank spins before it sleeps\n"
-    "  --alloc half|size  processor allocation: half (section 4) or by size (7.1)\n"
+    "  --alloc half|size|fit  processor allocation: half (section 4), by size (7.1),\n"
+    "                     or fit: by size, no group more slaves than it can use\n"
     "  --min-diag d       at least d nodes of a diagonal per slave (7.2); default 1\n"
+    "  --block k          slaves trade run-boundary costs every k diagonals (default 1)\n"
+    "  --schedule NAME    static (the paper's groups) or dynamic (bands to free slaves)\n"
     "  --machine NAME     machine profile: tc2000 (default) or unit\n"
     "  --net MODEL        ideal, bus or loggp\n"
     "  --m S, --c S       seconds per message, per unit of work (node)\n"
@@ -88,6 +93,12 @@ int run_option(run_config *rc, const char *opt, const char *val, char *err, size
   if (strcmp(opt, "--procs") == 0) return integer(opt, val, 1, 4096, &rc->procs, err, errlen);
   if (strcmp(opt, "--min-diag") == 0)
     return integer(opt, val, 1, 1 << 30, &rc->opt.min_diag, err, errlen);
+  if (strcmp(opt, "--block") == 0) return integer(opt, val, 1, 1 << 20, &rc->opt.block, err, errlen);
+  if (strcmp(opt, "--schedule") == 0) {
+    if (par_schedule_parse(val, &rc->opt.schedule) == 0) return 1;
+    snprintf(err, errlen, "--schedule is static or dynamic (%s)", val);
+    return -1;
+  }
   if (strcmp(opt, "--backend") == 0) {
     if (strcmp(val, "sim") == 0) rc->backend = RUN_SIM;
     else if (strcmp(val, "threads") == 0) rc->backend = RUN_THREADS;
@@ -117,7 +128,7 @@ int run_option(run_config *rc, const char *opt, const char *val, char *err, size
   }
   if (strcmp(opt, "--alloc") == 0) {
     if (split_alloc_parse(val, &rc->opt.alloc) == 0) return 1;
-    snprintf(err, errlen, "--alloc is half or size (%s)", val);
+    snprintf(err, errlen, "--alloc is half, size or fit (%s)", val);
     return -1;
   }
   if (strcmp(opt, "--machine") == 0) {

@@ -51,7 +51,8 @@ typedef struct {
 void run_config_init(run_config *rc);
 
 /* Take one command-line option of the machine or the algorithm:
- *   --procs P  --alloc half|size  --min-diag d  --machine NAME  --net ideal|bus|loggp
+ *   --procs P  --alloc half|size|fit  --min-diag d  --block k  --schedule static|dynamic
+ *   --machine NAME  --net ideal|bus|loggp
  *   --m S  --c S  --per-byte S  --local S  --L S  --o S  --g S  --G S
  *   --backend sim|threads (|mpi in MPI builds)  --spin S (threads)
  * (--machine sets every machine parameter; give it before the others).
