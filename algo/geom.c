@@ -3,6 +3,8 @@
 
 #include <math.h>
 
+#include "exact.h"
+
 double geom_area2(const vec2 *p, int n) {
   double s = 0;
   for (int i = 1; i + 1 < n; i++) {
@@ -14,20 +16,37 @@ double geom_area2(const vec2 *p, int n) {
 }
 
 int geom_collinear(const vec2 *p, int n) {
-  /* The point farthest from p[0] fixes the line; all others must be on it. */
-  int far = 0;
-  double best = 0;
-  for (int i = 1; i < n; i++) {
-    double dx = p[i].x - p[0].x, dy = p[i].y - p[0].y, d = dx * dx + dy * dy;
-    if (d > best) best = d, far = i;
-  }
-  if (best == 0) return 1;
-  double ux = p[far].x - p[0].x, uy = p[far].y - p[0].y;
-  for (int i = 1; i < n; i++) {
-    double cr = ux * (p[i].y - p[0].y) - uy * (p[i].x - p[0].x);
-    if (fabs(cr) > 1e-12 * best) return 0;
-  }
+  /* The first point apart from p[0] fixes the line; all must be on it. */
+  int b = 1;
+  while (b < n && exact_lex(p[b], p[0]) == 0) b++;
+  for (int i = b + 1; i < n; i++)
+    if (exact_orient(p[0], p[b], p[i]) != 0) return 0;
   return 1;
+}
+
+int geom_orientation(const vec2 *p, int n) {
+  if (n < 3) return 0;
+  int v = 0;
+  for (int i = 1; i < n; i++)
+    if (exact_lex(p[i], p[v]) < 0) v = i;
+  int o = exact_orient(p[v == 0 ? n - 1 : v - 1], p[v], p[v + 1 == n ? 0 : v + 1]);
+  if (o) return o;
+  /* Not simple: the area's sign, on coordinates scaled so the largest is
+   * below 1 (exact unless the smallest fall below 2^-1074). */
+  double m = 0;
+  for (int i = 0; i < n; i++) {
+    if (fabs(p[i].x) > m) m = fabs(p[i].x);
+    if (fabs(p[i].y) > m) m = fabs(p[i].y);
+  }
+  int e;
+  frexp(m, &e);
+  double s = 0, x0 = ldexp(p[0].x, -e), y0 = ldexp(p[0].y, -e);
+  for (int i = 1; i + 1 < n; i++) {
+    double ax = ldexp(p[i].x, -e) - x0, ay = ldexp(p[i].y, -e) - y0;
+    double bx = ldexp(p[i + 1].x, -e) - x0, by = ldexp(p[i + 1].y, -e) - y0;
+    s += ax * by - ay * bx;
+  }
+  return (s > 0) - (s < 0);
 }
 
 void geom_reverse(vec2 *p, int n) {

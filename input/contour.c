@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "crossing.h"
 #include "xmem.h"
 
 typedef struct {
@@ -117,6 +118,21 @@ static void raw_push(raw *c, vec2 p, int line) {
   c->ptline[c->have++] = line;
 }
 
+/* A contour that crosses, touches or runs back over itself (issue 14, item
+ * 10): the first offending pair of segments the sweep finds (algo/crossing.h,
+ * exact, O(n log n)), each named by the lines of its two points. */
+static int not_simple(reader *r, const raw *c, int k) {
+  crossing_poly poly = {c->pt, k};
+  crossing_hit h;
+  if (!crossing_find(&poly, 1, &h)) return 0;
+  int a = h.seg[0], b = h.seg[1];
+  return fail(r, c->line,
+              "the contour crosses itself: the segment from line %d to line %d %s the segment "
+              "from line %d to line %d (%.17g %.17g)",
+              c->ptline[a], c->ptline[(a + 1) % k], crossing_verb(h.kind), c->ptline[b],
+              c->ptline[(b + 1) % k], h.at.x, h.at.y);
+}
+
 /* Repair and check one contour; on success move it into *out. */
 static int finish(reader *r, raw *c, contour *out, int *reversed) {
   int n = c->have, k = 0;
@@ -140,7 +156,8 @@ static int finish(reader *r, raw *c, contour *out, int *reversed) {
                 k, k == 1 ? "" : "s", c->z);
   if (geom_collinear(c->pt, k))
     return fail(r, c->line, "all %d points of the contour are collinear (z=%.17g)", k, c->z);
-  out->cw = geom_area2(c->pt, k) < 0;
+  if (not_simple(r, c, k) != 0) return -1;
+  out->cw = geom_orientation(c->pt, k) < 0;
   if (out->cw) {
     geom_reverse(c->pt, k);
     (*reversed)++;

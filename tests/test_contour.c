@@ -7,6 +7,8 @@
 
 #include "check.h"
 #include "contour.h"
+#include "gen.h"
+#include "rng.h"
 #include "xmem.h"
 
 /* Parse text; return the error (or "" on success) and the notes. */
@@ -59,6 +61,28 @@ static const bad cases[] = {
     {"C 4 0\n0 0\n1 1\n0 0\n1 1\n", 1, "collinear", NULL},
     {"C 3 0\n0 0\n1 0\n0 1\n", 1, "only one contour", NULL},
     {"C 3 2\n0 0\n1 0\n0 1\nC 3 2\n5 0\n6 0\n5 1\n", 1, "all 2 contours lie on one slice", NULL},
+    /* Self-intersecting contours (issue 14, item 10): the two segments by
+     * the lines of their points, and where they meet. */
+    {"C 4 0\n0 0\n1 1\n1 0\n0 1\n", 1,   /* a bowtie */
+     "the contour crosses itself: the segment from line 2 to line 3 crosses the segment from line 4 to line 5", "0.5 0.5"},
+    {"C 7 0\n1000 0\n-901 434\n623 -782\n-223 975\n-223 -975\n623 782\n-901 -434\n", 1,   /* {7/3} */
+     "the contour crosses itself: the segment from line ", NULL},
+    {"C 6 0\n0 0\n1 1\n2 0\n2 1\n1 0\n0 1\n", 1,   /* a figure eight */
+     "the contour crosses itself: the segment from line 2 to line 3 crosses the segment from line 6 to line 7", "0.5 0.5"},
+    {"C 6 0\n0 0\n2 0\n1 1\n2 2\n0 2\n1 1\n", 1,   /* touching at a vertex */
+     "the contour crosses itself: the segment from line 3 to line 4 touches the segment from line 6 to line 7", "1 1"},
+    {"C 5 0\n0 0\n2 0\n2 2\n1 0\n0 2\n", 1,   /* a vertex on an edge */
+     "the contour crosses itself: the segment from line 2 to line 3 touches the segment from line 5 to line 6", "1 0"},
+    {"C 6 0\n0 0\n3 0\n3 1\n-1 1\n-1 0\n1 0\n", 1,   /* collinear overlap */
+     "the contour crosses itself: the segment from line 2 to line 3 overlaps the segment from line 7 to line 2", "0 0"},
+    {"C 4 0\n0 0\n2 0\n1 0\n1 1\n", 1,   /* a spike back along its edge */
+     "the contour crosses itself: the segment from line 2 to line 3 overlaps the segment from line 3 to line 4", "2 0"},
+    {"C 5 7\n0 0\n# a comment\n1 1\n\n1 1\n1 0\n0 1\n", 1,   /* lines as in the file, after repair */
+     "the contour crosses itself: the segment from line 2 to line 4 crosses the segment from line 7 to line 8", "0.5 0.5"},
+    {"C 4 0\n0 0\n1e300 1e300\n1e300 0\n0 1e300\n", 1,   /* at any scale */
+     "the contour crosses itself: the segment from line 2 to line 3 crosses the segment from line 4 to line 5", "5.0000000000000003e+299 5.0000000000000003e+299"},
+    {"C 4 0\n0 0\n4e-323 4e-323\n4e-323 0\n0 4e-323\n", 1,   /* subnormals */
+     "the contour crosses itself: the segment from line 2 to line 3 crosses the segment from line 4 to line 5", NULL},
     {"C 3 0\n0 0\n1\x01 0\n0 1\n", 3, "binary data", "byte 0x01"},
     {"C 3 0\n\x7f\x45LF\n", 2, "binary data", "byte 0x7f"},
 };
@@ -325,11 +349,76 @@ static void check_fuzz(void) {
   CHECK(accepted > 50 && accepted < 3950, "fuzzing reached both outcomes (%d accepted)", accepted);
 }
 
+/* Extreme coordinates (issue 14, item 7): star contours scaled by 2^k, by
+ * 1e300 and 1e-300, and into subnormals are read as at unit scale: accepted,
+ * the same points, reversed or not alike.  (With a tolerance scaled by the
+ * extent, 1e300 overflowed and 1e-300 underflowed, and 50-point stars were
+ * refused as "collinear".) */
+static void check_extreme(void) {
+  rng g;
+  rng_seed(&g, 99);
+  char err[512];
+  int fails = 0;
+  for (int trial = 0; trial < 40; trial++) {
+    int n = 50;
+    vec2 p[2][50];
+    int np[2];
+    for (int c = 0; c < 2; c++) {
+      np[c] = gen_grid(&g, p[c], n, 200);   /* integers: every scaling by 2^k is exact */
+      if ((trial + c) % 2) geom_reverse(p[c], np[c]);
+    }
+    static const double muls[] = {1, 0x1p-1000, 0x1p1000, 1e300, 1e-300, 0x1p-1060, 0x1p-1066};
+    int cw0[2] = {-1, -1};
+    for (size_t m = 0; m < sizeof muls / sizeof *muls; m++) {
+      char *text = NULL;
+      size_t len = 0;
+      FILE *f = open_memstream(&text, &len);
+      for (int c = 0; c < 2; c++) {
+        fprintf(f, "C %d %.17g\n", np[c], c * 3 * muls[m]);
+        for (int i = 0; i < np[c]; i++) fprintf(f, "%.17g %.17g\n", p[c][i].x * muls[m], p[c][i].y * muls[m]);
+      }
+      fclose(f);
+      contour_stack s;
+      int rc = contour_parse(text, len, "x.contours", &s, NULL, "tile", err, sizeof err);
+      int ok = rc == 0 && s.n == 2;
+      for (int c = 0; ok && c < 2; c++) {
+        if (m == 0) cw0[c] = s.c[c].cw;
+        ok = s.c[c].n == np[c] && s.c[c].cw == cw0[c];
+        /* the points as written, in the order the unit-scale read gave */
+        for (int i = 0; ok && i < np[c]; i++) {
+          int j = s.c[c].cw ? (np[c] - i) % np[c] : i;
+          ok = s.c[c].pt[i].x == p[c][j].x * muls[m] && s.c[c].pt[i].y == p[c][j].y * muls[m];
+        }
+      }
+      if (!ok && fails++ < 5) CHECK(0, "trial %d, scale %g: %s", trial, muls[m], rc ? err : "points differ");
+      if (rc == 0) contour_stack_free(&s);
+      free(text);
+    }
+  }
+  CHECK(fails == 0, "%d extreme-scale stacks read differently", fails);
+  /* The sliver of item 8 (50 points on a line, one 1e-8 off it) is a thin
+   * triangle, not collinear; exactly on the line it is. */
+  char t[8192];
+  size_t k = (size_t)snprintf(t, sizeof t, "C 51 0\n");
+  for (int i = 0; i < 50; i++) k += (size_t)snprintf(t + k, sizeof t - k, "%.17g %.17g\n", 1e8 + i, 1e8 + i);
+  k += (size_t)snprintf(t + k, sizeof t - k, "100000000 100000000.00000001\nC 3 1\n0 0\n1 0\n0 1\n");
+  contour_stack s;
+  int rc = contour_parse(t, k, "s.contours", &s, NULL, "tile", err, sizeof err);
+  CHECK(rc == 0, "the sliver refused: %s", err);
+  if (rc == 0) contour_stack_free(&s);
+  char *on = strstr(t, "100000000 100000000.00000001");
+  memcpy(on, "100000000 100000000          ", strlen("100000000 100000000.00000001"));
+  rc = contour_parse(t, k, "s.contours", &s, NULL, "tile", err, sizeof err);
+  CHECK(rc == -1 && strstr(err, "s.contours:1: all 50 points of the contour are collinear"),
+        "exactly on the line: '%s'", rc ? err : "accepted");
+}
+
 int main(void) {
   check_bad();
   check_fuzz();
   check_good();
   check_real();
   check_slices();
+  check_extreme();
   return check_done("test_contour");
 }
