@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "par_slave.h"
+#include "run_net.h"
 #include "xmem.h"
 #ifdef TILESIM_MPI
 #include "run_mpi.h"
@@ -60,7 +61,7 @@ const char run_options_help[] =
     "  --machine NAME     machine profile: tc2000 (default) or unit\n"
     "  --net MODEL        ideal, bus or loggp\n"
     "  --m S, --c S       seconds per message, per unit of work (node)\n"
-    "  --per-byte S       seconds per message byte (ideal, bus)\n"
+    "  --per-byte S       seconds per message byte (ideal, bus; a topology's links)\n"
     "  --local S          seconds per message between ranks on one processor\n"
     "  --L S --o S --g S --G S   LogGP latency, overhead, gap, gap per byte\n";
 
@@ -90,6 +91,8 @@ static int integer(const char *opt, const char *val, int lo, int hi, int *out, c
 int run_option(run_config *rc, const char *opt, const char *val, char *err, size_t errlen) {
   sim_config *c = &rc->machine;
   if (!val) val = "";
+  int k = run_net_option(rc, opt, val, err, errlen);   /* topology and placement */
+  if (k != 0) return k;
   if (strcmp(opt, "--procs") == 0) return integer(opt, val, 1, 4096, &rc->procs, err, errlen);
   if (strcmp(opt, "--min-diag") == 0)
     return integer(opt, val, 1, 1 << 30, &rc->opt.min_diag, err, errlen);
@@ -141,6 +144,7 @@ int run_option(run_config *rc, const char *opt, const char *val, char *err, size
     return -1;
   }
   if (strcmp(opt, "--net") == 0) {
+    c->topo.kind = TOPO_NONE;   /* --net and --topology: the last one given */
     if (sim_net_parse(val, &c->net) == 0) return 1;
     snprintf(err, errlen, "--net is ideal, bus or loggp (%s)", val);
     return -1;
@@ -196,12 +200,30 @@ static int program_finish(program *p, int res, char *err, size_t errlen) {
   return res;
 }
 
+/* The master ends a pair (all its messages are sent by then): that pair's
+ * share of the network's statistics, then the caller's progress. */
+typedef struct {
+  links *links;
+  net_stats *out;
+  void (*progress)(void *ud, int done, int total);
+  void *progress_ud;
+} pair_net;
+
+static void pair_done(void *ud, int done, int total) {
+  pair_net *pn = ud;
+  links_period(pn->links, &pn->out[done - 1]);
+  if (pn->progress) pn->progress(pn->progress_ud, done, total);
+}
+
 int run_sim(const run_config *rc, par_pair *pairs, int npairs, sim_stats *stats, char *err,
             size_t errlen) {
-  int P = rc->procs, nr = run_ranks(P);
+  int P = rc->procs, nr = run_ranks(P), nodes;
   sim_config cfg = rc->machine;
   int *place = xmallocarray((size_t)nr, sizeof *place);
-  for (int r = 0; r < nr; r++) place[r] = P == 1 ? 0 : r;
+  if (run_net_place(rc, P, place, &nodes, err, errlen) != 0) {
+    free(place);
+    return -1;
+  }
   cfg.procs = P;
   cfg.place = place;
   sim *s = sim_new(&cfg, nr, err, errlen);
@@ -210,6 +232,12 @@ int run_sim(const run_config *rc, par_pair *pairs, int npairs, sim_stats *stats,
   if (rc->trace_csv || rc->trace_json) sim_trace(s, rc->trace_csv, rc->trace_json);
   program p;
   program_init(&p, rc, pairs, npairs, nr);
+  pair_net pn = {sim_links(s), rc->pair_net, rc->progress, rc->progress_ud};
+  if (pn.links && pn.out) {   /* each pair's network statistics, as it ends */
+    memset(pn.out, 0, (size_t)npairs * sizeof *pn.out);
+    p.marg.progress = pair_done;
+    p.marg.progress_ud = &pn;
+  }
   int res = program_finish(&p, sim_run(s, p.procs, err, errlen), err, errlen);
   if (stats) *stats = *sim_stats_get(s);
   sim_free(s);
@@ -232,6 +260,11 @@ int run_threads(const run_config *rc, par_pair *pairs, int npairs, mpt_stats *st
 }
 
 int run_pairs(const run_config *rc, par_pair *pairs, int npairs, char *err, size_t errlen) {
+  if (rc->backend != RUN_SIM && rc->machine.topo.kind != TOPO_NONE) {
+    snprintf(err, errlen, "--topology describes the simulated machine; --backend %s measures this one",
+             run_backend_name(rc->backend));
+    return -1;
+  }
   switch (rc->backend) {
   case RUN_SIM: return run_sim(rc, pairs, npairs, NULL, err, errlen);
   case RUN_THREADS: return run_threads(rc, pairs, npairs, NULL, err, errlen);

@@ -14,6 +14,7 @@
 #include <stdio.h>
 
 #include "par_master.h"
+#include "place.h"
 #include "sim.h"
 #include "threads.h"
 
@@ -44,6 +45,9 @@ typedef struct {
   int diag_len;
   void (*progress)(void *ud, int done, int total);   /* after each pair, or NULL */
   void *progress_ud;
+  place_spec place;               /* where the P processors go on the machine (run_net.h) */
+  net_stats *pair_net;            /* simulator on a topology: each pair's network
+                                     statistics (npairs of them), or NULL */
 } run_config;
 
 /* A run_config with the defaults: 1 processor, the simulator (MPI in an

@@ -95,14 +95,14 @@ int sim_profile(const char *name, sim_config *cfg) {
   return 0;
 }
 
-static const char *const net_names[] = {"ideal", "bus", "loggp"};
+static const char *const net_names[] = {"ideal", "bus", "loggp", "topology"};
 
 const char *sim_net_name(sim_net net) {
   return (unsigned)net < sizeof net_names / sizeof *net_names ? net_names[net] : "?";
 }
 
 int sim_net_parse(const char *name, sim_net *net) {
-  for (unsigned i = 0; i < sizeof net_names / sizeof *net_names; i++) {
+  for (unsigned i = 0; i < SIM_NET_TOPOLOGY; i++) {
     if (strcmp(name, net_names[i]) == 0) {
       *net = (sim_net)i;
       return 0;
@@ -167,6 +167,8 @@ struct sim {
   double *busy;            /* per processor: busy_until */
   double *nic;             /* per processor: LogGP NIC free time */
   double bus_free;         /* SIM_NET_BUS */
+  topo *topo;              /* SIM_NET_TOPOLOGY: the interconnect and its links */
+  links *links;
   evq *q;                  /* ranks that can act, by (time, seq) */
   uint64_t seq;            /* the next sequence number (events and messages) */
   double gtime;            /* the time of the latest event started: never decreases */
@@ -436,6 +438,8 @@ static int sim_send(mp *self, int dst, int tag, const void *buf, size_t len) {
     arrival = s->bus_free;
   } else if (c->net == SIM_NET_IDEAL) {
     arrival = t0 + c->m + (double)len * c->per_byte;
+  } else if (c->net == SIM_NET_TOPOLOGY) {   /* link.h; s->seq is the message's id */
+    arrival = links_send(s->links, r->proc, d->proc, t0, len, s->tr, r->base.rank, dst, tag, s->seq);
   } else {
     o = c->o;
     t0 = overhead(s, r, o);
@@ -596,7 +600,7 @@ sim *sim_new(const sim_config *cfg, int nranks, char *err, size_t errlen) {
     double v;
   } costs[] = {{"c", cfg->c},          {"m", cfg->m}, {"per_byte", cfg->per_byte},
                {"local", cfg->local},  {"L", cfg->L}, {"o", cfg->o},
-               {"g", cfg->g},          {"G", cfg->G}};
+               {"g", cfg->g},          {"G", cfg->G}, {"hop_latency", cfg->hop_latency}};
   for (size_t i = 0; i < sizeof costs / sizeof *costs; i++) {
     if (!(costs[i].v >= 0) || isinf(costs[i].v)) {
       snprintf(err, errlen, "sim: cost %s = %g: must be finite and >= 0", costs[i].name,
@@ -604,21 +608,40 @@ sim *sim_new(const sim_config *cfg, int nranks, char *err, size_t errlen) {
       return NULL;
     }
   }
-  if ((unsigned)cfg->net > SIM_NET_LOGGP) {
+  if ((unsigned)cfg->net > SIM_NET_TOPOLOGY ||
+      (cfg->net == SIM_NET_TOPOLOGY && cfg->topo.kind == TOPO_NONE)) {
     snprintf(err, errlen, "sim: unknown network model %d", (int)cfg->net);
     return NULL;
   }
+  /* A topology: its processors (at least procs), its links. */
+  topo *tp = NULL;
+  int procs = cfg->procs;
+  if (cfg->topo.kind != TOPO_NONE) {
+    char terr[200];
+    if (!(tp = topo_new(&cfg->topo, cfg->procs, terr, sizeof terr))) {
+      snprintf(err, errlen, "sim: %s", terr);
+      return NULL;
+    }
+    procs = topo_nodes(tp);
+  }
   if (cfg->place) {
     for (int r = 0; r < nranks; r++) {
-      if (cfg->place[r] < 0 || cfg->place[r] >= cfg->procs) {
+      if (cfg->place[r] < 0 || cfg->place[r] >= procs) {
         snprintf(err, errlen, "sim: place[%d] = %d: processors are 0..%d", r, cfg->place[r],
-                 cfg->procs - 1);
+                 procs - 1);
+        topo_free(tp);
         return NULL;
       }
     }
   }
   sim *s = xcalloc(1, sizeof *s);
   s->cfg = *cfg;
+  s->cfg.procs = procs;
+  if (tp) {
+    s->cfg.net = SIM_NET_TOPOLOGY;
+    s->topo = tp;
+    s->links = links_new(tp, cfg->m, cfg->hop_latency, cfg->per_byte, cfg->store_forward);
+  }
   s->n = nranks;
   s->place = xmallocarray((size_t)nranks, sizeof *s->place);
   for (int r = 0; r < nranks; r++) s->place[r] = cfg->place ? cfg->place[r] : r % cfg->procs;
@@ -632,13 +655,15 @@ sim *sim_new(const sim_config *cfg, int nranks, char *err, size_t errlen) {
     k->st.proc = k->proc;
     k->wake = INFINITY;
   }
-  s->busy = xcalloc((size_t)cfg->procs, sizeof *s->busy);
-  s->nic = xcalloc((size_t)cfg->procs, sizeof *s->nic);
+  s->busy = xcalloc((size_t)procs, sizeof *s->busy);
+  s->nic = xcalloc((size_t)procs, sizeof *s->nic);
   s->q = evq_new(nranks);
   s->st.ranks = nranks;
-  s->st.procs = cfg->procs;
+  s->st.procs = procs;
   return s;
 }
+
+links *sim_links(sim *s) { return s->links; }
 
 void sim_trace(sim *s, FILE *csv, FILE *json) {
   s->tcsv = csv;
@@ -810,6 +835,8 @@ void sim_free(sim *s) {
   free(s->place);
   free(s->busy);
   free(s->nic);
+  links_free(s->links);
+  topo_free(s->topo);
   errlog_free(&s->errs);
   free(s);
 }

@@ -38,6 +38,11 @@
  *                        inject = max(now, nic_free[proc]);
  *                        nic_free[proc] = inject + g;
  *                        arrival = inject + (len > 1 ? (len-1)*G : 0) + L.
+ *     SIM_NET_TOPOLOGY a topology (cfg.topo, topo.h) of links that are FIFO
+ *                      queues: m as latency, then hop_latency r per link and
+ *                      per_byte on every link, cut-through or store-and-
+ *                      forward (link.h states it exactly); on an idle machine
+ *                      m + h*r + len*per_byte over h links, cut-through.
  *   Non-overtaking: messages between one pair of ranks are received in send
  *   order, whatever the model: arrival = max(arrival, last arrival on the
  *   same (src, dst) channel).
@@ -95,9 +100,12 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "link.h"
 #include "mp.h"
+#include "topo.h"
 
-typedef enum { SIM_NET_IDEAL, SIM_NET_BUS, SIM_NET_LOGGP } sim_net;
+/* SIM_NET_TOPOLOGY is set by a topology (cfg.topo), never by name. */
+typedef enum { SIM_NET_IDEAL, SIM_NET_BUS, SIM_NET_LOGGP, SIM_NET_TOPOLOGY } sim_net;
 
 typedef struct {
   int procs;          /* processors >= 1 */
@@ -108,6 +116,11 @@ typedef struct {
   double local;       /* seconds per message between ranks on one processor */
   sim_net net;        /* how messages between processors are charged */
   double L, o, g, G;  /* LogGP: latency, overhead, gap, gap per byte (seconds) */
+  topo_spec topo;     /* the interconnect; TOPO_NONE (the default): net decides.
+                         Any other: net is SIM_NET_TOPOLOGY, the machine has
+                         topo's processors (>= procs), per_byte is every link's */
+  double hop_latency; /* topologies: seconds per link a message's head crosses */
+  int store_forward;  /* topologies: 1 store-and-forward, 0 cut-through */
   size_t stack;       /* coroutine stack bytes per rank, 0 = 256 KiB */
   FILE *warn;         /* warnings go here (default stderr); NULL: quiet */
 } sim_config;
@@ -121,7 +134,8 @@ void sim_config_init(sim_config *cfg);
  * traces by eye).  0, or -1 for an unknown name (cfg untouched). */
 int sim_profile(const char *name, sim_config *cfg);
 
-/* "ideal", "bus", "loggp"; sim_net_parse gives 0, or -1 for another name. */
+/* "ideal", "bus", "loggp" ("topology"); sim_net_parse gives 0, or -1 for
+ * another name ("topology" included: a topology is set by cfg.topo). */
 const char *sim_net_name(sim_net net);
 int sim_net_parse(const char *name, sim_net *net);
 
@@ -129,8 +143,13 @@ typedef struct sim sim;
 
 /* A machine for nranks ranks (>= 1) under cfg (copied, place included).
  * NULL and a message in err (errlen bytes) if cfg is invalid: procs < 1, a
- * negative or non-finite cost, place[r] outside 0..procs-1, an unknown net. */
+ * negative or non-finite cost, place[r] outside 0..procs-1 (outside the
+ * topology's processors with one), an unknown net, a topology too small. */
 sim *sim_new(const sim_config *cfg, int nranks, char *err, size_t errlen);
+
+/* The machine's links (link.h: per-link and per-run statistics), or NULL
+ * without a topology.  Valid until sim_free. */
+links *sim_links(sim *s);
 
 /* Write the timeline of the run to csv and/or json (either may be NULL; see
  * trace.h for the formats).  Call before sim_run; the streams stay the

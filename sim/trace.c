@@ -9,6 +9,8 @@
 struct trace {
   FILE *csv, *json;
   int first;   /* no JSON event written yet (no comma before the next) */
+  int netpid;  /* the network's pid: the number of processors */
+  int netnamed;   /* its process_name is written */
 };
 
 trace *trace_new(FILE *csv, FILE *json) {
@@ -44,6 +46,7 @@ static void csv_peer(FILE *f, int v) {
 
 void trace_begin(trace *tr, int nranks, const int *place, int nprocs) {
   if (tr->csv) fputs("time,rank,proc,event,peer,tag,bytes,duration,msg,arrival\n", tr->csv);
+  tr->netpid = nprocs;
   if (!tr->json) return;
   fputs("{\"displayTimeUnit\":\"ns\",\"traceEvents\":[", tr->json);
   for (int p = 0; p < nprocs; p++) {
@@ -125,6 +128,34 @@ void trace_finish(trace *tr, int rank, int proc, double t) {
   if (tr->json) {
     jhead(tr, "i", "finish", "rank", proc, rank, t);
     fputs(",\"s\":\"t\"}", tr->json);
+  }
+}
+
+void trace_link_track(trace *tr, int link, const char *name) {
+  if (!tr->json) return;
+  if (!tr->netnamed) {
+    fprintf(tr->json,
+            "%s{\"ph\":\"M\",\"name\":\"process_name\",\"pid\":%d,\"args\":{\"name\":\"network\"}},\n"
+            "{\"ph\":\"M\",\"name\":\"process_sort_index\",\"pid\":%d,\"args\":{\"sort_index\":%d}}",
+            tr->first ? "\n" : ",\n", tr->netpid, tr->netpid, tr->netpid);
+    tr->first = 0;
+    tr->netnamed = 1;
+  }
+  fprintf(tr->json,
+          ",\n{\"ph\":\"M\",\"name\":\"thread_name\",\"pid\":%d,\"tid\":%d,\"args\":{\"name\":\"link %s\"}}"
+          ",\n{\"ph\":\"M\",\"name\":\"thread_sort_index\",\"pid\":%d,\"tid\":%d,\"args\":{\"sort_index\":%d}}",
+          tr->netpid, link, name, tr->netpid, link, link);
+}
+
+void trace_link(trace *tr, int link, int rank, int dst, int tag, size_t len, uint64_t msg,
+                double start, double dur) {
+  if (tr->csv)
+    fprintf(tr->csv, "%.9f,%d,%d,link,%d,%d,%zu,%.9f,%llu,\n", start, rank, link, dst, tag, len,
+            dur, (unsigned long long)msg);
+  if (tr->json) {
+    jhead(tr, "X", "msg", "link", tr->netpid, link, start);
+    fprintf(tr->json, ",\"dur\":%.3f,\"args\":{\"src\":%d,\"dst\":%d,\"tag\":%d,\"bytes\":%zu,\"msg\":%llu}}",
+            us(dur), rank, dst, tag, len, (unsigned long long)msg);
   }
 }
 

@@ -17,12 +17,19 @@
  *             MP_ANY), duration = how long
  *   recv      peer = source, duration = LogGP's o (else 0), msg = the id
  *   finish    the rank's main returned
+ *   link      a topology's link carried a message (sim/link.h): time = when
+ *             it began, proc = the link's index (its name is in the JSON),
+ *             rank = the sender, peer = the destination rank, duration = how
+ *             long the link was busy with it, msg = the message's id
  *
  * JSON (Perfetto, chrome://tracing): {"traceEvents":[...]} with one pid per
  * processor and one tid per rank (named by "M" metadata), "X" slices for
  * compute, cpuwait, wait, send and recv, times in microseconds (%.3f), and a
  * flow arrow ("s" at the send, "f" bound to the recv) for every message that
- * is received, so the picture shows who waited for whom. */
+ * is received, so the picture shows who waited for whom.  On a topology one
+ * more pid, "network" (numbered nprocs), has a track (tid) per link that
+ * carried a message, named as topo.h names links, with a "msg" slice for
+ * each message it carried. */
 #ifndef TRACE_H
 #define TRACE_H
 
@@ -49,6 +56,13 @@ void trace_send(trace *tr, int rank, int proc, double t, double dur, int dst, in
 void trace_recv(trace *tr, int rank, int proc, double t, double dur, int src, int tag,
                 size_t len, uint64_t msg);
 void trace_finish(trace *tr, int rank, int proc, double t);
+
+/* Name link l's track (JSON; once per link, before its first trace_link). */
+void trace_link_track(trace *tr, int link, const char *name);
+
+/* Link `link` carried message msg (from rank to dst) from start for dur. */
+void trace_link(trace *tr, int link, int rank, int dst, int tag, size_t len, uint64_t msg,
+                double start, double dur);
 
 /* Close the JSON array and flush both streams.  0, or -1 and a message in
  * err if a write failed. */

@@ -1,0 +1,1007 @@
+/* test_topo.c -- topologies, links and placement against closed forms.
+ *
+ * Costs are binary fractions (m = 1/4, r = 1/8, beta = 1/64 s per byte), so
+ * every expected time below is exact and compared with ==.  The expected
+ * values come from the formulas of topo.h, link.h and place.h (and the
+ * design note's counting), computed here independently of sim/:
+ *   routes: h(s, d) by the distance formula of each topology, and the route's
+ *     links chained by their names from s to d;
+ *   one message over h hops: m + h*r + L*beta cut-through, m + h*(r + L*beta)
+ *     store-and-forward, m + r + L*beta on the bus;
+ *   a token ring per lap: on a line (linear), a ring, a hypercube (gray), a
+ *     mesh (snake);
+ *   the line bisection's arrivals, shifts and reversal's busiest link;
+ *   the butterfly: every cyclic shift conflict-free, bit reversal's sqrt(N)
+ *     on the middle wires, all-to-one's tree of saturation;
+ *   conservation: bytes over links = hop-bytes, hops = the sum of distances;
+ *   the bus topology = the bus model, full with no network cost = ideal,
+ *     bit for bit, on random programs;
+ *   placement maps, and the parallel algorithm's result unchanged by any
+ *     topology or placement. */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "gen.h"
+#include "link.h"
+#include "mp.h"
+#include "place.h"
+#include "randprog.h"
+#include "rng.h"
+#include "run.h"
+#include "sim.h"
+#include "tiling.h"
+#include "topo.h"
+#include "xmem.h"
+
+static const double M = 0.25, R = 0.125, BETA = 1.0 / 64, C = 0.125;
+
+/* ==== the machines, and their closed forms ================================ */
+
+typedef struct {
+  topo_kind kind;
+  int a, b;    /* the spec's size (0: sized to procs) */
+  int procs;   /* the run it is sized for */
+} machine;
+
+static const machine machines[] = {
+    {TOPO_BUS, 0, 0, 5},       {TOPO_FULL, 0, 0, 5},      {TOPO_LINE, 0, 0, 7},
+    {TOPO_RING, 0, 0, 7},      {TOPO_RING, 0, 0, 8},      {TOPO_MESH, 4, 3, 12},
+    {TOPO_TORUS, 4, 3, 12},    {TOPO_TORUS, 5, 4, 20},    {TOPO_HYPERCUBE, 3, 0, 8},
+    {TOPO_BUTTERFLY, 2, 0, 8}, {TOPO_BUTTERFLY, 3, 0, 9}, {TOPO_MESH, 0, 0, 7},
+    {TOPO_LINE, 9, 0, 4},      {TOPO_HYPERCUBE, 0, 0, 5}, {TOPO_TORUS, 2, 2, 4},
+    {TOPO_BUTTERFLY, 4, 0, 13},
+};
+enum { NMACHINES = sizeof machines / sizeof *machines };
+
+/* The documented sizes (topo.h), worked out here. */
+typedef struct {
+  int N, w, h, d, k, n;
+} dims;
+
+static dims dims_of(const machine *mc) {
+  dims x = {0, 0, 1, 0, 0, 0};
+  int P = mc->procs;
+  switch (mc->kind) {
+  case TOPO_MESH:
+  case TOPO_TORUS:
+    if (mc->a) {
+      x.w = mc->a, x.h = mc->b;
+    } else {
+      x.w = (int)ceil(sqrt((double)P));
+      x.h = (P + x.w - 1) / x.w;
+    }
+    x.N = x.w * x.h;
+    break;
+  case TOPO_HYPERCUBE:
+    x.d = mc->a ? mc->a : (int)ceil(log2((double)P));
+    x.N = 1 << x.d;
+    break;
+  case TOPO_BUTTERFLY:
+    x.k = mc->a ? mc->a : 2;
+    for (x.N = 1; x.N < P; x.N *= x.k) x.n++;
+    break;
+  default:
+    x.N = x.w = mc->a ? mc->a : P;
+  }
+  return x;
+}
+
+static int dist1(int n, int a, int b, int wrap) {
+  int d = abs(a - b);
+  return wrap && n - d < d ? n - d : d;
+}
+
+static int popcount(unsigned v) {
+  int c = 0;
+  for (; v; v &= v - 1) c++;
+  return c;
+}
+
+/* h(s, d): the table of topo.h. */
+static int hops(const machine *mc, const dims *x, int s, int d) {
+  if (s == d) return 0;
+  switch (mc->kind) {
+  case TOPO_BUS: return 1;
+  case TOPO_FULL: return 2;
+  case TOPO_LINE: return abs(s - d);
+  case TOPO_RING: return dist1(x->N, s, d, 1);
+  case TOPO_MESH:
+  case TOPO_TORUS: {
+    int wrap = mc->kind == TOPO_TORUS;
+    return dist1(x->w, s % x->w, d % x->w, wrap) + dist1(x->h, s / x->w, d / x->w, wrap);
+  }
+  case TOPO_HYPERCUBE: return popcount((unsigned)(s ^ d));
+  case TOPO_BUTTERFLY: return x->n + 1;
+  default: return -1;
+  }
+}
+
+static sim_config netcfg(const machine *mc, int saf) {
+  sim_config cfg;
+  sim_config_init(&cfg);
+  cfg.procs = mc->procs;
+  cfg.topo = (topo_spec){mc->kind, mc->a, mc->b};
+  cfg.m = M;
+  cfg.hop_latency = R;
+  cfg.per_byte = BETA;
+  cfg.c = C;
+  cfg.local = 0;
+  cfg.store_forward = saf;
+  cfg.stack = 64 * 1024;
+  cfg.warn = NULL;
+  return cfg;
+}
+
+/* One message on an idle machine, over h links. */
+static double alone(const machine *mc, int saf, int h, size_t len) {
+  double lb = (double)len * BETA;
+  if (mc->kind == TOPO_BUS) return M + R + lb;
+  return saf ? M + h * (R + lb) : M + h * R + lb;
+}
+
+static sim *run(const sim_config *cfg, int n, mp_main fn, void *ud, int *rc, char *err,
+                size_t errlen) {
+  sim *s = sim_new(cfg, n, err, errlen);
+  CHECK(s != NULL, "sim_new: %s", err);
+  if (!s) abort();
+  mp_proc *pr = xmallocarray((size_t)n, sizeof *pr);
+  for (int i = 0; i < n; i++) pr[i] = (mp_proc){fn, ud};
+  err[0] = 0;
+  *rc = sim_run(s, pr, err, errlen);
+  free(pr);
+  return s;
+}
+
+/* ==== routes ============================================================== */
+
+static void test_routes(void) {
+  char err[256], name[64];
+  int bad = 0;
+  for (int i = 0; i < NMACHINES; i++) {
+    const machine *mc = &machines[i];
+    dims x = dims_of(mc);
+    topo_spec sp = {mc->kind, mc->a, mc->b};
+    topo *t = topo_new(&sp, mc->procs, err, sizeof err);
+    CHECK(t != NULL, "machine %d: %s", i, err);
+    if (!t) continue;
+    CHECK(topo_nodes(t) == x.N, "machine %d: %d processors, expected %d", i, topo_nodes(t), x.N);
+    int *route = xmallocarray((size_t)topo_max_hops(t), sizeof *route), maxh = 0;
+    for (int s = 0; s < x.N; s++)
+      for (int d = 0; d < x.N; d++) {
+        if (s == d) continue;
+        int h = topo_route(t, s, d, route), want = hops(mc, &x, s, d);
+        if (h > maxh) maxh = h;
+        if (h != want) {
+          if (bad++ < 5) CHECK(0, "machine %d: %d -> %d: %d links, expected %d", i, s, d, h, want);
+          continue;
+        }
+        int at = s, ok = 1;
+        for (int j = 0; j < h; j++) {
+          ok &= topo_link_exists(t, route[j]);
+          for (int q = 0; q < j; q++) ok &= route[q] != route[j];
+          topo_link_name(t, route[j], name, sizeof name);
+          int a, b, lv, w;
+          if (mc->kind == TOPO_BUS) {
+            ok &= strcmp(name, "bus") == 0;
+          } else if (mc->kind == TOPO_FULL) {
+            char want_name[32];
+            snprintf(want_name, sizeof want_name, j == 0 ? "%d>sw" : "sw>%d", j == 0 ? s : d);
+            ok &= strcmp(name, want_name) == 0;
+          } else if (mc->kind == TOPO_BUTTERFLY) {
+            /* Level j's wire: the top j digits of d, the bottom n-j of s. */
+            int hi = 1;
+            for (int q = 0; q < x.n - j; q++) hi *= x.k;
+            int wire = d / hi * hi + s % hi;
+            if (j == 0) ok &= sscanf(name, "in %d", &w) == 1 && w == s;
+            else if (j == x.n) ok &= sscanf(name, "out %d", &w) == 1 && w == d;
+            else ok &= sscanf(name, "L%d w%d", &lv, &w) == 2 && lv == j && w == wire;
+          } else {
+            /* A processor-to-processor link: it starts where the last ended. */
+            ok &= sscanf(name, "%d>%d", &a, &b) == 2 && a == at && hops(mc, &x, a, b) == 1;
+            at = b;
+          }
+        }
+        if (mc->kind != TOPO_BUS && mc->kind != TOPO_FULL && mc->kind != TOPO_BUTTERFLY)
+          ok &= at == d;
+        if (!ok && bad++ < 5) CHECK(0, "machine %d: the route %d -> %d is not a chain of links", i, s, d);
+      }
+    CHECK(maxh <= topo_max_hops(t), "machine %d: a route of %d links, max_hops %d", i, maxh,
+          topo_max_hops(t));
+    free(route);
+    topo_free(t);
+  }
+  CHECK(bad == 0, "%d routes wrong", bad);
+
+  /* The tie rule: exactly half way round goes up. */
+  topo_spec ring8 = {TOPO_RING, 8, 0};
+  topo *t = topo_new(&ring8, 8, err, sizeof err);
+  int route[8];
+  CHECK(topo_route(t, 2, 6, route) == 4, "ring:8 2 -> 6 is 4 links");
+  topo_link_name(t, route[0], name, sizeof name);
+  CHECK(strcmp(name, "2>3") == 0, "ring:8 2 -> 6 goes up first, took %s", name);
+  topo_free(t);
+}
+
+static void test_parse(void) {
+  char err[256], buf[64];
+  static const char *const good[] = {"full", "bus", "line", "ring", "mesh", "torus", "hypercube",
+                                     "butterfly", "line:5", "ring:12", "mesh:4x4", "torus:32x32",
+                                     "hypercube:4", "butterfly:8", "full:16", "mesh:7x1"};
+  for (size_t i = 0; i < sizeof good / sizeof *good; i++) {
+    topo_spec sp;
+    int ok = topo_parse(good[i], &sp, err, sizeof err) == 0;
+    CHECK(ok, "topology %s refused: %s", good[i], err);
+    if (!ok) continue;
+    topo_spec_str(&sp, buf, sizeof buf);
+    CHECK(strcmp(buf, good[i]) == 0, "topology %s reads back as %s", good[i], buf);
+  }
+  static const char *const bad[] = {"",          "mesh:",      "mesh:4",     "mesh:4x",
+                                    "mesh:0x4",  "mesh:4x4x4", "mesh: 4x4",  "hypercube:23",
+                                    "line:0",    "butterfly:1", "ring:-3",   "star",
+                                    "torus:9999x9999", "line:5 ", "Mesh:4x4", "hypercube:x"};
+  for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+    topo_spec sp;
+    err[0] = 0;
+    CHECK(topo_parse(bad[i], &sp, err, sizeof err) != 0 && err[0],
+          "topology '%s' accepted", bad[i]);
+  }
+  topo_spec sp = {TOPO_MESH, 2, 2};
+  CHECK(topo_new(&sp, 5, err, sizeof err) == NULL && strstr(err, "has 4 processors"),
+        "mesh:2x2 for 5 processors: %s", err);
+
+  static const char *const pgood[] = {"linear", "snake", "gray", "random:0", "random:18446744073709551615"};
+  for (size_t i = 0; i < sizeof pgood / sizeof *pgood; i++) {
+    place_spec p;
+    int ok = place_parse(pgood[i], &p, err, sizeof err) == 0;
+    CHECK(ok, "placement %s refused: %s", pgood[i], err);
+    if (ok) place_spec_str(&p, buf, sizeof buf);
+    CHECK(ok && strcmp(buf, pgood[i]) == 0, "placement %s reads back as %s", pgood[i], buf);
+  }
+  static const char *const pbad[] = {"", "Linear", "random", "random:", "random:x", "random:-1",
+                                     "random:99999999999999999999", "file:", "hilbert"};
+  for (size_t i = 0; i < sizeof pbad / sizeof *pbad; i++) {
+    place_spec p;
+    err[0] = 0;
+    CHECK(place_parse(pbad[i], &p, err, sizeof err) != 0 && err[0], "placement '%s' accepted",
+          pbad[i]);
+  }
+}
+
+/* ==== one message over h hops ============================================= */
+
+typedef struct {
+  size_t len;
+  double got;   /* when rank 1 held the message */
+  int bad;
+} single;
+
+static void single_main(mp *self, void *ud) {
+  single *x = ud;
+  char buf[64] = {0};
+  if (mp_rank(self) == 0) {
+    x->bad |= mp_send(self, 1, 0, buf, x->len) != MP_OK;
+  } else {
+    x->bad |= mp_recv(self, 0, 0, buf, sizeof buf, NULL) != MP_OK;
+    x->got = mp_time(self);
+  }
+}
+
+static void test_one_message(void) {
+  char err[256];
+  int bad = 0, runs = 0;
+  for (int i = 0; i < NMACHINES; i++) {
+    const machine *mc = &machines[i];
+    dims x = dims_of(mc);
+    for (int saf = 0; saf <= 1; saf++)
+      for (int s = 0; s < x.N; s++)
+        for (int d = 0; d < x.N; d++) {
+          if (s == d || (x.N > 12 && (s + 3 * d) % 5 != 0)) continue;   /* a sample of the big ones */
+          sim_config cfg = netcfg(mc, saf);
+          int place[2] = {s, d}, rc;
+          cfg.place = place;
+          single one = {24, -1, 0};
+          sim *sm = run(&cfg, 2, single_main, &one, &rc, err, sizeof err);
+          int h = hops(mc, &x, s, d);
+          double want = alone(mc, saf, h, one.len);
+          net_stats ns;
+          links_total(sim_links(sm), &ns);
+          runs++;
+          if (rc != 0 || one.bad || one.got != want || ns.messages != 1 || ns.hops != h ||
+              ns.hop_bytes != (long long)h * 24 || ns.link_wait != 0 || ns.max_link_msgs != 1) {
+            if (bad++ < 5)
+              CHECK(0, "machine %d %s %d -> %d (h %d): arrived %.17g, expected %.17g; %lld hops (%s)",
+                    i, saf ? "saf" : "ct", s, d, h, one.got, want, ns.hops, err);
+          }
+          sim_free(sm);
+        }
+  }
+  CHECK(bad == 0 && runs > 1000, "%d of %d single messages wrong", bad, runs);
+}
+
+/* ==== token rings, per lap ================================================ */
+
+typedef struct {
+  int laps;
+  double work;
+  size_t len;
+  long long token;
+  int bad;
+} ring;
+
+static void ring_main(mp *self, void *ud) {
+  ring *g = ud;
+  int me = mp_rank(self), p = mp_size(self);
+  long long tok = 0;
+  for (int k = 0; k < g->laps; k++) {
+    if (me != 0) g->bad |= mp_recv(self, (me + p - 1) % p, 0, &tok, sizeof tok, NULL) != MP_OK;
+    tok++;
+    g->bad |= mp_compute(self, g->work) != MP_OK;
+    g->bad |= mp_send(self, (me + 1) % p, 0, &tok, g->len) != MP_OK;
+    if (me == 0) g->bad |= mp_recv(self, p - 1, 0, &tok, sizeof tok, NULL) != MP_OK;
+  }
+  if (me == 0) g->token = tok;
+}
+
+static void test_rings(void) {
+  char err[256];
+  /* name, machine, placement, P, store-and-forward, the lap's links crossed */
+  static const struct {
+    machine mc;
+    const char *place;
+    int saf;
+    int links;   /* summed over the P hops of a lap */
+  } cases[] = {
+      {{TOPO_LINE, 0, 0, 6}, "linear", 0, 2 * 5},   /* P-1 hops of 1, one of P-1 */
+      {{TOPO_LINE, 0, 0, 6}, "linear", 1, 2 * 5},
+      {{TOPO_RING, 0, 0, 6}, "linear", 0, 6},       {{TOPO_RING, 0, 0, 7}, "linear", 1, 7},
+      {{TOPO_HYPERCUBE, 3, 0, 8}, "gray", 0, 8},    {{TOPO_HYPERCUBE, 4, 0, 16}, "gray", 1, 16},
+      {{TOPO_HYPERCUBE, 3, 0, 8}, "linear", 0, 11 + 3},   /* 2^(d+1)-d-2, then 7 -> 0 */
+      {{TOPO_MESH, 4, 4, 16}, "snake", 0, 15 + 3},  /* snake ends below its start */
+      {{TOPO_MESH, 4, 4, 16}, "linear", 0, 4 * 3 + 3 * 4 + 6},   /* row-major, then 15 -> 0 */
+  };
+  for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+    const machine *mc = &cases[i].mc;
+    sim_config cfg = netcfg(mc, cases[i].saf);
+    int P = mc->procs, place[16], rc;
+    place_spec ps;
+    CHECK(place_parse(cases[i].place, &ps, err, sizeof err) == 0, "%s", err);
+    topo_spec sp = {mc->kind, mc->a, mc->b};
+    topo *t = topo_new(&sp, P, err, sizeof err);
+    CHECK(place_map(&ps, t, P, place, err, sizeof err) == 0, "%s", err);
+    topo_free(t);
+    cfg.place = place;
+    ring g = {3, 2, 8, 0, 0};
+    sim *s = run(&cfg, P, ring_main, &g, &rc, err, sizeof err);
+    double lb = (double)g.len * BETA;
+    double lap = P * (g.work * C + M) +
+                 (cases[i].saf ? cases[i].links * (R + lb) : cases[i].links * R + P * lb);
+    CHECK(rc == 0 && !g.bad && g.token == 3 * P, "ring case %zu: %s", i, err);
+    CHECK(sim_stats_get(s)->makespan == g.laps * lap,
+          "ring case %zu (%s): makespan %.17g, expected %d laps of %.17g", i, cases[i].place,
+          sim_stats_get(s)->makespan, g.laps, lap);
+    net_stats ns;
+    links_total(sim_links(s), &ns);
+    CHECK(ns.hops == (long long)g.laps * cases[i].links && ns.link_wait == 0,
+          "ring case %zu: %lld hops, expected %d", i, ns.hops, g.laps * cases[i].links);
+    sim_free(s);
+  }
+}
+
+/* ==== permutations sent at t = 0 ========================================== */
+
+enum { PMAX = 64 };
+
+typedef struct {
+  int dst[PMAX];      /* each rank's destination, -1: none */
+  int expect[PMAX];   /* messages each rank receives */
+  double at[PMAX];    /* when the message from rank i was received */
+  size_t len;
+  int bad;
+} perm;
+
+static void perm_main(mp *self, void *ud) {
+  perm *p = ud;
+  int me = mp_rank(self);
+  char buf[64] = {0};
+  if (p->dst[me] >= 0) p->bad |= mp_send(self, p->dst[me], 0, buf, p->len) != MP_OK;
+  for (int k = 0; k < p->expect[me]; k++) {
+    mp_status st;
+    p->bad |= mp_recv(self, MP_ANY, 0, buf, sizeof buf, &st) != MP_OK;
+    p->at[st.source] = mp_time(self);
+  }
+}
+
+/* Run the permutation dst[0..n-1] (identity placement) on mc. */
+static sim *run_perm(const machine *mc, int saf, perm *p, int n, char *err, size_t errlen) {
+  sim_config cfg = netcfg(mc, saf);
+  memset(p->expect, 0, sizeof p->expect);
+  for (int i = 0; i < n; i++) {
+    if (p->dst[i] == i) p->dst[i] = -1;
+    if (p->dst[i] >= 0) p->expect[p->dst[i]]++;
+    p->at[i] = -1;
+  }
+  p->bad = 0;
+  int rc;
+  sim *s = run(&cfg, n, perm_main, p, &rc, err, errlen);
+  CHECK(rc == 0 && !p->bad, "permutation run: %s", err);
+  return s;
+}
+
+static void test_line(void) {
+  char err[256];
+  perm p;
+  p.len = 32;
+  double lb = (double)p.len * BETA;
+  for (int P = 8; P <= 16; P += 8) {
+    machine mc = {TOPO_LINE, 0, 0, P};
+    /* The bisection: i -> i + P/2; every message crosses the middle link. */
+    for (int saf = 0; saf <= 1; saf++) {
+      for (int i = 0; i < P; i++) p.dst[i] = i < P / 2 ? i + P / 2 : -1;
+      sim *s = run_perm(&mc, saf, &p, P, err, sizeof err);
+      for (int k = 0; k < P / 2; k++) {
+        double want = saf ? M + (P / 2) * (R + lb) + k * (R + 2 * lb)
+                          : M + (k + P / 2) * R + (k + 1) * lb;
+        CHECK(p.at[k] == want, "line:%d bisection %s: message %d arrived %.17g, expected %.17g", P,
+              saf ? "saf" : "ct", k, p.at[k], want);
+      }
+      links *n = sim_links(s);
+      net_stats ns;
+      links_total(n, &ns);
+      int route[1];
+      topo_route(links_topo(n), P / 2 - 1, P / 2, route);
+      CHECK(ns.max_link_msgs == P / 2 && links_get(n, route[0])->msgs == P / 2,
+            "line:%d bisection: busiest link %lld, the middle one %lld, expected %d", P,
+            ns.max_link_msgs, links_get(n, route[0])->msgs, P / 2);
+      sim_free(s);
+    }
+    /* Shifts i -> i + s (not wrapping): the busiest link carries min(s, P - s);
+     * the neighbour shift is contention-free. */
+    for (int sh = 1; sh < P; sh++) {
+      for (int i = 0; i < P; i++) p.dst[i] = i + sh < P ? i + sh : -1;
+      sim *s = run_perm(&mc, 0, &p, P, err, sizeof err);
+      net_stats ns;
+      links_total(sim_links(s), &ns);
+      int want = sh < P - sh ? sh : P - sh;
+      CHECK(ns.max_link_msgs == want, "line:%d shift %d: busiest link %lld, expected %d", P, sh,
+            ns.max_link_msgs, want);
+      if (sh == 1)
+        for (int i = 0; i + 1 < P; i++)
+          CHECK(p.at[i] == M + R + lb, "line:%d neighbour shift: %d arrived %.17g", P, i, p.at[i]);
+      sim_free(s);
+    }
+    /* Reversal i -> P-1-i: floor(P/2) on the busiest link. */
+    for (int i = 0; i < P; i++) p.dst[i] = P - 1 - i;
+    sim *s = run_perm(&mc, 0, &p, P, err, sizeof err);
+    net_stats ns;
+    links_total(sim_links(s), &ns);
+    CHECK(ns.max_link_msgs == P / 2, "line:%d reversal: busiest link %lld", P, ns.max_link_msgs);
+    sim_free(s);
+  }
+}
+
+/* Over the links of butterfly level lv (1 .. n-1), by their names "L<lv>
+ * w<wire>": the most messages one carried; *used the wires that carried any,
+ * *least the fewest messages one of those carried. */
+static long long level_max(links *n, int lv, int *used, long long *least) {
+  const topo *t = links_topo(n);
+  long long mx = 0;
+  *used = 0, *least = -1;
+  for (int l = 0; l < topo_nlinks(t); l++) {
+    char name[48];
+    int a, w;
+    topo_link_name(t, l, name, sizeof name);
+    if (sscanf(name, "L%d w%d", &a, &w) != 2 || a != lv) continue;
+    long long v = links_get(n, l)->msgs;
+    if (v > mx) mx = v;
+    if (v == 0) continue;
+    ++*used;
+    if (*least < 0 || v < *least) *least = v;
+  }
+  return mx;
+}
+
+static void test_butterfly(void) {
+  char err[256];
+  perm p;
+  p.len = 16;
+  double lb = (double)p.len * BETA;
+  static const machine flies[] = {{TOPO_BUTTERFLY, 2, 0, 16}, {TOPO_BUTTERFLY, 4, 0, 16},
+                                  {TOPO_BUTTERFLY, 3, 0, 9},  {TOPO_BUTTERFLY, 2, 0, 8},
+                                  {TOPO_BUTTERFLY, 8, 0, 64}, {TOPO_BUTTERFLY, 4, 0, 64}};
+  for (size_t f = 0; f < sizeof flies / sizeof *flies; f++) {
+    const machine *mc = &flies[f];
+    dims x = dims_of(mc);
+    int N = x.N, bad = 0;
+    /* Every cyclic shift: conflict-free, each message as on an idle machine. */
+    for (int c = 1; c < N; c++) {
+      for (int i = 0; i < N; i++) p.dst[i] = (i + c) % N;
+      sim *s = run_perm(mc, 0, &p, N, err, sizeof err);
+      net_stats ns;
+      links_total(sim_links(s), &ns);
+      bad += ns.max_link_msgs != 1 || ns.link_wait != 0;
+      for (int i = 0; i < N; i++) bad += p.at[i] != M + (x.n + 1) * R + lb;
+      sim_free(s);
+    }
+    CHECK(bad == 0, "butterfly k=%d N=%d: %d conflicts in cyclic shifts", x.k, N, bad);
+    /* All to one: N-1 messages down the ejection link; k^l at level l. */
+    for (int i = 0; i < N; i++) p.dst[i] = 0;
+    sim *s = run_perm(mc, 0, &p, N, err, sizeof err);
+    links *n = sim_links(s);
+    net_stats ns;
+    links_total(n, &ns);
+    CHECK(ns.max_link_msgs == N - 1, "butterfly k=%d N=%d all-to-one: busiest link %lld", x.k, N,
+          ns.max_link_msgs);
+    double last = 0;
+    for (int i = 1; i < N; i++) last = p.at[i] > last ? p.at[i] : last;
+    CHECK(last == M + (x.n + 1) * R + (N - 1) * lb,
+          "butterfly k=%d N=%d all-to-one: the last arrived %.17g, expected %.17g", x.k, N, last,
+          M + (x.n + 1) * R + (N - 1) * lb);
+    for (int lv = 1, kl = x.k; lv < x.n; lv++, kl *= x.k) {
+      int used;
+      long long mn, mx = level_max(n, lv, &used, &mn);
+      CHECK(mx == kl, "butterfly k=%d N=%d all-to-one: level %d's busiest wire %lld, expected %d",
+            x.k, N, lv, mx, kl);
+    }
+    sim_free(s);
+  }
+  /* Bit reversal on a 2-ary n-fly, n even: a middle wire is the reversed
+   * bottom half b of the source followed by b, so sqrt(N) wires are used and
+   * sqrt(N) sources share each; one of them is a palindrome, which sends to
+   * itself and never enters the network, so each carries sqrt(N) - 1. */
+  for (int nn = 2; nn <= 6; nn += 2) {
+    int N = 1 << nn, root = 1 << (nn / 2);
+    machine mc = {TOPO_BUTTERFLY, 2, 0, N};
+    for (int i = 0; i < N; i++) {
+      int r = 0;
+      for (int b = 0; b < nn; b++) r |= (i >> b & 1) << (nn - 1 - b);
+      p.dst[i] = r;
+    }
+    sim *s = run_perm(&mc, 0, &p, N, err, sizeof err);
+    links *n = sim_links(s);
+    net_stats ns;
+    links_total(n, &ns);
+    int used;
+    long long mn, mx = level_max(n, nn / 2, &used, &mn);
+    CHECK(ns.max_link_msgs == root - 1 && mx == root - 1 && mn == root - 1 && used == root,
+          "bit reversal N=%d: busiest link %lld, %d middle wires used carrying %lld..%lld, "
+          "expected %d carrying %d",
+          N, ns.max_link_msgs, used, mn, mx, root, root - 1);
+    sim_free(s);
+  }
+}
+
+/* ==== placements ========================================================== */
+
+static void test_place_maps(void) {
+  char err[256];
+  static const char *const names[] = {"linear", "snake", "gray", "random:1", "random:2"};
+  int bad = 0;
+  for (int i = 0; i < NMACHINES; i++) {
+    const machine *mc = &machines[i];
+    dims x = dims_of(mc);
+    topo_spec sp = {mc->kind, mc->a, mc->b};
+    topo *t = topo_new(&sp, mc->procs, err, sizeof err);
+    for (size_t j = 0; j < sizeof names / sizeof *names; j++) {
+      place_spec ps;
+      place_parse(names[j], &ps, err, sizeof err);
+      int map[64], again[64];
+      for (int n = 1; n <= x.N; n++) {
+        if (place_map(&ps, t, n, map, err, sizeof err) != 0) {
+          bad++;
+          continue;
+        }
+        char used[64] = {0};
+        for (int v = 0; v < n; v++) {
+          bad += map[v] < 0 || map[v] >= x.N || used[map[v]];
+          if (map[v] >= 0 && map[v] < x.N) used[map[v]] = 1;
+        }
+        place_map(&ps, t, n, again, err, sizeof err);
+        bad += memcmp(map, again, (size_t)n * sizeof *map) != 0;
+      }
+      CHECK(place_map(&ps, t, x.N + 1, map, err, sizeof err) != 0, "%s on machine %d: N+1 placed",
+            names[j], i);
+    }
+    topo_free(t);
+  }
+  CHECK(bad == 0, "%d placements not a deterministic injection into the machine", bad);
+
+  /* Dilation: the algorithm's line of processors, v -> v+1 (the design
+   * note's sums of links over the P-1 pairs). */
+  static const struct {
+    machine mc;
+    const char *place;
+    int sum;
+  } dil[] = {
+      {{TOPO_LINE, 0, 0, 9}, "linear", 8},
+      {{TOPO_MESH, 5, 3, 15}, "linear", 3 * 4 + 2 * 5},   /* H(W-1) + (H-1)W */
+      {{TOPO_MESH, 5, 3, 15}, "snake", 14},
+      {{TOPO_TORUS, 4, 4, 16}, "snake", 15},
+      {{TOPO_HYPERCUBE, 3, 0, 8}, "linear", 16 - 3 - 2},  /* 2^(d+1) - d - 2 */
+      {{TOPO_HYPERCUBE, 5, 0, 32}, "linear", 64 - 5 - 2},
+      {{TOPO_HYPERCUBE, 5, 0, 32}, "gray", 31},
+      {{TOPO_HYPERCUBE, 4, 0, 11}, "gray", 10},
+  };
+  for (size_t i = 0; i < sizeof dil / sizeof *dil; i++) {
+    const machine *mc = &dil[i].mc;
+    dims x = dims_of(mc);
+    int P = mc->procs, map[64], sum = 0;
+    place_spec ps;
+    place_parse(dil[i].place, &ps, err, sizeof err);
+    topo_spec sp = {mc->kind, mc->a, mc->b};
+    topo *t = topo_new(&sp, P, err, sizeof err);
+    place_map(&ps, t, P, map, err, sizeof err);
+    topo_free(t);
+    for (int v = 0; v + 1 < P; v++) sum += hops(mc, &x, map[v], map[v + 1]);
+    CHECK(sum == dil[i].sum, "dilation case %zu (%s): %d links, expected %d", i, dil[i].place, sum,
+          dil[i].sum);
+    /* The simulator agrees: L-byte messages v -> v+1 make L times that in hop-bytes. */
+    perm p;
+    p.len = 40;
+    for (int v = 0; v < P; v++) p.dst[v] = v + 1 < P ? v + 1 : -1;
+    sim_config cfg = netcfg(mc, 0);
+    cfg.place = map;
+    memset(p.expect, 0, sizeof p.expect);
+    for (int v = 1; v < P; v++) p.expect[v] = 1;
+    p.bad = 0;
+    int rc;
+    sim *s = run(&cfg, P, perm_main, &p, &rc, err, sizeof err);
+    net_stats ns;
+    links_total(sim_links(s), &ns);
+    CHECK(rc == 0 && ns.hop_bytes == 40LL * dil[i].sum, "dilation case %zu: hop-bytes %lld, expected %d",
+          i, ns.hop_bytes, 40 * dil[i].sum);
+    sim_free(s);
+  }
+  /* Gray on a hypercube: consecutive processors are neighbours, ring closed. */
+  place_spec gray;
+  place_parse("gray", &gray, err, sizeof err);
+  topo_spec cube = {TOPO_HYPERCUBE, 6, 0};
+  topo *t = topo_new(&cube, 64, err, sizeof err);
+  int map[64];
+  place_map(&gray, t, 64, map, err, sizeof err);
+  int off = 0;
+  for (int v = 0; v < 64; v++) off += popcount((unsigned)(map[v] ^ map[(v + 1) % 64])) != 1;
+  CHECK(off == 0, "gray on hypercube:6: %d of 64 ring neighbours are not cube neighbours", off);
+  /* Two seeds, two permutations. */
+  place_spec r1, r2;
+  place_parse("random:1", &r1, err, sizeof err);
+  place_parse("random:2", &r2, err, sizeof err);
+  int m1[64], m2[64];
+  place_map(&r1, t, 64, m1, err, sizeof err);
+  place_map(&r2, t, 64, m2, err, sizeof err);
+  CHECK(memcmp(m1, m2, sizeof m1) != 0, "random:1 and random:2 give the same placement");
+  topo_free(t);
+}
+
+static const char *write_tmp(const char *name, const char *text) {
+  static char path[4][256];
+  static int k;
+  char *p = path[k++ % 4];
+  snprintf(p, 256, "%s/test_topo_%d_%s", getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp", (int)getpid(),
+           name);
+  FILE *f = fopen(p, "w");
+  fputs(text, f);
+  fclose(f);
+  return p;
+}
+
+static void test_place_file(void) {
+  char err[512], arg[400];
+  topo_spec sp = {TOPO_MESH, 3, 3};
+  topo *t = topo_new(&sp, 9, err, sizeof err);
+  const char *good = write_tmp("good", "# rank 0 in the middle\n4\n\n0\r\n8\n2\n");
+  snprintf(arg, sizeof arg, "file:%s", good);
+  place_spec ps;
+  CHECK(place_parse(arg, &ps, err, sizeof err) == 0, "good file: %s", err);
+  int map[9];
+  CHECK(place_map(&ps, t, 4, map, err, sizeof err) == 0 && map[0] == 4 && map[1] == 0 &&
+            map[2] == 8 && map[3] == 2,
+        "file placement: %s", err);
+  CHECK(place_map(&ps, t, 5, map, err, sizeof err) != 0 && strstr(err, "4 processors listed"),
+        "a file too short: %s", err);
+  remove(good);
+  static const struct {
+    const char *text, *want;
+  } bad[] = {{"0\n1\nx2\n", ":3: 'x2' is not a processor number"},
+             {"0\n1\n0\n", ":3: processor 0 is placed twice (line 1 too)"},
+             {"0\n-1\n", ":2: '-1' is not"},
+             {"0 \n", ":1: '0 ' is not"},
+             {"# nothing\n\n", "no processors listed"}};
+  for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+    const char *path = write_tmp("bad", bad[i].text);
+    snprintf(arg, sizeof arg, "file:%s", path);
+    err[0] = 0;
+    CHECK(place_parse(arg, &ps, err, sizeof err) != 0 && strstr(err, path) && strstr(err, bad[i].want),
+          "bad file %zu: '%s'", i, err);
+    remove(path);
+  }
+  const char *far = write_tmp("far", "0\n1\n9\n");
+  snprintf(arg, sizeof arg, "file:%s", far);
+  CHECK(place_parse(arg, &ps, err, sizeof err) == 0, "%s", err);
+  CHECK(place_map(&ps, t, 3, map, err, sizeof err) != 0 && strstr(err, ":3: processor 9: the machine has 9"),
+        "a processor outside the machine: %s", err);
+  remove(far);
+  CHECK(place_parse("file:/nonexistent/place.txt", &ps, err, sizeof err) != 0 &&
+            strstr(err, "/nonexistent/place.txt"),
+        "a missing file: %s", err);
+  topo_free(t);
+}
+
+/* ==== conservation, and the old models bit for bit ======================== */
+
+static double fraction(rng *r) { return rng_int(r, 0, 8) * 0.125; }
+
+static void test_random_programs(void) {
+  char err[512];
+  int failed = 0, runs = 0;
+  for (uint64_t seed = 1; seed <= 120; seed++) {
+    rng r;
+    rng_seed(&r, seed * 7 + 3);
+    int nranks = rng_int(&r, 2, RANDPROG_RANKS);
+    static randprog p;
+    randprog_make(&p, seed, nranks);
+    machine mc = machines[seed % NMACHINES];
+    dims x = dims_of(&mc);
+    int saf = rng_int(&r, 0, 1);
+    sim_config cfg = netcfg(&mc, saf);
+    int place[RANDPROG_RANKS];
+    for (int k = 0; k < nranks; k++) place[k] = rng_int(&r, 0, x.N - 1);   /* some share */
+    cfg.place = place;
+    cfg.m = fraction(&r), cfg.hop_latency = fraction(&r), cfg.per_byte = fraction(&r) / 64;
+    cfg.c = fraction(&r), cfg.local = fraction(&r) / 4;
+    int rc;
+    sim *s = run(&cfg, nranks, randprog_main, &p, &rc, err, sizeof err);
+    runs++;
+    const char *why;
+    int failures = randprog_failures(&p, &why);
+    links *n = sim_links(s);
+    net_stats ns;
+    links_total(n, &ns);
+    /* Independently: the messages between processors and their links. */
+    long long want_msgs = 0, want_hops = 0, want_hb = 0, link_msgs = 0, link_bytes = 0;
+    double want_busy = 0, busy = 0;
+    for (int i = 0; i < p.nmsg; i++) {
+      int a = place[p.msgs[i].src], b = place[p.msgs[i].dst];
+      if (a == b) continue;
+      int h = hops(&mc, &x, a, b);
+      want_msgs++;
+      want_hops += h;
+      want_hb += h * (long long)p.msgs[i].len;
+      double lb = (double)p.msgs[i].len * cfg.per_byte;
+      want_busy += mc.kind == TOPO_BUS ? cfg.m + cfg.hop_latency + lb : h * lb;
+    }
+    for (int l = 0; l < topo_nlinks(links_topo(n)); l++) {
+      const link_stats *ls = links_get(n, l);
+      link_msgs += ls->msgs, link_bytes += ls->bytes, busy += ls->busy;
+    }
+    int ok = rc == 0 && !failures && ns.messages == want_msgs && ns.hops == want_hops &&
+             ns.hop_bytes == want_hb && link_msgs == ns.hops && link_bytes == ns.hop_bytes &&
+             busy == want_busy;
+    if (!ok && failed++ < 3)
+      CHECK(0, "random program %llu on machine %d: rc %d (%s), %d failures (%s); messages %lld/%lld, "
+               "hops %lld/%lld, hop-bytes %lld/%lld, link bytes %lld, busy %.17g/%.17g",
+            (unsigned long long)seed, (int)(seed % NMACHINES), rc, err, failures, why, ns.messages,
+            want_msgs, ns.hops, want_hops, ns.hop_bytes, want_hb, link_bytes, busy, want_busy);
+    sim_free(s);
+  }
+  CHECK(failed == 0, "%d of %d random programs on topologies failed", failed, runs);
+}
+
+/* The same random program on two configurations: every rank's clock, bit for bit. */
+static int same_run(const sim_config *a, const sim_config *b, uint64_t seed, int nranks,
+                    const char *what) {
+  char err[512];
+  static randprog p1, p2;
+  randprog_make(&p1, seed, nranks);
+  randprog_make(&p2, seed, nranks);
+  int rc1, rc2;
+  sim *s1 = run(a, nranks, randprog_main, &p1, &rc1, err, sizeof err);
+  sim *s2 = run(b, nranks, randprog_main, &p2, &rc2, err, sizeof err);
+  int same = rc1 == 0 && rc2 == 0;
+  for (int k = 0; same && k < nranks; k++) {
+    const sim_rank_stats *x = sim_rank(s1, k), *y = sim_rank(s2, k);
+    same = x->finish == y->finish && x->recv_wait == y->recv_wait && x->cpu_wait == y->cpu_wait;
+  }
+  if (!same) CHECK(0, "%s: seed %llu differs (%.17g against %.17g)", what, (unsigned long long)seed,
+                   sim_stats_get(s1)->makespan, sim_stats_get(s2)->makespan);
+  sim_free(s1);
+  sim_free(s2);
+  return same;
+}
+
+static void test_old_models(void) {
+  int bad = 0;
+  for (uint64_t seed = 1; seed <= 80; seed++) {
+    rng r;
+    rng_seed(&r, seed);
+    int nranks = rng_int(&r, 2, RANDPROG_RANKS), procs = rng_int(&r, 1, nranks);
+    int place[RANDPROG_RANKS];
+    for (int k = 0; k < nranks; k++) place[k] = rng_int(&r, 0, procs - 1);
+    sim_config old;
+    sim_config_init(&old);
+    old.procs = procs, old.place = place, old.warn = NULL;
+    old.stack = 64 * 1024;
+    /* Decimal costs: bit for bit needs the same rounding, not exact numbers. */
+    old.m = 1e-4 * (1 + rng_int(&r, 0, 9)), old.per_byte = 3e-8 * rng_int(&r, 0, 3);
+    old.c = 7e-6 * (1 + rng_int(&r, 0, 5)), old.local = 1e-6 * rng_int(&r, 0, 2);
+    /* bus */
+    old.net = SIM_NET_BUS;
+    sim_config tp = old;
+    tp.topo = (topo_spec){TOPO_BUS, 0, 0};
+    tp.store_forward = rng_int(&r, 0, 1);   /* irrelevant on a bus */
+    bad += !same_run(&old, &tp, seed, nranks, "bus topology against the bus");
+    /* full with no network cost against ideal */
+    old.net = SIM_NET_IDEAL;
+    old.per_byte = 0;
+    tp = old;
+    tp.topo = (topo_spec){TOPO_FULL, 0, 0};
+    tp.hop_latency = 0;
+    bad += !same_run(&old, &tp, seed, nranks, "full, no network cost, against ideal");
+  }
+  CHECK(bad == 0, "%d random programs differ between the old models and their topologies", bad);
+}
+
+/* The receiver takes one message at a time on full: a fan-in is spaced by
+ * L*beta, where ideal delivers all at once. */
+static void test_full_fanin(void) {
+  char err[256];
+  machine mc = {TOPO_FULL, 0, 0, 7};
+  perm p;
+  p.len = 32;
+  for (int i = 0; i < 7; i++) p.dst[i] = i ? 0 : -1;
+  sim *s = run_perm(&mc, 0, &p, 7, err, sizeof err);
+  double lb = p.len * BETA;
+  for (int i = 1; i < 7; i++)
+    CHECK(p.at[i] == M + 2 * R + i * lb, "full fan-in: rank %d arrived %.17g, expected %.17g", i,
+          p.at[i], M + 2 * R + i * lb);
+  sim_free(s);
+}
+
+/* ==== traces ============================================================== */
+
+static void test_trace(void) {
+  char err[256], *csv[2], *json[2];
+  size_t clen, jlen;
+  for (int k = 0; k < 2; k++) {
+    FILE *fc = open_memstream(&csv[k], &clen), *fj = open_memstream(&json[k], &jlen);
+    machine mc = {TOPO_MESH, 3, 2, 6};
+    sim_config cfg = netcfg(&mc, 0);
+    sim *s = sim_new(&cfg, 6, err, sizeof err);
+    sim_trace(s, fc, fj);
+    ring g = {2, 1, 8, 0, 0};
+    mp_proc pr[6];
+    for (int i = 0; i < 6; i++) pr[i] = (mp_proc){ring_main, &g};
+    CHECK(sim_run(s, pr, err, sizeof err) == 0, "traced ring: %s", err);
+    fclose(fc);
+    fclose(fj);
+    sim_free(s);
+  }
+  CHECK(strcmp(csv[0], csv[1]) == 0 && strcmp(json[0], json[1]) == 0, "two traced runs differ");
+  CHECK(strstr(json[0], "\"name\":\"network\"") && strstr(json[0], "\"link 0>1\"") &&
+            strstr(json[0], "\"cat\":\"link\"") && strstr(json[0], "\"pid\":6,\"tid\":"),
+        "the JSON trace lacks the network's link tracks");
+  int nlink = 0, badrows = 0;
+  for (char *line = csv[0]; *line;) {
+    char *nl = strchr(line, '\n');
+    int commas = 0;
+    for (char *q = line; q < nl; q++) commas += *q == ',';
+    badrows += commas != 9;
+    nlink += strstr(line, ",link,") != NULL && strstr(line, ",link,") < nl;
+    line = nl + 1;
+  }
+  /* The ring of 6 on a 3x2 mesh, row-major: four hops of 1, 2 -> 3 and 5 -> 0 of 3. */
+  CHECK(badrows == 0 && nlink == 2 * (4 + 3 + 3), "CSV trace: %d link rows (expected 20), %d rows not of 10 fields",
+        nlink, badrows);
+  for (int k = 0; k < 2; k++) free(csv[k]), free(json[k]);
+}
+
+static void test_sim_errors(void) {
+  char err[256];
+  machine mc = {TOPO_MESH, 2, 2, 4};
+  sim_config cfg = netcfg(&mc, 0);
+  int place[2] = {0, 4};
+  cfg.place = place;
+  CHECK(sim_new(&cfg, 2, err, sizeof err) == NULL && strstr(err, "place[1] = 4"),
+        "a rank outside the topology: %s", err);
+  cfg.place = NULL;
+  cfg.procs = 5;
+  CHECK(sim_new(&cfg, 5, err, sizeof err) == NULL && strstr(err, "has 4 processors"),
+        "a topology too small: %s", err);
+  cfg.procs = 3;   /* a run on 3 of mesh:2x2's 4 processors */
+  sim *s = sim_new(&cfg, 3, err, sizeof err);
+  CHECK(s && sim_stats_get(s)->procs == 4, "3 processors of mesh:2x2: %s", err);
+  sim_free(s);
+  cfg.hop_latency = -1;
+  CHECK(sim_new(&cfg, 3, err, sizeof err) == NULL && strstr(err, "hop_latency"), "hop_latency -1: %s", err);
+  sim_config none;
+  sim_config_init(&none);
+  none.net = SIM_NET_TOPOLOGY;
+  CHECK(sim_new(&none, 2, err, sizeof err) == NULL, "SIM_NET_TOPOLOGY without a topology accepted");
+  sim_net nt;
+  CHECK(sim_net_parse("topology", &nt) != 0, "--net topology accepted");
+}
+
+/* ==== the parallel algorithm: placement never changes a result ============ */
+
+static int same_tiling(const tiling *a, const tiling *b) {
+  return a->quanta == b->quanta && a->start == b->start && a->m == b->m && a->n == b->n &&
+         memcmp(a->col, b->col, sizeof *a->col * (size_t)(a->m + a->n + 1)) == 0;
+}
+
+static void test_par_results(void) {
+  static const struct {
+    const char *topo, *place;
+    int procs;
+    int saf;
+  } cfgs[] = {{"line", "linear", 6, 0},          {"line", "random:5", 9, 1},
+              {"mesh:4x4", "snake", 13, 0},      {"mesh:4x4", "random:2", 16, 0},
+              {"hypercube:4", "gray", 11, 1},    {"torus:3x3", "linear", 9, 0},
+              {"butterfly:2", "random:9", 7, 0}, {"full", "gray", 5, 0},
+              {"ring", "snake", 4, 1},           {"bus", "random:1", 8, 0}};
+  rng g;
+  rng_seed(&g, 2026);
+  vec2 P[80], Q[80];
+  int bad = 0, runs = 0;
+  for (int pair = 0; pair < 6; pair++) {
+    int np = rng_int(&g, 20, 70), nq = rng_int(&g, 20, 70);
+    gen_star(&g, P, np, 0, 0, 10, 0.4);
+    gen_star(&g, Q, nq, 1, 0.5, 8, 0.4);
+    tiling ser;
+    tiling_solve(P, np, 0, Q, nq, 1.5, COST_AREA, -1, &ser);
+    for (size_t c = 0; c < sizeof cfgs / sizeof *cfgs; c++) {
+      run_config rc;
+      run_config_init(&rc);
+      rc.machine.warn = NULL;
+      rc.procs = cfgs[c].procs;
+      rc.opt.alloc = pair % 2 ? ALLOC_SIZE : ALLOC_HALF;
+      rc.machine.hop_latency = 1e-5;
+      rc.machine.store_forward = cfgs[c].saf;
+      char err[300];
+      CHECK(topo_parse(cfgs[c].topo, &rc.machine.topo, err, sizeof err) == 0, "%s", err);
+      rc.machine.net = SIM_NET_TOPOLOGY;
+      CHECK(place_parse(cfgs[c].place, &rc.place, err, sizeof err) == 0, "%s", err);
+      net_stats ns;
+      rc.pair_net = &ns;
+      par_pair pr;
+      memset(&pr, 0, sizeof pr);
+      pr.P = P, pr.np = np, pr.zp = 0, pr.Q = Q, pr.nq = nq, pr.zq = 1.5;
+      runs++;
+      if (run_sim(&rc, &pr, 1, NULL, err, sizeof err) != 0) {
+        CHECK(0, "pair %d on %s/%s: %s", pair, cfgs[c].topo, cfgs[c].place, err);
+        bad++;
+        continue;
+      }
+      if (!same_tiling(&pr.t, &ser) || pr.counts.nodes != ser.count.nodes || ns.messages <= 0) {
+        bad++;
+        CHECK(0, "pair %d on %s/%s P=%d: %.17g (start %d), serial %.17g (start %d); %lld messages",
+              pair, cfgs[c].topo, cfgs[c].place, cfgs[c].procs, pr.t.quanta, pr.t.start,
+              ser.quanta, ser.start, ns.messages);
+      }
+      tiling_free(&pr.t);
+    }
+    tiling_free(&ser);
+  }
+  CHECK(bad == 0, "%d of %d runs on topologies differ from the serial solver", bad, runs);
+}
+
+int main(void) {
+  test_parse();
+  test_routes();
+  test_one_message();
+  test_rings();
+  test_line();
+  test_butterfly();
+  test_full_fanin();
+  test_place_maps();
+  test_place_file();
+  test_random_programs();
+  test_old_models();
+  test_trace();
+  test_sim_errors();
+  test_par_results();
+  return check_done("test_topo");
+}
