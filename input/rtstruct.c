@@ -1,0 +1,832 @@
+/* rtstruct.c -- DICOM RT structure sets: the ROIs, their closed planar
+ * contours, and each ROI as a .contours stack.
+ *
+ *   StructureSetROISequence (3006,0020)   item: ROINumber (3006,0022), ROIName (3006,0026)
+ *   ROIContourSequence (3006,0039)        item: ReferencedROINumber (3006,0084),
+ *     ContourSequence (3006,0040)           item: ContourGeometricType (3006,0042),
+ *                                                 NumberOfContourPoints (3006,0046),
+ *                                                 ContourData (3006,0050) x\y\z\x\y\z...
+ *   RTROIObservationsSequence (3006,0080) item: ReferencedROINumber, RTROIInterpretedType (3006,00A4)
+ *
+ * The pitfalls real readers meet (shared/design/contours.md, section 3) and
+ * what happens here: only CLOSED_PLANAR is tiled, the others are counted and
+ * skipped with a warning; NumberOfContourPoints must agree with ContourData;
+ * decimal strings may carry blanks, exponents and -0, and are read whatever
+ * the locale; contours come in any order and are sorted by their plane; an
+ * ROI without contours, or contours naming an unknown ROI, give warnings. */
+#include "rtstruct.h"
+
+#include <errno.h>
+#include <locale.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dicom.h"
+#include "xmem.h"
+
+#define MODALITY DICOM_TAG(0x0008, 0x0060)
+#define SOP_CLASS DICOM_TAG(0x0008, 0x0016)
+#define SS_ROI_SEQ DICOM_TAG(0x3006, 0x0020)
+#define ROI_NUMBER DICOM_TAG(0x3006, 0x0022)
+#define ROI_NAME DICOM_TAG(0x3006, 0x0026)
+#define ROI_CONTOUR_SEQ DICOM_TAG(0x3006, 0x0039)
+#define CONTOUR_SEQ DICOM_TAG(0x3006, 0x0040)
+#define GEOMETRIC_TYPE DICOM_TAG(0x3006, 0x0042)
+#define NUMBER_OF_POINTS DICOM_TAG(0x3006, 0x0046)
+#define CONTOUR_DATA DICOM_TAG(0x3006, 0x0050)
+#define OBSERVATIONS_SEQ DICOM_TAG(0x3006, 0x0080)
+#define REF_ROI_NUMBER DICOM_TAG(0x3006, 0x0084)
+#define INTERPRETED_TYPE DICOM_TAG(0x3006, 0x00A4)
+#define RTSTRUCT_SOP_CLASS "1.2.840.10008.5.1.4.1.1.481.3"
+
+/* A contour within this distance (mm) of a plane counts as lying in it. */
+#define FLAT_TOL 1e-3
+
+static const uint32_t sequences[] = {SS_ROI_SEQ, ROI_CONTOUR_SEQ, CONTOUR_SEQ, OBSERVATIONS_SEQ};
+
+/* ---------------------------------------------------------------- numbers */
+
+/* Powers of ten a double holds exactly. */
+static const double pow10_exact[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                     1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                     1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+
+/* strtod in the "C" locale, for the numbers the fast path cannot round. */
+static double c_strtod(const char *s, size_t len) {
+  char small[64];
+  char *buf = len < sizeof small ? small : xmalloc(len + 1);
+  memcpy(buf, s, len);
+  buf[len] = 0;
+  locale_t c = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0);
+  locale_t old = c ? uselocale(c) : (locale_t)0;
+  double v = strtod(buf, NULL);
+  if (c) {
+    uselocale(old);
+    freelocale(c);
+  }
+  if (buf != small) free(buf);
+  return v;
+}
+
+int rtstruct_ds(const char *s, size_t len, double *v) {
+  size_t i = 0, j = len;
+  while (i < j && s[i] == ' ') i++;
+  while (j > i && (s[j - 1] == ' ' || s[j - 1] == 0)) j--;
+  if (i == j) return -1;
+  size_t start = i;
+  int neg = 0;
+  if (s[i] == '+' || s[i] == '-') neg = s[i++] == '-';
+  uint64_t m = 0;
+  long digits = 0, sig = 0, exp10 = 0;
+  int ok = 1;
+  for (; i < j && s[i] >= '0' && s[i] <= '9'; i++, digits++) {
+    if (m == 0 && s[i] == '0') continue;
+    if (sig < 19) m = m * 10 + (uint64_t)(s[i] - '0'), sig++;
+    else exp10++, ok &= s[i] == '0';
+  }
+  if (i < j && s[i] == '.') {
+    for (i++; i < j && s[i] >= '0' && s[i] <= '9'; i++, digits++) {
+      if (m == 0 && s[i] == '0') {
+        exp10--;
+        continue;
+      }
+      if (sig < 19) m = m * 10 + (uint64_t)(s[i] - '0'), sig++, exp10--;
+      else ok &= s[i] == '0';
+    }
+  }
+  if (digits == 0) return -1;
+  if (i < j && (s[i] == 'e' || s[i] == 'E')) {
+    i++;
+    int eneg = 0;
+    long e = 0, ed = 0;
+    if (i < j && (s[i] == '+' || s[i] == '-')) eneg = s[i++] == '-';
+    for (; i < j && s[i] >= '0' && s[i] <= '9'; i++, ed++)
+      if (e < 100000) e = e * 10 + (s[i] - '0');
+    if (ed == 0) return -1;
+    exp10 += eneg ? -e : e;
+  }
+  if (i != j) return -1;
+  double r;
+  if (m == 0) {
+    r = neg ? -0.0 : 0.0;
+  } else if (ok && m <= (UINT64_C(1) << 53) && exp10 >= -22 && exp10 <= 22) {
+    /* Clinger's fast path: both operands exact, one rounding. */
+    r = exp10 >= 0 ? (double)m * pow10_exact[exp10] : (double)m / pow10_exact[-exp10];
+    if (neg) r = -r;
+  } else {
+    r = c_strtod(s + start, j - start);   /* the sign included */
+  }
+  *v = r;
+  return isfinite(r) ? 0 : 1;
+}
+
+/* ---------------------------------------------------------------- messages */
+
+typedef struct {
+  char *buf;
+  size_t len, cap;
+} sbuf;
+
+static void sb_vadd(sbuf *b, const char *fmt, va_list ap) {
+  va_list aq;
+  va_copy(aq, ap);
+  int k = vsnprintf(NULL, 0, fmt, aq);
+  va_end(aq);
+  if (k < 0) return;
+  if (b->len + (size_t)k + 1 > b->cap) {
+    b->cap = (b->len + (size_t)k + 1) * 2;
+    b->buf = xrealloc(b->buf, b->cap);
+  }
+  vsnprintf(b->buf + b->len, b->cap - b->len, fmt, ap);
+  b->len += (size_t)k;
+}
+
+static void sb_add(sbuf *b, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  sb_vadd(b, fmt, ap);
+  va_end(ap);
+}
+
+static void sb_raw(sbuf *b, const char *s, size_t n) {
+  if (b->len + n + 1 > b->cap) {
+    b->cap = (b->len + n + 1) * 2;
+    b->buf = xrealloc(b->buf, b->cap);
+  }
+  memcpy(b->buf + b->len, s, n);
+  b->len += n;
+  b->buf[b->len] = 0;
+}
+
+/* Up to 40 bytes of a value as it may be shown in a message. */
+static const char *shown(const char *s, size_t len, char *buf, size_t cap) {
+  size_t j = 0;
+  for (size_t i = 0; i < len && j + 5 < cap; i++) {
+    unsigned char ch = (unsigned char)s[i];
+    if (i == 40) {
+      memcpy(buf + j, "...", 3);
+      j += 3;
+      break;
+    }
+    if (ch >= 32 && ch < 127) buf[j++] = (char)ch;
+    else j += (size_t)snprintf(buf + j, cap - j, "\\x%02x", ch);
+  }
+  buf[j] = 0;
+  return buf;
+}
+
+/* ---------------------------------------------------------------- parsing */
+
+typedef struct {
+  const dicom *d;
+  const char *name;
+  char *err;
+  size_t errlen;
+  sbuf warn;
+} reader;
+
+static int fail(reader *r, size_t off, const char *fmt, ...) {
+  va_list ap;
+  int k = snprintf(r->err, r->errlen, "%s: byte %zu: ", r->name, off);
+  if (k < 0) k = 0;
+  if ((size_t)k < r->errlen) {
+    va_start(ap, fmt);
+    vsnprintf(r->err + k, r->errlen - (size_t)k, fmt, ap);
+    va_end(ap);
+  }
+  return -1;
+}
+
+/* An element's text: its value with trailing blanks and NULs removed (and
+ * leading blanks, unless keep_lead); "" if absent. */
+static size_t text(const dicom *d, int node, int keep_lead, char *buf, size_t cap) {
+  size_t len = 0;
+  const unsigned char *v = node >= 0 ? dicom_value(d, node, &len) : NULL;
+  size_t i = 0, j = len;
+  while (j > 0 && (v[j - 1] == ' ' || v[j - 1] == 0)) j--;
+  while (!keep_lead && i < j && v[i] == ' ') i++;
+  size_t n = j - i < cap - 1 ? j - i : cap - 1;
+  if (n) memcpy(buf, v + i, n);
+  buf[n] = 0;
+  return n;
+}
+
+/* An IS value: a whole number in int range.  0, or -1. */
+static int integer(const dicom *d, int node, int *out) {
+  char b[32];
+  size_t len = 0;
+  dicom_value(d, node, &len);
+  if (len == 0 || len >= sizeof b) return -1;
+  size_t n = text(d, node, 0, b, sizeof b);
+  size_t i = 0;
+  int neg = 0;
+  if (i < n && (b[i] == '+' || b[i] == '-')) neg = b[i++] == '-';
+  if (i == n) return -1;
+  long long v = 0;
+  for (; i < n; i++) {
+    if (b[i] < '0' || b[i] > '9') return -1;
+    v = v * 10 + (b[i] - '0');
+    if (v > 2147483648LL) return -1;
+  }
+  if (neg) v = -v;
+  if (v > 2147483647LL) return -1;
+  *out = (int)v;
+  return 0;
+}
+
+/* The value of node as shown in a message. */
+static const char *value_shown(const dicom *d, int node, char *buf, size_t cap) {
+  size_t len = 0;
+  const unsigned char *v = dicom_value(d, node, &len);
+  return shown((const char *)v, len, buf, cap);
+}
+
+static int sequence(reader *r, int node) {
+  if (node >= 0 && !dicom_is_sequence(r->d, node))
+    return fail(r, dicom_offset(r->d, node), "(%04X,%04X) is not a sequence",
+                (unsigned)(dicom_tag(r->d, node) >> 16), (unsigned)(dicom_tag(r->d, node) & 0xFFFF));
+  return 0;
+}
+
+static char *roi_error(const reader *r, const rtstruct_roi *roi, size_t off, const char *fmt, ...) {
+  sbuf b = {0};
+  va_list ap;
+  sb_add(&b, "%s: byte %zu: ROI %d '%s', ", r->name, off, roi->number, roi->name);
+  va_start(ap, fmt);
+  sb_vadd(&b, fmt, ap);
+  va_end(ap);
+  return b.buf;
+}
+
+static void roi_warn(const reader *r, rtstruct_roi *roi, const char *fmt, ...) {
+  sbuf b = {roi->warnings, roi->warnings ? strlen(roi->warnings) : 0, 0};
+  b.cap = b.len + 1;
+  va_list ap;
+  sb_add(&b, "%s: ROI %d '%s': ", r->name, roi->number, roi->name);
+  va_start(ap, fmt);
+  sb_vadd(&b, fmt, ap);
+  va_end(ap);
+  sb_raw(&b, "\n", 1);
+  roi->warnings = b.buf;
+}
+
+/* One ContourSequence item of a closed planar contour into c.  0, or -1
+ * with roi->error set. */
+static int read_contour(reader *r, rtstruct_roi *roi, int item, int k, rtstruct_contour *c) {
+  const dicom *d = r->d;
+  char vb[200];
+  int data = dicom_child(d, item, CONTOUR_DATA), npts = dicom_child(d, item, NUMBER_OF_POINTS);
+  memset(c, 0, sizeof *c);
+  c->item = k;
+  c->offset = dicom_offset(d, item);
+  if (data < 0) {
+    roi->error = roi_error(r, roi, c->offset, "contour item %d: no ContourData (3006,0050)", k);
+    return -1;
+  }
+  c->offset = dicom_offset(d, data);
+  size_t len = 0;
+  const char *v = (const char *)dicom_value(d, data, &len);
+  size_t base = dicom_value_offset(d, data);
+  size_t nval = len ? 1 : 0;
+  for (size_t i = 0; i < len; i++) nval += v[i] == '\\';
+  if (nval == 0) {
+    roi->error = roi_error(r, roi, c->offset, "contour item %d: ContourData is empty", k);
+    return -1;
+  }
+  if (nval % 3 != 0) {
+    roi->error = roi_error(r, roi, c->offset,
+                           "contour item %d: ContourData holds %zu values, not x y z triplets", k, nval);
+    return -1;
+  }
+  if (nval / 3 > CONTOUR_MAX_POINTS) {
+    roi->error = roi_error(r, roi, c->offset, "contour item %d: more than %d points (%zu)", k,
+                           CONTOUR_MAX_POINTS, nval / 3);
+    return -1;
+  }
+  if (npts >= 0) {
+    int want;
+    if (integer(d, npts, &want) != 0) {
+      roi->error = roi_error(r, roi, dicom_offset(d, npts),
+                             "contour item %d: NumberOfContourPoints is not a whole number (%s)", k,
+                             value_shown(d, npts, vb, sizeof vb));
+      return -1;
+    }
+    if ((size_t)want * 3 != nval || want < 0) {
+      roi->error = roi_error(r, roi, dicom_offset(d, npts),
+                             "contour item %d: NumberOfContourPoints is %d but ContourData holds %zu "
+                             "values (%zu points)", k, want, nval, nval / 3);
+      return -1;
+    }
+  }
+  c->n = (int)(nval / 3);
+  c->p = xmallocarray(nval, sizeof *c->p);
+  c->poff = xmallocarray((size_t)c->n, sizeof *c->poff);
+  size_t at = 0;
+  for (size_t i = 0; i < nval; i++) {
+    size_t e = at;
+    while (e < len && v[e] != '\\') e++;
+    double x;
+    int rc = rtstruct_ds(v + at, e - at, &x);
+    if (rc != 0) {
+      roi->error = roi_error(r, roi, base + at, "contour item %d, point %zu: %c %s (%s)", k, i / 3 + 1,
+                             "xyz"[i % 3], rc > 0 ? "is not finite" : "is not a number",
+                             shown(v + at, e - at, vb, sizeof vb));
+      return -1;
+    }
+    c->p[i] = x;
+    if (i % 3 == 0) c->poff[i / 3] = base + at;
+    at = e + 1;
+  }
+  return 0;
+}
+
+static void free_contour(rtstruct_contour *c) {
+  free(c->p);
+  free(c->poff);
+}
+
+/* Stable order by height. */
+typedef struct {
+  double h;
+  int i;
+} keyed;
+
+static int by_h(const void *a, const void *b) {
+  const keyed *p = a, *q = b;
+  if (p->h != q->h) return p->h < q->h ? -1 : 1;
+  return p->i - q->i;
+}
+
+/* The plane of an ROI's contours, their heights, the order, the counts. */
+static void finish_roi(reader *r, rtstruct_roi *roi) {
+  if (roi->error || roi->nc == 0) return;
+  int axis = -1, bad[3] = {-1, -1, -1};
+  double worst[3] = {0, 0, 0};
+  for (int a = 2; a >= 0; a--)   /* z (axial), then x (sagittal), then y (coronal) */
+    for (int i = 0; i < roi->nc; i++) {
+      const rtstruct_contour *c = &roi->c[i];
+      double lo = c->p[a], hi = c->p[a];
+      for (int j = 1; j < c->n; j++) {
+        double v = c->p[3 * j + a];
+        if (v < lo) lo = v;
+        if (v > hi) hi = v;
+      }
+      if (hi - lo > FLAT_TOL) {
+        if (bad[a] < 0) bad[a] = i;
+      } else if (hi - lo > worst[a]) {
+        worst[a] = hi - lo;
+      }
+    }
+  if (bad[2] < 0) axis = 2;
+  else if (bad[0] < 0) axis = 0;
+  else if (bad[1] < 0) axis = 1;
+  if (axis < 0) {
+    const rtstruct_contour *c = &roi->c[bad[2]];
+    double lo = c->p[2], hi = c->p[2];
+    for (int j = 1; j < c->n; j++) {
+      if (c->p[3 * j + 2] < lo) lo = c->p[3 * j + 2];
+      if (c->p[3 * j + 2] > hi) hi = c->p[3 * j + 2];
+    }
+    roi->error = roi_error(r, roi, c->offset,
+                           "contour item %d: not in an axial plane (z from %.17g to %.17g), and the "
+                           "contours are not all sagittal or coronal either: contours must lie in "
+                           "parallel axial, sagittal or coronal planes", c->item, lo, hi);
+    return;
+  }
+  roi->plane = axis == 2 ? RTSTRUCT_AXIAL : axis == 0 ? RTSTRUCT_SAGITTAL : RTSTRUCT_CORONAL;
+  if (worst[axis] > 0)
+    roi_warn(r, roi, "some contours are not exactly flat (%s spread up to %.3g mm); each lies in its "
+             "first point's plane", axis == 2 ? "z" : axis == 0 ? "x" : "y", worst[axis]);
+  keyed *k = xmallocarray((size_t)roi->nc, sizeof *k);
+  for (int i = 0; i < roi->nc; i++) {
+    roi->c[i].h = roi->c[i].p[axis];
+    k[i].h = roi->c[i].h;
+    k[i].i = i;
+  }
+  qsort(k, (size_t)roi->nc, sizeof *k, by_h);
+  rtstruct_contour *sorted = xmallocarray((size_t)roi->nc, sizeof *sorted);
+  for (int i = 0; i < roi->nc; i++) sorted[i] = roi->c[k[i].i];
+  free(roi->c);
+  roi->c = sorted;
+  free(k);
+  roi->slices = 0;
+  roi->points = 0;
+  for (int i = 0; i < roi->nc; i++) {
+    roi->points += roi->c[i].n;
+    if (i == 0 || roi->c[i].h != roi->c[i - 1].h) roi->slices++;
+  }
+  roi->hmin = roi->c[0].h;
+  roi->hmax = roi->c[roi->nc - 1].h;
+}
+
+static rtstruct_roi *roi_by_number(rtstruct *s, int number) {
+  for (int i = 0; i < s->nroi; i++)
+    if (s->roi[i].number == number) return &s->roi[i];
+  return NULL;
+}
+
+/* The ContourSequence of one ROIContourSequence item into its ROI. */
+static void read_contours(reader *r, rtstruct_roi *roi, int cseq) {
+  const dicom *d = r->d;
+  int kinds = 0, nkind[8] = {0};
+  char kind[8][24];
+  int k = 0, cap = roi->nc;
+  for (int it = dicom_first(d, cseq); it >= 0; it = dicom_next(d, it)) {
+    k++;
+    char type[24];
+    text(d, dicom_child(d, it, GEOMETRIC_TYPE), 0, type, sizeof type);
+    if (strcmp(type, "CLOSED_PLANAR") != 0) {
+      roi->skipped++;
+      if (!type[0]) snprintf(type, sizeof type, "untyped");
+      int j = 0;
+      while (j < kinds && strcmp(kind[j], type) != 0) j++;
+      if (j == kinds && kinds < 8) memcpy(kind[kinds++], type, sizeof type);
+      if (j < 8) nkind[j]++;
+      continue;
+    }
+    if (roi->error) {   /* counted, not read */
+      roi->nc++;
+      continue;
+    }
+    if (roi->nc == cap) {
+      cap = cap ? 2 * cap : 16;
+      roi->c = xreallocarray(roi->c, (size_t)cap, sizeof *roi->c);
+    }
+    if (read_contour(r, roi, it, k, &roi->c[roi->nc]) != 0) {
+      free_contour(&roi->c[roi->nc]);
+      for (int i = 0; i < roi->nc; i++) free_contour(&roi->c[i]);
+      free(roi->c);
+      roi->c = NULL;
+      cap = 0;
+    }
+    roi->nc++;
+  }
+  if (kinds) {
+    sbuf b = {0};
+    for (int j = 0; j < kinds; j++) {
+      char sh[80];
+      sb_add(&b, "%s%d %s", j == 0 ? "" : j + 1 == kinds ? " and " : ", ", nkind[j],
+             shown(kind[j], strlen(kind[j]), sh, sizeof sh));
+    }
+    roi_warn(r, roi, "skipped %s contour%s; only CLOSED_PLANAR contours are tiled", b.buf,
+             roi->skipped == 1 ? "" : "s");
+    free(b.buf);
+  }
+}
+
+static void file_warn(reader *r, size_t off, const char *fmt, ...) {
+  va_list ap;
+  sb_add(&r->warn, "%s: byte %zu: ", r->name, off);
+  va_start(ap, fmt);
+  sb_vadd(&r->warn, fmt, ap);
+  va_end(ap);
+  sb_raw(&r->warn, "\n", 1);
+}
+
+static int read_set(reader *r, rtstruct *s) {
+  const dicom *d = r->d;
+  char vb[200];
+  int mod = dicom_child(d, DICOM_ROOT, MODALITY);
+  if (mod >= 0) {
+    char m[64];
+    text(d, mod, 0, m, sizeof m);
+    if (strcmp(m, "RTSTRUCT") != 0)
+      return fail(r, dicom_offset(d, mod), "not an RT structure set: the Modality (0008,0060) is %s",
+                  value_shown(d, mod, vb, sizeof vb));
+  } else {
+    char uid[80];
+    int sop = dicom_child(d, DICOM_ROOT, SOP_CLASS);
+    text(d, sop, 0, uid, sizeof uid);
+    if (strcmp(uid, RTSTRUCT_SOP_CLASS) != 0)
+      return fail(r, 0, "not an RT structure set: no Modality (0008,0060), and the SOP class (0008,0016) "
+                  "is not RT Structure Set Storage (%s)", sop >= 0 ? value_shown(d, sop, vb, sizeof vb) : "none");
+  }
+  int ss = dicom_child(d, DICOM_ROOT, SS_ROI_SEQ);
+  if (ss < 0) return fail(r, 0, "an RT structure set without a StructureSetROISequence (3006,0020)");
+  if (sequence(r, ss) != 0) return -1;
+  int n = 0;
+  for (int it = dicom_first(d, ss); it >= 0; it = dicom_next(d, it)) n++;
+  s->roi = xcalloc(n ? (size_t)n : 1, sizeof *s->roi);
+  for (int it = dicom_first(d, ss), k = 1; it >= 0; it = dicom_next(d, it), k++) {
+    rtstruct_roi *roi = &s->roi[s->nroi];
+    int num = dicom_child(d, it, ROI_NUMBER);
+    if (num < 0)
+      return fail(r, dicom_offset(d, it), "StructureSetROISequence item %d has no ROINumber (3006,0022)", k);
+    if (integer(d, num, &roi->number) != 0)
+      return fail(r, dicom_offset(d, num), "StructureSetROISequence item %d: ROINumber is not a whole number (%s)",
+                  k, value_shown(d, num, vb, sizeof vb));
+    const rtstruct_roi *dup = roi_by_number(s, roi->number);
+    if (dup)
+      return fail(r, dicom_offset(d, num), "StructureSetROISequence item %d: ROI number %d is already "
+                  "used by the item at byte %zu (%d)", k, roi->number, dup->offset, roi->number);
+    roi->offset = dicom_offset(d, it);
+    size_t len = 0;
+    int nm = dicom_child(d, it, ROI_NAME);
+    if (nm >= 0) dicom_value(d, nm, &len);
+    roi->name = xmalloc(len + 1);
+    size_t l = text(d, nm, 1, roi->name, len + 1);
+    for (size_t i = 0; i < l; i++)
+      if ((unsigned char)roi->name[i] < 32 || roi->name[i] == 127) roi->name[i] = '?';
+    roi->type = xstrdup("");
+    s->nroi++;
+  }
+  int obs = dicom_child(d, DICOM_ROOT, OBSERVATIONS_SEQ);
+  if (sequence(r, obs) != 0) return -1;
+  for (int it = obs >= 0 ? dicom_first(d, obs) : -1; it >= 0; it = dicom_next(d, it)) {
+    int ref = dicom_child(d, it, REF_ROI_NUMBER), num;
+    rtstruct_roi *roi = ref >= 0 && integer(d, ref, &num) == 0 ? roi_by_number(s, num) : NULL;
+    int ty = dicom_child(d, it, INTERPRETED_TYPE);
+    if (!roi || ty < 0 || roi->type[0]) continue;
+    char t[64];
+    size_t l = text(d, ty, 0, t, sizeof t);
+    for (size_t i = 0; i < l; i++)
+      if ((unsigned char)t[i] < 32 || t[i] == 127) t[i] = '?';
+    free(roi->type);
+    roi->type = xstrdup(t);
+  }
+  int rc = dicom_child(d, DICOM_ROOT, ROI_CONTOUR_SEQ);
+  if (sequence(r, rc) != 0) return -1;
+  for (int it = rc >= 0 ? dicom_first(d, rc) : -1, k = 1; it >= 0; it = dicom_next(d, it), k++) {
+    int ref = dicom_child(d, it, REF_ROI_NUMBER), num;
+    int cs = dicom_child(d, it, CONTOUR_SEQ);
+    if (sequence(r, cs) != 0) return -1;
+    int ncont = 0;
+    for (int c = cs >= 0 ? dicom_first(d, cs) : -1; c >= 0; c = dicom_next(d, c)) ncont++;
+    if (ref < 0) {
+      file_warn(r, dicom_offset(d, it), "ROIContourSequence item %d has no ReferencedROINumber (3006,0084); "
+                "its %d contour%s ignored", k, ncont, ncont == 1 ? " is" : "s are");
+      continue;
+    }
+    if (integer(d, ref, &num) != 0)
+      return fail(r, dicom_offset(d, ref), "ROIContourSequence item %d: ReferencedROINumber is not a whole "
+                  "number (%s)", k, value_shown(d, ref, vb, sizeof vb));
+    rtstruct_roi *roi = roi_by_number(s, num);
+    if (!roi) {
+      file_warn(r, dicom_offset(d, it), "ROIContourSequence item %d references ROI %d, which the "
+                "StructureSetROISequence does not define; its %d contour%s ignored", k, num, ncont,
+                ncont == 1 ? " is" : "s are");
+      continue;
+    }
+    if (cs >= 0) read_contours(r, roi, cs);
+  }
+  for (int i = 0; i < s->nroi; i++) finish_roi(r, &s->roi[i]);
+  return 0;
+}
+
+int rtstruct_parse(const unsigned char *buf, size_t len, const char *name, rtstruct *out,
+                   char *err, size_t errlen) {
+  memset(out, 0, sizeof *out);
+  dicom *d = dicom_parse(buf, len, name, sequences, (int)(sizeof sequences / sizeof *sequences), err, errlen);
+  if (!d) return -1;
+  reader r = {d, name, err, errlen, {0}};
+  out->name = xstrdup(name);
+  int rc = read_set(&r, out);
+  dicom_free(d);
+  if (rc != 0) {
+    free(r.warn.buf);
+    rtstruct_free(out);
+    return -1;
+  }
+  out->warnings = r.warn.buf;
+  return 0;
+}
+
+int rtstruct_read(const char *path, rtstruct *out, char *err, size_t errlen) {
+  int stdin_ = strcmp(path, "-") == 0;
+  FILE *f = stdin_ ? stdin : fopen(path, "rb");
+  memset(out, 0, sizeof *out);
+  if (!f) {
+    snprintf(err, errlen, "%s: cannot open (%s)", path, strerror(errno));
+    return -1;
+  }
+  size_t len = 0, cap = 1 << 16;
+  unsigned char *buf = xmalloc(cap);
+  for (;;) {
+    size_t got = fread(buf + len, 1, cap - len, f);
+    len += got;
+    if (got == 0) break;
+    if (len == cap) buf = xrealloc(buf, cap *= 2);
+  }
+  int bad = ferror(f), e = errno;
+  if (!stdin_) fclose(f);
+  if (bad) {
+    snprintf(err, errlen, "%s: cannot read (%s)", path, strerror(e));
+    free(buf);
+    return -1;
+  }
+  int rc = rtstruct_parse(buf, len, stdin_ ? "<stdin>" : path, out, err, errlen);
+  free(buf);
+  return rc;
+}
+
+void rtstruct_free(rtstruct *s) {
+  for (int i = 0; i < s->nroi; i++) {
+    rtstruct_roi *roi = &s->roi[i];
+    if (roi->c)
+      for (int j = 0; j < roi->nc; j++) free_contour(&roi->c[j]);
+    free(roi->c);
+    free(roi->name);
+    free(roi->type);
+    free(roi->error);
+    free(roi->warnings);
+  }
+  free(s->roi);
+  free(s->name);
+  free(s->warnings);
+  memset(s, 0, sizeof *s);
+}
+
+/* ---------------------------------------------------------------- lookup */
+
+int rtstruct_find(const rtstruct *s, const char *key, char *err, size_t errlen) {
+  char vb[200];
+  int found = -1;
+  for (int i = 0; i < s->nroi; i++)
+    if (strcmp(s->roi[i].name, key) == 0) {
+      if (found >= 0) {
+        snprintf(err, errlen, "%s: ROIs %d and %d are both named '%s'; choose one by its number (%s)",
+                 s->name, s->roi[found].number, s->roi[i].number, s->roi[i].name,
+                 shown(key, strlen(key), vb, sizeof vb));
+        return -1;
+      }
+      found = i;
+    }
+  if (found >= 0) return found;
+  char *end;
+  errno = 0;
+  long v = strtol(key, &end, 10);
+  if (key[0] && *end == 0 && errno == 0 && key[0] != ' ')
+    for (int i = 0; i < s->nroi; i++)
+      if (s->roi[i].number == v) return i;
+  sbuf b = {0};
+  for (int i = 0; i < s->nroi && b.len < 300; i++)
+    sb_add(&b, "%s%d '%s'", i ? ", " : "", s->roi[i].number, s->roi[i].name);
+  if (b.len >= 300) sb_add(&b, ", ...");
+  snprintf(err, errlen, "%s: no ROI named or numbered '%s' (the ROIs: %s)", s->name,
+           shown(key, strlen(key), vb, sizeof vb), b.buf ? b.buf : "none");
+  free(b.buf);
+  return -1;
+}
+
+/* ---------------------------------------------------------------- stacks */
+
+const char *rtstruct_plane_name(rtstruct_plane plane) {
+  return plane == RTSTRUCT_AXIAL ? "axial" : plane == RTSTRUCT_SAGITTAL ? "sagittal" : "coronal";
+}
+
+/* The stack frame: axial (x, y, z); sagittal (y, z, x); coronal (z, x, y):
+ * cyclic permutations of the axes, so rotations. */
+static void frame(rtstruct_plane plane, const double *p, double *u, double *v) {
+  if (plane == RTSTRUCT_AXIAL) *u = p[0], *v = p[1];
+  else if (plane == RTSTRUCT_SAGITTAL) *u = p[1], *v = p[2];
+  else *u = p[2], *v = p[0];
+}
+
+void rtstruct_to_patient(rtstruct_plane plane, double *x, double *y, double *z) {
+  double u = *x, v = *y, h = *z;
+  if (plane == RTSTRUCT_SAGITTAL) *x = h, *y = u, *z = v;
+  else if (plane == RTSTRUCT_CORONAL) *x = v, *y = h, *z = u;
+}
+
+/* Comment lines the text starts with (the line map counts them). */
+enum { HEADER_LINES = 2 };
+
+static void clean(const char *s, char *buf, size_t cap) {
+  size_t j = 0;
+  for (size_t i = 0; s[i] && j + 1 < cap; i++)
+    buf[j++] = (unsigned char)s[i] < 32 || s[i] == 127 ? '?' : s[i];
+  buf[j] = 0;
+}
+
+char *rtstruct_roi_text(const rtstruct *s, int ri, size_t *len) {
+  const rtstruct_roi *roi = &s->roi[ri];
+  sbuf b = {0};
+  char file[512], type[80];
+  clean(s->name, file, sizeof file);
+  clean(roi->type, type, sizeof type);
+  sb_add(&b, "# ROI %d '%s'%s%s%s of %s: %d closed planar contours, patient LPS mm\n", roi->number,
+         roi->name, type[0] ? " (" : "", type, type[0] ? ")" : "", file, roi->nc);
+  if (roi->plane == RTSTRUCT_AXIAL)
+    sb_add(&b, "# axial contours, sorted by z; each point is x y\n");
+  else if (roi->plane == RTSTRUCT_SAGITTAL)
+    sb_add(&b, "# sagittal contours turned into z: each point is patient y z, each plane patient x\n");
+  else
+    sb_add(&b, "# coronal contours turned into z: each point is patient z x, each plane patient y\n");
+  char line[96];
+  for (int i = 0; i < roi->nc; i++) {
+    const rtstruct_contour *c = &roi->c[i];
+    int k = snprintf(line, sizeof line, "C %d %.17g\n", c->n, c->h);
+    sb_raw(&b, line, (size_t)k);
+    for (int j = 0; j < c->n; j++) {
+      double u, v;
+      frame(roi->plane, c->p + 3 * j, &u, &v);
+      k = snprintf(line, sizeof line, "%.17g %.17g\n", u, v);
+      sb_raw(&b, line, (size_t)k);
+    }
+  }
+  *len = b.len;
+  return b.buf ? b.buf : xstrdup("");
+}
+
+/* The name the reader is given: found again in its messages and rewritten. */
+static const char sentinel[] = "\x01rtstruct\x01";
+
+/* Where line `line` of the ROI's text came from. */
+static void locate(const rtstruct_roi *roi, long line, sbuf *b, int with_byte, const char *file) {
+  long at = HEADER_LINES + 1;
+  for (int i = 0; i < roi->nc; i++) {
+    const rtstruct_contour *c = &roi->c[i];
+    if (line >= at && line <= at + c->n) {
+      long j = line - at;
+      if (with_byte) sb_add(b, "%s: byte %zu: ROI %d '%s', ", file, j ? c->poff[j - 1] : c->offset,
+                            roi->number, roi->name);
+      if (j) sb_add(b, "contour item %d, point %ld", c->item, j);
+      else sb_add(b, "contour item %d", c->item);
+      return;
+    }
+    at += c->n + 1;
+  }
+  if (with_byte) sb_add(b, "%s: ROI %d '%s', ", file, roi->number, roi->name);
+  sb_add(b, "line %ld of its stack", line);
+}
+
+static int digit(char c) { return c >= '0' && c <= '9'; }
+
+/* The reader's text with the sentinel name and its line numbers rewritten. */
+static char *rewrite(const rtstruct *s, const rtstruct_roi *roi, const char *msg) {
+  sbuf b = {0};
+  size_t sl = sizeof sentinel - 1;
+  sb_raw(&b, "", 0);
+  for (const char *p = msg; *p;) {
+    if (strncmp(p, sentinel, sl) == 0) {
+      const char *q = p + sl;
+      if (q[0] == ':' && digit(q[1])) {
+        long line = strtol(q + 1, (char **)&q, 10);
+        if (*q == ':') q++;
+        locate(roi, line, &b, 1, s->name);
+        sb_raw(&b, ":", 1);
+      } else {
+        sb_add(&b, "%s: ROI %d '%s'", s->name, roi->number, roi->name);
+      }
+      p = q;
+    } else if (strncmp(p, "line ", 5) == 0 && digit(p[5]) && (p == msg || !((p[-1] >= 'a' && p[-1] <= 'z') ||
+                                                                           (p[-1] >= 'A' && p[-1] <= 'Z')))) {
+      const char *q;
+      long line = strtol(p + 5, (char **)&q, 10);
+      locate(roi, line, &b, 0, s->name);
+      p = q;
+    } else {
+      sb_raw(&b, p, 1);
+      p++;
+    }
+  }
+  return b.buf;
+}
+
+int rtstruct_roi_check(const rtstruct *s, int ri, char *err, size_t errlen) {
+  const rtstruct_roi *roi = &s->roi[ri];
+  if (roi->error) {
+    snprintf(err, errlen, "%s", roi->error);
+    return -1;
+  }
+  if (roi->nc > 0) return 0;
+  if (roi->skipped)
+    snprintf(err, errlen, "%s: ROI %d '%s' has no closed planar contours to tile (%d contour%s)", s->name,
+             roi->number, roi->name, roi->skipped, roi->skipped == 1 ? " of another type" : "s of other types");
+  else
+    snprintf(err, errlen, "%s: ROI %d '%s' has no contours to tile", s->name, roi->number, roi->name);
+  return -1;
+}
+
+int rtstruct_roi_stack(const rtstruct *s, int ri, int pairs, contour_stack *out, FILE *notes,
+                       const char *prefix, char *err, size_t errlen) {
+  const rtstruct_roi *roi = &s->roi[ri];
+  memset(out, 0, sizeof *out);
+  if (rtstruct_roi_check(s, ri, err, errlen) != 0) return -1;
+  size_t len;
+  char *text_ = rtstruct_roi_text(s, ri, &len);
+  char *held = NULL, e2[1024];
+  size_t heldlen = 0;
+  FILE *hold = notes ? open_memstream(&held, &heldlen) : NULL;
+  int rc = contour_parse(text_, len, sentinel, out, hold, prefix, e2, sizeof e2);
+  if (rc == 0 && pairs && contour_stack_pairs(out, sentinel, e2, sizeof e2) != 0) {
+    contour_stack_free(out);
+    rc = -1;
+  }
+  free(text_);
+  if (hold) fclose(hold);
+  if (rc != 0) {
+    char *m = rewrite(s, roi, e2);
+    snprintf(err, errlen, "%s", m);
+    free(m);
+  } else if (held && heldlen) {
+    char *m = rewrite(s, roi, held);
+    fputs(m, notes);
+    free(m);
+  }
+  free(held);
+  return rc;
+}

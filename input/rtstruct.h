@@ -1,0 +1,107 @@
+/* rtstruct.h -- DICOM RT structure sets: the ROIs and their contour stacks.
+ *
+ * Reads an RTSTRUCT (dicom.h) into its ROIs: StructureSetROISequence
+ * (3006,0020) gives each ROI's number and name, ROIContourSequence (3006,0039)
+ * its contours (ContourSequence (3006,0040): ContourGeometricType,
+ * NumberOfContourPoints, ContourData as decimal strings), and
+ * RTROIObservationsSequence (3006,0080) its interpreted type.  Coordinates are
+ * the file's: patient LPS, millimetres.
+ *
+ * Only CLOSED_PLANAR contours are tiled; POINT, OPEN_PLANAR, OPEN_NONPLANAR
+ * and unknown types are counted and skipped.  An ROI's closed contours must
+ * lie in parallel planes: axial (z constant in each contour) is used as it is;
+ * sagittal (x constant) and coronal (y constant) are turned into z by a cyclic
+ * permutation of the axes (exact, and a rotation, so windings keep their
+ * meaning), and turned back with rtstruct_to_patient; anything else is
+ * refused, naming the ROI.
+ *
+ * An ROI becomes a .contours stack (input/contour.h) in the text that
+ * rtstruct_roi_text writes: its closed contours sorted by their plane
+ * (stably), points as %.17g.  rtstruct_roi_stack reads that text with the
+ * .contours reader, so a DICOM ROI and its converted stack give the same
+ * tiling, mesh and report; the reader's refusals and notes are rewritten to
+ * name the DICOM file, the byte, the ROI and the contour item. */
+#ifndef RTSTRUCT_H
+#define RTSTRUCT_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "contour.h"
+
+typedef enum { RTSTRUCT_AXIAL, RTSTRUCT_SAGITTAL, RTSTRUCT_CORONAL } rtstruct_plane;
+
+typedef struct {
+  int item;          /* 1-based item of the ROI's ContourSequence */
+  size_t offset;     /* byte offset of its ContourData element */
+  int n;             /* points */
+  double *p;         /* 3n: x y z, as in the file */
+  size_t *poff;      /* n: byte offset of each point's first value */
+  double h;          /* its plane's height along the ROI's normal */
+} rtstruct_contour;
+
+typedef struct {
+  int number;        /* ROINumber */
+  char *name;        /* ROIName as written, trailing spaces removed ("" if none) */
+  char *type;        /* RTROIInterpretedType ("" if none) */
+  size_t offset;     /* byte offset of its StructureSetROISequence item */
+  int nc;            /* closed planar contours, sorted by height (stably) */
+  rtstruct_contour *c;
+  int skipped;       /* contours of other types */
+  int slices;        /* distinct heights among the closed contours */
+  long points;       /* points of the closed contours */
+  double hmin, hmax; /* their heights (0 if none) */
+  rtstruct_plane plane;
+  char *error;       /* NULL, or why its contours cannot be used (one line) */
+  char *warnings;    /* lines to show when the ROI is used, or NULL */
+} rtstruct_roi;
+
+typedef struct {
+  char *name;        /* the file, for messages */
+  int nroi;          /* in StructureSetROISequence order */
+  rtstruct_roi *roi;
+  char *warnings;    /* lines about the whole file (unknown ROI references), or NULL */
+} rtstruct;
+
+/* Parse an RT structure set from memory (`name` is used in messages).
+ * Problems of the file refuse it: returns -1 with one line "NAME: byte N:
+ * what (value)" in err, nothing allocated.  Problems of one ROI's contours
+ * (bad numbers, counts that disagree, contours not in parallel planes) are
+ * kept in that ROI's `error`.  Returns 0; free with rtstruct_free. */
+int rtstruct_parse(const unsigned char *buf, size_t len, const char *name, rtstruct *out,
+                   char *err, size_t errlen);
+/* The same from a file ("-" is standard input); "cannot open/read" errors too. */
+int rtstruct_read(const char *path, rtstruct *out, char *err, size_t errlen);
+void rtstruct_free(rtstruct *s);
+
+/* The ROI whose name is key, or else whose number is key: its index, or -1
+ * with a message (unknown, or a name two ROIs share). */
+int rtstruct_find(const rtstruct *s, const char *key, char *err, size_t errlen);
+
+/* 0 if the ROI has closed planar contours and no error; else -1 with its
+ * error, or why it has nothing to tile, in err. */
+int rtstruct_roi_check(const rtstruct *s, int roi, char *err, size_t errlen);
+
+/* The ROI as .contours text (a comment header, then the contours): malloc'd,
+ * the caller frees.  The ROI must have no error. */
+char *rtstruct_roi_text(const rtstruct *s, int roi, size_t *len);
+
+/* The ROI's stack, read from that text by contour_parse (and, when pairs !=
+ * 0, checked by contour_stack_pairs, as ./tile checks a stack that it tiles
+ * contour by contour): 0, or -1 with the refusal, rewritten to name the
+ * file, ROI, contour item and byte.  Notes go to `notes` as contour_read's
+ * do, rewritten alike, and only when the stack is accepted. */
+int rtstruct_roi_stack(const rtstruct *s, int roi, int pairs, contour_stack *out, FILE *notes,
+                       const char *prefix, char *err, size_t errlen);
+
+/* A point of the stack's frame (x, y, z = height) back to patient x, y, z. */
+void rtstruct_to_patient(rtstruct_plane plane, double *x, double *y, double *z);
+
+const char *rtstruct_plane_name(rtstruct_plane plane);
+
+/* A decimal string (DS): optional blanks around [+-]digits[.digits][e[+-]digits].
+ * 0 and *v; 1 if it is a number too large for a double; -1 if it is not a
+ * number.  The result is the correctly rounded double, whatever the locale. */
+int rtstruct_ds(const char *s, size_t len, double *v);
+
+#endif

@@ -1,0 +1,173 @@
+/* pipeline.c -- ./tile's work on one input, in memory, with invariants that
+ * abort: the robustness tests' and the fuzz targets' oracle. */
+#include "pipeline.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "contour.h"
+#include "mesh.h"
+#include "rtstruct.h"
+#include "rtwriter.h"
+#include "tiling.h"
+#include "xmem.h"
+
+#define NAME "fuzz.dcm"
+
+#define INVARIANT(cond, ...)                                                   \
+  do {                                                                         \
+    if (!(cond)) {                                                             \
+      fprintf(stderr, "pipeline: %s:%d: ", __FILE__, __LINE__);                \
+      fprintf(stderr, __VA_ARGS__);                                            \
+      fputc('\n', stderr);                                                     \
+      abort();                                                                 \
+    }                                                                          \
+  } while (0)
+
+static void one_line(const char *err, const char *name) {
+  INVARIANT(err[0] != 0, "a refusal without a message");
+  INVARIANT(strchr(err, '\n') == NULL, "a refusal of more than one line: %s", err);
+  INVARIANT(strncmp(err, name, strlen(name)) == 0 && err[strlen(name)] == ':',
+            "a refusal that does not name the input first: %s", err);
+}
+
+static int same_bits(double a, double b) { return memcmp(&a, &b, sizeof a) == 0; }
+
+static void same_stacks(const contour_stack *a, const contour_stack *b) {
+  INVARIANT(a->n == b->n, "stacks of %d and %d contours", a->n, b->n);
+  for (int i = 0; i < a->n; i++) {
+    INVARIANT(a->c[i].n == b->c[i].n && same_bits(a->c[i].z, b->c[i].z), "contour %d differs", i);
+    for (int j = 0; j < a->c[i].n; j++)
+      INVARIANT(same_bits(a->c[i].pt[j].x, b->c[i].pt[j].x) && same_bits(a->c[i].pt[j].y, b->c[i].pt[j].y),
+                "contour %d point %d differs", i, j);
+  }
+}
+
+static int cmp(const void *a, const void *b) {
+  unsigned long long x = *(const unsigned long long *)a, y = *(const unsigned long long *)b;
+  return x < y ? -1 : x > y;
+}
+
+/* Tile the stack when it is small enough; the mesh must be closed: every
+ * edge used as often in one direction as in the other. */
+static void tile(const contour_stack *s, double max_pair) {
+  for (int i = 0; i + 1 < s->n; i++)
+    if ((double)s->c[i].n * s->c[i + 1].n > max_pair) return;
+  mesh me;
+  mesh_init(&me, s);
+  for (int i = 0; i + 1 < s->n; i++) {
+    tiling t;
+    double area, volume;
+    tiling_solve(s->c[i].pt, s->c[i].n, s->c[i].z, s->c[i + 1].pt, s->c[i + 1].n, s->c[i + 1].z,
+                 COST_AREA, -1, &t);
+    mesh_add_band(&me, s, i, &t, &area, &volume);
+    tiling_free(&t);
+  }
+  mesh_add_caps(&me, s);
+  /* Directed edges a->b as keys a*nv+b, sorted; each must have its reverse as often. */
+  size_t ne = (size_t)me.nt * 3;
+  unsigned long long *e = xmallocarray(ne ? ne : 1, sizeof *e), *r = xmallocarray(ne ? ne : 1, sizeof *r);
+  for (int t = 0; t < me.nt; t++)
+    for (int k = 0; k < 3; k++) {
+      unsigned long long a = (unsigned long long)me.t[t][k], b = (unsigned long long)me.t[t][(k + 1) % 3];
+      e[3 * (size_t)t + (size_t)k] = a * (unsigned long long)me.nv + b;
+      r[3 * (size_t)t + (size_t)k] = b * (unsigned long long)me.nv + a;
+    }
+  qsort(e, ne, sizeof *e, cmp);
+  qsort(r, ne, sizeof *r, cmp);
+  INVARIANT(memcmp(e, r, ne * sizeof *e) == 0, "the mesh of %d contours is not closed", s->n);
+  free(e);
+  free(r);
+  mesh_free(&me);
+}
+
+int pipeline_contours(const char *buf, size_t len, double max_pair) {
+  contour_stack s, t;
+  char err[1024];
+  if (contour_parse(buf, len, NAME, &s, NULL, "fuzz", err, sizeof err) != 0) {
+    one_line(err, NAME);
+    return 1;
+  }
+  char *text = NULL;
+  size_t tl = 0;
+  FILE *f = open_memstream(&text, &tl);
+  INVARIANT(contour_write(f, &s) == 0, "contour_write failed");
+  fclose(f);
+  INVARIANT(contour_parse(text, tl, NAME, &t, NULL, "fuzz", err, sizeof err) == 0,
+            "a written stack does not read back: %s", err);
+  same_stacks(&s, &t);
+  tile(&s, max_pair);
+  free(text);
+  contour_stack_free(&s);
+  contour_stack_free(&t);
+  return 0;
+}
+
+/* Re-encode what was read with the test writer (implicit VR, undefined
+ * lengths) and read it again: the same ROIs and the same contours. */
+static void reencode(const rtstruct *s) {
+  rtw_roi *roi = xcalloc((size_t)s->nroi + 1, sizeof *roi);
+  rtw_contour **cs = xcalloc((size_t)s->nroi + 1, sizeof *cs);
+  for (int i = 0; i < s->nroi; i++) {
+    const rtstruct_roi *r = &s->roi[i];
+    roi[i].number = r->number;
+    roi[i].name = r->name;
+    roi[i].type = r->type[0] ? r->type : NULL;
+    if (r->error) {
+      roi[i].no_contours = 1;
+      continue;
+    }
+    cs[i] = xcalloc((size_t)r->nc + 1, sizeof **cs);
+    for (int k = 0; k < r->nc; k++) cs[i][k] = (rtw_contour){NULL, r->c[k].n, r->c[k].p, NULL, -1};
+    roi[i].nc = r->nc;
+    roi[i].c = cs[i];
+  }
+  rtw_opts o = {0, 1, 0, 0, NULL, NULL, 0};
+  size_t len;
+  unsigned char *b = rtw_write(&o, roi, s->nroi, &len);
+  rtstruct t;
+  char err[1024];
+  INVARIANT(rtstruct_parse(b, len, NAME, &t, err, sizeof err) == 0, "a re-encoded set does not read: %s", err);
+  INVARIANT(t.nroi == s->nroi, "%d ROIs, re-encoded %d", s->nroi, t.nroi);
+  for (int i = 0; i < s->nroi; i++) {
+    const rtstruct_roi *a = &s->roi[i], *c = &t.roi[i];
+    INVARIANT(a->number == c->number && strcmp(a->name, c->name) == 0 && strcmp(a->type, c->type) == 0,
+              "ROI %d: number, name or type differ after re-encoding", a->number);
+    if (a->error) continue;
+    INVARIANT(!c->error && a->nc == c->nc && a->plane == c->plane && a->slices == c->slices,
+              "ROI %d: re-encoded differs (%s)", a->number, c->error ? c->error : "counts");
+    for (int k = 0; k < a->nc; k++) {
+      INVARIANT(a->c[k].n == c->c[k].n && same_bits(a->c[k].h, c->c[k].h), "ROI %d contour %d", a->number, k);
+      for (int j = 0; j < 3 * a->c[k].n; j++)
+        INVARIANT(same_bits(a->c[k].p[j], c->c[k].p[j]), "ROI %d contour %d value %d", a->number, k, j);
+    }
+  }
+  rtstruct_free(&t);
+  free(b);
+  for (int i = 0; i < s->nroi; i++) free(cs[i]);
+  free(cs);
+  free(roi);
+}
+
+int pipeline_dicom(const unsigned char *buf, size_t len, double max_pair) {
+  rtstruct s;
+  char err[1024];
+  if (rtstruct_parse(buf, len, NAME, &s, err, sizeof err) != 0) {
+    one_line(err, NAME);
+    return 1;
+  }
+  if (s.warnings) INVARIANT(strncmp(s.warnings, NAME ": ", strlen(NAME) + 2) == 0, "warnings: %s", s.warnings);
+  reencode(&s);
+  for (int i = 0; i < s.nroi; i++) {
+    contour_stack st;
+    if (rtstruct_roi_stack(&s, i, 1, &st, NULL, "fuzz", err, sizeof err) != 0) {
+      one_line(err, NAME);
+      continue;
+    }
+    tile(&st, max_pair);
+    contour_stack_free(&st);
+  }
+  rtstruct_free(&s);
+  return 0;
+}
