@@ -9,7 +9,8 @@
  * parallel algorithm does (run/run.h): on the simulated machine, or on
  * threads with --backend threads, or on MPI processes in the MPI build
  * (tile-mpi, `make mpi`), and each row also gives the pair's time and
- * messages.  The result, path and mesh are the same either way. */
+ * messages.  The result, path and mesh are the same either way.  A DICOM
+ * RT structure set is handled by tile_dicom.c, through tile_stack. */
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -21,6 +22,7 @@
 #include "mesh.h"
 #include "meshio.h"
 #include "run.h"
+#include "tile_dicom.h"
 #include "tiling.h"
 #include "xmem.h"
 #ifdef TILESIM_MPI
@@ -31,7 +33,9 @@ static const char usage_line[] =
     "usage: tile STACK [-o OUT.obj|OUT.ply|OUT.stl] [--cost area|span] [--caps] [-q]\n"
     "            [--procs P [--backend sim|threads] [--alloc half|size] [--min-diag d]\n"
     "             [--machine NAME] [--net ideal|bus|loggp] [--m S] [--c S]\n"
-    "             [--trace FILE.csv|FILE.json]]\n";
+    "             [--trace FILE.csv|FILE.json]]\n"
+    "       tile FILE.dcm [--list | --roi NAME|NUMBER|all ... [-o OUT.stl|DIR/ [--format stl|obj|ply]]\n"
+    "            [--contours OUT.contours|DIR/] [options as for a stack]]\n";
 
 static void usage(FILE *f) {
   fputs(usage_line, f);
@@ -52,6 +56,14 @@ static void usage(FILE *f) {
         f);
   fputs(run_options_help, f);
   fputs("  --trace FILE       the simulated timeline: CSV, or Chrome trace JSON (.json)\n"
+        "\n"
+        "A DICOM RT structure set (recognised by its content) instead of STACK: each ROI\n"
+        "is tiled as its closed planar contours would be as a stack (patient LPS, mm):\n"
+        "  --list             its ROIs, CSV (the default without --roi)\n"
+        "  --roi NAME|NUMBER  tile that ROI (repeatable; 'all' for every ROI)\n"
+        "  -o DIR/            with several ROIs: one mesh each, DIR/NAME.stl\n"
+        "  --format F         the meshes' format under -o DIR/: stl (default), obj, ply\n"
+        "  --contours FILE    write the ROI as a .contours stack (DIR/ for several)\n"
         "\n"
         "CSV on stdout: pair,z0,z1,m,n,cost,area,volume,nodes; with --procs also\n"
         "procs,sim_time,msg_boundary,msg_backtrack,msg_bounds,msg_control,bytes,backend.\n"
@@ -104,39 +116,109 @@ static int run_parallel(run_config *rc, const contour_stack *s, par_pair *pr, co
   return res;
 }
 
-static int tile_main(int argc, char **argv) {
-  const char *in = NULL, *out = NULL, *trace = NULL;
-  int caps = 0, quiet = 0, parallel = 0, backend_given = 0;
+/* What tile_stack needs from the command line. */
+typedef struct {
+  int caps, parallel;
+  const char *trace;
   run_config rc;
-  run_config_init(&rc);
-  rc.machine.warn = stderr;
+} tile_opts;
+
+/* Tile the stack: the report on stdout (the header first when header != 0;
+ * header lines prefixed by hprefix, rows by prefix) and the mesh in *me
+ * (always initialised; the caller frees it).  0, or -1 when the parallel run
+ * failed (said on stderr). */
+static int tile_stack(void *ud, const contour_stack *s, const char *hprefix, const char *prefix,
+                      int header, mesh *me) {
+  tile_opts *o = ud;
+  int npairs = s->n - 1, parallel = o->parallel;
+  par_pair *pr = NULL;
+  mesh_init(me, s);
+  if (parallel) {
+    pr = xcalloc((size_t)npairs, sizeof *pr);
+    if (run_parallel(&o->rc, s, pr, o->trace) != 0) {
+      for (int i = 0; i < npairs; i++) tiling_free(&pr[i].t);
+      free(pr);
+      return -1;
+    }
+  }
+  int progress_line = !parallel && isatty(2) && s->n > 2;
+  double total_cost = 0;
+  unsigned long long total_nodes = 0;
+  if (header)
+    printf("%spair,z0,z1,m,n,cost,area,volume,nodes%s\n", hprefix,
+           parallel ? ",procs,sim_time,msg_boundary,msg_backtrack,msg_bounds,msg_control,bytes,backend" : "");
+  for (int i = 0; i < npairs; i++) {
+    const contour *P = &s->c[i], *Q = &s->c[i + 1];
+    tiling t;
+    if (parallel) t = pr[i].t;
+    else tiling_solve(P->pt, P->n, P->z, Q->pt, Q->n, Q->z, o->rc.kind, -1, &t);
+    double area, volume;
+    mesh_add_band(me, s, i, &t, &area, &volume);
+    printf("%s%d,%.17g,%.17g,%d,%d,%.17g,%.17g,%.17g,%llu", prefix, i, P->z, Q->z, P->n, Q->n, t.cost,
+           area, volume, (unsigned long long)t.count.nodes);
+    if (parallel) {
+      const par_counts *c = &pr[i].counts;
+      uint64_t bytes = 0;
+      for (int k = 0; k < PAR_KINDS; k++) bytes += c->bytes[k];
+      printf(",%d,%.9f,%llu,%llu,%llu,%llu,%llu,%s", o->rc.procs, pr[i].time,
+             (unsigned long long)c->msgs[PAR_BOUNDARY], (unsigned long long)c->msgs[PAR_BACKTRACK],
+             (unsigned long long)c->msgs[PAR_BOUNDS], (unsigned long long)c->msgs[PAR_CONTROL],
+             (unsigned long long)bytes, run_backend_name(o->rc.backend));
+    }
+    putchar('\n');
+    total_cost += t.cost;
+    total_nodes += t.count.nodes;
+    tiling_free(&t);
+    if (progress_line) fprintf(stderr, "\rtile: pair %d of %d", i + 1, npairs);
+  }
+  if (progress_line) fputs("\r\033[K", stderr);
+  if (o->caps) {
+    mesh_add_caps(me, s);
+    printf("%smesh,%.17g,%.17g,,,%.17g,%.17g,%.17g,%llu%s\n", prefix, s->c[0].z, s->c[s->n - 1].z,
+           total_cost, mesh_area(me), mesh_volume(me), total_nodes, parallel ? ",,,,,,,," : "");
+  }
+  free(pr);
+  return 0;
+}
+
+static int tile_main(int argc, char **argv) {
+  const char *in = NULL, *out = NULL;
+  int quiet = 0, backend_given = 0;
+  tile_opts o = {0, 0, NULL, {0}};
+  tile_dicom_opts dopt;
+  memset(&dopt, 0, sizeof dopt);
+  run_config_init(&o.rc);
+  o.rc.machine.warn = stderr;
   char err[512];
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+    int k = 0;
     if (strcmp(a, "-h") == 0 || strcmp(a, "--help") == 0) {
       usage(stdout);
       return 0;
     } else if (strcmp(a, "--caps") == 0) {
-      caps = 1;
+      o.caps = 1;
     } else if (strcmp(a, "-q") == 0 || strcmp(a, "--quiet") == 0) {
       quiet = 1;
+    } else if ((k = tile_dicom_option(&dopt, a, v, err, sizeof err)) != 0) {   /* DICOM input */
+      if (k < 0) return bad_usage("%s", err);
+      i += k - 1;
     } else if (a[0] == '-' && a[1] != 0) {
-      int k = 0;
       if (!v) return bad_usage("option %s needs a value", a);
       if (strcmp(a, "-o") == 0) {
-        if (meshio_format_of(v) == MESHIO_NONE)
+        if (meshio_format_of(v) == MESHIO_NONE && !tile_dicom_is_dir(v))
           return bad_usage("unknown mesh format, use .obj, .ply or .stl (%s)", v);
         out = v;
       } else if (strcmp(a, "--cost") == 0) {
-        if (cost_parse(v, &rc.kind) != 0) return bad_usage("unknown cost, use area or span (%s)", v);
+        if (cost_parse(v, &o.rc.kind) != 0) return bad_usage("unknown cost, use area or span (%s)", v);
       } else if (strcmp(a, "--trace") == 0) {
-        trace = v;
-      } else if ((k = run_option(&rc, a, v, err, sizeof err)) < 0) {
+        o.trace = v;
+      } else if ((k = run_option(&o.rc, a, v, err, sizeof err)) < 0) {
         return bad_usage("%s", err);
       } else if (k == 0) {
         return bad_usage("unknown option (%s)", a);
       }
-      if (strcmp(a, "--procs") == 0) parallel = 1;
+      if (strcmp(a, "--procs") == 0) o.parallel = 1;
       if (strcmp(a, "--backend") == 0) backend_given = 1;
       i++;
     } else if (in) {
@@ -146,22 +228,36 @@ static int tile_main(int argc, char **argv) {
     }
   }
   if (!in) return bad_usage("%s", "no contour stack given");
-  if (!parallel && rc.backend == RUN_MPI && run_backend_ranks(RUN_MPI) >= 2) {
-    parallel = 1;   /* tile-mpi under mpirun -np N: the N ranks */
-    rc.procs = run_backend_ranks(RUN_MPI);
+  if (!o.parallel && o.rc.backend == RUN_MPI && run_backend_ranks(RUN_MPI) >= 2) {
+    o.parallel = 1;   /* tile-mpi under mpirun -np N: the N ranks */
+    o.rc.procs = run_backend_ranks(RUN_MPI);
   }
-  if (trace && !parallel) return bad_usage("%s", "--trace needs --procs (it traces the simulated machine)");
-  if (trace && rc.backend != RUN_SIM) return bad_usage("%s", "--trace traces the simulated machine (--backend sim)");
-  if (backend_given && !parallel) return bad_usage("%s", "--backend needs --procs");
-  if (parallel && run_backend_ranks(rc.backend) > 0 && run_ranks(rc.procs) > run_backend_ranks(rc.backend)) {
+  if (o.trace && !o.parallel) return bad_usage("%s", "--trace needs --procs (it traces the simulated machine)");
+  if (o.trace && o.rc.backend != RUN_SIM) return bad_usage("%s", "--trace traces the simulated machine (--backend sim)");
+  if (backend_given && !o.parallel) return bad_usage("%s", "--backend needs --procs");
+  if (o.parallel && run_backend_ranks(o.rc.backend) > 0 && run_ranks(o.rc.procs) > run_backend_ranks(o.rc.backend)) {
     char msg[160];
-    snprintf(msg, sizeof msg, "--procs %d needs %d ranks; the %s run has %d", rc.procs,
-             run_ranks(rc.procs), run_backend_name(rc.backend), run_backend_ranks(rc.backend));
+    snprintf(msg, sizeof msg, "--procs %d needs %d ranks; the %s run has %d", o.rc.procs,
+             run_ranks(o.rc.procs), run_backend_name(o.rc.backend), run_backend_ranks(o.rc.backend));
     return bad_usage("%s", msg);
   }
 
+  /* A DICOM RT structure set (by its content): tile_dicom.c. */
+  if (tile_dicom_sniff(in)) {
+    tile_dicom_env env = {tile_stack, &o, bad_usage, out, quiet, o.trace != NULL, 1 /* as below */};
+    return tile_dicom_main(&dopt, in, &env);
+  }
+  if (tile_dicom_given(&dopt)) {
+    fprintf(stderr, "tile: %s: not a DICOM file; --list, --roi, --contours and --format read DICOM RT "
+            "structure sets\n", in);
+    return 1;
+  }
+  if (out && meshio_format_of(out) == MESHIO_NONE)
+    return bad_usage("unknown mesh format, use .obj, .ply or .stl (%s)", out);
+
   contour_stack s;
-  /* Notes on repaired input are held back until the input is accepted: a
+  /* (tile_dicom.c checks each ROI's stack as this one is: env.pairs.)
+   * Notes on repaired input are held back until the input is accepted: a
    * refused file gets its one-line message and nothing else. */
   char *held = NULL;
   size_t heldlen = 0;
@@ -177,56 +273,9 @@ static int tile_main(int argc, char **argv) {
   }
   if (heldlen) fwrite(held, 1, heldlen, stderr);
   free(held);
-  int npairs = s.n - 1, rcode = 0;
-  par_pair *pr = NULL;
-  if (parallel) {
-    pr = xcalloc((size_t)npairs, sizeof *pr);
-    if (run_parallel(&rc, &s, pr, trace) != 0) {
-      for (int i = 0; i < npairs; i++) tiling_free(&pr[i].t);
-      free(pr);
-      contour_stack_free(&s);
-      return 1;
-    }
-  }
-
   mesh me;
-  mesh_init(&me, &s);
-  int progress_line = !parallel && isatty(2) && s.n > 2;
-  double total_cost = 0;
-  unsigned long long total_nodes = 0;
-  printf("pair,z0,z1,m,n,cost,area,volume,nodes%s\n",
-         parallel ? ",procs,sim_time,msg_boundary,msg_backtrack,msg_bounds,msg_control,bytes,backend" : "");
-  for (int i = 0; i < npairs; i++) {
-    const contour *P = &s.c[i], *Q = &s.c[i + 1];
-    tiling t;
-    if (parallel) t = pr[i].t;
-    else tiling_solve(P->pt, P->n, P->z, Q->pt, Q->n, Q->z, rc.kind, -1, &t);
-    double area, volume;
-    mesh_add_band(&me, &s, i, &t, &area, &volume);
-    printf("%d,%.17g,%.17g,%d,%d,%.17g,%.17g,%.17g,%llu", i, P->z, Q->z, P->n, Q->n, t.cost, area,
-           volume, (unsigned long long)t.count.nodes);
-    if (parallel) {
-      const par_counts *c = &pr[i].counts;
-      uint64_t bytes = 0;
-      for (int k = 0; k < PAR_KINDS; k++) bytes += c->bytes[k];
-      printf(",%d,%.9f,%llu,%llu,%llu,%llu,%llu,%s", rc.procs, pr[i].time,
-             (unsigned long long)c->msgs[PAR_BOUNDARY], (unsigned long long)c->msgs[PAR_BACKTRACK],
-             (unsigned long long)c->msgs[PAR_BOUNDS], (unsigned long long)c->msgs[PAR_CONTROL],
-             (unsigned long long)bytes, run_backend_name(rc.backend));
-    }
-    putchar('\n');
-    total_cost += t.cost;
-    total_nodes += t.count.nodes;
-    tiling_free(&t);
-    if (progress_line) fprintf(stderr, "\rtile: pair %d of %d", i + 1, npairs);
-  }
-  if (progress_line) fputs("\r\033[K", stderr);
-  if (caps) {
-    mesh_add_caps(&me, &s);
-    printf("mesh,%.17g,%.17g,,,%.17g,%.17g,%.17g,%llu%s\n", s.c[0].z, s.c[s.n - 1].z, total_cost,
-           mesh_area(&me), mesh_volume(&me), total_nodes, parallel ? ",,,,,,,," : "");
-  }
-  if (fflush(stdout) != 0) {
+  int rcode = tile_stack(&o, &s, "", "", 1, &me) != 0;
+  if (rcode == 0 && fflush(stdout) != 0) {
     fprintf(stderr, "tile: cannot write the report (%s)\n", strerror(errno));
     rcode = 1;
   }
@@ -234,7 +283,6 @@ static int tile_main(int argc, char **argv) {
     fprintf(stderr, "tile: %s\n", err);
     rcode = 1;
   }
-  free(pr);
   mesh_free(&me);
   contour_stack_free(&s);
   return rcode;

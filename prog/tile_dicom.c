@@ -1,0 +1,341 @@
+/* tile_dicom.c -- ./tile on a DICOM RT structure set: list its ROIs, tile
+ * them (one, several or all), convert them to .contours stacks.
+ *
+ * Everything that can be refused is refused before any output: the file, the
+ * ROIs asked for, their stacks.  With --roi all, an ROI that cannot be tiled
+ * (no closed contours, or a refusal) is skipped with a warning and the others
+ * are tiled. */
+#include "tile_dicom.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "atomicfile.h"
+#include "dicom.h"
+#include "meshio.h"
+#include "rtstruct.h"
+#include "xmem.h"
+
+int tile_dicom_sniff(const char *path) {
+  if (strcmp(path, "-") == 0) return 0;
+  FILE *f = fopen(path, "rb");
+  if (!f) return 0;
+  unsigned char b[132];
+  size_t n = fread(b, 1, sizeof b, f);
+  fclose(f);
+  return dicom_sniff(b, n);
+}
+
+int tile_dicom_is_dir(const char *path) {
+  struct stat st;
+  size_t n = strlen(path);
+  return (n > 0 && path[n - 1] == '/') || (stat(path, &st) == 0 && S_ISDIR(st.st_mode));
+}
+
+int tile_dicom_option(tile_dicom_opts *o, const char *a, const char *v, char *err, size_t errlen) {
+  if (strcmp(a, "--list") == 0) {
+    o->list = 1;
+    return 1;
+  }
+  int roi = strcmp(a, "--roi") == 0, con = strcmp(a, "--contours") == 0, fmt = strcmp(a, "--format") == 0;
+  if (!roi && !con && !fmt) return 0;
+  if (!v) {
+    snprintf(err, errlen, "option %s needs a value", a);
+    return -1;
+  }
+  if (roi) {
+    if (o->nroi == TILE_DICOM_MAX_ROI) {
+      snprintf(err, errlen, "--roi at most %d times (%s)", TILE_DICOM_MAX_ROI, v);
+      return -1;
+    }
+    o->roi[o->nroi++] = v;
+  } else if (con) {
+    o->contours = v;
+  } else {
+    if (strcmp(v, "stl") != 0 && strcmp(v, "obj") != 0 && strcmp(v, "ply") != 0) {
+      snprintf(err, errlen, "--format takes stl, obj or ply (%s)", v);
+      return -1;
+    }
+    o->format = v;
+  }
+  return 2;
+}
+
+int tile_dicom_given(const tile_dicom_opts *o) {
+  return o->list || o->nroi > 0 || o->contours || o->format;
+}
+
+/* ---------------------------------------------------------------- output */
+
+/* A CSV field: quoted when it holds a comma, a quote or a line break. */
+static void csv_field(FILE *f, const char *s) {
+  if (!strpbrk(s, ",\"\r\n")) {
+    fputs(s, f);
+    return;
+  }
+  fputc('"', f);
+  for (; *s; s++) {
+    if (*s == '"') fputc('"', f);
+    fputc(*s, f);
+  }
+  fputc('"', f);
+}
+
+static void list(const rtstruct *s) {
+  printf("roi_number,name,type,contours,skipped,slices,points,z_min,z_max,plane\n");
+  for (int i = 0; i < s->nroi; i++) {
+    const rtstruct_roi *r = &s->roi[i];
+    printf("%d,", r->number);
+    csv_field(stdout, r->name);
+    putchar(',');
+    csv_field(stdout, r->type);
+    printf(",%d,%d,", r->nc, r->skipped);
+    if (r->error) printf(",,,,\n");
+    else if (r->nc == 0) printf("0,0,,,\n");
+    else printf("%d,%ld,%.17g,%.17g,%s\n", r->slices, r->points, r->hmin, r->hmax,
+                rtstruct_plane_name(r->plane));
+  }
+}
+
+/* The ROI's name as a file name: letters, digits, '.', '-', '_' kept, the
+ * rest '_'; not starting with '.' or '-'; at most 100 bytes; roi_N if it
+ * has no letter or digit. */
+static void file_name(const rtstruct_roi *r, char *buf, size_t cap) {
+  size_t j = 0;
+  int any = 0;
+  for (const char *p = r->name; *p && j + 1 < cap && j < 100; p++) {
+    char c = *p;
+    int ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+             ((c == '.' || c == '-') && j > 0);
+    buf[j++] = ok ? c : '_';
+    any |= (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
+  }
+  buf[j] = 0;
+  if (!any) snprintf(buf, cap, "roi_%d", r->number);
+}
+
+static int same_name(const char *a, const char *b) {
+  for (; *a && *b; a++, b++) {
+    char x = *a, y = *b;
+    if (x >= 'A' && x <= 'Z') x = (char)(x - 'A' + 'a');
+    if (y >= 'A' && y <= 'Z') y = (char)(y - 'A' + 'a');
+    if (x != y) return 0;
+  }
+  return *a == *b;
+}
+
+/* DIR/NAME.EXT for every chosen ROI; a name two ROIs share (ignoring case)
+ * gets the ROI number: NAME_N.EXT. */
+static char **dir_paths(const rtstruct *s, const int *pick, int n, const char *dir, const char *ext) {
+  char (*base)[112] = xmallocarray((size_t)n, sizeof *base);
+  for (int i = 0; i < n; i++) file_name(&s->roi[pick[i]], base[i], sizeof base[i]);
+  char **path = xmallocarray((size_t)n, sizeof *path);
+  size_t dl = strlen(dir);
+  int slash = dl > 0 && dir[dl - 1] == '/';
+  for (int i = 0; i < n; i++) {
+    int clash = 0;
+    for (int j = 0; j < n; j++) clash |= j != i && same_name(base[i], base[j]);
+    size_t len = dl + strlen(base[i]) + 32;
+    path[i] = xmalloc(len);
+    if (clash) snprintf(path[i], len, "%s%s%s_%d.%s", dir, slash ? "" : "/", base[i], s->roi[pick[i]].number, ext);
+    else snprintf(path[i], len, "%s%s%s.%s", dir, slash ? "" : "/", base[i], ext);
+  }
+  free(base);
+  return path;
+}
+
+static void free_paths(char **p, int n) {
+  if (!p) return;
+  for (int i = 0; i < n; i++) free(p[i]);
+  free(p);
+}
+
+static int make_dir(const char *dir) {
+  struct stat st;
+  if (stat(dir, &st) == 0 && S_ISDIR(st.st_mode)) return 0;
+  if (mkdir(dir, 0777) == 0) return 0;
+  fprintf(stderr, "tile: %s: cannot create the directory (%s)\n", dir, strerror(errno));
+  return -1;
+}
+
+static int write_text(const char *path, const char *text, size_t len) {
+  atomicfile af;
+  char err[512];
+  if (atomicfile_open(&af, path, "w", err, sizeof err) != 0) {
+    fprintf(stderr, "tile: %s\n", err);
+    return -1;
+  }
+  fwrite(text, 1, len, af.f);
+  if (atomicfile_close(&af, 1, err, sizeof err) != 0) {
+    fprintf(stderr, "tile: %s\n", err);
+    return -1;
+  }
+  return 0;
+}
+
+static void warn_lines(FILE *f, const char *lines) {
+  for (const char *p = lines; f && p && *p;) {
+    const char *e = strchr(p, '\n');
+    size_t n = e ? (size_t)(e - p) : strlen(p);
+    fprintf(f, "tile: %.*s\n", (int)n, p);
+    p += n + (e != NULL);
+  }
+}
+
+/* ---------------------------------------------------------------- main */
+
+int tile_dicom_main(const tile_dicom_opts *o, const char *in, const tile_dicom_env *env) {
+  char err[1024];
+  int all = 0;
+  for (int i = 0; i < o->nroi; i++) all |= strcmp(o->roi[i], "all") == 0;
+  int several = all || o->nroi > 1;
+  int out_dir = env->out && tile_dicom_is_dir(env->out);
+  int con_dir = o->contours && tile_dicom_is_dir(o->contours);
+  /* Usage, before the file is read. */
+  if (o->list && (o->nroi || o->contours || env->out))
+    return env->usage("%s", "--list lists the ROIs; leave out --roi, --contours and -o");
+  if (!o->nroi && (o->contours || env->out))
+    return env->usage("%s", "-o and --contours need --roi NAME|NUMBER|all (the ROI to tile)");
+  if (env->out && !out_dir && meshio_format_of(env->out) == MESHIO_NONE)
+    return env->usage("unknown mesh format, use .obj, .ply or .stl, or DIR/ (%s)", env->out);
+  if (several && env->out && !out_dir)
+    return env->usage("several ROIs write one mesh each: -o DIR/ (%s)", env->out);
+  if (several && o->contours && !con_dir)
+    return env->usage("several ROIs write one stack each: --contours DIR/ (%s)", o->contours);
+  if (o->format && !out_dir) return env->usage("%s", "--format is for -o DIR/ (the meshes' format)");
+  if (several && env->trace) return env->usage("%s", "--trace traces one ROI at a time");
+
+  rtstruct s;
+  if (rtstruct_read(in, &s, err, sizeof err) != 0) {
+    fprintf(stderr, "tile: %s\n", err);
+    return 1;
+  }
+  /* Warnings and notes are held back until nothing can be refused: a
+   * refusal is one line and nothing else. */
+  char *held = NULL;
+  size_t heldlen = 0;
+  FILE *notes = env->quiet ? NULL : open_memstream(&held, &heldlen);
+  warn_lines(notes, s.warnings);
+  if (!o->nroi) {
+    if (notes) fclose(notes), fputs(held, stderr), free(held);
+    list(&s);
+    if (!o->list)
+      fprintf(stderr,
+              "tile: %s: an RT structure set of %d ROI%s; add --roi NAME|NUMBER to tile one "
+              "(-o OUT.stl for its mesh), --roi all -o DIR/ for all, --contours OUT.contours to "
+              "convert one to a stack\n", in, s.nroi, s.nroi == 1 ? "" : "s");
+    rtstruct_free(&s);
+    return fflush(stdout) == 0 ? 0 : 1;
+  }
+
+  /* The ROIs, in the order asked, each once. */
+  int *pick = xmallocarray((size_t)s.nroi + 1, sizeof *pick), npick = 0, rcode = 1;
+  char *chosen = xcalloc((size_t)s.nroi + 1, 1);
+  contour_stack *st = xcalloc((size_t)s.nroi + 1, sizeof *st);
+  mesh *me = xcalloc((size_t)s.nroi + 1, sizeof *me);
+  char **mpath = NULL, **cpath = NULL;
+  int nmesh = 0;
+  for (int i = 0; i < o->nroi; i++) {
+    if (strcmp(o->roi[i], "all") == 0) {
+      for (int k = 0; k < s.nroi; k++)
+        if (!chosen[k]) chosen[k] = 1, pick[npick++] = k;
+      continue;
+    }
+    int k = rtstruct_find(&s, o->roi[i], err, sizeof err);
+    if (k < 0) {
+      fprintf(stderr, "tile: %s\n", err);
+      goto done;
+    }
+    if (!chosen[k]) chosen[k] = 1, pick[npick++] = k;
+  }
+  /* Their stacks: refused ones end the run, or with all are skipped. */
+  int tile = env->out || !o->contours, kept = 0;
+  for (int i = 0; i < npick; i++) {
+    const rtstruct_roi *r = &s.roi[pick[i]];
+    int bad = rtstruct_roi_check(&s, pick[i], err, sizeof err);
+    if (!bad && tile)
+      bad = rtstruct_roi_stack(&s, pick[i], env->pairs, &st[kept], notes, "tile", err, sizeof err);
+    if (bad) {
+      if (!all) {
+        fprintf(stderr, "tile: %s\n", err);
+        goto done;
+      }
+      if (notes) fprintf(notes, "tile: %s; skipped\n", err);
+      continue;
+    }
+    warn_lines(notes, r->warnings);
+    pick[kept++] = pick[i];
+  }
+  npick = kept;
+  if (notes) {
+    fclose(notes), notes = NULL;
+    fputs(held, stderr);
+  }
+  if (npick == 0) {
+    fprintf(stderr, "tile: %s: none of the %d ROIs can be tiled\n", s.name, s.nroi);
+    goto done;
+  }
+  if (out_dir) mpath = dir_paths(&s, pick, npick, env->out, o->format ? o->format : "stl");
+  if (con_dir) cpath = dir_paths(&s, pick, npick, o->contours, "contours");
+
+  /* The tiling, the report on stdout. */
+  if (tile) {
+    char hpre[32] = "", pre[600] = "";
+    if (several) snprintf(hpre, sizeof hpre, "roi_number,name,");
+    for (int i = 0; i < npick; i++) {
+      const rtstruct_roi *r = &s.roi[pick[i]];
+      if (several) {
+        char *field = NULL;
+        size_t flen = 0;
+        FILE *f = open_memstream(&field, &flen);
+        csv_field(f, r->name);
+        fclose(f);
+        snprintf(pre, sizeof pre, "%d,%s,", r->number, field);
+        free(field);
+      }
+      if (env->tile(env->ud, &st[i], hpre, pre, i == 0, &me[i]) != 0) {
+        nmesh = i + 1;
+        goto done;
+      }
+      nmesh = i + 1;
+      for (int v = 0; v < me[i].nv; v++)
+        rtstruct_to_patient(r->plane, &me[i].v[v].x, &me[i].v[v].y, &me[i].v[v].z);
+    }
+    if (fflush(stdout) != 0) {
+      fprintf(stderr, "tile: cannot write the report (%s)\n", strerror(errno));
+      goto done;
+    }
+  }
+  /* The files. */
+  if ((out_dir && make_dir(env->out) != 0) || (con_dir && make_dir(o->contours) != 0)) goto done;
+  for (int i = 0; i < npick; i++) {
+    if (o->contours) {
+      size_t len;
+      char *text = rtstruct_roi_text(&s, pick[i], &len);
+      int bad = write_text(cpath ? cpath[i] : o->contours, text, len);
+      free(text);
+      if (bad) goto done;
+    }
+    if (env->out && meshio_write(&me[i], mpath ? mpath[i] : env->out, err, sizeof err) != 0) {
+      fprintf(stderr, "tile: %s\n", err);
+      goto done;
+    }
+  }
+  rcode = 0;
+done:
+  if (notes) fclose(notes);
+  free(held);
+  for (int i = 0; i < nmesh; i++) mesh_free(&me[i]);
+  for (int i = 0; i < s.nroi; i++) contour_stack_free(&st[i]);
+  free_paths(mpath, npick);
+  free_paths(cpath, npick);
+  free(me);
+  free(st);
+  free(chosen);
+  free(pick);
+  rtstruct_free(&s);
+  return rcode;
+}

@@ -1,0 +1,56 @@
+/* tile_dicom.h -- ./tile on a DICOM RT structure set: --list, --roi, --contours.
+ *
+ *   tile FILE.dcm [--list]
+ *   tile FILE.dcm --roi NAME|NUMBER [--roi ...] [-o OUT.stl] [options as for a stack]
+ *   tile FILE.dcm --roi all -o DIR/ [--format stl|obj|ply]
+ *   tile FILE.dcm --roi NAME|NUMBER|all --contours OUT.contours|DIR/
+ *
+ * Each ROI is tiled exactly as its .contours stack would be (input/rtstruct.h);
+ * tile.c does the tiling through the callback in tile_dicom_env. */
+#ifndef TILE_DICOM_H
+#define TILE_DICOM_H
+
+#include "contour.h"
+#include "mesh.h"
+
+enum { TILE_DICOM_MAX_ROI = 256 };   /* --roi options, at most */
+
+typedef struct {
+  int list;                               /* --list */
+  int nroi;                               /* --roi, in order */
+  const char *roi[TILE_DICOM_MAX_ROI];
+  const char *contours;                   /* --contours FILE or DIR/ */
+  const char *format;                     /* --format, for -o DIR/ */
+} tile_dicom_opts;
+
+typedef struct {
+  /* Tile s: the report on stdout (its header first when header != 0; the
+   * header's lines prefixed by hprefix, the others by prefix) and the mesh
+   * in *me (the caller frees it).  0, or -1 when the run failed (said on
+   * stderr). */
+  int (*tile)(void *ud, const contour_stack *s, const char *hprefix, const char *prefix, int header,
+              mesh *me);
+  void *ud;
+  /* Bad usage: print "tile: " fmt(arg), the usage line; returns 2. */
+  int (*usage)(const char *fmt, const char *arg);
+  const char *out;     /* -o, or NULL */
+  int quiet;           /* -q */
+  int trace;           /* --trace given: one ROI only */
+  int pairs;           /* check stacks with contour_stack_pairs, as tile.c does */
+} tile_dicom_env;
+
+/* 1 if the file at path is DICOM by its content (not "-", not unreadable). */
+int tile_dicom_sniff(const char *path);
+
+/* 1 if path names a directory for -o/--contours: ends in '/' or is one. */
+int tile_dicom_is_dir(const char *path);
+
+/* The DICOM options: returns how many arguments it took (1 or 2), 0 if a
+ * is not one of them, -1 if its value is missing or bad (message in err). */
+int tile_dicom_option(tile_dicom_opts *o, const char *a, const char *v, char *err, size_t errlen);
+int tile_dicom_given(const tile_dicom_opts *o);   /* any of them given */
+
+/* ./tile on the DICOM file `in`: returns the exit status. */
+int tile_dicom_main(const tile_dicom_opts *o, const char *in, const tile_dicom_env *env);
+
+#endif
