@@ -414,6 +414,13 @@ static void refusals(void) {
   free(b);
   cs[1] = two[1];
 
+  cs[1] = (rtw_contour){NULL, 4, NULL, "0\\0\\8\\10\\10\\8\\10\\0\\8\\0\\10\\8", -1};
+  b = write1(&r, 1, &len);
+  roi_refused("bowtie", b, len, "contour item 2: the contour crosses itself: the segment from contour item 2, point 1 to "
+              "contour item 2, point 2");
+  free(b);
+  cs[1] = two[1];
+
   rtw_roi empty = {2, "Areola", NULL, 0, NULL, 0, 1};
   b = write1(&empty, 1, &len);
   roi_refused("empty", b, len, "ROI 2 'Areola' has no contours to tile");
