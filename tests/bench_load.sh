@@ -13,6 +13,9 @@
 #   PROCS="3 5" BUSY=2 REPEAT=5 STACK=FILE BACKENDS="threads mpi" sh tests/bench_load.sh
 #   CPUS=0,1 sh tests/bench_load.sh          # everything pinned to those cores (taskset)
 #
+# mpirun gets --bind-to none, so that its ranks stay where taskset (CPUS) put
+# them, beside the busy loops.
+#
 # Columns: backend, procs, busy (loops beside the run), repeat; unloaded_s
 # and loaded_s, the medians of the command's wall time (for mpi, mpirun's
 # start-up included) and ratio = loaded_s / unloaded_s; unloaded_runs_s and
@@ -46,15 +49,15 @@ now() { date +%s.%N; }
 one() {
   t0=$(now)
   if [ "$1" = mpi ]; then
-    $PIN mpirun --oversubscribe --mca mpi_yield_when_idle 0 -np "$2" ./tile-mpi "$STACK" -q > "$tmp/out.csv"
+    $PIN mpirun --oversubscribe --bind-to none --mca mpi_yield_when_idle 0 -np "$2" ./tile-mpi "$STACK" -q > "$tmp/out.csv"
   else
     $PIN ./tile "$STACK" -q --backend threads --procs "$2" > "$tmp/out.csv"
   fi
   t1=$(now)
-  awk -F, -v w="$(echo "$t1 - $t0" | bc)" '
+  awk -F, -v t0="$t0" -v t1="$t1" '
     NR == 1 { for (i = 1; i <= NF; i++) { if ($i == "sim_time") st = i; if ($i == "cost") co = i } next }
     { s += $st; c += $co }
-    END { printf "%.6f %.6f %.10g\n", w, s, c }' "$tmp/out.csv"
+    END { printf "%.6f %.6f %.10g\n", t1 - t0, s, c }' "$tmp/out.csv"
 }
 
 # median of the first (or second) field of the lines of a file
