@@ -52,7 +52,8 @@ const char run_options_help[] =
     "  --backend NAME     sim (default: the simulated machine, simulated seconds) or\n"
     "                     threads (a thread per rank, wall-clock seconds)\n"
 #endif
-    "  --spin S           threads: seconds a waiting rank spins before it sleeps\n"
+    "  --spin S           seconds a waiting rank spins before it sleeps (threads;\n"
+    "                     the simulator's --wake model)\n"
     "  --alloc half|size|fit  processor allocation: half (section 4), by size (7.1),\n"
     "                     or fit: by size, no group more slaves than it can use\n"
     "  --min-diag d       at least d nodes of a diagonal per slave (7.2); default 1\n"
@@ -63,7 +64,12 @@ const char run_options_help[] =
     "  --m S, --c S       seconds per message, per unit of work (node)\n"
     "  --per-byte S       seconds per message byte (ideal, bus; a topology's links)\n"
     "  --local S          seconds per message between ranks on one processor\n"
-    "  --L S --o S --g S --G S   LogGP latency, overhead, gap, gap per byte\n";
+    "  --L S --o S --g S --G S   LogGP latency, overhead, gap, gap per byte\n"
+    "  --o-send S --o-recv S   processor seconds a send, a receive costs (any net)\n"
+    "  --o-send-byte S --o-recv-byte S   ... and per byte (copying)\n"
+    "  --wake S           a receiver that waited longer than --spin sleeps: it runs\n"
+    "                     S after its message arrives; --o-wake S: its waker's cost\n"
+    "  --slowdown F       computing slows by F (a fraction) per other busy processor\n";
 
 static int seconds(const char *opt, const char *val, double *out, char *err, size_t errlen) {
   char *end;
@@ -127,6 +133,7 @@ int run_option(run_config *rc, const char *opt, const char *val, char *err, size
       return -1;
     }
     rc->threads.spin_ns = (long)(v * 1e9 + 0.5);
+    c->cpu.spin = v;   /* the simulator's model of that waiting (cpu.h) */
     return 1;
   }
   if (strcmp(opt, "--alloc") == 0) {
@@ -158,6 +165,8 @@ int run_option(run_config *rc, const char *opt, const char *val, char *err, size
   for (size_t i = 0; i < sizeof secs / sizeof secs[0]; i++)
     if (strcmp(opt, secs[i].name) == 0)
       return seconds(opt, val, (double *)((char *)c + secs[i].off), err, errlen);
+  double *cpu = cpu_model_field(&c->cpu, opt);   /* --o-send, --wake, --slowdown, ... */
+  if (cpu) return seconds(opt, val, cpu, err, errlen);
   return 0;
 }
 

@@ -58,7 +58,10 @@ void run_config_init(run_config *rc);
  *   --procs P  --alloc half|size|fit  --min-diag d  --block k  --schedule static|dynamic
  *   --machine NAME  --net ideal|bus|loggp
  *   --m S  --c S  --per-byte S  --local S  --L S  --o S  --g S  --G S
- *   --backend sim|threads (|mpi in MPI builds)  --spin S (threads)
+ *   --o-send S  --o-send-byte S  --o-recv S  --o-recv-byte S  --wake S
+ *   --o-wake S  --slowdown F (the processor-side model, sim/cpu.h)
+ *   --backend sim|threads (|mpi in MPI builds)
+ *   --spin S (threads; and the simulator's sleep threshold, cpu.h)
  * (--machine sets every machine parameter; give it before the others).
  * Returns 1 if opt is one of these (val consumed), 0 if not, -1 for a bad
  * value, with a message in err. */

@@ -70,6 +70,7 @@ static void profile_tc2000(sim_config *cfg) {
   cfg->o = 0;              /* LogGP overhead */
   cfg->g = 0;              /* LogGP gap */
   cfg->G = 0;              /* LogGP gap per byte */
+  cpu_model_init(&cfg->cpu);  /* no processor overheads, wake-ups or slowdown */
   cfg->stack = 0;
   cfg->warn = stderr;
 }
@@ -149,6 +150,7 @@ struct rank {
   /* blocked in recv: */
   int wait_src, wait_tag;  /* what it waits for (MP_ANY = -1) */
   double wake;             /* the time it is queued to wake at, INFINITY if none */
+  double since;            /* when it blocked */
   int deadlocked;          /* woken by the deadlock report */
   msg *head, *tail;        /* mailbox: messages sent to it, sent or arrived */
   chan *chans;             /* last arrival per destination, open addressing */
@@ -176,6 +178,8 @@ struct sim {
   const mp_proc *procs;
   int live;                /* ranks neither done nor abandoned */
   int stopped;             /* deadlock or error: every mp call fails at once */
+  int cpu;                 /* the processor-side model (cpu.h) is on */
+  unsigned char *seen;     /* per processor, for active_others */
   int ran;
   msg *pool;               /* free messages */
   FILE *tcsv, *tjson;
@@ -385,6 +389,24 @@ static int stopped_call(sim *s, rank *r) {
 
 /* ==== the mp calls ======================================================== */
 
+/* cpu.h's busy neighbours: the processors other than r's with a rank that is
+ * awake at r's clock (computing, sending, queued to act, or blocked in recv
+ * no longer than cpu.spin: spinning), each counted once. */
+static int active_others(sim *s, const rank *r) {
+  int k = 0;
+  unsigned char *seen = s->seen;
+  memset(seen, 0, (size_t)s->cfg.procs);
+  seen[r->proc] = 1;
+  for (int i = 0; i < s->n; i++) {
+    const rank *o = &s->ranks[i];
+    if (seen[o->proc] || o->state == R_DONE || o->state == R_ABANDONED) continue;
+    if (o->state == R_BLOCKED && r->now - o->since > s->cfg.cpu.spin) continue;   /* asleep */
+    seen[o->proc] = 1;
+    k++;
+  }
+  return k;
+}
+
 static int sim_compute(mp *self, double units) {
   rank *r = (rank *)self;
   sim *s = r->s;
@@ -395,7 +417,9 @@ static int sim_compute(mp *self, double units) {
     fail(s, "rank %d: mp_compute(%g): units must be finite and >= 0", r->base.rank, units);
     return MP_EARG;
   }
-  double d = units * s->cfg.c, t0 = r->now, start = reserve(s, r, d);
+  double d = units * s->cfg.c, t0 = r->now;
+  if (s->cpu && s->cfg.cpu.slowdown > 0) d *= 1 + s->cfg.cpu.slowdown * active_others(s, r);
+  double start = reserve(s, r, d);
   r->st.units += units;
   r->st.compute += d;
   r->st.cpu_wait += start - t0;
@@ -430,19 +454,25 @@ static int sim_send(mp *self, int dst, int tag, const void *buf, size_t len) {
   const sim_config *c = &s->cfg;
   rank *d = &s->ranks[dst];
   double before = r->now, t0 = r->now, o = 0, arrival;
-  if (d->proc == r->proc) {
+  int remote = d->proc != r->proc;
+  if (remote && s->cpu && cpu_send_cost(&c->cpu, len) > 0) {   /* cpu.h: the send's processor time */
+    o = cpu_send_cost(&c->cpu, len);
+    t0 = overhead(s, r, o);
+  }
+  if (!remote) {
     arrival = t0 + c->local;
   } else if (c->net == SIM_NET_BUS) {
-    double start = t0 > s->bus_free ? t0 : s->bus_free;
+    double start = r->now > s->bus_free ? r->now : s->bus_free;
     s->bus_free = start + c->m + (double)len * c->per_byte;
     arrival = s->bus_free;
   } else if (c->net == SIM_NET_IDEAL) {
-    arrival = t0 + c->m + (double)len * c->per_byte;
+    arrival = r->now + c->m + (double)len * c->per_byte;
   } else if (c->net == SIM_NET_TOPOLOGY) {   /* link.h; s->seq is the message's id */
-    arrival = links_send(s->links, r->proc, d->proc, t0, len, s->tr, r->base.rank, dst, tag, s->seq);
+    arrival = links_send(s->links, r->proc, d->proc, r->now, len, s->tr, r->base.rank, dst, tag, s->seq);
   } else {
-    o = c->o;
-    t0 = overhead(s, r, o);
+    double t1 = overhead(s, r, c->o);
+    if (o == 0) t0 = t1;
+    o += c->o;
     double *nic = &s->nic[r->proc], inject = r->now > *nic ? r->now : *nic;
     *nic = inject + c->g;
     arrival = inject + (len > 1 ? (double)(len - 1) * c->G : 0) + c->L;
@@ -468,10 +498,19 @@ static int sim_send(mp *self, int dst, int tag, const void *buf, size_t len) {
   s->st.bytes += (long long)len;
   if (s->tr) trace_send(s->tr, r->base.rank, r->proc, t0, o, dst, tag, len, m->seq, arrival);
 
-  /* A receiver blocked on a matching message wakes when the earliest arrives. */
-  if (d->state == R_BLOCKED && arrival < d->wake && matches(m, d->wait_src, d->wait_tag)) {
-    d->wake = arrival;
-    evq_set(s->q, dst, arrival, s->seq++);
+  /* A receiver blocked on a matching message wakes when the earliest arrives
+   * (cpu.h: later if it has gone to sleep; its first waker pays o_wake). */
+  if (d->state == R_BLOCKED && matches(m, d->wait_src, d->wait_tag)) {
+    double resume = arrival;
+    if (s->cpu && remote) {
+      resume = cpu_resume(&c->cpu, d->since, arrival);
+      if (d->wake == INFINITY && cpu_asleep(&c->cpu, d->since, arrival) && c->cpu.o_wake > 0)
+        overhead(s, r, c->cpu.o_wake);
+    }
+    if (resume < d->wake) {
+      d->wake = resume;
+      evq_set(s->q, dst, resume, s->seq++);
+    }
   }
   if (r->now > before) moved(s, r);
   return MP_OK;
@@ -512,9 +551,11 @@ static int sim_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status
     r->wait_src = src;
     r->wait_tag = tag;
     r->wake = INFINITY;
+    r->since = since;
     if (m) {
-      r->wake = m->arrival;
-      evq_set(s->q, r->base.rank, m->arrival, s->seq++);
+      r->wake = s->cpu && s->ranks[m->src].proc != r->proc ? cpu_resume(&s->cfg.cpu, since, m->arrival)
+                                                            : m->arrival;
+      evq_set(s->q, r->base.rank, r->wake, s->seq++);
     }
     give_way(s, r);
     r->state = R_READY;
@@ -533,6 +574,11 @@ static int sim_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status
   if (s->cfg.net == SIM_NET_LOGGP && s->ranks[m->src].proc != r->proc) {
     o = s->cfg.o;
     t0 = overhead(s, r, o);
+  }
+  if (s->cpu && s->ranks[m->src].proc != r->proc && cpu_recv_cost(&s->cfg.cpu, m->len) > 0) {
+    double orc = cpu_recv_cost(&s->cfg.cpu, m->len), t1 = overhead(s, r, orc);   /* cpu.h */
+    if (o == 0) t0 = t1;
+    o += orc;
   }
   size_t n = m->len <= cap ? m->len : cap;
   if (n) memcpy(buf, m->data, n);
@@ -608,6 +654,7 @@ sim *sim_new(const sim_config *cfg, int nranks, char *err, size_t errlen) {
       return NULL;
     }
   }
+  if (cpu_model_check(&cfg->cpu, err, errlen) != 0) return NULL;
   if ((unsigned)cfg->net > SIM_NET_TOPOLOGY ||
       (cfg->net == SIM_NET_TOPOLOGY && cfg->topo.kind == TOPO_NONE)) {
     snprintf(err, errlen, "sim: unknown network model %d", (int)cfg->net);
@@ -646,6 +693,8 @@ sim *sim_new(const sim_config *cfg, int nranks, char *err, size_t errlen) {
   s->place = xmallocarray((size_t)nranks, sizeof *s->place);
   for (int r = 0; r < nranks; r++) s->place[r] = cfg->place ? cfg->place[r] : r % cfg->procs;
   s->cfg.place = s->place;
+  s->cpu = cpu_model_on(&cfg->cpu);
+  s->seen = xcalloc((size_t)cfg->procs, 1);
   s->ranks = xcalloc((size_t)nranks, sizeof *s->ranks);
   for (int r = 0; r < nranks; r++) {
     rank *k = &s->ranks[r];
@@ -837,6 +886,7 @@ void sim_free(sim *s) {
   free(s->nic);
   links_free(s->links);
   topo_free(s->topo);
+  free(s->seen);
   errlog_free(&s->errs);
   free(s);
 }

@@ -43,6 +43,11 @@
  *                      per_byte on every link, cut-through or store-and-
  *                      forward (link.h states it exactly); on an idle machine
  *                      m + h*r + len*per_byte over h links, cut-through.
+ *   Processor costs (cpu.h, all 0 by default): a send's and a receive's
+ *   processor time, per message and per byte, in every model; a receiver
+ *   that waited longer than cpu.spin sleeps and runs cpu.wake after the
+ *   arrival, its waker paying cpu.o_wake; compute slowed by cpu.slowdown
+ *   per other busy processor.
  *   Non-overtaking: messages between one pair of ranks are received in send
  *   order, whatever the model: arrival = max(arrival, last arrival on the
  *   same (src, dst) channel).
@@ -100,6 +105,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "cpu.h"
 #include "link.h"
 #include "mp.h"
 #include "topo.h"
@@ -121,6 +127,8 @@ typedef struct {
                          topo's processors (>= procs), per_byte is every link's */
   double hop_latency; /* topologies: seconds per link a message's head crosses */
   int store_forward;  /* topologies: 1 store-and-forward, 0 cut-through */
+  cpu_model cpu;      /* processor overheads, wake-ups, busy neighbours (cpu.h);
+                         all 0 by default: none */
   size_t stack;       /* coroutine stack bytes per rank, 0 = 256 KiB */
   FILE *warn;         /* warnings go here (default stderr); NULL: quiet */
 } sim_config;
