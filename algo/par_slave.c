@@ -64,9 +64,8 @@ static int points(slave *S, par_rd *r) {
   S->C = xmallocarray((size_t)n, sizeof *S->C);
   par_get_f64s(&pr, (double *)S->R, 2 * m);
   par_get_f64s(&pr, (double *)S->C, 2 * n);
-  /* A slave of many evaluates about 1/S of the nodes: fewer than the 2 m n
-   * weights a table holds.  Tables pay only when the slaves are few. */
-  S->w = weights_new(S->R, m, zr, S->C, n, zc, kind, mp_size(S->mp) - 1 <= 4 ? -1 : 0);
+  /* Tables only when the slaves are few: par_slave_table. */
+  S->w = weights_new(S->R, m, zr, S->C, n, zc, kind, par_slave_table(mp_size(S->mp) - 1));
   S->ws = band_ws_new(m, n);
   size_t T1 = (size_t)(m + n + 1);
   S->U.col = xmallocarray(T1, sizeof(int)), S->U.cum = xmallocarray(T1, sizeof(double));
@@ -364,6 +363,8 @@ static int report(slave *S) {
   memset(c, 0, sizeof *c);
   return par_send(S->mp, c, -1, 0, PAR_TAG_STATS, &S->out);
 }
+
+int par_slave_table(int slaves) { return slaves <= 4 ? -1 : 0; }
 
 void par_slave(mp *self, void *ud) {
   slave S0, *S = &S0;

@@ -24,6 +24,12 @@ typedef struct {
   int diag_len;
 } par_slave_arg;
 
+/* The table argument of weights_new (weights.h) a slave of `slaves` uses:
+ * -1 (by size) when they are few, 0 (on the fly) when many.  A slave of
+ * many evaluates about 1/slaves of the nodes: fewer than the 2 m n weights
+ * a table holds.  (bench --calibrate asks, to time the same kernels.) */
+int par_slave_table(int slaves);
+
 /* The slave's main: ud is a par_slave_arg.  Serves pairs until QUIT. */
 void par_slave(mp *self, void *ud);
 

@@ -41,11 +41,11 @@ static const mode modes[] = {
      "SPEEDUP.csv [MIN_DIAG.csv] [--require LIST]\n"
      "      the paper's seven claims (sections 6, 7), checked against the sweeps"},
     {"--calibrate", bench_calibrate,
-     "[--points N] [--procs LIST] [--repeat R] [--seed S] [--messages K]\n"
-     "      this host's seconds per node (c) and per message (m, per_byte) measured,\n"
-     "      the --net ideal --m --c --per-byte options that make the simulator model it,\n"
-     "      and its predictions beside the threads backend's times (defaults: 2000\n"
-     "      points, procs 1,2,3, fastest of 10 runs)"},
+     "[--points LIST] [--procs LIST] [--repeat R] [--seed S] [--messages K]\n"
+     "      this host measured by micro-benchmarks (c per node; a message's send and\n"
+     "      receive overheads, latency, gap, a sleeper's wake-up; busy cores' slowdown),\n"
+     "      the simulator options that model it, and its predictions beside the threads\n"
+     "      backend's times (defaults: 2000 points, procs 1,2,3, fastest of 10 runs)"},
     {"--tiler", bench_tiler,
      "[--points N[,N...]] [--naive N] [--input STACK]... [--cost area|span]\n"
      "      [--seed S] [--repeat R]\n"

@@ -1,142 +1,65 @@
 /* bench_calibrate.c -- bench --calibrate: make the simulator model this host.
  *
- *   bench --calibrate [--points N] [--procs LIST] [--repeat R] [--seed S]
+ *   bench --calibrate [--points LIST] [--procs LIST] [--repeat R] [--seed S]
  *                     [--messages K]
  *
- * Measured here, each the fastest of R runs (what else runs on the machine
- * only adds time):
- *   c         seconds per node: the serial solver on the generated pair of
- *             N points (the kernels the slaves run), wall time / nodes;
- *   m         seconds per message, one way: two ranks of the threads backend
- *             send a 20-byte message (a boundary message's size) back and
- *             forth K times, wall time / 2K;
- *   per_byte  seconds per byte: the same with 64 KiB messages, less m, per byte.
- * Then, for each P of the list, the paper's algorithm on the pair: measured
- * on the threads backend, and predicted by the simulator on the ideal
- * network with those m, c and per_byte (--net ideal --m M --c C --per-byte B,
- * printed in the options column, ready to paste).  One CSV row per P with
- * both times, the relative error (predicted / measured - 1), both speedups
- * T(1)/T(P), and the pair's optimum as a checksum.
- *
- * What the simulator cannot know: the threads share the host's cores (P
- * ranks on 2 cores here, where the simulator gives each rank a processor of
- * its own for P >= 2, and lets master and slave share one at P = 1), and
- * two cores that both work lose time to each other (caches, memory, the
- * hypervisor).  A line on stderr measures the latter: the serial solver
- * twice at once on two threads, against once alone.
- *
- * Measurements go in rounds (the serial solver, the pair of solvers, then
- * the threads run at each P) and each figure is the fastest over the
- * rounds, so that a slow spell of the machine touches them all alike. */
+ * Measured here by micro-benchmarks (bench_micro.h), never by the parallel
+ * runs they then predict, each the fastest of R runs, in rounds:
+ *   c, c_table  seconds per node: the serial solver on the generated pair,
+ *               weights on the fly and (where the slaves use them) from
+ *               tables, wall time / nodes;
+ *   messages    two ranks of the threads backend: a ping-pong of small and
+ *               of 64 KiB messages, a burst of sends and the burst's
+ *               receives, a one-way stream, and a ping-pong whose receiver
+ *               sleeps; from them the processor overheads of a send and of
+ *               a receive (per message and per byte), the one-way latency,
+ *               the gap per message and per byte, and the sleeper's wake-up
+ *               and its waker's cost (micro_derive says how);
+ *   slowdown    k copies of the serial solver at once, k = 1, 2, 4, ... up
+ *               to the processors: the least-squares slope of each copy's
+ *               time against k - 1, relative to one alone.
+ * The options that make the simulator model this host follow from them:
+ *   --net loggp --L L --o 0 --g g --G G --o-send .. --o-send-byte ..
+ *   --o-recv .. --o-recv-byte .. --spin S --wake .. --o-wake ..
+ *   --slowdown F --c C
+ * (cpu.h states the model).  Then, for each size of --points and each P of
+ * --procs, the paper's algorithm on the pair: measured on the threads
+ * backend and predicted by the simulator with those options (c_table for
+ * the P whose slaves use weight tables), one CSV row each with the relative
+ * error (predicted / measured - 1), and beside it what the plain ideal
+ * network with the ping-pong's one-way time as m predicts (the old
+ * calibration).  stderr says what was measured and how long it all took. */
 #include "bench_calibrate.h"
 
-#include <pthread.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "bench_list.h"
+#include "bench_micro.h"
 #include "bench_paper.h"
+#include "cpuload.h"
+#include "par_slave.h"
 #include "run.h"
 #include "threads.h"
 #include "tiling.h"
 #include "wallclock.h"
+#include "weights.h"
 #include "xmem.h"
 
 static int usage(const char *why, const char *val) {
   if (why) fprintf(stderr, "bench: %s (%s)\n", why, val ? val : "");
-  fprintf(stderr, "usage: bench --calibrate [--points N] [--procs LIST] [--repeat R] [--seed S] "
+  fprintf(stderr, "usage: bench --calibrate [--points LIST] [--procs LIST] [--repeat R] [--seed S] "
                   "[--messages K]\n");
   return 2;
 }
-
-/* ==== the ping-pong ======================================================= */
-
-typedef struct {
-  int rounds;
-  size_t len;
-  int bad;
-} pingpong;
-
-static void pingpong_main(mp *self, void *ud) {
-  pingpong *p = ud;
-  int me = mp_rank(self);
-  unsigned char *buf = xcalloc(p->len ? p->len : 1, 1);
-  for (int i = 0; i < p->rounds; i++) {
-    buf[0] = (unsigned char)i;
-    if (me == 0) {
-      p->bad += mp_send(self, 1, 0, buf, p->len) != MP_OK;
-      p->bad += mp_recv(self, 1, 0, buf, p->len, NULL) != MP_OK || buf[0] != (unsigned char)i;
-    } else {
-      p->bad += mp_recv(self, 0, 0, buf, p->len, NULL) != MP_OK || buf[0] != (unsigned char)i;
-      p->bad += mp_send(self, 0, 0, buf, p->len) != MP_OK;
-    }
-  }
-  free(buf);
-}
-
-/* Seconds per one-way message of len bytes, the fastest of `repeat` runs of
- * `rounds` round trips; < 0 if a run failed. */
-static double one_way(int rounds, size_t len, int repeat, char *err, size_t errlen) {
-  double best = -1;
-  for (int r = 0; r < repeat; r++) {
-    mpt_config cfg;
-    mpt_config_init(&cfg);
-    mpt *t = mpt_new(&cfg, 2, err, errlen);
-    if (!t) return -1;
-    pingpong pp = {rounds, len, 0};
-    mp_proc procs[2] = {{pingpong_main, &pp}, {pingpong_main, &pp}};
-    int rc = mpt_run(t, procs, err, errlen);
-    double w = mpt_stats_get(t)->wall_s / (2.0 * rounds);
-    mpt_free(t);
-    if (rc != 0 || pp.bad) {
-      if (rc == 0) snprintf(err, errlen, "the ping-pong delivered wrong messages");
-      return -1;
-    }
-    if (best < 0 || w < best) best = w;
-  }
-  return best;
-}
-
-/* ==== two solves at once ================================================== */
-
-typedef struct {
-  const vec2 *A, *B;
-  int n;
-  double wall;
-} solo;
-
-static void *solve_thread(void *ud) {
-  solo *s = ud;
-  tiling t;
-  double t0 = wallclock();
-  tiling_solve(s->A, s->n, 0, s->B, s->n, 5, COST_AREA, -1, &t);
-  s->wall = wallclock() - t0;
-  tiling_free(&t);
-  return NULL;
-}
-
-/* The serial solver on two threads at once: the slower one's time.  What
- * the two cores lose to each other when both work (shared caches, memory,
- * the hypervisor), which no simulated processor loses.  < 0 on failure. */
-static double two_at_once(const vec2 *A, const vec2 *B, int n) {
-  solo s[2] = {{A, B, n, 0}, {A, B, n, 0}};
-  pthread_t t[2];
-  for (int i = 0; i < 2; i++)
-    if (pthread_create(&t[i], NULL, solve_thread, &s[i]) != 0) {
-      if (i == 1) pthread_join(t[0], NULL);
-      return -1;
-    }
-  for (int i = 0; i < 2; i++) pthread_join(t[i], NULL);
-  return s[0].wall > s[1].wall ? s[0].wall : s[1].wall;
-}
-
-/* ==== the runs ============================================================ */
 
 typedef struct {
   double time;     /* the master's time for the pair */
   double cost;
   uint64_t nodes, msgs;
+  mpt_stats ts;    /* threads runs: the backend's statistics */
 } result;
 
 static int one(run_config *rc, run_backend b, int P, const vec2 *A, const vec2 *B, int n, result *out,
@@ -146,7 +69,9 @@ static int one(run_config *rc, run_backend b, int P, const vec2 *A, const vec2 *
   par_pair pr;
   memset(&pr, 0, sizeof pr);
   pr.P = A, pr.np = n, pr.zp = 0, pr.Q = B, pr.nq = n, pr.zq = 5;
-  if (run_pairs(rc, &pr, 1, err, errlen) != 0) return -1;
+  memset(&out->ts, 0, sizeof out->ts);
+  int res = b == RUN_THREADS ? run_threads(rc, &pr, 1, &out->ts, err, errlen) : run_pairs(rc, &pr, 1, err, errlen);
+  if (res != 0) return -1;
   out->time = pr.time;
   out->cost = pr.t.cost;
   out->nodes = pr.counts.nodes;
@@ -156,18 +81,81 @@ static int one(run_config *rc, run_backend b, int P, const vec2 *A, const vec2 *
   return 0;
 }
 
+static int cmp_double(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return x < y ? -1 : x > y;
+}
+
+/* Whether the slaves of a P-processor run use weight tables on n x n. */
+static int slaves_tables(int P, const vec2 *A, const vec2 *B, int n) {
+  int table = par_slave_table(P < 2 ? 1 : P - 1);
+  if (table == 0) return 0;
+  weights *w = weights_new(A, n, 0, B, n, 5, COST_AREA, table);
+  int has = weights_has_table(w);
+  weights_free(w);
+  return has;
+}
+
+/* The simulator options of the model, c aside. */
+static void model_options(const micro_model *d, double spin, double slowdown, char *buf, size_t len) {
+  snprintf(buf, len,
+           "--net loggp --L %.4g --o 0 --g %.4g --G %.4g --o-send %.4g --o-send-byte %.4g "
+           "--o-recv %.4g --o-recv-byte %.4g --spin %.4g --wake %.4g --o-wake %.4g --slowdown %.4g",
+           d->L, d->g, d->G, d->o_send, d->o_send_byte, d->o_recv, d->o_recv_byte, spin, d->wake,
+           d->o_wake, slowdown);
+}
+
+/* The same, set in rc->machine (through run_option, as a user's would be). */
+static void set_options(run_config *rc, const char *opts, double c) {
+  char buf[600], err[200];
+  snprintf(buf, sizeof buf, "%s --c %.4g", opts, c);
+  sim_config_init(&rc->machine);
+  rc->machine.warn = NULL;
+  char *save = NULL;
+  for (char *o = strtok_r(buf, " ", &save); o; o = strtok_r(NULL, " ", &save)) {
+    char *v = strtok_r(NULL, " ", &save);
+    if (!v || run_option(rc, o, v, err, sizeof err) != 1) xpanic("calibrate: option %s: %s", o, err);
+  }
+}
+
+/* The busy cores' slowdown: k copies of the serial solver at once for
+ * k = 1, 2, 4, ... cpus; the least-squares slope of (t_k / t_1 - 1) against
+ * k - 1.  One line on stderr per k. */
+static double slowdown(const vec2 *A, const vec2 *B, int n, int repeat) {
+  int cpus = cpuload_cpus(), ks[32], nk = 0;
+  for (int k = 1; k < cpus && nk < 30; k *= 2) ks[nk++] = k;
+  ks[nk++] = cpus;
+  double t1 = -1, sxy = 0, sxx = 0;
+  fprintf(stderr, "bench: busy cores: the serial solver (%d points) k times at once, each copy's mean time:\n", n);
+  for (int i = 0; i < nk; i++) {
+    double t = micro_together(A, B, n, 0, ks[i], 0, repeat);
+    if (t < 0) break;
+    if (i == 0) t1 = t;
+    double f = t / t1, x = ks[i] - 1;
+    sxy += x * (f - 1), sxx += x * x;
+    fprintf(stderr, "bench:   k = %2d: %.6f s, %.3f times one alone\n", ks[i], t, f);
+  }
+  if (cpus > 1 && t1 > 0) {
+    double t = micro_together(A, B, n, 0, cpus, 1, repeat);
+    if (t > 0)
+      fprintf(stderr, "bench:   one copy beside %d spinning threads: %.6f s, %.3f times alone\n", cpus - 1, t,
+              t / t1);
+  }
+  double s = sxx > 0 ? sxy / sxx : 0;
+  return s > 0 ? s : 0;
+}
+
 int bench_calibrate(int argc, char **argv) {
-  int points = 2000, repeat = 10, messages = 100000;
+  double w0 = wallclock();
+  int repeat = 10, messages = 100000;
   unsigned long long seed = 1993;
-  bench_list procs = {0};
+  bench_list procs = {0}, sizes = {0};
   for (int i = 2; i < argc; i += 2) {   /* an option and its value */
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
     char *e;
     if (!v) return usage("an option needs a value", a);
     if (strcmp(a, "--points") == 0) {
-      long x = strtol(v, &e, 10);
-      if (*e || e == v || x < 3 || x > 100000) return usage("--points takes 3..100000", v);
-      points = (int)x;
+      if (bench_list_parse(v, &sizes, 1, 3, 100000) != 0) return usage("--points takes a list of 3..100000", v);
     } else if (strcmp(a, "--procs") == 0) {
       if (bench_list_parse(v, &procs, 1, 1, 64) != 0) return usage("--procs takes a list of 1..64", v);
     } else if (strcmp(a, "--repeat") == 0) {
@@ -186,9 +174,8 @@ int bench_calibrate(int argc, char **argv) {
     }
   }
   if (procs.n == 0) bench_list_parse("1,2,3", &procs, 1, 1, 64);
+  if (sizes.n == 0) bench_list_parse("2000", &sizes, 1, 3, 100000);
   char err[300];
-  vec2 *A, *B;
-  bench_make_pair(seed, points, &A, &B);
 
   /* P = 1 first: the speedups' base. */
   bench_list order = procs;
@@ -199,99 +186,135 @@ int bench_calibrate(int argc, char **argv) {
     for (int i = 0; i < procs.n && i + 1 < BENCH_LIST_MAX; i++) order.v[i + 1] = procs.v[i];
     order.n = procs.n + 1 < BENCH_LIST_MAX ? procs.n + 1 : BENCH_LIST_MAX;
   }
+
+  /* The micro-benchmarks: messages, then busy cores. */
+  micro_msgs mm;
+  if (micro_messages(messages, repeat, &mm, err, sizeof err) != 0) {
+    fprintf(stderr, "bench: the message benchmarks failed: %s\n", err);
+    return 1;
+  }
+  micro_model d;
+  micro_derive(&mm, &d);
+  mpt_config tcfg;
+  mpt_config_init(&tcfg);
+  double spin = (double)tcfg.spin_ns * 1e-9;
+  fprintf(stderr,
+          "bench: messages between threads (fastest of %d; %d messages, %d of the big ones):\n"
+          "bench:   ping-pong one way: %.4g s (%zu bytes), %.4g s (%zu bytes)\n"
+          "bench:   exchange with two neighbours: a send %.4g s, %.4g s; a receive %.4g s, %.4g s\n"
+          "bench:   a stream: %.4g s a message\n"
+          "bench:   a sleeping receiver, the sender idle %.4g s first: one way %.4g s, the send that wakes it %.4g s\n"
+          "bench:   so o_send %.4g s + %.4g s/byte, o_recv %.4g s + %.4g s/byte, L %.4g s, g %.4g s, G %.4g s/byte,\n"
+          "bench:      wake %.4g s after the arrival, o_wake %.4g s (beyond a spin of %.4g s)\n",
+          repeat, messages, messages / 20 + 10, mm.pp_small, mm.small, mm.pp_big, mm.big, mm.os_small, mm.os_big,
+          mm.or_small, mm.or_big, mm.stream, mm.idle, mm.pp_sleep, mm.send_sleep, d.o_send, d.o_send_byte,
+          d.o_recv, d.o_recv_byte, d.L, d.g, d.G, d.wake, d.o_wake, spin);
+
+  vec2 *A0, *B0;
+  bench_make_pair(seed, (int)sizes.v[0], &A0, &B0);
+  double slow = slowdown(A0, B0, (int)sizes.v[0], repeat < 3 ? repeat : 3);
+  free(A0), free(B0);
+  fprintf(stderr, "bench:   so slowdown %.4g per other busy core\n", slow);
+  char opts[600];
+  model_options(&d, spin, slow, opts, sizeof opts);
+
   run_config rc;
   run_config_init(&rc);
   rc.machine.warn = NULL;
   rc.threads.warn = NULL;
-  char e2[300];
-  if (run_option(&rc, "--net", "ideal", e2, sizeof e2) != 1) xpanic("--net ideal");
-
-  /* The measurements, in rounds: the serial solver, then the threads run
-   * at each P; the fastest of each over the rounds.  Rounds rather than R
-   * runs in a row, so that a slow spell of the machine (other work, its
-   * neighbours in a virtual machine) touches every figure alike. */
+  printf("points,procs,slaves,tables,c,options,measured_s,predicted_s,error,measured_speedup,"
+         "predicted_speedup,ideal_s,ideal_error,measured_median_s,sleeps,wake_us,nodes,messages,cost\n");
   int rcode = 0;
-  double solve = -1, serial_cost = 0, pair_of = -1;
-  uint64_t nodes = 0;
-  result *meas = xcalloc((size_t)order.n, sizeof *meas);
-  for (int i = 0; i < order.n; i++) meas[i].time = -1;
-  for (int r = 0; r < repeat && !rcode; r++) {
-    tiling t;
-    double t0 = wallclock();
-    tiling_solve(A, points, 0, B, points, 5, COST_AREA, -1, &t);
-    double w = wallclock() - t0;
-    if (solve < 0 || w < solve) solve = w;
-    nodes = t.count.nodes;
-    serial_cost = t.cost;
-    tiling_free(&t);
-    double two = two_at_once(A, B, points);
-    if (two > 0 && (pair_of < 0 || two < pair_of)) pair_of = two;
-    for (int i = 0; i < order.n; i++) {
+  for (int si = 0; si < sizes.n && !rcode; si++) {
+    int points = (int)sizes.v[si];
+    vec2 *A, *B;
+    bench_make_pair(seed, points, &A, &B);
+    int *tab = xcalloc((size_t)order.n, sizeof *tab), any_tab = 0;
+    for (int i = 0; i < order.n; i++) any_tab |= tab[i] = slaves_tables((int)order.v[i], A, B, points);
+    /* In rounds: the serial solver (on the fly, and with tables if some
+     * slaves use them), then the threads run at each P; the fastest of each. */
+    double solve = -1, solve_t = -1, serial_cost = 0;
+    uint64_t nodes = 0;
+    result *meas = xcalloc((size_t)order.n, sizeof *meas);
+    double *all = xcalloc((size_t)order.n * (size_t)repeat, sizeof *all);   /* every run's time */
+    for (int i = 0; i < order.n; i++) meas[i].time = -1;
+    for (int r = 0; r < repeat && !rcode; r++) {
+      for (int table = 0; table <= any_tab; table++) {
+        tiling t;
+        double t0 = wallclock();
+        tiling_solve(A, points, 0, B, points, 5, COST_AREA, table, &t);
+        double w = wallclock() - t0;
+        if (table == 0 && (solve < 0 || w < solve)) solve = w;
+        if (table == 1 && (solve_t < 0 || w < solve_t)) solve_t = w;
+        nodes = t.count.nodes;
+        serial_cost = t.cost;
+        tiling_free(&t);
+      }
+      for (int j = 0; j < order.n; j++) {
+        int i = r % 2 ? order.n - 1 - j : j;   /* every other round backwards: no P always first */
+        int P = (int)order.v[i];
+        result x;
+        if (one(&rc, RUN_THREADS, P, A, B, points, &x, err, sizeof err) != 0) {
+          fprintf(stderr, "bench: the threads run on %d processors failed: %s\n", P, err);
+          rcode = 1;
+          break;
+        }
+        if (x.cost != serial_cost || x.nodes != nodes) {
+          fprintf(stderr, "bench: the threads run on %d processors gave %.17g, the serial solver %.17g\n", P,
+                  x.cost, serial_cost);
+          rcode = 1;
+          break;
+        }
+        if (meas[i].time < 0 || x.time < meas[i].time) meas[i] = x;
+        all[(size_t)i * (size_t)repeat + (size_t)r] = x.time;
+      }
+    }
+    double c = solve / (double)nodes, c_t = any_tab ? solve_t / (double)nodes : c;
+    if (!rcode) {
+      fprintf(stderr, "bench: %d points: c = %.4g s per node (the serial solver, %.6f s for %llu nodes)", points, c,
+              solve, (unsigned long long)nodes);
+      if (any_tab) fprintf(stderr, "; with weight tables %.4g (%.6f s)", c_t, solve_t);
+      fprintf(stderr, "\nbench: %d points: the simulator models this host with\n    %s --c %.4g\n", points, opts, c);
+      if (any_tab) fprintf(stderr, "  (--c %.4g where the slaves use weight tables)\n", c_t);
+    }
+    double pred1 = 0;
+    for (int i = 0; i < order.n && !rcode; i++) {
       int P = (int)order.v[i];
-      result x;
-      if (one(&rc, RUN_THREADS, P, A, B, points, &x, err, sizeof err) != 0) {
-        fprintf(stderr, "bench: the threads run on %d processors failed: %s\n", P, err);
+      double cp = tab[i] ? c_t : c;
+      result pred, ideal;
+      set_options(&rc, opts, cp);
+      if (one(&rc, RUN_SIM, P, A, B, points, &pred, err, sizeof err) != 0) {
+        fprintf(stderr, "bench: the simulated run on %d processors failed: %s\n", P, err);
         rcode = 1;
         break;
       }
-      if (x.cost != serial_cost || x.nodes != nodes) {
-        fprintf(stderr, "bench: the threads run on %d processors gave %.17g, the serial solver %.17g\n", P,
-                x.cost, serial_cost);
+      char iopt[200];
+      snprintf(iopt, sizeof iopt, "--net ideal --m %.4g --per-byte %.4g", mm.pp_small,
+               mm.pp_big > mm.pp_small ? (mm.pp_big - mm.pp_small) / (double)(mm.big - mm.small) : 0);
+      set_options(&rc, iopt, cp);
+      if (one(&rc, RUN_SIM, P, A, B, points, &ideal, err, sizeof err) != 0) {
+        fprintf(stderr, "bench: the simulated run on %d processors failed: %s\n", P, err);
         rcode = 1;
         break;
       }
-      if (meas[i].time < 0 || x.time < meas[i].time) meas[i] = x;
+      if (i == 0) pred1 = pred.time;
+      if (i == 0 && !has1) continue;
+      const mpt_stats *ts = &meas[i].ts;
+      double *mine = all + (size_t)i * (size_t)repeat;
+      qsort(mine, (size_t)repeat, sizeof *mine, cmp_double);
+      double med = repeat % 2 ? mine[repeat / 2] : (mine[repeat / 2 - 1] + mine[repeat / 2]) / 2;
+      printf("%d,%d,%d,%d,%.4g,%s --c %.4g,%.6f,%.6f,%+.4f,%.3f,%.3f,%.6f,%+.4f,%.6f,%lld,%.1f,%llu,%llu,%.17g\n",
+             points, P, P < 2 ? 1 : P - 1, tab[i], cp, opts, cp, meas[i].time, pred.time, pred.time / meas[i].time - 1,
+             meas[0].time / meas[i].time, pred1 / pred.time, ideal.time, ideal.time / meas[i].time - 1, med, ts->sleeps,
+             ts->wakes ? ts->wake_s / (double)ts->wakes * 1e6 : 0.0, (unsigned long long)meas[i].nodes,
+             (unsigned long long)meas[i].msgs, meas[i].cost);
+      fflush(stdout);
     }
-  }
-  /* m and per_byte: the ping-pong. */
-  size_t small = 20, big = 65536;
-  double m = rcode ? -1 : one_way(messages, small, repeat, err, sizeof err);
-  double mbig = m < 0 ? -1 : one_way(messages / 20 + 10, big, repeat, err, sizeof err);
-  if (!rcode && (m < 0 || mbig < 0)) {
-    fprintf(stderr, "bench: the ping-pong failed: %s\n", err);
-    rcode = 1;
-  }
-  if (rcode) {
     free(meas);
+    free(all);
+    free(tab);
     free(A), free(B);
-    return rcode;
   }
-  double c = solve / (double)nodes;
-  double per_byte = mbig > m ? (mbig - m) / (double)(big - small) : 0;
-  fprintf(stderr,
-          "bench: c = %.4g s per node: the serial solver, %.6f s for %llu nodes (%d points, fastest of %d)\n"
-          "bench: m = %.4g s per message: threads ping-pong of %zu bytes, one way (%d round trips, fastest of %d)\n"
-          "bench: per_byte = %.4g s: the same with %zu-byte messages, %.4g s one way\n",
-          c, solve, (unsigned long long)nodes, points, repeat, m, small, messages, repeat, per_byte, big, mbig);
-  if (pair_of > 0)
-    fprintf(stderr,
-            "bench: two serial solves at once, on two threads: %.6f s, %.3f times one solve (what the\n"
-            "       cores lose to each other when both work; no simulated processor does)\n",
-            pair_of, pair_of / solve);
-
-  /* The simulator's predictions with those costs. */
-  char options[160];
-  snprintf(options, sizeof options, "--net ideal --m %.4g --c %.4g --per-byte %.4g", m, c, per_byte);
-  rc.machine.m = m, rc.machine.c = c, rc.machine.per_byte = per_byte;
-  printf("points,procs,c,m,per_byte,options,measured_s,predicted_s,error,measured_speedup,"
-         "predicted_speedup,nodes,messages,cost\n");
-  double pred1 = 0;
-  for (int i = 0; i < order.n; i++) {
-    int P = (int)order.v[i];
-    result pred;
-    if (one(&rc, RUN_SIM, P, A, B, points, &pred, err, sizeof err) != 0) {
-      fprintf(stderr, "bench: the simulated run on %d processors failed: %s\n", P, err);
-      rcode = 1;
-      break;
-    }
-    if (i == 0) pred1 = pred.time;
-    if (i == 0 && !has1) continue;
-    printf("%d,%d,%.4g,%.4g,%.4g,%s,%.6f,%.6f,%+.4f,%.3f,%.3f,%llu,%llu,%.17g\n", points, P, c, m,
-           per_byte, options, meas[i].time, pred.time, pred.time / meas[i].time - 1,
-           meas[0].time / meas[i].time, pred1 / pred.time, (unsigned long long)meas[i].nodes,
-           (unsigned long long)meas[i].msgs, meas[i].cost);
-  }
-  free(meas);
-  free(A), free(B);
+  fprintf(stderr, "bench: the calibration took %.1f s\n", wallclock() - w0);
   return rcode;
 }

@@ -60,11 +60,11 @@ printf '%s\n' "$out" | awk -F, 'NR>1 && ($23 != "threads" || $9 <= 0 || $5 != ""
 # Calibration: a row per P, the options to paste, the threads run's optimum.
 out=$("$bench" --calibrate --points 60 --procs 1,3 --repeat 2 --messages 200 2>"$tmp.err"); rc=$?
 [ $rc -eq 0 ] && [ "$(printf '%s\n' "$out" | tail -n +2 | wc -l)" -eq 2 ] && ok || fail "--calibrate: $out $(cat "$tmp.err")"
-printf '%s\n' "$out" | head -1 | grep -q '^points,procs,c,m,per_byte,options,measured_s,predicted_s,error,' && ok || fail "--calibrate header"
-printf '%s\n' "$out" | tail -n +2 | awk -F, '$6 !~ /^--net ideal --m [0-9.e+-]+ --c [0-9.e+-]+ --per-byte [0-9.e+-]+$/ || $7 <= 0 || $8 <= 0 {bad=1} END{exit bad}' \
+printf '%s\n' "$out" | head -1 | grep -q '^points,procs,slaves,tables,c,options,measured_s,predicted_s,error,.*,cost$' && ok || fail "--calibrate header"
+printf '%s\n' "$out" | tail -n +2 | awk -F, '$6 !~ /^--net loggp --L [0-9.e+-]+ --o 0 --g [0-9.e+-]+ --G [0-9.e+-]+ --o-send .* --wake [0-9.e+-]+ --o-wake [0-9.e+-]+ --slowdown [0-9.e+-]+ --c [0-9.e+-]+$/ || $7 <= 0 || $8 <= 0 {bad=1} END{exit bad}' \
   && ok || fail "--calibrate rows: $out"
-grep -q '^bench: c = .* s per node' "$tmp.err" && grep -q '^bench: m = .* s per message' "$tmp.err" && ok || fail "--calibrate stderr: $(cat "$tmp.err")"
-[ "$(printf '%s\n' "$out" | tail -1 | cut -d, -f14)" = "$(printf '%s\n' "$sim" | tail -1 | cut -d, -f15)" ] \
+grep -q '^bench: 60 points: c = .* s per node' "$tmp.err" && grep -q '^bench:   so o_send .* s/byte, o_recv' "$tmp.err" && grep -q '^bench: the calibration took' "$tmp.err" && ok || fail "--calibrate stderr: $(cat "$tmp.err")"
+[ "$(printf '%s\n' "$out" | tail -1 | cut -d, -f19)" = "$(printf '%s\n' "$sim" | tail -1 | cut -d, -f15)" ] \
   && ok || fail "--calibrate optimum differs from the simulator's"
 for args in "--calibrate --points 2" "--calibrate --procs 0" "--calibrate --bogus 1" "--calibrate --repeat"; do
   # shellcheck disable=SC2086
