@@ -6,6 +6,7 @@
 #   make bench-tile      the tiler's speed and memory figures
 #   make bench-load      the threads (and MPI) backends beside busy loops
 #   make valgrind        the tests under valgrind, without sanitizers
+#   make fuzz            each reader's libFuzzer target for FUZZ_TIME s (clang)
 #   make mpi             ./tile-mpi and ./bench-mpi with mpicc (mpirun -np P ...)
 #   make simgrid         the simulator against SimGrid's SMPI (tests/simgrid.sh)
 #   make install PREFIX=/usr/local
@@ -138,6 +139,33 @@ valgrind: $(addprefix $(VG)/tests/,$(TESTS))
 	@VALGRIND="valgrind -q --error-exitcode=99 --leak-check=full" \
 	  sh tests/run.sh $(VG) $(addprefix $(VG)/tests/,$(TESTS))
 
+# Fuzzing (clang's libFuzzer): one target per reader, tests/fuzz/fuzz_*.c,
+# over tests/pipeline.c (what ./tile does, with invariants that abort), each
+# run FUZZ_TIME seconds on a corpus under build/fuzz seeded from
+# tests/fuzz/corpus_NAME/ (FUZZ_JOBS parallel jobs; a crash is kept in
+# build/fuzz/ and fails the run).  Skipped, and said so, where $(FUZZCC)
+# cannot build with -fsanitize=fuzzer (Debian: clang, libclang-rt-dev).
+FUZZCC    ?= clang
+FUZZ_TIME ?= 15
+FUZZ_JOBS ?= 1
+FUZZ       = build/fuzz
+FUZZFLAGS  = -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+FUZZERS    = $(basename $(notdir $(wildcard tests/fuzz/fuzz_*.c)))
+$(FUZZ)/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(FUZZCC) $(BASE) -Itests $(FUZZFLAGS) -fsanitize=fuzzer-no-link -MMD -MP -c $< -o $@
+$(FUZZ)/libtilesim.a: $(patsubst %.c,$(FUZZ)/%.o,$(LIBSRC))
+	@rm -f $@
+	$(AR) rcs $@ $^
+$(FUZZ)/bin/%: $(FUZZ)/tests/fuzz/%.o $(FUZZ)/tests/pipeline.o $(FUZZ)/tests/rtwriter.o $(FUZZ)/libtilesim.a
+	@mkdir -p $(FUZZ)/bin
+	$(FUZZCC) $(FUZZFLAGS) -fsanitize=fuzzer -o $@ $^ $(LDLIBS)
+fuzz-bins: $(addprefix $(FUZZ)/bin/,$(FUZZERS))
+fuzz:
+	@if sh tests/fuzz/have_fuzzer.sh $(FUZZCC); then \
+	  $(MAKE) fuzz-bins && sh tests/fuzz/run.sh $(FUZZ) $(FUZZ_TIME) $(FUZZ_JOBS) $(FUZZERS); \
+	else echo "make fuzz: skipped: $(FUZZCC) cannot build with -fsanitize=fuzzer (install clang and libclang-rt-dev)"; fi
+
 # The main job: the paper's experiments on the simulated machine, as CSV and
 # SVG under plots/, and the claims of sections 6 and 7 checked against them.
 JOBS ?= 2
@@ -195,7 +223,7 @@ install: all
 clean:
 	rm -rf build $(PROGS) $(addsuffix -mpi,$(MPIPROGS))
 
-.PHONY: all check valgrind bench bench-tile bench-load install clean mpi mpi-bins smpi-bins simgrid
+.PHONY: all check valgrind bench bench-tile bench-load install clean mpi mpi-bins smpi-bins simgrid fuzz fuzz-bins
 .SECONDARY:
 
 -include $(shell find build -name '*.d' 2>/dev/null)

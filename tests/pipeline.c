@@ -97,7 +97,9 @@ int pipeline_contours(const char *buf, size_t len, double max_pair) {
   INVARIANT(contour_parse(text, tl, NAME, &t, NULL, "fuzz", err, sizeof err) == 0,
             "a written stack does not read back: %s", err);
   same_stacks(&s, &t);
-  tile(&s, max_pair);
+  /* Tiled as ./tile tiles it: each contour with the next. */
+  if (contour_stack_pairs(&s, NAME, err, sizeof err) == 0) tile(&s, max_pair);
+  else one_line(err, NAME);
   free(text);
   contour_stack_free(&s);
   contour_stack_free(&t);

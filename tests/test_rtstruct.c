@@ -601,6 +601,15 @@ static int write_fixtures(const char *dir) {
   for (int i = 0; i < 12; i++) sq2[i] = sq[i] + (i % 3 == 2 ? 3 : 0), sq3[i] = sq[i] + (i % 3 == 2 ? 6 : 0);
   rtw_contour sl[3] = {{NULL, 4, sq, NULL, -1}, {NULL, 4, sq2, NULL, -1}, {NULL, 4, sq3, NULL, -1}};
   rtw_roi ok = {7, "Prostate", "PTV", 3, sl, 0, 0};
+  /* Small files in every encoding (the fuzz target's seeds). */
+  for (int k = 0; k < 12; k++) {
+    rtw_opts o = {k & 1, (k >> 1) & 1, (k >> 2) % 3, 1, NULL, NULL, 0};
+    char name[32];
+    snprintf(name, sizeof name, "seed_%d.dcm", k);
+    b = rtw_write(&o, &ok, 1, &len);
+    bad |= put(dir, name, b, len);
+    free(b);
+  }
   static const struct { const char *name; const char *ts, *modality; int deep; } opts[] = {
       {"bigendian.dcm", "1.2.840.10008.1.2.2", NULL, 0},
       {"deflated.dcm", "1.2.840.10008.1.2.1.99", NULL, 0},
