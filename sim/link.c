@@ -6,14 +6,18 @@
 #include "trace.h"
 #include "xmem.h"
 
+typedef struct {
+  double free;              /* when the link is next free */
+  long long msgs, bytes;    /* what it carried */
+} lnk;
+
 struct links {
   const topo *t;
   double m, r, beta;
   int saf;                  /* store-and-forward */
   int bus;                  /* the one shared link, m included */
   int nlinks;
-  double *free;             /* [nlinks] when each link is next free */
-  link_stats *st;           /* [nlinks] */
+  lnk *l;                   /* [nlinks] */
   long long *base_msgs;     /* [nlinks] msgs and bytes at the period's start */
   long long *base_bytes;
   unsigned char *named;     /* [nlinks] its trace track is named */
@@ -29,8 +33,7 @@ links *links_new(const topo *t, double m, double r, double beta, int store_forwa
   n->bus = topo_kind_of(t) == TOPO_BUS;
   n->nlinks = topo_nlinks(t);
   size_t nl = n->nlinks ? (size_t)n->nlinks : 1;
-  n->free = xcalloc(nl, sizeof *n->free);
-  n->st = xcalloc(nl, sizeof *n->st);
+  n->l = xcalloc(nl, sizeof *n->l);
   n->base_msgs = xcalloc(nl, sizeof *n->base_msgs);
   n->base_bytes = xcalloc(nl, sizeof *n->base_bytes);
   n->named = xcalloc(nl, 1);
@@ -40,8 +43,7 @@ links *links_new(const topo *t, double m, double r, double beta, int store_forwa
 
 void links_free(links *n) {
   if (!n) return;
-  free(n->free);
-  free(n->st);
+  free(n->l);
   free(n->base_msgs);
   free(n->base_bytes);
   free(n->named);
@@ -51,9 +53,12 @@ void links_free(links *n) {
 
 const topo *links_topo(const links *n) { return n->t; }
 
-const link_stats *links_get(const links *n, int l) {
+link_stats links_get(const links *n, int l) {
   XASSERT(l >= 0 && l < n->nlinks);
-  return &n->st[l];
+  const lnk *k = &n->l[l];
+  double busy = (double)k->bytes * n->beta;
+  if (n->bus) busy += (double)k->msgs * (n->m + n->r);
+  return (link_stats){k->msgs, k->bytes, busy};
 }
 
 /* Link l carries the message from s (after waiting from t): trace it. */
@@ -70,39 +75,36 @@ static void trace_hop(links *n, trace *tr, int l, double s, double dur, int rank
 
 double links_send(links *n, int s, int d, double t0, size_t len, trace *tr, int rank, int dst,
                   int tag, uint64_t id) {
-  double lb = (double)len * n->beta, t, start = 0;
+  double lb = (double)len * n->beta, t, start = 0, wait = 0;
   int h = topo_route(n->t, s, d, n->route);
   if (n->bus) {   /* sim.c's SIM_NET_BUS, with r */
-    double *f = &n->free[0];
-    start = t0 > *f ? t0 : *f;
-    *f = start + n->m + n->r + lb;
-    link_stats *ls = &n->st[0];
-    ls->msgs++;
-    ls->bytes += (long long)len;
-    ls->busy += *f - start;
-    ls->wait += start - t0;
-    n->total.link_wait += start - t0;
-    if (tr) trace_hop(n, tr, 0, start, *f - start, rank, dst, tag, len, id);
-    t = *f;
+    lnk *k = &n->l[0];
+    start = t0 > k->free ? t0 : k->free;
+    k->free = start + n->m + n->r + lb;
+    k->msgs++;
+    k->bytes += (long long)len;
+    wait = start - t0;
+    if (tr) trace_hop(n, tr, 0, start, k->free - start, rank, dst, tag, len, id);
+    t = k->free;
   } else {
     t = t0 + n->m;
     double step = n->saf ? n->r + lb : n->r;
+    lnk *all = n->l;                 /* locals: the stores below cannot move them */
+    const int *route = n->route;
+    long long bytes = (long long)len;
     for (int i = 0; i < h; i++) {
-      int l = n->route[i];
-      double *f = &n->free[l];
-      start = t > *f ? t : *f;
-      *f = start + lb;
-      link_stats *ls = &n->st[l];
-      ls->msgs++;
-      ls->bytes += (long long)len;
-      ls->busy += lb;
-      ls->wait += start - t;
-      n->total.link_wait += start - t;
-      if (tr) trace_hop(n, tr, l, start, lb, rank, dst, tag, len, id);
+      lnk *k = &all[route[i]];
+      start = t > k->free ? t : k->free;
+      wait += start - t;
+      k->free = start + lb;
+      k->msgs++;
+      k->bytes += bytes;
+      if (tr) trace_hop(n, tr, route[i], start, lb, rank, dst, tag, len, id);
       t = start + step;
     }
     t = start + n->r + lb;   /* the tail off the last link */
   }
+  n->total.link_wait += wait;
   n->total.messages++;
   n->total.hops += h;
   n->total.hop_bytes += (long long)h * (long long)len;
@@ -113,8 +115,8 @@ double links_send(links *n, int s, int d, double t0, size_t len, trace *tr, int 
 static void busiest(const links *n, int since, net_stats *out) {
   out->max_link_msgs = out->max_link_bytes = 0;
   for (int l = 0; l < n->nlinks; l++) {
-    long long msgs = n->st[l].msgs - (since ? n->base_msgs[l] : 0);
-    long long bytes = n->st[l].bytes - (since ? n->base_bytes[l] : 0);
+    long long msgs = n->l[l].msgs - (since ? n->base_msgs[l] : 0);
+    long long bytes = n->l[l].bytes - (since ? n->base_bytes[l] : 0);
     if (msgs > out->max_link_msgs) out->max_link_msgs = msgs;
     if (bytes > out->max_link_bytes) out->max_link_bytes = bytes;
   }
@@ -133,7 +135,7 @@ void links_period(links *n, net_stats *out) {
   busiest(n, 1, out);
   n->base = n->total;
   for (int l = 0; l < n->nlinks; l++) {
-    n->base_msgs[l] = n->st[l].msgs;
-    n->base_bytes[l] = n->st[l].bytes;
+    n->base_msgs[l] = n->l[l].msgs;
+    n->base_bytes[l] = n->l[l].bytes;
   }
 }

@@ -29,8 +29,9 @@
  *   send), first served; a link is not lent to a later message during an
  *   idle gap before an earlier message's reservation.  Deterministic.
  *
- * Statistics: per link the messages, bytes, busy seconds and the seconds
- * messages waited for it; per run the hops, hop-bytes and the busiest link. */
+ * Statistics: per link the messages, bytes and busy seconds; per run the
+ * hops, hop-bytes, the busiest link and the seconds messages waited for
+ * links. */
 #ifndef LINK_H
 #define LINK_H
 
@@ -55,8 +56,8 @@ double links_send(links *n, int s, int d, double t0, size_t len, struct trace *t
 
 typedef struct {
   long long msgs, bytes;   /* messages and bytes the link carried */
-  double busy;             /* seconds it was carrying one */
-  double wait;             /* seconds messages waited for it */
+  double busy;             /* seconds it was carrying one: bytes*beta (the bus:
+                              msgs*(m + r) + bytes*beta) */
 } link_stats;
 
 typedef struct {
@@ -69,7 +70,7 @@ typedef struct {
 } net_stats;
 
 const topo *links_topo(const links *n);
-const link_stats *links_get(const links *n, int l);   /* 0 <= l < topo_nlinks */
+link_stats links_get(const links *n, int l);   /* 0 <= l < topo_nlinks */
 
 /* The statistics of the whole run so far. */
 void links_total(const links *n, net_stats *out);

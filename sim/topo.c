@@ -202,28 +202,30 @@ int topo_max_hops(const topo *t) { return t->max_hops; }
 /* Ports of a grid processor: the link id is processor * deg + port. */
 enum { XPLUS, XMINUS, YPLUS, YMINUS };
 
-/* One dimension of a grid route: from coordinate a to b of size n (wrapping
- * on a torus or ring), stride the processor-id step; appends the links. */
-static int walk(const topo *t, int *cur, int a, int b, int n, int stride, int plus, int minus,
-                int wrap, int *links, int h) {
+/* One dimension of a grid route from coordinate a to b of a dimension of n
+ * (wrapping on a torus or ring): the links, processor at * deg + port, where
+ * the processor is base + a * stride.  Appends to links[h..]; the new h. */
+static int walk(int deg, int base, int stride, int a, int b, int n, int plus, int minus, int wrap,
+                int *links, int h) {
   if (a == b) return h;
   int up, steps;
   if (wrap) {
-    int f = (b - a + n) % n;   /* steps going up */
-    up = 2 * f <= n;           /* half way round goes up */
+    int f = b - a < 0 ? b - a + n : b - a;   /* steps going up */
+    up = 2 * f <= n;                         /* half way round goes up */
     steps = up ? f : n - f;
   } else {
     up = b > a;
     steps = up ? b - a : a - b;
   }
-  for (int i = 0; i < steps; i++) {
-    links[h++] = *cur * t->deg + (up ? plus : minus);
-    if (up) {
-      *cur += a == n - 1 ? -(n - 1) * stride : stride;
-      a = a == n - 1 ? 0 : a + 1;
-    } else {
-      *cur -= a == 0 ? -(n - 1) * stride : stride;
-      a = a == 0 ? n - 1 : a - 1;
+  if (up) {
+    for (int i = 0; i < steps; i++) {
+      links[h++] = (base + a * stride) * deg + plus;
+      a = a + 1 == n ? 0 : a + 1;
+    }
+  } else {
+    for (int i = 0; i < steps; i++) {
+      links[h++] = (base + a * stride) * deg + minus;
+      a = (a == 0 ? n : a) - 1;
     }
   }
   return h;
@@ -243,11 +245,10 @@ int topo_route(const topo *t, int s, int d, int *links) {
   case TOPO_RING:
   case TOPO_MESH:
   case TOPO_TORUS: {
-    int wrap = t->kind == TOPO_RING || t->kind == TOPO_TORUS, cur = s;
-    h = walk(t, &cur, s % t->w, d % t->w, t->w, 1, XPLUS, XMINUS, wrap, links, h);
-    h = walk(t, &cur, s / t->w, d / t->w, t->h, t->w, YPLUS, YMINUS, wrap, links, h);
-    XASSERT(cur == d);
-    return h;
+    int wrap = t->kind == TOPO_RING || t->kind == TOPO_TORUS, w = t->w;
+    int sx = s % w, sy = s / w, dx = d % w, dy = d / w;
+    h = walk(t->deg, sy * w, 1, sx, dx, w, XPLUS, XMINUS, wrap, links, h);   /* X first */
+    return walk(t->deg, dx, w, sy, dy, t->h, YPLUS, YMINUS, wrap, links, h);  /* then Y */
   }
   case TOPO_HYPERCUBE: {
     int cur = s, diff = s ^ d;

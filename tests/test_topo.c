@@ -454,9 +454,9 @@ static void test_line(void) {
       links_total(n, &ns);
       int route[1];
       topo_route(links_topo(n), P / 2 - 1, P / 2, route);
-      CHECK(ns.max_link_msgs == P / 2 && links_get(n, route[0])->msgs == P / 2,
+      CHECK(ns.max_link_msgs == P / 2 && links_get(n, route[0]).msgs == P / 2,
             "line:%d bisection: busiest link %lld, the middle one %lld, expected %d", P,
-            ns.max_link_msgs, links_get(n, route[0])->msgs, P / 2);
+            ns.max_link_msgs, links_get(n, route[0]).msgs, P / 2);
       sim_free(s);
     }
     /* Shifts i -> i + s (not wrapping): the busiest link carries min(s, P - s);
@@ -496,7 +496,7 @@ static long long level_max(links *n, int lv, int *used, long long *least) {
     int a, w;
     topo_link_name(t, l, name, sizeof name);
     if (sscanf(name, "L%d w%d", &a, &w) != 2 || a != lv) continue;
-    long long v = links_get(n, l)->msgs;
+    long long v = links_get(n, l).msgs;
     if (v > mx) mx = v;
     if (v == 0) continue;
     ++*used;
@@ -775,8 +775,8 @@ static void test_random_programs(void) {
       want_busy += mc.kind == TOPO_BUS ? cfg.m + cfg.hop_latency + lb : h * lb;
     }
     for (int l = 0; l < topo_nlinks(links_topo(n)); l++) {
-      const link_stats *ls = links_get(n, l);
-      link_msgs += ls->msgs, link_bytes += ls->bytes, busy += ls->busy;
+      link_stats ls = links_get(n, l);
+      link_msgs += ls.msgs, link_bytes += ls.bytes, busy += ls.busy;
     }
     int ok = rc == 0 && !failures && ns.messages == want_msgs && ns.hops == want_hops &&
              ns.hop_bytes == want_hb && link_msgs == ns.hops && link_bytes == ns.hop_bytes &&
