@@ -1,13 +1,14 @@
 /* plot.c -- build/plot: the bench's CSV as SVG line charts, and a contour
  * stack with its surface (Fig. 17).  No dependencies beyond libc and libm.
  *
- *   plot lines CSV -x COL -y COL[,COL...] [--series COL] [--where COL=VALUE]...
+ *   plot lines CSV -x COL -y COL[,COL...] [--series COL[,COL...]] [--where COL=VALUE]...
  *        [--labels A,B,...] [--title T] [--xlabel T] [--ylabel T] [--yzero] -o OUT.svg
  *   plot surface STACK [--cost area|span] [--caps] [--title T] -o OUT.svg
  *
  * lines: one line per value of the --series column (in order of first
- * appearance) and per y column, points sorted by x; rows must match every
- * --where.  surface: the stack is tiled (closed with --caps) and drawn. */
+ * appearance; with several columns, per combination of their values) and
+ * per y column, points sorted by x; rows must match every --where.  --labels
+ * names the y columns, or with one y column and --series, the series.  surface: the stack is tiled (closed with --caps) and drawn. */
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -24,7 +25,7 @@
 
 static int usage(const char *why, const char *val) {
   if (why) fprintf(stderr, "plot: %s%s%s%s\n", why, val ? " (" : "", val ? val : "", val ? ")" : "");
-  fputs("usage: plot lines CSV -x COL -y COL[,COL...] [--series COL] [--where COL=VALUE]...\n"
+  fputs("usage: plot lines CSV -x COL -y COL[,COL...] [--series COL[,COL...]] [--where COL=VALUE]...\n"
         "            [--labels A,B,...] [--title T] [--xlabel T] [--ylabel T] [--yzero] -o OUT.svg\n"
         "       plot surface STACK [--cost area|span] [--caps] [--title T] -o OUT.svg\n",
         stderr);
@@ -104,12 +105,19 @@ static int lines(int argc, char **argv) {
     fprintf(stderr, "plot: %s\n", err);
     return 1;
   }
-  int xi = csvtab_col(&t, xc), si = sc ? csvtab_col(&t, sc) : -1, wi[16];
+  int xi = csvtab_col(&t, xc), wi[16], si[4], nsc = 0, sbad = 0;
+  char sbuf[256];
+  if (sc) {
+    snprintf(sbuf, sizeof sbuf, "%s", sc);
+    for (char *p = strtok(sbuf, ","); p; p = strtok(NULL, ","))
+      if (nsc < 4) si[nsc] = csvtab_col(&t, p), sbad |= si[nsc++] < 0;
+      else sbad = 1;
+  }
   char ybuf[256], *ycols[8];
   int ny = 0, yi[8];
   snprintf(ybuf, sizeof ybuf, "%s", yc);
   for (char *p = strtok(ybuf, ","); p && ny < 8; p = strtok(NULL, ",")) ycols[ny] = p, yi[ny++] = csvtab_col(&t, p);
-  int bad = xi < 0 || (sc && si < 0);
+  int bad = xi < 0 || sbad || (sc && nsc == 0);
   for (int k = 0; k < ny; k++) bad |= yi[k] < 0;
   char wname[16][64];
   const char *wval[16];
@@ -125,23 +133,29 @@ static int lines(int argc, char **argv) {
     csvtab_free(&t);
     return 1;
   }
-  char lbuf[256], *lab[8];
+  char lbuf[512], *lab[16];
   int nl = 0;
   if (labels) {
     snprintf(lbuf, sizeof lbuf, "%s", labels);
-    for (char *p = strtok(lbuf, ","); p && nl < 8; p = strtok(NULL, ",")) lab[nl++] = p;
+    for (char *p = strtok(lbuf, ","); p && nl < 16; p = strtok(NULL, ",")) lab[nl++] = p;
   }
-  /* The series: distinct values of the series column, in order of appearance. */
+  /* The series: distinct values of the series columns (joined by spaces), in
+   * order of appearance. */
+  char (*key)[128] = xcalloc((size_t)t.nrow + 1, sizeof *key);
+  for (int r = 0; r < t.nrow; r++) {
+    size_t len = 0;
+    for (int k = 0; k < nsc && len < sizeof key[r]; k++)
+      len += (size_t)snprintf(key[r] + len, sizeof key[r] - len, "%s%s", k ? " " : "", t.cell[r][si[k]]);
+  }
   const char **sv = xmallocarray((size_t)t.nrow + 1, sizeof *sv);
   int nsv = 0;
   for (int r = 0; r < t.nrow; r++) {
     int keep = 1;
     for (int k = 0; k < nwhere; k++) keep &= strcmp(t.cell[r][wi[k]], wval[k]) == 0;
     if (!keep) continue;
-    const char *val = si >= 0 ? t.cell[r][si] : "";
     int seen = 0;
-    for (int k = 0; k < nsv; k++) seen |= strcmp(sv[k], val) == 0;
-    if (!seen) sv[nsv++] = val;
+    for (int k = 0; k < nsv; k++) seen |= strcmp(sv[k], key[r]) == 0;
+    if (!seen) sv[nsv++] = key[r];
   }
   int ns = nsv * ny;
   svgchart_series *s = xcalloc((size_t)ns + 1, sizeof *s);
@@ -151,7 +165,7 @@ static int lines(int argc, char **argv) {
       xy *p = xmallocarray((size_t)t.nrow + 1, sizeof *p);
       int n = 0;
       for (int r = 0; r < t.nrow; r++) {
-        int keep = si < 0 || strcmp(t.cell[r][si], sv[a]) == 0;
+        int keep = strcmp(key[r], sv[a]) == 0;
         for (int q = 0; q < nwhere; q++) keep &= strcmp(t.cell[r][wi[q]], wval[q]) == 0;
         if (keep) p[n++] = (xy){strtod(t.cell[r][xi], NULL), strtod(t.cell[r][yi[k]], NULL)};
       }
@@ -162,6 +176,8 @@ static int lines(int argc, char **argv) {
       int i = a * ny + k;
       const char *yname = k < nl ? lab[k] : ycols[k];
       if (sc && ny > 1) snprintf(names[i], sizeof names[i], "%s=%s, %s", sc, sv[a], yname);
+      else if (sc && a < nl) snprintf(names[i], sizeof names[i], "%s", lab[a]);
+      else if (sc && nsc > 1) snprintf(names[i], sizeof names[i], "%s", sv[a]);
       else if (sc) snprintf(names[i], sizeof names[i], "%s=%s", sc, sv[a]);
       else snprintf(names[i], sizeof names[i], "%s", yname);
       s[i] = (svgchart_series){names[i], n, x, y, k > 0};
@@ -170,7 +186,7 @@ static int lines(int argc, char **argv) {
   chart c = {&o, s, ns};
   int rc = write_svg(out, draw_chart, &c);
   for (int i = 0; i < ns; i++) free((void *)s[i].x), free((void *)s[i].y);
-  free(s), free(names), free(sv);
+  free(s), free(names), free(sv), free(key);
   csvtab_free(&t);
   return rc;
 }

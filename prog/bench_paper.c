@@ -36,9 +36,11 @@
 
 #include "atomicfile.h"
 #include "bench_list.h"
+#include "bench_net.h"
 #include "contour.h"
 #include "gen.h"
 #include "run.h"
+#include "run_net.h"
 #include "wallclock.h"
 #include "xmem.h"
 
@@ -46,7 +48,8 @@ const char bench_paper_help[] =
     "[--procs LIST] [--points LIST] [--alloc half|size[,...]] [--min-diag LIST]\n"
     "      [--m LIST] [--c LIST] [--net ideal|bus|loggp] [--machine NAME] [--seed S]\n"
     "      [--input STACK [--pair K]] [-o FILE] [--jobs N] [--backend sim|threads]\n"
-    "      [--repeat R]\n"
+    "      [--repeat R] [--topology LIST] [--place LIST] [--hop-latency S]\n"
+    "      [--switching cut-through|store-and-forward] [--print-place]\n"
     "      the paper's experiments (no mode option): every combination is a run;\n"
     "      LIST is numbers and ranges, e.g. 1..16 or 100,200,300.  Defaults: points\n"
     "      100,200,300,400,500, procs 1..16, alloc half, min-diag 1, the tc2000 machine.\n"
@@ -56,11 +59,13 @@ const char bench_paper_help[] =
 typedef struct {
   int points, procs, alloc, d, hidden, pairid;
   double m, c;
+  int topo, place;   /* indices into plan's lists (-1: no topology list) */
 } job;
 
 typedef struct {   /* what a run sends back to the parent */
   double sim_time, wall, cost;
   uint64_t msgs[PAR_KINDS], bytes, nodes;
+  net_stats net;   /* on a topology */
   int ok;
   char err[200];
 } outcome;
@@ -73,6 +78,8 @@ typedef struct {
   int repeat;          /* runs per job; the fastest is reported */
   contour_stack *input;
   int pair;
+  const bench_topos *topos;   /* n == 0: the machine's own network */
+  const bench_places *places;
 } plan;
 
 void bench_make_pair(unsigned long long seed, int points, vec2 **P, vec2 **Q) {
@@ -100,6 +107,15 @@ static void make_pair(const plan *pl, int points, vec2 **P, int *np, double *zp,
   *np = *nq = points, *zp = 0, *zq = 5;
 }
 
+/* The job's topology and placement into rc. */
+static void job_net(const plan *pl, const job *jb, run_config *rc) {
+  if (pl->topos->n) {
+    rc->machine.topo = pl->topos->v[jb->topo];
+    rc->machine.net = SIM_NET_TOPOLOGY;
+  }
+  if (pl->places->n) rc->place = pl->places->v[jb->place];
+}
+
 /* One run of a job. */
 static outcome one_run(const plan *pl, const job *jb) {
   outcome o;
@@ -115,6 +131,8 @@ static outcome one_run(const plan *pl, const job *jb) {
   rc.machine.m = jb->m;
   rc.machine.c = jb->c;
   rc.machine.warn = NULL;
+  job_net(pl, jb, &rc);
+  rc.pair_net = &o.net;
   par_pair pr;
   memset(&pr, 0, sizeof pr);
   pr.P = P, pr.np = np, pr.zp = zp, pr.Q = Q, pr.nq = nq, pr.zq = zq;
@@ -240,7 +258,8 @@ static int usage(const char *why, const char *val) {
   fprintf(stderr, "usage: bench [--procs LIST] [--points LIST] [--alloc half|size[,...]] "
                   "[--min-diag LIST] [--m LIST] [--c LIST] [--net MODEL] [--machine NAME] "
                   "[--seed S] [--input STACK [--pair K]] [-o FILE] [--jobs N] [--backend sim|threads] "
-                  "[--repeat R]\n");
+                  "[--repeat R] [--topology LIST] [--place LIST] [--hop-latency S] [--switching MODE] "
+                  "[--print-place]\n");
   return 2;
 }
 
@@ -252,10 +271,23 @@ int bench_paper(int argc, char **argv) {
   run_config rc;
   run_config_init(&rc);
   char err[300];
-  for (int i = 1; i < argc; i += 2) {   /* every option takes a value */
+  static bench_topos topos;
+  static bench_places places;
+  topos.n = places.n = 0;
+  int print_place = 0, net_given = 0;
+  for (int i = 1; i < argc; i += 2) {   /* every option takes a value but --print-place */
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+    if (strcmp(a, "--print-place") == 0) {
+      print_place = 1;
+      i--;
+      continue;
+    }
     if (!v) return usage("an option needs a value", a);
-    if (strcmp(a, "--procs") == 0) {
+    if (strcmp(a, "--topology") == 0) {
+      if (bench_topos_parse(v, &topos, err, sizeof err) != 0) return usage(err, NULL);
+    } else if (strcmp(a, "--place") == 0) {
+      if (bench_places_parse(v, &places, err, sizeof err) != 0) return usage(err, NULL);
+    } else if (strcmp(a, "--procs") == 0) {
       if (bench_list_parse(v, &procs, 1, 1, 4096) != 0) return usage("--procs takes a list of 1..4096", v);
     } else if (strcmp(a, "--points") == 0) {
       if (bench_list_parse(v, &points, 1, 3, 100000) != 0) return usage("--points takes a list of 3..100000", v);
@@ -301,8 +333,13 @@ int bench_paper(int argc, char **argv) {
       int k = run_option(&rc, a, v, err, sizeof err);
       if (k < 0) return usage(err, NULL);
       if (k == 0) return usage("unknown option", a);
+      net_given |= strcmp(a, "--net") == 0;
     }
   }
+  if (topos.n && net_given)
+    return usage("--net and --topology both choose the network: give one", NULL);
+  if ((topos.n || rc.machine.topo.kind != TOPO_NONE) && rc.backend != RUN_SIM)
+    return usage("--topology describes the simulated machine (--backend sim)", NULL);
   if (rc.backend != RUN_SIM && jobs > 1)
     return usage("--jobs runs simulations side by side; measured runs (--backend threads) go one at a time", NULL);
   int limit = run_backend_ranks(rc.backend);
@@ -345,22 +382,45 @@ int bench_paper(int argc, char **argv) {
   int has1 = 0;
   for (int i = 0; i < procs.n; i++) has1 |= procs.v[i] == 1;
   int per = procs.n + !has1;
-  int njobs = points.n * nalloc * diags.n * ms.n * cs.n * per;
+  int ntopo = topos.n ? topos.n : 1, nplace = places.n ? places.n : 1;
+  int njobs = points.n * nalloc * diags.n * ms.n * cs.n * ntopo * nplace * per;
   job *jb = xmallocarray((size_t)njobs, sizeof *jb);
   int k = 0, cfg = 0;
   for (int a = 0; a < points.n; a++)
     for (int b = 0; b < nalloc; b++)
       for (int d = 0; d < diags.n; d++)
         for (int x = 0; x < ms.n; x++)
-          for (int y = 0; y < cs.n; y++, cfg++) {
-            for (int p = 0; p < per; p++) {
-              int P = p < procs.n ? (int)procs.v[p] : 1;
-              jb[k++] = (job){(int)points.v[a], P, allocs[b], (int)diags.v[d], p >= procs.n, cfg,
-                              ms.v[x], cs.v[y]};
-            }
-          }
+          for (int y = 0; y < cs.n; y++)
+            for (int ti = 0; ti < ntopo; ti++)
+              for (int pi = 0; pi < nplace; pi++, cfg++) {
+                for (int p = 0; p < per; p++) {
+                  int P = p < procs.n ? (int)procs.v[p] : 1;
+                  jb[k++] = (job){(int)points.v[a], P, allocs[b], (int)diags.v[d], p >= procs.n, cfg,
+                                  ms.v[x], cs.v[y], ti, pi};
+                }
+              }
   if (repeat == 0) repeat = rc.backend == RUN_SIM ? 1 : 10;
-  plan pl = {jb, njobs, rc, seed, repeat, input ? &stack : NULL, pairk};
+  plan pl = {jb, njobs, rc, seed, repeat, input ? &stack : NULL, pairk, &topos, &places};
+  /* Every machine and placement fits every P, checked before any run (a
+   * group of `per` jobs shares them); the maps on request, once each. */
+  unsigned char seen[BENCH_NET_MAX][BENCH_NET_MAX] = {{0}};
+  for (int i = 0; i < njobs; i += per) {
+    if (seen[jb[i].topo][jb[i].place]) continue;
+    seen[jb[i].topo][jb[i].place] = 1;
+    run_config jr = rc;
+    job_net(&pl, &jb[i], &jr);
+    for (int p = 0; p < per; p++) {
+      int P = jb[i + p].procs, nodes, *where = xmallocarray((size_t)run_ranks(P), sizeof *where);
+      int bad = run_net_place(&jr, P, where, &nodes, err, sizeof err) != 0 ||
+                (print_place && !jb[i + p].hidden && run_net_print(stderr, &jr, P, err, sizeof err) != 0);
+      free(where);
+      if (bad) {
+        free(jb);
+        contour_stack_free(&stack);
+        return usage(err, NULL);
+      }
+    }
+  }
   outcome *o = xcalloc((size_t)njobs, sizeof *o);
   int progress = isatty(2);
   int rcode = run_all(&pl, o, jobs, progress);
@@ -390,7 +450,8 @@ int bench_paper(int argc, char **argv) {
     f = af.f;
   }
   fprintf(f, "points,procs,alloc,min_diag,net,m,c,seed,sim_time,speedup,efficiency,messages,bytes,"
-             "nodes,cost,wall_s,msg_boundary,msg_backtrack,msg_bounds,msg_control,input,pair,backend\n");
+             "nodes,cost,wall_s,msg_boundary,msg_backtrack,msg_bounds,msg_control,input,pair,backend,%s\n",
+          bench_net_header);
   for (int i = 0; i < njobs; i++) {
     if (jb[i].hidden) continue;
     double t1 = 0;   /* T(1) of the same configuration */
@@ -399,10 +460,12 @@ int bench_paper(int argc, char **argv) {
     double sp = t1 / o[i].sim_time;
     uint64_t msgs = 0;
     for (int q = 0; q < PAR_KINDS; q++) msgs += o[i].msgs[q];
+    run_config jr = rc;   /* the job's machine */
+    job_net(&pl, &jb[i], &jr);
     char machine[96] = ",,";   /* net, m, c: the simulated machine's, or empty */
     if (rc.backend == RUN_SIM)
-      snprintf(machine, sizeof machine, "%s,%.9g,%.9g", sim_net_name(rc.machine.net), jb[i].m, jb[i].c);
-    fprintf(f, "%d,%d,%s,%d,%s,%llu,%.9f,%.6f,%.6f,%llu,%llu,%llu,%.17g,%.6f,%llu,%llu,%llu,%llu,%s,%d,%s\n",
+      snprintf(machine, sizeof machine, "%s,%.9g,%.9g", sim_net_name(jr.machine.net), jb[i].m, jb[i].c);
+    fprintf(f, "%d,%d,%s,%d,%s,%llu,%.9f,%.6f,%.6f,%llu,%llu,%llu,%.17g,%.6f,%llu,%llu,%llu,%llu,%s,%d,%s",
             jb[i].points, jb[i].procs, split_alloc_name((split_alloc)jb[i].alloc), jb[i].d,
             machine, seed, o[i].sim_time, sp, sp / jb[i].procs,
             (unsigned long long)msgs, (unsigned long long)o[i].bytes, (unsigned long long)o[i].nodes,
@@ -410,6 +473,9 @@ int bench_paper(int argc, char **argv) {
             (unsigned long long)o[i].msgs[PAR_BACKTRACK], (unsigned long long)o[i].msgs[PAR_BOUNDS],
             (unsigned long long)o[i].msgs[PAR_CONTROL], input ? input : "generated", input ? pairk : 0,
             run_backend_name(rc.backend));
+    fputc(',', f);
+    bench_net_fields(f, &jr, &o[i].net);
+    fputc('\n', f);
   }
   int wbad = 0;
   if (outpath && atomicfile_close(&af, 1, err, sizeof err) != 0) {

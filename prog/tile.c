@@ -22,6 +22,7 @@
 #include "mesh.h"
 #include "meshio.h"
 #include "run.h"
+#include "run_net.h"
 #include "tile_dicom.h"
 #include "tiling.h"
 #include "xmem.h"
@@ -33,6 +34,7 @@ static const char usage_line[] =
     "usage: tile STACK [-o OUT.obj|OUT.ply|OUT.stl] [--cost area|span] [--caps] [-q]\n"
     "            [--procs P [--backend sim|threads] [--alloc half|size] [--min-diag d]\n"
     "             [--machine NAME] [--net ideal|bus|loggp] [--m S] [--c S]\n"
+    "             [--topology NAME] [--place NAME] [--print-place]\n"
     "             [--trace FILE.csv|FILE.json]]\n"
     "       tile FILE.dcm [--list | --roi NAME|NUMBER|all ... [-o OUT.stl|DIR/ [--format stl|obj|ply]]\n"
     "            [--contours OUT.contours|DIR/] [options as for a stack]]\n";
@@ -55,7 +57,9 @@ static void usage(FILE *f) {
         "threads, or MPI processes (tile-mpi under mpirun; --procs defaults to all ranks):\n",
         f);
   fputs(run_options_help, f);
-  fputs("  --trace FILE       the simulated timeline: CSV, or Chrome trace JSON (.json)\n"
+  fputs(run_net_help, f);
+  fputs("  --print-place      print where the ranks run on the machine (stderr)\n"
+        "  --trace FILE       the simulated timeline: CSV, or Chrome trace JSON (.json)\n"
         "\n"
         "A DICOM RT structure set (recognised by its content) instead of STACK: each ROI\n"
         "is tiled as its closed planar contours would be as a stack (patient LPS, mm):\n"
@@ -69,7 +73,10 @@ static void usage(FILE *f) {
         "procs,sim_time,msg_boundary,msg_backtrack,msg_bounds,msg_control,bytes,backend.\n"
         "sim_time is the master's time from sending the pair's points to holding its\n"
         "optimum: simulated seconds when backend is sim, wall-clock seconds measured on\n"
-        "this machine when it is threads or mpi.  With --caps a last row 'mesh' with the\n"
+        "this machine when it is threads or mpi.  With --topology also hops_per_msg,\n"
+        "hop_bytes,max_link_msgs,max_link_bytes,link_wait: the pair's messages over the\n"
+        "network, links crossed per message, bytes x links, the busiest link's messages\n"
+        "and bytes, seconds spent waiting for links.  With --caps a last row 'mesh' with the\n"
         "whole mesh's area and enclosed volume.\n",
         f);
 }
@@ -131,13 +138,19 @@ static int tile_stack(void *ud, const contour_stack *s, const char *hprefix, con
                       int header, mesh *me) {
   tile_opts *o = ud;
   int npairs = s->n - 1, parallel = o->parallel;
+  int topology = parallel && o->rc.machine.topo.kind != TOPO_NONE;
   par_pair *pr = NULL;
+  net_stats *pnet = NULL;   /* each pair's, on a topology */
   mesh_init(me, s);
   if (parallel) {
     pr = xcalloc((size_t)npairs, sizeof *pr);
-    if (run_parallel(&o->rc, s, pr, o->trace) != 0) {
+    if (topology) o->rc.pair_net = pnet = xcalloc((size_t)npairs, sizeof *pnet);
+    int res = run_parallel(&o->rc, s, pr, o->trace);
+    o->rc.pair_net = NULL;
+    if (res != 0) {
       for (int i = 0; i < npairs; i++) tiling_free(&pr[i].t);
       free(pr);
+      free(pnet);
       return -1;
     }
   }
@@ -145,8 +158,9 @@ static int tile_stack(void *ud, const contour_stack *s, const char *hprefix, con
   double total_cost = 0;
   unsigned long long total_nodes = 0;
   if (header)
-    printf("%spair,z0,z1,m,n,cost,area,volume,nodes%s\n", hprefix,
-           parallel ? ",procs,sim_time,msg_boundary,msg_backtrack,msg_bounds,msg_control,bytes,backend" : "");
+    printf("%spair,z0,z1,m,n,cost,area,volume,nodes%s%s\n", hprefix,
+           parallel ? ",procs,sim_time,msg_boundary,msg_backtrack,msg_bounds,msg_control,bytes,backend" : "",
+           topology ? ",hops_per_msg,hop_bytes,max_link_msgs,max_link_bytes,link_wait" : "");
   for (int i = 0; i < npairs; i++) {
     const contour *P = &s->c[i], *Q = &s->c[i + 1];
     tiling t;
@@ -165,6 +179,11 @@ static int tile_stack(void *ud, const contour_stack *s, const char *hprefix, con
              (unsigned long long)c->msgs[PAR_BOUNDS], (unsigned long long)c->msgs[PAR_CONTROL],
              (unsigned long long)bytes, run_backend_name(o->rc.backend));
     }
+    if (topology) {
+      const net_stats *ns = &pnet[i];
+      printf(",%.6f,%lld,%lld,%lld,%.9f", ns->messages ? (double)ns->hops / (double)ns->messages : 0.0,
+             ns->hop_bytes, ns->max_link_msgs, ns->max_link_bytes, ns->link_wait);
+    }
     putchar('\n');
     total_cost += t.cost;
     total_nodes += t.count.nodes;
@@ -174,16 +193,18 @@ static int tile_stack(void *ud, const contour_stack *s, const char *hprefix, con
   if (progress_line) fputs("\r\033[K", stderr);
   if (o->caps) {
     mesh_add_caps(me, s);
-    printf("%smesh,%.17g,%.17g,,,%.17g,%.17g,%.17g,%llu%s\n", prefix, s->c[0].z, s->c[s->n - 1].z,
-           total_cost, mesh_area(me), mesh_volume(me), total_nodes, parallel ? ",,,,,,,," : "");
+    printf("%smesh,%.17g,%.17g,,,%.17g,%.17g,%.17g,%llu%s%s\n", prefix, s->c[0].z, s->c[s->n - 1].z,
+           total_cost, mesh_area(me), mesh_volume(me), total_nodes, parallel ? ",,,,,,,," : "",
+           topology ? ",,,,," : "");
   }
   free(pr);
+  free(pnet);
   return 0;
 }
 
 static int tile_main(int argc, char **argv) {
   const char *in = NULL, *out = NULL;
-  int quiet = 0, backend_given = 0;
+  int quiet = 0, backend_given = 0, print_place = 0;
   tile_opts o = {0, 0, NULL, {0}};
   tile_dicom_opts dopt;
   memset(&dopt, 0, sizeof dopt);
@@ -200,6 +221,8 @@ static int tile_main(int argc, char **argv) {
       o.caps = 1;
     } else if (strcmp(a, "-q") == 0 || strcmp(a, "--quiet") == 0) {
       quiet = 1;
+    } else if (strcmp(a, "--print-place") == 0) {
+      print_place = 1;
     } else if ((k = tile_dicom_option(&dopt, a, v, err, sizeof err)) != 0) {   /* DICOM input */
       if (k < 0) return bad_usage("%s", err);
       i += k - 1;
@@ -235,6 +258,19 @@ static int tile_main(int argc, char **argv) {
   if (o.trace && !o.parallel) return bad_usage("%s", "--trace needs --procs (it traces the simulated machine)");
   if (o.trace && o.rc.backend != RUN_SIM) return bad_usage("%s", "--trace traces the simulated machine (--backend sim)");
   if (backend_given && !o.parallel) return bad_usage("%s", "--backend needs --procs");
+  int topology = o.rc.machine.topo.kind != TOPO_NONE;
+  if ((topology || print_place) && !o.parallel)
+    return bad_usage("%s", "--topology and --print-place need --procs (they describe the simulated machine)");
+  if (topology && o.rc.backend != RUN_SIM)
+    return bad_usage("%s", "--topology describes the simulated machine (--backend sim)");
+  if (topology) {   /* the machine must fit P before the input is read */
+    int *where = xmallocarray((size_t)run_ranks(o.rc.procs), sizeof *where), nodes;
+    int bad = run_net_place(&o.rc, o.rc.procs, where, &nodes, err, sizeof err) != 0;
+    free(where);
+    if (bad) return bad_usage("%s", err);
+  }
+  if (print_place && run_net_print(stderr, &o.rc, o.rc.procs, err, sizeof err) != 0)
+    return bad_usage("%s", err);
   if (o.parallel && run_backend_ranks(o.rc.backend) > 0 && run_ranks(o.rc.procs) > run_backend_ranks(o.rc.backend)) {
     char msg[160];
     snprintf(msg, sizeof msg, "--procs %d needs %d ranks; the %s run has %d", o.rc.procs,

@@ -62,6 +62,7 @@ void run_config_init(run_config *rc);
  *   --o-wake S  --slowdown F (the processor-side model, sim/cpu.h)
  *   --backend sim|threads (|mpi in MPI builds)
  *   --spin S (threads; and the simulator's sleep threshold, cpu.h)
+ *   --topology NAME  --hop-latency S  --switching MODE  --place NAME (run_net.h)
  * (--machine sets every machine parameter; give it before the others).
  * Returns 1 if opt is one of these (val consumed), 0 if not, -1 for a bad
  * value, with a message in err. */
