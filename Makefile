@@ -170,6 +170,10 @@ fuzz:
 # SVG under plots/, and the claims of sections 6 and 7 checked against them.
 JOBS ?= 2
 PLOTS = build/plot lines
+# Section 8's question (README, "Topologies and placement"): the bus, and a line,
+# a mesh and a hypercube with their dilation-1 placements against a random one.
+TOPO = --points 300 --procs 1..16 --jobs $(JOBS)
+TOPONET = --hop-latency 1e-4 --switching store-and-forward
 bench: all
 	./bench --alloc half,size --jobs $(JOBS) -o plots/speedup.csv
 	./bench --points 500 --alloc size --min-diag 20,40,60,80,100 --jobs $(JOBS) -o plots/min_diag.csv
@@ -201,6 +205,16 @@ bench: all
 	$(PLOTS) plots/real_speedup.csv -x procs -y speedup --series alloc --yzero \
 	  --title "A real pair (prostate_0, slices 40-41, 512 and 506 points)" \
 	  --xlabel processors --ylabel "speedup T(1)/T(P)" -o plots/real_half_vs_size.svg
+	./bench $(TOPO) --topology bus -o build/topology_bus.csv
+	./bench $(TOPO) $(TOPONET) --topology line --place linear,random:1 -o build/topology_line.csv
+	./bench $(TOPO) $(TOPONET) --topology mesh:4x4 --place snake,random:1 -o build/topology_mesh.csv
+	./bench $(TOPO) $(TOPONET) --topology hypercube:4 --place gray,random:1 -o build/topology_cube.csv
+	awk 'FNR > 1 || NR == 1' build/topology_bus.csv build/topology_line.csv build/topology_mesh.csv \
+	  build/topology_cube.csv > build/topology.csv && mv build/topology.csv plots/topology.csv
+	$(PLOTS) plots/topology.csv -x procs -y speedup --series topology,place --yzero \
+	  --labels "bus (the paper's),line: linear,line: random,mesh 4x4: snake,mesh 4x4: random,hypercube: Gray,hypercube: random" \
+	  --title "Section 8: 300 points on direct networks, 100 us a hop, store-and-forward" \
+	  --xlabel processors --ylabel "speedup T(1)/T(P)" -o plots/section8_topology.svg
 	./bench --claims plots/real_speedup.csv > plots/real_claims.csv
 	./bench --claims plots/speedup.csv plots/min_diag.csv > plots/claims.csv
 	@cat plots/claims.csv
