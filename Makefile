@@ -220,9 +220,10 @@ bench: all
 	@cat plots/claims.csv
 
 # The tiler's speed and memory (issue figures: 500 x 500, 5000 x 5000, the naive
-# reference, the whole prostate_0 stack).
+# reference, the whole prostate_0 stack), and how fast an RT structure set is read.
 bench-tile: all
 	./bench --tiler
+	./bench --dicom
 
 # The threads and MPI backends' waiting under outside load (issue 14, item 5):
 # runs alone and beside two busy loops (tests/bench_load.sh says what to set).

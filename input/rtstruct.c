@@ -324,7 +324,9 @@ static int read_contour(reader *r, rtstruct_roi *roi, int item, int k, rtstruct_
   c->n = (int)(nval / 3);
   c->p = xmallocarray(nval, sizeof *c->p);
   c->poff = xmallocarray((size_t)c->n, sizeof *c->poff);
-  size_t at = 0;
+  c->tok = xmallocarray(nval + 1, sizeof *c->tok);
+  c->txt = xmalloc(len + 1);
+  size_t at = 0, t = 0;
   for (size_t i = 0; i < nval; i++) {
     size_t e = at;
     while (e < len && v[e] != '\\') e++;
@@ -338,14 +340,28 @@ static int read_contour(reader *r, rtstruct_roi *roi, int item, int k, rtstruct_
     }
     c->p[i] = x;
     if (i % 3 == 0) c->poff[i / 3] = base + at;
+    /* The value as written, blanks trimmed; %.17g if it is long. */
+    size_t a = at, z = e;
+    while (a < z && v[a] == ' ') a++;
+    while (z > a && (v[z - 1] == ' ' || v[z - 1] == 0)) z--;
+    c->tok[i] = (uint32_t)t;
+    if (z - a <= 40) {
+      memcpy(c->txt + t, v + a, z - a);
+      t += z - a;
+    } else {   /* fits: the value took more than 40 of the len + 1 bytes */
+      t += (size_t)snprintf(c->txt + t, 32, "%.17g", x);
+    }
     at = e + 1;
   }
+  c->tok[nval] = (uint32_t)t;
   return 0;
 }
 
 static void free_contour(rtstruct_contour *c) {
   free(c->p);
   free(c->poff);
+  free(c->tok);
+  free(c->txt);
 }
 
 /* Stable order by height. */
@@ -679,12 +695,6 @@ const char *rtstruct_plane_name(rtstruct_plane plane) {
 
 /* The stack frame: axial (x, y, z); sagittal (y, z, x); coronal (z, x, y):
  * cyclic permutations of the axes, so rotations. */
-static void frame(rtstruct_plane plane, const double *p, double *u, double *v) {
-  if (plane == RTSTRUCT_AXIAL) *u = p[0], *v = p[1];
-  else if (plane == RTSTRUCT_SAGITTAL) *u = p[1], *v = p[2];
-  else *u = p[2], *v = p[0];
-}
-
 void rtstruct_to_patient(rtstruct_plane plane, double *x, double *y, double *z) {
   double u = *x, v = *y, h = *z;
   if (plane == RTSTRUCT_SAGITTAL) *x = h, *y = u, *z = v;
@@ -715,16 +725,23 @@ char *rtstruct_roi_text(const rtstruct *s, int ri, size_t *len) {
     sb_add(&b, "# sagittal contours turned into z: each point is patient y z, each plane patient x\n");
   else
     sb_add(&b, "# coronal contours turned into z: each point is patient z x, each plane patient y\n");
+  /* The numbers as the file wrote them (the same doubles: both readers
+   * round correctly), in the frame's order. */
+  int iu = roi->plane == RTSTRUCT_AXIAL ? 0 : roi->plane == RTSTRUCT_SAGITTAL ? 1 : 2;
+  int iv = (iu + 1) % 3, ih = (iu + 2) % 3;
   char line[96];
   for (int i = 0; i < roi->nc; i++) {
     const rtstruct_contour *c = &roi->c[i];
-    int k = snprintf(line, sizeof line, "C %d %.17g\n", c->n, c->h);
+    int k = snprintf(line, sizeof line, "C %d ", c->n);
     sb_raw(&b, line, (size_t)k);
+    sb_raw(&b, c->txt + c->tok[ih], c->tok[ih + 1] - c->tok[ih]);
+    sb_raw(&b, "\n", 1);
     for (int j = 0; j < c->n; j++) {
-      double u, v;
-      frame(roi->plane, c->p + 3 * j, &u, &v);
-      k = snprintf(line, sizeof line, "%.17g %.17g\n", u, v);
-      sb_raw(&b, line, (size_t)k);
+      const uint32_t *t = c->tok + 3 * j;
+      sb_raw(&b, c->txt + t[iu], t[iu + 1] - t[iu]);
+      sb_raw(&b, " ", 1);
+      sb_raw(&b, c->txt + t[iv], t[iv + 1] - t[iv]);
+      sb_raw(&b, "\n", 1);
     }
   }
   *len = b.len;

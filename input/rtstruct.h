@@ -17,7 +17,7 @@
  *
  * An ROI becomes a .contours stack (input/contour.h) in the text that
  * rtstruct_roi_text writes: its closed contours sorted by their plane
- * (stably), points as %.17g.  rtstruct_roi_stack reads that text with the
+ * (stably), the numbers as the file wrote them.  rtstruct_roi_stack reads that text with the
  * .contours reader, so a DICOM ROI and its converted stack give the same
  * tiling, mesh and report; the reader's refusals and notes are rewritten to
  * name the DICOM file, the byte, the ROI and the contour item. */
@@ -25,6 +25,7 @@
 #define RTSTRUCT_H
 
 #include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 
 #include "contour.h"
@@ -37,6 +38,8 @@ typedef struct {
   int n;             /* points */
   double *p;         /* 3n: x y z, as in the file */
   size_t *poff;      /* n: byte offset of each point's first value */
+  char *txt;         /* the 3n values as written (blanks trimmed), one after another */
+  uint32_t *tok;     /* 3n + 1: where each value starts in txt (the next, where it ends) */
   double h;          /* its plane's height along the ROI's normal */
 } rtstruct_contour;
 

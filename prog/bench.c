@@ -8,6 +8,7 @@
 
 #include "bench_calibrate.h"
 #include "bench_claims.h"
+#include "bench_dicom.h"
 #include "bench_model.h"
 #include "bench_paper.h"
 #include "bench_ring.h"
@@ -46,6 +47,10 @@ static const mode modes[] = {
      "      receive overheads, latency, gap, a sleeper's wake-up; busy cores' slowdown),\n"
      "      the simulator options that model it, and its predictions beside the threads\n"
      "      backend's times (defaults: 2000 points, procs 1,2,3, fastest of 10 runs)"},
+    {"--dicom", bench_dicom,
+     "[FILE...] [--repeat R]\n"
+     "      how fast a DICOM RT structure set is read (best of R runs, default 20) and its\n"
+     "      ROIs made into stacks; a checksum of the coordinates (default: dicompyler_rtss.dcm)"},
     {"--tiler", bench_tiler,
      "[--points N[,N...]] [--naive N] [--input STACK]... [--cost area|span]\n"
      "      [--seed S] [--repeat R]\n"

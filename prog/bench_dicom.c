@@ -1,0 +1,114 @@
+/* bench_dicom.c -- ./bench --dicom: how fast a DICOM RT structure set is
+ * read, and its ROIs made into stacks.
+ *
+ *   bench --dicom [FILE...] [--repeat R]
+ *
+ * One CSV row per file (default tests/data/rtstruct/dicompyler_rtss.dcm, 1.9
+ * MB, 10 ROIs).  The file is read into memory once; read_ms is the best of R
+ * runs of rtstruct_parse on it (the DICOM tree, every ROI's contours parsed
+ * from their decimal strings, planes, sorting), stacks_ms the best of R runs
+ * of rtstruct_roi_stack on every ROI that has contours (its .contours text
+ * and the stack reader).  checksum is the sum of every coordinate read: it
+ * shows a fast wrong answer. */
+#include "bench_dicom.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "rtstruct.h"
+#include "wallclock.h"
+#include "xmem.h"
+
+static unsigned char *slurp(const char *path, size_t *len) {
+  FILE *f = fopen(path, "rb");
+  if (!f) {
+    fprintf(stderr, "bench: %s: cannot open (%s)\n", path, strerror(errno));
+    return NULL;
+  }
+  size_t cap = 1 << 20, n = 0;
+  unsigned char *b = xmalloc(cap);
+  for (size_t got; (got = fread(b + n, 1, cap - n, f)) > 0;)
+    if ((n += got) == cap) b = xrealloc(b, cap *= 2);
+  fclose(f);
+  *len = n;
+  return b;
+}
+
+static int one(const char *path, int repeat) {
+  size_t len;
+  unsigned char *buf = slurp(path, &len);
+  if (!buf) return 1;
+  char err[1024];
+  double best = 1e300, best_stacks = 1e300, sum = 0;
+  int rois = 0, contours = 0, stacks = 0;
+  long points = 0;
+  for (int r = 0; r < repeat; r++) {
+    rtstruct s;
+    double t0 = wallclock();
+    if (rtstruct_parse(buf, len, path, &s, err, sizeof err) != 0) {
+      fprintf(stderr, "bench: %s\n", err);
+      free(buf);
+      return 1;
+    }
+    double t1 = wallclock();
+    if (t1 - t0 < best) best = t1 - t0;
+    stacks = 0;
+    for (int i = 0; i < s.nroi; i++) {
+      contour_stack st;
+      if (rtstruct_roi_stack(&s, i, 0, &st, NULL, "bench", err, sizeof err) == 0) {
+        stacks++;
+        contour_stack_free(&st);
+      }
+    }
+    double t2 = wallclock();
+    if (t2 - t1 < best_stacks) best_stacks = t2 - t1;
+    if (r == 0) {
+      rois = s.nroi;
+      for (int i = 0; i < s.nroi; i++) {
+        const rtstruct_roi *roi = &s.roi[i];
+        contours += roi->nc;
+        points += roi->points;
+        for (int k = 0; !roi->error && k < roi->nc; k++)
+          for (int j = 0; j < 3 * roi->c[k].n; j++) sum += roi->c[k].p[j];
+      }
+    }
+    rtstruct_free(&s);
+  }
+  printf("%s,%zu,%d,%d,%ld,%d,%d,%.3f,%.1f,%.3f,%.17g\n", path, len, rois, contours, points, stacks,
+         repeat, best * 1e3, len / best / 1e6, best_stacks * 1e3, sum);
+  free(buf);
+  return 0;
+}
+
+int bench_dicom(int argc, char **argv) {
+  int repeat = 20, nfiles = 0;
+  const char **files = xcalloc((size_t)argc + 1, sizeof *files);
+  for (int i = 2; i < argc; i++) {
+    if (strcmp(argv[i], "--repeat") == 0) {
+      char *end;
+      long v = i + 1 < argc ? strtol(argv[i + 1], &end, 10) : 0;
+      if (i + 1 >= argc || *end || end == argv[i + 1] || v < 1 || v > 100000) {
+        fprintf(stderr, "bench: --repeat takes a whole number from 1 to 100000 (%s)\n",
+                i + 1 < argc ? argv[i + 1] : "missing");
+        free(files);
+        return 2;
+      }
+      repeat = (int)v;
+      i++;
+    } else if (argv[i][0] == '-') {
+      fprintf(stderr, "bench: --dicom: unknown option (%s)\n", argv[i]);
+      free(files);
+      return 2;
+    } else {
+      files[nfiles++] = argv[i];
+    }
+  }
+  if (nfiles == 0) files[nfiles++] = "tests/data/rtstruct/dicompyler_rtss.dcm";
+  printf("file,bytes,rois,contours,points,stacks,runs,read_ms,read_mb_per_s,stacks_ms,checksum\n");
+  int rc = 0;
+  for (int i = 0; i < nfiles && rc == 0; i++) rc = one(files[i], repeat);
+  free(files);
+  return rc;
+}
