@@ -104,7 +104,7 @@ fail:
 int bench_ring_main(int argc, char **argv) {
   long procs = 0, laps = 0;
   double work = 1;
-  int all = 0, print_place = 0;
+  int all = 0, print_place = 0, net_given = 0;
   place_spec place = {PLACE_LINEAR, 0, ""};
   const char *tcsv = NULL, *tjson = NULL;
   sim_config cfg;
@@ -128,6 +128,7 @@ int bench_ring_main(int argc, char **argv) {
       if (parse_long(v, 1, LONG_MAX, &laps)) return bad(ring_usage, "--laps %s: need a count >= 1", v);
     } else if (strcmp(o, "--net") == 0) {
       if (sim_net_parse(v, &cfg.net)) return bad(ring_usage, "--net %s: ideal, bus or loggp", v);
+      net_given = 1;
     } else if (strcmp(o, "--m") == 0) {
       if (parse_seconds(v, &cfg.m)) return bad(ring_usage, "--m %s: need seconds >= 0", v);
     } else if (strcmp(o, "--c") == 0) {
@@ -159,7 +160,7 @@ int bench_ring_main(int argc, char **argv) {
     }
   }
   if (!procs || !laps) return bad(ring_usage, "%s", "--ring P and --laps K are needed");
-  if (cfg.topo.kind != TOPO_NONE && cfg.net == SIM_NET_LOGGP)
+  if (cfg.topo.kind != TOPO_NONE && net_given)
     return bad(ring_usage, "%s", "--net and --topology both choose the network: give one");
   cfg.procs = (int)procs;
   cfg.warn = stderr;

@@ -204,7 +204,7 @@ static int tile_stack(void *ud, const contour_stack *s, const char *hprefix, con
 
 static int tile_main(int argc, char **argv) {
   const char *in = NULL, *out = NULL;
-  int quiet = 0, backend_given = 0, print_place = 0;
+  int quiet = 0, backend_given = 0, print_place = 0, place_given = 0;
   tile_opts o = {0, 0, NULL, {0}};
   tile_dicom_opts dopt;
   memset(&dopt, 0, sizeof dopt);
@@ -243,6 +243,7 @@ static int tile_main(int argc, char **argv) {
       }
       if (strcmp(a, "--procs") == 0) o.parallel = 1;
       if (strcmp(a, "--backend") == 0) backend_given = 1;
+      if (strcmp(a, "--place") == 0) place_given = 1;
       i++;
     } else if (in) {
       return bad_usage("one contour stack at a time (%s)", a);
@@ -259,8 +260,8 @@ static int tile_main(int argc, char **argv) {
   if (o.trace && o.rc.backend != RUN_SIM) return bad_usage("%s", "--trace traces the simulated machine (--backend sim)");
   if (backend_given && !o.parallel) return bad_usage("%s", "--backend needs --procs");
   int topology = o.rc.machine.topo.kind != TOPO_NONE;
-  if ((topology || print_place) && !o.parallel)
-    return bad_usage("%s", "--topology and --print-place need --procs (they describe the simulated machine)");
+  if ((topology || print_place || place_given) && !o.parallel)
+    return bad_usage("%s", "--topology, --place and --print-place need --procs (they describe the simulated machine)");
   if (topology && o.rc.backend != RUN_SIM)
     return bad_usage("%s", "--topology describes the simulated machine (--backend sim)");
   if (topology) {   /* the machine must fit P before the input is read */

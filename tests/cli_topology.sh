@@ -97,12 +97,14 @@ for args in "--topology star" "--topology mesh:2x2 --procs 5" "--topology line -
   if [ $rc -eq 2 ] && [ ! -s "$tmp.out" ] && grep -q '^usage: tile' "$tmp.err"; then ok
   else fail "tile $args: exit $rc: $(cat "$tmp.err")"; fi
 done
-grep -q "$tmp.place:3: processor 1 is placed twice" "$tmp.err" 2>/dev/null || \
-  { "$tile" "$stack" --procs 3 --place "file:$tmp.place" 2>&1 | grep -q "$tmp.place:3: processor 1 is placed twice" && ok \
-    || fail "a bad placement file is not named with its line"; }
+"$tile" "$stack" --place snake >"$tmp.out" 2>"$tmp.err"; rc=$?
+[ $rc -eq 2 ] && [ ! -s "$tmp.out" ] && grep -q 'need --procs' "$tmp.err" && ok || fail "tile --place without --procs: exit $rc"
+"$tile" "$stack" --procs 3 --place "file:$tmp.place" 2>&1 | grep -q "$tmp.place:3: processor 1 is placed twice" \
+  && ok || fail "a bad placement file is not named with its line"
 for args in "--topology line --net ideal" "--topology mesh:2x2 --procs 1..5" "--topology line, " \
             "--place linear,file:$tmp.none" "--topology line --backend threads" "--ring 4 --laps 1 --topology nope" \
-            "--ring 4 --laps 1 --topology mesh:1x2" "--ring 4 --laps 1 --tokens 2"; do
+            "--ring 4 --laps 1 --topology mesh:1x2" "--ring 4 --laps 1 --tokens 2" \
+            "--ring 4 --laps 1 --net ideal --topology line"; do
   # shellcheck disable=SC2086
   "$bench" $args >"$tmp.out" 2>"$tmp.err"; rc=$?
   if [ $rc -eq 2 ] && [ ! -s "$tmp.out" ] && grep -q '^usage: bench' "$tmp.err"; then ok
