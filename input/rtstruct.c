@@ -701,6 +701,15 @@ void rtstruct_to_patient(rtstruct_plane plane, double *x, double *y, double *z) 
   else if (plane == RTSTRUCT_CORONAL) *x = v, *y = h, *z = u;
 }
 
+void rtstruct_height_text(const rtstruct_roi *roi, int k, char *buf, size_t cap) {
+  const rtstruct_contour *c = &roi->c[k];
+  int ih = roi->plane == RTSTRUCT_AXIAL ? 2 : roi->plane == RTSTRUCT_SAGITTAL ? 0 : 1;
+  size_t n = c->tok[ih + 1] - c->tok[ih];
+  if (n > cap - 1) n = cap - 1;
+  memcpy(buf, c->txt + c->tok[ih], n);
+  buf[n] = 0;
+}
+
 /* Comment lines the text starts with (the line map counts them). */
 enum { HEADER_LINES = 2 };
 
@@ -751,8 +760,11 @@ char *rtstruct_roi_text(const rtstruct *s, int ri, size_t *len) {
 /* The name the reader is given: found again in its messages and rewritten. */
 static const char sentinel[] = "\x01rtstruct\x01";
 
-/* Where line `line` of the ROI's text came from. */
-static void locate(const rtstruct_roi *roi, long line, sbuf *b, int with_byte, const char *file) {
+/* Where line `line` of the ROI's text came from: "FILE: byte N: ROI r 'name',
+ * contour item k[, point j]" (with_byte), else "contour item k[, point j]",
+ * or "point j" alone when it is a point of contour `cur`.  Returns the
+ * contour's index (-1 for a comment line). */
+static int locate(const rtstruct_roi *roi, long line, sbuf *b, int with_byte, int cur, const char *file) {
   long at = HEADER_LINES + 1;
   for (int i = 0; i < roi->nc; i++) {
     const rtstruct_contour *c = &roi->c[i];
@@ -760,22 +772,26 @@ static void locate(const rtstruct_roi *roi, long line, sbuf *b, int with_byte, c
       long j = line - at;
       if (with_byte) sb_add(b, "%s: byte %zu: ROI %d '%s', ", file, j ? c->poff[j - 1] : c->offset,
                             roi->number, roi->name);
-      if (j) sb_add(b, "contour item %d, point %ld", c->item, j);
+      if (j && i == cur) sb_add(b, "point %ld", j);
+      else if (j) sb_add(b, "contour item %d, point %ld", c->item, j);
       else sb_add(b, "contour item %d", c->item);
-      return;
+      return i;
     }
     at += c->n + 1;
   }
   if (with_byte) sb_add(b, "%s: ROI %d '%s', ", file, roi->number, roi->name);
   sb_add(b, "line %ld of its stack", line);
+  return -1;
 }
 
 static int digit(char c) { return c >= '0' && c <= '9'; }
 
-/* The reader's text with the sentinel name and its line numbers rewritten. */
+/* The reader's text with the sentinel name and its line numbers rewritten;
+ * within a line, points of the contour its prefix names are "point j". */
 static char *rewrite(const rtstruct *s, const rtstruct_roi *roi, const char *msg) {
   sbuf b = {0};
   size_t sl = sizeof sentinel - 1;
+  int cur = -1;
   sb_raw(&b, "", 0);
   for (const char *p = msg; *p;) {
     if (strncmp(p, sentinel, sl) == 0) {
@@ -783,7 +799,7 @@ static char *rewrite(const rtstruct *s, const rtstruct_roi *roi, const char *msg
       if (q[0] == ':' && digit(q[1])) {
         long line = strtol(q + 1, (char **)&q, 10);
         if (*q == ':') q++;
-        locate(roi, line, &b, 1, s->name);
+        cur = locate(roi, line, &b, 1, -1, s->name);
         sb_raw(&b, ":", 1);
       } else {
         sb_add(&b, "%s: ROI %d '%s'", s->name, roi->number, roi->name);
@@ -793,9 +809,10 @@ static char *rewrite(const rtstruct *s, const rtstruct_roi *roi, const char *msg
                                                                            (p[-1] >= 'A' && p[-1] <= 'Z')))) {
       const char *q;
       long line = strtol(p + 5, (char **)&q, 10);
-      locate(roi, line, &b, 0, s->name);
+      locate(roi, line, &b, 0, cur, s->name);
       p = q;
     } else {
+      if (*p == '\n') cur = -1;
       sb_raw(&b, p, 1);
       p++;
     }

@@ -102,6 +102,9 @@ void rtstruct_to_patient(rtstruct_plane plane, double *x, double *y, double *z);
 
 const char *rtstruct_plane_name(rtstruct_plane plane);
 
+/* Contour k's height as the file wrote it (at most cap - 1 bytes). */
+void rtstruct_height_text(const rtstruct_roi *roi, int k, char *buf, size_t cap);
+
 /* A decimal string (DS): optional blanks around [+-]digits[.digits][e[+-]digits].
  * 0 and *v; 1 if it is a number too large for a double; -1 if it is not a
  * number.  The result is the correctly rounded double, whatever the locale. */

@@ -95,8 +95,12 @@ static void list(const rtstruct *s) {
     printf(",%d,%d,", r->nc, r->skipped);
     if (r->error) printf(",,,,\n");
     else if (r->nc == 0) printf("0,0,,,\n");
-    else printf("%d,%ld,%.17g,%.17g,%s\n", r->slices, r->points, r->hmin, r->hmax,
-                rtstruct_plane_name(r->plane));
+    else {
+      char lo[48], hi[48];   /* as the file wrote them */
+      rtstruct_height_text(r, 0, lo, sizeof lo);
+      rtstruct_height_text(r, r->nc - 1, hi, sizeof hi);
+      printf("%d,%ld,%s,%s,%s\n", r->slices, r->points, lo, hi, rtstruct_plane_name(r->plane));
+    }
   }
 }
 

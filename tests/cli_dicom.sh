@@ -56,8 +56,8 @@ list_is $D/rtutils_rt.dcm '1,ROI-1,,2,0,1'
 # three contours of 5, 6 and 6 points at z = -200 .. -180; rt.dcm's 4 + 8
 # points at z = 60; MIM's 315 to 1,015 points per ROI, 5 mm apart.
 "$TILE" $D/dicompyler_rtss.dcm --list | grep -q '^1,BODY,EXTERNAL,141,0,98,51846,' && ok || bad "BODY points"
-"$TILE" $D/pydicom_rtstruct.dcm --list | grep -qx '1,patient,EXTERNAL,3,0,3,17,-200,-180,axial' && ok || bad "pydicom patient row"
-"$TILE" $D/rtutils_rt.dcm --list | grep -qx '1,ROI-1,,2,0,1,12,60,60,axial' && ok || bad "rt.dcm row"
+"$TILE" $D/pydicom_rtstruct.dcm --list | grep -qx '1,patient,EXTERNAL,3,0,3,17,-200.0,-180.0,axial' && ok || bad "pydicom patient row"
+"$TILE" $D/rtutils_rt.dcm --list | grep -qx '1,ROI-1,,2,0,1,12,60.0,60.0,axial' && ok || bad "rt.dcm row"
 "$TILE" $D/rtutils_dummy_rt.dcm --list | tail -n +2 | cut -d, -f7-10 | sort -n > "$T/mim"
 printf '315,60,70,axial\n356,60,70,axial\n418,60,70,axial\n1015,60,70,axial\n' | cmp -s - "$T/mim" && ok || bad "MIM points: $(cat "$T/mim")"
 

@@ -416,8 +416,7 @@ static void refusals(void) {
 
   cs[1] = (rtw_contour){NULL, 4, NULL, "0\\0\\8\\10\\10\\8\\10\\0\\8\\0\\10\\8", -1};
   b = write1(&r, 1, &len);
-  roi_refused("bowtie", b, len, "contour item 2: the contour crosses itself: the segment from contour item 2, point 1 to "
-              "contour item 2, point 2");
+  roi_refused("bowtie", b, len, "contour item 2: the contour crosses itself: the segment from point 1 to point 2 crosses the segment from point 3 to point 4 (5 5)");
   free(b);
   cs[1] = two[1];
 
