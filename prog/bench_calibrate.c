@@ -51,7 +51,8 @@
 static int usage(const char *why, const char *val) {
   if (why) fprintf(stderr, "bench: %s (%s)\n", why, val ? val : "");
   fprintf(stderr, "usage: bench --calibrate [--points LIST] [--procs LIST] [--repeat R] [--seed S] "
-                  "[--messages K]\n");
+                  "[--messages K]\n"
+                  "                        [--alloc A] [--block k] [--schedule S] [--min-diag d]\n");
   return 2;
 }
 
@@ -97,12 +98,14 @@ static int slaves_tables(int P, const vec2 *A, const vec2 *B, int n) {
 }
 
 /* The simulator options of the model, c aside. */
-static void model_options(const micro_model *d, double spin, double slowdown, char *buf, size_t len) {
+static void model_options(const micro_model *d, double spin, double slowdown, double slowdown_spin, char *buf,
+                          size_t len) {
   snprintf(buf, len,
            "--net loggp --L %.4g --o 0 --g %.4g --G %.4g --o-send %.4g --o-send-byte %.4g "
-           "--o-recv %.4g --o-recv-byte %.4g --spin %.4g --wake %.4g --o-wake %.4g --slowdown %.4g",
+           "--o-recv %.4g --o-recv-byte %.4g --spin %.4g --wake %.4g --o-wake %.4g --slowdown %.4g "
+           "--slowdown-spin %.4g",
            d->L, d->g, d->G, d->o_send, d->o_send_byte, d->o_recv, d->o_recv_byte, spin, d->wake,
-           d->o_wake, slowdown);
+           d->o_wake, slowdown, slowdown_spin);
 }
 
 /* The same, set in rc->machine (through run_option, as a user's would be). */
@@ -121,28 +124,40 @@ static void set_options(run_config *rc, const char *opts, double c) {
 /* The busy cores' slowdown: k copies of the serial solver at once for
  * k = 1, 2, 4, ... cpus; the least-squares slope of (t_k / t_1 - 1) against
  * k - 1.  One line on stderr per k. */
-static double slowdown(const vec2 *A, const vec2 *B, int n, int repeat) {
+static double slowdown(const vec2 *A, const vec2 *B, int n, int repeat, double *spin_slow) {
   int cpus = cpuload_cpus(), ks[32], nk = 0;
   for (int k = 1; k < cpus && nk < 30; k *= 2) ks[nk++] = k;
   ks[nk++] = cpus;
-  double t1 = -1, sxy = 0, sxx = 0;
-  fprintf(stderr, "bench: busy cores: the serial solver (%d points) k times at once, each copy's mean time:\n", n);
-  for (int i = 0; i < nk; i++) {
-    double t = micro_together(A, B, n, 0, ks[i], 0, repeat);
-    if (t < 0) break;
-    if (i == 0) t1 = t;
-    double f = t / t1, x = ks[i] - 1;
+  double t[32], spun = -1;
+  for (int i = 0; i < nk; i++) t[i] = -1;
+  for (int r = 0; r < repeat; r++) {   /* in rounds, every k once a round: the fastest of each */
+    for (int i = 0; i < nk; i++) {
+      double x = micro_together(A, B, n, 0, ks[i], 0, 1);
+      if (x > 0 && (t[i] < 0 || x < t[i])) t[i] = x;
+    }
+    if (cpus > 1) {
+      double x = micro_together(A, B, n, 0, cpus, 1, 1);
+      if (x > 0 && (spun < 0 || x < spun)) spun = x;
+    }
+  }
+  double sxy = 0, sxx = 0;
+  fprintf(stderr, "bench: busy cores: the serial solver (%d points) k times at once, each copy's mean time"
+                  " (fastest of %d):\n", n, repeat);
+  for (int i = 0; i < nk && t[0] > 0; i++) {
+    if (t[i] < 0) continue;
+    double f = t[i] / t[0], x = ks[i] - 1;
     sxy += x * (f - 1), sxx += x * x;
-    fprintf(stderr, "bench:   k = %2d: %.6f s, %.3f times one alone\n", ks[i], t, f);
+    fprintf(stderr, "bench:   k = %2d: %.6f s, %.3f times one alone\n", ks[i], t[i], f);
   }
-  if (cpus > 1 && t1 > 0) {
-    double t = micro_together(A, B, n, 0, cpus, 1, repeat);
-    if (t > 0)
-      fprintf(stderr, "bench:   one copy beside %d spinning threads: %.6f s, %.3f times alone\n", cpus - 1, t,
-              t / t1);
+  *spin_slow = 0;
+  if (spun > 0 && t[0] > 0) {
+    fprintf(stderr, "bench:   one copy beside %d spinning threads: %.6f s, %.3f times alone\n", cpus - 1, spun,
+            spun / t[0]);
+    double f = (spun / t[0] - 1) / (cpus - 1);
+    *spin_slow = f > 0 ? f : 0;
   }
-  double s = sxx > 0 ? sxy / sxx : 0;
-  return s > 0 ? s : 0;
+  double sl = sxx > 0 ? sxy / sxx : 0;
+  return sl > 0 ? sl : 0;
 }
 
 int bench_calibrate(int argc, char **argv) {
@@ -150,6 +165,11 @@ int bench_calibrate(int argc, char **argv) {
   int repeat = 10, messages = 100000;
   unsigned long long seed = 1993;
   bench_list procs = {0}, sizes = {0};
+  run_config rc;
+  run_config_init(&rc);
+  rc.machine.warn = NULL;
+  rc.threads.warn = NULL;
+  static const char *const algo_opts[] = {"--alloc", "--min-diag", "--block", "--schedule"};
   for (int i = 2; i < argc; i += 2) {   /* an option and its value */
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
     char *e;
@@ -170,7 +190,11 @@ int bench_calibrate(int argc, char **argv) {
       seed = strtoull(v, &e, 10);
       if (*e || e == v) return usage("--seed takes a whole number", v);
     } else {
-      return usage("unknown option", a);
+      int algo = 0;
+      for (size_t k = 0; k < sizeof algo_opts / sizeof *algo_opts; k++) algo |= strcmp(a, algo_opts[k]) == 0;
+      char e2[200];
+      if (!algo) return usage("unknown option", a);
+      if (run_option(&rc, a, v, e2, sizeof e2) != 1) return usage(e2, v);
     }
   }
   if (procs.n == 0) bench_list_parse("1,2,3", &procs, 1, 1, 64);
@@ -212,16 +236,13 @@ int bench_calibrate(int argc, char **argv) {
 
   vec2 *A0, *B0;
   bench_make_pair(seed, (int)sizes.v[0], &A0, &B0);
-  double slow = slowdown(A0, B0, (int)sizes.v[0], repeat < 3 ? repeat : 3);
+  double slow_spin, slow = slowdown(A0, B0, (int)sizes.v[0], repeat, &slow_spin);
   free(A0), free(B0);
-  fprintf(stderr, "bench:   so slowdown %.4g per other busy core\n", slow);
+  fprintf(stderr, "bench:   so slowdown %.4g per other working core (the least-squares slope), %.4g per spinning one\n",
+          slow, slow_spin);
   char opts[600];
-  model_options(&d, spin, slow, opts, sizeof opts);
+  model_options(&d, spin, slow, slow_spin, opts, sizeof opts);
 
-  run_config rc;
-  run_config_init(&rc);
-  rc.machine.warn = NULL;
-  rc.threads.warn = NULL;
   printf("points,procs,slaves,tables,c,options,measured_s,predicted_s,error,measured_speedup,"
          "predicted_speedup,ideal_s,ideal_error,measured_median_s,sleeps,wake_us,nodes,messages,cost\n");
   int rcode = 0;
@@ -233,12 +254,19 @@ int bench_calibrate(int argc, char **argv) {
     for (int i = 0; i < order.n; i++) any_tab |= tab[i] = slaves_tables((int)order.v[i], A, B, points);
     /* In rounds: the serial solver (on the fly, and with tables if some
      * slaves use them), then the threads run at each P; the fastest of each. */
-    double solve = -1, solve_t = -1, serial_cost = 0;
+    double solve = -1, solve_t = -1, build = -1, serial_cost = 0;
     uint64_t nodes = 0;
     result *meas = xcalloc((size_t)order.n, sizeof *meas);
     double *all = xcalloc((size_t)order.n * (size_t)repeat, sizeof *all);   /* every run's time */
     for (int i = 0; i < order.n; i++) meas[i].time = -1;
     for (int r = 0; r < repeat && !rcode; r++) {
+      if (any_tab) {   /* the table alone: what every slave that uses one builds first */
+        double t0 = wallclock();
+        weights *w = weights_new(A, points, 0, B, points, 5, COST_AREA, 1);
+        double x = wallclock() - t0;
+        weights_free(w);
+        if (build < 0 || x < build) build = x;
+      }
       for (int table = 0; table <= any_tab; table++) {
         tiling t;
         double t0 = wallclock();
@@ -259,7 +287,7 @@ int bench_calibrate(int argc, char **argv) {
           rcode = 1;
           break;
         }
-        if (x.cost != serial_cost || x.nodes != nodes) {
+        if (x.cost != serial_cost) {   /* (the variants may evaluate more nodes than the serial solver) */
           fprintf(stderr, "bench: the threads run on %d processors gave %.17g, the serial solver %.17g\n", P,
                   x.cost, serial_cost);
           rcode = 1;
@@ -269,18 +297,27 @@ int bench_calibrate(int argc, char **argv) {
         all[(size_t)i * (size_t)repeat + (size_t)r] = x.time;
       }
     }
-    double c = solve / (double)nodes, c_t = any_tab ? solve_t / (double)nodes : c;
+    /* c per node on the fly; with tables, the kernel's per node plus the
+     * table a slave builds once a pair, spread over its share of the nodes
+     * (the algorithm does not report that work to mp_compute): for S slaves
+     * c_kernel + build * S / nodes, which is the serial solver's own figure
+     * at S = 1. */
+    double c = solve / (double)nodes, c_kern = any_tab ? (solve_t - build) / (double)nodes : c;
+    if (c_kern < 0) c_kern = 0;
     if (!rcode) {
       fprintf(stderr, "bench: %d points: c = %.4g s per node (the serial solver, %.6f s for %llu nodes)", points, c,
               solve, (unsigned long long)nodes);
-      if (any_tab) fprintf(stderr, "; with weight tables %.4g (%.6f s)", c_t, solve_t);
+      if (any_tab)
+        fprintf(stderr, ";\nbench:   with weight tables %.6f s, of which %.6f s building the table: %.4g s per node\n"
+                        "bench:   and each of S slaves that use tables builds one: --c %.4g + %.4g S",
+                solve_t, build, c_kern, c_kern, build / (double)nodes);
       fprintf(stderr, "\nbench: %d points: the simulator models this host with\n    %s --c %.4g\n", points, opts, c);
-      if (any_tab) fprintf(stderr, "  (--c %.4g where the slaves use weight tables)\n", c_t);
     }
     double pred1 = 0;
     for (int i = 0; i < order.n && !rcode; i++) {
       int P = (int)order.v[i];
-      double cp = tab[i] ? c_t : c;
+      int slaves = P < 2 ? 1 : P - 1;
+      double cp = tab[i] ? c_kern + build * slaves / (double)nodes : c;
       result pred, ideal;
       set_options(&rc, opts, cp);
       if (one(&rc, RUN_SIM, P, A, B, points, &pred, err, sizeof err) != 0) {
@@ -304,7 +341,7 @@ int bench_calibrate(int argc, char **argv) {
       qsort(mine, (size_t)repeat, sizeof *mine, cmp_double);
       double med = repeat % 2 ? mine[repeat / 2] : (mine[repeat / 2 - 1] + mine[repeat / 2]) / 2;
       printf("%d,%d,%d,%d,%.4g,%s --c %.4g,%.6f,%.6f,%+.4f,%.3f,%.3f,%.6f,%+.4f,%.6f,%lld,%.1f,%llu,%llu,%.17g\n",
-             points, P, P < 2 ? 1 : P - 1, tab[i], cp, opts, cp, meas[i].time, pred.time, pred.time / meas[i].time - 1,
+             points, P, slaves, tab[i], cp, opts, cp, meas[i].time, pred.time, pred.time / meas[i].time - 1,
              meas[0].time / meas[i].time, pred1 / pred.time, ideal.time, ideal.time / meas[i].time - 1, med, ts->sleeps,
              ts->wakes ? ts->wake_s / (double)ts->wakes * 1e6 : 0.0, (unsigned long long)meas[i].nodes,
              (unsigned long long)meas[i].msgs, meas[i].cost);

@@ -69,7 +69,8 @@ const char run_options_help[] =
     "  --o-send-byte S --o-recv-byte S   ... and per byte (copying)\n"
     "  --wake S           a receiver that waited longer than --spin sleeps: it runs\n"
     "                     S after its message arrives; --o-wake S: its waker's cost\n"
-    "  --slowdown F       computing slows by F (a fraction) per other busy processor\n";
+    "  --slowdown F       computing slows by F (a fraction) per other working\n"
+    "                     processor; --slowdown-spin F: per other spinning one\n";
 
 static int seconds(const char *opt, const char *val, double *out, char *err, size_t errlen) {
   char *end;

@@ -59,7 +59,7 @@ void run_config_init(run_config *rc);
  *   --machine NAME  --net ideal|bus|loggp
  *   --m S  --c S  --per-byte S  --local S  --L S  --o S  --g S  --G S
  *   --o-send S  --o-send-byte S  --o-recv S  --o-recv-byte S  --wake S
- *   --o-wake S  --slowdown F (the processor-side model, sim/cpu.h)
+ *   --o-wake S  --slowdown F  --slowdown-spin F (the processor-side model, sim/cpu.h)
  *   --backend sim|threads (|mpi in MPI builds)
  *   --spin S (threads; and the simulator's sleep threshold, cpu.h)
  *   --topology NAME  --hop-latency S  --switching MODE  --place NAME (run_net.h)

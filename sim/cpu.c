@@ -12,7 +12,7 @@ void cpu_model_init(cpu_model *m) {
 
 int cpu_model_on(const cpu_model *m) {
   return m->o_send > 0 || m->o_send_byte > 0 || m->o_recv > 0 || m->o_recv_byte > 0 || m->wake > 0 ||
-         m->o_wake > 0 || m->slowdown > 0;
+         m->o_wake > 0 || m->slowdown > 0 || m->slowdown_spin > 0;
 }
 
 static const struct {
@@ -27,6 +27,7 @@ static const struct {
     {"--wake", "wake", offsetof(cpu_model, wake)},
     {"--o-wake", "o_wake", offsetof(cpu_model, o_wake)},
     {"--slowdown", "slowdown", offsetof(cpu_model, slowdown)},
+    {"--slowdown-spin", "slowdown_spin", offsetof(cpu_model, slowdown_spin)},
 };
 
 int cpu_model_check(const cpu_model *m, char *err, size_t errlen) {

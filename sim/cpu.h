@@ -30,14 +30,15 @@
  *   right after its send overhead.  (spin is the threads backend's --spin.)
  *
  *   Busy neighbours: a compute of u units on processor p that starts at t
- *   takes u * c * (1 + slowdown * k), k the number of other processors that
- *   are awake at t: with a rank that has not finished and is not asleep in
- *   recv (computing, sending or receiving, queued to act, or blocked no
- *   longer than spin: spinning).  An awake core, spinning or working, is
- *   what slows its neighbours on a real machine (a shared clock and power
- *   budget, shared caches); a sleeping or finished one does not.  slowdown
- *   is what one more awake core costs each core, as a fraction: measured by
- *   running copies of the serial solver at once (bench --calibrate).
+ *   takes u * c * (1 + slowdown * k + slowdown_spin * j), k the number of
+ *   other processors whose rank is working at t (not finished and not
+ *   blocked in recv: computing, sending or receiving, or queued to act), j
+ *   the number of others whose rank is blocked but still spinning (blocked
+ *   no longer than spin); a sleeping or finished rank's processor counts for
+ *   nothing.  Cores that work slow each other (shared caches and memory, a
+ *   shared clock and power budget); whether a spinning core does is the
+ *   machine's business: bench --calibrate measures both, by running copies
+ *   of the serial solver at once, and one copy beside spinning threads.
  *
  * All of it is deterministic: no host clock, the same inputs give the same
  * simulated times. */
@@ -52,7 +53,8 @@ typedef struct {
   double spin;                  /* a blocked receiver sleeps after this long */
   double wake;                  /* a sleeping receiver runs this long after arrival */
   double o_wake;                /* the sender's processor, to wake a sleeper */
-  double slowdown;              /* per other busy processor, a fraction of c */
+  double slowdown;              /* per other computing processor, a fraction of c */
+  double slowdown_spin;         /* per other spinning processor, a fraction of c */
 } cpu_model;
 
 /* The defaults: every cost 0; spin = 50 us, the threads backend's (it only

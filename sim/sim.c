@@ -179,7 +179,7 @@ struct sim {
   int live;                /* ranks neither done nor abandoned */
   int stopped;             /* deadlock or error: every mp call fails at once */
   int cpu;                 /* the processor-side model (cpu.h) is on */
-  unsigned char *seen;     /* per processor, for active_others */
+  unsigned char *seen;     /* per processor, for slow_factor */
   int ran;
   msg *pool;               /* free messages */
   FILE *tcsv, *tjson;
@@ -389,22 +389,22 @@ static int stopped_call(sim *s, rank *r) {
 
 /* ==== the mp calls ======================================================== */
 
-/* cpu.h's busy neighbours: the processors other than r's with a rank that is
- * awake at r's clock (computing, sending, queued to act, or blocked in recv
- * no longer than cpu.spin: spinning), each counted once. */
-static int active_others(sim *s, const rank *r) {
-  int k = 0;
-  unsigned char *seen = s->seen;
+/* cpu.h's busy neighbours: the factor 1 + slowdown * k + slowdown_spin * j
+ * for r's compute, k the processors other than r's with a rank working at
+ * r's clock (not blocked, not finished), j those with a rank blocked no
+ * longer than cpu.spin (spinning) and none working; each processor once. */
+static double slow_factor(sim *s, const rank *r) {
+  unsigned char *seen = s->seen;   /* per processor: 0 idle, 1 spinning, 2 working */
   memset(seen, 0, (size_t)s->cfg.procs);
-  seen[r->proc] = 1;
   for (int i = 0; i < s->n; i++) {
     const rank *o = &s->ranks[i];
-    if (seen[o->proc] || o->state == R_DONE || o->state == R_ABANDONED) continue;
-    if (o->state == R_BLOCKED && r->now - o->since > s->cfg.cpu.spin) continue;   /* asleep */
-    seen[o->proc] = 1;
-    k++;
+    if (o->proc == r->proc || o->state == R_DONE || o->state == R_ABANDONED) continue;
+    unsigned char v = o->state != R_BLOCKED ? 2 : r->now - o->since <= s->cfg.cpu.spin ? 1 : 0;
+    if (v > seen[o->proc]) seen[o->proc] = v;
   }
-  return k;
+  int k = 0, j = 0;
+  for (int p = 0; p < s->cfg.procs; p++) k += seen[p] == 2, j += seen[p] == 1;
+  return 1 + s->cfg.cpu.slowdown * k + s->cfg.cpu.slowdown_spin * j;
 }
 
 static int sim_compute(mp *self, double units) {
@@ -418,7 +418,7 @@ static int sim_compute(mp *self, double units) {
     return MP_EARG;
   }
   double d = units * s->cfg.c, t0 = r->now;
-  if (s->cpu && s->cfg.cpu.slowdown > 0) d *= 1 + s->cfg.cpu.slowdown * active_others(s, r);
+  if (s->cpu && (s->cfg.cpu.slowdown > 0 || s->cfg.cpu.slowdown_spin > 0)) d *= slow_factor(s, r);
   double start = reserve(s, r, d);
   r->st.units += units;
   r->st.compute += d;

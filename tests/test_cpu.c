@@ -9,7 +9,8 @@
  *   - a sleeper: a receiver blocked longer than spin runs wake after the
  *     arrival, and the first sender to find it asleep pays o_wake;
  *   - busy neighbours: k ranks computing at once each take c u (1 + s(k-1));
- *     beside ranks asleep in recv, c u;
+ *     beside k-1 ranks spinning in recv c u (1 + s_spin(k-1)), beside
+ *     ranks asleep in recv c u;
  *   - o_send = o_recv = x on LogGP with o = 0 gives the very times of LogGP
  *     with o = x (both sides busy x a message), on random programs;
  *   - all costs 0: the module is off, and random programs give the same
@@ -174,8 +175,9 @@ static void crowd_main(mp *self, void *ud) {
   if (!k->waiters) {
     mp_compute(self, k->units);
   } else if (mp_rank(self) == 0) {
-    mp_compute(self, k->units);   /* the others spin: awake */
-    mp_compute(self, k->units);   /* by now they sleep: not awake */
+    mp_compute(self, 1);          /* the others have not acted yet: working */
+    mp_compute(self, k->units);   /* they have blocked in recv: spinning */
+    mp_compute(self, k->units);   /* by now they sleep */
     for (int r = 1; r < mp_size(self); r++) mp_send(self, r, 0, &b, 1);
   } else {
     mp_recv(self, 0, 0, &b, 1, NULL);
@@ -183,10 +185,11 @@ static void crowd_main(mp *self, void *ud) {
 }
 
 static void test_crowd(void) {
-  const double s = 0.0625;
+  const double s = 0.0625, sp = 0.03125;
   for (int k = 1; k <= 9; k += 4) {
     sim_config cfg = config(SIM_NET_IDEAL, k);
     cfg.cpu.slowdown = s;
+    cfg.cpu.slowdown_spin = sp;
     cfg.cpu.spin = 1;
     crowd c = {8, 0};
     int rc;
@@ -196,13 +199,14 @@ static void test_crowd(void) {
       CHECK(sim_rank(sm, r)->finish == want, "%d at once: rank %d finished at %.17g, want %.17g", k, r,
             sim_rank(sm, r)->finish, want);
     sim_free(sm);
-    /* One computes, k - 1 wait in recv: spinning (awake) for the first
-     * compute, asleep (spin 1 < its end) for the second. */
+    /* One computes, k - 1 wait in recv: at time 0 they have not acted yet
+     * (working, for a first short compute), then they spin (slowdown_spin
+     * each) for the second, then (spin 1 < its end) they sleep. */
     c.waiters = 1;
     sm = run(&cfg, k, crowd_main, &c, &rc);
-    double first = 8 * cfg.c * (1 + s * (k - 1));
-    want = first + 8 * cfg.c;
-    CHECK(first > cfg.cpu.spin || k == 1, "the test's premise: the first compute outlasts the spin");
+    double first = cfg.c * (1 + s * (k - 1)), second = 8 * cfg.c * (1 + sp * (k - 1));
+    want = first + second + 8 * cfg.c;
+    CHECK(first < cfg.cpu.spin && first + second > cfg.cpu.spin, "the test's premise: spinning, then asleep");
     CHECK(sim_rank(sm, 0)->compute == want, "%d ranks: the computing rank's compute %.17g, want %.17g", k,
           sim_rank(sm, 0)->compute, want);
     sim_free(sm);
@@ -266,7 +270,7 @@ static void test_config(void) {
   cpu_model m;
   cpu_model_init(&m);
   const char *opts[] = {"--o-send", "--o-send-byte", "--o-recv", "--o-recv-byte", "--spin", "--wake", "--o-wake",
-                        "--slowdown"};
+                        "--slowdown", "--slowdown-spin"};
   for (size_t i = 0; i < sizeof opts / sizeof *opts; i++) {
     double *f = cpu_model_field(&m, opts[i]);
     CHECK(f != NULL, "%s has a field", opts[i]);
