@@ -61,6 +61,17 @@ list_is $D/rtutils_rt.dcm '1,ROI-1,,2,0,1'
 "$TILE" $D/rtutils_dummy_rt.dcm --list | tail -n +2 | cut -d, -f7-10 | sort -n > "$T/mim"
 printf '315,60,70,axial\n356,60,70,axial\n418,60,70,axial\n1015,60,70,axial\n' | cmp -s - "$T/mim" && ok || bad "MIM points: $(cat "$T/mim")"
 
+# The converter on every ROI: the stacks hold the inventory's contours and
+# slices (several contours per slice included: converting does not tile).
+"$TILE" $D/dicompyler_rtss.dcm --roi all --contours "$T/stacks/" > "$T/out" 2> "$T/err"; rc=$?
+[ $rc -eq 0 ] && [ ! -s "$T/out" ] && grep -q "ROI 2 'Areola' has no contours to tile; skipped" "$T/err" && ok || bad "--contours DIR/: exit $rc: $(cat "$T/err")"
+for want in BODY:141:98 Borders:2:2 Breast:48:47 Heart:33:33 Lt_Lung:165:80 Nodes:4:4 Scar:6:6 Tumor_Bed:18:18 Tumor_Bed_Block:24:24; do
+  f=${want%%:*}; c=${want#*:}; c=${c%%:*}; sl=${want##*:}
+  got=$(grep -c '^C ' "$T/stacks/$f.contours" 2>/dev/null)
+  gsl=$(grep '^C ' "$T/stacks/$f.contours" 2>/dev/null | awk '{print $3}' | sort -u | wc -l)
+  [ "$got" = "$c" ] && [ "$gsl" -eq "$sl" ] && ok || bad "$f.contours: $got contours on $gsl slices, expected $c on $sl"
+done
+
 # ---- Without --roi: the list, and what to add.
 "$TILE" $D/rtutils_rt.dcm > "$T/out" 2> "$T/err"; rc=$?
 [ $rc -eq 0 ] && head -1 "$T/out" | grep -q '^roi_number,name' && grep -q 'add --roi NAME|NUMBER' "$T/err" && ok || bad "bare file: $rc $(cat "$T/err")"
