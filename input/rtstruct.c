@@ -186,7 +186,13 @@ typedef struct {
   char *err;
   size_t errlen;
   sbuf warn;
+  int nwarn;           /* file warnings: the first few are shown, the rest counted */
+  struct numbered *by_number;   /* the ROIs sorted by ROI number */
 } reader;
+
+typedef struct numbered {
+  int number, i;       /* an ROI's number and index */
+} numbered;
 
 static int fail(reader *r, size_t off, const char *fmt, ...) {
   va_list ap;
@@ -438,10 +444,22 @@ static void finish_roi(reader *r, rtstruct_roi *roi) {
   roi->hmax = roi->c[roi->nc - 1].h;
 }
 
-static rtstruct_roi *roi_by_number(rtstruct *s, int number) {
-  for (int i = 0; i < s->nroi; i++)
-    if (s->roi[i].number == number) return &s->roi[i];
+/* The ROI numbered `number`: a binary search of r->by_number. */
+static rtstruct_roi *roi_by_number(const reader *r, rtstruct *s, int number) {
+  int lo = 0, hi = s->nroi - 1;
+  while (lo <= hi) {
+    int mid = lo + (hi - lo) / 2, v = r->by_number[mid].number;
+    if (v == number) return &s->roi[r->by_number[mid].i];
+    if (v < number) lo = mid + 1;
+    else hi = mid - 1;
+  }
   return NULL;
+}
+
+static int by_number(const void *a, const void *b) {
+  const numbered *p = a, *q = b;
+  if (p->number != q->number) return p->number < q->number ? -1 : 1;
+  return p->i - q->i;
 }
 
 /* The ContourSequence of one ROIContourSequence item into its ROI. */
@@ -493,8 +511,11 @@ static void read_contours(reader *r, rtstruct_roi *roi, int cseq) {
   }
 }
 
+enum { FILE_WARNINGS = 10 };   /* shown; the rest are counted */
+
 static void file_warn(reader *r, size_t off, const char *fmt, ...) {
   va_list ap;
+  if (++r->nwarn > FILE_WARNINGS) return;
   sb_add(&r->warn, "%s: byte %zu: ", r->name, off);
   va_start(ap, fmt);
   sb_vadd(&r->warn, fmt, ap);
@@ -526,19 +547,21 @@ static int read_set(reader *r, rtstruct *s) {
   int n = 0;
   for (int it = dicom_first(d, ss); it >= 0; it = dicom_next(d, it)) n++;
   s->roi = xcalloc(n ? (size_t)n : 1, sizeof *s->roi);
+  size_t *numoff = xmallocarray(n ? (size_t)n : 1, sizeof *numoff);
   for (int it = dicom_first(d, ss), k = 1; it >= 0; it = dicom_next(d, it), k++) {
     rtstruct_roi *roi = &s->roi[s->nroi];
     int num = dicom_child(d, it, ROI_NUMBER);
-    if (num < 0)
+    if (num < 0) {
+      free(numoff);
       return fail(r, dicom_offset(d, it), "StructureSetROISequence item %d has no ROINumber (3006,0022)", k);
-    if (integer(d, num, &roi->number) != 0)
+    }
+    if (integer(d, num, &roi->number) != 0) {
+      free(numoff);
       return fail(r, dicom_offset(d, num), "StructureSetROISequence item %d: ROINumber is not a whole number (%s)",
                   k, value_shown(d, num, vb, sizeof vb));
-    const rtstruct_roi *dup = roi_by_number(s, roi->number);
-    if (dup)
-      return fail(r, dicom_offset(d, num), "StructureSetROISequence item %d: ROI number %d is already "
-                  "used by the item at byte %zu (%d)", k, roi->number, dup->offset, roi->number);
+    }
     roi->offset = dicom_offset(d, it);
+    numoff[s->nroi] = dicom_offset(d, num);
     size_t len = 0;
     int nm = dicom_child(d, it, ROI_NAME);
     if (nm >= 0) dicom_value(d, nm, &len);
@@ -549,11 +572,27 @@ static int read_set(reader *r, rtstruct *s) {
     roi->type = xstrdup("");
     s->nroi++;
   }
+  /* ROI numbers sorted (so that lookups take log n), each used once: the
+   * first item, in file order, whose number an earlier item has is refused. */
+  r->by_number = xmallocarray(s->nroi ? (size_t)s->nroi : 1, sizeof *r->by_number);
+  for (int i = 0; i < s->nroi; i++) r->by_number[i] = (numbered){s->roi[i].number, i};
+  qsort(r->by_number, (size_t)s->nroi, sizeof *r->by_number, by_number);
+  int dup = -1, first = -1;
+  for (int i = 1; i < s->nroi; i++)
+    if (r->by_number[i].number == r->by_number[i - 1].number && (dup < 0 || r->by_number[i].i < dup))
+      dup = r->by_number[i].i, first = r->by_number[i - 1].i;
+  if (dup >= 0) {
+    fail(r, numoff[dup], "StructureSetROISequence item %d: ROI number %d is already used by the item at "
+         "byte %zu (%d)", dup + 1, s->roi[dup].number, s->roi[first].offset, s->roi[dup].number);
+    free(numoff);
+    return -1;
+  }
+  free(numoff);
   int obs = dicom_child(d, DICOM_ROOT, OBSERVATIONS_SEQ);
   if (sequence(r, obs) != 0) return -1;
   for (int it = obs >= 0 ? dicom_first(d, obs) : -1; it >= 0; it = dicom_next(d, it)) {
     int ref = dicom_child(d, it, REF_ROI_NUMBER), num;
-    rtstruct_roi *roi = ref >= 0 && integer(d, ref, &num) == 0 ? roi_by_number(s, num) : NULL;
+    rtstruct_roi *roi = ref >= 0 && integer(d, ref, &num) == 0 ? roi_by_number(r, s, num) : NULL;
     int ty = dicom_child(d, it, INTERPRETED_TYPE);
     if (!roi || ty < 0 || roi->type[0]) continue;
     char t[64];
@@ -579,7 +618,7 @@ static int read_set(reader *r, rtstruct *s) {
     if (integer(d, ref, &num) != 0)
       return fail(r, dicom_offset(d, ref), "ROIContourSequence item %d: ReferencedROINumber is not a whole "
                   "number (%s)", k, value_shown(d, ref, vb, sizeof vb));
-    rtstruct_roi *roi = roi_by_number(s, num);
+    rtstruct_roi *roi = roi_by_number(r, s, num);
     if (!roi) {
       file_warn(r, dicom_offset(d, it), "ROIContourSequence item %d references ROI %d, which the "
                 "StructureSetROISequence does not define; its %d contour%s ignored", k, num, ncont,
@@ -588,6 +627,8 @@ static int read_set(reader *r, rtstruct *s) {
     }
     if (cs >= 0) read_contours(r, roi, cs);
   }
+  if (r->nwarn > FILE_WARNINGS)
+    sb_add(&r->warn, "%s: and %d more warnings like these\n", r->name, r->nwarn - FILE_WARNINGS);
   for (int i = 0; i < s->nroi; i++) finish_roi(r, &s->roi[i]);
   return 0;
 }
@@ -597,9 +638,10 @@ int rtstruct_parse(const unsigned char *buf, size_t len, const char *name, rtstr
   memset(out, 0, sizeof *out);
   dicom *d = dicom_parse(buf, len, name, sequences, (int)(sizeof sequences / sizeof *sequences), err, errlen);
   if (!d) return -1;
-  reader r = {d, name, err, errlen, {0}};
+  reader r = {d, name, err, errlen, {0}, 0, NULL};
   out->name = xstrdup(name);
   int rc = read_set(&r, out);
+  free(r.by_number);
   dicom_free(d);
   if (rc != 0) {
     free(r.warn.buf);

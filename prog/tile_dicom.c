@@ -121,33 +121,48 @@ static void file_name(const rtstruct_roi *r, char *buf, size_t cap) {
   if (!any) snprintf(buf, cap, "roi_%d", r->number);
 }
 
-static int same_name(const char *a, const char *b) {
-  for (; *a && *b; a++, b++) {
-    char x = *a, y = *b;
-    if (x >= 'A' && x <= 'Z') x = (char)(x - 'A' + 'a');
-    if (y >= 'A' && y <= 'Z') y = (char)(y - 'A' + 'a');
-    if (x != y) return 0;
+/* Names compared ignoring case (file systems that ignore it). */
+static int cmp_name(const char *a, const char *b) {
+  for (;; a++, b++) {
+    int x = (unsigned char)*a, y = (unsigned char)*b;
+    if (x >= 'A' && x <= 'Z') x += 'a' - 'A';
+    if (y >= 'A' && y <= 'Z') y += 'a' - 'A';
+    if (x != y || !x) return x - y;
   }
-  return *a == *b;
+}
+
+typedef struct {
+  char name[112];
+  int i;
+} named;
+
+static int by_name(const void *a, const void *b) {
+  const named *p = a, *q = b;
+  int c = cmp_name(p->name, q->name);
+  return c ? c : p->i - q->i;
 }
 
 /* DIR/NAME.EXT for every chosen ROI; a name two ROIs share (ignoring case)
- * gets the ROI number: NAME_N.EXT. */
+ * gets the ROI number: NAME_N.EXT.  Sorted to find the shared names. */
 static char **dir_paths(const rtstruct *s, const int *pick, int n, const char *dir, const char *ext) {
-  char (*base)[112] = xmallocarray((size_t)n, sizeof *base);
-  for (int i = 0; i < n; i++) file_name(&s->roi[pick[i]], base[i], sizeof base[i]);
+  named *nm = xmallocarray((size_t)n, sizeof *nm);
+  char *clash = xcalloc((size_t)n + 1, 1);
+  for (int i = 0; i < n; i++) file_name(&s->roi[pick[i]], nm[i].name, sizeof nm[i].name), nm[i].i = i;
+  qsort(nm, (size_t)n, sizeof *nm, by_name);
+  for (int k = 1; k < n; k++)
+    if (cmp_name(nm[k].name, nm[k - 1].name) == 0) clash[nm[k].i] = clash[nm[k - 1].i] = 1;
   char **path = xmallocarray((size_t)n, sizeof *path);
   size_t dl = strlen(dir);
   int slash = dl > 0 && dir[dl - 1] == '/';
-  for (int i = 0; i < n; i++) {
-    int clash = 0;
-    for (int j = 0; j < n; j++) clash |= j != i && same_name(base[i], base[j]);
-    size_t len = dl + strlen(base[i]) + 32;
+  for (int k = 0; k < n; k++) {
+    int i = nm[k].i;
+    size_t len = dl + strlen(nm[k].name) + 32;
     path[i] = xmalloc(len);
-    if (clash) snprintf(path[i], len, "%s%s%s_%d.%s", dir, slash ? "" : "/", base[i], s->roi[pick[i]].number, ext);
-    else snprintf(path[i], len, "%s%s%s.%s", dir, slash ? "" : "/", base[i], ext);
+    if (clash[i]) snprintf(path[i], len, "%s%s%s_%d.%s", dir, slash ? "" : "/", nm[k].name, s->roi[pick[i]].number, ext);
+    else snprintf(path[i], len, "%s%s%s.%s", dir, slash ? "" : "/", nm[k].name, ext);
   }
-  free(base);
+  free(clash);
+  free(nm);
   return path;
 }
 

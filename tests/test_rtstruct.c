@@ -496,6 +496,35 @@ static void warnings(void) {
   free(b);
 }
 
+/* Many ROIs: numbers looked up in log time (a quadratic search would take
+ * minutes here under the sanitizers), file warnings capped. */
+static void many(void) {
+  enum { N = 20000 };
+  rtw_roi *rois = xcalloc(N, sizeof *rois);
+  for (int i = 0; i < N; i++) rois[i] = (rtw_roi){N - i, "r", NULL, 0, NULL, i % 2 ? 2 * N + i : 0, 1};
+  size_t len;
+  unsigned char *b = write1(rois, N, &len);
+  rtstruct s;
+  char err[1024];
+  if (rtstruct_parse(b, len, "many.dcm", &s, err, sizeof err) != 0) {
+    CHECK(0, "many: %s", err);
+  } else {
+    int lines = 0;
+    for (const char *p = s.warnings; p && *p; p++) lines += *p == '\n';
+    CHECK(s.nroi == N && lines == 11 && strstr(s.warnings, "many.dcm: and 9990 more warnings like these\n"),
+          "many: %d ROIs, %d warning lines", s.nroi, lines);
+    rtstruct_free(&s);
+  }
+  free(b);
+  /* The first duplicate in file order is named, with the item it repeats. */
+  rois[N - 1].number = 7;
+  rois[N - 2].number = 9;
+  b = write1(rois, N, &len);
+  file_refused("duplicate among many", b, len, "StructureSetROISequence item 19999: ROI number 9 is already used by the item at byte");
+  free(b);
+  free(rois);
+}
+
 /* ---------------------------------------------------------------- planes */
 
 /* One generated ROI written axial, sagittal and coronal: the same stack;
@@ -702,6 +731,7 @@ int main(int argc, char **argv) {
   decimal_strings();
   refusals();
   warnings();
+  many();
   planes();
   return check_done("test_rtstruct");
 }
