@@ -295,9 +295,12 @@ dicom *dicom_parse(const unsigned char *buf, size_t len, const char *name,
     goto fail;
   }
   if (len >= 132 && memcmp(buf + 128, "DICM", 4) == 0) pos = 132;
-  /* The file meta group: explicit VR LE, read while the group is 0002. */
+  /* The file meta group: explicit VR LE, read while the group is 0002 (in
+   * implicit VR if its first element has no VR, as some old writers did). */
   size_t meta_at = pos;
-  if (read_elements(&p, &pos, len, 0, 1, 1, DICOM_ROOT, 0) != 0) goto fail;
+  int meta_explicit = !(len - pos >= 6 && u16(buf + pos) == 0x0002 && !(buf[pos + 4] >= 'A' && buf[pos + 4] <= 'Z' &&
+                                                                        buf[pos + 5] >= 'A' && buf[pos + 5] <= 'Z'));
+  if (read_elements(&p, &pos, len, 0, meta_explicit, 1, DICOM_ROOT, 0) != 0) goto fail;
   if (d->ts[0]) {
     int e = syntax(&p, meta_at, d->ts);
     if (e < 0) goto fail;

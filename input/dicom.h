@@ -2,8 +2,8 @@
  *
  * What it reads (PS3.10 file format, PS3.5 encodings): files with or without
  * the 128-byte preamble and "DICM", with or without the file meta group
- * (group 0002, always explicit VR little endian; its group length is not
- * trusted); data sets in Implicit VR Little Endian or Explicit VR Little
+ * (group 0002, explicit VR little endian, or implicit where its first element
+ * has no VR; its group length is not trusted); data sets in Implicit VR Little Endian or Explicit VR Little
  * Endian (also the compressed-pixel syntaxes, whose data sets are explicit VR
  * LE).  Big endian, deflated and unknown transfer syntaxes are refused, naming
  * the UID.  Without a meta group the encoding is guessed as pydicom does:

@@ -238,6 +238,17 @@ static void accepted(void) {
   CHECK(d != NULL && dicom_explicit(d), "JPEG baseline transfer syntax with a wrong group length: %s", d ? "" : err);
   dicom_free(d);
   free(b);
+  /* A meta group written in implicit VR (old writers): read as such. */
+  {
+    buf o;
+    memset(&o, 0, sizeof o);
+    raw(&o, (unsigned char[128]){0}, 128), raw(&o, "DICM", 4);
+    imp(&o, 0x0002, 0x0010, 18, NULL), raw(&o, "1.2.840.10008.1.2", 18), modality(&o, 0);
+    d = dicom_parse(o.b, o.n, "m.dcm", seqs, NSEQ, err, sizeof err);
+    CHECK(d != NULL && !dicom_explicit(d) && strcmp(dicom_transfer_syntax(d), "1.2.840.10008.1.2") == 0,
+          "implicit meta group: %s", d ? dicom_transfer_syntax(d) : err);
+    dicom_free(d);
+  }
   /* 16 levels of nesting are fine. */
   rtw_opts deep = {0, 0, 2, 0, NULL, NULL, 16};
   b = rtw_write(&deep, NULL, 0, &len);
