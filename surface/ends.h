@@ -1,0 +1,50 @@
+/* ends.h -- where the surface ends: the regions of a slice that have no band
+ * on one side, and their caps (flat, surface/flatcap.h, or apex,
+ * surface/apex.h).
+ *
+ * On slice k, let U be the contours with no band above (for the caps on top)
+ * or below (for the bottom).  A contour's children are in U whenever it is
+ * (surface/match.h: a contour is linked only if its parent is), so U is a
+ * union of subtrees of the nesting forest, and its regions are: each contour
+ * of U whose parent is not in U (or is a hole of another region), less its
+ * children.  So a hole that ends caps the hole less the islands in it (which
+ * end there too, their tops merging into the material above), an outer
+ * boundary that ends caps itself less its holes, and a region never gets two
+ * caps.  A top cap faces +z over material (the region's own orientation), a
+ * bottom cap -z; holes' caps face into the cavity by the same rule, their
+ * contours running clockwise. */
+#ifndef ENDS_H
+#define ENDS_H
+
+#include "mesh.h"
+#include "slices.h"
+
+typedef struct {
+  int slice;
+  int up;           /* 1: the top of the slice's material (no band above), 0: the bottom */
+  int outer;        /* the region's boundary (index into sl->c) */
+  int nholes;
+  int *holes;       /* its holes, increasing */
+  int isolated;     /* the boundary has no band on either side */
+} end_region;
+
+/* The regions, slice by slice, bottoms before tops, by boundary index.
+ * band_up[c], band_down[c]: contour c has a band above / below. */
+int ends_plan(const slices *sl, const unsigned char *band_up, const unsigned char *band_down,
+              end_region **out);
+void ends_free(end_region *r, int n);
+
+typedef struct {
+  int ntri;
+  int (*tri)[3];    /* mesh vertex ids; -1 is the apex */
+  int apex;         /* 1 if it has an apex vertex */
+  vec3 at;          /* the apex */
+} end_cap;
+
+/* The cap of region r: an apex cap when `apex` or the region is isolated
+ * (a single-slice piece: two flat caps would make a part of no thickness),
+ * where the region has no holes and is star-shaped; else flat.  Thread-safe. */
+void ends_cap(const slices *sl, const end_region *r, int apex, end_cap *out);
+void ends_cap_free(end_cap *c);
+
+#endif
