@@ -1,16 +1,16 @@
-/* tile.c -- ./tile: contours in, the optimal tiling out (CSV report and a mesh).
+/* tile.c -- ./tile: contours in, one surface out (CSV report and a mesh).
  *
- *   tile STACK [-o OUT.obj|OUT.ply|OUT.stl] [--cost area|span] [--caps] [-q]
- *        [--procs P [--backend sim|threads] [--alloc half|size] [--min-diag d]
+ *   tile STACK [-o OUT.obj|OUT.ply|OUT.stl] [--cost area|span] [--caps [--cap-style flat|apex]]
+ *        [-j N] [-q] [--procs P [--backend sim|threads] [--alloc half|size] [--min-diag d]
  *         [--machine NAME] [--net ideal|bus|loggp] [--m S] [--c S] ... [--trace FILE]]
  *
- * Every contour is tiled with the next one in file order.  Without --procs
- * the serial solver does it (algo/tiling.h); with --procs the paper's
- * parallel algorithm does (run/run.h): on the simulated machine, or on
- * threads with --backend threads, or on MPI processes in the MPI build
- * (tile-mpi, `make mpi`), and each row also gives the pair's time and
- * messages.  The result, path and mesh are the same either way.  A DICOM
- * RT structure set is handled by tile_dicom.c, through tile_stack. */
+ * The whole stack, any number of contours per slice, becomes one surface
+ * (surface/stack.h): every band tiled exactly, on -j threads (algo/tiling.h),
+ * or with --procs by the paper's parallel algorithm (run/run.h): on the
+ * simulated machine, on threads with --backend threads, or on MPI processes
+ * in the MPI build (tile-mpi, `make mpi`), each band's row then also giving
+ * its time and messages.  The mesh is the same either way, bit for bit.  A
+ * DICOM RT structure set is handled by tile_dicom.c, through tile_stack. */
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -21,17 +21,20 @@
 #include "contour.h"
 #include "mesh.h"
 #include "meshio.h"
+#include "pool.h"
+#include "report.h"
 #include "run.h"
 #include "run_net.h"
+#include "stack.h"
 #include "tile_dicom.h"
-#include "tiling.h"
 #include "xmem.h"
 #ifdef TILESIM_MPI
 #include "run_mpi.h"
 #endif
 
 static const char usage_line[] =
-    "usage: tile STACK [-o OUT.obj|OUT.ply|OUT.stl] [--cost area|span] [--caps] [-q]\n"
+    "usage: tile STACK [-o OUT.obj|OUT.ply|OUT.stl] [--cost area|span] [--caps]\n"
+    "            [--cap-style flat|apex] [-j N] [-q]\n"
     "            [--procs P [--backend sim|threads] [--alloc half|size] [--min-diag d]\n"
     "             [--machine NAME] [--net ideal|bus|loggp] [--m S] [--c S]\n"
     "             [--topology NAME] [--place NAME] [--print-place]\n"
@@ -43,13 +46,20 @@ static void usage(FILE *f) {
   fputs(usage_line, f);
   if (f != stdout) return;
   fputs("\n"
-        "Tile each contour of STACK with the next one by the minimum-cost acceptable\n"
-        "path over all start rows (Fuchs, Kedem, Uselton 1977; exact, O(mn log m)).\n"
+        "Make one surface of the contours of STACK, any number per slice: contours\n"
+        "on a slice nest (holes, islands), overlapping contours of neighbouring\n"
+        "slices are joined (branching by bridges), and every band is the minimum-cost\n"
+        "acceptable path over all start rows (Fuchs, Kedem, Uselton 1977; exact).\n"
         "\n"
         "  -o FILE            write the mesh: .obj, .ply (ASCII) or .stl (binary)\n"
         "  --cost area        tile weight: the triangle's area (default)\n"
         "  --cost span        tile weight: the length of the span the tile adds\n"
-        "  --caps             close the first and last contours (watertight mesh)\n"
+        "  --caps             close every end (a closed, outward 2-manifold)\n"
+        "  --cap-style flat   a cap is the region in its plane (default)\n"
+        "  --cap-style apex   a fan to a point half a slice out, where it sees the whole\n"
+        "                     contour (flat elsewhere)\n"
+        "  -j N               tile the bands on N threads (default: the machine's cores);\n"
+        "                     the output is the same on any N\n"
         "  -q, --quiet        no notes about repaired input on stderr\n"
         "  -h, --help         this text\n"
         "\n"
@@ -69,15 +79,19 @@ static void usage(FILE *f) {
         "  --format F         the meshes' format under -o DIR/: stl (default), obj, ply\n"
         "  --contours FILE    write the ROI as a .contours stack (DIR/ for several)\n"
         "\n"
-        "CSV on stdout: pair,z0,z1,m,n,cost,area,volume,nodes; with --procs also\n"
-        "procs,sim_time,msg_boundary,msg_backtrack,msg_bounds,msg_control,bytes,backend.\n"
-        "sim_time is the master's time from sending the pair's points to holding its\n"
-        "optimum: simulated seconds when backend is sim, wall-clock seconds measured on\n"
-        "this machine when it is threads or mpi.  With --topology also hops_per_msg,\n"
-        "hop_bytes,max_link_msgs,max_link_bytes,link_wait: the pair's messages over the\n"
-        "network, links crossed per message, bytes x links, the busiest link's messages\n"
-        "and bytes, seconds spent waiting for links.  With --caps a last row 'mesh' with the\n"
-        "whole mesh's area and enclosed volume.\n",
+        "CSV on stdout, a row per band:\n"
+        "band,z0,z1,depth,lower,upper,junction,m,n,bridges,cost,area,volume,nodes,euler,genus\n"
+        "(lower, upper: the contours of the two slices by their places on the slice;\n"
+        "junction: how many below - above); with --procs also procs,sim_time,\n"
+        "msg_boundary,msg_backtrack,msg_bounds,msg_control,bytes,backend (sim_time: the\n"
+        "master's time from sending the band's points to holding its optimum, simulated\n"
+        "seconds on sim, wall-clock seconds on threads or mpi); with --topology also\n"
+        "hops_per_msg,hop_bytes,max_link_msgs,max_link_bytes,link_wait: the band's\n"
+        "messages over the network, links crossed per message, bytes x links, the\n"
+        "busiest link's messages and bytes, seconds spent waiting for links.  Then with\n"
+        "--caps a row\n"
+        "'cap' per cap; a row 'mesh' (vertices, triangles, area, volume, Euler\n"
+        "characteristic) and a row 'component' per connected component.\n",
         f);
 }
 
@@ -91,121 +105,79 @@ static int bad_usage(const char *fmt, const char *arg) {
 
 static void progress(void *ud, int done, int total) {
   (void)ud;
-  fprintf(stderr, "\rtile: pair %d of %d", done, total);
-}
-
-/* The parallel run of the whole stack, one run of the backend; fills the pairs. */
-static int run_parallel(run_config *rc, const contour_stack *s, par_pair *pr, const char *trace) {
-  char err[512];
-  atomicfile tf = {NULL, NULL, NULL};
-  for (int i = 0; i + 1 < s->n; i++) {
-    memset(&pr[i], 0, sizeof pr[i]);
-    pr[i].P = s->c[i].pt, pr[i].np = s->c[i].n, pr[i].zp = s->c[i].z;
-    pr[i].Q = s->c[i + 1].pt, pr[i].nq = s->c[i + 1].n, pr[i].zq = s->c[i + 1].z;
-  }
-  if (trace) {   /* written beside the target, renamed into place when complete */
-    if (atomicfile_open(&tf, trace, "w", err, sizeof err) != 0) {
-      fprintf(stderr, "tile: %s\n", err);
-      return -1;
-    }
-    size_t tl = strlen(trace);
-    if (tl >= 5 && strcmp(trace + tl - 5, ".json") == 0) rc->trace_json = tf.f;
-    else rc->trace_csv = tf.f;
-  }
-  if (isatty(2) && s->n > 2) rc->progress = progress;
-  int res = run_pairs(rc, pr, s->n - 1, err, sizeof err);
-  if (rc->progress) fputs("\r\033[K", stderr);
-  if (res != 0) fprintf(stderr, "tile: the parallel run (%s) failed: %s\n", run_backend_name(rc->backend), err);
-  if (tf.f && atomicfile_close(&tf, res == 0, err, sizeof err) != 0 && res == 0) {
-    fprintf(stderr, "tile: %s\n", err);
-    res = -1;
-  }
-  return res;
+  fprintf(stderr, "\rtile: band %d of %d", done, total);
 }
 
 /* What tile_stack needs from the command line. */
 typedef struct {
-  int caps, parallel;
+  int caps, apex, threads, parallel, quiet;
   const char *trace;
   run_config rc;
+  const char *held;   /* the reader's notes, printed before the surface's */
+  size_t heldlen;
 } tile_opts;
 
-/* Tile the stack: the report on stdout (the header first when header != 0;
- * header lines prefixed by hprefix, rows by prefix) and the mesh in *me
- * (always initialised; the caller frees it).  0, or -1 when the parallel run
- * failed (said on stderr). */
-static int tile_stack(void *ud, const contour_stack *s, const char *hprefix, const char *prefix,
-                      int header, mesh *me) {
+/* Tile the stack s (named `name` in messages): the report on stdout (the
+ * header first when header != 0; header lines prefixed by hprefix, rows by
+ * prefix) and the mesh in *me (always initialised; the caller frees it).
+ * 0, or -1 when the stack is refused or the parallel run failed (said on
+ * stderr, in one line; the surface's notes are printed only on success). */
+static int tile_stack(void *ud, const contour_stack *s, const char *name, const char *hprefix,
+                      const char *prefix, int header, mesh *me) {
   tile_opts *o = ud;
-  int npairs = s->n - 1, parallel = o->parallel;
-  int topology = parallel && o->rc.machine.topo.kind != TOPO_NONE;
-  par_pair *pr = NULL;
-  net_stats *pnet = NULL;   /* each pair's, on a topology */
-  mesh_init(me, s);
-  if (parallel) {
-    pr = xcalloc((size_t)npairs, sizeof *pr);
-    if (topology) o->rc.pair_net = pnet = xcalloc((size_t)npairs, sizeof *pnet);
-    int res = run_parallel(&o->rc, s, pr, o->trace);
-    o->rc.pair_net = NULL;
-    if (res != 0) {
-      for (int i = 0; i < npairs; i++) tiling_free(&pr[i].t);
-      free(pr);
-      free(pnet);
+  char err[1024];
+  memset(me, 0, sizeof *me);
+  char *held = NULL;
+  size_t heldlen = 0;
+  FILE *notes = o->quiet ? NULL : open_memstream(&held, &heldlen);
+  atomicfile tf = {NULL, NULL, NULL};
+  if (o->parallel && o->trace) {   /* written beside the target, renamed into place when complete */
+    if (atomicfile_open(&tf, o->trace, "w", err, sizeof err) != 0) {
+      fprintf(stderr, "tile: %s\n", err);
+      if (notes) fclose(notes);
+      free(held);
       return -1;
     }
+    size_t tl = strlen(o->trace);
+    if (tl >= 5 && strcmp(o->trace + tl - 5, ".json") == 0) o->rc.trace_json = tf.f;
+    else o->rc.trace_csv = tf.f;
   }
-  int progress_line = !parallel && isatty(2) && s->n > 2;
-  double total_cost = 0;
-  unsigned long long total_nodes = 0;
-  if (header)
-    printf("%spair,z0,z1,m,n,cost,area,volume,nodes%s%s\n", hprefix,
-           parallel ? ",procs,sim_time,msg_boundary,msg_backtrack,msg_bounds,msg_control,bytes,backend" : "",
-           topology ? ",hops_per_msg,hop_bytes,max_link_msgs,max_link_bytes,link_wait" : "");
-  for (int i = 0; i < npairs; i++) {
-    const contour *P = &s->c[i], *Q = &s->c[i + 1];
-    tiling t;
-    if (parallel) t = pr[i].t;
-    else tiling_solve(P->pt, P->n, P->z, Q->pt, Q->n, Q->z, o->rc.kind, -1, &t);
-    double area, volume;
-    mesh_add_band(me, s, i, &t, &area, &volume);
-    printf("%s%d,%.17g,%.17g,%d,%d,%.17g,%.17g,%.17g,%llu", prefix, i, P->z, Q->z, P->n, Q->n, t.cost,
-           area, volume, (unsigned long long)t.count.nodes);
-    if (parallel) {
-      const par_counts *c = &pr[i].counts;
-      uint64_t bytes = 0;
-      for (int k = 0; k < PAR_KINDS; k++) bytes += c->bytes[k];
-      printf(",%d,%.9f,%llu,%llu,%llu,%llu,%llu,%s", o->rc.procs, pr[i].time,
-             (unsigned long long)c->msgs[PAR_BOUNDARY], (unsigned long long)c->msgs[PAR_BACKTRACK],
-             (unsigned long long)c->msgs[PAR_BOUNDS], (unsigned long long)c->msgs[PAR_CONTROL],
-             (unsigned long long)bytes, run_backend_name(o->rc.backend));
-    }
-    if (topology) {
-      const net_stats *ns = &pnet[i];
-      printf(",%.6f,%lld,%lld,%lld,%.9f", ns->messages ? (double)ns->hops / (double)ns->messages : 0.0,
-             ns->hop_bytes, ns->max_link_msgs, ns->max_link_bytes, ns->link_wait);
-    }
-    putchar('\n');
-    total_cost += t.cost;
-    total_nodes += t.count.nodes;
-    tiling_free(&t);
-    if (progress_line) fprintf(stderr, "\rtile: pair %d of %d", i + 1, npairs);
+  if (o->parallel && isatty(2) && s->nslices > 2) o->rc.progress = progress;
+  stack_options so = {o->rc.kind, o->caps, o->apex, o->threads, o->parallel ? &o->rc : NULL, notes, "tile"};
+  stack_surface *ss = NULL;
+  int res = stack_tile(s, name, &so, &ss, err, sizeof err);
+  if (o->rc.progress) fputs("\r\033[K", stderr);
+  o->rc.progress = NULL;
+  if (notes) fclose(notes);
+  if (res == -2)
+    fprintf(stderr, "tile: the parallel run (%s) failed: %s\n", run_backend_name(o->rc.backend), err);
+  else if (res != 0)
+    fprintf(stderr, "tile: %s\n", err);
+  else {
+    if (o->heldlen) fwrite(o->held, 1, o->heldlen, stderr);
+    if (heldlen) fwrite(held, 1, heldlen, stderr);
   }
-  if (progress_line) fputs("\r\033[K", stderr);
-  if (o->caps) {
-    mesh_add_caps(me, s);
-    printf("%smesh,%.17g,%.17g,,,%.17g,%.17g,%.17g,%llu%s%s\n", prefix, s->c[0].z, s->c[s->n - 1].z,
-           total_cost, mesh_area(me), mesh_volume(me), total_nodes, parallel ? ",,,,,,,," : "",
-           topology ? ",,,,," : "");
+  free(held);
+  if (tf.f && atomicfile_close(&tf, res == 0, err, sizeof err) != 0 && res == 0) {
+    fprintf(stderr, "tile: %s\n", err);
+    res = -1;
   }
-  free(pr);
-  free(pnet);
+  o->rc.trace_csv = o->rc.trace_json = NULL;
+  if (res != 0) {
+    stack_free(ss);
+    return -1;
+  }
+  if (header) report_header(stdout, hprefix, o->parallel ? &o->rc : NULL);
+  report_rows(stdout, prefix, ss, o->parallel ? &o->rc : NULL);
+  stack_take_mesh(ss, me);
+  stack_free(ss);
   return 0;
 }
 
 static int tile_main(int argc, char **argv) {
   const char *in = NULL, *out = NULL;
-  int quiet = 0, backend_given = 0, print_place = 0, place_given = 0;
-  tile_opts o = {0, 0, NULL, {0}};
+  int backend_given = 0, style_given = 0, print_place = 0, place_given = 0;
+  tile_opts o = {0, 0, pool_cores(), 0, 0, NULL, {0}, NULL, 0};
   tile_dicom_opts dopt;
   memset(&dopt, 0, sizeof dopt);
   run_config_init(&o.rc);
@@ -220,7 +192,7 @@ static int tile_main(int argc, char **argv) {
     } else if (strcmp(a, "--caps") == 0) {
       o.caps = 1;
     } else if (strcmp(a, "-q") == 0 || strcmp(a, "--quiet") == 0) {
-      quiet = 1;
+      o.quiet = 1;
     } else if (strcmp(a, "--print-place") == 0) {
       print_place = 1;
     } else if ((k = tile_dicom_option(&dopt, a, v, err, sizeof err)) != 0) {   /* DICOM input */
@@ -228,7 +200,18 @@ static int tile_main(int argc, char **argv) {
       i += k - 1;
     } else if (a[0] == '-' && a[1] != 0) {
       if (!v) return bad_usage("option %s needs a value", a);
-      if (strcmp(a, "-o") == 0) {
+      if (strcmp(a, "-j") == 0) {
+        char *e;
+        long j = strtol(v, &e, 10);
+        if (e == v || *e || j < 1 || j > 1024 || v[0] == ' ' || v[0] == '+')
+          return bad_usage("-j takes a whole number from 1 to 1024 (%s)", v);
+        o.threads = (int)j;
+      } else if (strcmp(a, "--cap-style") == 0) {
+        if (strcmp(v, "flat") == 0) o.apex = 0;
+        else if (strcmp(v, "apex") == 0) o.apex = 1;
+        else return bad_usage("--cap-style takes flat or apex (%s)", v);
+        style_given = 1;
+      } else if (strcmp(a, "-o") == 0) {
         if (meshio_format_of(v) == MESHIO_NONE && !tile_dicom_is_dir(v))
           return bad_usage("unknown mesh format, use .obj, .ply or .stl (%s)", v);
         out = v;
@@ -259,6 +242,7 @@ static int tile_main(int argc, char **argv) {
   if (o.trace && !o.parallel) return bad_usage("%s", "--trace needs --procs (it traces the simulated machine)");
   if (o.trace && o.rc.backend != RUN_SIM) return bad_usage("%s", "--trace traces the simulated machine (--backend sim)");
   if (backend_given && !o.parallel) return bad_usage("%s", "--backend needs --procs");
+  if (style_given && !o.caps) return bad_usage("%s", "--cap-style needs --caps");
   int topology = o.rc.machine.topo.kind != TOPO_NONE;
   if ((topology || print_place || place_given) && !o.parallel)
     return bad_usage("%s", "--topology, --place and --print-place need --procs (they describe the simulated machine)");
@@ -281,7 +265,7 @@ static int tile_main(int argc, char **argv) {
 
   /* A DICOM RT structure set (by its content): tile_dicom.c. */
   if (tile_dicom_sniff(in)) {
-    tile_dicom_env env = {tile_stack, &o, bad_usage, out, quiet, o.trace != NULL, 1 /* as below */};
+    tile_dicom_env env = {tile_stack, &o, bad_usage, out, o.quiet, o.trace != NULL, 0 /* as below */};
     return tile_dicom_main(&dopt, in, &env);
   }
   if (tile_dicom_given(&dopt)) {
@@ -293,25 +277,26 @@ static int tile_main(int argc, char **argv) {
     return bad_usage("unknown mesh format, use .obj, .ply or .stl (%s)", out);
 
   contour_stack s;
-  /* (tile_dicom.c checks each ROI's stack as this one is: env.pairs.)
-   * Notes on repaired input are held back until the input is accepted: a
-   * refused file gets its one-line message and nothing else. */
+  /* (tile_dicom.c reads each ROI's stack as this one is: env.pairs = 0,
+   * any number of contours per slice.)  Notes on repaired input are held
+   * back until the input is accepted: a refused file gets its one-line
+   * message and nothing else. */
   char *held = NULL;
   size_t heldlen = 0;
-  FILE *notes = quiet ? NULL : open_memstream(&held, &heldlen);
-  int bad = contour_read(in, &s, notes, "tile", err, sizeof err) != 0 ||
-            contour_stack_pairs(&s, strcmp(in, "-") == 0 ? "<stdin>" : in, err, sizeof err) != 0;
+  FILE *notes = o.quiet ? NULL : open_memstream(&held, &heldlen);
+  const char *name = strcmp(in, "-") == 0 ? "<stdin>" : in;
+  int bad = contour_read(in, &s, notes, "tile", err, sizeof err) != 0;
   if (notes) fclose(notes);
   if (bad) {
     fprintf(stderr, "tile: %s\n", err);
-    if (s.c) contour_stack_free(&s);
     free(held);
     return 1;
   }
-  if (heldlen) fwrite(held, 1, heldlen, stderr);
-  free(held);
+  /* The reader's notes go out with the surface's, if it can be made. */
   mesh me;
-  int rcode = tile_stack(&o, &s, "", "", 1, &me) != 0;
+  o.held = held, o.heldlen = heldlen;
+  int rcode = tile_stack(&o, &s, name, "", "", 1, &me) != 0;
+  free(held);
   if (rcode == 0 && fflush(stdout) != 0) {
     fprintf(stderr, "tile: cannot write the report (%s)\n", strerror(errno));
     rcode = 1;

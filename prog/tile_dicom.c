@@ -315,7 +315,9 @@ int tile_dicom_main(const tile_dicom_opts *o, const char *in, const tile_dicom_e
         snprintf(pre, sizeof pre, "%d,%s,", r->number, field);
         free(field);
       }
-      if (env->tile(env->ud, &st[i], hpre, pre, i == 0, &me[i]) != 0) {
+      char sname[700];
+      snprintf(sname, sizeof sname, "%s: ROI %d '%s' as a stack", s.name, r->number, r->name);
+      if (env->tile(env->ud, &st[i], sname, hpre, pre, i == 0, &me[i]) != 0) {
         nmesh = i + 1;
         goto done;
       }

@@ -24,12 +24,14 @@ typedef struct {
 } tile_dicom_opts;
 
 typedef struct {
-  /* Tile s: the report on stdout (its header first when header != 0; the
+  /* Tile s (named `name` in messages: the file and ROI; its lines are those
+   * of the ROI's stack as --contours writes it): the report on stdout (its
+   * header first when header != 0; the
    * header's lines prefixed by hprefix, the others by prefix) and the mesh
    * in *me (the caller frees it).  0, or -1 when the run failed (said on
    * stderr). */
-  int (*tile)(void *ud, const contour_stack *s, const char *hprefix, const char *prefix, int header,
-              mesh *me);
+  int (*tile)(void *ud, const contour_stack *s, const char *name, const char *hprefix,
+              const char *prefix, int header, mesh *me);
   void *ud;
   /* Bad usage: print "tile: " fmt(arg), the usage line; returns 2. */
   int (*usage)(const char *fmt, const char *arg);

@@ -102,7 +102,7 @@ done
 for f in gen_implicit_undefined gen_explicit gen_explicit_undefined; do
   cmp -s "$T/gen_implicit.csv" "$T/$f.csv" && diff -r "$T/gen_implicit" "$T/$f" > /dev/null && ok || bad "$f differs from gen_implicit"
 done
-[ "$(ls "$T/gen_implicit" | wc -l)" -eq 4 ] && head -1 "$T/gen_implicit.csv" | grep -q '^roi_number,name,pair,' && ok || bad "--roi all: $(ls "$T/gen_implicit")"
+[ "$(ls "$T/gen_implicit" | wc -l)" -eq 4 ] && head -1 "$T/gen_implicit.csv" | grep -q '^roi_number,name,band,' && ok || bad "--roi all: $(ls "$T/gen_implicit")"
 
 # ---- An ROI is tiled exactly as its stack: --contours, then ./tile on it,
 # gives the same report and mesh as --roi directly; and the generated set's
@@ -161,7 +161,7 @@ refused nonnumeric $F/nonnumeric.dcm "ROI 7 'Prostate', contour item 1, point 3:
 refused nonfinite $F/nonfinite.dcm "ROI 7 'Prostate', contour item 1, point 4: x is not finite (1e999)" --roi 7
 refused triplets $F/triplets.dcm "ROI 7 'Prostate', contour item 1: ContourData holds 7 values, not x y z triplets" --roi 7
 refused oblique $F/oblique.dcm "ROI 7 'Prostate', contour item 2: not in an axial plane (z from 5 to 7)" --roi 7
-refused twoperslice $F/twoperslice.dcm "ROI 7 'Prostate', contour item 2: slice z=5 already has a contour (contour item 1)" --roi 7
+refused twoperslice $F/twoperslice.dcm "ROI 7 'Prostate' as a stack:8: contour overlaps the contour at line 3 on slice z=5 (0 0)" --roi 7
 refused onecontour $F/onecontour.dcm "ROI 7 'Prostate', contour item 1: only one contour; tiling needs at least 2" --roi 7
 refused unknown $D/dicompyler_rtss.dcm "no ROI named or numbered 'Lung' (the ROIs: 1 'BODY', 2 'Areola'," --roi Lung
 refused unknown2 $D/dicompyler_rtss.dcm "no ROI named or numbered '11'" --roi 11

@@ -38,15 +38,21 @@ expect_error fewer2       "C 4 0\n${P3}C 3 1\n$P3"            '5: the contour at
 expect_error more         "C 3 0\n${P3}2 2\n"                 '5: more point lines than the 3 announced at line 1 (2 2)'
 expect_error twopoints    "C 3 0\n0 0\n1 0\n1 0\nC 3 1\n$P3"  '1: contour has 2 distinct points, needs at least 3'
 expect_error collinear    "C 3 0\n0 0\n1 1\n2 2\nC 3 1\n$P3"  '1: all 3 points of the contour are collinear'
-expect_error sameslice    "C 3 1\n${P3}C 3 2\n${P3}C 3 1\n2 2\n3 2\n2 3\n"            '9: slice z=1 already has a contour (line 1)'
-expect_error goesback     "C 3 0\n${P3}C 3 2\n${P3}C 3 1\n$P3" '9: z goes back'
+# Several contours on a slice may not cross or touch (the later one in the
+# file is named, with the other's line and the point where they meet).
+expect_error crossing     "C 3 1\n${P3}C 3 2\n${P3}C 3 1\n0.5 -1\n3 -1\n0.5 0.5\n"  '9: contour crosses the contour at line 1 on slice z=1 (0.5 0)'
+expect_error touching     "C 3 1\n${P3}C 3 2\n${P3}C 3 1\n1 0\n3 0\n3 1\n"       '9: contour touches the contour at line 1 on slice z=1 (1 0)'
+# A bridge that cannot be made: two squares on slice 0 meet one U-shaped
+# contour above, and a wall between them (a third contour of slice 0, met by
+# nothing above) blocks every segment from one square to the other.
+U='C 8 1\n-1 2\n-1 -12\n12 -12\n12 2\n9 2\n9 -11\n2 -11\n2 2\n'
+expect_error nobridge     "C 4 0\n0 0\n1 0\n1 1\n0 1\nC 4 0\n10 0\n11 0\n11 1\n10 1\nC 4 0\n5 -10\n6 -10\n6 11\n5 11\n$U" '6: no bridge can join the contour to the contour at line 1 without crossing or enclosing a contour of their slice'
 expect_error onecontour   "C 3 0\n$P3"                        '1: only one contour; tiling needs at least 2'
 expect_error oneslice     "C 3 0\n${P3}C 3 0\n2 2\n3 2\n2 3\n"   '1: all 2 contours lie on one slice; tiling needs at least 2'
 expect_error binary       "C 3 0\n\001\002\003\n"             '2: binary data, not a contour file (byte 0x01)'
 expect_error nulbyte      "C 3 0\n0 0\n1\000 0\n"             '3: binary data, not a contour file (byte 0x00)'
 long=$(head -c 5000 /dev/zero | tr '\0' '7')
 expect_error longline     "C 3 0\n$long 0\n"                  '2: line longer than 4096 bytes (5002 bytes)'
-expect_error realtwoper   "$(cat $DATA/tinypatient_0.contours)\n" '29: slice z=-123.75 already has a contour (line 1)'
 
 # A file that cannot be read.
 "$TILE" "$T/missing.contours" > /dev/null 2> "$T/err"; rc=$?
@@ -76,15 +82,17 @@ usage $DATA/tinypatient_1.contours $DATA/prostate_1.contours
 # Good runs: the report, deterministic, the mesh formats.
 "$TILE" $DATA/prostate_2.contours -q --caps -o "$T/a.obj" > "$T/a.csv" 2> "$T/err" && ok || bad "prostate_2 failed: $(cat "$T/err")"
 [ ! -s "$T/err" ] && ok || bad "-q still printed: $(cat "$T/err")"
-head -1 "$T/a.csv" | grep -qx 'pair,z0,z1,m,n,cost,area,volume,nodes' && ok || bad "CSV header: $(head -1 "$T/a.csv")"
-[ "$(grep -c '^[0-9]' "$T/a.csv")" -eq 18 ] && ok || bad "expected 18 pair rows"
-tail -1 "$T/a.csv" | grep -q '^mesh,' && ok || bad "--caps: no mesh row"
+head -1 "$T/a.csv" | grep -qx 'band,z0,z1,depth,lower,upper,junction,m,n,bridges,cost,area,volume,nodes,euler,genus' && ok || bad "CSV header: $(head -1 "$T/a.csv")"
+[ "$(grep -c '^[0-9]' "$T/a.csv")" -eq 18 ] && ok || bad "expected 18 band rows"
+[ "$(grep -c '^cap,' "$T/a.csv")" -eq 2 ] && ok || bad "--caps: expected 2 cap rows"
+grep -q '^mesh,-75,-30,,,,closed,' "$T/a.csv" && ok || bad "--caps: no closed mesh row: $(grep '^mesh' "$T/a.csv")"
+[ "$(grep -c '^component,.*,closed,.*,2,0$' "$T/a.csv")" -eq 1 ] && ok || bad "--caps: not one component of genus 0"
 "$TILE" $DATA/prostate_2.contours -q --caps -o "$T/b.obj" > "$T/b.csv" && cmp -s "$T/a.csv" "$T/b.csv" && cmp -s "$T/a.obj" "$T/b.obj" && ok || bad "two runs differ"
 for f in ply stl; do
   "$TILE" $DATA/prostate_2.contours -q --caps -o "$T/a.$f" > /dev/null && "$TILE" $DATA/prostate_2.contours -q --caps -o "$T/b.$f" > /dev/null && cmp -s "$T/a.$f" "$T/b.$f" && ok || bad "$f: two runs differ"
 done
 # Vertices are shared between bands: one per contour point, as the CSV counts them.
-nv=$(awk -F, '/^[0-9]/{s+=$4; last=$5} END{print s+last}' "$T/a.csv")
+nv=$(awk -F, '/^[0-9]/{s+=$8; last=$9} END{print s+last}' "$T/a.csv")
 [ "$(grep -c '^v ' "$T/a.obj")" -eq "$nv" ] && ok || bad "OBJ has $(grep -c '^v ' "$T/a.obj") vertices, the contours $nv points"
 # The notes on repaired input, and reading from standard input.
 "$TILE" - < $DATA/tinypatient_1.contours > "$T/c.csv" 2> "$T/err" && ok || bad "stdin"
@@ -92,29 +100,42 @@ grep -q 'tile: <stdin>:6: dropped the repeated closing point' "$T/err" && ok || 
 "$TILE" $DATA/tinypatient_1.contours --cost span -q > "$T/d.csv" && ok || bad "--cost span"
 ! cmp -s "$T/c.csv" "$T/d.csv" && ok || bad "span and area costs give the same report"
 # Under --cost area a band's cost is the sum of its triangles' areas.
-awk -F, '/^[0-9]/{ d=$6-$7; if (d<0) d=-d; if (d > 1e-9*$6) bad=1 } END{exit bad}' "$T/a.csv" && ok || bad "cost and area disagree"
+awk -F, '/^[0-9]/{ d=$11-$12; if (d<0) d=-d; if (d > 1e-9*$11) bad=1 } END{exit bad}' "$T/a.csv" && ok || bad "cost and area disagree"
+# Any number of contours per slice: tinypatient_0 (two on each of 9 slices)
+# gives two closed components of genus 0; the same bytes on 1 and 3 threads
+# (-j), and with the contours in the reverse order of the file.
+"$TILE" $DATA/tinypatient_0.contours -q --caps -j 1 -o "$T/tp1.obj" > "$T/tp1.csv" 2> "$T/err" && ok || bad "tinypatient_0: $(cat "$T/err")"
+[ "$(grep -c '^component,.*,closed,.*,2,0$' "$T/tp1.csv")" -eq 2 ] && grep -q '^mesh,.*,closed,' "$T/tp1.csv" && ok || bad "tinypatient_0: not two closed components of genus 0"
+"$TILE" $DATA/tinypatient_0.contours -q --caps -j 3 -o "$T/tp3.obj" > "$T/tp3.csv" && cmp -s "$T/tp1.csv" "$T/tp3.csv" && cmp -s "$T/tp1.obj" "$T/tp3.obj" && ok || bad "-j 3 differs from -j 1"
+awk '/^C/{n++} {print n "\t" NR "\t" $0}' $DATA/tinypatient_0.contours | sort -k1,1nr -k2,2n | cut -f3- > "$T/rev.contours"
+"$TILE" "$T/rev.contours" -q --caps -o "$T/rev.obj" > "$T/rev.csv" && cmp -s "$T/tp1.csv" "$T/rev.csv" && cmp -s "$T/tp1.obj" "$T/rev.obj" && ok || bad "contours in reverse file order: the output differs"
+usage $DATA/tinypatient_0.contours -j 0
+usage $DATA/tinypatient_0.contours -j x
+usage $DATA/tinypatient_0.contours --cap-style round --caps
+usage $DATA/tinypatient_0.contours --cap-style apex
+
 # The parallel algorithm on the simulated machine: the same report as the
-# serial solver in the first nine columns, the same mesh, and deterministic.
+# serial solver in its sixteen columns, the same mesh, and deterministic.
 "$TILE" $DATA/prostate_3.contours -q > "$T/ser.csv" -o "$T/ser.obj" && ok || bad "serial prostate_3"
 for args in "--procs 1" "--procs 2 --alloc size" "--procs 7 --min-diag 20 --net ideal" "--procs 16 --alloc size --min-diag 80 --net loggp --L 1e-4 --o 2e-5"; do
   "$TILE" $DATA/prostate_3.contours -q $args -o "$T/par.obj" > "$T/par.csv" 2> "$T/err" && ok || bad "$args: $(cat "$T/err")"
-  cut -d, -f1-9 "$T/par.csv" | tail -n +2 | cmp -s - "$(tail -n +2 "$T/ser.csv" > "$T/ser9"; echo "$T/ser9")" && ok || bad "$args: the report differs from the serial one"
+  cut -d, -f1-16 "$T/par.csv" | tail -n +2 | cmp -s - "$(tail -n +2 "$T/ser.csv" > "$T/ser9"; echo "$T/ser9")" && ok || bad "$args: the report differs from the serial one"
   cmp -s "$T/par.obj" "$T/ser.obj" && ok || bad "$args: the mesh differs from the serial one"
-  head -1 "$T/par.csv" | grep -qx 'pair,z0,z1,m,n,cost,area,volume,nodes,procs,sim_time,msg_boundary,msg_backtrack,msg_bounds,msg_control,bytes,backend' && ok || bad "$args: header $(head -1 "$T/par.csv")"
-  awk -F, 'NR>1 && $17 != "sim" {bad=1} END{exit bad}' "$T/par.csv" && ok || bad "$args: backend column is not sim"
+  head -1 "$T/par.csv" | grep -qx 'band,z0,z1,depth,lower,upper,junction,m,n,bridges,cost,area,volume,nodes,euler,genus,procs,sim_time,msg_boundary,msg_backtrack,msg_bounds,msg_control,bytes,backend' && ok || bad "$args: header $(head -1 "$T/par.csv")"
+  awk -F, 'NR>1 && $1 ~ /^[0-9]+$/ && $24 != "sim" {bad=1} END{exit bad}' "$T/par.csv" && ok || bad "$args: backend column is not sim"
 done
 # The same algorithm on threads: the same report and mesh, real times.
 for args in "--procs 1" "--procs 3" "--procs 6 --alloc size --min-diag 20" "--procs 16"; do
   "$TILE" $DATA/prostate_3.contours -q $args --backend threads -o "$T/thr.obj" > "$T/thr.csv" 2> "$T/err" && ok || bad "threads $args: $(cat "$T/err")"
-  cut -d, -f1-9 "$T/thr.csv" | tail -n +2 | cmp -s - "$T/ser9" && ok || bad "threads $args: the report differs from the serial one"
+  cut -d, -f1-16 "$T/thr.csv" | tail -n +2 | cmp -s - "$T/ser9" && ok || bad "threads $args: the report differs from the serial one"
   cmp -s "$T/thr.obj" "$T/ser.obj" && ok || bad "threads $args: the mesh differs from the serial one"
-  awk -F, 'NR>1 && ($17 != "threads" || $11 <= 0) {bad=1} END{exit bad}' "$T/thr.csv" && ok || bad "threads $args: backend or time column"
+  awk -F, 'NR>1 && $1 ~ /^[0-9]+$/ && ($24 != "threads" || $18 <= 0) {bad=1} END{exit bad}' "$T/thr.csv" && ok || bad "threads $args: backend or time column"
 done
 "$TILE" $DATA/prostate_3.contours -q --procs 5 --trace "$T/t1.json" > "$T/p1.csv" && "$TILE" $DATA/prostate_3.contours -q --procs 5 --trace "$T/t2.json" > "$T/p2.csv" && ok || bad "--trace"
 cmp -s "$T/p1.csv" "$T/p2.csv" && cmp -s "$T/t1.json" "$T/t2.json" && ok || bad "two parallel runs or traces differ"
 head -1 "$T/t1.json" | grep -q '^{.*"traceEvents":\[$' && tail -c 4 "$T/t1.json" | grep -q ']}' && ok || bad "the JSON trace is not a traceEvents object"
 "$TILE" $DATA/prostate_3.contours -q --procs 3 --trace "$T/t.csv" > /dev/null && head -1 "$T/t.csv" | grep -q '^time,rank' && ok || bad "CSV trace"
-awk -F, 'NR>1 && $11 <= 0 {bad=1} END{exit bad}' "$T/p1.csv" && ok || bad "a pair without simulated time"
+awk -F, 'NR>1 && $1 ~ /^[0-9]+$/ && $18 <= 0 {bad=1} END{exit bad}' "$T/p1.csv" && ok || bad "a band without simulated time"
 usage $DATA/tinypatient_1.contours --procs 0
 usage $DATA/tinypatient_1.contours --procs x
 usage $DATA/tinypatient_1.contours --procs 4 --alloc third

@@ -41,7 +41,7 @@
  * second-encoding tests, end to end: enabled when ./tile accepts several
  * contours per slice (issue 9).  Set to 1 then; until then
  * TILESIM_SOLIDS_ALL=1 in the environment runs them too. */
-static const int several_per_slice = 0;
+static const int several_per_slice = 1;
 
 /* The stacks the end-to-end tests tile: K planes, about N points a contour. */
 enum { K_SINGLE = 30, K_MULTI = 72, N_POINTS = 64 };

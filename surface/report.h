@@ -1,0 +1,35 @@
+/* report.h -- the CSV report of a tiled stack (./tile's standard output).
+ *
+ *   band,z0,z1,depth,lower,upper,junction,m,n,bridges,cost,area,volume,nodes,euler,genus
+ *   [,procs,sim_time,msg_boundary,msg_backtrack,msg_bounds,msg_control,bytes,backend]
+ *
+ * One row per band (band = 0, 1, ...): the slices' z, the contours' depth,
+ * which contours of the lower and upper slice (their places in canonical
+ * order, joined by '+'), the junction type (contours below - above), the
+ * points of the two contours the tiler saw (m below, n above, bridge
+ * vertices included), bridges, the optimum, the band's area and slab volume,
+ * the tiler's node evaluations; with --procs the parallel run's columns,
+ * and on a topology (--topology) the network's.
+ * Then with caps one row per cap (band = cap; z1 the apex's z; volume what
+ * the cap adds beyond its flat region), one row `mesh` (zmin, zmax,
+ * closed|open, vertices, triangles, bridges, cost, area, volume, nodes and
+ * the Euler characteristic), and one row `component` per connected
+ * component (closed|pinched|open, vertices, triangles, area, volume, Euler
+ * characteristic, genus when closed). */
+#ifndef REPORT_H
+#define REPORT_H
+
+#include <stdio.h>
+
+#include "run.h"
+#include "stack.h"
+
+/* The header line, after `prefix` (for columns a caller puts first); rc as
+ * for report_rows. */
+void report_header(FILE *f, const char *prefix, const run_config *rc);
+
+/* Every row, each after `prefix`; rc (NULL without --procs) names the
+ * backend and the procs. */
+void report_rows(FILE *f, const char *prefix, const stack_surface *ss, const run_config *rc);
+
+#endif

@@ -1,0 +1,382 @@
+/* stack.c -- the stack tiler: slices, junctions, bridges, bands, caps, mesh.
+ *
+ *   slice k+1   ----- C -----------          a 2-1 junction: A and B are
+ *                 /         \                joined by a bridge into one
+ *   slice k     - A -  ===  - B -            composite, tiled with C exactly
+ *
+ * Every phase is a set of independent jobs on the pool (pool.h), written by
+ * index; refusals are taken from the lowest job that has one, so that the
+ * message, like the output, does not depend on the threads. */
+#include "stack.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bridge.h"
+#include "ends.h"
+#include "match.h"
+#include "pool.h"
+#include "slices.h"
+#include "tiling.h"
+#include "xmem.h"
+
+struct stack_surface {
+  mesh me;
+  int nrows;
+  stack_row *rows;
+  int npairs;
+  par_pair *pairs;
+  net_stats *nets;
+  int ncomp;
+  manifold_component *comp;
+};
+
+typedef struct {
+  int slice;
+  const junction *j;
+  composite lo, hi;
+  tiling t;
+  char *err;
+  int ntri;
+  int (*tri)[3];      /* input ids >= 0; -1-s: Steiner s of lo, then of hi */
+  double area, volume;
+} band;
+
+typedef struct {
+  const slices *sl;
+  const stack_options *o;
+  const char *name;
+  junctions *js;
+  band *b;
+  vec3 *verts;         /* the input vertices' positions */
+  end_region *ends;
+  end_cap *caps;
+} work;
+
+static void match_job(void *ud, int k) {
+  work *w = ud;
+  match_slices(w->sl, k, &w->js[k]);
+}
+
+static void bridge_job(void *ud, int i) {
+  work *w = ud;
+  band *b = &w->b[i];
+  const slices *sl = w->sl;
+  int k = b->slice;
+  double dz = sl->z[k + 1] - sl->z[k];
+  char err[600];
+  /* The bridges' vertices halfway to the partner slice; a third of the way
+   * when both sides have bridges, so the two never meet. */
+  double lo_lift = dz * (b->j->nhi > 1 ? 1.0 / 3 : 0.5), hi_lift = -dz * (b->j->nlo > 1 ? 1.0 / 3 : 0.5);
+  if (bridge_join(sl, b->j->lo, b->j->nlo, k + 1, lo_lift, w->name, &b->lo, err, sizeof err) != 0 ||
+      bridge_join(sl, b->j->hi, b->j->nhi, k, hi_lift, w->name, &b->hi, err, sizeof err) != 0)
+    b->err = xstrdup(err);
+}
+
+static void tile_job(void *ud, int i) {
+  work *w = ud;
+  band *b = &w->b[i];
+  const slices *sl = w->sl;
+  tiling_solve(b->lo.pt, b->lo.n, sl->z[b->slice], b->hi.pt, b->hi.n, sl->z[b->slice + 1], w->o->kind,
+               -1, &b->t);
+}
+
+/* The hi side's Steiner vertices come after the lo side's. */
+static int hi_id(const band *b, int id) { return id >= 0 ? id : id - b->lo.nsteiner; }
+
+static vec3 band_vertex(const work *w, const band *b, int id) {
+  if (id >= 0) return w->verts[id];
+  int s = -1 - id;
+  return s < b->lo.nsteiner ? b->lo.steiner[s] : b->hi.steiner[s - b->lo.nsteiner];
+}
+
+static vec3 sub3(vec3 a, vec3 b) { return (vec3){a.x - b.x, a.y - b.y, a.z - b.z}; }
+
+static double tri_area(vec3 a, vec3 b, vec3 c) {
+  vec3 u = sub3(b, a), v = sub3(c, a);
+  double x = u.y * v.z - u.z * v.y, y = u.z * v.x - u.x * v.z, z = u.x * v.y - u.y * v.x;
+  return 0.5 * sqrt(x * x + y * y + z * z);
+}
+
+/* The triangle's share of the volume (divergence theorem) about o. */
+static double tri_vol(vec3 a, vec3 b, vec3 c, vec3 o) {
+  a = sub3(a, o), b = sub3(b, o), c = sub3(c, o);
+  return (a.x * (b.y * c.z - b.z * c.y) + a.y * (b.z * c.x - b.x * c.z) + a.z * (b.x * c.y - b.y * c.x)) / 6;
+}
+
+/* The band's triangles from its tiling (tiling_tiles: the edge on P = lo or
+ * Q = hi, the apex on the other), then the bridges' fill; its area, and the
+ * volume of the slab it closes with the two slices' regions. */
+static void mesh_job(void *ud, int i) {
+  work *w = ud;
+  band *b = &w->b[i];
+  const slices *sl = w->sl;
+  int steps = b->t.m + b->t.n;
+  b->ntri = steps + b->lo.ntri + b->hi.ntri;
+  b->tri = xmallocarray((size_t)b->ntri, sizeof *b->tri);
+  int (*tile)[3] = xmallocarray((size_t)steps, sizeof *tile);
+  unsigned char *on = xmalloc((size_t)steps);
+  tiling_tiles(&b->t, tile, on);
+  int nt = 0;
+  for (int k = 0; k < steps; k++) {
+    /* Seen from outside, an edge of the lower contour with the apex above
+     * runs its own way (material on its left); of the upper, backwards. */
+    int xa, xb, y;
+    if (on[k]) xa = hi_id(b, b->hi.id[tile[k][0]]), xb = hi_id(b, b->hi.id[tile[k][1]]), y = b->lo.id[tile[k][2]];
+    else xa = b->lo.id[tile[k][0]], xb = b->lo.id[tile[k][1]], y = hi_id(b, b->hi.id[tile[k][2]]);
+    if (!on[k]) b->tri[nt][0] = xa, b->tri[nt][1] = xb;
+    else b->tri[nt][0] = xb, b->tri[nt][1] = xa;
+    b->tri[nt++][2] = y;
+  }
+  free(tile);
+  free(on);
+  for (int k = 0; k < b->lo.ntri; k++, nt++) memcpy(b->tri[nt], b->lo.tri[k], sizeof b->tri[nt]);
+  for (int k = 0; k < b->hi.ntri; k++, nt++)
+    for (int e = 0; e < 3; e++) b->tri[nt][e] = hi_id(b, b->hi.tri[k][e]);
+  double z0 = sl->z[b->slice], z1 = sl->z[b->slice + 1], ahi = 0;
+  vec3 o = {sl->c[b->j->lo[0]].pt[0].x, sl->c[b->j->lo[0]].pt[0].y, z0};
+  b->area = b->volume = 0;
+  for (int k = 0; k < b->ntri; k++) {
+    vec3 p = band_vertex(w, b, b->tri[k][0]), q = band_vertex(w, b, b->tri[k][1]),
+         r = band_vertex(w, b, b->tri[k][2]);
+    b->area += tri_area(p, q, r);
+    b->volume += tri_vol(p, q, r, o);
+  }
+  for (int k = 0; k < b->j->nhi; k++) ahi += 0.5 * sl->c[b->j->hi[k]].area2;
+  b->volume += (z1 - z0) * ahi / 3;
+}
+
+static void cap_job(void *ud, int i) {
+  work *w = ud;
+  ends_cap(w->sl, &w->ends[i], w->o->apex, &w->caps[i]);
+}
+
+static void add_tri(mesh *me, int a, int b, int c) {
+  if (me->nt == me->cap) {
+    me->cap = me->cap ? 2 * me->cap : 1024;
+    me->t = xreallocarray(me->t, (size_t)me->cap, sizeof *me->t);
+  }
+  me->t[me->nt][0] = a, me->t[me->nt][1] = b, me->t[me->nt][2] = c;
+  me->nt++;
+}
+
+static int *positions(const slices *sl, const int *cs, int n) {
+  int *p = xmallocarray((size_t)n + 1, sizeof *p);
+  for (int i = 0; i < n; i++) p[i] = sl->c[cs[i]].pos;
+  return p;
+}
+
+int stack_tile(const contour_stack *s, const char *name, const stack_options *o,
+               stack_surface **out, char *err, size_t errlen) {
+  *out = NULL;
+  int threads = o->threads < 1 ? 1 : o->threads;
+  slices sl;
+  if (slices_build(s, name, threads, &sl, err, errlen) != 0) return -1;
+  int ns = sl.nslices, several = sl.ncontours > ns;
+  if (o->notes && several && sl.reoriented)
+    fprintf(o->notes,
+            "%s: %s: %d of %d contours ran against their nesting (an outer boundary or island "
+            "clockwise, or a hole counter-clockwise); oriented by depth\n",
+            o->prefix, name, sl.reoriented, sl.ncontours);
+
+  work w = {&sl, o, name, xcalloc((size_t)ns, sizeof(junctions)), NULL, NULL, NULL, NULL};
+  pool_run(threads, ns - 1, NULL, match_job, &w);
+
+  /* The bands: junctions with contours on both sides. */
+  int nb = 0;
+  unsigned char *up = xcalloc((size_t)sl.ncontours + 1, 1), *down = xcalloc((size_t)sl.ncontours + 1, 1);
+  for (int k = 0; k + 1 < ns; k++)
+    for (int g = 0; g < w.js[k].n; g++) nb += w.js[k].j[g].nlo > 0 && w.js[k].j[g].nhi > 0;
+  w.b = xcalloc((size_t)nb + 1, sizeof *w.b);
+  nb = 0;
+  for (int k = 0; k + 1 < ns; k++)
+    for (int g = 0; g < w.js[k].n; g++) {
+      const junction *j = &w.js[k].j[g];
+      if (j->nlo == 0 || j->nhi == 0) continue;
+      w.b[nb].slice = k;
+      w.b[nb++].j = j;
+      for (int x = 0; x < j->nlo; x++) up[j->lo[x]] = 1;
+      for (int x = 0; x < j->nhi; x++) down[j->hi[x]] = 1;
+    }
+  pool_run(threads, nb, NULL, bridge_job, &w);
+  int rc = 0;
+  for (int i = 0; i < nb; i++)
+    if (w.b[i].err && rc == 0) {
+      snprintf(err, errlen, "%s", w.b[i].err);
+      rc = -1;
+    }
+  for (int i = 0; i < nb && rc == 0 && o->notes; i++)
+    for (int side = 0; side < 2; side++) {
+      const composite *c = side ? &w.b[i].hi : &w.b[i].lo;
+      int k = w.b[i].slice + side;
+      if (c->relaxed)
+        fprintf(o->notes,
+                "%s: %s:%d: no bridge from this contour to the contour at line %d on slice "
+                "z=%.17g avoids the contours of slice z=%.17g; it crosses them in projection%s\n",
+                o->prefix, name, c->relaxed_line[1], c->relaxed_line[0], sl.z[k], sl.z[side ? k - 1 : k + 1],
+                c->relaxed > 1 ? " (and other bridges of the band too)" : "");
+    }
+
+  stack_surface *ss = xcalloc(1, sizeof *ss);
+  if (rc == 0 && o->rc) {
+    /* The paper's parallel algorithm, every band in one run of the backend. */
+    ss->npairs = nb;
+    ss->pairs = xcalloc((size_t)nb + 1, sizeof *ss->pairs);
+    for (int i = 0; i < nb; i++) {
+      par_pair *p = &ss->pairs[i];
+      p->P = w.b[i].lo.pt, p->np = w.b[i].lo.n, p->zp = sl.z[w.b[i].slice];
+      p->Q = w.b[i].hi.pt, p->nq = w.b[i].hi.n, p->zq = sl.z[w.b[i].slice + 1];
+    }
+    if (o->rc->machine.topo.kind != TOPO_NONE)
+      o->rc->pair_net = ss->nets = xcalloc((size_t)nb + 1, sizeof *ss->nets);
+    if (run_pairs(o->rc, ss->pairs, nb, err, errlen) != 0) rc = -2;
+    o->rc->pair_net = NULL;
+    for (int i = 0; i < nb; i++) {
+      w.b[i].t = ss->pairs[i].t;
+      ss->pairs[i].t.col = NULL;
+    }
+  } else if (rc == 0) {
+    double *size = xmallocarray((size_t)nb + 1, sizeof *size);
+    int *order = xmallocarray((size_t)nb + 1, sizeof *order);
+    for (int i = 0; i < nb; i++) size[i] = (double)w.b[i].lo.n * w.b[i].hi.n;
+    pool_order(size, nb, order);
+    pool_run(threads, nb, order, tile_job, &w);
+    free(size);
+    free(order);
+  }
+
+  int nends = 0;
+  if (rc == 0) {
+    w.verts = xmallocarray((size_t)sl.nverts + 1, sizeof *w.verts);
+    for (int c = 0; c < sl.ncontours; c++)
+      for (int k = 0; k < sl.c[c].n; k++)
+        w.verts[sl.c[c].base + k] = (vec3){sl.c[c].pt[k].x, sl.c[c].pt[k].y, sl.z[sl.c[c].slice]};
+    pool_run(threads, nb, NULL, mesh_job, &w);
+    if (o->caps) {
+      nends = ends_plan(&sl, up, down, &w.ends);
+      w.caps = xcalloc((size_t)nends + 1, sizeof *w.caps);
+      pool_run(threads, nends, NULL, cap_job, &w);
+      for (int i = 0; i < nends; i++)
+        if (o->notes && w.ends[i].isolated && !w.caps[i].apex && w.ends[i].up)
+          fprintf(o->notes,
+                  "%s: %s:%d: the contour is alone (no partner on either slice next to it) and "
+                  "has no point to cap it from; its flat caps make a part of no thickness\n",
+                  o->prefix, name, sl.c[w.ends[i].outer].line);
+    }
+
+    /* The mesh: input vertices, bridge vertices, apexes; bands, then caps. */
+    mesh *me = &ss->me;
+    int nv = sl.nverts;
+    for (int i = 0; i < nb; i++) nv += w.b[i].lo.nsteiner + w.b[i].hi.nsteiner;
+    for (int i = 0; i < nends; i++) nv += w.caps[i].apex;
+    me->nv = nv;
+    me->v = xmallocarray((size_t)nv + 1, sizeof *me->v);
+    memcpy(me->v, w.verts, (size_t)sl.nverts * sizeof *me->v);
+    int next = sl.nverts;
+    ss->rows = xcalloc((size_t)(nb + nends) + 1, sizeof *ss->rows);
+    for (int i = 0; i < nb; i++) {
+      band *b = &w.b[i];
+      int first = next;
+      for (int k = 0; k < b->lo.nsteiner; k++) me->v[next++] = b->lo.steiner[k];
+      for (int k = 0; k < b->hi.nsteiner; k++) me->v[next++] = b->hi.steiner[k];
+      for (int k = 0; k < b->ntri; k++) {
+        int v[3];
+        for (int e = 0; e < 3; e++) v[e] = b->tri[k][e] >= 0 ? b->tri[k][e] : first - 1 - b->tri[k][e];
+        add_tri(me, v[0], v[1], v[2]);
+      }
+      stack_row *r = &ss->rows[ss->nrows++];
+      r->kind = STACK_BAND;
+      r->slice0 = b->slice, r->slice1 = b->slice + 1;
+      r->z0 = sl.z[b->slice], r->z1 = sl.z[b->slice + 1];
+      r->depth = b->j->depth;
+      r->nlo = b->j->nlo, r->nhi = b->j->nhi;
+      r->lo = positions(&sl, b->j->lo, r->nlo), r->hi = positions(&sl, b->j->hi, r->nhi);
+      r->m = b->lo.n, r->n = b->hi.n;
+      r->bridges = b->lo.nbridges + b->hi.nbridges;
+      r->cost = b->t.cost, r->area = b->area, r->volume = b->volume;
+      r->nodes = (unsigned long long)b->t.count.nodes;
+      r->pair = o->rc ? i : -1;
+    }
+    for (int i = 0; i < nends; i++) {
+      const end_region *g = &w.ends[i];
+      const end_cap *c = &w.caps[i];
+      int apex = c->apex ? next++ : -1;
+      if (c->apex) me->v[apex] = c->at;
+      stack_row *r = &ss->rows[ss->nrows++];
+      double z = sl.z[g->slice];
+      vec3 o3 = {sl.c[g->outer].pt[0].x, sl.c[g->outer].pt[0].y, z};
+      r->kind = STACK_CAP;
+      r->slice0 = r->slice1 = g->slice;
+      r->z0 = z, r->z1 = c->apex ? c->at.z : z;
+      r->depth = sl.c[g->outer].depth;
+      int *cs = xmallocarray((size_t)g->nholes + 1, sizeof *cs);
+      cs[0] = g->outer;
+      for (int k = 0; k < g->nholes; k++) cs[k + 1] = g->holes[k];
+      r->m = 0;
+      for (int k = 0; k <= g->nholes; k++) r->m += sl.c[cs[k]].n;
+      if (g->up) r->nlo = g->nholes + 1, r->lo = positions(&sl, cs, r->nlo), r->hi = positions(&sl, cs, 0);
+      else r->nhi = g->nholes + 1, r->hi = positions(&sl, cs, r->nhi), r->lo = positions(&sl, cs, 0);
+      free(cs);
+      r->pair = -1;
+      for (int k = 0; k < c->ntri; k++) {
+        int v[3];
+        for (int e = 0; e < 3; e++) v[e] = c->tri[k][e] >= 0 ? c->tri[k][e] : apex;
+        add_tri(me, v[0], v[1], v[2]);
+        r->area += tri_area(me->v[v[0]], me->v[v[1]], me->v[v[2]]);
+        r->volume += tri_vol(me->v[v[0]], me->v[v[1]], me->v[v[2]], o3);
+      }
+    }
+    XASSERT(next == nv);
+    ss->ncomp = manifold_components(me, &ss->comp);
+  }
+
+  for (int i = 0; i < nb; i++) {
+    bridge_free(&w.b[i].lo);
+    bridge_free(&w.b[i].hi);
+    tiling_free(&w.b[i].t);
+    free(w.b[i].err);
+    free(w.b[i].tri);
+  }
+  for (int i = 0; i < nends; i++) ends_cap_free(&w.caps[i]);
+  if (w.ends) ends_free(w.ends, nends);
+  free(w.caps);
+  free(w.b);
+  free(w.verts);
+  for (int k = 0; k + 1 < ns; k++) match_free(&w.js[k]);
+  free(w.js);
+  free(up);
+  free(down);
+  slices_free(&sl);
+  if (rc != 0) {
+    stack_free(ss);
+    return rc;
+  }
+  *out = ss;
+  return 0;
+}
+
+const mesh *stack_mesh(const stack_surface *ss) { return &ss->me; }
+void stack_take_mesh(stack_surface *ss, mesh *me) {
+  *me = ss->me;
+  memset(&ss->me, 0, sizeof ss->me);
+}
+int stack_nrows(const stack_surface *ss) { return ss->nrows; }
+const stack_row *stack_rows(const stack_surface *ss) { return ss->rows; }
+const par_pair *stack_pairs(const stack_surface *ss) { return ss->pairs; }
+const net_stats *stack_nets(const stack_surface *ss) { return ss->nets; }
+int stack_ncomponents(const stack_surface *ss) { return ss->ncomp; }
+const manifold_component *stack_components(const stack_surface *ss) { return ss->comp; }
+
+void stack_free(stack_surface *ss) {
+  if (!ss) return;
+  for (int i = 0; i < ss->nrows; i++) free(ss->rows[i].lo), free(ss->rows[i].hi);
+  free(ss->rows);
+  if (ss->pairs)
+    for (int i = 0; i < ss->npairs; i++) tiling_free(&ss->pairs[i].t);
+  free(ss->pairs);
+  free(ss->nets);
+  free(ss->comp);
+  mesh_free(&ss->me);
+  free(ss);
+}

@@ -1,0 +1,87 @@
+/* stack.h -- one closed, outward surface from a whole stack of contours,
+ * any number per slice, with the exact tiler doing every band.
+ *
+ * The pipeline (design note shared/design/contours.md, section 2; each step
+ * in its own file):
+ *   slices.c   canonical slices, nesting forests, holes by depth
+ *   match.c    correspondence between neighbouring slices: junctions
+ *   bridge.c   n-m junctions: composite contours joined by bridges
+ *   tiling.h   every band: the exact minimum-cost tiling (Fuchs, Kedem,
+ *              Uselton 1977), or the paper's parallel algorithm (run.h)
+ *   ends.c     the ends: caps, flat (flatcap.c) or apex (apex.c)
+ *   manifold.c the components of the result: closed, manifold, genus
+ * The bands are independent (the paper, section 6), and so are the slices
+ * and the caps: each step runs on a pool of threads (pool.h), with results
+ * kept by index, so the output is byte-identical on any number of threads.
+ *
+ * Mesh vertices: the contours' points in canonical order (slices.h), then
+ * the bridges' vertices band by band, then the caps' apexes.  Triangles:
+ * band by band (the tiles in path order, then the bridges' fill), then the
+ * caps.  Every triangle faces outward. */
+#ifndef STACK_H
+#define STACK_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "contour.h"
+#include "mesh.h"
+#include "run.h"
+#include "manifold.h"
+
+typedef struct {
+  cost_kind kind;
+  int caps;            /* 1: close every end (watertight); 0: leave them open */
+  int apex;            /* cap style: 0 flat, 1 apex */
+  int threads;         /* >= 1 */
+  run_config *rc;      /* non-NULL: tile the bands with the parallel algorithm on rc's backend */
+  FILE *notes;         /* notes (reoriented contours, flat single-slice parts), or NULL */
+  const char *prefix;  /* of the notes: "tile" */
+} stack_options;
+
+typedef enum { STACK_BAND, STACK_CAP } stack_row_kind;
+
+typedef struct {
+  stack_row_kind kind;
+  int slice0, slice1;  /* band: slices k, k+1; cap: its slice twice */
+  double z0, z1;       /* band: their z; cap: the slice's z and the apex's (z when flat) */
+  int depth;           /* 0 outer boundaries, 1 holes, ... */
+  int nlo, nhi;        /* contours on slice0 and on slice1 (cap: on one side only) */
+  int *lo, *hi;        /* their places on their slices (slices.h: canonical order) */
+  int m, n;            /* band: points of the two contours the tiler saw (with bridge
+                          vertices); cap: the region's points, 0 */
+  int bridges;         /* band: bridges on both sides */
+  double cost;         /* band: the tiler's optimum (bridge vertices in the plane) */
+  double area;         /* the triangles' area (band: with the bridges' fill) */
+  double volume;       /* band: the slab closed by it and the slices' regions;
+                          cap: what it adds beyond the flat region (0 flat) */
+  unsigned long long nodes;   /* band: the tiler's node evaluations */
+  int pair;            /* band: its run in stack_pairs (with rc), else -1 */
+} stack_row;
+
+typedef struct stack_surface stack_surface;
+
+/* Tile the stack s, read from the file `name` (for messages).  Returns 0
+ * and *out; -1 for input it refuses, with "NAME:LINE: what (value)" in err
+ * (contours crossing on a slice, a bridge that cannot be made); -2 when the
+ * parallel run failed, with its message in err.  Nothing is left allocated
+ * on failure. */
+int stack_tile(const contour_stack *s, const char *name, const stack_options *o,
+               stack_surface **out, char *err, size_t errlen);
+
+const mesh *stack_mesh(const stack_surface *ss);
+/* Move the mesh out to *me (the caller frees it with mesh_free); the
+ * surface keeps an empty one. */
+void stack_take_mesh(stack_surface *ss, mesh *me);
+int stack_nrows(const stack_surface *ss);
+const stack_row *stack_rows(const stack_surface *ss);
+/* With rc: the bands' runs (par_pair.time, counts), indexed by stack_row.pair;
+ * on a topology their network statistics (else NULL). */
+const par_pair *stack_pairs(const stack_surface *ss);
+const net_stats *stack_nets(const stack_surface *ss);
+int stack_ncomponents(const stack_surface *ss);
+const manifold_component *stack_components(const stack_surface *ss);
+
+void stack_free(stack_surface *ss);
+
+#endif
