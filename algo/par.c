@@ -24,6 +24,7 @@ void par_counts_add(par_counts *into, const par_counts *c) {
   for (int k = 0; k < PAR_KINDS; k++) into->msgs[k] += c->msgs[k], into->bytes[k] += c->bytes[k];
   into->nodes += c->nodes;
   into->units += c->units;
+  into->book += c->book;
   into->paths += c->paths;
 }
 

@@ -78,7 +78,10 @@ typedef struct {
   uint64_t msgs[PAR_KINDS];    /* messages sent, by kind */
   uint64_t bytes[PAR_KINDS];   /* their bytes */
   uint64_t nodes;              /* node evaluations (charged: one unit each) */
-  uint64_t units;              /* all units charged with mp_compute */
+  uint64_t units;              /* node units charged with mp_compute (slaves) */
+  uint64_t book;               /* the master's bookkeeping units: one per column
+                                  of a path it assembles, copies or measures
+                                  (par_master_charge), charged at opt.book */
   uint64_t paths;              /* paths computed */
 } par_counts;
 
@@ -98,6 +101,9 @@ typedef struct {
   int block;           /* k: run-boundary costs every k diagonals (par_block.h);
                           0 or 1: every diagonal, the paper's */
   par_schedule schedule;   /* PAR_STATIC (the paper's) or PAR_DYNAMIC */
+  double book;         /* the price of one unit of the master's bookkeeping, in
+                          node units (mp_compute units, c each): --master-c / c,
+                          set by run_par_options (run.h); 0: free */
 } par_options;
 
 /* 1 if the options are the paper's own algorithm (no variant). */

@@ -29,7 +29,13 @@ int par_master_fail(master *M, int rc, const char *what) {
   return -1;
 }
 
-int par_master_charge(master *M, uint64_t units) { return par_compute(M->mp, M->own, units); }
+/* The master's bookkeeping is integer passes over a path's columns, not node
+ * evaluations: each unit costs opt.book node units (--master-c / c; run.h
+ * says where the default comes from). */
+int par_master_charge(master *M, uint64_t units) {
+  M->own->book += units;
+  return mp_compute(M->mp, (double)units * M->arg->opt.book);
+}
 
 gpath *par_master_path(master *M, int start) {
   if (M->npaths == M->pcap) {
@@ -105,13 +111,17 @@ int par_master_group(master *M, const int *ranks, int p, int lo, int hi, const g
   return gi;
 }
 
-static void consider(master *M, int start, double quanta, const int *col) {
+/* A path against the best so far; a better one is copied (bookkeeping: a
+ * pass over its columns). */
+static int consider(master *M, int start, double quanta, const int *col) {
   tiling_best *b = &M->best;
   if (quanta < b->quanta || (quanta == b->quanta && start < b->start)) {
     b->quanta = quanta;
     b->start = start;
     memcpy(b->col, col, (size_t)(M->T + 1) * sizeof *col);
+    TRY(par_master_charge(M, (uint64_t)M->T + 1));
   }
+  return 0;
 }
 
 /* A group's path is complete: end the backtrack, restrict, split (section 4). */
@@ -136,13 +146,14 @@ static int finished(master *M, int gi) {
   }
   free(M->g[gi].ranks);
   M->g[gi].ranks = NULL;
-  consider(M, G.mid, P->cum[T], P->col);
+  if (consider(M, G.mid, P->cum[T], P->col) != 0) return -1;
   if (G.lo < 0 && M->arg->opt.only_mu0) return 0;
   if (M->arg->opt.schedule == PAR_DYNAMIC) return par_dynamic_path(M, &G, P);
   if (G.lo < 0) {   /* mu(0): T for everyone, and B as its copy m rows down */
     gpath *Pm = par_master_path(M, M->m);
     memcpy(Pm->col, P->col, (size_t)(T + 1) * sizeof *P->col);
     memcpy(Pm->cum, P->cum, (size_t)(T + 1) * sizeof *P->cum);
+    TRY(par_master_charge(M, (uint64_t)T + 1));
     int p = G.p;
     if (M->arg->opt.alloc == ALLOC_FIT) p = par_fit_cap(M, 0, M->m, P, Pm, p);
     if (p < 0) return -1;
@@ -193,8 +204,9 @@ static int result(master *M, int src) {
   double quanta = par_get_f64(&r);
   int *col = xmallocarray((size_t)M->T + 1, sizeof *col);
   par_get_i32s(&r, col, M->T + 1);
-  consider(M, start, quanta, col);
+  int rc = consider(M, start, quanta, col);
   free(col);
+  if (rc != 0) return -1;
   M->g[gi].live = 0;
   M->live--;
   M->group_of[src] = -1;
@@ -272,6 +284,7 @@ static int one_pair(master *M, par_pair *pr, cost_kind kind) {
     TRY(par_recv(M->mp, MP_ANY, PAR_TAG_STATS, &M->in, M->maxlen, &st));
     par_rd r = {M->in.b, M->in.b + M->in.len};
     par_counts c;
+    memset(&c, 0, sizeof c);   /* a slave keeps no bookkeeping units */
     for (int k = 0; k < PAR_KINDS; k++) c.msgs[k] = (uint64_t)par_get_f64(&r);
     for (int k = 0; k < PAR_KINDS; k++) c.bytes[k] = (uint64_t)par_get_f64(&r);
     c.nodes = (uint64_t)par_get_f64(&r);

@@ -81,8 +81,10 @@ typedef struct par_master_ctx {
 static inline int par_master_member(const par_group *G, int i) {
   return G->ranks ? G->ranks[i] : G->g0 + i;
 }
-/* The master's bookkeeping (assembling paths, measuring bands): every unit
- * of it is charged here, and only here.  0 or a negative mp status. */
+/* The master's bookkeeping (assembling, copying and comparing paths,
+ * measuring bands): every unit of it, one column of a pass over a path, is
+ * charged here and only here, at opt.book node units each, and counted in
+ * par_counts.book.  0 or a negative mp status. */
 int par_master_charge(par_master_ctx *M, uint64_t units);
 int par_master_fail(par_master_ctx *M, int rc, const char *what);   /* -1 */
 gpath *par_master_path(par_master_ctx *M, int start);   /* a new path, freed with the pair */

@@ -62,6 +62,8 @@ const char run_options_help[] =
     "  --machine NAME     machine profile: tc2000 (default) or unit\n"
     "  --net MODEL        ideal, bus or loggp\n"
     "  --m S, --c S       seconds per message, per unit of work (node)\n"
+    "  --master-c S       seconds per unit of the master's bookkeeping (a column of\n"
+    "                     a path it assembles, copies or measures); default c/100\n"
     "  --per-byte S       seconds per message byte (ideal, bus; a topology's links)\n"
     "  --local S          seconds per message between ranks on one processor\n"
     "  --L S --o S --g S --G S   LogGP latency, overhead, gap, gap per byte\n"
@@ -101,6 +103,10 @@ int run_option(run_config *rc, const char *opt, const char *val, char *err, size
   int k = run_net_option(rc, opt, val, err, errlen);   /* topology and placement */
   if (k != 0) return k;
   if (strcmp(opt, "--procs") == 0) return integer(opt, val, 1, 4096, &rc->procs, err, errlen);
+  if (strcmp(opt, "--master-c") == 0) {
+    rc->master_c_given = 1;
+    return seconds(opt, val, &rc->master_c, err, errlen);
+  }
   if (strcmp(opt, "--min-diag") == 0)
     return integer(opt, val, 1, 1 << 30, &rc->opt.min_diag, err, errlen);
   if (strcmp(opt, "--block") == 0) return integer(opt, val, 1, 1 << 20, &rc->opt.block, err, errlen);
@@ -171,6 +177,23 @@ int run_option(run_config *rc, const char *opt, const char *val, char *err, size
   return 0;
 }
 
+double run_master_c(const run_config *rc) {
+  return rc->master_c_given ? rc->master_c : RUN_MASTER_SHARE * rc->machine.c;
+}
+
+int run_par_options(const run_config *rc, par_options *out, char *err, size_t errlen) {
+  *out = rc->opt;
+  double c = rc->machine.c, mc = run_master_c(rc);
+  if (!rc->master_c_given) out->book = RUN_MASTER_SHARE;
+  else if (c > 0) out->book = mc / c;
+  else if (mc == 0) out->book = 0;
+  else {
+    snprintf(err, errlen, "--master-c %g is a price in node units (c), and c is 0", mc);
+    return -1;
+  }
+  return 0;
+}
+
 /* The master's and the slaves' arguments and the mp program of nr ranks. */
 typedef struct {
   par_master_arg marg;
@@ -180,7 +203,9 @@ typedef struct {
 } program;
 
 static void program_init(program *p, const run_config *rc, par_pair *pairs, int npairs, int nr) {
-  p->marg = (par_master_arg){npairs, pairs, rc->kind, rc->opt, 0, "", rc->progress, rc->progress_ud};
+  par_options opt;
+  run_par_options(rc, &opt, NULL, 0);   /* checked in run_pairs and run_sim */
+  p->marg = (par_master_arg){npairs, pairs, rc->kind, opt, 0, "", rc->progress, rc->progress_ud};
   p->nr = nr;
   p->sarg = xcalloc((size_t)nr, sizeof *p->sarg);
   p->procs = xmallocarray((size_t)nr, sizeof *p->procs);
@@ -228,6 +253,8 @@ static void pair_done(void *ud, int done, int total) {
 int run_sim(const run_config *rc, par_pair *pairs, int npairs, sim_stats *stats, char *err,
             size_t errlen) {
   int P = rc->procs, nr = run_ranks(P), nodes;
+  par_options opt;
+  if (run_par_options(rc, &opt, err, errlen) != 0) return -1;
   sim_config cfg = rc->machine;
   int *place = xmallocarray((size_t)nr, sizeof *place);
   if (run_net_place(rc, P, place, &nodes, err, errlen) != 0) {
@@ -257,6 +284,8 @@ int run_sim(const run_config *rc, par_pair *pairs, int npairs, sim_stats *stats,
 int run_threads(const run_config *rc, par_pair *pairs, int npairs, mpt_stats *stats, char *err,
                 size_t errlen) {
   int nr = run_ranks(rc->procs);
+  par_options opt;
+  if (run_par_options(rc, &opt, err, errlen) != 0) return -1;
   mpt_config cfg = rc->threads;
   cfg.warn = rc->machine.warn;
   mpt *t = mpt_new(&cfg, nr, err, errlen);

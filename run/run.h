@@ -48,7 +48,30 @@ typedef struct {
   place_spec place;               /* where the P processors go on the machine (run_net.h) */
   net_stats *pair_net;            /* simulator on a topology: each pair's network
                                      statistics (npairs of them), or NULL */
+  double master_c;                /* --master-c: seconds per unit of the master's
+                                     bookkeeping, when master_c_given; otherwise
+                                     RUN_MASTER_SHARE of the machine's c */
+  int master_c_given;
 } run_config;
+
+/* The master's bookkeeping (par_master_charge: one unit a column of an
+ * integer pass over a path, to assemble, copy, compare it or measure the band
+ * beside it) against a node (two triangle areas with a software square root
+ * and a comparison, c): on the 88100, which issues one instruction a clock, a
+ * column is a few loads and stores, an add or a compare and the loop's
+ * branch, about 10 clocks, and a node about 1,000 (sim.c, the tc2000's c =
+ * 50 us at 20 MHz).  So by default a unit costs c/100: 0.5 us on the tc2000
+ * (README, "The master's bookkeeping"). */
+#define RUN_MASTER_SHARE 0.01
+
+/* The seconds one unit of the master's bookkeeping costs under rc. */
+double run_master_c(const run_config *rc);
+
+/* rc->opt with the price of the master's bookkeeping in node units
+ * (par_options.book = run_master_c / c): what every backend's master gets.
+ * -1 and a message if it cannot be said in node units (c = 0 and a
+ * --master-c above 0). */
+int run_par_options(const run_config *rc, par_options *out, char *err, size_t errlen);
 
 /* A run_config with the defaults: 1 processor, the simulator (MPI in an
  * MPI build) with the tc2000 machine, half allocation, d = 1, area cost. */
@@ -56,6 +79,7 @@ void run_config_init(run_config *rc);
 
 /* Take one command-line option of the machine or the algorithm:
  *   --procs P  --alloc half|size|fit  --min-diag d  --block k  --schedule static|dynamic
+ *   --master-c S
  *   --machine NAME  --net ideal|bus|loggp
  *   --m S  --c S  --per-byte S  --local S  --L S  --o S  --g S  --G S
  *   --o-send S  --o-send-byte S  --o-recv S  --o-recv-byte S  --wake S

@@ -45,6 +45,8 @@ int run_mpi_pairs(const run_config *rc, par_pair *pairs, int npairs, char *err, 
     snprintf(err, errlen, "--procs %d needs %d MPI processes; mpirun gave %d", rc->procs, k, W.size);
     return -1;
   }
+  par_options opt;   /* the master's bookkeeping priced in node units */
+  if (run_par_options(rc, &opt, err, errlen) != 0) return -1;
   int order[3] = {k, rc->machine.c > 0 ? 1 : 0, 0};
   double c = rc->machine.c;
   for (int r = 1; r < k; r++) {
@@ -54,7 +56,7 @@ int run_mpi_pairs(const run_config *rc, par_pair *pairs, int npairs, char *err, 
   mpm_config cfg = backend_config(rc);
   mpm *m = mpm_new(&cfg, W.data, W.ctl, k, err, errlen);
   XASSERT(m);   /* k <= size and this is process 0: cannot fail */
-  par_master_arg marg = {npairs, pairs, rc->kind, rc->opt, 0, "", rc->progress, rc->progress_ud};
+  par_master_arg marg = {npairs, pairs, rc->kind, opt, 0, "", rc->progress, rc->progress_ud};
   char berr[512];
   int res = mpm_run(m, par_master, &marg, berr, sizeof berr);
   mpm_free(m);

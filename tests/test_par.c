@@ -212,7 +212,7 @@ static void check_stats(rng *g) {
     par_master_arg marg;
     memset(&marg, 0, sizeof marg);
     marg.npairs = 1, marg.pairs = &pr, marg.kind = COST_AREA;
-    marg.opt = (par_options){ALLOC_SIZE, 1, 0, 1, PAR_STATIC};
+    marg.opt = (par_options){ALLOC_SIZE, 1, 0, 1, PAR_STATIC, 1};
     par_slave_arg sarg[16];
     memset(sarg, 0, sizeof sarg);
     mp_proc procv[16];
@@ -232,9 +232,9 @@ static void check_stats(rng *g) {
     }
     for (int r = 0; r < nr; r++)
       for (int k = 0; k < SIM_TAGS; k++) tags[k] += sim_rank(s, r)->sent_tag[k];
-    CHECK(sim_rank(s, 0)->compute == cfg.c * (double)pr.master.units && pr.master.units > 0,
-          "P=%d master: compute %.17g, c x units %.17g", procs, sim_rank(s, 0)->compute,
-          cfg.c * (double)pr.master.units);
+    CHECK(sim_rank(s, 0)->compute == cfg.c * (double)pr.master.book && pr.master.book > 0,
+          "P=%d master: compute %.17g, c x bookkeeping units %.17g (at the node price)", procs,
+          sim_rank(s, 0)->compute, cfg.c * (double)pr.master.book);
     CHECK(nodes == pr.counts.nodes, "P=%d: slaves' nodes %llu, reported %llu", procs,
           (unsigned long long)nodes, (unsigned long long)pr.counts.nodes);
     /* Kinds against tags: terminates are the master's BACK messages and count
