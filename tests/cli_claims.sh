@@ -23,12 +23,12 @@ head -1 "$T/sp.csv" | grep -q '^points,procs,alloc,min_diag,net,m,c,seed,sim_tim
 awk -F, 'NR>1 { k=$1","$3; if ($2==1) t1[k]=$9; t[NR]=$9; key[NR]=k; sp[NR]=$10; c[$1]=c[$1]==""?$15:c[$1]; if (c[$1]!=$15) badc=1 }
          END { for (i in t) { d = t1[key[i]]/t[i] - sp[i]; if (d < -1e-5 || d > 1e-5) bads=1 } exit bads+badc }' "$T/sp.csv" && ok || bad "speedup is not T(1)/T(P), or a pair has two costs"
 "$BENCH" --claims "$T/sp.csv" --require 1,2,3,4,7 > "$T/claims.csv" 2> "$T/err" && ok || bad "claims: $(cat "$T/err") $(cat "$T/claims.csv")"
-[ "$(grep -c '^[1-7] .*,\(yes\|no\|n/a\),' "$T/claims.csv")" -eq 7 ] && ok || bad "claims report: $(cat "$T/claims.csv")"
-grep -q '^5 .*,\(yes\|no\),400 pts: summed speedup size' "$T/claims.csv" && ok || bad "claim 5 report"
+[ "$(grep -c '^"[1-7] [^"]*",\(yes\|no\|n/a\),".*"$' "$T/claims.csv")" -eq 7 ] && ok || bad "claims report: $(cat "$T/claims.csv")"
+grep -q '^"5 [^"]*",\(yes\|no\),"400 pts: summed speedup size' "$T/claims.csv" && ok || bad "claim 5 report"
 # Claim 5's first half holds at this size (size beats half); its plateaus do not
 # go (README: the generated pairs split evenly).
-grep -q '^5 .*(better, ' "$T/claims.csv" && ok || bad "claim 5: size is not better than half: $(grep '^5 ' "$T/claims.csv")"
-grep -q '^6 .*,n/a,no min-diag sweep given' "$T/claims.csv" && ok || bad "claim 6 without a sweep"
+grep -q '^"5 .*(better, ' "$T/claims.csv" && ok || bad "claim 5: size is not better than half: $(grep '^"5 ' "$T/claims.csv")"
+grep -q '^"6 [^"]*",n/a,"no min-diag sweep given"$' "$T/claims.csv" && ok || bad "claim 6 without a sweep"
 # A claim that does not hold makes --require fail.
 "$BENCH" --claims "$T/sp.csv" --require 6 > /dev/null 2>&1; [ $? -eq 1 ] && ok || bad "--require 6 without a d sweep should fail"
 "$BENCH" --claims /nonexistent.csv > /dev/null 2> "$T/err"; [ $? -eq 1 ] && grep -q 'cannot open' "$T/err" && ok || bad "missing CSV"
