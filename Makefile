@@ -174,6 +174,11 @@ PLOTS = build/plot lines
 # a mesh and a hypercube with their dilation-1 placements against a random one.
 TOPO = --points 300 --procs 1..16 --jobs $(JOBS)
 TOPONET = --hop-latency 1e-4 --switching store-and-forward
+# The variants (issue 13) beside the paper's algorithm: on the tc2000, and on
+# the simulator calibrated to a 16-core Xeon (bench --calibrate there: c, m,
+# per_byte of the threads backend; data in README "The variants").
+VARIANTS = paper,fit,block8,dynamic,dynamic+block8
+XEON16 = --net ideal --m 5.453e-07 --c 2.675e-09 --per-byte 1.599e-10
 bench: all
 	./bench --alloc half,size --jobs $(JOBS) -o plots/speedup.csv
 	./bench --points 500 --alloc size --min-diag 20,40,60,80,100 --jobs $(JOBS) -o plots/min_diag.csv
@@ -218,6 +223,15 @@ bench: all
 	./bench --claims plots/real_speedup.csv > plots/real_claims.csv
 	./bench --claims plots/speedup.csv plots/min_diag.csv > plots/claims.csv
 	@cat plots/claims.csv
+	./bench --points 500 --variant $(VARIANTS) --jobs $(JOBS) -o plots/variants_tc2000.csv
+	./bench --points 1000 $(XEON16) --variant $(VARIANTS) --jobs $(JOBS) -o plots/variants_xeon16.csv
+	awk -F, 'FNR == 1 { for (i = 1; i <= NF; i++) c[$$i] = i; f++; if (f == 1) print "variant,procs,tc2000,xeon16"; next } \
+	  { k = $$c["variant"] "," $$c["procs"] } f == 1 { a[k] = $$c["speedup"] } f == 2 && (k in a) { print k "," a[k] "," $$c["speedup"] }' \
+	  plots/variants_tc2000.csv plots/variants_xeon16.csv > plots/variants.csv.tmp && mv plots/variants.csv.tmp plots/variants.csv
+	$(PLOTS) plots/variants.csv -x procs -y tc2000,xeon16 --series variant \
+	  --labels "tc2000 500 points,16-core host 1000 points (dashed)" --yzero \
+	  --title "The variants: speedup, simulated tc2000 and the simulator calibrated to a 16-core host" \
+	  --xlabel processors --ylabel "speedup T(1)/T(P)" -o plots/variants.svg
 
 # The tiler's speed and memory (issue figures: 500 x 500, 5000 x 5000, the naive
 # reference, the whole prostate_0 stack), and how fast an RT structure set is read.

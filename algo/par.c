@@ -26,6 +26,7 @@ void par_counts_add(par_counts *into, const par_counts *c) {
   into->units += c->units;
   into->book += c->book;
   into->paths += c->paths;
+  into->idle += c->idle;
 }
 
 void par_buf_reset(par_buf *m) { m->len = 0; }

@@ -83,6 +83,8 @@ typedef struct {
                                   of a path it assembles, copies or measures
                                   (par_master_charge), charged at opt.book */
   uint64_t paths;              /* paths computed */
+  double idle;                 /* slaves: seconds waiting in receives from a
+                                  pair's points to its report (mp_time) */
 } par_counts;
 
 void par_counts_add(par_counts *into, const par_counts *c);

@@ -213,7 +213,7 @@ static int exchange(par_slave_ctx *S, const blk *k, int j) {
       if (v1 > n1) v1 = n1;
       if (v0 > v1) continue;
       mp_status st;
-      TRY(par_recv(S->mp, S->grp[o], PAR_TAG_BOUNDARY, &S->in, S->maxlen, &st));
+      TRY(par_slave_recv(S, S->grp[o], PAR_TAG_BOUNDARY, &st));
       par_rd r = {S->in.b, S->in.b + S->in.len};
       int tt = par_get_i32(&r), x0 = par_get_i32(&r), x1 = par_get_i32(&r);
       if (tt != t || x0 != v0 || x1 != v1)

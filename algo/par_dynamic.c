@@ -97,16 +97,18 @@ static int schedule(par_master_ctx *M) {
       if (M->group_of[r] < 0) D->free[nfree++] = r;
     if (nfree == 0) return 0;
     int bi = 0;
-    int64_t all = D->run;
+    int64_t ready = 0;
     for (int i = 0; i < D->nready; i++) {
       const task *t = &D->ready[i], *b = &D->ready[bi];
-      all += t->est;
+      ready += t->est;
       if (t->est > b->est || (t->est == b->est && t->lo < b->lo)) bi = i;
     }
+    int64_t all = D->run + ready;
     task t = D->ready[bi];
     D->ready[bi] = D->ready[--D->nready];
-    /* Its share of the S slaves: S est / all, rounded. */
-    int q = all > 0 ? (int)((2 * (int64_t)M->S * t.est + all) / (2 * all)) : 1;
+    /* Its share of the free slaves, by the work of the ready bands (the
+     * running ones have theirs): nfree est / ready, rounded. */
+    int q = ready > 0 ? (int)((2 * (int64_t)nfree * t.est + ready) / (2 * ready)) : 1;
     if (q > t.usable) q = t.usable;
     if (q > nfree) q = nfree;
     if (q < 1) q = 1;

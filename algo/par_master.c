@@ -290,6 +290,7 @@ static int one_pair(master *M, par_pair *pr, cost_kind kind) {
     c.nodes = (uint64_t)par_get_f64(&r);
     c.units = (uint64_t)par_get_f64(&r);
     c.paths = (uint64_t)par_get_f64(&r);
+    c.idle = par_get_f64(&r);
     double f0 = par_get_f64(&r), f1 = par_get_f64(&r);
     if (i == 0 || f0 < first) first = f0;
     if (i == 0 || f1 > last) last = f1;

@@ -22,6 +22,13 @@ typedef par_slave_ctx slave;
     if (rc_ < 0) return par_slave_fail(S, rc_, #call);                                   \
   } while (0)
 
+int par_slave_recv(slave *S, int src, int tag, mp_status *st) {
+  double t0 = mp_time(S->mp);
+  int rc = par_recv(S->mp, src, tag, &S->in, S->maxlen, st);
+  S->arg->counts.idle += mp_time(S->mp) - t0;
+  return rc;
+}
+
 int par_slave_fail(slave *S, int rc, const char *what) {
   if (!S->arg->failed)
     snprintf(S->arg->err, sizeof S->arg->err, "slave %d: %s: %s", S->rank, what, mp_strerror(rc));
@@ -165,7 +172,7 @@ static int exchange(slave *S, int t, int j) {
         v1 = v1 < n1 ? v1 : n1;
         if (v0 > v1) continue;
         mp_status st;
-        TRY(par_recv(S->mp, S->grp[o], PAR_TAG_BOUNDARY, &S->in, S->maxlen, &st));
+        TRY(par_slave_recv(S, S->grp[o], PAR_TAG_BOUNDARY, &st));
         par_rd r = {S->in.b, S->in.b + S->in.len};
         int tt = par_get_i32(&r), x0 = par_get_i32(&r), x1 = par_get_i32(&r);
         if (tt != t || x0 != v0 || x1 != v1)
@@ -323,7 +330,7 @@ static int path_task(slave *S, int s, int bounded, int p) {
   if (owner(S, T, n) == j && backtrack(S, s, T, n, j) != 0) return -1;
   for (;;) {   /* wait for control, or the end (BACK with t < 0, from the master) */
     mp_status st;
-    TRY(par_recv(S->mp, MP_ANY, PAR_TAG_BACK, &S->in, S->maxlen, &st));
+    TRY(par_slave_recv(S, MP_ANY, PAR_TAG_BACK, &st));
     par_rd r = {S->in.b, S->in.b + S->in.len};
     int t = par_get_i32(&r);
     if (t < 0) return 0;
@@ -357,6 +364,7 @@ static int report(slave *S) {
   par_put_f64(&S->out, (double)c->nodes);
   par_put_f64(&S->out, (double)c->units);
   par_put_f64(&S->out, (double)c->paths);
+  par_put_f64(&S->out, c->idle);
   par_put_f64(&S->out, S->arg->fp_start);
   par_put_f64(&S->out, S->arg->fp_end);
   par_counts_add(&S->arg->total, c);
@@ -376,7 +384,9 @@ void par_slave(mp *self, void *ud) {
   S->maxlen = 64;
   for (;;) {
     mp_status st;
+    double t0 = mp_time(self);
     int rc = par_recv(self, 0, MP_ANY, &S->in, S->maxlen, &st);
+    if (rc == MP_OK && st.tag != PAR_TAG_POINTS) S->arg->counts.idle += mp_time(self) - t0;
     if (rc < 0) {
       par_slave_fail(S, rc, "waiting for the master");
       break;

@@ -75,6 +75,8 @@ typedef struct par_slave_ctx {
 /* Shared with par_block.c: record a failed mp call (returns -1), and join a
  * pinch of path s at diagonal t (returns its last diagonal; see par_slave.c). */
 int par_slave_fail(par_slave_ctx *S, int rc, const char *what);
+/* par_recv into S->in, the wait counted as idle. */
+int par_slave_recv(par_slave_ctx *S, int src, int tag, mp_status *st);
 int par_slave_pinch(par_slave_ctx *S, int s, const gpath *U, const gpath *L, int j, int t, int a,
                     int *pa, int *pb);
 

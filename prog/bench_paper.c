@@ -37,6 +37,7 @@
 #include "atomicfile.h"
 #include "bench_list.h"
 #include "bench_net.h"
+#include "bench_variant.h"
 #include "contour.h"
 #include "gen.h"
 #include "run.h"
@@ -50,22 +51,27 @@ const char bench_paper_help[] =
     "      [--input STACK [--pair K]] [-o FILE] [--jobs N] [--backend sim|threads]\n"
     "      [--repeat R] [--topology LIST] [--place LIST] [--hop-latency S]\n"
     "      [--switching cut-through|store-and-forward] [--print-place]\n"
+    "      [--variant LIST | --block LIST --schedule static|dynamic[,...]]\n"
     "      the paper's experiments (no mode option): every combination is a run;\n"
     "      LIST is numbers and ranges, e.g. 1..16 or 100,200,300.  Defaults: points\n"
     "      100,200,300,400,500, procs 1..16, alloc half, min-diag 1, the tc2000 machine.\n"
     "      --backend threads runs them on threads here: sim_time is then wall-clock\n"
-    "      seconds (the backend column says which), the fastest of R runs (default 10)";
+    "      seconds (the backend column says which), the fastest of R runs (default 10).\n"
+    "      --variant paper,fit,block16,dynamic,dynamic+block16: the paper's algorithm and\n"
+    "      its variants side by side (variant, messages and idle_per_slave columns)";
 
 typedef struct {
   int points, procs, alloc, d, hidden, pairid;
   double m, c;
   int topo, place;   /* indices into plan's lists (-1: no topology list) */
+  int block, sched;   /* the variant (bench_variant.h) */
 } job;
 
 typedef struct {   /* what a run sends back to the parent */
   double sim_time, wall, cost;
   uint64_t msgs[PAR_KINDS], bytes, nodes;
   net_stats net;   /* on a topology */
+  double idle;   /* seconds per slave waiting in receives during the pair */
   int ok;
   char err[200];
 } outcome;
@@ -128,6 +134,8 @@ static outcome one_run(const plan *pl, const job *jb) {
   rc.procs = jb->procs;
   rc.opt.alloc = (split_alloc)jb->alloc;
   rc.opt.min_diag = jb->d;
+  rc.opt.block = jb->block;
+  rc.opt.schedule = (par_schedule)jb->sched;
   rc.machine.m = jb->m;
   rc.machine.c = jb->c;
   rc.machine.warn = NULL;
@@ -144,6 +152,7 @@ static outcome one_run(const plan *pl, const job *jb) {
     o.cost = pr.t.cost;
     o.nodes = pr.counts.nodes;
     for (int k = 0; k < PAR_KINDS; k++) o.msgs[k] = pr.counts.msgs[k], o.bytes += pr.counts.bytes[k];
+    o.idle = pr.counts.idle / (run_ranks(jb->procs) - 1);
     tiling_free(&pr.t);
   }
   if (!pl->input) free(P), free(Q);
@@ -169,7 +178,7 @@ static void fold(outcome *acc, const outcome *o, int rep, int repeat) {
              (unsigned long long)acc->nodes);
     acc->ok = 0;
   }
-  if (o->sim_time < acc->sim_time) acc->sim_time = o->sim_time;
+  if (o->sim_time < acc->sim_time) acc->sim_time = o->sim_time, acc->idle = o->idle;
   acc->wall += o->wall;
 }
 
@@ -259,13 +268,16 @@ static int usage(const char *why, const char *val) {
                   "[--min-diag LIST] [--m LIST] [--c LIST] [--net MODEL] [--machine NAME] "
                   "[--seed S] [--input STACK [--pair K]] [-o FILE] [--jobs N] [--backend sim|threads] "
                   "[--repeat R] [--topology LIST] [--place LIST] [--hop-latency S] [--switching MODE] "
-                  "[--print-place]\n");
+                  "[--print-place] [--variant LIST | --block LIST --schedule static|dynamic[,...]]\n");
   return 2;
 }
 
 int bench_paper(int argc, char **argv) {
   bench_list procs = {0}, points = {0}, diags = {0}, ms = {0}, cs = {0};
-  int allocs[2] = {ALLOC_HALF, -1}, nalloc = 1, jobs = 1, pairk = 0, repeat = 0;
+  int allocs[3] = {ALLOC_HALF, -1, -1}, nalloc = 1, jobs = 1, pairk = 0, repeat = 0;
+  int scheds[2] = {PAR_STATIC, -1}, nsched = 1, nvar = 0, lists = 0;
+  bench_list blocks = {0};
+  bench_variant var[BENCH_VARIANTS_MAX];
   const char *outpath = NULL, *input = NULL;
   unsigned long long seed = 1993;
   run_config rc;
@@ -302,10 +314,27 @@ int bench_paper(int argc, char **argv) {
       snprintf(buf, sizeof buf, "%s", v);
       for (char *t = strtok(buf, ","); t; t = strtok(NULL, ",")) {
         split_alloc x;
-        if (split_alloc_parse(t, &x) != 0 || nalloc == 2) return usage("--alloc takes half, size or both", v);
+        if (split_alloc_parse(t, &x) != 0 || nalloc == 3) return usage("--alloc takes half, size, fit or a list of them", v);
         allocs[nalloc++] = (int)x;
       }
-      if (nalloc == 0) return usage("--alloc takes half, size or both", v);
+      if (nalloc == 0) return usage("--alloc takes half, size, fit or a list of them", v);
+      lists = 1;
+    } else if (strcmp(a, "--block") == 0) {
+      if (bench_list_parse(v, &blocks, 1, 1, 1 << 20) != 0) return usage("--block takes a list of 1..1048576", v);
+      lists = 1;
+    } else if (strcmp(a, "--schedule") == 0) {
+      nsched = 0;
+      char buf[64];
+      snprintf(buf, sizeof buf, "%s", v);
+      for (char *t = strtok(buf, ","); t; t = strtok(NULL, ",")) {
+        par_schedule x;
+        if (par_schedule_parse(t, &x) != 0 || nsched == 2) return usage("--schedule takes static, dynamic or both", v);
+        scheds[nsched++] = (int)x;
+      }
+      if (nsched == 0) return usage("--schedule takes static, dynamic or both", v);
+      lists = 1;
+    } else if (strcmp(a, "--variant") == 0) {
+      if (bench_variant_parse(v, var, &nvar, err, sizeof err) != 0) return usage(err, NULL);
     } else if (strcmp(a, "--seed") == 0) {
       char *e;
       seed = strtoull(v, &e, 10);
@@ -340,6 +369,16 @@ int bench_paper(int argc, char **argv) {
     return usage("--net and --topology both choose the network: give one", NULL);
   if ((topos.n || rc.machine.topo.kind != TOPO_NONE) && rc.backend != RUN_SIM)
     return usage("--topology describes the simulated machine (--backend sim)", NULL);
+  if (nvar > 0 && lists) return usage("--variant names whole variants: give it, or --alloc, --block and --schedule lists", NULL);
+  if (nvar == 0) {   /* the cross product of the lists */
+    if (blocks.n == 0) blocks.n = 1, blocks.v[0] = 1;
+    for (int b = 0; b < nalloc; b++)
+      for (int s = 0; s < nsched; s++)
+        for (int k = 0; k < blocks.n; k++) {
+          if (nvar == BENCH_VARIANTS_MAX) return usage("too many variants", NULL);
+          var[nvar++] = (bench_variant){(split_alloc)allocs[b], (int)blocks.v[k], (par_schedule)scheds[s]};
+        }
+  }
   if (rc.backend != RUN_SIM && jobs > 1)
     return usage("--jobs runs simulations side by side; measured runs (--backend threads) go one at a time", NULL);
   int limit = run_backend_ranks(rc.backend);
@@ -383,11 +422,11 @@ int bench_paper(int argc, char **argv) {
   for (int i = 0; i < procs.n; i++) has1 |= procs.v[i] == 1;
   int per = procs.n + !has1;
   int ntopo = topos.n ? topos.n : 1, nplace = places.n ? places.n : 1;
-  int njobs = points.n * nalloc * diags.n * ms.n * cs.n * ntopo * nplace * per;
+  int njobs = points.n * nvar * diags.n * ms.n * cs.n * ntopo * nplace * per;
   job *jb = xmallocarray((size_t)njobs, sizeof *jb);
   int k = 0, cfg = 0;
   for (int a = 0; a < points.n; a++)
-    for (int b = 0; b < nalloc; b++)
+    for (int b = 0; b < nvar; b++)
       for (int d = 0; d < diags.n; d++)
         for (int x = 0; x < ms.n; x++)
           for (int y = 0; y < cs.n; y++)
@@ -395,8 +434,8 @@ int bench_paper(int argc, char **argv) {
               for (int pi = 0; pi < nplace; pi++, cfg++) {
                 for (int p = 0; p < per; p++) {
                   int P = p < procs.n ? (int)procs.v[p] : 1;
-                  jb[k++] = (job){(int)points.v[a], P, allocs[b], (int)diags.v[d], p >= procs.n, cfg,
-                                  ms.v[x], cs.v[y], ti, pi};
+                  jb[k++] = (job){(int)points.v[a], P, (int)var[b].alloc, (int)diags.v[d], p >= procs.n, cfg,
+                                  ms.v[x], cs.v[y], ti, pi, var[b].block, (int)var[b].sched};
                 }
               }
   if (repeat == 0) repeat = rc.backend == RUN_SIM ? 1 : 10;
@@ -450,7 +489,8 @@ int bench_paper(int argc, char **argv) {
     f = af.f;
   }
   fprintf(f, "points,procs,alloc,min_diag,net,m,c,seed,sim_time,speedup,efficiency,messages,bytes,"
-             "nodes,cost,wall_s,msg_boundary,msg_backtrack,msg_bounds,msg_control,input,pair,backend,%s\n",
+             "nodes,cost,wall_s,msg_boundary,msg_backtrack,msg_bounds,msg_control,input,pair,backend,%s,"
+             "variant,block,schedule,idle_per_slave\n",
           bench_net_header);
   for (int i = 0; i < njobs; i++) {
     if (jb[i].hidden) continue;
@@ -465,6 +505,9 @@ int bench_paper(int argc, char **argv) {
     char machine[96] = ",,";   /* net, m, c: the simulated machine's, or empty */
     if (rc.backend == RUN_SIM)
       snprintf(machine, sizeof machine, "%s,%.9g,%.9g", sim_net_name(jr.machine.net), jb[i].m, jb[i].c);
+    bench_variant bv = {(split_alloc)jb[i].alloc, jb[i].block, (par_schedule)jb[i].sched};
+    char vname[64];
+    bench_variant_name(&bv, vname, sizeof vname);
     fprintf(f, "%d,%d,%s,%d,%s,%llu,%.9f,%.6f,%.6f,%llu,%llu,%llu,%.17g,%.6f,%llu,%llu,%llu,%llu,%s,%d,%s",
             jb[i].points, jb[i].procs, split_alloc_name((split_alloc)jb[i].alloc), jb[i].d,
             machine, seed, o[i].sim_time, sp, sp / jb[i].procs,
@@ -475,7 +518,7 @@ int bench_paper(int argc, char **argv) {
             run_backend_name(rc.backend));
     fputc(',', f);
     bench_net_fields(f, &jr, &o[i].net);
-    fputc('\n', f);
+    fprintf(f, ",%s,%d,%s,%.9f\n", vname, jb[i].block, par_schedule_name((par_schedule)jb[i].sched), o[i].idle);
   }
   int wbad = 0;
   if (outpath && atomicfile_close(&af, 1, err, sizeof err) != 0) {
