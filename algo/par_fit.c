@@ -18,8 +18,13 @@ int par_fit_split(par_master_ctx *M, const par_group *G, const gpath *P, int *nb
   int cb = par_fit_cap(M, G->mid, G->hi, P, G->L, G->p);
   int ca = par_fit_cap(M, G->lo, G->mid, G->U, P, G->p);
   if (cb < 0 || ca < 0) return -1;
-  if (*nb > cb) *na += *nb - cb, *nb = cb;
-  if (*na > ca) *nb += *na - ca, *na = ca;
-  if (*nb > cb) *nb = cb;
+  /* Surplus moves to the sibling as far as the sibling can use it. */
+  if (*nb > cb && *na < ca) {
+    int x = *nb - cb < ca - *na ? *nb - cb : ca - *na;
+    *nb -= x, *na += x;
+  } else if (*na > ca && *nb < cb) {
+    int x = *na - ca < cb - *nb ? *na - ca : cb - *nb;
+    *na -= x, *nb += x;
+  }
   return 0;
 }

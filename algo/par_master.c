@@ -154,11 +154,8 @@ static int finished(master *M, int gi) {
     memcpy(Pm->col, P->col, (size_t)(T + 1) * sizeof *P->col);
     memcpy(Pm->cum, P->cum, (size_t)(T + 1) * sizeof *P->cum);
     TRY(par_master_charge(M, (uint64_t)T + 1));
-    int p = G.p;
-    if (M->arg->opt.alloc == ALLOC_FIT) p = par_fit_cap(M, 0, M->m, P, Pm, p);
-    if (p < 0) return -1;
-    for (int r = G.g0; r < G.g0 + p; r++) TRY(par_master_send_bound(M, P, PAR_AS_BOTH, r));
-    return dispatch(M, G.g0, p, 0, M->m, P, Pm);
+    for (int r = G.g0; r < G.g0 + G.p; r++) TRY(par_master_send_bound(M, P, PAR_AS_BOTH, r));
+    return dispatch(M, G.g0, G.p, 0, M->m, P, Pm);
   }
   /* Paths below mu(mid): (mid, hi), bounded by T = mu(mid); above: (lo, mid),
    * bounded by B = mu(mid). */
@@ -253,10 +250,7 @@ static int one_pair(master *M, par_pair *pr, cost_kind kind) {
   if (M->arg->opt.schedule == PAR_DYNAMIC) {
     TRY(par_dynamic_begin(M));
   } else {
-    int p = M->S;
-    if (M->arg->opt.alloc == ALLOC_FIT) p = par_fit_cap(M, -1, -1, NULL, NULL, p);
-    if (p < 0) return -1;
-    TRY(dispatch(M, 1, p, -1, -1, NULL, NULL));
+    TRY(dispatch(M, 1, M->S, -1, -1, NULL, NULL));
   }
   while (M->live > 0) {
     mp_status st;
