@@ -126,7 +126,7 @@ static double tx_area(double R, double r, double z) {
   double az = fabs(z);
   if (az >= R + r) return 0;
   tx_ctx c = {R, r, z, az < R - r ? sqrt((R - r) * (R - r) - z * z) : 0, sqrt((R + r) * (R + r) - z * z)};
-  return 2 * integrate(tx_width, &c, 0, 1, 1e-13);
+  return 2 * integrate(tx_width, &c, 0, 1, 1e-12);
 }
 
 /* Volume between z = a and z = b: the point (x, rho) of the tube's disc
