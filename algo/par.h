@@ -108,11 +108,6 @@ typedef struct {
                           set by run_par_options (run.h); 0: free */
 } par_options;
 
-/* 1 if the options are the paper's own algorithm (no variant). */
-static inline int par_is_paper(const par_options *o) {
-  return o->block <= 1 && o->schedule == PAR_STATIC && o->alloc != ALLOC_FIT;
-}
-
 const char *par_schedule_name(par_schedule s);   /* "static", "dynamic" */
 int par_schedule_parse(const char *s, par_schedule *out);   /* 0, or -1 */
 

@@ -10,9 +10,10 @@
  * which could use them, goes without.  fit splits a finished group's slaves
  * between the two subgraphs in proportion to their sizes (section 7.1's
  * size), then caps each side at the slaves the widest diagonal of its next
- * path can use (split_usable), the excess going to the sibling; slaves that
- * neither side can use stay idle for the rest of the pair.  mu(0)'s group
- * and the group of the whole graph after it are capped the same way. */
+ * path can use (split_usable): the surplus goes to the sibling, as far as
+ * the sibling can use it.  Slaves are never idled: one left out of every
+ * group would sit out the rest of the pair, where inside one it still
+ * serves the subtrees below (so the whole graph's group is not capped). */
 #ifndef PAR_FIT_H
 #define PAR_FIT_H
 

@@ -16,6 +16,7 @@
 #include "gen.h"
 #include "rng.h"
 #include "run.h"
+#include "split.h"
 #include "tiling.h"
 #include "xmem.h"
 
@@ -347,9 +348,24 @@ static void paper_times(rng *g) {
   free(Q);
 }
 
+/* split_usable on mu(0)'s band, the (m+1) x (n+1) rectangle: its widest
+ * diagonal has min(m, n) + 1 nodes, so it keeps max(1, (min(m, n) + 1)/d)
+ * slaves busy. */
+static void usable(void) {
+  int bad = 0;
+  for (int m = 1; m <= 40; m += 3)
+    for (int n = m; n <= 60; n += 7)
+      for (int d = 1; d <= 50; d += 7) {
+        int want = (m + 1) / d > 1 ? (m + 1) / d : 1;
+        bad += split_usable(m, n, 0, NULL, NULL, d) != want;
+      }
+  CHECK(bad == 0, "split_usable on the rectangle: %d wrong", bad);
+}
+
 int main(void) {
   rng g;
   rng_seed(&g, 2024);
+  usable();
   paper_times(&g);
   messages(&g);
   sim_random(&g);
