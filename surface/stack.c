@@ -19,6 +19,7 @@
 #include "pool.h"
 #include "slices.h"
 #include "tiling.h"
+#include "unpinch.h"
 #include "xmem.h"
 
 struct stack_surface {
@@ -41,6 +42,9 @@ typedef struct {
   int ntri;
   int (*tri)[3];      /* input ids >= 0; -1-s: Steiner s of lo, then of hi */
   double area, volume;
+  int pinched;        /* the optimum used a span twice: 1 replaced by the best
+                         path that does not (unpinch.h), 2 too large to */
+  double pinched_cost;   /* the optimum's cost */
 } band;
 
 typedef struct {
@@ -112,6 +116,18 @@ static void mesh_job(void *ud, int i) {
   work *w = ud;
   band *b = &w->b[i];
   const slices *sl = w->sl;
+  if (unpinch_repeats(&b->t)) {
+    tiling t2;
+    b->pinched_cost = b->t.cost;
+    b->pinched = 2;
+    if (unpinch_solve(b->lo.pt, b->lo.n, sl->z[b->slice], b->hi.pt, b->hi.n, sl->z[b->slice + 1], w->o->kind,
+                      &t2) == 0) {
+      t2.count.nodes += b->t.count.nodes;
+      tiling_free(&b->t);
+      b->t = t2;
+      b->pinched = 1;
+    }
+  }
   int steps = b->t.m + b->t.n;
   b->ntri = steps + b->lo.ntri + b->hi.ntri;
   b->tri = xmallocarray((size_t)b->ntri, sizeof *b->tri);
@@ -253,6 +269,14 @@ int stack_tile(const contour_stack *s, const char *name, const stack_options *o,
       for (int k = 0; k < sl.c[c].n; k++)
         w.verts[sl.c[c].base + k] = (vec3){sl.c[c].pt[k].x, sl.c[c].pt[k].y, sl.z[sl.c[c].slice]};
     pool_run(threads, nb, NULL, mesh_job, &w);
+    for (int i = 0; i < nb && o->notes; i++)
+      if (w.b[i].pinched)
+        fprintf(o->notes,
+                "%s: %s:%d: the band from this contour (slice z=%.17g) to the slice z=%.17g: its optimum "
+                "(cost %.17g) uses a span twice, a pinched, non-manifold band; %s\n",
+                o->prefix, name, sl.c[w.b[i].j->lo[0]].line, sl.z[w.b[i].slice], sl.z[w.b[i].slice + 1],
+                w.b[i].pinched_cost,
+                w.b[i].pinched == 1 ? "the cheapest path that does not is used" : "too large to replace; kept");
     if (o->caps) {
       nends = ends_plan(&sl, up, down, &w.ends);
       w.caps = xcalloc((size_t)nends + 1, sizeof *w.caps);
