@@ -237,6 +237,7 @@ bench: all
 # reference, the whole prostate_0 stack), and how fast an RT structure set is read.
 bench-tile: all
 	./bench --tiler
+	./bench --stack
 	./bench --dicom
 
 # The threads and MPI backends' waiting under outside load (issue 14, item 5):

@@ -12,6 +12,7 @@
 #include "bench_model.h"
 #include "bench_paper.h"
 #include "bench_ring.h"
+#include "bench_stack.h"
 #include "bench_tiler.h"
 #ifdef TILESIM_MPI
 #include "run_mpi.h"
@@ -51,6 +52,11 @@ static const mode modes[] = {
      "[FILE...] [--repeat R]\n"
      "      how fast a DICOM RT structure set is read (best of R runs, default 20) and its\n"
      "      ROIs made into stacks; a checksum of the coordinates (default: dicompyler_rtss.dcm)"},
+    {"--stack", bench_stack,
+     "[STACK|FILE.dcm:ROI...] [-j LIST] [--repeat R] [--apex]\n"
+     "      whole stacks into one closed surface (several contours a slice: nesting,\n"
+     "      branching, caps), on 1, 2, ... threads: time per stack and per band, the\n"
+     "      speedup (default: dicompyler's BODY and Lt Lung, prostate_0; -j 1,2; best of 5)"},
     {"--tiler", bench_tiler,
      "[--points N[,N...]] [--naive N] [--input STACK]... [--cost area|span]\n"
      "      [--seed S] [--repeat R]\n"

@@ -1,6 +1,12 @@
-/* manifold.c -- components by union-find over triangles' vertices; the edge
- * census by sorting 64-bit keys (a << 32 | b); vertex fans by following
- * each vertex's link. */
+/* manifold.c -- components by union-find over triangles' vertices; the rest
+ * vertex by vertex, with no global sort of the edges.
+ *
+ * Around a vertex v every triangle (v, b, c) gives a link edge b -> c: the
+ * mesh's edges v -> b (out of v) and c -> v (into v).  The mesh is closed at
+ * v when the out-neighbours b and the in-neighbours c are the same multiset
+ * (every edge out of v comes back); each edge once when they have no
+ * repeats; one fan when the link edges b -> c form a single cycle.  The
+ * undirected edges at v are its distinct neighbours: E = (sum over v) / 2. */
 #include "manifold.h"
 
 #include <stdint.h>
@@ -14,22 +20,22 @@ static int find(int *up, int x) {
   return x;
 }
 
-static int cmp_u64(const void *a, const void *b) {
-  uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+static int cmp_int(const void *a, const void *b) {
+  int x = *(const int *)a, y = *(const int *)b;
   return x < y ? -1 : x > y;
 }
 
-/* How many times key appears in the sorted k[0..n-1]. */
-static size_t count(const uint64_t *k, size_t n, uint64_t key) {
-  size_t lo = 0, hi = n;
-  while (lo < hi) {
-    size_t m = lo + (hi - lo) / 2;
-    if (k[m] < key) lo = m + 1;
-    else hi = m;
+/* Sort a few ints (insertion sort; qsort when many). */
+static void sort_ints(int *x, int n) {
+  if (n > 24) {
+    qsort(x, (size_t)n, sizeof *x, cmp_int);
+    return;
   }
-  size_t c = 0;
-  while (lo + c < n && k[lo + c] == key) c++;
-  return c;
+  for (int i = 1; i < n; i++)
+    for (int j = i; j > 0 && x[j - 1] > x[j]; j--) {
+      int t = x[j];
+      x[j] = x[j - 1], x[j - 1] = t;
+    }
 }
 
 int manifold_components(const mesh *me, manifold_component **out) {
@@ -70,25 +76,7 @@ int manifold_components(const mesh *me, manifold_component **out) {
     x->area += mesh_tri_area(me, t);
     x->volume += (a.x * (b.y * d.z - b.z * d.y) + a.y * (b.z * d.x - b.x * d.z) + a.z * (b.x * d.y - b.y * d.x)) / 6;
   }
-  /* Directed edges: each as often as its reverse (no border), and once
-   * (else the edge has more than two triangles: pinched). */
-  size_t ne = 3 * (size_t)nt;
-  uint64_t *key = xmallocarray(ne + 1, sizeof *key);
-  for (int t = 0; t < nt; t++)
-    for (int k = 0; k < 3; k++)
-      key[3 * (size_t)t + k] = (uint64_t)(uint32_t)me->t[t][k] << 32 | (uint32_t)me->t[t][(k + 1) % 3];
-  qsort(key, ne, sizeof *key, cmp_u64);
-  for (size_t i = 0; i < ne; i++) {
-    if (i > 0 && key[i] == key[i - 1]) continue;
-    uint32_t a = (uint32_t)(key[i] >> 32), b = (uint32_t)key[i];
-    manifold_component *x = &c[comp[a]];
-    size_t here = count(key + i, ne - i, key[i]), back = count(key, ne, (uint64_t)b << 32 | a);
-    if (here != back || a == b) x->closed = 0;
-    if (here > 1) x->manifold = 0;
-    if (back == 0 || a < b) x->ne++;
-  }
-  /* Fans: around a closed vertex v, the triangles (v, b, c) give the link
-   * edges b -> c; one cycle through all of them means one fan. */
+  /* The link of every vertex. */
   int *deg = xcalloc((size_t)nv + 1, sizeof *deg);
   for (int t = 0; t < nt; t++)
     for (int k = 0; k < 3; k++) deg[me->t[t][k] + 1]++;
@@ -102,15 +90,37 @@ int manifold_components(const mesh *me, manifold_component **out) {
       link[at[v]][1] = me->t[t][(k + 2) % 3];
       at[v]++;
     }
+  int cap = 64, *outs = xmallocarray((size_t)cap, sizeof *outs), *ins = xmallocarray((size_t)cap, sizeof *ins);
+  long long *twice_e = xcalloc((size_t)nc + 1, sizeof *twice_e);
   for (int v = 0; v < nv; v++) {
     int lo = deg[v], n = deg[v + 1] - lo;
     if (n == 0) continue;
     manifold_component *x = &c[comp[v]];
-    if (!x->closed || !x->manifold) {
-      x->manifold = 0;
-      continue;
+    if (n > cap) {
+      cap = 2 * n;
+      outs = xreallocarray(outs, (size_t)cap, sizeof *outs);
+      ins = xreallocarray(ins, (size_t)cap, sizeof *ins);
     }
-    /* Follow b -> c from the first link edge; count the steps back. */
+    for (int k = 0; k < n; k++) outs[k] = link[lo + k][0], ins[k] = link[lo + k][1];
+    sort_ints(outs, n);
+    sort_ints(ins, n);
+    int same = 1, repeats = 0, distinct = 0;
+    for (int k = 0; k < n; k++) {
+      if (outs[k] != ins[k] || outs[k] == v) same = 0;
+      if (k > 0 && (outs[k] == outs[k - 1] || ins[k] == ins[k - 1])) repeats = 1;
+    }
+    /* distinct neighbours: the union of the two sorted lists */
+    for (int i = 0, j = 0; i < n || j < n;) {
+      int y = j >= n || (i < n && outs[i] <= ins[j]) ? outs[i] : ins[j];
+      distinct++;
+      while (i < n && outs[i] == y) i++;
+      while (j < n && ins[j] == y) j++;
+    }
+    twice_e[comp[v]] += distinct;
+    if (!same) x->closed = 0;
+    if (repeats) x->manifold = 0;
+    if (!same || repeats) continue;
+    /* One fan: follow b -> c from the first link edge (each b once). */
     int start = link[lo][0], cur = start, steps = 0;
     do {
       int next = -1;
@@ -125,12 +135,14 @@ int manifold_components(const mesh *me, manifold_component **out) {
     } while (cur != start && steps <= n);
     if (cur != start || steps != n) x->manifold = 0;
   }
+  for (int i = 0; i < nc; i++) c[i].ne = (int)(twice_e[i] / 2);
+  free(twice_e), free(outs), free(ins);
   for (int i = 0; i < nc; i++) {
     c[i].manifold &= c[i].closed;
     c[i].euler = c[i].nv - c[i].ne + c[i].nt;
     c[i].genus = c[i].manifold ? (2 - c[i].euler) / 2 : -1;
   }
-  free(at), free(link), free(deg), free(key), free(comp), free(used), free(up);
+  free(at), free(link), free(deg), free(comp), free(used), free(up);
   *out = c;
   return nc;
 }

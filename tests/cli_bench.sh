@@ -40,13 +40,22 @@ for args in "--frob" "--ring" "--ring 0 --laps 1" "--ring 4" "--ring 4 --laps x"
             "--ring 4 --laps 2 --net token" "--ring 4 --laps 2 --m -1" \
             "--ring 4 --laps 2 --bogus 1" "--ring 4 --laps 2 --profile nope" "--switch" "--switch 1" \
             "--procs 0" "--procs 1..x" "--points 2" "--alloc third" "--min-diag 0" "--m -1" "--jobs 0" \
-            "--tiler --points 1" "--procs 4 --net token" "--backend mpi" "--backend threads --jobs 2"; do
+            "--tiler --points 1" "--procs 4 --net token" "--backend mpi" "--backend threads --jobs 2" \
+            "--stack -j 0" "--stack -j 1,x" "--stack --repeat 0" "--stack --frob"; do
   # shellcheck disable=SC2086
   "$bench" $args >"$tmp.out" 2>"$tmp.err"; rc=$?
   if [ $rc -eq 2 ] && [ ! -s "$tmp.out" ] && grep -q '^usage: bench' "$tmp.err"; then ok
   else fail "bench $args: exit $rc, stderr: $(cat "$tmp.err")"; fi
 done
 rm -f "$tmp.out" "$tmp.err"
+
+# --stack: a whole stack on 1 and 2 threads, the same surface (the checksums) on each.
+out=$("$bench" --stack tests/data/slicerrt/tinypatient_0.contours -j 1,2 --repeat 1 2>&1); rc=$?
+[ $rc -eq 0 ] && [ "$(printf '%s\n' "$out" | wc -l)" -eq 3 ] && printf '%s\n' "$out" | head -1 | \
+  grep -q '^input,slices,contours,points,bands,bridges,caps,threads,runs,read_ms,tile_ms,band_ms,speedup,cost,volume$' && \
+  printf '%s\n' "$out" | awk -F, 'NR > 1 { if ($5 != 16 || $11 <= 0 || $8 != NR - 1) bad = 1; c[$14]++; v[$15]++ }
+    END { n = 0; for (k in c) n++; m = 0; for (k in v) m++; exit bad || n != 1 || m != 1 }' \
+  && ok || fail "--stack: $out"
 
 # Measured runs on threads: the same optimum as the simulator's, a backend column.
 out=$("$bench" --points 60 --procs 1,3 --backend threads 2>&1); rc=$?

@@ -1,0 +1,162 @@
+/* bench_stack.c -- ./bench --stack: the stack tiler's speed (issue 9): whole
+ * stacks, several contours per slice, made into one closed surface
+ * (surface/stack.h: slices, nesting, correspondence, bridges, every band
+ * tiled exactly, caps, the mesh and its components), on 1, 2, ... threads.
+ *
+ *   bench --stack [INPUT...] [-j LIST] [--repeat R] [--apex]
+ *
+ * INPUT is a .contours stack or FILE.dcm:ROI (an RT structure set's ROI by
+ * name or number); by default dicompyler's BODY (141 contours on 98 slices,
+ * up to 4 a slice) and Lt Lung (165 on 80, up to 7 a slice, 77 holes), the
+ * issue's speed target, and prostate_0 (92 slices of one contour).  One CSV
+ * row per input and thread count: read_ms is making the stack (from the
+ * file in memory), tile_ms the best of R runs of stack_tile (caps on),
+ * band_ms tile_ms per band, speedup the first thread count's tile_ms over
+ * this one's.  Runs go in rounds (every thread count once, then again), so
+ * a slow spell of the machine touches every count alike.  cost (the bands'
+ * optima summed) and volume (the mesh's) are checksums: a fast wrong answer
+ * shows. */
+#include "bench_stack.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "contour.h"
+#include "rtstruct.h"
+#include "stack.h"
+#include "wallclock.h"
+#include "xmem.h"
+
+static const char *defaults[] = {"tests/data/rtstruct/dicompyler_rtss.dcm:BODY",
+                                 "tests/data/rtstruct/dicompyler_rtss.dcm:Lt Lung",
+                                 "tests/data/slicerrt/prostate_0.contours"};
+
+/* The stack of one input; its reading time in *ms. */
+static int load(const char *input, contour_stack *s, double *ms) {
+  char err[1024], path[1024];
+  const char *colon = strstr(input, ".dcm:");
+  double t0 = wallclock();
+  if (!colon) {
+    int rc = contour_read(input, s, NULL, "bench", err, sizeof err);
+    *ms = (wallclock() - t0) * 1e3;
+    if (rc != 0) fprintf(stderr, "bench: %s\n", err);
+    return rc;
+  }
+  snprintf(path, sizeof path, "%.*s", (int)(colon + 4 - input), input);
+  rtstruct r;
+  if (rtstruct_read(path, &r, err, sizeof err) != 0) {
+    fprintf(stderr, "bench: %s\n", err);
+    return -1;
+  }
+  int k = rtstruct_find(&r, colon + 5, err, sizeof err);
+  t0 = wallclock();
+  int rc = k < 0 ? -1 : rtstruct_roi_stack(&r, k, 0, s, NULL, "bench", err, sizeof err);
+  *ms = (wallclock() - t0) * 1e3;
+  if (rc != 0) fprintf(stderr, "bench: %s\n", err);
+  rtstruct_free(&r);
+  return rc;
+}
+
+static int usage(const char *what, const char *value) {
+  fprintf(stderr, "bench: --stack: %s (%s)\nusage: bench --stack [STACK|FILE.dcm:ROI...] [-j LIST] [--repeat R] [--apex]\n",
+          what, value);
+  return 2;
+}
+
+static int parse_list(const char *v, int *out, int max) {
+  int n = 0;
+  const char *p = v;
+  while (*p && n < max) {
+    char *end;
+    long x = strtol(p, &end, 10);
+    if (end == p || x < 1 || x > 1024 || (*end && *end != ',')) return -1;
+    out[n++] = (int)x;
+    p = *end ? end + 1 : end;
+  }
+  return *p ? -1 : n;
+}
+
+int bench_stack(int argc, char **argv) {
+  int repeat = 5, apex = 0, nj = 2, js[64] = {1, 2}, nin = 0;
+  const char **in = xcalloc((size_t)argc + 4, sizeof *in);
+  for (int i = 2; i < argc; i++) {
+    const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+    if (strcmp(a, "--repeat") == 0 || strcmp(a, "-j") == 0) {
+      char *end;
+      long x = v ? strtol(v, &end, 10) : 0;
+      if (a[1] == 'j' ? (!v || (nj = parse_list(v, js, 64)) < 1)
+                      : (!v || *end || end == v || x < 1 || x > 10000)) {
+        free(in);
+        return usage(a[1] == 'j' ? "-j takes thread counts from 1 to 1024, as 1,2,4"
+                                 : "--repeat takes a whole number from 1 to 10000",
+                     v ? v : "missing");
+      }
+      if (a[1] != 'j') repeat = (int)x;
+      i++;
+    } else if (strcmp(a, "--apex") == 0) {
+      apex = 1;
+    } else if (a[0] == '-') {
+      free(in);
+      return usage("unknown option", a);
+    } else {
+      in[nin++] = a;
+    }
+  }
+  if (nin == 0)
+    for (size_t i = 0; i < sizeof defaults / sizeof *defaults; i++) in[nin++] = defaults[i];
+  printf("input,slices,contours,points,bands,bridges,caps,threads,runs,read_ms,tile_ms,band_ms,speedup,cost,volume\n");
+  int rc = 0;
+  for (int f = 0; f < nin && rc == 0; f++) {
+    contour_stack s;
+    double read_ms;
+    if (load(in[f], &s, &read_ms) != 0) {
+      rc = 1;
+      break;
+    }
+    long points = 0;
+    for (int i = 0; i < s.n; i++) points += s.c[i].n;
+    double *best = xmallocarray((size_t)nj, sizeof *best), cost = 0, volume = 0;
+    int bands = 0, bridges = 0, caps = 0;
+    for (int j = 0; j < nj; j++) best[j] = 1e300;
+    char err[1024];
+    for (int r = 0; r < repeat && rc == 0; r++)
+      for (int j = 0; j < nj && rc == 0; j++) {
+        stack_options o = {COST_AREA, 1, apex, js[j], NULL, NULL, "bench"};
+        stack_surface *ss;
+        double t0 = wallclock();
+        int res = stack_tile(&s, in[f], &o, &ss, err, sizeof err);
+        double t = wallclock() - t0;
+        if (res != 0) {
+          fprintf(stderr, "bench: %s\n", err);
+          rc = 1;
+          break;
+        }
+        if (t < best[j]) best[j] = t;
+        double c = 0;
+        int nb = 0, nbr = 0, ncap = 0;
+        for (int i = 0; i < stack_nrows(ss); i++) {
+          const stack_row *x = &stack_rows(ss)[i];
+          if (x->kind == STACK_BAND) nb++, nbr += x->bridges, c += x->cost;
+          else ncap++;
+        }
+        double v = mesh_volume(stack_mesh(ss));
+        if (r == 0 && j == 0) cost = c, volume = v, bands = nb, bridges = nbr, caps = ncap;
+        else if (c != cost || v != volume) {
+          fprintf(stderr, "bench: %s: -j %d gave another surface (cost %.17g, volume %.17g)\n", in[f], js[j], c, v);
+          rc = 1;
+        }
+        stack_free(ss);
+      }
+    for (int j = 0; j < nj && rc == 0; j++)
+      printf("%s,%d,%d,%ld,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.3f,%.17g,%.17g\n", in[f], s.nslices, s.n, points, bands,
+             bridges, caps, js[j], repeat, read_ms, best[j] * 1e3, bands ? best[j] * 1e3 / bands : 0,
+             best[0] / best[j], cost, volume);
+    fflush(stdout);
+    free(best);
+    contour_stack_free(&s);
+  }
+  free(in);
+  return rc;
+}
