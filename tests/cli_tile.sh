@@ -109,6 +109,11 @@ awk -F, '/^[0-9]/{ d=$11-$12; if (d<0) d=-d; if (d > 1e-9*$11) bad=1 } END{exit 
 "$TILE" $DATA/tinypatient_0.contours -q --caps -j 3 -o "$T/tp3.obj" > "$T/tp3.csv" && cmp -s "$T/tp1.csv" "$T/tp3.csv" && cmp -s "$T/tp1.obj" "$T/tp3.obj" && ok || bad "-j 3 differs from -j 1"
 awk '/^C/{n++} {print n "\t" NR "\t" $0}' $DATA/tinypatient_0.contours | sort -k1,1nr -k2,2n | cut -f3- > "$T/rev.contours"
 "$TILE" "$T/rev.contours" -q --caps -o "$T/rev.obj" > "$T/rev.csv" && cmp -s "$T/tp1.csv" "$T/rev.csv" && cmp -s "$T/tp1.obj" "$T/rev.obj" && ok || bad "contours in reverse file order: the output differs"
+for args in "--procs 3" "--procs 2 --backend threads"; do
+  "$TILE" $DATA/tinypatient_0.contours -q --caps $args -o "$T/tpp.obj" > "$T/tpp.csv" 2> "$T/err" && \
+    cut -d, -f1-16 "$T/tpp.csv" | tail -n +2 | cmp -s - "$(tail -n +2 "$T/tp1.csv" > "$T/tp1b"; echo "$T/tp1b")" && \
+    cmp -s "$T/tpp.obj" "$T/tp1.obj" && ok || bad "tinypatient_0 $args: not the serial report and mesh: $(cat "$T/err")"
+done
 usage $DATA/tinypatient_0.contours -j 0
 usage $DATA/tinypatient_0.contours -j x
 usage $DATA/tinypatient_0.contours --cap-style round --caps

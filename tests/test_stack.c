@@ -336,18 +336,20 @@ static void test_shapes(void) {
   circle(buf[np], N, 0, 0.1, 1.1, 1, 0.8), ps[np] = (poly){N, 3, buf[np]}, np++;  /* ends: hole closes */
   circle(buf[np], N, 0, 0, 5, 5, 0.9), ps[np] = (poly){N, 4, buf[np]}, np++;
   circle(buf[np], N, 9, 0, 1, 1, 1.0), ps[np] = (poly){N, 2, buf[np]}, np++;      /* alone on slice 2 */
-  contour_stack s;
-  if (make_stack(ps, np, NULL, NULL, NULL, &s) != 0) return;
-  char err[512];
-  int res;
-  stack_surface *ss = tile(&s, 1, 0, 3, NULL, err, sizeof err, &res);
-  CHECK(res == 0, "cup: %s", err);
-  /* the solid, the cavity (with the island inside it, one surface: the
-   * island's top merges into the cavity's roof) and the lens */
-  int chi[3] = {2, 2, 2};
-  if (res == 0) check_surface("cup with an island", ss, ps, np, 3, chi);
-  stack_free(ss);
-  contour_stack_free(&s);
+  for (int apex = 0; apex < 2; apex++) {
+    contour_stack s;
+    if (make_stack(ps, np, NULL, NULL, NULL, &s) != 0) return;
+    char err[512];
+    int res;
+    stack_surface *ss = tile(&s, 1, apex, 3, NULL, err, sizeof err, &res);
+    CHECK(res == 0, "cup: %s", err);
+    /* the solid, the cavity (with the island inside it, one surface: the
+     * island's top merges into the cavity's roof) and the lens */
+    int chi[3] = {2, 2, 2};
+    if (res == 0) check_surface(apex ? "cup with an island, apex caps" : "cup with an island", ss, ps, np, 3, chi);
+    stack_free(ss);
+    contour_stack_free(&s);
+  }
 }
 
 /* One contour per slice: the same band triangles as the pair tiler on the
