@@ -183,6 +183,7 @@ struct sim {
   int ran;
   msg *pool;               /* free messages */
   FILE *tcsv, *tjson;
+  int count_csv, count_json;   /* sim_trace_count */
   trace *tr;
   errlog errs;             /* the errors quoted in sim_run's message */
   sim_stats st;
@@ -719,6 +720,15 @@ void sim_trace(sim *s, FILE *csv, FILE *json) {
   s->tjson = json;
 }
 
+void sim_trace_count(sim *s, int csv, int json) {
+  s->count_csv = csv;
+  s->count_json = json;
+}
+
+void sim_trace_size(const sim *s, unsigned long long *csv, unsigned long long *json) {
+  trace_size(s->tr, csv, json);
+}
+
 /* Every rank runs this on its own stack. */
 static coro *rank_main(void *ud) {
   rank *r = ud;
@@ -803,7 +813,8 @@ int sim_run(sim *s, const mp_proc *procs, char *err, size_t errlen) {
   }
   double w0 = wallclock();
   s->procs = procs;
-  s->tr = trace_new(s->tcsv, s->tjson);
+  s->tr = s->count_csv || s->count_json ? trace_new_count(s->count_csv, s->count_json)
+                                         : trace_new(s->tcsv, s->tjson);
   s->main = coro_main_new();
   char cerr[256];
   int made = 0;

@@ -164,6 +164,13 @@ links *sim_links(sim *s);
  * caller's to close. */
 void sim_trace(sim *s, FILE *csv, FILE *json);
 
+/* Instead of writing a trace, count the bytes a CSV (csv != 0) and a JSON
+ * (json != 0) trace of the run would take; sim_trace_size gives them after
+ * sim_run (0 without sim_trace_count).  How a program checks a trace's
+ * size before it writes one. */
+void sim_trace_count(sim *s, int csv, int json);
+void sim_trace_size(const sim *s, unsigned long long *csv, unsigned long long *json);
+
 /* Run procs[0..nranks-1] to completion.  Once per sim.  0, or -1 and a
  * message in err: deadlock, a bad argument to an mp call, a stack that could
  * not be mapped, a trace that could not be written.  Statistics are

@@ -1,6 +1,7 @@
 /* trace.c -- CSV and Chrome trace-event JSON writers for the simulator's timeline. */
 #include "trace.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -11,6 +12,9 @@ struct trace {
   int first;   /* no JSON event written yet (no comma before the next) */
   int netpid;  /* the network's pid: the number of processors */
   int netnamed;   /* its process_name is written */
+  int count;   /* count the bytes (below) instead of writing */
+  int ccsv, cjson;                  /* count mode: which of the two */
+  unsigned long long ncsv, njson;   /* count mode: the bytes so far */
 };
 
 trace *trace_new(FILE *csv, FILE *json) {
@@ -22,7 +26,60 @@ trace *trace_new(FILE *csv, FILE *json) {
   return tr;
 }
 
+trace *trace_new_count(int csv, int json) {
+  if (!csv && !json) return NULL;
+  trace *tr = xcalloc(1, sizeof *tr);
+  tr->count = 1;
+  tr->ccsv = csv != 0;
+  tr->cjson = json != 0;
+  tr->first = 1;
+  return tr;
+}
+
+void trace_size(const trace *tr, unsigned long long *csv, unsigned long long *json) {
+  *csv = tr && tr->count ? tr->ncsv : 0;
+  *json = tr && tr->count ? tr->njson : 0;
+}
+
 void trace_free(trace *tr) { free(tr); }
+
+/* ---- count mode: the length printf would give, by arithmetic ---------------
+ * (the formats' lengths, kept beside the formats below; tests/test_trace.c
+ * compares the counts with real traces byte for byte). */
+
+static unsigned len_u(unsigned long long v) {
+  unsigned n = 1;
+  while (v >= 10) v /= 10, n++;
+  return n;
+}
+
+static unsigned len_i(long long v) {
+  return v < 0 ? 1 + len_u(0ULL - (unsigned long long)v) : len_u((unsigned long long)v);
+}
+
+/* "%.<prec>f" of a finite x. */
+static unsigned len_f(double x, int prec) {
+  static const double half[] = {0.5, 0.05, 0.005, 5e-4, 5e-5, 5e-6, 5e-7, 5e-8, 5e-9, 5e-10};
+  unsigned n = signbit(x) ? 1 : 0;
+  double r = fabs(x) + half[prec];
+  unsigned digits = 1;
+  if (r >= 1e18) digits = (unsigned)floor(log10(r)) + 1;
+  else
+    for (double p = 10; r >= p; p *= 10) digits++;
+  return n + digits + 1 + (unsigned)prec;
+}
+
+static unsigned len_peer(int v) { return v < 0 ? 3 : len_i(v); }   /* "any" */
+static unsigned len_jpeer(int v) { return v < 0 ? 5 : len_i(v); }  /* "\"any\"" */
+
+/* jhead's bytes: the separator and the common fields. */
+static unsigned long long len_jhead(trace *tr, const char *ph, const char *name, const char *cat,
+                                    int proc, int rank, double t) {
+  unsigned long long n = tr->first ? 1 : 2;
+  tr->first = 0;
+  n += strlen("{\"ph\":\"\",\"name\":\"\",\"cat\":\"\",\"pid\":,\"tid\":,\"ts\":");
+  return n + strlen(ph) + strlen(name) + strlen(cat) + len_i(proc) + len_i(rank) + len_f(t * 1e6, 3);
+}
 
 /* Seconds to the microseconds of the JSON format. */
 static double us(double s) { return s * 1e6; }
@@ -45,8 +102,24 @@ static void csv_peer(FILE *f, int v) {
 }
 
 void trace_begin(trace *tr, int nranks, const int *place, int nprocs) {
-  if (tr->csv) fputs("time,rank,proc,event,peer,tag,bytes,duration,msg,arrival\n", tr->csv);
   tr->netpid = nprocs;
+  if (tr->count) {
+    if (tr->ccsv) tr->ncsv += strlen("time,rank,proc,event,peer,tag,bytes,duration,msg,arrival\n");
+    if (!tr->cjson) return;
+    tr->njson += strlen("{\"displayTimeUnit\":\"ns\",\"traceEvents\":[");
+    for (int p = 0; p < nprocs; p++) {
+      tr->njson += (tr->first ? 1 : 2) + 4 * len_i(p) +
+                   strlen("{\"ph\":\"M\",\"name\":\"process_name\",\"pid\":,\"args\":{\"name\":\"proc \"}},\n"
+                          "{\"ph\":\"M\",\"name\":\"process_sort_index\",\"pid\":,\"args\":{\"sort_index\":}}");
+      tr->first = 0;
+    }
+    for (int r = 0; r < nranks; r++)
+      tr->njson += 2 * len_i(place[r]) + 4 * len_i(r) +
+                   strlen(",\n{\"ph\":\"M\",\"name\":\"thread_name\",\"pid\":,\"tid\":,\"args\":{\"name\":\"rank \"}}"
+                          ",\n{\"ph\":\"M\",\"name\":\"thread_sort_index\",\"pid\":,\"tid\":,\"args\":{\"sort_index\":}}");
+    return;
+  }
+  if (tr->csv) fputs("time,rank,proc,event,peer,tag,bytes,duration,msg,arrival\n", tr->csv);
   if (!tr->json) return;
   fputs("{\"displayTimeUnit\":\"ns\",\"traceEvents\":[", tr->json);
   for (int p = 0; p < nprocs; p++) {
@@ -68,6 +141,16 @@ void trace_begin(trace *tr, int nranks, const int *place, int nprocs) {
 void trace_span(trace *tr, const char *kind, int rank, int proc, double start, double dur,
                 int peer, int tag) {
   int wait = strcmp(kind, "wait") == 0;
+  if (tr->count) {
+    size_t k = strlen(kind);
+    if (tr->ccsv)   /* %.9f,%d,%d,%s, [peer,tag | ,] ,,%.9f,,\n */
+      tr->ncsv += len_f(start, 9) + len_i(rank) + len_i(proc) + k + 4 +
+                  (wait ? len_peer(peer) + 1 + len_peer(tag) : 1) + len_f(dur, 9) + 5;
+    if (tr->cjson)
+      tr->njson += len_jhead(tr, "X", kind, kind, proc, rank, start) + strlen(",\"dur\":") + len_f(dur * 1e6, 3) +
+                   (wait ? strlen(",\"args\":{\"src\":,\"tag\":}") + len_jpeer(peer) + len_jpeer(tag) : 0) + 1;
+    return;
+  }
   if (tr->csv) {
     fprintf(tr->csv, "%.9f,%d,%d,%s,", start, rank, proc, kind);
     if (wait) {
@@ -95,6 +178,18 @@ void trace_span(trace *tr, const char *kind, int rank, int proc, double start, d
 
 void trace_send(trace *tr, int rank, int proc, double t, double dur, int dst, int tag,
                 size_t len, uint64_t msg, double arrival) {
+  if (tr->count) {
+    if (tr->ccsv)   /* %.9f,%d,%d,send,%d,%d,%zu,%.9f,%llu,%.9f\n */
+      tr->ncsv += len_f(t, 9) + len_i(rank) + len_i(proc) + len_i(dst) + len_i(tag) + len_u(len) +
+                  len_f(dur, 9) + len_u(msg) + len_f(arrival, 9) + strlen(",,,send,,,,,,\n");
+    if (tr->cjson)
+      tr->njson += len_jhead(tr, "X", "send", "msg", proc, rank, t) +
+                   strlen(",\"dur\":,\"args\":{\"dst\":,\"tag\":,\"bytes\":,\"msg\":,\"arrival_us\":}}") +
+                   len_f(dur * 1e6, 3) + len_i(dst) + len_i(tag) + len_u(len) + len_u(msg) +
+                   len_f(arrival * 1e6, 3) + len_jhead(tr, "s", "msg", "msg", proc, rank, t) +
+                   strlen(",\"id\":}") + len_u(msg);
+    return;
+  }
   if (tr->csv)
     fprintf(tr->csv, "%.9f,%d,%d,send,%d,%d,%zu,%.9f,%llu,%.9f\n", t, rank, proc, dst, tag, len,
             dur, (unsigned long long)msg, arrival);
@@ -111,6 +206,17 @@ void trace_send(trace *tr, int rank, int proc, double t, double dur, int dst, in
 
 void trace_recv(trace *tr, int rank, int proc, double t, double dur, int src, int tag,
                 size_t len, uint64_t msg) {
+  if (tr->count) {
+    if (tr->ccsv)   /* %.9f,%d,%d,recv,%d,%d,%zu,%.9f,%llu,\n */
+      tr->ncsv += len_f(t, 9) + len_i(rank) + len_i(proc) + len_i(src) + len_i(tag) + len_u(len) +
+                  len_f(dur, 9) + len_u(msg) + strlen(",,,recv,,,,,,\n");
+    if (tr->cjson)
+      tr->njson += len_jhead(tr, "X", "recv", "msg", proc, rank, t) +
+                   strlen(",\"dur\":,\"args\":{\"src\":,\"tag\":,\"bytes\":,\"msg\":}}") + len_f(dur * 1e6, 3) +
+                   len_i(src) + len_i(tag) + len_u(len) + len_u(msg) +
+                   len_jhead(tr, "f", "msg", "msg", proc, rank, t) + strlen(",\"bp\":\"e\",\"id\":}") + len_u(msg);
+    return;
+  }
   if (tr->csv)
     fprintf(tr->csv, "%.9f,%d,%d,recv,%d,%d,%zu,%.9f,%llu,\n", t, rank, proc, src, tag, len, dur,
             (unsigned long long)msg);
@@ -124,6 +230,11 @@ void trace_recv(trace *tr, int rank, int proc, double t, double dur, int src, in
 }
 
 void trace_finish(trace *tr, int rank, int proc, double t) {
+  if (tr->count) {
+    if (tr->ccsv) tr->ncsv += len_f(t, 9) + len_i(rank) + len_i(proc) + strlen(",,,finish,,,,,,\n");
+    if (tr->cjson) tr->njson += len_jhead(tr, "i", "finish", "rank", proc, rank, t) + strlen(",\"s\":\"t\"}");
+    return;
+  }
   if (tr->csv) fprintf(tr->csv, "%.9f,%d,%d,finish,,,,,,\n", t, rank, proc);
   if (tr->json) {
     jhead(tr, "i", "finish", "rank", proc, rank, t);
@@ -132,6 +243,20 @@ void trace_finish(trace *tr, int rank, int proc, double t) {
 }
 
 void trace_link_track(trace *tr, int link, const char *name) {
+  if (tr->count) {
+    if (!tr->cjson) return;
+    if (!tr->netnamed) {
+      tr->njson += (tr->first ? 1 : 2) + 3 * len_i(tr->netpid) +
+                   strlen("{\"ph\":\"M\",\"name\":\"process_name\",\"pid\":,\"args\":{\"name\":\"network\"}},\n"
+                          "{\"ph\":\"M\",\"name\":\"process_sort_index\",\"pid\":,\"args\":{\"sort_index\":}}");
+      tr->first = 0;
+      tr->netnamed = 1;
+    }
+    tr->njson += 2 * len_i(tr->netpid) + 3 * len_i(link) + strlen(name) +
+                 strlen(",\n{\"ph\":\"M\",\"name\":\"thread_name\",\"pid\":,\"tid\":,\"args\":{\"name\":\"link \"}}"
+                        ",\n{\"ph\":\"M\",\"name\":\"thread_sort_index\",\"pid\":,\"tid\":,\"args\":{\"sort_index\":}}");
+    return;
+  }
   if (!tr->json) return;
   if (!tr->netnamed) {
     fprintf(tr->json,
@@ -149,6 +274,16 @@ void trace_link_track(trace *tr, int link, const char *name) {
 
 void trace_link(trace *tr, int link, int rank, int dst, int tag, size_t len, uint64_t msg,
                 double start, double dur) {
+  if (tr->count) {
+    if (tr->ccsv)   /* %.9f,%d,%d,link,%d,%d,%zu,%.9f,%llu,\n */
+      tr->ncsv += len_f(start, 9) + len_i(rank) + len_i(link) + len_i(dst) + len_i(tag) + len_u(len) +
+                  len_f(dur, 9) + len_u(msg) + strlen(",,,link,,,,,,\n");
+    if (tr->cjson)
+      tr->njson += len_jhead(tr, "X", "msg", "link", tr->netpid, link, start) +
+                   strlen(",\"dur\":,\"args\":{\"src\":,\"dst\":,\"tag\":,\"bytes\":,\"msg\":}}") +
+                   len_f(dur * 1e6, 3) + len_i(rank) + len_i(dst) + len_i(tag) + len_u(len) + len_u(msg);
+    return;
+  }
   if (tr->csv)
     fprintf(tr->csv, "%.9f,%d,%d,link,%d,%d,%zu,%.9f,%llu,\n", start, rank, link, dst, tag, len,
             dur, (unsigned long long)msg);
@@ -161,6 +296,10 @@ void trace_link(trace *tr, int link, int rank, int dst, int tag, size_t len, uin
 
 int trace_end(trace *tr, char *err, size_t errlen) {
   int bad = 0;
+  if (tr->count) {
+    if (tr->cjson) tr->njson += strlen("\n]}\n");
+    return 0;
+  }
   if (tr->json) {
     fputs("\n]}\n", tr->json);
     if (fflush(tr->json) != 0 || ferror(tr->json)) bad |= 2;
@@ -171,4 +310,29 @@ int trace_end(trace *tr, char *err, size_t errlen) {
     return -1;
   }
   return 0;
+}
+
+void trace_fmt_bytes(unsigned long long bytes, char *buf, size_t len) {
+  static const char *const unit[] = {"bytes", "kB", "MB", "GB", "TB", "PB", "EB"};
+  double v = (double)bytes;
+  int u = 0;
+  while (v >= 1000 && u < 6) v /= 1000, u++;
+  if (u == 0) snprintf(buf, len, "%llu bytes", bytes);
+  else snprintf(buf, len, "%.*f %s", v < 10 ? 1 : 0, v, unit[u]);
+}
+
+int trace_over_limit(unsigned long long bytes, unsigned long long limit, char *err, size_t errlen) {
+  if (bytes <= limit) return 0;
+  static const char *const suffix[] = {"", "k", "M", "G", "T"};
+  double unit = 1;
+  int u = 0;
+  while (u < 4 && (double)bytes >= unit * 1000) unit *= 1000, u++;
+  char a[40], b[40];
+  trace_fmt_bytes(bytes, a, sizeof a);
+  trace_fmt_bytes(limit, b, sizeof b);
+  snprintf(err, errlen,
+           "the trace would take %s (%llu bytes), more than the limit of %s; "
+           "--trace-limit %.0f%s (or none) writes it",
+           a, bytes, b, ceil((double)bytes / unit), suffix[u]);
+  return -1;
 }

@@ -43,6 +43,25 @@ typedef struct trace trace;
  * NULL).  The streams stay the caller's: trace_free does not close them. */
 trace *trace_new(FILE *csv, FILE *json);
 
+/* A trace that writes nothing and counts the bytes a CSV (csv != 0) and a
+ * JSON (json != 0) trace of the same run would take (both 0 gives NULL):
+ * how a program learns a trace's size before writing it.  trace_size
+ * gives the counts so far (0 for a writing trace). */
+trace *trace_new_count(int csv, int json);
+void trace_size(const trace *tr, unsigned long long *csv, unsigned long long *json);
+
+/* The largest trace a program writes unless told otherwise (--trace-limit):
+ * 1 GB, a few minutes to write and more than a trace viewer opens. */
+#define TRACE_LIMIT_DEFAULT 1000000000ULL
+
+/* "512 bytes", "4.3 GB": a size for a message. */
+void trace_fmt_bytes(unsigned long long bytes, char *buf, size_t len);
+
+/* 0 if a trace of `bytes` is within limit; else -1 and the message "the
+ * trace would take 4.3 GB (4312345678 bytes), more than the limit of
+ * 1.0 GB; --trace-limit 5G (or none) writes it". */
+int trace_over_limit(unsigned long long bytes, unsigned long long limit, char *err, size_t errlen);
+
 /* The header row and the JSON metadata: processor and rank names. */
 void trace_begin(trace *tr, int nranks, const int *place, int nprocs);
 
