@@ -1,0 +1,27 @@
+/* progress.h -- how far a long run has got, on stderr, in a form both a
+ * person and a log can use.
+ *
+ * On a terminal: one line that rewrites itself ("tile: pair 12 of 91"),
+ * cleared at the end.  Otherwise (stderr is a file or a pipe, a log): a
+ * whole line every few seconds, "tile: pair 12 of 91 (13%), 5 s", and a
+ * last line "tile: pair 91 of 91, done in 48 s" if any line was written;
+ * a run shorter than the interval writes nothing.  The interval is 5 s;
+ * the environment variable TILESIM_PROGRESS_S sets another (0: a line at
+ * every step, as the tests use it). */
+#ifndef PROGRESS_H
+#define PROGRESS_H
+
+typedef struct progress progress;
+
+/* Progress of `what` ("pair", "run") for program prog ("tile"); NULL if
+ * quiet (no progress at all: then the calls below do nothing). */
+progress *progress_new(const char *prog, const char *what, int quiet);
+
+/* done of total steps are complete. */
+void progress_step(progress *p, long long done, long long total);
+
+/* The run is over: clear the terminal line, or write the last log line;
+ * free p (NULL is fine). */
+void progress_end(progress *p);
+
+#endif
