@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "args.h"
 #include "atomicfile.h"
 #include "contour.h"
 #include "csvtab.h"
@@ -23,13 +24,78 @@
 #include "tiling.h"
 #include "xmem.h"
 
-static int usage(const char *why, const char *val) {
-  if (why) fprintf(stderr, "plot: %s%s%s%s\n", why, val ? " (" : "", val ? val : "", val ? ")" : "");
+static const char lines_usage[] =
+    "usage: plot lines CSV -x COL -y COL[,COL...] [--series COL[,COL...]] [--where COL=VALUE]... "
+    "[--labels A,B,...] [--title T] [--xlabel T] [--ylabel T] [--yzero] -o OUT.svg   "
+    "(plot --help: every option)\n";
+static const char surface_usage[] =
+    "usage: plot surface STACK [--cost area|span] [--caps] [--title T] -o OUT.svg   "
+    "(plot --help: every option)\n";
+static const char any_usage[] =
+    "usage: plot lines CSV ... -o OUT.svg | plot surface STACK ... -o OUT.svg   "
+    "(plot --help: every option)\n";
+
+static void help(void) {
   fputs("usage: plot lines CSV -x COL -y COL[,COL...] [--series COL[,COL...]] [--where COL=VALUE]...\n"
         "            [--labels A,B,...] [--title T] [--xlabel T] [--ylabel T] [--yzero] -o OUT.svg\n"
-        "       plot surface STACK [--cost area|span] [--caps] [--title T] -o OUT.svg\n",
-        stderr);
+        "       plot surface STACK [--cost area|span] [--caps] [--title T] -o OUT.svg\n"
+        "\n"
+        "plot -- tilesim's CSV as SVG line charts, and a contour stack with its surface.\n"
+        "\n"
+        "lines: one line per value of the --series column and per y column (up to 8; a\n"
+        "second y column dashed), from the rows that match every --where (up to 16),\n"
+        "points sorted by x.\n"
+        "  -x COL             the x column\n"
+        "  -y COL[,COL...]    the y columns, at most 8\n"
+        "  --series COL[,COL...]  one line per value of COL (up to 4 columns: per\n"
+        "                     combination of their values)\n"
+        "  --where COL=VALUE  only the rows whose COL is VALUE\n"
+        "  --labels A,B,...   the y columns' names in the legend (with one y column and\n"
+        "                     --series, the series' names), up to 16\n"
+        "  --title T, --xlabel T, --ylabel T   texts\n"
+        "  --yzero            the y axis starts at 0\n"
+        "  -o OUT.svg         the picture (written atomically)\n"
+        "surface: the stack tiled (closed with --caps), drawn beside its contours.\n"
+        "  --cost area|span   the tile weight (default area)\n"
+        "  --caps             close the first and last contours\n"
+        "  --title T          the title\n"
+        "  -o OUT.svg         the picture\n"
+        "\n"
+        "Exit status: 0 done, 1 bad input (a file that cannot be read, a missing\n"
+        "column), 2 bad usage.\n",
+        stdout);
+}
+
+/* Bad usage: "plot: why" (and the value, as util/args shows values), the
+ * mode's usage line, exit status 2. */
+static int usage(const char *line, const char *why, const char *val) {
+  char shown[200];
+  fprintf(stderr, "plot: %s", why);
+  if (val) {
+    args_show(val, shown, sizeof shown);
+    fprintf(stderr, " (%s)", shown);
+  }
+  fputc('\n', stderr);
+  fputs(line, stderr);
   return 2;
+}
+
+/* A comma-separated list of names, none empty, at most max: 0 and the
+ * count in *n, or -1 and a message. */
+static int names(const char *opt, const char *val, int max, int *n, char *err, size_t errlen) {
+  char shown[200];
+  *n = 0;
+  const char *p = val;
+  for (;;) {
+    size_t len = strcspn(p, ",");
+    if (len == 0 || *n == max) break;
+    (*n)++;
+    if (!p[len]) return 0;
+    p += len + 1;
+  }
+  args_show(val, shown, sizeof shown);
+  snprintf(err, errlen, "%s takes 1 to %d names, comma-separated, none empty (%s)", opt, max, shown);
+  return -1;
 }
 
 /* Write an SVG through draw(f, ud) to out, atomically; 0, or 1 after a message. */
@@ -79,27 +145,46 @@ static int by_x(const void *a, const void *b) {
 static int lines(int argc, char **argv) {
   const char *in = argc > 2 ? argv[2] : NULL, *xc = NULL, *yc = NULL, *sc = NULL, *out = NULL;
   const char *where[16], *labels = NULL;
-  int nwhere = 0;
+  int nwhere = 0, nn;
   svgchart_opts o = {NULL, NULL, NULL, 0, 0};
-  if (!in) return usage("no CSV", NULL);
+  char err[400];
+  if (!in || (in[0] == '-' && in[1])) return usage(lines_usage, "lines needs a CSV file first", in);
+  if (!in[0]) return usage(lines_usage, "lines needs a CSV file first", in);
   for (int i = 3; i < argc; i++) {
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+    int bad = 0;
     if (strcmp(a, "--yzero") == 0) { o.yzero = 1; continue; }
-    if (!v) return usage("an option needs a value", a);
-    if (strcmp(a, "-x") == 0) xc = v;
-    else if (strcmp(a, "-y") == 0) yc = v;
-    else if (strcmp(a, "--series") == 0) sc = v;
-    else if (strcmp(a, "--where") == 0 && nwhere < 16 && strchr(v, '=')) where[nwhere++] = v;
-    else if (strcmp(a, "--labels") == 0) labels = v;
+    static const char *const opts[] = {"-x", "-y", "--series", "--where", "--labels", "--title",
+                                       "--xlabel", "--ylabel", "-o"};
+    int known = 0;
+    for (size_t k = 0; k < sizeof opts / sizeof *opts; k++) known |= strcmp(a, opts[k]) == 0;
+    if (!known) return usage(lines_usage, a[0] == '-' ? "unknown option" : "unexpected argument", a);
+    if (!v) return usage(lines_usage, "an option needs a value", a);
+    if (strcmp(a, "-x") == 0) bad = args_name(a, v, "a column name", 0, err, sizeof err), xc = v;
+    else if (strcmp(a, "-y") == 0) bad = names(a, v, 8, &nn, err, sizeof err), yc = v;
+    else if (strcmp(a, "--series") == 0) bad = names(a, v, 4, &nn, err, sizeof err), sc = v;
+    else if (strcmp(a, "--where") == 0) {
+      const char *eq = strchr(v, '=');
+      if (!eq || eq == v) {
+        char shown[200];
+        args_show(v, shown, sizeof shown);
+        snprintf(err, sizeof err, "--where takes COL=VALUE, a column name and a value (%s)", shown);
+        bad = 1;
+      } else if (nwhere == 16) {
+        snprintf(err, sizeof err, "--where is given at most 16 times");
+        bad = 1;
+      } else {
+        where[nwhere++] = v;
+      }
+    } else if (strcmp(a, "--labels") == 0) bad = names(a, v, 16, &nn, err, sizeof err), labels = v;
     else if (strcmp(a, "--title") == 0) o.title = v;
     else if (strcmp(a, "--xlabel") == 0) o.xlabel = v;
     else if (strcmp(a, "--ylabel") == 0) o.ylabel = v;
-    else if (strcmp(a, "-o") == 0) out = v;
-    else return usage("unknown option", a);
+    else bad = args_name(a, v, "a file name", 0, err, sizeof err), out = v;
+    if (bad) return usage(lines_usage, err, NULL);
     i++;
   }
-  if (!xc || !yc || !out) return usage("lines needs -x, -y and -o", NULL);
-  char err[400];
+  if (!xc || !yc || !out) return usage(lines_usage, "lines needs -x, -y and -o", NULL);
   csvtab t;
   if (csvtab_read(in, &t, err, sizeof err) != 0) {
     fprintf(stderr, "plot: %s\n", err);
@@ -195,19 +280,22 @@ static int surface(int argc, char **argv) {
   const char *in = argc > 2 ? argv[2] : NULL, *out = NULL, *title = "Fig. 17: contours and surface";
   cost_kind kind = COST_AREA;
   int caps = 0;
-  if (!in) return usage("no contour stack", NULL);
+  char err[400];
+  if (!in || !in[0] || (in[0] == '-' && in[1])) return usage(surface_usage, "surface needs a contour stack first", in);
   for (int i = 3; i < argc; i++) {
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+    int bad = 0;
     if (strcmp(a, "--caps") == 0) { caps = 1; continue; }
-    if (!v) return usage("an option needs a value", a);
-    if (strcmp(a, "-o") == 0) out = v;
+    if (strcmp(a, "-o") != 0 && strcmp(a, "--title") != 0 && strcmp(a, "--cost") != 0)
+      return usage(surface_usage, a[0] == '-' ? "unknown option" : "unexpected argument", a);
+    if (!v) return usage(surface_usage, "an option needs a value", a);
+    if (strcmp(a, "-o") == 0) bad = args_name(a, v, "a file name", 0, err, sizeof err), out = v;
     else if (strcmp(a, "--title") == 0) title = v;
-    else if (strcmp(a, "--cost") == 0 && cost_parse(v, &kind) == 0) {}
-    else return usage("unknown option or bad value", a);
+    else if (cost_parse(v, &kind) != 0) bad = args_word(a, v, "area|span", err, sizeof err) < 0;
+    if (bad) return usage(surface_usage, err, NULL);
     i++;
   }
-  if (!out) return usage("surface needs -o", NULL);
-  char err[400];
+  if (!out) return usage(surface_usage, "surface needs -o", NULL);
   contour_stack s;
   if (contour_read(in, &s, NULL, "plot", err, sizeof err) != 0) {
     fprintf(stderr, "plot: %s\n", err);
@@ -239,8 +327,9 @@ int main(int argc, char **argv) {
   if (argc >= 2 && strcmp(argv[1], "lines") == 0) return lines(argc, argv);
   if (argc >= 2 && strcmp(argv[1], "surface") == 0) return surface(argc, argv);
   if (argc >= 2 && (strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0)) {
-    usage(NULL, NULL);
+    help();
     return 0;
   }
-  return usage(argc >= 2 ? "unknown mode" : "no mode", argc >= 2 ? argv[1] : NULL);
+  return usage(any_usage, argc >= 2 ? "unknown mode, use lines or surface" : "no mode, use lines or surface",
+               argc >= 2 ? argv[1] : NULL);
 }

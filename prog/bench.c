@@ -27,11 +27,12 @@ typedef struct {
 static const mode modes[] = {
     {"--ring", bench_ring_main,
      "P --laps K [--net ideal|bus|loggp] [--m S] [--c S] [--work U] [--profile NAME]\n"
-     "      [--trace-csv FILE] [--trace-json FILE]\n"
-     "      a token ring of P ranks on P processors, K laps: simulator speed"},
+     "      [--trace-csv FILE] [--trace-json FILE] [--trace-limit BYTES]\n"
+     "      a token ring of P ranks on P processors, K laps: simulator speed (P up to\n"
+     "      1000000, K up to 1e9, P x K up to 1e10; traces up to --trace-limit, 1G)"},
     {"--switch", bench_switch_main,
      "N\n"
-     "      two coroutines switching N times: ns per context switch"},
+     "      two coroutines switching N times (2 to 1e10): ns per context switch"},
     {"--model", bench_model,
      "[--diag LIST] [--procs LIST] [--m S] [--c S] [--net MODEL] [-o FILE]\n"
      "      section 7.2: the simulated time per diagonal of mu(0), D nodes a diagonal,\n"
@@ -59,9 +60,11 @@ static const mode modes[] = {
      "      speedup (default: dicompyler's BODY and Lt Lung, prostate_0; -j 1,2; best of 5)"},
     {"--tiler", bench_tiler,
      "[--points N[,N...]] [--naive N] [--input STACK]... [--cost area|span]\n"
-     "      [--seed S] [--repeat R]\n"
+     "      [--seed S] [--repeat R] [--data DIR]\n"
      "      the exact serial tiler's speed and peak memory, the naive reference beside it\n"
-     "      (no options: 500 and 5000 points, the naive reference at 500, prostate_0)"},
+     "      (no options: 500 and 5000 points, the naive reference at 500, prostate_0);\n"
+     "      a STACK named without a folder is looked for here, in --data DIR, then in\n"
+     "      the installed data (PREFIX/share/tilesim) or the source tree's"},
 };
 enum { NMODES = sizeof modes / sizeof *modes };
 
@@ -71,6 +74,10 @@ static void help(void) {
        "bench -- tilesim's benchmarks; each prints CSV with a header row.\n");
   printf("  bench %s\n\n", bench_paper_help);
   for (int i = 0; i < NMODES; i++) printf("  bench %s %s\n\n", modes[i].opt, modes[i].help);
+  puts("Exit status: 0 done, 1 bad input or a failed run (no data row is printed for\n"
+       "it), 2 bad usage (one line saying what the option takes, and the usage line).\n"
+       "Progress goes to stderr: a self-rewriting line on a terminal, else a line\n"
+       "every 5 s (TILESIM_PROGRESS_S sets the interval).");
 }
 
 static int bench_main(int argc, char **argv) {

@@ -31,12 +31,13 @@
  * calibration).  stderr says what was measured and how long it all took. */
 #include "bench_calibrate.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "bench_list.h"
+#include "args.h"
 #include "bench_micro.h"
 #include "bench_paper.h"
 #include "cpuload.h"
@@ -48,11 +49,20 @@
 #include "weights.h"
 #include "xmem.h"
 
-static int usage(const char *why, const char *val) {
-  if (why) fprintf(stderr, "bench: %s (%s)\n", why, val ? val : "");
-  fprintf(stderr, "usage: bench --calibrate [--points LIST] [--procs LIST] [--repeat R] [--seed S] "
-                  "[--messages K]\n"
-                  "                        [--alloc A] [--block k] [--schedule S] [--min-diag d]\n");
+static const char calibrate_usage[] =
+    "usage: bench --calibrate [--points LIST] [--procs LIST] [--repeat R] [--seed S] [--messages K] "
+    "[--alloc A] [--block k] [--schedule S] [--min-diag d]   (bench --help: every mode)\n";
+
+/* Bad usage: "bench: why", arg (or NULL) shown after it, the usage line, 2. */
+static int usage(const char *why, const char *arg) {
+  char shown[200];
+  fprintf(stderr, "bench: %s", why);
+  if (arg) {
+    args_show(arg, shown, sizeof shown);
+    fprintf(stderr, " (%s)", shown);
+  }
+  fputc('\n', stderr);
+  fputs(calibrate_usage, stderr);
   return 2;
 }
 
@@ -164,7 +174,8 @@ int bench_calibrate(int argc, char **argv) {
   double w0 = wallclock();
   int repeat = 10, messages = 100000;
   unsigned long long seed = 1993;
-  bench_list procs = {0}, sizes = {0};
+  args_list procs = {0}, sizes = {0};
+  char msg[400];
   run_config rc;
   run_config_init(&rc);
   rc.machine.warn = NULL;
@@ -172,43 +183,34 @@ int bench_calibrate(int argc, char **argv) {
   static const char *const algo_opts[] = {"--alloc", "--min-diag", "--block", "--schedule"};
   for (int i = 2; i < argc; i += 2) {   /* an option and its value */
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-    char *e;
+    long x = 0;
+    int bad = 0;
+    int known = strcmp(a, "--points") == 0 || strcmp(a, "--procs") == 0 || strcmp(a, "--repeat") == 0 ||
+                strcmp(a, "--messages") == 0 || strcmp(a, "--seed") == 0;
+    for (size_t k = 0; k < sizeof algo_opts / sizeof *algo_opts; k++) known |= strcmp(a, algo_opts[k]) == 0;
+    if (!known) return usage(a[0] == '-' ? "unknown option" : "unexpected argument", a);
     if (!v) return usage("an option needs a value", a);
-    if (strcmp(a, "--points") == 0) {
-      if (bench_list_parse(v, &sizes, 1, 3, 100000) != 0) return usage("--points takes a list of 3..100000", v);
-    } else if (strcmp(a, "--procs") == 0) {
-      if (bench_list_parse(v, &procs, 1, 1, 64) != 0) return usage("--procs takes a list of 1..64", v);
-    } else if (strcmp(a, "--repeat") == 0) {
-      long x = strtol(v, &e, 10);
-      if (*e || e == v || x < 1 || x > 1000) return usage("--repeat takes 1..1000", v);
-      repeat = (int)x;
-    } else if (strcmp(a, "--messages") == 0) {
-      long x = strtol(v, &e, 10);
-      if (*e || e == v || x < 10 || x > 100000000) return usage("--messages takes 10..1e8", v);
-      messages = (int)x;
-    } else if (strcmp(a, "--seed") == 0) {
-      seed = strtoull(v, &e, 10);
-      if (*e || e == v) return usage("--seed takes a whole number", v);
-    } else {
-      int algo = 0;
-      for (size_t k = 0; k < sizeof algo_opts / sizeof *algo_opts; k++) algo |= strcmp(a, algo_opts[k]) == 0;
-      char e2[200];
-      if (!algo) return usage("unknown option", a);
-      if (run_option(&rc, a, v, e2, sizeof e2) != 1) return usage(e2, v);
-    }
+    if (strcmp(a, "--points") == 0) bad = args_list_parse(a, v, 1, 3, 100000, &sizes, msg, sizeof msg);
+    else if (strcmp(a, "--procs") == 0) bad = args_list_parse(a, v, 1, 1, 64, &procs, msg, sizeof msg);
+    else if (strcmp(a, "--repeat") == 0) bad = args_long(a, v, 1, 1000, &x, msg, sizeof msg), repeat = (int)x;
+    else if (strcmp(a, "--messages") == 0)
+      bad = args_long(a, v, 10, 100000000, &x, msg, sizeof msg), messages = (int)x;
+    else if (strcmp(a, "--seed") == 0) bad = args_u64(a, v, 0, ULLONG_MAX, &seed, msg, sizeof msg);
+    else bad = run_option(&rc, a, v, msg, sizeof msg) != 1;   /* one of algo_opts */
+    if (bad) return usage(msg, NULL);
   }
-  if (procs.n == 0) bench_list_parse("1,2,3", &procs, 1, 1, 64);
-  if (sizes.n == 0) bench_list_parse("2000", &sizes, 1, 3, 100000);
+  if (procs.n == 0) args_list_parse("--procs", "1,2,3", 1, 1, 64, &procs, msg, sizeof msg);
+  if (sizes.n == 0) args_list_parse("--points", "2000", 1, 3, 100000, &sizes, msg, sizeof msg);
   char err[300];
 
   /* P = 1 first: the speedups' base. */
-  bench_list order = procs;
+  args_list order = procs;
   int has1 = 0;
   for (int i = 0; i < procs.n; i++) has1 |= procs.v[i] == 1;
   if (!has1) {
     order.v[0] = 1;
-    for (int i = 0; i < procs.n && i + 1 < BENCH_LIST_MAX; i++) order.v[i + 1] = procs.v[i];
-    order.n = procs.n + 1 < BENCH_LIST_MAX ? procs.n + 1 : BENCH_LIST_MAX;
+    for (int i = 0; i < procs.n && i + 1 < ARGS_LIST_MAX; i++) order.v[i + 1] = procs.v[i];
+    order.n = procs.n + 1 < ARGS_LIST_MAX ? procs.n + 1 : ARGS_LIST_MAX;
   }
 
   /* The micro-benchmarks: messages, then busy cores. */

@@ -17,8 +17,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "args.h"
 #include "bench_judge.h"
-#include "bench_list.h"
 #include "csvtab.h"
 
 /* The d = 1 rows of a speedup sweep into s. */
@@ -56,26 +56,43 @@ static int read_dsweep(const char *path, judge_sweep *s, char *err, size_t errle
   return 0;
 }
 
+static const char claims_usage[] =
+    "usage: bench --claims SPEEDUP.csv [MIN_DIAG.csv] [--require LIST]   (bench --help: every mode)\n";
+
+static int usage(const char *why, const char *arg) {
+  char shown[200];
+  fprintf(stderr, "bench: %s", why);
+  if (arg) {
+    args_show(arg, shown, sizeof shown);
+    fprintf(stderr, " (%s)", shown);
+  }
+  fputc('\n', stderr);
+  fputs(claims_usage, stderr);
+  return 2;
+}
+
 int bench_claims(int argc, char **argv) {
   const char *sp = NULL, *md = NULL;
-  bench_list req = {0};
+  args_list req = {0};
+  char msg[400];
   for (int i = 2; i < argc; i++) {
-    if (strcmp(argv[i], "--require") == 0 && i + 1 < argc) {
-      if (bench_list_parse(argv[++i], &req, 1, 1, 7) != 0) {
-        fprintf(stderr, "bench: --require takes claim numbers 1..7 (%s)\n", argv[i]);
-        return 2;
-      }
-    } else if (!sp) sp = argv[i];
-    else if (!md) md = argv[i];
-    else {
-      fprintf(stderr, "usage: bench --claims SPEEDUP.csv [MIN_DIAG.csv] [--require LIST]\n");
-      return 2;
+    const char *a = argv[i];
+    if (strcmp(a, "--require") == 0) {
+      if (i + 1 == argc) return usage("an option needs a value", a);
+      if (args_list_max(a, argv[++i], 1, 1, 7, 7, &req, msg, sizeof msg) != 0) return usage(msg, NULL);
+    } else if (a[0] == '-' && a[1] != 0) {
+      return usage("unknown option", a);
+    } else if (!a[0]) {
+      return usage("a sweep is a CSV file name", a);
+    } else if (!sp) {
+      sp = a;
+    } else if (!md) {
+      md = a;
+    } else {
+      return usage("at most two sweeps, SPEEDUP.csv and MIN_DIAG.csv", a);
     }
   }
-  if (!sp) {
-    fprintf(stderr, "usage: bench --claims SPEEDUP.csv [MIN_DIAG.csv] [--require LIST]\n");
-    return 2;
-  }
+  if (!sp) return usage("no sweep given", NULL);
   char err[400];
   static judge_sweep s;
   judge_init(&s);

@@ -20,6 +20,7 @@
 #include "rtstruct.h"
 #include "wallclock.h"
 #include "xmem.h"
+#include "args.h"
 
 static unsigned char *slurp(const char *path, size_t *len) {
   FILE *f = fopen(path, "rb");
@@ -82,27 +83,30 @@ static int one(const char *path, int repeat) {
   return 0;
 }
 
+static const char dicom_usage[] = "usage: bench --dicom [FILE...] [--repeat R]   (bench --help: every mode)\n";
+
 int bench_dicom(int argc, char **argv) {
   int repeat = 20, nfiles = 0;
   const char **files = xcalloc((size_t)argc + 1, sizeof *files);
+  char err[300], shown[200];
   for (int i = 2; i < argc; i++) {
+    const char *why = NULL;
     if (strcmp(argv[i], "--repeat") == 0) {
-      char *end;
-      long v = i + 1 < argc ? strtol(argv[i + 1], &end, 10) : 0;
-      if (i + 1 >= argc || *end || end == argv[i + 1] || v < 1 || v > 100000) {
-        fprintf(stderr, "bench: --repeat takes a whole number from 1 to 100000 (%s)\n",
-                i + 1 < argc ? argv[i + 1] : "missing");
-        free(files);
-        return 2;
-      }
-      repeat = (int)v;
-      i++;
-    } else if (argv[i][0] == '-') {
-      fprintf(stderr, "bench: --dicom: unknown option (%s)\n", argv[i]);
-      free(files);
-      return 2;
+      long v;
+      if (i + 1 >= argc) why = "an option needs a value (--repeat)";
+      else if (args_long(argv[i], argv[i + 1], 1, 100000, &v, err, sizeof err) != 0) why = err;
+      else repeat = (int)v, i++;
+    } else if (argv[i][0] == '-' || !argv[i][0]) {
+      args_show(argv[i], shown, sizeof shown);
+      snprintf(err, sizeof err, "%s (%s)", argv[i][0] ? "unknown option" : "a file name is not empty", shown);
+      why = err;
     } else {
       files[nfiles++] = argv[i];
+    }
+    if (why) {
+      fprintf(stderr, "bench: %s\n%s", why, dicom_usage);
+      free(files);
+      return 2;
     }
   }
   if (nfiles == 0) files[nfiles++] = "tests/data/rtstruct/dicompyler_rtss.dcm";

@@ -17,44 +17,55 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "args.h"
 #include "atomicfile.h"
-#include "bench_list.h"
 #include "contour.h"
 #include "gen.h"
 #include "run.h"
 #include "xmem.h"
 
-static int usage(const char *why, const char *val) {
-  if (why) fprintf(stderr, "bench: %s (%s)\n", why, val ? val : "");
-  fprintf(stderr, "usage: bench --model [--diag LIST] [--procs LIST] [--m S] [--c S] "
-                  "[--net ideal|bus|loggp] [-o FILE]\n"
-                  "       bench --glass [--slices N] [--points N] [-o FILE]\n");
+static const char model_usage[] =
+    "usage: bench --model [--diag LIST] [--procs LIST] [--m S] [--c S] [--net ideal|bus|loggp] "
+    "[-o FILE]   (bench --help: every mode)\n";
+static const char glass_usage[] =
+    "usage: bench --glass [--slices N] [--points N] [-o FILE]   (bench --help: every mode)\n";
+
+/* Bad usage: "bench: why", the mode's usage line, 2.  arg (or NULL) is
+ * shown after why as util/args shows values. */
+static int usage(const char *line, const char *why, const char *arg) {
+  char shown[200];
+  fprintf(stderr, "bench: %s", why);
+  if (arg) {
+    args_show(arg, shown, sizeof shown);
+    fprintf(stderr, " (%s)", shown);
+  }
+  fputc('\n', stderr);
+  fputs(line, stderr);
   return 2;
 }
 
 int bench_model(int argc, char **argv) {
-  bench_list diags = {0}, procs = {0};
+  args_list diags = {0}, procs = {0};
   const char *outpath = NULL;
   run_config rc;
   run_config_init(&rc);
-  char err[300];
+  char err[400];
   for (int i = 2; i < argc; i += 2) {   /* every option takes a value */
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-    if (!v) return usage("an option needs a value", a);
-    if (strcmp(a, "--diag") == 0) {
-      if (bench_list_parse(v, &diags, 1, 4, 5000) != 0) return usage("--diag takes a list of 4..5000", v);
-    } else if (strcmp(a, "--procs") == 0) {
-      if (bench_list_parse(v, &procs, 1, 1, 4096) != 0) return usage("--procs takes a list of 1..4096", v);
-    } else if (strcmp(a, "-o") == 0) {
-      outpath = v;
-    } else {
-      int k = run_option(&rc, a, v, err, sizeof err);
-      if (k < 0) return usage(err, NULL);
-      if (k == 0 || strcmp(a, "--procs") == 0) return usage("unknown option", a);
-    }
+    int bad = 0;
+    run_config scratch = rc;
+    int theirs = strcmp(a, "--procs") != 0 && run_option(&scratch, a, "", err, sizeof err) != 0;
+    if (strcmp(a, "--diag") != 0 && strcmp(a, "--procs") != 0 && strcmp(a, "-o") != 0 && !theirs)
+      return usage(model_usage, a[0] == '-' ? "unknown option" : "unexpected argument", a);
+    if (!v) return usage(model_usage, "an option needs a value", a);
+    if (strcmp(a, "--diag") == 0) bad = args_list_parse(a, v, 1, 4, 5000, &diags, err, sizeof err);
+    else if (strcmp(a, "--procs") == 0) bad = args_list_parse(a, v, 1, 1, RUN_MAX_PROCS, &procs, err, sizeof err);
+    else if (strcmp(a, "-o") == 0) bad = args_name(a, v, "a file name", 0, err, sizeof err), outpath = v;
+    else bad = run_option(&rc, a, v, err, sizeof err) < 0;
+    if (bad) return usage(model_usage, err, NULL);
   }
-  if (diags.n == 0) bench_list_parse("100,250,500", &diags, 1, 4, 5000);
-  if (procs.n == 0) bench_list_parse("2..16", &procs, 1, 1, 4096);
+  if (diags.n == 0) args_list_parse("--diag", "100,250,500", 1, 4, 5000, &diags, err, sizeof err);
+  if (procs.n == 0) args_list_parse("--procs", "2..16", 1, 1, RUN_MAX_PROCS, &procs, err, sizeof err);
   atomicfile af = {NULL, NULL, NULL};
   FILE *f = stdout;
   if (outpath) {
@@ -105,19 +116,21 @@ int bench_model(int argc, char **argv) {
 int bench_glass(int argc, char **argv) {
   int slices = 24, points = 96;
   const char *outpath = NULL;
+  char err[400];
   for (int i = 2; i < argc; i += 2) {   /* every option takes a value */
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-    char *e = NULL;
-    long x = v ? strtol(v, &e, 10) : 0;
-    if (!v) return usage("an option needs a value", a);
-    if (strcmp(a, "-o") == 0) outpath = v;
-    else if (strcmp(a, "--slices") == 0 && !*e && x >= 3 && x <= 10000) slices = (int)x;
-    else if (strcmp(a, "--points") == 0 && !*e && x >= 3 && x <= 100000) points = (int)x;
-    else return usage("unknown option or bad value", a);
+    long x = 0;
+    int bad = 0;
+    if (strcmp(a, "-o") != 0 && strcmp(a, "--slices") != 0 && strcmp(a, "--points") != 0)
+      return usage(glass_usage, a[0] == '-' ? "unknown option" : "unexpected argument", a);
+    if (!v) return usage(glass_usage, "an option needs a value", a);
+    if (strcmp(a, "-o") == 0) bad = args_name(a, v, "a file name", 0, err, sizeof err), outpath = v;
+    else if (strcmp(a, "--slices") == 0) bad = args_long(a, v, 3, 10000, &x, err, sizeof err), slices = (int)x;
+    else bad = args_long(a, v, 3, 100000, &x, err, sizeof err), points = (int)x;
+    if (bad) return usage(glass_usage, err, NULL);
   }
   contour_stack s;
   gen_glass(&s, slices, points);
-  char err[300];
   atomicfile af = {NULL, NULL, NULL};
   FILE *f = stdout;
   if (outpath) {

@@ -26,6 +26,7 @@
 #include "bench_paper.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <poll.h>
 #include <stdio.h>
@@ -34,8 +35,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "args.h"
 #include "atomicfile.h"
-#include "bench_list.h"
 #include "bench_net.h"
 #include "bench_variant.h"
 #include "contour.h"
@@ -50,7 +51,7 @@ const char bench_paper_help[] =
     "      [--m LIST] [--c LIST] [--net ideal|bus|loggp] [--machine NAME] [--seed S]\n"
     "      [--input STACK [--pair K]] [-o FILE] [--jobs N] [--backend sim|threads]\n"
     "      [--repeat R] [--topology LIST] [--place LIST] [--hop-latency S]\n"
-    "      [--switching cut-through|store-and-forward] [--print-place]\n"
+    "      [--switching cut-through|store-and-forward] [--print-place] [--no-wall]\n"
     "      [--variant LIST | --block LIST --schedule static|dynamic[,...]]\n"
     "      the paper's experiments (no mode option): every combination is a run;\n"
     "      LIST is numbers and ranges, e.g. 1..16 or 100,200,300.  Defaults: points\n"
@@ -58,7 +59,9 @@ const char bench_paper_help[] =
     "      --backend threads runs them on threads here: sim_time is then wall-clock\n"
     "      seconds (the backend column says which), the fastest of R runs (default 10).\n"
     "      --variant paper,fit,block16,dynamic,dynamic+block16: the paper's algorithm and\n"
-    "      its variants side by side (variant, messages and idle_per_slave columns)";
+    "      its variants side by side (variant, messages and idle_per_slave columns).\n"
+    "      --no-wall leaves the wall_s column (this host's time) empty, so that the\n"
+    "      same options give the same bytes on every run";
 
 typedef struct {
   int points, procs, alloc, d, hidden, pairid;
@@ -263,145 +266,183 @@ static int run_all(const plan *pl, outcome *out, int jobs, int progress) {
   return bad ? -1 : 0;
 }
 
-static int usage(const char *why, const char *val) {
-  if (why) {
-    fprintf(stderr, "bench: %s", why);
-    if (val) fprintf(stderr, " (%s)", val);
-    fputc('\n', stderr);
-  }
-  fprintf(stderr, "usage: bench [--procs LIST] [--points LIST] [--alloc half|size[,...]] "
-                  "[--min-diag LIST] [--m LIST] [--c LIST] [--net MODEL] [--machine NAME] "
-                  "[--seed S] [--input STACK [--pair K]] [-o FILE] [--jobs N] [--backend sim|threads] "
-                  "[--repeat R] [--topology LIST] [--place LIST] [--hop-latency S] [--switching MODE] "
-                  "[--print-place] [--variant LIST | --block LIST --schedule static|dynamic[,...]]\n");
+static const char usage_line[] =
+    "usage: bench [--procs LIST] [--points LIST] [--alloc half|size[,...]] [--min-diag LIST] "
+    "[--m LIST] [--c LIST] [--net MODEL] [--machine NAME] [--seed S] [--input STACK [--pair K]] "
+    "[-o FILE] [--jobs N] [--backend sim|threads] [--repeat R] [--topology LIST] [--place LIST] "
+    "[--hop-latency S] [--switching MODE] [--print-place] "
+    "[--variant LIST | --block LIST --schedule static|dynamic[,...]] [--no-wall]   "
+    "(bench --help: every mode)\n";
+
+/* Bad usage: "bench: why" (why already says the value), the usage line, 2. */
+static int usage(const char *why) {
+  fprintf(stderr, "bench: %s\n", why);
+  fputs(usage_line, stderr);
   return 2;
 }
 
+/* The same for a message about one argument, shown as util/args shows values. */
+static int usage_arg(const char *why, const char *arg) {
+  char shown[200], msg[400];
+  args_show(arg, shown, sizeof shown);
+  snprintf(msg, sizeof msg, "%s (%s)", why, shown);
+  return usage(msg);
+}
+
 int bench_paper(int argc, char **argv) {
-  bench_list procs = {0}, points = {0}, diags = {0}, ms = {0}, cs = {0};
-  int allocs[3] = {ALLOC_HALF, -1, -1}, nalloc = 1, jobs = 1, pairk = 0, repeat = 0;
+  args_list procs = {0}, points = {0}, diags = {0}, ms = {0}, cs = {0};
+  int allocs[8] = {ALLOC_HALF}, nalloc = 1, jobs = 1, pairk = 0, repeat = 0, pair_given = 0;
+  int no_wall = 0;
   int scheds[2] = {PAR_STATIC, -1}, nsched = 1, nvar = 0, lists = 0;
-  bench_list blocks = {0};
+  args_list blocks = {0};
   bench_variant var[BENCH_VARIANTS_MAX];
   const char *outpath = NULL, *input = NULL;
   unsigned long long seed = 1993;
   run_config rc;
   run_config_init(&rc);
-  char err[300];
+  char err[400];
   static bench_topos topos;
   static bench_places places;
   topos.n = places.n = 0;
   int print_place = 0, net_given = 0;
-  for (int i = 1; i < argc; i += 2) {   /* every option takes a value but --print-place */
+  for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-    if (strcmp(a, "--print-place") == 0) {
-      print_place = 1;
-      i--;
+    long x;
+    int bad = 0;
+    if (a[0] != '-') return usage_arg("bench takes options, not arguments; bench --help lists them", a);
+    if (strcmp(a, "--no-wall") == 0) {
+      no_wall = 1;
       continue;
     }
-    if (!v) return usage("an option needs a value", a);
-    if (strcmp(a, "--topology") == 0) {
-      if (bench_topos_parse(v, &topos, err, sizeof err) != 0) return usage(err, NULL);
-    } else if (strcmp(a, "--place") == 0) {
-      if (bench_places_parse(v, &places, err, sizeof err) != 0) return usage(err, NULL);
-    } else if (strcmp(a, "--procs") == 0) {
-      if (bench_list_parse(v, &procs, 1, 1, 4096) != 0) return usage("--procs takes a list of 1..4096", v);
-    } else if (strcmp(a, "--points") == 0) {
-      if (bench_list_parse(v, &points, 1, 3, 100000) != 0) return usage("--points takes a list of 3..100000", v);
-    } else if (strcmp(a, "--min-diag") == 0) {
-      if (bench_list_parse(v, &diags, 1, 1, 1e9) != 0) return usage("--min-diag takes a list of numbers >= 1", v);
-    } else if (strcmp(a, "--m") == 0 || strcmp(a, "--c") == 0) {
-      if (bench_list_parse(v, a[2] == 'm' ? &ms : &cs, 0, 0, 1e9) != 0)
-        return usage("--m and --c take a list of seconds >= 0", v);
-    } else if (strcmp(a, "--alloc") == 0) {
-      nalloc = 0;
-      char buf[64];
-      snprintf(buf, sizeof buf, "%s", v);
-      for (char *t = strtok(buf, ","); t; t = strtok(NULL, ",")) {
-        split_alloc x;
-        if (split_alloc_parse(t, &x) != 0 || nalloc == 3) return usage("--alloc takes half, size, fit or a list of them", v);
-        allocs[nalloc++] = (int)x;
+    if (strcmp(a, "--print-place") == 0) {
+      print_place = 1;
+      continue;
+    }
+    if (!v) {
+      run_config scratch = rc;
+      static const char *const own[] = {"--procs", "--points", "--min-diag", "--m", "--c", "--alloc",
+                                        "--seed", "--jobs", "--repeat", "--input", "--pair", "-o",
+                                        "--topology", "--place", "--block", "--schedule", "--variant"};
+      int known = run_option(&scratch, a, "", err, sizeof err) != 0;
+      for (size_t k = 0; k < sizeof own / sizeof *own; k++) known |= strcmp(a, own[k]) == 0;
+      return usage_arg(known ? "an option needs a value" : "unknown option", a);
+    }
+    i++;
+    if (strcmp(a, "--topology") == 0 || strcmp(a, "--place") == 0) {
+      char why[300];
+      if ((a[2] == 't' ? bench_topos_parse(v, &topos, why, sizeof why)
+                       : bench_places_parse(v, &places, why, sizeof why)) != 0) {
+        /* the message names the option */
+        if (strncmp(why, a, strlen(a)) == 0) snprintf(err, sizeof err, "%s", why);
+        else snprintf(err, sizeof err, "%s: %s", a, why);
+        bad = 1;
       }
-      if (nalloc == 0) return usage("--alloc takes half, size, fit or a list of them", v);
+    } else if (strcmp(a, "--procs") == 0) {
+      bad = args_list_parse(a, v, 1, 1, RUN_MAX_PROCS, &procs, err, sizeof err);
+    } else if (strcmp(a, "--points") == 0) {
+      bad = args_list_parse(a, v, 1, 3, 100000, &points, err, sizeof err);
+    } else if (strcmp(a, "--min-diag") == 0) {
+      bad = args_list_parse(a, v, 1, 1, 1 << 30, &diags, err, sizeof err);
+    } else if (strcmp(a, "--m") == 0 || strcmp(a, "--c") == 0) {
+      bad = args_list_parse(a, v, 0, 0, 1e9, a[2] == 'm' ? &ms : &cs, err, sizeof err);
+    } else if (strcmp(a, "--alloc") == 0) {
+      char words[200];
+      run_alloc_words(words, sizeof words);
+      int idx[8], nwords = 1;
+      for (const char *w = words; *w; w++) nwords += *w == '|';
+      nalloc = args_word_list(a, v, words, idx, nwords < 8 ? nwords : 8, err, sizeof err);
+      bad = nalloc < 0;
+      for (int k = 0; k < nalloc; k++) {   /* the k-th name of words, parsed */
+        const char *w = words;
+        for (int j = 0; j < idx[k]; j++) w = strchr(w, '|') + 1;
+        char name[32];
+        snprintf(name, sizeof name, "%.*s", (int)strcspn(w, "|"), w);
+        split_alloc al;
+        if (split_alloc_parse(name, &al) != 0) xpanic("bench: alloc name %s", name);
+        allocs[k] = (int)al;
+      }
       lists = 1;
     } else if (strcmp(a, "--block") == 0) {
-      if (bench_list_parse(v, &blocks, 1, 1, 1 << 20) != 0) return usage("--block takes a list of 1..1048576", v);
+      bad = args_list_parse(a, v, 1, 1, 1 << 20, &blocks, err, sizeof err);
       lists = 1;
     } else if (strcmp(a, "--schedule") == 0) {
-      nsched = 0;
-      char buf[64];
-      snprintf(buf, sizeof buf, "%s", v);
-      for (char *t = strtok(buf, ","); t; t = strtok(NULL, ",")) {
-        par_schedule x;
-        if (par_schedule_parse(t, &x) != 0 || nsched == 2) return usage("--schedule takes static, dynamic or both", v);
-        scheds[nsched++] = (int)x;
+      int idx[2];
+      nsched = args_word_list(a, v, "static|dynamic", idx, 2, err, sizeof err);
+      bad = nsched < 0;
+      for (int k = 0; k < nsched; k++) {
+        par_schedule sch;
+        if (par_schedule_parse(idx[k] ? "dynamic" : "static", &sch) != 0) xpanic("bench: schedule");
+        scheds[k] = (int)sch;
       }
-      if (nsched == 0) return usage("--schedule takes static, dynamic or both", v);
       lists = 1;
     } else if (strcmp(a, "--variant") == 0) {
-      if (bench_variant_parse(v, var, &nvar, err, sizeof err) != 0) return usage(err, NULL);
+      char why[300];
+      if (bench_variant_parse(v, var, &nvar, why, sizeof why) != 0) {
+        if (strncmp(why, a, strlen(a)) == 0) snprintf(err, sizeof err, "%s", why);
+        else snprintf(err, sizeof err, "%s: %s", a, why);
+        bad = 1;
+      }
     } else if (strcmp(a, "--seed") == 0) {
-      char *e;
-      seed = strtoull(v, &e, 10);
-      if (*e || e == v) return usage("--seed takes a whole number", v);
+      bad = args_u64(a, v, 0, ULLONG_MAX, &seed, err, sizeof err);
     } else if (strcmp(a, "--jobs") == 0) {
-      char *e;
-      long j = strtol(v, &e, 10);
-      if (*e || e == v || j < 1 || j > 256) return usage("--jobs takes 1..256", v);
-      jobs = (int)j;
+      bad = args_long(a, v, 1, 256, &x, err, sizeof err);
+      jobs = (int)x;
     } else if (strcmp(a, "--repeat") == 0) {
-      char *e;
-      long r = strtol(v, &e, 10);
-      if (*e || e == v || r < 1 || r > 1000) return usage("--repeat takes 1..1000", v);
-      repeat = (int)r;
+      bad = args_long(a, v, 1, 1000, &x, err, sizeof err);
+      repeat = (int)x;
     } else if (strcmp(a, "--input") == 0) {
+      bad = args_name(a, v, "a contour stack", 1, err, sizeof err);
       input = v;
     } else if (strcmp(a, "--pair") == 0) {
-      char *e;
-      long k = strtol(v, &e, 10);
-      if (*e || e == v || k < 0) return usage("--pair takes a pair number, 0 or more", v);
-      pairk = (int)k;
+      bad = args_long(a, v, 0, 1 << 30, &x, err, sizeof err);
+      pairk = (int)x;
+      pair_given = 1;
     } else if (strcmp(a, "-o") == 0) {
+      bad = args_name(a, v, "a file name", 0, err, sizeof err);
       outpath = v;
     } else {
       int k = run_option(&rc, a, v, err, sizeof err);
-      if (k < 0) return usage(err, NULL);
-      if (k == 0) return usage("unknown option", a);
+      if (k == 0) return usage_arg("unknown option", a);
+      bad = k < 0;
       net_given |= strcmp(a, "--net") == 0;
     }
+    if (bad) return usage(err);
   }
+  if (pair_given && !input) return usage("--pair needs --input (it picks a pair of a real stack)");
+  if (no_wall && rc.backend != RUN_SIM)
+    return usage("--no-wall leaves host times out, but --backend threads measures nothing else");
   if (topos.n && net_given)
-    return usage("--net and --topology both choose the network: give one", NULL);
+    return usage("--net and --topology both choose the network: give one");
   if ((topos.n || rc.machine.topo.kind != TOPO_NONE) && rc.backend != RUN_SIM)
-    return usage("--topology describes the simulated machine (--backend sim)", NULL);
-  if (nvar > 0 && lists) return usage("--variant names whole variants: give it, or --alloc, --block and --schedule lists", NULL);
+    return usage("--topology describes the simulated machine (--backend sim)");
+  if (nvar > 0 && lists) return usage("--variant names whole variants: give it, or --alloc, --block and --schedule lists");
   if (nvar == 0) {   /* the cross product of the lists */
     if (blocks.n == 0) blocks.n = 1, blocks.v[0] = 1;
     for (int b = 0; b < nalloc; b++)
       for (int s = 0; s < nsched; s++)
         for (int k = 0; k < blocks.n; k++) {
-          if (nvar == BENCH_VARIANTS_MAX) return usage("too many variants", NULL);
+          if (nvar == BENCH_VARIANTS_MAX) return usage("too many variants: --alloc x --schedule x --block at most 64");
           var[nvar++] = (bench_variant){(split_alloc)allocs[b], (int)blocks.v[k], (par_schedule)scheds[s]};
         }
   }
   if (rc.backend != RUN_SIM && jobs > 1)
-    return usage("--jobs runs simulations side by side; measured runs (--backend threads) go one at a time", NULL);
+    return usage("--jobs runs simulations side by side; measured runs (--backend threads) go one at a time");
   int limit = run_backend_ranks(rc.backend);
   if (procs.n == 0 && limit > 0) {   /* bench-mpi: the processes mpirun gave */
     char all[32];
     snprintf(all, sizeof all, "1..%d", limit);
-    bench_list_parse(all, &procs, 1, 1, 4096);
+    args_list_parse("--procs", all, 1, 1, RUN_MAX_PROCS, &procs, err, sizeof err);
   }
-  if (procs.n == 0) bench_list_parse("1..16", &procs, 1, 1, 4096);
+  if (procs.n == 0) args_list_parse("--procs", "1..16", 1, 1, RUN_MAX_PROCS, &procs, err, sizeof err);
   for (int i = 0; limit > 0 && i < procs.n; i++)
     if (run_ranks((int)procs.v[i]) > limit) {
       char msg[160];
       snprintf(msg, sizeof msg, "--procs %d needs %d ranks; the %s run has %d", (int)procs.v[i],
                run_ranks((int)procs.v[i]), run_backend_name(rc.backend), limit);
-      return usage(msg, NULL);
+      return usage(msg);
     }
-  if (points.n == 0) bench_list_parse("100,200,300,400,500", &points, 1, 3, 100000);
-  if (diags.n == 0) bench_list_parse("1", &diags, 1, 1, 1e9);
+  if (points.n == 0) args_list_parse("--points", "100,200,300,400,500", 1, 3, 100000, &points, err, sizeof err);
+  if (diags.n == 0) args_list_parse("--min-diag", "1", 1, 1, 1 << 30, &diags, err, sizeof err);
   if (ms.n == 0) ms.n = 1, ms.v[0] = rc.machine.m;
   if (cs.n == 0) cs.n = 1, cs.v[0] = rc.machine.c;
 
@@ -461,7 +502,7 @@ int bench_paper(int argc, char **argv) {
       if (bad) {
         free(jb);
         contour_stack_free(&stack);
-        return usage(err, NULL);
+        return usage(err);
       }
     }
   }
@@ -513,11 +554,13 @@ int bench_paper(int argc, char **argv) {
     bench_variant bv = {(split_alloc)jb[i].alloc, jb[i].block, (par_schedule)jb[i].sched};
     char vname[64];
     bench_variant_name(&bv, vname, sizeof vname);
-    fprintf(f, "%d,%d,%s,%d,%s,%llu,%.9f,%.6f,%.6f,%llu,%llu,%llu,%.17g,%.6f,%llu,%llu,%llu,%llu,%s,%d,%s",
+    char wall[32] = "";   /* this host's time, left out with --no-wall */
+    if (!no_wall) snprintf(wall, sizeof wall, "%.6f", o[i].wall);
+    fprintf(f, "%d,%d,%s,%d,%s,%llu,%.9f,%.6f,%.6f,%llu,%llu,%llu,%.17g,%s,%llu,%llu,%llu,%llu,%s,%d,%s",
             jb[i].points, jb[i].procs, split_alloc_name((split_alloc)jb[i].alloc), jb[i].d,
             machine, seed, o[i].sim_time, sp, sp / jb[i].procs,
             (unsigned long long)msgs, (unsigned long long)o[i].bytes, (unsigned long long)o[i].nodes,
-            o[i].cost, o[i].wall, (unsigned long long)o[i].msgs[PAR_BOUNDARY],
+            o[i].cost, wall, (unsigned long long)o[i].msgs[PAR_BOUNDARY],
             (unsigned long long)o[i].msgs[PAR_BACKTRACK], (unsigned long long)o[i].msgs[PAR_BOUNDS],
             (unsigned long long)o[i].msgs[PAR_CONTROL], input ? input : "generated", input ? pairk : 0,
             run_backend_name(rc.backend));

@@ -15,49 +15,43 @@
  * once and share links (contention).  The tokens then sum to P*K. */
 #include "bench_ring.h"
 
-#include <errno.h>
-#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "args.h"
+#include "atomicfile.h"
 #include "coro.h"
 #include "mp.h"
 #include "place.h"
 #include "run_net.h"
 #include "sim.h"
+#include "trace.h"
 #include "wallclock.h"
 #include "xmem.h"
 
 static const char ring_usage[] =
     "usage: bench --ring P --laps K [--net ideal|bus|loggp] [--m S] [--c S] [--work U] "
-    "[--profile NAME] [--trace-csv FILE] [--trace-json FILE] [--topology NAME] [--place NAME] "
-    "[--hop-latency S] [--per-byte S] [--switching MODE] [--tokens 1|all] [--print-place]\n";
-static const char switch_usage[] = "usage: bench --switch N\n";
+    "[--profile NAME] [--trace-csv FILE] [--trace-json FILE] [--trace-limit BYTES] [--topology NAME] "
+    "[--place NAME] [--hop-latency S] [--per-byte S] [--switching MODE] [--tokens 1|all] "
+    "[--print-place]   (bench --help: every mode)\n";
+static const char switch_usage[] = "usage: bench --switch N   (bench --help: every mode)\n";
 
-/* ---- option values ------------------------------------------------------ */
+/* The bounds: a ring of at most a million ranks and a billion laps, and
+ * at most RING_MAX_MESSAGES messages in all (P x K: about ten minutes at
+ * the simulator's 15-20 million messages a second); at most 1e10
+ * switches (about two minutes at 13 ns). */
+#define RING_MAX_MESSAGES 1e10
+#define SWITCH_MAX 10000000000ULL
 
-static int parse_long(const char *s, long lo, long hi, long *out) {
-  char *end;
-  errno = 0;
-  long v = strtol(s, &end, 10);
-  if (errno || end == s || *end || v < lo || v > hi) return -1;
-  *out = v;
-  return 0;
-}
-
-static int parse_seconds(const char *s, double *out) {
-  char *end;
-  errno = 0;
-  double v = strtod(s, &end);
-  if (errno || end == s || *end || !(v >= 0) || v > 1e300) return -1;
-  *out = v;
-  return 0;
-}
-
-static int bad(const char *usage, const char *fmt, const char *arg) {
-  fputs("bench: ", stderr);
-  fprintf(stderr, fmt, arg);
+/* Bad usage: "bench: why", arg (or NULL) shown after it, the usage line, 2. */
+static int bad(const char *usage, const char *why, const char *arg) {
+  char shown[200];
+  fprintf(stderr, "bench: %s", why);
+  if (arg) {
+    args_show(arg, shown, sizeof shown);
+    fprintf(stderr, " (%s)", shown);
+  }
   fputc('\n', stderr);
   fputs(usage, stderr);
   return 2;
@@ -107,73 +101,87 @@ int bench_ring_main(int argc, char **argv) {
   int all = 0, print_place = 0, net_given = 0;
   place_spec place = {PLACE_LINEAR, 0, ""};
   const char *tcsv = NULL, *tjson = NULL;
+  unsigned long long limit = TRACE_LIMIT_DEFAULT;
   sim_config cfg;
   sim_config_init(&cfg);
-  /* --profile first, so that the other options override it wherever it is. */
-  for (int i = 2; i + 1 < argc; i++)
-    if (strcmp(argv[i], "--profile") == 0 && sim_profile(argv[i + 1], &cfg) != 0)
-      return bad(ring_usage, "unknown profile '%s'", argv[i + 1]);
   char err[512];
+  static const char *const opts[] = {"--ring", "--laps", "--net", "--m", "--c", "--work", "--per-byte",
+                                     "--hop-latency", "--topology", "--place", "--switching", "--tokens",
+                                     "--profile", "--trace-csv", "--trace-json", "--trace-limit"};
+  /* First every value checked; --profile set first, wherever it is, since
+   * it sets every machine parameter and the others change one each. */
   for (int i = 1; i < argc; i += 2) {
     const char *o = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+    int known = 0;
+    if (strcmp(o, "--print-place") == 0) {
+      i--;
+      continue;
+    }
+    for (size_t k = 0; k < sizeof opts / sizeof *opts; k++) known |= strcmp(o, opts[k]) == 0;
+    if (!known) return bad(ring_usage, o[0] == '-' ? "unknown option" : "unexpected argument", o);
+    if (!v) return bad(ring_usage, "an option needs a value", o);
+    if (strcmp(o, "--profile") == 0 && sim_profile(v, &cfg) != 0) {
+      args_word(o, v, "tc2000|unit", err, sizeof err);
+      return bad(ring_usage, err, NULL);
+    }
+  }
+  for (int i = 1; i < argc; i += 2) {
+    const char *o = argv[i], *v = argv[i + 1];
+    int no = 0;
     if (strcmp(o, "--print-place") == 0) {
       print_place = 1;
       i--;
       continue;
     }
-    if (!v) return bad(ring_usage, "%s needs a value", o);
-    if (strcmp(o, "--ring") == 0) {
-      if (parse_long(v, 1, 1000000, &procs)) return bad(ring_usage, "--ring %s: need 1..1000000 ranks", v);
-    } else if (strcmp(o, "--laps") == 0) {
-      if (parse_long(v, 1, LONG_MAX, &laps)) return bad(ring_usage, "--laps %s: need a count >= 1", v);
-    } else if (strcmp(o, "--net") == 0) {
-      if (sim_net_parse(v, &cfg.net)) return bad(ring_usage, "--net %s: ideal, bus or loggp", v);
+    if (strcmp(o, "--ring") == 0) no = args_long(o, v, 1, 1000000, &procs, err, sizeof err);
+    else if (strcmp(o, "--laps") == 0) no = args_long(o, v, 1, 1000000000, &laps, err, sizeof err);
+    else if (strcmp(o, "--net") == 0) {
+      if (sim_net_parse(v, &cfg.net) != 0) no = args_word(o, v, "ideal|bus|loggp", err, sizeof err);
       net_given = 1;
-    } else if (strcmp(o, "--m") == 0) {
-      if (parse_seconds(v, &cfg.m)) return bad(ring_usage, "--m %s: need seconds >= 0", v);
-    } else if (strcmp(o, "--c") == 0) {
-      if (parse_seconds(v, &cfg.c)) return bad(ring_usage, "--c %s: need seconds >= 0", v);
-    } else if (strcmp(o, "--work") == 0) {
-      if (parse_seconds(v, &work)) return bad(ring_usage, "--work %s: need units >= 0", v);
-    } else if (strcmp(o, "--per-byte") == 0) {
-      if (parse_seconds(v, &cfg.per_byte)) return bad(ring_usage, "--per-byte %s: need seconds >= 0", v);
-    } else if (strcmp(o, "--hop-latency") == 0) {
-      if (parse_seconds(v, &cfg.hop_latency)) return bad(ring_usage, "--hop-latency %s: need seconds >= 0", v);
-    } else if (strcmp(o, "--topology") == 0) {
-      if (topo_parse(v, &cfg.topo, err, sizeof err)) return bad(ring_usage, "%s", err);
-    } else if (strcmp(o, "--place") == 0) {
-      if (place_parse(v, &place, err, sizeof err)) return bad(ring_usage, "%s", err);
+    } else if (strcmp(o, "--m") == 0) no = args_real(o, v, "seconds", 0, 1e9, &cfg.m, err, sizeof err);
+    else if (strcmp(o, "--c") == 0) no = args_real(o, v, "seconds", 0, 1e9, &cfg.c, err, sizeof err);
+    else if (strcmp(o, "--work") == 0) no = args_real(o, v, "units", 0, 1e9, &work, err, sizeof err);
+    else if (strcmp(o, "--per-byte") == 0) no = args_real(o, v, "seconds", 0, 1e9, &cfg.per_byte, err, sizeof err);
+    else if (strcmp(o, "--hop-latency") == 0)
+      no = args_real(o, v, "seconds", 0, 1e9, &cfg.hop_latency, err, sizeof err);
+    else if (strcmp(o, "--topology") == 0 || strcmp(o, "--place") == 0) {
+      char why[300];
+      if (o[2] == 't' ? topo_parse(v, &cfg.topo, why, sizeof why) : place_parse(v, &place, why, sizeof why)) {
+        snprintf(err, sizeof err, "%s: %s", o, why);
+        no = 1;
+      }
     } else if (strcmp(o, "--switching") == 0) {
-      if (strcmp(v, "cut-through") == 0) cfg.store_forward = 0;
-      else if (strcmp(v, "store-and-forward") == 0) cfg.store_forward = 1;
-      else return bad(ring_usage, "--switching %s: cut-through or store-and-forward", v);
+      int w = args_word(o, v, "cut-through|store-and-forward", err, sizeof err);
+      no = w < 0;
+      if (w >= 0) cfg.store_forward = w;
     } else if (strcmp(o, "--tokens") == 0) {
-      if (strcmp(v, "all") == 0) all = 1;
-      else if (strcmp(v, "1") == 0) all = 0;
-      else return bad(ring_usage, "--tokens %s: 1 or all", v);
-    } else if (strcmp(o, "--trace-csv") == 0) {
-      tcsv = v;
-    } else if (strcmp(o, "--trace-json") == 0) {
-      tjson = v;
-    } else if (strcmp(o, "--profile") != 0) {
-      return bad(ring_usage, "unknown option '%s'", o);
-    }
+      int w = args_word(o, v, "1|all", err, sizeof err);
+      no = w < 0;
+      if (w >= 0) all = w;
+    } else if (strcmp(o, "--trace-csv") == 0) no = args_name(o, v, "a file name", 0, err, sizeof err), tcsv = v;
+    else if (strcmp(o, "--trace-json") == 0) no = args_name(o, v, "a file name", 0, err, sizeof err), tjson = v;
+    else if (strcmp(o, "--trace-limit") == 0) no = args_bytes(o, v, &limit, err, sizeof err);
+    if (no) return bad(ring_usage, err, NULL);
   }
-  if (!procs || !laps) return bad(ring_usage, "%s", "--ring P and --laps K are needed");
+  if (!procs || !laps) return bad(ring_usage, "--ring P and --laps K are needed", NULL);
+  if ((double)procs * (double)laps > RING_MAX_MESSAGES) {
+    snprintf(err, sizeof err, "--ring P --laps K sends P x K messages, at most 1e10 (%ld x %ld)", procs, laps);
+    return bad(ring_usage, err, NULL);
+  }
   if (cfg.topo.kind != TOPO_NONE && net_given)
-    return bad(ring_usage, "%s", "--net and --topology both choose the network: give one");
+    return bad(ring_usage, "--net and --topology both choose the network: give one", NULL);
   cfg.procs = (int)procs;
   cfg.warn = stderr;
 
   /* The placement: rank r on processor map[r] of the machine. */
   topo_spec msp = cfg.topo.kind != TOPO_NONE ? cfg.topo : (topo_spec){TOPO_FULL, 0, 0};
   topo *mach = topo_new(&msp, (int)procs, err, sizeof err);
-  if (!mach) return bad(ring_usage, "%s", err);
+  if (!mach) return bad(ring_usage, err, NULL);
   int *map = xmallocarray((size_t)procs, sizeof *map);
   if (place_map(&place, mach, (int)procs, map, err, sizeof err) != 0) {
     free(map);
     topo_free(mach);
-    return bad(ring_usage, "%s", err);
+    return bad(ring_usage, err, NULL);
   }
   if (print_place) {
     char what[PLACE_PATH_MAX + 200], tn[64], pn[PLACE_PATH_MAX + 16];
@@ -184,55 +192,55 @@ int bench_ring_main(int argc, char **argv) {
   }
   topo_free(mach);
   cfg.place = map;
+  ring g = {laps, work, all, 0, 0};
+  mp_proc *pr = xmallocarray((size_t)procs, sizeof *pr);
+  for (long r = 0; r < procs; r++) pr[r] = (mp_proc){ring_rank, &g};
+  /* With a trace: its size first, by the same run writing none (the
+   * simulator is deterministic), and none above the limit. */
+  if (tcsv || tjson) {
+    sim_config quiet = cfg;
+    quiet.warn = NULL;
+    sim *dry = sim_new(&quiet, (int)procs, err, sizeof err);
+    unsigned long long nc = 0, nj = 0;
+    if (dry) {
+      sim_trace_count(dry, tcsv != NULL, tjson != NULL);
+      int ok = sim_run(dry, pr, err, sizeof err) == 0;
+      sim_trace_size(dry, &nc, &nj);
+      sim_free(dry);
+      if (ok && trace_over_limit(nc + nj, limit, err, sizeof err) != 0) {
+        fprintf(stderr, "bench: %s%s%s: %s\n", tcsv ? tcsv : "", tcsv && tjson ? " and " : "",
+                tjson ? tjson : "", err);
+        free(map);
+        free(pr);
+        return 1;
+      }
+    }
+    g.token = 0, g.failed = 0;
+  }
   sim *s = sim_new(&cfg, (int)procs, err, sizeof err);
   free(map);
   if (!s) {
     fprintf(stderr, "bench: %s\n", err);
+    free(pr);
     return 1;
   }
-  FILE *fc = NULL, *fj = NULL;
-  if (tcsv && !(fc = fopen(tcsv, "w"))) {
-    fprintf(stderr, "bench: cannot write %s: %s\n", tcsv, strerror(errno));
+  /* The traces: temporary files beside the targets, renamed into place
+   * only when the run has succeeded (a failed run leaves the targets as
+   * they were). */
+  atomicfile ac = {NULL, NULL, NULL}, aj = {NULL, NULL, NULL};
+  if ((tcsv && atomicfile_open(&ac, tcsv, "w", err, sizeof err) != 0) ||
+      (tjson && atomicfile_open(&aj, tjson, "w", err, sizeof err) != 0)) {
+    fprintf(stderr, "bench: %s\n", err);
+    if (ac.f) atomicfile_close(&ac, 0, err, sizeof err);
     sim_free(s);
+    free(pr);
     return 1;
   }
-  if (tjson && !(fj = fopen(tjson, "w"))) {
-    fprintf(stderr, "bench: cannot write %s: %s\n", tjson, strerror(errno));
-    if (fc) fclose(fc);
-    sim_free(s);
-    return 1;
-  }
-  sim_trace(s, fc, fj);
-  ring g = {laps, work, all, 0, 0};
-  mp_proc *pr = xmallocarray((size_t)procs, sizeof *pr);
-  for (long r = 0; r < procs; r++) pr[r] = (mp_proc){ring_rank, &g};
+  sim_trace(s, ac.f, aj.f);
   int rc = sim_run(s, pr, err, sizeof err);
   int status = 0;
-  if ((fc && fclose(fc) != 0) || (fj && fclose(fj) != 0)) {
-    fprintf(stderr, "bench: cannot write a trace file\n");
-    status = 1;
-  }
   const sim_stats *st = sim_stats_get(s);
-  long long msgs = st->messages;
   links *net = sim_links(s);
-  net_stats ns = {0};
-  if (net) links_total(net, &ns);
-  char tn[64] = "", pn[PLACE_PATH_MAX + 16];
-  if (net) topo_spec_str(&cfg.topo, tn, sizeof tn);
-  place_spec_str(&place, pn, sizeof pn);
-  printf("procs,laps,net,m,c,work,messages,sim_time,topology,place,tokens,hops_per_msg,max_link_msgs,"
-         "link_wait,events,switches,wall_s,messages_per_s,ns_per_message,checksum\n");
-  printf("%ld,%ld,%s,%.9g,%.9g,%.9g,%lld,%.9f,%s,%s,%s,", procs, laps,
-         sim_net_name(net ? SIM_NET_TOPOLOGY : cfg.net), cfg.m, cfg.c, work, msgs, st->makespan, tn,
-         pn, all ? "all" : "1");
-  if (net)
-    printf("%.6f,%lld,%.9f,", ns.messages ? (double)ns.hops / (double)ns.messages : 0.0,
-           ns.max_link_msgs, ns.link_wait);
-  else
-    printf(",,,");
-  printf("%lld,%lld,%.6f,%.0f,%.1f,%lld\n", st->events, st->switches, st->wall_s,
-         st->wall_s > 0 ? (double)msgs / st->wall_s : 0.0, msgs ? st->wall_s * 1e9 / (double)msgs : 0.0,
-         g.token);
   if (rc != 0) {
     fprintf(stderr, "bench: %s\n", err);
     status = 1;
@@ -267,6 +275,35 @@ int bench_ring_main(int argc, char **argv) {
       status = 1;
     }
   }
+  if (ac.f && atomicfile_close(&ac, status == 0, err, sizeof err) != 0 && status == 0) {
+    fprintf(stderr, "bench: %s\n", err);
+    status = 1;
+  }
+  if (aj.f && atomicfile_close(&aj, status == 0, err, sizeof err) != 0 && status == 0) {
+    fprintf(stderr, "bench: %s\n", err);
+    status = 1;
+  }
+  if (status == 0) {   /* a failed run prints no data row */
+    long long msgs = st->messages;
+    net_stats ns = {0};
+    if (net) links_total(net, &ns);
+    char tn[64] = "", pn[PLACE_PATH_MAX + 16];
+    if (net) topo_spec_str(&cfg.topo, tn, sizeof tn);
+    place_spec_str(&place, pn, sizeof pn);
+    printf("procs,laps,net,m,c,work,messages,sim_time,topology,place,tokens,hops_per_msg,max_link_msgs,"
+           "link_wait,events,switches,wall_s,messages_per_s,ns_per_message,checksum\n");
+    printf("%ld,%ld,%s,%.9g,%.9g,%.9g,%lld,%.9f,%s,%s,%s,", procs, laps,
+           sim_net_name(net ? SIM_NET_TOPOLOGY : cfg.net), cfg.m, cfg.c, work, msgs, st->makespan, tn,
+           pn, all ? "all" : "1");
+    if (net)
+      printf("%.6f,%lld,%.9f,", ns.messages ? (double)ns.hops / (double)ns.messages : 0.0,
+             ns.max_link_msgs, ns.link_wait);
+    else
+      printf(",,,");
+    printf("%lld,%lld,%.6f,%.0f,%.1f,%lld\n", st->events, st->switches, st->wall_s,
+           st->wall_s > 0 ? (double)msgs / st->wall_s : 0.0, msgs ? st->wall_s * 1e9 / (double)msgs : 0.0,
+           g.token);
+  }
   free(pr);
   sim_free(s);
   return status;
@@ -292,9 +329,12 @@ static coro *duo_b(void *ud) {
 }
 
 int bench_switch_main(int argc, char **argv) {
-  long n;
-  if (argc != 3 || parse_long(argv[2], 2, LONG_MAX, &n))
-    return bad(switch_usage, "%s", "--switch needs a count N >= 2");
+  unsigned long long un;
+  char msg[300];
+  if (argc < 3) return bad(switch_usage, "an option needs a value", argv[1]);
+  if (argc > 3) return bad(switch_usage, argv[3][0] == '-' ? "unknown option" : "unexpected argument", argv[3]);
+  if (args_u64(argv[1], argv[2], 2, SWITCH_MAX, &un, msg, sizeof msg) != 0) return bad(switch_usage, msg, NULL);
+  long n = (long)un;
   char err[256];
   duo d = {coro_main_new(), NULL, NULL, n / 2};
   d.a = coro_new(duo_a, &d, 0, err, sizeof err);

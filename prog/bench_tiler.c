@@ -2,16 +2,22 @@
  * memory it takes.
  *
  *   bench --tiler [--points N[,N...]] [--naive N] [--input STACK]... [--cost area|span]
- *                 [--seed S] [--repeat R]
+ *                 [--seed S] [--repeat R] [--data DIR]
  *
  * One CSV row per case: a generated pair of N-point contours (the paper's
  * "somewhat random" star-shaped contours, section 6), the naive
  * one-DP-per-start reference on the same pair, or a whole contour stack.
  * Each case runs in a child process, so peak_mb is that case's own peak
  * resident memory.  `cost` is the optimum (for a stack, the sum over its
- * pairs): a checksum that shows a fast wrong answer. */
+ * pairs): a checksum that shows a fast wrong answer.
+ *
+ * A stack named without a folder (the default prostate_0.contours) is
+ * looked for here, then in --data DIR, else beside the program: installed
+ * (PREFIX/share/tilesim, where make install puts the data) or in the source
+ * tree (tests/data/slicerrt), so that an installed bench runs anywhere. */
 #include "bench_tiler.h"
 
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,6 +25,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "args.h"
 #include "contour.h"
 #include "gen.h"
 #include "naive.h"
@@ -162,58 +169,122 @@ static int one(kind_of_case what, int n, const char *file, unsigned long long se
   return 0;
 }
 
-static int usage(const char *why) {
-  if (why) fprintf(stderr, "bench: %s\n", why);
-  fprintf(stderr, "usage: bench --tiler [--points N[,N...]] [--naive N] [--input STACK]... "
-                  "[--cost area|span] [--seed S] [--repeat R]\n");
+static const char tiler_usage[] =
+    "usage: bench --tiler [--points N[,N...]] [--naive N] [--input STACK]... [--cost area|span] "
+    "[--seed S] [--repeat R] [--data DIR]   (bench --help: every mode)\n";
+
+/* Bad usage: "bench: why", arg (or NULL) shown after it, the usage line, 2. */
+static int usage(const char *why, const char *arg) {
+  char shown[200];
+  fprintf(stderr, "bench: %s", why);
+  if (arg) {
+    args_show(arg, shown, sizeof shown);
+    fprintf(stderr, " (%s)", shown);
+  }
+  fputc('\n', stderr);
+  fputs(tiler_usage, stderr);
   return 2;
+}
+
+/* ---- finding a stack by name ----------------------------------------------- */
+
+/* The folder of the running program (Linux: /proc/self/exe), or "" */
+static void exe_dir(char *buf, size_t len) {
+  ssize_t n = readlink("/proc/self/exe", buf, len - 1);
+  buf[n > 0 ? n : 0] = 0;
+  char *slash = strrchr(buf, '/');
+  if (slash) *slash = 0;
+  else buf[0] = 0;
+}
+
+static int readable(const char *path) { return access(path, R_OK) == 0; }
+
+/* A stack given by name: as it is if it names a readable file or a path
+ * (it has a '/'); else in --data DIR if given; else where the data lies
+ * beside the program: installed (BIN/../share/tilesim) or in the source
+ * tree (./bench and build/bin/bench), then tests/data/slicerrt here.
+ * 0 and the path in out, or -1 with where it looked in out. */
+static int find_stack(const char *name, const char *data, char *out, size_t len) {
+  if (strchr(name, '/') || readable(name) || strcmp(name, "-") == 0) {
+    snprintf(out, len, "%s", name);
+    return 0;
+  }
+  if (data) {
+    snprintf(out, len, "%s/%s", data, name);
+    if (readable(out)) return 0;
+    snprintf(out, len, "%s: not found here or in --data %s", name, data);
+    return -1;
+  }
+  char dir[2048];
+  exe_dir(dir, sizeof dir);
+  const char *where[] = {"/../share/tilesim/", "/tests/data/slicerrt/", "/../../tests/data/slicerrt/"};
+  for (size_t i = 0; dir[0] && i < sizeof where / sizeof *where; i++) {
+    snprintf(out, len, "%s%s%s", dir, where[i], name);
+    if (readable(out)) return 0;
+  }
+  snprintf(out, len, "tests/data/slicerrt/%s", name);
+  if (readable(out)) return 0;
+  snprintf(out, len,
+           "%s: not found here, in %s/../share/tilesim (make install puts the data there) "
+           "or in tests/data/slicerrt; --data DIR says where it is",
+           name, dir[0] ? dir : "the program's folder");
+  return -1;
 }
 
 int bench_tiler(int argc, char **argv) {
   int points[16], npoints = 0, naive = -1, repeat = 20;
-  const char *inputs[16];
+  const char *inputs[16], *data = NULL;
   int ninputs = 0;
   unsigned long long seed = 1993;
   cost_kind kind = COST_AREA;
-  for (int i = 2; i < argc; i++) {   /* argv[1] is --tiler */
+  char msg[400];
+  static const char *const opts[] = {"--points", "--naive", "--input", "--cost", "--seed", "--repeat", "--data"};
+  for (int i = 2; i < argc; i += 2) {   /* argv[1] is --tiler; every option takes a value */
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-    if (strcmp(a, "--points") == 0 && v) {
-      for (char *p = (char *)v; *p && npoints < 16;) {
-        char *e;
-        long x = strtol(p, &e, 10);
-        if (e == p || x < 3 || x > 100000) return usage("--points takes numbers from 3 to 100000");
-        points[npoints++] = (int)x;
-        p = *e == ',' ? e + 1 : e;
-        if (*e && *e != ',') return usage("--points takes a list like 500,5000");
-      }
-      i++;
-    } else if (strcmp(a, "--naive") == 0 && v) {
-      naive = atoi(v);
-      if (naive < 3 || naive > 5000) return usage("--naive takes a number from 3 to 5000");
-      i++;
-    } else if (strcmp(a, "--input") == 0 && v) {
-      if (ninputs == 16) return usage("at most 16 --input stacks");
+    int known = 0, bad = 0;
+    long x = 0;
+    for (size_t k = 0; k < sizeof opts / sizeof *opts; k++) known |= strcmp(a, opts[k]) == 0;
+    if (!known) return usage(a[0] == '-' ? "unknown option" : "unexpected argument", a);
+    if (!v) return usage("an option needs a value", a);
+    if (strcmp(a, "--points") == 0) {
+      args_list l;
+      bad = args_list_max(a, v, 1, 3, 100000, 16, &l, msg, sizeof msg);
+      for (int k = 0; !bad && k < l.n; k++) points[k] = (int)l.v[k];
+      if (!bad) npoints = l.n;
+    } else if (strcmp(a, "--naive") == 0) {
+      bad = args_long(a, v, 3, 5000, &x, msg, sizeof msg);
+      naive = (int)x;
+    } else if (strcmp(a, "--input") == 0) {
+      if (ninputs == 16) return usage("--input takes at most 16 stacks", v);
+      bad = args_name(a, v, "a contour stack", 1, msg, sizeof msg);
       inputs[ninputs++] = v;
-      i++;
-    } else if (strcmp(a, "--cost") == 0 && v) {
-      if (cost_parse(v, &kind) != 0) return usage("--cost is area or span");
-      i++;
-    } else if (strcmp(a, "--seed") == 0 && v) {
-      seed = strtoull(v, NULL, 10);
-      i++;
-    } else if (strcmp(a, "--repeat") == 0 && v) {
-      repeat = atoi(v);
-      if (repeat < 1) return usage("--repeat takes a positive number");
-      i++;
+    } else if (strcmp(a, "--cost") == 0) {
+      if (cost_parse(v, &kind) != 0) bad = args_word(a, v, "area|span", msg, sizeof msg);
+    } else if (strcmp(a, "--seed") == 0) {
+      bad = args_u64(a, v, 0, ULLONG_MAX, &seed, msg, sizeof msg);
+    } else if (strcmp(a, "--repeat") == 0) {
+      bad = args_long(a, v, 1, 1000, &x, msg, sizeof msg);
+      repeat = (int)x;
     } else {
-      return usage(NULL);
+      bad = args_name(a, v, "a folder", 0, msg, sizeof msg);
+      data = v;
     }
+    if (bad) return usage(msg, NULL);
   }
   if (npoints == 0 && naive < 0 && ninputs == 0) {   /* the figures */
     points[npoints++] = 500;
     points[npoints++] = 5000;
     naive = 500;
-    inputs[ninputs++] = "tests/data/slicerrt/prostate_0.contours";
+    inputs[ninputs++] = "prostate_0.contours";
+  }
+  /* Every stack found before any work. */
+  static char paths[16][2300];
+  for (int i = 0; i < ninputs; i++) {
+    if (find_stack(inputs[i], data, paths[i], sizeof paths[i]) != 0) {
+      fprintf(stderr, "bench: %s\n", paths[i]);
+      return 1;
+    }
+    inputs[i] = paths[i];
   }
   printf("case,m,n,runs,wall_s,nodes,nodes_per_s,paths,peak_mb,cost\n");
   row r, ex500 = {0}, nv = {0};

@@ -17,35 +17,41 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "args.h"
 #include "atomicfile.h"
 #include "contour.h"
 #include "mesh.h"
 #include "meshio.h"
 #include "pool.h"
+#include "progress.h"
 #include "report.h"
 #include "run.h"
 #include "run_net.h"
 #include "stack.h"
 #include "tile_dicom.h"
+#include "trace.h"
 #include "xmem.h"
 #ifdef TILESIM_MPI
 #include "run_mpi.h"
 #endif
 
+/* The usage hint after a bad-usage message: one line. */
 static const char usage_line[] =
-    "usage: tile STACK [-o OUT.obj|OUT.ply|OUT.stl] [--cost area|span] [--caps]\n"
-    "            [--cap-style flat|apex] [-j N] [-q]\n"
-    "            [--procs P [--backend sim|threads] [--alloc half|size] [--min-diag d]\n"
-    "             [--machine NAME] [--net ideal|bus|loggp] [--m S] [--c S]\n"
-    "             [--topology NAME] [--place NAME] [--print-place]\n"
-    "             [--trace FILE.csv|FILE.json]]\n"
-    "       tile FILE.dcm [--list | --roi NAME|NUMBER|all ... [-o OUT.stl|DIR/ [--format stl|obj|ply]]\n"
-    "            [--contours OUT.contours|DIR/] [options as for a stack]]\n";
+    "usage: tile STACK|FILE.dcm [-o OUT.obj|OUT.ply|OUT.stl] [--cost area|span] [--caps] [-j N] [-q] "
+    "[--procs P [MACHINE OPTIONS] [--trace FILE]]   (tile --help: every option)\n";
 
 static void usage(FILE *f) {
   fputs(usage_line, f);
   if (f != stdout) return;
-  fputs("\n"
+  fputs("       tile STACK [-o OUT.obj|OUT.ply|OUT.stl] [--cost area|span] [--caps]\n"
+        "            [--cap-style flat|apex] [-j N] [-q]\n"
+        "            [--procs P [--backend sim|threads] [--alloc half|size] [--min-diag d]\n"
+        "             [--machine NAME] [--net ideal|bus|loggp] [--m S] [--c S]\n"
+        "             [--topology NAME] [--place NAME] [--print-place]\n"
+        "             [--trace FILE.csv|FILE.json [--trace-limit BYTES]]]\n"
+        "       tile FILE.dcm [--list | --roi NAME|NUMBER|all ... [-o OUT.stl|DIR/ [--format stl|obj|ply]]\n"
+        "            [--contours OUT.contours|DIR/] [options as for a stack]]\n"
+        "\n"
         "Make one surface of the contours of STACK, any number per slice: contours\n"
         "on a slice nest (holes, islands), overlapping contours of neighbouring\n"
         "slices are joined (branching by bridges), and every band is the minimum-cost\n"
@@ -60,7 +66,7 @@ static void usage(FILE *f) {
         "                     contour (flat elsewhere)\n"
         "  -j N               tile the bands on N threads (default: the machine's cores);\n"
         "                     the output is the same on any N\n"
-        "  -q, --quiet        no notes about repaired input on stderr\n"
+        "  -q, --quiet        no notes about repaired input, no progress, on stderr\n"
         "  -h, --help         this text\n"
         "\n"
         "The parallel algorithm (Johnson, Livadas, Talele 1993) on a machine: simulated,\n"
@@ -70,6 +76,8 @@ static void usage(FILE *f) {
   fputs(run_net_help, f);
   fputs("  --print-place      print where the ranks run on the machine (stderr)\n"
         "  --trace FILE       the simulated timeline: CSV, or Chrome trace JSON (.json)\n"
+        "  --trace-limit BYTES  the largest trace to write (default 1G; 500M, 5G, none):\n"
+        "                     its size is counted first, and a larger one is refused\n"
         "\n"
         "A DICOM RT structure set (recognised by its content) instead of STACK: each ROI\n"
         "is tiled as its closed planar contours would be as a stack (patient LPS, mm):\n"
@@ -103,16 +111,14 @@ static int bad_usage(const char *fmt, const char *arg) {
   return 2;
 }
 
-static void progress(void *ud, int done, int total) {
-  (void)ud;
-  fprintf(stderr, "\rtile: band %d of %d", done, total);
-}
+static void show_progress(void *ud, int done, int total) { progress_step(ud, done, total); }
 
 /* What tile_stack needs from the command line. */
 typedef struct {
   int caps, apex, threads, parallel, quiet;
   const char *trace;
   run_config rc;
+  unsigned long long trace_limit;   /* --trace-limit */
   const char *held;   /* the reader's notes, printed before the surface's */
   size_t heldlen;
 } tile_opts;
@@ -131,23 +137,49 @@ static int tile_stack(void *ud, const contour_stack *s, const char *name, const 
   size_t heldlen = 0;
   FILE *notes = o->quiet ? NULL : open_memstream(&held, &heldlen);
   atomicfile tf = {NULL, NULL, NULL};
-  if (o->parallel && o->trace) {   /* written beside the target, renamed into place when complete */
+  stack_options so = {o->rc.kind, o->caps, o->apex, o->threads, o->parallel ? &o->rc : NULL, notes, "tile"};
+  if (o->parallel && o->trace) {
+    /* The trace's size first, by the same run writing none (the simulator
+     * is deterministic), and none above the limit; then the trace beside
+     * its target, renamed into place when complete. */
+    size_t tl = strlen(o->trace);
+    int json = tl >= 5 && strcmp(o->trace + tl - 5, ".json") == 0;
+    run_trace_size ts = {!json, json, 0, 0};
+    run_config dry = o->rc;
+    dry.trace_size = &ts;
+    dry.machine.warn = NULL;
+    dry.progress_ud = progress_new("tile", "measuring the trace: band", o->quiet || s->nslices < 3);
+    dry.progress = dry.progress_ud ? show_progress : NULL;
+    stack_options dso = so;
+    dso.rc = &dry;
+    dso.notes = NULL;
+    stack_surface *dss = NULL;
+    int dres = stack_tile(s, name, &dso, &dss, err, sizeof err);
+    progress_end(dry.progress_ud);
+    stack_free(dss);
+    if (dres == 0 && trace_over_limit(ts.csv_bytes + ts.json_bytes, o->trace_limit, err, sizeof err) != 0) {
+      fprintf(stderr, "tile: %s: %s\n", o->trace, err);
+      if (notes) fclose(notes);
+      free(held);
+      return -1;
+    }
     if (atomicfile_open(&tf, o->trace, "w", err, sizeof err) != 0) {
       fprintf(stderr, "tile: %s\n", err);
       if (notes) fclose(notes);
       free(held);
       return -1;
     }
-    size_t tl = strlen(o->trace);
-    if (tl >= 5 && strcmp(o->trace + tl - 5, ".json") == 0) o->rc.trace_json = tf.f;
+    if (json) o->rc.trace_json = tf.f;
     else o->rc.trace_csv = tf.f;
   }
-  if (o->parallel && isatty(2) && s->nslices > 2) o->rc.progress = progress;
-  stack_options so = {o->rc.kind, o->caps, o->apex, o->threads, o->parallel ? &o->rc : NULL, notes, "tile"};
+  if (o->parallel) {
+    o->rc.progress_ud = progress_new("tile", "band", o->quiet || s->nslices < 3);
+    o->rc.progress = o->rc.progress_ud ? show_progress : NULL;
+  }
   stack_surface *ss = NULL;
   int res = stack_tile(s, name, &so, &ss, err, sizeof err);
-  if (o->rc.progress) fputs("\r\033[K", stderr);
-  o->rc.progress = NULL;
+  if (o->parallel) progress_end(o->rc.progress_ud);
+  o->rc.progress = NULL, o->rc.progress_ud = NULL;
   if (notes) fclose(notes);
   if (res == -2)
     fprintf(stderr, "tile: the parallel run (%s) failed: %s\n", run_backend_name(o->rc.backend), err);
@@ -176,8 +208,8 @@ static int tile_stack(void *ud, const contour_stack *s, const char *name, const 
 
 static int tile_main(int argc, char **argv) {
   const char *in = NULL, *out = NULL;
-  int backend_given = 0, style_given = 0, print_place = 0, place_given = 0;
-  tile_opts o = {0, 0, pool_cores(), 0, 0, NULL, {0}, NULL, 0};
+  int backend_given = 0, style_given = 0, print_place = 0, place_given = 0, limit_given = 0;
+  tile_opts o = {0, 0, pool_cores(), 0, 0, NULL, {0}, TRACE_LIMIT_DEFAULT, NULL, 0};
   tile_dicom_opts dopt;
   memset(&dopt, 0, sizeof dopt);
   run_config_init(&o.rc);
@@ -199,37 +231,52 @@ static int tile_main(int argc, char **argv) {
       if (k < 0) return bad_usage("%s", err);
       i += k - 1;
     } else if (a[0] == '-' && a[1] != 0) {
-      if (!v) return bad_usage("option %s needs a value", a);
+      if (!v) {   /* the last argument: an option that needs a value, or none we know */
+        run_config scratch = o.rc;
+        int known = strcmp(a, "-o") == 0 || strcmp(a, "--cost") == 0 || strcmp(a, "--trace") == 0 ||
+                    strcmp(a, "--trace-limit") == 0 || strcmp(a, "-j") == 0 ||
+                    strcmp(a, "--cap-style") == 0 || run_option(&scratch, a, "", err, sizeof err) != 0;
+        args_show(a, err, sizeof err);
+        return bad_usage(known ? "%s needs a value" : "unknown option (%s)", err);
+      }
       if (strcmp(a, "-j") == 0) {
-        char *e;
-        long j = strtol(v, &e, 10);
-        if (e == v || *e || j < 1 || j > 1024 || v[0] == ' ' || v[0] == '+')
-          return bad_usage("-j takes a whole number from 1 to 1024 (%s)", v);
+        long j;
+        if (args_long(a, v, 1, 1024, &j, err, sizeof err) != 0) return bad_usage("%s", err);
         o.threads = (int)j;
       } else if (strcmp(a, "--cap-style") == 0) {
-        if (strcmp(v, "flat") == 0) o.apex = 0;
-        else if (strcmp(v, "apex") == 0) o.apex = 1;
-        else return bad_usage("--cap-style takes flat or apex (%s)", v);
+        if ((o.apex = args_word(a, v, "flat|apex", err, sizeof err)) < 0) return bad_usage("%s", err);
         style_given = 1;
       } else if (strcmp(a, "-o") == 0) {
-        if (meshio_format_of(v) == MESHIO_NONE && !tile_dicom_is_dir(v))
-          return bad_usage("unknown mesh format, use .obj, .ply or .stl (%s)", v);
+        if (args_name(a, v, "a mesh file name", 0, err, sizeof err) != 0) return bad_usage("%s", err);
+        if (meshio_format_of(v) == MESHIO_NONE && !tile_dicom_is_dir(v)) {
+          args_show(v, err, sizeof err);
+          return bad_usage("-o takes a file ending in .obj, .ply or .stl (%s)", err);
+        }
         out = v;
       } else if (strcmp(a, "--cost") == 0) {
-        if (cost_parse(v, &o.rc.kind) != 0) return bad_usage("unknown cost, use area or span (%s)", v);
+        if (cost_parse(v, &o.rc.kind) != 0) {
+          args_word(a, v, "area|span", err, sizeof err);
+          return bad_usage("%s", err);
+        }
       } else if (strcmp(a, "--trace") == 0) {
+        if (args_name(a, v, "a file name", 0, err, sizeof err) != 0) return bad_usage("%s", err);
         o.trace = v;
+      } else if (strcmp(a, "--trace-limit") == 0) {
+        if (args_bytes(a, v, &o.trace_limit, err, sizeof err) != 0) return bad_usage("%s", err);
+        limit_given = 1;
       } else if ((k = run_option(&o.rc, a, v, err, sizeof err)) < 0) {
         return bad_usage("%s", err);
       } else if (k == 0) {
-        return bad_usage("unknown option (%s)", a);
+        args_show(a, err, sizeof err);
+        return bad_usage("unknown option (%s)", err);
       }
       if (strcmp(a, "--procs") == 0) o.parallel = 1;
       if (strcmp(a, "--backend") == 0) backend_given = 1;
       if (strcmp(a, "--place") == 0) place_given = 1;
       i++;
     } else if (in) {
-      return bad_usage("one contour stack at a time (%s)", a);
+      args_show(a, err, sizeof err);
+      return bad_usage("one contour stack at a time (%s)", err);
     } else {
       in = a;
     }
@@ -239,6 +286,7 @@ static int tile_main(int argc, char **argv) {
     o.parallel = 1;   /* tile-mpi under mpirun -np N: the N ranks */
     o.rc.procs = run_backend_ranks(RUN_MPI);
   }
+  if (limit_given && !o.trace) return bad_usage("%s", "--trace-limit needs --trace");
   if (o.trace && !o.parallel) return bad_usage("%s", "--trace needs --procs (it traces the simulated machine)");
   if (o.trace && o.rc.backend != RUN_SIM) return bad_usage("%s", "--trace traces the simulated machine (--backend sim)");
   if (backend_given && !o.parallel) return bad_usage("%s", "--backend needs --procs");

@@ -13,6 +13,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "args.h"
 #include "atomicfile.h"
 #include "dicom.h"
 #include "meshio.h"
@@ -51,14 +52,16 @@ int tile_dicom_option(tile_dicom_opts *o, const char *a, const char *v, char *er
       snprintf(err, errlen, "--roi at most %d times (%s)", TILE_DICOM_MAX_ROI, v);
       return -1;
     }
-    o->roi[o->nroi++] = v;
-  } else if (con) {
-    o->contours = v;
-  } else {
-    if (strcmp(v, "stl") != 0 && strcmp(v, "obj") != 0 && strcmp(v, "ply") != 0) {
-      snprintf(err, errlen, "--format takes stl, obj or ply (%s)", v);
+    if (!*v) {
+      snprintf(err, errlen, "--roi takes a ROI's name, its number or all ('')");
       return -1;
     }
+    o->roi[o->nroi++] = v;
+  } else if (con) {
+    if (args_name(a, v, "a .contours file name or DIR/", 0, err, errlen) != 0) return -1;
+    o->contours = v;
+  } else {
+    if (args_word(a, v, "stl|obj|ply", err, errlen) < 0) return -1;
     o->format = v;
   }
   return 2;

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "args.h"
 #include "par_slave.h"
 #include "run_net.h"
 #include "xmem.h"
@@ -74,78 +75,93 @@ const char run_options_help[] =
     "  --slowdown F       computing slows by F (a fraction) per other working\n"
     "                     processor; --slowdown-spin F: per other spinning one\n";
 
-static int seconds(const char *opt, const char *val, double *out, char *err, size_t errlen) {
-  char *end;
-  double v = strtod(val, &end);
-  if (end == val || *end || !(v >= 0) || v > 1e9) {
-    snprintf(err, errlen, "%s takes seconds, a finite number >= 0 (%s)", opt, val);
-    return -1;
-  }
-  *out = v;
-  return 1;
+/* The seconds options' range: from 0 to a billion seconds (31 years). */
+#define RUN_MAX_SECONDS 1e9
+
+static int seconds(const char *opt, const char *val, double hi, double *out, char *err,
+                   size_t errlen) {
+  return args_real(opt, val, "seconds", 0, hi, out, err, errlen) == 0 ? 1 : -1;
 }
 
 static int integer(const char *opt, const char *val, int lo, int hi, int *out, char *err,
                    size_t errlen) {
-  char *end;
-  long v = strtol(val, &end, 10);
-  if (end == val || *end || v < lo || v > hi) {
-    snprintf(err, errlen, "%s takes a whole number from %d to %d (%s)", opt, lo, hi, val);
-    return -1;
-  }
+  long v;
+  if (args_long(opt, val, lo, hi, &v, err, errlen) != 0) return -1;
   *out = (int)v;
   return 1;
 }
 
+/* The names the allocation and network parsers take, '|'-separated (so the
+ * messages list whatever split.c and sim.c know). */
+void run_alloc_words(char *buf, size_t len) {
+  size_t k = 0;
+  buf[0] = 0;
+  for (int i = 0; i < 16; i++) {
+    const char *n = split_alloc_name((split_alloc)i);
+    split_alloc back;
+    if (split_alloc_parse(n, &back) != 0 || (int)back != i) continue;
+    k += (size_t)snprintf(buf + k, k < len ? len - k : 0, "%s%s", k ? "|" : "", n);
+  }
+}
+
+static void net_words(char *buf, size_t len) {
+  size_t k = 0;
+  buf[0] = 0;
+  for (int i = 0; i < 16; i++) {
+    const char *n = sim_net_name((sim_net)i);
+    sim_net back;
+    if (sim_net_parse(n, &back) != 0 || (int)back != i) continue;
+    k += (size_t)snprintf(buf + k, k < len ? len - k : 0, "%s%s", k ? "|" : "", n);
+  }
+}
+
 int run_option(run_config *rc, const char *opt, const char *val, char *err, size_t errlen) {
   sim_config *c = &rc->machine;
+  char words[200];
   if (!val) val = "";
   int k = run_net_option(rc, opt, val, err, errlen);   /* topology and placement */
   if (k != 0) return k;
-  if (strcmp(opt, "--procs") == 0) return integer(opt, val, 1, 4096, &rc->procs, err, errlen);
+  if (strcmp(opt, "--procs") == 0) return integer(opt, val, 1, RUN_MAX_PROCS, &rc->procs, err, errlen);
   if (strcmp(opt, "--master-c") == 0) {
     rc->master_c_given = 1;
-    return seconds(opt, val, &rc->master_c, err, errlen);
+    return seconds(opt, val, RUN_MAX_SECONDS, &rc->master_c, err, errlen);
   }
   if (strcmp(opt, "--min-diag") == 0)
     return integer(opt, val, 1, 1 << 30, &rc->opt.min_diag, err, errlen);
   if (strcmp(opt, "--block") == 0) return integer(opt, val, 1, 1 << 20, &rc->opt.block, err, errlen);
   if (strcmp(opt, "--schedule") == 0) {
     if (par_schedule_parse(val, &rc->opt.schedule) == 0) return 1;
-    snprintf(err, errlen, "--schedule is static or dynamic (%s)", val);
+    args_word(opt, val, "static|dynamic", err, errlen);
     return -1;
   }
   if (strcmp(opt, "--backend") == 0) {
-    if (strcmp(val, "sim") == 0) rc->backend = RUN_SIM;
-    else if (strcmp(val, "threads") == 0) rc->backend = RUN_THREADS;
 #ifdef TILESIM_MPI
-    else if (strcmp(val, "mpi") == 0) rc->backend = RUN_MPI;
-#endif
-    else {
-#ifdef TILESIM_MPI
-      snprintf(err, errlen, "--backend is mpi, sim or threads (%s)", val);
+    int b = args_word(opt, val, "mpi|sim|threads", err, errlen);
+    if (b < 0) return -1;
+    rc->backend = b == 0 ? RUN_MPI : b == 1 ? RUN_SIM : RUN_THREADS;
 #else
-      snprintf(err, errlen, "--backend is sim or threads (%s); mpi needs the MPI build, make mpi",
-               val);
-#endif
+    int b = args_word(opt, val, "sim|threads", err, errlen);
+    if (b < 0) {
+      if (strcmp(val, "mpi") == 0)
+        snprintf(err, errlen, "--backend takes sim or threads (mpi: the MPI backend is in the MPI "
+                              "build, make mpi)");
       return -1;
     }
+    rc->backend = b == 0 ? RUN_SIM : RUN_THREADS;
+#endif
     return 1;
   }
   if (strcmp(opt, "--spin") == 0) {
     double v;
-    if (seconds(opt, val, &v, err, errlen) < 0) return -1;
-    if (v > 10) {
-      snprintf(err, errlen, "--spin takes at most 10 seconds (%s)", val);
-      return -1;
-    }
+    if (seconds(opt, val, 10, &v, err, errlen) < 0) return -1;
     rc->threads.spin_ns = (long)(v * 1e9 + 0.5);
     c->cpu.spin = v;   /* the simulator's model of that waiting (cpu.h) */
     return 1;
   }
   if (strcmp(opt, "--alloc") == 0) {
     if (split_alloc_parse(val, &rc->opt.alloc) == 0) return 1;
-    snprintf(err, errlen, "--alloc is half, size or fit (%s)", val);
+    run_alloc_words(words, sizeof words);
+    args_word(opt, val, words, err, errlen);
     return -1;
   }
   if (strcmp(opt, "--machine") == 0) {
@@ -154,13 +170,14 @@ int run_option(run_config *rc, const char *opt, const char *val, char *err, size
       c->warn = warn;
       return 1;
     }
-    snprintf(err, errlen, "unknown machine, use tc2000 or unit (%s)", val);
+    args_word(opt, val, "tc2000|unit", err, errlen);
     return -1;
   }
   if (strcmp(opt, "--net") == 0) {
     c->topo.kind = TOPO_NONE;   /* --net and --topology: the last one given */
     if (sim_net_parse(val, &c->net) == 0) return 1;
-    snprintf(err, errlen, "--net is ideal, bus or loggp (%s)", val);
+    net_words(words, sizeof words);
+    args_word(opt, val, words, err, errlen);
     return -1;
   }
   static const struct { const char *name; size_t off; } secs[] = {
@@ -171,9 +188,13 @@ int run_option(run_config *rc, const char *opt, const char *val, char *err, size
   };
   for (size_t i = 0; i < sizeof secs / sizeof secs[0]; i++)
     if (strcmp(opt, secs[i].name) == 0)
-      return seconds(opt, val, (double *)((char *)c + secs[i].off), err, errlen);
+      return seconds(opt, val, RUN_MAX_SECONDS, (double *)((char *)c + secs[i].off), err, errlen);
   double *cpu = cpu_model_field(&c->cpu, opt);   /* --o-send, --wake, --slowdown, ... */
-  if (cpu) return seconds(opt, val, cpu, err, errlen);
+  if (cpu) {
+    if (strncmp(opt, "--slowdown", 10) == 0)   /* factors, not seconds */
+      return args_real(opt, val, "a factor", 0, 1e3, cpu, err, errlen) == 0 ? 1 : -1;
+    return seconds(opt, val, strcmp(opt, "--spin") == 0 ? 10 : RUN_MAX_SECONDS, cpu, err, errlen);
+  }
   return 0;
 }
 
@@ -267,6 +288,7 @@ int run_sim(const run_config *rc, par_pair *pairs, int npairs, sim_stats *stats,
   free(place);
   if (!s) return -1;
   if (rc->trace_csv || rc->trace_json) sim_trace(s, rc->trace_csv, rc->trace_json);
+  if (rc->trace_size) sim_trace_count(s, rc->trace_size->csv, rc->trace_size->json);
   program p;
   program_init(&p, rc, pairs, npairs, nr);
   pair_net pn = {sim_links(s), rc->pair_net, rc->progress, rc->progress_ud};
@@ -276,6 +298,7 @@ int run_sim(const run_config *rc, par_pair *pairs, int npairs, sim_stats *stats,
     p.marg.progress_ud = &pn;
   }
   int res = program_finish(&p, sim_run(s, p.procs, err, errlen), err, errlen);
+  if (rc->trace_size) sim_trace_size(s, &rc->trace_size->csv_bytes, &rc->trace_size->json_bytes);
   if (stats) *stats = *sim_stats_get(s);
   sim_free(s);
   return res;

@@ -31,6 +31,12 @@ const char *run_backend_name(run_backend b);
  * MPI the size of the mpirun (0 outside the MPI build). */
 int run_backend_ranks(run_backend b);
 
+/* A trace's size, counted by a run that writes none (run_config.trace_size). */
+typedef struct {
+  int csv, json;                        /* which traces to count */
+  unsigned long long csv_bytes, json_bytes;   /* their bytes, after the run */
+} run_trace_size;
+
 typedef struct {
   int procs;            /* P >= 1: P = 1 puts master and slave on one processor,
                            P >= 2 gives the master one and P-1 slaves one each */
@@ -41,6 +47,7 @@ typedef struct {
   par_options opt;
   cost_kind kind;
   FILE *trace_csv, *trace_json;   /* a timeline, or NULL */
+  run_trace_size *trace_size;     /* or: count the bytes of one (sim only), or NULL */
   int *diag_sends, *diag_recvs;   /* test hook, see par_slave.h (or NULL) */
   int diag_len;
   void (*progress)(void *ud, int done, int total);   /* after each pair, or NULL */
@@ -77,6 +84,9 @@ int run_par_options(const run_config *rc, par_options *out, char *err, size_t er
  * MPI build) with the tc2000 machine, half allocation, d = 1, area cost. */
 void run_config_init(run_config *rc);
 
+/* The most processors an option may ask for. */
+enum { RUN_MAX_PROCS = 4096 };
+
 /* Take one command-line option of the machine or the algorithm:
  *   --procs P  --alloc half|size|fit  --min-diag d  --block k  --schedule static|dynamic
  *   --master-c S
@@ -88,9 +98,15 @@ void run_config_init(run_config *rc);
  *   --spin S (threads; and the simulator's sleep threshold, cpu.h)
  *   --topology NAME  --hop-latency S  --switching MODE  --place NAME (run_net.h)
  * (--machine sets every machine parameter; give it before the others).
+ * Values are read strictly (util/args.h): P from 1 to RUN_MAX_PROCS, d from
+ * 1 to 2^30, seconds from 0 to 1e9 (--spin: to 10).
  * Returns 1 if opt is one of these (val consumed), 0 if not, -1 for a bad
- * value, with a message in err. */
+ * value, with a message in err ("--procs takes a whole number from 1 to
+ * 4096 (0)"). */
 int run_option(run_config *rc, const char *opt, const char *val, char *err, size_t errlen);
+
+/* The names --alloc takes, '|'-separated ("half|size"), for util/args. */
+void run_alloc_words(char *buf, size_t len);
 
 /* The usage text of those options, one per line, indented. */
 extern const char run_options_help[];

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "args.h"
 #include "xmem.h"
 
 const char run_net_help[] =
@@ -15,38 +16,35 @@ const char run_net_help[] =
     "  --place NAME       the processors' places on the machine: linear (default),\n"
     "                     snake, gray, random:SEED or file:PATH (a processor a line)\n";
 
+/* "--topology: " before the parser's message, so that it names the option. */
+static int prefix(const char *opt, char *err, size_t errlen) {
+  char *copy = xstrdup(err);
+  snprintf(err, errlen, "%s: %s", opt, copy);
+  free(copy);
+  return -1;
+}
+
 int run_net_option(run_config *rc, const char *opt, const char *val, char *err, size_t errlen) {
   sim_config *c = &rc->machine;
   if (!val) val = "";
   if (strcmp(opt, "--topology") == 0) {
     topo_spec sp;
-    if (topo_parse(val, &sp, err, errlen) != 0) return -1;
+    if (topo_parse(val, &sp, err, errlen) != 0) return prefix(opt, err, errlen);
     c->topo = sp;
     c->net = SIM_NET_TOPOLOGY;
     return 1;
   }
-  if (strcmp(opt, "--hop-latency") == 0) {
-    char *end;
-    double v = strtod(val, &end);
-    if (end == val || *end || !(v >= 0) || v > 1e9) {
-      snprintf(err, errlen, "--hop-latency takes seconds, a finite number >= 0 (%s)", val);
-      return -1;
-    }
-    c->hop_latency = v;
-    return 1;
-  }
+  if (strcmp(opt, "--hop-latency") == 0)
+    return args_real(opt, val, "seconds", 0, 1e9, &c->hop_latency, err, errlen) == 0 ? 1 : -1;
   if (strcmp(opt, "--switching") == 0) {
-    if (strcmp(val, "cut-through") == 0) c->store_forward = 0;
-    else if (strcmp(val, "store-and-forward") == 0) c->store_forward = 1;
-    else {
-      snprintf(err, errlen, "--switching is cut-through or store-and-forward (%s)", val);
-      return -1;
-    }
+    int w = args_word(opt, val, "cut-through|store-and-forward", err, errlen);
+    if (w < 0) return -1;
+    c->store_forward = w;
     return 1;
   }
   if (strcmp(opt, "--place") == 0) {
     place_spec p;
-    if (place_parse(val, &p, err, errlen) != 0) return -1;
+    if (place_parse(val, &p, err, errlen) != 0) return prefix(opt, err, errlen);
     rc->place = p;
     return 1;
   }
