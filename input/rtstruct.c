@@ -828,15 +828,15 @@ static int locate(const rtstruct_roi *roi, long line, sbuf *b, int with_byte, in
 
 static int digit(char c) { return c >= '0' && c <= '9'; }
 
-/* The reader's text with the sentinel name and its line numbers rewritten;
- * within a line, points of the contour its prefix names are "point j". */
-static char *rewrite(const rtstruct *s, const rtstruct_roi *roi, const char *msg) {
+/* A message with `name` and its line numbers rewritten; within a line,
+ * points of the contour its prefix names are "point j". */
+static char *rewrite(const rtstruct *s, const rtstruct_roi *roi, const char *name, const char *msg) {
   sbuf b = {0};
-  size_t sl = sizeof sentinel - 1;
+  size_t sl = strlen(name);
   int cur = -1;
   sb_raw(&b, "", 0);
   for (const char *p = msg; *p;) {
-    if (strncmp(p, sentinel, sl) == 0) {
+    if (sl && strncmp(p, name, sl) == 0) {
       const char *q = p + sl;
       if (q[0] == ':' && digit(q[1])) {
         long line = strtol(q + 1, (char **)&q, 10);
@@ -860,6 +860,10 @@ static char *rewrite(const rtstruct *s, const rtstruct_roi *roi, const char *msg
     }
   }
   return b.buf;
+}
+
+char *rtstruct_rewrite(const rtstruct *s, int ri, const char *name, const char *msg) {
+  return rewrite(s, &s->roi[ri], name, msg);
 }
 
 int rtstruct_roi_check(const rtstruct *s, int ri, char *err, size_t errlen) {
@@ -895,11 +899,11 @@ int rtstruct_roi_stack(const rtstruct *s, int ri, int pairs, contour_stack *out,
   free(text_);
   if (hold) fclose(hold);
   if (rc != 0) {
-    char *m = rewrite(s, roi, e2);
+    char *m = rewrite(s, roi, sentinel, e2);
     snprintf(err, errlen, "%s", m);
     free(m);
   } else if (held && heldlen) {
-    char *m = rewrite(s, roi, held);
+    char *m = rewrite(s, roi, sentinel, held);
     fputs(m, notes);
     free(m);
   }

@@ -97,6 +97,12 @@ char *rtstruct_roi_text(const rtstruct *s, int roi, size_t *len);
 int rtstruct_roi_stack(const rtstruct *s, int roi, int pairs, contour_stack *out, FILE *notes,
                        const char *prefix, char *err, size_t errlen);
 
+/* A message about the ROI's stack text, which names it `name` ("NAME:LINE:
+ * ..." and "line N" within), rewritten as rtstruct_roi_stack rewrites the
+ * reader's: naming the file, the byte, the ROI, the contour item and point.
+ * Several lines are rewritten each.  malloc'd; the caller frees. */
+char *rtstruct_rewrite(const rtstruct *s, int roi, const char *name, const char *msg);
+
 /* A point of the stack's frame (x, y, z = height) back to patient x, y, z. */
 void rtstruct_to_patient(rtstruct_plane plane, double *x, double *y, double *z);
 

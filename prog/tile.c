@@ -128,8 +128,26 @@ typedef struct {
  * prefix) and the mesh in *me (always initialised; the caller frees it).
  * 0, or -1 when the stack is refused or the parallel run failed (said on
  * stderr, in one line; the surface's notes are printed only on success). */
-static int tile_stack(void *ud, const contour_stack *s, const char *name, const char *hprefix,
-                      const char *prefix, int header, mesh *me) {
+/* Text for stderr, through the map when there is one. */
+static void say(const tile_dicom_map *map, const char *pre, const char *text, size_t len) {
+  if (!len) return;
+  if (!map) {
+    fputs(pre, stderr);
+    fwrite(text, 1, len, stderr);
+    return;
+  }
+  char *t = xmalloc(len + 1);
+  memcpy(t, text, len);
+  t[len] = 0;
+  char *m = map->rewrite(map->ud, t);
+  fputs(pre, stderr);
+  fputs(m, stderr);
+  free(m);
+  free(t);
+}
+
+static int tile_stack(void *ud, const contour_stack *s, const char *name, const tile_dicom_map *map,
+                      const char *hprefix, const char *prefix, int header, mesh *me) {
   tile_opts *o = ud;
   char err[1024];
   memset(me, 0, sizeof *me);
@@ -183,11 +201,13 @@ static int tile_stack(void *ud, const contour_stack *s, const char *name, const 
   if (notes) fclose(notes);
   if (res == -2)
     fprintf(stderr, "tile: the parallel run (%s) failed: %s\n", run_backend_name(o->rc.backend), err);
-  else if (res != 0)
-    fprintf(stderr, "tile: %s\n", err);
-  else {
-    if (o->heldlen) fwrite(o->held, 1, o->heldlen, stderr);
-    if (heldlen) fwrite(held, 1, heldlen, stderr);
+  else if (res != 0) {
+    size_t el = strlen(err);
+    if (el + 1 < sizeof err) err[el] = '\n', err[el + 1] = 0;
+    say(map, "tile: ", err, strlen(err));
+  } else {
+    say(map, "", o->held, o->heldlen);
+    say(map, "", held, heldlen);
   }
   free(held);
   if (tf.f && atomicfile_close(&tf, res == 0, err, sizeof err) != 0 && res == 0) {
@@ -343,7 +363,7 @@ static int tile_main(int argc, char **argv) {
   /* The reader's notes go out with the surface's, if it can be made. */
   mesh me;
   o.held = held, o.heldlen = heldlen;
-  int rcode = tile_stack(&o, &s, name, "", "", 1, &me) != 0;
+  int rcode = tile_stack(&o, &s, name, NULL, "", "", 1, &me) != 0;
   free(held);
   if (rcode == 0 && fflush(stdout) != 0) {
     fprintf(stderr, "tile: cannot write the report (%s)\n", strerror(errno));

@@ -207,6 +207,18 @@ static void warn_lines(FILE *f, const char *lines) {
   }
 }
 
+/* The surface's messages about an ROI's stack, named as the reader's are. */
+typedef struct {
+  const rtstruct *s;
+  int roi;
+  const char *name;
+} roi_map;
+
+static char *map_rewrite(void *ud, const char *msg) {
+  const roi_map *m = ud;
+  return rtstruct_rewrite(m->s, m->roi, m->name, msg);
+}
+
 /* ---------------------------------------------------------------- main */
 
 int tile_dicom_main(const tile_dicom_opts *o, const char *in, const tile_dicom_env *env) {
@@ -320,7 +332,9 @@ int tile_dicom_main(const tile_dicom_opts *o, const char *in, const tile_dicom_e
       }
       char sname[700];
       snprintf(sname, sizeof sname, "%s: ROI %d '%s' as a stack", s.name, r->number, r->name);
-      if (env->tile(env->ud, &st[i], sname, hpre, pre, i == 0, &me[i]) != 0) {
+      roi_map rm = {&s, pick[i], sname};
+      tile_dicom_map map = {map_rewrite, &rm};
+      if (env->tile(env->ud, &st[i], sname, &map, hpre, pre, i == 0, &me[i]) != 0) {
         nmesh = i + 1;
         goto done;
       }

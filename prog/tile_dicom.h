@@ -23,15 +23,22 @@ typedef struct {
   const char *format;                     /* --format, for -o DIR/ */
 } tile_dicom_opts;
 
+/* Messages about a stack, rewritten before they are printed (for an ROI:
+ * to name the DICOM file, byte, ROI and contour item); malloc'd. */
+typedef struct {
+  char *(*rewrite)(void *ud, const char *msg);
+  void *ud;
+} tile_dicom_map;
+
 typedef struct {
   /* Tile s (named `name` in messages: the file and ROI; its lines are those
-   * of the ROI's stack as --contours writes it): the report on stdout (its
-   * header first when header != 0; the
-   * header's lines prefixed by hprefix, the others by prefix) and the mesh
-   * in *me (the caller frees it).  0, or -1 when the run failed (said on
-   * stderr). */
-  int (*tile)(void *ud, const contour_stack *s, const char *name, const char *hprefix,
-              const char *prefix, int header, mesh *me);
+   * of the ROI's stack as --contours writes it; each refusal and note passes
+   * through map when map is not NULL): the report on stdout (its header
+   * first when header != 0; the header's lines prefixed by hprefix, the
+   * others by prefix) and the mesh in *me (the caller frees it).  0, or -1
+   * when the run failed (said on stderr). */
+  int (*tile)(void *ud, const contour_stack *s, const char *name, const tile_dicom_map *map,
+              const char *hprefix, const char *prefix, int header, mesh *me);
   void *ud;
   /* Bad usage: print "tile: " fmt(arg), the usage line; returns 2. */
   int (*usage)(const char *fmt, const char *arg);
