@@ -12,17 +12,27 @@ static double cross(vec2 a, vec2 b, vec2 c) {
 
 static int same(vec2 a, vec2 b) { return a.x == b.x && a.y == b.y; }
 
-/* Is vertex b (between a and c) an ear: convex, and no reflex vertex of the
- * remaining polygon inside or on triangle abc? */
+/* Is vertex b (between a and c) an ear: convex, not a sliver, and no other
+ * vertex of the remaining polygon inside, on or within a hair of triangle
+ * abc?  A sliver (a vertex on a straight run of the contour, its triangle's
+ * area below 1e-9 of its squared sides) is left for later, when a
+ * neighbour's ear has changed its neighbours: clipping it would make a
+ * degenerate triangle.  Every vertex is tested, not only the reflex ones:
+ * on a straight run (mask-derived contours have them) rounding calls some
+ * collinear vertices convex, and a diagonal along the run through them
+ * would leave a polygon of no area to clip. */
 static int is_ear(const vec2 *p, const int *next, const int *prev, int ib) {
   int ia = prev[ib], ic = next[ib];
   vec2 a = p[ia], b = p[ib], c = p[ic];
-  if (cross(a, b, c) <= 0) return 0;
+  double cr = cross(a, b, c);
+  double s2 = (b.x - a.x) * (b.x - a.x) + (b.y - a.y) * (b.y - a.y) + (c.x - b.x) * (c.x - b.x) +
+              (c.y - b.y) * (c.y - b.y) + (a.x - c.x) * (a.x - c.x) + (a.y - c.y) * (a.y - c.y);
+  if (cr <= 1e-9 * s2) return 0;
+  double tol = -1e-9 * s2;
   for (int j = next[ic]; j != ia; j = next[j]) {
     vec2 q = p[j];
-    if (cross(p[prev[j]], q, p[next[j]]) > 0) continue;   /* convex: cannot be inside */
     if (same(q, a) || same(q, b) || same(q, c)) continue;
-    if (cross(a, b, q) >= 0 && cross(b, c, q) >= 0 && cross(c, a, q) >= 0) return 0;
+    if (cross(a, b, q) >= tol && cross(b, c, q) >= tol && cross(c, a, q) >= tol) return 0;
   }
   return 1;
 }
