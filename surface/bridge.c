@@ -146,13 +146,17 @@ static int find_bridge(const ctx *c, int x, int y, int strict, int *bi, int *bj)
     if (legal(c, x, cd[k].i, y, cd[k].j, strict)) *bi = cd[k].i, *bj = cd[k].j, found = 1;
   free(cd);
   if (found) return 1;
-  /* Every edge's nearest partner is illegal: try all pairs, shortest first. */
+  /* Every edge's nearest partner is illegal: try all pairs, shortest first
+   * (for a strict bridge, a preference, only the 4096 shortest: two large
+   * contours with none would otherwise cost m n tests before the relaxed
+   * pass). */
   size_t all = (size_t)X->n * (size_t)Y->n;
   cd = xmallocarray(all, sizeof *cd);
   size_t m = 0;
   for (int i = 0; i < X->n; i++)
     for (int j = 0; j < Y->n; j++) cd[m++] = (cand){cost(X, i, Y, j), i, j};
   qsort(cd, m, sizeof *cd, by_cost);
+  if (strict && m > 4096) m = 4096;
   for (size_t k = 0; k < m && !found; k++)
     if (legal(c, x, cd[k].i, y, cd[k].j, strict)) *bi = cd[k].i, *bj = cd[k].j, found = 1;
   free(cd);
