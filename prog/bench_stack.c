@@ -23,6 +23,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "args.h"
 #include "contour.h"
 #include "rtstruct.h"
 #include "stack.h"
@@ -59,49 +60,45 @@ static int load(const char *input, contour_stack *s, double *ms) {
   return rc;
 }
 
-static int usage(const char *what, const char *value) {
-  fprintf(stderr, "bench: --stack: %s (%s)\nusage: bench --stack [STACK|FILE.dcm:ROI...] [-j LIST] [--repeat R] [--apex]\n",
-          what, value);
-  return 2;
-}
-
-static int parse_list(const char *v, int *out, int max) {
-  int n = 0;
-  const char *p = v;
-  while (*p && n < max) {
-    char *end;
-    long x = strtol(p, &end, 10);
-    if (end == p || x < 1 || x > 1024 || (*end && *end != ',')) return -1;
-    out[n++] = (int)x;
-    p = *end ? end + 1 : end;
-  }
-  return *p ? -1 : n;
-}
+static const char stack_usage[] =
+    "usage: bench --stack [STACK|FILE.dcm:ROI...] [-j LIST] [--repeat R] [--apex]   (bench --help: every mode)\n";
 
 int bench_stack(int argc, char **argv) {
-  int repeat = 5, apex = 0, nj = 2, js[64] = {1, 2}, nin = 0;
+  int repeat = 5, apex = 0, nj = 2, js[ARGS_LIST_MAX] = {1, 2}, nin = 0;
   const char **in = xcalloc((size_t)argc + 4, sizeof *in);
+  char err[300], shown[200];
   for (int i = 2; i < argc; i++) {
-    const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+    const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL, *why = NULL;
     if (strcmp(a, "--repeat") == 0 || strcmp(a, "-j") == 0) {
-      char *end;
-      long x = v ? strtol(v, &end, 10) : 0;
-      if (a[1] == 'j' ? (!v || (nj = parse_list(v, js, 64)) < 1)
-                      : (!v || *end || end == v || x < 1 || x > 10000)) {
-        free(in);
-        return usage(a[1] == 'j' ? "-j takes thread counts from 1 to 1024, as 1,2,4"
-                                 : "--repeat takes a whole number from 1 to 10000",
-                     v ? v : "missing");
+      long x;
+      args_list l;
+      if (!v) {
+        snprintf(err, sizeof err, "an option needs a value (%s)", a);
+        why = err;
+      } else if (a[1] == 'j' ? args_list_parse(a, v, 1, 1, 1024, &l, err, sizeof err) != 0
+                             : args_long(a, v, 1, 10000, &x, err, sizeof err) != 0) {
+        why = err;
+      } else if (a[1] == 'j') {
+        nj = l.n;
+        for (int k = 0; k < l.n; k++) js[k] = (int)l.v[k];
+        i++;
+      } else {
+        repeat = (int)x;
+        i++;
       }
-      if (a[1] != 'j') repeat = (int)x;
-      i++;
     } else if (strcmp(a, "--apex") == 0) {
       apex = 1;
-    } else if (a[0] == '-') {
-      free(in);
-      return usage("unknown option", a);
+    } else if (a[0] == '-' || !a[0]) {
+      args_show(a, shown, sizeof shown);
+      snprintf(err, sizeof err, "%s (%s)", a[0] ? "unknown option" : "a file name is not empty", shown);
+      why = err;
     } else {
       in[nin++] = a;
+    }
+    if (why) {
+      fprintf(stderr, "bench: %s\n%s", why, stack_usage);
+      free(in);
+      return 2;
     }
   }
   if (nin == 0)
@@ -120,16 +117,16 @@ int bench_stack(int argc, char **argv) {
     double *best = xmallocarray((size_t)nj, sizeof *best), cost = 0, volume = 0;
     int bands = 0, bridges = 0, caps = 0;
     for (int j = 0; j < nj; j++) best[j] = 1e300;
-    char err[1024];
     for (int r = 0; r < repeat && rc == 0; r++)
       for (int j = 0; j < nj && rc == 0; j++) {
         stack_options o = {COST_AREA, 1, apex, js[j], NULL, NULL, "bench"};
         stack_surface *ss;
         double t0 = wallclock();
-        int res = stack_tile(&s, in[f], &o, &ss, err, sizeof err);
+        char why[1024];
+        int res = stack_tile(&s, in[f], &o, &ss, why, sizeof why);
         double t = wallclock() - t0;
         if (res != 0) {
-          fprintf(stderr, "bench: %s\n", err);
+          fprintf(stderr, "bench: %s\n", why);
           rc = 1;
           break;
         }
