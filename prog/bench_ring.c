@@ -15,6 +15,7 @@
  * once and share links (contention).  The tokens then sum to P*K. */
 #include "bench_ring.h"
 
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -197,7 +198,7 @@ int bench_ring_main(int argc, char **argv) {
   for (long r = 0; r < procs; r++) pr[r] = (mp_proc){ring_rank, &g};
   /* With a trace: its size first, by the same run writing none (the
    * simulator is deterministic), and none above the limit. */
-  if (tcsv || tjson) {
+  if ((tcsv || tjson) && limit != ULLONG_MAX) {
     sim_config quiet = cfg;
     quiet.warn = NULL;
     sim *dry = sim_new(&quiet, (int)procs, err, sizeof err);

@@ -12,6 +12,7 @@
  * its time and messages.  The mesh is the same either way, bit for bit.  A
  * DICOM RT structure set is handled by tile_dicom.c, through tile_stack. */
 #include <errno.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -158,21 +159,22 @@ static int tile_stack(void *ud, const contour_stack *s, const char *name, const 
   stack_options so = {o->rc.kind, o->caps, o->apex, o->threads, o->parallel ? &o->rc : NULL, notes, "tile"};
   if (o->parallel && o->trace) {
     /* The trace's size first, by the same run writing none (the simulator
-     * is deterministic), and none above the limit; then the trace beside
-     * its target, renamed into place when complete. */
+     * is deterministic), and none above the limit (none: not measured);
+     * then the trace beside its target, renamed into place when complete. */
     size_t tl = strlen(o->trace);
     int json = tl >= 5 && strcmp(o->trace + tl - 5, ".json") == 0;
     run_trace_size ts = {!json, json, 0, 0};
+    int measure = o->trace_limit != ULLONG_MAX;
     run_config dry = o->rc;
     dry.trace_size = &ts;
     dry.machine.warn = NULL;
-    dry.progress_ud = progress_new("tile", "measuring the trace: band", o->quiet || s->nslices < 3);
+    dry.progress_ud = progress_new("tile", "measuring the trace: band", !measure || o->quiet || s->nslices < 3);
     dry.progress = dry.progress_ud ? show_progress : NULL;
     stack_options dso = so;
     dso.rc = &dry;
     dso.notes = NULL;
     stack_surface *dss = NULL;
-    int dres = stack_tile(s, name, &dso, &dss, err, sizeof err);
+    int dres = measure ? stack_tile(s, name, &dso, &dss, err, sizeof err) : -1;
     progress_end(dry.progress_ud);
     stack_free(dss);
     if (dres == 0 && trace_over_limit(ts.csv_bytes + ts.json_bytes, o->trace_limit, err, sizeof err) != 0) {

@@ -1,6 +1,15 @@
 /* atomicfile.h -- write a file beside its target and rename it into place
  * when complete, so that a failed run never leaves a partial file (as Redis
- * writes temp-%d.rdb, then rename()). */
+ * writes temp-%d.rdb, then rename()); nor does an interrupted one.
+ *
+ * Signals: the first atomicfile_open installs a handler for SIGHUP, SIGINT,
+ * SIGQUIT, SIGTERM, SIGPIPE, SIGALRM, SIGXCPU, SIGXFSZ and SIGABRT (each
+ * whose action is still the default: an ignored or handled one is left
+ * alone).  It removes every temporary file this process has open, restores
+ * the default action and raises the signal again: the process dies of the
+ * same signal, leaving only complete files.  Any thread may open files and
+ * take the signal; a forked child removes only its own files, never its
+ * parent's.  At most 64 files are open at once. */
 #ifndef ATOMICFILE_H
 #define ATOMICFILE_H
 
@@ -20,5 +29,8 @@ int atomicfile_open(atomicfile *a, const char *path, const char *mode, char *err
 /* ok: flush, close and rename into place (0, or -1 with "PATH: why" in err);
  * !ok: close and remove the temporary file (returns -1). */
 int atomicfile_close(atomicfile *a, int ok, char *err, size_t errlen);
+
+/* How many temporary files this process has open (for tests). */
+int atomicfile_live(void);
 
 #endif
