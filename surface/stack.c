@@ -15,6 +15,7 @@
 
 #include "bridge.h"
 #include "ends.h"
+#include "kernel.h"
 #include "match.h"
 #include "pool.h"
 #include "slices.h"
@@ -187,6 +188,7 @@ int stack_tile(const contour_stack *s, const char *name, const stack_options *o,
                stack_surface **out, char *err, size_t errlen) {
   *out = NULL;
   int threads = o->threads < 1 ? 1 : o->threads;
+  kernel_simd(-1);   /* the kernel's choice made once, before the threads share it */
   slices sl;
   if (slices_build(s, name, threads, &sl, err, errlen) != 0) return -1;
   int ns = sl.nslices, several = sl.ncontours > ns;
