@@ -37,10 +37,11 @@
 
 #define PI 3.14159265358979323846
 
-/* The multi-contour cases (two spheres, tori, cavities, an island) and the
- * second-encoding tests, end to end: enabled when ./tile accepts several
- * contours per slice (issue 9).  Set to 1 then; until then
- * TILESIM_SOLIDS_ALL=1 in the environment runs them too. */
+/* The cases of issue 9, end to end: the multi-contour solids (two spheres,
+ * tori, cavities, an island), crossing correspondences, tinypatient_0, apex
+ * caps and the second encodings.  On since ./tile takes several contours per
+ * slice; 0 leaves only what a one-contour-per-slice ./tile could do
+ * (TILESIM_SOLIDS_ALL=1 in the environment then turns them on again). */
 static const int several_per_slice = 1;
 
 /* The stacks the end-to-end tests tile: K planes, about N points a contour. */
@@ -356,10 +357,20 @@ static int is_int(const char *s) {
   return 1;
 }
 
-/* The report's identity, against the mesh: the bands' volumes (rows whose
- * first field is a number; caps' rows, z0 = z1, included) sum to the `mesh`
- * row's volume (flat caps add none), which is the mesh's own; and the bands
- * between two planes sum to the mesh's slab between them. */
+static int cmp_double(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+static int cmp_int(const void *a, const void *b) { return *(const int *)a - *(const int *)b; }
+
+/* The report (README, "./tile": a row per band, then with --caps a row
+ * `cap` per cap, a row `mesh` and a row `component` per component) against
+ * the mesh as the checker sees it: the bands' and caps' volumes sum to the
+ * `mesh` row's volume, which is the mesh's own; the bands between two
+ * planes, and the caps whose apex lies between them, sum to the mesh's slab
+ * there (caps beyond the end planes: to the mesh beyond them); a flat cap
+ * adds nothing; the `mesh` and `component` rows give the checker's
+ * components, Euler characteristics and volumes. */
 static void check_report(const char *name, const char *csv, const mc_report *r, const mc_fidelity *f) {
   csvtab t;
   char err[512];
@@ -368,41 +379,79 @@ static void check_report(const char *name, const char *csv, const mc_report *r, 
     return;
   }
   int cz0 = csvtab_col(&t, "z0"), cz1 = csvtab_col(&t, "z1"), cv = csvtab_col(&t, "volume");
+  int cj = csvtab_col(&t, "junction"), ce = csvtab_col(&t, "euler");
   CHECK(cz0 >= 0 && cz1 >= 0 && cv >= 0, "%s: report lacks z0, z1 or volume", name);
   if (cz0 < 0 || cz1 < 0 || cv < 0) {
     csvtab_free(&t);
     return;
   }
-  double bands = 0, meshvol = NAN;
-  double *slab = xcalloc((size_t)f->nplanes + 1, sizeof *slab);
-  int nbands = 0, unplaced = 0;
+  double bands = 0, caps = 0, meshvol = NAN, outside = 0;
+  double *slab = xcalloc((size_t)f->nplanes + 1, sizeof *slab), *cvol = xcalloc((size_t)t.nrow + 1, sizeof *cvol);
+  int *ceul = xcalloc((size_t)t.nrow + 1, sizeof *ceul);
+  int nbands = 0, unplaced = 0, flatvol = 0, ncomp = 0, meshrows = 0, closed = 1, eul = 0;
   for (int i = 0; i < t.nrow; i++) {
     char **row = t.cell[i];
-    double v = strtod(row[cv], NULL);
-    if (strcmp(row[0], "mesh") == 0) meshvol = v;
-    if (!is_int(row[0])) continue;
-    nbands++, bands += v;
-    double z0 = strtod(row[cz0], NULL), z1 = strtod(row[cz1], NULL);
-    if (z0 == z1) {   /* a cap's row, if the report gives caps rows of their own */
-      nbands--;
+    double v = strtod(row[cv], NULL), z0 = strtod(row[cz0], NULL), z1 = strtod(row[cz1], NULL);
+    double lo = fmin(z0, z1), hi = fmax(z0, z1);
+    if (strcmp(row[0], "mesh") == 0) {
+      meshvol = v, meshrows++;
+      if (cj >= 0) closed = strcmp(row[cj], "closed") == 0;
+      if (ce >= 0) eul = atoi(row[ce]);
       continue;
     }
-    int k = 0;
-    while (k + 1 < f->nplanes && !(f->planes[k] == fmin(z0, z1) && f->planes[k + 1] == fmax(z0, z1))) k++;
-    if (k + 1 < f->nplanes) slab[k] += v;
+    if (strcmp(row[0], "component") == 0) {
+      cvol[ncomp] = v, ceul[ncomp] = ce >= 0 ? atoi(row[ce]) : 0, ncomp++;
+      continue;
+    }
+    int cap = strcmp(row[0], "cap") == 0;
+    if (!cap && !is_int(row[0])) continue;
+    if (cap) {
+      caps += v;
+      if (z0 == z1) {   /* flat */
+        flatvol += v != 0;
+        continue;
+      }
+    } else {
+      bands += v, nbands++;
+    }
+    int k = 0;   /* the slab that holds [lo, hi] */
+    while (k + 1 < f->nplanes && !(f->planes[k] <= lo && hi <= f->planes[k + 1])) k++;
+    if (k + 1 < f->nplanes && (cap || (f->planes[k] == lo && f->planes[k + 1] == hi))) slab[k] += v;
+    else if (cap && (hi <= f->planes[0] || lo >= f->planes[f->nplanes - 1])) outside += v;
     else unplaced++;
   }
   double tol = 1e-9 * fabs(r->volume);
-  CHECK(nbands >= f->nplanes - 1 && unplaced == 0, "%s: %d band rows, %d not between consecutive planes", name, nbands,
-        unplaced);
+  CHECK(meshrows == 1, "%s: %d mesh rows", name, meshrows);
+  CHECK(nbands >= f->nplanes - 1 && unplaced == 0 && flatvol == 0,
+        "%s: %d band rows, %d not between consecutive planes, %d flat caps with a volume", name, nbands, unplaced, flatvol);
   CHECK(fabs(meshvol - r->volume) <= tol, "%s: the report's mesh volume %.17g, the mesh's %.17g", name, meshvol, r->volume);
-  CHECK(fabs(bands - meshvol) <= tol, "%s: the bands' volumes sum to %.17g, the mesh row says %.17g", name, bands, meshvol);
+  CHECK(fabs(bands + caps - meshvol) <= tol, "%s: bands %.17g + caps %.17g, the mesh row says %.17g", name, bands, caps,
+        meshvol);
   int worst = -1;
   for (int k = 0; k + 1 < f->nplanes; k++)
     if (fabs(slab[k] - f->slab[k]) > tol && worst < 0) worst = k;
-  CHECK(worst < 0, "%s: bands between z=%.17g and %.17g: report %.17g, mesh %.17g", name, worst < 0 ? 0 : f->planes[worst],
+  CHECK(worst < 0, "%s: between z=%.17g and %.17g: report %.17g, mesh %.17g", name, worst < 0 ? 0 : f->planes[worst],
         worst < 0 ? 0 : f->planes[worst + 1], worst < 0 ? 0 : slab[worst], worst < 0 ? 0 : f->slab[worst]);
-  free(slab);
+  CHECK(fabs(outside - f->outside) <= tol, "%s: caps beyond the end planes %.17g, the mesh there %.17g", name, outside,
+        f->outside);
+  if (cj >= 0 && ce >= 0) {   /* the mesh's own account of itself */
+    int chi = 0, same = ncomp == r->ncomp;
+    for (int c = 0; c < r->ncomp; c++) chi += r->chi[c];
+    CHECK(closed == r->manifold && eul == chi, "%s: the mesh row says %s, Euler characteristic %d; the checker finds %s, %d",
+          name, closed ? "closed" : "not closed", eul, r->manifold ? "closed" : "not closed", chi);
+    if (same) {
+      int *mc = xmallocarray((size_t)ncomp + 1, sizeof *mc);
+      double *mv = xmallocarray((size_t)ncomp + 1, sizeof *mv);
+      memcpy(mc, r->chi, (size_t)ncomp * sizeof *mc), memcpy(mv, r->cvol, (size_t)ncomp * sizeof *mv);
+      qsort(mc, (size_t)ncomp, sizeof *mc, cmp_int), qsort(ceul, (size_t)ncomp, sizeof *ceul, cmp_int);
+      qsort(mv, (size_t)ncomp, sizeof *mv, cmp_double), qsort(cvol, (size_t)ncomp, sizeof *cvol, cmp_double);
+      for (int c = 0; c < ncomp; c++) same &= mc[c] == ceul[c] && fabs(mv[c] - cvol[c]) <= tol;
+      free(mc), free(mv);
+    }
+    CHECK(same, "%s: %d component rows, the checker finds %d components (or their Euler characteristics or volumes differ)",
+          name, ncomp, r->ncomp);
+  }
+  free(slab), free(cvol), free(ceul);
   csvtab_free(&t);
 }
 
@@ -458,13 +507,14 @@ static void judge(const char *name, int s, const sl_stack *st, const double *z, 
   mc_report r;
   mc_fidelity f;
   check_mesh(name, obj, st, s, 1, &r, &f);
-  /* The volume: the solid's between the first and last planes.  The mesh
+  /* The volume: the solid's between the first and last planes, against the
+   * mesh's there (apex caps beyond the end planes left out).  The mesh
    * differs by the polygons' deficit (about (2 pi / N)^2 / 6 = 0.16% at
    * N = 64), the linear bands between curved slices (~0.1%), and where the
    * topology changes (branches, caps of parts that begin between two
    * planes: a fraction of a band each, a band being 1-2% at 72 slices). */
-  double v = solid_volume(s, z[0], z[K - 1]), e = (r.volume - v) / v;
-  CHECK(fabs(e) < 0.02, "%s: mesh volume %.9g, the solid's %.9g (%+.2f%%)", name, r.volume, v, 100 * e);
+  double v = solid_volume(s, z[0], z[K - 1]), mv = r.volume - f.outside, e = (mv - v) / v;
+  CHECK(fabs(e) < 0.02, "%s: mesh volume %.9g between the end planes, the solid's %.9g (%+.2f%%)", name, mv, v, 100 * e);
   printf("cli_solids: %-32s %2d slices %3d contours: volume %+.3f%% of the solid's, %d components\n", name, K, st->n,
          100 * e, r.ncomp);
   check_report(name, csv, &r, &f);
@@ -479,11 +529,12 @@ static void solid_stack(int s, int uneven, double **z, int *K, sl_stack *st) {
   solid_slice(s, *z, *K, N_POINTS, 1, st);
 }
 
-/* Tile one solid's stack and check everything; its volume and area, or NAN. */
-static void e2e_solid(const char *tile, int s, int uneven, double *vol, double *area) {
+/* Tile one solid's stack and check everything; its volume and area, or NAN.
+ * apex != 0: with --cap-style apex. */
+static void e2e_solid(const char *tile, int s, int uneven, int apex, double *vol, double *area) {
   const solid_info *in = solid_get(s);
   char name[96], base[96], stack[512], obj[512], csv[512], errf[512];
-  snprintf(name, sizeof name, "%s %s", in->name, uneven ? "uneven" : "even");
+  snprintf(name, sizeof name, "%s %s%s", in->name, uneven ? "uneven" : "even", apex ? " apex" : "");
   snprintf(base, sizeof base, "%s_%d", in->name, uneven);
   path_of(obj, sizeof obj, base, ".obj"), path_of(csv, sizeof csv, base, ".csv");
   path_of(errf, sizeof errf, base, ".err"), path_of(stack, sizeof stack, base, ".contours");
@@ -492,7 +543,8 @@ static void e2e_solid(const char *tile, int s, int uneven, double *vol, double *
   sl_stack st;
   solid_stack(s, uneven, &z, &K, &st);
   CHECK(sl_stack_write(&st, stack) == 0, "%s: cannot write %s", name, stack);
-  char *argv[] = {(char *)tile, stack, "--caps", "-q", "-o", obj, NULL};
+  char *argv[] = {(char *)tile, stack, "--caps", "-q", "-o", obj, NULL, NULL, NULL};
+  if (apex) argv[6] = "--cap-style", argv[7] = "apex";
   int rc = run(argv, csv, errf);
   char line[512];
   firstline(errf, line, sizeof line);
@@ -710,6 +762,7 @@ static void e2e_encoding(const char *tile, const char *name, const char *orig, c
     sl_stack sc;
     sl_stack_scramble(st, seed, &sc);
     CHECK(sl_stack_write(&sc, enc) == 0, "cannot write %s", enc);
+    CHECK(!same_file(orig, enc), "%s: the second encoding is the same file", name);
     char *a1[] = {(char *)tile, (char *)orig, "--caps", "-q", "-o", o1, NULL};
     char *a2[] = {(char *)tile, enc, "--caps", "-q", "-o", o2, NULL};
     int r1 = run(a1, c1, e1), r2 = run(a2, c2, e2);
@@ -735,7 +788,7 @@ static int e2e(const char *tile) {
   for (int s = 0; s < solid_count(); s++)
     for (int uneven = 0; uneven < 2; uneven++) {
       double v = NAN, a = NAN, vd, ad;
-      if (!solid_get(s)->multi || all) e2e_solid(tile, s, uneven, &v, &a);
+      if (!solid_get(s)->multi || all) e2e_solid(tile, s, uneven, 0, &v, &a);
       if (!decomposable(s)) continue;
       e2e_decomposed(tile, s, uneven, &vd, &ad);
       if (all)
@@ -753,6 +806,14 @@ static int e2e(const char *tile) {
     const char *tp = "tests/data/slicerrt/tinypatient_0.contours";
     e2e_real(tile, tp, 2);
     e2e_twist(tile);
+    /* Apex caps: ends as cones half a slice out (flat where a point does not
+     * see the whole region, as on the torus's annuli); their volumes in the
+     * report's identity, in the slabs that hold them. */
+    const char *apex[] = {"sphere", "cone", "spheres_separate", "hollow_sphere", "island", "torus_along", "torus_across"};
+    for (int i = 0; i < 7; i++) {
+      double v, a;
+      e2e_solid(tile, solid_find(apex[i]), 1, 1, &v, &a);
+    }
     /* second encodings: tinypatient_0 and every solid's stack */
     sl_stack st;
     char err[512];
@@ -773,8 +834,8 @@ static int e2e(const char *tile) {
       free(z);
     }
   } else {
-    printf("cli_solids: the multi-contour solids and the second encodings were not run "
-           "(enabled when ./tile accepts several contours per slice, issue 9)\n");
+    printf("cli_solids: the multi-contour solids, apex caps and second encodings were not run "
+           "(several_per_slice is 0 in tests/test_solids.c)\n");
   }
   return check_done("cli_solids");
 }
