@@ -36,14 +36,20 @@ void ends_free(end_region *r, int n);
 
 typedef struct {
   int ntri;
-  int (*tri)[3];    /* mesh vertex ids; -1 is the apex */
-  int apex;         /* 1 if it has an apex vertex */
-  vec3 at;          /* the apex */
+  int (*tri)[3];    /* mesh vertex ids; -1-k is the cap's new vertex k */
+  int nnew;         /* new vertices: 1 for an apex, more for a slab */
+  vec3 *at;         /* their positions */
 } end_cap;
 
 /* The cap of region r: an apex cap when `apex` or the region is isolated
- * (a single-slice piece: two flat caps would make a part of no thickness),
- * where the region has no holes and is star-shaped; else flat.  Thread-safe. */
+ * (a single-slice piece), where the region has no holes and is star-shaped;
+ * else flat.  An isolated region that cannot have apex caps becomes a slab
+ * instead: two flat caps in one plane would share their diagonals (edges of
+ * four triangles) and enclose nothing.  Its contours are copied a sixth of
+ * the slice spacing above and below (the lens's volume, A spacing / 3),
+ * joined to the copies by strips of two triangles an edge, and the copies
+ * capped flat; the whole slab goes with the top region, the bottom one gets
+ * no triangles.  Thread-safe. */
 void ends_cap(const slices *sl, const end_region *r, int apex, end_cap *out);
 void ends_cap_free(end_cap *c);
 

@@ -284,10 +284,10 @@ int stack_tile(const contour_stack *s, const char *name, const stack_options *o,
       w.caps = xcalloc((size_t)nends + 1, sizeof *w.caps);
       pool_run(threads, nends, NULL, cap_job, &w);
       for (int i = 0; i < nends; i++)
-        if (o->notes && w.ends[i].isolated && !w.caps[i].apex && w.ends[i].up)
+        if (o->notes && w.ends[i].isolated && w.caps[i].nnew > 1)
           fprintf(o->notes,
                   "%s: %s:%d: the contour is alone (no partner on either slice next to it) and "
-                  "has no point to cap it from; its flat caps make a part of no thickness\n",
+                  "has no point to cap it from: a slab a third of a slice thick\n",
                   o->prefix, name, sl.c[w.ends[i].outer].line);
     }
 
@@ -295,7 +295,7 @@ int stack_tile(const contour_stack *s, const char *name, const stack_options *o,
     mesh *me = &ss->me;
     int nv = sl.nverts;
     for (int i = 0; i < nb; i++) nv += w.b[i].lo.nsteiner + w.b[i].hi.nsteiner;
-    for (int i = 0; i < nends; i++) nv += w.caps[i].apex;
+    for (int i = 0; i < nends; i++) nv += w.caps[i].nnew;
     me->nv = nv;
     me->v = xmallocarray((size_t)nv + 1, sizeof *me->v);
     memcpy(me->v, w.verts, (size_t)sl.nverts * sizeof *me->v);
@@ -327,14 +327,14 @@ int stack_tile(const contour_stack *s, const char *name, const stack_options *o,
     for (int i = 0; i < nends; i++) {
       const end_region *g = &w.ends[i];
       const end_cap *c = &w.caps[i];
-      int apex = c->apex ? next++ : -1;
-      if (c->apex) me->v[apex] = c->at;
+      int first = next;
+      for (int k = 0; k < c->nnew; k++) me->v[next++] = c->at[k];
       stack_row *r = &ss->rows[ss->nrows++];
       double z = sl.z[g->slice];
       vec3 o3 = {sl.c[g->outer].pt[0].x, sl.c[g->outer].pt[0].y, z};
       r->kind = STACK_CAP;
       r->slice0 = r->slice1 = g->slice;
-      r->z0 = z, r->z1 = c->apex ? c->at.z : z;
+      r->z0 = z, r->z1 = c->nnew == 1 ? c->at[0].z : z;
       r->depth = sl.c[g->outer].depth;
       int *cs = xmallocarray((size_t)g->nholes + 1, sizeof *cs);
       cs[0] = g->outer;
@@ -347,7 +347,7 @@ int stack_tile(const contour_stack *s, const char *name, const stack_options *o,
       r->pair = -1;
       for (int k = 0; k < c->ntri; k++) {
         int v[3];
-        for (int e = 0; e < 3; e++) v[e] = c->tri[k][e] >= 0 ? c->tri[k][e] : apex;
+        for (int e = 0; e < 3; e++) v[e] = c->tri[k][e] >= 0 ? c->tri[k][e] : first - 1 - c->tri[k][e];
         add_tri(me, v[0], v[1], v[2]);
         r->area += tri_area(me->v[v[0]], me->v[v[1]], me->v[v[2]]);
         r->volume += tri_vol(me->v[v[0]], me->v[v[1]], me->v[v[2]], o3);
