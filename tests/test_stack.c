@@ -244,7 +244,7 @@ static void check_surface(const char *what, const stack_surface *ss, const poly 
   mc_report r;
   mc_check(&m, &r);
   CHECK(r.manifold && r.outward, "%s: not a closed outward manifold: %s", what, r.first);
-  CHECK(r.ncomp == comps, "%s: %d components, want %d", what, r.ncomp, comps);
+  CHECK(comps < 0 || r.ncomp == comps, "%s: %d components, want %d", what, r.ncomp, comps);
   for (int c = 0; c < r.ncomp && c < comps && chi; c++)
     CHECK(r.chi[c] == chi[c], "%s: component %d: Euler characteristic %d, want %d", what, c, r.chi[c], chi[c]);
   mc_poly *cp = xmallocarray((size_t)np, sizeof *cp);
@@ -545,6 +545,66 @@ static void test_pinched(void) {
   tiling_free(&t);
 }
 
+/* Random stacks: discs placed at random on each slice (so that neighbouring
+ * slices overlap at random: branching, merging, ends), some with a hole and
+ * some holes with an island; flat and apex caps.  Every one must give a
+ * good surface. */
+static void test_random(rng *g) {
+  enum { MAXP = 48, N = 40 };
+  static vec2 buf[MAXP][N];
+  int bad = 0, bridges = 0, stacks = 0;
+  for (int trial = 0; trial < 60; trial++) {
+    poly ps[MAXP];
+    int np = 0, K = rng_int(g, 2, 5);
+    for (int k = 0; k < K; k++) {
+      double placed[6][3];
+      int nd = 0;
+      for (int t = 0; t < 6 && np + 3 <= MAXP; t++) {
+        double r = 0.5 + 2.5 * rng_uniform(g), cx = 12 * rng_uniform(g) - 6, cy = 12 * rng_uniform(g) - 6;
+        int clear = 1;
+        for (int d = 0; d < nd; d++)
+          if (hypot(cx - placed[d][0], cy - placed[d][1]) < r + placed[d][2] + 0.05) clear = 0;
+        if (!clear) continue;
+        placed[nd][0] = cx, placed[nd][1] = cy, placed[nd++][2] = r;
+        int n = rng_int(g, 8, N);
+        circle(buf[np], n, cx, cy, r, r, 6 * rng_uniform(g)), ps[np] = (poly){n, k, buf[np]}, np++;
+        if (r > 1.2 && rng_int(g, 0, 1)) {
+          double hr = r * (0.2 + 0.4 * rng_uniform(g));
+          double hx = cx + (rng_uniform(g) - 0.5) * (r - hr), hy = cy + (rng_uniform(g) - 0.5) * (r - hr);
+          n = rng_int(g, 8, N);
+          circle(buf[np], n, hx, hy, hr, hr, 6 * rng_uniform(g)), ps[np] = (poly){n, k, buf[np]}, np++;
+          if (hr > 0.6 && rng_int(g, 0, 1)) {
+            n = rng_int(g, 8, N);
+            circle(buf[np], n, hx, hy, 0.4 * hr, 0.4 * hr, 6 * rng_uniform(g)), ps[np] = (poly){n, k, buf[np]}, np++;
+          }
+        }
+      }
+    }
+    contour_stack s;
+    if (make_stack(ps, np, NULL, NULL, NULL, &s) != 0) continue;
+    for (int apex = 0; apex < 2; apex++) {
+      char err[512], what[64];
+      int res;
+      stack_surface *ss = tile(&s, 1, apex, 2, NULL, err, sizeof err, &res);
+      CHECK(res == 0, "random stack %d: %s", trial, err);
+      if (res != 0) {
+        bad++;
+        continue;
+      }
+      snprintf(what, sizeof what, "random stack %d%s", trial, apex ? ", apex caps" : "");
+      int before = check_failed;
+      check_surface(what, ss, ps, np, -1, NULL);
+      bad += check_failed > before;
+      stacks++;
+      for (int i = 0; i < stack_nrows(ss); i++) bridges += stack_rows(ss)[i].kind == STACK_BAND ? stack_rows(ss)[i].bridges : 0;
+      stack_free(ss);
+    }
+    contour_stack_free(&s);
+  }
+  CHECK(bad == 0 && stacks > 100, "random stacks: %d of %d bad", bad, stacks);
+  CHECK(bridges > 20, "only %d bridges in the random stacks: the test does not test branching", bridges);
+}
+
 static void test_refusals(void) {
   vec2 a[3] = {{0, 0}, {1, 0}, {0, 1}}, b[3] = {{0.5, -1}, {3, -1}, {0.5, 0.5}};
   poly ps[3] = {{3, 1, a}, {3, 1, b}, {3, 2, a}};
@@ -658,6 +718,7 @@ int main(void) {
   test_shapes();
   test_invariance(&g);
   test_refusals();
+  test_random(&g);
   test_nesting(&g);
   test_pinched();
   return check_done("test_stack");
