@@ -52,11 +52,15 @@ typedef struct {
   const slices *sl;
   const stack_options *o;
   const char *name;
-  junctions *js;
-  band *b;
+  int threads;
+  junctions *js;       /* between slices k and k+1 */
+  band *b;             /* the bands: junctions with contours on both sides */
+  int nb;
+  unsigned char *up, *down;   /* contour c has a band above, below */
   vec3 *verts;         /* the input vertices' positions */
-  end_region *ends;
+  end_region *ends;    /* with caps: the regions to close, and their caps */
   end_cap *caps;
+  int nends;
 } work;
 
 static void match_job(void *ud, int k) {
@@ -184,6 +188,182 @@ static int *positions(const slices *sl, const int *cs, int n) {
   return p;
 }
 
+/* The bands (junctions with contours on both sides), in order, and which
+ * contours have a band above and below. */
+static void plan_bands(work *w) {
+  const slices *sl = w->sl;
+  int nb = 0;
+  for (int k = 0; k + 1 < sl->nslices; k++)
+    for (int g = 0; g < w->js[k].n; g++) nb += w->js[k].j[g].nlo > 0 && w->js[k].j[g].nhi > 0;
+  w->b = xcalloc((size_t)nb + 1, sizeof *w->b);
+  w->up = xcalloc((size_t)sl->ncontours + 1, 1);
+  w->down = xcalloc((size_t)sl->ncontours + 1, 1);
+  for (int k = 0; k + 1 < sl->nslices; k++)
+    for (int g = 0; g < w->js[k].n; g++) {
+      const junction *j = &w->js[k].j[g];
+      if (j->nlo == 0 || j->nhi == 0) continue;
+      w->b[w->nb].slice = k;
+      w->b[w->nb++].j = j;
+      for (int x = 0; x < j->nlo; x++) w->up[j->lo[x]] = 1;
+      for (int x = 0; x < j->nhi; x++) w->down[j->hi[x]] = 1;
+    }
+}
+
+/* Every band's tiling: on the pool (the biggest first), or with rc the
+ * paper's parallel algorithm, every band in one run of the backend.  0, or
+ * -2 when the parallel run failed. */
+static int tile_bands(work *w, stack_surface *ss, char *err, size_t errlen) {
+  const slices *sl = w->sl;
+  run_config *rc = w->o->rc;
+  int nb = w->nb, res = 0;
+  if (rc) {
+    ss->npairs = nb;
+    ss->pairs = xcalloc((size_t)nb + 1, sizeof *ss->pairs);
+    for (int i = 0; i < nb; i++) {
+      par_pair *p = &ss->pairs[i];
+      p->P = w->b[i].lo.pt, p->np = w->b[i].lo.n, p->zp = sl->z[w->b[i].slice];
+      p->Q = w->b[i].hi.pt, p->nq = w->b[i].hi.n, p->zq = sl->z[w->b[i].slice + 1];
+    }
+    if (rc->machine.topo.kind != TOPO_NONE) rc->pair_net = ss->nets = xcalloc((size_t)nb + 1, sizeof *ss->nets);
+    if (run_pairs(rc, ss->pairs, nb, err, errlen) != 0) res = -2;
+    rc->pair_net = NULL;
+    for (int i = 0; i < nb; i++) {
+      w->b[i].t = ss->pairs[i].t;
+      ss->pairs[i].t.col = NULL;
+    }
+    return res;
+  }
+  double *size = xmallocarray((size_t)nb + 1, sizeof *size);
+  int *order = xmallocarray((size_t)nb + 1, sizeof *order);
+  for (int i = 0; i < nb; i++) size[i] = (double)w->b[i].lo.n * w->b[i].hi.n;
+  pool_order(size, nb, order);
+  pool_run(w->threads, nb, order, tile_job, w);
+  free(size);
+  free(order);
+  return 0;
+}
+
+/* What the run changed or could not avoid, band by band, then cap by cap. */
+static void print_notes(const work *w) {
+  const stack_options *o = w->o;
+  const slices *sl = w->sl;
+  if (!o->notes) return;
+  for (int i = 0; i < w->nb; i++) {
+    const band *b = &w->b[i];
+    for (int side = 0; side < 2; side++) {
+      const composite *c = side ? &b->hi : &b->lo;
+      int k = b->slice + side;
+      if (c->relaxed)
+        fprintf(o->notes,
+                "%s: %s:%d: no bridge from this contour to the contour at line %d on slice "
+                "z=%.17g avoids the contours of slice z=%.17g; it crosses them in projection%s\n",
+                o->prefix, w->name, c->relaxed_line[1], c->relaxed_line[0], sl->z[k], sl->z[side ? k - 1 : k + 1],
+                c->relaxed > 1 ? " (and other bridges of the band too)" : "");
+    }
+  }
+  for (int i = 0; i < w->nb; i++) {
+    const band *b = &w->b[i];
+    if (b->pinched)
+      fprintf(o->notes,
+              "%s: %s:%d: the band from this contour (slice z=%.17g) to the slice z=%.17g: its optimum "
+              "(cost %.17g) uses a span twice, a pinched, non-manifold band; %s\n",
+              o->prefix, w->name, sl->c[b->j->lo[0]].line, sl->z[b->slice], sl->z[b->slice + 1], b->pinched_cost,
+              b->pinched == 1 ? "the cheapest path that does not is used" : "too large to replace; kept");
+  }
+  for (int i = 0; i < w->nends; i++)
+    if (w->ends[i].isolated && w->caps[i].nnew > 1)
+      fprintf(o->notes,
+              "%s: %s:%d: the contour is alone (no partner on either slice next to it) and "
+              "has no point to cap it from: a slab a third of a slice thick\n",
+              o->prefix, w->name, sl->c[w->ends[i].outer].line);
+}
+
+/* The mesh and the rows: input vertices, bridge vertices band by band, the
+ * caps' new vertices; the bands' triangles, then the caps'. */
+static void assemble(const work *w, stack_surface *ss) {
+  const slices *sl = w->sl;
+  mesh *me = &ss->me;
+  int nv = sl->nverts;
+  for (int i = 0; i < w->nb; i++) nv += w->b[i].lo.nsteiner + w->b[i].hi.nsteiner;
+  for (int i = 0; i < w->nends; i++) nv += w->caps[i].nnew;
+  me->nv = nv;
+  me->v = xmallocarray((size_t)nv + 1, sizeof *me->v);
+  memcpy(me->v, w->verts, (size_t)sl->nverts * sizeof *me->v);
+  int next = sl->nverts;
+  ss->rows = xcalloc((size_t)(w->nb + w->nends) + 1, sizeof *ss->rows);
+  for (int i = 0; i < w->nb; i++) {
+    const band *b = &w->b[i];
+    int first = next;
+    for (int k = 0; k < b->lo.nsteiner; k++) me->v[next++] = b->lo.steiner[k];
+    for (int k = 0; k < b->hi.nsteiner; k++) me->v[next++] = b->hi.steiner[k];
+    for (int k = 0; k < b->ntri; k++) {
+      int v[3];
+      for (int e = 0; e < 3; e++) v[e] = b->tri[k][e] >= 0 ? b->tri[k][e] : first - 1 - b->tri[k][e];
+      add_tri(me, v[0], v[1], v[2]);
+    }
+    stack_row *r = &ss->rows[ss->nrows++];
+    r->kind = STACK_BAND;
+    r->slice0 = b->slice, r->slice1 = b->slice + 1;
+    r->z0 = sl->z[b->slice], r->z1 = sl->z[b->slice + 1];
+    r->depth = b->j->depth;
+    r->nlo = b->j->nlo, r->nhi = b->j->nhi;
+    r->lo = positions(sl, b->j->lo, r->nlo), r->hi = positions(sl, b->j->hi, r->nhi);
+    r->m = b->lo.n, r->n = b->hi.n;
+    r->bridges = b->lo.nbridges + b->hi.nbridges;
+    r->cost = b->t.cost, r->area = b->area, r->volume = b->volume;
+    r->nodes = (unsigned long long)b->t.count.nodes;
+    r->pair = w->o->rc ? i : -1;
+  }
+  for (int i = 0; i < w->nends; i++) {
+    const end_region *g = &w->ends[i];
+    const end_cap *c = &w->caps[i];
+    int first = next;
+    for (int k = 0; k < c->nnew; k++) me->v[next++] = c->at[k];
+    stack_row *r = &ss->rows[ss->nrows++];
+    double z = sl->z[g->slice];
+    vec3 o = {sl->c[g->outer].pt[0].x, sl->c[g->outer].pt[0].y, z};
+    r->kind = STACK_CAP;
+    r->slice0 = r->slice1 = g->slice;
+    r->z0 = z, r->z1 = c->nnew == 1 ? c->at[0].z : z;
+    r->depth = sl->c[g->outer].depth;
+    int *cs = xmallocarray((size_t)g->nholes + 1, sizeof *cs);
+    cs[0] = g->outer;
+    for (int k = 0; k < g->nholes; k++) cs[k + 1] = g->holes[k];
+    for (int k = 0; k <= g->nholes; k++) r->m += sl->c[cs[k]].n;
+    if (g->up) r->nlo = g->nholes + 1, r->lo = positions(sl, cs, r->nlo), r->hi = positions(sl, cs, 0);
+    else r->nhi = g->nholes + 1, r->hi = positions(sl, cs, r->nhi), r->lo = positions(sl, cs, 0);
+    free(cs);
+    r->pair = -1;
+    for (int k = 0; k < c->ntri; k++) {
+      int v[3];
+      for (int e = 0; e < 3; e++) v[e] = c->tri[k][e] >= 0 ? c->tri[k][e] : first - 1 - c->tri[k][e];
+      add_tri(me, v[0], v[1], v[2]);
+      r->area += tri_area(me->v[v[0]], me->v[v[1]], me->v[v[2]]);
+      r->volume += tri_vol(me->v[v[0]], me->v[v[1]], me->v[v[2]], o);
+    }
+  }
+  XASSERT(next == nv);
+}
+
+static void work_free(work *w) {
+  for (int i = 0; i < w->nb; i++) {
+    bridge_free(&w->b[i].lo);
+    bridge_free(&w->b[i].hi);
+    tiling_free(&w->b[i].t);
+    free(w->b[i].err);
+    free(w->b[i].tri);
+  }
+  for (int i = 0; i < w->nends; i++) ends_cap_free(&w->caps[i]);
+  if (w->ends) ends_free(w->ends, w->nends);
+  free(w->caps);
+  free(w->b);
+  free(w->verts);
+  for (int k = 0; k + 1 < w->sl->nslices; k++) match_free(&w->js[k]);
+  free(w->js);
+  free(w->up);
+  free(w->down);
+}
+
 int stack_tile(const contour_stack *s, const char *name, const stack_options *o,
                stack_surface **out, char *err, size_t errlen) {
   *out = NULL;
@@ -191,188 +371,44 @@ int stack_tile(const contour_stack *s, const char *name, const stack_options *o,
   kernel_simd(-1);   /* the kernel's choice made once, before the threads share it */
   slices sl;
   if (slices_build(s, name, threads, &sl, err, errlen) != 0) return -1;
-  int ns = sl.nslices, several = sl.ncontours > ns;
-  if (o->notes && several && sl.reoriented)
+  int ns = sl.nslices;
+  if (o->notes && sl.ncontours > ns && sl.reoriented)
     fprintf(o->notes,
             "%s: %s: %d of %d contours ran against their nesting (an outer boundary or island "
             "clockwise, or a hole counter-clockwise); oriented by depth\n",
             o->prefix, name, sl.reoriented, sl.ncontours);
 
-  work w = {&sl, o, name, xcalloc((size_t)ns, sizeof(junctions)), NULL, NULL, NULL, NULL};
+  work w;
+  memset(&w, 0, sizeof w);
+  w.sl = &sl, w.o = o, w.name = name, w.threads = threads;
+  w.js = xcalloc((size_t)ns, sizeof *w.js);
   pool_run(threads, ns - 1, NULL, match_job, &w);
-
-  /* The bands: junctions with contours on both sides. */
-  int nb = 0;
-  unsigned char *up = xcalloc((size_t)sl.ncontours + 1, 1), *down = xcalloc((size_t)sl.ncontours + 1, 1);
-  for (int k = 0; k + 1 < ns; k++)
-    for (int g = 0; g < w.js[k].n; g++) nb += w.js[k].j[g].nlo > 0 && w.js[k].j[g].nhi > 0;
-  w.b = xcalloc((size_t)nb + 1, sizeof *w.b);
-  nb = 0;
-  for (int k = 0; k + 1 < ns; k++)
-    for (int g = 0; g < w.js[k].n; g++) {
-      const junction *j = &w.js[k].j[g];
-      if (j->nlo == 0 || j->nhi == 0) continue;
-      w.b[nb].slice = k;
-      w.b[nb++].j = j;
-      for (int x = 0; x < j->nlo; x++) up[j->lo[x]] = 1;
-      for (int x = 0; x < j->nhi; x++) down[j->hi[x]] = 1;
-    }
-  pool_run(threads, nb, NULL, bridge_job, &w);
+  plan_bands(&w);
+  pool_run(threads, w.nb, NULL, bridge_job, &w);
   int rc = 0;
-  for (int i = 0; i < nb; i++)
-    if (w.b[i].err && rc == 0) {
+  for (int i = 0; i < w.nb && rc == 0; i++)
+    if (w.b[i].err) {
       snprintf(err, errlen, "%s", w.b[i].err);
       rc = -1;
     }
-  for (int i = 0; i < nb && rc == 0 && o->notes; i++)
-    for (int side = 0; side < 2; side++) {
-      const composite *c = side ? &w.b[i].hi : &w.b[i].lo;
-      int k = w.b[i].slice + side;
-      if (c->relaxed)
-        fprintf(o->notes,
-                "%s: %s:%d: no bridge from this contour to the contour at line %d on slice "
-                "z=%.17g avoids the contours of slice z=%.17g; it crosses them in projection%s\n",
-                o->prefix, name, c->relaxed_line[1], c->relaxed_line[0], sl.z[k], sl.z[side ? k - 1 : k + 1],
-                c->relaxed > 1 ? " (and other bridges of the band too)" : "");
-    }
-
   stack_surface *ss = xcalloc(1, sizeof *ss);
-  if (rc == 0 && o->rc) {
-    /* The paper's parallel algorithm, every band in one run of the backend. */
-    ss->npairs = nb;
-    ss->pairs = xcalloc((size_t)nb + 1, sizeof *ss->pairs);
-    for (int i = 0; i < nb; i++) {
-      par_pair *p = &ss->pairs[i];
-      p->P = w.b[i].lo.pt, p->np = w.b[i].lo.n, p->zp = sl.z[w.b[i].slice];
-      p->Q = w.b[i].hi.pt, p->nq = w.b[i].hi.n, p->zq = sl.z[w.b[i].slice + 1];
-    }
-    if (o->rc->machine.topo.kind != TOPO_NONE)
-      o->rc->pair_net = ss->nets = xcalloc((size_t)nb + 1, sizeof *ss->nets);
-    if (run_pairs(o->rc, ss->pairs, nb, err, errlen) != 0) rc = -2;
-    o->rc->pair_net = NULL;
-    for (int i = 0; i < nb; i++) {
-      w.b[i].t = ss->pairs[i].t;
-      ss->pairs[i].t.col = NULL;
-    }
-  } else if (rc == 0) {
-    double *size = xmallocarray((size_t)nb + 1, sizeof *size);
-    int *order = xmallocarray((size_t)nb + 1, sizeof *order);
-    for (int i = 0; i < nb; i++) size[i] = (double)w.b[i].lo.n * w.b[i].hi.n;
-    pool_order(size, nb, order);
-    pool_run(threads, nb, order, tile_job, &w);
-    free(size);
-    free(order);
-  }
-
-  int nends = 0;
+  if (rc == 0) rc = tile_bands(&w, ss, err, errlen);
   if (rc == 0) {
     w.verts = xmallocarray((size_t)sl.nverts + 1, sizeof *w.verts);
     for (int c = 0; c < sl.ncontours; c++)
       for (int k = 0; k < sl.c[c].n; k++)
         w.verts[sl.c[c].base + k] = (vec3){sl.c[c].pt[k].x, sl.c[c].pt[k].y, sl.z[sl.c[c].slice]};
-    pool_run(threads, nb, NULL, mesh_job, &w);
-    for (int i = 0; i < nb && o->notes; i++)
-      if (w.b[i].pinched)
-        fprintf(o->notes,
-                "%s: %s:%d: the band from this contour (slice z=%.17g) to the slice z=%.17g: its optimum "
-                "(cost %.17g) uses a span twice, a pinched, non-manifold band; %s\n",
-                o->prefix, name, sl.c[w.b[i].j->lo[0]].line, sl.z[w.b[i].slice], sl.z[w.b[i].slice + 1],
-                w.b[i].pinched_cost,
-                w.b[i].pinched == 1 ? "the cheapest path that does not is used" : "too large to replace; kept");
+    pool_run(threads, w.nb, NULL, mesh_job, &w);
     if (o->caps) {
-      nends = ends_plan(&sl, up, down, &w.ends);
-      w.caps = xcalloc((size_t)nends + 1, sizeof *w.caps);
-      pool_run(threads, nends, NULL, cap_job, &w);
-      for (int i = 0; i < nends; i++)
-        if (o->notes && w.ends[i].isolated && w.caps[i].nnew > 1)
-          fprintf(o->notes,
-                  "%s: %s:%d: the contour is alone (no partner on either slice next to it) and "
-                  "has no point to cap it from: a slab a third of a slice thick\n",
-                  o->prefix, name, sl.c[w.ends[i].outer].line);
+      w.nends = ends_plan(&sl, w.up, w.down, &w.ends);
+      w.caps = xcalloc((size_t)w.nends + 1, sizeof *w.caps);
+      pool_run(threads, w.nends, NULL, cap_job, &w);
     }
-
-    /* The mesh: input vertices, bridge vertices, apexes; bands, then caps. */
-    mesh *me = &ss->me;
-    int nv = sl.nverts;
-    for (int i = 0; i < nb; i++) nv += w.b[i].lo.nsteiner + w.b[i].hi.nsteiner;
-    for (int i = 0; i < nends; i++) nv += w.caps[i].nnew;
-    me->nv = nv;
-    me->v = xmallocarray((size_t)nv + 1, sizeof *me->v);
-    memcpy(me->v, w.verts, (size_t)sl.nverts * sizeof *me->v);
-    int next = sl.nverts;
-    ss->rows = xcalloc((size_t)(nb + nends) + 1, sizeof *ss->rows);
-    for (int i = 0; i < nb; i++) {
-      band *b = &w.b[i];
-      int first = next;
-      for (int k = 0; k < b->lo.nsteiner; k++) me->v[next++] = b->lo.steiner[k];
-      for (int k = 0; k < b->hi.nsteiner; k++) me->v[next++] = b->hi.steiner[k];
-      for (int k = 0; k < b->ntri; k++) {
-        int v[3];
-        for (int e = 0; e < 3; e++) v[e] = b->tri[k][e] >= 0 ? b->tri[k][e] : first - 1 - b->tri[k][e];
-        add_tri(me, v[0], v[1], v[2]);
-      }
-      stack_row *r = &ss->rows[ss->nrows++];
-      r->kind = STACK_BAND;
-      r->slice0 = b->slice, r->slice1 = b->slice + 1;
-      r->z0 = sl.z[b->slice], r->z1 = sl.z[b->slice + 1];
-      r->depth = b->j->depth;
-      r->nlo = b->j->nlo, r->nhi = b->j->nhi;
-      r->lo = positions(&sl, b->j->lo, r->nlo), r->hi = positions(&sl, b->j->hi, r->nhi);
-      r->m = b->lo.n, r->n = b->hi.n;
-      r->bridges = b->lo.nbridges + b->hi.nbridges;
-      r->cost = b->t.cost, r->area = b->area, r->volume = b->volume;
-      r->nodes = (unsigned long long)b->t.count.nodes;
-      r->pair = o->rc ? i : -1;
-    }
-    for (int i = 0; i < nends; i++) {
-      const end_region *g = &w.ends[i];
-      const end_cap *c = &w.caps[i];
-      int first = next;
-      for (int k = 0; k < c->nnew; k++) me->v[next++] = c->at[k];
-      stack_row *r = &ss->rows[ss->nrows++];
-      double z = sl.z[g->slice];
-      vec3 o3 = {sl.c[g->outer].pt[0].x, sl.c[g->outer].pt[0].y, z};
-      r->kind = STACK_CAP;
-      r->slice0 = r->slice1 = g->slice;
-      r->z0 = z, r->z1 = c->nnew == 1 ? c->at[0].z : z;
-      r->depth = sl.c[g->outer].depth;
-      int *cs = xmallocarray((size_t)g->nholes + 1, sizeof *cs);
-      cs[0] = g->outer;
-      for (int k = 0; k < g->nholes; k++) cs[k + 1] = g->holes[k];
-      r->m = 0;
-      for (int k = 0; k <= g->nholes; k++) r->m += sl.c[cs[k]].n;
-      if (g->up) r->nlo = g->nholes + 1, r->lo = positions(&sl, cs, r->nlo), r->hi = positions(&sl, cs, 0);
-      else r->nhi = g->nholes + 1, r->hi = positions(&sl, cs, r->nhi), r->lo = positions(&sl, cs, 0);
-      free(cs);
-      r->pair = -1;
-      for (int k = 0; k < c->ntri; k++) {
-        int v[3];
-        for (int e = 0; e < 3; e++) v[e] = c->tri[k][e] >= 0 ? c->tri[k][e] : first - 1 - c->tri[k][e];
-        add_tri(me, v[0], v[1], v[2]);
-        r->area += tri_area(me->v[v[0]], me->v[v[1]], me->v[v[2]]);
-        r->volume += tri_vol(me->v[v[0]], me->v[v[1]], me->v[v[2]], o3);
-      }
-    }
-    XASSERT(next == nv);
-    ss->ncomp = manifold_components(me, &ss->comp);
+    print_notes(&w);
+    assemble(&w, ss);
+    ss->ncomp = manifold_components(&ss->me, &ss->comp);
   }
-
-  for (int i = 0; i < nb; i++) {
-    bridge_free(&w.b[i].lo);
-    bridge_free(&w.b[i].hi);
-    tiling_free(&w.b[i].t);
-    free(w.b[i].err);
-    free(w.b[i].tri);
-  }
-  for (int i = 0; i < nends; i++) ends_cap_free(&w.caps[i]);
-  if (w.ends) ends_free(w.ends, nends);
-  free(w.caps);
-  free(w.b);
-  free(w.verts);
-  for (int k = 0; k + 1 < ns; k++) match_free(&w.js[k]);
-  free(w.js);
-  free(up);
-  free(down);
+  work_free(&w);
   slices_free(&sl);
   if (rc != 0) {
     stack_free(ss);
