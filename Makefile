@@ -30,15 +30,16 @@ LIBDIRS  = util mp sim algo input surface run
 LIBSRC   = $(filter-out %mpi.c,$(wildcard $(addsuffix /*.c,$(LIBDIRS))))
 # The MPI build (make mpi): every library source, the MPI backend included,
 # and tile and bench from their usual sources, by $(MPICC) with -DTILESIM_MPI
-# into $(MPIDIR).  Not sanitized; warnings as everywhere.  make check runs an
-# MPI test when $(MPICC) is on the PATH.
+# into $(MPIDIR).  Not sanitized; warnings as everywhere.  make check runs
+# the MPI tests when $(MPICC) builds an MPI program (mpi-probe, below).
 MPICC   ?= mpicc
+MPIRUN  ?= mpirun
+SMPICC  ?= smpicc
+SMPIRUN ?= smpirun
 MPIDIR  ?= build/mpi
 MPIFLAGS = -O2 -g -DTILESIM_MPI
 MPISRC   = $(wildcard $(addsuffix /*.c,$(LIBDIRS)))
 MPIPROGS = tile bench
-HAVE_MPICC := $(shell command -v $(MPICC) 2>/dev/null)
-HAVE_SMPICC := $(shell command -v smpicc 2>/dev/null)
 # Programs: prog/NAME.c holds main; prog/NAME_*.c are linked into NAME only.
 PROGS    = $(basename $(notdir $(filter-out $(wildcard prog/*_*.c),$(wildcard prog/*.c))))
 # The SVG plotter, plots/*.c, builds to build/plot.
@@ -90,12 +91,37 @@ $(CHK)/plot: $(call chkobj,$(PLOTSRC)) $(CHK)/libtilesim.a
 $(CHK)/tests/%: $(CHK)/tests/%.o $(call chkobj,$(TESTLIB)) $(CHK)/libtilesim.a
 	$(CC) $(CHKFLAGS) -o $@ $^ $(LDLIBS)
 
-# The tests and the sanitized programs the command-line tests drive (and,
-# where mpicc and smpicc are, the MPI programs for tests/cli_mpi.sh and
-# tests/cli_simgrid.sh).
-check: $(addprefix $(CHK)/tests/,$(TESTS)) $(addprefix $(CHK)/,$(PROGS)) $(if $(PLOTSRC),$(CHK)/plot) \
-       $(if $(HAVE_MPICC),mpi-bins) $(if $(HAVE_SMPICC),smpi-bins)
-	@sh tests/run.sh $(CHK) $(addprefix $(CHK)/tests/,$(TESTS)) $(wildcard tests/cli_*.sh)
+# The tests and the sanitized programs the command-line tests drive; and,
+# where $(MPICC) (and $(SMPICC)) build an MPI program, the MPI programs for
+# tests/cli_mpi.sh (tests/cli_simgrid.sh).  The probe's answers, "yes" or
+# why not, reach the tests as MPI_STATUS and SMPI_STATUS (with MPICC,
+# MPIRUN, SMPICC, SMPIRUN): they look for nothing themselves, and
+# tests/run.sh lists what was skipped and why before its last line.
+check: $(addprefix $(CHK)/tests/,$(TESTS)) $(addprefix $(CHK)/,$(PROGS)) $(if $(PLOTSRC),$(CHK)/plot)
+	@$(MAKE) --no-print-directory -s mpi-probe
+	@mpi=$$(cat $(PROBE)/mpicc); smpi=$$(cat $(PROBE)/smpicc); \
+	if [ "$$mpi" = yes ] && ! $(MAKE) --no-print-directory -s mpi-bins; then mpi="the MPI build failed (make mpi-bins)"; fi; \
+	if [ "$$smpi" = yes ] && ! $(MAKE) --no-print-directory -s smpi-bins; then smpi="the SimGrid build failed (make smpi-bins)"; fi; \
+	MPI_STATUS="$$mpi" SMPI_STATUS="$$smpi" MPICC="$(MPICC)" MPIRUN="$(MPIRUN)" SMPICC="$(SMPICC)" \
+	SMPIRUN="$(SMPIRUN)" sh tests/run.sh $(CHK) $(addprefix $(CHK)/tests/,$(TESTS)) $(wildcard tests/cli_*.sh)
+
+# Does an MPI compiler work?  Two lines of C compiled and linked by $(MPICC)
+# and by $(SMPICC), once per make check; $(PROBE)/mpicc and $(PROBE)/smpicc
+# get "yes", or why not (not found; cannot build, with the compiler's first
+# line: an mpicc without mpi.h, as Debian's openmpi-bin without
+# libopenmpi-dev; no $(MPIRUN)).
+PROBE ?= build/probe
+probe = if ! command -v $(1) >/dev/null 2>&1; then echo "$(1) not found"; \
+	elif ! $(1) $(PROBE)/probe.c -o $(PROBE)/$(3).out > $(PROBE)/$(3).log 2>&1; then \
+	  echo "$(1) cannot build a two-line MPI program: $$(grep -m 1 . $(PROBE)/$(3).log)"; \
+	elif ! command -v $(2) >/dev/null 2>&1; then echo "$(2) not found"; \
+	else echo yes; fi > $(PROBE)/$(3)
+mpi-probe:
+	@mkdir -p $(PROBE)
+	@printf '#include <mpi.h>\nint main(int c, char **v) { MPI_Init(&c, &v); return MPI_Finalize(); }\n' \
+	  > $(PROBE)/probe.c
+	@$(call probe,$(MPICC),$(MPIRUN),mpicc)
+	@$(call probe,$(SMPICC),$(SMPIRUN),smpicc)
 
 # The MPI programs: build/mpi/bin/NAME-mpi, copied to ./NAME-mpi; and the
 # MPI backend's contract test (tests/mpi/contract.c, run by tests/cli_mpi.sh).
@@ -121,9 +147,11 @@ mpi: mpi-bins
 # SimGrid: the same MPI programs built by smpicc into build/smpi, run under
 # smpirun against the simulator's ideal network (tests/simgrid.sh says how).
 smpi-bins:
-	$(MAKE) mpi-bins MPICC=smpicc MPIDIR=build/smpi
-simgrid: all smpi-bins
-	NOBUILD=1 sh tests/simgrid.sh
+	$(MAKE) mpi-bins MPICC=$(SMPICC) MPIDIR=build/smpi
+simgrid: all mpi-probe
+	@smpi=$$(cat $(PROBE)/smpicc); \
+	if [ "$$smpi" = yes ] && ! $(MAKE) --no-print-directory smpi-bins; then smpi="the SimGrid build failed"; fi; \
+	SMPI_STATUS="$$smpi" SMPICC="$(SMPICC)" SMPIRUN="$(SMPIRUN)" NOBUILD=1 sh tests/simgrid.sh
 
 # The same tests, built without sanitizers, under valgrind.
 VG = build/vg
@@ -253,7 +281,8 @@ install: all
 clean:
 	rm -rf build $(PROGS) $(addsuffix -mpi,$(MPIPROGS))
 
-.PHONY: all check valgrind bench bench-tile bench-load install clean mpi mpi-bins smpi-bins simgrid fuzz fuzz-bins
+.PHONY: all check valgrind bench bench-tile bench-load install clean mpi mpi-bins smpi-bins simgrid fuzz fuzz-bins \
+        mpi-probe
 .SECONDARY:
 
 -include $(shell find build -name '*.d' 2>/dev/null)

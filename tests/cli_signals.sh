@@ -75,7 +75,7 @@ killed INT "bench --ring --trace-json" r.json "$BENCH" --ring 8 --laps 10000000 
 echo keep > r.csv
 killed HUP "bench --ring --trace-csv over a file" r.csv "$BENCH" --ring 8 --laps 10000000 --trace-csv r.csv --trace-limit none
 rm -f t.csv r.csv
-[ -z "$DEF" ] && echo "cli_signals: env --default-signal is missing: SIGINT and SIGQUIT were not sent (a background job ignores them)"
+[ -z "$DEF" ] && echo "cli_signals: skipped: SIGINT and SIGQUIT were not sent (env --default-signal is missing, and a background job ignores them)"
 
 # Mid-write: the file size limit (512 bytes) strikes inside the write; the
 # default action of SIGXFSZ ends the process.

@@ -3,14 +3,18 @@
 # echo their output, and end with the line "N passed, N failed".
 # Each test ends its output with "NAME: P passed, F failed"; a test that dies
 # without that line counts as one failure.  Exit status 1 on any failure.
+# A test that skips part of itself says "NAME: skipped: why"; those lines
+# are repeated just before the last line, so that what was not run shows.
 build=$1; shift
-passed=0; failed=0
+passed=0; failed=0; skipped=""
 for t in "$@"; do
   case $t in
     *.sh) out=$(BUILD=$build sh "$t" 2>&1); rc=$? ;;
     *)    out=$(${VALGRIND:-} "$t" 2>&1); rc=$? ;;
   esac
   printf '%s\n' "$out"
+  skipped="$skipped$(printf '%s\n' "$out" | grep -E '^[A-Za-z0-9_.-]+: skipped: ' | sed 's/^/  /')
+"
   line=$(printf '%s\n' "$out" | grep -E '^[A-Za-z0-9_.-]+: [0-9]+ passed, [0-9]+ failed$' | tail -n 1)
   if [ -n "$line" ]; then
     p=$(printf '%s' "$line" | sed -E 's/.*: ([0-9]+) passed, ([0-9]+) failed/\1/')
@@ -23,5 +27,9 @@ for t in "$@"; do
     echo "$t: died (exit status $rc) before its summary line"; failed=$((failed + 1))
   fi
 done
+if [ -n "$(printf '%s' "$skipped" | tr -d '\n')" ]; then
+  echo "skipped (not run here, and why):"
+  printf '%s' "$skipped" | grep -v '^$'
+fi
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]
