@@ -273,15 +273,27 @@ bench-tile: all
 bench-load: all
 	sh tests/bench_load.sh
 
+# make install: the programs, and under PREFIX/share/tilesim the data that
+# bench's defaults name (tests/data/slicerrt, tests/data/rtstruct, with their
+# licences), so that an installed bench runs from any folder.  install-files
+# copies from IBIN and IPLOT (tests/cli_install.sh installs the sanitized
+# build so).
+IBIN  ?= build/bin
+IPLOT ?= build/plot
+SHARE  = $(DESTDIR)$(PREFIX)/share/tilesim
 install: all
-	mkdir -p $(DESTDIR)$(PREFIX)/bin
-	cp $(addprefix build/bin/,$(PROGS)) $(DESTDIR)$(PREFIX)/bin/
-	$(if $(PLOT),cp build/plot $(DESTDIR)$(PREFIX)/bin/tilesim-plot)
+	@$(MAKE) --no-print-directory install-files
+install-files:
+	mkdir -p $(DESTDIR)$(PREFIX)/bin $(SHARE)/slicerrt $(SHARE)/rtstruct
+	cp $(addprefix $(IBIN)/,$(PROGS)) $(DESTDIR)$(PREFIX)/bin/
+	$(if $(PLOT),cp $(IPLOT) $(DESTDIR)$(PREFIX)/bin/tilesim-plot)
+	cp tests/data/slicerrt/*.contours tests/data/slicerrt/README.md $(SHARE)/slicerrt/
+	cp tests/data/rtstruct/*.dcm tests/data/rtstruct/README.md $(SHARE)/rtstruct/
 
 clean:
 	rm -rf build $(PROGS) $(addsuffix -mpi,$(MPIPROGS))
 
-.PHONY: all check valgrind bench bench-tile bench-load install clean mpi mpi-bins smpi-bins simgrid fuzz fuzz-bins \
+.PHONY: all check valgrind bench bench-tile bench-load install install-files clean mpi mpi-bins smpi-bins simgrid fuzz fuzz-bins \
         mpi-probe
 .SECONDARY:
 

@@ -21,6 +21,7 @@
 #include "wallclock.h"
 #include "xmem.h"
 #include "args.h"
+#include "bench_data.h"
 
 static unsigned char *slurp(const char *path, size_t *len) {
   FILE *f = fopen(path, "rb");
@@ -109,7 +110,15 @@ int bench_dicom(int argc, char **argv) {
       return 2;
     }
   }
-  if (nfiles == 0) files[nfiles++] = "tests/data/rtstruct/dicompyler_rtss.dcm";
+  static char found[3000];
+  if (nfiles == 0) {   /* installed, or the source tree */
+    if (bench_data_find("tests/data/rtstruct/dicompyler_rtss.dcm", NULL, found, sizeof found) != 0) {
+      fprintf(stderr, "bench: %s\n", found);
+      free(files);
+      return 1;
+    }
+    files[nfiles++] = found;
+  }
   printf("file,bytes,rois,contours,points,stacks,runs,read_ms,read_mb_per_s,stacks_ms,checksum\n");
   int rc = 0;
   for (int i = 0; i < nfiles && rc == 0; i++) rc = one(files[i], repeat);

@@ -24,6 +24,7 @@
 #include <string.h>
 
 #include "args.h"
+#include "bench_data.h"
 #include "contour.h"
 #include "rtstruct.h"
 #include "stack.h"
@@ -36,18 +37,26 @@ static const char *defaults[] = {"tests/data/rtstruct/dicompyler_rtss.dcm:BODY",
 
 /* The stack of one input; its reading time in *ms. */
 static int load(const char *input, contour_stack *s, double *ms) {
-  char err[1024], path[1024];
+  char err[1024], path[1024], found[3000];
   const char *colon = strstr(input, ".dcm:");
   double t0 = wallclock();
   if (!colon) {
-    int rc = contour_read(input, s, NULL, "bench", err, sizeof err);
+    if (bench_data_find(input, NULL, found, sizeof found) != 0) {   /* installed, or the source tree */
+      fprintf(stderr, "bench: %s\n", found);
+      return -1;
+    }
+    int rc = contour_read(found, s, NULL, "bench", err, sizeof err);
     *ms = (wallclock() - t0) * 1e3;
     if (rc != 0) fprintf(stderr, "bench: %s\n", err);
     return rc;
   }
   snprintf(path, sizeof path, "%.*s", (int)(colon + 4 - input), input);
+  if (bench_data_find(path, NULL, found, sizeof found) != 0) {
+    fprintf(stderr, "bench: %s\n", found);
+    return -1;
+  }
   rtstruct r;
-  if (rtstruct_read(path, &r, err, sizeof err) != 0) {
+  if (rtstruct_read(found, &r, err, sizeof err) != 0) {
     fprintf(stderr, "bench: %s\n", err);
     return -1;
   }

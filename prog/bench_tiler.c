@@ -11,10 +11,10 @@
  * resident memory.  `cost` is the optimum (for a stack, the sum over its
  * pairs): a checksum that shows a fast wrong answer.
  *
- * A stack named without a folder (the default prostate_0.contours) is
- * looked for here, then in --data DIR, else beside the program: installed
- * (PREFIX/share/tilesim, where make install puts the data) or in the source
- * tree (tests/data/slicerrt), so that an installed bench runs anywhere. */
+ * The default stack, tests/data/slicerrt/prostate_0.contours, and a stack
+ * named without a folder are looked for as bench_data.h says: here, in
+ * --data DIR, installed (PREFIX/share/tilesim) or in the source tree beside
+ * the program, so that an installed bench runs anywhere. */
 #include "bench_tiler.h"
 
 #include <limits.h>
@@ -26,6 +26,7 @@
 #include <unistd.h>
 
 #include "args.h"
+#include "bench_data.h"
 #include "contour.h"
 #include "gen.h"
 #include "naive.h"
@@ -186,51 +187,6 @@ static int usage(const char *why, const char *arg) {
   return 2;
 }
 
-/* ---- finding a stack by name ----------------------------------------------- */
-
-/* The folder of the running program (Linux: /proc/self/exe), or "" */
-static void exe_dir(char *buf, size_t len) {
-  ssize_t n = readlink("/proc/self/exe", buf, len - 1);
-  buf[n > 0 ? n : 0] = 0;
-  char *slash = strrchr(buf, '/');
-  if (slash) *slash = 0;
-  else buf[0] = 0;
-}
-
-static int readable(const char *path) { return access(path, R_OK) == 0; }
-
-/* A stack given by name: as it is if it names a readable file or a path
- * (it has a '/'); else in --data DIR if given; else where the data lies
- * beside the program: installed (BIN/../share/tilesim) or in the source
- * tree (./bench and build/bin/bench), then tests/data/slicerrt here.
- * 0 and the path in out, or -1 with where it looked in out. */
-static int find_stack(const char *name, const char *data, char *out, size_t len) {
-  if (strchr(name, '/') || readable(name) || strcmp(name, "-") == 0) {
-    snprintf(out, len, "%s", name);
-    return 0;
-  }
-  if (data) {
-    snprintf(out, len, "%s/%s", data, name);
-    if (readable(out)) return 0;
-    snprintf(out, len, "%s: not found here or in --data %s", name, data);
-    return -1;
-  }
-  char dir[2048];
-  exe_dir(dir, sizeof dir);
-  const char *where[] = {"/../share/tilesim/", "/tests/data/slicerrt/", "/../../tests/data/slicerrt/"};
-  for (size_t i = 0; dir[0] && i < sizeof where / sizeof *where; i++) {
-    snprintf(out, len, "%s%s%s", dir, where[i], name);
-    if (readable(out)) return 0;
-  }
-  snprintf(out, len, "tests/data/slicerrt/%s", name);
-  if (readable(out)) return 0;
-  snprintf(out, len,
-           "%s: not found here, in %s/../share/tilesim (make install puts the data there) "
-           "or in tests/data/slicerrt; --data DIR says where it is",
-           name, dir[0] ? dir : "the program's folder");
-  return -1;
-}
-
 int bench_tiler(int argc, char **argv) {
   int points[16], npoints = 0, naive = -1, repeat = 20;
   const char *inputs[16], *data = NULL;
@@ -275,12 +231,12 @@ int bench_tiler(int argc, char **argv) {
     points[npoints++] = 500;
     points[npoints++] = 5000;
     naive = 500;
-    inputs[ninputs++] = "prostate_0.contours";
+    inputs[ninputs++] = "tests/data/slicerrt/prostate_0.contours";
   }
   /* Every stack found before any work. */
   static char paths[16][2300];
   for (int i = 0; i < ninputs; i++) {
-    if (find_stack(inputs[i], data, paths[i], sizeof paths[i]) != 0) {
+    if (bench_data_find(inputs[i], data, paths[i], sizeof paths[i]) != 0) {
       fprintf(stderr, "bench: %s\n", paths[i]);
       return 1;
     }
