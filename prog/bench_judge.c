@@ -119,18 +119,20 @@ int judge_run(const judge_sweep *s, judge_verdict *v, char *err, size_t errlen) 
            v->t4_t3, v->t6_t5);
   /* 4: half, the largest size. */
   {
-    double S1 = 1, S8 = H[L][1] / H[L][8], S16 = H[L][1] / H[L][16], mid = 0, late = 0;
+    double S1 = 1, S8 = H[L][1] / H[L][8], S16 = H[L][1] / H[L][16], early = 0, mid = 0, late = 0;
     int bp = 0;
+    for (int p = 1; p <= 8; p++)
+      if (H[L][1] / H[L][p] > early) early = H[L][1] / H[L][p];
     for (int p = 9; p <= 13; p++)
       if (H[L][1] / H[L][p] > mid) mid = H[L][1] / H[L][p], bp = p;
     for (int p = 14; p <= 16; p++)
       if (H[L][1] / H[L][p] > late) late = H[L][1] / H[L][p];
-    v->holds[4] = S16 - S8 < 0.5 * (S8 - S1) && mid > late;
+    v->holds[4] = S16 - S8 < 0.5 * (S8 - S1) && mid > late && mid >= early;
     v->half_best = best_speedup(s, JUDGE_HALF, L, &v->half_best_p);
     snprintf(v->detail[4], sizeof v->detail[4],
-             "%d pts, half: speedup %.2f at 8, %.2f at 16; best of 9..13 %.2f at %d, of 14..16 %.2f; "
-             "best overall %.2f at %d",
-             s->sizes[L], S8, S16, mid, bp, late, v->half_best, v->half_best_p);
+             "%d pts, half: speedup %.2f at 8, %.2f at 16; best of 1..8 %.2f, of 9..13 %.2f at %d, of 14..16 "
+             "%.2f; best overall %.2f at %d",
+             s->sizes[L], S8, S16, early, mid, bp, late, v->half_best, v->half_best_p);
   }
   /* 5: size against half, the largest size. */
   {

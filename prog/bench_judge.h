@@ -8,7 +8,8 @@
  *      at the largest size.
  *   4  the speedup flattens, and degrades from about 12 processors (half, largest
  *      size): S(16) - S(8) < 0.5 (S(8) - 1), and the best speedup of P = 9..13
- *      above the best of P = 14..16.
+ *      above the best of P = 14..16 and no lower than the best of P = 1..8 (the
+ *      speedup peaks at 9..13: it "begins to degrade at about 12", not at 4).
  *   5  size beats half, without the plateaus (largest size): size's speedup
  *      summed over P = 1..16 and its best above half's, and size's
  *      T(4) < 0.9 T(3), T(6) < 0.9 T(5).

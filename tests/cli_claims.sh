@@ -1,6 +1,6 @@
 #!/bin/sh
 # cli_claims.sh -- the paper's claims (sections 6 and 7) on a reduced sweep,
-# 200 and 400 points, P = 1..16, both allocations, run by the sanitized
+# 200 and 500 points, P = 1..16, both allocations, run by the sanitized
 # ./bench; `bench --claims` reads them back.  Asserted: the claims that this
 # size can show (1, 2, 3, 4, 7, and 5's "size beats half"); 6 is checked for
 # the form of its report (README, "The paper's claims": what holds and why).
@@ -13,7 +13,7 @@ pass=0; fail=0
 ok()  { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "cli_claims: $*"; }
 
-"$BENCH" --points 200,400 --alloc half,size --jobs 2 -o "$T/sp.csv" 2> "$T/err" && ok || bad "sweep: $(cat "$T/err")"
+"$BENCH" --points 200,500 --alloc half,size --jobs 2 -o "$T/sp.csv" 2> "$T/err" && ok || bad "sweep: $(cat "$T/err")"
 "$BENCH" --points 300 --procs 1..4 --alloc size --jobs 1 > "$T/j1.csv" && "$BENCH" --points 300 --procs 1..4 --alloc size --jobs 2 > "$T/j2.csv" && ok || bad "jobs runs"
 cut -d, -f1-15,17- "$T/j1.csv" > "$T/j1c"; cut -d, -f1-15,17- "$T/j2.csv" > "$T/j2c"
 cmp -s "$T/j1c" "$T/j2c" && ok || bad "--jobs 2 differs from --jobs 1 (wall_s aside)"
@@ -24,7 +24,7 @@ awk -F, 'NR>1 { k=$1","$3; if ($2==1) t1[k]=$9; t[NR]=$9; key[NR]=k; sp[NR]=$10;
          END { for (i in t) { d = t1[key[i]]/t[i] - sp[i]; if (d < -1e-5 || d > 1e-5) bads=1 } exit bads+badc }' "$T/sp.csv" && ok || bad "speedup is not T(1)/T(P), or a pair has two costs"
 "$BENCH" --claims "$T/sp.csv" --require 1,2,3,4,7 > "$T/claims.csv" 2> "$T/err" && ok || bad "claims: $(cat "$T/err") $(cat "$T/claims.csv")"
 [ "$(grep -c '^"[1-7] [^"]*",\(yes\|no\|n/a\),".*"$' "$T/claims.csv")" -eq 7 ] && ok || bad "claims report: $(cat "$T/claims.csv")"
-grep -q '^"5 [^"]*",\(yes\|no\),"400 pts: summed speedup size' "$T/claims.csv" && ok || bad "claim 5 report"
+grep -q '^"5 [^"]*",\(yes\|no\),"500 pts: summed speedup size' "$T/claims.csv" && ok || bad "claim 5 report"
 # Claim 5's first half holds at this size (size beats half); its plateaus do not
 # go (README: the generated pairs split evenly).
 grep -q '^"5 .*(better, ' "$T/claims.csv" && ok || bad "claim 5: size is not better than half: $(grep '^"5 ' "$T/claims.csv")"

@@ -94,12 +94,17 @@ sweep "$T/s.csv" $ALL "500:6:half:$(awk 'BEGIN { print 2.6 / 0.8999 }')"; expect
 sweep "$T/s.csv" $ALL "400:4:half:1.7"; expect 3 yes "a plateau gone at 400 points only" "$T/s.csv"
 
 # 4: S(16) - S(8) < 0.5 (S(8) - 1): with S(8) = 2 the edge is S(16) = 2.5;
-# and the best of 9..13 (3.2 at 11) above the best of 14..16.
+# and the best of 9..13 (3.2 at 11) above the best of 14..16 and no lower
+# than the best of 1..8.
 sweep "$T/s.csv" $ALL "500:8:half:2 500:16:half:2.4999"; expect 4 yes "S(16) = 2.4999, S(8) = 2" "$T/s.csv"
 sweep "$T/s.csv" $ALL "500:8:half:2 500:16:half:2.5001"; expect 4 no "S(16) = 2.5001, S(8) = 2" "$T/s.csv"
 sweep "$T/s.csv" $ALL "500:15:half:3.1999"; expect 4 yes "S(15) = 3.1999 below S(11) = 3.2" "$T/s.csv"
 sweep "$T/s.csv" $ALL "500:15:half:3.2001"; expect 4 no "S(15) = 3.2001 above S(11) = 3.2" "$T/s.csv"
 sweep "$T/s.csv" $ALL "500:14:half:3.2"; expect 4 no "S(14) = S(11): not above" "$T/s.csv"
+# ... and the peak not before 9 (the best of 1..8 no higher than 9..13's)
+sweep "$T/s.csv" $ALL "500:8:half:3.1999"; expect 4 yes "S(8) = 3.1999 below S(11) = 3.2" "$T/s.csv"
+sweep "$T/s.csv" $ALL "500:5:half:3.2001"; expect 4 no "S(5) = 3.2001 above S(11) = 3.2" "$T/s.csv"
+sweep "$T/s.csv" $ALL "500:8:half:3.2"; expect 4 yes "S(8) = S(11) = 3.2" "$T/s.csv"
 
 # 5: size's best and summed speedups above half's, and no plateaus (size's
 # T(4) < 0.9 T(3), T(6) < 0.9 T(5)).
