@@ -207,6 +207,11 @@ TOPONET = --hop-latency 1e-4 --switching store-and-forward
 # per_byte of the threads backend; data in README "The variants").
 VARIANTS = paper,fit,block8,dynamic,dynamic+block8
 XEON16 = --net ideal --m 5.453e-07 --c 2.675e-09 --per-byte 1.599e-10
+# Where the claims hold (README, "The paper's claims"): the generated pair and
+# the real pair on the bus, m/c from 1 to 128 at c = 50 us (the coarse grid;
+# the README gives the fine one).
+CLAIMS_GEN = --m 5e-5,1e-4,2e-4,2.75e-4,4e-4,8e-4,1.6e-3,3.2e-3,6.4e-3
+CLAIMS_REAL = --input tests/data/slicerrt/prostate_0.contours --pair 40 --m 1e-4,2.75e-4,8e-4,3.2e-3
 bench: all
 	./bench --alloc half,size --jobs $(JOBS) -o plots/speedup.csv
 	./bench --points 500 --alloc size --min-diag 20,40,60,80,100 --jobs $(JOBS) -o plots/min_diag.csv
@@ -260,6 +265,11 @@ bench: all
 	  --labels "tc2000 500 points,16-core host 1000 points (dashed)" --yzero \
 	  --title "The variants: speedup, simulated tc2000 and the simulator calibrated to a 16-core host" \
 	  --xlabel processors --ylabel "speedup T(1)/T(P)" -o plots/variants.svg
+	./bench --claims-map $(CLAIMS_GEN) --jobs $(JOBS) -o build/claims_map_gen.csv
+	./bench --claims-map $(CLAIMS_REAL) --jobs $(JOBS) -o build/claims_map_real.csv
+	awk 'FNR > 1 || NR == 1' build/claims_map_gen.csv build/claims_map_real.csv > build/claims_map.csv && \
+	  mv build/claims_map.csv plots/claims_map.csv
+	build/plot claims plots/claims_map.csv -o plots/claims_map.svg
 
 # The tiler's speed and memory (issue figures: 500 x 500, 5000 x 5000, the naive
 # reference, the whole prostate_0 stack), and how fast an RT structure set is read.

@@ -4,6 +4,7 @@
  *   plot lines CSV -x COL -y COL[,COL...] [--series COL[,COL...]] [--where COL=VALUE]...
  *        [--labels A,B,...] [--title T] [--xlabel T] [--ylabel T] [--yzero] -o OUT.svg
  *   plot surface STACK [--cost area|span] [--caps] [--title T] -o OUT.svg
+ *   plot claims MAP.csv [--title T] -o OUT.svg   (plot_claims.c)
  *
  * lines: one line per value of the --series column (in order of first
  * appearance; with several columns, per combination of their values) and
@@ -19,6 +20,7 @@
 #include "contour.h"
 #include "csvtab.h"
 #include "mesh.h"
+#include "plot_claims.h"
 #include "svgchart.h"
 #include "svgsurface.h"
 #include "tiling.h"
@@ -32,15 +34,18 @@ static const char surface_usage[] =
     "usage: plot surface STACK [--cost area|span] [--caps] [--title T] -o OUT.svg   "
     "(plot --help: every option)\n";
 static const char any_usage[] =
-    "usage: plot lines CSV ... -o OUT.svg | plot surface STACK ... -o OUT.svg   "
+    "usage: plot lines CSV ... -o OUT.svg | plot surface STACK ... -o OUT.svg | "
+    "plot claims MAP.csv ... -o OUT.svg   "
     "(plot --help: every option)\n";
 
 static void help(void) {
   fputs("usage: plot lines CSV -x COL -y COL[,COL...] [--series COL[,COL...]] [--where COL=VALUE]...\n"
         "            [--labels A,B,...] [--title T] [--xlabel T] [--ylabel T] [--yzero] -o OUT.svg\n"
         "       plot surface STACK [--cost area|span] [--caps] [--title T] -o OUT.svg\n"
+        "       plot claims MAP.csv [--title T] -o OUT.svg\n"
         "\n"
-        "plot -- tilesim's CSV as SVG line charts, and a contour stack with its surface.\n"
+        "plot -- tilesim's CSV as SVG line charts, a contour stack with its surface, and\n"
+        "the claims map.\n"
         "\n"
         "lines: one line per value of the --series column and per y column (up to 8; a\n"
         "second y column dashed), from the rows that match every --where (up to 16),\n"
@@ -58,6 +63,10 @@ static void help(void) {
         "surface: the stack tiled (closed with --caps), drawn beside its contours.\n"
         "  --cost area|span   the tile weight (default area)\n"
         "  --caps             close the first and last contours\n"
+        "  --title T          the title\n"
+        "  -o OUT.svg         the picture\n"
+        "claims: a claims map (bench --claims-map) as a grid: a panel per configuration\n"
+        "less its m, the claims down, m/c across on a log scale, held, failed or n/a.\n"
         "  --title T          the title\n"
         "  -o OUT.svg         the picture\n"
         "\n"
@@ -326,10 +335,12 @@ static int surface(int argc, char **argv) {
 int main(int argc, char **argv) {
   if (argc >= 2 && strcmp(argv[1], "lines") == 0) return lines(argc, argv);
   if (argc >= 2 && strcmp(argv[1], "surface") == 0) return surface(argc, argv);
+  if (argc >= 2 && strcmp(argv[1], "claims") == 0) return plot_claims(argc, argv);
   if (argc >= 2 && (strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0)) {
     help();
     return 0;
   }
-  return usage(any_usage, argc >= 2 ? "unknown mode, use lines or surface" : "no mode, use lines or surface",
+  return usage(any_usage, argc >= 2 ? "unknown mode, use lines, surface or claims"
+                                 : "no mode, use lines, surface or claims",
                argc >= 2 ? argv[1] : NULL);
 }

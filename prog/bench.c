@@ -9,6 +9,7 @@
 #include "bench_calibrate.h"
 #include "bench_claims.h"
 #include "bench_dicom.h"
+#include "bench_map.h"
 #include "bench_model.h"
 #include "bench_paper.h"
 #include "bench_ring.h"
@@ -43,6 +44,11 @@ static const mode modes[] = {
     {"--claims", bench_claims,
      "SPEEDUP.csv [MIN_DIAG.csv] [--require LIST]\n"
      "      the paper's seven claims (sections 6, 7), checked against the sweeps"},
+    {"--claims-map", bench_map,
+     "[--net LIST] [--m LIST] [--c LIST] [--seed LIST] [--input STACK --pair LIST]\n"
+     "      [--points LIST] [machine options] [--jobs N] [-o FILE]\n"
+     "      where the seven claims hold: each configuration (net, m, c, pair) swept on the\n"
+     "      paper's setup and judged; CSV, a row per configuration (build/plot claims)"},
     {"--calibrate", bench_calibrate,
      "[--points LIST] [--procs LIST] [--repeat R] [--seed S] [--messages K]\n"
      "      this host measured by micro-benchmarks (c per node; a message's send and\n"

@@ -89,6 +89,8 @@ typedef struct {
   int pair;
   const bench_topos *topos;   /* n == 0: the machine's own network */
   const bench_places *places;
+  const bench_cfg *cfgs;   /* bench_sweep_runs: each job's machine and pair, by
+                              its pairid; NULL: base, seed, input and pair */
 } plan;
 
 void bench_make_pair(unsigned long long seed, int points, vec2 **P, vec2 **Q) {
@@ -105,15 +107,20 @@ void bench_make_pair(unsigned long long seed, int points, vec2 **P, vec2 **Q) {
   gen_star(&g, *Q, points, cx, cy, 95, 0.3);
 }
 
-static void make_pair(const plan *pl, int points, vec2 **P, int *np, double *zp, vec2 **Q, int *nq,
-                      double *zq) {
-  if (pl->input) {
-    const contour *a = &pl->input->c[pl->pair], *b = &pl->input->c[pl->pair + 1];
+/* The job's pair: generated (the caller frees it) or a real one; 1 if real. */
+static int make_pair(const plan *pl, const job *jb, vec2 **P, int *np, double *zp, vec2 **Q, int *nq,
+                     double *zq) {
+  const bench_cfg *cf = pl->cfgs ? &pl->cfgs[jb->pairid] : NULL;
+  const contour_stack *in = cf ? cf->input : pl->input;
+  int pair = cf ? cf->pair : pl->pair;
+  if (in) {
+    const contour *a = &in->c[pair], *b = &in->c[pair + 1];
     *P = a->pt, *np = a->n, *zp = a->z, *Q = b->pt, *nq = b->n, *zq = b->z;
-    return;
+    return 1;
   }
-  bench_make_pair(pl->seed, points, P, Q);
-  *np = *nq = points, *zp = 0, *zq = 5;
+  bench_make_pair(cf ? cf->seed : pl->seed, jb->points, P, Q);
+  *np = *nq = jb->points, *zp = 0, *zq = 5;
+  return 0;
 }
 
 /* The job's topology and placement into rc. */
@@ -132,8 +139,8 @@ static outcome one_run(const plan *pl, const job *jb) {
   vec2 *P, *Q;
   int np, nq;
   double zp, zq;
-  make_pair(pl, jb->points, &P, &np, &zp, &Q, &nq, &zq);
-  run_config rc = pl->base;
+  int real = make_pair(pl, jb, &P, &np, &zp, &Q, &nq, &zq);
+  run_config rc = pl->cfgs ? pl->cfgs[jb->pairid].rc : pl->base;
   rc.procs = jb->procs;
   rc.opt.alloc = (split_alloc)jb->alloc;
   rc.opt.min_diag = jb->d;
@@ -158,7 +165,7 @@ static outcome one_run(const plan *pl, const job *jb) {
     o.idle = pr.counts.idle / (run_ranks(jb->procs) - 1);
     tiling_free(&pr.t);
   }
-  if (!pl->input) free(P), free(Q);
+  if (!real) free(P), free(Q);
   return o;
 }
 
@@ -485,7 +492,7 @@ int bench_paper(int argc, char **argv) {
                 }
               }
   if (repeat == 0) repeat = rc.backend == RUN_SIM ? 1 : 10;
-  plan pl = {jb, njobs, rc, seed, repeat, input ? &stack : NULL, pairk, &topos, &places};
+  plan pl = {jb, njobs, rc, seed, repeat, input ? &stack : NULL, pairk, &topos, &places, NULL};
   /* Every machine and placement fits every P, checked before any run (a
    * group of `per` jobs shares them); the maps on request, once each. */
   unsigned char seen[BENCH_NET_MAX][BENCH_NET_MAX] = {{0}};
@@ -577,4 +584,33 @@ int bench_paper(int argc, char **argv) {
   free(o);
   contour_stack_free(&stack);
   return wbad ? 1 : 0;
+}
+
+int bench_sweep_runs(const bench_cfg *cfgs, const bench_run *runs, int n, int jobs, double *times,
+                     char *err, size_t errlen) {
+  static const bench_topos notopo;
+  static const bench_places noplace;
+  job *jb = xmallocarray((size_t)(n > 0 ? n : 1), sizeof *jb);
+  for (int i = 0; i < n; i++) {
+    const run_config *rc = &cfgs[runs[i].cfg].rc;
+    jb[i] = (job){runs[i].points, runs[i].procs, runs[i].alloc, runs[i].d, 0, runs[i].cfg, rc->machine.m,
+                  rc->machine.c, 0, 0, rc->opt.block, (int)rc->opt.schedule};
+  }
+  plan pl = {jb, n, cfgs[0].rc, 0, 1, NULL, 0, &notopo, &noplace, cfgs};
+  outcome *o = xcalloc((size_t)(n > 0 ? n : 1), sizeof *o);
+  int progress = isatty(2);
+  int rcode = run_all(&pl, o, jobs, progress);
+  if (progress) fputs("\r\033[K", stderr);
+  if (rcode != 0) snprintf(err, errlen, "a worker failed");
+  for (int i = 0; rcode == 0 && i < n; i++) {
+    if (!o[i].ok) {
+      snprintf(err, errlen, "the run with %d points on %d processors failed: %s", runs[i].points, runs[i].procs,
+               o[i].err);
+      rcode = -1;
+    }
+    times[i] = o[i].sim_time;
+  }
+  free(jb);
+  free(o);
+  return rcode == 0 ? 0 : -1;
 }

@@ -220,7 +220,7 @@ done
 refused bench "unknown option (--bogus)" "--ring;3;--laps;2;--bogus;1"
 refused bench "unexpected argument (extra)" "--switch;100;extra"
 refused plot "unknown option (--bogus)" "$L;-x;procs;-y;sim_time;-o;p.svg;--bogus;1"
-refused plot "unknown mode, use lines or surface (frob)" "frob"
+refused plot "unknown mode, use lines, surface or claims (frob)" "frob"
 
 # --help goes to stdout, exit 0, for every program.
 for p in tile bench plot; do
