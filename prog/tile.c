@@ -89,7 +89,7 @@ static void usage(FILE *f) {
         "  --contours FILE    write the ROI as a .contours stack (DIR/ for several)\n"
         "\n"
         "CSV on stdout, a row per band:\n"
-        "band,z0,z1,depth,lower,upper,junction,m,n,bridges,cost,area,volume,nodes,euler,genus\n"
+        "band,z0,z1,depth,lower,upper,junction,m,n,bridges,cost,area,volume,nodes,spans,euler,genus\n"
         "(lower, upper: the contours of the two slices by their places on the slice;\n"
         "junction: how many below - above); with --procs also procs,sim_time,\n"
         "msg_boundary,msg_backtrack,msg_bounds,msg_control,bytes,backend (sim_time: the\n"

@@ -10,7 +10,7 @@ static const char net_empty[] = ",,,,,";
 static int topology(const run_config *rc) { return rc && rc->machine.topo.kind != TOPO_NONE; }
 
 void report_header(FILE *f, const char *prefix, const run_config *rc) {
-  fprintf(f, "%sband,z0,z1,depth,lower,upper,junction,m,n,bridges,cost,area,volume,nodes,euler,genus%s%s\n",
+  fprintf(f, "%sband,z0,z1,depth,lower,upper,junction,m,n,bridges,cost,area,volume,nodes,spans,euler,genus%s%s\n",
           prefix, rc ? par_cols : "", topology(rc) ? net_cols : "");
 }
 
@@ -22,7 +22,7 @@ static void list(FILE *f, const int *x, int n) {
 void report_rows(FILE *f, const char *prefix, const stack_surface *ss, const run_config *rc) {
   const stack_row *r = stack_rows(ss);
   const par_pair *pp = stack_pairs(ss);
-  int nb = 0, bridges = 0;
+  int nb = 0, bridges = 0, spans = 0;
   double cost = 0, zmin = 0, zmax = 0;
   unsigned long long nodes = 0;
   for (int i = 0; i < stack_nrows(ss); i++) {
@@ -35,12 +35,13 @@ void report_rows(FILE *f, const char *prefix, const stack_surface *ss, const run
     list(f, x->hi, x->nhi);
     fprintf(f, ",%d-%d,%d,%d", x->nlo, x->nhi, x->m, x->n);
     if (x->kind == STACK_BAND) {
-      fprintf(f, ",%d,%.17g,%.17g,%.17g,%llu,,", x->bridges, x->cost, x->area, x->volume, x->nodes);
+      fprintf(f, ",%d,%.17g,%.17g,%.17g,%llu,%d,,", x->bridges, x->cost, x->area, x->volume, x->nodes, x->spans);
       bridges += x->bridges;
+      spans += x->spans;
       cost += x->cost;
       nodes += x->nodes;
     } else {
-      fprintf(f, ",,,%.17g,%.17g,,,", x->area, x->volume);
+      fprintf(f, ",,,%.17g,%.17g,,,,", x->area, x->volume);
     }
     if (rc && x->pair >= 0) {
       const par_counts *c = &pp[x->pair].counts;
@@ -72,11 +73,11 @@ void report_rows(FILE *f, const char *prefix, const stack_surface *ss, const run
     manifold &= c[i].manifold;
     euler += c[i].euler;
   }
-  fprintf(f, "%smesh,%.17g,%.17g,,,,%s,%d,%d,%d,%.17g,%.17g,%.17g,%llu,%d,%s%s\n", prefix, zmin, zmax,
+  fprintf(f, "%smesh,%.17g,%.17g,,,,%s,%d,%d,%d,%.17g,%.17g,%.17g,%llu,%d,%d,%s%s\n", prefix, zmin, zmax,
           manifold ? "closed" : closed ? "pinched" : "open", me->nv, me->nt, bridges, cost, mesh_area(me), mesh_volume(me), nodes,
-          euler, rc ? par_empty : "", topology(rc) ? net_empty : "");
+          spans, euler, rc ? par_empty : "", topology(rc) ? net_empty : "");
   for (int i = 0; i < nc; i++) {
-    fprintf(f, "%scomponent,%.17g,%.17g,,,,%s,%d,%d,,,%.17g,%.17g,,%d,", prefix, c[i].zmin, c[i].zmax,
+    fprintf(f, "%scomponent,%.17g,%.17g,,,,%s,%d,%d,,,%.17g,%.17g,,,%d,", prefix, c[i].zmin, c[i].zmax,
             c[i].manifold ? "closed" : c[i].closed ? "pinched" : "open", c[i].nv, c[i].nt, c[i].area,
             c[i].volume, c[i].euler);
     if (c[i].manifold) fprintf(f, "%d", c[i].genus);

@@ -1,6 +1,6 @@
 /* report.h -- the CSV report of a tiled stack (./tile's standard output).
  *
- *   band,z0,z1,depth,lower,upper,junction,m,n,bridges,cost,area,volume,nodes,euler,genus
+ *   band,z0,z1,depth,lower,upper,junction,m,n,bridges,cost,area,volume,nodes,spans,euler,genus
  *   [,procs,sim_time,msg_boundary,msg_backtrack,msg_bounds,msg_control,bytes,backend]
  *
  * One row per band (band = 0, 1, ...): the slices' z, the contours' depth,
@@ -8,7 +8,9 @@
  * order, joined by '+'), the junction type (contours below - above), the
  * points of the two contours the tiler saw (m below, n above, bridge
  * vertices included), bridges, the optimum, the band's area and slab volume,
- * the tiler's node evaluations; with --procs the parallel run's columns,
+ * the tiler's node evaluations, the spans its optimum used twice (a pinched
+ * band, surface/unpinch.h: the band is then the cheapest path without, and
+ * cost its cost); with --procs the parallel run's columns,
  * and on a topology (--topology) the network's.
  * Then with caps one row per cap (band = cap; z1 the apex's z; volume what
  * the cap adds beyond its flat region), one row `mesh` (zmin, zmax,

@@ -312,6 +312,7 @@ static void assemble(const work *w, stack_surface *ss) {
     r->bridges = b->lo.nbridges + b->hi.nbridges;
     r->cost = b->t.cost, r->area = b->area, r->volume = b->volume;
     r->nodes = (unsigned long long)b->t.count.nodes;
+    r->spans = b->pinched ? 1 : 0;
     r->pair = w->o->rc ? i : -1;
   }
   for (int i = 0; i < w->nends; i++) {

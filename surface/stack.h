@@ -56,6 +56,9 @@ typedef struct {
   double volume;       /* band: the slab closed by it and the slices' regions;
                           cap: what it adds beyond the flat region (0 flat) */
   unsigned long long nodes;   /* band: the tiler's node evaluations */
+  int spans;           /* band: spans the tiler's optimum used twice (a pinched
+                          band, unpinch.h): then the band is the cheapest path
+                          that uses none (cost is its cost) unless too large */
   int pair;            /* band: its run in stack_pairs (with rc), else -1 */
 } stack_row;
 

@@ -19,8 +19,9 @@
 
 #include "tiling.h"
 
-/* 1 if the path of t uses a span twice (at most one run of vertical or of
- * horizontal steps around the cycle), else 0. */
+/* How many spans the path of t uses twice: 1 when it has at most one run of
+ * vertical or of horizontal steps around the cycle (the full run's two ends
+ * are one span), else 0. */
 int unpinch_repeats(const tiling *t);
 
 /* The cheapest path of the pair (as tiling_solve: rows the smaller contour,

@@ -54,22 +54,22 @@ else
 fi
 
 # tile-mpi on 4 processes (the master and 3 slaves): the serial report in
-# its sixteen columns, bit for bit, and the same mesh.
+# its seventeen columns, bit for bit, and the same mesh.
 "$TILE" $DATA/prostate_2.contours -q -o "$T/ser.obj" > "$T/ser.csv" && ok || bad "serial tile failed"
 tail -n +2 "$T/ser.csv" > "$T/ser9"
 run 4 "$MPIDIR/bin/tile-mpi" $DATA/prostate_2.contours -q -o "$T/mpi.obj" > "$T/mpi.csv" 2> "$T/err" \
   && ok || bad "tile-mpi on 4 processes failed: $(cat "$T/err")"
-cut -d, -f1-16 "$T/mpi.csv" | tail -n +2 | cmp -s - "$T/ser9" && ok || bad "4 processes: the report differs from the serial one"
+cut -d, -f1-17 "$T/mpi.csv" | tail -n +2 | cmp -s - "$T/ser9" && ok || bad "4 processes: the report differs from the serial one"
 cut -d, -f11 "$T/mpi.csv" | cmp -s - "$(cut -d, -f11 "$T/ser.csv" > "$T/sercost"; echo "$T/sercost")" \
   && ok || bad "4 processes: the cost column differs"
 cmp -s "$T/mpi.obj" "$T/ser.obj" && ok || bad "4 processes: the mesh differs from the serial one"
-awk -F, 'NR>1 && $1 ~ /^[0-9]+$/ && ($17 != 4 || $24 != "mpi" || $18 <= 0 || $19 <= 0) {bad=1} END{exit bad}' "$T/mpi.csv" \
+awk -F, 'NR>1 && $1 ~ /^[0-9]+$/ && ($18 != 4 || $25 != "mpi" || $19 <= 0 || $20 <= 0) {bad=1} END{exit bad}' "$T/mpi.csv" \
   && ok || bad "4 processes: procs, backend, time or boundary columns: $(sed -n 2p "$T/mpi.csv")"
 # Fewer ranks than processes, the size allocation, d = 20; a real stack of another patient.
 "$TILE" $DATA/prostate_4.contours -q > "$T/ser4.csv" && tail -n +2 "$T/ser4.csv" > "$T/ser4"
 run 4 "$MPIDIR/bin/tile-mpi" $DATA/prostate_4.contours -q --procs 3 --alloc size --min-diag 20 > "$T/mpi4.csv" 2> "$T/err" \
   && ok || bad "tile-mpi --procs 3: $(cat "$T/err")"
-cut -d, -f1-16 "$T/mpi4.csv" | tail -n +2 | cmp -s - "$T/ser4" && ok || bad "--procs 3: the report differs from the serial one"
+cut -d, -f1-17 "$T/mpi4.csv" | tail -n +2 | cmp -s - "$T/ser4" && ok || bad "--procs 3: the report differs from the serial one"
 # One process: the serial solver, as ./tile without --procs.
 run 1 "$MPIDIR/bin/tile-mpi" $DATA/prostate_2.contours -q > "$T/one.csv" 2> "$T/err" && cmp -s "$T/one.csv" "$T/ser.csv" \
   && ok || bad "tile-mpi on 1 process is not the serial report: $(cat "$T/err")"

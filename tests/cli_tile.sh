@@ -82,7 +82,7 @@ usage $DATA/tinypatient_1.contours $DATA/prostate_1.contours
 # Good runs: the report, deterministic, the mesh formats.
 "$TILE" $DATA/prostate_2.contours -q --caps -o "$T/a.obj" > "$T/a.csv" 2> "$T/err" && ok || bad "prostate_2 failed: $(cat "$T/err")"
 [ ! -s "$T/err" ] && ok || bad "-q still printed: $(cat "$T/err")"
-head -1 "$T/a.csv" | grep -qx 'band,z0,z1,depth,lower,upper,junction,m,n,bridges,cost,area,volume,nodes,euler,genus' && ok || bad "CSV header: $(head -1 "$T/a.csv")"
+head -1 "$T/a.csv" | grep -qx 'band,z0,z1,depth,lower,upper,junction,m,n,bridges,cost,area,volume,nodes,spans,euler,genus' && ok || bad "CSV header: $(head -1 "$T/a.csv")"
 [ "$(grep -c '^[0-9]' "$T/a.csv")" -eq 18 ] && ok || bad "expected 18 band rows"
 [ "$(grep -c '^cap,' "$T/a.csv")" -eq 2 ] && ok || bad "--caps: expected 2 cap rows"
 grep -q '^mesh,-75,-30,,,,closed,' "$T/a.csv" && ok || bad "--caps: no closed mesh row: $(grep '^mesh' "$T/a.csv")"
@@ -111,7 +111,7 @@ awk '/^C/{n++} {print n "\t" NR "\t" $0}' $DATA/tinypatient_0.contours | sort -k
 "$TILE" "$T/rev.contours" -q --caps -o "$T/rev.obj" > "$T/rev.csv" && cmp -s "$T/tp1.csv" "$T/rev.csv" && cmp -s "$T/tp1.obj" "$T/rev.obj" && ok || bad "contours in reverse file order: the output differs"
 for args in "--procs 3" "--procs 2 --backend threads"; do
   "$TILE" $DATA/tinypatient_0.contours -q --caps $args -o "$T/tpp.obj" > "$T/tpp.csv" 2> "$T/err" && \
-    cut -d, -f1-16 "$T/tpp.csv" | tail -n +2 | cmp -s - "$(tail -n +2 "$T/tp1.csv" > "$T/tp1b"; echo "$T/tp1b")" && \
+    cut -d, -f1-17 "$T/tpp.csv" | tail -n +2 | cmp -s - "$(tail -n +2 "$T/tp1.csv" > "$T/tp1b"; echo "$T/tp1b")" && \
     cmp -s "$T/tpp.obj" "$T/tp1.obj" && ok || bad "tinypatient_0 $args: not the serial report and mesh: $(cat "$T/err")"
 done
 usage $DATA/tinypatient_0.contours -j 0
@@ -120,27 +120,27 @@ usage $DATA/tinypatient_0.contours --cap-style round --caps
 usage $DATA/tinypatient_0.contours --cap-style apex
 
 # The parallel algorithm on the simulated machine: the same report as the
-# serial solver in its sixteen columns, the same mesh, and deterministic.
+# serial solver in its seventeen columns, the same mesh, and deterministic.
 "$TILE" $DATA/prostate_3.contours -q > "$T/ser.csv" -o "$T/ser.obj" && ok || bad "serial prostate_3"
 for args in "--procs 1" "--procs 2 --alloc size" "--procs 7 --min-diag 20 --net ideal" "--procs 16 --alloc size --min-diag 80 --net loggp --L 1e-4 --o 2e-5"; do
   "$TILE" $DATA/prostate_3.contours -q $args -o "$T/par.obj" > "$T/par.csv" 2> "$T/err" && ok || bad "$args: $(cat "$T/err")"
-  cut -d, -f1-16 "$T/par.csv" | tail -n +2 | cmp -s - "$(tail -n +2 "$T/ser.csv" > "$T/ser9"; echo "$T/ser9")" && ok || bad "$args: the report differs from the serial one"
+  cut -d, -f1-17 "$T/par.csv" | tail -n +2 | cmp -s - "$(tail -n +2 "$T/ser.csv" > "$T/ser9"; echo "$T/ser9")" && ok || bad "$args: the report differs from the serial one"
   cmp -s "$T/par.obj" "$T/ser.obj" && ok || bad "$args: the mesh differs from the serial one"
-  head -1 "$T/par.csv" | grep -qx 'band,z0,z1,depth,lower,upper,junction,m,n,bridges,cost,area,volume,nodes,euler,genus,procs,sim_time,msg_boundary,msg_backtrack,msg_bounds,msg_control,bytes,backend' && ok || bad "$args: header $(head -1 "$T/par.csv")"
-  awk -F, 'NR>1 && $1 ~ /^[0-9]+$/ && $24 != "sim" {bad=1} END{exit bad}' "$T/par.csv" && ok || bad "$args: backend column is not sim"
+  head -1 "$T/par.csv" | grep -qx 'band,z0,z1,depth,lower,upper,junction,m,n,bridges,cost,area,volume,nodes,spans,euler,genus,procs,sim_time,msg_boundary,msg_backtrack,msg_bounds,msg_control,bytes,backend' && ok || bad "$args: header $(head -1 "$T/par.csv")"
+  awk -F, 'NR>1 && $1 ~ /^[0-9]+$/ && $25 != "sim" {bad=1} END{exit bad}' "$T/par.csv" && ok || bad "$args: backend column is not sim"
 done
 # The same algorithm on threads: the same report and mesh, real times.
 for args in "--procs 1" "--procs 3" "--procs 6 --alloc size --min-diag 20" "--procs 16"; do
   "$TILE" $DATA/prostate_3.contours -q $args --backend threads -o "$T/thr.obj" > "$T/thr.csv" 2> "$T/err" && ok || bad "threads $args: $(cat "$T/err")"
-  cut -d, -f1-16 "$T/thr.csv" | tail -n +2 | cmp -s - "$T/ser9" && ok || bad "threads $args: the report differs from the serial one"
+  cut -d, -f1-17 "$T/thr.csv" | tail -n +2 | cmp -s - "$T/ser9" && ok || bad "threads $args: the report differs from the serial one"
   cmp -s "$T/thr.obj" "$T/ser.obj" && ok || bad "threads $args: the mesh differs from the serial one"
-  awk -F, 'NR>1 && $1 ~ /^[0-9]+$/ && ($24 != "threads" || $18 <= 0) {bad=1} END{exit bad}' "$T/thr.csv" && ok || bad "threads $args: backend or time column"
+  awk -F, 'NR>1 && $1 ~ /^[0-9]+$/ && ($25 != "threads" || $19 <= 0) {bad=1} END{exit bad}' "$T/thr.csv" && ok || bad "threads $args: backend or time column"
 done
 "$TILE" $DATA/prostate_3.contours -q --procs 5 --trace "$T/t1.json" > "$T/p1.csv" && "$TILE" $DATA/prostate_3.contours -q --procs 5 --trace "$T/t2.json" > "$T/p2.csv" && ok || bad "--trace"
 cmp -s "$T/p1.csv" "$T/p2.csv" && cmp -s "$T/t1.json" "$T/t2.json" && ok || bad "two parallel runs or traces differ"
 head -1 "$T/t1.json" | grep -q '^{.*"traceEvents":\[$' && tail -c 4 "$T/t1.json" | grep -q ']}' && ok || bad "the JSON trace is not a traceEvents object"
 "$TILE" $DATA/prostate_3.contours -q --procs 3 --trace "$T/t.csv" > /dev/null && head -1 "$T/t.csv" | grep -q '^time,rank' && ok || bad "CSV trace"
-awk -F, 'NR>1 && $1 ~ /^[0-9]+$/ && $18 <= 0 {bad=1} END{exit bad}' "$T/p1.csv" && ok || bad "a band without simulated time"
+awk -F, 'NR>1 && $1 ~ /^[0-9]+$/ && $19 <= 0 {bad=1} END{exit bad}' "$T/p1.csv" && ok || bad "a band without simulated time"
 usage $DATA/tinypatient_1.contours --procs 0
 usage $DATA/tinypatient_1.contours --procs x
 usage $DATA/tinypatient_1.contours --procs 4 --alloc third

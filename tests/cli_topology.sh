@@ -81,7 +81,7 @@ stack=tests/data/slicerrt/tinypatient_1.contours
 [ "$(cut -d, -f11 "$tmp.t0")" = "$(cut -d, -f11 "$tmp.t1")" ] && ok || fail "tile: the topology changed a cost"
 head -n 1 "$tmp.t1" | grep -q ',backend,hops_per_msg,hop_bytes,max_link_msgs,max_link_bytes,link_wait$' && ok \
   || fail "tile header: $(head -n 1 "$tmp.t1")"
-awk -F, 'NR > 1 && $1 ~ /^[0-9]+$/ && ($25 < 1 || $25 > 2 || $26 <= 0) {bad = 1} END {exit bad}' "$tmp.t1" && ok \
+awk -F, 'NR > 1 && $1 ~ /^[0-9]+$/ && ($26 < 1 || $26 > 2 || $27 <= 0) {bad = 1} END {exit bad}' "$tmp.t1" && ok \
   || fail "tile network columns: $(sed -n 2p "$tmp.t1")"
 "$tile" "$stack" --procs 4 -q --topology line --trace "$tmp.json" >/dev/null 2>&1 && \
   grep -q '"name":"network"' "$tmp.json" && grep -q '"link 1>2"' "$tmp.json" && ok || fail "tile trace has no link tracks"

@@ -98,14 +98,14 @@ for costs in $COSTS; do
     fi
     simwall=$(sed -n 's/.*The simulation took \([0-9.e+-]*\) seconds.*/\1/p' "$T/sg.err")
     # Both reports must agree on everything but the time and the backend.
-    cut -d, -f1-17,19-23 "$T/sg.csv" > "$T/a"; cut -d, -f1-17,19-23 "$T/ts.csv" > "$T/b"
+    cut -d, -f1-18,20-24 "$T/sg.csv" > "$T/a"; cut -d, -f1-18,20-24 "$T/ts.csv" > "$T/b"
     same=1; cmp -s "$T/a" "$T/b" || same=0
     row=$(awk -F, -v sw="${simwall:-0}" -v t0="$t0" -v t1="$t1" -v t2="$t2" \
           -v name="$name" -v P="$P" -v m="$M" -v c="$C" '
       BEGIN { w1 = t1 - t0; w2 = t2 - t1 }
-      FNR == 1 || $1 !~ /^[0-9]+$/ { next }   # the bands: sim_time is column 18
-      FILENAME == ARGV[1] { a += $18; n++ }
-      FILENAME == ARGV[2] { b += $18 }
+      FNR == 1 || $1 !~ /^[0-9]+$/ { next }   # the bands: sim_time is column 19
+      FILENAME == ARGV[1] { a += $19; n++ }
+      FILENAME == ARGV[2] { b += $19 }
       END {
         d = a - b; if (d < 0) d = -d
         printf "%s,%d,%s,%s,%d,%.9f,%.9f,%.2e,%.3f,%.3f,%.3f,%.1f\n", name, P, m, c, n, a, b, d / b, w1, sw, w2, w1 / w2

@@ -538,6 +538,7 @@ static void test_pinched(void) {
     if (res == 0) {
       check_surface("diamonds", ss, ps, 2, 1, chi);
       CHECK(stack_rows(ss)[0].cost > t.cost, "the manifold band costs %.17g, the optimum %.17g", stack_rows(ss)[0].cost, t.cost);
+      CHECK(stack_rows(ss)[0].spans == 1, "the band's row reports %d spans used twice, want 1", stack_rows(ss)[0].spans);
     }
     stack_free(ss);
     contour_stack_free(&s);
