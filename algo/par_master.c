@@ -226,6 +226,7 @@ static int one_pair(master *M, par_pair *pr, cost_kind kind) {
   weights *w = weights_new(R, m, zr, C, n, zc, kind, 0);   /* for the quantum */
   memset(&pr->t, 0, sizeof pr->t);
   pr->t.m = m, pr->t.n = n, pr->t.transposed = tr, pr->t.quantum = weights_quantum(w);
+  pr->t.qexp = weights_qexp(w);
   pr->t.col = xmallocarray((size_t)M->T + 1, sizeof *pr->t.col);
   weights_free(w);
   M->best = (tiling_best){HUGE_VAL, 0, pr->t.col};
@@ -267,7 +268,7 @@ static int one_pair(master *M, par_pair *pr, cost_kind kind) {
   pr->time = mp_time(M->mp) - t0;
   pr->t.quanta = M->best.quanta;
   pr->t.start = M->best.start;
-  pr->t.cost = pr->t.quanta * pr->t.quantum;
+  pr->t.cost = ldexp(pr->t.quanta, pr->t.qexp);
 
   /* Everyone's counters for this pair. */
   pr->counts = pr->master;

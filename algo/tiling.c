@@ -84,6 +84,7 @@ void tiling_solve_w(const weights *w, tiling *out) {
   out->m = m;
   out->n = n;
   out->quantum = weights_quantum(w);
+  out->qexp = weights_qexp(w);
   out->col = xmallocarray((size_t)(m + n + 1), sizeof *out->col);
   tiling_best best = {HUGE_VAL, 0, out->col};
   band_ws *ws = band_ws_new(m, n);
@@ -99,7 +100,7 @@ void tiling_solve_w(const weights *w, tiling *out) {
   band_ws_free(ws);
   out->quanta = best.quanta;
   out->start = best.start;
-  out->cost = out->quanta * out->quantum;
+  out->cost = ldexp(out->quanta, out->qexp);
 }
 
 void tiling_solve(const vec2 *P, int np, double zp, const vec2 *Q, int nq, double zq,

@@ -20,7 +20,8 @@
 typedef struct {
   double cost;       /* the optimum: quanta * quantum */
   double quanta;     /* the optimum in quanta, an exact integer */
-  double quantum;    /* see weights.h */
+  double quantum;    /* see weights.h: 2^qexp */
+  int qexp;          /* cost = ldexp(quanta, qexp): inf or 0 beyond double's range */
   int start;         /* its start row in the rows contour */
   int m, n;          /* rows and columns of the graph, m <= n */
   int transposed;    /* 0: the rows are the first contour of the pair; 1: the second */

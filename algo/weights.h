@@ -16,8 +16,16 @@
  * depend on the order of addition: the divide and conquer, the naive
  * reference and every parallel run see bit-identical costs, and the
  * non-crossing argument of section 3.2 holds exactly, ties included.  The
- * quantum is far below the weights' own rounding (about 2^-40 of the largest
- * tile for 5000-point contours). */
+ * quantum comes from the largest weight of the pair's graph, computed exactly
+ * (weights.c), so it is about 2^-52 / (m + n + 1) of the largest tile, e.g.
+ * 2^-39 for two 5000-point contours and 2^-49 for two 4-point ones: far below
+ * the weights' own rounding.
+ *
+ * Scale.  Before any arithmetic the pair (points and height) is scaled by a
+ * power of two into [-1, 1): coordinates from subnormals to 1e308 give the
+ * same weights in quanta as the same shapes at unit scale, and the quantum is
+ * kept as its exponent too (weights_qexp), since a cost may lie beyond
+ * double's range (an area of 1e300-wide contours). */
 #ifndef WEIGHTS_H
 #define WEIGHTS_H
 
@@ -39,7 +47,9 @@ void weights_free(weights *w);
 
 double weights_v(const weights *w, int i, int j);   /* tile R_i R_{i+1} C_j, in quanta */
 double weights_h(const weights *w, int i, int j);   /* tile R_i C_j C_{j+1}, in quanta */
-double weights_quantum(const weights *w);           /* the value of one quantum: 2^-k */
+double weights_quantum(const weights *w);           /* one quantum in the caller's units: 2^qexp */
+int    weights_qexp(const weights *w);              /* its exponent (the quantum may lie beyond
+                                                       double's range: ldexp(quanta, qexp)) */
 int    weights_has_table(const weights *w);
 const char *cost_name(cost_kind k);
 int    cost_parse(const char *s, cost_kind *k);     /* 0, or -1 for an unknown name */
@@ -52,10 +62,13 @@ int    cost_parse(const char *s, cost_kind *k);     /* 0, or -1 for an unknown n
 struct weights {
   int m, n;
   cost_kind kind;
-  double h2;        /* (zc - zr)^2 */
+  double h2;        /* (zc - zr)^2, scaled as the points (weights.c) */
   double sc;        /* scale: S/2 for area, S for span, S = 2^k */
-  double quantum;   /* 1/S */
-  /* Rows r = -1 .. 2m+1 stored reversed at index 2m+1-r, so that along a
+  double quantum;   /* 2^qexp: one quantum in the caller's units (may be 0 or inf) */
+  int qexp;
+  /* The points, scaled by a power of two into [-1, 1) (weights.c), so the
+   * weights' arithmetic cannot overflow.
+   * Rows r = -1 .. 2m+1 stored reversed at index 2m+1-r, so that along a
    * diagonal (r falling as the column c rises) both arrays run forwards.
    * rx,ry: R_{r mod m}; rex,rey: R_{r+1}-R_r; ree: h2*|R_{r+1}-R_r|^2. */
   double *rx, *ry, *rex, *rey, *ree;
