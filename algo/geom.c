@@ -5,14 +5,28 @@
 
 #include "exact.h"
 
-double geom_area2(const vec2 *p, int n) {
-  double s = 0;
+int geom_scale_exp(double m) {
+  int e = 0;
+  if (m > 0) frexp(m, &e);
+  return e;
+}
+
+double geom_area2_at(const vec2 *p, int n, int e) {
+  if (n < 3) return 0;
+  double s = 0, x0 = ldexp(p[0].x, -e), y0 = ldexp(p[0].y, -e);
   for (int i = 1; i + 1 < n; i++) {
-    double ax = p[i].x - p[0].x, ay = p[i].y - p[0].y;
-    double bx = p[i + 1].x - p[0].x, by = p[i + 1].y - p[0].y;
+    double ax = ldexp(p[i].x, -e) - x0, ay = ldexp(p[i].y, -e) - y0;
+    double bx = ldexp(p[i + 1].x, -e) - x0, by = ldexp(p[i + 1].y, -e) - y0;
     s += ax * by - ay * bx;
   }
   return s;
+}
+
+double geom_area2(const vec2 *p, int n) {
+  double m = 0;
+  for (int i = 0; i < n; i++) m = fmax(m, fmax(fabs(p[i].x), fabs(p[i].y)));
+  int e = geom_scale_exp(m);
+  return ldexp(geom_area2_at(p, n, e), 2 * e);
 }
 
 int geom_collinear(const vec2 *p, int n) {
@@ -31,22 +45,9 @@ int geom_orientation(const vec2 *p, int n) {
     if (exact_lex(p[i], p[v]) < 0) v = i;
   int o = exact_orient(p[v == 0 ? n - 1 : v - 1], p[v], p[v + 1 == n ? 0 : v + 1]);
   if (o) return o;
-  /* Not simple: the area's sign, on coordinates scaled so the largest is
-   * below 1 (exact unless the smallest fall below 2^-1074). */
-  double m = 0;
-  for (int i = 0; i < n; i++) {
-    if (fabs(p[i].x) > m) m = fabs(p[i].x);
-    if (fabs(p[i].y) > m) m = fabs(p[i].y);
-  }
-  int e;
-  frexp(m, &e);
-  double s = 0, x0 = ldexp(p[0].x, -e), y0 = ldexp(p[0].y, -e);
-  for (int i = 1; i + 1 < n; i++) {
-    double ax = ldexp(p[i].x, -e) - x0, ay = ldexp(p[i].y, -e) - y0;
-    double bx = ldexp(p[i + 1].x, -e) - x0, by = ldexp(p[i + 1].y, -e) - y0;
-    s += ax * by - ay * bx;
-  }
-  return (s > 0) - (s < 0);
+  /* Not simple: the area's sign (computed at a safe scale). */
+  double a = geom_area2(p, n);
+  return (a > 0) - (a < 0);
 }
 
 void geom_reverse(vec2 *p, int n) {

@@ -5,10 +5,20 @@
 typedef struct { double x, y; } vec2;
 
 /* Twice the signed area of the closed polygon p[0..n-1] (shoelace, about
- * its first point): positive when counter-clockwise seen from +z.  Floating
- * point: it overflows to inf (or NaN) for coordinates near 1e154 and beyond
- * and loses all precision among subnormals; use geom_orientation for the sign. */
+ * its first point): positive when counter-clockwise seen from +z.  Computed
+ * on the points scaled by a power of two that brings the largest coordinate
+ * into [1/2, 1), then scaled back: never NaN; +-inf when the area is beyond a
+ * double's range (coordinates near 1e300), 0 below it (near 1e-300), so use
+ * geom_orientation for the sign. */
 double geom_area2(const vec2 *p, int n);
+
+/* The same for the points multiplied by 2^-e (exactly, before any
+ * arithmetic): for sums kept at one scale, e.g. e = geom_scale_exp(...). */
+double geom_area2_at(const vec2 *p, int n, int e);
+
+/* The e for which m 2^-e lies in [1/2, 1) (0 for m = 0): the scale that makes
+ * coordinates of magnitude at most m safe to multiply (issue 14, item 7). */
+int geom_scale_exp(double m);
 
 /* 1 if every point of p[0..n-1] lies exactly on one line (or all coincide),
  * else 0.  Exact for any finite coordinates (exact.h): no tolerance. */

@@ -2,6 +2,7 @@
  * has an ear, so clipping one at a time ends after n-2 ears). */
 #include "cap.h"
 
+#include <math.h>
 #include <stdlib.h>
 
 #include "xmem.h"
@@ -37,7 +38,17 @@ static int is_ear(const vec2 *p, const int *next, const int *prev, int ib) {
   return 1;
 }
 
-int cap_triangulate(const vec2 *p, int n, int (*tri)[3]) {
+/* The polygon is clipped as scaled by the power of two that brings its
+ * largest coordinate into [1/2, 1): exact, and every test here is
+ * homogeneous, so the ears are those of the unscaled polygon wherever its
+ * products neither overflow nor underflow, and the same at 1e300 or among
+ * subnormals (issue 14, item 7). */
+int cap_triangulate(const vec2 *p_in, int n, int (*tri)[3]) {
+  double mx = 0;
+  for (int i = 0; i < n; i++) mx = fmax(mx, fmax(fabs(p_in[i].x), fabs(p_in[i].y)));
+  int e = geom_scale_exp(mx);
+  vec2 *p = xmallocarray((size_t)n, sizeof *p);
+  for (int i = 0; i < n; i++) p[i] = (vec2){ldexp(p_in[i].x, -e), ldexp(p_in[i].y, -e)};
   int *next = xmallocarray((size_t)n, sizeof *next), *prev = xmallocarray((size_t)n, sizeof *prev);
   for (int i = 0; i < n; i++) next[i] = (i + 1) % n, prev[i] = (i + n - 1) % n;
   int left = n, nt = 0, i = 0, miss = 0;
@@ -64,5 +75,6 @@ int cap_triangulate(const vec2 *p, int n, int (*tri)[3]) {
   nt++;
   free(next);
   free(prev);
+  free(p);
   return nt;
 }

@@ -9,6 +9,7 @@
  * undirected edges at v are its distinct neighbours: E = (sum over v) / 2. */
 #include "manifold.h"
 
+#include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -56,26 +57,37 @@ int manifold_components(const mesh *me, manifold_component **out) {
     if (used[v]) comp[v] = comp[find(up, v)];
   manifold_component *c = xcalloc((size_t)nc + 1, sizeof *c);
   for (int i = 0; i < nc; i++) c[i].closed = c[i].manifold = 1, c[i].first = -1;
+  double *big = xcalloc((size_t)nc + 1, sizeof *big);   /* each component's largest |coordinate| */
   for (int v = 0; v < nv; v++) {
     if (!used[v]) continue;
     manifold_component *x = &c[comp[v]];
+    big[comp[v]] = fmax(big[comp[v]], fmax(fabs(me->v[v].x), fmax(fabs(me->v[v].y), fabs(me->v[v].z))));
     if (x->first < 0) x->first = v, x->zmin = x->zmax = me->v[v].z;
     x->nv++;
     if (me->v[v].z < x->zmin) x->zmin = me->v[v].z;
     if (me->v[v].z > x->zmax) x->zmax = me->v[v].z;
   }
   /* Area and volume about the component's first vertex (so that far-off
-   * coordinates do not cancel). */
+   * coordinates do not cancel); the volume summed at the scale 2^-e that
+   * brings the component's largest coordinate into [1/2, 1), then scaled
+   * back (the same bits as unscaled; no inf - inf = NaN at 1e300: issue 14,
+   * item 7). */
+  int *sc = xmallocarray((size_t)nc + 1, sizeof *sc);
+  for (int i = 0; i < nc; i++) sc[i] = geom_scale_exp(big[i]);
   for (int t = 0; t < nt; t++) {
-    manifold_component *x = &c[comp[me->t[t][0]]];
+    int ci = comp[me->t[t][0]], e = sc[ci];
+    manifold_component *x = &c[ci];
     vec3 o = me->v[x->first], a = me->v[me->t[t][0]], b = me->v[me->t[t][1]], d = me->v[me->t[t][2]];
-    a.x -= o.x, a.y -= o.y, a.z -= o.z;
-    b.x -= o.x, b.y -= o.y, b.z -= o.z;
-    d.x -= o.x, d.y -= o.y, d.z -= o.z;
+    a.x = ldexp(a.x, -e) - ldexp(o.x, -e), a.y = ldexp(a.y, -e) - ldexp(o.y, -e), a.z = ldexp(a.z, -e) - ldexp(o.z, -e);
+    b.x = ldexp(b.x, -e) - ldexp(o.x, -e), b.y = ldexp(b.y, -e) - ldexp(o.y, -e), b.z = ldexp(b.z, -e) - ldexp(o.z, -e);
+    d.x = ldexp(d.x, -e) - ldexp(o.x, -e), d.y = ldexp(d.y, -e) - ldexp(o.y, -e), d.z = ldexp(d.z, -e) - ldexp(o.z, -e);
     x->nt++;
     x->area += mesh_tri_area(me, t);
     x->volume += (a.x * (b.y * d.z - b.z * d.y) + a.y * (b.z * d.x - b.x * d.z) + a.z * (b.x * d.y - b.y * d.x)) / 6;
   }
+  for (int i = 0; i < nc; i++) c[i].volume = ldexp(c[i].volume, 3 * sc[i]);
+  free(sc);
+  free(big);
   /* The link of every vertex. */
   int *deg = xcalloc((size_t)nv + 1, sizeof *deg);
   for (int t = 0; t < nt; t++)

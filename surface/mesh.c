@@ -42,15 +42,34 @@ static vec3 crs(vec3 a, vec3 b) {
 }
 static double dot(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 
-double mesh_tri_area(const mesh *me, int t) {
-  vec3 a = me->v[me->t[t][0]], b = me->v[me->t[t][1]], c = me->v[me->t[t][2]];
+/* --- scale (issue 14, item 7) ---------------------------------------------
+ * Areas and volumes are computed on coordinates multiplied by a power of two
+ * 2^-e that brings the largest into [1/2, 1), summed at that scale, and
+ * scaled back once.  Such scaling is exact and commutes with every rounding,
+ * so ordinary meshes get the same bits as without it; contours 1e300 wide
+ * get inf (their area is beyond a double) where products overflowed into
+ * inf - inf = NaN, and subnormal ones no longer lose every bit. */
+static double vmax(vec3 v, double m) { return fmax(m, fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z)))); }
+static vec3 scl(vec3 v, int e) { return (vec3){ldexp(v.x, -e), ldexp(v.y, -e), ldexp(v.z, -e)}; }
+
+/* Triangle t's area at scale 2^-e. */
+static double tri_area_at(const mesh *me, int t, int e) {
+  vec3 a = scl(me->v[me->t[t][0]], e), b = scl(me->v[me->t[t][1]], e), c = scl(me->v[me->t[t][2]], e);
   vec3 x = crs(sub(b, a), sub(c, a));
   return 0.5 * sqrt(dot(x, x));
 }
 
-/* The triangle's share of the volume, about the origin o. */
-static double tri_volume(const mesh *me, int t, vec3 o) {
-  vec3 a = sub(me->v[me->t[t][0]], o), b = sub(me->v[me->t[t][1]], o), c = sub(me->v[me->t[t][2]], o);
+double mesh_tri_area(const mesh *me, int t) {
+  double m = 0;
+  for (int k = 0; k < 3; k++) m = vmax(me->v[me->t[t][k]], m);
+  int e = geom_scale_exp(m);
+  return ldexp(tri_area_at(me, t, e), 2 * e);
+}
+
+/* The triangle's share of the volume about o, all at scale 2^-e (o scaled). */
+static double tri_volume_at(const mesh *me, int t, vec3 o, int e) {
+  vec3 a = sub(scl(me->v[me->t[t][0]], e), o), b = sub(scl(me->v[me->t[t][1]], e), o);
+  vec3 c = sub(scl(me->v[me->t[t][2]], e), o);
   return dot(a, crs(b, c)) / 6;
 }
 
@@ -78,12 +97,16 @@ void mesh_add_band(mesh *me, const contour_stack *s, int i, const tiling *t, dou
    * (a plane at height z, normal +-z, adds +-z A / 3), about a point o on the
    * lower plane so the sum does not cancel. */
   const contour *lo = P->z < Q->z ? P : Q, *hi = P->z < Q->z ? Q : P;
-  vec3 o = {lo->pt[0].x, lo->pt[0].y, lo->z};
+  double m = fmax(fabs(lo->z), fabs(hi->z));
+  for (int k = 0; k < lo->n; k++) m = fmax(m, fmax(fabs(lo->pt[k].x), fabs(lo->pt[k].y)));
+  for (int k = 0; k < hi->n; k++) m = fmax(m, fmax(fabs(hi->pt[k].x), fabs(hi->pt[k].y)));
+  int e = geom_scale_exp(m);
+  vec3 o = scl((vec3){lo->pt[0].x, lo->pt[0].y, lo->z}, e);
   double ar = 0, vol = 0;
-  for (int k = first; k < me->nt; k++) ar += mesh_tri_area(me, k), vol += tri_volume(me, k, o);
-  vol += (hi->z - lo->z) * 0.5 * geom_area2(hi->pt, hi->n) / 3;
-  *area = ar;
-  *volume = vol;
+  for (int k = first; k < me->nt; k++) ar += tri_area_at(me, k, e), vol += tri_volume_at(me, k, o, e);
+  vol += (ldexp(hi->z, -e) - ldexp(lo->z, -e)) * 0.5 * geom_area2_at(hi->pt, hi->n, e) / 3;
+  *area = ldexp(ar, 2 * e);
+  *volume = ldexp(vol, 3 * e);
 }
 
 double mesh_add_caps(mesh *me, const contour_stack *s) {
@@ -112,12 +135,18 @@ double mesh_area(const mesh *me) {
 }
 
 double mesh_volume(const mesh *me) {
+  double m = 0;
+  for (int k = 0; k < me->nv; k++) m = vmax(me->v[k], m);
+  int e = geom_scale_exp(m);
   vec3 o = {0, 0, 0};
   if (me->nv) {
-    for (int k = 0; k < me->nv; k++) o.x += me->v[k].x, o.y += me->v[k].y, o.z += me->v[k].z;
+    for (int k = 0; k < me->nv; k++) {
+      vec3 v = scl(me->v[k], e);
+      o.x += v.x, o.y += v.y, o.z += v.z;
+    }
     o.x /= me->nv, o.y /= me->nv, o.z /= me->nv;
   }
   double v = 0;
-  for (int k = 0; k < me->nt; k++) v += tri_volume(me, k, o);
-  return v;
+  for (int k = 0; k < me->nt; k++) v += tri_volume_at(me, k, o, e);
+  return ldexp(v, 3 * e);
 }

@@ -102,6 +102,9 @@ static vec3 band_vertex(const work *w, const band *b, int id) {
 
 static vec3 sub3(vec3 a, vec3 b) { return (vec3){a.x - b.x, a.y - b.y, a.z - b.z}; }
 
+static double vmax(vec3 v, double m) { return fmax(m, fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z)))); }
+static vec3 scl(vec3 v, int e) { return (vec3){ldexp(v.x, -e), ldexp(v.y, -e), ldexp(v.z, -e)}; }
+
 static double tri_area(vec3 a, vec3 b, vec3 c) {
   vec3 u = sub3(b, a), v = sub3(c, a);
   double x = u.y * v.z - u.z * v.y, y = u.z * v.x - u.x * v.z, z = u.x * v.y - u.y * v.x;
@@ -155,17 +158,25 @@ static void mesh_job(void *ud, int i) {
   for (int k = 0; k < b->lo.ntri; k++, nt++) memcpy(b->tri[nt], b->lo.tri[k], sizeof b->tri[nt]);
   for (int k = 0; k < b->hi.ntri; k++, nt++)
     for (int e = 0; e < 3; e++) b->tri[nt][e] = hi_id(b, b->hi.tri[k][e]);
-  double z0 = sl->z[b->slice], z1 = sl->z[b->slice + 1], ahi = 0;
-  vec3 o = {sl->c[b->j->lo[0]].pt[0].x, sl->c[b->j->lo[0]].pt[0].y, z0};
-  b->area = b->volume = 0;
+  /* Summed at the scale 2^-e that brings the band's largest coordinate into
+   * [1/2, 1) and scaled back once: exact, the same bits as unscaled, and no
+   * inf - inf = NaN at 1e300 (issue 14, item 7). */
+  double z0 = sl->z[b->slice], z1 = sl->z[b->slice + 1], ahi = 0, mx = fmax(fabs(z0), fabs(z1));
+  for (int k = 0; k < b->ntri; k++)
+    for (int c = 0; c < 3; c++) mx = vmax(band_vertex(w, b, b->tri[k][c]), mx);
+  int e = geom_scale_exp(mx);
+  vec3 o = scl((vec3){sl->c[b->j->lo[0]].pt[0].x, sl->c[b->j->lo[0]].pt[0].y, z0}, e);
+  double area = 0, volume = 0;
   for (int k = 0; k < b->ntri; k++) {
-    vec3 p = band_vertex(w, b, b->tri[k][0]), q = band_vertex(w, b, b->tri[k][1]),
-         r = band_vertex(w, b, b->tri[k][2]);
-    b->area += tri_area(p, q, r);
-    b->volume += tri_vol(p, q, r, o);
+    vec3 p = scl(band_vertex(w, b, b->tri[k][0]), e), q = scl(band_vertex(w, b, b->tri[k][1]), e),
+         r = scl(band_vertex(w, b, b->tri[k][2]), e);
+    area += tri_area(p, q, r);
+    volume += tri_vol(p, q, r, o);
   }
-  for (int k = 0; k < b->j->nhi; k++) ahi += 0.5 * sl->c[b->j->hi[k]].area2;
-  b->volume += (z1 - z0) * ahi / 3;
+  for (int k = 0; k < b->j->nhi; k++) ahi += 0.5 * geom_area2_at(sl->c[b->j->hi[k]].pt, sl->c[b->j->hi[k]].n, e);
+  volume += (ldexp(z1, -e) - ldexp(z0, -e)) * ahi / 3;
+  b->area = ldexp(area, 2 * e);
+  b->volume = ldexp(volume, 3 * e);
 }
 
 static void cap_job(void *ud, int i) {
@@ -335,13 +346,24 @@ static void assemble(const work *w, stack_surface *ss) {
     else r->nhi = g->nholes + 1, r->hi = positions(sl, cs, r->nhi), r->lo = positions(sl, cs, 0);
     free(cs);
     r->pair = -1;
+    int t0 = me->nt;
+    double mx = fmax(fabs(o.x), fmax(fabs(o.y), fabs(o.z)));
     for (int k = 0; k < c->ntri; k++) {
       int v[3];
       for (int e = 0; e < 3; e++) v[e] = c->tri[k][e] >= 0 ? c->tri[k][e] : first - 1 - c->tri[k][e];
       add_tri(me, v[0], v[1], v[2]);
-      r->area += tri_area(me->v[v[0]], me->v[v[1]], me->v[v[2]]);
-      r->volume += tri_vol(me->v[v[0]], me->v[v[1]], me->v[v[2]], o);
+      for (int e = 0; e < 3; e++) mx = vmax(me->v[v[e]], mx);
     }
+    /* At one safe scale, as the bands (mesh_job). */
+    int sc = geom_scale_exp(mx);
+    double area = 0, volume = 0;
+    for (int t = t0; t < me->nt; t++) {
+      vec3 p = scl(me->v[me->t[t][0]], sc), q = scl(me->v[me->t[t][1]], sc), u = scl(me->v[me->t[t][2]], sc);
+      area += tri_area(p, q, u);
+      volume += tri_vol(p, q, u, scl(o, sc));
+    }
+    r->area += ldexp(area, 2 * sc);
+    r->volume += ldexp(volume, 3 * sc);
   }
   XASSERT(next == nv);
 }

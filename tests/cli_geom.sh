@@ -1,7 +1,8 @@
 #!/bin/sh
 # cli_geom.sh -- ./tile on hard geometry (issue 14, items 7-10): contours
 # that cross themselves are refused with one line naming both segments' lines,
-# exit status 1, nothing on stdout and no output file.  Runs the sanitized
+# exit status 1, nothing on stdout and no output file; stacks scaled by 2^k
+# tile as at unit scale; the spike's cost is its area.  Runs the sanitized
 # build in $BUILD.
 TILE=${BUILD:-build/chk}/tile
 T=$(mktemp -d /tmp/tilesim-geom.XXXXXX)
@@ -45,6 +46,70 @@ refused onsegment "C 4 0\n0 0\n2 0\n1 0\n1 1\n$SQ" \
   "1: $X 2 to line 3 overlaps the segment from line 3 to line 4 (2 0)"
 printf "C 4 0\n0 0\n2 0\n1 1e-300\n1 1\n$SQ" > "$T/off.contours"
 "$TILE" "$T/off.contours" -q > "$T/out" 2> "$T/err" && ok || bad "a vertex 1e-300 off a segment refused: $(cat "$T/err")"
+
+# Extreme coordinates (item 7): a real stack scaled by 2^k (z too), down to
+# 2^-1000 and up to 2^600, and integer stars scaled into subnormals, tile as at
+# unit scale: the same node counts, the same triangles, costs exactly 2^k
+# (span) or 2^2k (area) apart.
+DATA=tests/data/slicerrt
+# bands FILE: "cost,area,nodes" of each band row of a report, by column name.
+bands() {
+  awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
+           $1 ~ /^[0-9]+$/ { print $c["cost"] "," $c["area"] "," $c["nodes"] }' "$1"
+}
+scale() {   # scale FILE K: every number but the point counts times 2^K
+  awk -v k="$2" 'BEGIN { f = 2 ^ k } /^C / { printf "C %s %.17g\n", $2, $3 * f; next }
+                 { printf "%.17g %.17g\n", $1 * f, $2 * f }' "$1"
+}
+"$TILE" $DATA/prostate_1.contours -q --cost span --caps -o "$T/u.obj" > "$T/u.csv" 2>&1 || bad "unit scale failed"
+"$TILE" $DATA/prostate_1.contours -q --caps > "$T/ua.csv" 2>&1 || bad "unit scale (area) failed"
+for k in -1000 -960 600; do
+  scale $DATA/prostate_1.contours $k > "$T/s.contours"
+  "$TILE" "$T/s.contours" -q --cost span --caps -o "$T/s.obj" > "$T/s.csv" 2> "$T/err" && ok || bad "2^$k: $(cat "$T/err")"
+  bands "$T/u.csv" > "$T/ub"; bands "$T/s.csv" > "$T/sb"
+  [ -s "$T/ub" ] && paste -d, "$T/ub" "$T/sb" | awk -F, -v k="$k" '{ if ($3 != $6 || $4 != $1 * 2 ^ k) bad = 1 }
+      END { exit bad }' && ok || bad "2^$k: span costs or node counts differ from unit scale"
+  [ "$(grep '^f' "$T/u.obj" | md5sum)" = "$(grep '^f' "$T/s.obj" | md5sum)" ] && ok || bad "2^$k: other triangles"
+  "$TILE" "$T/s.contours" -q --caps > "$T/sa.csv" 2> "$T/err" && ok || bad "2^$k area: $(cat "$T/err")"
+  # area: exact where 2^2k stays in range (k = 600: inf), never nan
+  bands "$T/ua.csv" > "$T/ub"; bands "$T/sa.csv" > "$T/sb"
+  ! grep -q nan "$T/sa.csv" && paste -d, "$T/ub" "$T/sb" | awk -F, -v k="$k" '{
+      w = $1 * 2 ^ (2 * k); if ($4 != w && !($4 == "inf" && k > 0) && !($4 == 0 && w < 1e-300)) bad = 1 }
+      END { exit bad }' && ok || bad "2^$k: area costs differ from unit scale: $(head -3 "$T/sa.csv")"
+done
+# Integer stars (exact at any scale) in subnormals: 2^-1060, the largest
+# coordinate about 2^-1049; the parallel run there gives the serial result.
+awk 'BEGIN { for (c = 0; c < 3; c++) { n = 30 + 7 * c; printf "C %d %d\n", n, 5 * c
+               for (i = 0; i < n; i++) { a = 6.283185307179586 * i / n; r = 1000 + 300 * sin(7 * i + c)
+                 printf "%d %d\n", r * cos(a) + 50 * c, r * sin(a) } } }' > "$T/i.contours"
+"$TILE" "$T/i.contours" -q --caps -o "$T/iu.obj" > "$T/iu.csv" 2> "$T/err" && ok || bad "integer stars: $(cat "$T/err")"
+scale "$T/i.contours" -1060 > "$T/is.contours"
+"$TILE" "$T/is.contours" -q --caps -o "$T/is.obj" > "$T/is.csv" 2> "$T/err" && ok || bad "2^-1060: $(cat "$T/err")"
+bands "$T/iu.csv" > "$T/ub"; bands "$T/is.csv" > "$T/sb"
+[ -s "$T/ub" ] && paste -d, "$T/ub" "$T/sb" | awk -F, '{ if ($3 != $6 || $4 != 0 || $5 != 0) bad = 1 } END { exit bad }' && ok ||
+  bad "2^-1060: node counts differ or the area (below a double's range) is not 0: $(cat "$T/is.csv")"
+[ "$(grep '^f' "$T/iu.obj" | md5sum)" = "$(grep '^f' "$T/is.obj" | md5sum)" ] && ok || bad "2^-1060: other triangles"
+"$TILE" "$T/is.contours" -q --cost span > "$T/ser.csv" 2>&1
+"$TILE" "$T/is.contours" -q --cost span --procs 4 > "$T/par.csv" 2>&1
+bands "$T/ser.csv" > "$T/sb"; bands "$T/par.csv" > "$T/pb"
+[ -s "$T/sb" ] && cmp -s "$T/sb" "$T/pb" && ok || bad "parallel at 2^-1060 differs from serial: $(head -3 "$T/par.csv")"
+awk -F, 'NR == 1 { exit !($1 > 0 && $1 < 1e-300) }' "$T/sb" && ok || bad "2^-1060 span costs: $(cat "$T/ser.csv")"
+# Decimal scales (rounded): accepted, no nan, span costs within 1e-12.
+for f in 1e300 1e-300; do
+  awk -v f="$f" '/^C / { printf "C %s %.17g\n", $2, $3 * f; next } { printf "%.17g %.17g\n", $1 * f, $2 * f }' \
+    $DATA/prostate_1.contours > "$T/d.contours"
+  "$TILE" "$T/d.contours" -q --cost span --caps > "$T/d.csv" 2> "$T/err" && ok || bad "$f: $(cat "$T/err")"
+  bands "$T/u.csv" > "$T/ub"; bands "$T/d.csv" > "$T/db"
+  ! grep -q nan "$T/d.csv" && paste -d, "$T/ub" "$T/db" | awk -F, -v f="$f" '{
+      r = $4 / f / $1 - 1; if (r < 0) r = -r; if (r > 1e-12) bad = 1 } END { exit bad }' && ok ||
+    bad "$f: span costs differ from unit scale: $(head -3 "$T/d.csv")"
+done
+
+# The quantum (item 9): the spike's cost equals its area to 1e-12 (was 3.4e-4).
+printf 'C 4 0\n0 0\n1 0\n0.5 3e11\n0 1\nC 4 1\n0 0\n1 0\n1 1\n0 1\n' > "$T/spike.contours"
+"$TILE" "$T/spike.contours" > "$T/spike.csv" 2>&1
+bands "$T/spike.csv" | awk -F, 'NR == 1 { d = ($1 - $2) / $2; if (d < 0) d = -d; exit !(d < 1e-12 && $2 > 3.62e11) }' && ok ||
+  bad "spike: cost and area differ: $(cat "$T/spike.csv")"
 
 echo "cli_geom: $pass passed, $fail failed"
 [ $fail -eq 0 ]
