@@ -198,9 +198,13 @@ fuzz:
 # SVG under plots/, and the claims of sections 6 and 7 checked against them.
 JOBS ?= 2
 PLOTS = build/plot lines
+# Host times stay out of the committed files (the sweeps' wall_s column is
+# left empty): make bench gives the same bytes on every run, and a fresh
+# clone stays clean (tests/cli_benchclean.sh checks it).
+NOWALL = --no-wall
 # Section 8's question (README, "Topologies and placement"): the bus, and a line,
 # a mesh and a hypercube with their dilation-1 placements against a random one.
-TOPO = --points 300 --procs 1..16 --jobs $(JOBS)
+TOPO = --points 300 --procs 1..16 --jobs $(JOBS) $(NOWALL)
 TOPONET = --hop-latency 1e-4 --switching store-and-forward
 # The variants (issue 13) beside the paper's algorithm: on the tc2000, and on
 # the simulator calibrated to a 16-core Xeon (bench --calibrate there: c, m,
@@ -213,8 +217,8 @@ XEON16 = --net ideal --m 5.453e-07 --c 2.675e-09 --per-byte 1.599e-10
 CLAIMS_GEN = --m 5e-5,1e-4,2e-4,2.75e-4,4e-4,8e-4,1.6e-3,3.2e-3,6.4e-3
 CLAIMS_REAL = --input tests/data/slicerrt/prostate_0.contours --pair 40 --m 1e-4,2.75e-4,8e-4,3.2e-3
 bench: all
-	./bench --alloc half,size --jobs $(JOBS) -o plots/speedup.csv
-	./bench --points 500 --alloc size --min-diag 20,40,60,80,100 --jobs $(JOBS) -o plots/min_diag.csv
+	./bench --alloc half,size --jobs $(JOBS) $(NOWALL) -o plots/speedup.csv
+	./bench --points 500 --alloc size --min-diag 20,40,60,80,100 --jobs $(JOBS) $(NOWALL) -o plots/min_diag.csv
 	./bench --model -o plots/model.csv
 	./bench --glass -o plots/glass.contours
 	$(PLOTS) plots/speedup.csv -x procs -y speedup --series points --where alloc=half --yzero \
@@ -239,9 +243,9 @@ bench: all
 	build/plot surface plots/glass.contours \
 	  --title "Fig. 17: the contours of a glass, and the surface tilesim derives" -o plots/fig17_glass.svg
 	./bench --input tests/data/slicerrt/prostate_0.contours --pair 40 --alloc half,size --jobs $(JOBS) \
-	  -o plots/real_speedup.csv
+	  $(NOWALL) -o plots/real_speedup.csv
 	$(PLOTS) plots/real_speedup.csv -x procs -y speedup --series alloc --yzero \
-	  --title "A real pair (prostate_0, slices 40-41, 512 and 506 points)" \
+	  --title "A real pair (prostate_0, slices 40-41, 512 and 510 points)" \
 	  --xlabel processors --ylabel "speedup T(1)/T(P)" -o plots/real_half_vs_size.svg
 	./bench $(TOPO) --topology bus -o build/topology_bus.csv
 	./bench $(TOPO) $(TOPONET) --topology line --place linear,random:1 -o build/topology_line.csv
@@ -256,8 +260,8 @@ bench: all
 	./bench --claims plots/real_speedup.csv > plots/real_claims.csv
 	./bench --claims plots/speedup.csv plots/min_diag.csv > plots/claims.csv
 	@cat plots/claims.csv
-	./bench --points 500 --variant $(VARIANTS) --jobs $(JOBS) -o plots/variants_tc2000.csv
-	./bench --points 1000 $(XEON16) --variant $(VARIANTS) --jobs $(JOBS) -o plots/variants_xeon16.csv
+	./bench --points 500 --variant $(VARIANTS) --jobs $(JOBS) $(NOWALL) -o plots/variants_tc2000.csv
+	./bench --points 1000 $(XEON16) --variant $(VARIANTS) --jobs $(JOBS) $(NOWALL) -o plots/variants_xeon16.csv
 	awk -F, 'FNR == 1 { for (i = 1; i <= NF; i++) c[$$i] = i; f++; if (f == 1) print "variant,procs,tc2000,xeon16"; next } \
 	  { k = $$c["variant"] "," $$c["procs"] } f == 1 { a[k] = $$c["speedup"] } f == 2 && (k in a) { print k "," a[k] "," $$c["speedup"] }' \
 	  plots/variants_tc2000.csv plots/variants_xeon16.csv > plots/variants.csv.tmp && mv plots/variants.csv.tmp plots/variants.csv
