@@ -135,3 +135,46 @@ void tiling_tiles(const tiling *t, int (*tile)[3], unsigned char *on) {
     }
   }
 }
+
+typedef struct {
+  int64_t key;   /* the span: (r mod m) n + (c mod n) */
+  int step;      /* where the path is at it */
+} span_use;
+
+static int by_key_step(const void *a, const void *b) {
+  const span_use *x = a, *y = b;
+  if (x->key != y->key) return x->key < y->key ? -1 : 1;
+  return (x->step > y->step) - (x->step < y->step);
+}
+
+static int by_step(const void *a, const void *b) {
+  const span_use *x = a, *y = b;
+  return (x->step > y->step) - (x->step < y->step);
+}
+
+int tiling_repeated_spans(const tiling *t, int (*span)[2], int max) {
+  /* The nodes of the cycle, steps 0 .. m+n-1 (the last node is the first
+   * again), sorted by span: a span at two steps is used twice. */
+  int m = t->m, n = t->n, steps = m + n, found = 0;
+  span_use *u = xmallocarray((size_t)steps, sizeof *u);
+  for (int k = 0, r = t->start, c = 0; k < steps; k++) {
+    u[k] = (span_use){(int64_t)(r % m) * n + c % n, k};
+    if (t->col[k + 1] == t->col[k]) r++;
+    else c++;
+  }
+  qsort(u, (size_t)steps, sizeof *u, by_key_step);
+  for (int k = 0; k < steps;) {   /* each repeated span once, at its first use */
+    int j = k;
+    while (j < steps && u[j].key == u[k].key) j++;
+    if (j - k > 1) u[found++] = u[k];
+    k = j;
+  }
+  qsort(u, (size_t)found, sizeof *u, by_step);
+  for (int k = 0; k < found && k < max; k++) {
+    int row = (int)(u[k].key / n), col = (int)(u[k].key % n);
+    span[k][0] = t->transposed ? col : row;   /* the rows are P unless transposed */
+    span[k][1] = t->transposed ? row : col;
+  }
+  free(u);
+  return found;
+}

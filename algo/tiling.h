@@ -60,6 +60,19 @@ void tiling_range(const weights *w, band_ws *ws, const gpath *U, const gpath *L,
  * lies on P, 1 when on Q. */
 void tiling_tiles(const tiling *t, int (*tile)[3], unsigned char *on);
 
+/* The spans the path uses twice (issue 14, item 8).  The paper allows it
+ * (section 3: an acceptable path may be "two vertex-simple cycles that share
+ * one vertex"): when the path takes all m vertical steps at one column, one
+ * point of one contour fans the whole other contour and the span at both ends
+ * of that run is the same; likewise all n horizontal steps at one row.  The
+ * band's mesh then has that edge in four triangles: pinched, not a 2-manifold
+ * (surface/unpinch.h replaces such a path).  Writes up to max spans as
+ * {index into P, index into Q} (the pair as given to tiling_solve, like
+ * tiling_tiles), each once, in path order of first use, and returns how many
+ * there are: 0 for a path that uses every span once (span may be NULL with
+ * max 0 to count).  O(m + n) time and memory. */
+int tiling_repeated_spans(const tiling *t, int (*span)[2], int max);
+
 /* The start row the divide and conquer gives the two halves of (lo, hi). */
 static inline int tiling_mid(int lo, int hi) { return lo + (hi - lo) / 2; }
 

@@ -46,6 +46,7 @@ typedef struct {
   int pinched;        /* the optimum used a span twice: 1 replaced by the best
                          path that does not (unpinch.h), 2 too large to */
   double pinched_cost;   /* the optimum's cost */
+  int span[2];        /* the span it used twice: points of lo and hi (tiling_repeated_spans) */
 } band;
 
 typedef struct {
@@ -126,6 +127,8 @@ static void mesh_job(void *ud, int i) {
   const slices *sl = w->sl;
   if (unpinch_repeats(&b->t)) {
     tiling t2;
+    b->span[0] = b->span[1] = 0;
+    tiling_repeated_spans(&b->t, &b->span, 1);
     b->pinched_cost = b->t.cost;
     b->pinched = 2;
     if (unpinch_solve(b->lo.pt, b->lo.n, sl->z[b->slice], b->hi.pt, b->hi.n, sl->z[b->slice + 1], w->o->kind,
@@ -277,8 +280,10 @@ static void print_notes(const work *w) {
     if (b->pinched)
       fprintf(o->notes,
               "%s: %s:%d: the band from this contour (slice z=%.17g) to the slice z=%.17g: its optimum "
-              "(cost %.17g) uses a span twice, a pinched, non-manifold band; %s\n",
+              "(cost %.17g) uses the span from (%.17g %.17g) to (%.17g %.17g) twice, a pinched, "
+              "non-manifold band; %s\n",
               o->prefix, w->name, sl->c[b->j->lo[0]].line, sl->z[b->slice], sl->z[b->slice + 1], b->pinched_cost,
+              b->lo.pt[b->span[0]].x, b->lo.pt[b->span[0]].y, b->hi.pt[b->span[1]].x, b->hi.pt[b->span[1]].y,
               b->pinched == 1 ? "the cheapest path that does not is used" : "too large to replace; kept");
   }
   for (int i = 0; i < w->nends; i++)
