@@ -42,6 +42,7 @@
 #include "bench_paper.h"
 #include "cpuload.h"
 #include "par_slave.h"
+#include "progress.h"
 #include "run.h"
 #include "threads.h"
 #include "tiling.h"
@@ -248,6 +249,7 @@ int bench_calibrate(int argc, char **argv) {
   printf("points,procs,slaves,tables,c,options,measured_s,predicted_s,error,measured_speedup,"
          "predicted_speedup,ideal_s,ideal_error,measured_median_s,sleeps,wake_us,nodes,messages,cost\n");
   int rcode = 0;
+  progress *pg = progress_new("bench", "calibration rounds done:", 0);   /* a line every 5 s in a log */
   for (int si = 0; si < sizes.n && !rcode; si++) {
     int points = (int)sizes.v[si];
     vec2 *A, *B;
@@ -262,6 +264,7 @@ int bench_calibrate(int argc, char **argv) {
     double *all = xcalloc((size_t)order.n * (size_t)repeat, sizeof *all);   /* every run's time */
     for (int i = 0; i < order.n; i++) meas[i].time = -1;
     for (int r = 0; r < repeat && !rcode; r++) {
+      progress_step(pg, (long long)si * repeat + r, (long long)sizes.n * repeat);
       if (any_tab) {   /* the table alone: what every slave that uses one builds first */
         double t0 = wallclock();
         weights *w = weights_new(A, points, 0, B, points, 5, COST_AREA, 1);
@@ -354,6 +357,8 @@ int bench_calibrate(int argc, char **argv) {
     free(tab);
     free(A), free(B);
   }
+  progress_step(pg, (long long)sizes.n * repeat, (long long)sizes.n * repeat);
+  progress_end(pg);
   fprintf(stderr, "bench: the calibration took %.1f s\n", wallclock() - w0);
   return rcode;
 }

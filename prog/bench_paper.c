@@ -41,6 +41,7 @@
 #include "bench_variant.h"
 #include "contour.h"
 #include "gen.h"
+#include "progress.h"
 #include "run.h"
 #include "run_net.h"
 #include "wallclock.h"
@@ -199,7 +200,7 @@ static void fold(const plan *pl, const job *jb, outcome *acc, const outcome *o, 
 
 /* Run every job, on `jobs` forked workers (job i on worker i mod jobs); the
  * outcomes come back in job order whatever the workers' speed. */
-static int run_all(const plan *pl, outcome *out, int jobs, int progress) {
+static int run_all(const plan *pl, outcome *out, int jobs, progress *pg) {
   if (jobs > pl->njobs) jobs = pl->njobs;
   if (jobs <= 1) {   /* in rounds: every job once, then again, so that a slow
                         spell of the machine touches all jobs alike */
@@ -207,7 +208,7 @@ static int run_all(const plan *pl, outcome *out, int jobs, int progress) {
       for (int i = 0; i < pl->njobs; i++) {
         outcome o = one_run(pl, &pl->jobs[i]);
         fold(pl, &pl->jobs[i], &out[i], &o, rep);
-        if (progress) fprintf(stderr, "\rbench: %d of %d runs", rep * pl->njobs + i + 1, pl->njobs * pl->repeat);
+        progress_step(pg, rep * pl->njobs + i + 1, pl->njobs * pl->repeat);
       }
     return 0;
   }
@@ -260,7 +261,7 @@ static int run_all(const plan *pl, outcome *out, int jobs, int progress) {
       }
       next[w] += jobs;
       done++;
-      if (progress) fprintf(stderr, "\rbench: %d of %d runs", done, pl->njobs);
+      progress_step(pg, done, pl->njobs);
     }
   }
   for (int w = 0; w < jobs; w++) {
@@ -514,9 +515,9 @@ int bench_paper(int argc, char **argv) {
     }
   }
   outcome *o = xcalloc((size_t)njobs, sizeof *o);
-  int progress = isatty(2);
-  int rcode = run_all(&pl, o, jobs, progress);
-  if (progress) fputs("\r\033[K", stderr);
+  progress *pg = progress_new("bench", "run", 0);   /* a line every 5 s in a log */
+  int rcode = run_all(&pl, o, jobs, pg);
+  progress_end(pg);
   for (int i = 0; rcode == 0 && i < njobs; i++)
     if (!o[i].ok) {
       fprintf(stderr, "bench: the run with %d points on %d processors failed: %s\n", jb[i].points,
@@ -598,9 +599,9 @@ int bench_sweep_runs(const bench_cfg *cfgs, const bench_run *runs, int n, int jo
   }
   plan pl = {jb, n, cfgs[0].rc, 0, 1, NULL, 0, &notopo, &noplace, cfgs};
   outcome *o = xcalloc((size_t)(n > 0 ? n : 1), sizeof *o);
-  int progress = isatty(2);
-  int rcode = run_all(&pl, o, jobs, progress);
-  if (progress) fputs("\r\033[K", stderr);
+  progress *pg = progress_new("bench", "run", 0);   /* a line every 5 s in a log */
+  int rcode = run_all(&pl, o, jobs, pg);
+  progress_end(pg);
   if (rcode != 0) snprintf(err, errlen, "a worker failed");
   for (int i = 0; rcode == 0 && i < n; i++) {
     if (!o[i].ok) {

@@ -156,7 +156,8 @@ static int tile_stack(void *ud, const contour_stack *s, const char *name, const 
   size_t heldlen = 0;
   FILE *notes = o->quiet ? NULL : open_memstream(&held, &heldlen);
   atomicfile tf = {NULL, NULL, NULL};
-  stack_options so = {o->rc.kind, o->caps, o->apex, o->threads, o->parallel ? &o->rc : NULL, notes, "tile"};
+  stack_options so = {o->rc.kind, o->caps, o->apex, o->threads, o->parallel ? &o->rc : NULL, notes, "tile",
+                      NULL, NULL};
   if (o->parallel && o->trace) {
     /* The trace's size first, by the same run writing none (the simulator
      * is deterministic), and none above the limit (none: not measured);
@@ -192,13 +193,17 @@ static int tile_stack(void *ud, const contour_stack *s, const char *name, const 
     if (json) o->rc.trace_json = tf.f;
     else o->rc.trace_csv = tf.f;
   }
+  progress *pg = progress_new("tile", "band", o->quiet || s->nslices < 3);
   if (o->parallel) {
-    o->rc.progress_ud = progress_new("tile", "band", o->quiet || s->nslices < 3);
-    o->rc.progress = o->rc.progress_ud ? show_progress : NULL;
+    o->rc.progress_ud = pg;
+    o->rc.progress = pg ? show_progress : NULL;
+  } else {
+    so.progress_ud = pg;
+    so.progress = pg ? show_progress : NULL;
   }
   stack_surface *ss = NULL;
   int res = stack_tile(s, name, &so, &ss, err, sizeof err);
-  if (o->parallel) progress_end(o->rc.progress_ud);
+  progress_end(pg);
   o->rc.progress = NULL, o->rc.progress_ud = NULL;
   if (notes) fclose(notes);
   if (res == -2)

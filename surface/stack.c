@@ -10,6 +10,7 @@
 #include "stack.h"
 
 #include <math.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -62,6 +63,7 @@ typedef struct {
   end_region *ends;    /* with caps: the regions to close, and their caps */
   end_cap *caps;
   int nends;
+  atomic_int tiled;    /* bands tiled so far, for o->progress */
 } work;
 
 static void match_job(void *ud, int k) {
@@ -90,6 +92,7 @@ static void tile_job(void *ud, int i) {
   const slices *sl = w->sl;
   tiling_solve(b->lo.pt, b->lo.n, sl->z[b->slice], b->hi.pt, b->hi.n, sl->z[b->slice + 1], w->o->kind,
                -1, &b->t);
+  if (w->o->progress) w->o->progress(w->o->progress_ud, atomic_fetch_add(&w->tiled, 1) + 1, w->nb);
 }
 
 /* The hi side's Steiner vertices come after the lo side's. */
@@ -408,6 +411,7 @@ int stack_tile(const contour_stack *s, const char *name, const stack_options *o,
 
   work w;
   memset(&w, 0, sizeof w);
+  atomic_init(&w.tiled, 0);
   w.sl = &sl, w.o = o, w.name = name, w.threads = threads;
   w.js = xcalloc((size_t)ns, sizeof *w.js);
   pool_run(threads, ns - 1, NULL, match_job, &w);

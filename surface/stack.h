@@ -37,6 +37,8 @@ typedef struct {
   run_config *rc;      /* non-NULL: tile the bands with the parallel algorithm on rc's backend */
   FILE *notes;         /* notes (reoriented contours, flat single-slice parts), or NULL */
   const char *prefix;  /* of the notes: "tile" */
+  void (*progress)(void *ud, int done, int total);   /* after each band tiled (any thread), or NULL */
+  void *progress_ud;
 } stack_options;
 
 typedef enum { STACK_BAND, STACK_CAP } stack_row_kind;

@@ -7,6 +7,9 @@
 # are repeated just before the last line, so that what was not run shows.
 build=$1; shift
 passed=0; failed=0; skipped=""
+# No progress lines from long runs in the tests' output (util/progress.h);
+# a test that checks them sets its own interval.
+export TILESIM_PROGRESS_S=${TILESIM_PROGRESS_S:-86400}
 for t in "$@"; do
   case $t in
     *.sh) out=$(BUILD=$build sh "$t" 2>&1); rc=$? ;;

@@ -172,7 +172,7 @@ static int make_stack(const poly *ps, int np, const int *order, const int *start
 
 static stack_surface *tile(const contour_stack *s, int caps, int apex, int threads, run_config *rc,
                            char *err, size_t errlen, int *res) {
-  stack_options o = {COST_AREA, caps, apex, threads, rc, NULL, "test"};
+  stack_options o = {COST_AREA, caps, apex, threads, rc, NULL, "test", NULL, NULL};
   stack_surface *ss = NULL;
   *res = stack_tile(s, "t.contours", &o, &ss, err, errlen);
   return ss;

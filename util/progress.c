@@ -2,6 +2,7 @@
  * seconds in a log. */
 #include "progress.h"
 
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,6 +17,7 @@ struct progress {
   double start, last, every;
   long long done, total;
   int lines;         /* log lines written */
+  pthread_mutex_t lock;   /* steps may come from several threads */
 };
 
 progress *progress_new(const char *prog, const char *what, int quiet) {
@@ -32,11 +34,21 @@ progress *progress_new(const char *prog, const char *what, int quiet) {
     if (end != env && !*end && v >= 0) p->every = v;
   }
   p->start = p->last = wallclock();
+  pthread_mutex_init(&p->lock, NULL);
   return p;
 }
 
+static void step(progress *p, long long done, long long total);
+
 void progress_step(progress *p, long long done, long long total) {
   if (!p) return;
+  pthread_mutex_lock(&p->lock);
+  step(p, done, total);
+  pthread_mutex_unlock(&p->lock);
+}
+
+static void step(progress *p, long long done, long long total) {
+  if (done < p->done) return;   /* (threads: a later count already shown) */
   p->done = done, p->total = total;
   if (!p->tty && done >= total) return;   /* progress_end says it */
   double now = wallclock();
@@ -60,5 +72,6 @@ void progress_end(progress *p) {
     fprintf(stderr, "%s: %s %lld of %lld, done in %.0f s\n", p->prog, p->what, p->done, p->total,
             wallclock() - p->start);
   fflush(stderr);
+  pthread_mutex_destroy(&p->lock);
   free(p);
 }

@@ -17,7 +17,7 @@ typedef struct progress progress;
  * quiet (no progress at all: then the calls below do nothing). */
 progress *progress_new(const char *prog, const char *what, int quiet);
 
-/* done of total steps are complete. */
+/* done of total steps are complete (any thread may call it). */
 void progress_step(progress *p, long long done, long long total);
 
 /* The run is over: clear the terminal line, or write the last log line;

@@ -1,0 +1,37 @@
+#!/bin/sh
+# cli_progress.sh -- progress of long runs in a form a log keeps (issue 14,
+# item 14): with stderr not a terminal, a whole line every TILESIM_PROGRESS_S
+# seconds (default 5; 0 here, a line a step) and a last line when done;
+# nothing for a run shorter than the interval, nothing with -q, and stdout
+# untouched.  ./tile serial (-j 2) and parallel, and bench's sweep.
+BUILD=${BUILD:-build/chk}
+DATA=tests/data/slicerrt
+T=$(mktemp -d /tmp/tilesim-progress.XXXXXX)
+trap 'rm -rf "$T"' EXIT
+pass=0; fail=0
+ok()  { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "cli_progress: $*"; }
+
+"$BUILD/tile" $DATA/prostate_3.contours -q > "$T/ref.csv" 2>&1
+for args in "-j 2" "--procs 3"; do
+  # shellcheck disable=SC2086
+  TILESIM_PROGRESS_S=0 "$BUILD/tile" $DATA/prostate_3.contours $args > "$T/out" 2> "$T/err"
+  n=$(grep -c '^tile: band [0-9]* of 17 ([0-9]*%), [0-9]* s$' "$T/err")
+  [ "$n" -ge 5 ] && [ "$n" -le 16 ] && ok || bad "tile $args: $n progress lines: $(cat "$T/err")"
+  tail -n 1 "$T/err" | grep -qx 'tile: band 17 of 17, done in [0-9]* s' && ok || bad "tile $args: no last line: $(tail -n 1 "$T/err")"
+  grep -v '^tile: band' "$T/err" | grep -q . && bad "tile $args: other lines on stderr: $(cat "$T/err")" || ok
+  cut -d, -f1-14 "$T/out" | cmp -s - "$(cut -d, -f1-14 "$T/ref.csv" > "$T/ref14"; echo "$T/ref14")" && ok || bad "tile $args: the report changed"
+  # shellcheck disable=SC2086
+  TILESIM_PROGRESS_S=0 "$BUILD/tile" $DATA/prostate_3.contours $args -q > /dev/null 2> "$T/err"
+  [ ! -s "$T/err" ] && ok || bad "tile $args -q: $(cat "$T/err")"
+  # shellcheck disable=SC2086
+  TILESIM_PROGRESS_S=5 "$BUILD/tile" $DATA/prostate_3.contours $args > /dev/null 2> "$T/err"
+  [ ! -s "$T/err" ] && ok || bad "tile $args, a run shorter than 5 s: $(cat "$T/err")"
+done
+TILESIM_PROGRESS_S=0 "$BUILD/bench" --points 40 --procs 1..4 --jobs 2 > "$T/out" 2> "$T/err"
+grep -q '^bench: run [0-9] of 4 ([0-9]*%), [0-9]* s$' "$T/err" && tail -n 1 "$T/err" | grep -qx 'bench: run 4 of 4, done in [0-9]* s' \
+  && ok || bad "bench: $(cat "$T/err")"
+[ "$(wc -l < "$T/out")" -eq 5 ] && ok || bad "bench: the CSV changed: $(cat "$T/out")"
+
+echo "cli_progress: $pass passed, $fail failed"
+[ $fail -eq 0 ]
