@@ -15,6 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "args.h"
 #include "atomicfile.h"
 #include "csvtab.h"
 #include "sim.h"
@@ -171,20 +172,28 @@ static void draw(FILE *f, const grid *g) {
 }
 
 static int usage(const char *why, const char *val) {
-  fprintf(stderr, "plot: %s%s%s%s\n", why, val ? " (" : "", val ? val : "", val ? ")" : "");
-  fputs("usage: plot claims MAP.csv [--title T] -o OUT.svg\n", stderr);
+  char shown[200];
+  if (val) args_show(val, shown, sizeof shown);
+  fprintf(stderr, "plot: %s%s%s%s\n", why, val ? " (" : "", val ? shown : "", val ? ")" : "");
+  fputs("usage: plot claims MAP.csv [--title T] -o OUT.svg   (plot --help: every option)\n", stderr);
   return 2;
 }
 
 int plot_claims(int argc, char **argv) {
   const char *in = argc > 2 ? argv[2] : NULL, *out = NULL, *title = "Where the paper's claims hold";
-  if (!in || in[0] == '-') return usage("no claims map (bench --claims-map -o MAP.csv)", NULL);
+  char msg[400];
+  if (!in || !in[0] || in[0] == '-') return usage("no claims map (bench --claims-map -o MAP.csv)", NULL);
   for (int i = 3; i < argc; i += 2) {
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+    if (strcmp(a, "-o") != 0 && strcmp(a, "--title") != 0)
+      return usage(a[0] == '-' ? "unknown option" : "unexpected argument", a);
     if (!v) return usage("an option needs a value", a);
-    if (strcmp(a, "-o") == 0) out = v;
-    else if (strcmp(a, "--title") == 0) title = v;
-    else return usage("unknown option", a);
+    if (strcmp(a, "-o") == 0) {
+      if (args_name(a, v, "a file name", 0, msg, sizeof msg) != 0) return usage(msg, NULL);
+      out = v;
+    } else {
+      title = v;
+    }
   }
   if (!out) return usage("claims needs -o", NULL);
   char err[400];

@@ -198,6 +198,7 @@ each plot "--labels takes 1 to 16 names" "$L;-x;procs;-y;sim_time" --labels "@E;
 each plot "-o takes a file name" "$L;-x;procs;-y;sim_time" -o "$name_bad"
 each plot "--cost takes area or span" "surface;$STACK" --cost "$(word_bad area)" "-o;s.svg"
 each plot "-o takes a file name" "surface;$STACK" -o "$name_bad"
+each plot "-o takes a file name" "claims;$T/sweep.csv" -o "$name_bad"
 
 # ---- the command lines themselves ----------------------------------------------------------
 refused tile "unknown option (--bogus)" "$STACK;--bogus;1"
@@ -220,6 +221,7 @@ done
 refused bench "unknown option (--bogus)" "--ring;3;--laps;2;--bogus;1"
 refused bench "unexpected argument (extra)" "--switch;100;extra"
 refused plot "unknown option (--bogus)" "$L;-x;procs;-y;sim_time;-o;p.svg;--bogus;1"
+refused plot "unknown option (--bogus)" "claims;$T/sweep.csv;--bogus"
 refused plot "unknown mode, use lines, surface or claims (frob)" "frob"
 
 # --help goes to stdout, exit 0, for every program.
