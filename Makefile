@@ -257,14 +257,14 @@ bench: all
 	  --labels "bus (the paper's),line: linear,line: random,mesh 4x4: snake,mesh 4x4: random,hypercube: Gray,hypercube: random" \
 	  --title "Section 8: 300 points on direct networks, 100 us a hop, store-and-forward" \
 	  --xlabel processors --ylabel "speedup T(1)/T(P)" -o plots/section8_topology.svg
-	./bench --claims plots/real_speedup.csv > plots/real_claims.csv
-	./bench --claims plots/speedup.csv plots/min_diag.csv > plots/claims.csv
+	./bench --claims plots/real_speedup.csv > build/real_claims.csv && mv build/real_claims.csv plots/real_claims.csv
+	./bench --claims plots/speedup.csv plots/min_diag.csv > build/claims.csv && mv build/claims.csv plots/claims.csv
 	@cat plots/claims.csv
 	./bench --points 500 --variant $(VARIANTS) --jobs $(JOBS) $(NOWALL) -o plots/variants_tc2000.csv
 	./bench --points 1000 $(XEON16) --variant $(VARIANTS) --jobs $(JOBS) $(NOWALL) -o plots/variants_xeon16.csv
 	awk -F, 'FNR == 1 { for (i = 1; i <= NF; i++) c[$$i] = i; f++; if (f == 1) print "variant,procs,tc2000,xeon16"; next } \
 	  { k = $$c["variant"] "," $$c["procs"] } f == 1 { a[k] = $$c["speedup"] } f == 2 && (k in a) { print k "," a[k] "," $$c["speedup"] }' \
-	  plots/variants_tc2000.csv plots/variants_xeon16.csv > plots/variants.csv.tmp && mv plots/variants.csv.tmp plots/variants.csv
+	  plots/variants_tc2000.csv plots/variants_xeon16.csv > build/variants.csv && mv build/variants.csv plots/variants.csv
 	$(PLOTS) plots/variants.csv -x procs -y tc2000,xeon16 --series variant \
 	  --labels "tc2000 500 points,16-core host 1000 points (dashed)" --yzero \
 	  --title "The variants: speedup, simulated tc2000 and the simulator calibrated to a 16-core host" \
