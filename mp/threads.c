@@ -1,27 +1,60 @@
-/* threads.c -- mp.h on POSIX threads: mailboxes, spin-then-sleep waiting,
- * deadlock detection.  threads.h states the semantics.
+/* threads.c -- mp.h on POSIX threads: a channel per pair of ranks, spin-then-
+ * sleep waiting, deadlock detection.  threads.h states the semantics.
  *
- * Reading order: the data (messages, mailboxes, ranks, the machine), errors,
- * waking and the deadlock check, the mp calls, then mpt_run.
+ * Reading order: the data (records, chunks, channels, ranks, the machine),
+ * errors, the channels' two ends, waking and the deadlock check, the mp
+ * calls, then mpt_run.
  *
- * Locks.  Each mailbox has a mutex; the machine has one more, `g`, for the
- * count of sleeping ranks, the live count and the error report.  The order
- * is always a mailbox, then g; nobody holds two mailboxes.
+ * Messages.  Each ordered pair of ranks (s, d) that has ever talked has a
+ * channel: a queue with one writer (s) and one reader (d), so that a send
+ * takes no lock and no read-modify-write instruction.  The queue is a list
+ * of 16 KiB chunks of records, each record on cache lines of its own: a
+ * header (tag, length, Lamport stamp), then the payload inline (up to
+ * INLINE_MAX bytes) or a pointer to a copy.  The writer fills a record and
+ * then publishes it with one release store of its size; the reader polls
+ * that word.  A message thus costs the two cores about two cache-line
+ * transfers (the record and, now and then, a fresh line of the chunk), and
+ * no allocation below INLINE_MAX bytes.  The reader frees a chunk when it
+ * has taken everything in it; a record taken out of order (a tag or source
+ * passed over) is marked and skipped.
+ *
+ * Order.  Per pair, a channel is FIFO.  Between senders, mp.h asks for the
+ * earliest arrival first, and the algorithm relies on causality (a slave
+ * that passes control on after telling the master must not be overtaken by
+ * the master's answer).  Every message carries the sender's Lamport clock
+ * (bumped at every send; a receive takes the maximum of its own and the
+ * message's), so a message sent after another, in the happens-before sense
+ * of the messages themselves, has the larger stamp.  A receive from any
+ * source scans every channel into it for its first match, takes the least
+ * (stamp, source), and scans once more (everything that happened before
+ * that message is visible by then): if the least is still the same, it is
+ * taken, else the new least is checked the same way.  Ranks share nothing
+ * else through mp.h, so that is the arrival order a shared mailbox would
+ * have had up to the races mp.h leaves to the machine.
+ *
+ * Sleeping.  A rank that sleeps in recv registers under its own mutex
+ * (sleeping = 1, what it waits for), issues a full fence and looks at its
+ * channels once more; a sender publishes, issues a full fence and reads the
+ * receiver's `sleeping`.  One of the two sees the other (the fences forbid
+ * both missing), so no message is left unseen beside a sleeper; a sender
+ * that sees a sleeper takes its mutex and wakes it if the message matches.
+ * The machine's lock `g` holds the count of sleeping ranks and the live
+ * count; the order is a rank's mutex, then g.
  *
  *   sender                              receiver (rank d)
- *   lock box[d]                         lock box[d]; no match; unlock
- *   append                              spin: arrivals changed? rescan
- *   if d sleeps and it matches:         ... still nothing after spin_ns:
- *     d.sleeping = 0                    lock box[d]; no match:
- *     lock g; sleeping--; unlock g        d.sleeping = 1
- *     signal d                            lock g; sleeping++;
- *   unlock box[d]                         sleeping == live? deadlock; unlock g
- *   arrivals++                  ---->     wait on d's condition variable
+ *   write the record; release size      look: nothing; spin on the channels
+ *   fence                               ... still nothing after spin_ns:
+ *   d.sleeping?  no: done               lock d.mu; d.sleeping = 1; fence
+ *     yes: lock d.mu; matches?          look again: found? sleeping = 0, take
+ *       d.sleeping = 0                  lock g; sleeping++;
+ *       lock g; sleeping--; unlock g      sleeping == live? deadlock; unlock g
+ *       signal d; unlock d.mu           wait on d's condition variable
  *
- * A rank counts as sleeping from the moment it registers, under its mailbox
- * lock, to the moment a sender hands it a matching message, under the same
- * lock; so `sleeping == live` (under g) means every live rank waits for a
- * message nobody can send any more: a deadlock, never a race. */
+ * A rank counts as sleeping from the moment it registers (and has looked
+ * again, under its mutex) to the moment a sender hands it a matching
+ * message, under the same mutex; so `sleeping == live` (under g) means every
+ * live rank waits for a message nobody can send any more: a deadlock, never
+ * a race. */
 #include "threads.h"
 
 #include <math.h>
@@ -29,6 +62,7 @@
 #include <sched.h>
 #include <stdarg.h>
 #include <stdatomic.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -45,33 +79,84 @@ void mpt_config_init(mpt_config *cfg) {
 
 /* ==== data ================================================================ */
 
-typedef struct msg msg;
-struct msg {
-  msg *next;
-  int src, tag;
-  size_t len;
-  unsigned char data[];   /* the payload, copied at mp_send */
+enum {
+  LINE = 64,                      /* a cache line: records start on one */
+  CHUNK = 16384,                  /* a chunk of a channel, its header line included */
+  CHUNK_DATA = CHUNK - LINE,
+  REC_JUMP = 1                    /* size word of the record that says: the next chunk */
+};
+enum {
+  REC_BIG = 1,                    /* flags: the payload is a pointer to a copy */
+  REC_TAKEN = 2                   /* flags: received out of order (the reader's mark) */
 };
 
+/* A record.  `size` is 0 until the writer publishes it (release), then the
+ * record's bytes (a multiple of LINE), or REC_JUMP. */
+typedef struct {
+  _Atomic uint32_t size;
+  int32_t tag;
+  uint32_t flags;
+  uint32_t src;
+  uint64_t stamp;     /* the sender's Lamport clock */
+  uint64_t len;       /* the payload's bytes */
+} rec;                /* 32 bytes; the payload (or its pointer) follows */
+
+enum { INLINE_MAX = 1024 - (int)sizeof(rec) };   /* longer payloads go by pointer */
+
+typedef struct chunk chunk;
+struct chunk {
+  chunk *next;        /* written before the REC_JUMP that leads to it */
+  char pad[LINE - sizeof(chunk *)];
+  /* CHUNK_DATA bytes of records follow, zeroed */
+};
+
+static inline rec *rec_at(chunk *c, size_t off) { return (rec *)((char *)c + LINE + off); }
+static inline unsigned char *rec_data(rec *x) { return (unsigned char *)(x + 1); }
+
+static chunk *chunk_new(void) {
+  chunk *c = aligned_alloc(LINE, CHUNK);
+  if (!c) xpanic("threads: out of memory for a channel's chunk of %d bytes", CHUNK);
+  memset(c, 0, CHUNK);
+  return c;
+}
+
+/* A channel from one rank to another. */
+typedef struct {
+  /* The writer's, on lines of their own. */
+  chunk *wc;
+  size_t woff;
+  char pad1[LINE - sizeof(chunk *) - sizeof(size_t)];
+  /* The reader's. */
+  chunk *hc;          /* head: the first record not yet taken (or a jump) */
+  size_t hoff;
+  chunk *sc;          /* scan: the first record the reader has not yet seen */
+  size_t soff;
+  int src;
+  char pad2[LINE - 2 * sizeof(chunk *) - 2 * sizeof(size_t) - sizeof(int)];
+} chan;
 
 typedef struct rank rank;
 struct rank {
   struct mp base;              /* first: an mp * is a rank * */
   mpt *t;
   pthread_t thread;
-  /* The mailbox, under mu. */
-  pthread_mutex_t mu;
+  /* Owned by the rank's own thread. */
+  chan **out;                  /* [dst]: my channel to dst, or NULL (created at the first send) */
+  uint64_t clock;              /* Lamport */
+  mpt_rank_stats st;
+  /* Its channels in, by source, and in order of creation: written by the
+   * senders (under mu), read by the rank. */
+  _Alignas(LINE) _Atomic(chan *) *in;
+  chan **inlist;
+  _Atomic int nin;
+  /* Sleeping, under mu; `sleeping` is read by every sender. */
+  _Alignas(LINE) pthread_mutex_t mu;
   pthread_cond_t cv;
-  msg *head, *tail;
-  atomic_uint arrivals;        /* bumped by every delivery: what a spinning recv watches */
-  int sleeping;                /* registered as sleeping in recv (counted in t->sleeping) */
+  _Atomic int sleeping;        /* registered as sleeping in recv (counted in t->sleeping) */
   int wait_src, wait_tag;      /* what it sleeps for */
   int deadlocked;              /* its recv is to return MP_EDEADLOCK */
   double woken_at;             /* wallclock() when a sender woke it */
-  /* Owned by the rank's own thread. */
-  mpt_rank_stats st;
-  /* Pad: ranks' mailboxes on separate cache lines. */
-  char pad[64];
+  char pad[LINE];
 };
 
 struct mpt {
@@ -79,11 +164,11 @@ struct mpt {
   int n;
   rank *ranks;
   const mp_proc *procs;
-  atomic_int stopped;          /* deadlock: every mp call fails at once */
-  atomic_int awake;            /* live - sleeping, for the spinners to read */
   int cpus;                    /* processors this process may use */
-  cpuload load;                /* the machine's runnable threads, sampled */
   double t0;                   /* wallclock() at the start */
+  _Alignas(LINE) atomic_int stopped;   /* deadlock: every mp call fails at once (read by every call) */
+  _Alignas(LINE) atomic_int awake;     /* live - sleeping, for the spinners to read */
+  cpuload load;                /* the machine's runnable threads, sampled */
   /* The start gate: threads wait here until all are created. */
   pthread_mutex_t gate_mu;
   pthread_cond_t gate_cv;
@@ -133,27 +218,213 @@ static PRINTF(2, 3) void warn(mpt *t, const char *fmt, ...) {
   pthread_mutex_unlock(&t->g);
 }
 
-/* ==== waking, and the deadlock check ====================================== */
+/* ==== a channel's writer ================================================== */
 
-static inline int matches(const msg *m, int src, int tag) {
-  return (src < 0 || m->src == src) && (tag < 0 || m->tag == tag);
+/* The channel from r to d, made at r's first send to d: published in d's
+ * table by source and appended to its list (under d's mutex: several
+ * senders may add theirs at once). */
+static chan *chan_get(rank *r, rank *d) {
+  int dst = d->base.rank;
+  chan *q = r->out[dst];
+  if (q) return q;
+  q = aligned_alloc(LINE, sizeof *q);
+  if (!q) xpanic("threads: out of memory for a channel");
+  memset(q, 0, sizeof *q);
+  q->wc = q->hc = q->sc = chunk_new();
+  q->src = r->base.rank;
+  pthread_mutex_lock(&d->mu);
+  int k = atomic_load_explicit(&d->nin, memory_order_relaxed);
+  d->inlist[k] = q;
+  atomic_store_explicit(&d->in[q->src], q, memory_order_release);
+  atomic_store_explicit(&d->nin, k + 1, memory_order_release);
+  pthread_mutex_unlock(&d->mu);
+  r->out[dst] = q;
+  return q;
 }
 
-/* The first message in r's mailbox matching src and tag, unlinked; or NULL.
- * Caller holds r->mu. */
-static msg *box_take(rank *r, int src, int tag) {
-  msg *prev = NULL;
-  for (msg *m = r->head; m; prev = m, m = m->next) {
-    if (!matches(m, src, tag)) continue;
-    if (prev)
-      prev->next = m->next;
-    else
-      r->head = m->next;
-    if (r->tail == m) r->tail = prev;
-    return m;
+/* Append a record (tag, buf[0..len)) and publish it.  Returns it. */
+static rec *chan_put(chan *q, int src, int tag, uint64_t stamp, const void *buf, size_t len) {
+  int big = len > INLINE_MAX;
+  size_t need = (sizeof(rec) + (big ? sizeof(void *) : len) + LINE - 1) / LINE * LINE;
+  if (q->woff + need + LINE > CHUNK_DATA) {   /* room for a record and a jump, always */
+    chunk *c = chunk_new();
+    q->wc->next = c;
+    atomic_store_explicit(&rec_at(q->wc, q->woff)->size, REC_JUMP, memory_order_release);
+    q->wc = c;
+    q->woff = 0;
   }
-  return NULL;
+  rec *x = rec_at(q->wc, q->woff);
+  x->tag = tag;
+  x->flags = big ? REC_BIG : 0;
+  x->src = (uint32_t)src;
+  x->stamp = stamp;
+  x->len = len;
+  if (big) {
+    void *copy = xmalloc(len);
+    memcpy(copy, buf, len);
+    memcpy(rec_data(x), &copy, sizeof copy);
+  } else if (len) {
+    memcpy(rec_data(x), buf, len);
+  }
+  atomic_store_explicit(&x->size, (uint32_t)need, memory_order_release);
+  q->woff += need;
+  return x;
 }
+
+/* ==== a channel's reader ================================================== */
+
+static inline int tag_ok(int want, int tag) { return want < 0 || want == tag; }
+
+/* The first record of q not yet taken whose tag matches, or NULL; records
+ * published since the last look are seen now.  Only q's reader calls it. */
+static rec *chan_find(chan *q, int tag) {
+  chunk *c = q->hc;
+  size_t off = q->hoff;
+  for (;;) {
+    rec *x = rec_at(c, off);
+    if (c == q->sc && off == q->soff) {   /* beyond what was seen: published since? */
+      uint32_t sz = atomic_load_explicit(&x->size, memory_order_acquire);
+      if (sz == 0) return NULL;
+      if (sz == REC_JUMP) {
+        c = q->sc = c->next;
+        off = q->soff = 0;
+        continue;
+      }
+      q->soff = off + sz;
+      if (tag_ok(tag, x->tag)) return x;
+      off += sz;
+      continue;
+    }
+    uint32_t sz = atomic_load_explicit(&x->size, memory_order_relaxed);
+    if (sz == REC_JUMP) {
+      c = c->next;
+      off = 0;
+      continue;
+    }
+    if (!(x->flags & REC_TAKEN) && tag_ok(tag, x->tag)) return x;
+    off += sz;
+  }
+}
+
+/* Anything published in q since the reader last looked? */
+static inline int chan_news(chan *q) {
+  return atomic_load_explicit(&rec_at(q->sc, q->soff)->size, memory_order_relaxed) != 0;
+}
+
+/* Move q's head over the records taken out of order and the jumps (freeing
+ * the chunks left behind), up to the first record not taken or what the
+ * reader has not seen. */
+static void chan_settle(chan *q) {
+  while (q->hc != q->sc || q->hoff != q->soff) {
+    rec *y = rec_at(q->hc, q->hoff);
+    uint32_t sz = atomic_load_explicit(&y->size, memory_order_relaxed);
+    if (sz == REC_JUMP) {
+      chunk *old = q->hc;
+      q->hc = old->next;
+      q->hoff = 0;
+      free(old);
+    } else if (y->flags & REC_TAKEN) {
+      q->hoff += sz;
+    } else {
+      break;
+    }
+  }
+}
+
+/* x (found by chan_find, its payload already copied out) is taken: passed
+ * by the head if it is the first record not taken, else marked. */
+static void chan_take(chan *q, rec *x) {
+  if (x->flags & REC_BIG) {
+    void *copy;
+    memcpy(&copy, rec_data(x), sizeof copy);
+    free(copy);
+  }
+  chan_settle(q);
+  if (x != rec_at(q->hc, q->hoff)) {
+    x->flags |= REC_TAKEN;
+    return;
+  }
+  q->hoff += atomic_load_explicit(&x->size, memory_order_relaxed);
+  chan_settle(q);
+}
+
+/* Every chunk of q, and the copies of the big payloads never taken; q. */
+static void chan_free(chan *q) {
+  chunk *c = q->hc;
+  size_t off = q->hoff;
+  while (c) {
+    rec *x = rec_at(c, off);
+    uint32_t sz = atomic_load_explicit(&x->size, memory_order_relaxed);
+    if (sz == 0 || sz == REC_JUMP) {
+      chunk *next = sz == REC_JUMP ? c->next : NULL;
+      free(c);
+      c = next;
+      off = 0;
+      continue;
+    }
+    if ((x->flags & (REC_BIG | REC_TAKEN)) == REC_BIG) {
+      void *copy;
+      memcpy(&copy, rec_data(x), sizeof copy);
+      free(copy);
+    }
+    off += sz;
+  }
+  free(q);
+}
+
+/* A message found for a receive: its channel and record. */
+typedef struct {
+  chan *q;
+  rec *x;
+} found;
+
+/* The message a recv or probe of r from src with tag takes now, if any.
+ * From one source: that channel's first match (FIFO).  From any: the least
+ * (stamp, source) among the channels' first matches, confirmed by a second
+ * look (the file's head comment says why). */
+static found look(rank *r, int src, int tag) {
+  found f = {NULL, NULL};
+  if (src >= 0) {
+    chan *q = atomic_load_explicit(&r->in[src], memory_order_acquire);
+    if (q) f.q = q, f.x = chan_find(q, tag);
+    return f;
+  }
+  for (;;) {
+    found best = {NULL, NULL};
+    int k = atomic_load_explicit(&r->nin, memory_order_acquire);
+    for (int i = 0; i < k; i++) {
+      chan *q = r->inlist[i];
+      rec *x = chan_find(q, tag);
+      if (x && (!best.x || x->stamp < best.x->stamp || (x->stamp == best.x->stamp && x->src < best.x->src)))
+        best.q = q, best.x = x;
+    }
+    if (!best.x || best.x == f.x) return best;
+    f = best;
+  }
+}
+
+/* Anything new for a recv of r from src (MP_ANY: from anyone) since its
+ * last look (which left nin_seen channels)? */
+static int news(rank *r, int src, int nin_seen) {
+  if (src >= 0) {
+    chan *q = atomic_load_explicit(&r->in[src], memory_order_acquire);
+    return q && (nin_seen < 0 || chan_news(q));
+  }
+  int k = atomic_load_explicit(&r->nin, memory_order_acquire);
+  if (k != nin_seen) return 1;
+  for (int i = 0; i < k; i++)
+    if (chan_news(r->inlist[i])) return 1;
+  return 0;
+}
+
+/* What news() compares with: the channels r knows of (for a source: -1 if
+ * that channel does not exist yet, else 0). */
+static int news_mark(rank *r, int src) {
+  if (src >= 0) return atomic_load_explicit(&r->in[src], memory_order_acquire) ? 0 : -1;
+  return atomic_load_explicit(&r->nin, memory_order_acquire);
+}
+
+/* ==== waking, and the deadlock check ====================================== */
 
 static const char *peer_name(int v, char *buf, size_t len) {
   if (v < 0) return "any";
@@ -174,7 +445,7 @@ static void declare_deadlock_locked(mpt *t) {
     /* sleeping and wait_* are written under r->mu and g together (wait_*
      * before sleeping), so reading them under g alone is safe; deadlocked
      * is read by its rank only once the run has stopped. */
-    if (!r->sleeping) continue;
+    if (!atomic_load_explicit(&r->sleeping, memory_order_relaxed)) continue;
     r->deadlocked = 1;
     if (blocked++ < SHOWN)
       len += (size_t)snprintf(buf + len, cap - len, "%s rank %d waits in recv(src=%s, tag=%s)",
@@ -198,6 +469,26 @@ static void wake_all(mpt *t) {
   }
 }
 
+/* A message from src with tag has just been published to d: wake d if it
+ * sleeps waiting for it.  The fence pairs with the one a sleeper issues
+ * between registering and its last look. */
+static void wake_if_waiting(mpt *t, rank *d, int src, int tag) {
+  atomic_thread_fence(memory_order_seq_cst);
+  if (!atomic_load_explicit(&d->sleeping, memory_order_relaxed)) return;
+  pthread_mutex_lock(&d->mu);
+  if (atomic_load_explicit(&d->sleeping, memory_order_relaxed) && (d->wait_src < 0 || d->wait_src == src) &&
+      tag_ok(d->wait_tag, tag)) {
+    pthread_mutex_lock(&t->g);
+    atomic_store_explicit(&d->sleeping, 0, memory_order_relaxed);
+    t->sleeping--;
+    atomic_fetch_add_explicit(&t->awake, 1, memory_order_relaxed);
+    pthread_mutex_unlock(&t->g);
+    d->woken_at = wallclock();
+    pthread_cond_signal(&d->cv);
+  }
+  pthread_mutex_unlock(&d->mu);
+}
+
 /* ==== the mp calls ======================================================== */
 
 static inline void cpu_relax(void) {
@@ -206,20 +497,6 @@ static inline void cpu_relax(void) {
 #elif defined(__GNUC__) && defined(__aarch64__)
   __asm__ __volatile__("yield");
 #endif
-}
-
-/* Lock a mailbox.  Its critical sections are a few loads and stores (an
- * append, a take), so a thread that finds it held tries again for a moment
- * before pthread_mutex_lock, which would put it to sleep in the kernel and
- * make the holder's unlock a system call too: on the algorithm's exchanges
- * (two neighbours sending into a mailbox while its owner takes from it) that
- * cost microseconds a message. */
-static void box_lock(rank *r) {
-  for (int i = 0; i < 256; i++) {
-    if (pthread_mutex_trylock(&r->mu) == 0) return;
-    cpu_relax();
-  }
-  pthread_mutex_lock(&r->mu);
 }
 
 static int stopped(const mpt *t) { return atomic_load_explicit(&t->stopped, memory_order_acquire); }
@@ -250,32 +527,9 @@ static int mpt_send(mp *self, int dst, int tag, const void *buf, size_t len) {
     fail(t, "rank %d: mp_send of %zu bytes from a NULL buffer", r->base.rank, len);
     return MP_EARG;
   }
-  msg *m = xmalloc(sizeof *m + len);
-  m->next = NULL;
-  m->src = r->base.rank;
-  m->tag = tag;
-  m->len = len;
-  if (len) memcpy(m->data, buf, len);
   rank *d = &t->ranks[dst];
-  box_lock(d);
-  if (d->tail)
-    d->tail->next = m;
-  else
-    d->head = m;
-  d->tail = m;
-  if (d->sleeping && matches(m, d->wait_src, d->wait_tag)) {
-    pthread_mutex_lock(&t->g);
-    d->sleeping = 0;
-    t->sleeping--;
-    atomic_fetch_add_explicit(&t->awake, 1, memory_order_relaxed);
-    pthread_mutex_unlock(&t->g);
-    d->woken_at = wallclock();
-    pthread_cond_signal(&d->cv);
-  }
-  pthread_mutex_unlock(&d->mu);
-  /* After the unlock: a receiver spinning on the counter then finds the
-   * mailbox free instead of waiting for this sender to leave it. */
-  atomic_fetch_add_explicit(&d->arrivals, 1, memory_order_release);
+  chan_put(chan_get(r, d), r->base.rank, tag, ++r->clock, buf, len);
+  wake_if_waiting(t, d, r->base.rank, tag);
   r->st.sent++;
   r->st.bytes_sent += (long long)len;
   return MP_OK;
@@ -295,21 +549,27 @@ static int check_match_args(rank *r, const char *call, int src, int tag) {
   return MP_OK;
 }
 
-/* Copy m out to the caller, free it. */
-static int deliver(rank *r, msg *m, void *buf, size_t cap, mp_status *st) {
-  size_t n = m->len <= cap ? m->len : cap;
-  if (n) memcpy(buf, m->data, n);
-  if (st) *st = (mp_status){m->src, m->tag, m->len};
-  r->st.received++;
-  r->st.bytes_received += (long long)m->len;
-  int rc = MP_OK;
-  if (m->len > cap) {
-    warn(r->t, "rank %d: mp_recv truncated a %zu-byte message from rank %d (tag %d) to %zu bytes",
-         r->base.rank, m->len, m->src, m->tag, cap);
-    rc = MP_ETRUNC;
+/* Copy the message f out to the caller and take it. */
+static int deliver(rank *r, found f, void *buf, size_t cap, mp_status *st) {
+  rec *x = f.x;
+  size_t len = (size_t)x->len, n = len <= cap ? len : cap;
+  int src = (int)x->src, tag = x->tag;
+  if (n) {
+    const unsigned char *p = rec_data(x);
+    if (x->flags & REC_BIG) memcpy(&p, rec_data(x), sizeof p);
+    memcpy(buf, p, n);
   }
-  free(m);
-  return rc;
+  if (x->stamp > r->clock) r->clock = x->stamp;
+  chan_take(f.q, x);
+  if (st) *st = (mp_status){src, tag, len};
+  r->st.received++;
+  r->st.bytes_received += (long long)len;
+  if (len > cap) {
+    warn(r->t, "rank %d: mp_recv truncated a %zu-byte message from rank %d (tag %d) to %zu bytes",
+         r->base.rank, len, src, tag, cap);
+    return MP_ETRUNC;
+  }
+  return MP_OK;
 }
 
 /* How a waiting rank waits, now (cpuload.h says what else runs). */
@@ -324,8 +584,9 @@ static int how_to_wait(mpt *t) {
   return W_SLEEP;                                  /* other programs want it */
 }
 
-/* Watch r's arrival counter until it moves from `seen`, the run stops or
- * spin_ns pass; 1 if it moved.  How, decided again now and then:
+/* Watch r's channels from src (MP_ANY: all) until something new is there,
+ * the run stops or spin_ns pass; 1 if something came.  How, decided again
+ * now and then:
  *   pause  while no more of this machine's threads are awake (computing or
  *          spinning) than there are processors other programs leave idle:
  *          the sender runs on another core and the message is seen within a
@@ -339,13 +600,13 @@ static int how_to_wait(mpt *t) {
  *          yielder would take the processor from a thread that works,
  *          perhaps the one it waits for, for a whole time slice; the sender
  *          wakes a sleeper instead. */
-static int spin(rank *r, unsigned seen) {
+static int spin(rank *r, int src, int mark) {
   mpt *t = r->t;
   if (t->cfg.spin_ns <= 0) return 0;
   double now = wallclock(), until = now + (double)t->cfg.spin_ns * 1e-9;
   int how = how_to_wait(t);
   for (long i = 1; how != W_SLEEP; i++) {
-    if (atomic_load_explicit(&r->arrivals, memory_order_acquire) != seen) return 1;
+    if (news(r, src, mark)) return 1;
     if (how == W_YIELD)
       cpuload_yield(&t->load);
     else
@@ -372,35 +633,30 @@ static int mpt_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status
   double w0 = -1;
   for (;;) {
     /* Look. */
-    box_lock(r);
-    msg *m = box_take(r, src, tag);
-    unsigned seen = atomic_load_explicit(&r->arrivals, memory_order_relaxed);
-    pthread_mutex_unlock(&r->mu);
-    if (m) {
+    int mark = news_mark(r, src);
+    found f = look(r, src, tag);
+    if (f.x) {
       if (w0 >= 0) r->st.recv_wait += wallclock() - w0;
-      return deliver(r, m, buf, cap, st);
+      return deliver(r, f, buf, cap, st);
     }
     if (w0 < 0) w0 = wallclock();
     /* Spin. */
-    if (spin(r, seen)) continue;
-    /* Sleep. */
-    box_lock(r);
-    m = box_take(r, src, tag);
-    if (m) {
-      pthread_mutex_unlock(&r->mu);
-      r->st.recv_wait += wallclock() - w0;
-      return deliver(r, m, buf, cap, st);
-    }
-    if (stopped(t)) {
-      pthread_mutex_unlock(&r->mu);
-      r->st.recv_wait += wallclock() - w0;
-      return MP_ESTOPPED;
-    }
-    r->st.sleeps++;
+    if (spin(r, src, mark)) continue;
+    /* Sleep: register, then look once more (wake_if_waiting says why). */
+    pthread_mutex_lock(&r->mu);
     r->wait_src = src;
     r->wait_tag = tag;
+    atomic_store_explicit(&r->sleeping, 1, memory_order_relaxed);
+    atomic_thread_fence(memory_order_seq_cst);
+    f = look(r, src, tag);
+    if (f.x || stopped(t)) {
+      atomic_store_explicit(&r->sleeping, 0, memory_order_relaxed);
+      pthread_mutex_unlock(&r->mu);
+      r->st.recv_wait += wallclock() - w0;
+      return f.x ? deliver(r, f, buf, cap, st) : MP_ESTOPPED;
+    }
+    r->st.sleeps++;
     pthread_mutex_lock(&t->g);
-    r->sleeping = 1;
     t->sleeping++;
     atomic_fetch_sub_explicit(&t->awake, 1, memory_order_relaxed);
     int dead = t->sleeping == t->live;
@@ -412,7 +668,8 @@ static int mpt_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status
       pthread_mutex_lock(&r->mu);
     }
     r->woken_at = -1;
-    while (r->sleeping && !stopped(t)) pthread_cond_wait(&r->cv, &r->mu);
+    while (atomic_load_explicit(&r->sleeping, memory_order_relaxed) && !stopped(t))
+      pthread_cond_wait(&r->cv, &r->mu);
     if (r->woken_at >= 0) {
       r->st.wakes++;
       r->st.wake_s += wallclock() - r->woken_at;
@@ -434,16 +691,10 @@ static int mpt_probe(mp *self, int src, int tag, mp_status *st) {
   if (stopped(r->t)) return MP_ESTOPPED;
   int rc = check_match_args(r, "mp_probe", src, tag);
   if (rc != MP_OK) return rc;
-  int found = 0;
-  box_lock(r);
-  for (msg *m = r->head; m; m = m->next) {
-    if (!matches(m, src, tag)) continue;
-    if (st) *st = (mp_status){m->src, m->tag, m->len};
-    found = 1;
-    break;
-  }
-  pthread_mutex_unlock(&r->mu);
-  return found;
+  found f = look(r, src, tag);
+  if (!f.x) return 0;
+  if (st) *st = (mp_status){(int)f.x->src, f.x->tag, (size_t)f.x->len};
+  return 1;
 }
 
 static double mpt_time(const mp *self) { return wallclock() - ((const rank *)self)->t->t0; }
@@ -461,17 +712,26 @@ mpt *mpt_new(const mpt_config *cfg, int nranks, char *err, size_t errlen) {
     snprintf(err, errlen, "threads: spin time %ld ns: must be >= 0", cfg->spin_ns);
     return NULL;
   }
-  mpt *t = xcalloc(1, sizeof *t);
+  mpt *t = aligned_alloc(LINE, (sizeof *t + LINE - 1) / LINE * LINE);
+  rank *ranks = aligned_alloc(LINE, (size_t)nranks * sizeof *ranks);
+  if (!t || !ranks) xpanic("threads: out of memory for %d ranks", nranks);
+  memset(t, 0, sizeof *t);
+  memset(ranks, 0, (size_t)nranks * sizeof *ranks);
   t->cfg = *cfg;
   t->n = nranks;
-  t->ranks = xcalloc((size_t)nranks, sizeof *t->ranks);
+  t->ranks = ranks;
   for (int i = 0; i < nranks; i++) {
     rank *r = &t->ranks[i];
     r->base = (struct mp){&mpt_ops, i, nranks};
     r->t = t;
+    r->out = xcalloc((size_t)nranks, sizeof *r->out);
+    r->in = xcalloc((size_t)nranks, sizeof *r->in);
+    for (int s = 0; s < nranks; s++) atomic_init(&r->in[s], NULL);
+    r->inlist = xcalloc((size_t)nranks, sizeof *r->inlist);
+    atomic_init(&r->nin, 0);
+    atomic_init(&r->sleeping, 0);
     pthread_mutex_init(&r->mu, NULL);
     pthread_cond_init(&r->cv, NULL);
-    atomic_init(&r->arrivals, 0);
   }
   atomic_init(&t->stopped, 0);
   atomic_init(&t->awake, 0);
@@ -506,23 +766,37 @@ static void *rank_main(void *ud) {
   return NULL;
 }
 
-/* Count and report what was sent and never received; free it. */
+/* Count and report what was sent and never received (every thread has
+ * ended: everything published is visible).  The first is the earliest
+ * arrival, as a receive from any source would have taken it. */
 static void sweep_unread(mpt *t) {
   for (int i = 0; i < t->n; i++) {
     rank *r = &t->ranks[i];
-    if (!r->head) continue;
     long long count = 0;
-    for (msg *m = r->head; m; m = m->next) count++;
+    const rec *first = NULL;
+    int k = atomic_load(&r->nin);
+    for (int j = 0; j < k; j++) {
+      chan *q = r->inlist[j];
+      chunk *c = q->hc;
+      for (size_t off = q->hoff;;) {
+        const rec *x = rec_at(c, off);
+        uint32_t sz = atomic_load(&x->size);
+        if (sz == 0) break;
+        if (sz == REC_JUMP) {
+          c = c->next, off = 0;
+          continue;
+        }
+        off += sz;
+        if (x->flags & REC_TAKEN) continue;
+        count++;
+        if (!first || x->stamp < first->stamp || (x->stamp == first->stamp && x->src < first->src)) first = x;
+      }
+    }
+    if (!count) continue;
     r->st.unread = count;
     t->st.unread += count;
     warn(t, "rank %d finished with %lld unread message%s (first from rank %d, tag %d)", i, count,
-         count == 1 ? "" : "s", r->head->src, r->head->tag);
-    while (r->head) {
-      msg *m = r->head;
-      r->head = m->next;
-      free(m);
-    }
-    r->tail = NULL;
+         count == 1 ? "" : "s", (int)first->src, first->tag);
   }
 }
 
@@ -586,11 +860,11 @@ void mpt_free(mpt *t) {
   if (!t) return;
   for (int i = 0; i < t->n; i++) {
     rank *r = &t->ranks[i];
-    while (r->head) {
-      msg *m = r->head;
-      r->head = m->next;
-      free(m);
-    }
+    int k = atomic_load(&r->nin);
+    for (int j = 0; j < k; j++) chan_free(r->inlist[j]);
+    free(r->out);
+    free(r->in);
+    free(r->inlist);
     pthread_mutex_destroy(&r->mu);
     pthread_cond_destroy(&r->cv);
   }

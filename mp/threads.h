@@ -2,28 +2,34 @@
  * thread per rank, real message queues, real time.
  *
  * The same mp program that runs on the simulator (sim/) runs here unchanged:
- * every rank is a thread of this process, a message is copied into the
- * receiver's mailbox at mp_send and out of it at mp_recv, mp_compute does
+ * every rank is a thread of this process, a message is copied into a
+ * channel to the receiver at mp_send and out of it at mp_recv, mp_compute does
  * nothing (the work a rank does is the work it really does), and mp_time is
  * wall-clock seconds since the run began.
  *
  * SEMANTICS (mp.h's contract, as this backend keeps it)
  *
- *   Mailboxes.  Each rank has one, in arrival order: a send appends under
- *   the receiver's lock.  Messages between one pair of ranks therefore
- *   arrive, and are received, in send order; a recv takes the first message
- *   in its mailbox that matches (src or MP_ANY, tag or MP_ANY), i.e. the
- *   earliest arrival.  Which of two racing senders arrives first is the
- *   machine's business: it may change from run to run (mp.h only promises
- *   determinism of deterministic backends; the paper's algorithm gives the
- *   same result whatever the order).
+ *   Channels.  Each ordered pair of ranks that talks has a queue with one
+ *   writer and one reader (no lock, no read-modify-write instruction on a
+ *   send: mp/threads.c), so messages between one pair arrive, and are
+ *   received, in send order; a recv from one source takes the first
+ *   message of that channel that matches its tag.  A recv from MP_ANY
+ *   takes, among the first matches of every channel, the one with the
+ *   least Lamport stamp (each send carries its sender's clock, a receive
+ *   advances the receiver's), ties to the lower source: a message sent
+ *   after another was received, directly or through a chain of messages,
+ *   is taken after it, as in a single mailbox in arrival order.  Which of
+ *   two racing senders comes first is the machine's business: it may
+ *   change from run to run (mp.h only promises determinism of
+ *   deterministic backends; the paper's algorithm gives the same result
+ *   whatever the order).
  *
- *   Waiting.  A recv that finds nothing spins, watching its mailbox's
- *   arrival counter, for a bounded time (cfg.spin_ns), and only then
- *   sleeps on a condition variable; the sender wakes it.  How it spins is
- *   decided again and again from what runs on the machine (mp/cpuload.h:
- *   the runnable threads machine-wide, sampled every 5 ms from
- *   /proc/loadavg where there is one):
+ *   Waiting.  A recv that finds nothing spins, watching its channels, for
+ *   a bounded time (cfg.spin_ns), and only then sleeps on a condition
+ *   variable; the sender wakes it.  How it spins is decided again and
+ *   again from what runs on the machine (mp/cpuload.h: the runnable
+ *   threads machine-wide, sampled every 5 ms from /proc/loadavg where
+ *   there is one):
  *     pause instructions while no more of this run's threads are awake
  *       than there are processors that other programs leave idle;
  *     sched_yield while more of them are awake than there are processors
@@ -42,7 +48,7 @@
  *   (make bench-load) instead of a hundred times it.
  *
  *   Deadlock.  When every live thread sleeps in recv with no matching
- *   message in its mailbox (messages are never in flight here: a send
+ *   message in its channels (messages are never in flight here: a send
  *   delivers at once), the run is stopped: each of those recvs returns
  *   MP_EDEADLOCK, every later mp call MP_ESTOPPED, and mpt_run returns -1
  *   with a message naming each blocked rank and what it waits for:
@@ -76,7 +82,7 @@
 #include "mp.h"
 
 typedef struct {
-  long spin_ns;   /* how long a waiting recv watches its mailbox before it
+  long spin_ns;   /* how long a waiting recv watches its channels before it
                      sleeps, nanoseconds (>= 0; 0: sleep at once), while
                      the machine has room for spinning (above) */
   FILE *warn;     /* warnings go here (default stderr); NULL: quiet */

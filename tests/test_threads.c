@@ -1,5 +1,6 @@
 /* test_threads.c -- the threads backend (mp/threads.h) against mp.h's
- * contract: ping-pong, any-source, FIFO per pair, tags, truncation, bad
+ * contract: ping-pong, any-source, FIFO per pair, tags, causal order of
+ * receives from any source, long messages across chunks, truncation, bad
  * ranks and arguments, deadlock detection and its report, unread messages,
  * many ranks, random matching programs delivering every message exactly
  * once; then the paper's parallel algorithm on threads, equal to the serial
@@ -136,6 +137,116 @@ static void test_fifo(void) {
   CHECK(rc == 0 && f.bad == 0 && all && f.tagged == 50, "any-source / FIFO / tags: rc %d (%s), %d bad", rc,
         err, f.bad);
   CHECK(mpt_stats_get(t)->unread == 0, "FIFO: unread messages");
+  mpt_free(t);
+}
+
+/* ==== causal order of receives from any source =========================== */
+
+enum { CAUSAL_ROUNDS = 300 };
+
+typedef struct {
+  int bad, violations;
+} causal;
+
+/* Ranks 0, 1, 2; each round the roles rotate (and so which channel a scan
+ * of 0's channels in index order meets first): the first sender F sends
+ * "first" to the receiver R, then a token to the relay M; M receives it and
+ * sends "second" to R.  R waits (by probe) until "second" is there; then
+ * "first" was sent before it in happens-before order, and a receive from
+ * any source must take it first, whichever channel it sits in. */
+static void causal_main(mp *self, void *ud) {
+  causal *c = ud;
+  int me = mp_rank(self);
+  for (int i = 0; i < CAUSAL_ROUNDS; i++) {
+    int rot = i % 6, R = rot % 3, F = (R + 1 + rot / 3) % 3, M = 3 - R - F;
+    int v = i;
+    if (me == F) {
+      c->bad += mp_send(self, R, 1, &v, sizeof v) != MP_OK;
+      c->bad += mp_send(self, M, 2, &v, sizeof v) != MP_OK;
+    } else if (me == M) {
+      c->bad += mp_recv(self, F, 2, &v, sizeof v, NULL) != MP_OK || v != i;
+      c->bad += mp_send(self, R, 3, &v, sizeof v) != MP_OK;
+    } else {
+      mp_status st;
+      while (mp_probe(self, M, 3, NULL) == 0) {
+      }
+      c->bad += mp_recv(self, MP_ANY, MP_ANY, &v, sizeof v, &st) != MP_OK;
+      c->violations += st.source != F || st.tag != 1 || v != i;
+      /* (F's next message, a barrier below, races with "second": by tag.) */
+      c->bad += mp_recv(self, M, 3, &v, sizeof v, &st) != MP_OK || v != i;
+    }
+    /* All three in step before the next round. */
+    int x = 0;
+    for (int r = 0; r < 3; r++)
+      if (r != me) c->bad += mp_send(self, r, 9, &x, sizeof x) != MP_OK;
+    for (int r = 0; r < 3; r++)
+      if (r != me) c->bad += mp_recv(self, r, 9, &x, sizeof x, NULL) != MP_OK;
+  }
+}
+
+static void test_causal(void) {
+  char err[512];
+  int rc;
+  causal c = {0, 0};
+  mpt *t = run(3, 200000, causal_main, &c, &rc, err, sizeof err);
+  CHECK(rc == 0 && c.bad == 0, "causal order: rc %d (%s), %d bad", rc, err, c.bad);
+  CHECK(c.violations == 0, "causal order: a receive from any source took a message before one sent "
+                           "earlier in happens-before order, %d times of %d", c.violations, CAUSAL_ROUNDS);
+  CHECK(mpt_stats_get(t)->unread == 0, "causal order: unread messages");
+  mpt_free(t);
+}
+
+/* ==== channels: chunks, long messages, taking out of order =============== */
+
+enum { CH_MSGS = 3000 };
+
+typedef struct {
+  int bad, got;
+} chanstress;
+
+static size_t ch_len(int i) { return (size_t)(i * 37 % 2500); }   /* 0 .. 2499 bytes: both kinds */
+
+static void chan_main(mp *self, void *ud) {
+  chanstress *c = ud;
+  unsigned char *buf = xmalloc(4096);
+  if (mp_rank(self) == 1) {
+    for (int i = 0; i < CH_MSGS; i++) {
+      size_t len = ch_len(i);
+      for (size_t k = 0; k < len; k++) buf[k] = (unsigned char)(i + k);
+      c->bad += mp_send(self, 0, i % 3, buf, len) != MP_OK;
+    }
+    /* Never received: a long and a short one (freed with the machine). */
+    c->bad += mp_send(self, 0, 7, buf, 3000) != MP_OK;
+    c->bad += mp_send(self, 0, 7, buf, 8) != MP_OK;
+  } else {
+    /* Tag 2 first (passing over tags 0 and 1 across many chunks), then
+     * tag 0, then whatever comes: each in send order, intact. */
+    for (int pass = 0; pass < 3; pass++) {
+      int tag = pass == 0 ? 2 : pass == 1 ? 0 : 1;
+      for (int i = tag; i < CH_MSGS; i += 3) {
+        mp_status st;
+        int rc = mp_recv(self, pass == 2 ? MP_ANY : 1, pass == 2 ? MP_ANY : tag, buf, 4096, &st);
+        size_t len = ch_len(i);
+        int ok = rc == MP_OK && st.tag == tag && st.len == len && st.source == 1;
+        for (size_t k = 0; ok && k < len; k++) ok = buf[k] == (unsigned char)(i + k);
+        c->bad += !ok;
+        c->got++;
+      }
+    }
+  }
+  free(buf);
+}
+
+static void test_channels(void) {
+  char err[512];
+  int rc;
+  chanstress c = {0, 0};
+  mpt *t = run(2, 200000, chan_main, &c, &rc, err, sizeof err);
+  const mpt_stats *st = mpt_stats_get(t);
+  CHECK(rc == 0 && c.bad == 0 && c.got == CH_MSGS, "channels: rc %d (%s), %d bad, %d received", rc, err,
+        c.bad, c.got);
+  CHECK(st->unread == 2 && st->received == CH_MSGS && st->warnings == 1, "channels: %lld unread, %lld warnings",
+        st->unread, st->warnings);
   mpt_free(t);
 }
 
@@ -451,6 +562,8 @@ static void test_par_real(void) {
 int main(void) {
   test_pingpong();
   test_fifo();
+  test_causal();
+  test_channels();
   test_probe_trunc_unread();
   test_bad_args();
   test_deadlock();
