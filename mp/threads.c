@@ -73,7 +73,7 @@
 #include "xmem.h"
 
 void mpt_config_init(mpt_config *cfg) {
-  cfg->spin_ns = 50000;
+  cfg->spin_ns = 1000000;
   cfg->warn = stderr;
 }
 
@@ -573,15 +573,23 @@ static int deliver(rank *r, found f, void *buf, size_t cap, mp_status *st) {
 }
 
 /* How a waiting rank waits, now (cpuload.h says what else runs). */
-enum { W_SLEEP, W_PAUSE, W_YIELD };
+enum { W_SLEEP, W_PAUSE, W_YIELD, W_SHORT };
+#define SHORT_SPIN_S 20e-6   /* W_SHORT: how long, at most */
 
 static int how_to_wait(mpt *t) {
   int awake = atomic_load_explicit(&t->awake, memory_order_relaxed), others;
   cpuload_running(&t->load, awake, &others);
+  /* On a machine of 8 or more processors a runnable thread or two of
+   * others' is noise (a kernel thread; a rank of ours that has just
+   * registered as sleeping but is still runnable): it must not make 16
+   * ranks on 16 cores sleep and wake at every exchange. */
+  if (others <= t->cpus / 8) others = 0;
   if (awake <= t->cpus - others) return W_PAUSE;   /* a processor of its own */
   if (others == 0 && !cpuload_hogged(&t->load))
     return W_YIELD;                                /* only our own threads want it */
-  return W_SLEEP;                                  /* other programs want it */
+  if (t->n <= t->cpus + 1) return W_SHORT;         /* ours fit (but a master that mostly
+                                                      waits), beside other programs */
+  return W_SLEEP;                                  /* ours and others crowd the cores */
 }
 
 /* Watch r's channels from src (MP_ANY: all) until something new is there,
@@ -596,15 +604,28 @@ static int how_to_wait(mpt *t) {
  *          hands the processor to another of our threads, likely the one
  *          that will send (unless a yield lately took long: then a thread
  *          that does not give the processor back got it, cpuload_yield);
- *   sleep  at once while other programs want the processors: a spinner or
- *          yielder would take the processor from a thread that works,
- *          perhaps the one it waits for, for a whole time slice; the sender
- *          wakes a sleeper instead. */
+ *   short  pause for at most SHORT_SPIN_S while other programs want the
+ *          processors but this run's ranks alone would fit on them (all but
+ *          one: a master that mostly waits):
+ *          while the scheduler has both ends of an exchange on processors,
+ *          the message comes within the spin (two slaves trade a boundary
+ *          every few microseconds) and the pair runs at full speed for the
+ *          rest of their time slices; a partner that lost its processor is
+ *          not waited for long (the waiter then sleeps, and a busy loop
+ *          gets the processor);
+ *   sleep  at once while this run's threads and other programs' together
+ *          crowd the processors: a spinner or yielder would take the
+ *          processor from a thread that works, perhaps the one it waits
+ *          for, for a whole time slice; the sender wakes a sleeper instead. */
 static int spin(rank *r, int src, int mark) {
   mpt *t = r->t;
   if (t->cfg.spin_ns <= 0) return 0;
   double now = wallclock(), until = now + (double)t->cfg.spin_ns * 1e-9;
   int how = how_to_wait(t);
+  if (how == W_SHORT) {
+    double u = now + SHORT_SPIN_S;
+    if (u < until) until = u;
+  }
   for (long i = 1; how != W_SLEEP; i++) {
     if (news(r, src, mark)) return 1;
     if (how == W_YIELD)
@@ -614,7 +635,9 @@ static int spin(rank *r, int src, int mark) {
     if ((i & 31) == 0 || how == W_YIELD) {   /* now and then: the clock, the run, the room */
       now = wallclock();
       if (now >= until || stopped(t)) return 0;
-      how = how_to_wait(t);
+      int h = how_to_wait(t);
+      if (h == W_SHORT && how != W_SHORT && now + SHORT_SPIN_S < until) until = now + SHORT_SPIN_S;
+      how = how == W_SHORT && h != W_SLEEP ? W_SHORT : h;   /* a short spin stays short */
     }
   }
   return 0;

@@ -35,17 +35,24 @@
  *     sched_yield while more of them are awake than there are processors
  *       but nothing else wants the processors (16 ranks on 2 cores), so
  *       that the rank that will send gets the processor;
- *     no spin at all, straight to sleep, while other programs' threads
- *       want the processors (or a yield lately came back late): a spinner
- *       or yielder would take the processor from a thread that works,
- *       perhaps the very one it waits for, for whole time slices.
+ *     pause for at most 20 us while other programs want the processors
+ *       but this run's ranks alone would fit on them (all but one, a
+ *       master that mostly waits): two slaves
+ *       that the scheduler has on processors at once keep trading their
+ *       boundaries at full speed, and one whose partner lost its
+ *       processor soon sleeps;
+ *     no spin at all, straight to sleep, while this run's threads and
+ *       other programs' together crowd the processors (or a yield lately
+ *       came back late): a spinner or yielder would take the processor
+ *       from a thread that works, perhaps the very one it waits for, for
+ *       whole time slices.
  *   A condition-variable wake-up costs microseconds (tens of them in a
  *   virtual machine), more than the work between two of the algorithm's
  *   boundary messages; a short spin catches those messages within a
  *   cache-line transfer.  A rank that waits long (the master, mostly)
- *   sleeps and leaves its core to the others.  Beside busy programs the
- *   waits all sleep, and a run takes a small multiple of its time alone
- *   (make bench-load) instead of a hundred times it.
+ *   sleeps and leaves its core to the others.  Beside busy programs a run
+ *   takes a small multiple of its time alone (make bench-load) instead of
+ *   a hundred times it.
  *
  *   Deadlock.  When every live thread sleeps in recv with no matching
  *   message in its channels (messages are never in flight here: a send
@@ -84,11 +91,17 @@
 typedef struct {
   long spin_ns;   /* how long a waiting recv watches its channels before it
                      sleeps, nanoseconds (>= 0; 0: sleep at once), while
-                     the machine has room for spinning (above) */
+                     the machine has room for spinning (above).  A wait
+                     longer than the work between two messages is common
+                     (a slave waits for the others' backtracking, for its
+                     next task): sleeping then costs a wake-up of tens of
+                     microseconds in a virtual machine, now and then
+                     milliseconds, and a group in lock-step waits for its
+                     slowest member's */
   FILE *warn;     /* warnings go here (default stderr); NULL: quiet */
 } mpt_config;
 
-/* The defaults: spin_ns = 50 us, warn = stderr. */
+/* The defaults: spin_ns = 1 ms, warn = stderr. */
 void mpt_config_init(mpt_config *cfg);
 
 typedef struct mpt mpt;

@@ -7,7 +7,7 @@
 
 void cpu_model_init(cpu_model *m) {
   memset(m, 0, sizeof *m);
-  m->spin = 50e-6;
+  m->spin = 1e-3;
 }
 
 int cpu_model_on(const cpu_model *m) {

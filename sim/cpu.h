@@ -57,7 +57,7 @@ typedef struct {
   double slowdown_spin;         /* per other spinning processor, a fraction of c */
 } cpu_model;
 
-/* The defaults: every cost 0; spin = 50 us, the threads backend's (it only
+/* The defaults: every cost 0; spin = 1 ms, the threads backend's (it only
  * matters once wake or o_wake is set). */
 void cpu_model_init(cpu_model *m);
 

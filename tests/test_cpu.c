@@ -24,6 +24,7 @@
 #include "cpu.h"
 #include "randprog.h"
 #include "sim.h"
+#include "threads.h"
 
 static sim_config config(sim_net net, int procs) {
   sim_config cfg;
@@ -266,7 +267,11 @@ static void test_equivalences(void) {
 static void test_config(void) {
   sim_config cfg;
   sim_config_init(&cfg);
-  CHECK(!cpu_model_on(&cfg.cpu) && cfg.cpu.spin == 50e-6, "the default profile: no processor costs, spin 50 us");
+  mpt_config tc;
+  mpt_config_init(&tc);
+  CHECK(!cpu_model_on(&cfg.cpu) && cfg.cpu.spin == (double)tc.spin_ns * 1e-9,
+        "the default profile: no processor costs, the threads backend's spin (%g s, %ld ns)", cfg.cpu.spin,
+        tc.spin_ns);
   cpu_model m;
   cpu_model_init(&m);
   const char *opts[] = {"--o-send", "--o-send-byte", "--o-recv", "--o-recv-byte", "--spin", "--wake", "--o-wake",
