@@ -106,6 +106,16 @@ typedef struct {
   double book;         /* the price of one unit of the master's bookkeeping, in
                           node units (mp_compute units, c each): --master-c / c,
                           set by run_par_options (run.h); 0: free */
+  double table;        /* the price of one cell of a slave's weight table (a
+                          vertical and a horizontal weight, m (n+1) cells a
+                          pair, built where the slaves are few: par_slave_table),
+                          in node units: --table-c / c; 0 (the default): the
+                          build is not charged, as in the paper's figures */
+  double back;         /* the price of one step of a slave's backtracking (Fig.
+                          14: an edge bit looked up, the edge's weight computed
+                          for the master), in node units: --back-c / c; 0 (the
+                          default): not charged, as in the paper's figures.
+                          Neither is counted in par_counts.units (nodes). */
 } par_options;
 
 const char *par_schedule_name(par_schedule s);   /* "static", "dynamic" */

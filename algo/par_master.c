@@ -241,6 +241,10 @@ static int one_pair(master *M, par_pair *pr, cost_kind kind) {
     par_put_f64(&M->out, zr);
     par_put_f64(&M->out, zc);
     if (M->arg->opt.block > 1) par_put_i32(&M->out, M->arg->opt.block);   /* par_block.h */
+    if (M->arg->opt.table > 0 || M->arg->opt.back > 0) {   /* only then: the paper's bytes stay */
+      par_put_f64(&M->out, M->arg->opt.table);
+      par_put_f64(&M->out, M->arg->opt.back);
+    }
     TRY(par_send(M->mp, M->own, PAR_CONTROL, r, PAR_TAG_POINTS, &M->out));
     par_buf_reset(&M->out);
     par_put_f64s(&M->out, (const double *)R, 2 * m);

@@ -61,7 +61,11 @@ static int points(slave *S, par_rd *r) {
   cost_kind kind = (cost_kind)par_get_i32(r);
   S->d = par_get_i32(r);
   double zr = par_get_f64(r), zc = par_get_f64(r);
-  S->k = r->end - r->p >= 4 ? par_get_i32(r) : 1;   /* --block k (par_block.h) */
+  /* Then --block k (par_block.h), if above 1, and the prices of a table
+   * cell and a backtracking step, if either is set: 0, 4, 16 or 20 bytes. */
+  S->k = (r->end - r->p) % 8 == 4 ? par_get_i32(r) : 1;
+  S->table = S->back = 0;
+  if (r->end - r->p >= 16) S->table = par_get_f64(r), S->back = par_get_f64(r);
   S->m = m, S->n = n;
   S->maxlen = par_maxlen(m, n);
   mp_status st;
@@ -73,6 +77,8 @@ static int points(slave *S, par_rd *r) {
   par_get_f64s(&pr, (double *)S->C, 2 * n);
   /* Tables only when the slaves are few: par_slave_table. */
   S->w = weights_new(S->R, m, zr, S->C, n, zc, kind, par_slave_table(mp_size(S->mp) - 1));
+  if (S->table > 0 && weights_has_table(S->w))   /* its build, charged where asked */
+    TRY(mp_compute(S->mp, (double)m * (double)(n + 1) * S->table));
   S->ws = band_ws_new(m, n);
   size_t T1 = (size_t)(m + n + 1);
   S->U.col = xmallocarray(T1, sizeof(int)), S->U.cum = xmallocarray(T1, sizeof(double));
@@ -226,6 +232,7 @@ static int backtrack(slave *S, int s, int t, int c, int j) {
     if (!vert) c--;
     t--;
   }
+  if (S->back > 0) TRY(mp_compute(S->mp, (double)len * S->back));   /* the walk, charged where asked */
   if (t == 0) {
     S->pcol[len] = 0;
     S->pw[len++] = 0;

@@ -69,6 +69,8 @@ typedef struct par_slave_ctx {
   int first_path;      /* the test hook counts only the first path */
   int *grp;            /* the group of the current task: its slaves' ranks */
   int k;               /* --block k: diagonals between exchanges (1: the paper's) */
+  double table, back;  /* the prices of a table cell and a backtracking step
+                          (par_options), in node units; 0: not charged */
   struct par_block *blk;   /* the blocked wavefront's state (k > 1), par_block.h */
 } par_slave_ctx;
 

@@ -17,15 +17,21 @@
  *               and its waker's cost (micro_derive says how);
  *   slowdown    k copies of the serial solver at once, k = 1, 2, 4, ... up
  *               to the processors: the least-squares slope of each copy's
- *               time against k - 1, relative to one alone.
+ *               time against k - 1, relative to one alone;
+ *   table-c     a slave's weight table built alone (where slaves use one),
+ *               wall time / its m (n+1) cells;
+ *   back-c      a backtracking step of a slave (micro_backtrack): a bit
+ *               looked up, the edge's weight computed, stored.
  * The options that make the simulator model this host follow from them:
  *   --net loggp --L L --o 0 --g g --G G --o-send .. --o-send-byte ..
  *   --o-recv .. --o-recv-byte .. --spin S --wake .. --o-wake ..
- *   --slowdown F --c C
- * (cpu.h states the model).  Then, for each size of --points and each P of
- * --procs, the paper's algorithm on the pair: measured on the threads
- * backend and predicted by the simulator with those options (c_table for
- * the P whose slaves use weight tables), one CSV row each with the relative
+ *   --slowdown F --back-c B [--table-c T] --c C
+ * (cpu.h states the model, par.h the two prices).  Then, for each size of
+ * --points and each P of --procs, the paper's algorithm (or the variant the
+ * options name) on the pair: measured on the threads backend and predicted
+ * by the simulator with those options (c_table, the kernel's per node with
+ * tables, for the P whose slaves use them; their build charged at
+ * --table-c), one CSV row each with the relative
  * error (predicted / measured - 1), and beside it what the plain ideal
  * network with the ping-pong's one-way time as m predicts (the old
  * calibration).  stderr says what was measured and how long it all took. */
@@ -121,10 +127,11 @@ static void model_options(const micro_model *d, double spin, double slowdown, do
 
 /* The same, set in rc->machine (through run_option, as a user's would be). */
 static void set_options(run_config *rc, const char *opts, double c) {
-  char buf[600], err[200];
+  char buf[900], err[200];
   snprintf(buf, sizeof buf, "%s --c %.4g", opts, c);
   sim_config_init(&rc->machine);
   rc->machine.warn = NULL;
+  rc->table_c = rc->back_c = 0;
   char *save = NULL;
   for (char *o = strtok_r(buf, " ", &save); o; o = strtok_r(NULL, " ", &save)) {
     char *v = strtok_r(NULL, " ", &save);
@@ -240,11 +247,15 @@ int bench_calibrate(int argc, char **argv) {
   vec2 *A0, *B0;
   bench_make_pair(seed, (int)sizes.v[0], &A0, &B0);
   double slow_spin, slow = slowdown(A0, B0, (int)sizes.v[0], repeat, &slow_spin);
-  free(A0), free(B0);
   fprintf(stderr, "bench:   so slowdown %.4g per other working core (the least-squares slope), %.4g per spinning one\n",
           slow, slow_spin);
-  char opts[600];
+  double back = micro_backtrack(A0, B0, (int)sizes.v[0], repeat);
+  free(A0), free(B0);
+  fprintf(stderr, "bench: a backtracking step (a bit looked up, the edge's weight computed and stored): %.4g s\n",
+          back);
+  char opts[700];
   model_options(&d, spin, slow, slow_spin, opts, sizeof opts);
+  snprintf(opts + strlen(opts), sizeof opts - strlen(opts), " --back-c %.4g", back > 0 ? back : 0);
 
   printf("points,procs,slaves,tables,c,options,measured_s,predicted_s,error,measured_speedup,"
          "predicted_speedup,ideal_s,ideal_error,measured_median_s,sleeps,wake_us,nodes,messages,cost\n");
@@ -302,29 +313,32 @@ int bench_calibrate(int argc, char **argv) {
         all[(size_t)i * (size_t)repeat + (size_t)r] = x.time;
       }
     }
-    /* c per node on the fly; with tables, the kernel's per node plus the
-     * table a slave builds once a pair, spread over its share of the nodes
-     * (the algorithm does not report that work to mp_compute): for S slaves
-     * c_kernel + build * S / nodes, which is the serial solver's own figure
-     * at S = 1. */
+    /* c per node on the fly; with tables, the kernel's per node, and the
+     * table each slave that uses one builds first, per cell: --table-c
+     * (par.h; the slave charges its build, m (n+1) cells, to mp_compute). */
     double c = solve / (double)nodes, c_kern = any_tab ? (solve_t - build) / (double)nodes : c;
     if (c_kern < 0) c_kern = 0;
+    double table_c = any_tab ? build / ((double)points * (points + 1)) : 0;
+    char sopts[800];
+    snprintf(sopts, sizeof sopts, "%s", opts);
+    if (any_tab) snprintf(sopts + strlen(sopts), sizeof sopts - strlen(sopts), " --table-c %.4g", table_c);
     if (!rcode) {
       fprintf(stderr, "bench: %d points: c = %.4g s per node (the serial solver, %.6f s for %llu nodes)", points, c,
               solve, (unsigned long long)nodes);
       if (any_tab)
         fprintf(stderr, ";\nbench:   with weight tables %.6f s, of which %.6f s building the table: %.4g s per node\n"
-                        "bench:   and each of S slaves that use tables builds one: --c %.4g + %.4g S",
-                solve_t, build, c_kern, c_kern, build / (double)nodes);
-      fprintf(stderr, "\nbench: %d points: the simulator models this host with\n    %s --c %.4g\n", points, opts, c);
+                        "bench:   and %.4g s per cell of the table (%d x %d), which every slave that uses one builds",
+                solve_t, build, c_kern, table_c, points, points + 1);
+      fprintf(stderr, "\nbench: %d points: the simulator models this host with\n    %s --c %.4g%s\n", points, sopts,
+              any_tab ? c : c, any_tab ? " (--c c_table where the slaves use tables)" : "");
     }
     double pred1 = 0;
     for (int i = 0; i < order.n && !rcode; i++) {
       int P = (int)order.v[i];
       int slaves = P < 2 ? 1 : P - 1;
-      double cp = tab[i] ? c_kern + build * slaves / (double)nodes : c;
+      double cp = tab[i] ? c_kern : c, cold = tab[i] ? c_kern + build * slaves / (double)nodes : c;
       result pred, ideal;
-      set_options(&rc, opts, cp);
+      set_options(&rc, sopts, cp);
       if (one(&rc, RUN_SIM, P, A, B, points, &pred, err, sizeof err) != 0) {
         fprintf(stderr, "bench: the simulated run on %d processors failed: %s\n", P, err);
         rcode = 1;
@@ -333,7 +347,7 @@ int bench_calibrate(int argc, char **argv) {
       char iopt[200];
       snprintf(iopt, sizeof iopt, "--net ideal --m %.4g --per-byte %.4g", mm.pp_small,
                mm.pp_big > mm.pp_small ? (mm.pp_big - mm.pp_small) / (double)(mm.big - mm.small) : 0);
-      set_options(&rc, iopt, cp);
+      set_options(&rc, iopt, cold);   /* the old calibration: the table spread over a slave's nodes */
       if (one(&rc, RUN_SIM, P, A, B, points, &ideal, err, sizeof err) != 0) {
         fprintf(stderr, "bench: the simulated run on %d processors failed: %s\n", P, err);
         rcode = 1;
@@ -346,7 +360,7 @@ int bench_calibrate(int argc, char **argv) {
       qsort(mine, (size_t)repeat, sizeof *mine, cmp_double);
       double med = repeat % 2 ? mine[repeat / 2] : (mine[repeat / 2 - 1] + mine[repeat / 2]) / 2;
       printf("%d,%d,%d,%d,%.4g,%s --c %.4g,%.6f,%.6f,%+.4f,%.3f,%.3f,%.6f,%+.4f,%.6f,%lld,%.1f,%llu,%llu,%.17g\n",
-             points, P, slaves, tab[i], cp, opts, cp, meas[i].time, pred.time, pred.time / meas[i].time - 1,
+             points, P, slaves, tab[i], cp, sopts, cp, meas[i].time, pred.time, pred.time / meas[i].time - 1,
              meas[0].time / meas[i].time, pred1 / pred.time, ideal.time, ideal.time / meas[i].time - 1, med, ts->sleeps,
              ts->wakes ? ts->wake_s / (double)ts->wakes * 1e6 : 0.0, (unsigned long long)meas[i].nodes,
              (unsigned long long)meas[i].msgs, meas[i].cost);

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "split.h"
 #include "threads.h"
 #include "tiling.h"
 #include "wallclock.h"
@@ -171,6 +172,56 @@ void micro_derive(const micro_msgs *m, micro_model *d) {
   d->g = m->stream > busy ? m->stream : 0;
   d->o_wake = pos(m->send_sleep - m->os_small);
   d->wake = pos(m->pp_sleep - m->send_sleep - d->L - m->or_small);
+}
+
+/* ==== a backtracking step ================================================= */
+
+double micro_backtrack(const vec2 *A, const vec2 *B, int n, int repeat) {
+  tiling t;
+  tiling_solve(A, n, 0, B, n, 5, COST_AREA, 0, &t);
+  weights *w = t.transposed ? weights_new(B, n, 5, A, n, 0, COST_AREA, 0) : weights_new(A, n, 0, B, n, 5, COST_AREA, 0);
+  int T = t.m + t.n, s = t.start;
+  /* Bit words per diagonal, as a slave keeps them: its run of a diagonal
+   * (a quarter of the n columns, as one of four slaves), the path's node
+   * somewhere in it; bit set = vertical in-edge.  The owner of each node
+   * is checked as the paper's slave does (split_owner: the even split of
+   * the diagonal [0, n] among four). */
+  int W = n / 256 > 1 ? n / 256 : 1;
+  int64_t *woff = xmallocarray((size_t)T + 1, sizeof *woff);
+  int *c0 = xmallocarray((size_t)T + 1, sizeof *c0), *pcol = xmallocarray((size_t)T + 1, sizeof *pcol);
+  uint64_t *bits = xcalloc((size_t)(T + 1) * (size_t)W, sizeof *bits);
+  double *pw = xmallocarray((size_t)T + 1, sizeof *pw);
+  for (int u = 1; u <= T; u++) {
+    int back = (u * 37) % (64 * W);
+    woff[u] = (int64_t)u * W;
+    c0[u] = t.col[u] - (back < t.col[u] ? back : t.col[u]);
+    int i = t.col[u] - c0[u];
+    if (t.col[u - 1] == t.col[u]) bits[woff[u] + (i >> 6)] |= 1ull << (i & 63);
+  }
+  int walks = 300000 / T + 1;
+  double best = -1, sink = 0;
+  for (int r = 0; r < repeat; r++) {
+    double t0 = wallclock();
+    for (int k = 0; k < walks; k++) {
+      int c = t.n, owners = 0;
+      for (int u = T; u >= 1; u--) {
+        owners += split_owner(0, t.n, 4, c);
+        int i = c - c0[u];
+        int vert = (int)((bits[woff[u] + (i >> 6)] >> (i & 63)) & 1);
+        pcol[T - u] = c;
+        pw[T - u] = weights_in(w, s + u, c, vert);
+        if (!vert) c--;
+      }
+      sink += pw[T / 2] + pcol[T - 1] + owners;
+    }
+    double x = (wallclock() - t0) / ((double)walks * T);
+    if (best < 0 || x < best) best = x;
+  }
+  if (sink == -1) best = -1;   /* keeps the walk */
+  free(woff), free(c0), free(pcol), free(bits), free(pw);
+  weights_free(w);
+  tiling_free(&t);
+  return best;
 }
 
 /* ==== cores at work together ============================================== */

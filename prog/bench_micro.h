@@ -53,6 +53,14 @@ typedef struct {
 
 void micro_derive(const micro_msgs *m, micro_model *out);
 
+/* One step of a slave's backtracking (paper, Fig. 14; par_slave.c): the
+ * in-edge bit of a node looked up in its diagonal's bit words, the edge's
+ * weight computed on the fly (as the slaves of many do), the column and the
+ * weight stored for the master.  Walked along the pair's optimal path (n
+ * points each, weights on the fly), seconds per step, the fastest of
+ * `repeat` walks of a few hundred thousand steps. */
+double micro_backtrack(const vec2 *A, const vec2 *B, int n, int repeat);
+
 /* k copies of the serial solver on the pair (n points each, weights table
  * as in weights_new) at once, on k threads; with spinners, one copy and
  * k - 1 threads that spin (pause) instead.  The copies' mean seconds, the

@@ -65,6 +65,9 @@ const char run_options_help[] =
     "  --m S, --c S       seconds per message, per unit of work (node)\n"
     "  --master-c S       seconds per unit of the master's bookkeeping (a column of\n"
     "                     a path it assembles, copies or measures); default c/100\n"
+    "  --table-c S        seconds per cell of a slave's weight table (where slaves\n"
+    "                     build one); --back-c S: per step of a slave's backtracking;\n"
+    "                     default 0: not charged (bench --calibrate measures both)\n"
     "  --per-byte S       seconds per message byte (ideal, bus; a topology's links)\n"
     "  --local S          seconds per message between ranks on one processor\n"
     "  --L S --o S --g S --G S   LogGP latency, overhead, gap, gap per byte\n"
@@ -126,6 +129,8 @@ int run_option(run_config *rc, const char *opt, const char *val, char *err, size
     rc->master_c_given = 1;
     return seconds(opt, val, RUN_MAX_SECONDS, &rc->master_c, err, errlen);
   }
+  if (strcmp(opt, "--table-c") == 0) return seconds(opt, val, RUN_MAX_SECONDS, &rc->table_c, err, errlen);
+  if (strcmp(opt, "--back-c") == 0) return seconds(opt, val, RUN_MAX_SECONDS, &rc->back_c, err, errlen);
   if (strcmp(opt, "--min-diag") == 0)
     return integer(opt, val, 1, 1 << 30, &rc->opt.min_diag, err, errlen);
   if (strcmp(opt, "--block") == 0) return integer(opt, val, 1, 1 << 20, &rc->opt.block, err, errlen);
@@ -211,6 +216,16 @@ int run_par_options(const run_config *rc, par_options *out, char *err, size_t er
   else {
     snprintf(err, errlen, "--master-c %g is a price in node units (c), and c is 0", mc);
     return -1;
+  }
+  static const char *const name[2] = {"--table-c", "--back-c"};
+  const double sec[2] = {rc->table_c, rc->back_c};
+  double *units[2] = {&out->table, &out->back};
+  for (int i = 0; i < 2; i++) {
+    *units[i] = sec[i] == 0 ? 0 : c > 0 ? sec[i] / c : -1;
+    if (*units[i] < 0) {
+      snprintf(err, errlen, "%s %g is a price in node units (c), and c is 0", name[i], sec[i]);
+      return -1;
+    }
   }
   return 0;
 }

@@ -59,6 +59,9 @@ typedef struct {
                                      bookkeeping, when master_c_given; otherwise
                                      RUN_MASTER_SHARE of the machine's c */
   int master_c_given;
+  double table_c, back_c;         /* --table-c, --back-c: seconds per cell of a
+                                     slave's weight table, per step of its
+                                     backtracking; 0 (default): not charged */
 } run_config;
 
 /* The master's bookkeeping (par_master_charge: one unit a column of an
@@ -75,9 +78,10 @@ typedef struct {
 double run_master_c(const run_config *rc);
 
 /* rc->opt with the price of the master's bookkeeping in node units
- * (par_options.book = run_master_c / c): what every backend's master gets.
- * -1 and a message if it cannot be said in node units (c = 0 and a
- * --master-c above 0). */
+ * (par_options.book = run_master_c / c), and those of a slave's table cell
+ * and backtracking step (table = table_c / c, back = back_c / c): what every
+ * backend's ranks get.  -1 and a message if one cannot be said in node units
+ * (c = 0 and a price above 0). */
 int run_par_options(const run_config *rc, par_options *out, char *err, size_t errlen);
 
 /* A run_config with the defaults: 1 processor, the simulator (MPI in an
@@ -89,7 +93,7 @@ enum { RUN_MAX_PROCS = 4096 };
 
 /* Take one command-line option of the machine or the algorithm:
  *   --procs P  --alloc half|size|fit  --min-diag d  --block k  --schedule static|dynamic
- *   --master-c S
+ *   --master-c S  --table-c S  --back-c S
  *   --machine NAME  --net ideal|bus|loggp
  *   --m S  --c S  --per-byte S  --local S  --L S  --o S  --g S  --G S
  *   --o-send S  --o-send-byte S  --o-recv S  --o-recv-byte S  --wake S

@@ -70,7 +70,7 @@ printf '%s\n' "$out" | awk -F, 'NR>1 && ($23 != "threads" || $9 <= 0 || $5 != ""
 out=$("$bench" --calibrate --points 60 --procs 1,3 --repeat 2 --messages 200 2>"$tmp.err"); rc=$?
 [ $rc -eq 0 ] && [ "$(printf '%s\n' "$out" | tail -n +2 | wc -l)" -eq 2 ] && ok || fail "--calibrate: $out $(cat "$tmp.err")"
 printf '%s\n' "$out" | head -1 | grep -q '^points,procs,slaves,tables,c,options,measured_s,predicted_s,error,.*,cost$' && ok || fail "--calibrate header"
-printf '%s\n' "$out" | tail -n +2 | awk -F, '$6 !~ /^--net loggp --L [0-9.e+-]+ --o 0 --g [0-9.e+-]+ --G [0-9.e+-]+ --o-send .* --wake [0-9.e+-]+ --o-wake [0-9.e+-]+ --slowdown [0-9.e+-]+ --slowdown-spin [0-9.e+-]+ --c [0-9.e+-]+$/ || $7 <= 0 || $8 <= 0 {bad=1} END{exit bad}' \
+printf '%s\n' "$out" | tail -n +2 | awk -F, '$6 !~ /^--net loggp --L [0-9.e+-]+ --o 0 --g [0-9.e+-]+ --G [0-9.e+-]+ --o-send .* --wake [0-9.e+-]+ --o-wake [0-9.e+-]+ --slowdown [0-9.e+-]+ --slowdown-spin [0-9.e+-]+ --back-c [0-9.e+-]+( --table-c [0-9.e+-]+)? --c [0-9.e+-]+$/ || $7 <= 0 || $8 <= 0 {bad=1} END{exit bad}' \
   && ok || fail "--calibrate rows: $out"
 grep -q '^bench: 60 points: c = .* s per node' "$tmp.err" && grep -q '^bench:   so o_send .* s/byte, o_recv' "$tmp.err" && grep -q '^bench: the calibration took' "$tmp.err" && ok || fail "--calibrate stderr: $(cat "$tmp.err")"
 [ "$(printf '%s\n' "$out" | tail -1 | cut -d, -f19)" = "$(printf '%s\n' "$sim" | tail -1 | cut -d, -f15)" ] \

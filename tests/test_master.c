@@ -4,7 +4,9 @@
  * the blocked wavefront and the dynamic schedule, P = 1 (master and slave on
  * one processor) to 9; the slaves' node units and their compute, units
  * times c, are where they were when the bookkeeping cost a node; the default
- * is c/100; a price that c = 0 cannot express is refused. */
+ * is c/100; a price that c = 0 cannot express is refused.  A slave's weight
+ * table (--table-c) and backtracking (--back-c) at their prices, exactly,
+ * and nothing when they are 0 (the default, the paper's figures). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -149,6 +151,61 @@ static void check_prices(rng *g) {
   free(Q);
 }
 
+/* --table-c and --back-c (par_options.table, back): a slave that builds a
+ * weight table pays m (n+1) cells times the price, exactly, once a pair (a
+ * binary fraction: exact sums), and only where the slaves use tables (P <= 5
+ * here, tiny contours); backtracking costs its steps times the price: the
+ * slaves' extra compute is a whole number of paths of m + n steps, one (mu(0),
+ * always a path task) when one slave does everything (P <= 2), more beyond.  The node units stay, and with
+ * both prices 0 every time is the default run's bit for bit. */
+static void check_slave_prices(rng *g) {
+  int np = 90, nq = 107, m = np < nq ? np : nq, n = np < nq ? nq : np;
+  vec2 *P = xmallocarray((size_t)np, sizeof *P), *Q = xmallocarray((size_t)nq, sizeof *Q);
+  gen_star(g, P, np, 0, 0, 10, 0.3);
+  gen_star(g, Q, nq, 1, 0, 9, 0.3);
+  const double tc = 0x1p-12, bc = 0x1p-14;
+  for (int v = 0; v < 3; v++)
+    for (int procs = 1; procs <= 9; procs += 2) {
+      const char *var[3][4] = {{"--alloc", "half", NULL}, {"--block", "4", NULL}, {"--alloc", "size", NULL}};
+      const char *plain[8], *zero[8], *table[8], *back[8];
+      int k = 0;
+      for (; var[v][k]; k++) plain[k] = zero[k] = table[k] = back[k] = var[v][k];
+      plain[k] = NULL;
+      zero[k] = "--table-c", zero[k + 1] = "0", zero[k + 2] = "--back-c", zero[k + 3] = "0", zero[k + 4] = NULL;
+      table[k] = "--table-c", table[k + 1] = "0.000244140625", table[k + 2] = NULL;   /* 2^-12 */
+      back[k] = "--back-c", back[k + 1] = "6.103515625e-05", back[k + 2] = NULL;      /* 2^-14 */
+      char err[300];
+      outcome a, z, t, b;
+      int ok = run_one(P, np, Q, nq, procs, plain, &a, err, sizeof err) == 0 &&
+               run_one(P, np, Q, nq, procs, zero, &z, err, sizeof err) == 0 &&
+               run_one(P, np, Q, nq, procs, table, &t, err, sizeof err) == 0 &&
+               run_one(P, np, Q, nq, procs, back, &b, err, sizeof err) == 0;
+      CHECK(ok, "%s P=%d: %s", var[v][1], procs, err);
+      if (!ok) continue;
+      CHECK(z.time == a.time, "%s P=%d: prices 0 changed the time: %.17g against %.17g", var[v][1], procs,
+            z.time, a.time);
+      int slaves = a.nr - 1, tables = par_slave_table(slaves) != 0;
+      int paths = 0, whole = 1;
+      for (int r = 1; r < a.nr; r++) {
+        CHECK(z.compute[r] == a.compute[r] && t.slave_units[r] == a.slave_units[r] &&
+                  b.slave_units[r] == a.slave_units[r],
+              "%s P=%d slave %d: node units or times moved", var[v][1], procs, r);
+        double want = a.compute[r] + (tables ? (double)m * (n + 1) * tc : 0);
+        CHECK(t.compute[r] == want, "%s P=%d slave %d: with --table-c 2^-12 s %.17g s, want %.17g s (%s)",
+              var[v][1], procs, r, t.compute[r], want, tables ? "a table" : "no table");
+        double steps = (b.compute[r] - a.compute[r]) / bc;
+        whole &= steps >= 0 && steps == floor(steps);
+        paths += (int)steps;
+      }
+      CHECK(whole && paths % (m + n) == 0, "%s P=%d: backtracking charged %d steps, not whole paths of %d",
+            var[v][1], procs, paths, m + n);
+      CHECK(procs <= 2 ? paths == m + n : paths > m + n, "%s P=%d: %d backtracking steps charged", var[v][1],
+            procs, paths);
+    }
+  free(P);
+  free(Q);
+}
+
 /* c = 0 cannot price a bookkeeping unit above 0 in node units: refused with
  * a message, before any run; --master-c 0 there is fine. */
 static void check_refusal(void) {
@@ -171,6 +228,13 @@ static void check_refusal(void) {
             opt.book == 0,
         "c = 0 with --master-c 0: %s", err);
   CHECK(run_option(&rc, "--master-c", "-1", err, sizeof err) == -1, "--master-c -1 accepted");
+  CHECK(run_option(&rc, "--back-c", "1e-9", err, sizeof err) == 1 && run_par_options(&rc, &opt, err, sizeof err) == -1 &&
+            strstr(err, "--back-c") && strstr(err, "c is 0"),
+        "c = 0 with --back-c 1e-9: '%s'", err);
+  CHECK(run_option(&rc, "--back-c", "0", err, sizeof err) == 1 && run_option(&rc, "--table-c", "2e-9", err, sizeof err) == 1 &&
+            run_par_options(&rc, &opt, err, sizeof err) == -1 && strstr(err, "--table-c"),
+        "c = 0 with --table-c 2e-9: '%s'", err);
+  CHECK(run_option(&rc, "--table-c", "x", err, sizeof err) == -1, "--table-c x accepted");
   run_config_init(&rc);
   CHECK(run_par_options(&rc, &opt, err, sizeof err) == 0 && opt.book == RUN_MASTER_SHARE &&
             run_master_c(&rc) == RUN_MASTER_SHARE * rc.machine.c,
@@ -181,6 +245,7 @@ int main(void) {
   rng g;
   rng_seed(&g, 88100);
   check_prices(&g);
+  check_slave_prices(&g);
   check_refusal();
   return check_done("test_master");
 }

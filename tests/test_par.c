@@ -212,7 +212,7 @@ static void check_stats(rng *g) {
     par_master_arg marg;
     memset(&marg, 0, sizeof marg);
     marg.npairs = 1, marg.pairs = &pr, marg.kind = COST_AREA;
-    marg.opt = (par_options){ALLOC_SIZE, 1, 0, 1, PAR_STATIC, 1};
+    marg.opt = (par_options){ALLOC_SIZE, 1, 0, 1, PAR_STATIC, 1, 0, 0};
     par_slave_arg sarg[16];
     memset(sarg, 0, sizeof sarg);
     mp_proc procv[16];
