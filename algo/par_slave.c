@@ -45,7 +45,7 @@ static void free_pair(slave *S) {
   free(S->bits);
   if (S->prev) free(S->prev - 1);
   if (S->cur) free(S->cur - 1);
-  free(S->pcol), free(S->pw);
+  free(S->pcol), free(S->pw), free(S->pv);
   free(S->grp);
   par_block_free(S->blk);
   slave keep = *S;
@@ -91,6 +91,7 @@ static int points(slave *S, par_rd *r) {
   S->cur = (double *)xmallocarray((size_t)n + 3, sizeof(double)) + 1;
   S->pcol = xmallocarray(T1, sizeof(int));
   S->pw = xmallocarray(T1, sizeof(double));
+  S->pv = xmalloc(T1);
   S->grp = xmallocarray((size_t)mp_size(S->mp), sizeof *S->grp);
   if (S->k > 1) S->blk = par_block_new(m, n);
   return 0;
@@ -205,14 +206,20 @@ static int send_piece(slave *S, int t_hi, int len) {
 }
 
 /* Backtrack from node (t, c), which is mine (Fig. 14), until the path leaves
- * my nodes or reaches the start node. */
+ * my nodes or reaches the start node.  The paper's slave sends its piece
+ * with its edge weights, then passes control on.  Under --block k (par_block.h)
+ * control passes first: the walk only reads edge bits, and the weights are
+ * computed and the piece sent while the next slave walks on (a chain of
+ * re-solved bands is the variants' critical path, and every path of it is
+ * backtracked through all its slaves in turn). */
 static int backtrack(slave *S, int s, int t, int c, int j) {
-  int len = 0, t_hi = t, du = s - S->U.start;
+  int len = 0, t_hi = t, du = s - S->U.start, late = S->k > 1;
   while (t > 0 && owner(S, t, c) == j) {
     int k = s + t;
     if (S->type[t] == PAR_D_RUN) {   /* a run joined from T: its nodes and weights are T's */
       int t0 = S->run0[t];
       for (int u = t; u >= t0; u--) {
+        S->pv[len] = 2;
         S->pcol[len] = S->U.col[u + du];
         S->pw[len++] = S->U.cum[u + du] - S->U.cum[u - 1 + du];
       }
@@ -227,11 +234,21 @@ static int backtrack(slave *S, int s, int t, int c, int j) {
       int i = c - S->c0[t];
       vert = (int)((S->bits[S->woff[t] + (i >> 6)] >> (i & 63)) & 1);
     }
+    S->pv[len] = (unsigned char)vert;
     S->pcol[len] = c;
-    S->pw[len++] = weights_in(S->w, k, c, vert);
+    S->pw[len++] = late ? 0 : weights_in(S->w, k, c, vert);
     if (!vert) c--;
     t--;
   }
+  if (t > 0 && late) {   /* control first */
+    par_buf_reset(&S->out);
+    par_put_i32(&S->out, t);
+    par_put_i32(&S->out, c);
+    TRY(par_send(S->mp, &S->arg->counts, PAR_BACKTRACK, S->grp[owner(S, t, c)], PAR_TAG_BACK, &S->out));
+  }
+  if (late)
+    for (int i = 0; i < len; i++)
+      if (S->pv[i] != 2) S->pw[i] = weights_in(S->w, s + t_hi - i, S->pcol[i], S->pv[i]);
   if (S->back > 0) TRY(mp_compute(S->mp, (double)len * S->back));   /* the walk, charged where asked */
   if (t == 0) {
     S->pcol[len] = 0;
@@ -239,6 +256,7 @@ static int backtrack(slave *S, int s, int t, int c, int j) {
     return send_piece(S, t_hi, len);
   }
   TRY(send_piece(S, t_hi, len));
+  if (late) return 0;
   par_buf_reset(&S->out);
   par_put_i32(&S->out, t);
   par_put_i32(&S->out, c);

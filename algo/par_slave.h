@@ -66,6 +66,7 @@ typedef struct par_slave_ctx {
   double *prev, *cur;  /* costs by column, index -1 .. n+1 */
   int *pcol;           /* a backtrack piece */
   double *pw;
+  unsigned char *pv;   /* its steps' in-edges: 1 vertical, 0 horizontal, 2 a run's */
   int first_path;      /* the test hook counts only the first path */
   int *grp;            /* the group of the current task: its slaves' ranks */
   int k;               /* --block k: diagonals between exchanges (1: the paper's) */
