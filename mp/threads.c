@@ -575,6 +575,11 @@ static int deliver(rank *r, found f, void *buf, size_t cap, mp_status *st) {
 /* How a waiting rank waits, now (cpuload.h says what else runs). */
 enum { W_SLEEP, W_PAUSE, W_YIELD, W_SHORT };
 #define SHORT_SPIN_S 20e-6   /* W_SHORT: how long, at most */
+#define YIELD_SPIN_S 50e-6   /* W_YIELD: how long, at most */
+#define CROWDED_SPIN_S 50e-6 /* any wait, at most, while the run has more ranks than
+                                processors: ranks that spin or yield long there starve
+                                the ones that work (5 ranks on 2 cores took 2 to 4 times
+                                as long with 1 ms) */
 
 static int how_to_wait(mpt *t) {
   int awake = atomic_load_explicit(&t->awake, memory_order_relaxed), others;
@@ -604,6 +609,7 @@ static int how_to_wait(mpt *t) {
  *          hands the processor to another of our threads, likely the one
  *          that will send (unless a yield lately took long: then a thread
  *          that does not give the processor back got it, cpuload_yield);
+ *          for at most YIELD_SPIN_S;
  *   short  pause for at most SHORT_SPIN_S while other programs want the
  *          processors but this run's ranks alone would fit on them (all but
  *          one: a master that mostly waits):
@@ -620,10 +626,12 @@ static int how_to_wait(mpt *t) {
 static int spin(rank *r, int src, int mark) {
   mpt *t = r->t;
   if (t->cfg.spin_ns <= 0) return 0;
-  double now = wallclock(), until = now + (double)t->cfg.spin_ns * 1e-9;
+  double lim = (double)t->cfg.spin_ns * 1e-9;
+  if (t->n > t->cpus && lim > CROWDED_SPIN_S) lim = CROWDED_SPIN_S;
+  double now = wallclock(), until = now + lim;
   int how = how_to_wait(t);
-  if (how == W_SHORT) {
-    double u = now + SHORT_SPIN_S;
+  if (how == W_SHORT || how == W_YIELD) {
+    double u = now + (how == W_SHORT ? SHORT_SPIN_S : YIELD_SPIN_S);
     if (u < until) until = u;
   }
   for (long i = 1; how != W_SLEEP; i++) {
@@ -637,6 +645,7 @@ static int spin(rank *r, int src, int mark) {
       if (now >= until || stopped(t)) return 0;
       int h = how_to_wait(t);
       if (h == W_SHORT && how != W_SHORT && now + SHORT_SPIN_S < until) until = now + SHORT_SPIN_S;
+      if (h == W_YIELD && how != W_YIELD && now + YIELD_SPIN_S < until) until = now + YIELD_SPIN_S;
       how = how == W_SHORT && h != W_SLEEP ? W_SHORT : h;   /* a short spin stays short */
     }
   }

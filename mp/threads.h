@@ -34,7 +34,8 @@
  *       than there are processors that other programs leave idle;
  *     sched_yield while more of them are awake than there are processors
  *       but nothing else wants the processors (16 ranks on 2 cores), so
- *       that the rank that will send gets the processor;
+ *       that the rank that will send gets the processor (for at most 50 us:
+ *       ranks that yield to each other for long starve those that work);
  *     pause for at most 20 us while other programs want the processors
  *       but this run's ranks alone would fit on them (all but one, a
  *       master that mostly waits): two slaves
@@ -91,7 +92,9 @@
 typedef struct {
   long spin_ns;   /* how long a waiting recv watches its channels before it
                      sleeps, nanoseconds (>= 0; 0: sleep at once), while
-                     the machine has room for spinning (above).  A wait
+                     the machine has room for spinning (above); at most
+                     50 us while the run has more ranks than processors
+                     (they would starve the ranks that work).  A wait
                      longer than the work between two messages is common
                      (a slave waits for the others' backtracking, for its
                      next task): sleeping then costs a wake-up of tens of
