@@ -19,10 +19,11 @@
  * passed over) is marked and skipped.
  *
  * Order.  Per pair, a channel is FIFO.  Between senders, mp.h asks for the
- * earliest arrival first, and the algorithm relies on causality (a slave
- * that passes control on after telling the master must not be overtaken by
- * the master's answer).  Every message carries the sender's Lamport clock
- * (bumped at every send; a receive takes the maximum of its own and the
+ * earliest arrival first: at the least, a message whose sender had heard,
+ * directly or through a chain of messages, from the sender of another one
+ * after that one was sent must not be taken before it, as a single mailbox
+ * in arrival order would have it.  Every message carries the sender's
+ * Lamport clock (bumped at every send; a receive takes the maximum of its own and the
  * message's), so a message sent after another, in the happens-before sense
  * of the messages themselves, has the larger stamp.  A receive from any
  * source scans every channel into it for its first match, takes the least

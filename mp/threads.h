@@ -16,9 +16,10 @@
  *   message of that channel that matches its tag.  A recv from MP_ANY
  *   takes, among the first matches of every channel, the one with the
  *   least Lamport stamp (each send carries its sender's clock, a receive
- *   advances the receiver's), ties to the lower source: a message sent
- *   after another was received, directly or through a chain of messages,
- *   is taken after it, as in a single mailbox in arrival order.  Which of
+ *   advances the receiver's), ties to the lower source: a message is never
+ *   taken before one sent before its sender heard (directly or through a
+ *   chain of messages) from that one's sender, as from a single mailbox in
+ *   arrival order.  Which of
  *   two racing senders comes first is the machine's business: it may
  *   change from run to run (mp.h only promises determinism of
  *   deterministic backends; the paper's algorithm gives the same result
