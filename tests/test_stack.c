@@ -14,7 +14,8 @@
  *              exactly, integrated by Milne's rule between vertex heights,
  *              exact for the piecewise quadratic areas); -j 1 against -j 4,
  *              the parallel algorithm on the simulator against the serial
- *              tiler, bit for bit; the refusals' messages. */
+ *              tiler, bit for bit; the refusals' messages.
+ * The stacks: tests/stackgen.h. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -33,11 +34,10 @@
 #include "run.h"
 #include "slices.h"
 #include "stack.h"
+#include "stackgen.h"
 #include "tiling.h"
 #include "unpinch.h"
 #include "xmem.h"
-
-#define PI 3.14159265358979323846
 
 /* ------------------------------------------------------------- overlap -- */
 
@@ -130,46 +130,6 @@ static void test_overlap(rng *g) {
 
 /* ------------------------------------------------------------- stacks --- */
 
-/* A contour as text, from point `start`, reversed if asked. */
-static void put(FILE *f, const vec2 *p, int n, double z, int start, int rev) {
-  fprintf(f, "C %d %.17g\n", n, z);
-  for (int k = 0; k < n; k++) {
-    int i = rev ? (start - k + n) % n : (start + k) % n;
-    fprintf(f, "%.17g %.17g\n", p[i].x, p[i].y);
-  }
-}
-
-static void circle(vec2 *p, int n, double cx, double cy, double rx, double ry, double phase) {
-  for (int i = 0; i < n; i++) {
-    double a = phase + 2 * PI * i / n;
-    p[i] = (vec2){cx + rx * cos(a), cy + ry * sin(a)};
-  }
-}
-
-typedef struct {
-  int n;
-  double z;
-  vec2 *p;
-} poly;
-
-/* The stack of polys as a parsed contour_stack, the contours in the order
- * `order` (NULL: as given), each from `start[i] % n` and reversed by rev[i]. */
-static int make_stack(const poly *ps, int np, const int *order, const int *start, const int *rev,
-                      contour_stack *s) {
-  char *text = NULL, err[512];
-  size_t len = 0;
-  FILE *f = open_memstream(&text, &len);
-  for (int k = 0; k < np; k++) {
-    int i = order ? order[k] : k;
-    put(f, ps[i].p, ps[i].n, ps[i].z, start ? start[i] % ps[i].n : 0, rev ? rev[i] : 0);
-  }
-  fclose(f);
-  int rc = contour_parse(text, len, "t.contours", s, NULL, "test", err, sizeof err);
-  CHECK(rc == 0, "stack: %s", err);
-  free(text);
-  return rc;
-}
-
 static stack_surface *tile(const contour_stack *s, int caps, int apex, int threads, run_config *rc,
                            char *err, size_t errlen, int *res) {
   stack_options o = {COST_AREA, caps, apex, threads, rc, NULL, "test", NULL, NULL};
@@ -234,7 +194,7 @@ static double section_volume(const mesh *me) {
  * components of Euler characteristics chi[], every input segment an edge,
  * the report's bands and caps summing to the mesh's volume, and that volume
  * equal to its sections' integral. */
-static void check_surface(const char *what, const stack_surface *ss, const poly *ps, int np, int comps,
+static void check_surface(const char *what, const stack_surface *ss, const sg_poly *ps, int np, int comps,
                           const int *chi) {
   const mesh *me = stack_mesh(ss);
   double *v = xmallocarray(3 * (size_t)me->nv + 1, sizeof *v);
@@ -284,18 +244,18 @@ static int same_mesh(const mesh *a, const mesh *b) {
 static void test_shapes(void) {
   enum { N = 24 };
   static vec2 buf[40][N];
-  poly ps[40];
+  sg_poly ps[40];
   int np = 0;
   /* A ring lying across the slices: 1, 2, 2, 1 contours. */
-  circle(buf[np], N, 0, 0, 3, 1, 0), ps[np] = (poly){N, 0, buf[np]}, np++;
-  circle(buf[np], N, -2, 0, 1, 1, 0.1), ps[np] = (poly){N, 1, buf[np]}, np++;
-  circle(buf[np], N, 2, 0, 1, 1, 0.2), ps[np] = (poly){N, 1, buf[np]}, np++;
-  circle(buf[np], N, -2, 0.2, 1, 1.1, 0.3), ps[np] = (poly){N, 2, buf[np]}, np++;
-  circle(buf[np], N, 2, -0.1, 1, 0.9, 0.4), ps[np] = (poly){N, 2, buf[np]}, np++;
-  circle(buf[np], N, 0, 0, 3.2, 1.1, 0.5), ps[np] = (poly){N, 3, buf[np]}, np++;
+  sg_circle(buf[np], N, 0, 0, 3, 1, 0), ps[np] = (sg_poly){N, 0, buf[np]}, np++;
+  sg_circle(buf[np], N, -2, 0, 1, 1, 0.1), ps[np] = (sg_poly){N, 1, buf[np]}, np++;
+  sg_circle(buf[np], N, 2, 0, 1, 1, 0.2), ps[np] = (sg_poly){N, 1, buf[np]}, np++;
+  sg_circle(buf[np], N, -2, 0.2, 1, 1.1, 0.3), ps[np] = (sg_poly){N, 2, buf[np]}, np++;
+  sg_circle(buf[np], N, 2, -0.1, 1, 0.9, 0.4), ps[np] = (sg_poly){N, 2, buf[np]}, np++;
+  sg_circle(buf[np], N, 0, 0, 3.2, 1.1, 0.5), ps[np] = (sg_poly){N, 3, buf[np]}, np++;
   for (int apex = 0; apex < 2; apex++) {
     contour_stack s;
-    if (make_stack(ps, np, NULL, NULL, NULL, &s) != 0) return;
+    if (sg_make_stack(ps, np, NULL, NULL, NULL, &s) != 0) return;
     char err[512];
     int res;
     stack_surface *ss = tile(&s, 1, apex, 2, NULL, err, sizeof err, &res);
@@ -325,20 +285,20 @@ static void test_shapes(void) {
   /* A cup whose hole closes, then a hole with an island that ends inside
    * the hole's cap, and a blob alone on one slice (a lens). */
   np = 0;
-  circle(buf[np], N, 0, 0, 5, 5, 0), ps[np] = (poly){N, 0, buf[np]}, np++;
-  circle(buf[np], N, 0, 0, 5, 5, 0.1), ps[np] = (poly){N, 1, buf[np]}, np++;
-  circle(buf[np], N, 0, 0, 3, 3, 0.2), ps[np] = (poly){N, 1, buf[np]}, np++;      /* hole starts */
-  circle(buf[np], N, 0, 0, 5, 5, 0.3), ps[np] = (poly){N, 2, buf[np]}, np++;
-  circle(buf[np], N, 0, 0, 3.2, 3.2, 0.4), ps[np] = (poly){N, 2, buf[np]}, np++;
-  circle(buf[np], N, 0.2, 0, 1, 1, 0.5), ps[np] = (poly){N, 2, buf[np]}, np++;    /* island starts */
-  circle(buf[np], N, 0, 0, 5, 5, 0.6), ps[np] = (poly){N, 3, buf[np]}, np++;
-  circle(buf[np], N, 0, 0, 3.1, 3.1, 0.7), ps[np] = (poly){N, 3, buf[np]}, np++;
-  circle(buf[np], N, 0, 0.1, 1.1, 1, 0.8), ps[np] = (poly){N, 3, buf[np]}, np++;  /* ends: hole closes */
-  circle(buf[np], N, 0, 0, 5, 5, 0.9), ps[np] = (poly){N, 4, buf[np]}, np++;
-  circle(buf[np], N, 9, 0, 1, 1, 1.0), ps[np] = (poly){N, 2, buf[np]}, np++;      /* alone on slice 2 */
+  sg_circle(buf[np], N, 0, 0, 5, 5, 0), ps[np] = (sg_poly){N, 0, buf[np]}, np++;
+  sg_circle(buf[np], N, 0, 0, 5, 5, 0.1), ps[np] = (sg_poly){N, 1, buf[np]}, np++;
+  sg_circle(buf[np], N, 0, 0, 3, 3, 0.2), ps[np] = (sg_poly){N, 1, buf[np]}, np++;      /* hole starts */
+  sg_circle(buf[np], N, 0, 0, 5, 5, 0.3), ps[np] = (sg_poly){N, 2, buf[np]}, np++;
+  sg_circle(buf[np], N, 0, 0, 3.2, 3.2, 0.4), ps[np] = (sg_poly){N, 2, buf[np]}, np++;
+  sg_circle(buf[np], N, 0.2, 0, 1, 1, 0.5), ps[np] = (sg_poly){N, 2, buf[np]}, np++;    /* island starts */
+  sg_circle(buf[np], N, 0, 0, 5, 5, 0.6), ps[np] = (sg_poly){N, 3, buf[np]}, np++;
+  sg_circle(buf[np], N, 0, 0, 3.1, 3.1, 0.7), ps[np] = (sg_poly){N, 3, buf[np]}, np++;
+  sg_circle(buf[np], N, 0, 0.1, 1.1, 1, 0.8), ps[np] = (sg_poly){N, 3, buf[np]}, np++;  /* ends: hole closes */
+  sg_circle(buf[np], N, 0, 0, 5, 5, 0.9), ps[np] = (sg_poly){N, 4, buf[np]}, np++;
+  sg_circle(buf[np], N, 9, 0, 1, 1, 1.0), ps[np] = (sg_poly){N, 2, buf[np]}, np++;      /* alone on slice 2 */
   for (int apex = 0; apex < 2; apex++) {
     contour_stack s;
-    if (make_stack(ps, np, NULL, NULL, NULL, &s) != 0) return;
+    if (sg_make_stack(ps, np, NULL, NULL, NULL, &s) != 0) return;
     char err[512];
     int res;
     stack_surface *ss = tile(&s, 1, apex, 3, NULL, err, sizeof err, &res);
@@ -358,15 +318,15 @@ static void test_pairs(rng *g) {
   int bad = 0;
   for (int trial = 0; trial < 40; trial++) {
     int k = rng_int(g, 2, 6);
-    poly ps[6];
+    sg_poly ps[6];
     vec2 buf[6][40];
     for (int i = 0; i < k; i++) {
       int n = rng_int(g, 3, 40);
-      circle(buf[i], n, rng_uniform(g), rng_uniform(g), 3 + rng_uniform(g), 2 + rng_uniform(g), rng_uniform(g) * 6);
-      ps[i] = (poly){n, 1.5 * i, buf[i]};
+      sg_circle(buf[i], n, rng_uniform(g), rng_uniform(g), 3 + rng_uniform(g), 2 + rng_uniform(g), rng_uniform(g) * 6);
+      ps[i] = (sg_poly){n, 1.5 * i, buf[i]};
     }
     contour_stack s;
-    if (make_stack(ps, k, NULL, NULL, NULL, &s) != 0) continue;
+    if (sg_make_stack(ps, k, NULL, NULL, NULL, &s) != 0) continue;
     char err[512];
     int res;
     stack_surface *ss = tile(&s, 0, 0, 1, NULL, err, sizeof err, &res);
@@ -412,19 +372,19 @@ static void test_pairs(rng *g) {
 static void test_invariance(rng *g) {
   enum { N = 16 };
   vec2 buf[8][N];
-  poly ps[8];
+  sg_poly ps[8];
   int np = 0;
-  circle(buf[np], N, -2, 0, 1, 1, 0), ps[np] = (poly){N, 0, buf[np]}, np++;
-  circle(buf[np], N, 2, 0, 1, 1, 0.3), ps[np] = (poly){N, 0, buf[np]}, np++;
-  circle(buf[np], N, 0, 0, 3.5, 1.5, 0.1), ps[np] = (poly){N, 1, buf[np]}, np++;
-  circle(buf[np], N, 0, 0, 3.5, 1.5, 0.2), ps[np] = (poly){N, 2, buf[np]}, np++;
-  circle(buf[np], N, 0, 0, 1, 0.5, 0.7), ps[np] = (poly){N, 2, buf[np]}, np++;   /* a hole */
-  circle(buf[np], N, -2, 0.5, 1, 1, 0.4), ps[np] = (poly){N, 3, buf[np]}, np++;
-  circle(buf[np], N, 2, -0.5, 1, 1, 0.5), ps[np] = (poly){N, 3, buf[np]}, np++;
+  sg_circle(buf[np], N, -2, 0, 1, 1, 0), ps[np] = (sg_poly){N, 0, buf[np]}, np++;
+  sg_circle(buf[np], N, 2, 0, 1, 1, 0.3), ps[np] = (sg_poly){N, 0, buf[np]}, np++;
+  sg_circle(buf[np], N, 0, 0, 3.5, 1.5, 0.1), ps[np] = (sg_poly){N, 1, buf[np]}, np++;
+  sg_circle(buf[np], N, 0, 0, 3.5, 1.5, 0.2), ps[np] = (sg_poly){N, 2, buf[np]}, np++;
+  sg_circle(buf[np], N, 0, 0, 1, 0.5, 0.7), ps[np] = (sg_poly){N, 2, buf[np]}, np++;   /* a hole */
+  sg_circle(buf[np], N, -2, 0.5, 1, 1, 0.4), ps[np] = (sg_poly){N, 3, buf[np]}, np++;
+  sg_circle(buf[np], N, 2, -0.5, 1, 1, 0.5), ps[np] = (sg_poly){N, 3, buf[np]}, np++;
   char err[512];
   int res;
   contour_stack s;
-  if (make_stack(ps, np, NULL, NULL, NULL, &s) != 0) return;
+  if (sg_make_stack(ps, np, NULL, NULL, NULL, &s) != 0) return;
   stack_surface *ref = tile(&s, 1, 0, 1, NULL, err, sizeof err, &res);
   CHECK(res == 0, "branching: %s", err);
   contour_stack_free(&s);
@@ -441,7 +401,7 @@ static void test_invariance(rng *g) {
       int j = rng_int(g, 0, i), t = order[i];
       order[i] = order[j], order[j] = t;
     }
-    if (make_stack(ps, np, order, start, rev, &s) != 0) continue;
+    if (sg_make_stack(ps, np, order, start, rev, &s) != 0) continue;
     stack_surface *ss = tile(&s, 1, 0, trial % 4 + 1, NULL, err, sizeof err, &res);
     if (res != 0 || !same_mesh(stack_mesh(ref), stack_mesh(ss))) bad++;
     stack_free(ss);
@@ -449,7 +409,7 @@ static void test_invariance(rng *g) {
   }
   CHECK(bad == 0, "%d of 20 shuffled, restarted, reversed stacks (on 1-4 threads) differ", bad);
   /* The paper's parallel algorithm on the simulated machine: the same mesh. */
-  if (make_stack(ps, np, NULL, NULL, NULL, &s) == 0) {
+  if (sg_make_stack(ps, np, NULL, NULL, NULL, &s) == 0) {
     run_config rc;
     run_config_init(&rc);
     rc.procs = 3;
@@ -466,11 +426,11 @@ static void test_invariance(rng *g) {
 static void test_nesting(rng *g) {
   enum { N = 12 };
   vec2 buf[6][N];
-  poly ps[6];
+  sg_poly ps[6];
   double r[6] = {10, 6, 3, 2, 1, 0.5}, cx[6] = {0, 0, 0, 20, 20, 0};
   /* O > H > I on the left, O2 > H2 on the right, and a second slice. */
   int depth[6] = {0, 1, 2, 0, 1, 0};
-  for (int i = 0; i < 6; i++) circle(buf[i], N, cx[i], 0, r[i], r[i], 0.1 * i), ps[i] = (poly){N, i == 5 ? 1 : 0, buf[i]};
+  for (int i = 0; i < 6; i++) sg_circle(buf[i], N, cx[i], 0, r[i], r[i], 0.1 * i), ps[i] = (sg_poly){N, i == 5 ? 1 : 0, buf[i]};
   slices ref;
   char err[512];
   int bad = 0;
@@ -482,7 +442,7 @@ static void test_nesting(rng *g) {
       order[i] = order[j], order[j] = t;
     }
     contour_stack s;
-    if (make_stack(ps, 6, trial ? order : NULL, trial ? start : NULL, trial ? rev : NULL, &s) != 0) continue;
+    if (sg_make_stack(ps, 6, trial ? order : NULL, trial ? start : NULL, trial ? rev : NULL, &s) != 0) continue;
     slices sl;
     if (slices_build(&s, "t.contours", 2, &sl, err, sizeof err) != 0) {
       bad++;
@@ -524,14 +484,14 @@ static void test_nesting(rng *g) {
 static void test_pinched(void) {
   vec2 a[4] = {{54.25, -232.35}, {52.74, -231.28}, {54.25, -230.2}, {55.44, -231.28}};
   vec2 b[4] = {{56.4, -232.35}, {54.38, -231.28}, {56.4, -230.2}, {57.47, -231.28}};
-  poly ps[2] = {{4, -23.44, a}, {4, -20.44, b}};
+  sg_poly ps[2] = {{4, -23.44, a}, {4, -20.44, b}};
   tiling t;
   tiling_solve(a, 4, -23.44, b, 4, -20.44, COST_AREA, -1, &t);
   CHECK(unpinch_repeats(&t), "the diamonds' optimum no longer uses a span twice: the test does not test");
   contour_stack s;
   char err[512];
   int res;
-  if (make_stack(ps, 2, NULL, NULL, NULL, &s) == 0) {
+  if (sg_make_stack(ps, 2, NULL, NULL, NULL, &s) == 0) {
     stack_surface *ss = tile(&s, 1, 0, 1, NULL, err, sizeof err, &res);
     CHECK(res == 0, "diamonds: %s", err);
     int chi[1] = {2};
@@ -551,38 +511,13 @@ static void test_pinched(void) {
  * some holes with an island; flat and apex caps.  Every one must give a
  * good surface. */
 static void test_random(rng *g) {
-  enum { MAXP = 48, N = 40 };
-  static vec2 buf[MAXP][N];
+  static vec2 buf[SG_MAXP][SG_N];
   int bad = 0, bridges = 0, stacks = 0;
   for (int trial = 0; trial < 60; trial++) {
-    poly ps[MAXP];
-    int np = 0, K = rng_int(g, 2, 5);
-    for (int k = 0; k < K; k++) {
-      double placed[6][3];
-      int nd = 0;
-      for (int t = 0; t < 6 && np + 3 <= MAXP; t++) {
-        double r = 0.5 + 2.5 * rng_uniform(g), cx = 12 * rng_uniform(g) - 6, cy = 12 * rng_uniform(g) - 6;
-        int clear = 1;
-        for (int d = 0; d < nd; d++)
-          if (hypot(cx - placed[d][0], cy - placed[d][1]) < r + placed[d][2] + 0.05) clear = 0;
-        if (!clear) continue;
-        placed[nd][0] = cx, placed[nd][1] = cy, placed[nd++][2] = r;
-        int n = rng_int(g, 8, N);
-        circle(buf[np], n, cx, cy, r, r, 6 * rng_uniform(g)), ps[np] = (poly){n, k, buf[np]}, np++;
-        if (r > 1.2 && rng_int(g, 0, 1)) {
-          double hr = r * (0.2 + 0.4 * rng_uniform(g));
-          double hx = cx + (rng_uniform(g) - 0.5) * (r - hr), hy = cy + (rng_uniform(g) - 0.5) * (r - hr);
-          n = rng_int(g, 8, N);
-          circle(buf[np], n, hx, hy, hr, hr, 6 * rng_uniform(g)), ps[np] = (poly){n, k, buf[np]}, np++;
-          if (hr > 0.6 && rng_int(g, 0, 1)) {
-            n = rng_int(g, 8, N);
-            circle(buf[np], n, hx, hy, 0.4 * hr, 0.4 * hr, 6 * rng_uniform(g)), ps[np] = (poly){n, k, buf[np]}, np++;
-          }
-        }
-      }
-    }
+    sg_poly ps[SG_MAXP];
+    int np = sg_random(g, buf, ps);
     contour_stack s;
-    if (make_stack(ps, np, NULL, NULL, NULL, &s) != 0) continue;
+    if (sg_make_stack(ps, np, NULL, NULL, NULL, &s) != 0) continue;
     for (int apex = 0; apex < 2; apex++) {
       char err[512], what[64];
       int res;
@@ -608,11 +543,11 @@ static void test_random(rng *g) {
 
 static void test_refusals(void) {
   vec2 a[3] = {{0, 0}, {1, 0}, {0, 1}}, b[3] = {{0.5, -1}, {3, -1}, {0.5, 0.5}};
-  poly ps[3] = {{3, 1, a}, {3, 1, b}, {3, 2, a}};
+  sg_poly ps[3] = {{3, 1, a}, {3, 1, b}, {3, 2, a}};
   contour_stack s;
   char err[512];
   int res;
-  if (make_stack(ps, 3, NULL, NULL, NULL, &s) == 0) {
+  if (sg_make_stack(ps, 3, NULL, NULL, NULL, &s) == 0) {
     stack_surface *ss = tile(&s, 1, 0, 2, NULL, err, sizeof err, &res);
     CHECK(res == -1 && ss == NULL && strcmp(err, "t.contours:5: contour crosses the contour at line 1 on slice z=1 (0.5 0)") == 0,
           "crossing: %d '%s'", res, err);
@@ -622,8 +557,8 @@ static void test_refusals(void) {
   vec2 s1[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}}, s2[4] = {{10, 0}, {11, 0}, {11, 1}, {10, 1}};
   vec2 wall[4] = {{5, -10}, {6, -10}, {6, 11}, {5, 11}};
   vec2 u[8] = {{-1, 2}, {-1, -12}, {12, -12}, {12, 2}, {9, 2}, {9, -11}, {2, -11}, {2, 2}};
-  poly q[4] = {{4, 0, s1}, {4, 0, s2}, {4, 0, wall}, {8, 1, u}};
-  if (make_stack(q, 4, NULL, NULL, NULL, &s) == 0) {
+  sg_poly q[4] = {{4, 0, s1}, {4, 0, s2}, {4, 0, wall}, {8, 1, u}};
+  if (sg_make_stack(q, 4, NULL, NULL, NULL, &s) == 0) {
     stack_surface *ss = tile(&s, 0, 0, 1, NULL, err, sizeof err, &res);
     CHECK(res == -1 && ss == NULL && strstr(err, "t.contours:6: no bridge can join the contour to the contour at line 1"),
           "no bridge: %d '%s'", res, err);
@@ -664,8 +599,8 @@ static void test_unpinch(rng *g) {
     int np = rng_int(g, 3, 6), nq = rng_int(g, 3, 6);
     vec2 p[6], q[6];
     double off = trial % 3 ? 4 * rng_uniform(g) : 0;
-    circle(p, np, 0, 0, 0.3 + rng_uniform(g), 0.3 + rng_uniform(g), rng_uniform(g));
-    circle(q, nq, off, 0, 0.3 + 2 * rng_uniform(g), 0.3 + rng_uniform(g), rng_uniform(g));
+    sg_circle(p, np, 0, 0, 0.3 + rng_uniform(g), 0.3 + rng_uniform(g), rng_uniform(g));
+    sg_circle(q, nq, off, 0, 0.3 + 2 * rng_uniform(g), 0.3 + rng_uniform(g), rng_uniform(g));
     tiling t, u;
     tiling_solve(p, np, 0, q, nq, 1, COST_AREA, -1, &t);
     pinched += unpinch_repeats(&t);
