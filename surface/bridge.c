@@ -304,7 +304,7 @@ int bridge_join(const slices *sl, const int *cs, int count, int other, double li
              "%s:%d: no bridge can join the contour to the contour at line %d without crossing "
              "or enclosing a contour of their slice (they meet one contour of the slice at "
              "z=%.17g; slice z=%.17g)",
-             name, L->line, first->line, sl->z[other], sl->z[c.slice]);
+             name, L->line, first->line, ldexp(sl->z[other], sl->scale), ldexp(sl->z[c.slice], sl->scale));
     rc = -1;
   } else {
     seq *r = &g[find_root(up, 0)];

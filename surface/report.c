@@ -23,7 +23,7 @@ void report_rows(FILE *f, const char *prefix, const stack_surface *ss, const run
   const stack_row *r = stack_rows(ss);
   const par_pair *pp = stack_pairs(ss);
   int nb = 0, bridges = 0, spans = 0;
-  double cost = 0, zmin = 0, zmax = 0;
+  double cost, area, volume, zmin = 0, zmax = 0;
   unsigned long long nodes = 0;
   for (int i = 0; i < stack_nrows(ss); i++) {
     const stack_row *x = &r[i];
@@ -38,7 +38,6 @@ void report_rows(FILE *f, const char *prefix, const stack_surface *ss, const run
       fprintf(f, ",%d,%.17g,%.17g,%.17g,%llu,%d,,", x->bridges, x->cost, x->area, x->volume, x->nodes, x->spans);
       bridges += x->bridges;
       spans += x->spans;
-      cost += x->cost;
       nodes += x->nodes;
     } else {
       fprintf(f, ",,,%.17g,%.17g,,,,", x->area, x->volume);
@@ -64,6 +63,7 @@ void report_rows(FILE *f, const char *prefix, const stack_surface *ss, const run
     fputc('\n', f);
   }
   const mesh *me = stack_mesh(ss);
+  stack_totals(ss, &cost, &area, &volume);
   const manifold_component *c = stack_components(ss);
   int nc = stack_ncomponents(ss), closed = nc > 0, manifold = nc > 0, euler = 0;
   for (int i = 0; i < nc; i++) {
@@ -74,7 +74,7 @@ void report_rows(FILE *f, const char *prefix, const stack_surface *ss, const run
     euler += c[i].euler;
   }
   fprintf(f, "%smesh,%.17g,%.17g,,,,%s,%d,%d,%d,%.17g,%.17g,%.17g,%llu,%d,%d,%s%s\n", prefix, zmin, zmax,
-          manifold ? "closed" : closed ? "pinched" : "open", me->nv, me->nt, bridges, cost, mesh_area(me), mesh_volume(me), nodes,
+          manifold ? "closed" : closed ? "pinched" : "open", me->nv, me->nt, bridges, cost, area, volume, nodes,
           spans, euler, rc ? par_empty : "", topology(rc) ? net_empty : "");
   for (int i = 0; i < nc; i++) {
     fprintf(f, "%scomponent,%.17g,%.17g,,,,%s,%d,%d,,,%.17g,%.17g,,,%d,", prefix, c[i].zmin, c[i].zmax,

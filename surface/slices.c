@@ -12,6 +12,7 @@
  *   4. odd depth runs clockwise, even counter-clockwise. */
 #include "slices.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -27,15 +28,17 @@ typedef struct {
   char **err;        /* per slice: the refusal, or NULL */
 } job;
 
-static void rotate_least(vec2 *p, int n) {
+/* Start p at its least point; returns where that point was. */
+static int rotate_least(vec2 *p, int n) {
   int k = 0;
   for (int i = 1; i < n; i++)
     if (exact_lex(p[i], p[k]) < 0) k = i;
-  if (k == 0) return;
+  if (k == 0) return 0;
   vec2 *t = xmallocarray((size_t)n, sizeof *t);
   for (int i = 0; i < n; i++) t[i] = p[(i + k) % n];
   memcpy(p, t, (size_t)n * sizeof *p);
   free(t);
+  return k;
 }
 
 static int by_least(const void *a, const void *b) {
@@ -64,16 +67,18 @@ static void one_slice(void *ud, int k) {
   if (crossing_find(poly, n, &h)) {
     char buf[512];
     const slice_contour *a = &c[h.poly[0]], *b = &c[h.poly[1]];
+    int e = sl->scale;   /* in the file's units */
     if (a == b)
       snprintf(buf, sizeof buf, "%s:%d: contour %s itself on slice z=%.17g (%.17g %.17g)", jb->name,
-               a->line, crossing_verb(h.kind), sl->z[k], h.at.x, h.at.y);
+               a->line, crossing_verb(h.kind), ldexp(sl->z[k], e), ldexp(h.at.x, e), ldexp(h.at.y, e));
     else {
       if (a->line > b->line) {
         const slice_contour *t = a;
         a = b, b = t;
       }
       snprintf(buf, sizeof buf, "%s:%d: contour %s the contour at line %d on slice z=%.17g (%.17g %.17g)",
-               jb->name, b->line, crossing_verb(h.kind), a->line, sl->z[k], h.at.x, h.at.y);
+               jb->name, b->line, crossing_verb(h.kind), a->line, ldexp(sl->z[k], e), ldexp(h.at.x, e),
+               ldexp(h.at.y, e));
     }
     jb->err[k] = xstrdup(buf);
     free(poly);
@@ -100,6 +105,7 @@ static void one_slice(void *ud, int k) {
     c[i].pos = i;
     if (c[i].depth % 2) {   /* a hole: clockwise, still from its least point */
       geom_reverse(c[i].pt, c[i].n);
+      c[i].rev = 1;
       inside_free(c[i].ix);
       c[i].ix = inside_new(c[i].pt, c[i].n);
     }
@@ -107,10 +113,25 @@ static void one_slice(void *ud, int k) {
   }
 }
 
+int slices_scale_exp(const contour_stack *s) {
+  double m = 0;
+  for (int i = 0; i < s->n; i++) {
+    m = fmax(m, fabs(s->c[i].z));
+    for (int k = 0; k < s->c[i].n; k++) m = fmax(m, fmax(fabs(s->c[i].pt[k].x), fabs(s->c[i].pt[k].y)));
+  }
+  return geom_scale_exp(m);
+}
+
 int slices_build(const contour_stack *s, const char *name, int threads, slices *out, char *err,
                  size_t errlen) {
+  return slices_build_at(s, name, 0, threads, out, err, errlen);
+}
+
+int slices_build_at(const contour_stack *s, const char *name, int scale, int threads, slices *out,
+                    char *err, size_t errlen) {
   slices *sl = out;
   memset(sl, 0, sizeof *sl);
+  sl->scale = scale;
   int ns = s->nslices;
   sl->nslices = ns;
   sl->ncontours = s->n;
@@ -120,7 +141,7 @@ int slices_build(const contour_stack *s, const char *name, int threads, slices *
   for (int i = 0; i < s->n; i++) {
     XASSERT(s->c[i].slice >= 0 && s->c[i].slice < ns);
     sl->first[s->c[i].slice + 1]++;
-    sl->z[s->c[i].slice] = s->c[i].z;
+    sl->z[s->c[i].slice] = ldexp(s->c[i].z, -scale);
   }
   for (int k = 0; k < ns; k++) sl->first[k + 1] += sl->first[k];
   int *fill = xmallocarray((size_t)ns, sizeof *fill);
@@ -130,8 +151,9 @@ int slices_build(const contour_stack *s, const char *name, int threads, slices *
     slice_contour *c = &sl->c[fill[f->slice]++];
     c->n = f->n;
     c->pt = xmallocarray((size_t)f->n, sizeof *c->pt);
-    memcpy(c->pt, f->pt, (size_t)f->n * sizeof *c->pt);
-    rotate_least(c->pt, c->n);
+    for (int k = 0; k < f->n; k++) c->pt[k] = (vec2){ldexp(f->pt[k].x, -scale), ldexp(f->pt[k].y, -scale)};
+    c->from = rotate_least(c->pt, c->n);
+    c->src = i;
     c->line = f->line;
     c->slice = f->slice;
     c->filecw = f->cw;

@@ -32,6 +32,9 @@ typedef struct {
   double area2;      /* twice the signed area: > 0 at even depth, < 0 at odd */
   int filecw;        /* 1 if the file gave it clockwise */
   inside_index *ix;  /* point location against it */
+  int src;           /* its contour in the stack given (index into contour_stack.c) */
+  int from, rev;     /* pt[k] is that contour's point (from + k) mod n, or (from - k)
+                        mod n when rev (a hole, turned clockwise) */
 } slice_contour;
 
 typedef struct {
@@ -42,6 +45,8 @@ typedef struct {
   int *first;        /* slice k holds c[first[k] .. first[k+1]-1] */
   int nverts;        /* the contours' points in all: mesh vertices 0 .. nverts-1 */
   int reoriented;    /* contours whose file winding disagreed with their depth */
+  int scale;         /* the points and z are the file's times 2^-scale (slices_build_at);
+                        messages give ldexp(v, scale), the file's own values */
 } slices;
 
 /* Build from the stack s (read from the file `name`, for messages), slices
@@ -50,6 +55,18 @@ typedef struct {
  * a crossing; LINE the later contour in the file). */
 int slices_build(const contour_stack *s, const char *name, int threads, slices *out, char *err,
                  size_t errlen);
+
+/* The same on the stack multiplied by 2^-scale (x, y and z, exactly unless a
+ * value falls below 2^-1022; messages in the file's units).  With scale =
+ * slices_scale_exp(s) the largest coordinate lies in [1/2, 1): every product
+ * the surface forms is then safe, and a stack scaled by 2^k (exactly) gives
+ * bit-identical slices (issue 14, item 7; surface/stack.h). */
+int slices_build_at(const contour_stack *s, const char *name, int scale, int threads, slices *out,
+                    char *err, size_t errlen);
+
+/* The e for which the stack's largest |x|, |y| or |z| times 2^-e lies in
+ * [1/2, 1) (geom_scale_exp; 0 for an all-zero stack). */
+int slices_scale_exp(const contour_stack *s);
 
 void slices_free(slices *sl);
 

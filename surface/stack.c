@@ -33,6 +33,7 @@ struct stack_surface {
   net_stats *nets;
   int ncomp;
   manifold_component *comp;
+  double cost, area, volume;   /* the whole surface's (stack_totals) */
 };
 
 typedef struct {
@@ -64,7 +65,13 @@ typedef struct {
   end_cap *caps;
   int nends;
   atomic_int tiled;    /* bands tiled so far, for o->progress */
+  int deg;             /* the cost's degree: 1 span (a length), 2 area */
 } work;
+
+/* A value of degree d (1 a length, 2 an area, 3 a volume) at the working
+ * scale, in the file's units: one rounding, so exactly 2^(d k) times the
+ * unit-scale value for a stack scaled by 2^k (inf or 0 beyond a double). */
+static double unscale(const slices *sl, double v, int d) { return ldexp(v, d * sl->scale); }
 
 static void match_job(void *ud, int k) {
   work *w = ud;
@@ -181,8 +188,8 @@ static void mesh_job(void *ud, int i) {
   }
   for (int k = 0; k < b->j->nhi; k++) ahi += 0.5 * geom_area2_at(sl->c[b->j->hi[k]].pt, sl->c[b->j->hi[k]].n, e);
   volume += (ldexp(z1, -e) - ldexp(z0, -e)) * ahi / 3;
-  b->area = ldexp(area, 2 * e);
-  b->volume = ldexp(volume, 3 * e);
+  b->area = ldexp(area, 2 * (e + sl->scale));
+  b->volume = ldexp(volume, 3 * (e + sl->scale));
 }
 
 static void cap_job(void *ud, int i) {
@@ -274,7 +281,8 @@ static void print_notes(const work *w) {
         fprintf(o->notes,
                 "%s: %s:%d: no bridge from this contour to the contour at line %d on slice "
                 "z=%.17g avoids the contours of slice z=%.17g; it crosses them in projection%s\n",
-                o->prefix, w->name, c->relaxed_line[1], c->relaxed_line[0], sl->z[k], sl->z[side ? k - 1 : k + 1],
+                o->prefix, w->name, c->relaxed_line[1], c->relaxed_line[0], unscale(sl, sl->z[k], 1),
+                unscale(sl, sl->z[side ? k - 1 : k + 1], 1),
                 c->relaxed > 1 ? " (and other bridges of the band too)" : "");
     }
   }
@@ -285,8 +293,10 @@ static void print_notes(const work *w) {
               "%s: %s:%d: the band from this contour (slice z=%.17g) to the slice z=%.17g: its optimum "
               "(cost %.17g) uses the span from (%.17g %.17g) to (%.17g %.17g) twice, a pinched, "
               "non-manifold band; %s\n",
-              o->prefix, w->name, sl->c[b->j->lo[0]].line, sl->z[b->slice], sl->z[b->slice + 1], b->pinched_cost,
-              b->lo.pt[b->span[0]].x, b->lo.pt[b->span[0]].y, b->hi.pt[b->span[1]].x, b->hi.pt[b->span[1]].y,
+              o->prefix, w->name, sl->c[b->j->lo[0]].line, unscale(sl, sl->z[b->slice], 1),
+              unscale(sl, sl->z[b->slice + 1], 1), unscale(sl, b->pinched_cost, w->deg),
+              unscale(sl, b->lo.pt[b->span[0]].x, 1), unscale(sl, b->lo.pt[b->span[0]].y, 1),
+              unscale(sl, b->hi.pt[b->span[1]].x, 1), unscale(sl, b->hi.pt[b->span[1]].y, 1),
               b->pinched == 1 ? "the cheapest path that does not is used" : "too large to replace; kept");
   }
   for (int i = 0; i < w->nends; i++)
@@ -323,13 +333,14 @@ static void assemble(const work *w, stack_surface *ss) {
     stack_row *r = &ss->rows[ss->nrows++];
     r->kind = STACK_BAND;
     r->slice0 = b->slice, r->slice1 = b->slice + 1;
-    r->z0 = sl->z[b->slice], r->z1 = sl->z[b->slice + 1];
+    r->z0 = unscale(sl, sl->z[b->slice], 1), r->z1 = unscale(sl, sl->z[b->slice + 1], 1);
     r->depth = b->j->depth;
     r->nlo = b->j->nlo, r->nhi = b->j->nhi;
     r->lo = positions(sl, b->j->lo, r->nlo), r->hi = positions(sl, b->j->hi, r->nhi);
     r->m = b->lo.n, r->n = b->hi.n;
     r->bridges = b->lo.nbridges + b->hi.nbridges;
-    r->cost = b->t.cost, r->area = b->area, r->volume = b->volume;
+    r->cost = ldexp(b->t.quanta, b->t.qexp + w->deg * sl->scale);
+    r->area = b->area, r->volume = b->volume;
     r->nodes = (unsigned long long)b->t.count.nodes;
     r->spans = b->pinched ? 1 : 0;
     r->pair = w->o->rc ? i : -1;
@@ -344,7 +355,7 @@ static void assemble(const work *w, stack_surface *ss) {
     vec3 o = {sl->c[g->outer].pt[0].x, sl->c[g->outer].pt[0].y, z};
     r->kind = STACK_CAP;
     r->slice0 = r->slice1 = g->slice;
-    r->z0 = z, r->z1 = c->nnew == 1 ? c->at[0].z : z;
+    r->z0 = unscale(sl, z, 1), r->z1 = unscale(sl, c->nnew == 1 ? c->at[0].z : z, 1);
     r->depth = sl->c[g->outer].depth;
     int *cs = xmallocarray((size_t)g->nholes + 1, sizeof *cs);
     cs[0] = g->outer;
@@ -370,10 +381,45 @@ static void assemble(const work *w, stack_surface *ss) {
       area += tri_area(p, q, u);
       volume += tri_vol(p, q, u, scl(o, sc));
     }
-    r->area += ldexp(area, 2 * sc);
-    r->volume += ldexp(volume, 3 * sc);
+    r->area += ldexp(area, 2 * (sc + sl->scale));
+    r->volume += ldexp(volume, 3 * (sc + sl->scale));
   }
   XASSERT(next == nv);
+}
+
+/* The surface, made at the working scale, in the file's units: the totals
+ * and the components measured on the mesh as made, each scaled once; the
+ * input vertices are the file's own points (bit for bit, even where scaling
+ * rounded them), the others scaled back; the parallel runs' costs too. */
+static void to_file_units(const work *w, const contour_stack *s, stack_surface *ss) {
+  const slices *sl = w->sl;
+  mesh *me = &ss->me;
+  double cost = 0;
+  for (int i = 0; i < w->nb; i++) cost += w->b[i].t.cost;
+  ss->cost = unscale(sl, cost, w->deg);
+  ss->area = unscale(sl, mesh_area(me), 2);
+  ss->volume = unscale(sl, mesh_volume(me), 3);
+  for (int i = 0; i < ss->ncomp; i++) {
+    manifold_component *c = &ss->comp[i];
+    c->zmin = unscale(sl, c->zmin, 1), c->zmax = unscale(sl, c->zmax, 1);
+    c->area = unscale(sl, c->area, 2), c->volume = unscale(sl, c->volume, 3);
+  }
+  for (int v = sl->nverts; v < me->nv; v++)
+    me->v[v] = (vec3){unscale(sl, me->v[v].x, 1), unscale(sl, me->v[v].y, 1), unscale(sl, me->v[v].z, 1)};
+  for (int c = 0; c < sl->ncontours; c++) {
+    const slice_contour *x = &sl->c[c];
+    const contour *f = &s->c[x->src];
+    for (int k = 0; k < x->n; k++) {
+      vec2 p = f->pt[(x->rev ? x->from - k + x->n : x->from + k) % x->n];
+      me->v[x->base + k] = (vec3){p.x, p.y, f->z};
+    }
+  }
+  for (int i = 0; i < ss->npairs; i++) {
+    tiling *t = &ss->pairs[i].t;
+    t->qexp += w->deg * sl->scale;
+    t->quantum = ldexp(1, t->qexp);
+    t->cost = ldexp(t->quanta, t->qexp);
+  }
 }
 
 static void work_free(work *w) {
@@ -400,8 +446,9 @@ int stack_tile(const contour_stack *s, const char *name, const stack_options *o,
   *out = NULL;
   int threads = o->threads < 1 ? 1 : o->threads;
   kernel_simd(-1);   /* the kernel's choice made once, before the threads share it */
+  /* The whole stack at one scale, its largest coordinate in [1/2, 1) (stack.h). */
   slices sl;
-  if (slices_build(s, name, threads, &sl, err, errlen) != 0) return -1;
+  if (slices_build_at(s, name, slices_scale_exp(s), threads, &sl, err, errlen) != 0) return -1;
   int ns = sl.nslices;
   if (o->notes && sl.ncontours > ns && sl.reoriented)
     fprintf(o->notes,
@@ -413,6 +460,7 @@ int stack_tile(const contour_stack *s, const char *name, const stack_options *o,
   memset(&w, 0, sizeof w);
   atomic_init(&w.tiled, 0);
   w.sl = &sl, w.o = o, w.name = name, w.threads = threads;
+  w.deg = o->kind == COST_SPAN ? 1 : 2;
   w.js = xcalloc((size_t)ns, sizeof *w.js);
   pool_run(threads, ns - 1, NULL, match_job, &w);
   plan_bands(&w);
@@ -439,6 +487,7 @@ int stack_tile(const contour_stack *s, const char *name, const stack_options *o,
     print_notes(&w);
     assemble(&w, ss);
     ss->ncomp = manifold_components(&ss->me, &ss->comp);
+    to_file_units(&w, s, ss);
   }
   work_free(&w);
   slices_free(&sl);
@@ -460,6 +509,9 @@ const stack_row *stack_rows(const stack_surface *ss) { return ss->rows; }
 const par_pair *stack_pairs(const stack_surface *ss) { return ss->pairs; }
 const net_stats *stack_nets(const stack_surface *ss) { return ss->nets; }
 int stack_ncomponents(const stack_surface *ss) { return ss->ncomp; }
+void stack_totals(const stack_surface *ss, double *cost, double *area, double *volume) {
+  *cost = ss->cost, *area = ss->area, *volume = ss->volume;
+}
 const manifold_component *stack_components(const stack_surface *ss) { return ss->comp; }
 
 void stack_free(stack_surface *ss) {

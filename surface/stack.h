@@ -17,7 +17,22 @@
  * Mesh vertices: the contours' points in canonical order (slices.h), then
  * the bridges' vertices band by band, then the caps' apexes.  Triangles:
  * band by band (the tiles in path order, then the bridges' fill), then the
- * caps.  Every triangle faces outward. */
+ * caps.  Every triangle faces outward.
+ *
+ * Scale (issue 14, item 7).  The whole stack -- x, y and z -- is multiplied
+ * once by the power of two 2^-e that brings its largest coordinate into
+ * [1/2, 1) (slices_build_at), and every step above works there: no product
+ * of coordinates (squared distances choosing bridges, areas, the apex's
+ * centroid, volumes) can overflow, none that matters can underflow, and
+ * distances that depend on the spacing (the bridges' lift, the apex's height,
+ * the slab's thickness) scale with it.  Multiplying by a power of two is exact
+ * (for a value that stays above 2^-1022: the lowest stacks are scaled up),
+ * so a stack scaled by 2^k is worked on in bit-identical form: the same
+ * triangles, junctions, bridges, caps and components; the results come back
+ * in the file's units by one ldexp each (lengths 2^e, areas 2^2e, volumes
+ * 2^3e), so they are exactly 2^k, 2^2k, 2^3k times the unit-scale ones, or
+ * inf or 0 where those lie beyond a double.  Input vertices are the file's
+ * own points.  Messages give the file's values. */
 #ifndef STACK_H
 #define STACK_H
 
@@ -85,6 +100,9 @@ const stack_row *stack_rows(const stack_surface *ss);
 const par_pair *stack_pairs(const stack_surface *ss);
 const net_stats *stack_nets(const stack_surface *ss);
 int stack_ncomponents(const stack_surface *ss);
+/* The whole surface: the bands' costs summed, the mesh's area and volume,
+ * each at the working scale, then in the file's units (see Scale above). */
+void stack_totals(const stack_surface *ss, double *cost, double *area, double *volume);
 const manifold_component *stack_components(const stack_surface *ss);
 
 void stack_free(stack_surface *ss);

@@ -131,8 +131,9 @@ int unpinch_solve(const vec2 *P, int np, double zp, const vec2 *Q, int nq, doubl
   memset(out, 0, sizeof *out);
   out->m = m, out->n = n, out->transposed = tr, out->start = bs;
   out->quantum = weights_quantum(w);
+  out->qexp = weights_qexp(w);
   out->quanta = fin;
-  out->cost = fin * out->quantum;
+  out->cost = ldexp(fin, out->qexp);
   out->col = xmallocarray((size_t)(m + n + 1), sizeof *out->col);
   out->count.nodes = nodes;
   out->count.paths = (uint64_t)m + 1;
