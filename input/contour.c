@@ -188,17 +188,22 @@ static int by_double(const void *a, const void *b) {
  * gaps that are at least 1% of the largest (so jitter of a few contours does
  * not pull it down).  The contours of a slice take one z, the lower median of
  * theirs (an input value, whatever the file order), and the snapping is
- * reported.  Returns the number of slices. */
+ * reported.  The gaps are taken with z scaled by the power of two 2^-e that
+ * brings the largest |z| into [1/2, 1) (exact: subnormal z are scaled up), so
+ * the grouping is the same for a stack scaled by any 2^k and no gap, its
+ * hundredth or tenth underflows or overflows (issue 14, item 7).  Returns the
+ * number of slices. */
 static int group_slices(reader *r, contour *cs, int n) {
   contour **o = xmallocarray((size_t)n, sizeof *o);
-  double *gap = xmallocarray((size_t)n, sizeof *gap);
-  for (int i = 0; i < n; i++) o[i] = &cs[i];
+  double *gap = xmallocarray((size_t)n, sizeof *gap), zmax = 0;
+  for (int i = 0; i < n; i++) o[i] = &cs[i], zmax = fmax(zmax, fabs(cs[i].z));
+  int e = geom_scale_exp(zmax);
   qsort(o, (size_t)n, sizeof *o, by_z);
   int ng = 0;
   double big = 0;
   for (int i = 1; i < n; i++)
     if (o[i]->z > o[i - 1]->z) {
-      double g = o[i]->z - o[i - 1]->z;
+      double g = ldexp(o[i]->z, -e) - ldexp(o[i - 1]->z, -e);
       if (g > big) big = g;
       gap[ng++] = g;
     }
@@ -210,11 +215,11 @@ static int group_slices(reader *r, contour *cs, int n) {
   int nslices = 0, snapped = 0, first = 0;
   double worst = 0;
   for (int i = 0, j; i < n; i = j) {
-    for (j = i + 1; j < n && (o[j]->z == o[j - 1]->z || o[j]->z - o[j - 1]->z < tol); j++) {}
+    for (j = i + 1; j < n && (o[j]->z == o[j - 1]->z || ldexp(o[j]->z, -e) - ldexp(o[j - 1]->z, -e) < tol); j++) {}
     double z = o[i + (j - i - 1) / 2]->z;
     for (int k = i; k < j; k++) {
       if (o[k]->z != z) {
-        double d = fabs(o[k]->z - z);
+        double d = fabs(ldexp(o[k]->z, -e) - ldexp(z, -e));
         if (!snapped || o[k]->line < first) first = o[k]->line;
         if (d > worst) worst = d;
         snapped++;
@@ -227,7 +232,7 @@ static int group_slices(reader *r, contour *cs, int n) {
   if (snapped)
     note(r, first,
          "snapped the z of %d contour%s to their slice's (at most %.3g away; slices are about "
-         "%.3g apart)", snapped, snapped == 1 ? "" : "s", worst, spacing);
+         "%.3g apart)", snapped, snapped == 1 ? "" : "s", ldexp(worst, e), ldexp(spacing, e));
   free(gap);
   free(o);
   return nslices;
