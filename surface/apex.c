@@ -6,6 +6,7 @@
  * hair, and the candidate point is then checked exactly. */
 #include "apex.h"
 
+#include <math.h>
 #include <stdlib.h>
 
 #include "exact.h"
@@ -32,9 +33,13 @@ static vec2 centroid(const vec2 *p, int n) {
   return (vec2){p[0].x + cx / (3 * a), p[0].y + cy / (3 * a)};
 }
 
+/* A finite point that sees all of p (the exact orientations take finite
+ * points only; a centroid of a sliver whose area cancelled may not be). */
+static int sees_all(const vec2 *p, int n, vec2 c) { return isfinite(c.x) && isfinite(c.y) && apex_sees_all(p, n, c); }
+
 int apex_point(const vec2 *p, int n, vec2 *at) {
   vec2 c = centroid(p, n);
-  if (apex_sees_all(p, n, c)) {
+  if (sees_all(p, n, c)) {
     *at = c;
     return 1;
   }
@@ -71,7 +76,7 @@ int apex_point(const vec2 *p, int n, vec2 *at) {
   int ok = 0;
   if (k >= 3) {
     c = centroid(kr, k);
-    if (apex_sees_all(p, n, c)) *at = c, ok = 1;
+    if (sees_all(p, n, c)) *at = c, ok = 1;
   }
   free(kr);
   free(nx);
