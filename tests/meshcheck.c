@@ -305,11 +305,29 @@ static int lookup(const mc_mesh *m, const int *s, const double *p) {
   return -1;
 }
 
+/* The power of two 2^-e that brings the largest |coordinate| of m into
+ * [1/2, 1), and m's coordinates so scaled (exact, unless a coordinate is
+ * over 2^1022 times smaller than the largest).  The checks and measures work
+ * on that copy and give areas and volumes back by 2^2e and 2^3e, so that a
+ * mesh scaled by 2^k is judged as at unit scale, its measures exactly 2^2k
+ * and 2^3k as large (where a double holds them), and nothing under- or
+ * overflows on meshes near 1e-300 or 1e300 (issue 14, item 7). */
+static double *scaled_copy(const mc_mesh *m, int *e) {
+  double big = 0;
+  for (int i = 0; i < 3 * m->nv; i++) big = fmax(big, fabs(m->v[i]));
+  *e = 0;
+  if (big > 0) frexp(big, e);
+  double *v = xmallocarray(3 * (size_t)m->nv + 1, sizeof *v);
+  for (int i = 0; i < 3 * m->nv; i++) v[i] = ldexp(m->v[i], -*e);
+  return v;
+}
+
 void mc_check(const mc_mesh *m, mc_report *r) {
   memset(r, 0, sizeof *r);
-  int nt = m->nt, nv = m->nv;
+  int nt = m->nt, nv = m->nv, scale;
   const int *t = m->t;
-  const double *V = m->v;
+  double *Vs = scaled_copy(m, &scale);
+  const double *V = Vs;
 
   /* Directed edges: each once, and its reverse once. */
   uint64_t *de = xmallocarray((size_t)nt * 3 + 1, sizeof *de);
@@ -367,7 +385,7 @@ void mc_check(const mc_mesh *m, mc_report *r) {
     if (!deg[i]) r->unused++, note(r, "vertex %d is in no triangle", i);
   int *sv = sorted_vertices(m);
   for (int i = 1; i < nv; i++) {
-    sort_v = V;
+    sort_v = m->v;   /* the coordinates as given: exactly equal */
     if (cmp_vidx(&sv[i - 1], &sv[i]) == 0) r->samepoint++, note(r, "vertices %d and %d are at one point", sv[i - 1], sv[i]);
   }
   free(sv);
@@ -477,6 +495,10 @@ void mc_check(const mc_mesh *m, mc_report *r) {
     if (!ok) r->outward = 0, note(r, "component %d faces inward (winding of the others around it %d)", c, r->wind[c]);
   }
   free(rep), free(vc), free(comp), free(parent), free(deg), free(ue), free(de);
+  r->area = ldexp(r->area, 2 * scale);
+  r->volume = ldexp(r->volume, 3 * scale);
+  for (int c = 0; c < nc; c++) r->cvol[c] = ldexp(r->cvol[c], 3 * scale);
+  free(Vs);
 }
 
 void mc_report_free(mc_report *r) {
@@ -534,13 +556,16 @@ void mc_check_input(const mc_mesh *m, const mc_poly *c, int nc, mc_fidelity *f) 
   for (int v = 0; v < m->nv; v++)
     if (!input[v] && on_plane(f, m->v[3 * v + 2])) f->strays++;
 
-  /* Slabs: the flux of (x - cx, y - cy, 0) / 2 through each triangle. */
-  double cx = 0, cy = 0;
-  for (int v = 0; v < m->nv; v++) cx += m->v[3 * v] / m->nv, cy += m->v[3 * v + 1] / m->nv;
+  /* Slabs: the flux of (x - cx, y - cy, 0) / 2 through each triangle, on
+   * the mesh scaled as in mc_check (then back by 2^3e). */
+  int scale;
+  double *vs = scaled_copy(m, &scale), cx = 0, cy = 0;
+  for (int v = 0; v < m->nv; v++) cx += vs[3 * v] / m->nv, cy += vs[3 * v + 1] / m->nv;
   int K = f->nplanes;
   for (int i = 0; i < m->nt; i++) {
-    const double *p[3] = {m->v + 3 * m->t[3 * i], m->v + 3 * m->t[3 * i + 1], m->v + 3 * m->t[3 * i + 2]};
-    double zlo = fmin(p[0][2], fmin(p[1][2], p[2][2])), zhi = fmax(p[0][2], fmax(p[1][2], p[2][2]));
+    const double *p[3] = {vs + 3 * m->t[3 * i], vs + 3 * m->t[3 * i + 1], vs + 3 * m->t[3 * i + 2]};
+    const double *z[3] = {m->v + 3 * m->t[3 * i], m->v + 3 * m->t[3 * i + 1], m->v + 3 * m->t[3 * i + 2]};
+    double zlo = fmin(z[0][2], fmin(z[1][2], z[2][2])), zhi = fmax(z[0][2], fmax(z[1][2], z[2][2]));
     if (zlo == zhi) continue;   /* horizontal: no flux */
     double n[3];
     cross(p[0], p[1], p[2], n);
@@ -559,7 +584,9 @@ void mc_check_input(const mc_mesh *m, const mc_poly *c, int nc, mc_fidelity *f) 
     if (f->planes[lo] <= zlo && lo + 1 < K && zhi <= f->planes[lo + 1]) f->slab[lo] += flux;
     else f->crossing++;
   }
-  free(input), free(ue), free(sv);
+  for (int k = 0; k + 1 < K; k++) f->slab[k] = ldexp(f->slab[k], 3 * scale);
+  f->outside = ldexp(f->outside, 3 * scale);
+  free(vs), free(input), free(ue), free(sv);
 }
 
 void mc_fidelity_free(mc_fidelity *f) {

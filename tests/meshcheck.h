@@ -46,7 +46,11 @@ typedef struct {
   char first[256];      /* the first problem found, "" if none */
 } mc_report;
 
-/* Check m.  Free the report with mc_report_free. */
+/* Check m.  Free the report with mc_report_free.  Scale-free: the geometry
+ * is judged on m scaled by the power of two that brings its largest
+ * coordinate into [1/2, 1), so a mesh scaled by 2^k gets the same verdicts,
+ * its area and volumes exactly 2^2k and 2^3k times as large (inf or 0 beyond
+ * a double); mc_check_input's slab volumes likewise. */
 void mc_check(const mc_mesh *m, mc_report *r);
 void mc_report_free(mc_report *r);
 
