@@ -5,6 +5,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "exact.h"
 #include "xmem.h"
 
 static double cross(vec2 a, vec2 b, vec2 c) {
@@ -38,6 +39,25 @@ static int is_ear(const vec2 *p, const int *next, const int *prev, int ib) {
   return 1;
 }
 
+/* The same test with exact orientations and no tolerance: b strictly convex,
+ * no other vertex (by coordinates) inside or on triangle abc.  A sliver
+ * passes.  Used when a full turn found no ear by is_ear: around a hole a
+ * millionth of its region's size every ear that touches the hole is a
+ * sliver by the relative test, and clipping without any test would overlap
+ * triangles. */
+static int is_ear_exact(const vec2 *p, const int *next, const int *prev, int ib) {
+  int ia = prev[ib], ic = next[ib];
+  vec2 a = p[ia], b = p[ib], c = p[ic];
+  if (exact_orient(a, b, c) <= 0) return 0;
+  for (int j = next[ic]; j != ia; j = next[j]) {
+    vec2 q = p[j];
+    if (same(q, a) || same(q, b) || same(q, c)) continue;
+    if (exact_orient(a, b, q) >= 0 && exact_orient(b, c, q) >= 0 && exact_orient(c, a, q) >= 0)
+      return 0;
+  }
+  return 1;
+}
+
 /* The polygon is clipped as scaled by the power of two that brings its
  * largest coordinate into [1/2, 1): exact, and every test here is
  * homogeneous, so the ears are those of the unscaled polygon wherever its
@@ -53,11 +73,13 @@ int cap_triangulate(const vec2 *p_in, int n, int (*tri)[3]) {
   for (int i = 0; i < n; i++) next[i] = (i + 1) % n, prev[i] = (i + n - 1) % n;
   int left = n, nt = 0, i = 0, miss = 0;
   while (left > 3) {
-    /* After a full turn without an ear (a polygon that is not simple, or
-     * rounding), clip the vertex anyway: convex ones first. */
-    int force = miss >= left, ear = is_ear(p, next, prev, i);
-    if (!ear && force && miss < 2 * left) ear = cross(p[prev[i]], p[i], p[next[i]]) > 0;
-    if (!ear && miss >= 2 * left) ear = 1;
+    /* After a full turn without an ear, the exact test (slivers allowed);
+     * after another (a polygon that is not simple), clip the vertex anyway:
+     * convex ones first, then any. */
+    int ear = is_ear(p, next, prev, i);
+    if (!ear && miss >= left && miss < 2 * left) ear = is_ear_exact(p, next, prev, i);
+    if (!ear && miss >= 2 * left && miss < 3 * left) ear = cross(p[prev[i]], p[i], p[next[i]]) > 0;
+    if (!ear && miss >= 3 * left) ear = 1;
     if (ear) {
       tri[nt][0] = prev[i], tri[nt][1] = i, tri[nt][2] = next[i];
       nt++;
