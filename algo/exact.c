@@ -17,6 +17,7 @@ static void split(double x, int64_t *m, int *e) {
     *m = 0, *e = 0;
     return;
   }
+  if (!isfinite(x)) xpanic("exact_orient: a coordinate is not finite (%g)", x);
   int k;
   double f = frexp(x, &k);          /* x = f 2^k, 0.5 <= |f| < 1: exact, subnormals too */
   *m = (int64_t)ldexp(f, 53);       /* an integer, |m| < 2^53 */
