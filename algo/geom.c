@@ -5,18 +5,12 @@
 
 #include "exact.h"
 
-int geom_scale_exp(double m) {
-  int e = 0;
-  if (m > 0) frexp(m, &e);
-  return e;
-}
-
 double geom_area2_at(const vec2 *p, int n, int e) {
   if (n < 3) return 0;
-  double s = 0, x0 = ldexp(p[0].x, -e), y0 = ldexp(p[0].y, -e);
+  double s = 0, x0 = geom_ldexp(p[0].x, -e), y0 = geom_ldexp(p[0].y, -e);
   for (int i = 1; i + 1 < n; i++) {
-    double ax = ldexp(p[i].x, -e) - x0, ay = ldexp(p[i].y, -e) - y0;
-    double bx = ldexp(p[i + 1].x, -e) - x0, by = ldexp(p[i + 1].y, -e) - y0;
+    double ax = geom_ldexp(p[i].x, -e) - x0, ay = geom_ldexp(p[i].y, -e) - y0;
+    double bx = geom_ldexp(p[i + 1].x, -e) - x0, by = geom_ldexp(p[i + 1].y, -e) - y0;
     s += ax * by - ay * bx;
   }
   return s;

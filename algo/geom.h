@@ -2,6 +2,10 @@
 #ifndef GEOM_H
 #define GEOM_H
 
+#include <math.h>
+#include <stdint.h>
+#include <string.h>
+
 typedef struct { double x, y; } vec2;
 
 /* Twice the signed area of the closed polygon p[0..n-1] (shoelace, about
@@ -17,8 +21,31 @@ double geom_area2(const vec2 *p, int n);
 double geom_area2_at(const vec2 *p, int n, int e);
 
 /* The e for which m 2^-e lies in [1/2, 1) (0 for m = 0): the scale that makes
- * coordinates of magnitude at most m safe to multiply (issue 14, item 7). */
-int geom_scale_exp(double m);
+ * coordinates of magnitude at most m safe to multiply (issue 14, item 7).
+ * Inline, as frexp's, read from the bits where m is a positive normal double:
+ * areas and volumes take it once a triangle. */
+static inline int geom_scale_exp(double m) {
+  uint64_t b;
+  memcpy(&b, &m, sizeof b);
+  int x = (int)(b >> 52);   /* sign and exponent */
+  if (x > 0 && x < 0x7ff) return x - 1022;
+  int e = 0;
+  if (m > 0) frexp(m, &e);
+  return e;
+}
+
+/* ldexp(x, e), the same bits, inline: where 2^e is a normal double, x times
+ * 2^e, which is the exact product rounded once, as ldexp's result is (a
+ * multiplication by a power of two is exact unless it overflows or leaves a
+ * subnormal, and then both round the exact value to nearest).  The scaled
+ * areas and volumes take it for every coordinate. */
+static inline double geom_ldexp(double x, int e) {
+  if (e < -1022 || e > 1023) return ldexp(x, e);
+  uint64_t b = (uint64_t)(e + 1023) << 52;
+  double f;
+  memcpy(&f, &b, sizeof f);
+  return x * f;
+}
 
 /* 1 if every point of p[0..n-1] lies exactly on one line (or all coincide),
  * else 0.  Exact for any finite coordinates (exact.h): no tolerance. */

@@ -78,9 +78,9 @@ int manifold_components(const mesh *me, manifold_component **out) {
     int ci = comp[me->t[t][0]], e = sc[ci];
     manifold_component *x = &c[ci];
     vec3 o = me->v[x->first], a = me->v[me->t[t][0]], b = me->v[me->t[t][1]], d = me->v[me->t[t][2]];
-    a.x = ldexp(a.x, -e) - ldexp(o.x, -e), a.y = ldexp(a.y, -e) - ldexp(o.y, -e), a.z = ldexp(a.z, -e) - ldexp(o.z, -e);
-    b.x = ldexp(b.x, -e) - ldexp(o.x, -e), b.y = ldexp(b.y, -e) - ldexp(o.y, -e), b.z = ldexp(b.z, -e) - ldexp(o.z, -e);
-    d.x = ldexp(d.x, -e) - ldexp(o.x, -e), d.y = ldexp(d.y, -e) - ldexp(o.y, -e), d.z = ldexp(d.z, -e) - ldexp(o.z, -e);
+    a.x = geom_ldexp(a.x, -e) - geom_ldexp(o.x, -e), a.y = geom_ldexp(a.y, -e) - geom_ldexp(o.y, -e), a.z = geom_ldexp(a.z, -e) - geom_ldexp(o.z, -e);
+    b.x = geom_ldexp(b.x, -e) - geom_ldexp(o.x, -e), b.y = geom_ldexp(b.y, -e) - geom_ldexp(o.y, -e), b.z = geom_ldexp(b.z, -e) - geom_ldexp(o.z, -e);
+    d.x = geom_ldexp(d.x, -e) - geom_ldexp(o.x, -e), d.y = geom_ldexp(d.y, -e) - geom_ldexp(o.y, -e), d.z = geom_ldexp(d.z, -e) - geom_ldexp(o.z, -e);
     x->nt++;
     x->area += mesh_tri_area(me, t);
     x->volume += (a.x * (b.y * d.z - b.z * d.y) + a.y * (b.z * d.x - b.x * d.z) + a.z * (b.x * d.y - b.y * d.x)) / 6;

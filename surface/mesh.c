@@ -50,7 +50,7 @@ static double dot(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
  * get inf (their area is beyond a double) where products overflowed into
  * inf - inf = NaN, and subnormal ones no longer lose every bit. */
 static double vmax(vec3 v, double m) { return fmax(m, fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z)))); }
-static vec3 scl(vec3 v, int e) { return (vec3){ldexp(v.x, -e), ldexp(v.y, -e), ldexp(v.z, -e)}; }
+static vec3 scl(vec3 v, int e) { return (vec3){geom_ldexp(v.x, -e), geom_ldexp(v.y, -e), geom_ldexp(v.z, -e)}; }
 
 /* Triangle t's area at scale 2^-e. */
 static double tri_area_at(const mesh *me, int t, int e) {
@@ -104,7 +104,7 @@ void mesh_add_band(mesh *me, const contour_stack *s, int i, const tiling *t, dou
   vec3 o = scl((vec3){lo->pt[0].x, lo->pt[0].y, lo->z}, e);
   double ar = 0, vol = 0;
   for (int k = first; k < me->nt; k++) ar += tri_area_at(me, k, e), vol += tri_volume_at(me, k, o, e);
-  vol += (ldexp(hi->z, -e) - ldexp(lo->z, -e)) * 0.5 * geom_area2_at(hi->pt, hi->n, e) / 3;
+  vol += (geom_ldexp(hi->z, -e) - geom_ldexp(lo->z, -e)) * 0.5 * geom_area2_at(hi->pt, hi->n, e) / 3;
   *area = ldexp(ar, 2 * e);
   *volume = ldexp(vol, 3 * e);
 }

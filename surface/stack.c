@@ -71,7 +71,7 @@ typedef struct {
 /* A value of degree d (1 a length, 2 an area, 3 a volume) at the working
  * scale, in the file's units: one rounding, so exactly 2^(d k) times the
  * unit-scale value for a stack scaled by 2^k (inf or 0 beyond a double). */
-static double unscale(const slices *sl, double v, int d) { return ldexp(v, d * sl->scale); }
+static double unscale(const slices *sl, double v, int d) { return geom_ldexp(v, d * sl->scale); }
 
 static void match_job(void *ud, int k) {
   work *w = ud;
@@ -114,7 +114,7 @@ static vec3 band_vertex(const work *w, const band *b, int id) {
 static vec3 sub3(vec3 a, vec3 b) { return (vec3){a.x - b.x, a.y - b.y, a.z - b.z}; }
 
 static double vmax(vec3 v, double m) { return fmax(m, fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z)))); }
-static vec3 scl(vec3 v, int e) { return (vec3){ldexp(v.x, -e), ldexp(v.y, -e), ldexp(v.z, -e)}; }
+static vec3 scl(vec3 v, int e) { return (vec3){geom_ldexp(v.x, -e), geom_ldexp(v.y, -e), geom_ldexp(v.z, -e)}; }
 
 static double tri_area(vec3 a, vec3 b, vec3 c) {
   vec3 u = sub3(b, a), v = sub3(c, a);
@@ -187,7 +187,7 @@ static void mesh_job(void *ud, int i) {
     volume += tri_vol(p, q, r, o);
   }
   for (int k = 0; k < b->j->nhi; k++) ahi += 0.5 * geom_area2_at(sl->c[b->j->hi[k]].pt, sl->c[b->j->hi[k]].n, e);
-  volume += (ldexp(z1, -e) - ldexp(z0, -e)) * ahi / 3;
+  volume += (geom_ldexp(z1, -e) - geom_ldexp(z0, -e)) * ahi / 3;
   b->area = ldexp(area, 2 * (e + sl->scale));
   b->volume = ldexp(volume, 3 * (e + sl->scale));
 }

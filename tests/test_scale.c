@@ -15,6 +15,7 @@
 #include "par.h"
 #include "rng.h"
 #include "run.h"
+#include "geom.h"
 #include "tiling.h"
 #include "xmem.h"
 
@@ -217,9 +218,36 @@ static void spike(void) {
   }
 }
 
+/* geom_ldexp and geom_scale_exp, the inline forms the areas and volumes use,
+ * against libm's ldexp and frexp bit for bit: every exponent from -1100 to
+ * 1100 on normal, subnormal, huge, signed, zero, infinite and NaN values. */
+static int same_bits(double a, double b) { return memcmp(&a, &b, sizeof a) == 0; }
+
+static void inline_scaling(rng *g) {
+  double xs[64] = {0.0, -0.0, 1.0, -1.0, 0.75, DBL_MIN, -DBL_MIN, DBL_TRUE_MIN, 3 * DBL_TRUE_MIN, DBL_MAX, -DBL_MAX,
+                   DBL_MIN * 0.75, DBL_MIN * (1 - DBL_EPSILON), 1 + DBL_EPSILON, INFINITY, -INFINITY, NAN};
+  int nx = 17;
+  while (nx < 64) {
+    double m = rng_uniform(g) + 0.5, e = floor(rng_uniform(g) * 2140) - 1070;
+    double sign = nx % 2 ? -1 : 1;
+    xs[nx++] = sign * ldexp(m, (int)e);
+  }
+  int bad = 0, badexp = 0;
+  for (int i = 0; i < nx; i++) {
+    for (int e = -1100; e <= 1100; e++)
+      if (!same_bits(geom_ldexp(xs[i], e), ldexp(xs[i], e)) && !(isnan(xs[i]) && isnan(geom_ldexp(xs[i], e)))) bad++;
+    int want = 0;
+    if (xs[i] > 0) frexp(xs[i], &want);
+    if (geom_scale_exp(xs[i]) != want) badexp++;
+  }
+  CHECK(bad == 0, "geom_ldexp differs from ldexp in %d of %d cases", bad, nx * 2201);
+  CHECK(badexp == 0, "geom_scale_exp differs from frexp's exponent for %d of %d values", badexp, nx);
+}
+
 int main(void) {
   rng g;
   rng_seed(&g, 314159);
+  inline_scaling(&g);
   powers_of_two(&g);
   decimal_scales(&g);
   room(&g);
