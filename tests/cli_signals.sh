@@ -24,9 +24,10 @@ bad() { fail=$((fail + 1)); echo "cli_signals: $*"; }
 cd "$T" || exit 1
 
 # A background job of a shell without job control ignores SIGINT and SIGQUIT
-# (and the programs leave an ignored signal ignored): env puts them back.
+# (and the programs leave an ignored signal ignored), and one started by
+# nohup ignores SIGHUP: env puts them back.
 DEF=""
-if env --default-signal=INT true 2>/dev/null; then DEF="env --default-signal=INT,QUIT"; fi
+if env --default-signal=INT true 2>/dev/null; then DEF="env --default-signal=INT,QUIT,HUP"; fi
 
 signum() {   # Linux's numbers (dash's kill -l does not take a name)
   case $1 in HUP) echo 1 ;; INT) echo 2 ;; QUIT) echo 3 ;; PIPE) echo 13 ;; TERM) echo 15 ;;
