@@ -233,37 +233,73 @@ static void plan_bands(work *w) {
     }
 }
 
-/* Every band's tiling: on the pool (the biggest first), or with rc the
- * paper's parallel algorithm, every band in one run of the backend.  0, or
- * -2 when the parallel run failed. */
+/* With rc, every band's tiling by the paper's parallel algorithm, every band
+ * in one run of the backend.  0, or -2 when the parallel run failed. */
 static int tile_bands(work *w, stack_surface *ss, char *err, size_t errlen) {
   const slices *sl = w->sl;
   run_config *rc = w->o->rc;
   int nb = w->nb, res = 0;
-  if (rc) {
-    ss->npairs = nb;
-    ss->pairs = xcalloc((size_t)nb + 1, sizeof *ss->pairs);
-    for (int i = 0; i < nb; i++) {
-      par_pair *p = &ss->pairs[i];
-      p->P = w->b[i].lo.pt, p->np = w->b[i].lo.n, p->zp = sl->z[w->b[i].slice];
-      p->Q = w->b[i].hi.pt, p->nq = w->b[i].hi.n, p->zq = sl->z[w->b[i].slice + 1];
-    }
-    if (rc->machine.topo.kind != TOPO_NONE) rc->pair_net = ss->nets = xcalloc((size_t)nb + 1, sizeof *ss->nets);
-    if (run_pairs(rc, ss->pairs, nb, err, errlen) != 0) res = -2;
-    rc->pair_net = NULL;
-    for (int i = 0; i < nb; i++) {
-      w->b[i].t = ss->pairs[i].t;
-      ss->pairs[i].t.col = NULL;
-    }
-    return res;
+  ss->npairs = nb;
+  ss->pairs = xcalloc((size_t)nb + 1, sizeof *ss->pairs);
+  for (int i = 0; i < nb; i++) {
+    par_pair *p = &ss->pairs[i];
+    p->P = w->b[i].lo.pt, p->np = w->b[i].lo.n, p->zp = sl->z[w->b[i].slice];
+    p->Q = w->b[i].hi.pt, p->nq = w->b[i].hi.n, p->zq = sl->z[w->b[i].slice + 1];
   }
-  double *size = xmallocarray((size_t)nb + 1, sizeof *size);
-  int *order = xmallocarray((size_t)nb + 1, sizeof *order);
-  for (int i = 0; i < nb; i++) size[i] = (double)w->b[i].lo.n * w->b[i].hi.n;
+  if (rc->machine.topo.kind != TOPO_NONE) rc->pair_net = ss->nets = xcalloc((size_t)nb + 1, sizeof *ss->nets);
+  if (run_pairs(rc, ss->pairs, nb, err, errlen) != 0) res = -2;
+  rc->pair_net = NULL;
+  for (int i = 0; i < nb; i++) {
+    w->b[i].t = ss->pairs[i].t;
+    ss->pairs[i].t.col = NULL;
+  }
+  return res;
+}
+
+/* Without rc, a band from start to end in one job (its bridges, its exact
+ * tiling, its triangles), and the caps as jobs of the same pool: no thread
+ * waits at a barrier between the steps while another finishes a long one.
+ * Jobs 0 .. nb-1 are the bands, nb .. nb+nends-1 the caps. */
+static void whole_job(void *ud, int i) {
+  work *w = ud;
+  if (i >= w->nb) {
+    cap_job(ud, i - w->nb);
+    return;
+  }
+  bridge_job(ud, i);
+  if (w->b[i].err) return;
+  tile_job(ud, i);
+  mesh_job(ud, i);
+}
+
+/* The bands biggest first (the product of their sides' points, bridges not
+ * yet counted), then the caps. */
+static void whole_run(work *w) {
+  const slices *sl = w->sl;
+  int nb = w->nb, n = nb + w->nends;
+  double *size = xmallocarray((size_t)n + 1, sizeof *size);
+  int *order = xmallocarray((size_t)n + 1, sizeof *order);
+  for (int i = 0; i < nb; i++) {
+    const junction *j = w->b[i].j;
+    double lo = 0, hi = 0;
+    for (int x = 0; x < j->nlo; x++) lo += sl->c[j->lo[x]].n;
+    for (int x = 0; x < j->nhi; x++) hi += sl->c[j->hi[x]].n;
+    size[i] = lo * hi;
+  }
   pool_order(size, nb, order);
-  pool_run(w->threads, nb, order, tile_job, w);
+  for (int i = nb; i < n; i++) order[i] = i;
+  pool_run(w->threads, n, order, whole_job, w);
   free(size);
   free(order);
+}
+
+/* The first band's error, in band order, into err: -1; else 0. */
+static int first_error(const work *w, char *err, size_t errlen) {
+  for (int i = 0; i < w->nb; i++)
+    if (w->b[i].err) {
+      snprintf(err, errlen, "%s", w->b[i].err);
+      return -1;
+    }
   return 0;
 }
 
@@ -464,26 +500,27 @@ int stack_tile(const contour_stack *s, const char *name, const stack_options *o,
   w.js = xcalloc((size_t)ns, sizeof *w.js);
   pool_run(threads, ns - 1, NULL, match_job, &w);
   plan_bands(&w);
-  pool_run(threads, w.nb, NULL, bridge_job, &w);
+  w.verts = xmallocarray((size_t)sl.nverts + 1, sizeof *w.verts);
+  for (int c = 0; c < sl.ncontours; c++)
+    for (int k = 0; k < sl.c[c].n; k++)
+      w.verts[sl.c[c].base + k] = (vec3){sl.c[c].pt[k].x, sl.c[c].pt[k].y, sl.z[sl.c[c].slice]};
+  if (o->caps) {
+    w.nends = ends_plan(&sl, w.up, w.down, &w.ends);
+    w.caps = xcalloc((size_t)w.nends + 1, sizeof *w.caps);
+  }
   int rc = 0;
-  for (int i = 0; i < w.nb && rc == 0; i++)
-    if (w.b[i].err) {
-      snprintf(err, errlen, "%s", w.b[i].err);
-      rc = -1;
-    }
   stack_surface *ss = xcalloc(1, sizeof *ss);
-  if (rc == 0) rc = tile_bands(&w, ss, err, errlen);
+  if (o->rc) {
+    pool_run(threads, w.nb, NULL, bridge_job, &w);
+    rc = first_error(&w, err, errlen);
+    if (rc == 0) rc = tile_bands(&w, ss, err, errlen);
+    if (rc == 0) pool_run(threads, w.nb, NULL, mesh_job, &w);
+    if (rc == 0) pool_run(threads, w.nends, NULL, cap_job, &w);
+  } else {
+    whole_run(&w);
+    rc = first_error(&w, err, errlen);
+  }
   if (rc == 0) {
-    w.verts = xmallocarray((size_t)sl.nverts + 1, sizeof *w.verts);
-    for (int c = 0; c < sl.ncontours; c++)
-      for (int k = 0; k < sl.c[c].n; k++)
-        w.verts[sl.c[c].base + k] = (vec3){sl.c[c].pt[k].x, sl.c[c].pt[k].y, sl.z[sl.c[c].slice]};
-    pool_run(threads, w.nb, NULL, mesh_job, &w);
-    if (o->caps) {
-      w.nends = ends_plan(&sl, w.up, w.down, &w.ends);
-      w.caps = xcalloc((size_t)w.nends + 1, sizeof *w.caps);
-      pool_run(threads, w.nends, NULL, cap_job, &w);
-    }
     print_notes(&w);
     assemble(&w, ss);
     ss->ncomp = manifold_components(&ss->me, &ss->comp);
