@@ -235,12 +235,12 @@ int bench_calibrate(int argc, char **argv) {
   fprintf(stderr,
           "bench: messages between threads (fastest of %d; %d messages, %d of the big ones):\n"
           "bench:   ping-pong one way: %.4g s (%zu bytes), %.4g s (%zu bytes)\n"
-          "bench:   exchange with two neighbours: a send %.4g s, %.4g s; a receive %.4g s, %.4g s\n"
+          "bench:   exchange with two neighbours (%d ranks in a ring): a send %.4g s, %.4g s; a receive %.4g s, %.4g s\n"
           "bench:   a stream: %.4g s a message\n"
           "bench:   a sleeping receiver, the sender idle %.4g s first: one way %.4g s, the send that wakes it %.4g s\n"
           "bench:   so o_send %.4g s + %.4g s/byte, o_recv %.4g s + %.4g s/byte, L %.4g s, g %.4g s, G %.4g s/byte,\n"
           "bench:      wake %.4g s after the arrival, o_wake %.4g s (beyond a spin of %.4g s)\n",
-          repeat, messages, messages / 20 + 10, mm.pp_small, mm.small, mm.pp_big, mm.big, mm.os_small, mm.os_big,
+          repeat, messages, messages / 20 + 10, mm.pp_small, mm.small, mm.pp_big, mm.big, mm.exchange_ranks, mm.os_small, mm.os_big,
           mm.or_small, mm.or_big, mm.stream, mm.idle, mm.pp_sleep, mm.send_sleep, d.o_send, d.o_send_byte,
           d.o_recv, d.o_recv_byte, d.L, d.g, d.G, d.wake, d.o_wake, spin);
 

@@ -34,6 +34,7 @@ typedef struct {
   double idle;                /* the sleeper benchmark's idle time before a send */
   double pp_sleep;            /* sleeper: one way */
   double send_sleep;          /* sleeper: a send that wakes the receiver */
+  int exchange_ranks;         /* the exchange's ranks: min(4, cores), at least 2 */
 } micro_msgs;
 
 /* Each figure the fastest of `repeat` runs of `rounds` messages (fewer for
