@@ -61,17 +61,7 @@ static const char calibrate_usage[] =
     "[--alloc A] [--block k] [--schedule S] [--min-diag d]   (bench --help: every mode)\n";
 
 /* Bad usage: "bench: why", arg (or NULL) shown after it, the usage line, 2. */
-static int usage(const char *why, const char *arg) {
-  char shown[200];
-  fprintf(stderr, "bench: %s", why);
-  if (arg) {
-    args_show(arg, shown, sizeof shown);
-    fprintf(stderr, " (%s)", shown);
-  }
-  fputc('\n', stderr);
-  fputs(calibrate_usage, stderr);
-  return 2;
-}
+static int usage(const char *why, const char *arg) { return args_usage("bench", calibrate_usage, why, arg); }
 
 typedef struct {
   double time;     /* the master's time for the pair */

@@ -59,17 +59,7 @@ static int read_dsweep(const char *path, judge_sweep *s, char *err, size_t errle
 static const char claims_usage[] =
     "usage: bench --claims SPEEDUP.csv [MIN_DIAG.csv] [--require LIST]   (bench --help: every mode)\n";
 
-static int usage(const char *why, const char *arg) {
-  char shown[200];
-  fprintf(stderr, "bench: %s", why);
-  if (arg) {
-    args_show(arg, shown, sizeof shown);
-    fprintf(stderr, " (%s)", shown);
-  }
-  fputc('\n', stderr);
-  fputs(claims_usage, stderr);
-  return 2;
-}
+static int usage(const char *why, const char *arg) { return args_usage("bench", claims_usage, why, arg); }
 
 int bench_claims(int argc, char **argv) {
   const char *sp = NULL, *md = NULL;

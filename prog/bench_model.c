@@ -30,19 +30,8 @@ static const char model_usage[] =
 static const char glass_usage[] =
     "usage: bench --glass [--slices N] [--points N] [-o FILE]   (bench --help: every mode)\n";
 
-/* Bad usage: "bench: why", the mode's usage line, 2.  arg (or NULL) is
- * shown after why as util/args shows values. */
-static int usage(const char *line, const char *why, const char *arg) {
-  char shown[200];
-  fprintf(stderr, "bench: %s", why);
-  if (arg) {
-    args_show(arg, shown, sizeof shown);
-    fprintf(stderr, " (%s)", shown);
-  }
-  fputc('\n', stderr);
-  fputs(line, stderr);
-  return 2;
-}
+/* Bad usage: "bench: why", arg (or NULL) shown after it, the mode's usage line, 2. */
+static int usage(const char *line, const char *why, const char *arg) { return args_usage("bench", line, why, arg); }
 
 int bench_model(int argc, char **argv) {
   args_list diags = {0}, procs = {0};

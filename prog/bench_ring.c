@@ -46,17 +46,7 @@ static const char switch_usage[] = "usage: bench --switch N   (bench --help: eve
 #define SWITCH_MAX 10000000000ULL
 
 /* Bad usage: "bench: why", arg (or NULL) shown after it, the usage line, 2. */
-static int bad(const char *usage, const char *why, const char *arg) {
-  char shown[200];
-  fprintf(stderr, "bench: %s", why);
-  if (arg) {
-    args_show(arg, shown, sizeof shown);
-    fprintf(stderr, " (%s)", shown);
-  }
-  fputc('\n', stderr);
-  fputs(usage, stderr);
-  return 2;
-}
+static int bad(const char *usage, const char *why, const char *arg) { return args_usage("bench", usage, why, arg); }
 
 /* ---- the ring ----------------------------------------------------------- */
 

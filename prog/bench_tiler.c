@@ -175,17 +175,7 @@ static const char tiler_usage[] =
     "[--seed S] [--repeat R] [--data DIR]   (bench --help: every mode)\n";
 
 /* Bad usage: "bench: why", arg (or NULL) shown after it, the usage line, 2. */
-static int usage(const char *why, const char *arg) {
-  char shown[200];
-  fprintf(stderr, "bench: %s", why);
-  if (arg) {
-    args_show(arg, shown, sizeof shown);
-    fprintf(stderr, " (%s)", shown);
-  }
-  fputc('\n', stderr);
-  fputs(tiler_usage, stderr);
-  return 2;
-}
+static int usage(const char *why, const char *arg) { return args_usage("bench", tiler_usage, why, arg); }
 
 int bench_tiler(int argc, char **argv) {
   int points[16], npoints = 0, naive = -1, repeat = 20;

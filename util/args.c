@@ -17,6 +17,18 @@ static int dig(char c) { return c >= '0' && c <= '9'; }
 
 /* The value as the message shows it: quoted if empty or with blanks,
  * control bytes and non-ASCII escaped as \xNN, cut after 60 bytes. */
+int args_usage(const char *prog, const char *usage, const char *why, const char *arg) {
+  char shown[200];
+  fprintf(stderr, "%s: %s", prog, why);
+  if (arg) {
+    args_show(arg, shown, sizeof shown);
+    fprintf(stderr, " (%s)", shown);
+  }
+  fputc('\n', stderr);
+  fputs(usage, stderr);
+  return 2;
+}
+
 void args_show(const char *val, char *buf, size_t len) {
   size_t k = 0, n = strlen(val);
   int quote = n == 0 || strpbrk(val, " \t") != NULL;

@@ -72,6 +72,11 @@ int args_name(const char *opt, const char *val, const char *what, int dash_ok, c
  * messages about a value. */
 void args_show(const char *val, char *buf, size_t len);
 
+/* Bad usage, the one way every mode says it: "PROG: why" on stderr, arg (or
+ * NULL) shown after it as args_show shows values, then the usage text.
+ * Returns 2, the exit status of bad usage. */
+int args_usage(const char *prog, const char *usage, const char *why, const char *arg);
+
 /* A real number in the shortest form that reads back exactly, with a short
  * exponent ("1e9", "0.000275", "2.5e-5"): how the messages print ranges. */
 void args_fmt_double(double v, char *buf, size_t len);
