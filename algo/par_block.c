@@ -212,14 +212,7 @@ static int exchange(par_slave_ctx *S, const blk *k, int j) {
       if (v0 < n0) v0 = n0;
       if (v1 > n1) v1 = n1;
       if (v0 > v1) continue;
-      mp_status st;
-      TRY(par_slave_recv(S, S->grp[o], PAR_TAG_BOUNDARY, &st));
-      par_rd r = {S->in.b, S->in.b + S->in.len};
-      int tt = par_get_i32(&r), x0 = par_get_i32(&r), x1 = par_get_i32(&r);
-      if (tt != t || x0 != v0 || x1 != v1)
-        xpanic("slave %d: block boundary from %d for t=%d [%d,%d], expected t=%d [%d,%d]", S->rank,
-               S->grp[o], tt, x0, x1, t, v0, v1);
-      par_get_f64s(&r, S->prev + v0, v1 - v0 + 1);
+      if (par_slave_recv_boundary(S, o, t, v0, v1, "block boundary") != 0) return -1;
       recvs++;
     }
   }

@@ -29,6 +29,18 @@ int par_slave_recv(slave *S, int src, int tag, mp_status *st) {
   return rc;
 }
 
+int par_slave_recv_boundary(slave *S, int o, int t, int v0, int v1, const char *what) {
+  mp_status st;
+  TRY(par_slave_recv(S, S->grp[o], PAR_TAG_BOUNDARY, &st));
+  par_rd r = {S->in.b, S->in.b + S->in.len};
+  int tt = par_get_i32(&r), x0 = par_get_i32(&r), x1 = par_get_i32(&r);
+  if (tt != t || x0 != v0 || x1 != v1)
+    xpanic("slave %d: %s from %d for t=%d [%d,%d], expected t=%d [%d,%d]", S->rank, what, S->grp[o], tt, x0,
+           x1, t, v0, v1);
+  par_get_f64s(&r, S->prev + v0, v1 - v0 + 1);
+  return 0;
+}
+
 int par_slave_fail(slave *S, int rc, const char *what) {
   if (!S->arg->failed)
     snprintf(S->arg->err, sizeof S->arg->err, "slave %d: %s: %s", S->rank, what, mp_strerror(rc));
@@ -178,14 +190,7 @@ static int exchange(slave *S, int t, int j) {
         v0 = v0 > n0 ? v0 : n0;
         v1 = v1 < n1 ? v1 : n1;
         if (v0 > v1) continue;
-        mp_status st;
-        TRY(par_slave_recv(S, S->grp[o], PAR_TAG_BOUNDARY, &st));
-        par_rd r = {S->in.b, S->in.b + S->in.len};
-        int tt = par_get_i32(&r), x0 = par_get_i32(&r), x1 = par_get_i32(&r);
-        if (tt != t || x0 != v0 || x1 != v1)
-          xpanic("slave %d: boundary from %d for t=%d [%d,%d], expected t=%d [%d,%d]", S->rank,
-                 S->grp[o], tt, x0, x1, t, v0, v1);
-        par_get_f64s(&r, S->prev + v0, v1 - v0 + 1);
+        if (par_slave_recv_boundary(S, o, t, v0, v1, "boundary") != 0) return -1;
         recvs++;
       }
     }

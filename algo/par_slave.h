@@ -80,6 +80,11 @@ typedef struct par_slave_ctx {
 int par_slave_fail(par_slave_ctx *S, int rc, const char *what);
 /* par_recv into S->in, the wait counted as idle. */
 int par_slave_recv(par_slave_ctx *S, int src, int tag, mp_status *st);
+/* Receive the run-boundary costs of diagonal t, nodes v0..v1, from group
+ * member o into S->prev[v0..v1] (section 5: the costs a slave needs from its
+ * neighbour's run); a message for anything else is a bug (xpanic, naming
+ * `what`).  0, or -1 (par_slave_fail) when the receive fails. */
+int par_slave_recv_boundary(par_slave_ctx *S, int o, int t, int v0, int v1, const char *what);
 int par_slave_pinch(par_slave_ctx *S, int s, const gpath *U, const gpath *L, int j, int t, int a,
                     int *pa, int *pb);
 
