@@ -12,7 +12,16 @@
 
 #include <string.h>
 
-#if defined(__x86_64__) && defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__) &&        \
+/* No clones under a sanitizer: their ifunc resolvers run before its runtime
+ * is set up (a ThreadSanitizer build died at start-up in table_chunk's). */
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define KERNEL_SANITIZED 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+#define KERNEL_SANITIZED 1
+#endif
+#endif
+#if defined(__x86_64__) && defined(__GLIBC__) && !defined(KERNEL_SANITIZED) &&        \
     (defined(__clang__) ? __clang_major__ >= 14 : __GNUC__ >= 8)
 #define CLONES __attribute__((target_clones("avx2", "default")))
 #else
