@@ -726,6 +726,11 @@ static int mpt_probe(mp *self, int src, int tag, mp_status *st) {
   if (rc != MP_OK) return rc;
   found f = look(r, src, tag);
   if (!f.x) return 0;
+  /* What a probe shows has arrived: whatever this rank sends from now on
+   * comes after it, so its clock moves past the message's stamp as a
+   * receive's does (else a message it then sends to itself, or one sent
+   * on in its name, could be taken from any source before this one). */
+  if (f.x->stamp > r->clock) r->clock = f.x->stamp;
   if (st) *st = (mp_status){(int)f.x->src, f.x->tag, (size_t)f.x->len};
   return 1;
 }

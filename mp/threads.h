@@ -23,7 +23,12 @@
  *   two racing senders comes first is the machine's business: it may
  *   change from run to run (mp.h only promises determinism of
  *   deterministic backends; the paper's algorithm gives the same result
- *   whatever the order).
+ *   whatever the order).  A probe that shows a message advances the
+ *   prober's clock as a receive does (what it sends afterwards comes after
+ *   that message).  As in MPI, the message a probe from MP_ANY shows is
+ *   the one a receive by the status's source and tag takes; a receive from
+ *   MP_ANY right after it may take another message that raced it (one
+ *   with a smaller stamp that became visible in between).
  *
  *   Waiting.  A recv that finds nothing spins, watching its channels, for
  *   a bounded time (cfg.spin_ns), and only then sleeps on a condition
