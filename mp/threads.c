@@ -7,11 +7,12 @@
  *
  * Messages.  Each ordered pair of ranks (s, d) that has ever talked has a
  * channel: a queue with one writer (s) and one reader (d), so that a send
- * takes no lock and no read-modify-write instruction.  The queue is a list
+ * takes no lock and no read-modify-write operation.  The queue is a list
  * of 16 KiB chunks of records, each record on cache lines of its own: a
  * header (tag, length, Lamport stamp), then the payload inline (up to
  * INLINE_MAX bytes) or a pointer to a copy.  The writer fills a record and
- * then publishes it with one release store of its size; the reader polls
+ * then publishes it with one store of its size (sequentially consistent:
+ * see Sleeping); the reader polls
  * that word.  A message thus costs the two cores about two cache-line
  * transfers (the record and, now and then, a fresh line of the chunk), and
  * no allocation below INLINE_MAX bytes.  The reader frees a chunk when it
@@ -34,18 +35,25 @@
  * have had up to the races mp.h leaves to the machine.
  *
  * Sleeping.  A rank that sleeps in recv registers under its own mutex
- * (sleeping = 1, what it waits for), issues a full fence and looks at its
- * channels once more; a sender publishes, issues a full fence and reads the
- * receiver's `sleeping`.  One of the two sees the other (the fences forbid
- * both missing), so no message is left unseen beside a sleeper; a sender
- * that sees a sleeper takes its mutex and wakes it if the message matches.
+ * (sleeping = 1, what it waits for, a sequentially consistent store) and
+ * looks at its channels once more; a sender publishes (a sequentially
+ * consistent store of the record's size) and reads the receiver's
+ * `sleeping` (a sequentially consistent load).  One of the two sees the
+ * other (in the single order of those operations, one store comes first),
+ * so no message is left unseen beside a sleeper; a sender that sees a
+ * sleeper takes its mutex and wakes it if the message matches.  Everything
+ * the last look reads to find a message is written and read the same way
+ * (a new channel's slots and count, a jump to a new chunk), so it cannot
+ * read an older value than the sender's store.  No fence: C11 atomics
+ * alone say it, which ThreadSanitizer checks (make tsan); on x86 the
+ * publishing store is one xchg, as the release store and fence were.
  * The machine's lock `g` holds the count of sleeping ranks and the live
  * count; the order is a rank's mutex, then g.
  *
  *   sender                              receiver (rank d)
- *   write the record; release size      look: nothing; spin on the channels
- *   fence                               ... still nothing after spin_ns:
- *   d.sleeping?  no: done               lock d.mu; d.sleeping = 1; fence
+ *   write the record; size (seq_cst)    look: nothing; spin on the channels
+ *                                       ... still nothing after spin_ns:
+ *   d.sleeping?  no: done               lock d.mu; d.sleeping = 1 (seq_cst)
  *     yes: lock d.mu; matches?          look again: found? sleeping = 0, take
  *       d.sleeping = 0                  lock g; sleeping++;
  *       lock g; sleeping--; unlock g      sleeping == live? deadlock; unlock g
@@ -91,7 +99,7 @@ enum {
   REC_TAKEN = 2                   /* flags: received out of order (the reader's mark) */
 };
 
-/* A record.  `size` is 0 until the writer publishes it (release), then the
+/* A record.  `size` is 0 until the writer publishes it (seq_cst), then the
  * record's bytes (a multiple of LINE), or REC_JUMP. */
 typedef struct {
   _Atomic uint32_t size;
@@ -236,8 +244,8 @@ static chan *chan_get(rank *r, rank *d) {
   pthread_mutex_lock(&d->mu);
   int k = atomic_load_explicit(&d->nin, memory_order_relaxed);
   d->inlist[k] = q;
-  atomic_store_explicit(&d->in[q->src], q, memory_order_release);
-  atomic_store_explicit(&d->nin, k + 1, memory_order_release);
+  atomic_store_explicit(&d->in[q->src], q, memory_order_seq_cst);
+  atomic_store_explicit(&d->nin, k + 1, memory_order_seq_cst);
   pthread_mutex_unlock(&d->mu);
   r->out[dst] = q;
   return q;
@@ -250,7 +258,7 @@ static rec *chan_put(chan *q, int src, int tag, uint64_t stamp, const void *buf,
   if (q->woff + need + LINE > CHUNK_DATA) {   /* room for a record and a jump, always */
     chunk *c = chunk_new();
     q->wc->next = c;
-    atomic_store_explicit(&rec_at(q->wc, q->woff)->size, REC_JUMP, memory_order_release);
+    atomic_store_explicit(&rec_at(q->wc, q->woff)->size, REC_JUMP, memory_order_seq_cst);
     q->wc = c;
     q->woff = 0;
   }
@@ -267,7 +275,7 @@ static rec *chan_put(chan *q, int src, int tag, uint64_t stamp, const void *buf,
   } else if (len) {
     memcpy(rec_data(x), buf, len);
   }
-  atomic_store_explicit(&x->size, (uint32_t)need, memory_order_release);
+  atomic_store_explicit(&x->size, (uint32_t)need, memory_order_seq_cst);   /* publish (see Sleeping) */
   q->woff += need;
   return x;
 }
@@ -284,7 +292,7 @@ static rec *chan_find(chan *q, int tag) {
   for (;;) {
     rec *x = rec_at(c, off);
     if (c == q->sc && off == q->soff) {   /* beyond what was seen: published since? */
-      uint32_t sz = atomic_load_explicit(&x->size, memory_order_acquire);
+      uint32_t sz = atomic_load_explicit(&x->size, memory_order_seq_cst);
       if (sz == 0) return NULL;
       if (sz == REC_JUMP) {
         c = q->sc = c->next;
@@ -386,13 +394,13 @@ typedef struct {
 static found look(rank *r, int src, int tag) {
   found f = {NULL, NULL};
   if (src >= 0) {
-    chan *q = atomic_load_explicit(&r->in[src], memory_order_acquire);
+    chan *q = atomic_load_explicit(&r->in[src], memory_order_seq_cst);
     if (q) f.q = q, f.x = chan_find(q, tag);
     return f;
   }
   for (;;) {
     found best = {NULL, NULL};
-    int k = atomic_load_explicit(&r->nin, memory_order_acquire);
+    int k = atomic_load_explicit(&r->nin, memory_order_seq_cst);
     for (int i = 0; i < k; i++) {
       chan *q = r->inlist[i];
       rec *x = chan_find(q, tag);
@@ -471,11 +479,10 @@ static void wake_all(mpt *t) {
 }
 
 /* A message from src with tag has just been published to d: wake d if it
- * sleeps waiting for it.  The fence pairs with the one a sleeper issues
- * between registering and its last look. */
+ * sleeps waiting for it.  This load and the publishing store pair with a
+ * sleeper's store of `sleeping` and its last look (the head comment). */
 static void wake_if_waiting(mpt *t, rank *d, int src, int tag) {
-  atomic_thread_fence(memory_order_seq_cst);
-  if (!atomic_load_explicit(&d->sleeping, memory_order_relaxed)) return;
+  if (!atomic_load_explicit(&d->sleeping, memory_order_seq_cst)) return;
   pthread_mutex_lock(&d->mu);
   if (atomic_load_explicit(&d->sleeping, memory_order_relaxed) && (d->wait_src < 0 || d->wait_src == src) &&
       tag_ok(d->wait_tag, tag)) {
@@ -679,8 +686,7 @@ static int mpt_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status
     pthread_mutex_lock(&r->mu);
     r->wait_src = src;
     r->wait_tag = tag;
-    atomic_store_explicit(&r->sleeping, 1, memory_order_relaxed);
-    atomic_thread_fence(memory_order_seq_cst);
+    atomic_store_explicit(&r->sleeping, 1, memory_order_seq_cst);
     f = look(r, src, tag);
     if (f.x || stopped(t)) {
       atomic_store_explicit(&r->sleeping, 0, memory_order_relaxed);

@@ -10,7 +10,7 @@
  * SEMANTICS (mp.h's contract, as this backend keeps it)
  *
  *   Channels.  Each ordered pair of ranks that talks has a queue with one
- *   writer and one reader (no lock, no read-modify-write instruction on a
+ *   writer and one reader (no lock, no read-modify-write operation on a
  *   send: mp/threads.c), so messages between one pair arrive, and are
  *   received, in send order; a recv from one source takes the first
  *   message of that channel that matches its tag.  A recv from MP_ANY
