@@ -6,6 +6,7 @@
  * once; then the paper's parallel algorithm on threads, equal to the serial
  * solver bit for bit for P = 1..16 on random pairs and on a real stack. */
 #include <math.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -40,7 +41,7 @@ static mpt *run(int n, long spin_ns, mp_main main, void *ud, int *rc, char *err,
 
 typedef struct {
   int rounds;
-  int bad;
+  _Atomic int bad;
 } pingpong;
 
 static void pingpong_main(mp *self, void *ud) {
@@ -80,7 +81,8 @@ static void test_pingpong(void) {
 enum { FIFO_SENDERS = 7, FIFO_MSGS = 400 };
 
 typedef struct {
-  int bad, got[FIFO_SENDERS + 1];
+  _Atomic int bad;
+  int got[FIFO_SENDERS + 1];
   int tagged;   /* messages taken by tag first */
 } fifo;
 
@@ -145,7 +147,8 @@ static void test_fifo(void) {
 enum { CAUSAL_ROUNDS = 300 };
 
 typedef struct {
-  int bad, violations;
+  _Atomic int bad;   /* added to by every rank at once */
+  int violations;
 } causal;
 
 /* Ranks 0, 1, 2; each round the roles rotate (and so which channel a scan
@@ -187,9 +190,12 @@ static void causal_main(mp *self, void *ud) {
 static void test_causal(void) {
   char err[512];
   int rc;
-  causal c = {0, 0};
+  causal c;
+  atomic_init(&c.bad, 0);
+  c.violations = 0;
   mpt *t = run(3, 200000, causal_main, &c, &rc, err, sizeof err);
-  CHECK(rc == 0 && c.bad == 0, "causal order: rc %d (%s), %d bad", rc, err, c.bad);
+  int bad = atomic_load(&c.bad);
+  CHECK(rc == 0 && bad == 0, "causal order: rc %d (%s), %d bad", rc, err, bad);
   CHECK(c.violations == 0, "causal order: a receive from any source took a message before one sent "
                            "earlier in happens-before order, %d times of %d", c.violations, CAUSAL_ROUNDS);
   CHECK(mpt_stats_get(t)->unread == 0, "causal order: unread messages");
@@ -201,7 +207,8 @@ static void test_causal(void) {
 enum { CH_MSGS = 3000 };
 
 typedef struct {
-  int bad, got;
+  _Atomic int bad;   /* added to by both ranks at once */
+  int got;
 } chanstress;
 
 static size_t ch_len(int i) { return (size_t)(i * 37 % 2500); }   /* 0 .. 2499 bytes: both kinds */
@@ -392,7 +399,8 @@ static void test_deadlock(void) {
 /* ==== many ranks: a token ring ============================================ */
 
 typedef struct {
-  int laps, bad;
+  int laps;
+  _Atomic int bad;
   long long token;
 } ring;
 
