@@ -6,6 +6,7 @@
 #   make bench-tile      the tiler's speed and memory figures
 #   make bench-load      the threads (and MPI) backends beside busy loops
 #   make valgrind        the tests under valgrind, without sanitizers
+#   make tsan            the threads backend's tests under ThreadSanitizer
 #   make fuzz            each reader's libFuzzer target for FUZZ_TIME s (clang)
 #   make mpi             ./tile-mpi and ./bench-mpi with mpicc (mpirun -np P ...)
 #   make simgrid         the simulator against SimGrid's SMPI (tests/simgrid.sh)
@@ -167,6 +168,26 @@ valgrind: $(addprefix $(VG)/tests/,$(TESTS))
 	@VALGRIND="valgrind -q --error-exitcode=99 --leak-check=full" \
 	  sh tests/run.sh $(VG) $(addprefix $(VG)/tests/,$(TESTS))
 
+# The threads backend's tests (TSAN_TESTS) built with ThreadSanitizer by
+# $(TSANCC) into $(TSAN) and run; a race report fails the test.  Not part
+# of make check (TSan is 5 to 15 times slower, and another full build).
+# A long hunt: make tsan TILESIM_STRESS=2000 (tests/test_mpstress.c).
+TSANCC    ?= $(CC)
+TSAN       = build/tsan
+TSANFLAGS  = -O1 -g -fsanitize=thread -fno-omit-frame-pointer
+TSAN_TESTS ?= test_mpstress test_threads test_variants test_cpuload
+$(TSAN)/%.o: %.c
+	@mkdir -p $(dir $@)
+	$(TSANCC) $(BASE) $(TSANFLAGS) -Werror -MMD -MP -c $< -o $@
+$(TSAN)/libtilesim.a: $(patsubst %.c,$(TSAN)/%.o,$(LIBSRC))
+	@rm -f $@
+	$(AR) rcs $@ $^
+$(TSAN)/tests/%: $(TSAN)/tests/%.o $(patsubst %.c,$(TSAN)/%.o,$(TESTLIB)) $(TSAN)/libtilesim.a
+	$(TSANCC) $(TSANFLAGS) -o $@ $^ $(LDLIBS)
+tsan: $(addprefix $(TSAN)/tests/,$(TSAN_TESTS))
+	@TSAN_OPTIONS="halt_on_error=1 exitcode=66 second_deadlock_stack=1 $${TSAN_OPTIONS:-}" \
+	  sh tests/run.sh $(TSAN) $(addprefix $(TSAN)/tests/,$(TSAN_TESTS))
+
 # Fuzzing (clang's libFuzzer): one target per reader, tests/fuzz/fuzz_*.c,
 # over tests/pipeline.c (what ./tile does, with invariants that abort), each
 # run FUZZ_TIME seconds on a corpus under build/fuzz seeded from
@@ -307,7 +328,7 @@ install-files:
 clean:
 	rm -rf build $(PROGS) $(addsuffix -mpi,$(MPIPROGS))
 
-.PHONY: all check valgrind bench bench-tile bench-load install install-files clean mpi mpi-bins smpi-bins simgrid fuzz fuzz-bins \
+.PHONY: all check valgrind tsan bench bench-tile bench-load install install-files clean mpi mpi-bins smpi-bins simgrid fuzz fuzz-bins \
         mpi-probe
 .SECONDARY:
 
