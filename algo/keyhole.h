@@ -1,0 +1,54 @@
+/* keyhole.h -- an exact repair of keyhole contours: one contour that runs out
+ * along a zero-width channel, around a hole (or another piece), and back.
+ *
+ * Treatment planning systems (MIM, Eclipse) export a region with holes or
+ * several pieces as one such contour; SlicerRT's FixKeyholes splits them
+ * with a tolerance (design note shared/design/contours.md, step 3).  Here
+ * everything is exact: coordinates are compared bit for bit and collinearity
+ * is exact_orient's (exact.h), so a channel whose two sides are 1e-6 apart is
+ * no keyhole but a valid simple polygon, tiled as the narrow channel it is.
+ *
+ * The rule, on a polygon p[0..n-1] (consecutive points distinct):
+ *   1. Where two edges run collinear and in opposite directions and overlap,
+ *      each gets the other's endpoints that lie strictly inside it, until no
+ *      such pair is left (one side of a channel may have extra vertices).
+ *   2. The closed walk is split, recursively, at every pair of non-adjacent
+ *      vertices with equal coordinates into loops (a stack walk: when a point
+ *      comes back, the walk since its last visit is a loop).
+ *   3. Loops whose points are all collinear (exact) are the channel walked
+ *      out and back: dropped.  Each must join two points that other loops
+ *      share (a channel between two loops, not a spike hanging off one).
+ *   4. What remains must be at least two loops, each simple, no two touching
+ *      or crossing (crossing_find, exact).
+ * Anything else -- a figure eight sharing one vertex, a vertex on another
+ * edge, a proper crossing, a spike walked out and back, an edge walked over
+ * twice in one direction -- is no keyhole: keyhole_repair returns 0 and the
+ * caller refuses the contour as before.  Whether a loop is a hole or a piece
+ * is left to nesting (surface/slices.h), never to its winding. */
+#ifndef KEYHOLE_H
+#define KEYHOLE_H
+
+#include "geom.h"
+
+typedef struct {
+  int nloops;      /* loops kept, >= 2 */
+  int *first;      /* nloops + 1: loop k is pt[first[k] .. first[k+1]-1] */
+  vec2 *pt;        /* their points, each loop in the contour's direction */
+  int *src;        /* for each point: the input point with those coordinates
+                      that comes first in p (an index into p) */
+  int channels;    /* channels dropped (connected out-and-back parts) */
+  double length;   /* their total length (each counted once, not twice) */
+  vec2 at;         /* a point where the first channel left a kept loop */
+} keyhole_split;
+
+/* Repair the polygon p[0..n-1] (n >= 3, consecutive points distinct, p[n-1]
+ * != p[0], finite) by the rule above: 1 and *out when it is a keyhole
+ * contour (free with keyhole_free), else 0 and nothing allocated.  Call it
+ * on a contour that crossing_find refused: a simple polygon returns 0.
+ * O(N log N + K) for N points and K pairs of edges whose boxes overlap (per
+ * round of step 1; rounds are few). */
+int keyhole_repair(const vec2 *p, int n, keyhole_split *out);
+
+void keyhole_free(keyhole_split *k);
+
+#endif
