@@ -235,7 +235,7 @@ int keyhole_repair(const vec2 *p, int n, keyhole_split *out) {
     int m = lstart[l + 1] - lstart[l], shared = 0;
     for (int k = 0; k < m; k++) shared += cnt[gid[v[k]]] >= 2;
     if (shared < 2) ok = 0;   /* a spike: it hangs off one point */
-    if (first_flat < 0) first_flat = l;
+    if (first_flat < 0 && (onloop[gid[v[0]]] || onloop[gid[v[1]]])) first_flat = l;
     /* Its length: the collinear loop's extent (walked out and back). */
     int lo = 0, hi = 0;
     for (int k = 1; k < m; k++) {
@@ -286,7 +286,8 @@ int keyhole_repair(const vec2 *p, int n, keyhole_split *out) {
   if (ok) {
     for (int l = 0; l < nl; l++) out->channels += flat[l] && find_root(up, l) == l;
     out->length = length;
-    out->at = P.pt[loopidx[lstart[first_flat]]];
+    int a = loopidx[lstart[first_flat]], b = loopidx[lstart[first_flat] + 1];
+    out->at = P.pt[onloop[gid[a]] ? a : b];
   } else {
     keyhole_free(out);
   }

@@ -38,7 +38,8 @@ typedef struct {
                       that comes first in p (an index into p) */
   int channels;    /* channels dropped (connected out-and-back parts) */
   double length;   /* their total length (each counted once, not twice) */
-  vec2 at;         /* a point where the first channel left a kept loop */
+  vec2 at;         /* where a channel meets a loop (the first such channel
+                      piece the walk dropped) */
 } keyhole_split;
 
 /* Repair the polygon p[0..n-1] (n >= 3, consecutive points distinct, p[n-1]

@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "crossing.h"
+#include "keyhole.h"
 #include "xmem.h"
 
 typedef struct {
@@ -121,10 +122,8 @@ static void raw_push(raw *c, vec2 p, int line) {
 /* A contour that crosses, touches or runs back over itself (issue 14, item
  * 10): the first offending pair of segments the sweep finds (algo/crossing.h,
  * exact, O(n log n)), each named by the lines of its two points. */
-static int not_simple(reader *r, const raw *c, int k) {
-  crossing_poly poly = {c->pt, k};
-  crossing_hit h;
-  if (!crossing_find(&poly, 1, &h)) return 0;
+static int refuse_crossing(reader *r, const raw *c, int k, const crossing_hit *hp) {
+  crossing_hit h = *hp;
   int a = h.seg[0], b = h.seg[1];
   return fail(r, c->line,
               "the contour crosses itself: the segment from line %d to line %d %s the segment "
@@ -133,8 +132,50 @@ static int not_simple(reader *r, const raw *c, int k) {
               c->ptline[(b + 1) % k], h.at.x, h.at.y);
 }
 
-/* Repair and check one contour; on success move it into *out. */
-static int finish(reader *r, raw *c, contour *out, int *reversed) {
+static contour *grow(contour **cs, int *ncs, int *capcs) {
+  if (*ncs == *capcs) {
+    *capcs = *capcs ? 2 * *capcs : 16;
+    *cs = xreallocarray(*cs, (size_t)*capcs, sizeof **cs);
+  }
+  return &(*cs)[(*ncs)++];
+}
+
+static void take(contour *out, vec2 *pt, int k, double z, int line, int *reversed) {
+  out->cw = geom_orientation(pt, k) < 0;
+  if (out->cw) {
+    geom_reverse(pt, k);
+    (*reversed)++;
+  }
+  out->slice = 0;
+  out->z = z;
+  out->n = k;
+  out->pt = pt;
+  out->line = line;
+}
+
+/* A keyhole contour (algo/keyhole.h) becomes its loops, each named by the
+ * line of its first point in the file; a note says what was dropped. */
+static void split_keyhole(reader *r, const raw *c, const keyhole_split *ks, contour **cs, int *ncs,
+                          int *capcs, int *reversed) {
+  for (int l = 0; l < ks->nloops; l++) {
+    int f = ks->first[l], m = ks->first[l + 1] - f, line = c->ptline[ks->src[f]];
+    for (int j = 1; j < m; j++)
+      if (c->ptline[ks->src[f + j]] < line) line = c->ptline[ks->src[f + j]];
+    vec2 *pt = xmallocarray((size_t)m, sizeof *pt);
+    memcpy(pt, ks->pt + f, (size_t)m * sizeof *pt);
+    take(grow(cs, ncs, capcs), pt, m, c->z, line, reversed);
+  }
+  if (ks->channels == 1)
+    note(r, c->line, "keyhole: the contour split into %d loops at (%.17g %.17g), a channel of length %.17g dropped",
+         ks->nloops, ks->at.x, ks->at.y, ks->length);
+  else
+    note(r, c->line, "keyhole: the contour split into %d loops at (%.17g %.17g) and elsewhere, %d channels of total "
+         "length %.17g dropped", ks->nloops, ks->at.x, ks->at.y, ks->channels, ks->length);
+}
+
+/* Repair and check one contour; on success append it (or, a keyhole
+ * contour, its loops) to *cs. */
+static int finish(reader *r, raw *c, int flags, contour **cs, int *ncs, int *capcs, int *reversed) {
   int n = c->have, k = 0;
   /* Consecutive duplicates, then a repeated closing point. */
   for (int i = 0; i < n; i++) {
@@ -156,17 +197,17 @@ static int finish(reader *r, raw *c, contour *out, int *reversed) {
                 k, k == 1 ? "" : "s", c->z);
   if (geom_collinear(c->pt, k))
     return fail(r, c->line, "all %d points of the contour are collinear (z=%.17g)", k, c->z);
-  if (not_simple(r, c, k) != 0) return -1;
-  out->cw = geom_orientation(c->pt, k) < 0;
-  if (out->cw) {
-    geom_reverse(c->pt, k);
-    (*reversed)++;
+  crossing_poly poly = {c->pt, k};
+  crossing_hit h;
+  if (crossing_find(&poly, 1, &h)) {
+    keyhole_split ks;
+    if ((flags & CONTOUR_NO_KEYHOLES) || !keyhole_repair(c->pt, k, &ks)) return refuse_crossing(r, c, k, &h);
+    split_keyhole(r, c, &ks, cs, ncs, capcs, reversed);
+    keyhole_free(&ks);
+    free(c->pt);
+  } else {
+    take(grow(cs, ncs, capcs), xreallocarray(c->pt, (size_t)k, sizeof *c->pt), k, c->z, c->line, reversed);
   }
-  out->slice = 0;
-  out->z = c->z;
-  out->n = k;
-  out->pt = xreallocarray(c->pt, (size_t)k, sizeof *c->pt);
-  out->line = c->line;
   free(c->ptline);
   memset(c, 0, sizeof *c);
   return 0;
@@ -271,6 +312,12 @@ static void free_contours(contour *cs, int n) {
 int contour_parse(const char *text, size_t len, const char *name,
                   contour_stack *out, FILE *notes, const char *prefix,
                   char *err, size_t errlen) {
+  return contour_parse_flags(text, len, name, 0, out, notes, prefix, err, errlen);
+}
+
+int contour_parse_flags(const char *text, size_t len, const char *name, int flags,
+                        contour_stack *out, FILE *notes, const char *prefix,
+                        char *err, size_t errlen) {
   /* Notes are held back and shown only if the file is accepted: a rejected
    * file gets its one-line error and nothing else. */
   char *held = NULL;
@@ -279,7 +326,7 @@ int contour_parse(const char *text, size_t len, const char *name,
   reader rd = {name, err, errlen, hold, prefix ? prefix : "tilesim"};
   reader *r = &rd;
   contour *cs = NULL;
-  int ncs = 0, capcs = 0, line = 0, reversed = 0, rc = -1, last_want = 0;
+  int ncs = 0, capcs = 0, line = 0, reversed = 0, rc = -1, last_want = 0, last_line = 0;
   raw cur = {0};
   int open = 0;   /* reading the points of `cur` */
   char vb[200];
@@ -323,7 +370,7 @@ int contour_parse(const char *text, size_t len, const char *name,
     if (!open && !is_header) {
       if (ncs > 0)
         fail(r, line, "more point lines than the %d announced at line %d (%s)",
-             last_want, cs[ncs - 1].line, shown(s, sl, vb, sizeof vb));
+             last_want, last_line, shown(s, sl, vb, sizeof vb));
       else
         fail(r, line, "expected a header 'C <points> <z>' (%s)", shown(s, sl, vb, sizeof vb));
       goto done;
@@ -376,13 +423,9 @@ int contour_parse(const char *text, size_t len, const char *name,
     }
     raw_push(&cur, p, line);
     if (cur.have == cur.want) {
-      if (ncs == capcs) {
-        capcs = capcs ? 2 * capcs : 16;
-        cs = xreallocarray(cs, (size_t)capcs, sizeof *cs);
-      }
       last_want = cur.want;
-      if (finish(r, &cur, &cs[ncs], &reversed) != 0) goto done;
-      ncs++;
+      last_line = cur.line;
+      if (finish(r, &cur, flags, &cs, &ncs, &capcs, &reversed) != 0) goto done;
       open = 0;
     }
   }
@@ -429,6 +472,11 @@ done:
 
 int contour_read(const char *path, contour_stack *out, FILE *notes,
                  const char *prefix, char *err, size_t errlen) {
+  return contour_read_flags(path, 0, out, notes, prefix, err, errlen);
+}
+
+int contour_read_flags(const char *path, int flags, contour_stack *out, FILE *notes,
+                       const char *prefix, char *err, size_t errlen) {
   int stdin_ = strcmp(path, "-") == 0;
   FILE *f = stdin_ ? stdin : fopen(path, "rb");
   memset(out, 0, sizeof *out);
@@ -452,7 +500,7 @@ int contour_read(const char *path, contour_stack *out, FILE *notes,
     free(buf);
     return -1;
   }
-  int rc = contour_parse(buf, len, stdin_ ? "<stdin>" : path, out, notes, prefix, err, errlen);
+  int rc = contour_parse_flags(buf, len, stdin_ ? "<stdin>" : path, flags, out, notes, prefix, err, errlen);
   free(buf);
   return rc;
 }

@@ -23,7 +23,8 @@ typedef struct {
   double z;       /* the contour's plane */
   int n;          /* points, after repair (>= 3, not all collinear) */
   vec2 *pt;       /* counter-clockwise seen from +z; closing point not repeated */
-  int line;       /* line of its "C" header in the file */
+  int line;       /* line of its "C" header in the file (a keyhole's loop:
+                     of its first point) */
   int slice;      /* its slice, 0 .. nslices-1 in increasing z */
   int cw;         /* 1 if the file gave it clockwise (it was reversed) */
 } contour;
@@ -38,7 +39,7 @@ enum { CONTOUR_MAX_LINE = 4096 };        /* longer lines are rejected */
 enum { CONTOUR_MAX_POINTS = 10000000 };  /* per contour */
 
 /* Read the stack in `path` ("-" is standard input).  Repairs (a repeated
- * closing point, consecutive duplicate points, clockwise contours when every
+ * closing point, consecutive duplicate points, keyholes (below), clockwise contours when every
  * slice has one contour, z values snapped to their slice) are reported as lines "PREFIX: FILE:LINE: ..." on `notes` (NULL: silent).
  * Returns 0, or -1 with "FILE:LINE: what is wrong (value)" in err; nothing
  * is allocated on failure.  The caller frees with contour_stack_free. */
@@ -49,6 +50,22 @@ int contour_read(const char *path, contour_stack *out, FILE *notes,
 int contour_parse(const char *text, size_t len, const char *name,
                   contour_stack *out, FILE *notes, const char *prefix,
                   char *err, size_t errlen);
+
+/* Keyholes.  A contour that crosses, touches or runs back over itself is
+ * refused ("the contour crosses itself: the segment from line A to line B
+ * crosses|touches|overlaps the segment from line C to line D (X Y)") unless
+ * it is a keyhole contour (algo/keyhole.h: loops joined by zero-width
+ * channels walked out and back, exactly): then it becomes its loops, each a
+ * contour of the slice whose `line` is the line of its first point in the
+ * file, and a note "keyhole: the contour split into K loops at (X Y), a
+ * channel of length L dropped" names its header line.  The *_flags readers
+ * take CONTOUR_NO_KEYHOLES to refuse those too; the others repair them. */
+enum { CONTOUR_NO_KEYHOLES = 1 };
+int contour_read_flags(const char *path, int flags, contour_stack *out, FILE *notes,
+                       const char *prefix, char *err, size_t errlen);
+int contour_parse_flags(const char *text, size_t len, const char *name, int flags,
+                        contour_stack *out, FILE *notes, const char *prefix,
+                        char *err, size_t errlen);
 
 /* Write a stack in the same format (%.17g: reading it back is exact).
  * Returns 0 or -1 on a write error. */

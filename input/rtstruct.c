@@ -881,7 +881,7 @@ int rtstruct_roi_check(const rtstruct *s, int ri, char *err, size_t errlen) {
   return -1;
 }
 
-int rtstruct_roi_stack(const rtstruct *s, int ri, int pairs, contour_stack *out, FILE *notes,
+int rtstruct_roi_stack(const rtstruct *s, int ri, int flags, contour_stack *out, FILE *notes,
                        const char *prefix, char *err, size_t errlen) {
   const rtstruct_roi *roi = &s->roi[ri];
   memset(out, 0, sizeof *out);
@@ -891,8 +891,9 @@ int rtstruct_roi_stack(const rtstruct *s, int ri, int pairs, contour_stack *out,
   char *held = NULL, e2[1024];
   size_t heldlen = 0;
   FILE *hold = notes ? open_memstream(&held, &heldlen) : NULL;
-  int rc = contour_parse(text_, len, sentinel, out, hold, prefix, e2, sizeof e2);
-  if (rc == 0 && pairs && contour_stack_pairs(out, sentinel, e2, sizeof e2) != 0) {
+  int rc = contour_parse_flags(text_, len, sentinel, flags & RTSTRUCT_NO_KEYHOLES ? CONTOUR_NO_KEYHOLES : 0, out,
+                               hold, prefix, e2, sizeof e2);
+  if (rc == 0 && (flags & RTSTRUCT_PAIRS) && contour_stack_pairs(out, sentinel, e2, sizeof e2) != 0) {
     contour_stack_free(out);
     rc = -1;
   }

@@ -89,12 +89,15 @@ int rtstruct_roi_check(const rtstruct *s, int roi, char *err, size_t errlen);
  * the caller frees.  The ROI must have no error. */
 char *rtstruct_roi_text(const rtstruct *s, int roi, size_t *len);
 
-/* The ROI's stack, read from that text by contour_parse (and, when pairs !=
- * 0, checked by contour_stack_pairs, as ./tile checks a stack that it tiles
- * contour by contour): 0, or -1 with the refusal, rewritten to name the
- * file, ROI, contour item and byte.  Notes go to `notes` as contour_read's
- * do, rewritten alike, and only when the stack is accepted. */
-int rtstruct_roi_stack(const rtstruct *s, int roi, int pairs, contour_stack *out, FILE *notes,
+/* The ROI's stack, read from that text by contour_parse (keyhole contours
+ * split into their loops unless flags has RTSTRUCT_NO_KEYHOLES; and, with
+ * RTSTRUCT_PAIRS, checked by contour_stack_pairs, as ./tile checks a stack
+ * that it tiles contour by contour): 0, or -1 with the refusal, rewritten to
+ * name the file, ROI, contour item and byte.  Notes go to `notes` as
+ * contour_read's do, rewritten alike ("contour item K, point J" for a line),
+ * and only when the stack is accepted. */
+enum { RTSTRUCT_PAIRS = 1, RTSTRUCT_NO_KEYHOLES = 2 };
+int rtstruct_roi_stack(const rtstruct *s, int roi, int flags, contour_stack *out, FILE *notes,
                        const char *prefix, char *err, size_t errlen);
 
 /* A message about the ROI's stack text, which names it `name` ("NAME:LINE:

@@ -67,6 +67,9 @@ static void usage(FILE *f) {
         "                     contour (flat elsewhere)\n"
         "  -j N               tile the bands on N threads (default: the machine's cores);\n"
         "                     the output is the same on any N\n"
+        "  --no-keyholes      refuse a contour that touches itself instead of splitting\n"
+        "                     a keyhole contour (loops joined by channels walked out\n"
+        "                     and back, exactly) into its loops\n"
         "  -q, --quiet        no notes about repaired input, no progress, on stderr\n"
         "  -h, --help         this text\n"
         "\n"
@@ -235,7 +238,7 @@ static int tile_stack(void *ud, const contour_stack *s, const char *name, const 
 
 static int tile_main(int argc, char **argv) {
   const char *in = NULL, *out = NULL;
-  int backend_given = 0, style_given = 0, print_place = 0, place_given = 0, limit_given = 0;
+  int backend_given = 0, style_given = 0, print_place = 0, place_given = 0, limit_given = 0, no_keyholes = 0;
   tile_opts o = {0, 0, pool_cores(), 0, 0, NULL, {0}, TRACE_LIMIT_DEFAULT, NULL, 0};
   tile_dicom_opts dopt;
   memset(&dopt, 0, sizeof dopt);
@@ -252,6 +255,8 @@ static int tile_main(int argc, char **argv) {
       o.caps = 1;
     } else if (strcmp(a, "-q") == 0 || strcmp(a, "--quiet") == 0) {
       o.quiet = 1;
+    } else if (strcmp(a, "--no-keyholes") == 0) {
+      no_keyholes = 1;
     } else if (strcmp(a, "--print-place") == 0) {
       print_place = 1;
     } else if ((k = tile_dicom_option(&dopt, a, v, err, sizeof err)) != 0) {   /* DICOM input */
@@ -340,7 +345,7 @@ static int tile_main(int argc, char **argv) {
 
   /* A DICOM RT structure set (by its content): tile_dicom.c. */
   if (tile_dicom_sniff(in)) {
-    tile_dicom_env env = {tile_stack, &o, bad_usage, out, o.quiet, o.trace != NULL, 0 /* as below */};
+    tile_dicom_env env = {tile_stack, &o, bad_usage, out, o.quiet, o.trace != NULL, 0 /* as below */, no_keyholes};
     return tile_dicom_main(&dopt, in, &env);
   }
   if (tile_dicom_given(&dopt)) {
@@ -360,7 +365,7 @@ static int tile_main(int argc, char **argv) {
   size_t heldlen = 0;
   FILE *notes = o.quiet ? NULL : open_memstream(&held, &heldlen);
   const char *name = strcmp(in, "-") == 0 ? "<stdin>" : in;
-  int bad = contour_read(in, &s, notes, "tile", err, sizeof err) != 0;
+  int bad = contour_read_flags(in, no_keyholes ? CONTOUR_NO_KEYHOLES : 0, &s, notes, "tile", err, sizeof err) != 0;
   if (notes) fclose(notes);
   if (bad) {
     fprintf(stderr, "tile: %s\n", err);

@@ -291,7 +291,7 @@ int tile_dicom_main(const tile_dicom_opts *o, const char *in, const tile_dicom_e
     const rtstruct_roi *r = &s.roi[pick[i]];
     int bad = rtstruct_roi_check(&s, pick[i], err, sizeof err);
     if (!bad && tile)
-      bad = rtstruct_roi_stack(&s, pick[i], env->pairs, &st[kept], notes, "tile", err, sizeof err);
+      bad = rtstruct_roi_stack(&s, pick[i], (env->pairs ? RTSTRUCT_PAIRS : 0) | (env->no_keyholes ? RTSTRUCT_NO_KEYHOLES : 0), &st[kept], notes, "tile", err, sizeof err);
     if (bad) {
       if (!all) {
         fprintf(stderr, "tile: %s\n", err);

@@ -46,6 +46,7 @@ typedef struct {
   int quiet;           /* -q */
   int trace;           /* --trace given: one ROI only */
   int pairs;           /* check stacks with contour_stack_pairs, as tile.c does */
+  int no_keyholes;     /* --no-keyholes: refuse keyhole contours (contour.h) */
 } tile_dicom_env;
 
 /* 1 if the file at path is DICOM by its content (not "-", not unreadable). */

@@ -546,11 +546,20 @@ void mc_check_input(const mc_mesh *m, const mc_poly *c, int nc, mc_fidelity *f) 
       if (id[j] < 0) f->absent++;
       else input[id[j]] = 1;
     }
+    /* A segment whose reverse is a segment of the same contour too is a
+     * keyhole's channel, walked out and back: it need not be an edge. */
+    uint64_t *dk = xmallocarray((size_t)n + 1, sizeof *dk);
+    int nd = 0;
+    for (int j = 0; j < n; j++)
+      if (id[j] >= 0 && id[(j + 1) % n] >= 0) dk[nd++] = key(id[j], id[(j + 1) % n]);
+    qsort(dk, (size_t)nd, sizeof *dk, cmp_u64);
     for (int j = 0; j < n; j++) {
       int a = id[j], b = id[(j + 1) % n];
       f->segments++;
-      if (a < 0 || b < 0 || count_of(ue, 3 * m->nt, a < b ? key(a, b) : key(b, a)) == 0) f->missing++;
+      if (a >= 0 && b >= 0 && has(dk, nd, key(b, a))) f->channel++;
+      else if (a < 0 || b < 0 || count_of(ue, 3 * m->nt, a < b ? key(a, b) : key(b, a)) == 0) f->missing++;
     }
+    free(dk);
     free(id);
   }
   for (int v = 0; v < m->nv; v++)

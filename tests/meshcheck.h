@@ -59,6 +59,9 @@ typedef struct { int n; double z; const double *x, *y; } mc_poly;
 
 typedef struct {
   int segments, missing;   /* input segments, and those that are not a mesh edge */
+  int channel;             /* segments whose reverse is a segment of their contour
+                              too (a keyhole's channel walked out and back): not
+                              required to be edges, not in missing */
   int points, absent;      /* input points, and those that are not a mesh vertex
                               (coordinates compared exactly, bit for bit) */
   int strays;              /* mesh vertices on an input plane that are not input points */

@@ -4,15 +4,23 @@
  * channels with extra collinear points on one side, the other or both,
  * from every start point and in both windings; and contours that are no
  * keyhole (a figure eight, a spike, a vertex on an edge, a crossing, a
- * channel across another loop, channels that cross) refused. */
+ * channel across another loop, channels that cross) refused.  Through the
+ * reader and the stack (surface/stack.h): a stack of keyhole contours, any
+ * start, either winding, gives byte-identical meshes and rows to the same
+ * region given as separate contours; the reader's note, lines, refusals,
+ * and CONTOUR_NO_KEYHOLES. */
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "check.h"
+#include "contour.h"
 #include "exact.h"
 #include "keyhole.h"
+#include "mesh.h"
+#include "stack.h"
 #include "xmem.h"
 
 /* ------------------------------------------------ the keyhole generator -- */
@@ -247,8 +255,154 @@ static void refused(void) {
   }
 }
 
+/* ------------------------------------------- through reader and stack -- */
+
+typedef struct {
+  char *buf;
+  size_t len, cap;
+} text;
+
+static void put(text *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void put(text *t, const char *fmt, ...) {
+  va_list ap;
+  char line[256];
+  va_start(ap, fmt);
+  int k = vsnprintf(line, sizeof line, fmt, ap);
+  va_end(ap);
+  if (t->len + (size_t)k + 1 > t->cap) {
+    t->cap = 2 * (t->len + (size_t)k + 1);
+    t->buf = xrealloc(t->buf, t->cap);
+  }
+  memcpy(t->buf + t->len, line, (size_t)k + 1);
+  t->len += (size_t)k;
+}
+
+static void put_contour(text *t, const vec2 *p, int n, double z, int start, int rev) {
+  put(t, "C %d %g\n", n, z);
+  for (int i = 0; i < n; i++) {
+    vec2 q = p[rev ? ((start - i) % n + n) % n : (start + i) % n];
+    put(t, "%.17g %.17g\n", q.x, q.y);
+  }
+}
+
+/* Tile a stack text with flat caps: 0 and *ss, or -1 with the message. */
+static int tile_text(const text *t, int flags, stack_surface **ss, char *err, size_t errlen, char *notes,
+                     size_t nlen) {
+  contour_stack s;
+  FILE *f = fmemopen(notes, nlen, "w");
+  int rc = contour_parse_flags(t->buf, t->len, "k.contours", flags, &s, f, "tile", err, errlen);
+  fclose(f);
+  if (rc != 0) return -1;
+  stack_options o = {COST_AREA, 1, 0, 1, NULL, NULL, "test", NULL, NULL};
+  rc = stack_tile(&s, "k.contours", &o, ss, err, errlen);
+  contour_stack_free(&s);
+  return rc;
+}
+
+static int same_rows(const stack_surface *a, const stack_surface *b) {
+  if (stack_nrows(a) != stack_nrows(b)) return 0;
+  for (int i = 0; i < stack_nrows(a); i++) {
+    const stack_row *x = &stack_rows(a)[i], *y = &stack_rows(b)[i];
+    if (x->kind != y->kind || x->slice0 != y->slice0 || x->slice1 != y->slice1 || x->depth != y->depth ||
+        x->nlo != y->nlo || x->nhi != y->nhi || x->m != y->m || x->n != y->n || x->bridges != y->bridges ||
+        memcmp(&x->cost, &y->cost, sizeof x->cost) || memcmp(&x->area, &y->area, sizeof x->area) ||
+        memcmp(&x->volume, &y->volume, sizeof x->volume) || x->nodes != y->nodes || x->spans != y->spans)
+      return 0;
+    for (int k = 0; k < x->nlo; k++)
+      if (x->lo[k] != y->lo[k]) return 0;
+    for (int k = 0; k < x->nhi; k++)
+      if (x->hi[k] != y->hi[k]) return 0;
+  }
+  return 1;
+}
+
+static int same_mesh(const mesh *a, const mesh *b) {
+  return a->nv == b->nv && a->nt == b->nt && memcmp(a->v, b->v, (size_t)a->nv * sizeof *a->v) == 0 &&
+         memcmp(a->t, b->t, (size_t)a->nt * sizeof *a->t) == 0;
+}
+
+/* Each shape on three slices (the middle one shifted and shrunk a little,
+ * so that bands are not trivial): once as separate contours, and as keyhole
+ * contours from a range of starts, both windings, with extra points on the
+ * channels. */
+static void stacks(void) {
+  static shape sh[16];
+  int ns = make_shapes(sh);
+  static const int extra[][2] = {{0, 0}, {1, 0}, {0, 3}, {1, 1}};
+  static vec2 w[MAXW];
+  char err[512], notes[4096];
+  for (int i = 0; i < ns; i++) {
+    text sep = {0};
+    for (int z = 0; z < 3; z++)
+      for (int l = 0; l < sh[i].nl; l++) put_contour(&sep, sh[i].p[l], sh[i].n[l], z, 0, l % 2);
+    stack_surface *ref = NULL;
+    int rc = tile_text(&sep, 0, &ref, err, sizeof err, notes, sizeof notes);
+    CHECK(rc == 0, "%s as separate contours: %s", sh[i].name, err);
+    int bad = 0, tried = 0;
+    for (int e = 0; e < 4 && rc == 0; e++) {
+      shape s = sh[i];
+      for (int c = 1; c < s.nl; c++) s.eo[c] = extra[e][0], s.eb[c] = extra[e][1];
+      int nw = 0;
+      walk(&s, 0, 0, w, &nw);
+      for (int st = e; st < nw; st += 5)
+        for (int rev = 0; rev < 2; rev++) {
+          text kh = {0};
+          for (int z = 0; z < 3; z++) put_contour(&kh, w, nw, z, (st + 7 * z) % nw, rev ^ (z == 1));
+          stack_surface *ss = NULL;
+          tried++;
+          if (tile_text(&kh, 0, &ss, err, sizeof err, notes, sizeof notes) != 0) {
+            if (bad++ < 3) CHECK(0, "%s, start %d%s: %s", s.name, st, rev ? " reversed" : "", err);
+          } else if (!same_mesh(stack_mesh(ss), stack_mesh(ref)) || !same_rows(ss, ref)) {
+            if (bad++ < 3) CHECK(0, "%s, start %d%s: not the mesh or rows of the separate contours", s.name, st,
+                                 rev ? " reversed" : "");
+          }
+          if (ss) stack_free(ss);
+          free(kh.buf);
+        }
+    }
+    CHECK(bad == 0, "%s: %d of %d keyhole stacks differ from the separate contours'", sh[i].name, bad, tried);
+    if (ref) stack_free(ref);
+    free(sep.buf);
+  }
+}
+
+/* The reader: the note names the header line; the loops, the lines of their
+ * first points; with CONTOUR_NO_KEYHOLES today's refusal. */
+static void reader(void) {
+  static const char two[] =
+      "C 10 0\n0 0\n8 0\n8 8\n0 8\n0 0\n2 2\n2 6\n6 6\n6 2\n2 2\n"   /* lines 1-11 */
+      "C 4 1\n0 0\n8 0\n8 8\n0 8\n";
+  contour_stack s;
+  char err[512], notes[4096];
+  FILE *f = fmemopen(notes, sizeof notes, "w");
+  int rc = contour_parse(two, strlen(two), "k.contours", &s, f, "tile", err, sizeof err);
+  fclose(f);
+  CHECK(rc == 0, "keyhole stack refused: %s", err);
+  if (rc == 0) {
+    CHECK(s.n == 3 && s.nslices == 2, "%d contours on %d slices, want 3 on 2", s.n, s.nslices);
+    CHECK(s.n == 3 && s.c[0].n == 4 && s.c[1].n == 4 && s.c[0].line == 2 && s.c[1].line == 7 && s.c[2].line == 12,
+          "loops of %d and %d points at lines %d and %d (want 4, 4 at 2, 7)", s.c[0].n, s.c[1].n, s.c[0].line,
+          s.c[1].line);
+    CHECK(strstr(notes, "tile: k.contours:1: keyhole: the contour split into 2 loops at (0 0), a channel of "
+                        "length 2.8284271247461903 dropped\n") != NULL,
+          "note: %s", notes);
+    contour_stack_free(&s);
+  }
+  rc = contour_parse_flags(two, strlen(two), "k.contours", CONTOUR_NO_KEYHOLES, &s, NULL, "tile", err, sizeof err);
+  CHECK(rc == -1 && strncmp(err, "k.contours:1: the contour crosses itself: the segment from line ", 64) == 0,
+        "with CONTOUR_NO_KEYHOLES: %d '%s'", rc, err);
+  /* A channel 1e-6 wide is no keyhole: one contour, as it is. */
+  static const char narrow[] = "C 10 0\n1e-6 0\n8 0\n8 8\n0 8\n0 0\n2 2\n2 6\n6 6\n6 2\n2.000001 2\n"
+                               "C 4 1\n0 0\n8 0\n8 8\n0 8\n";
+  rc = contour_parse(narrow, strlen(narrow), "k.contours", &s, NULL, "tile", err, sizeof err);
+  CHECK(rc == 0 && s.n == 2 && s.c[0].n == 10, "a narrow channel: %d, %d contours", rc, rc == 0 ? s.n : 0);
+  if (rc == 0) contour_stack_free(&s);
+}
+
 int main(void) {
   generated();
   refused();
+  stacks();
+  reader();
   return check_done("test_keyhole");
 }

@@ -879,8 +879,8 @@ static int tool_check(const char *mesh, const char *stack, const char *solid) {
   for (int c = 0; c < r.ncomp; c++)
     printf("component %d: chi %d, volume %.17g, winding of the others %d\n", c, r.chi[c], r.cvol[c], r.wind[c]);
   printf("volume %.17g, area %.17g, outward %d\n", r.volume, r.area, r.outward);
-  printf("input: %d/%d points absent, %d/%d segments missing, %d strays, %d crossing\n", f.absent, f.points, f.missing,
-         f.segments, f.strays, f.crossing);
+  printf("input: %d/%d points absent, %d/%d segments missing, %d strays, %d crossing, %d channel segments\n", f.absent,
+         f.points, f.missing, f.segments, f.strays, f.crossing, f.channel);
   if (s >= 0 && st.nslice) {
     double v = solid_volume(s, st.z[0], st.z[st.nslice - 1]);
     printf("the solid's volume between the first and last planes %.17g (mesh %+.3f%%)\n", v, 100 * (r.volume - v) / v);
