@@ -21,6 +21,8 @@
 #include "csvtab.h"
 #include "mesh.h"
 #include "plot_claims.h"
+#include "pool.h"
+#include "stack.h"
 #include "svgchart.h"
 #include "svgsurface.h"
 #include "tiling.h"
@@ -310,21 +312,18 @@ static int surface(int argc, char **argv) {
     fprintf(stderr, "plot: %s\n", err);
     return 1;
   }
-  if (contour_stack_pairs(&s, in, err, sizeof err) != 0) {
+  /* The surface ./tile makes: any number of contours a slice, holes,
+   * branching (surface/stack.h), on the machine's cores. */
+  stack_options so = {kind, caps, 0, pool_cores(), NULL, stderr, "plot", NULL, NULL};
+  stack_surface *ss;
+  if (stack_tile(&s, in, &so, &ss, err, sizeof err) != 0) {
     fprintf(stderr, "plot: %s\n", err);
     contour_stack_free(&s);
     return 1;
   }
   mesh me;
-  mesh_init(&me, &s);
-  for (int i = 0; i + 1 < s.n; i++) {
-    tiling t;
-    double a, v;
-    tiling_solve(s.c[i].pt, s.c[i].n, s.c[i].z, s.c[i + 1].pt, s.c[i + 1].n, s.c[i + 1].z, kind, -1, &t);
-    mesh_add_band(&me, &s, i, &t, &a, &v);
-    tiling_free(&t);
-  }
-  if (caps) mesh_add_caps(&me, &s);
+  stack_take_mesh(ss, &me);
+  stack_free(ss);
   picture p = {title, &s, &me};
   int rc = write_svg(out, draw_surface, &p);
   mesh_free(&me);

@@ -42,6 +42,18 @@ done
 # the surface of a real stack, with caps
 "$PLOT" surface tests/data/slicerrt/tinypatient_1.contours --caps --title glass -o "$T/s.svg" && ok || bad "surface failed"
 [ "$(grep -c '<polygon points=' "$T/s.svg")" -gt 10 ] && [ "$(grep -c '<polygon fill="none"' "$T/s.svg")" -eq 3 ] && ok || bad "surface: triangles and 3 contours expected"
-"$PLOT" surface tests/data/slicerrt/tinypatient_0.contours -o "$T/s2.svg" 2> "$T/err"; [ $? -eq 1 ] && grep -q 'tinypatient_0.contours:29' "$T/err" && [ ! -e "$T/s2.svg" ] && ok || bad "bad stack"
+# several contours a slice (tinypatient_0: up to 4, with holes): the surface
+# ./tile makes, as many triangles as its mesh row says, every contour drawn
+TILE=$(dirname "$PLOT")/tile
+tp=tests/data/slicerrt/tinypatient_0.contours
+"$PLOT" surface $tp --caps -o "$T/s2.svg" && ok || bad "surface of several contours a slice failed"
+want=$("$TILE" $tp --caps -q | awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "n") c = i } $1 == "mesh" { print $c }')
+[ -n "$want" ] && grep -q "the surface tilesim derives ($want triangles)" "$T/s2.svg" &&
+  [ "$(grep -c '<polygon fill="none"' "$T/s2.svg")" -eq "$(grep -c '^C ' $tp)" ] && ok ||
+  bad "tinypatient_0: $want triangles (./tile) and $(grep -c '^C ' $tp) contours expected"
+# a stack ./tile refuses (two contours crossing on a slice): one line, exit 1, no file
+printf 'C 4 0\n0 0\n4 0\n4 4\n0 4\nC 4 0\n2 2\n6 2\n6 6\n2 6\nC 4 1\n0 0\n4 0\n4 4\n0 4\n' > "$T/cross.contours"
+"$PLOT" surface "$T/cross.contours" -o "$T/s3.svg" 2> "$T/err"; [ $? -eq 1 ] && grep -q 'cross.contours:[0-9]*: .*cross' "$T/err" &&
+  [ "$(wc -l < "$T/err")" -eq 1 ] && [ ! -e "$T/s3.svg" ] && ok || bad "bad stack: $(cat "$T/err")"
 echo "cli_plot: $pass passed, $fail failed"
 [ $fail -eq 0 ]
