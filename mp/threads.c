@@ -101,7 +101,7 @@ enum {
 
 /* A record.  `size` is 0 until the writer publishes it (seq_cst), then the
  * record's bytes (a multiple of LINE), or REC_JUMP. */
-typedef struct {
+typedef struct rec {
   _Atomic uint32_t size;
   int32_t tag;
   uint32_t flags;
@@ -130,7 +130,7 @@ static chunk *chunk_new(void) {
 }
 
 /* A channel from one rank to another. */
-typedef struct {
+typedef struct chan {
   /* The writer's, on lines of their own. */
   chunk *wc;
   size_t woff;
@@ -152,6 +152,9 @@ struct rank {
   /* Owned by the rank's own thread. */
   chan **out;                  /* [dst]: my channel to dst, or NULL (created at the first send) */
   uint64_t clock;              /* Lamport */
+  struct chan *pin_q;          /* the message the latest probe from any source */
+  struct rec *pin_x;           /* showed, until it is taken (NULL: none), and */
+  int pin_tag;                 /* that probe's tag: see look() */
   mpt_rank_stats st;
   /* Its channels in, by source, and in order of creation: written by the
    * senders (under mu), read by the rank. */
@@ -393,6 +396,12 @@ typedef struct {
  * look (the file's head comment says why). */
 static found look(rank *r, int src, int tag) {
   found f = {NULL, NULL};
+  /* A probe from any source showed a message: it arrived before whatever
+   * came into view since, so a look with the same source and tag finds it
+   * again (as from one mailbox; a newer message may carry a smaller stamp
+   * than one that raced it), until it is taken.  Nothing that happened
+   * before it was there unseen (the probe's own look made sure). */
+  if (src < 0 && r->pin_x && r->pin_tag == tag) return (found){r->pin_q, r->pin_x};
   if (src >= 0) {
     chan *q = atomic_load_explicit(&r->in[src], memory_order_seq_cst);
     if (q) f.q = q, f.x = chan_find(q, tag);
@@ -560,6 +569,7 @@ static int check_match_args(rank *r, const char *call, int src, int tag) {
 /* Copy the message f out to the caller and take it. */
 static int deliver(rank *r, found f, void *buf, size_t cap, mp_status *st) {
   rec *x = f.x;
+  if (x == r->pin_x) r->pin_x = NULL;   /* taken: no longer pinned (its chunk may go) */
   size_t len = (size_t)x->len, n = len <= cap ? len : cap;
   int src = (int)x->src, tag = x->tag;
   if (n) {
@@ -737,6 +747,7 @@ static int mpt_probe(mp *self, int src, int tag, mp_status *st) {
    * receive's does (else a message it then sends to itself, or one sent
    * on in its name, could be taken from any source before this one). */
   if (f.x->stamp > r->clock) r->clock = f.x->stamp;
+  if (src < 0) r->pin_q = f.q, r->pin_x = f.x, r->pin_tag = tag;   /* look() says why */
   if (st) *st = (mp_status){(int)f.x->src, f.x->tag, (size_t)f.x->len};
   return 1;
 }

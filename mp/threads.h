@@ -25,10 +25,11 @@
  *   deterministic backends; the paper's algorithm gives the same result
  *   whatever the order).  A probe that shows a message advances the
  *   prober's clock as a receive does (what it sends afterwards comes after
- *   that message).  As in MPI, the message a probe from MP_ANY shows is
- *   the one a receive by the status's source and tag takes; a receive from
- *   MP_ANY right after it may take another message that raced it (one
- *   with a smaller stamp that became visible in between).
+ *   that message).  The message a probe shows is the one a receive by the
+ *   status's source and tag then takes (as in MPI); after a probe from
+ *   MP_ANY, a receive from MP_ANY with the probe's tag takes it too (as
+ *   from one mailbox: what came into view after the probe arrived after
+ *   it, whatever its stamp), unless a later probe from MP_ANY intervened.
  *
  *   Waiting.  A recv that finds nothing spins, watching its channels, for
  *   a bounded time (cfg.spin_ns), and only then sleeps on a condition

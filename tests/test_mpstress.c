@@ -16,7 +16,8 @@
  * receives and probes: a probe that shows a message is an observation of
  * it, so what the rank does afterwards comes after that message's arrival,
  * and mp.h takes the earliest arrival first).  A probe's message is then
- * received by its source and tag, and must be the one received.  The
+ * received by its source and tag, or from any source with the probe's tag
+ * where the step's receive is that, and must be the one received.  The
  * statistics (sent, received, unread, per rank) must equal the program's
  * own counts.  A run with a send left out must end in a deadlock whose
  * report names exactly the ranks left waiting, each with what it waits
@@ -212,8 +213,12 @@ static void rank_main(mp *self, void *ud) {
           causal(p, me, k, ptag, "a probe");
           merge(vc, p->vc[k], nr);
           p->probes[me]++;
-          /* Then, if the step may take it, take it by its source and tag. */
-          if (matches(&p->m[k], src, tag) && rng_int(&r, 0, 1)) {
+          /* The step's receive from any source with the probe's tag takes
+           * it (it arrived before anything that came into view since);
+           * else, if the step may take it, take it by source and tag. */
+          if (src < 0 && tag == ptag) {
+            want = k;
+          } else if (matches(&p->m[k], src, tag) && rng_int(&r, 0, 1)) {
             src = st.source;
             tag = st.tag;
             want = k;
@@ -454,6 +459,70 @@ static void test_probe_clock(void) {
   }
 }
 
+/* A probe from any source pins what it showed (fixed in threads.c: a
+ * receive from any source with the probe's tag takes it).  Rank 1 sends
+ * many messages to rank 2 (its clock runs ahead), then one to rank 0.
+ * Rank 0 probes from any source until it is there, then lets rank 3 go (by
+ * a flag outside mp.h: no message, so rank 3's clock stays 0); rank 3 sends
+ * rank 0 a message (stamp 1); rank 0 probes rank 3 until it is there, then
+ * receives from any source: rank 1's came first (the probe from any source
+ * showed it while rank 3's was not even sent), whatever the stamps say.
+ * Without the fix the smaller stamp, rank 3's, was taken. */
+typedef struct {
+  atomic_int go;
+  int first_src, bad[4];
+} probepin;
+
+static void probepin_main(mp *self, void *ud) {
+  probepin *c = ud;
+  int me = mp_rank(self), x = 0, rc, *bad = &c->bad[me];
+  mp_status st;
+  if (me == 1) {
+    for (int i = 0; i < 50; i++) *bad += mp_send(self, 2, 0, &i, sizeof i) != MP_OK;
+    *bad += mp_send(self, 0, 5, &x, sizeof x) != MP_OK;
+  } else if (me == 2) {
+    for (int i = 0; i < 50; i++) *bad += mp_recv(self, 1, 0, &x, sizeof x, NULL) != MP_OK;
+  } else if (me == 3) {
+    while (!atomic_load(&c->go)) sched_yield();
+    *bad += mp_send(self, 0, 5, &x, sizeof x) != MP_OK;
+  } else {
+    while ((rc = mp_probe(self, MP_ANY, 5, &st)) == 0) sched_yield();
+    *bad += rc != 1 || st.source != 1;
+    atomic_store(&c->go, 1);
+    while ((rc = mp_probe(self, 3, 5, &st)) == 0) sched_yield();
+    *bad += rc != 1;
+    *bad += mp_recv(self, MP_ANY, 5, &x, sizeof x, &st) != MP_OK;
+    c->first_src = st.source;
+    *bad += mp_recv(self, MP_ANY, 5, &x, sizeof x, &st) != MP_OK;
+  }
+}
+
+static void test_probe_pin(void) {
+  for (long spin = 0; spin <= 100000; spin += 100000) {
+    probepin c;
+    memset(&c, 0, sizeof c);
+    atomic_init(&c.go, 0);
+    c.first_src = -1;
+    mpt_config cfg;
+    mpt_config_init(&cfg);
+    cfg.warn = NULL;
+    cfg.spin_ns = spin;
+    char err[512] = "";
+    mpt *t = mpt_new(&cfg, 4, err, sizeof err);
+    XASSERT(t);
+    mp_proc procs[4];
+    for (int k = 0; k < 4; k++) procs[k] = (mp_proc){probepin_main, &c};
+    int rc = mpt_run(t, procs, err, sizeof err);
+    int bad = c.bad[0] + c.bad[1] + c.bad[2] + c.bad[3];
+    CHECK(rc == 0 && bad == 0, "probe pin (spin %ld): rc %d (%s), %d bad", spin, rc, err, bad);
+    CHECK(c.first_src == 1,
+          "probe pin (spin %ld): after a probe from any source showed rank 1's message, a receive from any "
+          "source with its tag took one that came later (source %d)",
+          spin, c.first_src);
+    mpt_free(t);
+  }
+}
+
 /* ==== main ================================================================ */
 
 static long env_long(const char *name, long lo, long hi, long dflt) {
@@ -474,6 +543,7 @@ int main(void) {
   signal(SIGALRM, on_alarm);
   alarm(WATCHDOG_S);
   test_probe_clock();
+  test_probe_pin();
   long failed = 0, probes = 0, deadlocks = 0, noisy = 0;
   for (long s = from; s < from + n; s++) {
     /* Which programs deadlock, run beside busy threads, and how long a
