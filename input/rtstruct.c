@@ -207,7 +207,9 @@ static int fail(reader *r, size_t off, const char *fmt, ...) {
 }
 
 /* An element's text: its value with trailing blanks and NULs removed (and
- * leading blanks, unless keep_lead); "" if absent. */
+ * leading blanks, unless keep_lead); "" if absent.  Cut to cap - 1 bytes,
+ * and then trimmed again, so that the text written back and read again is
+ * the same text (a cut that ended on a blank was not: found by make fuzz). */
 static size_t text(const dicom *d, int node, int keep_lead, char *buf, size_t cap) {
   size_t len = 0;
   const unsigned char *v = node >= 0 ? dicom_value(d, node, &len) : NULL;
@@ -215,6 +217,7 @@ static size_t text(const dicom *d, int node, int keep_lead, char *buf, size_t ca
   while (j > 0 && (v[j - 1] == ' ' || v[j - 1] == 0)) j--;
   while (!keep_lead && i < j && v[i] == ' ') i++;
   size_t n = j - i < cap - 1 ? j - i : cap - 1;
+  while (n > 0 && (v[i + n - 1] == ' ' || v[i + n - 1] == 0)) n--;
   if (n) memcpy(buf, v + i, n);
   buf[n] = 0;
   return n;
