@@ -19,8 +19,10 @@
 #include "atomicfile.h"
 #include "contour.h"
 #include "csvtab.h"
+#include "dicom.h"
 #include "mesh.h"
 #include "plot_claims.h"
+#include "rtstruct.h"
 #include "pool.h"
 #include "stack.h"
 #include "svgchart.h"
@@ -33,7 +35,7 @@ static const char lines_usage[] =
     "[--labels A,B,...] [--title T] [--xlabel T] [--ylabel T] [--yzero] -o OUT.svg   "
     "(plot --help: every option)\n";
 static const char surface_usage[] =
-    "usage: plot surface STACK [--cost area|span] [--caps] [--title T] -o OUT.svg   "
+    "usage: plot surface STACK|FILE.dcm --roi NAME [--cost area|span] [--caps] [--title T] -o OUT.svg   "
     "(plot --help: every option)\n";
 static const char any_usage[] =
     "usage: plot lines CSV ... -o OUT.svg | plot surface STACK ... -o OUT.svg | "
@@ -62,7 +64,9 @@ static void help(void) {
         "  --title T, --xlabel T, --ylabel T   texts\n"
         "  --yzero            the y axis starts at 0\n"
         "  -o OUT.svg         the picture (written atomically)\n"
-        "surface: the stack tiled (closed with --caps), drawn beside its contours.\n"
+        "surface: the stack tiled (closed with --caps), drawn beside its contours; a\n"
+        "DICOM RT structure set's ROI with --roi, as ./tile FILE.dcm --roi tiles it.\n"
+        "  --roi NAME|NUMBER  the ROI of a DICOM RT structure set to draw\n"
         "  --cost area|span   the tile weight (default area)\n"
         "  --caps             close every end (the first and last slices, branch tips,\n"
         "                     holes that start or end), as ./tile --caps does\n"
@@ -288,8 +292,20 @@ static int lines(int argc, char **argv) {
   return rc;
 }
 
+/* Is path a DICOM file (by content: DICM at 128, or a data set that starts
+ * with a group 0008 element)? */
+static int dicom_file(const char *path) {
+  if (strcmp(path, "-") == 0) return 0;
+  FILE *f = fopen(path, "rb");
+  if (!f) return 0;
+  unsigned char b[132];
+  size_t n = fread(b, 1, sizeof b, f);
+  fclose(f);
+  return dicom_sniff(b, n);
+}
+
 static int surface(int argc, char **argv) {
-  const char *in = argc > 2 ? argv[2] : NULL, *out = NULL, *title = "Fig. 17: contours and surface";
+  const char *in = argc > 2 ? argv[2] : NULL, *out = NULL, *title = NULL, *roikey = NULL;
   cost_kind kind = COST_AREA;
   int caps = 0;
   char err[400];
@@ -298,27 +314,72 @@ static int surface(int argc, char **argv) {
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
     int bad = 0;
     if (strcmp(a, "--caps") == 0) { caps = 1; continue; }
-    if (strcmp(a, "-o") != 0 && strcmp(a, "--title") != 0 && strcmp(a, "--cost") != 0)
+    if (strcmp(a, "-o") != 0 && strcmp(a, "--title") != 0 && strcmp(a, "--cost") != 0 && strcmp(a, "--roi") != 0)
       return usage(surface_usage, a[0] == '-' ? "unknown option" : "unexpected argument", a);
     if (!v) return usage(surface_usage, "an option needs a value", a);
     if (strcmp(a, "-o") == 0) bad = args_name(a, v, "a file name", 0, err, sizeof err), out = v;
     else if (strcmp(a, "--title") == 0) title = v;
-    else if (cost_parse(v, &kind) != 0) bad = args_word(a, v, "area|span", err, sizeof err) < 0;
+    else if (strcmp(a, "--roi") == 0) {
+      if (!v[0]) bad = 1, snprintf(err, sizeof err, "--roi takes an ROI's name or number ('')");
+      roikey = v;
+    } else if (cost_parse(v, &kind) != 0) bad = args_word(a, v, "area|span", err, sizeof err) < 0;
     if (bad) return usage(surface_usage, err, NULL);
     i++;
   }
   if (!out) return usage(surface_usage, "surface needs -o", NULL);
   contour_stack s;
-  if (contour_read(in, &s, NULL, "plot", err, sizeof err) != 0) {
+  char name[600], title_roi[600];
+  rtstruct rs;
+  int roi = -1;
+  if (dicom_file(in)) {
+    if (!roikey) {
+      fprintf(stderr, "plot: %s: a DICOM RT structure set: name the ROI to draw with --roi (./tile %s --list "
+              "lists them)\n", in, in);
+      return 1;
+    }
+    if (rtstruct_read(in, &rs, err, sizeof err) != 0) {
+      fprintf(stderr, "plot: %s\n", err);
+      return 1;
+    }
+    if ((roi = rtstruct_find(&rs, roikey, err, sizeof err)) < 0 || rtstruct_roi_check(&rs, roi, err, sizeof err) != 0 ||
+        rtstruct_roi_stack(&rs, roi, 0, &s, stderr, "plot", err, sizeof err) != 0) {
+      fprintf(stderr, "plot: %s\n", err);
+      rtstruct_free(&rs);
+      return 1;
+    }
+    /* Named as ./tile names an ROI's stack, so that its messages are
+     * rewritten alike (the file, the byte, the ROI, the contour item). */
+    snprintf(name, sizeof name, "%s: ROI %d '%s' as a stack", rs.name, rs.roi[roi].number, rs.roi[roi].name);
+    snprintf(title_roi, sizeof title_roi, "%s: ROI %d '%s'", in, rs.roi[roi].number, rs.roi[roi].name);
+  } else if (roikey) {
+    return usage(surface_usage, "--roi is for a DICOM RT structure set", in);
+  } else if (contour_read(in, &s, NULL, "plot", err, sizeof err) != 0) {
     fprintf(stderr, "plot: %s\n", err);
     return 1;
-  }
+  } else
+    snprintf(name, sizeof name, "%s", in);
+  if (!title) title = roi >= 0 ? title_roi : "Fig. 17: contours and surface";
   /* The surface ./tile makes: any number of contours a slice, holes,
-   * branching (surface/stack.h), on the machine's cores. */
-  stack_options so = {kind, caps, 0, pool_cores(), NULL, stderr, "plot", NULL, NULL};
+   * branching (surface/stack.h), on the machine's cores.  Its notes are
+   * held until it is made, then said (an ROI's rewritten). */
+  char *held = NULL;
+  size_t heldlen = 0;
+  FILE *notes = open_memstream(&held, &heldlen);
+  stack_options so = {kind, caps, 0, pool_cores(), NULL, notes ? notes : stderr, "plot", NULL, NULL};
   stack_surface *ss;
-  if (stack_tile(&s, in, &so, &ss, err, sizeof err) != 0) {
-    fprintf(stderr, "plot: %s\n", err);
+  int bad = stack_tile(&s, name, &so, &ss, err, sizeof err) != 0;
+  if (notes) fclose(notes);
+  const char *said[2] = {held, bad ? err : NULL};
+  for (int k = 0; k < 2; k++) {
+    if (!said[k] || !said[k][0]) continue;
+    char *m = roi >= 0 ? rtstruct_rewrite(&rs, roi, name, said[k]) : NULL;
+    const char *t = m ? m : said[k];
+    fprintf(stderr, k ? "plot: %s\n" : "%s", t);
+    free(m);
+  }
+  free(held);
+  if (roi >= 0) rtstruct_free(&rs);
+  if (bad) {
     contour_stack_free(&s);
     return 1;
   }

@@ -51,6 +51,19 @@ want=$("$TILE" $tp --caps -q | awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if (
 [ -n "$want" ] && grep -q "the surface tilesim derives ($want triangles)" "$T/s2.svg" &&
   [ "$(grep -c '<polygon fill="none"' "$T/s2.svg")" -eq "$(grep -c '^C ' $tp)" ] && ok ||
   bad "tinypatient_0: $want triangles (./tile) and $(grep -c '^C ' $tp) contours expected"
+# an ROI of a DICOM RT structure set: the surface ./tile makes of it, its
+# notes as ./tile words them; without --roi, or an unknown ROI: one line, exit 1
+dcm=tests/data/rtstruct/dicompyler_rtss.dcm
+"$PLOT" surface $dcm --roi 'Lt Lung' --caps -o "$T/lung.svg" 2> "$T/perr" && ok || bad "plot surface --roi 'Lt Lung' failed"
+want=$("$TILE" $dcm --roi 'Lt Lung' --caps -q | awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "n") c = i } $1 == "mesh" { print $c }')
+"$TILE" $dcm --roi 'Lt Lung' --caps -o "$T/lung.obj" 2> "$T/terr" > /dev/null
+[ -n "$want" ] && grep -q "the surface tilesim derives ($want triangles)" "$T/lung.svg" &&
+  [ "$(grep -c '<polygon fill="none"' "$T/lung.svg")" -eq "$("$TILE" $dcm --list | awk -F, '$2 == "Lt Lung" { print $4 }')" ] &&
+  [ "$(sed 's/^plot: //' "$T/perr")" = "$(sed 's/^tile: //' "$T/terr")" ] && ok ||
+  bad "Lt Lung: $want triangles and ./tile's notes expected: $(head -c 300 "$T/perr")"
+"$PLOT" surface $dcm -o "$T/n.svg" 2> "$T/err"; [ $? -eq 1 ] && [ "$(wc -l < "$T/err")" -eq 1 ] && grep -q 'name the ROI to draw with --roi' "$T/err" && [ ! -e "$T/n.svg" ] && ok || bad "DICOM without --roi: $(cat "$T/err")"
+"$PLOT" surface $dcm --roi Nope -o "$T/n.svg" 2> "$T/err"; [ $? -eq 1 ] && [ "$(wc -l < "$T/err")" -eq 1 ] && grep -q "no ROI named or numbered 'Nope'" "$T/err" && [ ! -e "$T/n.svg" ] && ok || bad "unknown ROI: $(cat "$T/err")"
+"$PLOT" surface $tp --roi 1 -o "$T/n.svg" 2> "$T/err"; [ $? -eq 2 ] && grep -q -- '--roi is for a DICOM RT structure set' "$T/err" && [ ! -e "$T/n.svg" ] && ok || bad "--roi on a contour file: $(cat "$T/err")"
 # a stack ./tile refuses (two contours crossing on a slice): one line, exit 1, no file
 printf 'C 4 0\n0 0\n4 0\n4 4\n0 4\nC 4 0\n2 2\n6 2\n6 6\n2 6\nC 4 1\n0 0\n4 0\n4 4\n0 4\n' > "$T/cross.contours"
 "$PLOT" surface "$T/cross.contours" -o "$T/s3.svg" 2> "$T/err"; [ $? -eq 1 ] && grep -q 'cross.contours:[0-9]*: .*cross' "$T/err" &&
