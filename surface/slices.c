@@ -141,7 +141,7 @@ int slices_build_at(const contour_stack *s, const char *name, int scale, int thr
   for (int i = 0; i < s->n; i++) {
     XASSERT(s->c[i].slice >= 0 && s->c[i].slice < ns);
     sl->first[s->c[i].slice + 1]++;
-    sl->z[s->c[i].slice] = ldexp(s->c[i].z, -scale);
+    sl->z[s->c[i].slice] = geom_ldexp(s->c[i].z, -scale);
   }
   for (int k = 0; k < ns; k++) sl->first[k + 1] += sl->first[k];
   int *fill = xmallocarray((size_t)ns, sizeof *fill);
@@ -151,7 +151,7 @@ int slices_build_at(const contour_stack *s, const char *name, int scale, int thr
     slice_contour *c = &sl->c[fill[f->slice]++];
     c->n = f->n;
     c->pt = xmallocarray((size_t)f->n, sizeof *c->pt);
-    for (int k = 0; k < f->n; k++) c->pt[k] = (vec2){ldexp(f->pt[k].x, -scale), ldexp(f->pt[k].y, -scale)};
+    for (int k = 0; k < f->n; k++) c->pt[k] = (vec2){geom_ldexp(f->pt[k].x, -scale), geom_ldexp(f->pt[k].y, -scale)};
     c->from = rotate_least(c->pt, c->n);
     c->src = i;
     c->line = f->line;

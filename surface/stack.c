@@ -427,14 +427,27 @@ static void assemble(const work *w, stack_surface *ss) {
  * and the components measured on the mesh as made, each scaled once; the
  * input vertices are the file's own points (bit for bit, even where scaling
  * rounded them), the others scaled back; the parallel runs' costs too. */
-static void to_file_units(const work *w, const contour_stack *s, stack_surface *ss) {
+/* The mesh's components and its whole area and volume: two jobs that only
+ * read the mesh, on two threads when there are. */
+typedef struct {
+  stack_surface *ss;
+  double area, volume;
+} finish;
+
+static void finish_job(void *ud, int i) {
+  finish *f = ud;
+  if (i == 0) f->ss->ncomp = manifold_components(&f->ss->me, &f->ss->comp);
+  else f->area = mesh_area(&f->ss->me), f->volume = mesh_volume(&f->ss->me);
+}
+
+static void to_file_units(const work *w, const contour_stack *s, stack_surface *ss, const finish *fin) {
   const slices *sl = w->sl;
   mesh *me = &ss->me;
   double cost = 0;
   for (int i = 0; i < w->nb; i++) cost += w->b[i].t.cost;
   ss->cost = unscale(sl, cost, w->deg);
-  ss->area = unscale(sl, mesh_area(me), 2);
-  ss->volume = unscale(sl, mesh_volume(me), 3);
+  ss->area = unscale(sl, fin->area, 2);
+  ss->volume = unscale(sl, fin->volume, 3);
   for (int i = 0; i < ss->ncomp; i++) {
     manifold_component *c = &ss->comp[i];
     c->zmin = unscale(sl, c->zmin, 1), c->zmax = unscale(sl, c->zmax, 1);
@@ -523,8 +536,9 @@ int stack_tile(const contour_stack *s, const char *name, const stack_options *o,
   if (rc == 0) {
     print_notes(&w);
     assemble(&w, ss);
-    ss->ncomp = manifold_components(&ss->me, &ss->comp);
-    to_file_units(&w, s, ss);
+    finish f = {ss, 0, 0};
+    pool_run(threads, 2, NULL, finish_job, &f);
+    to_file_units(&w, s, ss, &f);
   }
   work_free(&w);
   slices_free(&sl);
