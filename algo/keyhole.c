@@ -58,8 +58,25 @@ static void push_ins(insertion **v, int *nv, int *cap, insertion x) {
   (*v)[(*nv)++] = x;
 }
 
+/* Collinear ab and cd, in the same direction, share more than a point. */
+static int same_way_overlap(vec2 a, vec2 b, vec2 c, vec2 d) {
+  if (exact_lex(a, b) > 0) {
+    vec2 t = a;
+    a = b, b = t, t = c, c = d, d = t;
+  }
+  vec2 lo = exact_lex(a, c) >= 0 ? a : c, hi = exact_lex(b, d) <= 0 ? b : d;
+  return exact_lex(lo, hi) < 0;
+}
+
 /* One round: every point that an opposite, collinear, overlapping edge has
- * strictly inside another.  Returns the number inserted (0: stable). */
+ * strictly inside another.  Returns the number inserted (0: stable), or -1
+ * when two collinear edges overlap in the same direction: a stretch walked
+ * twice one way, which no split can make a keyhole (its two walks end in one
+ * loop, two loops kept, a loop and a channel, or two channels, and steps 3-4
+ * refuse each), and which could make the rounds insert O(N^2) points (N
+ * nested edges walked to and fro on one line).  Without such a pair, each
+ * end of an edge lies strictly inside at most one edge of the other
+ * direction on its line, so a round inserts at most 2N points. */
 static int insert_round(poly *P) {
   int n = P->n;
   span *sx = xmallocarray((size_t)n, sizeof *sx);
@@ -80,12 +97,20 @@ static int insert_round(poly *P) {
       if (fmax(c.y, d.y) < ylo || fmin(c.y, d.y) > yhi) continue;
       if (exact_orient(a, b, c) != 0 || exact_orient(a, b, d) != 0) continue;
       int si = exact_lex(a, b), sj = exact_lex(c, d);
-      if (si == sj) continue;   /* the same direction: not a channel */
+      if (si == sj) {   /* the same direction: not a channel */
+        if (!same_way_overlap(a, b, c, d)) continue;
+        free(sx), free(ins);
+        return -1;
+      }
       const vec2 *e1[2] = {&c, &d}, *e2[2] = {&a, &b};
       int s1[2] = {P->src[j], P->src[(j + 1) % n]}, s2[2] = {P->src[i], P->src[(i + 1) % n]};
       for (int k = 0; k < 2; k++) {
         if (strictly_inside(a, b, *e1[k])) push_ins(&ins, &nins, &cap, (insertion){i, *e1[k], s1[k], si});
         if (strictly_inside(c, d, *e2[k])) push_ins(&ins, &nins, &cap, (insertion){j, *e2[k], s2[k], sj});
+      }
+      if (nins > 2 * n) {   /* only with a pair the same way, still to come (above) */
+        free(sx), free(ins);
+        return -1;
       }
     }
   }
@@ -163,6 +188,62 @@ static int channels_apart(const poly *P, const int *loopidx, const int *lstart, 
   return ok;
 }
 
+/* The first of s[0..n-1] (sorted by lo) with lo >= x (strict: lo > x). */
+static int first_from(const span *s, int n, double x, int strict) {
+  int a = 0, b = n;
+  while (a < b) {
+    int m = a + (b - a) / 2;
+    if (s[m].lo < x || (strict && s[m].lo == x)) a = m + 1;
+    else b = m;
+  }
+  return a;
+}
+
+/* No channel piece meets an edge of the loops kept but at one of its ends
+ * that lies on a loop (crossing_segment's rule, allow as there).  Each pair
+ * whose x ranges overlap is tested once, found from the side whose lo comes
+ * first by a binary search in the other's list: O(N log N + such pairs),
+ * where a crossing_segment per piece took O(pieces x N). */
+static int channels_off_loops(const poly *P, const int *loopidx, const int *lstart, const char *flat, int nl,
+                              const int *onloop, const int *gid, const crossing_poly *cp, int kept) {
+  int ne = 0, nc = 0, ok = 1;
+  for (int k = 0; k < kept; k++) ne += cp[k].n;
+  span *es = xmallocarray((size_t)ne + 1, sizeof *es), *cs = xmallocarray((size_t)nl + 1, sizeof *cs);
+  vec2 *ea = xmallocarray((size_t)ne + 1, sizeof *ea), *eb = xmallocarray((size_t)ne + 1, sizeof *eb);
+  ne = 0;
+  for (int k = 0; k < kept; k++)
+    for (int j = 0; j < cp[k].n; j++, ne++) {
+      ea[ne] = cp[k].pt[j], eb[ne] = cp[k].pt[(j + 1) % cp[k].n];
+      es[ne] = (span){fmin(ea[ne].x, eb[ne].x), fmax(ea[ne].x, eb[ne].x), ne};
+    }
+  for (int l = 0; l < nl; l++)
+    if (flat[l]) {
+      vec2 a = P->pt[loopidx[lstart[l]]], b = P->pt[loopidx[lstart[l] + 1]];
+      cs[nc++] = (span){fmin(a.x, b.x), fmax(a.x, b.x), l};
+    }
+  qsort(es, (size_t)ne, sizeof *es, by_lo);
+  qsort(cs, (size_t)nc, sizeof *cs, by_lo);
+  for (int side = 0; side < 2 && ok; side++) {
+    /* side 0: each piece, the edges with lo in [its lo, its hi]; side 1:
+     * each edge, the pieces with lo in (its lo, its hi]. */
+    const span *from = side ? es : cs, *to = side ? cs : es;
+    int nfrom = side ? ne : nc, nto = side ? nc : ne;
+    for (int u = 0; u < nfrom && ok; u++)
+      for (int w = first_from(to, nto, from[u].lo, side); w < nto && ok && to[w].lo <= from[u].hi; w++) {
+        int l = side ? to[w].i : from[u].i, e = side ? from[u].i : to[w].i;
+        int ia = loopidx[lstart[l]], ib = loopidx[lstart[l] + 1];
+        vec2 a = P->pt[ia], b = P->pt[ib], at;
+        crossing_kind k = crossing_segments(a, b, ea[e], eb[e], &at);
+        if (k == CROSSING_NONE) continue;
+        if (k == CROSSING_TOUCH && ((onloop[gid[ia]] && exact_lex(at, a) == 0) || (onloop[gid[ib]] && exact_lex(at, b) == 0)))
+          continue;
+        ok = 0;
+      }
+  }
+  free(es), free(cs), free(ea), free(eb);
+  return ok;
+}
+
 int keyhole_repair(const vec2 *p, int n, keyhole_split *out) {
   memset(out, 0, sizeof *out);
   poly P = {n, xmallocarray((size_t)n, sizeof(vec2)), xmallocarray((size_t)n, sizeof(int))};
@@ -178,7 +259,12 @@ int keyhole_repair(const vec2 *p, int n, keyhole_split *out) {
 
   /* Step 1: each round adds points already there, so it ends (at most one
    * of each point per edge). */
-  while (insert_round(&P) > 0) {}
+  int added;
+  while ((added = insert_round(&P)) > 0) {}
+  if (added < 0) {
+    free(P.pt), free(P.src);
+    return 0;
+  }
 
   /* Step 2: the stack walk.  loopidx holds the loops' points (indices into
    * P), loop k at loopidx[lstart[k] .. lstart[k+1]-1], from its point of return. */
@@ -274,12 +360,7 @@ int keyhole_repair(const vec2 *p, int n, keyhole_split *out) {
     if (crossing_find(cp, kept, &h)) ok = 0;
     /* The channels may meet the loops only where they leave them, and each
      * other only at a common end. */
-    for (int l = 0; l < nl && ok; l++) {
-      if (!flat[l]) continue;
-      int a = loopidx[lstart[l]], b = loopidx[lstart[l] + 1];
-      int allow = (onloop[gid[a]] ? CROSSING_ALLOW_A : 0) | (onloop[gid[b]] ? CROSSING_ALLOW_B : 0);
-      if (crossing_segment(cp, kept, P.pt[a], P.pt[b], allow, &h)) ok = 0;
-    }
+    if (ok && !channels_off_loops(&P, loopidx, lstart, flat, nl, onloop, gid, cp, kept)) ok = 0;
     free(cp);
     if (ok && !channels_apart(&P, loopidx, lstart, flat, nl)) ok = 0;
   }

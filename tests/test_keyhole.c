@@ -10,10 +10,13 @@
  * region given as separate contours; the reader's note, lines, refusals,
  * and CONTOUR_NO_KEYHOLES. */
 #include <math.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
+#include <unistd.h>
 
 #include "check.h"
 #include "contour.h"
@@ -255,6 +258,100 @@ static void refused(void) {
   }
 }
 
+/* ------------------------------------------------------ large contours -- */
+
+/* The watchdog: a repair that runs this long has gone quadratic or worse. */
+enum { WATCHDOG_S = 60 };
+
+static void on_alarm(int sig) {
+  (void)sig;
+  static const char msg[] = "test_keyhole: a large contour's repair ran past the watchdog\n";
+  ssize_t w = write(2, msg, sizeof msg - 1);
+  (void)w;
+  _exit(1);
+}
+
+static double area2(const vec2 *p, int n) {
+  double s = 0;
+  for (int i = 0; i < n; i++) s += p[i].x * p[(i + 1) % n].y - p[i].y * p[(i + 1) % n].x;
+  return s;
+}
+
+static long peak_kb(void) {
+  struct rusage u;
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss;   /* KiB on Linux */
+}
+
+/* K nested edges on one line walked to and fro (the polygon runs right
+ * along y = 0 over [i, 4K - i], up, over, down to the next): edges the same
+ * way overlap, so it is no keyhole, and the repair must say so without
+ * first inserting every end into every opposite edge (O(K^2) points a
+ * round, O(K^3) in all: 1.3 GB for K = 400).  Run first, so the peak
+ * resident size measures it. */
+static void nested(void) {
+  enum { K = 300 };
+  vec2 *p = xmallocarray(3 * K, sizeof *p);
+  int n = 0;
+  for (int i = 0; i < K; i++) {
+    double a = i, b = 4.0 * K - i;
+    if (i % 2 == 0) p[n++] = (vec2){a, 0}, p[n++] = (vec2){b, 0}, p[n++] = (vec2){b, 1 + i};
+    else p[n++] = (vec2){b, 0}, p[n++] = (vec2){a, 0}, p[n++] = (vec2){a, -1 - i};
+  }
+  long before = peak_kb();
+  keyhole_split ks;
+  int got = keyhole_repair(p, n, &ks);
+  long grew = peak_kb() - before;
+  CHECK(!got, "%d nested edges walked to and fro: repaired into %d loops", K, ks.nloops);
+  if (got) keyhole_free(&ks);
+  CHECK(grew < 64 * 1024, "%d nested edges walked to and fro: the peak resident size grew by %ld KiB", K, grew);
+  free(p);
+}
+
+/* A rectangle with K square holes, each joined to the bottom edge by a
+ * channel of its own (100,000 points for K = 12,500; MIM-like, but many
+ * channels): the loops against the closed forms, K holes of area 4, the
+ * outer rectangle, K channels of length 2.  Each channel piece against every
+ * loop edge was O(K N). */
+static void many_channels(void) {
+  enum { K = 50000 };
+  vec2 *p = xmallocarray(8 * (size_t)K + 4, sizeof *p);
+  int n = 0;
+  for (int i = 0; i < K; i++) {
+    double x = 4 * i + 2;   /* up the channel, the hole clockwise, down again */
+    p[n++] = (vec2){x, 0}, p[n++] = (vec2){x, 2}, p[n++] = (vec2){x - 1, 2}, p[n++] = (vec2){x - 1, 4};
+    p[n++] = (vec2){x + 1, 4}, p[n++] = (vec2){x + 1, 2}, p[n++] = (vec2){x, 2}, p[n++] = (vec2){x, 0};
+  }
+  p[n++] = (vec2){4.0 * K + 2, 0}, p[n++] = (vec2){4.0 * K + 2, 6}, p[n++] = (vec2){0, 6}, p[n++] = (vec2){0, 0};
+  keyhole_split ks;
+  int got = keyhole_repair(p, n, &ks);
+  CHECK(got, "%d holes each by a channel: refused", K);
+  if (got) {
+    int holes = 0, outer = 0, other = 0;
+    for (int l = 0; l < ks.nloops; l++) {
+      int f = ks.first[l], m = ks.first[l + 1] - f;
+      double a = area2(ks.pt + f, m);
+      if (m == 5 && a == -8) holes++;
+      else if (m == K + 4 && a == 2 * 6 * (4.0 * K + 2)) outer++;
+      else other++;
+    }
+    CHECK(ks.nloops == K + 1 && holes == K && outer == 1 && other == 0,
+          "%d loops: %d holes, %d outer, %d other (want %d holes and the rectangle)", ks.nloops, holes, outer, other, K);
+    CHECK(ks.channels == K && ks.length == 2.0 * K, "%d channels of length %.17g (want %d of %d)", ks.channels,
+          ks.length, K, 2 * K);
+    keyhole_free(&ks);
+  }
+  free(p);
+}
+
+static void large(void) {
+  signal(SIGALRM, on_alarm);
+  alarm(WATCHDOG_S);
+  nested();
+  many_channels();
+  alarm(0);
+}
+
 /* ------------------------------------------- through reader and stack -- */
 
 typedef struct {
@@ -400,6 +497,7 @@ static void reader(void) {
 }
 
 int main(void) {
+  large();
   generated();
   refused();
   stacks();
