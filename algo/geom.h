@@ -2,6 +2,7 @@
 #ifndef GEOM_H
 #define GEOM_H
 
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <string.h>
@@ -40,6 +41,9 @@ static inline int geom_scale_exp(double m) {
  * subnormal, and then both round the exact value to nearest).  The scaled
  * areas and volumes take it for every coordinate. */
 static inline double geom_ldexp(double x, int e) {
+#if !defined(FLT_EVAL_METHOD) || FLT_EVAL_METHOD != 0
+  return ldexp(x, e);   /* x87: a product held wider would round twice into a subnormal */
+#endif
   if (e < -1022 || e > 1023) return ldexp(x, e);
   uint64_t b = (uint64_t)(e + 1023) << 52;
   double f;

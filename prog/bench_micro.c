@@ -34,7 +34,7 @@ enum { EXCHANGE_RANKS = 4 };
 
 static int exchange_ranks(void) {
   long n = sysconf(_SC_NPROCESSORS_ONLN);
-  return n >= EXCHANGE_RANKS ? EXCHANGE_RANKS : 2;
+  return n >= EXCHANGE_RANKS ? EXCHANGE_RANKS : n >= 2 ? (int)n : 2;
 }
 #define EXCHANGE_DELAY 5e-6   /* between the sends and the receives */
 
