@@ -1,4 +1,4 @@
-/* csvtab.c -- reading the bench's CSV. */
+/* csvtab.c -- reading the bench's CSV (RFC 4180 quoting, one record a line). */
 #include "csvtab.h"
 
 #include <errno.h>
@@ -8,20 +8,49 @@
 
 #include "xmem.h"
 
-static char **split(char *line, int *n) {
+/* One line's fields: plain, or quoted as RFC 4180 writes them ("...", a
+ * quote inside doubled, commas inside kept).  NULL with *why when a quote is
+ * not closed or text follows a closing quote. */
+static char **split(const char *line, int *n, const char **why) {
   int cap = 8, k = 0;
   char **f = xmallocarray((size_t)cap, sizeof *f);
-  char *p = line;
+  char *buf = xmalloc(strlen(line) + 1);
+  const char *p = line;
   for (;;) {
-    char *c = strchr(p, ',');
+    size_t b = 0;
+    if (*p == '"') {
+      for (p++;; p++) {
+        if (!*p) {
+          *why = "a quoted field is not closed";
+          goto bad;
+        }
+        if (*p == '"') {
+          if (p[1] != '"') break;
+          p++;
+        }
+        buf[b++] = *p;
+      }
+      p++;
+      if (*p && *p != ',') {
+        *why = "text after a quoted field's closing quote";
+        goto bad;
+      }
+    } else
+      while (*p && *p != ',') buf[b++] = *p++;
+    buf[b] = 0;
     if (k == cap) f = xreallocarray(f, (size_t)(cap *= 2), sizeof *f);
-    if (c) *c = 0;
-    f[k++] = xstrdup(p);
-    if (!c) break;
-    p = c + 1;
+    f[k++] = xstrdup(buf);
+    if (*p != ',') break;
+    p++;
   }
+  free(buf);
   *n = k;
   return f;
+bad:
+  for (int i = 0; i < k; i++) free(f[i]);
+  free(f);
+  free(buf);
+  return NULL;
 }
 
 int csvtab_read(const char *path, csvtab *t, char *err, size_t errlen) {
@@ -38,8 +67,21 @@ int csvtab_read(const char *path, csvtab *t, char *err, size_t errlen) {
     size_t len = strlen(line);
     while (len && (line[len - 1] == '\n' || line[len - 1] == '\r')) line[--len] = 0;
     if (len == 0) continue;
+    if (len == sizeof line - 1) {
+      snprintf(err, errlen, "%s:%d: a line longer than %zu bytes", path, lineno, sizeof line - 2);
+      fclose(f);
+      csvtab_free(t);
+      return -1;
+    }
     int n;
-    char **fields = split(line, &n);
+    const char *why = NULL;
+    char **fields = split(line, &n, &why);
+    if (!fields) {
+      snprintf(err, errlen, "%s:%d: %s", path, lineno, why);
+      fclose(f);
+      csvtab_free(t);
+      return -1;
+    }
     if (!t->head) {
       t->head = fields;
       t->ncol = n;
