@@ -84,17 +84,7 @@ static void help(void) {
 
 /* Bad usage: "plot: why" (and the value, as util/args shows values), the
  * mode's usage line, exit status 2. */
-static int usage(const char *line, const char *why, const char *val) {
-  char shown[200];
-  fprintf(stderr, "plot: %s", why);
-  if (val) {
-    args_show(val, shown, sizeof shown);
-    fprintf(stderr, " (%s)", shown);
-  }
-  fputc('\n', stderr);
-  fputs(line, stderr);
-  return 2;
-}
+static int usage(const char *line, const char *why, const char *val) { return args_usage("plot", line, why, val); }
 
 /* A comma-separated list of names, none empty, at most max: 0 and the
  * count in *n, or -1 and a message. */

@@ -172,11 +172,7 @@ static void draw(FILE *f, const grid *g) {
 }
 
 static int usage(const char *why, const char *val) {
-  char shown[200];
-  if (val) args_show(val, shown, sizeof shown);
-  fprintf(stderr, "plot: %s%s%s%s\n", why, val ? " (" : "", val ? shown : "", val ? ")" : "");
-  fputs("usage: plot claims MAP.csv [--title T] -o OUT.svg   (plot --help: every option)\n", stderr);
-  return 2;
+  return args_usage("plot", "usage: plot claims MAP.csv [--title T] -o OUT.svg   (plot --help: every option)\n", why, val);
 }
 
 int plot_claims(int argc, char **argv) {

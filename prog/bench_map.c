@@ -42,17 +42,7 @@ static const char map_usage[] =
     "usage: bench --claims-map [--net LIST] [--m LIST] [--c LIST] [--seed LIST] [--input STACK --pair LIST] "
     "[--points LIST] [machine options] [--jobs N] [-o FILE]   (bench --help: every mode)\n";
 
-static int usage(const char *why, const char *val) {
-  char shown[200];
-  fprintf(stderr, "bench: %s", why);
-  if (val) {
-    args_show(val, shown, sizeof shown);
-    fprintf(stderr, " (%s)", shown);
-  }
-  fputc('\n', stderr);
-  fputs(map_usage, stderr);
-  return 2;
-}
+static int usage(const char *why, const char *val) { return args_usage("bench", map_usage, why, val); }
 
 enum { NDS = 5 };   /* d = 20, 40, .., 100 */
 
