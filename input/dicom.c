@@ -344,3 +344,13 @@ const unsigned char *dicom_value(const dicom *d, int node, size_t *len) {
   *len = x->vlen;
   return x->vlen ? d->buf + x->voff : NULL;
 }
+
+int dicom_sniff_file(const char *path) {
+  if (strcmp(path, "-") == 0) return 0;
+  FILE *f = fopen(path, "rb");
+  if (!f) return 0;
+  unsigned char b[132];
+  size_t n = fread(b, 1, sizeof b, f);
+  fclose(f);
+  return dicom_sniff(b, n);
+}

@@ -35,6 +35,8 @@ enum { DICOM_ROOT = 0 };          /* the node of the whole data set */
 /* 1 if buf looks like DICOM: "DICM" at byte 128, or data that starts with an
  * element of group 0002 or 0008 (a data set without preamble). */
 int dicom_sniff(const unsigned char *buf, size_t len);
+/* The same for the file at path (0 for "-", or a file that cannot be read). */
+int dicom_sniff_file(const char *path);
 
 /* Parse buf[0..len-1] (`name` is used in messages).  descend[0..ndescend-1]
  * are the tags of the sequences to read into; others are skipped.  buf must

@@ -282,17 +282,6 @@ static int lines(int argc, char **argv) {
   return rc;
 }
 
-/* Is path a DICOM file (by content: DICM at 128, or a data set that starts
- * with a group 0008 element)? */
-static int dicom_file(const char *path) {
-  if (strcmp(path, "-") == 0) return 0;
-  FILE *f = fopen(path, "rb");
-  if (!f) return 0;
-  unsigned char b[132];
-  size_t n = fread(b, 1, sizeof b, f);
-  fclose(f);
-  return dicom_sniff(b, n);
-}
 
 static int surface(int argc, char **argv) {
   const char *in = argc > 2 ? argv[2] : NULL, *out = NULL, *title = NULL, *roikey = NULL;
@@ -321,7 +310,7 @@ static int surface(int argc, char **argv) {
   char name[600], title_roi[600];
   rtstruct rs;
   int roi = -1;
-  if (dicom_file(in)) {
+  if (dicom_sniff_file(in)) {
     if (!roikey) {
       fprintf(stderr, "plot: %s: a DICOM RT structure set: name the ROI to draw with --roi (./tile %s --list "
               "lists them)\n", in, in);

@@ -21,6 +21,7 @@
 #include "args.h"
 #include "atomicfile.h"
 #include "contour.h"
+#include "dicom.h"
 #include "mesh.h"
 #include "meshio.h"
 #include "pool.h"
@@ -344,7 +345,7 @@ static int tile_main(int argc, char **argv) {
   }
 
   /* A DICOM RT structure set (by its content): tile_dicom.c. */
-  if (tile_dicom_sniff(in)) {
+  if (dicom_sniff_file(in)) {
     tile_dicom_env env = {tile_stack, &o, bad_usage, out, o.quiet, o.trace != NULL, 0 /* as below */, no_keyholes};
     return tile_dicom_main(&dopt, in, &env);
   }

@@ -20,16 +20,6 @@
 #include "rtstruct.h"
 #include "xmem.h"
 
-int tile_dicom_sniff(const char *path) {
-  if (strcmp(path, "-") == 0) return 0;
-  FILE *f = fopen(path, "rb");
-  if (!f) return 0;
-  unsigned char b[132];
-  size_t n = fread(b, 1, sizeof b, f);
-  fclose(f);
-  return dicom_sniff(b, n);
-}
-
 int tile_dicom_is_dir(const char *path) {
   struct stat st;
   size_t n = strlen(path);

@@ -49,9 +49,6 @@ typedef struct {
   int no_keyholes;     /* --no-keyholes: refuse keyhole contours (contour.h) */
 } tile_dicom_env;
 
-/* 1 if the file at path is DICOM by its content (not "-", not unreadable). */
-int tile_dicom_sniff(const char *path);
-
 /* 1 if path names a directory for -o/--contours: ends in '/' or is one. */
 int tile_dicom_is_dir(const char *path);
 
