@@ -1,5 +1,10 @@
-/* mp.c -- the message-passing calls, dispatched to the backend behind the handle. */
+/* mp.c -- the message-passing calls, dispatched to the backend behind the
+ * handle; the calling rank (mp_self) and the way out of a rank (mp_exit). */
 #include "mp.h"
+
+#include <setjmp.h>
+#include <stdio.h>
+#include <stdlib.h>
 
 int mp_rank(const mp *self) { return self->rank; }
 int mp_size(const mp *self) { return self->size; }
@@ -20,6 +25,12 @@ int mp_compute(mp *self, double units) { return self->ops->compute(self, units);
 
 double mp_time(const mp *self) { return self->ops->time(self); }
 
+int mp_wait(mp *self, int src, int tag, mp_status *st) { return self->ops->wait(self, src, tag, st); }
+
+int mp_busy(mp *self, double seconds) { return self->ops->busy(self, seconds); }
+
+int mp_sleep(mp *self, double seconds) { return self->ops->sleep_for(self, seconds); }
+
 const char *mp_strerror(int code) {
   switch (code) {
   case MP_OK: return "ok";
@@ -30,4 +41,52 @@ const char *mp_strerror(int code) {
   case MP_ESTOPPED: return "run stopped";
   default: return "unknown error";
   }
+}
+
+/* ==== the calling rank ==================================================== */
+
+/* Each thread runs one rank at a time: a rank's thread (threads), the
+ * process (MPI), or the simulator's thread, whose coroutines take turns. */
+static _Thread_local mp *self_now;
+
+mp *mp_self(void) { return self_now; }
+void mp_set_self(mp *self) { self_now = self; }
+
+void *mp_user(const mp *self) { return self->user; }
+void mp_set_user(mp *self, void *p) { self->user = p; }
+
+void mp_label(mp *self, mp_describe describe, void *ud) {
+  self->describe = describe;
+  self->describe_ud = ud;
+}
+
+const char *mp_label_text(const mp *self, char *buf, size_t len) {
+  if (!self->describe || len == 0) return NULL;
+  buf[0] = 0;
+  self->describe(self->describe_ud, buf, len);
+  return buf;
+}
+
+/* ==== entering and leaving a rank ========================================= */
+
+void mp_enter(mp *self, mp_main main, void *ud) {
+  jmp_buf out;
+  self->exit_to = &out;
+  mp_set_self(self);
+  if (setjmp(out) == 0) main(self, ud);
+  self->exit_to = NULL;
+  self->describe = NULL;
+}
+
+_Noreturn void mp_exit(mp *self) {
+  if (!self->exit_to) {   /* a bug of the backend: main was not run by mp_enter */
+    fprintf(stderr, "mp_exit: rank %d is not inside mp_enter\n", self->rank);
+    abort();
+  }
+  longjmp(*(jmp_buf *)self->exit_to, 1);
+}
+
+_Noreturn void mp_abort(mp *self, int code, const char *why) {
+  self->ops->stop(self, code, why);
+  mp_exit(self);
 }

@@ -70,6 +70,53 @@ double mp_time(const mp *self);
 /* "deadlock", "no such rank", ... */
 const char *mp_strerror(int code);
 
+/* --- for layers above mp (an MPI library, a runtime) ----------------------
+ * A layer that offers calls without a handle (MPI_Send) finds the calling
+ * rank with mp_self and keeps its per-rank state in mp_user. */
+
+/* The calling rank's handle, or NULL outside a rank's main (on the
+ * simulator: the rank whose coroutine runs; on threads and MPI: this
+ * thread's or process's rank). */
+mp    *mp_self(void);
+
+/* One pointer per rank for the layer above (NULL when the rank starts). */
+void  *mp_user(const mp *self);
+void   mp_set_user(mp *self, void *p);
+
+/* Block until a message from src (or MP_ANY) with tag (or MP_ANY) can be
+ * received, fill *st with the one mp_recv(src, tag) would take now, and
+ * leave it there (a blocking mp_probe).  No processor time is charged: the
+ * receive that takes it pays.  MP_OK, MP_EDEADLOCK, MP_ESTOPPED, MP_ERANK
+ * or MP_EARG, as mp_recv. */
+int    mp_wait(mp *self, int src, int tag, mp_status *st);
+
+/* What this rank's blocking calls wait in, for the deadlock report:
+ * describe(ud, buf, len) writes e.g. "MPI_Recv(source=1, tag=7,
+ * MPI_COMM_WORLD)" into buf, and is called only when a report is made, so
+ * that setting it costs two stores.  describe = NULL: mp's own words
+ * ("recv(src=1, tag=7)"). */
+typedef void (*mp_describe)(void *ud, char *buf, size_t len);
+void   mp_label(mp *self, mp_describe describe, void *ud);
+
+/* Charge `seconds` of computing to this rank, as mp_compute charges units *
+ * c (the simulator's processor-side model applies).  A no-op on real
+ * backends.  MP_OK or MP_EARG (negative or not finite). */
+int    mp_busy(mp *self, double seconds);
+
+/* Sleep: the rank's clock moves on `seconds` without holding its processor
+ * (the simulator), or the thread sleeps that long (real backends).  MP_OK
+ * or MP_EARG. */
+int    mp_sleep(mp *self, double seconds);
+
+/* End this rank here, as if its main had returned (never returns). */
+_Noreturn void mp_exit(mp *self);
+
+/* Stop the whole run: every other rank's mp calls return MP_ESTOPPED from
+ * now on, the run fails with `why` (copied) and reports `code` as its exit
+ * status (the first abort's, in simulated time on the simulator); this rank
+ * ends here (never returns). */
+_Noreturn void mp_abort(mp *self, int code, const char *why);
+
 /* --- private part: what a backend fills in ------------------------------ */
 
 typedef struct mp_ops {
@@ -78,12 +125,30 @@ typedef struct mp_ops {
   int (*probe)(mp *, int src, int tag, mp_status *st);
   int (*compute)(mp *, double units);
   double (*time)(const mp *);
+  int (*wait)(mp *, int src, int tag, mp_status *st);
+  int (*busy)(mp *, double seconds);
+  int (*sleep_for)(mp *, double seconds);   /* not "sleep": SimGrid's headers define that macro */
+  void (*stop)(mp *, int code, const char *why);   /* mp_abort's effect on the run */
 } mp_ops;
 
-/* A backend's per-rank state begins with this struct. */
+/* A backend's per-rank state begins with this struct.  The backend calls
+ * the rank's main through mp_enter, which is where mp_exit returns to. */
 struct mp {
   const mp_ops *ops;
   int rank, size;
+  void *user;                 /* mp_user */
+  mp_describe describe;       /* mp_label */
+  void *describe_ud;
+  void *exit_to;              /* mp_enter's jmp_buf while main runs */
 };
+
+/* Run main(self, ud) until it returns or the rank calls mp_exit or
+ * mp_abort; the backend sets the calling thread's mp_self first (and, on
+ * a simulator, again at every switch, with mp_set_self). */
+void mp_enter(mp *self, mp_main main, void *ud);
+void mp_set_self(mp *self);
+
+/* The label's words for a deadlock report: describe's, or NULL. */
+const char *mp_label_text(const mp *self, char *buf, size_t len);
 
 #endif

@@ -537,7 +537,83 @@ static int mpm_probe(mp *self, int src, int tag, mp_status *st) {
 
 static double mpm_time(const mp *self) { return now((const mpm *)self); }
 
-static const mp_ops mpm_ops = {mpm_send, mpm_recv, mpm_probe, mpm_compute, mpm_time};
+/* mp_wait: a receive that leaves the message in the mailbox (MPI_Probe
+ * under SimGrid). */
+static int mpm_wait(mp *self, int src, int tag, mp_status *st) {
+  mpm *m = (mpm *)self;
+  if (m->stopped) return MP_ESTOPPED;
+  int rc = check_match_args(m, "mp_wait", src, tag);
+  if (rc != MP_OK) return rc;
+#if SIMGRID
+  MPI_Status ms;
+  MPI_Probe(src < 0 ? MPI_ANY_SOURCE : src, tag < 0 ? MPI_ANY_TAG : tag, m->data, &ms);
+  int len = 0;
+  MPI_Get_count(&ms, MPI_BYTE, &len);
+  if (st) *st = (mp_status){ms.MPI_SOURCE, ms.MPI_TAG, (size_t)len};
+  return MP_OK;
+#else
+  double since = -1;
+  for (;;) {
+    for (msg *g = m->head; g; g = g->next) {
+      if (!matches(g, src, tag)) continue;
+      if (m->reported == ST_BLOCKED) report(m, ST_RUNNING);
+      if (st) *st = (mp_status){g->src, g->tag, g->len};
+      return MP_OK;
+    }
+    if (m->stopped) return m->reported == ST_BLOCKED ? MP_EDEADLOCK : MP_ESTOPPED;
+    if (since < 0) {
+      since = now(m);
+      m->wait_src = src;
+      m->wait_tag = tag;
+    } else {
+      double w = now(m) - since;
+      if (m->reported != ST_BLOCKED && w >= REPORT_S) report(m, ST_BLOCKED);
+      else if (m->reported == ST_BLOCKED && m->arrivals != m->reported_arrivals) report(m, ST_BLOCKED);
+      if (m->stopped) continue;
+      backoff(m, since);
+    }
+    poll_once(m);
+  }
+#endif
+}
+
+static int mpm_busy(mp *self, double seconds) {
+  mpm *m = (mpm *)self;
+  if (m->stopped) return MP_ESTOPPED;
+  if (!(seconds >= 0) || isinf(seconds)) {
+    fail(m, "rank %d: mp_busy(%g): seconds must be finite and >= 0", m->me, seconds);
+    return MP_EARG;
+  }
+#if SIMGRID
+  if (seconds > 0) smpi_execute_benched(seconds);
+#endif
+  return MP_OK;
+}
+
+static int mpm_sleep(mp *self, double seconds) {
+  mpm *m = (mpm *)self;
+  if (m->stopped) return MP_ESTOPPED;
+  if (!(seconds >= 0) || seconds > 1e9) {
+    fail(m, "rank %d: mp_sleep(%g): seconds must be from 0 to 1e9", m->me, seconds);
+    return MP_EARG;
+  }
+  struct timespec ts = {(time_t)seconds, (long)((seconds - (double)(time_t)seconds) * 1e9)};
+  while (nanosleep(&ts, &ts) != 0) {
+  }
+  return MP_OK;
+}
+
+/* mp_abort: one process cannot stop the others' calls; MPI_Abort ends them
+ * all with the code. */
+static void mpm_stop(mp *self, int code, const char *why) {
+  mpm *m = (mpm *)self;
+  fprintf(stderr, "mpi: rank %d: %s\n", m->me, why ? why : "aborted");
+  fflush(stderr);
+  MPI_Abort(MPI_COMM_WORLD, code);
+}
+
+static const mp_ops mpm_ops = {mpm_send, mpm_recv, mpm_probe, mpm_compute, mpm_time,
+                               mpm_wait, mpm_busy, mpm_sleep, mpm_stop};
 
 /* ==== the machine ========================================================= */
 
@@ -559,7 +635,7 @@ mpm *mpm_new(const mpm_config *cfg, MPI_Comm data, MPI_Comm ctl, int nranks, cha
     return NULL;
   }
   mpm *m = xcalloc(1, sizeof *m);
-  m->base = (struct mp){&mpm_ops, me, nranks};
+  m->base = (struct mp){.ops = &mpm_ops, .rank = me, .size = nranks};
   m->cfg = *cfg;
   cpuload_init(&m->load);
   m->cpus = cpuload_cpus();
@@ -725,7 +801,7 @@ int mpm_run(mpm *m, mp_main main, void *ud, char *err, size_t errlen) {
   }
   m->ran = 1;
   m->t0 = MPI_Wtime();
-  main(&m->base, ud);
+  mp_enter(&m->base, main, ud);
 #if !SIMGRID
   wait_end(m);
 #endif

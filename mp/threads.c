@@ -74,6 +74,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "cpuload.h"
@@ -455,7 +456,7 @@ static const char *peer_name(int v, char *buf, size_t len) {
 static void declare_deadlock_locked(mpt *t) {
   enum { SHOWN = 16 };
   size_t cap = 64 + SHOWN * 64, len = 0;
-  char *buf = xmalloc(cap), a[16], b[16];
+  char *buf = xmalloc(cap), a[16], b[16], what[160];
   len += (size_t)snprintf(buf, cap, "deadlock after %.6f s:", wallclock() - t->t0);
   int blocked = 0;
   for (int i = 0; i < t->n; i++) {
@@ -465,7 +466,15 @@ static void declare_deadlock_locked(mpt *t) {
      * is read by its rank only once the run has stopped. */
     if (!atomic_load_explicit(&r->sleeping, memory_order_relaxed)) continue;
     r->deadlocked = 1;
-    if (blocked++ < SHOWN)
+    if (blocked++ >= SHOWN) continue;
+    /* The label is the sleeper's, set before it went to sleep (under its
+     * mutex, which it took after: the store is visible here). */
+    const char *label = mp_label_text(&r->base, what, sizeof what);
+    if (cap - len < 200) buf = xrealloc(buf, cap *= 2);
+    if (label)
+      len += (size_t)snprintf(buf + len, cap - len, "%s rank %d waits in %s", blocked > 1 ? ";" : "", i,
+                              label);
+    else
       len += (size_t)snprintf(buf + len, cap - len, "%s rank %d waits in recv(src=%s, tag=%s)",
                               blocked > 1 ? ";" : "", i, peer_name(r->wait_src, a, sizeof a),
                               peer_name(r->wait_tag, b, sizeof b));
@@ -670,16 +679,10 @@ static int spin(rank *r, int src, int mark) {
   return 0;
 }
 
-static int mpt_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status *st) {
-  rank *r = (rank *)self;
+/* Wait until a message from src with tag is there: *f, and MP_OK; or
+ * MP_EDEADLOCK or MP_ESTOPPED. */
+static int arrived(rank *r, int src, int tag, found *out) {
   mpt *t = r->t;
-  if (stopped(t)) return MP_ESTOPPED;
-  int rc = check_match_args(r, "mp_recv", src, tag);
-  if (rc != MP_OK) return rc;
-  if (cap && !buf) {
-    fail(t, "rank %d: mp_recv into a NULL buffer of %zu bytes", r->base.rank, cap);
-    return MP_EARG;
-  }
   double w0 = -1;
   for (;;) {
     /* Look. */
@@ -687,7 +690,8 @@ static int mpt_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status
     found f = look(r, src, tag);
     if (f.x) {
       if (w0 >= 0) r->st.recv_wait += wallclock() - w0;
-      return deliver(r, f, buf, cap, st);
+      *out = f;
+      return MP_OK;
     }
     if (w0 < 0) w0 = wallclock();
     /* Spin. */
@@ -702,7 +706,8 @@ static int mpt_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status
       atomic_store_explicit(&r->sleeping, 0, memory_order_relaxed);
       pthread_mutex_unlock(&r->mu);
       r->st.recv_wait += wallclock() - w0;
-      return f.x ? deliver(r, f, buf, cap, st) : MP_ESTOPPED;
+      *out = f;
+      return f.x ? MP_OK : MP_ESTOPPED;
     }
     r->st.sleeps++;
     pthread_mutex_lock(&t->g);
@@ -735,6 +740,44 @@ static int mpt_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status
   }
 }
 
+static int mpt_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status *st) {
+  rank *r = (rank *)self;
+  mpt *t = r->t;
+  if (stopped(t)) return MP_ESTOPPED;
+  int rc = check_match_args(r, "mp_recv", src, tag);
+  if (rc != MP_OK) return rc;
+  if (cap && !buf) {
+    fail(t, "rank %d: mp_recv into a NULL buffer of %zu bytes", r->base.rank, cap);
+    return MP_EARG;
+  }
+  found f;
+  rc = arrived(r, src, tag, &f);
+  return rc == MP_OK ? deliver(r, f, buf, cap, st) : rc;
+}
+
+/* A message is shown, not taken (a probe that found one, mp_wait): it has
+ * arrived, so whatever this rank sends from now on comes after it, and its
+ * clock moves past the message's stamp as a receive's does (else a message
+ * it then sends to itself, or one sent on in its name, could be taken from
+ * any source before this one); from any source, it is pinned (look() says
+ * why). */
+static void show(rank *r, found f, int src, int tag, mp_status *st) {
+  if (f.x->stamp > r->clock) r->clock = f.x->stamp;
+  if (src < 0) r->pin_q = f.q, r->pin_x = f.x, r->pin_tag = tag;
+  if (st) *st = (mp_status){(int)f.x->src, f.x->tag, (size_t)f.x->len};
+}
+
+static int mpt_wait(mp *self, int src, int tag, mp_status *st) {
+  rank *r = (rank *)self;
+  if (stopped(r->t)) return MP_ESTOPPED;
+  int rc = check_match_args(r, "mp_wait", src, tag);
+  if (rc != MP_OK) return rc;
+  found f;
+  rc = arrived(r, src, tag, &f);
+  if (rc == MP_OK) show(r, f, src, tag, st);
+  return rc;
+}
+
 static int mpt_probe(mp *self, int src, int tag, mp_status *st) {
   rank *r = (rank *)self;
   if (stopped(r->t)) return MP_ESTOPPED;
@@ -742,19 +785,52 @@ static int mpt_probe(mp *self, int src, int tag, mp_status *st) {
   if (rc != MP_OK) return rc;
   found f = look(r, src, tag);
   if (!f.x) return 0;
-  /* What a probe shows has arrived: whatever this rank sends from now on
-   * comes after it, so its clock moves past the message's stamp as a
-   * receive's does (else a message it then sends to itself, or one sent
-   * on in its name, could be taken from any source before this one). */
-  if (f.x->stamp > r->clock) r->clock = f.x->stamp;
-  if (src < 0) r->pin_q = f.q, r->pin_x = f.x, r->pin_tag = tag;   /* look() says why */
-  if (st) *st = (mp_status){(int)f.x->src, f.x->tag, (size_t)f.x->len};
+  show(r, f, src, tag, st);
   return 1;
 }
 
 static double mpt_time(const mp *self) { return wallclock() - ((const rank *)self)->t->t0; }
 
-static const mp_ops mpt_ops = {mpt_send, mpt_recv, mpt_probe, mpt_compute, mpt_time};
+static int mpt_busy(mp *self, double seconds) {
+  rank *r = (rank *)self;
+  if (stopped(r->t)) return MP_ESTOPPED;
+  if (!(seconds >= 0) || isinf(seconds)) {
+    fail(r->t, "rank %d: mp_busy(%g): seconds must be finite and >= 0", r->base.rank, seconds);
+    return MP_EARG;
+  }
+  return MP_OK;
+}
+
+static int mpt_sleep(mp *self, double seconds) {
+  rank *r = (rank *)self;
+  if (stopped(r->t)) return MP_ESTOPPED;
+  if (!(seconds >= 0) || seconds > 1e9) {
+    fail(r->t, "rank %d: mp_sleep(%g): seconds must be from 0 to 1e9", r->base.rank, seconds);
+    return MP_EARG;
+  }
+  struct timespec ts = {(time_t)seconds, (long)((seconds - (double)(time_t)seconds) * 1e9)};
+  while (nanosleep(&ts, &ts) != 0 && !stopped(r->t)) {
+  }
+  return MP_OK;
+}
+
+/* mp_abort: the first to abort gives the run's exit code. */
+static void mpt_stop(mp *self, int code, const char *why) {
+  rank *r = (rank *)self;
+  mpt *t = r->t;
+  pthread_mutex_lock(&t->g);
+  if (!t->st.aborted) {
+    t->st.aborted = 1;
+    t->st.abort_code = code;
+  }
+  add_error_locked(t, why ? why : "aborted", 0);
+  atomic_store(&t->stopped, 1);
+  pthread_mutex_unlock(&t->g);
+  wake_all(t);
+}
+
+static const mp_ops mpt_ops = {mpt_send, mpt_recv, mpt_probe, mpt_compute, mpt_time,
+                               mpt_wait, mpt_busy, mpt_sleep, mpt_stop};
 
 /* ==== the machine ========================================================= */
 
@@ -777,7 +853,7 @@ mpt *mpt_new(const mpt_config *cfg, int nranks, char *err, size_t errlen) {
   t->ranks = ranks;
   for (int i = 0; i < nranks; i++) {
     rank *r = &t->ranks[i];
-    r->base = (struct mp){&mpt_ops, i, nranks};
+    r->base = (struct mp){.ops = &mpt_ops, .rank = i, .size = nranks};
     r->t = t;
     r->out = xcalloc((size_t)nranks, sizeof *r->out);
     r->in = xcalloc((size_t)nranks, sizeof *r->in);
@@ -808,7 +884,7 @@ static void *rank_main(void *ud) {
   int go = t->gate > 0;
   pthread_mutex_unlock(&t->gate_mu);
   if (!go) return NULL;
-  t->procs[r->base.rank].main(&r->base, t->procs[r->base.rank].ud);
+  mp_enter(&r->base, t->procs[r->base.rank].main, t->procs[r->base.rank].ud);
   r->st.done = 1;
   r->st.finish = wallclock() - t->t0;
   pthread_mutex_lock(&t->g);

@@ -152,6 +152,7 @@ typedef struct {
   long long warnings;         /* truncations, unread messages */
   long long errors;           /* bad arguments, deadlock, ... */
   int deadlock;               /* 1 if the run ended in a deadlock */
+  int aborted, abort_code;    /* a rank called mp_abort: the first one's code */
 } mpt_stats;
 
 /* Statistics of one rank (0 <= rank < nranks) and of the run: valid after

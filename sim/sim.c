@@ -336,11 +336,12 @@ static void give_way(sim *s, rank *r) {
   s->st.switches++;
   if (id < 0) {
     coro_switch(r->co, s->main);
-    return;
+  } else {
+    XASSERT(t >= s->gtime);
+    s->gtime = t;
+    coro_switch(r->co, s->ranks[id].co);
   }
-  XASSERT(t >= s->gtime);
-  s->gtime = t;
-  coro_switch(r->co, s->ranks[id].co);
+  mp_set_self(&r->base);   /* resumed */
 }
 
 /* r's clock has moved on.  Go on if it is still strictly the earliest (what
@@ -408,17 +409,9 @@ static double slow_factor(sim *s, const rank *r) {
   return 1 + s->cfg.cpu.slowdown * k + s->cfg.cpu.slowdown_spin * j;
 }
 
-static int sim_compute(mp *self, double units) {
-  rank *r = (rank *)self;
-  sim *s = r->s;
-  if (s->stopped) return stopped_call(s, r);
-  s->st.events++;
-  r->probe_spins = 0;
-  if (!(units >= 0) || isinf(units)) {
-    fail(s, "rank %d: mp_compute(%g): units must be finite and >= 0", r->base.rank, units);
-    return MP_EARG;
-  }
-  double d = units * s->cfg.c, t0 = r->now;
+/* r computes for d seconds (units of them, for the statistics). */
+static int charge(sim *s, rank *r, double d, double units) {
+  double t0 = r->now;
   if (s->cpu && (s->cfg.cpu.slowdown > 0 || s->cfg.cpu.slowdown_spin > 0)) d *= slow_factor(s, r);
   double start = reserve(s, r, d);
   r->st.units += units;
@@ -429,6 +422,50 @@ static int sim_compute(mp *self, double units) {
     trace_span(s->tr, "compute", r->base.rank, r->proc, start, d, -1, -1);
   }
   r->now = start + d;
+  if (r->now > t0) moved(s, r);
+  return MP_OK;
+}
+
+static int sim_compute(mp *self, double units) {
+  rank *r = (rank *)self;
+  sim *s = r->s;
+  if (s->stopped) return stopped_call(s, r);
+  s->st.events++;
+  r->probe_spins = 0;
+  if (!(units >= 0) || isinf(units)) {
+    fail(s, "rank %d: mp_compute(%g): units must be finite and >= 0", r->base.rank, units);
+    return MP_EARG;
+  }
+  return charge(s, r, units * s->cfg.c, units);
+}
+
+static int sim_busy(mp *self, double seconds) {
+  rank *r = (rank *)self;
+  sim *s = r->s;
+  if (s->stopped) return stopped_call(s, r);
+  s->st.events++;
+  r->probe_spins = 0;
+  if (!(seconds >= 0) || isinf(seconds)) {
+    fail(s, "rank %d: mp_busy(%g): seconds must be finite and >= 0", r->base.rank, seconds);
+    return MP_EARG;
+  }
+  return charge(s, r, seconds, 0);
+}
+
+static int sim_sleep(mp *self, double seconds) {
+  rank *r = (rank *)self;
+  sim *s = r->s;
+  if (s->stopped) return stopped_call(s, r);
+  s->st.events++;
+  r->probe_spins = 0;
+  if (!(seconds >= 0) || isinf(seconds)) {
+    fail(s, "rank %d: mp_sleep(%g): seconds must be finite and >= 0", r->base.rank, seconds);
+    return MP_EARG;
+  }
+  if (s->tr && seconds > 0) trace_span(s->tr, "sleep", r->base.rank, r->proc, r->now, seconds, -1, -1);
+  r->st.slept += seconds;
+  double t0 = r->now;
+  r->now += seconds;
   if (r->now > t0) moved(s, r);
   return MP_OK;
 }
@@ -531,18 +568,10 @@ static int check_match_args(sim *s, rank *r, const char *call, int src, int tag)
   return MP_OK;
 }
 
-static int sim_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status *st) {
-  rank *r = (rank *)self;
-  sim *s = r->s;
-  if (s->stopped) return stopped_call(s, r);
-  s->st.events++;
-  r->probe_spins = 0;
-  int rc = check_match_args(s, r, "mp_recv", src, tag);
-  if (rc != MP_OK) return rc;
-  if (cap && !buf) {
-    fail(s, "rank %d: mp_recv into a NULL buffer of %zu bytes", r->base.rank, cap);
-    return MP_EARG;
-  }
+/* The message a recv of r from src with tag takes, once it has arrived:
+ * r blocks until then.  NULL and *rc = MP_EDEADLOCK or MP_ESTOPPED if the
+ * run stopped meanwhile. */
+static msg *arrived(sim *s, rank *r, int src, int tag, int *rc) {
   msg *m = box_find(r, src, tag);
   if (!m || m->arrival > r->now) {
     /* Block: queued at the first matching arrival if one is on its way,
@@ -564,11 +593,31 @@ static int sim_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status
     r->now = t;
     r->st.recv_wait += t - since;
     if (s->tr && t > since) trace_span(s->tr, "wait", r->base.rank, r->proc, since, t - since, src, tag);
-    if (s->stopped) return r->deadlocked ? MP_EDEADLOCK : MP_ESTOPPED;
+    if (s->stopped) {
+      *rc = r->deadlocked ? MP_EDEADLOCK : MP_ESTOPPED;
+      return NULL;
+    }
     XASSERT(t == s->gtime);
     m = box_find(r, src, tag);
     XASSERT(m && m->arrival <= r->now);
   }
+  return m;
+}
+
+static int sim_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status *st) {
+  rank *r = (rank *)self;
+  sim *s = r->s;
+  if (s->stopped) return stopped_call(s, r);
+  s->st.events++;
+  r->probe_spins = 0;
+  int rc = check_match_args(s, r, "mp_recv", src, tag);
+  if (rc != MP_OK) return rc;
+  if (cap && !buf) {
+    fail(s, "rank %d: mp_recv into a NULL buffer of %zu bytes", r->base.rank, cap);
+    return MP_EARG;
+  }
+  msg *m = arrived(s, r, src, tag, &rc);
+  if (!m) return rc;
   box_unlink(r, m);
 
   double before = r->now, t0 = r->now, o = 0;
@@ -627,9 +676,36 @@ static int sim_probe(mp *self, int src, int tag, mp_status *st) {
   return 0;
 }
 
+static int sim_wait(mp *self, int src, int tag, mp_status *st) {
+  rank *r = (rank *)self;
+  sim *s = r->s;
+  if (s->stopped) return stopped_call(s, r);
+  s->st.events++;
+  r->probe_spins = 0;
+  int rc = check_match_args(s, r, "mp_wait", src, tag);
+  if (rc != MP_OK) return rc;
+  msg *m = arrived(s, r, src, tag, &rc);
+  if (!m) return rc;
+  if (st) *st = (mp_status){m->src, m->tag, m->len};
+  return MP_OK;
+}
+
 static double sim_time(const mp *self) { return ((const rank *)self)->now; }
 
-static const mp_ops sim_ops = {sim_send, sim_recv, sim_probe, sim_compute, sim_time};
+/* mp_abort: the first abort in simulated time gives the run's exit code. */
+static void sim_stop(mp *self, int code, const char *why) {
+  rank *r = (rank *)self;
+  sim *s = r->s;
+  if (!s->st.aborted) {
+    s->st.aborted = 1;
+    s->st.abort_code = code;
+  }
+  fail(s, "%s", why ? why : "aborted");
+  s->stopped = 1;
+}
+
+static const mp_ops sim_ops = {sim_send, sim_recv, sim_probe, sim_compute, sim_time,
+                               sim_wait, sim_busy,  sim_sleep, sim_stop};
 
 /* ==== the machine ========================================================= */
 
@@ -699,7 +775,7 @@ sim *sim_new(const sim_config *cfg, int nranks, char *err, size_t errlen) {
   s->ranks = xcalloc((size_t)nranks, sizeof *s->ranks);
   for (int r = 0; r < nranks; r++) {
     rank *k = &s->ranks[r];
-    k->base = (struct mp){&sim_ops, r, nranks};
+    k->base = (struct mp){.ops = &sim_ops, .rank = r, .size = nranks};
     k->s = s;
     k->proc = s->place[r];
     k->st.proc = k->proc;
@@ -733,7 +809,7 @@ void sim_trace_size(const sim *s, unsigned long long *csv, unsigned long long *j
 static coro *rank_main(void *ud) {
   rank *r = ud;
   sim *s = r->s;
-  s->procs[r->base.rank].main(&r->base, s->procs[r->base.rank].ud);
+  mp_enter(&r->base, s->procs[r->base.rank].main, s->procs[r->base.rank].ud);
   r->state = R_DONE;
   r->st.done = 1;
   r->st.finish = r->now;
@@ -760,17 +836,24 @@ static const char *peer_name(int v, char *buf, size_t len) {
 static void report_deadlock(sim *s) {
   enum { SHOWN = 16 };
   size_t cap = 64 + SHOWN * 64, len = 0;
-  char *buf = xmalloc(cap), a[16], b[16];
+  char *buf = xmalloc(cap), a[16], b[16], what[160];
   len += (size_t)snprintf(buf, cap, "deadlock at t=%.9g:", s->gtime);
   int blocked = 0;
   for (int i = 0; i < s->n; i++) {
     rank *r = &s->ranks[i];
     if (r->state != R_BLOCKED) continue;
     r->deadlocked = 1;
-    if (blocked++ < SHOWN)
+    if (blocked++ >= SHOWN) continue;
+    const char *label = mp_label_text(&r->base, what, sizeof what);
+    if (label) {
+      if (cap - len < 200) buf = xrealloc(buf, cap *= 2);
+      len += (size_t)snprintf(buf + len, cap - len, "%s rank %d waits in %s", blocked > 1 ? ";" : "",
+                              i, label);
+    } else {
       len += (size_t)snprintf(buf + len, cap - len, "%s rank %d waits in recv(src=%s, tag=%s)",
                               blocked > 1 ? ";" : "", i, peer_name(r->wait_src, a, sizeof a),
                               peer_name(r->wait_tag, b, sizeof b));
+    }
   }
   if (blocked > SHOWN)
     snprintf(buf + len, cap - len, "; and %d more ranks", blocked - SHOWN);
@@ -812,6 +895,7 @@ int sim_run(sim *s, const mp_proc *procs, char *err, size_t errlen) {
     }
   }
   double w0 = wallclock();
+  mp *outer = mp_self();   /* restored whenever a rank gives way to sim_run */
   s->procs = procs;
   s->tr = s->count_csv || s->count_json ? trace_new_count(s->count_csv, s->count_json)
                                          : trace_new(s->tcsv, s->tjson);
@@ -838,6 +922,7 @@ int sim_run(sim *s, const mp_proc *procs, char *err, size_t errlen) {
         s->gtime = t;
         s->st.switches++;
         coro_switch(s->main, s->ranks[id].co);
+        mp_set_self(outer);
         continue;
       }
       if (s->live == 0) break;

@@ -60,12 +60,19 @@
  *   from another processor: the receiver's processor is then busy o:
  *   s = max(now, busy_until[proc]); busy_until = now = s + o.
  *   mp_probe(src, tag) never blocks and sees the messages with arrival <= now.
+ *   mp_wait(src, tag) blocks as mp_recv does, until the message mp_recv
+ *   would take has arrived, and leaves it there (no overhead is charged).
  *
  *   End.  A rank that returns from its main has finished at its now; the
  *   makespan is the latest finish.
  *
+ *   Sleep.  mp_sleep(s): now += s; the processor is not held.  mp_busy(s)
+ *   computes as mp_compute does, for s seconds instead of u*c.  mp_exit ends
+ *   a rank at its now, as returning from its main does.
+ *
  *   Statistics identity: finish = compute + cpu_wait + overhead + recv_wait
- *   for every rank that returns normally (the only ways its clock moves).
+ *   + slept for every rank that returns normally (the only ways its clock
+ *   moves).
  *
  * ERRORS
  *
@@ -88,6 +95,10 @@
  *   recv returns MP_ETRUNC, the first cap bytes are copied, the message is
  *   consumed), and messages never received by the end of the run:
  *     sim: warning: rank 3 finished with 2 unread messages (first from rank 1, tag 4)
+ *
+ *   mp_abort(code, why): the run stops (as after a deadlock, every other
+ *   rank's calls return MP_ESTOPPED), sim_run returns -1 quoting why, and
+ *   sim_stats has aborted = 1 and the first abort's code.
  *
  *   A rank that calls mp_probe 1,000,000 times in a row at the same clock,
  *   with nothing else in between, can never see a new message (time does not
@@ -187,7 +198,8 @@ typedef struct {
   double compute;           /* seconds computing: the sum of units * c */
   double cpu_wait;          /* seconds waiting for its (shared) processor */
   double overhead;          /* seconds of LogGP send and receive overhead o */
-  double recv_wait;         /* seconds blocked in mp_recv */
+  double recv_wait;         /* seconds blocked in mp_recv (and mp_wait) */
+  double slept;             /* seconds of mp_sleep */
   long long sent, received; /* messages */
   long long bytes_sent, bytes_received;
   long long sent_tag[SIM_TAGS];  /* messages sent with tag 0..SIM_TAGS-1 */
@@ -206,6 +218,7 @@ typedef struct {
   long long warnings;       /* warnings (truncations, unread messages) */
   long long errors;         /* errors (bad arguments, deadlock, ...) */
   int deadlock;             /* 1 if the run ended in a deadlock */
+  int aborted, abort_code;  /* a rank called mp_abort: the first one's code */
   double wall_s;            /* host seconds sim_run took (reporting only) */
 } sim_stats;
 

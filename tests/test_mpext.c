@@ -1,0 +1,332 @@
+/* test_mpext.c -- the calls mp.h offers layers above it (mp_self, mp_user,
+ * mp_wait, mp_label, mp_busy, mp_sleep, mp_exit, mp_abort), on the
+ * simulator and on threads.
+ *
+ * On the simulator, times are checked against the model of sim.h with
+ * binary-fraction costs (exact); on threads, the same programs must deliver
+ * the same messages and end the same way. */
+#include <math.h>
+#include <stdatomic.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "mp.h"
+#include "sim.h"
+#include "threads.h"
+
+enum { SIM, THREADS };
+static const char *const backend[] = {"sim", "threads"};
+
+typedef struct {
+  int rc;
+  char err[1024];
+  sim_stats ss;
+  mpt_stats ts;
+  double finish[8];
+  int done[8];
+} result;
+
+static sim_config config(int procs) {
+  sim_config cfg;
+  sim_config_init(&cfg);
+  cfg.procs = procs;
+  cfg.net = SIM_NET_IDEAL;
+  cfg.c = 0.125;
+  cfg.m = 0.25;
+  cfg.per_byte = 0.0625;
+  cfg.local = 0.5;
+  cfg.warn = NULL;
+  return cfg;
+}
+
+/* Run n ranks of fn (each with ud) on backend b; procs processors on the simulator. */
+static result run(int b, int n, int procs, mp_main fn, void *ud) {
+  result res;
+  memset(&res, 0, sizeof res);
+  mp_proc pr[8];
+  for (int i = 0; i < n; i++) pr[i] = (mp_proc){fn, ud};
+  if (b == SIM) {
+    sim_config cfg = config(procs);
+    sim *s = sim_new(&cfg, n, res.err, sizeof res.err);
+    if (!s) abort();
+    res.rc = sim_run(s, pr, res.err, sizeof res.err);
+    res.ss = *sim_stats_get(s);
+    for (int i = 0; i < n; i++) res.finish[i] = sim_rank(s, i)->finish, res.done[i] = sim_rank(s, i)->done;
+    sim_free(s);
+  } else {
+    mpt_config cfg;
+    mpt_config_init(&cfg);
+    cfg.warn = NULL;
+    mpt *t = mpt_new(&cfg, n, res.err, sizeof res.err);
+    if (!t) abort();
+    res.rc = mpt_run(t, pr, res.err, sizeof res.err);
+    res.ts = *mpt_stats_get(t);
+    for (int i = 0; i < n; i++) res.done[i] = mpt_rank(t, i)->done;
+    mpt_free(t);
+  }
+  return res;
+}
+
+/* ==== mp_self and mp_user ================================================= */
+
+typedef struct {
+  atomic_int bad;      /* mp_self or mp_user wrong somewhere */
+  atomic_int ran;
+} selfcheck;
+
+/* Ranks pass a token around a ring three times; at every step each checks
+ * that mp_self is itself and that its user slot still holds its own value
+ * (set at the start: every switch between ranks must keep both). */
+static void self_main(mp *self, void *ud) {
+  selfcheck *c = ud;
+  int me = mp_rank(self), n = mp_size(self);
+  if (mp_self() != self || mp_user(self) != NULL) atomic_fetch_add(&c->bad, 1);
+  int mine = 1000 + me;
+  mp_set_user(self, &mine);
+  for (int lap = 0; lap < 3; lap++) {
+    int tok = 0;
+    if (me == 0) mp_send(self, 1 % n, 0, &tok, sizeof tok);
+    mp_recv(self, (me + n - 1) % n, 0, &tok, sizeof tok, NULL);
+    if (mp_self() != self || mp_user(self) != &mine || *(int *)mp_user(mp_self()) != 1000 + me)
+      atomic_fetch_add(&c->bad, 1);
+    if (me != 0) mp_send(self, (me + 1) % n, 0, &tok, sizeof tok);
+    mp_compute(self, me);   /* the simulator switches on compute too */
+    if (mp_self() != self) atomic_fetch_add(&c->bad, 1);
+  }
+  atomic_fetch_add(&c->ran, 1);
+}
+
+static void test_self(int b) {
+  CHECK(mp_self() == NULL, "%s: mp_self outside a run is not NULL", backend[b]);
+  selfcheck c;
+  atomic_init(&c.bad, 0);
+  atomic_init(&c.ran, 0);
+  result r = run(b, 5, 2, self_main, &c);
+  CHECK(r.rc == 0, "%s: self ring: %s", backend[b], r.err);
+  CHECK(atomic_load(&c.ran) == 5 && atomic_load(&c.bad) == 0, "%s: mp_self/mp_user wrong %d times (%d ran)",
+        backend[b], atomic_load(&c.bad), atomic_load(&c.ran));
+  CHECK(mp_self() == NULL, "%s: mp_self after a run is not NULL", backend[b]);
+}
+
+/* ==== mp_wait ============================================================= */
+
+typedef struct {
+  atomic_int bad;
+  double t_wait, t_recv;   /* rank 0's clock after mp_wait, after mp_recv */
+} waitcheck;
+
+/* Rank 1 sends 4 bytes (tag 5) at t = 0 and, after computing 1 unit, 4
+ * bytes (tag 6).  Rank 0 waits for tag 6 first: the wait must show tag 6
+ * and leave both messages; a wait for any then shows tag 5 (the earlier
+ * arrival); recvs take them in that order. */
+static void wait_main(mp *self, void *ud) {
+  waitcheck *c = ud;
+  if (mp_rank(self) == 1) {
+    int a = 15, b = 25;
+    mp_send(self, 0, 5, &a, sizeof a);
+    mp_compute(self, 1);
+    mp_send(self, 0, 6, &b, sizeof b);
+    return;
+  }
+  mp_status st = {-9, -9, 99};
+  int rc = mp_wait(self, 1, 6, &st);
+  if (rc != MP_OK || st.source != 1 || st.tag != 6 || st.len != 4) atomic_fetch_add(&c->bad, 1);
+  c->t_wait = mp_time(self);
+  rc = mp_wait(self, MP_ANY, MP_ANY, &st);
+  if (rc != MP_OK || st.source != 1 || st.tag != 5 || st.len != 4) atomic_fetch_add(&c->bad, 1);
+  if (mp_probe(self, 1, 5, NULL) != 1 || mp_probe(self, 1, 6, NULL) != 1) atomic_fetch_add(&c->bad, 1);
+  int x = 0;
+  rc = mp_recv(self, MP_ANY, MP_ANY, &x, sizeof x, &st);
+  if (rc != MP_OK || st.tag != 5 || x != 15) atomic_fetch_add(&c->bad, 1);
+  rc = mp_recv(self, MP_ANY, MP_ANY, &x, sizeof x, &st);
+  if (rc != MP_OK || st.tag != 6 || x != 25) atomic_fetch_add(&c->bad, 1);
+  c->t_recv = mp_time(self);
+}
+
+static void test_wait(int b) {
+  waitcheck c = {0};
+  atomic_init(&c.bad, 0);
+  result r = run(b, 2, 2, wait_main, &c);
+  CHECK(r.rc == 0, "%s: wait: %s", backend[b], r.err);
+  CHECK(atomic_load(&c.bad) == 0, "%s: mp_wait showed or left the wrong messages (%d)", backend[b],
+        atomic_load(&c.bad));
+  if (b == SIM) {
+    /* Tag 6 leaves rank 1 at c = 0.125 and takes m + 4 per_byte = 0.5
+     * (tag 5, sent at 0, arrived at 0.5: no overtaking to wait for). */
+    double expect = 0.125 + 0.25 + 4 * 0.0625;
+    CHECK(c.t_wait == expect, "sim: mp_wait returned at %.17g, the model says %.17g", c.t_wait, expect);
+    CHECK(c.t_recv == expect, "sim: the receives after the wait cost time: %.17g, not %.17g", c.t_recv,
+          expect);
+    CHECK(r.ss.unread == 0 && r.ss.received == 2, "sim: %lld received, %lld unread", r.ss.received,
+          r.ss.unread);
+  }
+}
+
+/* ==== mp_busy and mp_sleep ================================================ */
+
+typedef struct {
+  int sleeper;   /* 1: rank 0 sleeps 1 s; 0: it is busy 1 s */
+} napcheck;
+
+/* Two ranks on one processor: rank 0 sleeps (or is busy) 1 s while rank 1
+ * computes 8 units (1 s).  Sleeping does not hold the processor: both end
+ * at 1; busy does: the second ends at 2. */
+static void nap_main(mp *self, void *ud) {
+  const napcheck *c = ud;
+  if (mp_rank(self) == 0) {
+    if (c->sleeper) mp_sleep(self, 1);
+    else mp_busy(self, 1);
+  } else {
+    mp_compute(self, 8);
+  }
+}
+
+static void test_nap(void) {
+  for (int sleeper = 0; sleeper < 2; sleeper++) {
+    napcheck c = {sleeper};
+    result r = run(SIM, 2, 1, nap_main, &c);
+    CHECK(r.rc == 0, "sim: nap: %s", r.err);
+    double e0 = 1, e1 = sleeper ? 1 : 2;
+    CHECK(r.finish[0] == e0 && r.finish[1] == e1, "sim: %s: ranks end at %g and %g, not %g and %g",
+          sleeper ? "mp_sleep" : "mp_busy", r.finish[0], r.finish[1], e0, e1);
+  }
+  /* The statistics identity, with slept. */
+  sim_config cfg = config(1);
+  sim *s = sim_new(&cfg, 2, NULL, 0);
+  napcheck c = {1};
+  mp_proc pr[2] = {{nap_main, &c}, {nap_main, &c}};
+  char err[256];
+  CHECK(sim_run(s, pr, err, sizeof err) == 0, "sim: %s", err);
+  const sim_rank_stats *rs = sim_rank(s, 0);
+  CHECK(rs->slept == 1 && rs->finish == rs->compute + rs->cpu_wait + rs->overhead + rs->recv_wait + rs->slept,
+        "sim: slept %g, finish %g", rs->slept, rs->finish);
+  sim_free(s);
+}
+
+static void bad_nap_main(mp *self, void *ud) {
+  (void)ud;
+  if (mp_busy(self, -1) != MP_EARG || mp_sleep(self, NAN) != MP_EARG) abort();
+}
+
+static void test_bad_nap(int b) {
+  result r = run(b, 1, 1, bad_nap_main, NULL);
+  CHECK(r.rc != 0 && strstr(r.err, "mp_busy(-1)") && strstr(r.err, "mp_sleep(nan)"),
+        "%s: bad mp_busy/mp_sleep: rc %d, '%s'", backend[b], r.rc, r.err);
+}
+
+/* ==== mp_exit ============================================================= */
+
+typedef struct {
+  atomic_int after;   /* code after mp_exit ran */
+  atomic_int got;
+} exitcheck;
+
+/* Deep in the stack (called through a pointer: gcc 12 takes a recursion
+ * that ends in a _Noreturn call for an endless one). */
+static void exit_deep(mp *self, exitcheck *c, int depth);
+static void (*volatile deeper)(mp *, exitcheck *, int) = exit_deep;
+static void exit_deep(mp *self, exitcheck *c, int depth) {
+  if (depth > 0) deeper(self, c, depth - 1);
+  else mp_exit(self);
+  atomic_fetch_add(&c->after, 1);
+}
+
+/* Rank 1 sends, computes 2 units, then leaves through mp_exit from deep in
+ * its stack; rank 0 receives and goes on. */
+static void exit_main(mp *self, void *ud) {
+  exitcheck *c = ud;
+  int v = 7;
+  if (mp_rank(self) == 1) {
+    mp_send(self, 0, 1, &v, sizeof v);
+    mp_compute(self, 2);
+    exit_deep(self, c, 20);
+    atomic_fetch_add(&c->after, 1);
+    return;
+  }
+  mp_recv(self, 1, 1, &v, sizeof v, NULL);
+  atomic_fetch_add(&c->got, v);
+  mp_compute(self, 4);
+}
+
+static void test_exit(int b) {
+  exitcheck c;
+  atomic_init(&c.after, 0);
+  atomic_init(&c.got, 0);
+  result r = run(b, 2, 2, exit_main, &c);
+  CHECK(r.rc == 0, "%s: exit: %s", backend[b], r.err);
+  CHECK(atomic_load(&c.after) == 0 && atomic_load(&c.got) == 7 && r.done[0] && r.done[1],
+        "%s: mp_exit: %d statements after it ran, got %d, done %d %d", backend[b], atomic_load(&c.after),
+        atomic_load(&c.got), r.done[0], r.done[1]);
+  if (b == SIM) CHECK(r.finish[1] == 0.25 && r.finish[0] == 0.25 + 4 * 0.0625 + 0.5,
+                      "sim: mp_exit: finishes %g and %g", r.finish[1], r.finish[0]);
+  /* 0.25: rank 1's 2 units; rank 0: the message's m + 4 per_byte, then 4 units. */
+}
+
+/* ==== mp_abort and mp_label =============================================== */
+
+typedef struct {
+  atomic_int stopped;   /* ranks whose blocked recv returned MP_ESTOPPED */
+  atomic_int after;
+} abortcheck;
+
+/* Rank 2 computes, then aborts with code 3; ranks 0 and 1 wait for messages
+ * that never come, and must be let go with MP_ESTOPPED. */
+static void abort_main(mp *self, void *ud) {
+  abortcheck *c = ud;
+  if (mp_rank(self) == 2) {
+    mp_compute(self, 1);
+    mp_abort(self, 3, "rank 2 gave up");
+    atomic_fetch_add(&c->after, 1);
+  }
+  int v;
+  int rc = mp_recv(self, MP_ANY, 9, &v, sizeof v, NULL);
+  if (rc == MP_ESTOPPED) atomic_fetch_add(&c->stopped, 1);
+  if (mp_send(self, 0, 1, &v, sizeof v) != MP_ESTOPPED) atomic_fetch_add(&c->after, 100);
+}
+
+static void test_abort(int b) {
+  abortcheck c;
+  atomic_init(&c.stopped, 0);
+  atomic_init(&c.after, 0);
+  result r = run(b, 3, 3, abort_main, &c);
+  int aborted = b == SIM ? r.ss.aborted : r.ts.aborted, code = b == SIM ? r.ss.abort_code : r.ts.abort_code;
+  CHECK(r.rc != 0 && strstr(r.err, "rank 2 gave up") && aborted && code == 3,
+        "%s: abort: rc %d, aborted %d code %d, '%s'", backend[b], r.rc, aborted, code, r.err);
+  CHECK(atomic_load(&c.stopped) == 2 && atomic_load(&c.after) == 0, "%s: abort: %d ranks stopped, after %d",
+        backend[b], atomic_load(&c.stopped), atomic_load(&c.after));
+  CHECK(!strstr(r.err, "deadlock"), "%s: an abort is not a deadlock: '%s'", backend[b], r.err);
+}
+
+static void describe(void *ud, char *buf, size_t len) {
+  snprintf(buf, len, "MPI_Recv(source=%d, tag=7, MPI_COMM_WORLD)", *(int *)ud);
+}
+
+/* Ranks 0 and 1 wait for each other: rank 0 with a label, rank 1 without. */
+static void label_main(mp *self, void *ud) {
+  (void)ud;
+  int peer = 1 - mp_rank(self), v;
+  if (mp_rank(self) == 0) mp_label(self, describe, &peer);
+  mp_recv(self, peer, 7, &v, sizeof v, NULL);
+}
+
+static void test_label(int b) {
+  result r = run(b, 2, 2, label_main, NULL);
+  CHECK(r.rc != 0 && strstr(r.err, "rank 0 waits in MPI_Recv(source=1, tag=7, MPI_COMM_WORLD)") &&
+            strstr(r.err, "rank 1 waits in recv(src=0, tag=7)"),
+        "%s: the deadlock report does not use the label: '%s'", backend[b], r.err);
+}
+
+int main(void) {
+  for (int b = 0; b < 2; b++) {
+    test_self(b);
+    test_wait(b);
+    test_bad_nap(b);
+    test_exit(b);
+    test_abort(b);
+    test_label(b);
+  }
+  test_nap();
+  return check_done("test_mpext");
+}
