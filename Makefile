@@ -20,14 +20,14 @@ WARN     = -Wall -Wextra -Wpedantic -Wshadow -Wstrict-prototypes -Wmissing-proto
 # -ffp-contract=off: no fused multiply-add, so every build of a tile weight
 # rounds the same way (the solver's exactness rests on it).
 BASE     = -std=c11 -D_POSIX_C_SOURCE=200809L -ffp-contract=off -fno-math-errno \
-           -Iutil -Imp -Isim -Ialgo -Iinput -Isurface -Irun -Iplots $(WARN)
+           -Iutil -Imp -Isim -Imachine -Ialgo -Iinput -Isurface -Irun -Iplots $(WARN)
 LDLIBS   = -lm -pthread
 SAN      = -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
 CHKFLAGS = -O1 -g -Werror $(SAN)
 
 # Library sources: every .c under these folders except the MPI backend,
 # which only mpicc can build (make mpi).
-LIBDIRS  = util mp sim algo input surface run
+LIBDIRS  = util mp sim machine algo input surface run
 LIBSRC   = $(filter-out %mpi.c,$(wildcard $(addsuffix /*.c,$(LIBDIRS))))
 # The MPI build (make mpi): every library source, the MPI backend included,
 # and tile and bench from their usual sources, by $(MPICC) with -DTILESIM_MPI

@@ -70,15 +70,15 @@ typedef struct {
   mpt_stats ts;    /* threads runs: the backend's statistics */
 } result;
 
-static int one(run_config *rc, run_backend b, int P, const vec2 *A, const vec2 *B, int n, result *out,
+static int one(run_config *rc, machine_backend b, int P, const vec2 *A, const vec2 *B, int n, result *out,
                char *err, size_t errlen) {
-  rc->backend = b;
-  rc->procs = P;
+  rc->mc.backend = b;
+  rc->mc.procs = P;
   par_pair pr;
   memset(&pr, 0, sizeof pr);
   pr.P = A, pr.np = n, pr.zp = 0, pr.Q = B, pr.nq = n, pr.zq = 5;
   memset(&out->ts, 0, sizeof out->ts);
-  int res = b == RUN_THREADS ? run_threads(rc, &pr, 1, &out->ts, err, errlen) : run_pairs(rc, &pr, 1, err, errlen);
+  int res = b == MACHINE_THREADS ? run_threads(rc, &pr, 1, &out->ts, err, errlen) : run_pairs(rc, &pr, 1, err, errlen);
   if (res != 0) return -1;
   out->time = pr.time;
   out->cost = pr.t.cost;
@@ -115,12 +115,12 @@ static void model_options(const micro_model *d, double spin, double slowdown, do
            d->o_wake, slowdown, slowdown_spin);
 }
 
-/* The same, set in rc->machine (through run_option, as a user's would be). */
+/* The same, set in rc->mc.sim (through run_option, as a user's would be). */
 static void set_options(run_config *rc, const char *opts, double c) {
   char buf[900], err[200];
   snprintf(buf, sizeof buf, "%s --c %.4g", opts, c);
-  sim_config_init(&rc->machine);
-  rc->machine.warn = NULL;
+  sim_config_init(&rc->mc.sim);
+  rc->mc.sim.warn = NULL;
   rc->table_c = rc->back_c = 0;
   char *save = NULL;
   for (char *o = strtok_r(buf, " ", &save); o; o = strtok_r(NULL, " ", &save)) {
@@ -176,8 +176,8 @@ int bench_calibrate(int argc, char **argv) {
   char msg[400];
   run_config rc;
   run_config_init(&rc);
-  rc.machine.warn = NULL;
-  rc.threads.warn = NULL;
+  rc.mc.sim.warn = NULL;
+  rc.mc.threads.warn = NULL;
   static const char *const algo_opts[] = {"--alloc", "--min-diag", "--block", "--schedule"};
   for (int i = 2; i < argc; i += 2) {   /* an option and its value */
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -288,7 +288,7 @@ int bench_calibrate(int argc, char **argv) {
         int i = r % 2 ? order.n - 1 - j : j;   /* every other round backwards: no P always first */
         int P = (int)order.v[i];
         result x;
-        if (one(&rc, RUN_THREADS, P, A, B, points, &x, err, sizeof err) != 0) {
+        if (one(&rc, MACHINE_THREADS, P, A, B, points, &x, err, sizeof err) != 0) {
           fprintf(stderr, "bench: the threads run on %d processors failed: %s\n", P, err);
           rcode = 1;
           break;
@@ -329,7 +329,7 @@ int bench_calibrate(int argc, char **argv) {
       double cp = tab[i] ? c_kern : c, cold = tab[i] ? c_kern + build * slaves / (double)nodes : c;
       result pred, ideal;
       set_options(&rc, sopts, cp);
-      if (one(&rc, RUN_SIM, P, A, B, points, &pred, err, sizeof err) != 0) {
+      if (one(&rc, MACHINE_SIM, P, A, B, points, &pred, err, sizeof err) != 0) {
         fprintf(stderr, "bench: the simulated run on %d processors failed: %s\n", P, err);
         rcode = 1;
         break;
@@ -338,7 +338,7 @@ int bench_calibrate(int argc, char **argv) {
       snprintf(iopt, sizeof iopt, "--net ideal --m %.4g --per-byte %.4g", mm.pp_small,
                mm.pp_big > mm.pp_small ? (mm.pp_big - mm.pp_small) / (double)(mm.big - mm.small) : 0);
       set_options(&rc, iopt, cold);   /* the old calibration: the table spread over a slave's nodes */
-      if (one(&rc, RUN_SIM, P, A, B, points, &ideal, err, sizeof err) != 0) {
+      if (one(&rc, MACHINE_SIM, P, A, B, points, &ideal, err, sizeof err) != 0) {
         fprintf(stderr, "bench: the simulated run on %d processors failed: %s\n", P, err);
         rcode = 1;
         break;

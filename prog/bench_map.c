@@ -69,7 +69,7 @@ static int refused(const char *a) {
 static int parse(int argc, char **argv, map_opts *o) {
   memset(o, 0, sizeof *o);
   run_config_init(&o->base);
-  o->base.backend = RUN_SIM;
+  o->base.mc.backend = MACHINE_SIM;
   o->jobs = 1;
   char err[300];
   for (int i = 2; i < argc; i += 2) {
@@ -123,9 +123,9 @@ static int parse(int argc, char **argv, map_opts *o) {
   if (o->input && !o->pairs.n) o->pairs.n = 1, o->pairs.v[0] = 0;
   if (o->input && o->points.n) return usage("--points is for generated pairs; a real pair has its own", NULL);
   if (!o->seeds_given && !o->input) o->seeds.n = 1, o->seeds.v[0] = 1993;
-  if (!o->nnet) o->nnet = 1, o->nets[0] = (int)o->base.machine.net;
-  if (!o->ms.n) o->ms.n = 1, o->ms.v[0] = o->base.machine.m;
-  if (!o->cs.n) o->cs.n = 1, o->cs.v[0] = o->base.machine.c;
+  if (!o->nnet) o->nnet = 1, o->nets[0] = (int)o->base.mc.sim.net;
+  if (!o->ms.n) o->ms.n = 1, o->ms.v[0] = o->base.mc.sim.m;
+  if (!o->cs.n) o->cs.n = 1, o->cs.v[0] = o->base.mc.sim.c;
   if (!o->points.n) args_list_parse("--points", "100,200,300,400,500", 1, 3, 100000, &o->points, err, sizeof err);
   return 0;
 }
@@ -186,11 +186,11 @@ int bench_map(int argc, char **argv) {
         for (int x = 0; x < o.ms.n; x++, k++) {
           bench_cfg *cf = &cfg[k];
           cf->rc = o.base;
-          cf->rc.machine.warn = NULL;
-          cf->rc.machine.net = (sim_net)o.nets[a];
-          cf->rc.machine.c = o.cs.v[y];
-          if (cf->rc.machine.net == SIM_NET_LOGGP) cf->rc.machine.L = o.ms.v[x];
-          else cf->rc.machine.m = o.ms.v[x];
+          cf->rc.mc.sim.warn = NULL;
+          cf->rc.mc.sim.net = (sim_net)o.nets[a];
+          cf->rc.mc.sim.c = o.cs.v[y];
+          if (cf->rc.mc.sim.net == SIM_NET_LOGGP) cf->rc.mc.sim.L = o.ms.v[x];
+          else cf->rc.mc.sim.m = o.ms.v[x];
           if (s < o.seeds.n) {
             cf->seed = (unsigned long long)o.seeds.v[s];
             largest[k] = (int)o.points.v[0];
@@ -255,7 +255,7 @@ int bench_map(int argc, char **argv) {
     }
     judge_verdict v;
     if (judge_run(&js, &v, err, sizeof err) != 0) xpanic("claims map: configuration %d %s", c, err);
-    const sim_config *mc = &cfg[c].rc.machine;
+    const sim_config *mc = &cfg[c].rc.mc.sim;
     double m = mc->net == SIM_NET_LOGGP ? mc->L : mc->m;
     fprintf(f, "%s,%.9g,%.9g", sim_net_name(mc->net), m, mc->c);
     if (mc->c > 0) fprintf(f, ",%.9g", m / mc->c);

@@ -48,13 +48,13 @@ int bench_model(int argc, char **argv) {
       return usage(model_usage, a[0] == '-' ? "unknown option" : "unexpected argument", a);
     if (!v) return usage(model_usage, "an option needs a value", a);
     if (strcmp(a, "--diag") == 0) bad = args_list_parse(a, v, 1, 4, 5000, &diags, err, sizeof err);
-    else if (strcmp(a, "--procs") == 0) bad = args_list_parse(a, v, 1, 1, RUN_MAX_PROCS, &procs, err, sizeof err);
+    else if (strcmp(a, "--procs") == 0) bad = args_list_parse(a, v, 1, 1, MACHINE_MAX_PROCS, &procs, err, sizeof err);
     else if (strcmp(a, "-o") == 0) bad = args_name(a, v, "a file name", 0, err, sizeof err), outpath = v;
     else bad = run_option(&rc, a, v, err, sizeof err) < 0;
     if (bad) return usage(model_usage, err, NULL);
   }
   if (diags.n == 0) args_list_parse("--diag", "100,250,500", 1, 4, 5000, &diags, err, sizeof err);
-  if (procs.n == 0) args_list_parse("--procs", "2..16", 1, 1, RUN_MAX_PROCS, &procs, err, sizeof err);
+  if (procs.n == 0) args_list_parse("--procs", "2..16", 1, 1, MACHINE_MAX_PROCS, &procs, err, sizeof err);
   atomicfile af = {NULL, NULL, NULL};
   FILE *f = stdout;
   if (outpath) {
@@ -75,21 +75,21 @@ int bench_model(int argc, char **argv) {
     gen_star(&g, Q, n, 1, -1, 95, 0.3);
     for (int j = 0; j < procs.n && !status; j++) {
       run_config r = rc;
-      r.procs = (int)procs.v[j];
+      r.mc.procs = (int)procs.v[j];
       r.opt.only_mu0 = 1;
-      r.machine.warn = NULL;
-      int p = r.procs < 2 ? 1 : r.procs - 1;
+      r.mc.sim.warn = NULL;
+      int p = r.mc.procs < 2 ? 1 : r.mc.procs - 1;
       par_pair pr;
       memset(&pr, 0, sizeof pr);
       pr.P = P, pr.np = m, pr.zp = 0, pr.Q = Q, pr.nq = n, pr.zq = 5;
       if (run_sim(&r, &pr, 1, NULL, err, sizeof err) != 0) {
-        fprintf(stderr, "bench: the run on %d processors failed: %s\n", r.procs, err);
+        fprintf(stderr, "bench: the run on %d processors failed: %s\n", r.mc.procs, err);
         status = 1;
         break;
       }
-      const sim_config *c = &r.machine;
+      const sim_config *c = &r.mc.sim;
       double model = c->c * D / p + 2 * (c->m / 2) * (p - 1);
-      fprintf(f, "%d,%d,%d,%s,%.9g,%.9g,%d,%.9f,%.9g,%.9g,%.17g\n", D, r.procs, p, sim_net_name(c->net),
+      fprintf(f, "%d,%d,%d,%s,%.9g,%.9g,%d,%.9f,%.9g,%.9g,%.17g\n", D, r.mc.procs, p, sim_net_name(c->net),
               c->m, c->c, m + n, pr.mu0_time, pr.mu0_time / (m + n), model, pr.t.cost);
       tiling_free(&pr.t);
     }

@@ -51,9 +51,9 @@ int bench_places_parse(const char *s, bench_places *out, char *err, size_t errle
 
 void bench_net_fields(FILE *f, const run_config *rc, const net_stats *ns) {
   char tn[64], pn[PLACE_PATH_MAX + 16];
-  const sim_config *c = &rc->machine;
-  place_spec_str(&rc->place, pn, sizeof pn);
-  if (rc->backend != RUN_SIM) {
+  const sim_config *c = &rc->mc.sim;
+  place_spec_str(&rc->mc.place, pn, sizeof pn);
+  if (rc->mc.backend != MACHINE_SIM) {
     fputs(",,,,,,,,", f);
     return;
   }

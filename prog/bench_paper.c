@@ -43,7 +43,6 @@
 #include "gen.h"
 #include "progress.h"
 #include "run.h"
-#include "run_net.h"
 #include "wallclock.h"
 #include "xmem.h"
 
@@ -130,10 +129,10 @@ static int make_pair(const plan *pl, const job *jb, vec2 **P, int *np, double *z
 /* The job's topology and placement into rc. */
 static void job_net(const plan *pl, const job *jb, run_config *rc) {
   if (pl->topos->n) {
-    rc->machine.topo = pl->topos->v[jb->topo];
-    rc->machine.net = SIM_NET_TOPOLOGY;
+    rc->mc.sim.topo = pl->topos->v[jb->topo];
+    rc->mc.sim.net = SIM_NET_TOPOLOGY;
   }
-  if (pl->places->n) rc->place = pl->places->v[jb->place];
+  if (pl->places->n) rc->mc.place = pl->places->v[jb->place];
 }
 
 /* One run of a job. */
@@ -145,14 +144,14 @@ static outcome one_run(const plan *pl, const job *jb) {
   double zp, zq;
   int real = make_pair(pl, jb, &P, &np, &zp, &Q, &nq, &zq);
   run_config rc = pl->cfgs ? pl->cfgs[jb->pairid].rc : pl->base;
-  rc.procs = jb->procs;
+  rc.mc.procs = jb->procs;
   rc.opt.alloc = (split_alloc)jb->alloc;
   rc.opt.min_diag = jb->d;
   rc.opt.block = jb->block;
   rc.opt.schedule = (par_schedule)jb->sched;
-  rc.machine.m = jb->m;
-  rc.machine.c = jb->c;
-  rc.machine.warn = NULL;
+  rc.mc.sim.m = jb->m;
+  rc.mc.sim.c = jb->c;
+  rc.mc.sim.warn = NULL;
   job_net(pl, jb, &rc);
   rc.pair_net = &o.net;
   par_pair pr;
@@ -180,7 +179,7 @@ static outcome one_run(const plan *pl, const job *jb) {
  * by which groups finish first). */
 static void fold(const plan *pl, const job *jb, outcome *acc, const outcome *o, int rep) {
   int repeat = pl->repeat;
-  int exact_work = pl->base.backend == RUN_SIM || jb->sched != PAR_DYNAMIC || jb->block <= 1;
+  int exact_work = pl->base.mc.backend == MACHINE_SIM || jb->sched != PAR_DYNAMIC || jb->block <= 1;
   if (rep == 0 || !acc->ok) {
     if (rep == 0) *acc = *o;
     return;
@@ -349,7 +348,7 @@ int bench_paper(int argc, char **argv) {
         bad = 1;
       }
     } else if (strcmp(a, "--procs") == 0) {
-      bad = args_list_parse(a, v, 1, 1, RUN_MAX_PROCS, &procs, err, sizeof err);
+      bad = args_list_parse(a, v, 1, 1, MACHINE_MAX_PROCS, &procs, err, sizeof err);
     } else if (strcmp(a, "--points") == 0) {
       bad = args_list_parse(a, v, 1, 3, 100000, &points, err, sizeof err);
     } else if (strcmp(a, "--min-diag") == 0) {
@@ -420,11 +419,11 @@ int bench_paper(int argc, char **argv) {
     if (bad) return usage(err);
   }
   if (pair_given && !input) return usage("--pair needs --input (it picks a pair of a real stack)");
-  if (no_wall && rc.backend != RUN_SIM)
+  if (no_wall && rc.mc.backend != MACHINE_SIM)
     return usage("--no-wall leaves host times out, but --backend threads measures nothing else");
   if (topos.n && net_given)
     return usage("--net and --topology both choose the network: give one");
-  if ((topos.n || rc.machine.topo.kind != TOPO_NONE) && rc.backend != RUN_SIM)
+  if ((topos.n || rc.mc.sim.topo.kind != TOPO_NONE) && rc.mc.backend != MACHINE_SIM)
     return usage("--topology describes the simulated machine (--backend sim)");
   if (nvar > 0 && lists) return usage("--variant names whole variants: give it, or --alloc, --block and --schedule lists");
   if (nvar == 0) {   /* the cross product of the lists */
@@ -436,26 +435,26 @@ int bench_paper(int argc, char **argv) {
           var[nvar++] = (bench_variant){(split_alloc)allocs[b], (int)blocks.v[k], (par_schedule)scheds[s]};
         }
   }
-  if (rc.backend != RUN_SIM && jobs > 1)
+  if (rc.mc.backend != MACHINE_SIM && jobs > 1)
     return usage("--jobs runs simulations side by side; measured runs (--backend threads) go one at a time");
-  int limit = run_backend_ranks(rc.backend);
+  int limit = machine_backend_ranks(rc.mc.backend);
   if (procs.n == 0 && limit > 0) {   /* bench-mpi: the processes mpirun gave */
     char all[32];
     snprintf(all, sizeof all, "1..%d", limit);
-    args_list_parse("--procs", all, 1, 1, RUN_MAX_PROCS, &procs, err, sizeof err);
+    args_list_parse("--procs", all, 1, 1, MACHINE_MAX_PROCS, &procs, err, sizeof err);
   }
-  if (procs.n == 0) args_list_parse("--procs", "1..16", 1, 1, RUN_MAX_PROCS, &procs, err, sizeof err);
+  if (procs.n == 0) args_list_parse("--procs", "1..16", 1, 1, MACHINE_MAX_PROCS, &procs, err, sizeof err);
   for (int i = 0; limit > 0 && i < procs.n; i++)
     if (run_ranks((int)procs.v[i]) > limit) {
       char msg[160];
       snprintf(msg, sizeof msg, "--procs %d needs %d ranks; the %s run has %d", (int)procs.v[i],
-               run_ranks((int)procs.v[i]), run_backend_name(rc.backend), limit);
+               run_ranks((int)procs.v[i]), machine_backend_name(rc.mc.backend), limit);
       return usage(msg);
     }
   if (points.n == 0) args_list_parse("--points", "100,200,300,400,500", 1, 3, 100000, &points, err, sizeof err);
   if (diags.n == 0) args_list_parse("--min-diag", "1", 1, 1, 1 << 30, &diags, err, sizeof err);
-  if (ms.n == 0) ms.n = 1, ms.v[0] = rc.machine.m;
-  if (cs.n == 0) cs.n = 1, cs.v[0] = rc.machine.c;
+  if (ms.n == 0) ms.n = 1, ms.v[0] = rc.mc.sim.m;
+  if (cs.n == 0) cs.n = 1, cs.v[0] = rc.mc.sim.c;
 
   contour_stack stack = {0, NULL, 0};
   if (input) {
@@ -495,7 +494,7 @@ int bench_paper(int argc, char **argv) {
                                   ms.v[x], cs.v[y], ti, pi, var[b].block, (int)var[b].sched};
                 }
               }
-  if (repeat == 0) repeat = rc.backend == RUN_SIM ? 1 : 10;
+  if (repeat == 0) repeat = rc.mc.backend == MACHINE_SIM ? 1 : 10;
   plan pl = {jb, njobs, rc, seed, repeat, input ? &stack : NULL, pairk, &topos, &places, NULL};
   /* Every machine and placement fits every P, checked before any run (a
    * group of `per` jobs shares them); the maps on request, once each. */
@@ -507,8 +506,10 @@ int bench_paper(int argc, char **argv) {
     job_net(&pl, &jb[i], &jr);
     for (int p = 0; p < per; p++) {
       int P = jb[i + p].procs, nodes, *where = xmallocarray((size_t)run_ranks(P), sizeof *where);
-      int bad = run_net_place(&jr, P, where, &nodes, err, sizeof err) != 0 ||
-                (print_place && !jb[i + p].hidden && run_net_print(stderr, &jr, P, err, sizeof err) != 0);
+      jr.mc.procs = P;
+      int bad = machine_place(&jr.mc, run_ranks(P), where, &nodes, err, sizeof err) != 0 ||
+                (print_place && !jb[i + p].hidden &&
+                 machine_print_place(stderr, &jr.mc, run_ranks(P), err, sizeof err) != 0);
       free(where);
       if (bad) {
         free(jb);
@@ -560,8 +561,8 @@ int bench_paper(int argc, char **argv) {
     run_config jr = rc;   /* the job's machine */
     job_net(&pl, &jb[i], &jr);
     char machine[96] = ",,";   /* net, m, c: the simulated machine's, or empty */
-    if (rc.backend == RUN_SIM)
-      snprintf(machine, sizeof machine, "%s,%.9g,%.9g", sim_net_name(jr.machine.net), jb[i].m, jb[i].c);
+    if (rc.mc.backend == MACHINE_SIM)
+      snprintf(machine, sizeof machine, "%s,%.9g,%.9g", sim_net_name(jr.mc.sim.net), jb[i].m, jb[i].c);
     bench_variant bv = {(split_alloc)jb[i].alloc, jb[i].block, (par_schedule)jb[i].sched};
     char vname[64];
     bench_variant_name(&bv, vname, sizeof vname);
@@ -574,7 +575,7 @@ int bench_paper(int argc, char **argv) {
             o[i].cost, wall, (unsigned long long)o[i].msgs[PAR_BOUNDARY],
             (unsigned long long)o[i].msgs[PAR_BACKTRACK], (unsigned long long)o[i].msgs[PAR_BOUNDS],
             (unsigned long long)o[i].msgs[PAR_CONTROL], input ? input : "generated", input ? pairk : 0,
-            run_backend_name(rc.backend));
+            machine_backend_name(rc.mc.backend));
     fputc(',', f);
     bench_net_fields(f, &jr, &o[i].net);
     fprintf(f, ",%s,%d,%s,%.9f\n", vname, jb[i].block, par_schedule_name((par_schedule)jb[i].sched), o[i].idle);
@@ -597,8 +598,8 @@ int bench_sweep_runs(const bench_cfg *cfgs, const bench_run *runs, int n, int jo
   job *jb = xmallocarray((size_t)(n > 0 ? n : 1), sizeof *jb);
   for (int i = 0; i < n; i++) {
     const run_config *rc = &cfgs[runs[i].cfg].rc;
-    jb[i] = (job){runs[i].points, runs[i].procs, runs[i].alloc, runs[i].d, 0, runs[i].cfg, rc->machine.m,
-                  rc->machine.c, 0, 0, rc->opt.block, (int)rc->opt.schedule};
+    jb[i] = (job){runs[i].points, runs[i].procs, runs[i].alloc, runs[i].d, 0, runs[i].cfg, rc->mc.sim.m,
+                  rc->mc.sim.c, 0, 0, rc->opt.block, (int)rc->opt.schedule};
   }
   plan pl = {jb, n, cfgs[0].rc, 0, 1, NULL, 0, &notopo, &noplace, cfgs};
   outcome *o = xcalloc((size_t)(n > 0 ? n : 1), sizeof *o);

@@ -25,7 +25,7 @@
 #include "coro.h"
 #include "mp.h"
 #include "place.h"
-#include "run_net.h"
+#include "machine.h"
 #include "sim.h"
 #include "trace.h"
 #include "wallclock.h"
@@ -179,7 +179,7 @@ int bench_ring_main(int argc, char **argv) {
     topo_spec_str(&cfg.topo, tn, sizeof tn);
     place_spec_str(&place, pn, sizeof pn);
     snprintf(what, sizeof what, "%s (placement %s)", cfg.topo.kind != TOPO_NONE ? tn : sim_net_name(cfg.net), pn);
-    run_net_print_map(stderr, mach, what, map, (int)procs);
+    machine_print_map(stderr, mach, what, map, (int)procs);
   }
   topo_free(mach);
   cfg.place = map;

@@ -28,7 +28,6 @@
 #include "progress.h"
 #include "report.h"
 #include "run.h"
-#include "run_net.h"
 #include "stack.h"
 #include "tile_dicom.h"
 #include "trace.h"
@@ -77,12 +76,9 @@ static void usage(FILE *f) {
         "The parallel algorithm (Johnson, Livadas, Talele 1993) on a machine: simulated,\n"
         "threads, or MPI processes (tile-mpi under mpirun; --procs defaults to all ranks):\n",
         f);
+  fputs(machine_help, f);
   fputs(run_options_help, f);
-  fputs(run_net_help, f);
-  fputs("  --print-place      print where the ranks run on the machine (stderr)\n"
-        "  --trace FILE       the simulated timeline: CSV, or Chrome trace JSON (.json)\n"
-        "  --trace-limit BYTES  the largest trace to write (default 1G; 500M, 5G, none):\n"
-        "                     its size is counted first, and a larger one is refused\n"
+  fputs("(--trace: the trace's size is counted first, by a run that writes none.)\n"
         "\n"
         "A DICOM RT structure set (recognised by its content) instead of STACK: each ROI\n"
         "is tiled as its closed planar contours would be as a stack (patient LPS, mm):\n"
@@ -121,9 +117,7 @@ static void show_progress(void *ud, int done, int total) { progress_step(ud, don
 /* What tile_stack needs from the command line. */
 typedef struct {
   int caps, apex, threads, parallel, quiet;
-  const char *trace;
-  run_config rc;
-  unsigned long long trace_limit;   /* --trace-limit */
+  run_config rc;   /* the machine (rc.mc: --trace, --trace-limit) and the algorithm */
   const char *held;   /* the reader's notes, printed before the surface's */
   size_t heldlen;
 } tile_opts;
@@ -162,17 +156,18 @@ static int tile_stack(void *ud, const contour_stack *s, const char *name, const 
   atomicfile tf = {NULL, NULL, NULL};
   stack_options so = {o->rc.kind, o->caps, o->apex, o->threads, o->parallel ? &o->rc : NULL, notes, "tile",
                       NULL, NULL};
-  if (o->parallel && o->trace) {
+  const char *tpath = o->rc.mc.trace;
+  if (o->parallel && tpath) {
     /* The trace's size first, by the same run writing none (the simulator
      * is deterministic), and none above the limit (none: not measured);
      * then the trace beside its target, renamed into place when complete. */
-    size_t tl = strlen(o->trace);
-    int json = tl >= 5 && strcmp(o->trace + tl - 5, ".json") == 0;
+    size_t tl = strlen(tpath);
+    int json = tl >= 5 && strcmp(tpath + tl - 5, ".json") == 0;
     run_trace_size ts = {!json, json, 0, 0};
-    int measure = o->trace_limit != ULLONG_MAX;
+    int measure = o->rc.mc.trace_limit != ULLONG_MAX;
     run_config dry = o->rc;
     dry.trace_size = &ts;
-    dry.machine.warn = NULL;
+    dry.mc.sim.warn = NULL;
     dry.progress_ud = progress_new("tile", "measuring the trace: band", !measure || o->quiet || s->nslices < 3);
     dry.progress = dry.progress_ud ? show_progress : NULL;
     stack_options dso = so;
@@ -182,13 +177,13 @@ static int tile_stack(void *ud, const contour_stack *s, const char *name, const 
     int dres = measure ? stack_tile(s, name, &dso, &dss, err, sizeof err) : -1;
     progress_end(dry.progress_ud);
     stack_free(dss);
-    if (dres == 0 && trace_over_limit(ts.csv_bytes + ts.json_bytes, o->trace_limit, err, sizeof err) != 0) {
-      fprintf(stderr, "tile: %s: %s\n", o->trace, err);
+    if (dres == 0 && trace_over_limit(ts.csv_bytes + ts.json_bytes, o->rc.mc.trace_limit, err, sizeof err) != 0) {
+      fprintf(stderr, "tile: %s: %s\n", tpath, err);
       if (notes) fclose(notes);
       free(held);
       return -1;
     }
-    if (atomicfile_open(&tf, o->trace, "w", err, sizeof err) != 0) {
+    if (atomicfile_open(&tf, tpath, "w", err, sizeof err) != 0) {
       fprintf(stderr, "tile: %s\n", err);
       if (notes) fclose(notes);
       free(held);
@@ -211,7 +206,7 @@ static int tile_stack(void *ud, const contour_stack *s, const char *name, const 
   o->rc.progress = NULL, o->rc.progress_ud = NULL;
   if (notes) fclose(notes);
   if (res == -2)
-    fprintf(stderr, "tile: the parallel run (%s) failed: %s\n", run_backend_name(o->rc.backend), err);
+    fprintf(stderr, "tile: the parallel run (%s) failed: %s\n", machine_backend_name(o->rc.mc.backend), err);
   else if (res != 0) {
     size_t el = strlen(err);
     if (el + 1 < sizeof err) err[el] = '\n', err[el + 1] = 0;
@@ -239,12 +234,14 @@ static int tile_stack(void *ud, const contour_stack *s, const char *name, const 
 
 static int tile_main(int argc, char **argv) {
   const char *in = NULL, *out = NULL;
-  int backend_given = 0, style_given = 0, print_place = 0, place_given = 0, limit_given = 0, no_keyholes = 0;
-  tile_opts o = {0, 0, pool_cores(), 0, 0, NULL, {0}, TRACE_LIMIT_DEFAULT, NULL, 0};
+  int backend_given = 0, style_given = 0, place_given = 0, no_keyholes = 0;
+  tile_opts o;
+  memset(&o, 0, sizeof o);
+  o.threads = pool_cores();
   tile_dicom_opts dopt;
   memset(&dopt, 0, sizeof dopt);
   run_config_init(&o.rc);
-  o.rc.machine.warn = stderr;
+  o.rc.mc.sim.warn = stderr;
   char err[512];
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -258,16 +255,15 @@ static int tile_main(int argc, char **argv) {
       o.quiet = 1;
     } else if (strcmp(a, "--no-keyholes") == 0) {
       no_keyholes = 1;
-    } else if (strcmp(a, "--print-place") == 0) {
-      print_place = 1;
+    } else if (machine_option_flag(a)) {   /* --print-place */
+      run_option(&o.rc, a, NULL, err, sizeof err);
     } else if ((k = tile_dicom_option(&dopt, a, v, err, sizeof err)) != 0) {   /* DICOM input */
       if (k < 0) return bad_usage("%s", err);
       i += k - 1;
     } else if (a[0] == '-' && a[1] != 0) {
       if (!v) {   /* the last argument: an option that needs a value, or none we know */
         run_config scratch = o.rc;
-        int known = strcmp(a, "-o") == 0 || strcmp(a, "--cost") == 0 || strcmp(a, "--trace") == 0 ||
-                    strcmp(a, "--trace-limit") == 0 || strcmp(a, "-j") == 0 ||
+        int known = strcmp(a, "-o") == 0 || strcmp(a, "--cost") == 0 || strcmp(a, "-j") == 0 ||
                     strcmp(a, "--cap-style") == 0 || run_option(&scratch, a, "", err, sizeof err) != 0;
         args_show(a, err, sizeof err);
         return bad_usage(known ? "%s needs a value" : "unknown option (%s)", err);
@@ -291,12 +287,6 @@ static int tile_main(int argc, char **argv) {
           args_word(a, v, "area|span", err, sizeof err);
           return bad_usage("%s", err);
         }
-      } else if (strcmp(a, "--trace") == 0) {
-        if (args_name(a, v, "a file name", 0, err, sizeof err) != 0) return bad_usage("%s", err);
-        o.trace = v;
-      } else if (strcmp(a, "--trace-limit") == 0) {
-        if (args_bytes(a, v, &o.trace_limit, err, sizeof err) != 0) return bad_usage("%s", err);
-        limit_given = 1;
       } else if ((k = run_option(&o.rc, a, v, err, sizeof err)) < 0) {
         return bad_usage("%s", err);
       } else if (k == 0) {
@@ -315,38 +305,40 @@ static int tile_main(int argc, char **argv) {
     }
   }
   if (!in) return bad_usage("%s", "no contour stack given");
-  if (!o.parallel && o.rc.backend == RUN_MPI && run_backend_ranks(RUN_MPI) >= 2) {
+  if (!o.parallel && o.rc.mc.backend == MACHINE_MPI && machine_backend_ranks(MACHINE_MPI) >= 2) {
     o.parallel = 1;   /* tile-mpi under mpirun -np N: the N ranks */
-    o.rc.procs = run_backend_ranks(RUN_MPI);
+    o.rc.mc.procs = machine_backend_ranks(MACHINE_MPI);
   }
-  if (limit_given && !o.trace) return bad_usage("%s", "--trace-limit needs --trace");
-  if (o.trace && !o.parallel) return bad_usage("%s", "--trace needs --procs (it traces the simulated machine)");
-  if (o.trace && o.rc.backend != RUN_SIM) return bad_usage("%s", "--trace traces the simulated machine (--backend sim)");
+  const char *tpath = o.rc.mc.trace;
+  int print_place = o.rc.mc.print_place;
+  if (o.rc.mc.trace_limit_given && !tpath) return bad_usage("%s", "--trace-limit needs --trace");
+  if (tpath && !o.parallel) return bad_usage("%s", "--trace needs --procs (it traces the simulated machine)");
+  if (tpath && o.rc.mc.backend != MACHINE_SIM) return bad_usage("%s", "--trace traces the simulated machine (--backend sim)");
   if (backend_given && !o.parallel) return bad_usage("%s", "--backend needs --procs");
   if (style_given && !o.caps) return bad_usage("%s", "--cap-style needs --caps");
-  int topology = o.rc.machine.topo.kind != TOPO_NONE;
+  int topology = o.rc.mc.sim.topo.kind != TOPO_NONE;
   if ((topology || print_place || place_given) && !o.parallel)
     return bad_usage("%s", "--topology, --place and --print-place need --procs (they describe the simulated machine)");
-  if (topology && o.rc.backend != RUN_SIM)
+  if (topology && o.rc.mc.backend != MACHINE_SIM)
     return bad_usage("%s", "--topology describes the simulated machine (--backend sim)");
   if (topology) {   /* the machine must fit P before the input is read */
-    int *where = xmallocarray((size_t)run_ranks(o.rc.procs), sizeof *where), nodes;
-    int bad = run_net_place(&o.rc, o.rc.procs, where, &nodes, err, sizeof err) != 0;
+    int *where = xmallocarray((size_t)run_ranks(o.rc.mc.procs), sizeof *where), nodes;
+    int bad = machine_place(&o.rc.mc, run_ranks(o.rc.mc.procs), where, &nodes, err, sizeof err) != 0;
     free(where);
     if (bad) return bad_usage("%s", err);
   }
-  if (print_place && run_net_print(stderr, &o.rc, o.rc.procs, err, sizeof err) != 0)
+  if (print_place && machine_print_place(stderr, &o.rc.mc, run_ranks(o.rc.mc.procs), err, sizeof err) != 0)
     return bad_usage("%s", err);
-  if (o.parallel && run_backend_ranks(o.rc.backend) > 0 && run_ranks(o.rc.procs) > run_backend_ranks(o.rc.backend)) {
+  if (o.parallel && machine_backend_ranks(o.rc.mc.backend) > 0 && run_ranks(o.rc.mc.procs) > machine_backend_ranks(o.rc.mc.backend)) {
     char msg[160];
-    snprintf(msg, sizeof msg, "--procs %d needs %d ranks; the %s run has %d", o.rc.procs,
-             run_ranks(o.rc.procs), run_backend_name(o.rc.backend), run_backend_ranks(o.rc.backend));
+    snprintf(msg, sizeof msg, "--procs %d needs %d ranks; the %s run has %d", o.rc.mc.procs,
+             run_ranks(o.rc.mc.procs), machine_backend_name(o.rc.mc.backend), machine_backend_ranks(o.rc.mc.backend));
     return bad_usage("%s", msg);
   }
 
   /* A DICOM RT structure set (by its content): tile_dicom.c. */
   if (dicom_sniff_file(in)) {
-    tile_dicom_env env = {tile_stack, &o, bad_usage, out, o.quiet, o.trace != NULL, 0 /* as below */, no_keyholes};
+    tile_dicom_env env = {tile_stack, &o, bad_usage, out, o.quiet, tpath != NULL, 0 /* as below */, no_keyholes};
     return tile_dicom_main(&dopt, in, &env);
   }
   if (tile_dicom_given(&dopt)) {

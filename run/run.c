@@ -8,36 +8,14 @@
 
 #include "args.h"
 #include "par_slave.h"
-#include "run_net.h"
 #include "xmem.h"
 #ifdef TILESIM_MPI
 #include "run_mpi.h"
 #endif
 
-const char *run_backend_name(run_backend b) {
-  static const char *const name[] = {"sim", "threads", "mpi"};
-  return (unsigned)b < sizeof name / sizeof *name ? name[b] : "?";
-}
-
-int run_backend_ranks(run_backend b) {
-#ifdef TILESIM_MPI
-  if (b == RUN_MPI) return run_mpi_size();
-#else
-  (void)b;
-#endif
-  return 0;
-}
-
 void run_config_init(run_config *rc) {
   memset(rc, 0, sizeof *rc);
-  rc->procs = 1;
-#ifdef TILESIM_MPI
-  rc->backend = RUN_MPI;
-#else
-  rc->backend = RUN_SIM;
-#endif
-  sim_config_init(&rc->machine);
-  mpt_config_init(&rc->threads);
+  machine_config_init(&rc->mc);
   rc->opt.alloc = ALLOC_HALF;
   rc->opt.min_diag = 1;
   rc->opt.block = 1;
@@ -46,37 +24,16 @@ void run_config_init(run_config *rc) {
 }
 
 const char run_options_help[] =
-    "  --procs P          processors (P = 1: master and slave share one); ranks max(2, P)\n"
-#ifdef TILESIM_MPI
-    "  --backend NAME     mpi (default: the ranks of mpirun), sim or threads\n"
-#else
-    "  --backend NAME     sim (default: the simulated machine, simulated seconds) or\n"
-    "                     threads (a thread per rank, wall-clock seconds)\n"
-#endif
-    "  --spin S           seconds a waiting rank spins before it sleeps (threads;\n"
-    "                     the simulator's --wake model)\n"
     "  --alloc half|size|fit  processor allocation: half (section 4), by size (7.1),\n"
     "                     or fit: by size, no group more slaves than it can use\n"
     "  --min-diag d       at least d nodes of a diagonal per slave (7.2); default 1\n"
     "  --block k          slaves trade run-boundary costs every k diagonals (default 1)\n"
     "  --schedule NAME    static (the paper's groups) or dynamic (bands to free slaves)\n"
-    "  --machine NAME     machine profile: tc2000 (default) or unit\n"
-    "  --net MODEL        ideal, bus or loggp\n"
-    "  --m S, --c S       seconds per message, per unit of work (node)\n"
     "  --master-c S       seconds per unit of the master's bookkeeping (a column of\n"
     "                     a path it assembles, copies or measures); default c/100\n"
     "  --table-c S        seconds per cell of a slave's weight table (where slaves\n"
     "                     build one); --back-c S: per step of a slave's backtracking;\n"
-    "                     default 0: not charged (bench --calibrate measures both)\n"
-    "  --per-byte S       seconds per message byte (ideal, bus; a topology's links)\n"
-    "  --local S          seconds per message between ranks on one processor\n"
-    "  --L S --o S --g S --G S   LogGP latency, overhead, gap, gap per byte\n"
-    "  --o-send S --o-recv S   processor seconds a send, a receive costs (any net)\n"
-    "  --o-send-byte S --o-recv-byte S   ... and per byte (copying)\n"
-    "  --wake S           a receiver that waited longer than --spin sleeps: it runs\n"
-    "                     S after its message arrives; --o-wake S: its waker's cost\n"
-    "  --slowdown F       computing slows by F (a fraction) per other working\n"
-    "                     processor; --slowdown-spin F: per other spinning one\n";
+    "                     default 0: not charged (bench --calibrate measures both)\n";
 
 /* The seconds options' range: from 0 to a billion seconds (31 years). */
 #define RUN_MAX_SECONDS 1e9
@@ -94,8 +51,8 @@ static int integer(const char *opt, const char *val, int lo, int hi, int *out, c
   return 1;
 }
 
-/* The names the allocation and network parsers take, '|'-separated (so the
- * messages list whatever split.c and sim.c know). */
+/* The names the allocation parser takes, '|'-separated (so the messages
+ * list whatever split.c knows). */
 void run_alloc_words(char *buf, size_t len) {
   size_t k = 0;
   buf[0] = 0;
@@ -107,24 +64,15 @@ void run_alloc_words(char *buf, size_t len) {
   }
 }
 
-static void net_words(char *buf, size_t len) {
-  size_t k = 0;
-  buf[0] = 0;
-  for (int i = 0; i < 16; i++) {
-    const char *n = sim_net_name((sim_net)i);
-    sim_net back;
-    if (sim_net_parse(n, &back) != 0 || (int)back != i) continue;
-    k += (size_t)snprintf(buf + k, k < len ? len - k : 0, "%s%s", k ? "|" : "", n);
-  }
-}
-
 int run_option(run_config *rc, const char *opt, const char *val, char *err, size_t errlen) {
-  sim_config *c = &rc->machine;
   char words[200];
-  if (!val) val = "";
-  int k = run_net_option(rc, opt, val, err, errlen);   /* topology and placement */
+  if (strcmp(opt, "--ranks") == 0) {
+    snprintf(err, errlen, "--ranks: the paper's algorithm runs max(2, P) ranks on --procs P processors");
+    return -1;
+  }
+  int k = machine_option(&rc->mc, opt, val, err, errlen);
   if (k != 0) return k;
-  if (strcmp(opt, "--procs") == 0) return integer(opt, val, 1, RUN_MAX_PROCS, &rc->procs, err, errlen);
+  if (!val) val = "";
   if (strcmp(opt, "--master-c") == 0) {
     rc->master_c_given = 1;
     return seconds(opt, val, RUN_MAX_SECONDS, &rc->master_c, err, errlen);
@@ -139,77 +87,22 @@ int run_option(run_config *rc, const char *opt, const char *val, char *err, size
     args_word(opt, val, "static|dynamic", err, errlen);
     return -1;
   }
-  if (strcmp(opt, "--backend") == 0) {
-#ifdef TILESIM_MPI
-    int b = args_word(opt, val, "mpi|sim|threads", err, errlen);
-    if (b < 0) return -1;
-    rc->backend = b == 0 ? RUN_MPI : b == 1 ? RUN_SIM : RUN_THREADS;
-#else
-    int b = args_word(opt, val, "sim|threads", err, errlen);
-    if (b < 0) {
-      if (strcmp(val, "mpi") == 0)
-        snprintf(err, errlen, "--backend takes sim or threads (mpi: the MPI backend is in the MPI "
-                              "build, make mpi)");
-      return -1;
-    }
-    rc->backend = b == 0 ? RUN_SIM : RUN_THREADS;
-#endif
-    return 1;
-  }
-  if (strcmp(opt, "--spin") == 0) {
-    double v;
-    if (seconds(opt, val, 10, &v, err, errlen) < 0) return -1;
-    rc->threads.spin_ns = (long)(v * 1e9 + 0.5);
-    c->cpu.spin = v;   /* the simulator's model of that waiting (cpu.h) */
-    return 1;
-  }
   if (strcmp(opt, "--alloc") == 0) {
     if (split_alloc_parse(val, &rc->opt.alloc) == 0) return 1;
     run_alloc_words(words, sizeof words);
     args_word(opt, val, words, err, errlen);
     return -1;
   }
-  if (strcmp(opt, "--machine") == 0) {
-    FILE *warn = c->warn;
-    if (sim_profile(val, c) == 0) {
-      c->warn = warn;
-      return 1;
-    }
-    args_word(opt, val, "tc2000|unit", err, errlen);
-    return -1;
-  }
-  if (strcmp(opt, "--net") == 0) {
-    c->topo.kind = TOPO_NONE;   /* --net and --topology: the last one given */
-    if (sim_net_parse(val, &c->net) == 0) return 1;
-    net_words(words, sizeof words);
-    args_word(opt, val, words, err, errlen);
-    return -1;
-  }
-  static const struct { const char *name; size_t off; } secs[] = {
-      {"--m", offsetof(sim_config, m)},         {"--c", offsetof(sim_config, c)},
-      {"--per-byte", offsetof(sim_config, per_byte)}, {"--local", offsetof(sim_config, local)},
-      {"--L", offsetof(sim_config, L)},         {"--o", offsetof(sim_config, o)},
-      {"--g", offsetof(sim_config, g)},         {"--G", offsetof(sim_config, G)},
-  };
-  for (size_t i = 0; i < sizeof secs / sizeof secs[0]; i++)
-    if (strcmp(opt, secs[i].name) == 0)
-      return seconds(opt, val, RUN_MAX_SECONDS, (double *)((char *)c + secs[i].off), err, errlen);
-  double *cpu = cpu_model_field(&c->cpu, opt);   /* --o-send, --wake, --slowdown, ... */
-  if (cpu) {
-    if (strncmp(opt, "--slowdown", 10) == 0)   /* factors, not seconds */
-      return args_real(opt, val, "a factor", 0, 1e3, cpu, err, errlen) == 0 ? 1 : -1;
-    return seconds(opt, val, strcmp(opt, "--spin") == 0 ? 10 : RUN_MAX_SECONDS, cpu, err, errlen);
-  }
   return 0;
 }
 
 double run_master_c(const run_config *rc) {
-  return rc->master_c_given ? rc->master_c : RUN_MASTER_SHARE * rc->machine.c;
+  return rc->master_c_given ? rc->master_c : RUN_MASTER_SHARE * rc->mc.sim.c;
 }
 
 int run_par_options(const run_config *rc, par_options *out, char *err, size_t errlen) {
   *out = rc->opt;
-  double c = rc->machine.c, mc = run_master_c(rc);
+  double c = rc->mc.sim.c, mc = run_master_c(rc);
   if (!rc->master_c_given) out->book = RUN_MASTER_SHARE;
   else if (c > 0) out->book = mc / c;
   else if (mc == 0) out->book = 0;
@@ -288,12 +181,12 @@ static void pair_done(void *ud, int done, int total) {
 
 int run_sim(const run_config *rc, par_pair *pairs, int npairs, sim_stats *stats, char *err,
             size_t errlen) {
-  int P = rc->procs, nr = run_ranks(P), nodes;
+  int P = rc->mc.procs, nr = run_ranks(P), nodes;
   par_options opt;
   if (run_par_options(rc, &opt, err, errlen) != 0) return -1;
-  sim_config cfg = rc->machine;
+  sim_config cfg = rc->mc.sim;
   int *place = xmallocarray((size_t)nr, sizeof *place);
-  if (run_net_place(rc, P, place, &nodes, err, errlen) != 0) {
+  if (machine_place(&rc->mc, nr, place, &nodes, err, errlen) != 0) {
     free(place);
     return -1;
   }
@@ -321,11 +214,11 @@ int run_sim(const run_config *rc, par_pair *pairs, int npairs, sim_stats *stats,
 
 int run_threads(const run_config *rc, par_pair *pairs, int npairs, mpt_stats *stats, char *err,
                 size_t errlen) {
-  int nr = run_ranks(rc->procs);
+  int nr = run_ranks(rc->mc.procs);
   par_options opt;
   if (run_par_options(rc, &opt, err, errlen) != 0) return -1;
-  mpt_config cfg = rc->threads;
-  cfg.warn = rc->machine.warn;
+  mpt_config cfg = rc->mc.threads;
+  cfg.warn = rc->mc.sim.warn;
   mpt *t = mpt_new(&cfg, nr, err, errlen);
   if (!t) return -1;
   program p;
@@ -337,15 +230,15 @@ int run_threads(const run_config *rc, par_pair *pairs, int npairs, mpt_stats *st
 }
 
 int run_pairs(const run_config *rc, par_pair *pairs, int npairs, char *err, size_t errlen) {
-  if (rc->backend != RUN_SIM && rc->machine.topo.kind != TOPO_NONE) {
+  if (rc->mc.backend != MACHINE_SIM && rc->mc.sim.topo.kind != TOPO_NONE) {
     snprintf(err, errlen, "--topology describes the simulated machine; --backend %s measures this one",
-             run_backend_name(rc->backend));
+             machine_backend_name(rc->mc.backend));
     return -1;
   }
-  switch (rc->backend) {
-  case RUN_SIM: return run_sim(rc, pairs, npairs, NULL, err, errlen);
-  case RUN_THREADS: return run_threads(rc, pairs, npairs, NULL, err, errlen);
-  case RUN_MPI:
+  switch (rc->mc.backend) {
+  case MACHINE_SIM: return run_sim(rc, pairs, npairs, NULL, err, errlen);
+  case MACHINE_THREADS: return run_threads(rc, pairs, npairs, NULL, err, errlen);
+  case MACHINE_MPI:
 #ifdef TILESIM_MPI
     return run_mpi_pairs(rc, pairs, npairs, err, errlen);
 #else
@@ -353,6 +246,6 @@ int run_pairs(const run_config *rc, par_pair *pairs, int npairs, char *err, size
 #endif
   }
   snprintf(err, errlen, "run: backend %s is not built in (make mpi builds the MPI programs)",
-           run_backend_name(rc->backend));
+           machine_backend_name(rc->mc.backend));
   return -1;
 }

@@ -13,23 +13,8 @@
 
 #include <stdio.h>
 
+#include "machine.h"
 #include "par_master.h"
-#include "place.h"
-#include "sim.h"
-#include "threads.h"
-
-typedef enum {
-  RUN_SIM,       /* the simulated machine: simulated seconds */
-  RUN_THREADS,   /* one POSIX thread per rank: wall-clock seconds */
-  RUN_MPI        /* one MPI process per rank (MPI build only): wall-clock seconds */
-} run_backend;
-
-/* "sim", "threads", "mpi". */
-const char *run_backend_name(run_backend b);
-
-/* How many ranks the backend can run: 0 for no limit (sim, threads); for
- * MPI the size of the mpirun (0 outside the MPI build). */
-int run_backend_ranks(run_backend b);
 
 /* A trace's size, counted by a run that writes none (run_config.trace_size). */
 typedef struct {
@@ -38,12 +23,12 @@ typedef struct {
 } run_trace_size;
 
 typedef struct {
-  int procs;            /* P >= 1: P = 1 puts master and slave on one processor,
-                           P >= 2 gives the master one and P-1 slaves one each */
-  run_backend backend;  /* what runs the ranks (default: sim; mpi in MPI builds) */
-  sim_config machine;   /* the machine model (procs and place are set here) */
-  mpt_config threads;   /* the threads backend's settings (its warnings go
-                           where machine.warn says, as every backend's do) */
+  machine_config mc;    /* the machine (machine/machine.h): mc.procs = P >= 1
+                           processors; P = 1 puts master and slave on one
+                           processor, P >= 2 gives the master one and P-1
+                           slaves one each; mc.ranks is not used (run_ranks);
+                           the threads backend's warnings go where
+                           mc.sim.warn says, as every backend's do */
   par_options opt;
   cost_kind kind;
   FILE *trace_csv, *trace_json;   /* a timeline, or NULL */
@@ -52,7 +37,6 @@ typedef struct {
   int diag_len;
   void (*progress)(void *ud, int done, int total);   /* after each pair, or NULL */
   void *progress_ud;
-  place_spec place;               /* where the P processors go on the machine (run_net.h) */
   net_stats *pair_net;            /* simulator on a topology: each pair's network
                                      statistics (npairs of them), or NULL */
   double master_c;                /* --master-c: seconds per unit of the master's
@@ -84,35 +68,27 @@ double run_master_c(const run_config *rc);
  * (c = 0 and a price above 0). */
 int run_par_options(const run_config *rc, par_options *out, char *err, size_t errlen);
 
-/* A run_config with the defaults: 1 processor, the simulator (MPI in an
- * MPI build) with the tc2000 machine, half allocation, d = 1, area cost. */
+/* A run_config with the defaults: machine_config_init's machine (1
+ * processor, the simulator or MPI, tc2000), half allocation, d = 1, area
+ * cost. */
 void run_config_init(run_config *rc);
 
-/* The most processors an option may ask for. */
-enum { RUN_MAX_PROCS = 4096 };
-
-/* Take one command-line option of the machine or the algorithm:
- *   --procs P  --alloc half|size|fit  --min-diag d  --block k  --schedule static|dynamic
+/* Take one command-line option of the machine (machine_option: every
+ * option machine.h lists but --ranks, which the algorithm decides) or of
+ * the algorithm:
+ *   --alloc half|size|fit  --min-diag d  --block k  --schedule static|dynamic
  *   --master-c S  --table-c S  --back-c S
- *   --machine NAME  --net ideal|bus|loggp
- *   --m S  --c S  --per-byte S  --local S  --L S  --o S  --g S  --G S
- *   --o-send S  --o-send-byte S  --o-recv S  --o-recv-byte S  --wake S
- *   --o-wake S  --slowdown F  --slowdown-spin F (the processor-side model, sim/cpu.h)
- *   --backend sim|threads (|mpi in MPI builds)
- *   --spin S (threads; and the simulator's sleep threshold, cpu.h)
- *   --topology NAME  --hop-latency S  --switching MODE  --place NAME (run_net.h)
- * (--machine sets every machine parameter; give it before the others).
- * Values are read strictly (util/args.h): P from 1 to RUN_MAX_PROCS, d from
- * 1 to 2^30, seconds from 0 to 1e9 (--spin: to 10).
- * Returns 1 if opt is one of these (val consumed), 0 if not, -1 for a bad
- * value, with a message in err ("--procs takes a whole number from 1 to
- * 4096 (0)"). */
+ * Values are read strictly (util/args.h): d from 1 to 2^30, seconds from 0
+ * to 1e9.  Returns 1 if opt is one of these (val consumed, or none for a
+ * flag: machine_option_flag), 0 if not, -1 for a bad value, with a message
+ * in err ("--min-diag takes a whole number from 1 to 1073741824 (0)"). */
 int run_option(run_config *rc, const char *opt, const char *val, char *err, size_t errlen);
 
 /* The names --alloc takes, '|'-separated ("half|size"), for util/args. */
 void run_alloc_words(char *buf, size_t len);
 
-/* The usage text of those options, one per line, indented. */
+/* The usage text of the algorithm's options, one per line, indented (the
+ * machine's: machine_help). */
 extern const char run_options_help[];
 
 /* The ranks for P processors: max(2, P). */
@@ -126,7 +102,7 @@ int run_sim(const run_config *rc, par_pair *pairs, int npairs, sim_stats *stats,
 
 /* The same on POSIX threads, one run for all the pairs: par_pair.time is
  * wall-clock seconds (the master's, from sending a pair's points to holding
- * its optimum).  rc->machine is not used.  *stats (may be NULL) gets the
+ * its optimum).  rc->mc.sim is not used.  *stats (may be NULL) gets the
  * backend's statistics. */
 int run_threads(const run_config *rc, par_pair *pairs, int npairs, mpt_stats *stats, char *err,
                 size_t errlen);

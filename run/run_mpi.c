@@ -30,25 +30,25 @@ int run_mpi_size(void) { return W.size; }
 static mpm_config backend_config(const run_config *rc) {
   mpm_config cfg;
   mpm_config_init(&cfg);
-  cfg.c = rc->machine.c;
-  cfg.warn = rc->machine.warn;
+  cfg.c = rc->mc.sim.c;
+  cfg.warn = rc->mc.sim.warn;
   return cfg;
 }
 
 int run_mpi_pairs(const run_config *rc, par_pair *pairs, int npairs, char *err, size_t errlen) {
-  int k = run_ranks(rc->procs);
+  int k = run_ranks(rc->mc.procs);
   if (W.size == 0) {
     snprintf(err, errlen, "mpi: not started (run_mpi_main)");
     return -1;
   }
   if (k > W.size) {
-    snprintf(err, errlen, "--procs %d needs %d MPI processes; mpirun gave %d", rc->procs, k, W.size);
+    snprintf(err, errlen, "--procs %d needs %d MPI processes; mpirun gave %d", rc->mc.procs, k, W.size);
     return -1;
   }
   par_options opt;   /* the master's bookkeeping priced in node units */
   if (run_par_options(rc, &opt, err, errlen) != 0) return -1;
-  int order[3] = {k, rc->machine.c > 0 ? 1 : 0, 0};
-  double c = rc->machine.c;
+  int order[3] = {k, rc->mc.sim.c > 0 ? 1 : 0, 0};
+  double c = rc->mc.sim.c;
   for (int r = 1; r < k; r++) {
     MPI_Send(order, 3, MPI_INT, r, CMD_RUN, W.cmd);
     MPI_Send(&c, 1, MPI_DOUBLE, r, CMD_RUN, W.cmd);

@@ -6,7 +6,7 @@
  *
  * Process 0 runs the program's usual main (reads the input, prints the
  * report, writes the mesh).  Each time it runs pairs on the MPI backend
- * (run_pairs with RUN_MPI) it sends RUN(k) to processes 1 .. k-1, k =
+ * (run_pairs with MACHINE_MPI) it sends RUN(k) to processes 1 .. k-1, k =
  * max(2, P): they become the slaves of that run (the others wait), and
  * tell it how their part went.  When process 0's main returns, it sends
  * EXIT to all; each process returns the exit status to give. */

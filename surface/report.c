@@ -7,7 +7,7 @@ static const char net_cols[] = ",hops_per_msg,hop_bytes,max_link_msgs,max_link_b
 static const char net_empty[] = ",,,,,";
 
 /* The simulator on a topology (--topology): each band's network columns. */
-static int topology(const run_config *rc) { return rc && rc->machine.topo.kind != TOPO_NONE; }
+static int topology(const run_config *rc) { return rc && rc->mc.sim.topo.kind != TOPO_NONE; }
 
 void report_header(FILE *f, const char *prefix, const run_config *rc) {
   fprintf(f, "%sband,z0,z1,depth,lower,upper,junction,m,n,bridges,cost,area,volume,nodes,spans,euler,genus%s%s\n",
@@ -46,10 +46,10 @@ void report_rows(FILE *f, const char *prefix, const stack_surface *ss, const run
       const par_counts *c = &pp[x->pair].counts;
       unsigned long long bytes = 0;
       for (int k = 0; k < PAR_KINDS; k++) bytes += c->bytes[k];
-      fprintf(f, ",%d,%.9f,%llu,%llu,%llu,%llu,%llu,%s", rc->procs, pp[x->pair].time,
+      fprintf(f, ",%d,%.9f,%llu,%llu,%llu,%llu,%llu,%s", rc->mc.procs, pp[x->pair].time,
               (unsigned long long)c->msgs[PAR_BOUNDARY], (unsigned long long)c->msgs[PAR_BACKTRACK],
               (unsigned long long)c->msgs[PAR_BOUNDS], (unsigned long long)c->msgs[PAR_CONTROL], bytes,
-              run_backend_name(rc->backend));
+              machine_backend_name(rc->mc.backend));
     } else if (rc) {
       fputs(par_empty, f);
     }

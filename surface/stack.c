@@ -246,7 +246,7 @@ static int tile_bands(work *w, stack_surface *ss, char *err, size_t errlen) {
     p->P = w->b[i].lo.pt, p->np = w->b[i].lo.n, p->zp = sl->z[w->b[i].slice];
     p->Q = w->b[i].hi.pt, p->nq = w->b[i].hi.n, p->zq = sl->z[w->b[i].slice + 1];
   }
-  if (rc->machine.topo.kind != TOPO_NONE) rc->pair_net = ss->nets = xcalloc((size_t)nb + 1, sizeof *ss->nets);
+  if (rc->mc.sim.topo.kind != TOPO_NONE) rc->pair_net = ss->nets = xcalloc((size_t)nb + 1, sizeof *ss->nets);
   if (run_pairs(rc, ss->pairs, nb, err, errlen) != 0) res = -2;
   rc->pair_net = NULL;
   for (int i = 0; i < nb; i++) {

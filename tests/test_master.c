@@ -37,8 +37,8 @@ static int run_one(const vec2 *P, int np, const vec2 *Q, int nq, int procs, cons
                    outcome *o, char *err, size_t errlen) {
   run_config rc;
   run_config_init(&rc);
-  rc.backend = RUN_SIM;
-  rc.machine.warn = NULL;
+  rc.mc.backend = MACHINE_SIM;
+  rc.mc.sim.warn = NULL;
   const char *base[] = {"--c", "0.0009765625", "--m", "0.001953125", NULL};
   for (int i = 0; base[i]; i += 2)
     if (run_option(&rc, base[i], base[i + 1], err, errlen) != 1) return -1;
@@ -48,7 +48,7 @@ static int run_one(const vec2 *P, int np, const vec2 *Q, int nq, int procs, cons
   if (run_par_options(&rc, &opt, err, errlen) != 0) return -1;
   int nr = run_ranks(procs), place[MAXR];
   for (int r = 0; r < nr; r++) place[r] = procs == 1 ? 0 : r;
-  sim_config cfg = rc.machine;
+  sim_config cfg = rc.mc.sim;
   cfg.procs = procs;
   cfg.place = place;
   sim *s = sim_new(&cfg, nr, err, errlen);
@@ -211,7 +211,7 @@ static void check_slave_prices(rng *g) {
 static void check_refusal(void) {
   run_config rc;
   run_config_init(&rc);
-  rc.machine.warn = NULL;
+  rc.mc.sim.warn = NULL;
   char err[300] = "";
   par_options opt;
   CHECK(run_option(&rc, "--c", "0", err, sizeof err) == 1 && run_option(&rc, "--master-c", "1e-6", err, sizeof err) == 1,
@@ -237,7 +237,7 @@ static void check_refusal(void) {
   CHECK(run_option(&rc, "--table-c", "x", err, sizeof err) == -1, "--table-c x accepted");
   run_config_init(&rc);
   CHECK(run_par_options(&rc, &opt, err, sizeof err) == 0 && opt.book == RUN_MASTER_SHARE &&
-            run_master_c(&rc) == RUN_MASTER_SHARE * rc.machine.c,
+            run_master_c(&rc) == RUN_MASTER_SHARE * rc.mc.sim.c,
         "default: book %g", opt.book);
 }
 

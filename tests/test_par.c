@@ -32,9 +32,9 @@ static par_pair mkpair(const vec2 *P, int np, double zp, const vec2 *Q, int nq, 
 static run_config config(int P, split_alloc alloc, int d, cost_kind kind) {
   run_config rc;
   memset(&rc, 0, sizeof rc);
-  rc.procs = P;
-  sim_config_init(&rc.machine);
-  rc.machine.warn = NULL;
+  rc.mc.procs = P;
+  sim_config_init(&rc.mc.sim);
+  rc.mc.sim.warn = NULL;
   rc.opt.alloc = alloc;
   rc.opt.min_diag = d;
   rc.kind = kind;

@@ -188,7 +188,7 @@ static void spike(void) {
     if (par) {   /* the parallel algorithm gets the same quantum */
       run_config rc;
       run_config_init(&rc);
-      rc.procs = 3;
+      rc.mc.procs = 3;
       par_pair pr;
       memset(&pr, 0, sizeof pr);
       pr.P = P, pr.np = 4, pr.zp = 0, pr.Q = Q, pr.nq = 4, pr.zq = 1;

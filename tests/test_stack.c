@@ -412,7 +412,7 @@ static void test_invariance(rng *g) {
   if (sg_make_stack(ps, np, NULL, NULL, NULL, &s) == 0) {
     run_config rc;
     run_config_init(&rc);
-    rc.procs = 3;
+    rc.mc.procs = 3;
     stack_surface *ss = tile(&s, 1, 0, 2, &rc, err, sizeof err, &res);
     CHECK(res == 0 && same_mesh(stack_mesh(ref), stack_mesh(ss)), "--procs 3 on the simulator: %s", res ? err : "differs");
     CHECK(res != 0 || stack_pairs(ss)[0].time > 0, "no simulated time");

@@ -329,7 +329,7 @@ static void test_real(void) {
        * serial unit-scale result, scaled. */
       run_config rc3;
       run_config_init(&rc3);
-      rc3.procs = 3;
+      rc3.mc.procs = 3;
       int res, r2;
       stack_surface *u = tile(&s, (how){1, 0, COST_AREA, NULL}, NULL, 0, err, sizeof err, &res);
       contour_stack t;

@@ -472,10 +472,10 @@ static int same_tiling(const tiling *a, const tiling *b) {
 static run_config config(int P, split_alloc alloc, int d) {
   run_config rc;
   run_config_init(&rc);
-  rc.backend = RUN_THREADS;
-  rc.procs = P;
-  rc.machine.warn = NULL;
-  rc.threads.warn = NULL;
+  rc.mc.backend = MACHINE_THREADS;
+  rc.mc.procs = P;
+  rc.mc.sim.warn = NULL;
+  rc.mc.threads.warn = NULL;
   rc.opt.alloc = alloc;
   rc.opt.min_diag = d;
   return rc;

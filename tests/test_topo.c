@@ -955,15 +955,15 @@ static void test_par_results(void) {
     for (size_t c = 0; c < sizeof cfgs / sizeof *cfgs; c++) {
       run_config rc;
       run_config_init(&rc);
-      rc.machine.warn = NULL;
-      rc.procs = cfgs[c].procs;
+      rc.mc.sim.warn = NULL;
+      rc.mc.procs = cfgs[c].procs;
       rc.opt.alloc = pair % 2 ? ALLOC_SIZE : ALLOC_HALF;
-      rc.machine.hop_latency = 1e-5;
-      rc.machine.store_forward = cfgs[c].saf;
+      rc.mc.sim.hop_latency = 1e-5;
+      rc.mc.sim.store_forward = cfgs[c].saf;
       char err[300];
-      CHECK(topo_parse(cfgs[c].topo, &rc.machine.topo, err, sizeof err) == 0, "%s", err);
-      rc.machine.net = SIM_NET_TOPOLOGY;
-      CHECK(place_parse(cfgs[c].place, &rc.place, err, sizeof err) == 0, "%s", err);
+      CHECK(topo_parse(cfgs[c].topo, &rc.mc.sim.topo, err, sizeof err) == 0, "%s", err);
+      rc.mc.sim.net = SIM_NET_TOPOLOGY;
+      CHECK(place_parse(cfgs[c].place, &rc.mc.place, err, sizeof err) == 0, "%s", err);
       net_stats ns;
       rc.pair_net = &ns;
       par_pair pr;

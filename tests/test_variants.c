@@ -36,13 +36,13 @@ static int same_tiling(const tiling *a, const tiling *b) {
          memcmp(a->col, b->col, sizeof *a->col * (size_t)(a->m + a->n + 1)) == 0;
 }
 
-static run_config config(const variant *v, run_backend backend) {
+static run_config config(const variant *v, machine_backend backend) {
   run_config rc;
   run_config_init(&rc);
-  rc.backend = backend;
-  rc.procs = v->procs;
-  rc.machine.warn = NULL;
-  rc.threads.warn = NULL;
+  rc.mc.backend = backend;
+  rc.mc.procs = v->procs;
+  rc.mc.sim.warn = NULL;
+  rc.mc.threads.warn = NULL;
   rc.opt.alloc = v->alloc;
   rc.opt.min_diag = v->d;
   rc.opt.block = v->block;
@@ -85,7 +85,7 @@ static void random_pair(rng *g, int i, vec2 *P, int *np, vec2 *Q, int *nq) {
 }
 
 /* Run one pair under v on a backend and compare with the serial solver. */
-static int one(const variant *v, run_backend backend, const vec2 *P, int np, const vec2 *Q, int nq,
+static int one(const variant *v, machine_backend backend, const vec2 *P, int np, const vec2 *Q, int nq,
                cost_kind kind, const tiling *ser, const char *what) {
   run_config rc = config(v, backend);
   rc.kind = kind;
@@ -94,7 +94,7 @@ static int one(const variant *v, run_backend backend, const vec2 *P, int np, con
   pr.P = P, pr.np = np, pr.zp = 0, pr.Q = Q, pr.nq = nq, pr.zq = 1.5;
   char err[300];
   int ok = 1;
-  if (backend == RUN_SIM) {
+  if (backend == MACHINE_SIM) {
     sim_stats st;
     ok = run_sim(&rc, &pr, 1, &st, err, sizeof err) == 0;
     if (ok && (st.deadlock || st.unread || st.messages != st.received)) {
@@ -112,7 +112,7 @@ static int one(const variant *v, run_backend backend, const vec2 *P, int np, con
     }
   }
   if (!ok) {
-    CHECK(0, "%s (m=%d n=%d) %s on %s: %s", what, np, nq, name(v), run_backend_name(backend), err);
+    CHECK(0, "%s (m=%d n=%d) %s on %s: %s", what, np, nq, name(v), machine_backend_name(backend), err);
     return 0;
   }
   int same = same_tiling(&pr.t, ser);
@@ -120,7 +120,7 @@ static int one(const variant *v, run_backend backend, const vec2 *P, int np, con
   int nodes = v->block > 1 ? pr.counts.nodes >= ser->count.nodes : pr.counts.nodes == ser->count.nodes;
   if (!same || !nodes)
     CHECK(0, "%s (m=%d n=%d) %s on %s: %.17g start %d, %llu nodes; serial %.17g start %d, %llu nodes",
-          what, np, nq, name(v), run_backend_name(backend), pr.t.quanta, pr.t.start,
+          what, np, nq, name(v), machine_backend_name(backend), pr.t.quanta, pr.t.start,
           (unsigned long long)pr.counts.nodes, ser->quanta, ser->start,
           (unsigned long long)ser->count.nodes);
   tiling_free(&pr.t);
@@ -149,7 +149,7 @@ static void sim_random(rng *g) {
     seen[a][sc][b][di]++;
     seenp[procs][di]++;
     runs++;
-    bad += !one(&v, RUN_SIM, P, np, Q, nq, kind, &ser, "random pair");
+    bad += !one(&v, MACHINE_SIM, P, np, Q, nq, kind, &ser, "random pair");
   }
   tiling_free(&ser);
   int all = 1;
@@ -182,7 +182,7 @@ static void threads_random(rng *g) {
     variant v = {procs, ds[(i / 3) % 3], blocks[b], allocs[a], sc ? PAR_DYNAMIC : PAR_STATIC};
     seenp[procs]++;
     runs++;
-    bad += !one(&v, RUN_THREADS, P, np, Q, nq, COST_AREA, &ser, "random pair");
+    bad += !one(&v, MACHINE_THREADS, P, np, Q, nq, COST_AREA, &ser, "random pair");
   }
   tiling_free(&ser);
   int all = 1;
@@ -198,17 +198,17 @@ static void real(void) {
   static const struct {
     const char *name;
     int pairs;
-    run_backend backend;
+    machine_backend backend;
     variant v;
   } cases[] = {
-      {"prostate_1", 99, RUN_SIM, {9, 20, 7, ALLOC_FIT, PAR_DYNAMIC}},
-      {"prostate_2", 99, RUN_SIM, {32, 1, 64, ALLOC_HALF, PAR_DYNAMIC}},
-      {"prostate_3", 99, RUN_SIM, {16, 80, 2, ALLOC_SIZE, PAR_STATIC}},
-      {"tinypatient_1", 99, RUN_SIM, {5, 1, 7, ALLOC_FIT, PAR_STATIC}},
-      {"prostate_0", 3, RUN_SIM, {24, 1, 2, ALLOC_FIT, PAR_DYNAMIC}},
-      {"prostate_0", 2, RUN_SIM, {7, 20, 64, ALLOC_SIZE, PAR_STATIC}},
-      {"prostate_2", 99, RUN_THREADS, {16, 1, 7, ALLOC_SIZE, PAR_DYNAMIC}},
-      {"prostate_4", 99, RUN_THREADS, {6, 20, 2, ALLOC_FIT, PAR_STATIC}},
+      {"prostate_1", 99, MACHINE_SIM, {9, 20, 7, ALLOC_FIT, PAR_DYNAMIC}},
+      {"prostate_2", 99, MACHINE_SIM, {32, 1, 64, ALLOC_HALF, PAR_DYNAMIC}},
+      {"prostate_3", 99, MACHINE_SIM, {16, 80, 2, ALLOC_SIZE, PAR_STATIC}},
+      {"tinypatient_1", 99, MACHINE_SIM, {5, 1, 7, ALLOC_FIT, PAR_STATIC}},
+      {"prostate_0", 3, MACHINE_SIM, {24, 1, 2, ALLOC_FIT, PAR_DYNAMIC}},
+      {"prostate_0", 2, MACHINE_SIM, {7, 20, 64, ALLOC_SIZE, PAR_STATIC}},
+      {"prostate_2", 99, MACHINE_THREADS, {16, 1, 7, ALLOC_SIZE, PAR_DYNAMIC}},
+      {"prostate_4", 99, MACHINE_THREADS, {6, 20, 2, ALLOC_FIT, PAR_STATIC}},
   };
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
     char path[128], err[300];
@@ -227,7 +227,7 @@ static void real(void) {
     const variant *v = &cases[i].v;
     run_config rc = config(v, cases[i].backend);
     int rcode = run_pairs(&rc, pr, np, err, sizeof err);
-    CHECK(rcode == 0, "%s %s on %s: %s", cases[i].name, name(v), run_backend_name(cases[i].backend), err);
+    CHECK(rcode == 0, "%s %s on %s: %s", cases[i].name, name(v), machine_backend_name(cases[i].backend), err);
     int bad = 0;
     for (int k = 0; rcode == 0 && k < np; k++) {
       tiling ser;
@@ -237,7 +237,7 @@ static void real(void) {
       tiling_free(&pr[k].t);
     }
     CHECK(bad == 0, "%s %s on %s: %d of %d pairs differ from serial", cases[i].name, name(v),
-          run_backend_name(cases[i].backend), bad, np);
+          machine_backend_name(cases[i].backend), bad, np);
     free(pr);
     contour_stack_free(&s);
   }
@@ -262,7 +262,7 @@ static void messages(rng *g) {
     gen_star(g, Q, n, 0, 0, 9, 0.3);
     int *sends = xcalloc((size_t)T + 1, sizeof *sends), *recvs = xcalloc((size_t)T + 1, sizeof *recvs);
     variant v = {p + 1, 1, k, ALLOC_HALF, PAR_STATIC};
-    run_config rc = config(&v, RUN_SIM);
+    run_config rc = config(&v, MACHINE_SIM);
     rc.opt.only_mu0 = 1;
     rc.diag_sends = sends, rc.diag_recvs = recvs, rc.diag_len = T + 1;
     par_pair pr;
@@ -312,15 +312,15 @@ static void paper_times(rng *g) {
     for (int di = 0; di < 2; di++) {
       run_config a, b;
       memset(&a, 0, sizeof a);   /* the paper's, every variant field zero */
-      a.procs = procs;
-      sim_config_init(&a.machine);
-      a.machine.warn = NULL;
+      a.mc.procs = procs;
+      sim_config_init(&a.mc.sim);
+      a.mc.sim.warn = NULL;
       a.opt.alloc = ALLOC_HALF;
       a.opt.min_diag = ds[di];
       a.kind = COST_AREA;
       run_config_init(&b);
-      b.backend = RUN_SIM;
-      b.machine.warn = NULL;
+      b.mc.backend = MACHINE_SIM;
+      b.mc.sim.warn = NULL;
       char err[300], num[16];
       snprintf(num, sizeof num, "%d", procs);
       CHECK(run_option(&b, "--procs", num, err, sizeof err) == 1, "--procs: %s", err);
