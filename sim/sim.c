@@ -184,6 +184,8 @@ struct sim {
   msg *pool;               /* free messages */
   FILE *tcsv, *tjson;
   int count_csv, count_json;   /* sim_trace_count */
+  int limited;                 /* sim_trace_limit */
+  unsigned long long trace_limit;
   trace *tr;
   errlog errs;             /* the errors quoted in sim_run's message */
   sim_stats st;
@@ -801,6 +803,13 @@ void sim_trace_count(sim *s, int csv, int json) {
   s->count_json = json;
 }
 
+void sim_trace_limit(sim *s, unsigned long long limit) {
+  s->limited = 1;
+  s->trace_limit = limit;
+}
+
+int sim_trace_over(const sim *s) { return trace_over(s->tr); }
+
 void sim_trace_size(const sim *s, unsigned long long *csv, unsigned long long *json) {
   trace_size(s->tr, csv, json);
 }
@@ -898,7 +907,8 @@ int sim_run(sim *s, const mp_proc *procs, char *err, size_t errlen) {
   mp *outer = mp_self();   /* restored whenever a rank gives way to sim_run */
   s->procs = procs;
   s->tr = s->count_csv || s->count_json ? trace_new_count(s->count_csv, s->count_json)
-                                         : trace_new(s->tcsv, s->tjson);
+          : s->limited                    ? trace_new_limited(s->tcsv, s->tjson, s->trace_limit)
+                                          : trace_new(s->tcsv, s->tjson);
   s->main = coro_main_new();
   char cerr[256];
   int made = 0;

@@ -175,6 +175,13 @@ links *sim_links(sim *s);
  * caller's to close. */
 void sim_trace(sim *s, FILE *csv, FILE *json);
 
+/* With sim_trace: write the trace only while its bytes stay within limit
+ * (trace_new_limited); sim_trace_size then gives the whole trace's bytes
+ * and sim_trace_over says whether writing stopped (the caller removes the
+ * partial files). */
+void sim_trace_limit(sim *s, unsigned long long limit);
+int sim_trace_over(const sim *s);
+
 /* Instead of writing a trace, count the bytes a CSV (csv != 0) and a JSON
  * (json != 0) trace of the run would take; sim_trace_size gives them after
  * sim_run (0 without sim_trace_count).  How a program checks a trace's

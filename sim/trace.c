@@ -15,6 +15,9 @@ struct trace {
   int count;   /* count the bytes (below) instead of writing */
   int ccsv, cjson;                  /* count mode: which of the two */
   unsigned long long ncsv, njson;   /* count mode: the bytes so far */
+  trace *shadow;                    /* limited mode: counts every call, and */
+  unsigned long long limit;         /* once its bytes pass the limit, */
+  int over;                         /* writing stops (csv and json are dropped) */
 };
 
 trace *trace_new(FILE *csv, FILE *json) {
@@ -36,12 +39,48 @@ trace *trace_new_count(int csv, int json) {
   return tr;
 }
 
+trace *trace_new_limited(FILE *csv, FILE *json, unsigned long long limit) {
+  trace *tr = trace_new(csv, json);
+  if (!tr) return NULL;
+  tr->shadow = trace_new_count(csv != NULL, json != NULL);
+  tr->limit = limit;
+  return tr;
+}
+
+int trace_over(const trace *tr) { return tr && tr->over; }
+
 void trace_size(const trace *tr, unsigned long long *csv, unsigned long long *json) {
+  if (tr && tr->shadow) tr = tr->shadow;
   *csv = tr && tr->count ? tr->ncsv : 0;
   *json = tr && tr->count ? tr->njson : 0;
 }
 
-void trace_free(trace *tr) { free(tr); }
+void trace_free(trace *tr) {
+  if (tr) trace_free(tr->shadow);
+  free(tr);
+}
+
+/* Limited mode: the shadow has counted the call; 1 if nothing is to be
+ * written (the bytes have passed the limit, now or before). */
+static int past_limit(trace *tr) {
+  if (tr->over) return 1;
+  if (tr->shadow->ncsv + tr->shadow->njson <= tr->limit) return 0;
+  tr->over = 1;
+  tr->csv = tr->json = NULL;
+  return 1;
+}
+
+/* At the top of every call that writes: the shadow counts it first. */
+#define SHADOW(call)                                                           \
+  do {                                                                         \
+    if (tr->shadow) {                                                          \
+      trace *real_ = tr;                                                       \
+      tr = tr->shadow;                                                         \
+      call;                                                                    \
+      tr = real_;                                                              \
+      if (past_limit(tr)) return;                                              \
+    }                                                                          \
+  } while (0)
 
 /* ---- count mode: the length printf would give, by arithmetic ---------------
  * (the formats' lengths, kept beside the formats below; tests/test_trace.c
@@ -102,6 +141,7 @@ static void csv_peer(FILE *f, int v) {
 }
 
 void trace_begin(trace *tr, int nranks, const int *place, int nprocs) {
+  SHADOW(trace_begin(tr, nranks, place, nprocs));
   tr->netpid = nprocs;
   if (tr->count) {
     if (tr->ccsv) tr->ncsv += strlen("time,rank,proc,event,peer,tag,bytes,duration,msg,arrival\n");
@@ -140,6 +180,7 @@ void trace_begin(trace *tr, int nranks, const int *place, int nprocs) {
 
 void trace_span(trace *tr, const char *kind, int rank, int proc, double start, double dur,
                 int peer, int tag) {
+  SHADOW(trace_span(tr, kind, rank, proc, start, dur, peer, tag));
   int wait = strcmp(kind, "wait") == 0;
   if (tr->count) {
     size_t k = strlen(kind);
@@ -178,6 +219,7 @@ void trace_span(trace *tr, const char *kind, int rank, int proc, double start, d
 
 void trace_send(trace *tr, int rank, int proc, double t, double dur, int dst, int tag,
                 size_t len, uint64_t msg, double arrival) {
+  SHADOW(trace_send(tr, rank, proc, t, dur, dst, tag, len, msg, arrival));
   if (tr->count) {
     if (tr->ccsv)   /* %.9f,%d,%d,send,%d,%d,%zu,%.9f,%llu,%.9f\n */
       tr->ncsv += len_f(t, 9) + len_i(rank) + len_i(proc) + len_i(dst) + len_i(tag) + len_u(len) +
@@ -206,6 +248,7 @@ void trace_send(trace *tr, int rank, int proc, double t, double dur, int dst, in
 
 void trace_recv(trace *tr, int rank, int proc, double t, double dur, int src, int tag,
                 size_t len, uint64_t msg) {
+  SHADOW(trace_recv(tr, rank, proc, t, dur, src, tag, len, msg));
   if (tr->count) {
     if (tr->ccsv)   /* %.9f,%d,%d,recv,%d,%d,%zu,%.9f,%llu,\n */
       tr->ncsv += len_f(t, 9) + len_i(rank) + len_i(proc) + len_i(src) + len_i(tag) + len_u(len) +
@@ -230,6 +273,7 @@ void trace_recv(trace *tr, int rank, int proc, double t, double dur, int src, in
 }
 
 void trace_finish(trace *tr, int rank, int proc, double t) {
+  SHADOW(trace_finish(tr, rank, proc, t));
   if (tr->count) {
     if (tr->ccsv) tr->ncsv += len_f(t, 9) + len_i(rank) + len_i(proc) + strlen(",,,finish,,,,,,\n");
     if (tr->cjson) tr->njson += len_jhead(tr, "i", "finish", "rank", proc, rank, t) + strlen(",\"s\":\"t\"}");
@@ -243,6 +287,7 @@ void trace_finish(trace *tr, int rank, int proc, double t) {
 }
 
 void trace_link_track(trace *tr, int link, const char *name) {
+  SHADOW(trace_link_track(tr, link, name));
   if (tr->count) {
     if (!tr->cjson) return;
     if (!tr->netnamed) {
@@ -274,6 +319,7 @@ void trace_link_track(trace *tr, int link, const char *name) {
 
 void trace_link(trace *tr, int link, int rank, int dst, int tag, size_t len, uint64_t msg,
                 double start, double dur) {
+  SHADOW(trace_link(tr, link, rank, dst, tag, len, msg, start, dur));
   if (tr->count) {
     if (tr->ccsv)   /* %.9f,%d,%d,link,%d,%d,%zu,%.9f,%llu,\n */
       tr->ncsv += len_f(start, 9) + len_i(rank) + len_i(link) + len_i(dst) + len_i(tag) + len_u(len) +
@@ -296,6 +342,10 @@ void trace_link(trace *tr, int link, int rank, int dst, int tag, size_t len, uin
 
 int trace_end(trace *tr, char *err, size_t errlen) {
   int bad = 0;
+  if (tr->shadow) {
+    trace_end(tr->shadow, err, errlen);
+    if (past_limit(tr)) return 0;
+  }
   if (tr->count) {
     if (tr->cjson) tr->njson += strlen("\n]}\n");
     return 0;

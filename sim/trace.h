@@ -16,6 +16,7 @@
  *   wait      blocked in recv: peer/tag = what it waits for ("any" for
  *             MP_ANY), duration = how long
  *   recv      peer = source, duration = LogGP's o (else 0), msg = the id
+ *   sleep     mp_sleep: time = start, duration = the sleep
  *   finish    the rank's main returned
  *   link      a topology's link carried a message (sim/link.h): time = when
  *             it began, proc = the link's index (its name is in the JSON),
@@ -49,6 +50,15 @@ trace *trace_new(FILE *csv, FILE *json);
  * gives the counts so far (0 for a writing trace). */
 trace *trace_new_count(int csv, int json);
 void trace_size(const trace *tr, unsigned long long *csv, unsigned long long *json);
+
+/* A trace writing to csv and/or json while its bytes stay within limit:
+ * every call is counted as trace_new_count counts it, and from the call
+ * that takes the bytes past the limit on nothing more is written
+ * (trace_over says so; trace_size gives the whole trace's bytes, as if it
+ * had been written).  How a program that cannot run twice keeps a trace
+ * within --trace-limit: the caller removes the partial files. */
+trace *trace_new_limited(FILE *csv, FILE *json, unsigned long long limit);
+int trace_over(const trace *tr);
 
 /* The largest trace a program writes unless told otherwise (--trace-limit):
  * 1 GB, a few minutes to write and more than a trace viewer opens. */
