@@ -89,29 +89,55 @@ fail:
 int bench_ring_main(int argc, char **argv) {
   long procs = 0, laps = 0;
   double work = 1;
-  int all = 0, print_place = 0, net_given = 0;
+  int all = 0, print_place = 0, net_given = 0, topo_given = 0;
   place_spec place = {PLACE_LINEAR, 0, ""};
   const char *tcsv = NULL, *tjson = NULL;
   unsigned long long limit = TRACE_LIMIT_DEFAULT;
   sim_config cfg;
   sim_config_init(&cfg);
   char err[512];
-  static const char *const opts[] = {"--ring", "--laps", "--net", "--m", "--c", "--work", "--per-byte",
-                                     "--hop-latency", "--topology", "--place", "--switching", "--tokens",
-                                     "--profile", "--trace-csv", "--trace-json", "--trace-limit"};
-  /* First every value checked; --profile set first, wherever it is, since
-   * it sets every machine parameter and the others change one each. */
+  /* The ring's own options; the machine's are machine_option's (the same
+   * ranges and messages as every program's), but for those the ring sets
+   * itself: its ranks and processors (--ring P), its traces (--trace-csv,
+   * --trace-json) and the backend (the simulator). */
+  static const char *const opts[] = {"--ring", "--laps", "--work", "--tokens", "--profile", "--trace-csv",
+                                     "--trace-json"};
+  static const char *const theirs[] = {"--procs", "--ranks", "--backend", "--trace"};
+  static const char *const ours[] = {"--net", "--m", "--c", "--per-byte", "--hop-latency", "--topology",
+                                     "--place", "--switching", "--trace-limit", "--machine"};
+  machine_config mc;
+  machine_config_init(&mc);
+  /* First every value checked; --profile (or --machine) set first, wherever
+   * it is, since it sets every machine parameter and the others change one
+   * each. */
   for (int i = 1; i < argc; i += 2) {
     const char *o = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
     int known = 0;
-    if (strcmp(o, "--print-place") == 0) {
+    if (machine_option_flag(o)) {   /* --print-place */
       i--;
       continue;
     }
+    for (size_t k = 0; k < sizeof theirs / sizeof *theirs; k++)
+      if (strcmp(o, theirs[k]) == 0) {
+        snprintf(err, sizeof err, "%s: bench --ring P runs P ranks on P simulated processors, "
+                                  "traced by --trace-csv and --trace-json", o);
+        return bad(ring_usage, err, NULL);
+      }
     for (size_t k = 0; k < sizeof opts / sizeof *opts; k++) known |= strcmp(o, opts[k]) == 0;
+    if (!known && o[0] == '-') {
+      machine_config scratch = mc;
+      known = machine_option(&scratch, o, v ? v : "", err, sizeof err) != 0;
+      int modelled = 0;   /* the machine options bench_ring_model knows */
+      for (size_t k = 0; k < sizeof ours / sizeof *ours; k++) modelled |= strcmp(o, ours[k]) == 0;
+      if (known && !modelled) {
+        snprintf(err, sizeof err, "%s: bench --ring checks its time against a model without it "
+                                  "(a program of your own on tilesim.h takes every machine option)", o);
+        return bad(ring_usage, err, NULL);
+      }
+    }
     if (!known) return bad(ring_usage, o[0] == '-' ? "unknown option" : "unexpected argument", o);
     if (!v) return bad(ring_usage, "an option needs a value", o);
-    if (strcmp(o, "--profile") == 0 && sim_profile(v, &cfg) != 0) {
+    if ((strcmp(o, "--profile") == 0 || strcmp(o, "--machine") == 0) && sim_profile(v, &mc.sim) != 0) {
       args_word(o, v, "tc2000|unit", err, sizeof err);
       return bad(ring_usage, err, NULL);
     }
@@ -119,47 +145,38 @@ int bench_ring_main(int argc, char **argv) {
   for (int i = 1; i < argc; i += 2) {
     const char *o = argv[i], *v = argv[i + 1];
     int no = 0;
-    if (strcmp(o, "--print-place") == 0) {
-      print_place = 1;
+    if (machine_option_flag(o)) {   /* --print-place */
+      machine_option(&mc, o, NULL, err, sizeof err);
       i--;
       continue;
     }
     if (strcmp(o, "--ring") == 0) no = args_long(o, v, 1, 1000000, &procs, err, sizeof err);
     else if (strcmp(o, "--laps") == 0) no = args_long(o, v, 1, 1000000000, &laps, err, sizeof err);
-    else if (strcmp(o, "--net") == 0) {
-      if (sim_net_parse(v, &cfg.net) != 0) no = args_word(o, v, "ideal|bus|loggp", err, sizeof err);
-      net_given = 1;
-    } else if (strcmp(o, "--m") == 0) no = args_real(o, v, "seconds", 0, 1e9, &cfg.m, err, sizeof err);
-    else if (strcmp(o, "--c") == 0) no = args_real(o, v, "seconds", 0, 1e9, &cfg.c, err, sizeof err);
     else if (strcmp(o, "--work") == 0) no = args_real(o, v, "units", 0, 1e9, &work, err, sizeof err);
-    else if (strcmp(o, "--per-byte") == 0) no = args_real(o, v, "seconds", 0, 1e9, &cfg.per_byte, err, sizeof err);
-    else if (strcmp(o, "--hop-latency") == 0)
-      no = args_real(o, v, "seconds", 0, 1e9, &cfg.hop_latency, err, sizeof err);
-    else if (strcmp(o, "--topology") == 0 || strcmp(o, "--place") == 0) {
-      char why[300];
-      if (o[2] == 't' ? topo_parse(v, &cfg.topo, why, sizeof why) : place_parse(v, &place, why, sizeof why)) {
-        snprintf(err, sizeof err, "%s: %s", o, why);
-        no = 1;
-      }
-    } else if (strcmp(o, "--switching") == 0) {
-      int w = args_word(o, v, "cut-through|store-and-forward", err, sizeof err);
-      no = w < 0;
-      if (w >= 0) cfg.store_forward = w;
-    } else if (strcmp(o, "--tokens") == 0) {
+    else if (strcmp(o, "--profile") == 0 || strcmp(o, "--machine") == 0) no = 0;   /* set above */
+    else if (strcmp(o, "--tokens") == 0) {
       int w = args_word(o, v, "1|all", err, sizeof err);
       no = w < 0;
       if (w >= 0) all = w;
     } else if (strcmp(o, "--trace-csv") == 0) no = args_name(o, v, "a file name", 0, err, sizeof err), tcsv = v;
     else if (strcmp(o, "--trace-json") == 0) no = args_name(o, v, "a file name", 0, err, sizeof err), tjson = v;
-    else if (strcmp(o, "--trace-limit") == 0) no = args_bytes(o, v, &limit, err, sizeof err);
+    else {
+      no = machine_option(&mc, o, v, err, sizeof err) < 0;
+      net_given |= strcmp(o, "--net") == 0;
+      topo_given |= strcmp(o, "--topology") == 0;
+    }
     if (no) return bad(ring_usage, err, NULL);
   }
+  cfg = mc.sim;
+  place = mc.place;
+  print_place = mc.print_place;
+  limit = mc.trace_limit;
   if (!procs || !laps) return bad(ring_usage, "--ring P and --laps K are needed", NULL);
   if ((double)procs * (double)laps > RING_MAX_MESSAGES) {
     snprintf(err, sizeof err, "--ring P --laps K sends P x K messages, at most 1e10 (%ld x %ld)", procs, laps);
     return bad(ring_usage, err, NULL);
   }
-  if (cfg.topo.kind != TOPO_NONE && net_given)
+  if (topo_given && net_given)
     return bad(ring_usage, "--net and --topology both choose the network: give one", NULL);
   cfg.procs = (int)procs;
   cfg.warn = stderr;
