@@ -4,6 +4,7 @@
 #   make check           every test, built with -Werror and ASan+UBSan
 #   make bench           the paper's experiments: CSV and SVG under plots/
 #   make bench-tile      the tiler's speed and memory figures
+#   make bench-testbed   a user's program's ring beside ./bench --ring: the library's cost
 #   make bench-load      the threads (and MPI) backends beside busy loops
 #   make valgrind        the tests under valgrind, without sanitizers
 #   make tsan            the threads backend's tests under ThreadSanitizer
@@ -47,6 +48,18 @@ PROGS    = $(basename $(notdir $(filter-out $(wildcard prog/*_*.c),$(wildcard pr
 PLOTSRC  = $(wildcard plots/*.c)
 PLOT     = $(if $(PLOTSRC),build/plot)
 TESTS    = $(basename $(notdir $(wildcard tests/test_*.c)))
+# The testbed's library for users' own programs (machine/tilesim.h, issue
+# 18): util, mp, sim and machine linked into one object whose only global
+# symbols are tilesim_* and mp_*, so that a program's own names (xmalloc,
+# trace_new, ...) never meet ours; its headers as installed, under
+# build/include/tilesim/; and the examples, built against both as a user
+# builds them.
+PUBDIRS  = util mp sim machine
+PUBSRC   = $(filter-out %mpi.c,$(wildcard $(addsuffix /*.c,$(PUBDIRS))))
+PUBHDR   = build/include/tilesim/mp.h build/include/tilesim/tilesim.h
+OBJCOPY ?= objcopy
+EXAMPLES = $(basename $(notdir $(wildcard examples/*.c)))
+EXFLAGS  = -std=c11 $(WARN) -Ibuild/include
 TESTLIB  = $(filter-out $(wildcard tests/test_*.c),$(wildcard tests/*.c))
 
 REL = build/rel
@@ -56,7 +69,7 @@ chkobj = $(patsubst %.c,$(CHK)/%.o,$(1))
 
 # Programs build into build/bin and are copied to the root when they change,
 # so that `make bench` can be the experiments rather than the program.
-all: $(addprefix build/bin/,$(PROGS)) $(PLOT)
+all: $(addprefix build/bin/,$(PROGS)) $(PLOT) $(REL)/lib/libtilesim.a $(addprefix build/examples/,$(EXAMPLES))
 	@for p in $(PROGS); do cmp -s build/bin/$$p $$p || cp -f build/bin/$$p $$p; done
 
 $(REL)/%.o: %.c
@@ -74,6 +87,36 @@ $(REL)/libtilesim.a: $(call relobj,$(LIBSRC))
 $(CHK)/libtilesim.a: $(call chkobj,$(LIBSRC))
 	@rm -f $@
 	$(AR) rcs $@ $^
+
+build/include/tilesim/mp.h: mp/mp.h
+	@mkdir -p $(dir $@)
+	cp $< $@
+build/include/tilesim/tilesim.h: machine/tilesim.h
+	@mkdir -p $(dir $@)
+	cp $< $@
+# publib(DIR,SOURCES): DIR/lib/libtilesim.a from the sources' objects in DIR.
+define publib
+$(1)/lib/libtilesim.a: $(patsubst %.c,$(1)/%.o,$(2))
+	@mkdir -p $(1)/lib
+	$$(CC) -r -nostdlib -o $(1)/lib/tilesim.o $$^
+	$$(OBJCOPY) --wildcard -G 'tilesim_*' -G 'mp_*' $(1)/lib/tilesim.o
+	@rm -f $$@
+	$$(AR) rcs $$@ $(1)/lib/tilesim.o
+endef
+$(eval $(call publib,$(REL),$(PUBSRC)))
+$(eval $(call publib,$(CHK),$(PUBSRC)))
+$(eval $(call publib,$(MPIDIR),$(wildcard $(addsuffix /*.c,$(PUBDIRS)))))
+build/examples/%: examples/%.c $(REL)/lib/libtilesim.a $(PUBHDR)
+	@mkdir -p build/examples
+	$(CC) $(EXFLAGS) $(CFLAGS) -o $@ $< $(REL)/lib/libtilesim.a $(LDLIBS)
+$(CHK)/examples/%: examples/%.c $(CHK)/lib/libtilesim.a $(PUBHDR)
+	@mkdir -p $(CHK)/examples
+	$(CC) $(EXFLAGS) $(CHKFLAGS) -o $@ $< $(CHK)/lib/libtilesim.a $(LDLIBS)
+# Users' programs the testbed's tests run (tests/testbed/*.c), built the same way.
+TESTBED = $(basename $(notdir $(wildcard tests/testbed/*.c)))
+$(CHK)/testbed/%: tests/testbed/%.c $(CHK)/lib/libtilesim.a $(PUBHDR)
+	@mkdir -p $(CHK)/testbed
+	$(CC) $(EXFLAGS) $(CHKFLAGS) -o $@ $< $(CHK)/lib/libtilesim.a $(LDLIBS)
 
 define prog_rules
 build/bin/$(1): $(call relobj,prog/$(1).c $(wildcard prog/$(1)_*.c)) $(REL)/libtilesim.a
@@ -98,7 +141,8 @@ $(CHK)/tests/%: $(CHK)/tests/%.o $(call chkobj,$(TESTLIB)) $(CHK)/libtilesim.a
 # why not, reach the tests as MPI_STATUS and SMPI_STATUS (with MPICC,
 # MPIRUN, SMPICC, SMPIRUN): they look for nothing themselves, and
 # tests/run.sh lists what was skipped and why before its last line.
-check: $(addprefix $(CHK)/tests/,$(TESTS)) $(addprefix $(CHK)/,$(PROGS)) $(if $(PLOTSRC),$(CHK)/plot)
+check: $(addprefix $(CHK)/tests/,$(TESTS)) $(addprefix $(CHK)/,$(PROGS)) $(if $(PLOTSRC),$(CHK)/plot) \
+       $(addprefix $(CHK)/examples/,$(EXAMPLES)) $(addprefix $(CHK)/testbed/,$(TESTBED))
 	@$(MAKE) --no-print-directory -s mpi-probe
 	@mpi=$$(cat $(PROBE)/mpicc); smpi=$$(cat $(PROBE)/smpicc); \
 	if [ "$$mpi" = yes ] && ! $(MAKE) --no-print-directory -s mpi-bins; then mpi="the MPI build failed (make mpi-bins)"; fi; \
@@ -141,7 +185,12 @@ $(foreach p,$(MPIPROGS),$(eval $(call mpi_rules,$(p))))
 $(MPIDIR)/bin/contract-mpi: $(MPIDIR)/tests/mpi/contract.o $(MPIDIR)/libtilesim.a
 	@mkdir -p $(MPIDIR)/bin
 	$(MPICC) $(MPIFLAGS) -o $@ $^ $(LDLIBS)
-mpi-bins: $(foreach p,$(MPIPROGS),$(MPIDIR)/bin/$(p)-mpi) $(MPIDIR)/bin/contract-mpi
+# The examples on MPI (tests/cli_testbed.sh runs them under mpirun).
+$(MPIDIR)/examples/%: examples/%.c $(MPIDIR)/lib/libtilesim.a $(PUBHDR)
+	@mkdir -p $(MPIDIR)/examples
+	$(MPICC) $(EXFLAGS) $(MPIFLAGS) -o $@ $< $(MPIDIR)/lib/libtilesim.a $(LDLIBS)
+mpi-bins: $(foreach p,$(MPIPROGS),$(MPIDIR)/bin/$(p)-mpi) $(MPIDIR)/bin/contract-mpi \
+          $(addprefix $(MPIDIR)/examples/,$(EXAMPLES))
 mpi: mpi-bins
 	@for p in $(MPIPROGS); do cmp -s $(MPIDIR)/bin/$$p-mpi $$p-mpi || cp -f $(MPIDIR)/bin/$$p-mpi $$p-mpi; done
 
@@ -295,6 +344,12 @@ bench: all
 	awk 'FNR > 1 || NR == 1' build/claims_map_gen.csv build/claims_map_real.csv > build/claims_map.csv && \
 	  mv build/claims_map.csv plots/claims_map.csv
 	build/plot claims plots/claims_map.csv -o plots/claims_map.svg
+	sh examples/jacobi_speedup.sh build/examples/jacobi > build/testbed_jacobi.csv && \
+	  mv build/testbed_jacobi.csv plots/testbed_jacobi.csv
+	$(PLOTS) plots/testbed_jacobi.csv -x procs -y speedup --series machine --yzero \
+	  --labels "tc2000 (a bus),4x4 torus" \
+	  --title "A user's program on the machine: examples/jacobi.c, 256 x 256, 1 us a point" \
+	  --xlabel processors --ylabel "speedup T(1)/T(P)" -o plots/testbed_jacobi.svg
 
 # The tiler's speed and memory (issue figures: 500 x 500, 5000 x 5000, the naive
 # reference, the whole prostate_0 stack), and how fast an RT structure set is read.
@@ -302,6 +357,11 @@ bench-tile: all
 	./bench --tiler
 	./bench --stack
 	./bench --dicom
+
+# The testbed's cost (issue 18): a user's ring through tilesim.h beside
+# ./bench --ring, the simulator driven directly (tests/bench_testbed.sh).
+bench-testbed: all
+	sh tests/bench_testbed.sh
 
 # The threads and MPI backends' waiting under outside load (issue 14, item 5):
 # runs alone and beside two busy loops (tests/bench_load.sh says what to set).
@@ -315,6 +375,8 @@ bench-load: all
 # build so).
 IBIN  ?= build/bin
 IPLOT ?= build/plot
+ILIB  ?= $(REL)/lib/libtilesim.a
+VERSION = $(shell sed -n 's/^\#define TILESIM_VERSION "\(.*\)"/\1/p' machine/tilesim.h)
 SHARE  = $(DESTDIR)$(PREFIX)/share/tilesim
 install: all
 	@$(MAKE) --no-print-directory install-files
@@ -324,11 +386,17 @@ install-files:
 	$(if $(PLOT),cp $(IPLOT) $(DESTDIR)$(PREFIX)/bin/tilesim-plot)
 	cp tests/data/slicerrt/*.contours tests/data/slicerrt/README.md $(SHARE)/slicerrt/
 	cp tests/data/rtstruct/*.dcm tests/data/rtstruct/README.md $(SHARE)/rtstruct/
+	mkdir -p $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include/tilesim $(SHARE)/examples
+	cp $(ILIB) $(DESTDIR)$(PREFIX)/lib/libtilesim.a
+	cp mp/mp.h machine/tilesim.h $(DESTDIR)$(PREFIX)/include/tilesim/
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' machine/tilesim.pc.in \
+	  > $(DESTDIR)$(PREFIX)/lib/pkgconfig/tilesim.pc
+	cp examples/*.c $(SHARE)/examples/
 
 clean:
 	rm -rf build $(PROGS) $(addsuffix -mpi,$(MPIPROGS))
 
-.PHONY: all check valgrind tsan bench bench-tile bench-load install install-files clean mpi mpi-bins smpi-bins simgrid fuzz fuzz-bins \
+.PHONY: all check valgrind tsan bench bench-tile bench-testbed bench-load install install-files clean mpi mpi-bins smpi-bins simgrid fuzz fuzz-bins \
         mpi-probe
 .SECONDARY:
 

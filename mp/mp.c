@@ -78,7 +78,7 @@ void mp_enter(mp *self, mp_main main, void *ud) {
   self->describe = NULL;
 }
 
-_Noreturn void mp_exit(mp *self) {
+MP_NORETURN void mp_exit(mp *self) {
   if (!self->exit_to) {   /* a bug of the backend: main was not run by mp_enter */
     fprintf(stderr, "mp_exit: rank %d is not inside mp_enter\n", self->rank);
     abort();
@@ -86,7 +86,7 @@ _Noreturn void mp_exit(mp *self) {
   longjmp(*(jmp_buf *)self->exit_to, 1);
 }
 
-_Noreturn void mp_abort(mp *self, int code, const char *why) {
+MP_NORETURN void mp_abort(mp *self, int code, const char *why) {
   self->ops->stop(self, code, why);
   mp_exit(self);
 }

@@ -14,6 +14,18 @@
 
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#if defined(__STDC_VERSION__) && __STDC_VERSION__ >= 201112L
+#define MP_NORETURN _Noreturn
+#elif defined(__GNUC__)
+#define MP_NORETURN __attribute__((noreturn))
+#else
+#define MP_NORETURN
+#endif
+
 typedef struct mp mp;   /* one rank's handle on the machine (opaque) */
 
 enum { MP_ANY = -1 };   /* wildcard for the source or the tag of mp_recv/mp_probe */
@@ -109,13 +121,13 @@ int    mp_busy(mp *self, double seconds);
 int    mp_sleep(mp *self, double seconds);
 
 /* End this rank here, as if its main had returned (never returns). */
-_Noreturn void mp_exit(mp *self);
+MP_NORETURN void mp_exit(mp *self);
 
 /* Stop the whole run: every other rank's mp calls return MP_ESTOPPED from
  * now on, the run fails with `why` (copied) and reports `code` as its exit
  * status (the first abort's, in simulated time on the simulator); this rank
  * ends here (never returns). */
-_Noreturn void mp_abort(mp *self, int code, const char *why);
+MP_NORETURN void mp_abort(mp *self, int code, const char *why);
 
 /* --- private part: what a backend fills in ------------------------------ */
 
@@ -150,5 +162,9 @@ void mp_set_self(mp *self);
 
 /* The label's words for a deadlock report: describe's, or NULL. */
 const char *mp_label_text(const mp *self, char *buf, size_t len);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "args.h"
+#include "launch.h"
 #include "par_slave.h"
 #include "xmem.h"
 #ifdef TILESIM_MPI
@@ -181,19 +182,10 @@ static void pair_done(void *ud, int done, int total) {
 
 int run_sim(const run_config *rc, par_pair *pairs, int npairs, sim_stats *stats, char *err,
             size_t errlen) {
-  int P = rc->mc.procs, nr = run_ranks(P), nodes;
+  int nr = run_ranks(rc->mc.procs);
   par_options opt;
   if (run_par_options(rc, &opt, err, errlen) != 0) return -1;
-  sim_config cfg = rc->mc.sim;
-  int *place = xmallocarray((size_t)nr, sizeof *place);
-  if (machine_place(&rc->mc, nr, place, &nodes, err, errlen) != 0) {
-    free(place);
-    return -1;
-  }
-  cfg.procs = P;
-  cfg.place = place;
-  sim *s = sim_new(&cfg, nr, err, errlen);
-  free(place);
+  sim *s = launch_sim_new(&rc->mc, nr, err, errlen);   /* rank r on processor r mod P */
   if (!s) return -1;
   if (rc->trace_csv || rc->trace_json) sim_trace(s, rc->trace_csv, rc->trace_json);
   if (rc->trace_size) sim_trace_count(s, rc->trace_size->csv, rc->trace_size->json);

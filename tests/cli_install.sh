@@ -13,7 +13,7 @@ ok()  { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "cli_install: $*"; }
 mk() { env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make --no-print-directory -s "$@"; }
 
-mk install-files DESTDIR="$T/root" PREFIX=/opt/ts IBIN="$BUILD" IPLOT="$BUILD/plot" > "$T/log" 2>&1 \
+mk install-files DESTDIR="$T/root" PREFIX=/opt/ts IBIN="$BUILD" IPLOT="$BUILD/plot" ILIB="$BUILD/lib/libtilesim.a" > "$T/log" 2>&1 \
   && ok || bad "make install-files: $(cat "$T/log")"
 P=$T/root/opt/ts
 for f in bin/tile bin/bench bin/tilesim-plot share/tilesim/slicerrt/prostate_0.contours \
@@ -34,6 +34,50 @@ mkdir "$T/elsewhere" && cd "$T/elsewhere" || exit 1
 "$P/bin/tilesim-plot" --help > out 2> err && [ ! -s err ] && grep -q '^usage: plot' out \
   && ok || bad "tilesim-plot --help: not on stdout"
 "$P/bin/tile" "$P/share/tilesim/slicerrt/tinypatient_1.contours" -q > out 2> err && ok || bad "tile, installed: $(cat err)"
+
+# The testbed's library (issue 18): a user's program built outside the tree
+# through pkg-config, from the installed example and headers (with the
+# sanitizers of the installed build); and one with globals of the names
+# tilesim uses inside (xmalloc, trace_new, sim_run, ...), which must link
+# and keep its own.
+for f in lib/libtilesim.a lib/pkgconfig/tilesim.pc include/tilesim/tilesim.h include/tilesim/mp.h \
+         share/tilesim/examples/ring.c share/tilesim/examples/jacobi.c; do
+  [ -e "$P/$f" ] && ok || bad "not installed: $f"
+done
+if command -v pkg-config > /dev/null 2>&1; then
+  PC="env PKG_CONFIG_PATH=$P/lib/pkgconfig PKG_CONFIG_SYSROOT_DIR=$T/root pkg-config"
+  SAN="-fsanitize=address,undefined -fno-omit-frame-pointer"
+  cp "$P/share/tilesim/examples/ring.c" .
+  if ${CC:-cc} -std=c11 $SAN ring.c $($PC --cflags --libs tilesim) -o ring > log 2>&1; then
+    ./ring --procs 4 --net ideal --m 0.25 --per-byte 0 -- 2 8 > out 2> err \
+      && grep -q '^ring: 1 s a lap' out && grep -q '^sim,4,4,2,8,64,' out && ok || bad "ring through pkg-config: $(cat out err)"
+  else
+    bad "ring through pkg-config does not build: $(cat log)"
+  fi
+  cat > mine.c <<'EOF2'
+#include <stdio.h>
+#include <stdlib.h>
+#include <tilesim/tilesim.h>
+/* Names tilesim uses inside; the program's own. */
+void *xmalloc(size_t n) { return malloc(n + 1); }
+int trace_new = 7, sim_run = 8, args_long = 9;
+int place_parse(void) { return 10; }
+static void rank(mp *self, void *ud) { (void)ud; (void)self; }
+int main(int argc, char **argv) {
+  printf("mine: %d %d %d %d %s\n", trace_new, sim_run, args_long, place_parse(), tilesim_version());
+  free(xmalloc(1));
+  return tilesim_main(argc, argv, rank, NULL);
+}
+EOF2
+  if ${CC:-cc} -std=c11 $SAN mine.c $($PC --cflags --libs tilesim) -o mine > log 2>&1; then
+    ./mine --procs 2 > out 2> err && grep -q '^mine: 7 8 9 10 ' out && grep -q '^sim,2,2,' out && ok \
+      || bad "a program with tilesim's inner names: $(cat out err)"
+  else
+    bad "a program with tilesim's inner names does not link: $(cat log)"
+  fi
+else
+  echo "cli_install: skipped: the library through pkg-config (pkg-config not found)"
+fi
 
 # Without the data: a message saying where it looked and what to do, exit 1.
 mv "$P/share/tilesim" "$T/data"
