@@ -42,13 +42,20 @@ static const char any_usage[] =
     "plot claims MAP.csv ... -o OUT.svg   "
     "(plot --help: every option)\n";
 
-static void help(void) {
-  fputs("usage: plot lines CSV -x COL -y COL[,COL...] [--series COL[,COL...]] [--where COL=VALUE]...\n"
+/* The name the program was run by (plot in the source tree, tilesim-plot
+ * installed), for --help. */
+static const char *progname(const char *argv0) {
+  const char *slash = argv0 ? strrchr(argv0, '/') : NULL;
+  return slash ? slash + 1 : argv0 && *argv0 ? argv0 : "plot";
+}
+
+static void help(const char *name) {
+  printf("usage: %s lines CSV -x COL -y COL[,COL...] [--series COL[,COL...]] [--where COL=VALUE]...\n"
         "            [--labels A,B,...] [--title T] [--xlabel T] [--ylabel T] [--yzero] -o OUT.svg\n"
-        "       plot surface STACK [--cost area|span] [--caps] [--title T] -o OUT.svg\n"
-        "       plot claims MAP.csv [--title T] -o OUT.svg\n"
+        "       %s surface STACK|FILE.dcm [--roi NAME|NUMBER] [--cost area|span] [--caps] [--title T] -o OUT.svg\n"
+        "       %s claims MAP.csv [--title T] -o OUT.svg\n"
         "\n"
-        "plot -- tilesim's CSV as SVG line charts, a contour stack with its surface, and\n"
+        "%s -- tilesim's CSV as SVG line charts, a contour stack with its surface, and\n"
         "the claims map.\n"
         "\n"
         "lines: one line per value of the --series column and per y column (up to 8; a\n"
@@ -65,11 +72,11 @@ static void help(void) {
         "  --yzero            the y axis starts at 0\n"
         "  -o OUT.svg         the picture (written atomically)\n"
         "surface: the stack tiled (closed with --caps), drawn beside its contours; a\n"
-        "DICOM RT structure set's ROI with --roi, as ./tile FILE.dcm --roi tiles it.\n"
+        "DICOM RT structure set's ROI with --roi, as tile FILE.dcm --roi tiles it.\n"
         "  --roi NAME|NUMBER  the ROI of a DICOM RT structure set to draw\n"
         "  --cost area|span   the tile weight (default area)\n"
         "  --caps             close every end (the first and last slices, branch tips,\n"
-        "                     holes that start or end), as ./tile --caps does\n"
+        "                     holes that start or end), as tile --caps does\n"
         "  --title T          the title\n"
         "  -o OUT.svg         the picture\n"
         "claims: a claims map (bench --claims-map) as a grid: a panel per configuration\n"
@@ -78,8 +85,8 @@ static void help(void) {
         "  -o OUT.svg         the picture\n"
         "\n"
         "Exit status: 0 done, 1 bad input (a file that cannot be read, a missing\n"
-        "column), 2 bad usage.\n",
-        stdout);
+        "column), 2 bad usage.  The manual: tilesim-plot(1).\n",
+         name, name, name, name);
 }
 
 /* Bad usage: "plot: why" (and the value, as util/args shows values), the
@@ -377,7 +384,7 @@ int main(int argc, char **argv) {
   if (argc >= 2 && strcmp(argv[1], "surface") == 0) return surface(argc, argv);
   if (argc >= 2 && strcmp(argv[1], "claims") == 0) return plot_claims(argc, argv);
   if (argc >= 2 && (strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0)) {
-    help();
+    help(progname(argv[0]));
     return 0;
   }
   return usage(any_usage, argc >= 2 ? "unknown mode, use lines, surface or claims"

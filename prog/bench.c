@@ -22,7 +22,7 @@
 typedef struct {
   const char *opt;                    /* the option that selects the mode */
   int (*run)(int argc, char **argv);  /* gets the whole command line */
-  const char *help;
+  const char *help;                   /* every option the mode takes, then what it does */
 } mode;
 
 static const mode modes[] = {
@@ -33,12 +33,18 @@ static const mode modes[] = {
      "      [--switching cut-through|store-and-forward] [--tokens 1|all] [--print-place]\n"
      "      a token ring of P ranks on P processors, K laps: simulator speed (P up to\n"
      "      1000000, K up to 1e9, P x K up to 1e10; traces up to --trace-limit, 1G);\n"
-     "      on a topology (./tile --help lists them), --tokens all: one token a rank"},
+     "      on a topology (tile --help lists them), --tokens all: one token a rank"},
     {"--switch", bench_switch_main,
      "N\n"
      "      two coroutines switching N times (2 to 1e10): ns per context switch"},
     {"--model", bench_model,
-     "[--diag LIST] [--procs LIST] [--m S] [--c S] [--net MODEL] [-o FILE]\n"
+     "[--diag LIST] [--procs LIST] [-o FILE] [--alloc NAME] [--min-diag d]\n"
+     "      [--block k] [--schedule NAME] [--machine NAME] [--net ideal|bus|loggp]\n"
+     "      [--m S] [--c S] [--per-byte S] [--local S] [--L S] [--o S] [--g S] [--G S]\n"
+     "      [--master-c S] [--table-c S] [--back-c S] [--spin S] [--o-send S]\n"
+     "      [--o-send-byte S] [--o-recv S] [--o-recv-byte S] [--wake S] [--o-wake S]\n"
+     "      [--slowdown F] [--slowdown-spin F] [--topology NAME] [--place NAME]\n"
+     "      [--hop-latency S] [--switching MODE]   (the machine options: tile --help)\n"
      "      section 7.2: the simulated time per diagonal of mu(0), D nodes a diagonal,\n"
      "      against the paper's cD/p + 2m(p-1) (defaults: D 100,250,500, procs 2..16)"},
     {"--glass", bench_glass,
@@ -49,11 +55,15 @@ static const mode modes[] = {
      "      the paper's seven claims (sections 6, 7), checked against the sweeps"},
     {"--claims-map", bench_map,
      "[--net LIST] [--m LIST] [--c LIST] [--seed LIST] [--input STACK --pair LIST]\n"
-     "      [--points LIST] [machine options] [--jobs N] [-o FILE]\n"
+     "      [--points LIST] [--jobs N] [-o FILE] [--machine NAME] [--per-byte S]\n"
+     "      [--local S] [--L S] [--o S] [--g S] [--G S] [--master-c S] [--table-c S]\n"
+     "      [--back-c S] [--o-send S] [--o-send-byte S] [--o-recv S] [--o-recv-byte S]\n"
+     "      [--wake S] [--o-wake S] [--slowdown F] [--slowdown-spin F]\n"
      "      where the seven claims hold: each configuration (net, m, c, pair) swept on the\n"
-     "      paper's setup and judged; CSV, a row per configuration (build/plot claims)"},
+     "      paper's setup and judged; CSV, a row per configuration (tilesim-plot claims)"},
     {"--calibrate", bench_calibrate,
      "[--points LIST] [--procs LIST] [--repeat R] [--seed S] [--messages K]\n"
+     "      [--alloc NAME] [--block k] [--schedule NAME] [--min-diag d]\n"
      "      this host measured by micro-benchmarks (c per node; a message's send and\n"
      "      receive overheads, latency, gap, a sleeper's wake-up; busy cores' slowdown),\n"
      "      the simulator options that model it, and its predictions beside the threads\n"
@@ -77,26 +87,55 @@ static const mode modes[] = {
 };
 enum { NMODES = sizeof modes / sizeof *modes };
 
-static void help(void) {
-  puts("usage: bench [OPTIONS]   (the paper's experiments)\n"
-       "       bench MODE ...     (a benchmark mode, below)\n\n"
-       "bench -- tilesim's benchmarks; each prints CSV with a header row.\n");
-  printf("  bench %s\n\n", bench_paper_help);
-  for (int i = 0; i < NMODES; i++) printf("  bench %s %s\n\n", modes[i].opt, modes[i].help);
+/* The name the program was run by (bench in the source tree, tilesim-bench
+ * installed), for --help. */
+static const char *progname(const char *argv0) {
+  const char *slash = argv0 ? strrchr(argv0, '/') : NULL;
+  return slash ? slash + 1 : argv0 && *argv0 ? argv0 : "bench";
+}
+
+static void help_tail(void) {
   puts("Exit status: 0 done, 1 bad input or a failed run (no data row is printed for\n"
        "it), 2 bad usage (one line saying what the option takes, and the usage line).\n"
        "Progress goes to stderr: a self-rewriting line on a terminal, else a line\n"
-       "every 5 s (TILESIM_PROGRESS_S sets the interval).");
+       "every 5 s (TILESIM_PROGRESS_S sets the interval).  The manual: tilesim-bench(1).");
 }
 
+static void help(const char *name) {
+  printf("usage: %s [OPTIONS]   (the paper's experiments)\n"
+         "       %s MODE ...     (a benchmark mode, below; %s MODE --help: that mode)\n\n"
+         "%s -- tilesim's benchmarks; each prints CSV with a header row.\n\n",
+         name, name, name, name);
+  printf("  %s %s\n\n", name, bench_paper_help);
+  for (int i = 0; i < NMODES; i++) printf("  %s %s %s\n\n", name, modes[i].opt, modes[i].help);
+  help_tail();
+}
+
+static int is_help(const char *a) { return strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0; }
+
 static int bench_main(int argc, char **argv) {
-  if (argc >= 2 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0)) {
-    help();
+  const char *name = progname(argc > 0 ? argv[0] : NULL);
+  if (argc >= 2 && is_help(argv[1])) {
+    help(name);
     return 0;
   }
   for (int i = 0; argc >= 2 && i < NMODES; i++)
-    if (strcmp(argv[1], modes[i].opt) == 0) return modes[i].run(argc, argv);
+    if (strcmp(argv[1], modes[i].opt) == 0) {
+      /* MODE --help (anywhere after the mode): that mode's options. */
+      for (int k = 2; k < argc; k++)
+        if (is_help(argv[k])) {
+          printf("usage: %s %s %s\n\n", name, modes[i].opt, modes[i].help);
+          help_tail();
+          return 0;
+        }
+      return modes[i].run(argc, argv);
+    }
   /* No mode: the paper's experiments, which check their own options. */
+  for (int k = 2; k < argc; k++)
+    if (is_help(argv[k])) {
+      help(name);
+      return 0;
+    }
   return bench_paper(argc, argv);
 }
 

@@ -25,8 +25,8 @@
 #include "xmem.h"
 
 static const char model_usage[] =
-    "usage: bench --model [--diag LIST] [--procs LIST] [--m S] [--c S] [--net ideal|bus|loggp] "
-    "[-o FILE]   (bench --help: every mode)\n";
+    "usage: bench --model [--diag LIST] [--procs LIST] [-o FILE] [--m S] [--c S] [--net ideal|bus|loggp] "
+    "[machine options]   (bench --model --help: every option)\n";
 static const char glass_usage[] =
     "usage: bench --glass [--slices N] [--points N] [-o FILE]   (bench --help: every mode)\n";
 
@@ -42,6 +42,8 @@ int bench_model(int argc, char **argv) {
   for (int i = 2; i < argc; i += 2) {   /* every option takes a value */
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
     int bad = 0;
+    if (strcmp(a, "--backend") == 0)   /* run_option takes it; the model is the simulator's */
+      return usage(model_usage, "--model runs the simulated machine; it does not take", a);
     run_config scratch = rc;
     int theirs = strcmp(a, "--procs") != 0 && run_option(&scratch, a, "", err, sizeof err) != 0;
     if (strcmp(a, "--diag") != 0 && strcmp(a, "--procs") != 0 && strcmp(a, "-o") != 0 && !theirs)

@@ -41,13 +41,25 @@ for args in "--frob" "--ring" "--ring 0 --laps 1" "--ring 4" "--ring 4 --laps x"
             "--ring 4 --laps 2 --bogus 1" "--ring 4 --laps 2 --profile nope" "--switch" "--switch 1" \
             "--procs 0" "--procs 1..x" "--points 2" "--alloc third" "--min-diag 0" "--m -1" "--jobs 0" \
             "--tiler --points 1" "--procs 4 --net token" "--backend mpi" "--backend threads --jobs 2" \
-            "--stack -j 0" "--stack -j 1,x" "--stack --repeat 0" "--stack --frob"; do
+            "--stack -j 0" "--stack -j 1,x" "--stack --repeat 0" "--stack --frob" \
+            "--model --backend threads"; do
   # shellcheck disable=SC2086
   "$bench" $args >"$tmp.out" 2>"$tmp.err"; rc=$?
   if [ $rc -eq 2 ] && [ ! -s "$tmp.out" ] && grep -q '^usage: bench' "$tmp.err"; then ok
   else fail "bench $args: exit $rc, stderr: $(cat "$tmp.err")"; fi
 done
 rm -f "$tmp.out" "$tmp.err"
+
+# --help, and MODE --help (anywhere after the mode): on stdout, exit 0,
+# the program named as it was run; a mode's help is that mode's alone.
+out=$("$bench" --help 2>&1) && printf '%s\n' "$out" | grep -q '^usage: bench \[OPTIONS\]' \
+  && [ "$(printf '%s\n' "$out" | grep -c '^  bench --')" -eq 10 ] && ok || fail "bench --help: $out"
+out=$("$bench" --procs 2 --help 2>&1) && printf '%s\n' "$out" | grep -q '^usage: bench \[OPTIONS\]' && ok || fail "bench --procs 2 --help: $out"
+for m in --ring --switch --model --glass --claims --claims-map --calibrate --dicom --stack --tiler; do
+  out=$("$bench" $m --help 2>&1) && printf '%s\n' "$out" | head -1 | grep -q "^usage: bench $m" \
+    && ! printf '%s\n' "$out" | grep -q '^  bench' && ok || fail "bench $m --help: $out"
+done
+out=$("$bench" --stack x.contours -h 2>&1) && printf '%s\n' "$out" | grep -q '^usage: bench --stack' && ok || fail "bench --stack x -h: $out"
 
 # --stack: a whole stack on 1 and 2 threads, the same surface (the checksums) on each.
 out=$("$bench" --stack tests/data/slicerrt/tinypatient_0.contours -j 1,2 --repeat 1 2>&1); rc=$?
