@@ -272,18 +272,19 @@ PLOTS = build/plot lines
 # left empty): make bench gives the same bytes on every run, and a fresh
 # clone stays clean (tests/cli_benchclean.sh checks it).
 NOWALL = --no-wall
-# Section 8's question (README, "Topologies and placement"): the bus, and a line,
+# Section 8's question (doc/paper.md, "Section 8"): the bus, and a line,
 # a mesh and a hypercube with their dilation-1 placements against a random one.
 TOPO = --points 300 --procs 1..16 --jobs $(JOBS) $(NOWALL)
 TOPONET = --hop-latency 1e-4 --switching store-and-forward
 # The variants (issue 13) beside the paper's algorithm: on the tc2000, and on
 # the simulator calibrated to a 16-core Xeon (bench --calibrate there: c, m,
-# per_byte of the threads backend; data in README "The variants").
+# per_byte of the threads backend; doc/measurements.md, "The variants on 16
+# real cores").
 VARIANTS = paper,fit,block8,dynamic,dynamic+block8
 XEON16 = --net ideal --m 5.453e-07 --c 2.675e-09 --per-byte 1.599e-10
-# Where the claims hold (README, "The paper's claims"): the generated pair and
+# Where the claims hold (doc/paper.md, "The map"): the generated pair and
 # the real pair on the bus, m/c from 1 to 128 at c = 50 us (the coarse grid;
-# the README gives the fine one).
+# doc/paper.md gives the fine one).
 CLAIMS_GEN = --m 5e-5,1e-4,2e-4,2.75e-4,4e-4,8e-4,1.6e-3,3.2e-3,6.4e-3
 CLAIMS_REAL = --input tests/data/slicerrt/prostate_0.contours --pair 40 --m 1e-4,2.75e-4,8e-4,3.2e-3
 bench: all

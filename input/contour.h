@@ -1,6 +1,6 @@
 /* contour.h -- contour stacks: reading, checking and repairing .contours files.
  *
- * Format (shared/data/README.md): a line "C <n> <z>" opens a contour of n
+ * Format (doc/tilesim-contours.5): a line "C <n> <z>" opens a contour of n
  * points in the plane z; the next n lines are its points "x y".  Lines
  * starting with '#' are comments; blank lines are skipped.  The closing point
  * is not repeated.

@@ -55,7 +55,7 @@ typedef struct {
  * column is a few loads and stores, an add or a compare and the loop's
  * branch, about 10 clocks, and a node about 1,000 (sim.c, the tc2000's c =
  * 50 us at 20 MHz).  So by default a unit costs c/100: 0.5 us on the tc2000
- * (README, "The master's bookkeeping"). */
+ * (doc/model.md, "The master's bookkeeping"). */
 #define RUN_MASTER_SHARE 0.01
 
 /* The seconds one unit of the master's bookkeeping costs under rc. */

@@ -46,7 +46,7 @@
 
 /* "tc2000": the BBN TC2000 of Johnson, Livadas & Talele (1993), calibrated
  * so that the paper's experiments (sections 6 and 7) show what it reports
- * (README, "Calibration").
+ * (doc/model.md, "Calibration: the tc2000 profile").
  *   c = 50 us per node: a node is two triangle areas and a comparison, about
  *       1,000 cycles of the 20 MHz Motorola 88100 with its square root in
  *       software.

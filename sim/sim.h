@@ -148,8 +148,8 @@ typedef struct {
 void sim_config_init(sim_config *cfg);
 
 /* Fill cfg with a named profile: "tc2000" (the default, calibrated against
- * the paper: c = 50 us, m = 275 us on a bus, 2.6e-8 s per byte; sim.c and the
- * README say why) or "unit" (c = m = L = 1 s, no per-byte cost, for reading
+ * the paper: c = 50 us, m = 275 us on a bus, 2.6e-8 s per byte; sim.c and
+ * doc/model.md say why) or "unit" (c = m = L = 1 s, no per-byte cost, for reading
  * traces by eye).  0, or -1 for an unknown name (cfg untouched). */
 int sim_profile(const char *name, sim_config *cfg);
 

@@ -3,7 +3,7 @@
 # 200 and 500 points, P = 1..16, both allocations, run by the sanitized
 # ./bench; `bench --claims` reads them back.  Asserted: the claims that this
 # size can show (1, 2, 3, 4, 7, and 5's "size beats half"); 6 is checked for
-# the form of its report (README, "The paper's claims": what holds and why).
+# the form of its report (doc/paper.md, "The paper's claims": what holds and why).
 # Also: --jobs 2 gives exactly the rows of --jobs 1, speedup is T(1)/T(P),
 # and `cost` is one optimum per pair.
 BENCH=${BUILD:-build/chk}/bench
@@ -26,7 +26,7 @@ awk -F, 'NR>1 { k=$1","$3; if ($2==1) t1[k]=$9; t[NR]=$9; key[NR]=k; sp[NR]=$10;
 [ "$(grep -c '^"[1-7] [^"]*",\(yes\|no\|n/a\),".*"$' "$T/claims.csv")" -eq 7 ] && ok || bad "claims report: $(cat "$T/claims.csv")"
 grep -q '^"5 [^"]*",\(yes\|no\),"500 pts: summed speedup size' "$T/claims.csv" && ok || bad "claim 5 report"
 # Claim 5's first half holds at this size (size beats half); its plateaus do not
-# go (README: the generated pairs split evenly).
+# go (doc/paper.md: the generated pairs split evenly).
 grep -q '^"5 .*(better, ' "$T/claims.csv" && ok || bad "claim 5: size is not better than half: $(grep '^"5 ' "$T/claims.csv")"
 grep -q '^"6 [^"]*",n/a,"no min-diag sweep given"$' "$T/claims.csv" && ok || bad "claim 6 without a sweep"
 # A claim that does not hold makes --require fail.

@@ -52,7 +52,7 @@ for f in rtutils_dummy_rt rtutils_dummy_rt_explicit; do
 4,ROI-4,,3,0,3'
 done
 list_is $D/rtutils_rt.dcm '1,ROI-1,,2,0,1'
-# The points and planes the README gives: BODY 51,846 points; pydicom's
+# The points and planes the data README gives: BODY 51,846 points; pydicom's
 # three contours of 5, 6 and 6 points at z = -200 .. -180; rt.dcm's 4 + 8
 # points at z = 60; MIM's 315 to 1,015 points per ROI, 5 mm apart.
 "$TILE" $D/dicompyler_rtss.dcm --list | grep -q '^1,BODY,EXTERNAL,141,0,98,51846,' && ok || bad "BODY points"

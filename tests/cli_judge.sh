@@ -1,8 +1,8 @@
 #!/bin/sh
 # cli_judge.sh -- the judge of the paper's claims (bench --claims) on
 # hand-made sweeps: a sweep on which every claim holds, then one value moved
-# just inside and just outside each criterion's tolerance (README, "The
-# paper's claims": the criteria), and sweeps that cannot show a claim (n/a).
+# just inside and just outside each criterion's tolerance (doc/paper.md,
+# "The paper's claims": the criteria), and sweeps that cannot show a claim (n/a).
 # The sweeps are written here from speedup tables, T(P) = T(1)/S(P); none
 # comes from the simulator.
 BENCH=${BUILD:-build/chk}/bench

@@ -363,7 +363,7 @@ static int cmp_double(const void *a, const void *b) {
 }
 static int cmp_int(const void *a, const void *b) { return *(const int *)a - *(const int *)b; }
 
-/* The report (README, "./tile": a row per band, then with --caps a row
+/* The report (doc/tile.1, OUTPUT: a row per band, then with --caps a row
  * `cap` per cap, a row `mesh` and a row `component` per component) against
  * the mesh as the checker sees it: the bands' and caps' volumes sum to the
  * `mesh` row's volume, which is the mesh's own; the bands between two
