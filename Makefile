@@ -11,7 +11,7 @@
 #   make fuzz            each reader's libFuzzer target for FUZZ_TIME s (clang)
 #   make mpi             ./tile-mpi and ./bench-mpi with mpicc (mpirun -np P ...)
 #   make simgrid         the simulator against SimGrid's SMPI (tests/simgrid.sh)
-#   make install PREFIX=/usr/local
+#   make install PREFIX=/usr/local   (tile, tilesim-bench, tilesim-plot, man pages)
 #   make clean
 
 CC      ?= cc
@@ -369,22 +369,37 @@ bench-testbed: all
 bench-load: all
 	sh tests/bench_load.sh
 
-# make install: the programs, and under PREFIX/share/tilesim the data that
-# bench's defaults name (tests/data/slicerrt, tests/data/rtstruct, with their
-# licences), so that an installed bench runs from any folder.  install-files
-# copies from IBIN and IPLOT (tests/cli_install.sh installs the sanitized
-# build so).
-IBIN  ?= build/bin
-IPLOT ?= build/plot
-ILIB  ?= $(REL)/lib/libtilesim.a
+# make install: the programs, their manual, and under PREFIX/share/tilesim
+# the data that bench's defaults name (tests/data/slicerrt, tests/data/rtstruct,
+# with their licences), so that an installed bench runs from any folder.
+# Installed names that do not collide with other software: tile, and
+# tilesim-bench and tilesim-plot for ./bench and build/plot ("bench" alone is
+# a common command).  The man pages (doc/*.1, *.5, *.7, mdoc) go to
+# MANDIR/man1, man5, man7, which man finds when PREFIX/bin is on the PATH;
+# doc/*.md to DOCDIR.  The testbed's library (issue 18): lib/libtilesim.a,
+# include/tilesim/{tilesim,mp}.h, lib/pkgconfig/tilesim.pc and the examples'
+# sources under share/tilesim/examples.  install-files copies from IBIN,
+# IPLOT and ILIB (tests/cli_install.sh installs the sanitized build so).
+IBIN   ?= build/bin
+IPLOT  ?= build/plot
+ILIB   ?= $(REL)/lib/libtilesim.a
 VERSION = $(shell sed -n 's/^\#define TILESIM_VERSION "\(.*\)"/\1/p' machine/tilesim.h)
-SHARE  = $(DESTDIR)$(PREFIX)/share/tilesim
+SHARE   = $(DESTDIR)$(PREFIX)/share/tilesim
+MANDIR ?= $(PREFIX)/share/man
+DOCDIR ?= $(PREFIX)/share/doc/tilesim
+INAME_bench = tilesim-bench
+iname   = $(or $(INAME_$(1)),$(1))
 install: all
 	@$(MAKE) --no-print-directory install-files
 install-files:
-	mkdir -p $(DESTDIR)$(PREFIX)/bin $(SHARE)/slicerrt $(SHARE)/rtstruct
-	cp $(addprefix $(IBIN)/,$(PROGS)) $(DESTDIR)$(PREFIX)/bin/
+	mkdir -p $(DESTDIR)$(PREFIX)/bin $(SHARE)/slicerrt $(SHARE)/rtstruct $(DESTDIR)$(DOCDIR) \
+	  $(addprefix $(DESTDIR)$(MANDIR)/man,1 5 7)
+	$(foreach p,$(PROGS),cp $(IBIN)/$(p) $(DESTDIR)$(PREFIX)/bin/$(call iname,$(p)) &&) true
 	$(if $(PLOT),cp $(IPLOT) $(DESTDIR)$(PREFIX)/bin/tilesim-plot)
+	cp $(wildcard doc/*.1) $(DESTDIR)$(MANDIR)/man1/
+	cp $(wildcard doc/*.5) $(DESTDIR)$(MANDIR)/man5/
+	cp $(wildcard doc/*.7) $(DESTDIR)$(MANDIR)/man7/
+	cp $(wildcard doc/*.md) $(DESTDIR)$(DOCDIR)/
 	cp tests/data/slicerrt/*.contours tests/data/slicerrt/README.md $(SHARE)/slicerrt/
 	cp tests/data/rtstruct/*.dcm tests/data/rtstruct/README.md $(SHARE)/rtstruct/
 	mkdir -p $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include/tilesim $(SHARE)/examples

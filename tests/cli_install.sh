@@ -1,10 +1,14 @@
 #!/bin/sh
-# cli_install.sh -- make install (issue 14, item 12): the programs and the
-# data bench's defaults name go under PREFIX, and the installed programs
-# work from any folder: bench --tiler, --stack and --dicom find their data
-# in PREFIX/share/tilesim, or where --data says; tilesim-plot --help is on
-# stdout.  Installs make check's sanitized build into a folder of its own
-# (make install-files IBIN=... DESTDIR=...), and runs it from another.
+# cli_install.sh -- make install (issue 14, item 12; issue 20): the
+# programs under the names they are installed by (tile, tilesim-bench,
+# tilesim-plot), their man pages and documents, and the data bench's
+# defaults name go under PREFIX, and the installed programs work from any
+# folder: tilesim-bench --tiler, --stack and --dicom find their data in
+# PREFIX/share/tilesim, or where --data says; --help is on stdout and names
+# the program as installed; man -w finds every page through MANPATH, and
+# through PATH alone (man-db adds PATH_ELEMENT/../share/man).  Installs
+# make check's sanitized build into a folder of its own (make install-files
+# IBIN=... DESTDIR=...), and runs it from another.
 BUILD=${BUILD:-build/chk}
 T=$(mktemp -d /tmp/tilesim-install.XXXXXX)
 trap 'rm -rf "$T"' EXIT
@@ -16,23 +20,47 @@ mk() { env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make --no-print-directory -s "$@"
 mk install-files DESTDIR="$T/root" PREFIX=/opt/ts IBIN="$BUILD" IPLOT="$BUILD/plot" ILIB="$BUILD/lib/libtilesim.a" > "$T/log" 2>&1 \
   && ok || bad "make install-files: $(cat "$T/log")"
 P=$T/root/opt/ts
-for f in bin/tile bin/bench bin/tilesim-plot share/tilesim/slicerrt/prostate_0.contours \
-         share/tilesim/slicerrt/README.md share/tilesim/rtstruct/dicompyler_rtss.dcm share/tilesim/rtstruct/README.md; do
+for f in bin/tile bin/tilesim-bench bin/tilesim-plot share/tilesim/slicerrt/prostate_0.contours \
+         share/tilesim/slicerrt/README.md share/tilesim/rtstruct/dicompyler_rtss.dcm share/tilesim/rtstruct/README.md \
+         share/man/man1/tile.1 share/man/man1/tilesim-bench.1 share/man/man1/tilesim-plot.1 \
+         share/man/man5/tilesim-contours.5 share/man/man7/tilesim.7 share/doc/tilesim/paper.md; do
   [ -e "$P/$f" ] && ok || bad "not installed: $f"
 done
+[ ! -e "$P/bin/bench" ] && ok || bad "installed as bin/bench: a name other software uses (tilesim-bench)"
+# Every page of doc/, and no other, under its section.
+for pg in doc/*.[1-9]; do
+  n=$(basename "$pg"); s=${n##*.}
+  cmp -s "$pg" "$P/share/man/man$s/$n" && ok || bad "$pg is not installed as share/man/man$s/$n"
+done
+# man finds them: through MANPATH, and through PATH alone.
+if command -v man > /dev/null 2>&1; then
+  for pg in tile.1 tilesim-bench.1 tilesim-plot.1 tilesim-contours.5 tilesim.7; do
+    s=${pg##*.}; n=${pg%.*}
+    w=$(MANPATH="$P/share/man" man -w "$s" "$n" 2> "$T/err")
+    [ "$w" = "$P/share/man/man$s/$pg" ] && ok || bad "MANPATH=\$P/share/man man -w $s $n: '$w' $(cat "$T/err")"
+  done
+  w=$(env -u MANPATH PATH="$P/bin:$PATH" man -w tilesim-bench 2> "$T/err")
+  [ "$w" = "$P/share/man/man1/tilesim-bench.1" ] && ok || bad "man -w tilesim-bench with $P/bin on the PATH: '$w' $(cat "$T/err")"
+else
+  echo "cli_install: skipped: man -w (man is not installed here: apt-get install man-db)"
+fi
 
 mkdir "$T/elsewhere" && cd "$T/elsewhere" || exit 1
 # The default stack's name, and a bare name: both from the installed data.
-"$P/bin/bench" --tiler --points 20 --naive 20 --input tests/data/slicerrt/prostate_3.contours --repeat 1 > out 2> err \
+"$P/bin/tilesim-bench" --tiler --points 20 --naive 20 --input tests/data/slicerrt/prostate_3.contours --repeat 1 > out 2> err \
   && grep -q '^stack:prostate_3.contours,18,' out && ok || bad "bench --tiler, installed: $(cat err)"
-"$P/bin/bench" --tiler --points 20 --input prostate_2.contours --repeat 1 > out 2> err \
+"$P/bin/tilesim-bench" --tiler --points 20 --input prostate_2.contours --repeat 1 > out 2> err \
   && grep -q '^stack:prostate_2.contours,' out && ok || bad "bench --tiler --input prostate_2.contours: $(cat err)"
-"$P/bin/bench" --stack tests/data/slicerrt/prostate_3.contours -j 1 --repeat 1 > out 2> err \
+"$P/bin/tilesim-bench" --stack tests/data/slicerrt/prostate_3.contours -j 1 --repeat 1 > out 2> err \
   && [ "$(wc -l < out)" -eq 2 ] && ok || bad "bench --stack, installed: $(cat err)"
-"$P/bin/bench" --dicom --repeat 1 > out 2> err && grep -q 'dicompyler_rtss.dcm,1940626,' out \
+"$P/bin/tilesim-bench" --dicom --repeat 1 > out 2> err && grep -q 'dicompyler_rtss.dcm,1940626,' out \
   && ok || bad "bench --dicom, installed: $(cat err)"
-"$P/bin/tilesim-plot" --help > out 2> err && [ ! -s err ] && grep -q '^usage: plot' out \
-  && ok || bad "tilesim-plot --help: not on stdout"
+"$P/bin/tilesim-plot" --help > out 2> err && [ ! -s err ] && grep -q '^usage: tilesim-plot lines' out \
+  && ok || bad "tilesim-plot --help: not on stdout, or not named tilesim-plot"
+"$P/bin/tilesim-bench" --help > out 2> err && [ ! -s err ] && grep -q '^usage: tilesim-bench \[OPTIONS\]' out \
+  && grep -q '^  tilesim-bench --ring P' out && ok || bad "tilesim-bench --help: not on stdout, or not named tilesim-bench"
+"$P/bin/tilesim-bench" --stack --help > out 2> err && grep -q '^usage: tilesim-bench --stack' out \
+  && ok || bad "tilesim-bench --stack --help: $(head -1 out)"
 "$P/bin/tile" "$P/share/tilesim/slicerrt/tinypatient_1.contours" -q > out 2> err && ok || bad "tile, installed: $(cat err)"
 
 # The testbed's library (issue 18): a user's program built outside the tree
@@ -81,11 +109,11 @@ fi
 
 # Without the data: a message saying where it looked and what to do, exit 1.
 mv "$P/share/tilesim" "$T/data"
-"$P/bin/bench" --tiler --points 20 --input prostate_2.contours --repeat 1 > out 2> err; rc=$?
+"$P/bin/tilesim-bench" --tiler --points 20 --input prostate_2.contours --repeat 1 > out 2> err; rc=$?
 [ $rc -eq 1 ] && grep -q '^bench: prostate_2.contours: not found.*share/tilesim.*--data DIR says where it is$' err \
   && ok || bad "no data: exit $rc, $(cat err)"
 # --data DIR: there.
-"$P/bin/bench" --tiler --points 20 --input prostate_2.contours --data "$T/data" --repeat 1 > out 2> err \
+"$P/bin/tilesim-bench" --tiler --points 20 --input prostate_2.contours --data "$T/data" --repeat 1 > out 2> err \
   && grep -q '^stack:prostate_2.contours,' out && ok || bad "--data: $(cat err)"
 
 echo "cli_install: $pass passed, $fail failed"
