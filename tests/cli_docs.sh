@@ -16,8 +16,8 @@
 #  - README.md is under 200 lines and every file it names exists; every
 #    link in doc/*.md leads to a file;
 #  - the verdicts doc/paper.md quotes equal plots/claims.csv,
-#    plots/real_claims.csv and plots/claims_map.csv, as jq tests its
-#    manual's examples.
+#    plots/real_claims.csv and plots/claims_map.csv, and the claims README
+#    shows are plots/claims.csv's, as jq tests its manual's examples.
 # Where neither mandoc nor groff is installed the page checks are skipped,
 # and said so.  A reference that is not an option of the page's program
 # (mpirun's --oversubscribe on tile's page) is listed in ALLOW below, with
@@ -238,6 +238,14 @@ for f in $(cat "$T/named"); do
     esac
   fi
 done
+
+# The claims README.md shows as make bench prints them begin as plots/claims.csv's
+# lines do (up to the "..." that cuts them short).
+grep -E '^"[1-7] ' README.md | sed 's/ *\.\.\.".*$//' > "$T/readme_claims"
+[ -s "$T/readme_claims" ] && ok || bad "README.md shows no line of plots/claims.csv"
+while IFS= read -r l; do
+  grep -qF -- "$l" plots/claims.csv && ok || bad "README.md shows a claim as plots/claims.csv does not: $l"
+done < "$T/readme_claims"
 
 # The documents' links, relative to doc/, lead to files.
 for md in doc/*.md; do
