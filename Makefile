@@ -375,7 +375,7 @@ bench-load: all
 # Installed names that do not collide with other software: tile, and
 # tilesim-bench and tilesim-plot for ./bench and build/plot ("bench" alone is
 # a common command).  The man pages (doc/*.1, *.5, *.7, mdoc) go to
-# MANDIR/man1, man5, man7, which man finds when PREFIX/bin is on the PATH;
+# MANDIR/man1, man3 (the library), man5, man7, which man finds when PREFIX/bin is on the PATH;
 # doc/*.md to DOCDIR.  The testbed's library (issue 18): lib/libtilesim.a,
 # include/tilesim/{tilesim,mp}.h, lib/pkgconfig/tilesim.pc and the examples'
 # sources under share/tilesim/examples.  install-files copies from IBIN,
@@ -393,11 +393,12 @@ install: all
 	@$(MAKE) --no-print-directory install-files
 install-files:
 	mkdir -p $(DESTDIR)$(PREFIX)/bin $(SHARE)/slicerrt $(SHARE)/rtstruct $(DESTDIR)$(DOCDIR) \
-	  $(addprefix $(DESTDIR)$(MANDIR)/man,1 5 7)
+	  $(addprefix $(DESTDIR)$(MANDIR)/man,1 3 5 7)
 	$(foreach p,$(PROGS),cp $(IBIN)/$(p) $(DESTDIR)$(PREFIX)/bin/$(call iname,$(p)) &&) true
 	$(if $(PLOT),cp $(IPLOT) $(DESTDIR)$(PREFIX)/bin/tilesim-plot)
 	cp $(wildcard doc/*.1) $(DESTDIR)$(MANDIR)/man1/
 	cp $(wildcard doc/*.5) $(DESTDIR)$(MANDIR)/man5/
+	cp $(wildcard doc/*.3) $(DESTDIR)$(MANDIR)/man3/
 	cp $(wildcard doc/*.7) $(DESTDIR)$(MANDIR)/man7/
 	cp $(wildcard doc/*.md) $(DESTDIR)$(DOCDIR)/
 	cp tests/data/slicerrt/*.contours tests/data/slicerrt/README.md $(SHARE)/slicerrt/

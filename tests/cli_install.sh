@@ -34,7 +34,7 @@ for pg in doc/*.[1-9]; do
 done
 # man finds them: through MANPATH, and through PATH alone.
 if command -v man > /dev/null 2>&1; then
-  for pg in tile.1 tilesim-bench.1 tilesim-plot.1 tilesim-contours.5 tilesim.7; do
+  for pg in tile.1 tilesim-bench.1 tilesim-plot.1 tilesim.3 tilesim-contours.5 tilesim.7; do
     s=${pg##*.}; n=${pg%.*}
     w=$(MANPATH="$P/share/man" man -w "$s" "$n" 2> "$T/err")
     [ "$w" = "$P/share/man/man$s/$pg" ] && ok || bad "MANPATH=\$P/share/man man -w $s $n: '$w' $(cat "$T/err")"
