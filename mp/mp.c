@@ -9,27 +9,40 @@
 int mp_rank(const mp *self) { return self->rank; }
 int mp_size(const mp *self) { return self->size; }
 
+/* mp_set_hooks's, or NULL (the common case: one test and a branch). */
+static const mp_hooks *hooks;
+
+void mp_set_hooks(const mp_hooks *h) { hooks = h; }
+
+/* A call between the hooks: `ret` of the backend's `call`. */
+#define HOOKED(type, self, call)                                               \
+  do {                                                                         \
+    if (!hooks) return call;                                                   \
+    hooks->enter(self);                                                        \
+    type r_ = call;                                                            \
+    hooks->leave(self);                                                        \
+    return r_;                                                                 \
+  } while (0)
+
 int mp_send(mp *self, int dst, int tag, const void *buf, size_t len) {
-  return self->ops->send(self, dst, tag, buf, len);
+  HOOKED(int, self, self->ops->send(self, dst, tag, buf, len));
 }
 
 int mp_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status *st) {
-  return self->ops->recv(self, src, tag, buf, cap, st);
+  HOOKED(int, self, self->ops->recv(self, src, tag, buf, cap, st));
 }
 
-int mp_probe(mp *self, int src, int tag, mp_status *st) {
-  return self->ops->probe(self, src, tag, st);
-}
+int mp_probe(mp *self, int src, int tag, mp_status *st) { HOOKED(int, self, self->ops->probe(self, src, tag, st)); }
 
-int mp_compute(mp *self, double units) { return self->ops->compute(self, units); }
+int mp_compute(mp *self, double units) { HOOKED(int, self, self->ops->compute(self, units)); }
 
-double mp_time(const mp *self) { return self->ops->time(self); }
+double mp_time(const mp *self) { HOOKED(double, (mp *)self, self->ops->time(self)); }
 
-int mp_wait(mp *self, int src, int tag, mp_status *st) { return self->ops->wait(self, src, tag, st); }
+int mp_wait(mp *self, int src, int tag, mp_status *st) { HOOKED(int, self, self->ops->wait(self, src, tag, st)); }
 
-int mp_busy(mp *self, double seconds) { return self->ops->busy(self, seconds); }
+int mp_busy(mp *self, double seconds) { HOOKED(int, self, self->ops->busy(self, seconds)); }
 
-int mp_sleep(mp *self, double seconds) { return self->ops->sleep_for(self, seconds); }
+int mp_sleep(mp *self, double seconds) { HOOKED(int, self, self->ops->sleep_for(self, seconds)); }
 
 const char *mp_strerror(int code) {
   switch (code) {
@@ -79,6 +92,7 @@ void mp_enter(mp *self, mp_main main, void *ud) {
 }
 
 MP_NORETURN void mp_exit(mp *self) {
+  if (hooks) hooks->enter(self);   /* what it computed last is charged */
   if (!self->exit_to) {   /* a bug of the backend: main was not run by mp_enter */
     fprintf(stderr, "mp_exit: rank %d is not inside mp_enter\n", self->rank);
     abort();
@@ -87,6 +101,7 @@ MP_NORETURN void mp_exit(mp *self) {
 }
 
 MP_NORETURN void mp_abort(mp *self, int code, const char *why) {
+  if (hooks) hooks->enter(self);
   self->ops->stop(self, code, why);
   mp_exit(self);
 }

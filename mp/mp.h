@@ -129,6 +129,17 @@ MP_NORETURN void mp_exit(mp *self);
  * ends here (never returns). */
 MP_NORETURN void mp_abort(mp *self, int code, const char *why);
 
+/* Hooks around every mp call of every rank, process-wide (NULL: none; set
+ * before a run, not during one): enter(self) before the call, leave(self)
+ * after it returns.  How a runtime charges a program's own computing
+ * between its calls (tilesim-mpirun --compute blocks|host): enter may charge
+ * it with self->ops->busy (not mp_busy, which would call the hooks again). */
+typedef struct {
+  void (*enter)(mp *self);
+  void (*leave)(mp *self);
+} mp_hooks;
+void   mp_set_hooks(const mp_hooks *hooks);
+
 /* --- private part: what a backend fills in ------------------------------ */
 
 typedef struct mp_ops {

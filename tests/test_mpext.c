@@ -318,6 +318,59 @@ static void test_label(int b) {
         "%s: the deadlock report does not use the label: '%s'", backend[b], r.err);
 }
 
+/* ==== mp_set_hooks ======================================================== */
+
+static atomic_int entered, left;
+
+/* Charges half a second before every call, as a runtime charges the
+ * computing a program did between its calls. */
+static void hook_enter(mp *self) {
+  atomic_fetch_add(&entered, 1);
+  self->ops->busy(self, 0.5);
+}
+
+static void hook_leave(mp *self) {
+  (void)self;
+  atomic_fetch_add(&left, 1);
+}
+
+typedef struct {
+  double t[2];   /* rank 0's clock after its compute, and as mp_time reads it */
+} hookcheck;
+
+/* Rank 0: compute 1 unit, read the clock, send; rank 1: receive. */
+static void hook_main(mp *self, void *ud) {
+  hookcheck *c = ud;
+  int v = 1;
+  if (mp_rank(self) == 0) {
+    mp_compute(self, 1);
+    c->t[0] = mp_time(self);
+    mp_send(self, 1, 0, &v, sizeof v);
+  } else {
+    mp_recv(self, 0, 0, &v, sizeof v, NULL);
+  }
+}
+
+static void test_hooks(int b) {
+  static const mp_hooks h = {hook_enter, hook_leave};
+  hookcheck c = {{0, 0}};
+  atomic_store(&entered, 0);
+  atomic_store(&left, 0);
+  mp_set_hooks(&h);
+  result r = run(b, 2, 2, hook_main, &c);
+  mp_set_hooks(NULL);
+  /* Rank 0: compute, time, send; rank 1: recv: 4 calls, each between the hooks. */
+  CHECK(r.rc == 0 && atomic_load(&entered) == 4 && atomic_load(&left) == 4, "%s: hooks: %d entered, %d left (%s)",
+        backend[b], atomic_load(&entered), atomic_load(&left), r.err);
+  if (b == SIM) {
+    /* 0.5 charged before the compute (0.125), 0.5 more before the time is read. */
+    CHECK(c.t[0] == 1.125, "sim: with the hooks' charges the clock reads %.17g, not 1.125", c.t[0]);
+    /* The message: sent at 1.625 (after a charge), m + 4 per_byte = 0.5; the
+     * receive's charge (0.5, at 0) is before it waits. */
+    CHECK(r.finish[1] == 2.125, "sim: hooks: rank 1 ends at %.17g, not 2.125", r.finish[1]);
+  }
+}
+
 int main(void) {
   for (int b = 0; b < 2; b++) {
     test_self(b);
@@ -326,6 +379,7 @@ int main(void) {
     test_exit(b);
     test_abort(b);
     test_label(b);
+    test_hooks(b);
   }
   test_nap();
   return check_done("test_mpext");
