@@ -63,11 +63,12 @@ static const mode modes[] = {
      "      paper's setup and judged; CSV, a row per configuration (tilesim-plot claims)"},
     {"--calibrate", bench_calibrate,
      "[--points LIST] [--procs LIST] [--repeat R] [--seed S] [--messages K]\n"
-     "      [--alloc NAME] [--block k] [--schedule NAME] [--min-diag d]\n"
+     "      [--alloc NAME] [--block k] [--schedule NAME] [--min-diag d] [--options-only]\n"
      "      this host measured by micro-benchmarks (c per node; a message's send and\n"
      "      receive overheads, latency, gap, a sleeper's wake-up; busy cores' slowdown),\n"
      "      the simulator options that model it, and its predictions beside the threads\n"
-     "      backend's times (defaults: 2000 points, procs 1,2,3, fastest of 10 runs)"},
+     "      backend's times (defaults: 2000 points, procs 1,2,3, fastest of 10 runs);\n"
+     "      --options-only: the options for each size and P alone, no parallel run"},
     {"--dicom", bench_dicom,
      "[FILE...] [--repeat R]\n"
      "      how fast a DICOM RT structure set is read (best of R runs, default 20) and its\n"

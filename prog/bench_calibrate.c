@@ -1,7 +1,7 @@
 /* bench_calibrate.c -- bench --calibrate: make the simulator model this host.
  *
  *   bench --calibrate [--points LIST] [--procs LIST] [--repeat R] [--seed S]
- *                     [--messages K]
+ *                     [--messages K] [--options-only]
  *
  * Measured here by micro-benchmarks (bench_micro.h), never by the parallel
  * runs they then predict, each the fastest of R runs, in rounds:
@@ -34,7 +34,11 @@
  * --table-c), one CSV row each with the relative
  * error (predicted / measured - 1), and beside it what the plain ideal
  * network with the ping-pong's one-way time as m predicts (the old
- * calibration).  stderr says what was measured and how long it all took. */
+ * calibration).  With --options-only, no parallel run, measured or
+ * simulated: one row per size and P with the first six columns alone (the
+ * options that model this host for that P), for a script that runs the
+ * simulator itself (tests/bench_cores.sh).  stderr says what was measured
+ * and how long it all took. */
 #include "bench_calibrate.h"
 
 #include <limits.h>
@@ -58,7 +62,7 @@
 
 static const char calibrate_usage[] =
     "usage: bench --calibrate [--points LIST] [--procs LIST] [--repeat R] [--seed S] [--messages K] "
-    "[--alloc A] [--block k] [--schedule S] [--min-diag d]   (bench --help: every mode)\n";
+    "[--alloc A] [--block k] [--schedule S] [--min-diag d] [--options-only]   (bench --help: every mode)\n";
 
 /* Bad usage: "bench: why", arg (or NULL) shown after it, the usage line, 2. */
 static int usage(const char *why, const char *arg) { return args_usage("bench", calibrate_usage, why, arg); }
@@ -170,7 +174,7 @@ static double slowdown(const vec2 *A, const vec2 *B, int n, int repeat, double *
 
 int bench_calibrate(int argc, char **argv) {
   double w0 = wallclock();
-  int repeat = 10, messages = 100000;
+  int repeat = 10, messages = 100000, options_only = 0;
   unsigned long long seed = 1993;
   args_list procs = {0}, sizes = {0};
   char msg[400];
@@ -181,6 +185,11 @@ int bench_calibrate(int argc, char **argv) {
   static const char *const algo_opts[] = {"--alloc", "--min-diag", "--block", "--schedule"};
   for (int i = 2; i < argc; i += 2) {   /* an option and its value */
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+    if (strcmp(a, "--options-only") == 0) {   /* the one flag */
+      options_only = 1;
+      i--;
+      continue;
+    }
     long x = 0;
     int bad = 0;
     int known = strcmp(a, "--points") == 0 || strcmp(a, "--procs") == 0 || strcmp(a, "--repeat") == 0 ||
@@ -247,8 +256,11 @@ int bench_calibrate(int argc, char **argv) {
   model_options(&d, spin, slow, slow_spin, opts, sizeof opts);
   snprintf(opts + strlen(opts), sizeof opts - strlen(opts), " --back-c %.4g", back > 0 ? back : 0);
 
-  printf("points,procs,slaves,tables,c,options,measured_s,predicted_s,error,measured_speedup,"
-         "predicted_speedup,ideal_s,ideal_error,measured_median_s,sleeps,wake_us,nodes,messages,cost\n");
+  if (options_only)   /* the model alone: no parallel run, measured or simulated */
+    printf("points,procs,slaves,tables,c,options\n");
+  else
+    printf("points,procs,slaves,tables,c,options,measured_s,predicted_s,error,measured_speedup,"
+           "predicted_speedup,ideal_s,ideal_error,measured_median_s,sleeps,wake_us,nodes,messages,cost\n");
   int rcode = 0;
   progress *pg = progress_new("bench", "calibration rounds done:", 0);   /* a line every 5 s in a log */
   for (int si = 0; si < sizes.n && !rcode; si++) {
@@ -284,7 +296,7 @@ int bench_calibrate(int argc, char **argv) {
         serial_cost = t.cost;
         tiling_free(&t);
       }
-      for (int j = 0; j < order.n; j++) {
+      for (int j = 0; j < order.n && !options_only; j++) {
         int i = r % 2 ? order.n - 1 - j : j;   /* every other round backwards: no P always first */
         int P = (int)order.v[i];
         result x;
@@ -331,8 +343,15 @@ int bench_calibrate(int argc, char **argv) {
       fprintf(stderr, "\nbench: %d points: the simulator models this host with\n    %s --c %.4g%s\n", points, sopts,
               any_tab ? c : c, any_tab ? " (--c c_table where the slaves use tables)" : "");
     }
+    for (int i = 0; i < order.n && options_only; i++) {   /* each P's options, as below */
+      if (i == 0 && !has1) continue;
+      double cp = tab[i] ? c_kern : c;
+      printf("%d,%d,%d,%d,%.4g,%s --c %.4g\n", points, (int)order.v[i], order.v[i] < 2 ? 1 : (int)order.v[i] - 1, tab[i],
+             cp, sopts, cp);
+      fflush(stdout);
+    }
     double pred1 = 0;
-    for (int i = 0; i < order.n && !rcode; i++) {
+    for (int i = 0; i < order.n && !rcode && !options_only; i++) {
       int P = (int)order.v[i];
       int slaves = P < 2 ? 1 : P - 1;
       double cp = tab[i] ? c_kern : c;

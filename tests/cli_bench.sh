@@ -87,6 +87,18 @@ printf '%s\n' "$out" | tail -n +2 | awk -F, '$6 !~ /^--net loggp --L [0-9.e+-]+ 
 grep -q '^bench: 60 points: c = .* s per node' "$tmp.err" && grep -q '^bench:   so o_send .* s/byte, o_recv' "$tmp.err" && grep -q '^bench: the calibration took' "$tmp.err" && ok || fail "--calibrate stderr: $(cat "$tmp.err")"
 [ "$(printf '%s\n' "$out" | tail -1 | cut -d, -f19)" = "$(printf '%s\n' "$sim" | tail -1 | cut -d, -f15)" ] \
   && ok || fail "--calibrate optimum differs from the simulator's"
+# --options-only: the same model, no parallel run: a row per size and P with
+# the first six columns alone, which P use tables as the full calibration
+# says, and c the --c of the options.
+full=$("$bench" --calibrate --points 60 --procs 1,6 --repeat 1 --messages 200 2>/dev/null)
+out=$("$bench" --calibrate --points 60,2600 --procs 1,6 --repeat 1 --messages 200 --options-only 2>"$tmp.err"); rc=$?
+[ $rc -eq 0 ] && [ "$(printf '%s\n' "$out" | head -1)" = "points,procs,slaves,tables,c,options" ] \
+  && [ "$(printf '%s\n' "$out" | sed -n 2,3p | cut -d, -f1-4)" = "$(printf '%s\n' "$full" | tail -n +2 | cut -d, -f1-4)" ] \
+  && [ "$(printf '%s\n' "$out" | tail -n +2 | cut -d, -f1-4 | tr '\n' ' ')" = "60,1,1,1 60,6,5,0 2600,1,1,0 2600,6,5,0 " ] \
+  && printf '%s\n' "$out" | tail -n +2 | awk -F, 'NF != 6 || $6 !~ /^--net loggp .* --back-c [0-9.e+-]+( --table-c [0-9.e+-]+)? --c [0-9.e+-]+$/ { exit 1 }
+      { n = split($6, w, " "); if (w[n] != $5) exit 1 }' \
+  && grep -q '^bench: the calibration took' "$tmp.err" \
+  && ok || fail "--calibrate --options-only: exit $rc: $out / $full $(cat "$tmp.err")"
 for args in "--calibrate --points 2" "--calibrate --procs 0" "--calibrate --bogus 1" "--calibrate --repeat"; do
   # shellcheck disable=SC2086
   "$bench" $args >"$tmp.out" 2>"$tmp.err"; rc=$?
