@@ -6,6 +6,7 @@
 #   make bench-tile      the tiler's speed and memory figures
 #   make bench-testbed   a user's program's ring beside ./bench --ring: the library's cost
 #   make bench-load      the threads (and MPI) backends beside busy loops
+#   make bench-cores     what depends on the cores, measured here in BUDGET s
 #   make valgrind        the tests under valgrind, without sanitizers
 #   make tsan            the threads backend's tests under ThreadSanitizer
 #   make fuzz            each reader's libFuzzer target for FUZZ_TIME s (clang)
@@ -369,6 +370,16 @@ bench-testbed: all
 bench-load: all
 	sh tests/bench_load.sh
 
+# Everything that depends on the number of cores, measured on this machine in
+# one command within BUDGET seconds (issue 21): the threads backend's speedup
+# at 2000 and 4000 points (the paper's algorithm and the best variants) beside
+# the calibrated simulator's prediction, and ./tile -j N on the largest real
+# stacks; cores.csv, cores.md and cores.svg in OUT (doc/bench-cores.md).
+BUDGET ?= 480
+OUT    ?= build/cores
+bench-cores: all
+	@BUDGET="$(BUDGET)" OUT="$(OUT)" CC="$(CC)" CFLAGS="$(CFLAGS)" sh tests/bench_cores.sh
+
 # make install: the programs, their manual, and under PREFIX/share/tilesim
 # the data that bench's defaults name (tests/data/slicerrt, tests/data/rtstruct,
 # with their licences), so that an installed bench runs from any folder.
@@ -413,7 +424,7 @@ install-files:
 clean:
 	rm -rf build $(PROGS) $(addsuffix -mpi,$(MPIPROGS))
 
-.PHONY: all check valgrind tsan bench bench-tile bench-testbed bench-load install install-files clean mpi mpi-bins smpi-bins simgrid fuzz fuzz-bins \
+.PHONY: all check valgrind tsan bench bench-tile bench-testbed bench-load bench-cores install install-files clean mpi mpi-bins smpi-bins simgrid fuzz fuzz-bins \
         mpi-probe
 .SECONDARY:
 
