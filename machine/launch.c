@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "atomicfile.h"
+#include "progress.h"
 #include "trace.h"
 #include "wallclock.h"
 #include "xmem.h"
@@ -40,10 +41,19 @@ static void add(double v, double *sum, double *max) {
   if (v > *max) *max = v;
 }
 
+/* A long run's progress: the simulated time and the calls so far. */
+static void tick(void *ud, double t, long long events) {
+  char text[96];
+  snprintf(text, sizeof text, "simulated %.6g s, %.3g M calls", t, (double)events * 1e-6);
+  progress_note(ud, text);
+}
+
 static int run_sim(const machine_config *mc, int nranks, const mp_proc *procs, tilesim_stats *st,
                    char *err, size_t errlen) {
   sim *s = launch_sim_new(mc, nranks, err, errlen);
   if (!s) return -1;
+  progress *pg = mc->name ? progress_new(mc->name, "run", 0) : NULL;
+  if (pg) sim_progress(s, tick, pg);
   atomicfile tf = {NULL, NULL, NULL};
   if (mc->trace) {
     size_t tl = strlen(mc->trace);
@@ -56,6 +66,7 @@ static int run_sim(const machine_config *mc, int nranks, const mp_proc *procs, t
     if (mc->trace_limit != ULLONG_MAX) sim_trace_limit(s, mc->trace_limit);
   }
   int res = sim_run(s, procs, err, errlen);
+  progress_end(pg);
   const sim_stats *ss = sim_stats_get(s);
   st->makespan = ss->makespan;
   st->messages = ss->messages;

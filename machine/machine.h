@@ -53,6 +53,9 @@ typedef struct {
   unsigned long long trace_limit; /* --trace-limit (TRACE_LIMIT_DEFAULT; none: ULLONG_MAX) */
   int trace_limit_given;
   int print_place;                /* --print-place */
+  const char *name;               /* the program's name: a long simulated run says
+                                     how far it has got on stderr (util/progress.h);
+                                     NULL: silent */
 } machine_config;
 
 /* The defaults: 1 processor, the simulator (MPI in an MPI build) with the

@@ -167,6 +167,7 @@ int tilesim_args(int *argc, char ***argv, tilesim_machine **out) {
   }
 #endif
   m->prog = base_name(ac > 0 ? av[0] : NULL);
+  m->mc.name = m->prog;   /* a long run says how far it has got */
   const char *prog = m->prog;
   char err[512];
   int own = ac;   /* where the program's arguments begin */

@@ -163,6 +163,8 @@ struct mp {
   mp_describe describe;       /* mp_label */
   void *describe_ud;
   void *exit_to;              /* mp_enter's jmp_buf while main runs */
+  void *stack_lo;             /* the rank's own stack, where the backend knows it */
+  size_t stack_size;          /* (the simulator's coroutines; else 0) */
 };
 
 /* Run main(self, ud) until it returns or the rank calls mp_exit or

@@ -184,6 +184,9 @@ struct sim {
   msg *pool;               /* free messages */
   FILE *tcsv, *tjson;
   int count_csv, count_json;   /* sim_trace_count */
+  void (*tick)(void *, double, long long);   /* sim_progress */
+  void *tick_ud;
+  unsigned ticks;
   int limited;                 /* sim_trace_limit */
   unsigned long long trace_limit;
   trace *tr;
@@ -336,6 +339,7 @@ static void give_way(sim *s, rank *r) {
     return;
   }
   s->st.switches++;
+  if (s->tick && (++s->ticks & 0xffff) == 0) s->tick(s->tick_ud, s->gtime, s->st.events);
   if (id < 0) {
     coro_switch(r->co, s->main);
   } else {
@@ -803,6 +807,11 @@ void sim_trace_count(sim *s, int csv, int json) {
   s->count_json = json;
 }
 
+void sim_progress(sim *s, void (*tick)(void *ud, double t, long long events), void *ud) {
+  s->tick = tick;
+  s->tick_ud = ud;
+}
+
 void sim_trace_limit(sim *s, unsigned long long limit) {
   s->limited = 1;
   s->trace_limit = limit;
@@ -919,6 +928,7 @@ int sim_run(sim *s, const mp_proc *procs, char *err, size_t errlen) {
       fail(s, "sim_run: rank %d: %s", made, cerr);
       break;
     }
+    coro_stack(r->co, &r->base.stack_lo, &r->base.stack_size);
   }
   if (made == s->n) {
     if (s->tr) trace_begin(s->tr, s->n, s->place, s->cfg.procs);

@@ -189,6 +189,11 @@ int sim_trace_over(const sim *s);
 void sim_trace_count(sim *s, int csv, int json);
 void sim_trace_size(const sim *s, unsigned long long *csv, unsigned long long *json);
 
+/* How far a long run has got: tick(ud, t, events) is called every 65536
+ * switches between ranks, t the simulated time reached and events the mp
+ * calls simulated so far (tick = NULL: never).  Call before sim_run. */
+void sim_progress(sim *s, void (*tick)(void *ud, double t, long long events), void *ud);
+
 /* Run procs[0..nranks-1] to completion.  Once per sim.  0, or -1 and a
  * message in err: deadlock, a bad argument to an mp call, a stack that could
  * not be mapped, a trace that could not be written.  Statistics are

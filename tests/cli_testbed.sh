@@ -172,6 +172,13 @@ same "$(awk -F, 'NR == 2 { print $4 }' "$T/o")" "$(awk "BEGIN { print 2 + $C }")
 [ "$(grep -c '^place: rank' "$T/e")" -eq 6 ] && grep -q '^place:   0   1   2$' "$T/e" && grep -q '^place:   5   4   3$' "$T/e" \
   && ok || bad "--print-place: $(cat "$T/e")"
 
+# A long run says how far it has got (here a line at every chance: 160,000
+# switches, a chance every 65,536), and how it ended.
+TILESIM_PROGRESS_S=0 "$EX/ring" --procs 16 --stats none -- 10000 8 > "$T/o" 2> "$T/e"
+[ "$(grep -c '^ring: simulated [0-9.e+-]* s, [0-9.e+-]* M calls, [0-9]* s$' "$T/e")" -eq 2 ] \
+  && grep -q '^ring: simulated [0-9.e+-]* s, [0-9.e+-]* M calls, done in [0-9]* s$' "$T/e" && ok \
+  || bad "progress of a long run: $(cat "$T/e")"
+
 # ---- errors --------------------------------------------------------------------
 "$BUILD/testbed/misbehave" --procs 3 -- deadlock > "$T/o" 2> "$T/e"; rc=$?
 [ $rc -eq 1 ] && [ "$(wc -l < "$T/e")" -eq 1 ] && grep -q '^misbehave: deadlock at t=0: rank 0 waits in recv(src=1, tag=7); rank 1 waits in recv(src=2, tag=7); rank 2 waits in recv(src=0, tag=7)$' "$T/e" \

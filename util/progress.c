@@ -13,6 +13,7 @@
 
 struct progress {
   char prog[32], what[32];
+  char note[96];     /* progress_note's last text ("" when it counts steps) */
   int tty;           /* stderr is a terminal */
   double start, last, every;
   long long done, total;
@@ -65,9 +66,29 @@ static void step(progress *p, long long done, long long total) {
   fflush(stderr);
 }
 
+void progress_note(progress *p, const char *text) {
+  if (!p) return;
+  pthread_mutex_lock(&p->lock);
+  snprintf(p->note, sizeof p->note, "%s", text);
+  double now = wallclock();
+  if (now - p->last >= p->every && (p->tty || now - p->start >= p->every)) {
+    p->last = now;
+    if (p->tty) {
+      fprintf(stderr, "\r%s: %s\033[K", p->prog, p->note);
+    } else {
+      fprintf(stderr, "%s: %s, %.0f s\n", p->prog, p->note, now - p->start);
+      p->lines++;
+    }
+    fflush(stderr);
+  }
+  pthread_mutex_unlock(&p->lock);
+}
+
 void progress_end(progress *p) {
   if (!p) return;
   if (p->tty) fputs("\r\033[K", stderr);
+  else if (p->lines && p->note[0])
+    fprintf(stderr, "%s: %s, done in %.0f s\n", p->prog, p->note, wallclock() - p->start);
   else if (p->lines)
     fprintf(stderr, "%s: %s %lld of %lld, done in %.0f s\n", p->prog, p->what, p->done, p->total,
             wallclock() - p->start);

@@ -20,6 +20,11 @@ progress *progress_new(const char *prog, const char *what, int quiet);
 /* done of total steps are complete (any thread may call it). */
 void progress_step(progress *p, long long done, long long total);
 
+/* For a run whose end is not known: text says how far it has got
+ * ("simulated 12.5 s, 3.1 M calls"), shown at the same pace as the steps
+ * (a terminal's line, or a log line every few seconds with the time). */
+void progress_note(progress *p, const char *text);
+
 /* The run is over: clear the terminal line, or write the last log line;
  * free p (NULL is fine). */
 void progress_end(progress *p);
