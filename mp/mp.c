@@ -80,6 +80,20 @@ const char *mp_label_text(const mp *self, char *buf, size_t len) {
   return buf;
 }
 
+void mp_call_begin(mp *self, const char *name) {
+  if (self->call_depth++ == 0 && self->traced) {
+    self->call_name = name;
+    self->ops->call(self, name, 1);
+  }
+}
+
+void mp_call_end(mp *self) {
+  if (self->call_depth > 0 && --self->call_depth == 0 && self->traced && self->call_name) {
+    self->ops->call(self, self->call_name, 0);
+    self->call_name = NULL;
+  }
+}
+
 /* ==== entering and leaving a rank ========================================= */
 
 void mp_enter(mp *self, mp_main main, void *ud) {
@@ -89,6 +103,8 @@ void mp_enter(mp *self, mp_main main, void *ud) {
   if (setjmp(out) == 0) main(self, ud);
   self->exit_to = NULL;
   self->describe = NULL;
+  self->call_depth = 0;   /* a rank that left inside a call */
+  self->call_name = NULL;
 }
 
 MP_NORETURN void mp_exit(mp *self) {

@@ -129,6 +129,15 @@ MP_NORETURN void mp_exit(mp *self);
  * ends here (never returns). */
 MP_NORETURN void mp_abort(mp *self, int code, const char *why);
 
+/* A layer's own calls in a trace (tilesim-mpirun: every MPI call): between
+ * mp_call_begin and mp_call_end the rank is in the call named `name` (a
+ * string that outlives the run: "MPI_Bcast").  The simulator's trace shows
+ * such a call as a slice of the rank's track, around the sends, receives
+ * and waits it made, if it took time or made any; calls nest, and only the
+ * outermost is shown.  Two tests and nothing else without a trace. */
+void   mp_call_begin(mp *self, const char *name);
+void   mp_call_end(mp *self);
+
 /* Hooks around every mp call of every rank, process-wide (NULL: none; set
  * before a run, not during one): enter(self) before the call, leave(self)
  * after it returns.  How a runtime charges a program's own computing
@@ -152,6 +161,7 @@ typedef struct mp_ops {
   int (*busy)(mp *, double seconds);
   int (*sleep_for)(mp *, double seconds);   /* not "sleep": SimGrid's headers define that macro */
   void (*stop)(mp *, int code, const char *why);   /* mp_abort's effect on the run */
+  void (*call)(mp *, const char *name, int begin); /* mp_call_begin/end, where traced */
 } mp_ops;
 
 /* A backend's per-rank state begins with this struct.  The backend calls
@@ -165,6 +175,9 @@ struct mp {
   void *exit_to;              /* mp_enter's jmp_buf while main runs */
   void *stack_lo;             /* the rank's own stack, where the backend knows it */
   size_t stack_size;          /* (the simulator's coroutines; else 0) */
+  int traced;                 /* the backend traces this rank's calls (ops->call) */
+  int call_depth;             /* mp_call_begin's nesting, */
+  const char *call_name;      /* and the outermost call's name */
 };
 
 /* Run main(self, ud) until it returns or the rank calls mp_exit or

@@ -156,6 +156,8 @@ struct rank {
   chan *chans;             /* last arrival per destination, open addressing */
   int nchan, capchan;
   long stopped_calls;      /* mp calls since the run stopped */
+  double call_t0;          /* mp_call_begin: when the outermost call began, */
+  long long call_msgs;     /* and the messages sent and received by then */
   long probe_spins;        /* fruitless probes in a row at probe_at */
   double probe_at;
   sim_rank_stats st;
@@ -710,8 +712,22 @@ static void sim_stop(mp *self, int code, const char *why) {
   s->stopped = 1;
 }
 
+/* A layer's call (mp_call_begin/end), traced as a slice when it took time
+ * or moved messages. */
+static void sim_call(mp *self, const char *name, int begin) {
+  rank *r = (rank *)self;
+  sim *s = r->s;
+  long long msgs = r->st.sent + r->st.received;
+  if (begin) {
+    r->call_t0 = r->now;
+    r->call_msgs = msgs;
+  } else if (s->tr && (r->now > r->call_t0 || msgs != r->call_msgs)) {
+    trace_span(s->tr, name, r->base.rank, r->proc, r->call_t0, r->now - r->call_t0, -1, -1);
+  }
+}
+
 static const mp_ops sim_ops = {sim_send, sim_recv, sim_probe, sim_compute, sim_time,
-                               sim_wait, sim_busy,  sim_sleep, sim_stop};
+                               sim_wait, sim_busy,  sim_sleep, sim_stop,  sim_call};
 
 /* ==== the machine ========================================================= */
 
@@ -932,6 +948,7 @@ int sim_run(sim *s, const mp_proc *procs, char *err, size_t errlen) {
   }
   if (made == s->n) {
     if (s->tr) trace_begin(s->tr, s->n, s->place, s->cfg.procs);
+    for (int i = 0; i < s->n; i++) s->ranks[i].base.traced = s->tr != NULL;
     for (int i = 0; i < s->n; i++) evq_set(s->q, i, 0.0, s->seq++);
     s->live = s->n;
     for (;;) {

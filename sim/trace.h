@@ -17,6 +17,9 @@
  *             MP_ANY), duration = how long
  *   recv      peer = source, duration = LogGP's o (else 0), msg = the id
  *   sleep     mp_sleep: time = start, duration = the sleep
+ *   MPI_...   a layer's call (mp_call_begin/end: every MPI call under
+ *             tilesim-mpirun that took time or moved a message), named by
+ *             its function: time = when it began, duration
  *   finish    the rank's main returned
  *   link      a topology's link carried a message (sim/link.h): time = when
  *             it began, proc = the link's index (its name is in the JSON),

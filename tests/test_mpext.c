@@ -371,6 +371,64 @@ static void test_hooks(int b) {
   }
 }
 
+/* ==== mp_call_begin and mp_call_end ====================================== */
+
+/* Rank 0: a call that computes 1 unit and sends (shown), one with another
+ * nested in it (the outer shown), one that does nothing (not shown); rank 1:
+ * a call that receives (shown, from 0 to the arrival). */
+static void calls_main(mp *self, void *ud) {
+  (void)ud;
+  int v = 1;
+  if (mp_rank(self) == 0) {
+    mp_call_begin(self, "MPI_Outer");
+    mp_compute(self, 1);
+    mp_send(self, 1, 0, &v, sizeof v);
+    mp_call_end(self);
+    mp_call_begin(self, "MPI_Two");
+    mp_call_begin(self, "MPI_Inner");
+    mp_compute(self, 2);
+    mp_call_end(self);
+    mp_call_end(self);
+    mp_call_begin(self, "MPI_Nothing");
+    mp_call_end(self);
+  } else {
+    mp_call_begin(self, "MPI_Recv");
+    mp_recv(self, 0, 0, &v, sizeof v, NULL);
+    mp_call_end(self);
+  }
+}
+
+static void test_calls(void) {
+  sim_config cfg = config(2);
+  char err[256], *text = NULL;
+  size_t len = 0;
+  FILE *csv = open_memstream(&text, &len);
+  sim *s = sim_new(&cfg, 2, err, sizeof err);
+  sim_trace(s, csv, NULL);
+  mp_proc pr[2] = {{calls_main, NULL}, {calls_main, NULL}};
+  CHECK(sim_run(s, pr, err, sizeof err) == 0, "calls: %s", err);
+  sim_free(s);
+  fclose(csv);
+  /* c = 1/8: the outer call 0 to 1/8; the message arrives at 1/8 + m + 4/16 = 5/8. */
+  CHECK(strstr(text, "\n0.000000000,0,0,MPI_Outer,,,,0.125000000,,\n") != NULL, "the outer call's slice:\n%s", text);
+  CHECK(strstr(text, "\n0.125000000,0,0,MPI_Two,,,,0.250000000,,\n") != NULL && !strstr(text, "MPI_Inner") &&
+            !strstr(text, "MPI_Nothing"),
+        "nested and empty calls:\n%s", text);
+  CHECK(strstr(text, "\n0.000000000,1,1,MPI_Recv,,,,0.625000000,,\n") != NULL, "the receive's call:\n%s", text);
+  /* The count mode counts the same bytes. */
+  s = sim_new(&cfg, 2, err, sizeof err);
+  sim_trace_count(s, 1, 1);
+  CHECK(sim_run(s, pr, err, sizeof err) == 0, "calls, counted: %s", err);
+  unsigned long long nc, nj;
+  sim_trace_size(s, &nc, &nj);
+  sim_free(s);
+  CHECK(nc == len, "calls: counted %llu bytes of CSV, written %zu", nc, len);
+  free(text);
+  /* Threads: calls are not traced, and cost nothing. */
+  result r = run(THREADS, 2, 2, calls_main, NULL);
+  CHECK(r.rc == 0, "threads: calls: %s", r.err);
+}
+
 int main(void) {
   for (int b = 0; b < 2; b++) {
     test_self(b);
@@ -382,5 +440,6 @@ int main(void) {
     test_hooks(b);
   }
   test_nap();
+  test_calls();
   return check_done("test_mpext");
 }
