@@ -128,9 +128,37 @@ static double tri_vol(vec3 a, vec3 b, vec3 c, vec3 o) {
   return (a.x * (b.y * c.z - b.z * c.y) + a.y * (b.z * c.x - b.x * c.z) + a.z * (b.x * c.y - b.y * c.x)) / 6;
 }
 
+/* Is a triangle of the band with a bridge vertex degenerate in space (its
+ * area at most 1e-9 times its longest edge squared, well above the mesh
+ * checker's 1e-12)?  A tile from a bridge vertex m1 over the middle of a0 b1
+ * to a0 and to a partner vertex straight over b1 lies on one line when m1 is
+ * lifted halfway: pixel-traced contours repeat their points slice to slice. */
+static int degenerate_bridge_tile(const work *w, const band *b) {
+  for (int k = 0; k < b->ntri; k++) {
+    if (b->tri[k][0] >= 0 && b->tri[k][1] >= 0 && b->tri[k][2] >= 0) continue;
+    vec3 p = band_vertex(w, b, b->tri[k][0]), q = band_vertex(w, b, b->tri[k][1]), r = band_vertex(w, b, b->tri[k][2]);
+    vec3 u = sub3(q, p), v = sub3(r, p), x = sub3(r, q);
+    double cx = u.y * v.z - u.z * v.y, cy = u.z * v.x - u.x * v.z, cz = u.x * v.y - u.y * v.x;
+    double e = fmax(u.x * u.x + u.y * u.y + u.z * u.z, fmax(v.x * v.x + v.y * v.y + v.z * v.z, x.x * x.x + x.y * x.y + x.z * x.z));
+    if (sqrt(cx * cx + cy * cy + cz * cz) <= 1e-9 * e) return 1;
+  }
+  return 0;
+}
+
+/* The bridge vertices at the fraction f of the way to the partner slice. */
+static void lift_bridges(const work *w, band *b, double f) {
+  const slices *sl = w->sl;
+  double z0 = sl->z[b->slice], z1 = sl->z[b->slice + 1], dz = z1 - z0;
+  for (int s = 0; s < b->lo.nsteiner; s++) b->lo.steiner[s].z = z0 + dz * f;
+  for (int s = 0; s < b->hi.nsteiner; s++) b->hi.steiner[s].z = z1 - dz * f;
+}
+
 /* The band's triangles from its tiling (tiling_tiles: the edge on P = lo or
  * Q = hi, the apex on the other), then the bridges' fill; its area, and the
- * volume of the slab it closes with the two slices' regions. */
+ * volume of the slab it closes with the two slices' regions.  Where a tile
+ * with a bridge vertex would be degenerate, the bridge vertices are lifted
+ * to another height (below half the spacing, so that the two sides' never
+ * meet): the same tiling, the same topology. */
 static void mesh_job(void *ud, int i) {
   work *w = ud;
   band *b = &w->b[i];
@@ -171,6 +199,9 @@ static void mesh_job(void *ud, int i) {
   for (int k = 0; k < b->lo.ntri; k++, nt++) memcpy(b->tri[nt], b->lo.tri[k], sizeof b->tri[nt]);
   for (int k = 0; k < b->hi.ntri; k++, nt++)
     for (int e = 0; e < 3; e++) b->tri[nt][e] = hi_id(b, b->hi.tri[k][e]);
+  static const double other_lift[] = {0.375, 0.25, 0.4375, 0.3125};
+  for (int k = 0; k < 4 && b->lo.nsteiner + b->hi.nsteiner > 0 && degenerate_bridge_tile(w, b); k++)
+    lift_bridges(w, b, other_lift[k]);
   /* Summed at the scale 2^-e that brings the band's largest coordinate into
    * [1/2, 1) and scaled back once: exact, the same bits as unscaled, and no
    * inf - inf = NaN at 1e300 (issue 14, item 7). */
