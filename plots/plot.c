@@ -35,7 +35,8 @@ static const char lines_usage[] =
     "[--labels A,B,...] [--title T] [--xlabel T] [--ylabel T] [--yzero] -o OUT.svg   "
     "(plot --help: every option)\n";
 static const char surface_usage[] =
-    "usage: plot surface STACK|FILE.dcm --roi NAME [--cost area|span] [--caps] [--title T] -o OUT.svg   "
+    "usage: plot surface STACK|FILE.dcm --roi NAME [--cost area|span] [--caps] [--join RULE] [--title T] "
+    "-o OUT.svg   "
     "(plot --help: every option)\n";
 static const char any_usage[] =
     "usage: plot lines CSV ... -o OUT.svg | plot surface STACK ... -o OUT.svg | "
@@ -52,7 +53,8 @@ static const char *progname(const char *argv0) {
 static void help(const char *name) {
   printf("usage: %s lines CSV -x COL -y COL[,COL...] [--series COL[,COL...]] [--where COL=VALUE]...\n"
         "            [--labels A,B,...] [--title T] [--xlabel T] [--ylabel T] [--yzero] -o OUT.svg\n"
-        "       %s surface STACK|FILE.dcm [--roi NAME|NUMBER] [--cost area|span] [--caps] [--title T] -o OUT.svg\n"
+        "       %s surface STACK|FILE.dcm [--roi NAME|NUMBER] [--cost area|span] [--caps] [--join RULE]\n"
+        "            [--title T] -o OUT.svg\n"
         "       %s claims MAP.csv [--title T] -o OUT.svg\n"
         "\n"
         "%s -- tilesim's CSV as SVG line charts, a contour stack with its surface, and\n"
@@ -77,6 +79,9 @@ static void help(const char *name) {
         "  --cost area|span   the tile weight (default area)\n"
         "  --caps             close every end (the first and last slices, branch tips,\n"
         "                     holes that start or end), as tile --caps does\n"
+        "  --join RULE        which contours of neighbouring slices are joined: overlap,\n"
+        "                     touch, single (default), nearest or a distance, as tile\n"
+        "                     --join does\n"
         "  --title T          the title\n"
         "  -o OUT.svg         the picture\n"
         "claims: a claims map (bench --claims-map) as a grid: a panel per configuration\n"
@@ -294,17 +299,21 @@ static int surface(int argc, char **argv) {
   const char *in = argc > 2 ? argv[2] : NULL, *out = NULL, *title = NULL, *roikey = NULL;
   cost_kind kind = COST_AREA;
   int caps = 0;
+  match_rule join = MATCH_SINGLE;
+  double join_dist = INFINITY;
   char err[400];
   if (!in || !in[0] || (in[0] == '-' && in[1])) return usage(surface_usage, "surface needs a contour stack first", in);
   for (int i = 3; i < argc; i++) {
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
     int bad = 0;
     if (strcmp(a, "--caps") == 0) { caps = 1; continue; }
-    if (strcmp(a, "-o") != 0 && strcmp(a, "--title") != 0 && strcmp(a, "--cost") != 0 && strcmp(a, "--roi") != 0)
+    if (strcmp(a, "-o") != 0 && strcmp(a, "--title") != 0 && strcmp(a, "--cost") != 0 && strcmp(a, "--roi") != 0 &&
+        strcmp(a, "--join") != 0)
       return usage(surface_usage, a[0] == '-' ? "unknown option" : "unexpected argument", a);
     if (!v) return usage(surface_usage, "an option needs a value", a);
     if (strcmp(a, "-o") == 0) bad = args_name(a, v, "a file name", 0, err, sizeof err), out = v;
     else if (strcmp(a, "--title") == 0) title = v;
+    else if (strcmp(a, "--join") == 0) bad = stack_parse_join(a, v, &join, &join_dist, err, sizeof err) != 0;
     else if (strcmp(a, "--roi") == 0) {
       if (!v[0]) bad = 1, snprintf(err, sizeof err, "--roi takes an ROI's name or number ('')");
       roikey = v;
@@ -351,7 +360,8 @@ static int surface(int argc, char **argv) {
   char *held = NULL;
   size_t heldlen = 0;
   FILE *notes = open_memstream(&held, &heldlen);
-  stack_options so = {kind, caps, 0, pool_cores(), NULL, notes ? notes : stderr, "plot", NULL, NULL};
+  stack_options so = {kind, caps, 0, pool_cores(), NULL, notes ? notes : stderr, "plot", NULL, NULL,
+                      join, join_dist};
   stack_surface *ss;
   int bad = stack_tile(&s, name, &so, &ss, err, sizeof err) != 0;
   if (notes) fclose(notes);

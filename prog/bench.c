@@ -74,10 +74,11 @@ static const mode modes[] = {
      "      how fast a DICOM RT structure set is read (best of R runs, default 20) and its\n"
      "      ROIs made into stacks; a checksum of the coordinates (default: dicompyler_rtss.dcm)"},
     {"--stack", bench_stack,
-     "[STACK|FILE.dcm:ROI...] [-j LIST] [--repeat R] [--apex]\n"
+     "[STACK|FILE.dcm:ROI...] [-j LIST] [--repeat R] [--apex] [--join RULE]\n"
      "      whole stacks into one closed surface (several contours a slice: nesting,\n"
      "      branching, caps), on 1, 2, ... threads: time per stack and per band, the\n"
-     "      speedup (default: dicompyler's BODY and Lt Lung, prostate_0; -j 1,2; best of 5)"},
+     "      speedup (default: dicompyler's BODY and Lt Lung, prostate_0; -j 1,2; best of 5;\n"
+     "      --join as for ./tile, default single)"},
     {"--tiler", bench_tiler,
      "[--points N[,N...]] [--naive N] [--input STACK]... [--cost area|span]\n"
      "      [--seed S] [--repeat R] [--data DIR]\n"

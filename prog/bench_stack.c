@@ -3,7 +3,7 @@
  * (surface/stack.h: slices, nesting, correspondence, bridges, every band
  * tiled exactly, caps, the mesh and its components), on 1, 2, ... threads.
  *
- *   bench --stack [INPUT...] [-j LIST] [--repeat R] [--apex]
+ *   bench --stack [INPUT...] [-j LIST] [--repeat R] [--apex] [--join RULE]
  *
  * INPUT is a .contours stack or FILE.dcm:ROI (an RT structure set's ROI by
  * name or number); by default dicompyler's BODY (141 contours on 98 slices,
@@ -19,6 +19,7 @@
 #include "bench_stack.h"
 
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -70,10 +71,13 @@ static int load(const char *input, contour_stack *s, double *ms) {
 }
 
 static const char stack_usage[] =
-    "usage: bench --stack [STACK|FILE.dcm:ROI...] [-j LIST] [--repeat R] [--apex]   (bench --help: every mode)\n";
+    "usage: bench --stack [STACK|FILE.dcm:ROI...] [-j LIST] [--repeat R] [--apex] [--join RULE]   "
+    "(bench --help: every mode)\n";
 
 int bench_stack(int argc, char **argv) {
   int repeat = 5, apex = 0, nj = 2, js[ARGS_LIST_MAX] = {1, 2}, nin = 0;
+  match_rule join = MATCH_SINGLE;
+  double join_dist = INFINITY;
   const char **in = xcalloc((size_t)argc + 4, sizeof *in);
   char err[300], shown[200];
   for (int i = 2; i < argc; i++) {
@@ -97,6 +101,14 @@ int bench_stack(int argc, char **argv) {
       }
     } else if (strcmp(a, "--apex") == 0) {
       apex = 1;
+    } else if (strcmp(a, "--join") == 0) {
+      if (!v) {
+        snprintf(err, sizeof err, "an option needs a value (%s)", a);
+        why = err;
+      } else if (stack_parse_join(a, v, &join, &join_dist, err, sizeof err) != 0) {
+        why = err;
+      }
+      i++;
     } else if (a[0] == '-' || !a[0]) {
       args_show(a, shown, sizeof shown);
       snprintf(err, sizeof err, "%s (%s)", a[0] ? "unknown option" : "a file name is not empty", shown);
@@ -128,7 +140,7 @@ int bench_stack(int argc, char **argv) {
     for (int j = 0; j < nj; j++) best[j] = 1e300;
     for (int r = 0; r < repeat && rc == 0; r++)
       for (int j = 0; j < nj && rc == 0; j++) {
-        stack_options o = {COST_AREA, 1, apex, js[j], NULL, NULL, "bench", NULL, NULL};
+        stack_options o = {COST_AREA, 1, apex, js[j], NULL, NULL, "bench", NULL, NULL, join, join_dist};
         stack_surface *ss;
         double t0 = wallclock();
         char why[1024];

@@ -38,14 +38,14 @@
 
 /* The usage hint after a bad-usage message: one line. */
 static const char usage_line[] =
-    "usage: tile STACK|FILE.dcm [-o OUT.obj|OUT.ply|OUT.stl] [--cost area|span] [--caps] [-j N] [-q] "
-    "[--procs P [MACHINE OPTIONS] [--trace FILE]]   (tile --help: every option)\n";
+    "usage: tile STACK|FILE.dcm [-o OUT.obj|OUT.ply|OUT.stl] [--cost area|span] [--caps] [--join RULE] "
+    "[-j N] [-q] [--procs P [MACHINE OPTIONS] [--trace FILE]]   (tile --help: every option)\n";
 
 static void usage(FILE *f) {
   fputs(usage_line, f);
   if (f != stdout) return;
   fputs("       tile STACK [-o OUT.obj|OUT.ply|OUT.stl] [--cost area|span] [--caps]\n"
-        "            [--cap-style flat|apex] [-j N] [-q]\n"
+        "            [--cap-style flat|apex] [--join RULE] [-j N] [-q]\n"
         "            [--procs P [--backend sim|threads] [--alloc half|size] [--min-diag d]\n"
         "             [--machine NAME] [--net ideal|bus|loggp] [--m S] [--c S]\n"
         "             [--topology NAME] [--place NAME] [--print-place]\n"
@@ -54,9 +54,10 @@ static void usage(FILE *f) {
         "            [--contours OUT.contours|DIR/] [options as for a stack]]\n"
         "\n"
         "Make one surface of the contours of STACK, any number per slice: contours\n"
-        "on a slice nest (holes, islands), overlapping contours of neighbouring\n"
-        "slices are joined (branching by bridges), and every band is the minimum-cost\n"
-        "acceptable path over all start rows (Fuchs, Kedem, Uselton 1977; exact).\n"
+        "on a slice nest (holes, islands), overlapping or touching contours of\n"
+        "neighbouring slices are joined (branching by bridges), and every band is the\n"
+        "minimum-cost acceptable path over all start rows (Fuchs, Kedem, Uselton 1977;\n"
+        "exact).\n"
         "\n"
         "  -o FILE            write the mesh: .obj, .ply (ASCII) or .stl (binary)\n"
         "  --cost area        tile weight: the triangle's area (default)\n"
@@ -65,6 +66,22 @@ static void usage(FILE *f) {
         "  --cap-style flat   a cap is the region in its plane (default)\n"
         "  --cap-style apex   a fan to a point half a slice out, where it sees the whole\n"
         "                     contour (flat elsewhere)\n"
+        "  --join RULE        which contours of neighbouring slices are joined (same\n"
+        "                     depth, parents joined; each rule joins all the one before\n"
+        "                     it joins):\n"
+        "                       overlap  their regions overlap (share an interior point)\n"
+        "                       touch    their closed regions meet (an edge or a corner)\n"
+        "                       single   also, when each slice has exactly one outer\n"
+        "                                contour, those two (default)\n"
+        "                       nearest  also every contour still without a partner, to\n"
+        "                                its nearest candidate there (ties: the first in\n"
+        "                                canonical order): a branch beside its trunk\n"
+        "                       DIST     as nearest, where the gap is at most DIST\n"
+        "                     A join no bridge can make is dropped with a note.  Notes\n"
+        "                     name each join made without overlap and each contour left\n"
+        "                     without a partner though the next slice has candidates\n"
+        "                     (its nearest and the gap); the report's joins row counts\n"
+        "                     them\n"
         "  -j N               tile the bands on N threads (default: the machine's cores);\n"
         "                     the output is the same on any N\n"
         "  --no-keyholes      refuse a contour that touches itself instead of splitting\n"
@@ -98,8 +115,10 @@ static void usage(FILE *f) {
         "hops_per_msg,hop_bytes,max_link_msgs,max_link_bytes,link_wait: the band's\n"
         "messages over the network, links crossed per message, bytes x links, the\n"
         "busiest link's messages and bytes, seconds spent waiting for links.  Then with\n"
-        "--caps a row\n"
-        "'cap' per cap; a row 'mesh' (vertices, triangles, area, volume, Euler\n"
+        "--caps a row 'cap' per cap; a row 'joins' (junction: the --join\n"
+        "rule; m: joins made without overlap; n: contour ends left without a partner\n"
+        "though the neighbouring slice has candidates; bridges: joins dropped for want\n"
+        "of a bridge); a row 'mesh' (vertices, triangles, area, volume, Euler\n"
         "characteristic) and a row 'component' per connected component.\n",
         f);
 }
@@ -120,6 +139,8 @@ typedef struct {
   run_config rc;   /* the machine (rc.mc: --trace, --trace-limit) and the algorithm */
   const char *held;   /* the reader's notes, printed before the surface's */
   size_t heldlen;
+  match_rule join;    /* --join */
+  double join_dist;
 } tile_opts;
 
 /* Tile the stack s (named `name` in messages): the report on stdout (the
@@ -155,7 +176,7 @@ static int tile_stack(void *ud, const contour_stack *s, const char *name, const 
   FILE *notes = o->quiet ? NULL : open_memstream(&held, &heldlen);
   atomicfile tf = {NULL, NULL, NULL};
   stack_options so = {o->rc.kind, o->caps, o->apex, o->threads, o->parallel ? &o->rc : NULL, notes, "tile",
-                      NULL, NULL};
+                      NULL, NULL, o->join, o->join_dist};
   const char *tpath = o->rc.mc.trace;
   if (o->parallel && tpath) {
     /* The trace's size first, by the same run writing none (the simulator
@@ -238,6 +259,7 @@ static int tile_main(int argc, char **argv) {
   tile_opts o;
   memset(&o, 0, sizeof o);
   o.threads = pool_cores();
+  o.join = MATCH_SINGLE, o.join_dist = INFINITY;
   tile_dicom_opts dopt;
   memset(&dopt, 0, sizeof dopt);
   run_config_init(&o.rc);
@@ -264,6 +286,7 @@ static int tile_main(int argc, char **argv) {
       if (!v) {   /* the last argument: an option that needs a value, or none we know */
         run_config scratch = o.rc;
         int known = strcmp(a, "-o") == 0 || strcmp(a, "--cost") == 0 || strcmp(a, "-j") == 0 ||
+                    strcmp(a, "--join") == 0 ||
                     strcmp(a, "--cap-style") == 0 || run_option(&scratch, a, "", err, sizeof err) != 0;
         args_show(a, err, sizeof err);
         return bad_usage(known ? "%s needs a value" : "unknown option (%s)", err);
@@ -272,6 +295,8 @@ static int tile_main(int argc, char **argv) {
         long j;
         if (args_long(a, v, 1, 1024, &j, err, sizeof err) != 0) return bad_usage("%s", err);
         o.threads = (int)j;
+      } else if (strcmp(a, "--join") == 0) {
+        if (stack_parse_join(a, v, &o.join, &o.join_dist, err, sizeof err) != 0) return bad_usage("%s", err);
       } else if (strcmp(a, "--cap-style") == 0) {
         if ((o.apex = args_word(a, v, "flat|apex", err, sizeof err)) < 0) return bad_usage("%s", err);
         style_given = 1;

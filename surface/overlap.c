@@ -176,3 +176,40 @@ int overlap_regions(const inside_index *ip, const inside_index *iq) {
   if (ear_inside(ip, iq) || ear_inside(iq, ip)) return 1;
   return pieces_inside(ip, iq) || pieces_inside(iq, ip);
 }
+
+/* The first contact of the boundaries found (CROSSING_NONE: they do not meet). */
+typedef struct {
+  const vec2 *q;
+  int nq;
+  vec2 a, b;
+  crossing_kind kind;
+} contact_q;
+
+static void contact_cb(void *ud, int s) {
+  contact_q *c = ud;
+  if (c->kind == CROSSING_NONE) c->kind = crossing_segments(c->a, c->b, c->q[s], c->q[(s + 1) % c->nq], NULL);
+}
+
+int overlap_closed(const inside_index *ip, const inside_index *iq) {
+  vec2 alo, ahi, blo, bhi;
+  inside_box(ip, &alo, &ahi);
+  inside_box(iq, &blo, &bhi);
+  if (alo.x > bhi.x || blo.x > ahi.x || alo.y > bhi.y || blo.y > ahi.y) return OVERLAP_APART;
+  int n, nq;
+  const vec2 *p = inside_points(ip, &n), *q = inside_points(iq, &nq);
+  int r0 = inside_point(iq, p[0]), r1 = inside_point(ip, q[0]);
+  if (r0 == INSIDE_IN || r1 == INSIDE_IN) return OVERLAP_INTERIOR;
+  int touch = r0 == INSIDE_ON || r1 == INSIDE_ON;
+  if (!touch) {
+    /* Boundaries apart, and neither first point inside the other: apart
+     * (nested contours would have put one inside). */
+    contact_q c = {q, nq, {0, 0}, {0, 0}, CROSSING_NONE};
+    for (int i = 0; i < n && c.kind == CROSSING_NONE; i++) {
+      c.a = p[i], c.b = p[(i + 1) % n];
+      inside_near(iq, c.a, c.b, contact_cb, &c);
+    }
+    if (c.kind == CROSSING_CROSS) return OVERLAP_INTERIOR;
+    if (c.kind == CROSSING_NONE) return OVERLAP_APART;
+  }
+  return overlap_regions(ip, iq) ? OVERLAP_INTERIOR : OVERLAP_TOUCH;
+}

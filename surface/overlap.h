@@ -16,4 +16,14 @@
  * polygons overlap.  Thread-safe (the indexes are only read). */
 int overlap_regions(const inside_index *ip, const inside_index *iq);
 
+/* Do the closed regions of P and Q meet?  OVERLAP_APART when they have no
+ * common point, OVERLAP_TOUCH when they share only boundary points (an edge
+ * or a corner: the open regions are apart), OVERLAP_INTERIOR when the open
+ * regions overlap (overlap_regions).  Exact; thread-safe.  Cheaper than
+ * overlap_regions where the boundaries do not meet: a contour inside the
+ * other, or apart, is decided by one point each and a scan of the segments,
+ * and only boundaries that touch take overlap_regions' further tests. */
+enum { OVERLAP_APART, OVERLAP_TOUCH, OVERLAP_INTERIOR };
+int overlap_closed(const inside_index *ip, const inside_index *iq);
+
 #endif

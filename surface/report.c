@@ -73,6 +73,9 @@ void report_rows(FILE *f, const char *prefix, const stack_surface *ss, const run
     manifold &= c[i].manifold;
     euler += c[i].euler;
   }
+  const stack_joins *js = stack_join_counts(ss);
+  fprintf(f, "%sjoins,,,,,,%s,%d,%d,%d,,,,,,,%s%s\n", prefix, js->rule, js->apart, js->unjoined, js->dropped,
+          rc ? par_empty : "", topology(rc) ? net_empty : "");
   fprintf(f, "%smesh,%.17g,%.17g,,,,%s,%d,%d,%d,%.17g,%.17g,%.17g,%llu,%d,%d,%s%s\n", prefix, zmin, zmax,
           manifold ? "closed" : closed ? "pinched" : "open", me->nv, me->nt, bridges, cost, area, volume, nodes,
           spans, euler, rc ? par_empty : "", topology(rc) ? net_empty : "");

@@ -13,7 +13,10 @@
  * cost its cost); with --procs the parallel run's columns,
  * and on a topology (--topology) the network's.
  * Then with caps one row per cap (band = cap; z1 the apex's z; volume what
- * the cap adds beyond its flat region), one row `mesh` (zmin, zmax,
+ * the cap adds beyond its flat region), one row `joins` (junction: the
+ * joining rule; m: joins made without overlap; n: contour ends left without
+ * a partner though the neighbouring slice has candidates; bridges: joins
+ * dropped for want of a bridge; stack_joins), one row `mesh` (zmin, zmax,
  * closed|open, vertices, triangles, bridges, cost, area, volume, nodes and
  * the Euler characteristic), and one row `component` per connected
  * component (closed|pinched|open, vertices, triangles, area, volume, Euler

@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "args.h"
 #include "bridge.h"
 #include "ends.h"
 #include "kernel.h"
@@ -34,12 +35,17 @@ struct stack_surface {
   int ncomp;
   manifold_component *comp;
   double cost, area, volume;   /* the whole surface's (stack_totals) */
+  stack_joins joins;
+  char rule[40];
 };
 
 typedef struct {
   int slice;
   const junction *j;
   composite lo, hi;
+  vec2 *seen;         /* the upper contour as the tiler sees it: hi.pt, or for a
+                         junction joined without overlap moved onto the lower's
+                         centroid */
   tiling t;
   char *err;
   int ntri;
@@ -66,6 +72,8 @@ typedef struct {
   int nends;
   atomic_int tiled;    /* bands tiled so far, for o->progress */
   int deg;             /* the cost's degree: 1 span (a length), 2 area */
+  match_opts mo;       /* the joining rule, at the working scale */
+  char joinopt[48];    /* the --join option that made nearest joins, for notes */
 } work;
 
 /* A value of degree d (1 a length, 2 an area, 3 a volume) at the working
@@ -75,7 +83,31 @@ static double unscale(const slices *sl, double v, int d) { return geom_ldexp(v, 
 
 static void match_job(void *ud, int k) {
   work *w = ud;
-  match_slices(w->sl, k, &w->js[k]);
+  match_slices(w->sl, k, &w->mo, &w->js[k]);
+}
+
+/* The area centroid of the polygon p[0..n-1], about p[0]. */
+static vec2 centroid(const vec2 *p, int n) {
+  double a = 0, x = 0, y = 0;
+  for (int i = 1; i + 1 < n; i++) {
+    double ux = p[i].x - p[0].x, uy = p[i].y - p[0].y, vx = p[i + 1].x - p[0].x, vy = p[i + 1].y - p[0].y;
+    double c = ux * vy - uy * vx;
+    a += c, x += (ux + vx) * c, y += (uy + vy) * c;
+  }
+  return (vec2){p[0].x + x / (3 * a), p[0].y + y / (3 * a)};
+}
+
+/* Two contours joined without overlap (a tilted tube, sparse slices) are
+ * tiled as if the upper lay on the lower's centroid: the minimum-area path
+ * of the pair as it stands folds the band (a sheared prism is not the least
+ * area between two sections side by side), the aligned pair's follows their
+ * shapes; the triangles join the contours where they are. */
+static void align(band *b) {
+  b->seen = b->hi.pt;
+  if (!b->j->apart) return;
+  vec2 c0 = centroid(b->lo.pt, b->lo.n), c1 = centroid(b->hi.pt, b->hi.n);
+  b->seen = xmallocarray((size_t)b->hi.n, sizeof *b->seen);
+  for (int k = 0; k < b->hi.n; k++) b->seen[k] = (vec2){b->hi.pt[k].x + (c0.x - c1.x), b->hi.pt[k].y + (c0.y - c1.y)};
 }
 
 static void bridge_job(void *ud, int i) {
@@ -91,14 +123,15 @@ static void bridge_job(void *ud, int i) {
   if (bridge_join(sl, b->j->lo, b->j->nlo, k + 1, lo_lift, w->name, &b->lo, err, sizeof err) != 0 ||
       bridge_join(sl, b->j->hi, b->j->nhi, k, hi_lift, w->name, &b->hi, err, sizeof err) != 0)
     b->err = xstrdup(err);
+  else
+    align(b);
 }
 
 static void tile_job(void *ud, int i) {
   work *w = ud;
   band *b = &w->b[i];
   const slices *sl = w->sl;
-  tiling_solve(b->lo.pt, b->lo.n, sl->z[b->slice], b->hi.pt, b->hi.n, sl->z[b->slice + 1], w->o->kind,
-               -1, &b->t);
+  tiling_solve(b->lo.pt, b->lo.n, sl->z[b->slice], b->seen, b->hi.n, sl->z[b->slice + 1], w->o->kind, -1, &b->t);
   if (w->o->progress) w->o->progress(w->o->progress_ud, atomic_fetch_add(&w->tiled, 1) + 1, w->nb);
 }
 
@@ -169,7 +202,7 @@ static void mesh_job(void *ud, int i) {
     tiling_repeated_spans(&b->t, &b->span, 1);
     b->pinched_cost = b->t.cost;
     b->pinched = 2;
-    if (unpinch_solve(b->lo.pt, b->lo.n, sl->z[b->slice], b->hi.pt, b->hi.n, sl->z[b->slice + 1], w->o->kind,
+    if (unpinch_solve(b->lo.pt, b->lo.n, sl->z[b->slice], b->seen, b->hi.n, sl->z[b->slice + 1], w->o->kind,
                       &t2) == 0) {
       t2.count.nodes += b->t.count.nodes;
       tiling_free(&b->t);
@@ -275,7 +308,7 @@ static int tile_bands(work *w, stack_surface *ss, char *err, size_t errlen) {
   for (int i = 0; i < nb; i++) {
     par_pair *p = &ss->pairs[i];
     p->P = w->b[i].lo.pt, p->np = w->b[i].lo.n, p->zp = sl->z[w->b[i].slice];
-    p->Q = w->b[i].hi.pt, p->nq = w->b[i].hi.n, p->zq = sl->z[w->b[i].slice + 1];
+    p->Q = w->b[i].seen, p->nq = w->b[i].hi.n, p->zq = sl->z[w->b[i].slice + 1];
   }
   if (rc->mc.sim.topo.kind != TOPO_NONE) rc->pair_net = ss->nets = xcalloc((size_t)nb + 1, sizeof *ss->nets);
   if (run_pairs(rc, ss->pairs, nb, err, errlen) != 0) res = -2;
@@ -334,11 +367,113 @@ static int first_error(const work *w, char *err, size_t errlen) {
   return 0;
 }
 
-/* What the run changed or could not avoid, band by band, then cap by cap. */
+/* The made single link between slices k and k+1, or NULL. */
+static const match_link *single_link(const junctions *js) {
+  for (int i = 0; i < js->nlinks; i++)
+    if (js->links[i].how == MATCH_LINK_SINGLE && !js->links[i].dropped) return &js->links[i];
+  return NULL;
+}
+
+/* A link's gap in the file's units. */
+static double gap_of(const work *w, const exactdist *g) { return unscale(w->sl, exactdist_value(g), 1); }
+
+/* The joins' notes (stack.h): runs of single joins, nearest joins, dropped
+ * joins, then each contour left unjoined. */
+static void join_notes(const work *w) {
+  const stack_options *o = w->o;
+  const slices *sl = w->sl;
+  FILE *f = o->notes;
+  int ns = sl->nslices;
+  for (int k = 0; k + 1 < ns;) {
+    const match_link *l = single_link(&w->js[k]), *last = l, *x;
+    if (!l) {
+      k++;
+      continue;
+    }
+    int k1 = k;
+    double g0 = gap_of(w, &l->gap), g1 = g0;
+    while (k1 + 2 < ns && (x = single_link(&w->js[k1 + 1])) != NULL) {
+      double g = gap_of(w, &x->gap);
+      g0 = fmin(g0, g), g1 = fmax(g1, g), last = x, k1++;
+    }
+    if (k1 == k)
+      fprintf(f, "%s: %s:%d: joined to the contour at line %d (slice z=%.17g to z=%.17g) without overlap: "
+              "one outer contour on each slice (--join single), gap %.17g\n", o->prefix, w->name,
+              sl->c[l->a].line, sl->c[l->b].line, unscale(sl, sl->z[k], 1), unscale(sl, sl->z[k + 1], 1), g0);
+    else
+      fprintf(f, "%s: %s:%d: joined to the contour above, and so on up to line %d (%d joins, slices z=%.17g "
+              "to z=%.17g) without overlap: one outer contour on each slice (--join single), gaps %.17g to "
+              "%.17g\n", o->prefix, w->name, sl->c[l->a].line, sl->c[last->b].line, k1 - k + 1,
+              unscale(sl, sl->z[k], 1), unscale(sl, sl->z[k1 + 1], 1), g0, g1);
+    k = k1 + 1;
+  }
+  for (int k = 0; k + 1 < ns; k++)
+    for (int i = 0; i < w->js[k].nlinks; i++) {
+      const match_link *l = &w->js[k].links[i];
+      if (l->how == MATCH_LINK_SINGLE) continue;
+      int from = l->how == MATCH_LINK_NEAREST ? l->from : l->a, to = l->a ^ l->b ^ from;
+      if (l->dropped) {
+        char why[120];
+        if (l->how == MATCH_LINK_TOUCH) snprintf(why, sizeof why, "their regions touch");
+        else snprintf(why, sizeof why, "its nearest there, gap %.17g, %s", gap_of(w, &l->gap), w->joinopt);
+        fprintf(f, "%s: %s:%d: not joined to the contour at line %d on slice z=%.17g (%s): no bridges can "
+                "join the contours of the junction it would make\n", o->prefix, w->name, sl->c[from].line,
+                sl->c[to].line, unscale(sl, sl->z[sl->c[to].slice], 1), why);
+      } else if (l->how == MATCH_LINK_NEAREST) {
+        fprintf(f, "%s: %s:%d: joined to its nearest contour on slice z=%.17g, the contour at line %d, "
+                "without overlap (%s), gap %.17g\n", o->prefix, w->name, sl->c[from].line,
+                unscale(sl, sl->z[sl->c[to].slice], 1), sl->c[to].line, w->joinopt, gap_of(w, &l->gap));
+      }
+    }
+  /* Each contour's ends, below and above, in one line. */
+  const match_end **end[2] = {xcalloc((size_t)sl->ncontours + 1, sizeof(match_end *)),
+                              xcalloc((size_t)sl->ncontours + 1, sizeof(match_end *))};
+  for (int k = 0; k + 1 < ns; k++)
+    for (int i = 0; i < w->js[k].nends; i++) {
+      const match_end *e = &w->js[k].ends[i];
+      end[sl->c[e->c].slice == k][e->c] = e;   /* [1]: the end above */
+    }
+  for (int c = 0; c < sl->ncontours; c++) {
+    int n = (end[0][c] != NULL) + (end[1][c] != NULL), said = 0;
+    if (!n) continue;
+    fprintf(f, "%s: %s:%d: no partner for this contour (slice z=%.17g) on slice", o->prefix, w->name, sl->c[c].line,
+            unscale(sl, sl->z[sl->c[c].slice], 1));
+    for (int s = 0; s < 2; s++) {
+      const match_end *e = end[s][c];
+      if (!e) continue;
+      int other = sl->c[c].slice + (s ? 1 : -1);
+      if (n == 1)
+        fprintf(f, " z=%.17g; nearest there: the contour at line %d, gap %.17g", unscale(sl, sl->z[other], 1),
+                sl->c[e->nearest].line, gap_of(w, &e->gap));
+      else
+        fprintf(f, "%s z=%.17g (nearest: the contour at line %d, gap %.17g)", said++ ? " nor on slice" : "",
+                unscale(sl, sl->z[other], 1), sl->c[e->nearest].line, gap_of(w, &e->gap));
+    }
+    fputc('\n', f);
+  }
+  free(end[0]), free(end[1]);
+}
+
+/* The joins' counts (stack_joins). */
+static void count_joins(const work *w, stack_surface *ss) {
+  for (int k = 0; k + 1 < w->sl->nslices; k++) {
+    const junctions *js = &w->js[k];
+    for (int i = 0; i < js->nlinks; i++) {
+      if (js->links[i].dropped) ss->joins.dropped++;
+      else if (js->links[i].how != MATCH_LINK_TOUCH) ss->joins.apart++;
+    }
+    ss->joins.unjoined += js->nends;
+  }
+  ss->joins.rule = ss->rule;
+}
+
+/* What the run changed or could not avoid: the joins, then band by band,
+ * then cap by cap. */
 static void print_notes(const work *w) {
   const stack_options *o = w->o;
   const slices *sl = w->sl;
   if (!o->notes) return;
+  join_notes(w);
   for (int i = 0; i < w->nb; i++) {
     const band *b = &w->b[i];
     for (int side = 0; side < 2; side++) {
@@ -504,6 +639,7 @@ static void to_file_units(const work *w, const contour_stack *s, stack_surface *
 
 static void work_free(work *w) {
   for (int i = 0; i < w->nb; i++) {
+    if (w->b[i].seen != w->b[i].hi.pt) free(w->b[i].seen);
     bridge_free(&w->b[i].lo);
     bridge_free(&w->b[i].hi);
     tiling_free(&w->b[i].t);
@@ -519,6 +655,32 @@ static void work_free(work *w) {
   free(w->js);
   free(w->up);
   free(w->down);
+}
+
+int stack_parse_join(const char *opt, const char *val, match_rule *rule, double *dist, char *err, size_t errlen) {
+  static const match_rule rules[] = {MATCH_OVERLAP, MATCH_SINGLE, MATCH_TOUCH, MATCH_NEAREST};
+  char shown[300];
+  int w = args_word(opt, val, "overlap|single|touch|nearest", err, errlen);
+  if (w >= 0) {
+    *rule = rules[w];
+    *dist = INFINITY;
+    return 0;
+  }
+  if (args_real(opt, val, "a distance", 0, 1e300, dist, err, errlen) == 0) {
+    *rule = MATCH_NEAREST;
+    return 0;
+  }
+  args_show(val, shown, sizeof shown);
+  snprintf(err, errlen, "%s takes overlap, single, touch, nearest or a distance from 0 to 1e300 (%s)", opt, shown);
+  return -1;
+}
+
+/* The rule's name for the report, and the option for notes. */
+static void rule_names(const stack_options *o, char *rule, size_t rl, char *opt, size_t ol) {
+  static const char *const names[] = {"single", "overlap", "touch", "nearest"};
+  if (o->join == MATCH_NEAREST && isfinite(o->join_dist)) args_fmt_double(o->join_dist, rule, rl);
+  else snprintf(rule, rl, "%s", names[o->join]);
+  snprintf(opt, ol, "--join %s", rule);
 }
 
 int stack_tile(const contour_stack *s, const char *name, const stack_options *o,
@@ -541,6 +703,9 @@ int stack_tile(const contour_stack *s, const char *name, const stack_options *o,
   atomic_init(&w.tiled, 0);
   w.sl = &sl, w.o = o, w.name = name, w.threads = threads;
   w.deg = o->kind == COST_SPAN ? 1 : 2;
+  w.mo.rule = o->join;
+  w.mo.dist = o->join == MATCH_NEAREST && isfinite(o->join_dist) ? geom_ldexp(o->join_dist, -sl.scale) : INFINITY;
+  w.mo.gaps = o->notes != NULL;
   w.js = xcalloc((size_t)ns, sizeof *w.js);
   pool_run(threads, ns - 1, NULL, match_job, &w);
   plan_bands(&w);
@@ -554,6 +719,8 @@ int stack_tile(const contour_stack *s, const char *name, const stack_options *o,
   }
   int rc = 0;
   stack_surface *ss = xcalloc(1, sizeof *ss);
+  rule_names(o, ss->rule, sizeof ss->rule, w.joinopt, sizeof w.joinopt);
+  count_joins(&w, ss);
   if (o->rc) {
     pool_run(threads, w.nb, NULL, bridge_job, &w);
     rc = first_error(&w, err, errlen);
@@ -567,6 +734,10 @@ int stack_tile(const contour_stack *s, const char *name, const stack_options *o,
   if (rc == 0) {
     print_notes(&w);
     assemble(&w, ss);
+    if (o->notes && ss->me.nt == 0)
+      fprintf(o->notes, "%s: %s: the mesh is empty: no contour is joined to one on a neighbouring slice%s%s\n",
+              o->prefix, name, o->join != MATCH_NEAREST ? "; --join nearest joins contours that lie apart" : "",
+              o->caps ? "" : "; --caps closes each contour on its own");
     finish f = {ss, 0, 0};
     pool_run(threads, 2, NULL, finish_job, &f);
     to_file_units(&w, s, ss, &f);
@@ -595,6 +766,7 @@ void stack_totals(const stack_surface *ss, double *cost, double *area, double *v
   *cost = ss->cost, *area = ss->area, *volume = ss->volume;
 }
 const manifold_component *stack_components(const stack_surface *ss) { return ss->comp; }
+const stack_joins *stack_join_counts(const stack_surface *ss) { return &ss->joins; }
 
 void stack_free(stack_surface *ss) {
   if (!ss) return;

@@ -4,7 +4,8 @@
  * The pipeline (design note shared/design/contours.md, section 2; each step
  * in its own file):
  *   slices.c   canonical slices, nesting forests, holes by depth
- *   match.c    correspondence between neighbouring slices: junctions
+ *   match.c    correspondence between neighbouring slices: junctions, by
+ *              the joining rule (gap.c: how far apart contours lie)
  *   bridge.c   n-m junctions: composite contours joined by bridges
  *   tiling.h   every band: the exact minimum-cost tiling (Fuchs, Kedem,
  *              Uselton 1977), or the paper's parallel algorithm (run.h)
@@ -40,6 +41,7 @@
 #include <stdio.h>
 
 #include "contour.h"
+#include "match.h"
 #include "mesh.h"
 #include "run.h"
 #include "manifold.h"
@@ -54,7 +56,20 @@ typedef struct {
   const char *prefix;  /* of the notes: "tile" */
   void (*progress)(void *ud, int done, int total);   /* after each band tiled (any thread), or NULL */
   void *progress_ud;
+  match_rule join;     /* which contours of neighbouring slices are joined (match.h);
+                          0 is the default, MATCH_SINGLE */
+  double join_dist;    /* MATCH_NEAREST: the largest gap joined, in the file's units;
+                          INFINITY: any */
 } stack_options;
+
+/* The joins of a surface (notes on `notes`, counts in the report's joins row). */
+typedef struct {
+  const char *rule;    /* "overlap", "touch", "single", "nearest" or the distance */
+  int apart;           /* joins made without overlap (single or nearest) */
+  int unjoined;        /* contour ends left without a partner though the
+                          neighbouring slice has candidates for them */
+  int dropped;         /* joins not made: no bridges could join their junction */
+} stack_joins;
 
 typedef enum { STACK_BAND, STACK_CAP } stack_row_kind;
 
@@ -83,9 +98,14 @@ typedef struct stack_surface stack_surface;
 
 /* Tile the stack s, read from the file `name` (for messages).  Returns 0
  * and *out; -1 for input it refuses, with "NAME:LINE: what (value)" in err
- * (contours crossing on a slice, a bridge that cannot be made); -2 when the
- * parallel run failed, with its message in err.  Nothing is left allocated
- * on failure. */
+ * (contours crossing on a slice, a bridge that cannot be made); -2 when
+ * the parallel run failed, with its message in err.  Nothing is left allocated on failure.
+ *
+ * Notes (on o->notes, each one line "PREFIX: NAME:LINE: ..."): joins made
+ * without overlap (a run of single joins in one line), joins dropped for
+ * want of a bridge, each contour left without a partner on a neighbouring
+ * slice that has candidates for it (its nearest there and the gap, both
+ * ends in one line), an empty mesh; then the bands' and caps' notes. */
 int stack_tile(const contour_stack *s, const char *name, const stack_options *o,
                stack_surface **out, char *err, size_t errlen);
 
@@ -104,6 +124,13 @@ int stack_ncomponents(const stack_surface *ss);
  * each at the working scale, then in the file's units (see Scale above). */
 void stack_totals(const stack_surface *ss, double *cost, double *area, double *volume);
 const manifold_component *stack_components(const stack_surface *ss);
+const stack_joins *stack_join_counts(const stack_surface *ss);
+
+/* --join's value (OPT, for the message): overlap, single, touch, nearest or
+ * a distance >= 0 (MATCH_NEAREST within it; *dist INFINITY for the words).
+ * 0, or -1 with "OPT takes overlap, single, touch, nearest or a distance
+ * from 0 to 1e300 (VALUE)" in err. */
+int stack_parse_join(const char *opt, const char *val, match_rule *rule, double *dist, char *err, size_t errlen);
 
 void stack_free(stack_surface *ss);
 
