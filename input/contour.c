@@ -438,12 +438,12 @@ int contour_parse_flags(const char *text, size_t len, const char *name, int flag
     fail(r, line, "no contours in the file (only comments or blank lines)");
     goto done;
   }
-  if (ncs < 2) {
+  if (ncs < 2 && !(flags & CONTOUR_ONE_SLICE)) {
     fail(r, cs[0].line, "only one contour; tiling needs at least 2 (z=%.17g)", cs[0].z);
     goto done;
   }
   int nslices = group_slices(r, cs, ncs);
-  if (nslices < 2) {
+  if (nslices < 2 && !(flags & CONTOUR_ONE_SLICE)) {
     fail(r, cs[0].line, "all %d contours lie on one slice; tiling needs at least 2 (z=%.17g)",
          ncs, cs[0].z);
     goto done;

@@ -30,9 +30,10 @@ typedef struct {
 } contour;
 
 typedef struct {
-  int n;          /* contours, in file order (>= 2) */
+  int n;          /* contours, in file order (>= 2; >= 1 with CONTOUR_ONE_SLICE) */
   contour *c;
-  int nslices;    /* slices (>= 2); contours of one slice share their z exactly */
+  int nslices;    /* slices (>= 2; >= 1 with CONTOUR_ONE_SLICE); contours of one slice
+                     share their z exactly */
 } contour_stack;
 
 enum { CONTOUR_MAX_LINE = 4096 };        /* longer lines are rejected */
@@ -59,8 +60,11 @@ int contour_parse(const char *text, size_t len, const char *name,
  * contour of the slice whose `line` is the line of its first point in the
  * file, and a note "keyhole: the contour split into K loops at (X Y), a
  * channel of length L dropped" names its header line.  The *_flags readers
- * take CONTOUR_NO_KEYHOLES to refuse those too; the others repair them. */
-enum { CONTOUR_NO_KEYHOLES = 1 };
+ * take CONTOUR_NO_KEYHOLES to refuse those too; the others repair them.
+ * CONTOUR_ONE_SLICE accepts a stack of one slice (one contour or more):
+ * for ./tile, which makes it a slab of a given thickness (surface/stack.h)
+ * or refuses it itself, naming the option; the others refuse it. */
+enum { CONTOUR_NO_KEYHOLES = 1, CONTOUR_ONE_SLICE = 2 };
 int contour_read_flags(const char *path, int flags, contour_stack *out, FILE *notes,
                        const char *prefix, char *err, size_t errlen);
 int contour_parse_flags(const char *text, size_t len, const char *name, int flags,

@@ -894,8 +894,8 @@ int rtstruct_roi_stack(const rtstruct *s, int ri, int flags, contour_stack *out,
   char *held = NULL, e2[1024];
   size_t heldlen = 0;
   FILE *hold = notes ? open_memstream(&held, &heldlen) : NULL;
-  int rc = contour_parse_flags(text_, len, sentinel, flags & RTSTRUCT_NO_KEYHOLES ? CONTOUR_NO_KEYHOLES : 0, out,
-                               hold, prefix, e2, sizeof e2);
+  int cflags = (flags & RTSTRUCT_NO_KEYHOLES ? CONTOUR_NO_KEYHOLES : 0) | (flags & RTSTRUCT_ONE_SLICE ? CONTOUR_ONE_SLICE : 0);
+  int rc = contour_parse_flags(text_, len, sentinel, cflags, out, hold, prefix, e2, sizeof e2);
   if (rc == 0 && (flags & RTSTRUCT_PAIRS) && contour_stack_pairs(out, sentinel, e2, sizeof e2) != 0) {
     contour_stack_free(out);
     rc = -1;

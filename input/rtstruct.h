@@ -95,8 +95,9 @@ char *rtstruct_roi_text(const rtstruct *s, int roi, size_t *len);
  * that it tiles contour by contour): 0, or -1 with the refusal, rewritten to
  * name the file, ROI, contour item and byte.  Notes go to `notes` as
  * contour_read's do, rewritten alike ("contour item K, point J" for a line),
- * and only when the stack is accepted. */
-enum { RTSTRUCT_PAIRS = 1, RTSTRUCT_NO_KEYHOLES = 2 };
+ * and only when the stack is accepted.  RTSTRUCT_ONE_SLICE accepts an ROI
+ * of one slice (contour.h's CONTOUR_ONE_SLICE). */
+enum { RTSTRUCT_PAIRS = 1, RTSTRUCT_NO_KEYHOLES = 2, RTSTRUCT_ONE_SLICE = 4 };
 int rtstruct_roi_stack(const rtstruct *s, int roi, int flags, contour_stack *out, FILE *notes,
                        const char *prefix, char *err, size_t errlen);
 

@@ -35,8 +35,8 @@ static const char lines_usage[] =
     "[--labels A,B,...] [--title T] [--xlabel T] [--ylabel T] [--yzero] -o OUT.svg   "
     "(plot --help: every option)\n";
 static const char surface_usage[] =
-    "usage: plot surface STACK|FILE.dcm --roi NAME [--cost area|span] [--caps] [--join RULE] [--title T] "
-    "-o OUT.svg   "
+    "usage: plot surface STACK|FILE.dcm --roi NAME [--cost area|span] [--caps] [--join RULE] [--thickness T] "
+    "[--title T] -o OUT.svg   "
     "(plot --help: every option)\n";
 static const char any_usage[] =
     "usage: plot lines CSV ... -o OUT.svg | plot surface STACK ... -o OUT.svg | "
@@ -54,7 +54,7 @@ static void help(const char *name) {
   printf("usage: %s lines CSV -x COL -y COL[,COL...] [--series COL[,COL...]] [--where COL=VALUE]...\n"
         "            [--labels A,B,...] [--title T] [--xlabel T] [--ylabel T] [--yzero] -o OUT.svg\n"
         "       %s surface STACK|FILE.dcm [--roi NAME|NUMBER] [--cost area|span] [--caps] [--join RULE]\n"
-        "            [--title T] -o OUT.svg\n"
+        "            [--thickness T] [--title T] -o OUT.svg\n"
         "       %s claims MAP.csv [--title T] -o OUT.svg\n"
         "\n"
         "%s -- tilesim's CSV as SVG line charts, a contour stack with its surface, and\n"
@@ -82,6 +82,7 @@ static void help(const char *name) {
         "  --join RULE        which contours of neighbouring slices are joined: overlap,\n"
         "                     touch, single (default), nearest or a distance, as tile\n"
         "                     --join does\n"
+        "  --thickness T      a stack of one slice becomes a closed slab T thick\n"
         "  --title T          the title\n"
         "  -o OUT.svg         the picture\n"
         "claims: a claims map (bench --claims-map) as a grid: a panel per configuration\n"
@@ -300,7 +301,7 @@ static int surface(int argc, char **argv) {
   cost_kind kind = COST_AREA;
   int caps = 0;
   match_rule join = MATCH_SINGLE;
-  double join_dist = INFINITY;
+  double join_dist = INFINITY, thickness = 0;
   char err[400];
   if (!in || !in[0] || (in[0] == '-' && in[1])) return usage(surface_usage, "surface needs a contour stack first", in);
   for (int i = 3; i < argc; i++) {
@@ -308,12 +309,13 @@ static int surface(int argc, char **argv) {
     int bad = 0;
     if (strcmp(a, "--caps") == 0) { caps = 1; continue; }
     if (strcmp(a, "-o") != 0 && strcmp(a, "--title") != 0 && strcmp(a, "--cost") != 0 && strcmp(a, "--roi") != 0 &&
-        strcmp(a, "--join") != 0)
+        strcmp(a, "--join") != 0 && strcmp(a, "--thickness") != 0)
       return usage(surface_usage, a[0] == '-' ? "unknown option" : "unexpected argument", a);
     if (!v) return usage(surface_usage, "an option needs a value", a);
     if (strcmp(a, "-o") == 0) bad = args_name(a, v, "a file name", 0, err, sizeof err), out = v;
     else if (strcmp(a, "--title") == 0) title = v;
     else if (strcmp(a, "--join") == 0) bad = stack_parse_join(a, v, &join, &join_dist, err, sizeof err) != 0;
+    else if (strcmp(a, "--thickness") == 0) bad = stack_parse_thickness(a, v, &thickness, err, sizeof err) != 0;
     else if (strcmp(a, "--roi") == 0) {
       if (!v[0]) bad = 1, snprintf(err, sizeof err, "--roi takes an ROI's name or number ('')");
       roikey = v;
@@ -337,7 +339,7 @@ static int surface(int argc, char **argv) {
       return 1;
     }
     if ((roi = rtstruct_find(&rs, roikey, err, sizeof err)) < 0 || rtstruct_roi_check(&rs, roi, err, sizeof err) != 0 ||
-        rtstruct_roi_stack(&rs, roi, 0, &s, stderr, "plot", err, sizeof err) != 0) {
+        rtstruct_roi_stack(&rs, roi, RTSTRUCT_ONE_SLICE, &s, stderr, "plot", err, sizeof err) != 0) {
       fprintf(stderr, "plot: %s\n", err);
       rtstruct_free(&rs);
       return 1;
@@ -348,7 +350,7 @@ static int surface(int argc, char **argv) {
     snprintf(title_roi, sizeof title_roi, "%s: ROI %d '%s'", in, rs.roi[roi].number, rs.roi[roi].name);
   } else if (roikey) {
     return usage(surface_usage, "--roi is for a DICOM RT structure set", in);
-  } else if (contour_read(in, &s, NULL, "plot", err, sizeof err) != 0) {
+  } else if (contour_read_flags(in, CONTOUR_ONE_SLICE, &s, NULL, "plot", err, sizeof err) != 0) {
     fprintf(stderr, "plot: %s\n", err);
     return 1;
   } else
@@ -361,7 +363,7 @@ static int surface(int argc, char **argv) {
   size_t heldlen = 0;
   FILE *notes = open_memstream(&held, &heldlen);
   stack_options so = {kind, caps, 0, pool_cores(), NULL, notes ? notes : stderr, "plot", NULL, NULL,
-                      join, join_dist};
+                      join, join_dist, thickness};
   stack_surface *ss;
   int bad = stack_tile(&s, name, &so, &ss, err, sizeof err) != 0;
   if (notes) fclose(notes);

@@ -39,13 +39,13 @@
 /* The usage hint after a bad-usage message: one line. */
 static const char usage_line[] =
     "usage: tile STACK|FILE.dcm [-o OUT.obj|OUT.ply|OUT.stl] [--cost area|span] [--caps] [--join RULE] "
-    "[-j N] [-q] [--procs P [MACHINE OPTIONS] [--trace FILE]]   (tile --help: every option)\n";
+    "[--thickness T] [-j N] [-q] [--procs P [MACHINE OPTIONS] [--trace FILE]]   (tile --help: every option)\n";
 
 static void usage(FILE *f) {
   fputs(usage_line, f);
   if (f != stdout) return;
   fputs("       tile STACK [-o OUT.obj|OUT.ply|OUT.stl] [--cost area|span] [--caps]\n"
-        "            [--cap-style flat|apex] [--join RULE] [-j N] [-q]\n"
+        "            [--cap-style flat|apex] [--join RULE] [--thickness T] [-j N] [-q]\n"
         "            [--procs P [--backend sim|threads] [--alloc half|size] [--min-diag d]\n"
         "             [--machine NAME] [--net ideal|bus|loggp] [--m S] [--c S]\n"
         "             [--topology NAME] [--place NAME] [--print-place]\n"
@@ -82,6 +82,9 @@ static void usage(FILE *f) {
         "                     without a partner though the next slice has candidates\n"
         "                     (its nearest and the gap); the report's joins row counts\n"
         "                     them\n"
+        "  --thickness T      a stack (an ROI) of one slice becomes a closed slab T thick,\n"
+        "                     half above and half below its plane (volume: area x T);\n"
+        "                     without it one slice is refused.  Other stacks ignore it\n"
         "  -j N               tile the bands on N threads (default: the machine's cores);\n"
         "                     the output is the same on any N\n"
         "  --no-keyholes      refuse a contour that touches itself instead of splitting\n"
@@ -115,7 +118,7 @@ static void usage(FILE *f) {
         "hops_per_msg,hop_bytes,max_link_msgs,max_link_bytes,link_wait: the band's\n"
         "messages over the network, links crossed per message, bytes x links, the\n"
         "busiest link's messages and bytes, seconds spent waiting for links.  Then with\n"
-        "--caps a row 'cap' per cap; a row 'joins' (junction: the --join\n"
+        "--caps (or one slice) a row 'cap' per cap; a row 'joins' (junction: the --join\n"
         "rule; m: joins made without overlap; n: contour ends left without a partner\n"
         "though the neighbouring slice has candidates; bridges: joins dropped for want\n"
         "of a bridge); a row 'mesh' (vertices, triangles, area, volume, Euler\n"
@@ -141,6 +144,7 @@ typedef struct {
   size_t heldlen;
   match_rule join;    /* --join */
   double join_dist;
+  double thickness;   /* --thickness */
 } tile_opts;
 
 /* Tile the stack s (named `name` in messages): the report on stdout (the
@@ -176,7 +180,7 @@ static int tile_stack(void *ud, const contour_stack *s, const char *name, const 
   FILE *notes = o->quiet ? NULL : open_memstream(&held, &heldlen);
   atomicfile tf = {NULL, NULL, NULL};
   stack_options so = {o->rc.kind, o->caps, o->apex, o->threads, o->parallel ? &o->rc : NULL, notes, "tile",
-                      NULL, NULL, o->join, o->join_dist};
+                      NULL, NULL, o->join, o->join_dist, o->thickness};
   const char *tpath = o->rc.mc.trace;
   if (o->parallel && tpath) {
     /* The trace's size first, by the same run writing none (the simulator
@@ -286,7 +290,7 @@ static int tile_main(int argc, char **argv) {
       if (!v) {   /* the last argument: an option that needs a value, or none we know */
         run_config scratch = o.rc;
         int known = strcmp(a, "-o") == 0 || strcmp(a, "--cost") == 0 || strcmp(a, "-j") == 0 ||
-                    strcmp(a, "--join") == 0 ||
+                    strcmp(a, "--join") == 0 || strcmp(a, "--thickness") == 0 ||
                     strcmp(a, "--cap-style") == 0 || run_option(&scratch, a, "", err, sizeof err) != 0;
         args_show(a, err, sizeof err);
         return bad_usage(known ? "%s needs a value" : "unknown option (%s)", err);
@@ -297,6 +301,8 @@ static int tile_main(int argc, char **argv) {
         o.threads = (int)j;
       } else if (strcmp(a, "--join") == 0) {
         if (stack_parse_join(a, v, &o.join, &o.join_dist, err, sizeof err) != 0) return bad_usage("%s", err);
+      } else if (strcmp(a, "--thickness") == 0) {
+        if (stack_parse_thickness(a, v, &o.thickness, err, sizeof err) != 0) return bad_usage("%s", err);
       } else if (strcmp(a, "--cap-style") == 0) {
         if ((o.apex = args_word(a, v, "flat|apex", err, sizeof err)) < 0) return bad_usage("%s", err);
         style_given = 1;
@@ -363,7 +369,8 @@ static int tile_main(int argc, char **argv) {
 
   /* A DICOM RT structure set (by its content): tile_dicom.c. */
   if (dicom_sniff_file(in)) {
-    tile_dicom_env env = {tile_stack, &o, bad_usage, out, o.quiet, tpath != NULL, 0 /* as below */, no_keyholes};
+    tile_dicom_env env = {tile_stack, &o, bad_usage, out, o.quiet, tpath != NULL, 0 /* as below */, no_keyholes,
+                          o.thickness};
     return tile_dicom_main(&dopt, in, &env);
   }
   if (tile_dicom_given(&dopt)) {
@@ -383,7 +390,9 @@ static int tile_main(int argc, char **argv) {
   size_t heldlen = 0;
   FILE *notes = o.quiet ? NULL : open_memstream(&held, &heldlen);
   const char *name = strcmp(in, "-") == 0 ? "<stdin>" : in;
-  int bad = contour_read_flags(in, no_keyholes ? CONTOUR_NO_KEYHOLES : 0, &s, notes, "tile", err, sizeof err) != 0;
+  /* One slice is read, and refused by stack_tile without --thickness. */
+  int bad = contour_read_flags(in, (no_keyholes ? CONTOUR_NO_KEYHOLES : 0) | CONTOUR_ONE_SLICE, &s, notes, "tile", err,
+                               sizeof err) != 0;
   if (notes) fclose(notes);
   if (bad) {
     fprintf(stderr, "tile: %s\n", err);

@@ -18,6 +18,7 @@
 #include "dicom.h"
 #include "meshio.h"
 #include "rtstruct.h"
+#include "stack.h"
 #include "xmem.h"
 
 int tile_dicom_is_dir(const char *path) {
@@ -281,7 +282,19 @@ int tile_dicom_main(const tile_dicom_opts *o, const char *in, const tile_dicom_e
     const rtstruct_roi *r = &s.roi[pick[i]];
     int bad = rtstruct_roi_check(&s, pick[i], err, sizeof err);
     if (!bad && tile)
-      bad = rtstruct_roi_stack(&s, pick[i], (env->pairs ? RTSTRUCT_PAIRS : 0) | (env->no_keyholes ? RTSTRUCT_NO_KEYHOLES : 0), &st[kept], notes, "tile", err, sizeof err);
+      bad = rtstruct_roi_stack(&s, pick[i], (env->pairs ? RTSTRUCT_PAIRS : 0) | (env->no_keyholes ? RTSTRUCT_NO_KEYHOLES : 0) |
+                               RTSTRUCT_ONE_SLICE, &st[kept], notes, "tile", err, sizeof err);
+    if (!bad && tile) {   /* one slice: only with --thickness, said as the reader says its refusals */
+      char sname[700], e2[1024];
+      snprintf(sname, sizeof sname, "%s: ROI %d '%s' as a stack", s.name, r->number, r->name);
+      if (stack_check_slices(&st[kept], sname, env->thickness, e2, sizeof e2) != 0) {
+        char *m = rtstruct_rewrite(&s, pick[i], sname, e2);
+        snprintf(err, sizeof err, "%s", m);
+        free(m);
+        contour_stack_free(&st[kept]);
+        bad = 1;
+      }
+    }
     if (bad) {
       if (!all) {
         fprintf(stderr, "tile: %s\n", err);

@@ -47,6 +47,7 @@ typedef struct {
   int trace;           /* --trace given: one ROI only */
   int pairs;           /* check stacks with contour_stack_pairs, as tile.c does */
   int no_keyholes;     /* --no-keyholes: refuse keyhole contours (contour.h) */
+  double thickness;    /* --thickness: an ROI of one slice is tiled as a slab; 0 refuses it */
 } tile_dicom_env;
 
 /* 1 if path names a directory for -o/--contours: ends in '/' or is one. */

@@ -82,14 +82,15 @@ static void add(end_cap *c, int a, int b, int d) {
   c->ntri++;
 }
 
-/* The slab of an isolated region (ends.h). */
-static void slab(const slices *sl, const end_region *r, end_cap *out) {
+/* The slab of an isolated region (ends.h): its contours copied h above and
+ * below. */
+static void slab(const slices *sl, const end_region *r, double h, end_cap *out) {
   int cs[1 + 64], nc = 1 + r->nholes, pts = 0;
   int *list = nc <= 65 ? cs : xmallocarray((size_t)nc, sizeof *list);
   list[0] = r->outer;
   for (int k = 0; k < r->nholes; k++) list[k + 1] = r->holes[k];
   for (int k = 0; k < nc; k++) pts += sl->c[list[k]].n;
-  double z = sl->z[r->slice], h = half_gap(sl, r->slice, 1) / 3;
+  double z = sl->z[r->slice];
   out->nnew = 2 * pts;
   out->at = xmallocarray((size_t)out->nnew, sizeof *out->at);
   int (*flat)[3];
@@ -134,10 +135,14 @@ static void slab(const slices *sl, const end_region *r, end_cap *out) {
   if (list != cs) free(list);
 }
 
-void ends_cap(const slices *sl, const end_region *r, int apex, end_cap *out) {
+void ends_cap(const slices *sl, const end_region *r, int apex, double half, end_cap *out) {
   memset(out, 0, sizeof *out);
   const slice_contour *O = &sl->c[r->outer];
   vec2 at;
+  if (sl->nslices == 1) {   /* a stack of one slice: a slab 2 half thick */
+    if (r->up) slab(sl, r, half, out);
+    return;
+  }
   if ((apex || r->isolated) && r->nholes == 0 && apex_point(O->pt, O->n, &at)) {
     double h = half_gap(sl, r->slice, r->up);
     out->nnew = 1;
@@ -154,7 +159,7 @@ void ends_cap(const slices *sl, const end_region *r, int apex, end_cap *out) {
     return;
   }
   if (r->isolated) {   /* the slab, all of it with the top region */
-    if (r->up) slab(sl, r, out);
+    if (r->up) slab(sl, r, half_gap(sl, r->slice, 1) / 3, out);
     return;
   }
   out->ntri = flatcap_region(sl, r->outer, r->holes, r->nholes, &out->tri);

@@ -49,8 +49,10 @@ typedef struct {
  * the slice spacing above and below (the lens's volume, A spacing / 3),
  * joined to the copies by strips of two triangles an edge, and the copies
  * capped flat; the whole slab goes with the top region, the bottom one gets
- * no triangles.  Thread-safe. */
-void ends_cap(const slices *sl, const end_region *r, int apex, end_cap *out);
+ * no triangles.  A stack of one slice has no spacing: every region becomes
+ * such a slab, its copies `half` above and below (the slab's volume: the
+ * region's area times 2 half).  Thread-safe. */
+void ends_cap(const slices *sl, const end_region *r, int apex, double half, end_cap *out);
 void ends_cap_free(end_cap *c);
 
 #endif

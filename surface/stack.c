@@ -73,6 +73,7 @@ typedef struct {
   atomic_int tiled;    /* bands tiled so far, for o->progress */
   int deg;             /* the cost's degree: 1 span (a length), 2 area */
   match_opts mo;       /* the joining rule, at the working scale */
+  double half;         /* a stack of one slice: half the slab's thickness (working scale) */
   char joinopt[48];    /* the --join option that made nearest joins, for notes */
 } work;
 
@@ -258,7 +259,7 @@ static void mesh_job(void *ud, int i) {
 
 static void cap_job(void *ud, int i) {
   work *w = ud;
-  ends_cap(w->sl, &w->ends[i], w->o->apex, &w->caps[i]);
+  ends_cap(w->sl, &w->ends[i], w->o->apex, w->half, &w->caps[i]);
 }
 
 static void add_tri(mesh *me, int a, int b, int c) {
@@ -502,7 +503,7 @@ static void print_notes(const work *w) {
               b->pinched == 1 ? "the cheapest path that does not is used" : "too large to replace; kept");
   }
   for (int i = 0; i < w->nends; i++)
-    if (w->ends[i].isolated && w->caps[i].nnew > 1)
+    if (sl->nslices > 1 && w->ends[i].isolated && w->caps[i].nnew > 1)
       fprintf(o->notes,
               "%s: %s:%d: the contour is alone (no partner on either slice next to it) and "
               "has no point to cap it from: a slab a third of a slice thick\n",
@@ -657,6 +658,19 @@ static void work_free(work *w) {
   free(w->down);
 }
 
+int stack_check_slices(const contour_stack *s, const char *name, double thickness, char *err, size_t errlen) {
+  if (s->nslices >= 2 || thickness > 0) return 0;
+  int first = 0;
+  for (int i = 1; i < s->n; i++)
+    if (s->c[i].line < s->c[first].line) first = i;
+  char what[64];
+  if (s->n == 1) snprintf(what, sizeof what, "the only contour lies");
+  else snprintf(what, sizeof what, "all %d contours lie", s->n);
+  snprintf(err, errlen, "%s:%d: %s on one slice (z=%.17g): a surface needs two slices, or --thickness T "
+           "to make this one a slab T thick", name, s->c[first].line, what, s->c[first].z);
+  return -1;
+}
+
 int stack_parse_join(const char *opt, const char *val, match_rule *rule, double *dist, char *err, size_t errlen) {
   static const match_rule rules[] = {MATCH_OVERLAP, MATCH_SINGLE, MATCH_TOUCH, MATCH_NEAREST};
   char shown[300];
@@ -675,6 +689,18 @@ int stack_parse_join(const char *opt, const char *val, match_rule *rule, double 
   return -1;
 }
 
+int stack_parse_thickness(const char *opt, const char *val, double *t, char *err, size_t errlen) {
+  double v;
+  if (args_real(opt, val, "a length", 0, 1e300, &v, err, errlen) == 0 && v > 0) {
+    *t = v;
+    return 0;
+  }
+  char shown[300];
+  args_show(val, shown, sizeof shown);
+  snprintf(err, errlen, "%s takes a length above 0, at most 1e300 (%s)", opt, shown);
+  return -1;
+}
+
 /* The rule's name for the report, and the option for notes. */
 static void rule_names(const stack_options *o, char *rule, size_t rl, char *opt, size_t ol) {
   static const char *const names[] = {"single", "overlap", "touch", "nearest"};
@@ -688,9 +714,16 @@ int stack_tile(const contour_stack *s, const char *name, const stack_options *o,
   *out = NULL;
   int threads = o->threads < 1 ? 1 : o->threads;
   kernel_simd(-1);   /* the kernel's choice made once, before the threads share it */
-  /* The whole stack at one scale, its largest coordinate in [1/2, 1) (stack.h). */
+  if (stack_check_slices(s, name, o->thickness, err, errlen) != 0) return -1;
+  /* The whole stack at one scale, its largest coordinate in [1/2, 1) (stack.h);
+   * a slab's faces too. */
+  int scale = slices_scale_exp(s);
+  if (s->nslices == 1) {
+    int e = geom_scale_exp(fabs(s->c[0].z) + o->thickness / 2);
+    if (e > scale) scale = e;
+  }
   slices sl;
-  if (slices_build_at(s, name, slices_scale_exp(s), threads, &sl, err, errlen) != 0) return -1;
+  if (slices_build_at(s, name, scale, threads, &sl, err, errlen) != 0) return -1;
   int ns = sl.nslices;
   if (o->notes && sl.ncontours > ns && sl.reoriented)
     fprintf(o->notes,
@@ -706,6 +739,7 @@ int stack_tile(const contour_stack *s, const char *name, const stack_options *o,
   w.mo.rule = o->join;
   w.mo.dist = o->join == MATCH_NEAREST && isfinite(o->join_dist) ? geom_ldexp(o->join_dist, -sl.scale) : INFINITY;
   w.mo.gaps = o->notes != NULL;
+  w.half = ns == 1 ? geom_ldexp(o->thickness / 2, -sl.scale) : 0;
   w.js = xcalloc((size_t)ns, sizeof *w.js);
   pool_run(threads, ns - 1, NULL, match_job, &w);
   plan_bands(&w);
@@ -713,7 +747,7 @@ int stack_tile(const contour_stack *s, const char *name, const stack_options *o,
   for (int c = 0; c < sl.ncontours; c++)
     for (int k = 0; k < sl.c[c].n; k++)
       w.verts[sl.c[c].base + k] = (vec3){sl.c[c].pt[k].x, sl.c[c].pt[k].y, sl.z[sl.c[c].slice]};
-  if (o->caps) {
+  if (o->caps || ns == 1) {   /* one slice: the slab is closed */
     w.nends = ends_plan(&sl, w.up, w.down, &w.ends);
     w.caps = xcalloc((size_t)w.nends + 1, sizeof *w.caps);
   }

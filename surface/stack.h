@@ -60,6 +60,8 @@ typedef struct {
                           0 is the default, MATCH_SINGLE */
   double join_dist;    /* MATCH_NEAREST: the largest gap joined, in the file's units;
                           INFINITY: any */
+  double thickness;    /* a stack of one slice: > 0 makes it a slab this thick, closed
+                          (half above, half below); 0 refuses it */
 } stack_options;
 
 /* The joins of a surface (notes on `notes`, counts in the report's joins row). */
@@ -98,8 +100,9 @@ typedef struct stack_surface stack_surface;
 
 /* Tile the stack s, read from the file `name` (for messages).  Returns 0
  * and *out; -1 for input it refuses, with "NAME:LINE: what (value)" in err
- * (contours crossing on a slice, a bridge that cannot be made); -2 when
- * the parallel run failed, with its message in err.  Nothing is left allocated on failure.
+ * (contours crossing on a slice, a bridge that cannot be made, one slice
+ * without a thickness); -2 when the parallel run failed, with its message
+ * in err.  Nothing is left allocated on failure.
  *
  * Notes (on o->notes, each one line "PREFIX: NAME:LINE: ..."): joins made
  * without overlap (a run of single joins in one line), joins dropped for
@@ -131,6 +134,15 @@ const stack_joins *stack_join_counts(const stack_surface *ss);
  * 0, or -1 with "OPT takes overlap, single, touch, nearest or a distance
  * from 0 to 1e300 (VALUE)" in err. */
 int stack_parse_join(const char *opt, const char *val, match_rule *rule, double *dist, char *err, size_t errlen);
+
+/* --thickness's value: a length > 0.  0, or -1 with "OPT takes a length
+ * above 0, at most 1e300 (VALUE)" in err. */
+int stack_parse_thickness(const char *opt, const char *val, double *t, char *err, size_t errlen);
+
+/* The refusal of a stack of one slice without a thickness, in err (as
+ * stack_tile gives it): 0 if s has two slices or more, or thickness > 0;
+ * else -1.  For callers that refuse stacks before tiling any. */
+int stack_check_slices(const contour_stack *s, const char *name, double thickness, char *err, size_t errlen);
 
 void stack_free(stack_surface *ss);
 

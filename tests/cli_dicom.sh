@@ -143,7 +143,7 @@ done
 grep -q "^tile: $D/dicompyler_rtss.dcm: byte [0-9]*: ROI 6 'Lt Lung', contour item [0-9]*: " "$T/err" && ! grep -q 'as a stack\|line [0-9]' "$T/err" &&
   ok || bad "Lt Lung's notes: $(cat "$T/err")"
 # rt.dcm's ROI is one slice (an outer contour and its hole).
-refused oneslice $D/rtutils_rt.dcm "byte 1810: ROI 1 'ROI-1', contour item 1: all 2 contours lie on one slice; tiling needs at least 2 (z=60)" --roi 1
+refused oneslice $D/rtutils_rt.dcm "byte 1810: ROI 1 'ROI-1', contour item 1: all 2 contours lie on one slice (z=60): a surface needs two slices, or --thickness T to make this one a slab T thick" --roi 1
 
 refused bigendian $F/bigendian.dcm 'byte 132: transfer syntax Explicit VR Big Endian is not supported (1.2.840.10008.1.2.2)' --roi 7
 refused deflated $F/deflated.dcm 'byte 132: transfer syntax Deflated Explicit VR Little Endian is not supported (1.2.840.10008.1.2.1.99)' --roi 7
@@ -158,7 +158,7 @@ refused nonfinite $F/nonfinite.dcm "ROI 7 'Prostate', contour item 1, point 4: x
 refused triplets $F/triplets.dcm "ROI 7 'Prostate', contour item 1: ContourData holds 7 values, not x y z triplets" --roi 7
 refused oblique $F/oblique.dcm "ROI 7 'Prostate', contour item 2: not in an axial plane (z from 5 to 7)" --roi 7
 refused twoperslice $F/twoperslice.dcm "byte 602: ROI 7 'Prostate', contour item 2: contour overlaps the contour at contour item 1 on slice z=5 (0 0)" --roi 7
-refused onecontour $F/onecontour.dcm "ROI 7 'Prostate', contour item 1: only one contour; tiling needs at least 2" --roi 7
+refused onecontour $F/onecontour.dcm "ROI 7 'Prostate', contour item 1: the only contour lies on one slice (z=5): a surface needs two slices, or --thickness T" --roi 7
 refused unknown $D/dicompyler_rtss.dcm "no ROI named or numbered 'Lung' (the ROIs: 1 'BODY', 2 'Areola'," --roi Lung
 refused unknown2 $D/dicompyler_rtss.dcm "no ROI named or numbered '11'" --roi 11
 refused samenames $F/samenames.dcm "ROIs 3 and 4 are both named 'Same'; choose one by its number (Same)" --roi Same

@@ -1,10 +1,12 @@
 #!/bin/sh
 # cli_join.sh -- ./tile's joining rules, their notes and the report's joins
-# row (issue 22), from the outside: stacked disjoint squares joined by
-# default with one note and apart under --join overlap, each contour left
-# apart named; the empty mesh said; the same bytes from a file written
-# backwards; --join refused with the usage line when bad; the real
-# structure sets: the
+# row, and one slice as a slab (issue 22), from the outside: stacked
+# disjoint squares joined by default with one note and apart under --join
+# overlap, each contour left apart named; the empty mesh said; the same
+# bytes from a file written backwards; --join and --thickness refused with
+# the usage line when bad; one slice refused naming --thickness, and with it
+# a closed slab whose volume is area x T (a .contours stack and a DICOM ROI,
+# judged by the independent mesh checker); the real structure sets: the
 # default changes only dicompyler's BODY and Lt Lung (touching contours,
 # the same meshes as --join touch), --join overlap gives every real mesh of
 # the rule before, BODY under --join nearest is a good mesh; plot surface
@@ -66,12 +68,39 @@ grep -qxF "tile: $T/three.contours: the mesh is empty: no contour is joined to o
   && ok || bad "--join 1.5 (the single rule joins them): $(row joins "$T/n.csv" 7-10)"
 
 # ---- Bad values: the usage line, exit 2.
-for args in "--join" "--join near" "--join -1" "--join 1e400"; do
+for args in "--join" "--join near" "--join -1" "--join 1e400" "--thickness 0" "--thickness -2" "--thickness x" "--thickness"; do
   "$TILE" "$T/sq.contours" $args > "$T/out" 2> "$T/err"; rc=$?
   [ $rc -eq 2 ] && grep -q '^usage: tile STACK' "$T/err" && [ ! -s "$T/out" ] && ok || bad "'$args': exit $rc: $(cat "$T/err")"
 done
 "$TILE" "$T/sq.contours" --join foo 2>&1 | grep -qxF "tile: --join takes overlap, single, touch, nearest or a distance from 0 to 1e300 (foo)" \
   && ok || bad "--join foo: the message"
+
+# ---- One slice: refused without --thickness, a slab with it.
+{ printf 'C 4 5\n0 0\n4 0\n4 3\n0 3\n'; printf 'C 4 5\n1 1\n1 2\n2 2\n2 1\n'; } > "$T/one.contours"
+"$TILE" "$T/one.contours" -o "$T/one.obj" > "$T/out" 2> "$T/err"; rc=$?
+[ $rc -eq 1 ] && [ ! -s "$T/out" ] && [ ! -e "$T/one.obj" ] && [ "$(cat "$T/err")" = "tile: $T/one.contours:1: all 2 contours lie on one slice (z=5): a surface needs two slices, or --thickness T to make this one a slab T thick" ] \
+  && ok || bad "one slice: exit $rc: $(cat "$T/err")"
+for style in "" "--caps" "--caps --cap-style apex"; do
+  "$TILE" "$T/one.contours" --thickness 0.5 $style -o "$T/one.obj" > "$T/one.csv" 2> "$T/err" && ok || bad "slab $style: $(cat "$T/err")"
+  # area 12 - 1 = 11, times 0.5
+  awk -F, '$1 == "mesh" { d = $13 - 5.5; exit !(d < 1e-12 && d > -1e-12 && $2 == 4.75 && $3 == 5.25 && $7 == "closed") }' "$T/one.csv" \
+    && ok || bad "slab $style: $(grep '^mesh' "$T/one.csv")"
+  judge "$T/one.obj" "$T/one.contours" "slab $style"
+done
+# A DICOM ROI of one slice (rt-utils' rt.dcm): a slab of 3 mm, its volume
+# 3 times the region's area (the contours' shoelace: the first, the outer
+# square, less the hole).
+"$TILE" $D/rtutils_rt.dcm --roi 1 --thickness 3 -o "$T/rt.stl" --contours "$T/rt.contours" > "$T/rt.csv" 2> "$T/err" \
+  && ok || bad "DICOM slab: $(cat "$T/err")"
+judge "$T/rt.stl" "$T/rt.contours" "DICOM slab"
+want=$(awk 'function fin(  i, a) { a = 0; for (i = 0; i < n; i++) a += X[i] * Y[(i + 1) % n] - X[(i + 1) % n] * Y[i]
+                                    a = (a < 0 ? -a : a) / 2; s += k++ ? -a : a; n = 0 }
+            BEGIN { n = 0 } /^#/ { next } /^C / { if (n) fin(); next } { X[n] = $1; Y[n] = $2; n++ }
+            END { fin(); printf "%.17g", 3 * s }' "$T/rt.contours")
+awk -F, -v w="$want" '$1 == "mesh" { d = ($13 - w) / w; exit !(d < 1e-12 && d > -1e-12 && $7 == "closed") }' "$T/rt.csv" \
+  && ok || bad "DICOM slab: volume $(row mesh "$T/rt.csv" 13), want $want"
+"$TILE" $D/rtutils_rt.dcm --roi all --thickness 3 -o "$T/rtdir/" > /dev/null 2> "$T/err" && [ -s "$T/rtdir/ROI-1.stl" ] \
+  && ! grep -q skipped "$T/err" && ok || bad "DICOM --roi all --thickness: $(cat "$T/err")"
 
 # ---- Real structure sets: under the default only BODY and Lt Lung change,
 # and those as --join touch makes them; --join overlap keeps the rule before.
@@ -104,12 +133,15 @@ judge "$T/bn.obj" "$T/c/BODY.contours" "BODY, --join nearest"
 
 # ---- plot surface and bench --stack take the rules too.
 "$PLOT" surface "$T/sq.contours" --join overlap --caps -o "$T/p.svg" 2> /dev/null && grep -q '</svg>' "$T/p.svg" && ok || bad "plot --join"
+"$PLOT" surface "$T/one.contours" --thickness 1 -o "$T/p1.svg" 2> /dev/null && grep -q '</svg>' "$T/p1.svg" && ok || bad "plot --thickness"
+"$PLOT" surface "$T/one.contours" -o "$T/p2.svg" 2> "$T/err"; rc=$?
+[ $rc -eq 1 ] && grep -q -- '--thickness T' "$T/err" && [ ! -e "$T/p2.svg" ] && ok || bad "plot one slice: exit $rc: $(cat "$T/err")"
 "$PLOT" surface "$T/sq.contours" --join x -o "$T/p3.svg" 2> /dev/null; [ $? -eq 2 ] && ok || bad "plot --join x"
 "$BENCH" --stack "$T/sq.contours" --join overlap --repeat 1 -j 1 > "$T/b.csv" 2>&1 && [ "$(tail -1 "$T/b.csv" | cut -d, -f5)" = 2 ] \
   && "$BENCH" --stack "$T/sq.contours" --repeat 1 -j 1 > "$T/b.csv" 2>&1 && [ "$(tail -1 "$T/b.csv" | cut -d, -f5)" = 3 ] \
   && ok || bad "bench --stack --join: $(cat "$T/b.csv")"
 
-"$TILE" --help > "$T/h" && grep -q -- '--join RULE' "$T/h" && grep -q "a row 'joins'" "$T/h" \
-  && ok || bad "--help lacks --join or the joins row"
+"$TILE" --help > "$T/h" && grep -q -- '--join RULE' "$T/h" && grep -q -- '--thickness T' "$T/h" && grep -q "a row 'joins'" "$T/h" \
+  && ok || bad "--help lacks --join, --thickness or the joins row"
 echo "cli_join: $pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -47,8 +47,8 @@ expect_error touching     "C 3 1\n${P3}C 3 2\n${P3}C 3 1\n1 0\n3 0\n3 1\n"      
 # nothing above) blocks every segment from one square to the other.
 U='C 8 1\n-1 2\n-1 -12\n12 -12\n12 2\n9 2\n9 -11\n2 -11\n2 2\n'
 expect_error nobridge     "C 4 0\n0 0\n1 0\n1 1\n0 1\nC 4 0\n10 0\n11 0\n11 1\n10 1\nC 4 0\n5 -10\n6 -10\n6 11\n5 11\n$U" '6: no bridge can join the contour to the contour at line 1 without crossing or enclosing a contour of their slice'
-expect_error onecontour   "C 3 0\n$P3"                        '1: only one contour; tiling needs at least 2'
-expect_error oneslice     "C 3 0\n${P3}C 3 0\n2 2\n3 2\n2 3\n"   '1: all 2 contours lie on one slice; tiling needs at least 2'
+expect_error onecontour   "C 3 0\n$P3"                        '1: the only contour lies on one slice (z=0): a surface needs two slices, or --thickness T to make this one a slab T thick'
+expect_error oneslice     "C 3 0\n${P3}C 3 0\n2 2\n3 2\n2 3\n"   '1: all 2 contours lie on one slice (z=0): a surface needs two slices, or --thickness T'
 expect_error binary       "C 3 0\n\001\002\003\n"             '2: binary data, not a contour file (byte 0x01)'
 expect_error nulbyte      "C 3 0\n0 0\n1\000 0\n"             '3: binary data, not a contour file (byte 0x00)'
 long=$(head -c 5000 /dev/zero | tr '\0' '7')

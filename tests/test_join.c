@@ -10,7 +10,8 @@
  *                   stacked disjoint squares (default: joined with a note;
  *                   overlap: two components), a tie (the canonically first,
  *                   and one 2^-40 nearer wins), a join no bridge can make
- *                   (dropped with a note), each judged by the independent mesh
+ *                   (dropped with a note), one slice as a slab (its volume
+ *                   area x thickness), each judged by the independent mesh
  *                   checker (tests/meshcheck.c); every case shuffled,
  *                   restarted and reversed gives the same mesh, report and
  *                   notes (line numbers aside); random stacks under every
@@ -191,7 +192,7 @@ static int make_stack(const sg_poly *ps, int np, const int *order, const int *st
     }
   }
   fclose(f);
-  int rc = contour_parse(text, len, "t.contours", s, NULL, "test", err, sizeof err);
+  int rc = contour_parse_flags(text, len, "t.contours", CONTOUR_ONE_SLICE, s, NULL, "test", err, sizeof err);
   CHECK(rc == 0, "stack: %s", err);
   free(text);
   return rc;
@@ -201,6 +202,7 @@ typedef struct {
   match_rule rule;
   double dist;
   int caps, apex;
+  double thickness;
 } how;
 
 typedef struct {
@@ -219,7 +221,7 @@ static void run(const sg_poly *ps, int np, const int *order, const int *start, c
   }
   size_t nl = 0, rl = 0;
   FILE *nf = open_memstream(&o->notes, &nl);
-  stack_options so = {COST_AREA, h.caps, h.apex, 2, NULL, nf, "test", NULL, NULL, h.rule, h.dist};
+  stack_options so = {COST_AREA, h.caps, h.apex, 2, NULL, nf, "test", NULL, NULL, h.rule, h.dist, h.thickness};
   o->res = stack_tile(&s, "t.contours", &so, &o->ss, o->err, sizeof o->err);
   fclose(nf);
   FILE *rf = open_memstream(&o->report, &rl);
@@ -343,7 +345,7 @@ static void invariant(const char *what, const sg_poly *ps, int np, how h, rng *g
   done(&ref);
 }
 
-static const how DEFAULT = {MATCH_SINGLE, INFINITY, 1, 0};
+static const how DEFAULT = {MATCH_SINGLE, INFINITY, 1, 0, 0};
 
 static how rule(match_rule r) {
   how h = DEFAULT;
@@ -532,12 +534,46 @@ static void test_dropped(rng *g) {
   invariant("dropped join", ps, 5, rule(MATCH_NEAREST), g);
 }
 
+/* One slice: a square with a square hole and an island in it, and a square
+ * beside: slabs 2 thick, volume area x 2; refused without a thickness. */
+static void test_slab(rng *g) {
+  sg_poly ps[4] = {square(0, 0, 0, 8, 5), square(1, 2, 2, 4, 5), square(2, 3, 3, 2, 5), square(3, 10, 0, 1, 5)};
+  for (int k = 0; k < 4; k++)   /* squares (w by w) */
+    for (int c = 2; c < 4; c++) ps[k].p[c].y = ps[k].p[0].y + (ps[k].p[1].x - ps[k].p[0].x);
+  double area = area_of(&ps[0]) - area_of(&ps[1]) + area_of(&ps[2]) + area_of(&ps[3]);
+  for (int apex = 0; apex < 2; apex++)
+    for (int caps = 0; caps < 2; caps++) {
+      how h = DEFAULT;
+      h.caps = caps, h.apex = apex && caps, h.thickness = 2;
+      outcome o;
+      run(ps, 4, NULL, NULL, NULL, h, &o);
+      double vol = judge("slab", &o, ps, 4, 3);
+      CHECK(fabs(vol - 2 * area) <= 1e-12 * area, "slab: the checker's volume %.17g, want %.17g", vol, 2 * area);
+      if (o.res == 0) {
+        double c, a, v;
+        stack_totals(o.ss, &c, &a, &v);
+        CHECK(fabs(v - 2 * area) <= 1e-12 * area, "slab: volume %.17g, want %.17g", v, 2 * area);
+        CHECK(strstr(o.report, "\nmesh,4,6,") != NULL, "slab: not from z=4 to 6:\n%s", o.report);
+      }
+      done(&o);
+    }
+  outcome o;
+  run(ps, 4, NULL, NULL, NULL, DEFAULT, &o);
+  CHECK(o.res == -1 && strcmp(o.err, "t.contours:1: all 4 contours lie on one slice (z=5): a surface needs two slices, "
+                                     "or --thickness T to make this one a slab T thick") == 0,
+        "one slice without a thickness: %d '%s'", o.res, o.err);
+  done(&o);
+  how h = DEFAULT;
+  h.thickness = 2;
+  invariant("slab", ps, 4, h, g);
+}
+
 /* Random stacks (discs, holes, islands: branching, merging, ends) under
  * every rule: closed outward manifolds through every input segment. */
 static void test_random(rng *g) {
   static vec2 buf[SG_MAXP][SG_N];
-  static const how rules[] = {{MATCH_TOUCH, INFINITY, 1, 0}, {MATCH_NEAREST, INFINITY, 1, 0},
-                              {MATCH_NEAREST, 1.0, 1, 1}, {MATCH_SINGLE, INFINITY, 1, 1}};
+  static const how rules[] = {{MATCH_TOUCH, INFINITY, 1, 0, 0}, {MATCH_NEAREST, INFINITY, 1, 0, 0},
+                              {MATCH_NEAREST, 1.0, 1, 1, 0}, {MATCH_SINGLE, INFINITY, 1, 1, 0}};
   int apart = 0, dropped = 0, stacks = 0;
   for (int trial = 0; trial < 40; trial++) {
     sg_poly ps[SG_MAXP];
@@ -567,6 +603,7 @@ int main(void) {
   test_disjoint(&g);
   test_tie(&g);
   test_dropped(&g);
+  test_slab(&g);
   test_random(&g);
   return check_done("test_join");
 }

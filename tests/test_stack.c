@@ -132,7 +132,7 @@ static void test_overlap(rng *g) {
 
 static stack_surface *tile(const contour_stack *s, int caps, int apex, int threads, run_config *rc,
                            char *err, size_t errlen, int *res) {
-  stack_options o = {COST_AREA, caps, apex, threads, rc, NULL, "test", NULL, NULL, MATCH_SINGLE, INFINITY};
+  stack_options o = {COST_AREA, caps, apex, threads, rc, NULL, "test", NULL, NULL, MATCH_SINGLE, INFINITY, 0};
   stack_surface *ss = NULL;
   *res = stack_tile(s, "t.contours", &o, &ss, err, errlen);
   return ss;

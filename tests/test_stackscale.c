@@ -54,7 +54,7 @@ static stack_surface *tile(const contour_stack *s, how h, char *notes, size_t nl
   char *buf = NULL;
   size_t len = 0;
   FILE *f = notes ? open_memstream(&buf, &len) : NULL;
-  stack_options o = {h.kind, h.caps, h.apex, 2, h.rc, f, "test", NULL, NULL, MATCH_SINGLE, INFINITY};
+  stack_options o = {h.kind, h.caps, h.apex, 2, h.rc, f, "test", NULL, NULL, MATCH_SINGLE, INFINITY, 0};
   stack_surface *ss = NULL;
   *res = stack_tile(s, "t.contours", &o, &ss, err, errlen);
   if (f) {
