@@ -209,7 +209,7 @@ done
 for args in "--procs 0" "--procs 4097" "--net torus" "--m -1" "--c abc" "--topology torus:0x3" "--hop-latency 1e10" \
             "--switching wormhole" "--place nowhere" "--backend mpi" "--machine cray" "--slowdown -1" "--trace-limit 5Q"; do
   "$EX/ring" $args > "$T/o" 2> "$T/e"; rc=$?
-  ./tile tests/data/slicerrt/tinypatient_1.contours --procs 2 $args > /dev/null 2> "$T/te"
+  "$BUILD/tile" tests/data/slicerrt/tinypatient_1.contours --procs 2 $args > /dev/null 2> "$T/te"
   [ $rc -eq 2 ] && [ ! -s "$T/o" ] && [ "$(head -1 "$T/e" | sed 's/^ring: //')" = "$(head -1 "$T/te" | sed 's/^tile: //')" ] \
     && sed -n 2p "$T/e" | grep -q '^usage: ring ' && ok || bad "$args: exit $rc, $(cat "$T/e") / tile: $(head -1 "$T/te")"
 done
