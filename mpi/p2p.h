@@ -1,0 +1,181 @@
+/* p2p.h -- the MPI layer's inside: one rank's state, errors, communicators,
+ * and point-to-point on a communicator's collective context, for the other
+ * parts of the layer (datatypes, operations, collectives).
+ *
+ * Not for programs: mpi.h is theirs.  Everything here works on the calling
+ * rank (mp_self) between its MPI_Init and MPI_Finalize, and runs on every mp
+ * backend (the simulator, threads).
+ *
+ * COLLECTIVE CONTEXT.  Every communicator has two contexts, the same on every
+ * one of its ranks: one for point-to-point and one for collectives.  The
+ * calls below send and receive on the collective one, so a program's
+ * receives (MPI_ANY_TAG and MPI_ANY_SOURCE included) never take a message of
+ * a collective, and a collective never takes a program's.  The matching
+ * rules are MPI's (doc/mpi-semantics.md): non-overtaking per source and tag,
+ * receives matched in the order they were posted.  Peers are ranks in `comm`
+ * (or MPI_PROC_NULL); tags are 0 .. TSMPI_COLL_TAG_MAX, chosen by the
+ * collectives (MPI_ANY_SOURCE and MPI_ANY_TAG are allowed in receives).
+ *
+ * TIME.  A message of count elements is one mp message of exactly
+ * count * type size bytes (packed if the type is not contiguous): on
+ * --net ideal a send and its receive cost m + bytes * per_byte, so the
+ * collectives' closed forms hold.  Sends are eager: they return at once.
+ *
+ * ERRORS.  These calls check nothing a caller could get wrong except what
+ * only shows at run time (a message longer than the receive: MPI_ERR_TRUNCATE
+ * in the status and the result) and return an MPI error class; they never
+ * call an error handler.  The collectives check their arguments with the
+ * checks below and report through tsmpi_raise, which applies the
+ * communicator's handler.  A run stopped by another rank (MPI_Abort, a
+ * deadlock) ends the calling rank inside these calls (mp_exit): they never
+ * return then.
+ *
+ * BLOCKING.  A collective that may block sets its own mp_label (what a
+ * deadlock report prints for the rank, e.g. "MPI_Bcast(root=0,
+ * MPI_COMM_WORLD)") before its first blocking call and clears it after;
+ * the calls here leave the label alone. */
+#ifndef TSMPI_P2P_H
+#define TSMPI_P2P_H
+
+#include <stddef.h>
+
+#include "mpi.h"
+
+/* ==== point-to-point on the collective context ============================ */
+
+enum { TSMPI_COLL_TAG_MAX = 0x3feff };   /* the collectives' tags: 0 .. this */
+
+/* Send count elements of dt from buf to rank dst of comm (MPI_PROC_NULL:
+ * nothing).  Returns at once (eager); buf may be reused. */
+int tsmpi_p2p_send(const void *buf, int count, MPI_Datatype dt, int dst, int tag, MPI_Comm comm);
+
+/* Receive into buf (at most count elements of dt) from rank src of comm
+ * (MPI_ANY_SOURCE, MPI_PROC_NULL) with tag (MPI_ANY_TAG); st may be
+ * MPI_STATUS_IGNORE.  MPI_SUCCESS or MPI_ERR_TRUNCATE (the first count
+ * elements were stored). */
+int tsmpi_p2p_recv(void *buf, int count, MPI_Datatype dt, int src, int tag, MPI_Comm comm,
+                   MPI_Status *st);
+
+/* Send, then receive (the send is eager, so this never deadlocks on a pair
+ * that exchanges).  sbuf and rbuf must not overlap. */
+int tsmpi_p2p_sendrecv(const void *sbuf, int scount, MPI_Datatype sdt, int dst, int stag,
+                       void *rbuf, int rcount, MPI_Datatype rdt, int src, int rtag, MPI_Comm comm,
+                       MPI_Status *st);
+
+/* Nonblocking: *req is a request of the calling rank, completed and freed by
+ * tsmpi_p2p_waitall (or MPI_Wait*, MPI_Test*). */
+int tsmpi_p2p_isend(const void *buf, int count, MPI_Datatype dt, int dst, int tag, MPI_Comm comm,
+                    MPI_Request *req);
+int tsmpi_p2p_irecv(void *buf, int count, MPI_Datatype dt, int src, int tag, MPI_Comm comm,
+                    MPI_Request *req);
+
+/* Complete n requests (MPI_REQUEST_NULL ones are skipped) and set each to
+ * MPI_REQUEST_NULL; sts may be MPI_STATUSES_IGNORE.  MPI_SUCCESS, or
+ * MPI_ERR_IN_STATUS with each status's MPI_ERROR set (with sts), or the
+ * first error class (without). */
+int tsmpi_p2p_waitall(int n, MPI_Request *reqs, MPI_Status *sts);
+
+/* ==== communicators ======================================================= */
+
+/* MPI_SUCCESS if comm is a communicator of the calling rank (not freed, not
+ * MPI_COMM_NULL); else raises MPI_ERR_COMM for fn (see tsmpi_raise). */
+int tsmpi_comm_check(MPI_Comm comm, const char *fn);
+
+/* The calling rank's rank in comm and comm's size (comm checked). */
+int tsmpi_comm_rank(MPI_Comm comm);
+int tsmpi_comm_size(MPI_Comm comm);
+
+/* comm's name for messages: "MPI_COMM_WORLD", "MPI_COMM_SELF", or
+ * "communicator N", N the same on every rank of it (valid until the
+ * communicator is freed; "MPI_COMM_NULL" and "an invalid communicator" for
+ * those). */
+const char *tsmpi_comm_name(MPI_Comm comm);
+
+/* The mp rank (MPI_COMM_WORLD rank) of rank r of comm (comm checked,
+ * 0 <= r < size). */
+int tsmpi_comm_world_rank(MPI_Comm comm, int r);
+
+/* ==== errors ============================================================== */
+
+/* An error of MPI function fn (e.g. "MPI_Bcast") with class cls and a
+ * message (printf format; no trailing newline), under comm's error handler
+ * (MPI_COMM_WORLD's when comm is not a valid communicator: MPI 3.1 section
+ * 8.3).  MPI_ERRORS_ARE_FATAL: the run ends with exit status 1 and the
+ * message "rank R: FN: MESSAGE" (mp_abort; the runner prints it), and this
+ * never returns.  MPI_ERRORS_RETURN: returns cls. */
+#if defined(__GNUC__)
+__attribute__((format(printf, 4, 5)))
+/* ==== what point-to-point needs from the datatype module (mpi-data) =======
+ * Point-to-point calls these; the datatype module defines them (names and
+ * contracts proposed here, to be settled in its header):
+ *
+ *   int tsmpi_type_check(MPI_Datatype dt, char *why, size_t len);
+ *       MPI_SUCCESS if dt can be used in communication (predefined, or
+ *       created, committed and not freed); else MPI_ERR_TYPE and why says
+ *       which ("MPI_DATATYPE_NULL", "not committed", "freed", "not a
+ *       datatype").
+ *   size_t tsmpi_type_size(MPI_Datatype dt);
+ *       bytes of data in one element (MPI_Type_size); dt checked.
+ *   const void *tsmpi_type_contig(const void *buf, int count, MPI_Datatype dt);
+ *       where count elements of dt at buf lie as one run of count * size
+ *       bytes (buf + the type's true lower bound), or NULL if they do not
+ *       (gaps, or an extent other than the size with count > 1).
+ *   void tsmpi_type_pack(const void *buf, int count, MPI_Datatype dt, void *out);
+ *       count elements into out, count * size bytes, in type-map order.
+ *   void tsmpi_type_unpack(const void *in, size_t bytes, void *buf, int count,
+ *                          MPI_Datatype dt);
+ *       the first `bytes` bytes (<= count * size, a short message) of a
+ *       packed run into count elements at buf, in type-map order.
+ */
+
+#endif
+int tsmpi_raise(MPI_Comm comm, int cls, const char *fn, const char *fmt, ...);
+
+/* Argument checks every call makes, in MPI's words; each returns
+ * MPI_SUCCESS or raises (tsmpi_raise) for fn on comm:
+ *   tsmpi_check_count   count >= 0                          MPI_ERR_COUNT
+ *   tsmpi_check_buf     buf != NULL when count > 0 and the type has a
+ *                       non-zero size (MPI_BOTTOM allowed with types that
+ *                       have absolute addresses: the datatype module says) MPI_ERR_BUFFER
+ *   tsmpi_check_rank    0 <= r < size of comm (MPI_PROC_NULL allowed;
+ *                       MPI_ANY_SOURCE when any_ok)         MPI_ERR_RANK
+ *   tsmpi_check_root    0 <= root < size of comm            MPI_ERR_ROOT */
+int tsmpi_check_count(MPI_Comm comm, const char *fn, int count);
+int tsmpi_check_buf(MPI_Comm comm, const char *fn, const void *buf, int count, MPI_Datatype dt);
+int tsmpi_check_rank(MPI_Comm comm, const char *fn, int r, int any_ok);
+int tsmpi_check_root(MPI_Comm comm, const char *fn, int root);
+
+/* ==== the rank's state for the other parts of the layer =================== */
+
+/* One pointer per part of the MPI layer and rank (NULL after MPI_Init):
+ * the datatype module's table of created types, the operations', the
+ * collectives'.  release(p), if not NULL, is called once at MPI_Finalize or
+ * when the rank ends without it (a stopped run), parts in reverse order. */
+enum { TSMPI_PART_DTYPE, TSMPI_PART_OP, TSMPI_PART_COLL, TSMPI_PARTS };
+void *tsmpi_part(int part);
+void tsmpi_part_set(int part, void *p, void (*release)(void *p));
+
+/* ==== what point-to-point needs from the datatype module (mpi-data) =======
+ * Point-to-point calls these; the datatype module defines them (names and
+ * contracts proposed here, to be settled in its header):
+ *
+ *   int tsmpi_type_check(MPI_Datatype dt, char *why, size_t len);
+ *       MPI_SUCCESS if dt can be used in communication (predefined, or
+ *       created, committed and not freed); else MPI_ERR_TYPE and why says
+ *       which ("MPI_DATATYPE_NULL", "not committed", "freed", "not a
+ *       datatype").
+ *   size_t tsmpi_type_size(MPI_Datatype dt);
+ *       bytes of data in one element (MPI_Type_size); dt checked.
+ *   const void *tsmpi_type_contig(const void *buf, int count, MPI_Datatype dt);
+ *       where count elements of dt at buf lie as one run of count * size
+ *       bytes (buf + the type's true lower bound), or NULL if they do not
+ *       (gaps, or an extent other than the size with count > 1).
+ *   void tsmpi_type_pack(const void *buf, int count, MPI_Datatype dt, void *out);
+ *       count elements into out, count * size bytes, in type-map order.
+ *   void tsmpi_type_unpack(const void *in, size_t bytes, void *buf, int count,
+ *                          MPI_Datatype dt);
+ *       the first `bytes` bytes (<= count * size, a short message) of a
+ *       packed run into count elements at buf, in type-map order.
+ */
+
+#endif
