@@ -105,29 +105,6 @@ int tsmpi_comm_world_rank(MPI_Comm comm, int r);
  * never returns.  MPI_ERRORS_RETURN: returns cls. */
 #if defined(__GNUC__)
 __attribute__((format(printf, 4, 5)))
-/* ==== what point-to-point needs from the datatype module (mpi-data) =======
- * Point-to-point calls these; the datatype module defines them (names and
- * contracts proposed here, to be settled in its header):
- *
- *   int tsmpi_type_check(MPI_Datatype dt, char *why, size_t len);
- *       MPI_SUCCESS if dt can be used in communication (predefined, or
- *       created, committed and not freed); else MPI_ERR_TYPE and why says
- *       which ("MPI_DATATYPE_NULL", "not committed", "freed", "not a
- *       datatype").
- *   size_t tsmpi_type_size(MPI_Datatype dt);
- *       bytes of data in one element (MPI_Type_size); dt checked.
- *   const void *tsmpi_type_contig(const void *buf, int count, MPI_Datatype dt);
- *       where count elements of dt at buf lie as one run of count * size
- *       bytes (buf + the type's true lower bound), or NULL if they do not
- *       (gaps, or an extent other than the size with count > 1).
- *   void tsmpi_type_pack(const void *buf, int count, MPI_Datatype dt, void *out);
- *       count elements into out, count * size bytes, in type-map order.
- *   void tsmpi_type_unpack(const void *in, size_t bytes, void *buf, int count,
- *                          MPI_Datatype dt);
- *       the first `bytes` bytes (<= count * size, a short message) of a
- *       packed run into count elements at buf, in type-map order.
- */
-
 #endif
 int tsmpi_raise(MPI_Comm comm, int cls, const char *fn, const char *fmt, ...);
 
