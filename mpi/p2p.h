@@ -111,9 +111,8 @@ int tsmpi_raise(MPI_Comm comm, int cls, const char *fn, const char *fmt, ...);
 /* Argument checks every call makes, in MPI's words; each returns
  * MPI_SUCCESS or raises (tsmpi_raise) for fn on comm:
  *   tsmpi_check_count   count >= 0                          MPI_ERR_COUNT
- *   tsmpi_check_buf     buf != NULL when count > 0 and the type has a
- *                       non-zero size (MPI_BOTTOM allowed with types that
- *                       have absolute addresses: the datatype module says) MPI_ERR_BUFFER
+ *   tsmpi_check_buf     buf != NULL, unless count elements of dt can go
+ *                       with MPI_BOTTOM (tsmpi_type_bottom_ok)     MPI_ERR_BUFFER
  *   tsmpi_check_rank    0 <= r < size of comm (MPI_PROC_NULL allowed;
  *                       MPI_ANY_SOURCE when any_ok)         MPI_ERR_RANK
  *   tsmpi_check_root    0 <= root < size of comm            MPI_ERR_ROOT */
@@ -131,28 +130,5 @@ int tsmpi_check_root(MPI_Comm comm, const char *fn, int root);
 enum { TSMPI_PART_DTYPE, TSMPI_PART_OP, TSMPI_PART_COLL, TSMPI_PARTS };
 void *tsmpi_part(int part);
 void tsmpi_part_set(int part, void *p, void (*release)(void *p));
-
-/* ==== what point-to-point needs from the datatype module (mpi-data) =======
- * Point-to-point calls these; the datatype module defines them (names and
- * contracts proposed here, to be settled in its header):
- *
- *   int tsmpi_type_check(MPI_Datatype dt, char *why, size_t len);
- *       MPI_SUCCESS if dt can be used in communication (predefined, or
- *       created, committed and not freed); else MPI_ERR_TYPE and why says
- *       which ("MPI_DATATYPE_NULL", "not committed", "freed", "not a
- *       datatype").
- *   size_t tsmpi_type_size(MPI_Datatype dt);
- *       bytes of data in one element (MPI_Type_size); dt checked.
- *   const void *tsmpi_type_contig(const void *buf, int count, MPI_Datatype dt);
- *       where count elements of dt at buf lie as one run of count * size
- *       bytes (buf + the type's true lower bound), or NULL if they do not
- *       (gaps, or an extent other than the size with count > 1).
- *   void tsmpi_type_pack(const void *buf, int count, MPI_Datatype dt, void *out);
- *       count elements into out, count * size bytes, in type-map order.
- *   void tsmpi_type_unpack(const void *in, size_t bytes, void *buf, int count,
- *                          MPI_Datatype dt);
- *       the first `bytes` bytes (<= count * size, a short message) of a
- *       packed run into count elements at buf, in type-map order.
- */
 
 #endif

@@ -1,0 +1,63 @@
+/* engine.h -- the matching engine: MPI's matching rules on top of mp.h's
+ * messages (posted receives, unexpected messages, synchronous sends' acks).
+ *
+ * Messages stay in mp's mailbox until a receive looks for them.  A receive
+ * from a source s looks at s's earliest message (mp_wait(s, MP_ANY)); one
+ * from any source at the earliest of all; a message that does not match is
+ * taken into the unexpected queue (the engine's own copy, in the order
+ * taken), where later receives look first.  Each source's messages thus
+ * reach the engine in the order they were sent (mp's non-overtaking rule),
+ * and each is matched in that order against the receives posted, in the
+ * order they were posted: MPI 3.1 section 3.5's rules.  While receives are
+ * posted, a rank that blocks takes every message that comes (from any
+ * source) and matches it at once, so a synchronous send to a posted receive
+ * is acknowledged even while its receiver waits for something else (MPI's
+ * progress rule).  doc/mpi-semantics.md tells the whole story, with the
+ * costs.
+ *
+ * All calls work on the calling rank's state R; a run that stops while one
+ * blocks ends the rank (tsm_stopped). */
+#ifndef TSMPI_ENGINE_H
+#define TSMPI_ENGINE_H
+
+#include <stddef.h>
+
+#include "state.h"
+
+/* A send's message leaves: len bytes at data to q->wpeer with q's context,
+ * tag and mode (SM_SYNC: q waits in R->sync for its ack, state RS_ACTIVE;
+ * else q is RS_DONE). */
+void eng_send(tsm *R, tsm_req *q, const void *data, size_t len);
+
+/* A receive starts: matched at once by the first unexpected message that
+ * fits (q RS_DONE), else posted (q RS_ACTIVE).  q->g is counted while q is
+ * active. */
+void eng_recv_start(tsm *R, tsm_req *q);
+
+/* A blocking receive: as eng_recv_start then eng_wait, in one mp_wait and
+ * one mp_recv when nothing else is posted. */
+void eng_recv(tsm *R, tsm_req *q);
+
+/* Block until q (active) is done. */
+void eng_wait(tsm *R, tsm_req *q);
+
+/* Block until at least one message has been taken and acted on (a receive
+ * matched, an ack, an unexpected message): for waits on several requests. */
+void eng_step(tsm *R);
+
+/* Act on every message that has arrived, without blocking. */
+void eng_poll(tsm *R);
+
+/* Take q out of the posted queue (a request freed or a stopped rank). */
+void eng_unpost(tsm *R, tsm_req *q);
+
+/* The message a receive from wsrc (MP_ANY) with ctx and tag (MPI_ANY_TAG)
+ * would take now: 1 and its world source, tag and bytes; 0 if none has
+ * arrived (block = 0); with block, waits until one has.  The message stays
+ * to be received (in mp's mailbox or the unexpected queue). */
+int eng_probe(tsm *R, int wsrc, int ctx, int tag, int block, int *src, int *mtag, size_t *len);
+
+/* Free the unexpected queue (the rank's end). */
+void eng_release(tsm *R);
+
+#endif

@@ -1,0 +1,208 @@
+/* env.c -- MPI's environment calls: Init, Finalize, Abort, the clock, the
+ * version, the processor's name; the runner's settings and a rank's end. */
+#include "env.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "engine.h"
+#include "err.h"
+#include "state.h"
+#include "xmem.h"
+
+const char tsm_marks[2];
+
+/* ==== per-run settings ==================================================== */
+
+/* Written before the ranks start, read by all of them. */
+static double poll_cost = 1e-6;
+static double wtime_cost = 0;
+
+int tsmpi_set_poll_cost(double seconds) {
+  if (!(seconds >= 0) || isinf(seconds)) return -1;
+  poll_cost = seconds;
+  return 0;
+}
+
+double tsmpi_poll_cost(void) { return poll_cost; }
+
+int tsmpi_set_wtime_cost(double seconds) {
+  if (!(seconds >= 0) || isinf(seconds)) return -1;
+  wtime_cost = seconds;
+  return 0;
+}
+
+/* ==== Init and Finalize =================================================== */
+
+static void comm_init(tsm_comm *c, int pair, int rank, tsm_ranks *g, const char *name) {
+  c->live = 1;
+  c->pair = pair;
+  c->rank = rank;
+  c->size = g->n;
+  c->g = g;
+  c->eh = MPI_ERRORS_ARE_FATAL;
+  snprintf(c->name, sizeof c->name, "%s", name);
+}
+
+static int init(const char *fn, int required, int *provided) {
+  mp *self = mp_self();
+  if (!self) {
+    fprintf(stderr, "tilesim MPI: %s called outside a rank: MPI programs run under tilesim-mpirun\n", fn);
+    exit(1);
+  }
+  void *u = mp_user(self);
+  if (u) {
+    char why[160];
+    snprintf(why, sizeof why, "rank %d: %s: MPI is %s", mp_rank(self), fn,
+             u == TSM_MARK_FINALIZED ? "finalized already (MPI_Init after MPI_Finalize)"
+                                     : "initialized already (MPI_Init called twice)");
+    mp_abort(self, 1, why);
+  }
+  tsm *R = xcalloc(1, sizeof *R);
+  R->state = TSM_LIVE;
+  R->self = self;
+  R->wrank = mp_rank(self);
+  R->wsize = mp_size(self);
+  /* Ranks are coroutines or threads that mp_self names: one thread of a
+   * rank may call MPI, and only the one that called MPI_Init. */
+  R->thread_level = required < MPI_THREAD_FUNNELED ? (required < MPI_THREAD_SINGLE ? MPI_THREAD_SINGLE : required)
+                                                   : MPI_THREAD_FUNNELED;
+  if (provided) *provided = R->thread_level;
+  comm_init(&R->world, 0, R->wrank, tsm_ranks_new(R->wsize, NULL), "MPI_COMM_WORLD");
+  int me = R->wrank;
+  comm_init(&R->selfc, 1, 0, tsm_ranks_new(1, &me), "MPI_COMM_SELF");
+  R->empty = tsm_ranks_new(0, NULL);
+  R->pairs[0] = 3;   /* pairs 0 and 1: MPI_COMM_WORLD, MPI_COMM_SELF */
+  mp_set_user(self, R);
+  return MPI_SUCCESS;
+}
+
+int MPI_Init(int *argc, char ***argv) {
+  (void)argc;
+  (void)argv;
+  return init("MPI_Init", MPI_THREAD_SINGLE, NULL);
+}
+
+int MPI_Init_thread(int *argc, char ***argv, int required, int *provided) {
+  (void)argc;
+  (void)argv;
+  return init("MPI_Init_thread", required, provided);
+}
+
+int MPI_Initialized(int *flag) {
+  mp *self = mp_self();
+  *flag = self && mp_user(self) && mp_user(self) != TSM_MARK_STOPPED;
+  return MPI_SUCCESS;
+}
+
+int MPI_Finalized(int *flag) {
+  mp *self = mp_self();
+  *flag = self && mp_user(self) == TSM_MARK_FINALIZED;
+  return MPI_SUCCESS;
+}
+
+int MPI_Query_thread(int *provided) {
+  tsm *R = tsm_need("MPI_Query_thread");
+  *provided = R->thread_level;
+  return MPI_SUCCESS;
+}
+
+int MPI_Is_thread_main(int *flag) {
+  tsm_need("MPI_Is_thread_main");
+  *flag = 1;   /* only the rank's own thread reaches its state (mp_self) */
+  return MPI_SUCCESS;
+}
+
+/* What a rank leaves behind at MPI_Finalize: messages it never received
+ * and requests never completed are the program's bugs, said on stderr
+ * (as the simulator says of unread messages). */
+static void leftovers(tsm *R) {
+  if (R->nunexp) {
+    char b[32];
+    tsm_msg *m = R->unexp;
+    fprintf(stderr,
+            "tilesim MPI: warning: rank %d: MPI_Finalize with %ld message%s never received "
+            "(the first from rank %d, tag %d, on %s%s)\n",
+            R->wrank, R->nunexp, R->nunexp == 1 ? "" : "s", m->src, m->tag, tsm_pair_name(m->ctx / 2, b),
+            m->ctx % 2 ? ", a collective's" : "");
+  }
+  long active = 0;
+  for (int i = 0; i < R->nreqs; i++) active += R->reqs[i]->used && R->reqs[i]->state == RS_ACTIVE;
+  if (active)
+    fprintf(stderr, "tilesim MPI: warning: rank %d: MPI_Finalize with %ld request%s still active\n",
+            R->wrank, active, active == 1 ? "" : "s");
+}
+
+int MPI_Finalize(void) {
+  tsm *R = tsm_need("MPI_Finalize");
+  leftovers(R);
+  mp *self = R->self;
+  tsm_release(R);
+  mp_set_user(self, TSM_MARK_FINALIZED);
+  return MPI_SUCCESS;
+}
+
+int tsmpi_rank_end(mp *self) {
+  void *u = mp_user(self);
+  mp_set_user(self, NULL);
+  if (!u) return TSMPI_NEVER;
+  if (u == TSM_MARK_FINALIZED) return TSMPI_FINALIZED;
+  if (u != TSM_MARK_STOPPED) tsm_release(u);
+  return TSMPI_UNFINALIZED;
+}
+
+int MPI_Abort(MPI_Comm comm, int errorcode) {
+  tsm *R = tsm_need("MPI_Abort");
+  char b[32], why[200];
+  tsm_comm *c = tsm_comm_get(R, comm);
+  snprintf(why, sizeof why, "rank %d called MPI_Abort(%s, %d)", R->wrank,
+           c ? tsm_pair_name(c->pair, b) : "an invalid communicator", errorcode);
+  mp *self = R->self;
+  tsm_release(R);
+  mp_set_user(self, TSM_MARK_STOPPED);
+  mp_abort(self, errorcode, why);
+}
+
+/* ==== the clock and the machine =========================================== */
+
+double MPI_Wtime(void) {
+  mp *self = mp_self();
+  if (!self) return 0;
+  double t = mp_time(self);
+  if (wtime_cost > 0 && mp_busy(self, wtime_cost) != MP_OK) {
+    tsm *R = tsm_get();
+    if (R) tsm_stopped(R);
+  }
+  return t;
+}
+
+double MPI_Wtick(void) { return 1e-9; }
+
+int MPI_Get_processor_name(char *name, int *resultlen) {
+  tsm_need("MPI_Get_processor_name");
+  /* The host's name, as an MPI library on this machine gives it (the ranks
+   * share it, as processes on one node do). */
+  char host[MPI_MAX_PROCESSOR_NAME];
+  if (gethostname(host, sizeof host) != 0) snprintf(host, sizeof host, "localhost");
+  host[sizeof host - 1] = 0;
+  size_t n = strlen(host);
+  memcpy(name, host, n + 1);
+  *resultlen = (int)n;
+  return MPI_SUCCESS;
+}
+
+int MPI_Get_version(int *version, int *subversion) {
+  *version = MPI_VERSION;
+  *subversion = MPI_SUBVERSION;
+  return MPI_SUCCESS;
+}
+
+int MPI_Get_library_version(char *version, int *resultlen) {
+  static const char text[] = "tilesim MPI 3.1: on tilesim's mp.h (the simulated machine, or threads)";
+  memcpy(version, text, sizeof text);
+  *resultlen = (int)sizeof text - 1;
+  return MPI_SUCCESS;
+}

@@ -1,0 +1,45 @@
+/* err.h -- errors of the MPI layer's calls: the communicator's error
+ * handler (MPI_ERRORS_ARE_FATAL, MPI_ERRORS_RETURN), the argument checks
+ * every call makes, error classes and their strings.
+ *
+ * A call's errors are reported with MPI's class as the error code (codes
+ * and classes are one: MPI_Error_class(c) is c) and, under
+ * MPI_ERRORS_ARE_FATAL, a message that names the rank, the call and the
+ * argument, e.g. "rank 2: MPI_Send: invalid rank 7 (MPI_COMM_WORLD has 4
+ * ranks)", with which the run ends (exit status 1). */
+#ifndef TSMPI_ERR_H
+#define TSMPI_ERR_H
+
+#include "state.h"
+
+/* An error of call fn in R under c's handler (c NULL: MPI_COMM_WORLD's):
+ * returns cls under MPI_ERRORS_RETURN; ends the run under
+ * MPI_ERRORS_ARE_FATAL (never returns then). */
+#if defined(__GNUC__)
+__attribute__((format(printf, 5, 6)))
+#endif
+int tsm_raise(tsm *R, const tsm_comm *c, int cls, const char *fn, const char *fmt, ...);
+
+/* The checks, each MPI_SUCCESS or tsm_raise's result:
+ *   tsm_check_comm   comm is R's (*out: it)                 MPI_ERR_COMM
+ *   tsm_check_count  count >= 0                             MPI_ERR_COUNT
+ *   tsm_check_type   dt usable (committed, not freed)       MPI_ERR_TYPE
+ *   tsm_check_tag    0 <= tag <= MPI_TAG_UB, or MPI_ANY_TAG
+ *                    with any_ok                            MPI_ERR_TAG
+ *   tsm_check_peer   0 <= r < size, MPI_PROC_NULL, or
+ *                    MPI_ANY_SOURCE with any_ok             MPI_ERR_RANK
+ *   tsm_check_buf    buf not NULL when count elements of dt
+ *                    have bytes                             MPI_ERR_BUFFER */
+int tsm_check_comm(tsm *R, MPI_Comm comm, const char *fn, tsm_comm **out);
+int tsm_check_count(tsm *R, const tsm_comm *c, const char *fn, int count);
+int tsm_check_type(tsm *R, const tsm_comm *c, const char *fn, MPI_Datatype dt);
+int tsm_check_tag(tsm *R, const tsm_comm *c, const char *fn, int tag, int any_ok);
+int tsm_check_peer(tsm *R, const tsm_comm *c, const char *fn, int r, int any_ok);
+int tsm_check_buf(tsm *R, const tsm_comm *c, const char *fn, const void *buf, int count,
+                  MPI_Datatype dt);
+
+/* A communicator handle in words for a message: "MPI_COMM_NULL",
+ * "communicator handle 0x1800005 (not one of this rank's)" (buf: 64 bytes). */
+const char *tsm_comm_words(MPI_Comm comm, char *buf);
+
+#endif

@@ -1,0 +1,130 @@
+/* p2p.c -- point-to-point on a communicator's collective context, and the
+ * communicator queries, for the other parts of the MPI layer (p2p.h). */
+#include "p2p.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "engine.h"
+#include "err.h"
+#include "pt2pt.h"
+
+/* The calling rank and comm, which the caller has checked: a bad one is a
+ * bug of the layer. */
+static tsm_comm *comm_of(tsm *R, MPI_Comm comm, const char *fn) {
+  tsm_comm *c = tsm_comm_get(R, comm);
+  if (c) return c;
+  fprintf(stderr, "tilesim MPI: internal error: rank %d: %s on an unchecked communicator 0x%x\n", R->wrank,
+          fn, (unsigned)comm);
+  abort();
+}
+
+int tsmpi_p2p_send(const void *buf, int count, MPI_Datatype dt, int dst, int tag, MPI_Comm comm) {
+  tsm *R = tsm_need("tsmpi_p2p_send");
+  tsm_comm *c = comm_of(R, comm, "tsmpi_p2p_send");
+  if (dst == MPI_PROC_NULL) return MPI_SUCCESS;
+  tsm_req q = {.slot = -1};
+  tsm_send_fill(&q, c, 1, SM_STANDARD, buf, count, dt, dst, tag, comm, "tsmpi_p2p_send");
+  return tsm_send_start(R, &q, c);
+}
+
+int tsmpi_p2p_recv(void *buf, int count, MPI_Datatype dt, int src, int tag, MPI_Comm comm,
+                   MPI_Status *st) {
+  tsm *R = tsm_need("tsmpi_p2p_recv");
+  tsm_comm *c = comm_of(R, comm, "tsmpi_p2p_recv");
+  tsm_req q = {.slot = -1};
+  tsm_recv_fill(&q, c, 1, buf, count, dt, src, tag, comm, "tsmpi_p2p_recv");
+  tsm_recv_block(R, &q);
+  tsm_status_out(st, &q.st, 1);
+  return q.st.MPI_ERROR;
+}
+
+int tsmpi_p2p_sendrecv(const void *sbuf, int scount, MPI_Datatype sdt, int dst, int stag,
+                       void *rbuf, int rcount, MPI_Datatype rdt, int src, int rtag, MPI_Comm comm,
+                       MPI_Status *st) {
+  int rc = tsmpi_p2p_send(sbuf, scount, sdt, dst, stag, comm);
+  return rc ? rc : tsmpi_p2p_recv(rbuf, rcount, rdt, src, rtag, comm, st);
+}
+
+int tsmpi_p2p_isend(const void *buf, int count, MPI_Datatype dt, int dst, int tag, MPI_Comm comm,
+                    MPI_Request *req) {
+  tsm *R = tsm_need("tsmpi_p2p_isend");
+  tsm_comm *c = comm_of(R, comm, "tsmpi_p2p_isend");
+  tsm_req *q = tsm_req_new(R);
+  tsm_send_fill(q, c, 1, SM_STANDARD, buf, count, dt, dst, tag, comm, "tsmpi_p2p_isend");
+  tsm_send_start(R, q, c);
+  *req = tsm_req_handle(q);
+  return MPI_SUCCESS;
+}
+
+int tsmpi_p2p_irecv(void *buf, int count, MPI_Datatype dt, int src, int tag, MPI_Comm comm,
+                    MPI_Request *req) {
+  tsm *R = tsm_need("tsmpi_p2p_irecv");
+  tsm_comm *c = comm_of(R, comm, "tsmpi_p2p_irecv");
+  tsm_req *q = tsm_req_new(R);
+  tsm_recv_fill(q, c, 1, buf, count, dt, src, tag, comm, "tsmpi_p2p_irecv");
+  tsmpi_type_hold(dt);
+  q->held = 1;
+  tsm_recv_start(R, q);
+  *req = tsm_req_handle(q);
+  return MPI_SUCCESS;
+}
+
+int tsmpi_p2p_waitall(int n, MPI_Request *reqs, MPI_Status *sts) {
+  tsm *R = tsm_need("tsmpi_p2p_waitall");
+  int first = MPI_SUCCESS;
+  for (int i = 0; i < n; i++) {
+    MPI_Status *st = sts == MPI_STATUSES_IGNORE ? MPI_STATUS_IGNORE : &sts[i];
+    if (reqs[i] == MPI_REQUEST_NULL) {
+      if (st != MPI_STATUS_IGNORE) tsm_status_empty(st);
+      continue;
+    }
+    tsm_req *q = tsm_req_get(R, reqs[i]);
+    if (!q) {
+      fprintf(stderr, "tilesim MPI: internal error: rank %d: tsmpi_p2p_waitall of request 0x%x\n", R->wrank,
+              (unsigned)reqs[i]);
+      abort();
+    }
+    if (q->state == RS_ACTIVE) eng_wait(R, q);
+    tsm_status_out(st, &q->st, 1);
+    if (q->st.MPI_ERROR && !first) first = q->st.MPI_ERROR;
+    tsm_req_free(R, q);
+    reqs[i] = MPI_REQUEST_NULL;
+  }
+  if (first && sts != MPI_STATUSES_IGNORE) return MPI_ERR_IN_STATUS;
+  return first;
+}
+
+/* ==== communicators ======================================================= */
+
+int tsmpi_comm_check(MPI_Comm comm, const char *fn) {
+  tsm *R = tsm_need(fn);
+  tsm_comm *c;
+  return tsm_check_comm(R, comm, fn, &c);
+}
+
+int tsmpi_comm_rank(MPI_Comm comm) {
+  tsm *R = tsm_need("tsmpi_comm_rank");
+  return comm_of(R, comm, "tsmpi_comm_rank")->rank;
+}
+
+int tsmpi_comm_size(MPI_Comm comm) {
+  tsm *R = tsm_need("tsmpi_comm_size");
+  return comm_of(R, comm, "tsmpi_comm_size")->size;
+}
+
+int tsmpi_comm_world_rank(MPI_Comm comm, int r) {
+  tsm *R = tsm_need("tsmpi_comm_world_rank");
+  return tsm_world_of(comm_of(R, comm, "tsmpi_comm_world_rank"), r);
+}
+
+const char *tsmpi_comm_name(MPI_Comm comm) {
+  tsm *R = tsm_need("tsmpi_comm_name");
+  if (comm == MPI_COMM_NULL) return "MPI_COMM_NULL";
+  tsm_comm *c = tsm_comm_get(R, comm);
+  if (!c) return "an invalid communicator";
+  if (c->pair < 2) return c->pair ? "MPI_COMM_SELF" : "MPI_COMM_WORLD";
+  /* The words live in the communicator (its name field holds the user's). */
+  snprintf(c->words, sizeof c->words, "communicator %d", c->pair);
+  return c->words;
+}

@@ -1,0 +1,466 @@
+/* pt2pt.c -- MPI's point-to-point calls: the four send modes, blocking and
+ * nonblocking and persistent, receives, Sendrecv, probes, MPI_Get_count,
+ * the attached buffer. */
+#include "pt2pt.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "engine.h"
+#include "env.h"
+#include "err.h"
+#include "label.h"
+#include "xmem.h"
+
+/* ==== starting sends and receives ========================================= */
+
+void tsm_send_fill(tsm_req *q, const tsm_comm *c, int coll, int mode, const void *buf, int count,
+                   MPI_Datatype dt, int dst, int tag, MPI_Comm comm, const char *fn) {
+  q->kind = RQ_SEND;
+  q->mode = (unsigned char)mode;
+  q->buf = (void *)buf;
+  q->count = count;
+  q->dt = dt;
+  q->peer = dst;
+  q->tag = tag;
+  q->comm = comm;
+  q->pair = c->pair;
+  q->fn = fn;
+  q->wpeer = dst >= 0 ? tsm_world_of(c, dst) : -1;
+  q->ctx = 2 * c->pair + coll;
+}
+
+void tsm_status_empty(MPI_Status *st) {
+  *st = (MPI_Status){.MPI_SOURCE = MPI_ANY_SOURCE, .MPI_TAG = MPI_ANY_TAG, .MPI_ERROR = MPI_SUCCESS};
+}
+
+int tsm_send_start(tsm *R, tsm_req *q, const tsm_comm *c) {
+  if (q->peer == MPI_PROC_NULL) {
+    tsm_status_empty(&q->st);
+    q->state = RS_DONE;
+    return MPI_SUCCESS;
+  }
+  size_t len = (size_t)q->count * tsmpi_type_size(q->dt);
+  if (q->mode == SM_BUFFERED) {
+    /* The message is copied into the attached buffer and leaves at once
+     * (eager): the space is free again when the call returns. */
+    size_t need = len + MPI_BSEND_OVERHEAD;
+    if (!R->bbuf || need > (size_t)R->bsize) {
+      tsm_status_empty(&q->st);
+      q->state = RS_DONE;
+      if (!R->bbuf)
+        return tsm_raise(R, c, MPI_ERR_BUFFER, q->fn,
+                         "no buffer attached (MPI_Buffer_attach) for a %zu-byte message", len);
+      return tsm_raise(R, c, MPI_ERR_BUFFER, q->fn,
+                       "a %zu-byte message needs %zu bytes of the attached buffer "
+                       "(MPI_BSEND_OVERHEAD = %d more), which has %d",
+                       len, need, MPI_BSEND_OVERHEAD, R->bsize);
+    }
+    const void *p = tsmpi_type_contig(q->buf, q->count, q->dt);
+    if (p)
+      memcpy(R->bbuf, p, len);
+    else
+      tsmpi_type_pack(q->buf, q->count, q->dt, R->bbuf);
+    eng_send(R, q, R->bbuf, len);
+    return MPI_SUCCESS;
+  }
+  const void *p = len ? tsmpi_type_contig(q->buf, q->count, q->dt) : NULL;
+  if (p || len == 0) {
+    eng_send(R, q, p, len);
+  } else {
+    void *tmp = xmalloc(len);
+    tsmpi_type_pack(q->buf, q->count, q->dt, tmp);
+    eng_send(R, q, tmp, len);
+    free(tmp);
+  }
+  return MPI_SUCCESS;
+}
+
+void tsm_recv_fill(tsm_req *q, const tsm_comm *c, int coll, void *buf, int count, MPI_Datatype dt,
+                   int src, int tag, MPI_Comm comm, const char *fn) {
+  q->kind = RQ_RECV;
+  q->buf = buf;
+  q->count = count;
+  q->dt = dt;
+  q->peer = src;
+  q->tag = tag;
+  q->comm = comm;
+  q->pair = c->pair;
+  q->fn = fn;
+  q->wpeer = src >= 0 ? tsm_world_of(c, src) : MP_ANY;
+  q->ctx = 2 * c->pair + coll;
+  q->cap = (size_t)count * tsmpi_type_size(dt);
+  q->contig = q->cap ? (void *)tsmpi_type_contig(buf, count, dt) : NULL;
+  q->g = c->g;
+}
+
+static void proc_null(tsm_req *q) {
+  q->st = (MPI_Status){.MPI_SOURCE = MPI_PROC_NULL, .MPI_TAG = MPI_ANY_TAG, .MPI_ERROR = MPI_SUCCESS};
+  q->msglen = 0;
+  q->g = NULL;
+  q->state = RS_DONE;
+}
+
+void tsm_recv_start(tsm *R, tsm_req *q) {
+  if (q->peer == MPI_PROC_NULL)
+    proc_null(q);
+  else
+    eng_recv_start(R, q);
+}
+
+void tsm_recv_block(tsm *R, tsm_req *q) {
+  if (q->peer == MPI_PROC_NULL)
+    proc_null(q);
+  else
+    eng_recv(R, q);
+}
+
+void tsm_status_out(MPI_Status *out, const MPI_Status *in, int with_error) {
+  if (out == MPI_STATUS_IGNORE) return;
+  out->MPI_SOURCE = in->MPI_SOURCE;
+  out->MPI_TAG = in->MPI_TAG;
+  if (with_error) out->MPI_ERROR = in->MPI_ERROR;
+  out->tsmpi_cancelled = in->tsmpi_cancelled;
+  out->tsmpi_count = in->tsmpi_count;
+}
+
+/* ==== argument checks ===================================================== */
+
+static int send_args(tsm *R, const char *fn, const void *buf, int count, MPI_Datatype dt, int dst,
+                     int tag, MPI_Comm comm, tsm_comm **cp) {
+  int rc;
+  if ((rc = tsm_check_comm(R, comm, fn, cp))) return rc;
+  tsm_comm *c = *cp;
+  if ((rc = tsm_check_count(R, c, fn, count))) return rc;
+  if ((rc = tsm_check_type(R, c, fn, dt))) return rc;
+  if ((rc = tsm_check_tag(R, c, fn, tag, 0))) return rc;
+  if ((rc = tsm_check_peer(R, c, fn, dst, 0))) return rc;
+  return tsm_check_buf(R, c, fn, buf, count, dt);
+}
+
+static int recv_args(tsm *R, const char *fn, const void *buf, int count, MPI_Datatype dt, int src,
+                     int tag, MPI_Comm comm, tsm_comm **cp) {
+  int rc;
+  if ((rc = tsm_check_comm(R, comm, fn, cp))) return rc;
+  tsm_comm *c = *cp;
+  if ((rc = tsm_check_count(R, c, fn, count))) return rc;
+  if ((rc = tsm_check_type(R, c, fn, dt))) return rc;
+  if ((rc = tsm_check_tag(R, c, fn, tag, 1))) return rc;
+  if ((rc = tsm_check_peer(R, c, fn, src, 1))) return rc;
+  return tsm_check_buf(R, c, fn, buf, count, dt);
+}
+
+static int recv_result(tsm *R, const tsm_comm *c, const tsm_req *q) {
+  if (q->st.MPI_ERROR == MPI_SUCCESS) return MPI_SUCCESS;
+  return tsm_req_error(R, c, q, q->fn);
+}
+
+int tsm_req_error(tsm *R, const tsm_comm *c, const tsm_req *q, const char *fn) {
+  int other = fn != q->fn;   /* completed by MPI_Wait*, MPI_Test* */
+  return tsm_raise(R, c, MPI_ERR_TRUNCATE, fn,
+                   "%s%sa %zu-byte message from rank %d (tag %d) is longer than the receive buffer "
+                   "(%d elements, %zu bytes): truncated",
+                   other ? q->fn : "", other ? ": " : "", q->msglen,
+                   q->st.MPI_SOURCE, q->st.MPI_TAG, q->count, q->cap);
+}
+
+/* ==== blocking sends ====================================================== */
+
+static int send_block(const char *fn, int mode, const void *buf, int count, MPI_Datatype dt, int dst,
+                      int tag, MPI_Comm comm) {
+  tsm *R = tsm_need(fn);
+  tsm_comm *c;
+  int rc = send_args(R, fn, buf, count, dt, dst, tag, comm, &c);
+  if (rc || dst == MPI_PROC_NULL) return rc;
+  tsm_req q = {.slot = -1};
+  tsm_send_fill(&q, c, 0, mode, buf, count, dt, dst, tag, comm, fn);
+  if ((rc = tsm_send_start(R, &q, c))) return rc;
+  if (q.state == RS_ACTIVE) {   /* synchronous: until the receive starts */
+    tsm_label l = {.fn = fn, .what = L_SEND, .peer = dst, .tag = tag, .pair = c->pair};
+    tsm_label_set(R, &l);
+    eng_wait(R, &q);
+    tsm_unlabel(R);
+  }
+  return MPI_SUCCESS;
+}
+
+int MPI_Send(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm) {
+  return send_block("MPI_Send", SM_STANDARD, buf, count, datatype, dest, tag, comm);
+}
+
+int MPI_Ssend(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm) {
+  return send_block("MPI_Ssend", SM_SYNC, buf, count, datatype, dest, tag, comm);
+}
+
+int MPI_Rsend(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm) {
+  return send_block("MPI_Rsend", SM_READY, buf, count, datatype, dest, tag, comm);
+}
+
+int MPI_Bsend(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm) {
+  return send_block("MPI_Bsend", SM_BUFFERED, buf, count, datatype, dest, tag, comm);
+}
+
+/* ==== nonblocking and persistent sends ==================================== */
+
+static int send_req(const char *fn, int mode, int persistent, const void *buf, int count,
+                    MPI_Datatype dt, int dst, int tag, MPI_Comm comm, MPI_Request *request) {
+  tsm *R = tsm_need(fn);
+  tsm_comm *c;
+  int rc = send_args(R, fn, buf, count, dt, dst, tag, comm, &c);
+  if (rc) return rc;
+  if (!request) return tsm_raise(R, c, MPI_ERR_ARG, fn, "NULL request argument");
+  tsm_req *q = tsm_req_new(R);
+  tsm_send_fill(q, c, 0, mode, buf, count, dt, dst, tag, comm, fn);
+  if (persistent) {
+    tsmpi_type_hold(dt);   /* MPI_Type_free may come before the last MPI_Start */
+    q->held = 1;
+    q->persistent = 1;
+    q->state = RS_INACTIVE;
+    tsm_status_empty(&q->st);
+  } else if ((rc = tsm_send_start(R, q, c))) {
+    tsm_req_free(R, q);
+    *request = MPI_REQUEST_NULL;
+    return rc;
+  }
+  *request = tsm_req_handle(q);
+  return MPI_SUCCESS;
+}
+
+int MPI_Isend(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm,
+              MPI_Request *request) {
+  return send_req("MPI_Isend", SM_STANDARD, 0, buf, count, datatype, dest, tag, comm, request);
+}
+
+int MPI_Issend(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm,
+               MPI_Request *request) {
+  return send_req("MPI_Issend", SM_SYNC, 0, buf, count, datatype, dest, tag, comm, request);
+}
+
+int MPI_Irsend(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm,
+               MPI_Request *request) {
+  return send_req("MPI_Irsend", SM_READY, 0, buf, count, datatype, dest, tag, comm, request);
+}
+
+int MPI_Ibsend(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm,
+               MPI_Request *request) {
+  return send_req("MPI_Ibsend", SM_BUFFERED, 0, buf, count, datatype, dest, tag, comm, request);
+}
+
+int MPI_Send_init(const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
+                  MPI_Comm comm, MPI_Request *request) {
+  return send_req("MPI_Send_init", SM_STANDARD, 1, buf, count, datatype, dest, tag, comm, request);
+}
+
+int MPI_Ssend_init(const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
+                   MPI_Comm comm, MPI_Request *request) {
+  return send_req("MPI_Ssend_init", SM_SYNC, 1, buf, count, datatype, dest, tag, comm, request);
+}
+
+int MPI_Rsend_init(const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
+                   MPI_Comm comm, MPI_Request *request) {
+  return send_req("MPI_Rsend_init", SM_READY, 1, buf, count, datatype, dest, tag, comm, request);
+}
+
+int MPI_Bsend_init(const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
+                   MPI_Comm comm, MPI_Request *request) {
+  return send_req("MPI_Bsend_init", SM_BUFFERED, 1, buf, count, datatype, dest, tag, comm, request);
+}
+
+/* ==== receives ============================================================ */
+
+int MPI_Recv(void *buf, int count, MPI_Datatype datatype, int source, int tag, MPI_Comm comm,
+             MPI_Status *status) {
+  static const char fn[] = "MPI_Recv";
+  tsm *R = tsm_need(fn);
+  tsm_comm *c;
+  int rc = recv_args(R, fn, buf, count, datatype, source, tag, comm, &c);
+  if (rc) return rc;
+  tsm_req q = {.slot = -1};
+  tsm_recv_fill(&q, c, 0, buf, count, datatype, source, tag, comm, fn);
+  tsm_label l = {.fn = fn, .what = L_RECV, .peer = source, .tag = tag, .pair = c->pair};
+  tsm_label_set(R, &l);
+  tsm_recv_block(R, &q);
+  tsm_unlabel(R);
+  tsm_status_out(status, &q.st, 0);
+  return recv_result(R, c, &q);
+}
+
+static int recv_req(const char *fn, int persistent, void *buf, int count, MPI_Datatype dt, int src,
+                    int tag, MPI_Comm comm, MPI_Request *request) {
+  tsm *R = tsm_need(fn);
+  tsm_comm *c;
+  int rc = recv_args(R, fn, buf, count, dt, src, tag, comm, &c);
+  if (rc) return rc;
+  if (!request) return tsm_raise(R, c, MPI_ERR_ARG, fn, "NULL request argument");
+  tsm_req *q = tsm_req_new(R);
+  tsm_recv_fill(q, c, 0, buf, count, dt, src, tag, comm, fn);
+  tsmpi_type_hold(dt);   /* MPI_Type_free may come before the receive completes */
+  q->held = 1;
+  if (persistent) {
+    q->persistent = 1;
+    q->state = RS_INACTIVE;
+    q->g = NULL;
+    tsm_status_empty(&q->st);
+  } else {
+    tsm_recv_start(R, q);
+  }
+  *request = tsm_req_handle(q);
+  return MPI_SUCCESS;
+}
+
+int MPI_Irecv(void *buf, int count, MPI_Datatype datatype, int source, int tag, MPI_Comm comm,
+              MPI_Request *request) {
+  return recv_req("MPI_Irecv", 0, buf, count, datatype, source, tag, comm, request);
+}
+
+int MPI_Recv_init(void *buf, int count, MPI_Datatype datatype, int source, int tag, MPI_Comm comm,
+                  MPI_Request *request) {
+  return recv_req("MPI_Recv_init", 1, buf, count, datatype, source, tag, comm, request);
+}
+
+/* ==== send and receive ==================================================== */
+
+int MPI_Sendrecv(const void *sendbuf, int sendcount, MPI_Datatype sendtype, int dest, int sendtag,
+                 void *recvbuf, int recvcount, MPI_Datatype recvtype, int source, int recvtag,
+                 MPI_Comm comm, MPI_Status *status) {
+  static const char fn[] = "MPI_Sendrecv";
+  tsm *R = tsm_need(fn);
+  tsm_comm *c;
+  int rc = send_args(R, fn, sendbuf, sendcount, sendtype, dest, sendtag, comm, &c);
+  if (rc) return rc;
+  if ((rc = recv_args(R, fn, recvbuf, recvcount, recvtype, source, recvtag, comm, &c))) return rc;
+  /* The send is eager: it leaves before the receive waits. */
+  tsm_req s = {.slot = -1}, q = {.slot = -1};
+  tsm_send_fill(&s, c, 0, SM_STANDARD, sendbuf, sendcount, sendtype, dest, sendtag, comm, fn);
+  tsm_send_start(R, &s, c);
+  tsm_recv_fill(&q, c, 0, recvbuf, recvcount, recvtype, source, recvtag, comm, fn);
+  tsm_label l = {.fn = fn, .what = L_SENDRECV, .peer = dest, .tag = sendtag, .peer2 = source,
+                 .tag2 = recvtag, .pair = c->pair};
+  tsm_label_set(R, &l);
+  tsm_recv_block(R, &q);
+  tsm_unlabel(R);
+  tsm_status_out(status, &q.st, 0);
+  return recv_result(R, c, &q);
+}
+
+int MPI_Sendrecv_replace(void *buf, int count, MPI_Datatype datatype, int dest, int sendtag,
+                         int source, int recvtag, MPI_Comm comm, MPI_Status *status) {
+  static const char fn[] = "MPI_Sendrecv_replace";
+  tsm *R = tsm_need(fn);
+  tsm_comm *c;
+  int rc = send_args(R, fn, buf, count, datatype, dest, sendtag, comm, &c);
+  if (rc) return rc;
+  if ((rc = recv_args(R, fn, buf, count, datatype, source, recvtag, comm, &c))) return rc;
+  /* mp_send copies the message out, so the buffer is free to receive into. */
+  tsm_req s = {.slot = -1}, q = {.slot = -1};
+  tsm_send_fill(&s, c, 0, SM_STANDARD, buf, count, datatype, dest, sendtag, comm, fn);
+  tsm_send_start(R, &s, c);
+  tsm_recv_fill(&q, c, 0, buf, count, datatype, source, recvtag, comm, fn);
+  tsm_label l = {.fn = fn, .what = L_SENDRECV, .peer = dest, .tag = sendtag, .peer2 = source,
+                 .tag2 = recvtag, .pair = c->pair};
+  tsm_label_set(R, &l);
+  tsm_recv_block(R, &q);
+  tsm_unlabel(R);
+  tsm_status_out(status, &q.st, 0);
+  return recv_result(R, c, &q);
+}
+
+/* ==== probes ============================================================== */
+
+static int probe(const char *fn, int block, int source, int tag, MPI_Comm comm, int *flag,
+                 MPI_Status *status) {
+  tsm *R = tsm_need(fn);
+  tsm_comm *c;
+  int rc;
+  if ((rc = tsm_check_comm(R, comm, fn, &c))) return rc;
+  if ((rc = tsm_check_tag(R, c, fn, tag, 1))) return rc;
+  if ((rc = tsm_check_peer(R, c, fn, source, 1))) return rc;
+  if (!block && !flag) return tsm_raise(R, c, MPI_ERR_ARG, fn, "NULL flag argument");
+  if (source == MPI_PROC_NULL) {
+    if (flag) *flag = 1;
+    if (status != MPI_STATUS_IGNORE) {
+      tsm_req q = {.slot = -1};
+      proc_null(&q);
+      tsm_status_out(status, &q.st, 0);
+    }
+    return MPI_SUCCESS;
+  }
+  int wsrc = source >= 0 ? tsm_world_of(c, source) : MP_ANY, src, mtag;
+  size_t len;
+  int found;
+  if (block) {
+    tsm_label l = {.fn = fn, .what = L_PROBE, .peer = source, .tag = tag, .pair = c->pair};
+    tsm_label_set(R, &l);
+    found = eng_probe(R, wsrc, 2 * c->pair, tag, 1, &src, &mtag, &len);
+    tsm_unlabel(R);
+  } else {
+    found = eng_probe(R, wsrc, 2 * c->pair, tag, 0, &src, &mtag, &len);
+  }
+  if (flag) *flag = found;
+  if (!found) {
+    double cost = tsmpi_poll_cost();
+    if (cost > 0 && mp_busy(R->self, cost) != MP_OK) tsm_stopped(R);
+    return MPI_SUCCESS;
+  }
+  if (status != MPI_STATUS_IGNORE) {
+    status->MPI_SOURCE = tsm_comm_rank_of(c, src);
+    status->MPI_TAG = mtag;
+    status->tsmpi_cancelled = 0;
+    status->tsmpi_count = (MPI_Count)len;
+  }
+  return MPI_SUCCESS;
+}
+
+int MPI_Probe(int source, int tag, MPI_Comm comm, MPI_Status *status) {
+  return probe("MPI_Probe", 1, source, tag, comm, NULL, status);
+}
+
+int MPI_Iprobe(int source, int tag, MPI_Comm comm, int *flag, MPI_Status *status) {
+  return probe("MPI_Iprobe", 0, source, tag, comm, flag, status);
+}
+
+/* ==== counts ============================================================== */
+
+int MPI_Get_count(const MPI_Status *status, MPI_Datatype datatype, int *count) {
+  static const char fn[] = "MPI_Get_count";
+  tsm *R = tsm_need(fn);
+  int rc = tsm_check_type(R, NULL, fn, datatype);
+  if (rc) return rc;
+  if (!status || !count) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL status or count argument");
+  size_t size = tsmpi_type_size(datatype);
+  MPI_Count bytes = status->tsmpi_count;
+  if (size == 0)
+    *count = 0;   /* MPI 3.1 section 3.2.5: a type of size zero gives zero */
+  else if (bytes % (MPI_Count)size)
+    *count = MPI_UNDEFINED;
+  else
+    *count = (int)(bytes / (MPI_Count)size);
+  return MPI_SUCCESS;
+}
+
+/* ==== the attached buffer ================================================= */
+
+int MPI_Buffer_attach(void *buffer, int size) {
+  static const char fn[] = "MPI_Buffer_attach";
+  tsm *R = tsm_need(fn);
+  if (R->bbuf)
+    return tsm_raise(R, NULL, MPI_ERR_BUFFER, fn, "a buffer is attached already (%d bytes)", R->bsize);
+  if (size < 0) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "invalid size %d", size);
+  if (!buffer && size > 0) return tsm_raise(R, NULL, MPI_ERR_BUFFER, fn, "NULL buffer of %d bytes", size);
+  R->bbuf = buffer;
+  R->bsize = size;
+  return MPI_SUCCESS;
+}
+
+int MPI_Buffer_detach(void *buffer_addr, int *size) {
+  static const char fn[] = "MPI_Buffer_detach";
+  tsm *R = tsm_need(fn);
+  if (!buffer_addr || !size) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL argument");
+  /* Every buffered message has left already (they are eager). */
+  void *b = R->bbuf;
+  memcpy(buffer_addr, &b, sizeof b);
+  *size = R->bbuf ? R->bsize : 0;
+  R->bbuf = NULL;
+  R->bsize = 0;
+  return MPI_SUCCESS;
+}

@@ -1,0 +1,401 @@
+/* request.c -- completing requests: the Wait and Test families,
+ * MPI_Request_free, MPI_Request_get_status, and starting persistent
+ * requests (MPI_Start, MPI_Startall).
+ *
+ * A request is active from its start until it is done (a send: at once,
+ * or when its ack comes; a receive: when a message is matched to it); a
+ * call that completes it copies its status out and frees it, or leaves a
+ * persistent one inactive for its next MPI_Start.  Waiting runs the
+ * matching engine until the request is done (eng_wait, eng_step); testing
+ * first acts on every message that has arrived (eng_poll), and a test that
+ * finds nothing done charges the per-run poll cost (env.h). */
+#include <stdio.h>
+
+#include "engine.h"
+#include "env.h"
+#include "err.h"
+#include "label.h"
+#include "pt2pt.h"
+
+/* ==== one request ========================================================= */
+
+/* The request *h names: *q (NULL for MPI_REQUEST_NULL); MPI_SUCCESS, or
+ * MPI_ERR_REQUEST raised. */
+static int lookup(tsm *R, const char *fn, MPI_Request h, tsm_req **q) {
+  *q = NULL;
+  if (h == MPI_REQUEST_NULL) return MPI_SUCCESS;
+  *q = tsm_req_get(R, h);
+  if (*q) return MPI_SUCCESS;
+  return tsm_raise(R, NULL, MPI_ERR_REQUEST, fn, "invalid request handle 0x%x (%s)", (unsigned)h,
+                   H_KIND(h) == HK_REQ ? "freed, or not this rank's" : "not a request");
+}
+
+/* Lookups of n handles (after the array is checked). */
+static int lookup_all(tsm *R, const char *fn, int n, const MPI_Request *reqs) {
+  if (n < 0) return tsm_raise(R, NULL, MPI_ERR_COUNT, fn, "invalid count %d (must be >= 0)", n);
+  if (n > 0 && !reqs) return tsm_raise(R, NULL, MPI_ERR_REQUEST, fn, "NULL array of requests");
+  for (int i = 0; i < n; i++) {
+    tsm_req *q;
+    int rc = lookup(R, fn, reqs[i], &q);
+    if (rc) return rc;
+  }
+  return MPI_SUCCESS;
+}
+
+/* Whether the request needs completing: 0 for MPI_REQUEST_NULL and an
+ * inactive persistent request (their status is the empty one). */
+static int live(const tsm_req *q) { return q && q->state != RS_INACTIVE; }
+
+/* q (done) completes: its status out, its end; *h nulled unless it is
+ * persistent.  Returns its error class, raised on its communicator for
+ * call fn when raise is set (the single-status calls). */
+static int finish(tsm *R, const char *fn, MPI_Request *h, tsm_req *q, MPI_Status *st, int with_error,
+                  int raise) {
+  tsm_status_out(st, &q->st, with_error);
+  int err = q->st.MPI_ERROR;
+  if (err && raise) {
+    tsm_req copy = *q;
+    if (q->persistent)
+      q->state = RS_INACTIVE;
+    else
+      tsm_req_free(R, q), *h = MPI_REQUEST_NULL;
+    return tsm_req_error(R, tsm_comm_get(R, copy.comm), &copy, fn);
+  }
+  if (q->persistent) {
+    q->state = RS_INACTIVE;
+  } else {
+    tsm_req_free(R, q);
+    *h = MPI_REQUEST_NULL;
+  }
+  return err;
+}
+
+static void empty_out(MPI_Status *st, int with_error) {
+  MPI_Status e;
+  tsm_status_empty(&e);
+  tsm_status_out(st, &e, with_error);
+}
+
+static void poll_charge(tsm *R) {
+  double cost = tsmpi_poll_cost();
+  if (cost > 0 && mp_busy(R->self, cost) != MP_OK) tsm_stopped(R);
+}
+
+/* Several statuses: the first request that failed, raised as
+ * MPI_ERR_IN_STATUS on its communicator. */
+static int in_status(tsm *R, const char *fn, const tsm_req *failed) {
+  return tsm_raise(R, tsm_comm_get(R, failed->comm), MPI_ERR_IN_STATUS, fn,
+                   "%s (from rank %d, tag %d): a %zu-byte message is longer than the receive buffer "
+                   "(%d elements, %zu bytes): truncated (MPI_ERR_TRUNCATE in its status)",
+                   failed->fn, failed->st.MPI_SOURCE, failed->st.MPI_TAG, failed->msglen, failed->count,
+                   failed->cap);
+}
+
+/* ==== the Wait family ===================================================== */
+
+int MPI_Wait(MPI_Request *request, MPI_Status *status) {
+  static const char fn[] = "MPI_Wait";
+  tsm *R = tsm_need(fn);
+  if (!request) return tsm_raise(R, NULL, MPI_ERR_REQUEST, fn, "NULL request argument");
+  tsm_req *q;
+  int rc = lookup(R, fn, *request, &q);
+  if (rc) return rc;
+  if (!live(q)) {
+    empty_out(status, 0);
+    return MPI_SUCCESS;
+  }
+  if (q->state == RS_ACTIVE) {
+    tsm_label l = {.fn = fn, .what = L_REQS, .R = R, .reqs = request, .n = 1};
+    tsm_label_set(R, &l);
+    eng_wait(R, q);
+    tsm_unlabel(R);
+  }
+  return finish(R, fn, request, q, status, 0, 1);
+}
+
+int MPI_Waitall(int count, MPI_Request array_of_requests[], MPI_Status array_of_statuses[]) {
+  static const char fn[] = "MPI_Waitall";
+  tsm *R = tsm_need(fn);
+  int rc = lookup_all(R, fn, count, array_of_requests);
+  if (rc) return rc;
+  tsm_label l = {.fn = fn, .what = L_REQS, .R = R, .reqs = array_of_requests, .n = count};
+  int labelled = 0;
+  for (int i = 0; i < count; i++) {
+    tsm_req *q = tsm_req_get(R, array_of_requests[i]);
+    if (!q || q->state != RS_ACTIVE) continue;
+    if (!labelled++) tsm_label_set(R, &l);
+    eng_wait(R, q);
+  }
+  if (labelled) tsm_unlabel(R);
+  tsm_req failed = {.slot = -1};
+  int nfailed = 0;
+  for (int i = 0; i < count; i++) {
+    MPI_Status *st = array_of_statuses == MPI_STATUSES_IGNORE ? MPI_STATUS_IGNORE : &array_of_statuses[i];
+    tsm_req *q = tsm_req_get(R, array_of_requests[i]);
+    if (!live(q)) {
+      empty_out(st, 1);
+      continue;
+    }
+    if (q->st.MPI_ERROR && !nfailed++) failed = *q;
+    finish(R, fn, &array_of_requests[i], q, st, 1, 0);
+  }
+  return nfailed ? in_status(R, fn, &failed) : MPI_SUCCESS;
+}
+
+int MPI_Waitany(int count, MPI_Request array_of_requests[], int *index, MPI_Status *status) {
+  static const char fn[] = "MPI_Waitany";
+  tsm *R = tsm_need(fn);
+  int rc = lookup_all(R, fn, count, array_of_requests);
+  if (rc) return rc;
+  if (!index) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL index argument");
+  tsm_label l = {.fn = fn, .what = L_REQS, .R = R, .reqs = array_of_requests, .n = count};
+  int labelled = 0;
+  for (;;) {
+    int any = 0;
+    for (int i = 0; i < count; i++) {
+      tsm_req *q = tsm_req_get(R, array_of_requests[i]);
+      if (!live(q)) continue;
+      any = 1;
+      if (q->state != RS_DONE) continue;
+      if (labelled) tsm_unlabel(R);
+      *index = i;
+      return finish(R, fn, &array_of_requests[i], q, status, 0, 1);
+    }
+    if (!any) {   /* nothing to wait for */
+      if (labelled) tsm_unlabel(R);
+      *index = MPI_UNDEFINED;
+      empty_out(status, 0);
+      return MPI_SUCCESS;
+    }
+    if (!labelled++) tsm_label_set(R, &l);
+    eng_step(R);
+  }
+}
+
+/* Waitsome and Testsome: every done request completes (block: until one
+ * is done). */
+static int some(const char *fn, int block, int incount, MPI_Request reqs[], int *outcount,
+                int indices[], MPI_Status sts[]) {
+  tsm *R = tsm_need(fn);
+  int rc = lookup_all(R, fn, incount, reqs);
+  if (rc) return rc;
+  if (!outcount || (incount > 0 && !indices))
+    return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL outcount or indices argument");
+  tsm_label l = {.fn = fn, .what = L_REQS, .R = R, .reqs = reqs, .n = incount};
+  int labelled = 0, polled = 0;
+  for (;;) {
+    int any = 0, done = 0;
+    for (int i = 0; i < incount; i++) {
+      tsm_req *q = tsm_req_get(R, reqs[i]);
+      if (!live(q)) continue;
+      any = 1;
+      done += q->state == RS_DONE;
+    }
+    if (!any) {
+      if (labelled) tsm_unlabel(R);
+      *outcount = MPI_UNDEFINED;
+      return MPI_SUCCESS;
+    }
+    if (done || (!block && polled)) break;
+    if (!block) {
+      eng_poll(R);
+      polled = 1;
+      continue;
+    }
+    if (!labelled++) tsm_label_set(R, &l);
+    eng_step(R);
+  }
+  if (labelled) tsm_unlabel(R);
+  int n = 0, nfailed = 0;
+  tsm_req failed = {.slot = -1};
+  for (int i = 0; i < incount; i++) {
+    tsm_req *q = tsm_req_get(R, reqs[i]);
+    if (!live(q) || q->state != RS_DONE) continue;
+    if (q->st.MPI_ERROR && !nfailed++) failed = *q;
+    finish(R, fn, &reqs[i], q, sts == MPI_STATUSES_IGNORE ? MPI_STATUS_IGNORE : &sts[n], 1, 0);
+    indices[n++] = i;
+  }
+  *outcount = n;
+  if (n == 0) poll_charge(R);
+  return nfailed ? in_status(R, fn, &failed) : MPI_SUCCESS;
+}
+
+int MPI_Waitsome(int incount, MPI_Request array_of_requests[], int *outcount,
+                 int array_of_indices[], MPI_Status array_of_statuses[]) {
+  return some("MPI_Waitsome", 1, incount, array_of_requests, outcount, array_of_indices,
+              array_of_statuses);
+}
+
+/* ==== the Test family ===================================================== */
+
+int MPI_Test(MPI_Request *request, int *flag, MPI_Status *status) {
+  static const char fn[] = "MPI_Test";
+  tsm *R = tsm_need(fn);
+  if (!request || !flag) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL request or flag argument");
+  tsm_req *q;
+  int rc = lookup(R, fn, *request, &q);
+  if (rc) return rc;
+  if (!live(q)) {
+    *flag = 1;
+    empty_out(status, 0);
+    return MPI_SUCCESS;
+  }
+  if (q->state == RS_ACTIVE) eng_poll(R);
+  if (q->state != RS_DONE) {
+    *flag = 0;
+    poll_charge(R);
+    return MPI_SUCCESS;
+  }
+  *flag = 1;
+  return finish(R, fn, request, q, status, 0, 1);
+}
+
+int MPI_Testall(int count, MPI_Request array_of_requests[], int *flag, MPI_Status array_of_statuses[]) {
+  static const char fn[] = "MPI_Testall";
+  tsm *R = tsm_need(fn);
+  int rc = lookup_all(R, fn, count, array_of_requests);
+  if (rc) return rc;
+  if (!flag) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL flag argument");
+  int pending = 0;
+  for (int pass = 0; pass < 2; pass++) {
+    pending = 0;
+    for (int i = 0; i < count; i++) {
+      tsm_req *q = tsm_req_get(R, array_of_requests[i]);
+      pending += live(q) && q->state == RS_ACTIVE;
+    }
+    if (!pending || pass) break;
+    eng_poll(R);
+  }
+  if (pending) {   /* nothing changes: MPI 3.1 section 3.7.5 */
+    *flag = 0;
+    poll_charge(R);
+    return MPI_SUCCESS;
+  }
+  *flag = 1;
+  tsm_req failed = {.slot = -1};
+  int nfailed = 0;
+  for (int i = 0; i < count; i++) {
+    MPI_Status *st = array_of_statuses == MPI_STATUSES_IGNORE ? MPI_STATUS_IGNORE : &array_of_statuses[i];
+    tsm_req *q = tsm_req_get(R, array_of_requests[i]);
+    if (!live(q)) {
+      empty_out(st, 1);
+      continue;
+    }
+    if (q->st.MPI_ERROR && !nfailed++) failed = *q;
+    finish(R, fn, &array_of_requests[i], q, st, 1, 0);
+  }
+  return nfailed ? in_status(R, fn, &failed) : MPI_SUCCESS;
+}
+
+int MPI_Testany(int count, MPI_Request array_of_requests[], int *index, int *flag, MPI_Status *status) {
+  static const char fn[] = "MPI_Testany";
+  tsm *R = tsm_need(fn);
+  int rc = lookup_all(R, fn, count, array_of_requests);
+  if (rc) return rc;
+  if (!index || !flag) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL index or flag argument");
+  for (int pass = 0; pass < 2; pass++) {
+    int any = 0;
+    for (int i = 0; i < count; i++) {
+      tsm_req *q = tsm_req_get(R, array_of_requests[i]);
+      if (!live(q)) continue;
+      any = 1;
+      if (q->state != RS_DONE) continue;
+      *flag = 1;
+      *index = i;
+      return finish(R, fn, &array_of_requests[i], q, status, 0, 1);
+    }
+    if (!any) {   /* nothing active: flag true, no index (MPI 3.1 section 3.7.5) */
+      *flag = 1;
+      *index = MPI_UNDEFINED;
+      empty_out(status, 0);
+      return MPI_SUCCESS;
+    }
+    if (pass == 0) eng_poll(R);
+  }
+  *flag = 0;
+  *index = MPI_UNDEFINED;
+  poll_charge(R);
+  return MPI_SUCCESS;
+}
+
+int MPI_Testsome(int incount, MPI_Request array_of_requests[], int *outcount, int array_of_indices[],
+                 MPI_Status array_of_statuses[]) {
+  return some("MPI_Testsome", 0, incount, array_of_requests, outcount, array_of_indices,
+              array_of_statuses);
+}
+
+int MPI_Request_get_status(MPI_Request request, int *flag, MPI_Status *status) {
+  static const char fn[] = "MPI_Request_get_status";
+  tsm *R = tsm_need(fn);
+  if (!flag) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL flag argument");
+  tsm_req *q;
+  int rc = lookup(R, fn, request, &q);
+  if (rc) return rc;
+  if (!live(q)) {
+    *flag = 1;
+    empty_out(status, 0);
+    return MPI_SUCCESS;
+  }
+  if (q->state == RS_ACTIVE) eng_poll(R);
+  *flag = q->state == RS_DONE;
+  if (*flag)
+    tsm_status_out(status, &q->st, 0);
+  else
+    poll_charge(R);
+  return MPI_SUCCESS;
+}
+
+/* ==== freeing and starting ================================================ */
+
+int MPI_Request_free(MPI_Request *request) {
+  static const char fn[] = "MPI_Request_free";
+  tsm *R = tsm_need(fn);
+  if (!request || *request == MPI_REQUEST_NULL)
+    return tsm_raise(R, NULL, MPI_ERR_REQUEST, fn, "MPI_REQUEST_NULL");
+  tsm_req *q;
+  int rc = lookup(R, fn, *request, &q);
+  if (rc) return rc;
+  if (q->state == RS_ACTIVE)
+    q->freed = 1;   /* it goes on, and goes when it is done (engine.c) */
+  else
+    tsm_req_free(R, q);
+  *request = MPI_REQUEST_NULL;
+  return MPI_SUCCESS;
+}
+
+static int start(tsm *R, const char *fn, MPI_Request h) {
+  tsm_req *q;
+  int rc = lookup(R, fn, h, &q);
+  if (rc) return rc;
+  if (!q) return tsm_raise(R, NULL, MPI_ERR_REQUEST, fn, "MPI_REQUEST_NULL");
+  if (!q->persistent || q->state != RS_INACTIVE)
+    return tsm_raise(R, NULL, MPI_ERR_REQUEST, fn, "request 0x%x is %s", (unsigned)h,
+                     q->persistent ? "active already" : "not persistent (made by MPI_Send_init, MPI_Recv_init, ...)");
+  tsm_comm *c = tsm_comm_get(R, q->comm);
+  if (!c) {
+    char b[64];
+    return tsm_raise(R, NULL, MPI_ERR_COMM, fn, "the request's communicator is gone: %s",
+                     tsm_comm_words(q->comm, b));
+  }
+  if (q->kind == RQ_SEND) return tsm_send_start(R, q, c);
+  q->g = c->g;
+  tsm_recv_start(R, q);
+  return MPI_SUCCESS;
+}
+
+int MPI_Start(MPI_Request *request) {
+  static const char fn[] = "MPI_Start";
+  tsm *R = tsm_need(fn);
+  if (!request) return tsm_raise(R, NULL, MPI_ERR_REQUEST, fn, "NULL request argument");
+  return start(R, fn, *request);
+}
+
+int MPI_Startall(int count, MPI_Request array_of_requests[]) {
+  static const char fn[] = "MPI_Startall";
+  tsm *R = tsm_need(fn);
+  int rc = lookup_all(R, fn, count, array_of_requests);
+  if (rc) return rc;
+  for (int i = 0; i < count; i++)
+    if ((rc = start(R, fn, array_of_requests[i]))) return rc;
+  return MPI_SUCCESS;
+}

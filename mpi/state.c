@@ -1,0 +1,195 @@
+/* state.c -- one rank's MPI state: finding it, tables of communicators,
+ * groups' ranks and requests, its release, the other parts' slots. */
+#include "state.h"
+
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "engine.h"
+#include "env.h"
+#include "xmem.h"
+
+/* ==== finding the rank's state ============================================ */
+
+tsm *tsm_get(void) {
+  mp *self = mp_self();
+  if (!self) return NULL;
+  void *u = mp_user(self);
+  return u == TSM_MARK_FINALIZED || u == TSM_MARK_STOPPED ? NULL : u;
+}
+
+tsm *tsm_need(const char *fn) {
+  mp *self = mp_self();
+  if (!self) {
+    fprintf(stderr, "tilesim MPI: %s called outside a rank: MPI programs run under tilesim-mpirun\n", fn);
+    exit(1);
+  }
+  void *u = mp_user(self);
+  if (u && u != TSM_MARK_FINALIZED && u != TSM_MARK_STOPPED) return u;
+  char why[200];
+  snprintf(why, sizeof why, "rank %d: %s called %s", mp_rank(self), fn,
+           u ? "after MPI_Finalize" : "before MPI_Init");
+  mp_abort(self, 1, why);
+}
+
+_Noreturn void tsm_stopped(tsm *R) {
+  mp *self = R->self;
+  tsm_release(R);
+  mp_set_user(self, TSM_MARK_STOPPED);
+  mp_exit(self);
+}
+
+/* ==== the other parts' slots ============================================== */
+
+void *tsmpi_part(int part) {
+  tsm *R = tsm_get();
+  return R && part >= 0 && part < TSMPI_PARTS ? R->part[part] : NULL;
+}
+
+void tsmpi_part_set(int part, void *p, void (*release)(void *p)) {
+  tsm *R = tsm_need("tsmpi_part_set");
+  if (part < 0 || part >= TSMPI_PARTS) {
+    fprintf(stderr, "tilesim MPI: internal error: tsmpi_part_set(%d)\n", part);
+    abort();
+  }
+  R->part[part] = p;
+  R->release[part] = release;
+}
+
+/* ==== groups' ranks ======================================================= */
+
+static int cmp_pair(const void *a, const void *b) {
+  const int *x = a, *y = b;
+  return (x[0] > y[0]) - (x[0] < y[0]);
+}
+
+tsm_ranks *tsm_ranks_new(int n, const int *world) {
+  tsm_ranks *g = xcalloc(1, sizeof *g);
+  g->refs = 1;
+  g->n = n;
+  int ident = 1;
+  for (int i = 0; world && i < n; i++) ident &= world[i] == i;
+  if (ident) return g;
+  g->world = xmallocarray((size_t)n, sizeof *g->world);
+  memcpy(g->world, world, (size_t)n * sizeof *world);
+  int *pairs = xmallocarray((size_t)n, 2 * sizeof *pairs);
+  for (int i = 0; i < n; i++) {
+    pairs[2 * i] = world[i];
+    pairs[2 * i + 1] = i;
+  }
+  qsort(pairs, (size_t)n, 2 * sizeof *pairs, cmp_pair);
+  g->sw = xmallocarray((size_t)n, sizeof *g->sw);
+  g->sr = xmallocarray((size_t)n, sizeof *g->sr);
+  for (int i = 0; i < n; i++) {
+    g->sw[i] = pairs[2 * i];
+    g->sr[i] = pairs[2 * i + 1];
+  }
+  free(pairs);
+  return g;
+}
+
+void tsm_ranks_drop(tsm_ranks *g) {
+  if (!g || --g->refs > 0) return;
+  free(g->world);
+  free(g->sw);
+  free(g->sr);
+  free(g);
+}
+
+int tsm_ranks_find(const tsm_ranks *g, int w) {
+  if (!g->world) return w >= 0 && w < g->n ? w : -1;
+  int lo = 0, hi = g->n - 1;
+  while (lo <= hi) {
+    int mid = lo + (hi - lo) / 2;
+    if (g->sw[mid] == w) return g->sr[mid];
+    if (g->sw[mid] < w)
+      lo = mid + 1;
+    else
+      hi = mid - 1;
+  }
+  return -1;
+}
+
+/* ==== communicators ======================================================= */
+
+tsm_comm *tsm_comm_get(tsm *R, MPI_Comm comm) {
+  if (comm == MPI_COMM_WORLD) return &R->world;
+  if (comm == MPI_COMM_SELF) return &R->selfc;
+  unsigned slot = (unsigned)comm - (unsigned)(HK_COMM << H_KIND_SHIFT | H_CREATED);
+  if (slot < (unsigned)R->ncomms && R->comms[slot]) return R->comms[slot];
+  return NULL;
+}
+
+int tsm_comm_rank_of(const tsm_comm *c, int w) { return tsm_ranks_find(c->g, w); }
+
+const char *tsm_pair_name(int pair, char *buf) {
+  if (pair == 0) return "MPI_COMM_WORLD";
+  if (pair == 1) return "MPI_COMM_SELF";
+  snprintf(buf, 32, "communicator %d", pair);
+  return buf;
+}
+
+/* ==== requests ============================================================ */
+
+tsm_req *tsm_req_new(tsm *R) {
+  tsm_req *q = R->freereq;
+  if (q) {
+    R->freereq = q->next;
+  } else {
+    if (R->nreqs >= H_SLOT_MASK) {
+      fprintf(stderr, "tilesim MPI: rank %d has %d requests at once: too many\n", R->wrank, R->nreqs);
+      abort();
+    }
+    int slot = R->nreqs++;
+    if ((slot & (slot - 1)) == 0 || slot == 0)   /* a power of two: grow */
+      R->reqs = xreallocarray(R->reqs, slot ? 2 * (size_t)slot : 1, sizeof *R->reqs);
+    q = xmalloc(sizeof *q);
+    q->slot = slot;
+    R->reqs[slot] = q;
+  }
+  int slot = q->slot;
+  memset(q, 0, sizeof *q);
+  q->slot = slot;
+  q->used = 1;
+  return q;
+}
+
+tsm_req *tsm_req_get(tsm *R, MPI_Request h) {
+  unsigned slot = (unsigned)h - (unsigned)(HK_REQ << H_KIND_SHIFT | H_CREATED);
+  if (slot >= (unsigned)R->nreqs) return NULL;
+  tsm_req *q = R->reqs[slot];
+  return q->used ? q : NULL;
+}
+
+void tsm_req_free(tsm *R, tsm_req *q) {
+  if (q->slot < 0) return;
+  if (q->held) tsmpi_type_release(q->dt);
+  q->held = 0;
+  q->used = 0;
+  q->next = R->freereq;
+  R->freereq = q;
+}
+
+/* ==== the end ============================================================= */
+
+void tsm_release(tsm *R) {
+  for (int i = TSMPI_PARTS - 1; i >= 0; i--)
+    if (R->release[i]) R->release[i](R->part[i]);
+  eng_release(R);
+  for (int i = 0; i < R->nreqs; i++) free(R->reqs[i]);
+  free(R->reqs);
+  for (int i = 0; i < R->ncomms; i++) {
+    if (!R->comms[i]) continue;
+    tsm_ranks_drop(R->comms[i]->g);
+    free(R->comms[i]);
+  }
+  free(R->comms);
+  for (int i = 0; i < R->ngroups; i++) tsm_ranks_drop(R->groups[i]);
+  free(R->groups);
+  tsm_ranks_drop(R->world.g);
+  tsm_ranks_drop(R->selfc.g);
+  tsm_ranks_drop(R->empty);
+  free(R);
+}

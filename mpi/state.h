@@ -1,0 +1,220 @@
+/* state.h -- one rank's MPI state: communicators, groups, requests, the
+ * matching engine's queues (private to the point-to-point part of the MPI
+ * layer: mpi/state.c, engine.c, err.c, env.c, pt2pt.c, request.c, comm.c,
+ * group.c, p2p.c).
+ *
+ * A rank's state hangs on its mp handle (mp_user) from MPI_Init to
+ * MPI_Finalize: nothing of it is global, so ranks that run as coroutines
+ * (the simulator) or threads share nothing.  tsm_get() finds it in two loads
+ * and a thread-local read. */
+#ifndef TSMPI_STATE_H
+#define TSMPI_STATE_H
+
+#include <stddef.h>
+
+#include "dtype.h"
+#include "mp.h"
+#include "mpi.h"
+#include "p2p.h"
+
+/* ==== handles ============================================================= */
+
+/* mpi.h: kind << 24 | index; created objects have bit 23 set. */
+enum {
+  H_KIND_SHIFT = 24,
+  H_CREATED = 0x800000,
+  H_SLOT_MASK = 0x7fffff
+};
+#define H_KIND(h) ((unsigned)(h) >> H_KIND_SHIFT)
+enum { HK_COMM = 1, HK_GROUP = 2, HK_ERRH = 5, HK_REQ = 6 };
+
+/* ==== contexts and the envelope =========================================== */
+
+/* A message's mp tag holds its envelope (no header bytes travel):
+ *
+ *   bit 30 29 | 28 ........ 18 | 17 ............ 0
+ *       kind  |   context      |   MPI tag
+ *
+ * kind: K_DATA (an eager message), K_SYNC (an MPI_Ssend's: its receiver
+ * answers with a K_ACK when the receive starts), K_ACK (that answer, with
+ * the message's context and tag).  Every communicator has a pair of
+ * contexts, 2k for point-to-point and 2k + 1 for its collectives; k is the
+ * same on every rank of it (comm.c).  CTX_PAIRS pairs: a rank can be in at
+ * most that many communicators at once, MPI_COMM_WORLD and MPI_COMM_SELF
+ * included. */
+enum {
+  ENV_TAG_BITS = 18,
+  ENV_CTX_BITS = 11,
+  ENV_KIND_SHIFT = ENV_TAG_BITS + ENV_CTX_BITS,
+  TSM_TAG_UB = (1 << ENV_TAG_BITS) - 1,   /* MPI_TAG_UB: 262143 */
+  CTX_PAIRS = 1 << (ENV_CTX_BITS - 1),     /* 1024 */
+  K_DATA = 0,
+  K_SYNC = 1,
+  K_ACK = 2
+};
+
+static inline int env_encode(int kind, int ctx, int tag) {
+  return kind << ENV_KIND_SHIFT | ctx << ENV_TAG_BITS | tag;
+}
+static inline int env_kind(int mptag) { return mptag >> ENV_KIND_SHIFT; }
+static inline int env_ctx(int mptag) { return (mptag >> ENV_TAG_BITS) & ((1 << ENV_CTX_BITS) - 1); }
+static inline int env_tag(int mptag) { return mptag & TSM_TAG_UB; }
+
+/* Tags the communicator constructors use on the parent's collective
+ * context, above the collectives' own (p2p.h: TSMPI_COLL_TAG_MAX). */
+enum { TAG_CTXID = TSMPI_COLL_TAG_MAX + 1, TAG_CTXID_BCAST, TAG_SPLIT, TAG_SPLIT_BCAST };
+
+/* ==== groups and communicators ============================================ */
+
+/* An ordered set of ranks, shared (counted) by groups and communicators. */
+typedef struct {
+  int refs;
+  int n;
+  int *world;   /* world[i]: the MPI_COMM_WORLD rank of rank i; NULL: i itself */
+  int *sw;      /* the world ranks sorted, and ... */
+  int *sr;      /* ... sr[k] the rank of sw[k] (NULL with world NULL) */
+} tsm_ranks;
+
+typedef struct {
+  int live;            /* 0: a free slot */
+  int pair;            /* context pair: ctx 2 * pair, collectives 2 * pair + 1 */
+  int rank, size;      /* the calling rank's rank in it, and its size */
+  tsm_ranks *g;
+  MPI_Errhandler eh;   /* MPI_ERRORS_ARE_FATAL or MPI_ERRORS_RETURN */
+  char name[MPI_MAX_OBJECT_NAME];   /* MPI_Comm_set_name's */
+  char words[32];      /* tsmpi_comm_name's answer */
+} tsm_comm;
+
+/* ==== requests ============================================================ */
+
+enum { RQ_SEND, RQ_RECV };
+enum { SM_STANDARD, SM_SYNC, SM_BUFFERED, SM_READY };
+enum { RS_INACTIVE, RS_ACTIVE, RS_DONE };
+
+typedef struct tsm_req tsm_req;
+struct tsm_req {
+  tsm_req *next, *prev;    /* the posted queue (receives), the sync list (sends),
+                              the free list */
+  int slot;                /* its handle's slot; -1: not in the table (a blocking
+                              call's request on the stack) */
+  unsigned char kind;      /* RQ_* */
+  unsigned char mode;      /* SM_* (sends) */
+  unsigned char state;     /* RS_* */
+  unsigned char persistent;/* made by MPI_*_init */
+  unsigned char freed;     /* MPI_Request_free while active: goes when done */
+  unsigned char used;      /* in the table and not freed */
+  unsigned char held;      /* holds dt (tsmpi_type_hold) until freed */
+  /* the call's arguments */
+  void *buf;
+  int count;
+  MPI_Datatype dt;
+  int peer;                /* rank in comm, MPI_ANY_SOURCE or MPI_PROC_NULL */
+  int tag;                 /* MPI tag or MPI_ANY_TAG */
+  MPI_Comm comm;
+  int pair;                /* comm's context pair, for messages */
+  const char *fn;          /* the MPI call that made it, for messages */
+  size_t msglen;           /* receives: the length of the message taken */
+  /* matching */
+  int wpeer;               /* peer's world rank, or MP_ANY */
+  int ctx;                 /* its context */
+  size_t cap;              /* receives: the buffer's bytes (count * type size) */
+  void *contig;            /* receives: where those bytes lie if the type is
+                              contiguous there, else NULL (unpacked) */
+  tsm_ranks *g;            /* active receives: comm's ranks (counted), to name
+                              the source in the status */
+  /* the result */
+  MPI_Status st;
+};
+
+/* ==== unexpected messages ================================================= */
+
+typedef struct tsm_msg tsm_msg;
+struct tsm_msg {
+  tsm_msg *next, *prev;
+  int src;                 /* world rank */
+  int kind, ctx, tag;      /* the envelope */
+  size_t len;
+  unsigned char *data;     /* len bytes (NULL if 0) */
+};
+
+/* ==== the rank ============================================================ */
+
+enum { TSM_LIVE = 1, TSM_FINALIZED = 2 };
+
+typedef struct tsm tsm;
+struct tsm {
+  int state;               /* TSM_LIVE */
+  mp *self;
+  int wrank, wsize;        /* in MPI_COMM_WORLD */
+  int thread_level;        /* what MPI_Init_thread provided */
+  /* communicators: MPI_COMM_WORLD, MPI_COMM_SELF, then created ones by slot */
+  tsm_comm world, selfc;
+  tsm_comm **comms;
+  int ncomms;
+  unsigned char pairs[CTX_PAIRS / 8];   /* context pairs in use: bit set */
+  /* groups by slot (MPI_GROUP_EMPTY is predefined) */
+  tsm_ranks **groups;
+  int ngroups;
+  tsm_ranks *empty;        /* MPI_GROUP_EMPTY */
+  /* requests by slot, and the free ones */
+  tsm_req **reqs;
+  int nreqs;
+  tsm_req *freereq;
+  /* the matching engine (engine.c) */
+  tsm_req *posted, *posted_tail;   /* receives posted and not matched, in order */
+  tsm_msg *unexp, *unexp_tail;     /* messages taken off mp and not matched, in order */
+  long nunexp;
+  tsm_req *sync, *sync_tail;       /* synchronous sends waiting for their ack */
+  int attr[8];             /* MPI_Comm_get_attr's values, by predefined key */
+  /* MPI_Buffer_attach */
+  void *bbuf;
+  int bsize;
+  /* the other parts' slots (p2p.h) */
+  void *part[TSMPI_PARTS];
+  void (*release[TSMPI_PARTS])(void *);
+};
+
+/* The calling rank's state: NULL before MPI_Init, after MPI_Finalize and
+ * outside a rank. */
+tsm *tsm_get(void);
+
+/* The state for call fn, or the run ends: outside a rank, before MPI_Init or
+ * after MPI_Finalize (a clear message, exit status 1). */
+tsm *tsm_need(const char *fn);
+
+/* The rank ends here (the run was stopped: an MPI_Abort, a deadlock): its
+ * state is released and mp_exit never returns. */
+_Noreturn void tsm_stopped(tsm *R);
+
+/* Release everything of the rank's state (MPI_Finalize, a stopped run). */
+void tsm_release(tsm *R);
+
+/* Communicator comm of R, or NULL (freed, null, not a communicator). */
+tsm_comm *tsm_comm_get(tsm *R, MPI_Comm comm);
+
+/* The rank in c of world rank w, or -1 if w is not in c. */
+int tsm_comm_rank_of(const tsm_comm *c, int w);
+
+/* Requests: a new one in the table (zeroed but for its slot), the one a
+ * handle names (NULL if none), its handle, and its end (out of the table, or
+ * just freed for one on the stack). */
+tsm_req *tsm_req_new(tsm *R);
+tsm_req *tsm_req_get(tsm *R, MPI_Request h);
+static inline MPI_Request tsm_req_handle(const tsm_req *q) {
+  return (MPI_Request)(HK_REQ << H_KIND_SHIFT | H_CREATED | q->slot);
+}
+void tsm_req_free(tsm *R, tsm_req *q);
+
+/* A communicator's context pair as a name for messages: "MPI_COMM_WORLD",
+ * "MPI_COMM_SELF", "communicator N" (buf: at least 32 bytes). */
+const char *tsm_pair_name(int pair, char *buf);
+
+/* The world rank of rank r of c (0 <= r < c->size). */
+static inline int tsm_world_of(const tsm_comm *c, int r) { return c->g->world ? c->g->world[r] : r; }
+
+/* Groups' ranks: a new set of n ranks (world NULL: the identity), counted. */
+tsm_ranks *tsm_ranks_new(int n, const int *world);
+void tsm_ranks_drop(tsm_ranks *g);
+int tsm_ranks_find(const tsm_ranks *g, int w);   /* rank of world rank w, or -1 */
+
+#endif
