@@ -224,6 +224,21 @@ void eng_send(tsm *R, tsm_req *q, const void *data, size_t len) {
   }
 }
 
+void eng_send_data(tsm *R, int wdst, int ctx, int tag, const void *data, size_t len) {
+  mpok(R, mp_send(R->self, wdst, env_encode(K_DATA, ctx, tag), data, len), "mp_send");
+}
+
+int eng_recv_data(tsm *R, int wsrc, int ctx, int tag, void *p, size_t cap, mp_status *got) {
+  mp_status st;
+  mpok(R, mp_wait(R->self, wsrc, MP_ANY, &st), "mp_wait");
+  if (env_kind(st.tag) != K_DATA || env_ctx(st.tag) != ctx || (tag >= 0 && env_tag(st.tag) != tag) ||
+      st.len > cap)
+    return 0;
+  mpok(R, mp_recv(R->self, st.source, st.tag, st.len ? p : NULL, st.len, NULL), "mp_recv");
+  *got = (mp_status){st.source, env_tag(st.tag), st.len};
+  return 1;
+}
+
 /* The first unexpected message q fits, taken into q; 1, or 0 if none. */
 static int from_unexp(tsm *R, tsm_req *q) {
   for (tsm_msg *m = R->unexp; m; m = m->next) {

@@ -29,6 +29,17 @@
  * else q is RS_DONE). */
 void eng_send(tsm *R, tsm_req *q, const void *data, size_t len);
 
+/* The fast paths of MPI_Send and MPI_Recv (the common case of a blocking
+ * exchange, with no request made):
+ *   eng_send_data: an eager message of len bytes to world rank wdst;
+ *   eng_recv_data: when nothing is posted and nothing unexpected, the next
+ *     message from wsrc (MP_ANY) is waited for; if it is an eager one that
+ *     a receive of (ctx, tag) takes and it fits cap bytes at p, it is
+ *     taken there: 1 and *got (world source, MPI tag, bytes).  Else 0 and
+ *     nothing taken (the general way, eng_recv, sees the same message). */
+void eng_send_data(tsm *R, int wdst, int ctx, int tag, const void *data, size_t len);
+int eng_recv_data(tsm *R, int wsrc, int ctx, int tag, void *p, size_t cap, mp_status *got);
+
 /* A receive starts: matched at once by the first unexpected message that
  * fits (q RS_DONE), else posted (q RS_ACTIVE).  q->g is counted while q is
  * active. */

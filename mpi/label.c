@@ -31,7 +31,7 @@ static void tag_words(char *buf, size_t len, size_t *at, const char *what, int t
     add(buf, len, at, ", %s=%d", what, t);
 }
 
-static void describe(void *ud, char *buf, size_t len) {
+void tsm_label_describe(void *ud, char *buf, size_t len) {
   const tsm_label *l = ud;
   size_t at = 0;
   char b[32];
@@ -76,7 +76,3 @@ static void describe(void *ud, char *buf, size_t len) {
   }
   add(buf, len, &at, ", %s)", tsm_pair_name(l->pair, b));
 }
-
-void tsm_label_set(tsm *R, tsm_label *l) { mp_label(R->self, describe, l); }
-
-void tsm_unlabel(tsm *R) { mp_label(R->self, NULL, NULL); }

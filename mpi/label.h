@@ -24,7 +24,8 @@ typedef struct {
 } tsm_label;
 
 /* Set l as the calling rank's label until tsm_unlabel. */
-void tsm_label_set(tsm *R, tsm_label *l);
-void tsm_unlabel(tsm *R);
+void tsm_label_describe(void *ud, char *buf, size_t len);
+static inline void tsm_label_set(tsm *R, tsm_label *l) { mp_label(R->self, tsm_label_describe, l); }
+static inline void tsm_unlabel(tsm *R) { mp_label(R->self, NULL, NULL); }
 
 #endif

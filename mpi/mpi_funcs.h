@@ -41,11 +41,11 @@ TSMPI_FN(0, ENV, int, MPI_Comm_call_errhandler, (MPI_Comm comm, int errorcode),
 TSMPI_FN(0, ENV, int, MPI_Comm_create_errhandler, (MPI_Comm_errhandler_function *comm_errhandler_fn,
          MPI_Errhandler *errhandler),
          (comm_errhandler_fn, errhandler))
-TSMPI_FN(0, ENV, int, MPI_Comm_get_errhandler, (MPI_Comm comm, MPI_Errhandler *errhandler),
+TSMPI_FN(1, ENV, int, MPI_Comm_get_errhandler, (MPI_Comm comm, MPI_Errhandler *errhandler),
          (comm, errhandler))
 TSMPI_FN(1, ENV, int, MPI_Comm_set_errhandler, (MPI_Comm comm, MPI_Errhandler errhandler),
          (comm, errhandler))
-TSMPI_FN(0, ENV, int, MPI_Errhandler_free, (MPI_Errhandler *errhandler),
+TSMPI_FN(1, ENV, int, MPI_Errhandler_free, (MPI_Errhandler *errhandler),
          (errhandler))
 TSMPI_FN(1, ENV, int, MPI_Error_class, (int errorcode, int *errorclass),
          (errorcode, errorclass))
@@ -78,7 +78,7 @@ TSMPI_FN(1, ENV, double, MPI_Wtime, (void),
 TSMPI_FN(1, P2P, int, MPI_Bsend, (const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
          MPI_Comm comm),
          (buf, count, datatype, dest, tag, comm))
-TSMPI_FN(0, P2P, int, MPI_Bsend_init, (const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
+TSMPI_FN(1, P2P, int, MPI_Bsend_init, (const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
          MPI_Comm comm, MPI_Request *request),
          (buf, count, datatype, dest, tag, comm, request))
 TSMPI_FN(1, P2P, int, MPI_Buffer_attach, (void *buffer, int size),
@@ -89,7 +89,7 @@ TSMPI_FN(0, P2P, int, MPI_Cancel, (MPI_Request *request),
          (request))
 TSMPI_FN(1, P2P, int, MPI_Get_count, (const MPI_Status *status, MPI_Datatype datatype, int *count),
          (status, datatype, count))
-TSMPI_FN(0, P2P, int, MPI_Ibsend, (const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
+TSMPI_FN(1, P2P, int, MPI_Ibsend, (const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
          MPI_Comm comm, MPI_Request *request),
          (buf, count, datatype, dest, tag, comm, request))
 TSMPI_FN(0, P2P, int, MPI_Improbe, (int source, int tag, MPI_Comm comm, int *flag, MPI_Message *message,
@@ -103,7 +103,7 @@ TSMPI_FN(1, P2P, int, MPI_Iprobe, (int source, int tag, MPI_Comm comm, int *flag
 TSMPI_FN(1, P2P, int, MPI_Irecv, (void *buf, int count, MPI_Datatype datatype, int source, int tag,
          MPI_Comm comm, MPI_Request *request),
          (buf, count, datatype, source, tag, comm, request))
-TSMPI_FN(0, P2P, int, MPI_Irsend, (const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
+TSMPI_FN(1, P2P, int, MPI_Irsend, (const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
          MPI_Comm comm, MPI_Request *request),
          (buf, count, datatype, dest, tag, comm, request))
 TSMPI_FN(1, P2P, int, MPI_Isend, (const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
@@ -128,12 +128,12 @@ TSMPI_FN(1, P2P, int, MPI_Recv_init, (void *buf, int count, MPI_Datatype datatyp
          (buf, count, datatype, source, tag, comm, request))
 TSMPI_FN(1, P2P, int, MPI_Request_free, (MPI_Request *request),
          (request))
-TSMPI_FN(0, P2P, int, MPI_Request_get_status, (MPI_Request request, int *flag, MPI_Status *status),
+TSMPI_FN(1, P2P, int, MPI_Request_get_status, (MPI_Request request, int *flag, MPI_Status *status),
          (request, flag, status))
 TSMPI_FN(1, P2P, int, MPI_Rsend, (const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
          MPI_Comm comm),
          (buf, count, datatype, dest, tag, comm))
-TSMPI_FN(0, P2P, int, MPI_Rsend_init, (const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
+TSMPI_FN(1, P2P, int, MPI_Rsend_init, (const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
          MPI_Comm comm, MPI_Request *request),
          (buf, count, datatype, dest, tag, comm, request))
 TSMPI_FN(1, P2P, int, MPI_Send, (const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
@@ -153,7 +153,7 @@ TSMPI_FN(1, P2P, int, MPI_Sendrecv_replace, (void *buf, int count, MPI_Datatype 
 TSMPI_FN(1, P2P, int, MPI_Ssend, (const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
          MPI_Comm comm),
          (buf, count, datatype, dest, tag, comm))
-TSMPI_FN(0, P2P, int, MPI_Ssend_init, (const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
+TSMPI_FN(1, P2P, int, MPI_Ssend_init, (const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
          MPI_Comm comm, MPI_Request *request),
          (buf, count, datatype, dest, tag, comm, request))
 TSMPI_FN(1, P2P, int, MPI_Start, (MPI_Request *request),
@@ -170,7 +170,7 @@ TSMPI_FN(1, P2P, int, MPI_Testall, (int count, MPI_Request array_of_requests[], 
 TSMPI_FN(1, P2P, int, MPI_Testany, (int count, MPI_Request array_of_requests[], int *indx, int *flag,
          MPI_Status *status),
          (count, array_of_requests, indx, flag, status))
-TSMPI_FN(0, P2P, int, MPI_Testsome, (int incount, MPI_Request array_of_requests[], int *outcount,
+TSMPI_FN(1, P2P, int, MPI_Testsome, (int incount, MPI_Request array_of_requests[], int *outcount,
          int array_of_indices[], MPI_Status array_of_statuses[]),
          (incount, array_of_requests, outcount, array_of_indices, array_of_statuses))
 TSMPI_FN(1, P2P, int, MPI_Wait, (MPI_Request *request, MPI_Status *status),
@@ -415,7 +415,7 @@ TSMPI_FN(1, COLL, int, MPI_Scatterv, (const void *sendbuf, const int sendcounts[
 /* --- COMM --- */
 TSMPI_FN(0, COMM, int, MPI_Attr_delete, (MPI_Comm comm, int keyval),
          (comm, keyval))
-TSMPI_FN(0, COMM, int, MPI_Attr_get, (MPI_Comm comm, int keyval, void *attribute_val, int *flag),
+TSMPI_FN(1, COMM, int, MPI_Attr_get, (MPI_Comm comm, int keyval, void *attribute_val, int *flag),
          (comm, keyval, attribute_val, flag))
 TSMPI_FN(0, COMM, int, MPI_Attr_put, (MPI_Comm comm, int keyval, void *attribute_val),
          (comm, keyval, attribute_val))
@@ -423,7 +423,7 @@ TSMPI_FN(1, COMM, int, MPI_Comm_compare, (MPI_Comm comm1, MPI_Comm comm2, int *r
          (comm1, comm2, result))
 TSMPI_FN(1, COMM, int, MPI_Comm_create, (MPI_Comm comm, MPI_Group group, MPI_Comm *newcomm),
          (comm, group, newcomm))
-TSMPI_FN(0, COMM, int, MPI_Comm_create_group, (MPI_Comm comm, MPI_Group group, int tag, MPI_Comm *newcomm),
+TSMPI_FN(1, COMM, int, MPI_Comm_create_group, (MPI_Comm comm, MPI_Group group, int tag, MPI_Comm *newcomm),
          (comm, group, tag, newcomm))
 TSMPI_FN(0, COMM, int, MPI_Comm_create_keyval, (MPI_Comm_copy_attr_function *comm_copy_attr_fn,
          MPI_Comm_delete_attr_function *comm_delete_attr_fn, int *comm_keyval, void *extra_state),
@@ -438,11 +438,11 @@ TSMPI_FN(1, COMM, int, MPI_Comm_free, (MPI_Comm *comm),
          (comm))
 TSMPI_FN(0, COMM, int, MPI_Comm_free_keyval, (int *comm_keyval),
          (comm_keyval))
-TSMPI_FN(0, COMM, int, MPI_Comm_get_attr, (MPI_Comm comm, int comm_keyval, void *attribute_val, int *flag),
+TSMPI_FN(1, COMM, int, MPI_Comm_get_attr, (MPI_Comm comm, int comm_keyval, void *attribute_val, int *flag),
          (comm, comm_keyval, attribute_val, flag))
 TSMPI_FN(0, COMM, int, MPI_Comm_get_info, (MPI_Comm comm, MPI_Info *info_used),
          (comm, info_used))
-TSMPI_FN(0, COMM, int, MPI_Comm_get_name, (MPI_Comm comm, char *comm_name, int *resultlen),
+TSMPI_FN(1, COMM, int, MPI_Comm_get_name, (MPI_Comm comm, char *comm_name, int *resultlen),
          (comm, comm_name, resultlen))
 TSMPI_FN(1, COMM, int, MPI_Comm_group, (MPI_Comm comm, MPI_Group *group),
          (comm, group))
@@ -458,7 +458,7 @@ TSMPI_FN(0, COMM, int, MPI_Comm_set_attr, (MPI_Comm comm, int comm_keyval, void 
          (comm, comm_keyval, attribute_val))
 TSMPI_FN(0, COMM, int, MPI_Comm_set_info, (MPI_Comm comm, MPI_Info info),
          (comm, info))
-TSMPI_FN(0, COMM, int, MPI_Comm_set_name, (MPI_Comm comm, const char *comm_name),
+TSMPI_FN(1, COMM, int, MPI_Comm_set_name, (MPI_Comm comm, const char *comm_name),
          (comm, comm_name))
 TSMPI_FN(1, COMM, int, MPI_Comm_size, (MPI_Comm comm, int *size),
          (comm, size))
@@ -467,11 +467,11 @@ TSMPI_FN(1, COMM, int, MPI_Comm_split, (MPI_Comm comm, int color, int key, MPI_C
 TSMPI_FN(0, COMM, int, MPI_Comm_split_type, (MPI_Comm comm, int split_type, int key, MPI_Info info,
          MPI_Comm *newcomm),
          (comm, split_type, key, info, newcomm))
-TSMPI_FN(0, COMM, int, MPI_Comm_test_inter, (MPI_Comm comm, int *flag),
+TSMPI_FN(1, COMM, int, MPI_Comm_test_inter, (MPI_Comm comm, int *flag),
          (comm, flag))
-TSMPI_FN(0, COMM, int, MPI_Group_compare, (MPI_Group group1, MPI_Group group2, int *result),
+TSMPI_FN(1, COMM, int, MPI_Group_compare, (MPI_Group group1, MPI_Group group2, int *result),
          (group1, group2, result))
-TSMPI_FN(0, COMM, int, MPI_Group_difference, (MPI_Group group1, MPI_Group group2, MPI_Group *newgroup),
+TSMPI_FN(1, COMM, int, MPI_Group_difference, (MPI_Group group1, MPI_Group group2, MPI_Group *newgroup),
          (group1, group2, newgroup))
 TSMPI_FN(1, COMM, int, MPI_Group_excl, (MPI_Group group, int n, const int ranks[], MPI_Group *newgroup),
          (group, n, ranks, newgroup))
@@ -479,20 +479,20 @@ TSMPI_FN(1, COMM, int, MPI_Group_free, (MPI_Group *group),
          (group))
 TSMPI_FN(1, COMM, int, MPI_Group_incl, (MPI_Group group, int n, const int ranks[], MPI_Group *newgroup),
          (group, n, ranks, newgroup))
-TSMPI_FN(0, COMM, int, MPI_Group_intersection, (MPI_Group group1, MPI_Group group2, MPI_Group *newgroup),
+TSMPI_FN(1, COMM, int, MPI_Group_intersection, (MPI_Group group1, MPI_Group group2, MPI_Group *newgroup),
          (group1, group2, newgroup))
-TSMPI_FN(0, COMM, int, MPI_Group_range_excl, (MPI_Group group, int n, int ranges[][3], MPI_Group *newgroup),
+TSMPI_FN(1, COMM, int, MPI_Group_range_excl, (MPI_Group group, int n, int ranges[][3], MPI_Group *newgroup),
          (group, n, ranges, newgroup))
-TSMPI_FN(0, COMM, int, MPI_Group_range_incl, (MPI_Group group, int n, int ranges[][3], MPI_Group *newgroup),
+TSMPI_FN(1, COMM, int, MPI_Group_range_incl, (MPI_Group group, int n, int ranges[][3], MPI_Group *newgroup),
          (group, n, ranges, newgroup))
 TSMPI_FN(1, COMM, int, MPI_Group_rank, (MPI_Group group, int *rank),
          (group, rank))
 TSMPI_FN(1, COMM, int, MPI_Group_size, (MPI_Group group, int *size),
          (group, size))
-TSMPI_FN(0, COMM, int, MPI_Group_translate_ranks, (MPI_Group group1, int n, const int ranks1[],
+TSMPI_FN(1, COMM, int, MPI_Group_translate_ranks, (MPI_Group group1, int n, const int ranks1[],
          MPI_Group group2, int ranks2[]),
          (group1, n, ranks1, group2, ranks2))
-TSMPI_FN(0, COMM, int, MPI_Group_union, (MPI_Group group1, MPI_Group group2, MPI_Group *newgroup),
+TSMPI_FN(1, COMM, int, MPI_Group_union, (MPI_Group group1, MPI_Group group2, MPI_Group *newgroup),
          (group1, group2, newgroup))
 TSMPI_FN(0, COMM, int, MPI_Intercomm_create, (MPI_Comm local_comm, int local_leader, MPI_Comm peer_comm,
          int remote_leader, int tag, MPI_Comm *newintercomm),
@@ -783,9 +783,9 @@ TSMPI_FN(0, EXT, int, MPI_Grequest_start, (MPI_Grequest_query_function *query_fn
          (query_fn, free_fn, cancel_fn, extra_state, request))
 TSMPI_FN(1, EXT, int, MPI_Init_thread, (int *argc, char ***argv, int required, int *provided),
          (argc, argv, required, provided))
-TSMPI_FN(0, EXT, int, MPI_Is_thread_main, (int *flag),
+TSMPI_FN(1, EXT, int, MPI_Is_thread_main, (int *flag),
          (flag))
-TSMPI_FN(0, EXT, int, MPI_Query_thread, (int *provided),
+TSMPI_FN(1, EXT, int, MPI_Query_thread, (int *provided),
          (provided))
 TSMPI_FN(0, EXT, int, MPI_Status_set_cancelled, (MPI_Status *status, int flag),
          (status, flag))

@@ -23,7 +23,8 @@ int tsmpi_p2p_send(const void *buf, int count, MPI_Datatype dt, int dst, int tag
   tsm *R = tsm_need("tsmpi_p2p_send");
   tsm_comm *c = comm_of(R, comm, "tsmpi_p2p_send");
   if (dst == MPI_PROC_NULL) return MPI_SUCCESS;
-  tsm_req q = {.slot = -1};
+  tsm_req q;
+  tsm_req_stack(&q);
   tsm_send_fill(&q, c, 1, SM_STANDARD, buf, count, dt, dst, tag, comm, "tsmpi_p2p_send");
   return tsm_send_start(R, &q, c);
 }
@@ -32,7 +33,8 @@ int tsmpi_p2p_recv(void *buf, int count, MPI_Datatype dt, int src, int tag, MPI_
                    MPI_Status *st) {
   tsm *R = tsm_need("tsmpi_p2p_recv");
   tsm_comm *c = comm_of(R, comm, "tsmpi_p2p_recv");
-  tsm_req q = {.slot = -1};
+  tsm_req q;
+  tsm_req_stack(&q);
   tsm_recv_fill(&q, c, 1, buf, count, dt, src, tag, comm, "tsmpi_p2p_recv");
   tsm_recv_block(R, &q);
   tsm_status_out(st, &q.st, 1);

@@ -16,8 +16,14 @@
 
 void tsm_send_fill(tsm_req *q, const tsm_comm *c, int coll, int mode, const void *buf, int count,
                    MPI_Datatype dt, int dst, int tag, MPI_Comm comm, const char *fn) {
+  q->next = q->prev = NULL;
   q->kind = RQ_SEND;
   q->mode = (unsigned char)mode;
+  q->state = RS_INACTIVE;
+  q->persistent = q->freed = 0;
+  q->msglen = q->cap = 0;
+  q->contig = NULL;
+  q->g = NULL;
   q->buf = (void *)buf;
   q->count = count;
   q->dt = dt;
@@ -78,7 +84,12 @@ int tsm_send_start(tsm *R, tsm_req *q, const tsm_comm *c) {
 
 void tsm_recv_fill(tsm_req *q, const tsm_comm *c, int coll, void *buf, int count, MPI_Datatype dt,
                    int src, int tag, MPI_Comm comm, const char *fn) {
+  q->next = q->prev = NULL;
   q->kind = RQ_RECV;
+  q->mode = SM_STANDARD;
+  q->state = RS_INACTIVE;
+  q->persistent = q->freed = 0;
+  q->msglen = 0;
   q->buf = buf;
   q->count = count;
   q->dt = dt;
@@ -126,11 +137,25 @@ void tsm_status_out(MPI_Status *out, const MPI_Status *in, int with_error) {
 
 /* ==== argument checks ===================================================== */
 
+/* The common case in a few compares; anything odd goes through the checks
+ * one by one, which say what is wrong. */
+static inline int args_fine(tsm_comm *c, const void *buf, int count, MPI_Datatype dt, int peer, int tag,
+                            int any_ok) {
+  if (!c || count < 0) return 0;
+  if ((unsigned)tag > TSM_TAG_UB && !(any_ok && tag == MPI_ANY_TAG)) return 0;
+  if ((unsigned)peer >= (unsigned)c->size && peer != MPI_PROC_NULL && !(any_ok && peer == MPI_ANY_SOURCE))
+    return 0;
+  char why[64];
+  return (buf || count == 0) && tsmpi_type_check(dt, why, sizeof why) == MPI_SUCCESS;
+}
+
 static int send_args(tsm *R, const char *fn, const void *buf, int count, MPI_Datatype dt, int dst,
                      int tag, MPI_Comm comm, tsm_comm **cp) {
+  tsm_comm *c = comm == MPI_COMM_WORLD ? &R->world : tsm_comm_get(R, comm);
+  *cp = c;
+  if (args_fine(c, buf, count, dt, dst, tag, 0)) return MPI_SUCCESS;
   int rc;
   if ((rc = tsm_check_comm(R, comm, fn, cp))) return rc;
-  tsm_comm *c = *cp;
   if ((rc = tsm_check_count(R, c, fn, count))) return rc;
   if ((rc = tsm_check_type(R, c, fn, dt))) return rc;
   if ((rc = tsm_check_tag(R, c, fn, tag, 0))) return rc;
@@ -140,9 +165,11 @@ static int send_args(tsm *R, const char *fn, const void *buf, int count, MPI_Dat
 
 static int recv_args(tsm *R, const char *fn, const void *buf, int count, MPI_Datatype dt, int src,
                      int tag, MPI_Comm comm, tsm_comm **cp) {
+  tsm_comm *c = comm == MPI_COMM_WORLD ? &R->world : tsm_comm_get(R, comm);
+  *cp = c;
+  if (args_fine(c, buf, count, dt, src, tag, 1)) return MPI_SUCCESS;
   int rc;
   if ((rc = tsm_check_comm(R, comm, fn, cp))) return rc;
-  tsm_comm *c = *cp;
   if ((rc = tsm_check_count(R, c, fn, count))) return rc;
   if ((rc = tsm_check_type(R, c, fn, dt))) return rc;
   if ((rc = tsm_check_tag(R, c, fn, tag, 1))) return rc;
@@ -172,7 +199,8 @@ static int send_block(const char *fn, int mode, const void *buf, int count, MPI_
   tsm_comm *c;
   int rc = send_args(R, fn, buf, count, dt, dst, tag, comm, &c);
   if (rc || dst == MPI_PROC_NULL) return rc;
-  tsm_req q = {.slot = -1};
+  tsm_req q;
+  tsm_req_stack(&q);
   tsm_send_fill(&q, c, 0, mode, buf, count, dt, dst, tag, comm, fn);
   if ((rc = tsm_send_start(R, &q, c))) return rc;
   if (q.state == RS_ACTIVE) {   /* synchronous: until the receive starts */
@@ -185,7 +213,19 @@ static int send_block(const char *fn, int mode, const void *buf, int count, MPI_
 }
 
 int MPI_Send(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm) {
-  return send_block("MPI_Send", SM_STANDARD, buf, count, datatype, dest, tag, comm);
+  static const char fn[] = "MPI_Send";
+  tsm *R = tsm_need(fn);
+  tsm_comm *c = comm == MPI_COMM_WORLD ? &R->world : tsm_comm_get(R, comm);
+  if (args_fine(c, buf, count, datatype, dest, tag, 0) && dest != MPI_PROC_NULL) {
+    /* The fast path: a contiguous message leaves from the buffer. */
+    size_t len = (size_t)count * tsmpi_type_size(datatype);
+    const void *p = len ? tsmpi_type_contig(buf, count, datatype) : NULL;
+    if (p || !len) {
+      eng_send_data(R, tsm_world_of(c, dest), 2 * c->pair, tag, p, len);
+      return MPI_SUCCESS;
+    }
+  }
+  return send_block(fn, SM_STANDARD, buf, count, datatype, dest, tag, comm);
 }
 
 int MPI_Ssend(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm) {
@@ -272,13 +312,34 @@ int MPI_Recv(void *buf, int count, MPI_Datatype datatype, int source, int tag, M
              MPI_Status *status) {
   static const char fn[] = "MPI_Recv";
   tsm *R = tsm_need(fn);
-  tsm_comm *c;
-  int rc = recv_args(R, fn, buf, count, datatype, source, tag, comm, &c);
-  if (rc) return rc;
-  tsm_req q = {.slot = -1};
-  tsm_recv_fill(&q, c, 0, buf, count, datatype, source, tag, comm, fn);
+  tsm_comm *c = comm == MPI_COMM_WORLD ? &R->world : tsm_comm_get(R, comm);
+  int rc;
+  if (!args_fine(c, buf, count, datatype, source, tag, 1) &&
+      (rc = recv_args(R, fn, buf, count, datatype, source, tag, comm, &c)))
+    return rc;
   tsm_label l = {.fn = fn, .what = L_RECV, .peer = source, .tag = tag, .pair = c->pair};
   tsm_label_set(R, &l);
+  if (source != MPI_PROC_NULL && !R->nunexp && !R->posted) {
+    /* The fast path: the source's next message, straight into a
+     * contiguous buffer, when it is the one. */
+    size_t cap = (size_t)count * tsmpi_type_size(datatype);
+    void *p = cap ? (void *)tsmpi_type_contig(buf, count, datatype) : NULL;
+    mp_status got;
+    if ((p || !cap) &&
+        eng_recv_data(R, source >= 0 ? tsm_world_of(c, source) : MP_ANY, 2 * c->pair, tag, p, cap, &got)) {
+      tsm_unlabel(R);
+      if (status != MPI_STATUS_IGNORE) {
+        status->MPI_SOURCE = c->g->world ? tsm_comm_rank_of(c, got.source) : got.source;
+        status->MPI_TAG = got.tag;
+        status->tsmpi_cancelled = 0;
+        status->tsmpi_count = (MPI_Count)got.len;
+      }
+      return MPI_SUCCESS;
+    }
+  }
+  tsm_req q;
+  tsm_req_stack(&q);
+  tsm_recv_fill(&q, c, 0, buf, count, datatype, source, tag, comm, fn);
   tsm_recv_block(R, &q);
   tsm_unlabel(R);
   tsm_status_out(status, &q.st, 0);
@@ -330,7 +391,9 @@ int MPI_Sendrecv(const void *sendbuf, int sendcount, MPI_Datatype sendtype, int 
   if (rc) return rc;
   if ((rc = recv_args(R, fn, recvbuf, recvcount, recvtype, source, recvtag, comm, &c))) return rc;
   /* The send is eager: it leaves before the receive waits. */
-  tsm_req s = {.slot = -1}, q = {.slot = -1};
+  tsm_req s, q;
+  tsm_req_stack(&s);
+  tsm_req_stack(&q);
   tsm_send_fill(&s, c, 0, SM_STANDARD, sendbuf, sendcount, sendtype, dest, sendtag, comm, fn);
   tsm_send_start(R, &s, c);
   tsm_recv_fill(&q, c, 0, recvbuf, recvcount, recvtype, source, recvtag, comm, fn);
@@ -352,7 +415,9 @@ int MPI_Sendrecv_replace(void *buf, int count, MPI_Datatype datatype, int dest, 
   if (rc) return rc;
   if ((rc = recv_args(R, fn, buf, count, datatype, source, recvtag, comm, &c))) return rc;
   /* mp_send copies the message out, so the buffer is free to receive into. */
-  tsm_req s = {.slot = -1}, q = {.slot = -1};
+  tsm_req s, q;
+  tsm_req_stack(&s);
+  tsm_req_stack(&q);
   tsm_send_fill(&s, c, 0, SM_STANDARD, buf, count, datatype, dest, sendtag, comm, fn);
   tsm_send_start(R, &s, c);
   tsm_recv_fill(&q, c, 0, buf, count, datatype, source, recvtag, comm, fn);
@@ -379,7 +444,8 @@ static int probe(const char *fn, int block, int source, int tag, MPI_Comm comm, 
   if (source == MPI_PROC_NULL) {
     if (flag) *flag = 1;
     if (status != MPI_STATUS_IGNORE) {
-      tsm_req q = {.slot = -1};
+      tsm_req q;
+  tsm_req_stack(&q);
       proc_null(&q);
       tsm_status_out(status, &q.st, 0);
     }

@@ -205,6 +205,13 @@ static inline MPI_Request tsm_req_handle(const tsm_req *q) {
 }
 void tsm_req_free(tsm *R, tsm_req *q);
 
+/* A blocking call's request, on its stack (the fill functions of pt2pt.h
+ * set the rest; no zeroing of the whole struct on the fast path). */
+static inline void tsm_req_stack(tsm_req *q) {
+  q->slot = -1;
+  q->used = q->held = 0;
+}
+
 /* A communicator's context pair as a name for messages: "MPI_COMM_WORLD",
  * "MPI_COMM_SELF", "communicator N" (buf: at least 32 bytes). */
 const char *tsm_pair_name(int pair, char *buf);
