@@ -63,6 +63,17 @@ EXAMPLES = $(basename $(notdir $(wildcard examples/*.c)))
 EXFLAGS  = -std=c11 $(WARN) -Ibuild/include
 TESTLIB  = $(filter-out $(wildcard tests/test_*.c),$(wildcard tests/*.c))
 
+# The MPI layer (issue 19, mpi/): every mpi/*.c into libtsmpi.a.  mpi/ is on
+# no include path: its sources find mpi.h beside them, so that every other
+# file's <mpi.h> stays the real MPI's (make mpi).  The MPI programs of
+# tests/mpi/ (but contract.c, the MPI backend's, which only mpicc builds) are
+# built against it with -Impi and their main renamed tsmpi_main_NAME, and
+# run on the simulator by tests/test_mpiprogs.c (and under Open MPI by
+# tests/cli_mpiprogs.sh).
+TSMPISRC   = $(wildcard mpi/*.c)
+TSMPIPROGS = $(basename $(notdir $(filter-out tests/mpi/contract.c,$(wildcard tests/mpi/*.c))))
+TSMPIPFLAGS = -Impi -Wno-missing-prototypes
+
 REL = build/rel
 CHK = build/chk
 relobj = $(patsubst %.c,$(REL)/%.o,$(1))
@@ -70,7 +81,7 @@ chkobj = $(patsubst %.c,$(CHK)/%.o,$(1))
 
 # Programs build into build/bin and are copied to the root when they change,
 # so that `make bench` can be the experiments rather than the program.
-all: $(addprefix build/bin/,$(PROGS)) $(PLOT) $(REL)/lib/libtilesim.a $(addprefix build/examples/,$(EXAMPLES))
+all: $(addprefix build/bin/,$(PROGS)) $(PLOT) $(REL)/lib/libtilesim.a $(addprefix build/examples/,$(EXAMPLES)) $(REL)/libtsmpi.a
 	@for p in $(PROGS); do cmp -s build/bin/$$p $$p || cp -f build/bin/$$p $$p; done
 
 $(REL)/%.o: %.c
@@ -119,6 +130,29 @@ $(CHK)/testbed/%: tests/testbed/%.c $(CHK)/lib/libtilesim.a $(PUBHDR)
 	@mkdir -p $(CHK)/testbed
 	$(CC) $(EXFLAGS) $(CHKFLAGS) -o $@ $< $(CHK)/lib/libtilesim.a $(LDLIBS)
 
+$(REL)/libtsmpi.a: $(call relobj,$(TSMPISRC))
+	@rm -f $@
+	$(AR) rcs $@ $^
+
+$(CHK)/libtsmpi.a: $(call chkobj,$(TSMPISRC))
+	@rm -f $@
+	$(AR) rcs $@ $^
+
+# The MPI test programs: main renamed, tilesim's mpi.h; and their list for
+# the driver, rewritten only when it changes.
+$(CHK)/tests/mpi/%.o: tests/mpi/%.c
+	@mkdir -p $(dir $@)
+	$(CC) $(BASE) $(CHKFLAGS) $(TSMPIPFLAGS) -Dmain=tsmpi_main_$* -MMD -MP -c $< -o $@
+$(CHK)/tests/mpi/progs.h: FORCE
+	@mkdir -p $(dir $@)
+	@printf '%s\n' $(foreach p,$(TSMPIPROGS),'TSMPI_PROG($(p))') > $@.tmp
+	@if cmp -s $@.tmp $@; then rm -f $@.tmp; else mv -f $@.tmp $@; fi
+$(CHK)/tests/test_mpiprogs.o: $(CHK)/tests/mpi/progs.h
+$(CHK)/tests/test_mpiprogs.o: CHKFLAGS += -I$(CHK)/tests/mpi
+$(CHK)/tests/test_mpiprogs: $(CHK)/tests/test_mpiprogs.o $(patsubst %,$(CHK)/tests/mpi/%.o,$(TSMPIPROGS)) \
+                            $(call chkobj,$(TESTLIB)) $(CHK)/libtsmpi.a $(CHK)/libtilesim.a
+	$(CC) $(CHKFLAGS) -o $@ $^ $(LDLIBS)
+
 define prog_rules
 build/bin/$(1): $(call relobj,prog/$(1).c $(wildcard prog/$(1)_*.c)) $(REL)/libtilesim.a
 	@mkdir -p build/bin
@@ -133,7 +167,7 @@ build/plot: $(call relobj,$(PLOTSRC)) $(REL)/libtilesim.a
 $(CHK)/plot: $(call chkobj,$(PLOTSRC)) $(CHK)/libtilesim.a
 	$(CC) $(CHKFLAGS) -o $@ $^ $(LDLIBS)
 
-$(CHK)/tests/%: $(CHK)/tests/%.o $(call chkobj,$(TESTLIB)) $(CHK)/libtilesim.a
+$(CHK)/tests/%: $(CHK)/tests/%.o $(call chkobj,$(TESTLIB)) $(CHK)/libtsmpi.a $(CHK)/libtilesim.a
 	$(CC) $(CHKFLAGS) -o $@ $^ $(LDLIBS)
 
 # The tests and the sanitized programs the command-line tests drive; and,
@@ -212,7 +246,18 @@ $(VG)/%.o: %.c
 $(VG)/libtilesim.a: $(patsubst %.c,$(VG)/%.o,$(LIBSRC))
 	@rm -f $@
 	$(AR) rcs $@ $^
-$(VG)/tests/%: $(VG)/tests/%.o $(patsubst %.c,$(VG)/%.o,$(TESTLIB)) $(VG)/libtilesim.a
+$(VG)/libtsmpi.a: $(patsubst %.c,$(VG)/%.o,$(TSMPISRC))
+	@rm -f $@
+	$(AR) rcs $@ $^
+$(VG)/tests/mpi/%.o: tests/mpi/%.c
+	@mkdir -p $(dir $@)
+	$(CC) $(BASE) -O1 -g $(TSMPIPFLAGS) -Dmain=tsmpi_main_$* -MMD -MP -c $< -o $@
+$(VG)/tests/test_mpiprogs.o: $(CHK)/tests/mpi/progs.h
+$(VG)/tests/test_mpiprogs.o: BASE += -I$(CHK)/tests/mpi
+$(VG)/tests/test_mpiprogs: $(VG)/tests/test_mpiprogs.o $(patsubst %,$(VG)/tests/mpi/%.o,$(TSMPIPROGS)) \
+                           $(patsubst %.c,$(VG)/%.o,$(TESTLIB)) $(VG)/libtsmpi.a $(VG)/libtilesim.a
+	$(CC) -g -o $@ $^ $(LDLIBS)
+$(VG)/tests/%: $(VG)/tests/%.o $(patsubst %.c,$(VG)/%.o,$(TESTLIB)) $(VG)/libtsmpi.a $(VG)/libtilesim.a
 	$(CC) -g -o $@ $^ $(LDLIBS)
 valgrind: $(addprefix $(VG)/tests/,$(TESTS))
 	@VALGRIND="valgrind -q --error-exitcode=99 --leak-check=full" \
@@ -424,7 +469,8 @@ install-files:
 clean:
 	rm -rf build $(PROGS) $(addsuffix -mpi,$(MPIPROGS))
 
-.PHONY: all check valgrind tsan bench bench-tile bench-testbed bench-load bench-cores install install-files clean mpi mpi-bins smpi-bins simgrid fuzz fuzz-bins \
+FORCE:
+.PHONY: all check valgrind tsan bench bench-tile bench-testbed bench-load bench-cores install install-files clean mpi mpi-bins smpi-bins simgrid fuzz fuzz-bins FORCE \
         mpi-probe
 .SECONDARY:
 

@@ -67,7 +67,7 @@ TSMPI_FN(1, ENV, int, MPI_Init, (int *argc, char ***argv),
          (argc, argv))
 TSMPI_FN(1, ENV, int, MPI_Initialized, (int *flag),
          (flag))
-TSMPI_FN(0, ENV, int, MPI_Pcontrol, (const int level, ...),
+TSMPI_FN(1, ENV, int, MPI_Pcontrol, (const int level, ...),
          (level))
 TSMPI_FN(1, ENV, double, MPI_Wtick, (void),
          ())
@@ -186,15 +186,15 @@ TSMPI_FN(1, P2P, int, MPI_Waitsome, (int incount, MPI_Request array_of_requests[
          (incount, array_of_requests, outcount, array_of_indices, array_of_statuses))
 
 /* --- DTYPE --- */
-TSMPI_FN(0, DTYPE, MPI_Aint, MPI_Aint_add, (MPI_Aint base, MPI_Aint disp),
+TSMPI_FN(1, DTYPE, MPI_Aint, MPI_Aint_add, (MPI_Aint base, MPI_Aint disp),
          (base, disp))
-TSMPI_FN(0, DTYPE, MPI_Aint, MPI_Aint_diff, (MPI_Aint addr1, MPI_Aint addr2),
+TSMPI_FN(1, DTYPE, MPI_Aint, MPI_Aint_diff, (MPI_Aint addr1, MPI_Aint addr2),
          (addr1, addr2))
 TSMPI_FN(1, DTYPE, int, MPI_Get_address, (const void *location, MPI_Aint *address),
          (location, address))
-TSMPI_FN(0, DTYPE, int, MPI_Get_elements, (const MPI_Status *status, MPI_Datatype datatype, int *count),
+TSMPI_FN(1, DTYPE, int, MPI_Get_elements, (const MPI_Status *status, MPI_Datatype datatype, int *count),
          (status, datatype, count))
-TSMPI_FN(0, DTYPE, int, MPI_Get_elements_x, (const MPI_Status *status, MPI_Datatype datatype,
+TSMPI_FN(1, DTYPE, int, MPI_Get_elements_x, (const MPI_Status *status, MPI_Datatype datatype,
          MPI_Count *count),
          (status, datatype, count))
 TSMPI_FN(1, DTYPE, int, MPI_Pack, (const void *inbuf, int incount, MPI_Datatype datatype, void *outbuf,
@@ -217,16 +217,16 @@ TSMPI_FN(0, DTYPE, int, MPI_Type_create_darray, (int size, int rank, int ndims, 
          MPI_Datatype oldtype, MPI_Datatype *newtype),
          (size, rank, ndims, array_of_gsizes, array_of_distribs, array_of_dargs, array_of_psizes, order,
          oldtype, newtype))
-TSMPI_FN(0, DTYPE, int, MPI_Type_create_hindexed, (int count, const int array_of_blocklengths[],
+TSMPI_FN(1, DTYPE, int, MPI_Type_create_hindexed, (int count, const int array_of_blocklengths[],
          const MPI_Aint array_of_displacements[], MPI_Datatype oldtype, MPI_Datatype *newtype),
          (count, array_of_blocklengths, array_of_displacements, oldtype, newtype))
-TSMPI_FN(0, DTYPE, int, MPI_Type_create_hindexed_block, (int count, int blocklength,
+TSMPI_FN(1, DTYPE, int, MPI_Type_create_hindexed_block, (int count, int blocklength,
          const MPI_Aint array_of_displacements[], MPI_Datatype oldtype, MPI_Datatype *newtype),
          (count, blocklength, array_of_displacements, oldtype, newtype))
 TSMPI_FN(1, DTYPE, int, MPI_Type_create_hvector, (int count, int blocklength, MPI_Aint stride,
          MPI_Datatype oldtype, MPI_Datatype *newtype),
          (count, blocklength, stride, oldtype, newtype))
-TSMPI_FN(0, DTYPE, int, MPI_Type_create_indexed_block, (int count, int blocklength,
+TSMPI_FN(1, DTYPE, int, MPI_Type_create_indexed_block, (int count, int blocklength,
          const int array_of_displacements[], MPI_Datatype oldtype, MPI_Datatype *newtype),
          (count, blocklength, array_of_displacements, oldtype, newtype))
 TSMPI_FN(0, DTYPE, int, MPI_Type_create_keyval, (MPI_Type_copy_attr_function *type_copy_attr_fn,
@@ -238,13 +238,13 @@ TSMPI_FN(1, DTYPE, int, MPI_Type_create_resized, (MPI_Datatype oldtype, MPI_Aint
 TSMPI_FN(1, DTYPE, int, MPI_Type_create_struct, (int count, const int array_of_blocklengths[],
          const MPI_Aint array_of_displacements[], const MPI_Datatype array_of_types[], MPI_Datatype *newtype),
          (count, array_of_blocklengths, array_of_displacements, array_of_types, newtype))
-TSMPI_FN(0, DTYPE, int, MPI_Type_create_subarray, (int ndims, const int array_of_sizes[],
+TSMPI_FN(1, DTYPE, int, MPI_Type_create_subarray, (int ndims, const int array_of_sizes[],
          const int array_of_subsizes[], const int array_of_starts[], int order, MPI_Datatype oldtype,
          MPI_Datatype *newtype),
          (ndims, array_of_sizes, array_of_subsizes, array_of_starts, order, oldtype, newtype))
 TSMPI_FN(0, DTYPE, int, MPI_Type_delete_attr, (MPI_Datatype datatype, int type_keyval),
          (datatype, type_keyval))
-TSMPI_FN(0, DTYPE, int, MPI_Type_dup, (MPI_Datatype oldtype, MPI_Datatype *newtype),
+TSMPI_FN(1, DTYPE, int, MPI_Type_dup, (MPI_Datatype oldtype, MPI_Datatype *newtype),
          (oldtype, newtype))
 TSMPI_FN(1, DTYPE, int, MPI_Type_free, (MPI_Datatype *datatype),
          (datatype))
@@ -253,24 +253,24 @@ TSMPI_FN(0, DTYPE, int, MPI_Type_free_keyval, (int *type_keyval),
 TSMPI_FN(0, DTYPE, int, MPI_Type_get_attr, (MPI_Datatype datatype, int type_keyval, void *attribute_val,
          int *flag),
          (datatype, type_keyval, attribute_val, flag))
-TSMPI_FN(0, DTYPE, int, MPI_Type_get_contents, (MPI_Datatype datatype, int max_integers, int max_addresses,
+TSMPI_FN(1, DTYPE, int, MPI_Type_get_contents, (MPI_Datatype datatype, int max_integers, int max_addresses,
          int max_datatypes, int array_of_integers[], MPI_Aint array_of_addresses[],
          MPI_Datatype array_of_datatypes[]),
          (datatype, max_integers, max_addresses, max_datatypes, array_of_integers, array_of_addresses,
          array_of_datatypes))
-TSMPI_FN(0, DTYPE, int, MPI_Type_get_envelope, (MPI_Datatype datatype, int *num_integers, int *num_addresses,
+TSMPI_FN(1, DTYPE, int, MPI_Type_get_envelope, (MPI_Datatype datatype, int *num_integers, int *num_addresses,
          int *num_datatypes, int *combiner),
          (datatype, num_integers, num_addresses, num_datatypes, combiner))
 TSMPI_FN(1, DTYPE, int, MPI_Type_get_extent, (MPI_Datatype datatype, MPI_Aint *lb, MPI_Aint *extent),
          (datatype, lb, extent))
-TSMPI_FN(0, DTYPE, int, MPI_Type_get_extent_x, (MPI_Datatype datatype, MPI_Count *lb, MPI_Count *extent),
+TSMPI_FN(1, DTYPE, int, MPI_Type_get_extent_x, (MPI_Datatype datatype, MPI_Count *lb, MPI_Count *extent),
          (datatype, lb, extent))
-TSMPI_FN(0, DTYPE, int, MPI_Type_get_name, (MPI_Datatype datatype, char *type_name, int *resultlen),
+TSMPI_FN(1, DTYPE, int, MPI_Type_get_name, (MPI_Datatype datatype, char *type_name, int *resultlen),
          (datatype, type_name, resultlen))
-TSMPI_FN(0, DTYPE, int, MPI_Type_get_true_extent, (MPI_Datatype datatype, MPI_Aint *true_lb,
+TSMPI_FN(1, DTYPE, int, MPI_Type_get_true_extent, (MPI_Datatype datatype, MPI_Aint *true_lb,
          MPI_Aint *true_extent),
          (datatype, true_lb, true_extent))
-TSMPI_FN(0, DTYPE, int, MPI_Type_get_true_extent_x, (MPI_Datatype datatype, MPI_Count *true_lb,
+TSMPI_FN(1, DTYPE, int, MPI_Type_get_true_extent_x, (MPI_Datatype datatype, MPI_Count *true_lb,
          MPI_Count *true_extent),
          (datatype, true_lb, true_extent))
 TSMPI_FN(1, DTYPE, int, MPI_Type_indexed, (int count, const int array_of_blocklengths[],
@@ -278,11 +278,11 @@ TSMPI_FN(1, DTYPE, int, MPI_Type_indexed, (int count, const int array_of_blockle
          (count, array_of_blocklengths, array_of_displacements, oldtype, newtype))
 TSMPI_FN(0, DTYPE, int, MPI_Type_set_attr, (MPI_Datatype datatype, int type_keyval, void *attribute_val),
          (datatype, type_keyval, attribute_val))
-TSMPI_FN(0, DTYPE, int, MPI_Type_set_name, (MPI_Datatype datatype, const char *type_name),
+TSMPI_FN(1, DTYPE, int, MPI_Type_set_name, (MPI_Datatype datatype, const char *type_name),
          (datatype, type_name))
 TSMPI_FN(1, DTYPE, int, MPI_Type_size, (MPI_Datatype datatype, int *size),
          (datatype, size))
-TSMPI_FN(0, DTYPE, int, MPI_Type_size_x, (MPI_Datatype datatype, MPI_Count *size),
+TSMPI_FN(1, DTYPE, int, MPI_Type_size_x, (MPI_Datatype datatype, MPI_Count *size),
          (datatype, size))
 TSMPI_FN(1, DTYPE, int, MPI_Type_vector, (int count, int blocklength, int stride, MPI_Datatype oldtype,
          MPI_Datatype *newtype),
@@ -384,7 +384,7 @@ TSMPI_FN(0, COLL, int, MPI_Iscatterv, (const void *sendbuf, const int sendcounts
          MPI_Datatype sendtype, void *recvbuf, int recvcount, MPI_Datatype recvtype, int root, MPI_Comm comm,
          MPI_Request *request),
          (sendbuf, sendcounts, displs, sendtype, recvbuf, recvcount, recvtype, root, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Op_commutative, (MPI_Op op, int *commute),
+TSMPI_FN(1, COLL, int, MPI_Op_commutative, (MPI_Op op, int *commute),
          (op, commute))
 TSMPI_FN(1, COLL, int, MPI_Op_create, (MPI_User_function *user_fn, int commute, MPI_Op *op),
          (user_fn, commute, op))
@@ -1070,7 +1070,7 @@ TSMPI_FN(0, LANG, int, MPI_Type_create_f90_real, (int p, int r, MPI_Datatype *ne
          (p, r, newtype))
 TSMPI_FN(0, LANG, MPI_Datatype, MPI_Type_f2c, (MPI_Fint datatype),
          (datatype))
-TSMPI_FN(0, LANG, int, MPI_Type_match_size, (int typeclass, int size, MPI_Datatype *datatype),
+TSMPI_FN(1, LANG, int, MPI_Type_match_size, (int typeclass, int size, MPI_Datatype *datatype),
          (typeclass, size, datatype))
 TSMPI_FN(0, LANG, MPI_Fint, MPI_Win_c2f, (MPI_Win win),
          (win))
@@ -1078,7 +1078,7 @@ TSMPI_FN(0, LANG, MPI_Win, MPI_Win_f2c, (MPI_Fint win),
          (win))
 
 /* --- REMOVED --- */
-TSMPI_FN(0, REMOVED, int, MPI_Address, (void *location, MPI_Aint *address),
+TSMPI_FN(1, REMOVED, int, MPI_Address, (void *location, MPI_Aint *address),
          (location, address))
 TSMPI_FN(0, REMOVED, int, MPI_Errhandler_create, (MPI_Comm_errhandler_function *comm_errhandler_fn,
          MPI_Errhandler *errhandler),
@@ -1087,18 +1087,18 @@ TSMPI_FN(0, REMOVED, int, MPI_Errhandler_get, (MPI_Comm comm, MPI_Errhandler *er
          (comm, errhandler))
 TSMPI_FN(0, REMOVED, int, MPI_Errhandler_set, (MPI_Comm comm, MPI_Errhandler errhandler),
          (comm, errhandler))
-TSMPI_FN(0, REMOVED, int, MPI_Type_extent, (MPI_Datatype datatype, MPI_Aint *extent),
+TSMPI_FN(1, REMOVED, int, MPI_Type_extent, (MPI_Datatype datatype, MPI_Aint *extent),
          (datatype, extent))
-TSMPI_FN(0, REMOVED, int, MPI_Type_hindexed, (int count, int array_of_blocklengths[],
+TSMPI_FN(1, REMOVED, int, MPI_Type_hindexed, (int count, int array_of_blocklengths[],
          MPI_Aint array_of_displacements[], MPI_Datatype oldtype, MPI_Datatype *newtype),
          (count, array_of_blocklengths, array_of_displacements, oldtype, newtype))
 TSMPI_FN(1, REMOVED, int, MPI_Type_hvector, (int count, int blocklength, MPI_Aint stride,
          MPI_Datatype oldtype, MPI_Datatype *newtype),
          (count, blocklength, stride, oldtype, newtype))
-TSMPI_FN(0, REMOVED, int, MPI_Type_lb, (MPI_Datatype datatype, MPI_Aint *displacement),
+TSMPI_FN(1, REMOVED, int, MPI_Type_lb, (MPI_Datatype datatype, MPI_Aint *displacement),
          (datatype, displacement))
-TSMPI_FN(0, REMOVED, int, MPI_Type_struct, (int count, int array_of_blocklengths[],
+TSMPI_FN(1, REMOVED, int, MPI_Type_struct, (int count, int array_of_blocklengths[],
          MPI_Aint array_of_displacements[], MPI_Datatype array_of_types[], MPI_Datatype *newtype),
          (count, array_of_blocklengths, array_of_displacements, array_of_types, newtype))
-TSMPI_FN(0, REMOVED, int, MPI_Type_ub, (MPI_Datatype datatype, MPI_Aint *displacement),
+TSMPI_FN(1, REMOVED, int, MPI_Type_ub, (MPI_Datatype datatype, MPI_Aint *displacement),
          (datatype, displacement))

@@ -1,0 +1,40 @@
+/* funcs.c -- the list as data, the unimplemented-call hook, and the stubs of every function
+ * tilesim does not implement, with their PMPI_ names (funcs.h).  The stubs are made from
+ * mpi_funcs.h by the preprocessor: the list is the only place to edit. */
+#include "funcs.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "mp.h"
+#include "mpi.h"
+
+const tsmpi_func_info tsmpi_funcs[] = {
+#define TSMPI_FN(impl, chapter, ret, name, params, args) {#name, #chapter, impl},
+#include "mpi_funcs.h"
+#undef TSMPI_FN
+};
+const int tsmpi_nfuncs = (int)(sizeof tsmpi_funcs / sizeof tsmpi_funcs[0]);
+
+void tsmpi_unimplemented(const char *name) {
+  char why[200];
+  mp *self = mp_self();
+  if (self) {
+    snprintf(why, sizeof why, "rank %d called %s, which tilesim does not implement", mp_rank(self), name);
+    mp_abort(self, 1, why);
+  }
+  fprintf(stderr, "tilesim: %s was called, which tilesim does not implement\n", name);
+  exit(1);
+}
+
+/* A stub's parameters are unused; it never returns, so it returns nothing. */
+#if defined(__GNUC__)
+#pragma GCC diagnostic ignored "-Wunused-parameter"
+#endif
+#define TSMPI_STUB_1(ret, name, params)
+#define TSMPI_STUB_0(ret, name, params)                  \
+  ret name params { tsmpi_unimplemented(#name); }        \
+  ret P##name params { tsmpi_unimplemented(#name); }
+#define TSMPI_FN(impl, chapter, ret, name, params, args) TSMPI_STUB_##impl(ret, name, params)
+#include "mpi_funcs.h"
+#undef TSMPI_FN
