@@ -1,0 +1,603 @@
+/* dtype_api.c -- the MPI functions of datatypes: constructors, commit and free, queries,
+ * decoding, MPI_Pack, MPI_Unpack, MPI_Pack_size, MPI_Get_address, MPI_Get_elements (mpi.h;
+ * built on dtype.h).
+ *
+ * Arguments are checked as MPI 3.1 chapter 4 says; an error goes to
+ * MPI_COMM_WORLD's error handler (MPI 3.1 section 8.3: calls with no
+ * communicator), or to the communicator's for MPI_Pack and MPI_Unpack. */
+#include <limits.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dtype.h"
+#include "mpi.h"
+#include "p2p.h"
+
+/* ==== argument checks ===================================================== */
+
+#if defined(__GNUC__)
+__attribute__((format(printf, 4, 5)))
+#endif
+static int fail(MPI_Comm comm, int cls, const char *fn, const char *fmt, ...) {
+  char msg[256];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  return tsmpi_raise(comm, cls, fn, "%s", msg);
+}
+
+/* A datatype argument that need not be committed (constructors, queries). */
+static int type_ok(const char *fn, const char *what, MPI_Datatype dt) {
+  char why[96];
+  if (tsmpi_type_valid(dt, why, sizeof why) == MPI_SUCCESS) return MPI_SUCCESS;
+  return fail(MPI_COMM_WORLD, MPI_ERR_TYPE, fn, "invalid %s: %s", what, why);
+}
+
+static int count_ok(const char *fn, const char *what, int count) {
+  if (count >= 0) return MPI_SUCCESS;
+  return fail(MPI_COMM_WORLD, MPI_ERR_COUNT, fn, "negative %s %d", what, count);
+}
+
+static int ptr_ok(const char *fn, const char *what, const void *p) {
+  if (p) return MPI_SUCCESS;
+  return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "%s is NULL", what);
+}
+
+/* Each blocklength of n >= 0 (or the one blocklength). */
+static int blens_ok(const char *fn, int n, const int *blen) {
+  for (int i = 0; i < n; i++)
+    if (blen[i] < 0) return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "negative blocklength %d (block %d)", blen[i], i);
+  return MPI_SUCCESS;
+}
+
+/* The common end of every constructor: build, and say why it failed. */
+static int build(const char *fn, int count, const int *blen, const MPI_Aint *disp,
+                 const MPI_Datatype *types, MPI_Datatype type, int struct_pad,
+                 const tsmpi_type_decoding *dec, MPI_Datatype *newtype) {
+  char why[96];
+  int rc = tsmpi_type_build(count, blen, disp, types, type, struct_pad, dec, newtype, why, sizeof why);
+  if (rc == MPI_SUCCESS) return rc;
+  return fail(MPI_COMM_WORLD, rc, fn, "%s", why);
+}
+
+/* Arrays for the blocks of a constructor (freed by the caller). */
+static int arrays(const char *fn, int count, int **blen, MPI_Aint **disp, int **ints) {
+  size_t n = count > 0 ? (size_t)count : 1;
+  *blen = malloc(n * sizeof **blen);
+  *disp = malloc(n * sizeof **disp);
+  *ints = malloc((2 * n + 3) * sizeof **ints);
+  if (*blen && *disp && *ints) return MPI_SUCCESS;
+  free(*blen);
+  free(*disp);
+  free(*ints);
+  return fail(MPI_COMM_WORLD, MPI_ERR_NO_MEM, fn, "out of memory for %d blocks", count);
+}
+
+/* ==== constructors ======================================================== */
+
+int MPI_Type_contiguous(int count, MPI_Datatype oldtype, MPI_Datatype *newtype) {
+  static const char fn[] = "MPI_Type_contiguous";
+  int rc;
+  if ((rc = count_ok(fn, "count", count)) || (rc = type_ok(fn, "oldtype", oldtype)) ||
+      (rc = ptr_ok(fn, "newtype", newtype)))
+    return rc;
+  MPI_Aint zero = 0;
+  tsmpi_type_decoding dec = {MPI_COMBINER_CONTIGUOUS, 1, 0, 1, &count, NULL, &oldtype};
+  return build(fn, 1, &count, &zero, NULL, oldtype, 0, &dec, newtype);
+}
+
+/* count blocks of blocklength, stride bytes apart. */
+static int hvector(const char *fn, int count, int blocklength, MPI_Aint stride, MPI_Datatype oldtype,
+                   const tsmpi_type_decoding *dec, MPI_Datatype *newtype) {
+  int rc, *blen, *ints;
+  MPI_Aint *disp;
+  if ((rc = count_ok(fn, "count", count)) || (rc = blens_ok(fn, 1, &blocklength)) ||
+      (rc = type_ok(fn, "oldtype", oldtype)) || (rc = ptr_ok(fn, "newtype", newtype)) ||
+      (rc = arrays(fn, count, &blen, &disp, &ints)))
+    return rc;
+  for (int i = 0; i < count; i++) {
+    blen[i] = blocklength;
+    disp[i] = (MPI_Aint)i * stride;
+  }
+  rc = build(fn, count, blen, disp, NULL, oldtype, 0, dec, newtype);
+  free(blen);
+  free(disp);
+  free(ints);
+  return rc;
+}
+
+int MPI_Type_vector(int count, int blocklength, int stride, MPI_Datatype oldtype, MPI_Datatype *newtype) {
+  static const char fn[] = "MPI_Type_vector";
+  int rc = type_ok(fn, "oldtype", oldtype);
+  if (rc) return rc;
+  int ints[3] = {count, blocklength, stride};
+  tsmpi_type_decoding dec = {MPI_COMBINER_VECTOR, 3, 0, 1, ints, NULL, &oldtype};
+  return hvector(fn, count, blocklength, (MPI_Aint)stride * tsmpi_type_extent(oldtype), oldtype, &dec,
+                 newtype);
+}
+
+int MPI_Type_create_hvector(int count, int blocklength, MPI_Aint stride, MPI_Datatype oldtype,
+                            MPI_Datatype *newtype) {
+  int ints[2] = {count, blocklength};
+  tsmpi_type_decoding dec = {MPI_COMBINER_HVECTOR, 2, 1, 1, ints, &stride, &oldtype};
+  return hvector("MPI_Type_create_hvector", count, blocklength, stride, oldtype, &dec, newtype);
+}
+
+int MPI_Type_hvector(int count, int blocklength, MPI_Aint stride, MPI_Datatype oldtype,
+                     MPI_Datatype *newtype) {
+  int ints[2] = {count, blocklength};
+  tsmpi_type_decoding dec = {MPI_COMBINER_HVECTOR, 2, 1, 1, ints, &stride, &oldtype};
+  return hvector("MPI_Type_hvector", count, blocklength, stride, oldtype, &dec, newtype);
+}
+
+/* Blocks of blocklengths[i] (or blocklength when blocklengths is NULL) at
+ * displacements in elements (edisp) or bytes (bdisp). */
+static int indexed(const char *fn, int combiner, int count, const int *blocklengths, int blocklength,
+                   const int *edisp, const MPI_Aint *bdisp, MPI_Datatype oldtype, MPI_Datatype *newtype) {
+  int rc, *blen, *ints;
+  MPI_Aint *disp;
+  int per_block = combiner == MPI_COMBINER_INDEXED || combiner == MPI_COMBINER_HINDEXED;
+  if ((rc = count_ok(fn, "count", count)) || (rc = type_ok(fn, "oldtype", oldtype)) ||
+      (rc = ptr_ok(fn, "newtype", newtype)))
+    return rc;
+  if (count > 0 && ((per_block && !blocklengths) || (!edisp && !bdisp)))
+    return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "an array argument is NULL");
+  if ((rc = blocklengths ? blens_ok(fn, count, blocklengths) : blens_ok(fn, 1, &blocklength)) ||
+      (rc = arrays(fn, count, &blen, &disp, &ints)))
+    return rc;
+  MPI_Aint ext = tsmpi_type_extent(oldtype);
+  int ni = 0;
+  ints[ni++] = count;
+  if (!blocklengths) ints[ni++] = blocklength;
+  for (int i = 0; i < count; i++) {
+    blen[i] = blocklengths ? blocklengths[i] : blocklength;
+    disp[i] = edisp ? (MPI_Aint)edisp[i] * ext : bdisp[i];
+    if (blocklengths) ints[1 + i] = blocklengths[i];
+  }
+  if (blocklengths) ni += count;
+  if (edisp)
+    for (int i = 0; i < count; i++) ints[ni++] = edisp[i];
+  tsmpi_type_decoding dec = {combiner, ni, edisp ? 0 : count, 1, ints, edisp ? NULL : bdisp, &oldtype};
+  rc = build(fn, count, blen, disp, NULL, oldtype, 0, &dec, newtype);
+  free(blen);
+  free(disp);
+  free(ints);
+  return rc;
+}
+
+int MPI_Type_indexed(int count, const int array_of_blocklengths[], const int array_of_displacements[],
+                     MPI_Datatype oldtype, MPI_Datatype *newtype) {
+  return indexed("MPI_Type_indexed", MPI_COMBINER_INDEXED, count, array_of_blocklengths, 0,
+                 array_of_displacements, NULL, oldtype, newtype);
+}
+
+int MPI_Type_create_hindexed(int count, const int array_of_blocklengths[],
+                             const MPI_Aint array_of_displacements[], MPI_Datatype oldtype,
+                             MPI_Datatype *newtype) {
+  return indexed("MPI_Type_create_hindexed", MPI_COMBINER_HINDEXED, count, array_of_blocklengths, 0, NULL,
+                 array_of_displacements, oldtype, newtype);
+}
+
+int MPI_Type_hindexed(int count, int array_of_blocklengths[], MPI_Aint array_of_displacements[],
+                      MPI_Datatype oldtype, MPI_Datatype *newtype) {
+  return indexed("MPI_Type_hindexed", MPI_COMBINER_HINDEXED, count, array_of_blocklengths, 0, NULL,
+                 array_of_displacements, oldtype, newtype);
+}
+
+int MPI_Type_create_indexed_block(int count, int blocklength, const int array_of_displacements[],
+                                  MPI_Datatype oldtype, MPI_Datatype *newtype) {
+  return indexed("MPI_Type_create_indexed_block", MPI_COMBINER_INDEXED_BLOCK, count, NULL, blocklength,
+                 array_of_displacements, NULL, oldtype, newtype);
+}
+
+int MPI_Type_create_hindexed_block(int count, int blocklength, const MPI_Aint array_of_displacements[],
+                                   MPI_Datatype oldtype, MPI_Datatype *newtype) {
+  return indexed("MPI_Type_create_hindexed_block", MPI_COMBINER_HINDEXED_BLOCK, count, NULL, blocklength,
+                 NULL, array_of_displacements, oldtype, newtype);
+}
+
+static int create_struct(const char *fn, int count, const int *blens, const MPI_Aint *disps,
+                         const MPI_Datatype *types, MPI_Datatype *newtype) {
+  int rc, *blen, *ints;
+  MPI_Aint *disp;
+  if ((rc = count_ok(fn, "count", count)) || (rc = ptr_ok(fn, "newtype", newtype))) return rc;
+  if (count > 0 && (!blens || !disps || !types))
+    return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "an array argument is NULL");
+  for (int i = 0; i < count; i++) {
+    char what[48];
+    snprintf(what, sizeof what, "datatype of block %d", i);
+    if ((rc = type_ok(fn, what, types[i]))) return rc;
+  }
+  if ((rc = blens_ok(fn, count, blens)) || (rc = arrays(fn, count, &blen, &disp, &ints))) return rc;
+  ints[0] = count;
+  for (int i = 0; i < count; i++) ints[1 + i] = blens[i];
+  tsmpi_type_decoding dec = {MPI_COMBINER_STRUCT, count + 1, count, count, ints, disps, types};
+  rc = build(fn, count, blens, disps, types, MPI_DATATYPE_NULL, 1, &dec, newtype);
+  free(blen);
+  free(disp);
+  free(ints);
+  return rc;
+}
+
+int MPI_Type_create_struct(int count, const int array_of_blocklengths[],
+                           const MPI_Aint array_of_displacements[], const MPI_Datatype array_of_types[],
+                           MPI_Datatype *newtype) {
+  return create_struct("MPI_Type_create_struct", count, array_of_blocklengths, array_of_displacements,
+                       array_of_types, newtype);
+}
+
+int MPI_Type_struct(int count, int array_of_blocklengths[], MPI_Aint array_of_displacements[],
+                    MPI_Datatype array_of_types[], MPI_Datatype *newtype) {
+  return create_struct("MPI_Type_struct", count, array_of_blocklengths, array_of_displacements,
+                       array_of_types, newtype);
+}
+
+int MPI_Type_create_resized(MPI_Datatype oldtype, MPI_Aint lb, MPI_Aint extent, MPI_Datatype *newtype) {
+  static const char fn[] = "MPI_Type_create_resized";
+  int rc;
+  char why[96];
+  if ((rc = type_ok(fn, "oldtype", oldtype)) || (rc = ptr_ok(fn, "newtype", newtype))) return rc;
+  rc = tsmpi_type_resized(oldtype, lb, extent, newtype, why, sizeof why);
+  return rc ? fail(MPI_COMM_WORLD, rc, fn, "%s", why) : rc;
+}
+
+int MPI_Type_dup(MPI_Datatype oldtype, MPI_Datatype *newtype) {
+  static const char fn[] = "MPI_Type_dup";
+  int rc;
+  char why[96];
+  if ((rc = type_ok(fn, "oldtype", oldtype)) || (rc = ptr_ok(fn, "newtype", newtype))) return rc;
+  rc = tsmpi_type_dup(oldtype, newtype, why, sizeof why);
+  return rc ? fail(MPI_COMM_WORLD, rc, fn, "%s", why) : rc;
+}
+
+/* MPI 3.1 section 4.1.3: the subarray of an ndims-dimensional array in C
+ * or Fortran order, with the whole array's extent (lower bound 0). */
+int MPI_Type_create_subarray(int ndims, const int array_of_sizes[], const int array_of_subsizes[],
+                             const int array_of_starts[], int order, MPI_Datatype oldtype,
+                             MPI_Datatype *newtype) {
+  static const char fn[] = "MPI_Type_create_subarray";
+  int rc;
+  if ((rc = type_ok(fn, "oldtype", oldtype)) || (rc = ptr_ok(fn, "newtype", newtype))) return rc;
+  if (ndims < 1) return fail(MPI_COMM_WORLD, MPI_ERR_DIMS, fn, "ndims %d < 1", ndims);
+  if (!array_of_sizes || !array_of_subsizes || !array_of_starts)
+    return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "an array argument is NULL");
+  if (order != MPI_ORDER_C && order != MPI_ORDER_FORTRAN)
+    return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "order %d is neither MPI_ORDER_C nor MPI_ORDER_FORTRAN", order);
+  MPI_Count rows = 1, whole = 1;
+  for (int d = 0; d < ndims; d++) {
+    int n = array_of_sizes[d], s = array_of_subsizes[d], b = array_of_starts[d];
+    if (n < 1 || s < 1 || s > n || b < 0 || b > n - s)
+      return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn,
+                  "dimension %d: size %d, subsize %d, start %d (need 1 <= subsize <= size, 0 <= start <= size - subsize)",
+                  d, n, s, b);
+    whole *= n;
+  }
+  /* dims[0] varies slowest: C order as given, Fortran order reversed. */
+  int *sz = malloc((size_t)ndims * 3 * sizeof *sz);
+  if (!sz) return fail(MPI_COMM_WORLD, MPI_ERR_NO_MEM, fn, "out of memory");
+  int *sub = sz + ndims, *st = sz + 2 * ndims;
+  for (int d = 0; d < ndims; d++) {
+    int e = order == MPI_ORDER_C ? d : ndims - 1 - d;
+    sz[d] = array_of_sizes[e];
+    sub[d] = array_of_subsizes[e];
+    st[d] = array_of_starts[e];
+  }
+  for (int d = 0; d + 1 < ndims; d++) rows *= sub[d];
+  if (rows > INT_MAX) {
+    free(sz);
+    return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "too many rows (%lld)", (long long)rows);
+  }
+  MPI_Aint ext = tsmpi_type_extent(oldtype);
+  int *blen = malloc((size_t)rows * sizeof *blen), *ints = malloc((size_t)(3 * ndims + 2) * sizeof *ints);
+  MPI_Aint *disp = malloc((size_t)rows * sizeof *disp);
+  int *idx = calloc((size_t)ndims, sizeof *idx);
+  if (!blen || !disp || !ints || !idx) {
+    free(blen), free(disp), free(ints), free(idx), free(sz);
+    return fail(MPI_COMM_WORLD, MPI_ERR_NO_MEM, fn, "out of memory");
+  }
+  /* Each row of the innermost dimension, in row-major order of the rest. */
+  for (MPI_Count r = 0; r < rows; r++) {
+    MPI_Aint off = 0;
+    for (int d = 0; d < ndims; d++) off = off * sz[d] + st[d] + (d + 1 < ndims ? idx[d] : 0);
+    blen[r] = sub[ndims - 1];
+    disp[r] = off * ext;
+    for (int d = ndims - 2; d >= 0; d--) {
+      if (++idx[d] < sub[d]) break;
+      idx[d] = 0;
+    }
+  }
+  ints[0] = ndims;
+  for (int d = 0; d < ndims; d++) {
+    ints[1 + d] = array_of_sizes[d];
+    ints[1 + ndims + d] = array_of_subsizes[d];
+    ints[1 + 2 * ndims + d] = array_of_starts[d];
+  }
+  ints[1 + 3 * ndims] = order;
+  /* The subarray's blocks, then its bounds: 0 and the whole array. */
+  MPI_Datatype blocks;
+  tsmpi_type_decoding none = {MPI_COMBINER_HINDEXED, 0, 0, 0, NULL, NULL, NULL};
+  rc = build(fn, (int)rows, blen, disp, NULL, oldtype, 0, &none, &blocks);
+  if (rc == MPI_SUCCESS) {
+    char why[96];
+    rc = tsmpi_type_resized(blocks, 0, (MPI_Aint)whole * ext, newtype, why, sizeof why);
+    tsmpi_type_free(blocks);
+    if (rc == MPI_SUCCESS) {
+      tsmpi_type_decoding dec = {MPI_COMBINER_SUBARRAY, 3 * ndims + 2, 0, 1, ints, NULL, &oldtype};
+      rc = tsmpi_type_redecode(*newtype, &dec);
+    }
+    if (rc) rc = fail(MPI_COMM_WORLD, rc, fn, "out of memory");
+  }
+  free(blen), free(disp), free(ints), free(idx), free(sz);
+  return rc;
+}
+
+/* ==== commit, free, names ================================================= */
+
+int MPI_Type_commit(MPI_Datatype *datatype) {
+  static const char fn[] = "MPI_Type_commit";
+  int rc;
+  if ((rc = ptr_ok(fn, "datatype", datatype)) || (rc = type_ok(fn, "datatype", *datatype))) return rc;
+  return tsmpi_type_commit(*datatype);
+}
+
+int MPI_Type_free(MPI_Datatype *datatype) {
+  static const char fn[] = "MPI_Type_free";
+  int rc;
+  if ((rc = ptr_ok(fn, "datatype", datatype)) || (rc = type_ok(fn, "datatype", *datatype))) return rc;
+  if (tsmpi_type_free(*datatype) != MPI_SUCCESS)
+    return fail(MPI_COMM_WORLD, MPI_ERR_TYPE, fn, "%s is predefined and cannot be freed",
+                tsmpi_type_name(*datatype));
+  *datatype = MPI_DATATYPE_NULL;
+  return MPI_SUCCESS;
+}
+
+int MPI_Type_get_name(MPI_Datatype datatype, char *type_name, int *resultlen) {
+  static const char fn[] = "MPI_Type_get_name";
+  int rc;
+  if ((rc = type_ok(fn, "datatype", datatype)) || (rc = ptr_ok(fn, "type_name", type_name)) ||
+      (rc = ptr_ok(fn, "resultlen", resultlen)))
+    return rc;
+  const char *s = tsmpi_type_name(datatype);
+  snprintf(type_name, MPI_MAX_OBJECT_NAME, "%s", s);
+  *resultlen = (int)strlen(type_name);
+  return MPI_SUCCESS;
+}
+
+int MPI_Type_set_name(MPI_Datatype datatype, const char *type_name) {
+  static const char fn[] = "MPI_Type_set_name";
+  int rc;
+  if ((rc = type_ok(fn, "datatype", datatype)) || (rc = ptr_ok(fn, "type_name", type_name))) return rc;
+  rc = tsmpi_type_set_name(datatype, type_name);
+  if (rc == MPI_ERR_TYPE)
+    return fail(MPI_COMM_WORLD, rc, fn, "%s is predefined: tilesim keeps its name", tsmpi_type_name(datatype));
+  return rc ? fail(MPI_COMM_WORLD, rc, fn, "out of memory") : rc;
+}
+
+/* ==== queries ============================================================= */
+
+int MPI_Type_size_x(MPI_Datatype datatype, MPI_Count *size) {
+  static const char fn[] = "MPI_Type_size_x";
+  int rc;
+  if ((rc = type_ok(fn, "datatype", datatype)) || (rc = ptr_ok(fn, "size", size))) return rc;
+  *size = (MPI_Count)tsmpi_type_size(datatype);
+  return MPI_SUCCESS;
+}
+
+int MPI_Type_size(MPI_Datatype datatype, int *size) {
+  static const char fn[] = "MPI_Type_size";
+  int rc;
+  if ((rc = type_ok(fn, "datatype", datatype)) || (rc = ptr_ok(fn, "size", size))) return rc;
+  size_t s = tsmpi_type_size(datatype);
+  *size = s > INT_MAX ? MPI_UNDEFINED : (int)s;
+  return MPI_SUCCESS;
+}
+
+/* lb and extent (truly: the data's) of a type, for the queries. */
+static int extent_of(const char *fn, MPI_Datatype dt, int truly, MPI_Aint *lb, MPI_Aint *extent) {
+  int rc;
+  if ((rc = type_ok(fn, "datatype", dt))) return rc;
+  if (!lb || !extent) return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "an output argument is NULL");
+  MPI_Aint l, u, tl, tu;
+  tsmpi_type_bounds(dt, &l, &u, &tl, &tu);
+  *lb = truly ? tl : l;
+  *extent = truly ? tu - tl : u - l;
+  return MPI_SUCCESS;
+}
+
+int MPI_Type_get_extent(MPI_Datatype datatype, MPI_Aint *lb, MPI_Aint *extent) {
+  return extent_of("MPI_Type_get_extent", datatype, 0, lb, extent);
+}
+
+int MPI_Type_get_true_extent(MPI_Datatype datatype, MPI_Aint *true_lb, MPI_Aint *true_extent) {
+  return extent_of("MPI_Type_get_true_extent", datatype, 1, true_lb, true_extent);
+}
+
+/* The _x forms: the same in MPI_Count. */
+static int extent_x(const char *fn, MPI_Datatype dt, int truly, MPI_Count *lb, MPI_Count *extent) {
+  MPI_Aint l, e;
+  int rc = extent_of(fn, dt, truly, &l, &e);
+  if (rc) return rc;
+  if (!lb || !extent) return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "an output argument is NULL");
+  *lb = l;
+  *extent = e;
+  return MPI_SUCCESS;
+}
+
+int MPI_Type_get_extent_x(MPI_Datatype datatype, MPI_Count *lb, MPI_Count *extent) {
+  return extent_x("MPI_Type_get_extent_x", datatype, 0, lb, extent);
+}
+
+int MPI_Type_get_true_extent_x(MPI_Datatype datatype, MPI_Count *true_lb, MPI_Count *true_extent) {
+  return extent_x("MPI_Type_get_true_extent_x", datatype, 1, true_lb, true_extent);
+}
+
+int MPI_Type_extent(MPI_Datatype datatype, MPI_Aint *extent) {
+  MPI_Aint lb;
+  return extent_of("MPI_Type_extent", datatype, 0, &lb, extent);
+}
+
+int MPI_Type_lb(MPI_Datatype datatype, MPI_Aint *displacement) {
+  MPI_Aint ext;
+  return extent_of("MPI_Type_lb", datatype, 0, displacement, &ext);
+}
+
+int MPI_Type_ub(MPI_Datatype datatype, MPI_Aint *displacement) {
+  MPI_Aint lb, ext;
+  int rc = extent_of("MPI_Type_ub", datatype, 0, &lb, &ext);
+  if (rc == MPI_SUCCESS && (rc = ptr_ok("MPI_Type_ub", "displacement", displacement)) == 0) *displacement = lb + ext;
+  return rc;
+}
+
+int MPI_Type_get_envelope(MPI_Datatype datatype, int *num_integers, int *num_addresses, int *num_datatypes,
+                          int *combiner) {
+  static const char fn[] = "MPI_Type_get_envelope";
+  int rc;
+  if ((rc = type_ok(fn, "datatype", datatype))) return rc;
+  if (!num_integers || !num_addresses || !num_datatypes || !combiner)
+    return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "an output argument is NULL");
+  tsmpi_type_envelope(datatype, num_integers, num_addresses, num_datatypes, combiner);
+  return MPI_SUCCESS;
+}
+
+int MPI_Type_get_contents(MPI_Datatype datatype, int max_integers, int max_addresses, int max_datatypes,
+                          int array_of_integers[], MPI_Aint array_of_addresses[],
+                          MPI_Datatype array_of_datatypes[]) {
+  static const char fn[] = "MPI_Type_get_contents";
+  int rc = type_ok(fn, "datatype", datatype);
+  if (rc) return rc;
+  int ni, na, nd, comb;
+  tsmpi_type_envelope(datatype, &ni, &na, &nd, &comb);
+  if (comb == MPI_COMBINER_NAMED)
+    return fail(MPI_COMM_WORLD, MPI_ERR_TYPE, fn, "%s is predefined (MPI_COMBINER_NAMED)", tsmpi_type_name(datatype));
+  if (max_integers < ni || max_addresses < na || max_datatypes < nd)
+    return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "the arrays hold %d, %d and %d; the type needs %d, %d and %d",
+                max_integers, max_addresses, max_datatypes, ni, na, nd);
+  if ((ni && !array_of_integers) || (na && !array_of_addresses) || (nd && !array_of_datatypes))
+    return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "an array argument is NULL");
+  return tsmpi_type_contents(datatype, max_integers, max_addresses, max_datatypes, array_of_integers,
+                             array_of_addresses, array_of_datatypes);
+}
+
+/* MPI 3.1 section 17.2.5: the Fortran types of a class and size. */
+int MPI_Type_match_size(int typeclass, int size, MPI_Datatype *datatype) {
+  static const char fn[] = "MPI_Type_match_size";
+  int rc = ptr_ok(fn, "datatype", datatype);
+  if (rc) return rc;
+  MPI_Datatype t = MPI_DATATYPE_NULL;
+  if (typeclass == MPI_TYPECLASS_INTEGER)
+    t = size == 1 ? MPI_INTEGER1 : size == 2 ? MPI_INTEGER2 : size == 4 ? MPI_INTEGER4 : size == 8 ? MPI_INTEGER8 : t;
+  else if (typeclass == MPI_TYPECLASS_REAL)
+    t = size == 4 ? MPI_REAL4 : size == 8 ? MPI_REAL8 : t;
+  else if (typeclass == MPI_TYPECLASS_COMPLEX)
+    t = size == 8 ? MPI_COMPLEX8 : size == 16 ? MPI_COMPLEX16 : t;
+  else
+    return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "typeclass %d is not MPI_TYPECLASS_INTEGER, _REAL or _COMPLEX",
+                typeclass);
+  if (t == MPI_DATATYPE_NULL) return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "no type of class %d has %d bytes", typeclass, size);
+  *datatype = t;
+  return MPI_SUCCESS;
+}
+
+/* ==== addresses =========================================================== */
+
+int MPI_Get_address(const void *location, MPI_Aint *address) {
+  int rc = ptr_ok("MPI_Get_address", "address", address);
+  if (rc == MPI_SUCCESS) *address = (MPI_Aint)(uintptr_t)location;
+  return rc;
+}
+
+int MPI_Address(void *location, MPI_Aint *address) {
+  int rc = ptr_ok("MPI_Address", "address", address);
+  if (rc == MPI_SUCCESS) *address = (MPI_Aint)(uintptr_t)location;
+  return rc;
+}
+
+MPI_Aint MPI_Aint_add(MPI_Aint base, MPI_Aint disp) {
+  return (MPI_Aint)((uintptr_t)base + (uintptr_t)disp);
+}
+
+MPI_Aint MPI_Aint_diff(MPI_Aint addr1, MPI_Aint addr2) {
+  return (MPI_Aint)((uintptr_t)addr1 - (uintptr_t)addr2);
+}
+
+/* ==== pack, unpack, elements ============================================== */
+
+/* A committed type for a data-moving call on comm. */
+static int commtype_ok(MPI_Comm comm, const char *fn, MPI_Datatype dt) {
+  char why[96];
+  if (tsmpi_type_check(dt, why, sizeof why) == MPI_SUCCESS) return MPI_SUCCESS;
+  return fail(comm, MPI_ERR_TYPE, fn, "invalid datatype: %s", why);
+}
+
+int MPI_Pack(const void *inbuf, int incount, MPI_Datatype datatype, void *outbuf, int outsize, int *position,
+             MPI_Comm comm) {
+  static const char fn[] = "MPI_Pack";
+  int rc;
+  if ((rc = tsmpi_comm_check(comm, fn)) || (rc = tsmpi_check_count(comm, fn, incount)) ||
+      (rc = commtype_ok(comm, fn, datatype)) || (rc = tsmpi_check_buf(comm, fn, inbuf, incount, datatype)))
+    return rc;
+  if (!position) return fail(comm, MPI_ERR_ARG, fn, "position is NULL");
+  MPI_Count n = (MPI_Count)tsmpi_type_size(datatype) * incount;
+  if (*position < 0 || outsize < 0 || *position > outsize || n > outsize - *position)
+    return fail(comm, MPI_ERR_TRUNCATE, fn, "%lld bytes do not fit at position %d of a %d-byte buffer",
+                (long long)n, *position, outsize);
+  if (n > 0 && !outbuf) return fail(comm, MPI_ERR_BUFFER, fn, "outbuf is NULL");
+  if (n > 0) tsmpi_type_pack(inbuf, incount, datatype, (char *)outbuf + *position);
+  *position += (int)n;
+  return MPI_SUCCESS;
+}
+
+int MPI_Unpack(const void *inbuf, int insize, int *position, void *outbuf, int outcount, MPI_Datatype datatype,
+               MPI_Comm comm) {
+  static const char fn[] = "MPI_Unpack";
+  int rc;
+  if ((rc = tsmpi_comm_check(comm, fn)) || (rc = tsmpi_check_count(comm, fn, outcount)) ||
+      (rc = commtype_ok(comm, fn, datatype)) || (rc = tsmpi_check_buf(comm, fn, outbuf, outcount, datatype)))
+    return rc;
+  if (!position) return fail(comm, MPI_ERR_ARG, fn, "position is NULL");
+  MPI_Count n = (MPI_Count)tsmpi_type_size(datatype) * outcount;
+  if (*position < 0 || insize < 0 || *position > insize || n > insize - *position)
+    return fail(comm, MPI_ERR_TRUNCATE, fn, "%lld bytes are not there at position %d of a %d-byte buffer",
+                (long long)n, *position, insize);
+  if (n > 0 && !inbuf) return fail(comm, MPI_ERR_BUFFER, fn, "inbuf is NULL");
+  if (n > 0) tsmpi_type_unpack((const char *)inbuf + *position, (size_t)n, outbuf, outcount, datatype);
+  *position += (int)n;
+  return MPI_SUCCESS;
+}
+
+int MPI_Pack_size(int incount, MPI_Datatype datatype, MPI_Comm comm, int *size) {
+  static const char fn[] = "MPI_Pack_size";
+  int rc;
+  if ((rc = tsmpi_comm_check(comm, fn)) || (rc = tsmpi_check_count(comm, fn, incount)) ||
+      (rc = commtype_ok(comm, fn, datatype)))
+    return rc;
+  if (!size) return fail(comm, MPI_ERR_ARG, fn, "size is NULL");
+  MPI_Count n = (MPI_Count)tsmpi_type_size(datatype) * incount;
+  if (n > INT_MAX) return fail(comm, MPI_ERR_SIZE, fn, "%lld bytes do not fit an int", (long long)n);
+  *size = (int)n;
+  return MPI_SUCCESS;
+}
+
+int MPI_Get_elements_x(const MPI_Status *status, MPI_Datatype datatype, MPI_Count *count) {
+  static const char fn[] = "MPI_Get_elements_x";
+  int rc;
+  if ((rc = ptr_ok(fn, "status", status)) || (rc = ptr_ok(fn, "count", count)) ||
+      (rc = commtype_ok(MPI_COMM_WORLD, fn, datatype)))
+    return rc;
+  *count = tsmpi_type_elements(datatype, status->tsmpi_count);
+  return MPI_SUCCESS;
+}
+
+int MPI_Get_elements(const MPI_Status *status, MPI_Datatype datatype, int *count) {
+  MPI_Count n;
+  int rc = MPI_Get_elements_x(status, datatype, &n);
+  if (rc == MPI_SUCCESS) {
+    if (!count) return fail(MPI_COMM_WORLD, MPI_ERR_ARG, "MPI_Get_elements", "count is NULL");
+    *count = n > INT_MAX ? MPI_UNDEFINED : (int)n;
+  }
+  return rc;
+}
