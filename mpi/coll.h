@@ -1,0 +1,220 @@
+/* coll.h -- the collectives' inside: which algorithm runs (MPICH's choice, --coll linear, or an
+ * override), and the algorithms themselves, on packed bytes over point-to-point (p2p.h).
+ *
+ * Not for programs.  The MPI_* functions (coll_api.c) check their arguments,
+ * pack the data (dtype.h), pick an algorithm (tsmpi_coll_pick) and run it
+ * here; a reduction combines packed elements with op.h.
+ *
+ * THE ALGORITHMS are MPICH's (pmodels/mpich, src/mpi/coll/<name>/), with its
+ * names (its MPIR_CVAR_<COLL>_INTRA_ALGORITHM values), message for message:
+ * the same peers, the same sizes, the same order of sends and receives, so a
+ * run's simulated time is what MPICH's algorithm costs on the machine.  Each
+ * file says the source of each.  --coll linear runs the plain ones (a root
+ * sending to or receiving from every rank in turn), as Open MPI's "basic
+ * linear" component does.
+ *
+ * REDUCTION ORDER.  Every algorithm combines in a fixed order that depends on
+ * the algorithm, the number of ranks, the root and the count, never on when
+ * messages arrive: MPICH's, operand for operand (a received partial result
+ * on the left of the local one for commutative operations, ranks in order
+ * for the others); the linear ones fold in rank order, ((a0 op a1) op a2)
+ * ...  doc/mpi-support.md states each algorithm's order. */
+#ifndef TSMPI_COLL_H
+#define TSMPI_COLL_H
+
+#include <stddef.h>
+
+#include "mpi.h"
+
+/* ==== choosing ============================================================ */
+
+/* The collectives, each with its algorithms; ALG_AUTO is MPICH's choice. */
+typedef enum {
+  COLL_BARRIER, COLL_BCAST, COLL_REDUCE, COLL_ALLREDUCE, COLL_GATHER, COLL_GATHERV, COLL_SCATTER,
+  COLL_SCATTERV, COLL_ALLGATHER, COLL_ALLGATHERV, COLL_ALLTOALL, COLL_ALLTOALLV, COLL_SCAN, COLL_EXSCAN,
+  COLL_REDUCE_SCATTER, COLL_REDUCE_SCATTER_BLOCK, COLL_N
+} tsmpi_coll;
+
+typedef enum {
+  ALG_AUTO,
+  ALG_LINEAR,
+  ALG_DISSEMINATION,                         /* barrier */
+  ALG_BINOMIAL,                              /* bcast, reduce, gather, scatter */
+  ALG_SCATTER_RECURSIVE_DOUBLING_ALLGATHER,  /* bcast */
+  ALG_SCATTER_RING_ALLGATHER,                /* bcast */
+  ALG_RECURSIVE_DOUBLING,                    /* allreduce, allgather(v), scan, exscan, reduce_scatter(_block) */
+  ALG_REDUCE_SCATTER_ALLGATHER,              /* allreduce (Rabenseifner) */
+  ALG_REDUCE_SCATTER_GATHER,                 /* reduce (Rabenseifner) */
+  ALG_BRUCKS,                                /* allgather(v), alltoall */
+  ALG_RING,                                  /* allgather(v) */
+  ALG_SCATTERED,                             /* alltoall(v) */
+  ALG_PAIRWISE,                              /* alltoall, reduce_scatter(_block) */
+  ALG_PAIRWISE_SENDRECV_REPLACE,             /* alltoall(v) in place */
+  ALG_RECURSIVE_HALVING,                     /* reduce_scatter(_block) */
+  ALG_NONCOMMUTATIVE,                        /* reduce_scatter(_block) */
+  ALG_N
+} tsmpi_alg;
+
+/* The collective's and the algorithm's names: "bcast", "binomial". */
+const char *tsmpi_coll_name(tsmpi_coll c);
+const char *tsmpi_alg_name(tsmpi_alg a);
+
+/* The algorithm the run's setting gives collective c (ALG_AUTO: MPICH's
+ * choice, which the caller makes). */
+tsmpi_alg tsmpi_coll_setting(tsmpi_coll c);
+
+/* ==== the group a collective runs on ====================================== */
+
+typedef struct {
+  MPI_Comm comm;
+  int rank, size;
+  int tag;          /* the collective's tag on the collective context */
+  const char *fn;   /* "MPI_Bcast", for errors */
+} tsmpi_cg;
+
+/* Bytes to and from ranks of the group (p2p.h's calls with MPI_BYTE).
+ * recv: *got, if not NULL, gets the bytes that came.  MPI_SUCCESS, or an
+ * error class already raised under the communicator's handler (a message
+ * longer than expected: the ranks disagree on the counts). */
+int tsmpi_cg_send(const tsmpi_cg *g, const void *buf, size_t n, int dst);
+int tsmpi_cg_recv(const tsmpi_cg *g, void *buf, size_t n, int src, size_t *got);
+int tsmpi_cg_sendrecv(const tsmpi_cg *g, const void *sbuf, size_t sn, int dst, void *rbuf, size_t rn, int src,
+                      size_t *got);
+/* Nonblocking, completed together by tsmpi_cg_waitall. */
+int tsmpi_cg_isend(const tsmpi_cg *g, const void *buf, size_t n, int dst, MPI_Request *req);
+int tsmpi_cg_irecv(const tsmpi_cg *g, void *buf, size_t n, int src, MPI_Request *req);
+int tsmpi_cg_waitall(const tsmpi_cg *g, int n, MPI_Request *reqs);
+
+/* malloc that stops the run with a message when memory runs out. */
+void *tsmpi_cg_alloc(const tsmpi_cg *g, size_t n);
+
+/* The largest power of two <= n (n >= 1), and whether n is one. */
+int tsmpi_pof2(int n);
+int tsmpi_is_pof2(int n);
+
+/* ==== the frame of every MPI collective (coll_frame.c) ==================== */
+
+/* What a rank waits in, for the deadlock report: "MPI_Bcast(root=0,
+ * MPI_COMM_WORLD)". */
+typedef struct {
+  const char *fn;
+  MPI_Comm comm;
+  int root;   /* -1: none */
+} tsmpi_label;
+
+/* Fill the group of a call on a checked communicator, the collective's tag,
+ * and set the rank's label (l lives until tsmpi_coll_end). */
+void tsmpi_coll_begin(tsmpi_cg *g, tsmpi_label *l, const char *fn, MPI_Comm comm, tsmpi_coll which, int root);
+/* Clear the label; returns rc. */
+int tsmpi_coll_end(int rc);
+
+/* Argument checks; each returns MPI_SUCCESS or raises under comm's handler. */
+int tsmpi_coll_type_ok(MPI_Comm comm, const char *fn, const char *what, MPI_Datatype dt);   /* committed */
+int tsmpi_coll_op_ok(MPI_Comm comm, const char *fn, MPI_Op op, MPI_Datatype dt);           /* applies to dt */
+/* count >= 0, dt committed, buf non-NULL if it must be (MPI_IN_PLACE passes). */
+int tsmpi_coll_data_ok(MPI_Comm comm, const char *fn, const char *what, const void *buf, int count,
+                       MPI_Datatype dt);
+/* n counts >= 0, and the arrays there (displs may be NULL when what starts
+ * with 'r' and none are needed). */
+int tsmpi_coll_counts_ok(MPI_Comm comm, const char *fn, const char *what, const int *counts, const int *displs,
+                         int n);
+int tsmpi_coll_in_place_bad(MPI_Comm comm, const char *fn, const char *which);
+
+/* count elements of dt at buf packed into new memory (free it), and back. */
+char *tsmpi_coll_pack(const tsmpi_cg *g, const void *buf, int count, MPI_Datatype dt);
+void tsmpi_coll_unpack(const char *p, void *buf, int count, MPI_Datatype dt);
+/* Element i of dt at buf (i extents on). */
+void *tsmpi_coll_at(const void *buf, MPI_Aint i, MPI_Datatype dt);
+
+/* ==== the algorithms, on packed bytes =====================================
+ * Buffers hold packed data (dtype.h).  A reduction's elements are `count`
+ * elements of dt, each tsize bytes packed, combined with op (op.h). */
+
+/* The reductions' element description. */
+typedef struct {
+  MPI_Datatype dt;
+  MPI_Op op;
+  size_t tsize;    /* packed bytes of one element */
+  int commute;     /* op is commutative */
+} tsmpi_red;
+
+int tsmpi_barrier_linear(const tsmpi_cg *g);
+int tsmpi_barrier_dissemination(const tsmpi_cg *g);
+
+int tsmpi_bcast_linear(const tsmpi_cg *g, void *buf, size_t n, int root);
+int tsmpi_bcast_binomial(const tsmpi_cg *g, void *buf, size_t n, int root);
+int tsmpi_bcast_scatter_rdb_allgather(const tsmpi_cg *g, void *buf, size_t n, int root);
+int tsmpi_bcast_scatter_ring_allgather(const tsmpi_cg *g, void *buf, size_t n, int root);
+
+/* Gather: sbuf's n bytes from every rank into rbuf at the root, rank r's at
+ * r * n (rbuf used at the root only).  sbuf NULL at the root: its block is
+ * in place.  Scatter: the root's rbuf block r to rank r's rbuf... */
+int tsmpi_gather_linear(const tsmpi_cg *g, const void *sbuf, void *rbuf, size_t n, int root);
+int tsmpi_gather_binomial(const tsmpi_cg *g, const void *sbuf, void *rbuf, size_t n, int root);
+/* Scatter: block r of sbuf (the root's, n bytes each) into rank r's rbuf
+ * (rbuf NULL at the root: its block stays in place). */
+int tsmpi_scatter_linear(const tsmpi_cg *g, const void *sbuf, void *rbuf, size_t n, int root);
+int tsmpi_scatter_binomial(const tsmpi_cg *g, const void *sbuf, void *rbuf, size_t n, int root);
+/* The v forms: counts[r] bytes at displs[r] of the root's buffer. */
+int tsmpi_gatherv_linear(const tsmpi_cg *g, const void *sbuf, size_t sn, void *rbuf, const size_t *counts,
+                         const size_t *displs, int root);
+int tsmpi_scatterv_linear(const tsmpi_cg *g, const void *sbuf, const size_t *counts, const size_t *displs,
+                          void *rbuf, size_t rn, int root);
+
+/* Allgather: every rank's block (already at buf + displs[rank], counts[r]
+ * bytes each) to every rank. */
+int tsmpi_allgatherv_linear(const tsmpi_cg *g, void *buf, const size_t *counts, const size_t *displs);
+int tsmpi_allgatherv_recursive_doubling(const tsmpi_cg *g, void *buf, const size_t *counts, const size_t *displs);
+int tsmpi_allgatherv_brucks(const tsmpi_cg *g, void *buf, const size_t *counts, const size_t *displs);
+int tsmpi_allgatherv_ring(const tsmpi_cg *g, void *buf, const size_t *counts, const size_t *displs);
+/* The ring as MPICH's allgatherv runs it: pipelined when a block is longer
+ * than 32 KiB of the receive type (unit packed bytes, extent bytes laid
+ * out, per element). */
+int tsmpi_allgatherv_ring_pipelined(const tsmpi_cg *g, void *buf, const size_t *counts, const size_t *displs,
+                                    size_t unit, size_t extent);
+
+/* Alltoall(v): sbuf's block for rank r (counts sc[r] at sd[r]) to rank r's
+ * rbuf block from us (rc[us] at rd[us]).  sbuf NULL: in place (rbuf holds
+ * the blocks to send and gets the blocks received). */
+int tsmpi_alltoallv_linear(const tsmpi_cg *g, const void *sbuf, const size_t *sc, const size_t *sd, void *rbuf,
+                           const size_t *rc, const size_t *rd);
+int tsmpi_alltoallv_scattered(const tsmpi_cg *g, const void *sbuf, const size_t *sc, const size_t *sd, void *rbuf,
+                              const size_t *rc, const size_t *rd);
+int tsmpi_alltoallv_pairwise_sendrecv_replace(const tsmpi_cg *g, void *rbuf, const size_t *sc, const size_t *sd,
+                                              const size_t *rc, const size_t *rd);
+int tsmpi_alltoall_scattered(const tsmpi_cg *g, const void *sbuf, void *rbuf, size_t n);
+int tsmpi_alltoall_brucks(const tsmpi_cg *g, const void *sbuf, void *rbuf, size_t n);
+int tsmpi_alltoall_pairwise(const tsmpi_cg *g, const void *sbuf, void *rbuf, size_t n);
+
+/* Reduce: count elements of every rank's sbuf combined into the root's
+ * rbuf (sbuf NULL at the root: its operand is in rbuf). */
+int tsmpi_reduce_linear(const tsmpi_cg *g, const tsmpi_red *r, const void *sbuf, void *rbuf, int count, int root);
+int tsmpi_reduce_binomial(const tsmpi_cg *g, const tsmpi_red *r, const void *sbuf, void *rbuf, int count, int root);
+int tsmpi_reduce_scatter_gather(const tsmpi_cg *g, const tsmpi_red *r, const void *sbuf, void *rbuf, int count,
+                                int root);
+/* Allreduce: buf holds this rank's operand and gets the result. */
+int tsmpi_allreduce_linear(const tsmpi_cg *g, const tsmpi_red *r, void *buf, int count);
+int tsmpi_allreduce_recursive_doubling(const tsmpi_cg *g, const tsmpi_red *r, void *buf, int count);
+int tsmpi_allreduce_reduce_scatter_allgather(const tsmpi_cg *g, const tsmpi_red *r, void *buf, int count);
+/* Reduce_scatter: buf holds this rank's whole operand (the sum of counts
+ * elements); block r of the result (counts[r] elements) goes to rank r's
+ * out. */
+int tsmpi_reduce_scatter_linear(const tsmpi_cg *g, const tsmpi_red *r, void *buf, void *out, const int *counts);
+int tsmpi_reduce_scatter_recursive_halving(const tsmpi_cg *g, const tsmpi_red *r, void *buf, void *out,
+                                           const int *counts);
+int tsmpi_reduce_scatter_pairwise(const tsmpi_cg *g, const tsmpi_red *r, void *buf, void *out, const int *counts);
+int tsmpi_reduce_scatter_recursive_doubling(const tsmpi_cg *g, const tsmpi_red *r, void *buf, void *out,
+                                            const int *counts);
+int tsmpi_reduce_scatter_noncommutative(const tsmpi_cg *g, const tsmpi_red *r, void *buf, void *out,
+                                        const int *counts);
+/* Scan (inclusive) and exscan: rank r's out gets ranks 0..r's (0..r-1's)
+ * operands combined; exscan leaves rank 0's out alone. */
+int tsmpi_scan_linear(const tsmpi_cg *g, const tsmpi_red *r, const void *in, void *out, int count);
+int tsmpi_scan_recursive_doubling(const tsmpi_cg *g, const tsmpi_red *r, const void *in, void *out, int count);
+int tsmpi_exscan_linear(const tsmpi_cg *g, const tsmpi_red *r, const void *in, void *out, int count);
+int tsmpi_exscan_recursive_doubling(const tsmpi_cg *g, const tsmpi_red *r, const void *in, void *out, int count);
+
+/* left op right into right, count elements (op.h's order: in is left). */
+void tsmpi_red_apply(const tsmpi_red *r, const void *left, void *right, int count);
+
+#endif

@@ -1,0 +1,75 @@
+/* coll_util.c -- the collectives' point-to-point on packed bytes, and small helpers (coll.h). */
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "coll.h"
+#include "op.h"
+#include "p2p.h"
+
+/* A message longer than the receive: the ranks disagree on the counts. */
+static int truncated(const tsmpi_cg *g, int src) {
+  return tsmpi_raise(g->comm, MPI_ERR_TRUNCATE, g->fn,
+                     "a message from rank %d is longer than expected (do all ranks pass the same counts?)", src);
+}
+
+static int too_big(const tsmpi_cg *g, size_t n) {
+  return tsmpi_raise(g->comm, MPI_ERR_COUNT, g->fn, "a message of %zu bytes (more than INT_MAX)", n);
+}
+
+int tsmpi_cg_send(const tsmpi_cg *g, const void *buf, size_t n, int dst) {
+  if (n > 0x7fffffff) return too_big(g, n);
+  return tsmpi_p2p_send(buf, (int)n, MPI_BYTE, dst, g->tag, g->comm);
+}
+
+int tsmpi_cg_recv(const tsmpi_cg *g, void *buf, size_t n, int src, size_t *got) {
+  MPI_Status st;
+  if (n > 0x7fffffff) return too_big(g, n);
+  int rc = tsmpi_p2p_recv(buf, (int)n, MPI_BYTE, src, g->tag, g->comm, &st);
+  if (rc == MPI_ERR_TRUNCATE) return truncated(g, src);
+  if (rc) return tsmpi_raise(g->comm, rc, g->fn, "a receive from rank %d failed", src);
+  if (got) *got = (size_t)st.tsmpi_count;
+  return MPI_SUCCESS;
+}
+
+int tsmpi_cg_sendrecv(const tsmpi_cg *g, const void *sbuf, size_t sn, int dst, void *rbuf, size_t rn, int src,
+                      size_t *got) {
+  int rc = tsmpi_cg_send(g, sbuf, sn, dst);
+  return rc ? rc : tsmpi_cg_recv(g, rbuf, rn, src, got);
+}
+
+int tsmpi_cg_isend(const tsmpi_cg *g, const void *buf, size_t n, int dst, MPI_Request *req) {
+  if (n > 0x7fffffff) return too_big(g, n);
+  return tsmpi_p2p_isend(buf, (int)n, MPI_BYTE, dst, g->tag, g->comm, req);
+}
+
+int tsmpi_cg_irecv(const tsmpi_cg *g, void *buf, size_t n, int src, MPI_Request *req) {
+  if (n > 0x7fffffff) return too_big(g, n);
+  return tsmpi_p2p_irecv(buf, (int)n, MPI_BYTE, src, g->tag, g->comm, req);
+}
+
+int tsmpi_cg_waitall(const tsmpi_cg *g, int n, MPI_Request *reqs) {
+  int rc = tsmpi_p2p_waitall(n, reqs, MPI_STATUSES_IGNORE);
+  if (rc == MPI_ERR_TRUNCATE) return truncated(g, -1);
+  return rc ? tsmpi_raise(g->comm, rc, g->fn, "a request failed") : rc;
+}
+
+void *tsmpi_cg_alloc(const tsmpi_cg *g, size_t n) {
+  void *p = malloc(n ? n : 1);
+  if (!p) {
+    fprintf(stderr, "tilesim: %s: out of memory (%zu bytes)\n", g->fn, n);
+    abort();
+  }
+  return p;
+}
+
+int tsmpi_pof2(int n) {
+  int p = 1;
+  while (p <= n / 2) p <<= 1;
+  return p;
+}
+
+int tsmpi_is_pof2(int n) { return n > 0 && (n & (n - 1)) == 0; }
+
+void tsmpi_red_apply(const tsmpi_red *r, const void *left, void *right, int count) {
+  if (count > 0) tsmpi_op_reduce_packed(r->op, r->dt, left, right, count);
+}

@@ -1,0 +1,29 @@
+/* tsmpi.h -- what the runner (tilesim-mpirun) sets in the MPI layer before a run: the
+ * collectives' algorithms.  Not for programs (mpi.h is theirs).
+ *
+ * The setting is per run, not per rank: set it before the ranks start, and
+ * leave it alone while they run. */
+#ifndef TSMPI_TSMPI_H
+#define TSMPI_TSMPI_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+/* Apply one --coll argument: a comma-separated list of
+ *   mpich            every collective as MPICH chooses (the default)
+ *   linear           every collective by its plain root-centred algorithm
+ *   COLL=ALG         one collective by one algorithm (ALG "auto": MPICH's
+ *                    choice again), e.g. bcast=binomial
+ * applied left to right on top of the earlier ones.  0, or -1 with a
+ * message in err ("--coll: bcast has no algorithm 'ring' (linear, binomial,
+ * ...)") and nothing changed. */
+int tsmpi_coll_option(const char *spec, char *err, size_t errlen);
+
+/* Back to MPICH's choices everywhere. */
+void tsmpi_coll_reset(void);
+
+/* The collectives and their algorithms, one line each ("bcast: auto linear
+ * binomial scatter_recursive_doubling_allgather ..."), for --help. */
+void tsmpi_coll_usage(FILE *out);
+
+#endif
