@@ -147,11 +147,22 @@ $(CHK)/tests/mpi/progs.h: FORCE
 	@mkdir -p $(dir $@)
 	@printf '%s\n' $(foreach p,$(TSMPIPROGS),'TSMPI_PROG($(p))') > $@.tmp
 	@if cmp -s $@.tmp $@; then rm -f $@.tmp; else mv -f $@.tmp $@; fi
-$(CHK)/tests/test_mpiprogs.o: $(CHK)/tests/mpi/progs.h
-$(CHK)/tests/test_mpiprogs.o: CHKFLAGS += -I$(CHK)/tests/mpi
-$(CHK)/tests/test_mpiprogs: $(CHK)/tests/test_mpiprogs.o $(patsubst %,$(CHK)/tests/mpi/%.o,$(TSMPIPROGS)) \
-                            $(call chkobj,$(TESTLIB)) $(CHK)/libtsmpi.a $(CHK)/libtilesim.a
-	$(CC) $(CHKFLAGS) -o $@ $^ $(LDLIBS)
+# The drivers that link the programs in: test_mpiprogs (datatypes,
+# operations, collectives) and test_mpiprogs_p2p (point-to-point and
+# communicators).
+TSMPIDRIVERS = test_mpiprogs test_mpiprogs_p2p
+define tsmpi_driver_rules
+$(CHK)/tests/$(1).o: $(CHK)/tests/mpi/progs.h
+$(CHK)/tests/$(1).o: CHKFLAGS += -I$(CHK)/tests/mpi
+$(CHK)/tests/$(1): $(CHK)/tests/$(1).o $(patsubst %,$(CHK)/tests/mpi/%.o,$(TSMPIPROGS)) \
+                   $(call chkobj,$(TESTLIB)) $(CHK)/libtsmpi.a $(CHK)/libtilesim.a
+	$$(CC) $$(CHKFLAGS) -o $$@ $$^ $$(LDLIBS)
+$(VG)/tests/$(1).o: $(CHK)/tests/mpi/progs.h
+$(VG)/tests/$(1).o: BASE += -I$(CHK)/tests/mpi
+$(VG)/tests/$(1): $(VG)/tests/$(1).o $(patsubst %,$(VG)/tests/mpi/%.o,$(TSMPIPROGS)) \
+                  $(patsubst %.c,$(VG)/%.o,$(TESTLIB)) $(VG)/libtsmpi.a $(VG)/libtilesim.a
+	$$(CC) -g -o $$@ $$^ $$(LDLIBS)
+endef
 
 define prog_rules
 build/bin/$(1): $(call relobj,prog/$(1).c $(wildcard prog/$(1)_*.c)) $(REL)/libtilesim.a
@@ -252,11 +263,7 @@ $(VG)/libtsmpi.a: $(patsubst %.c,$(VG)/%.o,$(TSMPISRC))
 $(VG)/tests/mpi/%.o: tests/mpi/%.c
 	@mkdir -p $(dir $@)
 	$(CC) $(BASE) -O1 -g $(TSMPIPFLAGS) -Dmain=tsmpi_main_$* -MMD -MP -c $< -o $@
-$(VG)/tests/test_mpiprogs.o: $(CHK)/tests/mpi/progs.h
-$(VG)/tests/test_mpiprogs.o: BASE += -I$(CHK)/tests/mpi
-$(VG)/tests/test_mpiprogs: $(VG)/tests/test_mpiprogs.o $(patsubst %,$(VG)/tests/mpi/%.o,$(TSMPIPROGS)) \
-                           $(patsubst %.c,$(VG)/%.o,$(TESTLIB)) $(VG)/libtsmpi.a $(VG)/libtilesim.a
-	$(CC) -g -o $@ $^ $(LDLIBS)
+$(foreach d,$(TSMPIDRIVERS),$(eval $(call tsmpi_driver_rules,$(d))))
 $(VG)/tests/%: $(VG)/tests/%.o $(patsubst %.c,$(VG)/%.o,$(TESTLIB)) $(VG)/libtsmpi.a $(VG)/libtilesim.a
 	$(CC) -g -o $@ $^ $(LDLIBS)
 valgrind: $(addprefix $(VG)/tests/,$(TESTS))

@@ -59,6 +59,10 @@ static int init(const char *fn, int required, int *provided) {
     snprintf(why, sizeof why, "rank %d: %s: MPI is %s", mp_rank(self), fn,
              u == TSM_MARK_FINALIZED ? "finalized already (MPI_Init after MPI_Finalize)"
                                      : "initialized already (MPI_Init called twice)");
+    if (u != TSM_MARK_FINALIZED && u != TSM_MARK_STOPPED) {
+      tsm_release(u);
+      mp_set_user(self, TSM_MARK_STOPPED);
+    }
     mp_abort(self, 1, why);
   }
   tsm *R = xcalloc(1, sizeof *R);

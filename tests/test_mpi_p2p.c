@@ -1,0 +1,381 @@
+/* test_mpi_p2p.c -- what tilesim's point-to-point does that the portable
+ * programs of tests/mpi cannot check: the run's end under
+ * MPI_ERRORS_ARE_FATAL and MPI_Abort (message, exit code, every rank
+ * stopped), errors other MPIs do not catch (MPI_ERR_BUFFER, a freed
+ * communicator, calls before MPI_Init and after MPI_Finalize), what a
+ * deadlock report says of each rank's MPI call, the simulated times of a
+ * ping-pong, a synchronous send, a communicator's context agreement and a
+ * polling loop against their closed forms (binary-fraction costs: exact),
+ * and each rank's end for the runner.  On the simulator and on threads
+ * where it applies. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../mpi/env.h"
+#include "../mpi/mpi.h"
+#include "check.h"
+#include "mp.h"
+#include "mpiharness.h"
+
+static const char *const bname[] = {"sim", "threads"};
+
+/* Run fn on n ranks of backend b (the harness's machine: --net ideal,
+ * m = 1/4, per_byte = 1/16, c = 1/8, one processor per rank). */
+static mpih_result run(int b, int n, mpih_fn fn, void *ud) {
+  mpih_config cfg;
+  mpih_config_init(&cfg, b, n);
+  cfg.poll_cost = 0.0625;
+  mpih_result res;
+  mpih_run_fn(&cfg, fn, ud, &res);
+  return res;
+}
+
+static int has(const char *s, const char *part) { return strstr(s, part) != NULL; }
+
+/* ==== the run's end ======================================================= */
+
+/* Rank 1 sends to rank 7 of 4 under MPI_ERRORS_ARE_FATAL; the others wait
+ * for messages that never come. */
+static int bad_rank(void *ud) {
+  (void)ud;
+  MPI_Init(NULL, NULL);
+  int r, v = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  if (r == 1)
+    MPI_Send(&v, 1, MPI_INT, 7, 0, MPI_COMM_WORLD);
+  else
+    MPI_Recv(&v, 1, MPI_INT, MPI_ANY_SOURCE, 0, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  MPI_Finalize();
+  return 0;
+}
+
+static int aborts(void *ud) {
+  (void)ud;
+  MPI_Init(NULL, NULL);
+  int r, v = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  if (r == 2) MPI_Abort(MPI_COMM_WORLD, 3);
+  MPI_Recv(&v, 1, MPI_INT, MPI_ANY_SOURCE, 0, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  MPI_Finalize();
+  return 0;
+}
+
+/* A message longer than the receive, under the default handler. */
+static int truncates(void *ud) {
+  (void)ud;
+  MPI_Init(NULL, NULL);
+  int r, v[4] = {1, 2, 3, 4};
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  if (r == 0)
+    MPI_Send(v, 4, MPI_INT, 1, 5, MPI_COMM_WORLD);
+  else
+    MPI_Recv(v, 2, MPI_INT, 0, 5, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  MPI_Finalize();
+  return 0;
+}
+
+static int before_init(void *ud) {
+  (void)ud;
+  int v = 0;
+  MPI_Send(&v, 1, MPI_INT, 0, 0, MPI_COMM_WORLD);
+  return 0;
+}
+
+static int twice(void *ud) {
+  (void)ud;
+  MPI_Init(NULL, NULL);
+  MPI_Init(NULL, NULL);
+  return 0;
+}
+
+static void fatal_ends(void) {
+  for (int b = 0; b < 2; b++) {
+    mpih_result res = run(b, 4, bad_rank, NULL);
+    CHECK(res.rc != 0 && has(res.err, "rank 1: MPI_Send: invalid rank 7 (MPI_COMM_WORLD has 4 ranks)"),
+          "%s: bad rank: %s", bname[b], res.err);
+    CHECK(res.aborted && res.abort_code == 1, "%s: bad rank: aborted %d code %d", bname[b], res.aborted,
+          res.abort_code);
+    int stopped = 1;
+    for (int i = 0; i < 4; i++) stopped &= res.exit[i] == MPIH_NOEXIT;
+    CHECK(stopped, "%s: bad rank: a rank went on after the error", bname[b]);
+    mpih_result_free(&res);
+
+    res = run(b, 4, aborts, NULL);
+    CHECK(res.rc != 0 && has(res.err, "rank 2 called MPI_Abort(MPI_COMM_WORLD, 3)") && res.abort_code == 3,
+          "%s: abort: %s (code %d)", bname[b], res.err, res.abort_code);
+    mpih_result_free(&res);
+
+    res = run(b, 2, truncates, NULL);
+    CHECK(res.rc != 0 && res.abort_code == 1 &&
+              has(res.err, "rank 1: MPI_Recv: a 16-byte message from rank 0 (tag 5) is longer than the "
+                           "receive buffer (2 elements, 8 bytes): truncated"),
+          "%s: truncation: %s", bname[b], res.err);
+    mpih_result_free(&res);
+
+    res = run(b, 1, before_init, NULL);
+    CHECK(res.rc != 0 && has(res.err, "rank 0: MPI_Send called before MPI_Init"), "%s: before init: %s",
+          bname[b], res.err);
+    mpih_result_free(&res);
+
+    res = run(b, 1, twice, NULL);
+    CHECK(res.rc != 0 && has(res.err, "rank 0: MPI_Init: MPI is initialized already"), "%s: init twice: %s",
+          bname[b], res.err);
+    mpih_result_free(&res);
+  }
+}
+
+/* ==== errors returned ===================================================== */
+
+typedef struct {
+  int rc[8];
+} codes;
+
+static int returned(void *ud) {
+  codes *c = ud;
+  MPI_Init(NULL, NULL);
+  int r, v[100] = {0};
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
+  if (r == 0) {
+    c->rc[0] = MPI_Bsend(v, 10, MPI_INT, 0, 1, MPI_COMM_WORLD);   /* no buffer */
+    int size = 10 * (int)sizeof(int) + MPI_BSEND_OVERHEAD;
+    char *buf = malloc((size_t)size);
+    MPI_Buffer_attach(buf, size);
+    c->rc[1] = MPI_Bsend(v, 11, MPI_INT, 0, 1, MPI_COMM_WORLD);   /* one int too many */
+    c->rc[2] = MPI_Bsend(v, 10, MPI_INT, 0, 1, MPI_COMM_WORLD);   /* fits */
+    c->rc[3] = MPI_Recv(v, 10, MPI_INT, 0, 1, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    void *back;
+    MPI_Buffer_detach(&back, &size);
+    free(buf);
+    MPI_Comm dup, gone;
+    MPI_Comm_dup(MPI_COMM_SELF, &dup);
+    gone = dup;
+    MPI_Comm_free(&dup);
+    c->rc[4] = MPI_Send(v, 1, MPI_INT, 0, 0, gone);
+    c->rc[5] = MPI_Comm_free(&gone);
+    MPI_Comm world = MPI_COMM_WORLD;
+    c->rc[6] = MPI_Comm_free(&world);
+  }
+  MPI_Finalize();
+  return 0;
+}
+
+static void errors_returned(void) {
+  for (int b = 0; b < 2; b++) {
+    codes c;
+    memset(&c, 0, sizeof c);
+    mpih_result res = run(b, 2, returned, &c);
+    CHECK(res.rc == 0, "%s: errors returned: %s", bname[b], res.err);
+    CHECK(c.rc[0] == MPI_ERR_BUFFER && c.rc[1] == MPI_ERR_BUFFER && c.rc[2] == MPI_SUCCESS && c.rc[3] == MPI_SUCCESS,
+          "%s: buffered sends: %d %d %d %d", bname[b], c.rc[0], c.rc[1], c.rc[2], c.rc[3]);
+    CHECK(c.rc[4] == MPI_ERR_COMM && c.rc[5] == MPI_ERR_COMM && c.rc[6] == MPI_ERR_COMM,
+          "%s: freed and predefined communicators: %d %d %d", bname[b], c.rc[4], c.rc[5], c.rc[6]);
+    mpih_result_free(&res);
+  }
+}
+
+/* ==== deadlock reports ==================================================== */
+
+static int stuck(void *ud) {
+  (void)ud;
+  MPI_Init(NULL, NULL);
+  int r, v = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  MPI_Request q[2];
+  MPI_Comm dup;
+  if (r == 0) {
+    MPI_Recv(&v, 1, MPI_INT, 1, 7, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  } else if (r == 1) {
+    MPI_Ssend(&v, 1, MPI_INT, 0, 3, MPI_COMM_WORLD);
+  } else if (r == 2) {
+    MPI_Irecv(&v, 1, MPI_INT, MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_SELF, &q[0]);
+    MPI_Issend(&v, 1, MPI_INT, 3, 4, MPI_COMM_WORLD, &q[1]);
+    MPI_Waitall(2, q, MPI_STATUSES_IGNORE);
+  } else if (r == 3) {
+    MPI_Probe(MPI_ANY_SOURCE, 9, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  } else {
+    MPI_Comm_dup(MPI_COMM_WORLD, &dup);
+  }
+  MPI_Finalize();
+  return 0;
+}
+
+static void deadlock_words(void) {
+  for (int b = 0; b < 2; b++) {
+    mpih_result res = run(b, 5, stuck, NULL);
+    CHECK(res.rc != 0 && res.deadlock, "%s: no deadlock reported: %s", bname[b], res.err);
+    CHECK(has(res.err, "rank 0 waits in MPI_Recv(source=1, tag=7, MPI_COMM_WORLD)") &&
+              has(res.err, "rank 1 waits in MPI_Ssend(dest=0, tag=3, MPI_COMM_WORLD)") &&
+              has(res.err, "rank 2 waits in MPI_Waitall(MPI_Irecv(source=MPI_ANY_SOURCE, tag=MPI_ANY_TAG, "
+                           "MPI_COMM_SELF), MPI_Issend(dest=3, tag=4, MPI_COMM_WORLD))") &&
+              has(res.err, "rank 3 waits in MPI_Probe(source=MPI_ANY_SOURCE, tag=9, MPI_COMM_WORLD)") &&
+              has(res.err, "rank 4 waits in MPI_Comm_dup(MPI_COMM_WORLD)"),
+          "%s: the report: %s", bname[b], res.err);
+    mpih_result_free(&res);
+  }
+}
+
+/* ==== simulated time ====================================================== */
+
+typedef struct {
+  int len;              /* bytes */
+  double t[4];          /* what rank 0 measured */
+  long fails;           /* failed tests */
+} timing;
+
+/* Ping-pong of len bytes, twice: MPI_Wtime around the second. */
+static int pingpong(void *ud) {
+  timing *T = ud;
+  MPI_Init(NULL, NULL);
+  int r;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  char *buf = calloc((size_t)T->len + 1, 1);
+  for (int i = 0; i < 2; i++) {
+    double t0 = MPI_Wtime();
+    if (r == 0) {
+      MPI_Send(buf, T->len, MPI_BYTE, 1, 0, MPI_COMM_WORLD);
+      MPI_Recv(buf, T->len, MPI_BYTE, 1, 0, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+      T->t[i] = MPI_Wtime() - t0;
+    } else {
+      MPI_Recv(buf, T->len, MPI_BYTE, 0, 0, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+      MPI_Send(buf, T->len, MPI_BYTE, 0, 0, MPI_COMM_WORLD);
+    }
+  }
+  free(buf);
+  MPI_Finalize();
+  return 0;
+}
+
+/* Rank 0's Ssend at 0; rank 1 computes 16 units (2 s), then receives. */
+static int ssend_time(void *ud) {
+  timing *T = ud;
+  MPI_Init(NULL, NULL);
+  int r, v[4] = {0};
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  if (r == 0) {
+    MPI_Ssend(v, 4, MPI_INT, 1, 0, MPI_COMM_WORLD);   /* 16 bytes: arrives at 1/4 + 1 */
+    T->t[0] = MPI_Wtime();
+    MPI_Ssend(v, 4, MPI_INT, 1, 1, MPI_COMM_WORLD);   /* to a receive posted already */
+    T->t[1] = MPI_Wtime();
+  } else {
+    mp_compute(mp_self(), 16);
+    MPI_Recv(v, 4, MPI_INT, 0, 0, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    MPI_Request q;
+    MPI_Irecv(v, 4, MPI_INT, 0, 1, MPI_COMM_WORLD, &q);
+    MPI_Wait(&q, MPI_STATUS_IGNORE);
+  }
+  MPI_Finalize();
+  return 0;
+}
+
+/* MPI_Comm_dup on 2 ranks: rank 1 sends its 128-byte bitmap of contexts
+ * up, rank 0 sends the 4-byte choice down. */
+static int dup_time(void *ud) {
+  timing *T = ud;
+  MPI_Init(NULL, NULL);
+  int r;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  MPI_Comm dup;
+  MPI_Comm_dup(MPI_COMM_WORLD, &dup);
+  T->t[r] = MPI_Wtime();
+  MPI_Comm_free(&dup);
+  MPI_Finalize();
+  return 0;
+}
+
+/* Rank 1 tests for a message rank 0 sends after 8 units (1 s): each
+ * failed test costs the poll cost, 1/16 s. */
+static int poll_time(void *ud) {
+  timing *T = ud;
+  MPI_Init(NULL, NULL);
+  int r, v = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  if (r == 0) {
+    mp_compute(mp_self(), 8);
+    MPI_Send(&v, 1, MPI_INT, 1, 0, MPI_COMM_WORLD);   /* 4 bytes: arrives at 1 + 1/4 + 1/4 */
+  } else {
+    MPI_Request q;
+    int flag = 0;
+    MPI_Irecv(&v, 1, MPI_INT, 0, 0, MPI_COMM_WORLD, &q);
+    for (MPI_Test(&q, &flag, MPI_STATUS_IGNORE); !flag; MPI_Test(&q, &flag, MPI_STATUS_IGNORE)) T->fails++;
+    T->t[0] = MPI_Wtime();
+  }
+  MPI_Finalize();
+  return 0;
+}
+
+static void closed_forms(void) {
+  /* m = 1/4, per_byte = 1/16: a message of L bytes takes 1/4 + L/16. */
+  for (int len = 0; len <= 4096; len = len ? 4 * len : 1) {
+    timing T = {len, {0}, 0};
+    mpih_result res = run(MPIH_SIM, 2, pingpong, &T);
+    double want = 2 * (0.25 + len * 0.0625);
+    CHECK(res.rc == 0 && T.t[1] == want && res.makespan == 2 * want, "ping-pong of %d bytes: %.17g (%.17g due), makespan %.17g",
+          len, T.t[1], want, res.makespan);
+    CHECK(res.messages == 4, "ping-pong: %lld mp messages (4 due: no others)", res.messages);
+    CHECK(res.bytes == 4LL * len, "ping-pong: %lld bytes (%d due: no headers)", res.bytes, 4 * len);
+    mpih_result_free(&res);
+  }
+  timing T = {0, {0}, 0};
+  mpih_result res = run(MPIH_SIM, 2, ssend_time, &T);
+  /* The first arrives at 1.25, but its receive starts at 2: the ack (0
+   * bytes) is sent then and arrives 1/4 later.  The second, sent at 2.25,
+   * arrives at 3.5, where the posted receive takes it and acks at once. */
+  CHECK(res.rc == 0 && T.t[0] == 2.25 && T.t[1] == 3.75, "ssend: %.17g %.17g (2.25 3.75 due)", T.t[0], T.t[1]);
+  mpih_result_free(&res);
+  memset(&T, 0, sizeof T);
+  res = run(MPIH_SIM, 2, dup_time, &T);
+  CHECK(res.rc == 0 && T.t[0] == 0.25 + 128 * 0.0625 && T.t[1] == 0.5 + 132 * 0.0625,
+        "comm_dup: %.17g %.17g (%.17g %.17g due)", T.t[0], T.t[1], 0.25 + 128 * 0.0625, 0.5 + 132 * 0.0625);
+  mpih_result_free(&res);
+  memset(&T, 0, sizeof T);
+  res = run(MPIH_SIM, 2, poll_time, &T);
+  /* Tests at 0, 1/16, ...: the one at 1.5 finds it, after 24 failed. */
+  CHECK(res.rc == 0 && T.t[0] == 1.5 && T.fails == 24, "polling: %.17g after %ld failed tests (1.5, 24 due)", T.t[0],
+        T.fails);
+  mpih_result_free(&res);
+}
+
+/* ==== the runner's view of a rank ========================================= */
+
+typedef struct {
+  int flags[4];
+} seen;
+
+static int ends(void *ud) {
+  seen *s = ud;
+  int r = mp_rank(mp_self());
+  if (r == 0) return 0;   /* never MPI */
+  MPI_Initialized(&s->flags[0]);
+  MPI_Init(NULL, NULL);
+  MPI_Initialized(&s->flags[1]);
+  if (r == 1) return 0;   /* no MPI_Finalize */
+  MPI_Finalize();
+  MPI_Finalized(&s->flags[2]);
+  MPI_Initialized(&s->flags[3]);
+  return 0;
+}
+
+static void rank_ends(void) {
+  for (int b = 0; b < 2; b++) {
+    seen s;
+    memset(&s, 0, sizeof s);
+    mpih_result res = run(b, 3, ends, &s);
+    CHECK(res.rc == 0 && res.end[0] == TSMPI_NEVER && res.end[1] == TSMPI_UNFINALIZED &&
+              res.end[2] == TSMPI_FINALIZED,
+          "%s: ends %d %d %d", bname[b], res.end[0], res.end[1], res.end[2]);
+    CHECK(s.flags[0] == 0 && s.flags[1] == 1 && s.flags[2] == 1 && s.flags[3] == 1, "%s: flags %d %d %d %d",
+          bname[b], s.flags[0], s.flags[1], s.flags[2], s.flags[3]);
+    mpih_result_free(&res);
+  }
+}
+
+int main(void) {
+  fatal_ends();
+  errors_returned();
+  deadlock_words();
+  closed_forms();
+  rank_ends();
+  return check_done("test_mpi_p2p");
+}
