@@ -137,23 +137,37 @@ void tsm_status_out(MPI_Status *out, const MPI_Status *in, int with_error) {
 
 /* ==== argument checks ===================================================== */
 
+/* A predefined type whose elements lie back to back (its size is its
+ * extent): that size; 0 for any other type (created ones, the pair types
+ * with padding, MPI_DATATYPE_NULL), which the datatype module answers for.
+ * One call where check, size and contig would be five. */
+static inline size_t dense_predef(MPI_Datatype dt) {
+  if (((unsigned)dt & 0xff800000u) != 0x03000000u) return 0;
+  const tsmpi_predef *p = tsmpi_predef_get((int)((unsigned)dt & 0x7fffffu));
+  return p && p->size == p->extent ? (size_t)p->size : 0;
+}
+
 /* The common case in a few compares; anything odd goes through the checks
- * one by one, which say what is wrong. */
+ * one by one, which say what is wrong.  *es: dense_predef(dt). */
 static inline int args_fine(tsm_comm *c, const void *buf, int count, MPI_Datatype dt, int peer, int tag,
-                            int any_ok) {
+                            int any_ok, size_t *es) {
+  *es = 0;
   if (!c || count < 0) return 0;
   if ((unsigned)tag > TSM_TAG_UB && !(any_ok && tag == MPI_ANY_TAG)) return 0;
   if ((unsigned)peer >= (unsigned)c->size && peer != MPI_PROC_NULL && !(any_ok && peer == MPI_ANY_SOURCE))
     return 0;
+  if (!buf && count) return 0;
+  if ((*es = dense_predef(dt))) return 1;
   char why[64];
-  return (buf || count == 0) && tsmpi_type_check(dt, why, sizeof why) == MPI_SUCCESS;
+  return tsmpi_type_check(dt, why, sizeof why) == MPI_SUCCESS;
 }
 
 static int send_args(tsm *R, const char *fn, const void *buf, int count, MPI_Datatype dt, int dst,
                      int tag, MPI_Comm comm, tsm_comm **cp) {
   tsm_comm *c = comm == MPI_COMM_WORLD ? &R->world : tsm_comm_get(R, comm);
   *cp = c;
-  if (args_fine(c, buf, count, dt, dst, tag, 0)) return MPI_SUCCESS;
+  size_t es;
+  if (args_fine(c, buf, count, dt, dst, tag, 0, &es)) return MPI_SUCCESS;
   int rc;
   if ((rc = tsm_check_comm(R, comm, fn, cp))) return rc;
   if ((rc = tsm_check_count(R, c, fn, count))) return rc;
@@ -167,7 +181,8 @@ static int recv_args(tsm *R, const char *fn, const void *buf, int count, MPI_Dat
                      int tag, MPI_Comm comm, tsm_comm **cp) {
   tsm_comm *c = comm == MPI_COMM_WORLD ? &R->world : tsm_comm_get(R, comm);
   *cp = c;
-  if (args_fine(c, buf, count, dt, src, tag, 1)) return MPI_SUCCESS;
+  size_t es;
+  if (args_fine(c, buf, count, dt, src, tag, 1, &es)) return MPI_SUCCESS;
   int rc;
   if ((rc = tsm_check_comm(R, comm, fn, cp))) return rc;
   if ((rc = tsm_check_count(R, c, fn, count))) return rc;
@@ -216,10 +231,11 @@ int MPI_Send(const void *buf, int count, MPI_Datatype datatype, int dest, int ta
   static const char fn[] = "MPI_Send";
   tsm *R = tsm_need(fn);
   tsm_comm *c = comm == MPI_COMM_WORLD ? &R->world : tsm_comm_get(R, comm);
-  if (args_fine(c, buf, count, datatype, dest, tag, 0) && dest != MPI_PROC_NULL) {
+  size_t es;
+  if (args_fine(c, buf, count, datatype, dest, tag, 0, &es) && dest != MPI_PROC_NULL) {
     /* The fast path: a contiguous message leaves from the buffer. */
-    size_t len = (size_t)count * tsmpi_type_size(datatype);
-    const void *p = len ? tsmpi_type_contig(buf, count, datatype) : NULL;
+    size_t len = (size_t)count * (es ? es : tsmpi_type_size(datatype));
+    const void *p = !len ? NULL : es ? buf : tsmpi_type_contig(buf, count, datatype);
     if (p || !len) {
       eng_send_data(R, tsm_world_of(c, dest), 2 * c->pair, tag, p, len);
       return MPI_SUCCESS;
@@ -314,7 +330,8 @@ int MPI_Recv(void *buf, int count, MPI_Datatype datatype, int source, int tag, M
   tsm *R = tsm_need(fn);
   tsm_comm *c = comm == MPI_COMM_WORLD ? &R->world : tsm_comm_get(R, comm);
   int rc;
-  if (!args_fine(c, buf, count, datatype, source, tag, 1) &&
+  size_t es;
+  if (!args_fine(c, buf, count, datatype, source, tag, 1, &es) &&
       (rc = recv_args(R, fn, buf, count, datatype, source, tag, comm, &c)))
     return rc;
   tsm_label l = {.fn = fn, .what = L_RECV, .peer = source, .tag = tag, .pair = c->pair};
@@ -322,8 +339,8 @@ int MPI_Recv(void *buf, int count, MPI_Datatype datatype, int source, int tag, M
   if (source != MPI_PROC_NULL && !R->nunexp && !R->posted) {
     /* The fast path: the source's next message, straight into a
      * contiguous buffer, when it is the one. */
-    size_t cap = (size_t)count * tsmpi_type_size(datatype);
-    void *p = cap ? (void *)tsmpi_type_contig(buf, count, datatype) : NULL;
+    size_t cap = (size_t)count * (es ? es : tsmpi_type_size(datatype));
+    void *p = !cap ? NULL : es ? buf : (void *)tsmpi_type_contig(buf, count, datatype);
     mp_status got;
     if ((p || !cap) &&
         eng_recv_data(R, source >= 0 ? tsm_world_of(c, source) : MP_ANY, 2 * c->pair, tag, p, cap, &got)) {
