@@ -85,8 +85,12 @@ int tsmpi_cg_isend(const tsmpi_cg *g, const void *buf, size_t n, int dst, MPI_Re
 int tsmpi_cg_irecv(const tsmpi_cg *g, void *buf, size_t n, int src, MPI_Request *req);
 int tsmpi_cg_waitall(const tsmpi_cg *g, int n, MPI_Request *reqs);
 
-/* malloc that stops the run with a message when memory runs out. */
+/* Scratch memory for a collective: malloc that aborts with a message when
+ * memory runs out, kept on the rank's list so that a run stopped while the
+ * collective waits (it never returns) frees it at the rank's end; free it
+ * with tsmpi_cg_free (NULL: nothing). */
 void *tsmpi_cg_alloc(const tsmpi_cg *g, size_t n);
+void tsmpi_cg_free(void *p);
 
 /* The largest power of two <= n (n >= 1), and whether n is one. */
 int tsmpi_pof2(int n);
@@ -99,7 +103,8 @@ int tsmpi_is_pof2(int n);
 typedef struct {
   const char *fn;
   MPI_Comm comm;
-  int root;   /* -1: none */
+  const char *comm_name;   /* tsmpi_comm_name's, valid while the call runs */
+  int root;                /* -1: none */
 } tsmpi_label;
 
 /* Fill the group of a call on a checked communicator, the collective's tag,

@@ -21,7 +21,7 @@ int tsmpi_alltoallv_linear(const tsmpi_cg *g, const void *sbuf, const size_t *sc
   for (int i = 0; i < size && !err; i++)
     if (i != rank && (err = tsmpi_cg_isend(g, (const char *)sbuf + sd[i], sc[i], i, &req[n])) == 0) n++;
   int w = tsmpi_cg_waitall(g, n, req);
-  free(req);
+  tsmpi_cg_free(req);
   return err ? err : w;
 }
 
@@ -48,7 +48,7 @@ static int scattered(const tsmpi_cg *g, const void *sbuf, const size_t *sc, cons
     int w = tsmpi_cg_waitall(g, n, req);
     if (!err) err = w;
   }
-  free(req);
+  tsmpi_cg_free(req);
   return err;
 }
 
@@ -66,7 +66,7 @@ int tsmpi_alltoall_scattered(const tsmpi_cg *g, const void *sbuf, void *rbuf, si
     cd[size + i] = (size_t)i * n;
   }
   int rc = scattered(g, sbuf, cd, cd + size, rbuf, cd, cd + size, 0);
-  free(cd);
+  tsmpi_cg_free(cd);
   return rc;
 }
 
@@ -88,7 +88,7 @@ int tsmpi_alltoallv_pairwise_sendrecv_replace(const tsmpi_cg *g, void *rbuf, con
       char *blk = (char *)rbuf + rd[peer];
       if ((err = tsmpi_cg_sendrecv(g, blk, rc[peer], peer, tmp, rc[peer], peer, NULL)) == 0) memcpy(blk, tmp, rc[peer]);
     }
-  free(tmp);
+  tsmpi_cg_free(tmp);
   return err;
 }
 
@@ -125,8 +125,8 @@ int tsmpi_alltoall_brucks(const tsmpi_cg *g, const void *sbuf, void *rbuf, size_
     for (int i = 0; i < size; i++) memcpy(tmp + (size_t)i * n, r + (size_t)((rank + 1 + i) % size) * n, n);
     for (int i = 0; i < size; i++) memcpy(r + (size_t)i * n, tmp + (size_t)(size - 1 - i) * n, n);
   }
-  free(tmp);
-  free(pack);
+  tsmpi_cg_free(tmp);
+  tsmpi_cg_free(pack);
   return err;
 }
 

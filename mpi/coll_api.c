@@ -65,7 +65,7 @@ int MPI_Bcast(void *buffer, int count, MPI_Datatype datatype, int root, MPI_Comm
   default: rc = tsmpi_bcast_binomial(&g, p, n, root); break;
   }
   if (!rc && g.rank != root) tsmpi_coll_unpack(p, buffer, count, datatype);
-  free(p);
+  tsmpi_cg_free(p);
   return tsmpi_coll_end(rc);
 }
 
@@ -98,8 +98,8 @@ int MPI_Gather(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *
                                           : tsmpi_gather_binomial(&g, mine, all, n, root);
   if (!rc && me == root)
     for (int r = 0; r < size; r++) tsmpi_coll_unpack(all + (size_t)r * n, tsmpi_coll_at(recvbuf, (MPI_Aint)r * recvcount, recvtype), recvcount, recvtype);
-  free(mine);
-  free(all);
+  tsmpi_cg_free(mine);
+  tsmpi_cg_free(all);
   return tsmpi_coll_end(rc);
 }
 
@@ -131,7 +131,7 @@ int MPI_Gatherv(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void 
     }
     size_t own = bc[root];
     if (!in_place && tsmpi_type_size(sendtype) * (size_t)sendcount != own) {
-      free(bc);
+      tsmpi_cg_free(bc);
       return tsmpi_coll_end(tsmpi_raise(comm, MPI_ERR_TRUNCATE, fn, "the root sends %zu bytes to itself and receives %zu",
                                         tsmpi_type_size(sendtype) * (size_t)sendcount, own));
     }
@@ -144,9 +144,9 @@ int MPI_Gatherv(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void 
   rc = tsmpi_gatherv_linear(&g, mine, sn, all, bc, bd, root);
   if (!rc && me == root)
     for (int r = 0; r < size; r++) tsmpi_coll_unpack(all + bd[r], tsmpi_coll_at(recvbuf, displs[r], recvtype), recvcounts[r], recvtype);
-  free(mine);
-  free(all);
-  free(bc);
+  tsmpi_cg_free(mine);
+  tsmpi_cg_free(all);
+  tsmpi_cg_free(bc);
   return tsmpi_coll_end(rc);
 }
 
@@ -175,8 +175,8 @@ int MPI_Scatter(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void 
   rc = tsmpi_coll_setting(COLL_SCATTER) == ALG_LINEAR ? tsmpi_scatter_linear(&g, all, mine, n, root)
                                            : tsmpi_scatter_binomial(&g, all, mine, n, root);
   if (!rc && !in_place && n) tsmpi_type_unpack(mine, n, recvbuf, recvcount, recvtype);
-  free(mine);
-  free(all);
+  tsmpi_cg_free(mine);
+  tsmpi_cg_free(all);
   return tsmpi_coll_end(rc);
 }
 
@@ -212,8 +212,8 @@ int MPI_Scatterv(const void *sendbuf, const int sendcounts[], const int displs[]
       if (bc[i]) tsmpi_type_pack(tsmpi_coll_at(sendbuf, displs[i], sendtype), sendcounts[i], sendtype, all + bd[i]);
     size_t own = bc[root];
     if (!in_place && own > rn) {
-      free(bc);
-      free(all);
+      tsmpi_cg_free(bc);
+      tsmpi_cg_free(all);
       return tsmpi_coll_end(tsmpi_raise(comm, MPI_ERR_TRUNCATE, fn,
                                         "the root sends %zu bytes to itself and receives at most %zu", own, rn));
     }
@@ -223,9 +223,9 @@ int MPI_Scatterv(const void *sendbuf, const int sendcounts[], const int displs[]
   /* MPICH scatterv.c: the linear algorithm always. */
   rc = tsmpi_scatterv_linear(&g, all, bc, bd, mine, rn, root);
   if (!rc && !in_place && rn) tsmpi_type_unpack(mine, rn, recvbuf, recvcount, recvtype);
-  free(mine);
-  free(all);
-  free(bc);
+  tsmpi_cg_free(mine);
+  tsmpi_cg_free(all);
+  tsmpi_cg_free(bc);
   return tsmpi_coll_end(rc);
 }
 
@@ -286,8 +286,8 @@ int MPI_Allgather(const void *sendbuf, int sendcount, MPI_Datatype sendtype, voi
   rc = size == 1 ? MPI_SUCCESS : allgather_run(&g, allgather_alg(COLL_ALLGATHER, &g, n * (size_t)size), all, bc, bd, 0, 0, 0);
   if (!rc)
     for (int r = 0; r < size; r++) tsmpi_coll_unpack(all + bd[r], tsmpi_coll_at(recvbuf, (MPI_Aint)r * recvcount, recvtype), recvcount, recvtype);
-  free(all);
-  free(bc);
+  tsmpi_cg_free(all);
+  tsmpi_cg_free(bc);
   return tsmpi_coll_end(rc);
 }
 
@@ -317,7 +317,7 @@ int MPI_Allgatherv(const void *sendbuf, int sendcount, MPI_Datatype sendtype, vo
   }
   /* MPICH: nothing to do when the total is 0. */
   if (total == 0) {
-    free(bc);
+    tsmpi_cg_free(bc);
     return tsmpi_coll_end(MPI_SUCCESS);
   }
   char *all = tsmpi_cg_alloc(&g, total);
@@ -329,8 +329,8 @@ int MPI_Allgatherv(const void *sendbuf, int sendcount, MPI_Datatype sendtype, vo
                                  (size_t)tsmpi_type_extent(recvtype));
   if (!rc)
     for (int r = 0; r < size; r++) tsmpi_coll_unpack(all + bd[r], tsmpi_coll_at(recvbuf, displs[r], recvtype), recvcounts[r], recvtype);
-  free(all);
-  free(bc);
+  tsmpi_cg_free(all);
+  tsmpi_cg_free(bc);
   return tsmpi_coll_end(rc);
 }
 
@@ -385,9 +385,9 @@ int MPI_Alltoall(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void
   default: rc = tsmpi_alltoallv_pairwise_sendrecv_replace(&g, out, cd, cd + size, cd, cd + size); break;
   }
   if (!rc) tsmpi_coll_unpack(out, recvbuf, recvcount * size, recvtype);
-  free(cd);
-  free(in);
-  free(out);
+  tsmpi_cg_free(cd);
+  tsmpi_cg_free(in);
+  tsmpi_cg_free(out);
   return tsmpi_coll_end(rc);
 }
 
@@ -420,7 +420,7 @@ int MPI_Alltoallv(const void *sendbuf, const int sendcounts[], const int sdispls
   }
   if (sc[g.rank] != rcn[g.rank]) {
     size_t s0 = sc[g.rank], r0 = rcn[g.rank];
-    free(v);
+    tsmpi_cg_free(v);
     return tsmpi_coll_end(tsmpi_raise(comm, MPI_ERR_TRUNCATE, fn, "this rank sends %zu bytes to itself and receives %zu",
                                       s0, r0));
   }
@@ -450,8 +450,8 @@ int MPI_Alltoallv(const void *sendbuf, const int sendcounts[], const int sdispls
   }
   if (!rc)
     for (int i = 0; i < size; i++) tsmpi_coll_unpack(out + rd[i], tsmpi_coll_at(recvbuf, rdispls[i], recvtype), recvcounts[i], recvtype);
-  free(in);
-  free(out);
-  free(v);
+  tsmpi_cg_free(in);
+  tsmpi_cg_free(out);
+  tsmpi_cg_free(v);
   return tsmpi_coll_end(rc);
 }

@@ -13,9 +13,9 @@
 static void describe(void *ud, char *buf, size_t len) {
   const tsmpi_label *l = ud;
   if (l->root >= 0)
-    snprintf(buf, len, "%s(root=%d, %s)", l->fn, l->root, tsmpi_comm_name(l->comm));
+    snprintf(buf, len, "%s(root=%d, %s)", l->fn, l->root, l->comm_name);
   else
-    snprintf(buf, len, "%s(%s)", l->fn, tsmpi_comm_name(l->comm));
+    snprintf(buf, len, "%s(%s)", l->fn, l->comm_name);
 }
 
 /* The group and the label of a call on a checked communicator. */
@@ -27,6 +27,7 @@ void tsmpi_coll_begin(tsmpi_cg *g, tsmpi_label *l, const char *fn, MPI_Comm comm
   g->fn = fn;
   l->fn = fn;
   l->comm = comm;
+  l->comm_name = tsmpi_comm_name(comm);   /* now: the report is made outside the rank */
   l->root = root;
   mp_label(mp_self(), describe, l);
 }

@@ -55,7 +55,7 @@ int tsmpi_gather_binomial(const tsmpi_cg *g, const void *sbuf, void *rbuf, size_
   }
   if (!rc && rank == root && n)   /* relative order to rank order */
     for (int r = 0; r < size; r++) memcpy((char *)rbuf + (size_t)((r + root) % size) * n, tmp + (size_t)r * n, n);
-  free(tmp);
+  tsmpi_cg_free(tmp);
   return rc;
 }
 
@@ -107,7 +107,7 @@ int tsmpi_scatter_binomial(const tsmpi_cg *g, const void *sbuf, void *rbuf, size
   }
   if (rbuf && n) memcpy(rbuf, tmp, n);
 out:
-  free(tmp);
+  tsmpi_cg_free(tmp);
   return rc;
 }
 
@@ -126,7 +126,7 @@ int tsmpi_gatherv_linear(const tsmpi_cg *g, const void *sbuf, size_t sn, void *r
     }
   }
   rc = tsmpi_cg_waitall(g, nreq, req);
-  free(req);
+  tsmpi_cg_free(req);
   return rc;
 }
 
@@ -145,7 +145,7 @@ int tsmpi_scatterv_linear(const tsmpi_cg *g, const void *sbuf, const size_t *cou
     }
   }
   rc = tsmpi_cg_waitall(g, nreq, req);
-  free(req);
+  tsmpi_cg_free(req);
   return rc;
 }
 
@@ -236,7 +236,7 @@ int tsmpi_allgatherv_brucks(const tsmpi_cg *g, void *buffer, const size_t *count
     off += counts[r];
   }
 out:
-  free(tmp);
+  tsmpi_cg_free(tmp);
   return rc;
 }
 

@@ -67,8 +67,8 @@ int MPI_Reduce(const void *sendbuf, void *recvbuf, int count, MPI_Datatype datat
     rc = tsmpi_reduce_binomial(&g, &r, in, out, count, root);
   }
   if (!rc && me == root) tsmpi_coll_unpack(out, recvbuf, count, datatype);
-  free(in);
-  free(out);
+  tsmpi_cg_free(in);
+  tsmpi_cg_free(out);
   return tsmpi_coll_end(rc);
 }
 
@@ -98,7 +98,7 @@ int MPI_Allreduce(const void *sendbuf, void *recvbuf, int count, MPI_Datatype da
   else if (a == ALG_REDUCE_SCATTER_ALLGATHER) rc = tsmpi_allreduce_reduce_scatter_allgather(&g, &r, buf, count);
   else rc = tsmpi_allreduce_recursive_doubling(&g, &r, buf, count);
   if (!rc) tsmpi_coll_unpack(buf, recvbuf, count, datatype);
-  free(buf);
+  tsmpi_cg_free(buf);
   return tsmpi_coll_end(rc);
 }
 
@@ -157,8 +157,8 @@ static int redscat_call(const char *fn, tsmpi_coll c, const void *sendbuf, void 
   char *out = tsmpi_cg_alloc(&g, (size_t)counts[me] * r.tsize);
   rc = redscat(&g, c, &r, buf, out, counts);
   if (!rc) tsmpi_coll_unpack(out, recvbuf, counts[me], datatype);
-  free(buf);
-  free(out);
+  tsmpi_cg_free(buf);
+  tsmpi_cg_free(out);
   return tsmpi_coll_end(rc);
 }
 
@@ -178,11 +178,11 @@ int MPI_Reduce_scatter_block(const void *sendbuf, void *recvbuf, int recvcount, 
   int rc;
   if ((rc = tsmpi_comm_check(comm, fn)) || (rc = tsmpi_check_count(comm, fn, recvcount))) return rc;
   int size = tsmpi_comm_size(comm);
-  int *counts = malloc((size_t)size * sizeof *counts);
-  if (!counts) return tsmpi_raise(comm, MPI_ERR_NO_MEM, fn, "out of memory");
+  tsmpi_cg g = {comm, 0, size, 0, fn};
+  int *counts = tsmpi_cg_alloc(&g, (size_t)size * sizeof *counts);
   for (int i = 0; i < size; i++) counts[i] = recvcount;
   rc = redscat_call(fn, COLL_REDUCE_SCATTER_BLOCK, sendbuf, recvbuf, counts, datatype, op, comm);
-  free(counts);
+  tsmpi_cg_free(counts);
   return rc;
 }
 
@@ -216,8 +216,8 @@ static int scan_call(const char *fn, tsmpi_coll c, const void *sendbuf, void *re
   }
   /* MPI_Exscan leaves rank 0's recvbuf alone. */
   if (!rc && (incl || g.rank != 0)) tsmpi_coll_unpack(out, recvbuf, count, datatype);
-  free(in);
-  free(out);
+  tsmpi_cg_free(in);
+  tsmpi_cg_free(out);
   return tsmpi_coll_end(rc);
 }
 

@@ -44,8 +44,8 @@ int tsmpi_reduce_linear(const tsmpi_cg *g, const tsmpi_red *r, const void *sbuf,
       acc_after(r, acc, a, in, count);
   }
   if (!rc) memcpy(rbuf, acc, n);
-  free(acc);
-  free(in);
+  tsmpi_cg_free(acc);
+  tsmpi_cg_free(in);
   return rc;
 }
 
@@ -83,8 +83,8 @@ out:
     else if (rank == root) rc = tsmpi_cg_recv(g, acc, n, 0, NULL);
   }
   if (!rc && rank == root) memcpy(rbuf, acc, n);
-  free(acc);
-  free(tmp);
+  tsmpi_cg_free(acc);
+  tsmpi_cg_free(tmp);
   return rc;
 }
 
@@ -216,9 +216,9 @@ int tsmpi_reduce_scatter_gather(const tsmpi_cg *g, const tsmpi_red *r, const voi
   }
   if (!rc && rank == root) memcpy(rbuf, work, n);
 out:
-  free(work);
-  free(tmp);
-  free(cnts);
+  tsmpi_cg_free(work);
+  tsmpi_cg_free(tmp);
+  tsmpi_cg_free(cnts);
   return rc;
 }
 
@@ -281,7 +281,7 @@ int tsmpi_allreduce_recursive_doubling(const tsmpi_cg *g, const tsmpi_red *r, vo
   }
   rc = unfold(g, buf, n, rem);
 out:
-  free(tmp);
+  tsmpi_cg_free(tmp);
   return rc;
 }
 
@@ -318,7 +318,7 @@ int tsmpi_allreduce_reduce_scatter_allgather(const tsmpi_cg *g, const tsmpi_red 
   }
   rc = unfold(g, buf, n, rem);
 out:
-  free(tmp);
-  free(cnts);
+  tsmpi_cg_free(tmp);
+  tsmpi_cg_free(cnts);
   return rc;
 }

@@ -25,11 +25,11 @@ static int chain(const tsmpi_cg *g, const tsmpi_red *r, const void *in, void *ou
       if (!inclusive) memcpy(out, prefix, n);
       tsmpi_red_apply(r, prefix, acc, count);
     }
-    free(prefix);
+    tsmpi_cg_free(prefix);
   }
   if (!rc && inclusive) memcpy(out, acc, n);
   if (!rc && rank + 1 < g->size) rc = tsmpi_cg_send(g, acc, n, rank + 1);
-  free(acc);
+  tsmpi_cg_free(acc);
   return rc;
 }
 
@@ -72,8 +72,8 @@ static int doubling(const tsmpi_cg *g, const tsmpi_red *r, const void *in, void 
       memcpy(partial, tmp, n);
     }
   }
-  free(partial);
-  free(tmp);
+  tsmpi_cg_free(partial);
+  tsmpi_cg_free(tmp);
   return rc;
 }
 
@@ -109,8 +109,8 @@ int tsmpi_reduce_scatter_linear(const tsmpi_cg *g, const tsmpi_red *r, void *buf
   char *res = g->rank == 0 ? tsmpi_cg_alloc(g, total) : NULL;
   int rc = tsmpi_reduce_linear(g, r, buf, res, (int)(total / (r->tsize ? r->tsize : 1)), 0);
   if (!rc) rc = tsmpi_scatterv_linear(g, res, bc, bd, out, bc[g->rank], 0);
-  free(res);
-  free(bc);
+  tsmpi_cg_free(res);
+  tsmpi_cg_free(bc);
   return rc;
 }
 
@@ -182,8 +182,8 @@ int tsmpi_reduce_scatter_recursive_halving(const tsmpi_cg *g, const tsmpi_red *r
     }
   }
 out:
-  free(disps);
-  free(tmp);
+  tsmpi_cg_free(disps);
+  tsmpi_cg_free(tmp);
   return rc;
 }
 
@@ -205,8 +205,8 @@ int tsmpi_reduce_scatter_pairwise(const tsmpi_cg *g, const tsmpi_red *r, void *b
                            (size_t)counts[rank] * ts, src, NULL);
     if (!rc) tsmpi_red_apply(r, tmp, out, counts[rank]);
   }
-  free(disps);
-  free(tmp);
+  tsmpi_cg_free(disps);
+  tsmpi_cg_free(tmp);
   return rc;
 }
 
@@ -276,10 +276,10 @@ int tsmpi_reduce_scatter_recursive_doubling(const tsmpi_cg *g, const tsmpi_red *
     }
   }
   if (!rc && counts[rank]) memcpy(out, res + (size_t)disps[rank] * ts, (size_t)counts[rank] * ts);
-  free(disps);
-  free(tmp);
-  free(sp);
-  free(rp);
+  tsmpi_cg_free(disps);
+  tsmpi_cg_free(tmp);
+  tsmpi_cg_free(sp);
+  tsmpi_cg_free(rp);
   return rc;
 }
 
@@ -321,7 +321,7 @@ int tsmpi_reduce_scatter_noncommutative(const tsmpi_cg *g, const tsmpi_red *r, v
     soff = roff;
   }
   if (!rc && block) memcpy(out, (buf0_inout ? b0 : b1) + roff * ts, block * ts);
-  free(b0);
-  free(b1);
+  tsmpi_cg_free(b0);
+  tsmpi_cg_free(b1);
   return rc;
 }

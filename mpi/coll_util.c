@@ -53,13 +53,54 @@ int tsmpi_cg_waitall(const tsmpi_cg *g, int n, MPI_Request *reqs) {
   return rc ? tsmpi_raise(g->comm, rc, g->fn, "a request failed") : rc;
 }
 
+/* The rank's scratch memory in use, freed by the rank's end when a stopped
+ * run ends it inside a collective (mp_exit: the collective never returns
+ * to free it). */
+typedef struct {
+  void **p;
+  size_t n, cap;
+} scratch;
+
+static void scratch_release(void *ud) {
+  scratch *s = ud;
+  for (size_t i = 0; i < s->n; i++) free(s->p[i]);
+  free(s->p);
+  free(s);
+}
+
+static void oom(const char *fn, size_t n) {
+  fprintf(stderr, "tilesim: %s: out of memory (%zu bytes)\n", fn, n);
+  abort();
+}
+
 void *tsmpi_cg_alloc(const tsmpi_cg *g, size_t n) {
-  void *p = malloc(n ? n : 1);
-  if (!p) {
-    fprintf(stderr, "tilesim: %s: out of memory (%zu bytes)\n", g->fn, n);
-    abort();
+  scratch *s = tsmpi_part(TSMPI_PART_COLL);
+  if (!s) {
+    if (!(s = calloc(1, sizeof *s))) oom(g->fn, sizeof *s);
+    tsmpi_part_set(TSMPI_PART_COLL, s, scratch_release);
   }
+  if (s->n == s->cap) {
+    size_t cap = s->cap ? 2 * s->cap : 16;
+    void **q = realloc(s->p, cap * sizeof *q);
+    if (!q) oom(g->fn, cap * sizeof *q);
+    s->p = q;
+    s->cap = cap;
+  }
+  void *p = malloc(n ? n : 1);
+  if (!p) oom(g->fn, n);
+  s->p[s->n++] = p;
   return p;
+}
+
+void tsmpi_cg_free(void *p) {
+  scratch *s = tsmpi_part(TSMPI_PART_COLL);
+  if (!p) return;
+  for (size_t i = s ? s->n : 0; i-- > 0;)
+    if (s->p[i] == p) {
+      s->p[i] = s->p[--s->n];
+      break;
+    }
+  free(p);
 }
 
 int tsmpi_pof2(int n) {
