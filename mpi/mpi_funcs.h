@@ -17,12 +17,16 @@
  *
  * The list holds the 407 functions of MPI 3.1 (Open MPI 4.1's, an MPI 3.1
  * library, plus MPI_Aint_add and MPI_Aint_diff, which it has as macros) and
- * the 10 REMOVED ones; the parameter names are the standard's.
+ * the 10 REMOVED ones; the parameter names are those of MPICH's manual
+ * pages, which follow the standard.
  * tests/cli_mpihdr.sh checks every prototype's types against Open MPI's mpi.h.
  *
  * Define TSMPI_FN, include this file, undefine it: mpi.h declares every
- * function and its PMPI_ name so; mpi/funcs.c defines the stubs and the PMPI_
- * names; tests/mpi_list.c prints the list (doc/mpi-support.md is made from it).
+ * function and its PMPI_ name so; mpi/funcs.c defines the stubs and the list
+ * as data (tsmpi_funcs[], funcs.h), mpi/pmpi.c the implemented functions'
+ * PMPI_ names; tests/test_mpilist.c links every function and writes the list
+ * of doc/mpi-support.md (which must agree: edit here, then run
+ * build/chk/tests/test_mpilist --write doc/mpi-support.md).
  * No include guard: it is meant to be included more than once. */
 
 /* --- ENV --- */

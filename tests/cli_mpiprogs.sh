@@ -1,0 +1,55 @@
+#!/bin/sh
+# cli_mpiprogs.sh -- the datatype, operation and collective programs of
+# tests/mpi/ (dtype_*, op_*, coll_*) built with Open MPI's mpicc and run
+# under its mpirun on 1, 3 and 8 processes: each must pass its own checks
+# and print the same "NAME: P passed, F failed" line as on tilesim's
+# simulator (build/chk/tests/test_mpiprogs NAME NP mpich).  Where $MPICC
+# cannot build an MPI program (MPI_STATUS, from make check's probe) it says
+# so and counts nothing.
+BUILD=${BUILD:-build/chk}
+pass=0; fail=0
+ok()  { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "cli_mpiprogs: $*"; }
+
+if [ "${MPI_STATUS:-}" != yes ]; then
+  echo "cli_mpiprogs: skipped: ${MPI_STATUS:-MPI_STATUS is not set (make check probes the MPI compiler)}; the MPI programs were not run under Open MPI (apt-get install openmpi-bin libopenmpi-dev)"
+  echo "cli_mpiprogs: 0 passed, 0 failed"
+  exit 0
+fi
+MPICC=${MPICC:-mpicc}
+MPIRUN=${MPIRUN:-mpirun}
+DRIVER="$BUILD/tests/test_mpiprogs"
+if [ ! -x "$DRIVER" ]; then
+  bad "$DRIVER is missing (make check builds it)"
+  echo "cli_mpiprogs: $pass passed, $fail failed"
+  exit 1
+fi
+# Open MPI as root, on 2 cores (as tests/cli_mpi.sh runs it).
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export OMPI_MCA_btl_vader_single_copy_mechanism=none
+OVER=""
+"$MPIRUN" --version 2>/dev/null | grep -q "Open MPI" && OVER="--oversubscribe"
+
+T=$(mktemp -d /tmp/tilesim-mpiprogs.XXXXXX)
+trap 'rm -rf "$T"' EXIT
+
+for src in tests/mpi/dtype_*.c tests/mpi/op_*.c tests/mpi/coll_*.c; do
+  name=$(basename "$src" .c)
+  if ! "$MPICC" -std=c11 -O1 -Itests/mpi -o "$T/$name" "$src" -lm > "$T/cc.log" 2>&1; then
+    bad "$MPICC cannot build $src: $(head -3 "$T/cc.log")"
+    continue
+  fi
+  ok
+  for np in 1 3 8; do
+    "$MPIRUN" $OVER -np $np "$T/$name" > "$T/out" 2>&1; rc=$?
+    ompi=$(grep -E "^$name: [0-9]+ passed, [0-9]+ failed\$" "$T/out")
+    "$DRIVER" "$name" $np mpich > "$T/sim" 2>&1
+    sim=$(grep -E "^$name: [0-9]+ passed, [0-9]+ failed\$" "$T/sim")
+    if [ $rc -eq 0 ] && [ -n "$ompi" ] && echo "$ompi" | grep -q ' 0 failed$'; then ok; else
+      bad "$name on $np processes under Open MPI: exit $rc: $(grep -v '^\[' "$T/out" | tail -3)"; fi
+    [ -n "$sim" ] && [ "$sim" = "$ompi" ] && ok || bad "$name on $np: Open MPI says '$ompi', tilesim '$sim'"
+  done
+done
+
+echo "cli_mpiprogs: $pass passed, $fail failed"
+[ $fail -eq 0 ]
