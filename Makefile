@@ -277,14 +277,17 @@ valgrind: $(addprefix $(VG)/tests/,$(TESTS))
 TSANCC    ?= $(CC)
 TSAN       = build/tsan
 TSANFLAGS  = -O1 -g -fsanitize=thread -fno-omit-frame-pointer
-TSAN_TESTS ?= test_mpstress test_threads test_variants test_cpuload
+TSAN_TESTS ?= test_mpstress test_threads test_variants test_cpuload test_mpi_match
 $(TSAN)/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(TSANCC) $(BASE) $(TSANFLAGS) -Werror -MMD -MP -c $< -o $@
 $(TSAN)/libtilesim.a: $(patsubst %.c,$(TSAN)/%.o,$(LIBSRC))
 	@rm -f $@
 	$(AR) rcs $@ $^
-$(TSAN)/tests/%: $(TSAN)/tests/%.o $(patsubst %.c,$(TSAN)/%.o,$(TESTLIB)) $(TSAN)/libtilesim.a
+$(TSAN)/libtsmpi.a: $(patsubst %.c,$(TSAN)/%.o,$(TSMPISRC))
+	@rm -f $@
+	$(AR) rcs $@ $^
+$(TSAN)/tests/%: $(TSAN)/tests/%.o $(patsubst %.c,$(TSAN)/%.o,$(TESTLIB)) $(TSAN)/libtsmpi.a $(TSAN)/libtilesim.a
 	$(TSANCC) $(TSANFLAGS) -o $@ $^ $(LDLIBS)
 tsan: $(addprefix $(TSAN)/tests/,$(TSAN_TESTS))
 	@TSAN_OPTIONS="halt_on_error=1 exitcode=66 second_deadlock_stack=1 $${TSAN_OPTIONS:-}" \
