@@ -7,7 +7,8 @@
  * --coll setting, else MPICH's choice: each rule below cites MPICH's
  * selection, src/mpi/coll/<name>/<name>.c, MPIR_<Name>_intra_auto, with its
  * MPIR_CVAR thresholds' defaults; SimGrid's src/smpi/colls/
- * smpi_mpich_selector.cpp copies the same rules), runs it (coll.h) and
+ * smpi_mpich_selector.cpp copies them with a few differences, which tilesim
+ * does not follow: doc/mpi-support.md), runs it (coll.h) and
  * unpacks the result.  While it may block, the rank's label names the call
  * for a deadlock report: "MPI_Bcast(root=0, MPI_COMM_WORLD)". */
 #include <stdio.h>
