@@ -108,9 +108,11 @@ typedef struct {
 } tsmpi_label;
 
 /* Fill the group of a call on a checked communicator, the collective's tag,
- * and set the rank's label (l lives until tsmpi_coll_end). */
+ * set the rank's label (l lives until tsmpi_coll_end), and begin the call
+ * for the trace (mp_call_begin: the collective is one slice of the rank's
+ * track); tsmpi_coll_end ends both. */
 void tsmpi_coll_begin(tsmpi_cg *g, tsmpi_label *l, const char *fn, MPI_Comm comm, tsmpi_coll which, int root);
-/* Clear the label; returns rc. */
+/* Clear the label and end the call; returns rc. */
 int tsmpi_coll_end(int rc);
 
 /* Argument checks; each returns MPI_SUCCESS or raises under comm's handler. */

@@ -29,11 +29,15 @@ void tsmpi_coll_begin(tsmpi_cg *g, tsmpi_label *l, const char *fn, MPI_Comm comm
   l->comm = comm;
   l->comm_name = tsmpi_comm_name(comm);   /* now: the report is made outside the rank */
   l->root = root;
-  mp_label(mp_self(), describe, l);
+  mp *self = mp_self();
+  mp_call_begin(self, fn);   /* the trace shows the call as one slice */
+  mp_label(self, describe, l);
 }
 
 int tsmpi_coll_end(int rc) {
-  mp_label(mp_self(), NULL, NULL);
+  mp *self = mp_self();
+  mp_label(self, NULL, NULL);
+  mp_call_end(self);
   return rc;
 }
 

@@ -10,12 +10,14 @@
  *
  *   test_mpiprogs                      all that
  *   test_mpiprogs NAME [NP [SETTING]]  one program: on 1..16 or NP ranks, under every setting
- *                                      or one --coll SETTING */
+ *                                      or one --coll SETTING
+ *   test_mpiprogs --reports            the errors, deadlock reports and trace only */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "../mpi/coll.h"
+#include "../mpi/env.h"
 #include "../mpi/mpi.h"
 #include "../mpi/tsmpi.h"
 #include "check.h"
@@ -135,6 +137,53 @@ static int stuck(int argc, char **argv) {
   return 0;
 }
 
+/* A broadcast and an allreduce: the simulator's trace shows each as a
+ * slice named by the call (mp_call_begin). */
+static int traced_main(int argc, char **argv) {
+  int x = 3, y = 0;
+  MPI_Init(&argc, &argv);
+  MPI_Bcast(&x, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  MPI_Allreduce(&x, &y, 1, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
+  MPI_Finalize();
+  return y != 9;
+}
+static void traced_rank(mp *self, void *ud) {
+  char *argv[] = {"traced", NULL};
+  ((int *)ud)[mp_rank(self)] = traced_main(1, argv);
+  tsmpi_rank_end(self);
+}
+
+static void trace_names_calls(void) {
+  sim_config cfg;
+  sim_config_init(&cfg);
+  cfg.procs = 3;
+  cfg.warn = NULL;
+  char err[512];
+  int rc[3] = {-1, -1, -1};
+  sim *s = sim_new(&cfg, 3, err, sizeof err);
+  FILE *csv = tmpfile();
+  if (!s || !csv) {
+    CHECK(0, "a simulator and a trace file: %s", s ? "tmpfile failed" : err);
+    if (s) sim_free(s);
+    if (csv) fclose(csv);
+    return;
+  }
+  sim_trace(s, csv, NULL);
+  mp_proc procs[3] = {{traced_rank, rc}, {traced_rank, rc}, {traced_rank, rc}};
+  int ok = sim_run(s, procs, err, sizeof err) == 0 && !rc[0] && !rc[1] && !rc[2];
+  char line[512];
+  int bcast = 0, allreduce = 0;
+  rewind(csv);
+  while (fgets(line, sizeof line, csv)) {
+    bcast += strstr(line, "MPI_Bcast") != NULL;
+    allreduce += strstr(line, "MPI_Allreduce") != NULL;
+  }
+  CHECK(ok && bcast >= 2 && allreduce >= 3, "the trace of a broadcast and an allreduce on 3 ranks: run %s, %d lines "
+        "name MPI_Bcast, %d MPI_Allreduce", ok ? "ok" : err, bcast, allreduce);
+  fclose(csv);
+  sim_free(s);
+}
+
 static void reports(void) {
   mpih_config cfg;
   mpih_result res;
@@ -157,6 +206,11 @@ static void reports(void) {
 }
 
 int main(int argc, char **argv) {
+  if (argc == 2 && !strcmp(argv[1], "--reports")) {
+    reports();
+    trace_names_calls();
+    return check_done("test_mpiprogs");
+  }
   if (argc > 1) {
     for (int p = 0; p < NPROGS; p++) {
       if (strcmp(progs[p].name, argv[1])) continue;
@@ -172,6 +226,7 @@ int main(int argc, char **argv) {
   for (int p = 0; p < NPROGS; p++)
     for (int np = 1; np <= 16 && mine(progs[p].name); np++) settings(p, np, 0);
   reports();
+  trace_names_calls();
   /* The threads backend: arrival order changes with the host's timing,
    * the results must not. */
   for (int p = 0; p < NPROGS; p++) {
