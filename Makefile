@@ -5,6 +5,7 @@
 #   make bench           the paper's experiments: CSV and SVG under plots/
 #   make bench-tile      the tiler's speed and memory figures
 #   make bench-testbed   a user's program's ring beside ./bench --ring: the library's cost
+#   make bench-mpirun    MPI programs under tilesim-mpirun beside SimGrid's smpirun
 #   make bench-load      the threads (and MPI) backends beside busy loops
 #   make bench-cores     what depends on the cores, measured here in BUDGET s
 #   make valgrind        the tests under valgrind, without sanitizers
@@ -44,7 +45,9 @@ MPIFLAGS = -O2 -g -DTILESIM_MPI
 MPISRC   = $(wildcard $(addsuffix /*.c,$(LIBDIRS)))
 MPIPROGS = tile bench
 # Programs: prog/NAME.c holds main; prog/NAME_*.c are linked into NAME only.
-PROGS    = $(basename $(notdir $(filter-out $(wildcard prog/*_*.c),$(wildcard prog/*.c))))
+# The MPI tools (tilesim-mpicc, tilesim-mpirun) are built apart, below.
+MPITOOLS = tilesim-mpicc tilesim-mpirun
+PROGS    = $(filter-out $(MPITOOLS),$(basename $(notdir $(filter-out $(wildcard prog/*_*.c),$(wildcard prog/*.c)))))
 # The SVG plotter, plots/*.c, builds to build/plot.
 PLOTSRC  = $(wildcard plots/*.c)
 PLOT     = $(if $(PLOTSRC),build/plot)
@@ -73,6 +76,14 @@ TESTLIB  = $(filter-out $(wildcard tests/test_*.c),$(wildcard tests/*.c))
 TSMPISRC   = $(wildcard mpi/*.c)
 TSMPIPROGS = $(basename $(notdir $(filter-out tests/mpi/contract.c,$(wildcard tests/mpi/*.c))))
 TSMPIPFLAGS = -Impi -Wno-missing-prototypes
+# The runner's own (mpirun/*.c: each rank's libc, the compute modes, the
+# loader, crashes, the ELF reader) into libtsmpirun.a; tilesim-mpirun exports
+# to the programs it loads only what they may call (mpirun/exports.list:
+# MPI_*, PMPI_*, tilesim_compute, smpi_*, the libc runtime).
+RUNSRC     = $(wildcard mpirun/*.c)
+TSMPIINC   = -Impi -Impirun
+RUNLDFLAGS = -Wl,--dynamic-list=mpirun/exports.list
+RUNLIBS    = -ldl
 
 REL = build/rel
 CHK = build/chk
@@ -81,8 +92,9 @@ chkobj = $(patsubst %.c,$(CHK)/%.o,$(1))
 
 # Programs build into build/bin and are copied to the root when they change,
 # so that `make bench` can be the experiments rather than the program.
-all: $(addprefix build/bin/,$(PROGS)) $(PLOT) $(REL)/lib/libtilesim.a $(addprefix build/examples/,$(EXAMPLES)) $(REL)/libtsmpi.a
-	@for p in $(PROGS); do cmp -s build/bin/$$p $$p || cp -f build/bin/$$p $$p; done
+all: $(addprefix build/bin/,$(PROGS) $(MPITOOLS)) $(PLOT) $(REL)/lib/libtilesim.a \
+     $(addprefix build/examples/,$(EXAMPLES)) $(REL)/libtsmpi.a $(MPIHDR)
+	@for p in $(PROGS) $(MPITOOLS); do cmp -s build/bin/$$p $$p || cp -f build/bin/$$p $$p; done
 
 $(REL)/%.o: %.c
 	@mkdir -p $(dir $@)
@@ -106,6 +118,45 @@ build/include/tilesim/mp.h: mp/mp.h
 build/include/tilesim/tilesim.h: machine/tilesim.h
 	@mkdir -p $(dir $@)
 	cp $< $@
+# tilesim-mpicc's headers, as installed: include/tilesim/mpi/.
+MPIHDR = build/include/tilesim/mpi/mpi.h build/include/tilesim/mpi/mpi_funcs.h build/include/tilesim/mpi/tilesim_mpi.h
+build/include/tilesim/mpi/%.h: mpi/%.h
+	@mkdir -p $(dir $@)
+	cp $< $@
+build/include/tilesim/mpi/tilesim_mpi.h: mpirun/tilesim_mpi.h
+	@mkdir -p $(dir $@)
+	cp $< $@
+
+# The runner's library and the MPI tools' include path.
+$(REL)/mpirun/%.o $(CHK)/mpirun/%.o: BASE += $(TSMPIINC)
+$(REL)/prog/tilesim-%.o $(CHK)/prog/tilesim-%.o: BASE += $(TSMPIINC)
+$(REL)/libtsmpirun.a: $(call relobj,$(RUNSRC))
+	@rm -f $@
+	$(AR) rcs $@ $^
+$(CHK)/libtsmpirun.a: $(call chkobj,$(RUNSRC))
+	@rm -f $@
+	$(AR) rcs $@ $^
+# tilesim-mpirun: every object of the two MPI libraries (a program may call
+# any of them), exported; tilesim-mpicc: the list of functions and the ELF reader.
+define mpitool_rules
+build/bin/tilesim-mpirun: $(REL)/prog/tilesim-mpirun.o $(REL)/libtsmpirun.a $(REL)/libtsmpi.a $(REL)/libtilesim.a
+	@mkdir -p build/bin
+	$$(CC) $$(CFLAGS) $$(RUNLDFLAGS) -o $$@ $$< -Wl,--whole-archive $(REL)/libtsmpirun.a $(REL)/libtsmpi.a \
+	  -Wl,--no-whole-archive $(REL)/libtilesim.a $$(LDLIBS) $$(RUNLIBS)
+$(CHK)/tilesim-mpirun: $(CHK)/prog/tilesim-mpirun.o $(CHK)/libtsmpirun.a $(CHK)/libtsmpi.a $(CHK)/libtilesim.a
+	$$(CC) $$(CHKFLAGS) $$(RUNLDFLAGS) -o $$@ $$< -Wl,--whole-archive $(CHK)/libtsmpirun.a $(CHK)/libtsmpi.a \
+	  -Wl,--no-whole-archive $(CHK)/libtilesim.a $$(LDLIBS) $$(RUNLIBS)
+build/bin/tilesim-mpicc: $(REL)/prog/tilesim-mpicc.o $(REL)/libtsmpirun.a $(REL)/libtsmpi.a $(REL)/libtilesim.a
+	@mkdir -p build/bin
+	$$(CC) $$(CFLAGS) -o $$@ $$^ $$(LDLIBS) $$(RUNLIBS)
+$(CHK)/tilesim-mpicc: $(CHK)/prog/tilesim-mpicc.o $(CHK)/libtsmpirun.a $(CHK)/libtsmpi.a $(CHK)/libtilesim.a
+	$$(CC) $$(CHKFLAGS) -o $$@ $$^ $$(LDLIBS) $$(RUNLIBS)
+endef
+$(eval $(mpitool_rules))
+# bench --calibrate's basic blocks: this loop compiled as tilesim-mpicc
+# --count-blocks compiles programs.
+$(REL)/prog/bench_blocks.o: CFLAGS += -fsanitize-coverage=trace-pc
+$(CHK)/prog/bench_blocks.o: CHKFLAGS += -fsanitize-coverage=trace-pc
 # publib(DIR,SOURCES): DIR/lib/libtilesim.a from the sources' objects in DIR.
 define publib
 $(1)/lib/libtilesim.a: $(patsubst %.c,$(1)/%.o,$(2))
@@ -188,7 +239,8 @@ $(CHK)/tests/%: $(CHK)/tests/%.o $(call chkobj,$(TESTLIB)) $(CHK)/libtsmpi.a $(C
 # MPIRUN, SMPICC, SMPIRUN): they look for nothing themselves, and
 # tests/run.sh lists what was skipped and why before its last line.
 check: $(addprefix $(CHK)/tests/,$(TESTS)) $(addprefix $(CHK)/,$(PROGS)) $(if $(PLOTSRC),$(CHK)/plot) \
-       $(addprefix $(CHK)/examples/,$(EXAMPLES)) $(addprefix $(CHK)/testbed/,$(TESTBED))
+       $(addprefix $(CHK)/examples/,$(EXAMPLES)) $(addprefix $(CHK)/testbed/,$(TESTBED)) \
+       $(addprefix $(CHK)/,$(MPITOOLS)) $(MPIHDR)
 	@$(MAKE) --no-print-directory -s mpi-probe
 	@mpi=$$(cat $(PROBE)/mpicc); smpi=$$(cat $(PROBE)/smpicc); \
 	if [ "$$mpi" = yes ] && ! $(MAKE) --no-print-directory -s mpi-bins; then mpi="the MPI build failed (make mpi-bins)"; fi; \
@@ -420,6 +472,11 @@ bench-tile: all
 bench-testbed: all
 	sh tests/bench_testbed.sh
 
+# MPI programs under tilesim-mpirun beside SimGrid's smpirun (issue 19):
+# tests/bench_mpi.sh says what and how.
+bench-mpirun: all
+	sh tests/bench_mpi.sh
+
 # The threads and MPI backends' waiting under outside load (issue 14, item 5):
 # runs alone and beside two busy loops (tests/bench_load.sh says what to set).
 bench-load: all
@@ -472,15 +529,18 @@ install-files:
 	mkdir -p $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include/tilesim $(SHARE)/examples
 	cp $(ILIB) $(DESTDIR)$(PREFIX)/lib/libtilesim.a
 	cp mp/mp.h machine/tilesim.h $(DESTDIR)$(PREFIX)/include/tilesim/
+	mkdir -p $(DESTDIR)$(PREFIX)/include/tilesim/mpi
+	cp $(addprefix $(IBIN)/,$(MPITOOLS)) $(DESTDIR)$(PREFIX)/bin/
+	cp mpi/mpi.h mpi/mpi_funcs.h mpirun/tilesim_mpi.h $(DESTDIR)$(PREFIX)/include/tilesim/mpi/
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' machine/tilesim.pc.in \
 	  > $(DESTDIR)$(PREFIX)/lib/pkgconfig/tilesim.pc
 	cp examples/*.c $(SHARE)/examples/
 
 clean:
-	rm -rf build $(PROGS) $(addsuffix -mpi,$(MPIPROGS))
+	rm -rf build $(PROGS) $(MPITOOLS) $(addsuffix -mpi,$(MPIPROGS))
 
 FORCE:
-.PHONY: all check valgrind tsan bench bench-tile bench-testbed bench-load bench-cores install install-files clean mpi mpi-bins smpi-bins simgrid fuzz fuzz-bins FORCE \
+.PHONY: all check valgrind tsan bench bench-tile bench-testbed bench-mpirun bench-load bench-cores install install-files clean mpi mpi-bins smpi-bins simgrid fuzz fuzz-bins FORCE \
         mpi-probe
 .SECONDARY:
 

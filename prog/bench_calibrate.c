@@ -252,6 +252,10 @@ int bench_calibrate(int argc, char **argv) {
   free(A0), free(B0);
   fprintf(stderr, "bench: a backtracking step (a bit looked up, the edge's weight computed and stored): %.4g s\n",
           back);
+  unsigned long long nblocks = 0;
+  double block = micro_block(repeat, &nblocks);
+  fprintf(stderr, "bench: a basic block of an MPI program (cpi's loop, %llu blocks): %.4g s, "
+                  "tilesim-mpirun --compute blocks --block-c %.4g\n", nblocks, block, block);
   char opts[700];
   model_options(&d, spin, slow, slow_spin, opts, sizeof opts);
   snprintf(opts + strlen(opts), sizeof opts - strlen(opts), " --back-c %.4g", back > 0 ? back : 0);

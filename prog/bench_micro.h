@@ -69,4 +69,10 @@ double micro_backtrack(const vec2 *A, const vec2 *B, int n, int repeat);
 double micro_together(const vec2 *A, const vec2 *B, int n, int table, int k, int spinners,
                       int repeat);
 
+/* The seconds a basic block of a program built by tilesim-mpicc
+ * --count-blocks takes on this host (tilesim-mpirun --block-c): cpi's loop,
+ * compiled as such a program is, its blocks counted and timed; the fastest
+ * of repeat runs.  *blocks gets the count of one run. */
+double micro_block(int repeat, unsigned long long *blocks);
+
 #endif

@@ -107,6 +107,28 @@ else
   echo "cli_install: skipped: the library through pkg-config (pkg-config not found)"
 fi
 
+# The MPI tools (issue 19): the installed tilesim-mpicc finds the installed
+# mpi.h beside itself, and the installed tilesim-mpirun runs what it built.
+for f in bin/tilesim-mpicc bin/tilesim-mpirun include/tilesim/mpi/mpi.h include/tilesim/mpi/tilesim_mpi.h; do
+  [ -e "$P/$f" ] && ok || bad "not installed: $f"
+done
+cat > hello.c <<'EOF2'
+#include <mpi.h>
+#include <stdio.h>
+int main(int argc, char **argv) {
+  int r, p;
+  MPI_Init(&argc, &argv);
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  MPI_Comm_size(MPI_COMM_WORLD, &p);
+  printf("rank %d of %d\n", r, p);
+  MPI_Finalize();
+  return 0;
+}
+EOF2
+"$P/bin/tilesim-mpicc" hello.c -o hello > log 2>&1 && "$P/bin/tilesim-mpirun" -np 3 ./hello > out 2> err \
+  && [ "$(sort out | tr '\n' ' ')" = "rank 0 of 3 rank 1 of 3 rank 2 of 3 " ] && ok \
+  || bad "the installed tilesim-mpicc and tilesim-mpirun: $(cat log out err)"
+
 # Without the data: a message saying where it looked and what to do, exit 1.
 mv "$P/share/tilesim" "$T/data"
 "$P/bin/tilesim-bench" --tiler --points 20 --input prostate_2.contours --repeat 1 > out 2> err; rc=$?

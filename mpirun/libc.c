@@ -1,0 +1,282 @@
+/* libc.c -- the libc state each rank of an MPI program keeps for itself, and
+ * the clocks and sleeps of the simulated machine (libc.h; the macros of
+ * tilesim_mpi.h send a program's calls here).
+ *
+ * getopt: glibc's own, with the rank's optind, optarg, opterr and optopt put
+ * in place around each call (and optind 0 at a rank's first call, which
+ * makes glibc start afresh: its hidden position belongs to whichever rank
+ * parsed last).  rand and random: glibc's additive generator (TYPE_3, the
+ * default) written out, a state per rank, so the sequences are glibc's on
+ * any libc.  drand48: POSIX erand48, nrand48 and jrand48 on the rank's own
+ * 48 bits, glibc's defaults. */
+#define _GNU_SOURCE
+#include "libc.h"
+
+#include <getopt.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/time.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "mp.h"
+#include "xmem.h"
+
+/* ==== a rank's libc ======================================================= */
+
+enum { R_DEG = 31, R_SEP = 3 };   /* glibc's TYPE_3: x^31 + x^3 + 1 */
+
+typedef struct {
+  int optind, opterr, optopt, opt_used;
+  char *optarg;
+  int32_t r[R_DEG];                 /* random's state */
+  int f, b;                         /* its front and rear positions */
+  unsigned short x48[3], old48[3];  /* drand48's */
+  char *strtok_at;
+} rank_libc;
+
+static rank_libc *ranks;   /* [n], one per rank of the run */
+static int nranks;
+static rank_libc outside;  /* calls outside any rank (a constructor) */
+static tsmpi_exit_fn on_exit_fn;
+static tsmpi_abort_fn on_abort_fn;
+
+static void seed_random(rank_libc *s, uint32_t seed);
+
+static void init_one(rank_libc *s) {
+  memset(s, 0, sizeof *s);
+  s->optind = 1;
+  s->opterr = 1;
+  s->optopt = '?';
+  seed_random(s, 1);   /* glibc: as if srandom(1) */
+}
+
+void tsmpi_libc_setup(int n, tsmpi_exit_fn fn, tsmpi_abort_fn afn) {
+  free(ranks);
+  ranks = xcalloc((size_t)n, sizeof *ranks);
+  nranks = n;
+  for (int i = 0; i < n; i++) init_one(&ranks[i]);
+  init_one(&outside);
+  on_exit_fn = fn;
+  on_abort_fn = afn;
+}
+
+void tsmpi_libc_free(void) {
+  free(ranks);
+  ranks = NULL;
+  nranks = 0;
+}
+
+static rank_libc *me(void) {
+  mp *self = mp_self();
+  if (!self || !ranks || mp_rank(self) >= nranks) return &outside;
+  return &ranks[mp_rank(self)];
+}
+
+/* ==== getopt ============================================================== */
+
+int *tsmpi_optind(void) { return &me()->optind; }
+char **tsmpi_optarg(void) { return &me()->optarg; }
+int *tsmpi_opterr(void) { return &me()->opterr; }
+int *tsmpi_optopt(void) { return &me()->optopt; }
+
+/* Which of getopt, getopt_long and getopt_long_only. */
+enum { G_SHORT, G_LONG, G_LONG_ONLY };
+
+static int any_getopt(int kind, int argc, char *const *argv, const char *shortopts, const struct option *longopts,
+                      int *longind) {
+  rank_libc *s = me();
+  /* The rank's state in place: optind 0 at its first call (glibc then
+   * starts afresh) unless the program set another than 1 itself. */
+  optind = !s->opt_used && s->optind == 1 ? 0 : s->optind;
+  opterr = s->opterr;
+  optopt = s->optopt;
+  optarg = s->optarg;
+  int c = kind == G_SHORT ? getopt(argc, argv, shortopts)
+          : kind == G_LONG ? getopt_long(argc, argv, shortopts, longopts, longind)
+                           : getopt_long_only(argc, argv, shortopts, longopts, longind);
+  s->optind = optind;
+  s->optarg = optarg;
+  s->optopt = optopt;
+  s->opt_used = 1;
+  return c;
+}
+
+int tsmpi_getopt(int argc, char *const *argv, const char *shortopts) {
+  return any_getopt(G_SHORT, argc, argv, shortopts, NULL, NULL);
+}
+
+/* glibc's <unistd.h>, in a strict POSIX mode (_POSIX_C_SOURCE without
+ * _GNU_SOURCE), binds getopt to the symbol __posix_getopt (which stops at
+ * the first operand): a program built so calls this, which tilesim-mpirun
+ * exports in glibc's place. */
+int __posix_getopt(int argc, char *const *argv, const char *shortopts) {
+  if (shortopts[0] == '+' || shortopts[0] == '-') return any_getopt(G_SHORT, argc, argv, shortopts, NULL, NULL);
+  size_t n = strlen(shortopts);
+  char *plus = xmalloc(n + 2);
+  plus[0] = '+';
+  memcpy(plus + 1, shortopts, n + 1);
+  int c = any_getopt(G_SHORT, argc, argv, plus, NULL, NULL);
+  free(plus);
+  return c;
+}
+
+int tsmpi_getopt_long(int argc, char *const *argv, const char *shortopts, const struct option *longopts,
+                      int *longind) {
+  return any_getopt(G_LONG, argc, argv, shortopts, longopts, longind);
+}
+
+int tsmpi_getopt_long_only(int argc, char *const *argv, const char *shortopts, const struct option *longopts,
+                           int *longind) {
+  return any_getopt(G_LONG_ONLY, argc, argv, shortopts, longopts, longind);
+}
+
+/* ==== rand and random: glibc's TYPE_3 generator ==========================
+ * srandom(seed): r[0] = seed (1 for 0), r[i] = 16807 r[i-1] mod (2^31 - 1)
+ * by Schrage's method; front at 3, rear at 0; 310 outputs discarded.  Each
+ * output: r[f] += r[b] (mod 2^32), the result r[f] >> 1, both positions on
+ * (glibc stdlib/random_r.c). */
+
+static int32_t next_random(rank_libc *s) {
+  uint32_t v = (uint32_t)s->r[s->f] + (uint32_t)s->r[s->b];
+  s->r[s->f] = (int32_t)v;
+  if (++s->f >= R_DEG) s->f = 0;
+  if (++s->b >= R_DEG) s->b = 0;
+  return (int32_t)(v >> 1);
+}
+
+static void seed_random(rank_libc *s, uint32_t seed) {
+  if (seed == 0) seed = 1;
+  s->r[0] = (int32_t)seed;
+  for (int i = 1; i < R_DEG; i++) {
+    int32_t hi = s->r[i - 1] / 127773, lo = s->r[i - 1] % 127773;
+    int32_t w = 16807 * lo - 2836 * hi;
+    if (w < 0) w += 2147483647;
+    s->r[i] = w;
+  }
+  s->f = R_SEP;
+  s->b = 0;
+  for (int k = 0; k < 10 * R_DEG; k++) next_random(s);
+}
+
+int tsmpi_rand(void) { return (int)next_random(me()); }
+void tsmpi_srand(unsigned seed) { seed_random(me(), seed); }
+long tsmpi_random(void) { return (long)next_random(me()); }
+void tsmpi_srandom(unsigned seed) { seed_random(me(), seed); }
+
+/* ==== drand48 ============================================================= */
+
+double tsmpi_drand48(void) { return erand48(me()->x48); }
+long tsmpi_lrand48(void) { return nrand48(me()->x48); }
+long tsmpi_mrand48(void) { return jrand48(me()->x48); }
+
+void tsmpi_srand48(long seed) {
+  rank_libc *s = me();
+  s->x48[0] = 0x330e;
+  s->x48[1] = (unsigned short)(seed & 0xffff);
+  s->x48[2] = (unsigned short)((seed >> 16) & 0xffff);
+}
+
+unsigned short *tsmpi_seed48(unsigned short seed16v[3]) {
+  rank_libc *s = me();
+  memcpy(s->old48, s->x48, sizeof s->old48);
+  memcpy(s->x48, seed16v, sizeof s->x48);
+  return s->old48;
+}
+
+/* ==== strtok ============================================================== */
+
+char *tsmpi_strtok(char *restrict str, const char *restrict delim) { return strtok_r(str, delim, &me()->strtok_at); }
+
+/* ==== clocks and sleeps: the simulated machine's ========================== */
+
+/* The rank's clock (simulated on the simulator), or the host's outside a rank. */
+static int now(double *t) {
+  mp *self = mp_self();
+  if (!self) return 0;
+  *t = mp_time(self);
+  return 1;
+}
+
+time_t tsmpi_time(time_t *t) {
+  double s;
+  time_t v = now(&s) ? (time_t)s : time(NULL);
+  if (t) *t = v;
+  return v;
+}
+
+int tsmpi_gettimeofday(struct timeval *restrict tv, void *restrict tz) {
+  double s;
+  if (!now(&s)) return gettimeofday(tv, tz);
+  if (tv) {
+    tv->tv_sec = (time_t)s;
+    tv->tv_usec = (suseconds_t)((s - (double)tv->tv_sec) * 1e6);
+  }
+  return 0;
+}
+
+int tsmpi_clock_gettime(clockid_t id, struct timespec *tp) {
+  double s;
+  if (!now(&s)) return clock_gettime(id, tp);
+  if (tp) {
+    tp->tv_sec = (time_t)s;
+    tp->tv_nsec = (long)((s - (double)tp->tv_sec) * 1e9);
+  }
+  return 0;
+}
+
+clock_t tsmpi_clock(void) {
+  double s;
+  return now(&s) ? (clock_t)(s * CLOCKS_PER_SEC) : clock();
+}
+
+static void nap(double seconds) {
+  mp *self = mp_self();
+  if (self) mp_sleep(self, seconds);
+}
+
+unsigned tsmpi_sleep(unsigned seconds) {
+  if (!mp_self()) return sleep(seconds);
+  nap(seconds);
+  return 0;
+}
+
+int tsmpi_usleep(unsigned us) {
+  if (!mp_self()) return usleep(us);
+  nap((double)us * 1e-6);
+  return 0;
+}
+
+int tsmpi_nanosleep(const struct timespec *req, struct timespec *rem) {
+  if (!mp_self()) return nanosleep(req, rem);
+  if (req) nap((double)req->tv_sec + (double)req->tv_nsec * 1e-9);
+  if (rem) rem->tv_sec = 0, rem->tv_nsec = 0;
+  return 0;
+}
+
+/* ==== ending ============================================================== */
+
+void tsmpi_exit(int status) {
+  mp *self = mp_self();
+  if (!self) exit(status);
+  fflush(stdout);
+  if (on_exit_fn) on_exit_fn(self, status);   /* the runner's: may stop the run */
+  mp_exit(self);
+}
+
+void tsmpi_abort(void) {
+  mp *self = mp_self();
+  if (!self) abort();
+  char why[80];
+  snprintf(why, sizeof why, "rank %d called abort()", mp_rank(self));
+  fflush(stdout);
+  if (on_abort_fn) on_abort_fn(self);
+  mp_abort(self, 134, why);
+}
+
+pid_t tsmpi_getpid(void) {
+  mp *self = mp_self();
+  return self ? (pid_t)(100000 + mp_rank(self)) : getpid();
+}
