@@ -30,7 +30,7 @@ static int red_ok(MPI_Comm comm, const char *fn, const void *sendbuf, int count,
 
 /* ==== reduce and allreduce ================================================ */
 
-int MPI_Reduce(const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op, int root,
+int PMPI_Reduce(const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op, int root,
                MPI_Comm comm) {
   static const char fn[] = "MPI_Reduce";
   int rc;
@@ -72,7 +72,7 @@ int MPI_Reduce(const void *sendbuf, void *recvbuf, int count, MPI_Datatype datat
   return tsmpi_coll_end(rc);
 }
 
-int MPI_Allreduce(const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op, MPI_Comm comm) {
+int PMPI_Allreduce(const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op, MPI_Comm comm) {
   static const char fn[] = "MPI_Allreduce";
   int rc;
   if ((rc = tsmpi_comm_check(comm, fn)) || (rc = red_ok(comm, fn, sendbuf, count, datatype, op, 1)) ||
@@ -162,7 +162,7 @@ static int redscat_call(const char *fn, tsmpi_coll c, const void *sendbuf, void 
   return tsmpi_coll_end(rc);
 }
 
-int MPI_Reduce_scatter(const void *sendbuf, void *recvbuf, const int recvcounts[], MPI_Datatype datatype, MPI_Op op,
+int PMPI_Reduce_scatter(const void *sendbuf, void *recvbuf, const int recvcounts[], MPI_Datatype datatype, MPI_Op op,
                        MPI_Comm comm) {
   static const char fn[] = "MPI_Reduce_scatter";
   int rc;
@@ -172,7 +172,7 @@ int MPI_Reduce_scatter(const void *sendbuf, void *recvbuf, const int recvcounts[
   return redscat_call(fn, COLL_REDUCE_SCATTER, sendbuf, recvbuf, recvcounts, datatype, op, comm);
 }
 
-int MPI_Reduce_scatter_block(const void *sendbuf, void *recvbuf, int recvcount, MPI_Datatype datatype, MPI_Op op,
+int PMPI_Reduce_scatter_block(const void *sendbuf, void *recvbuf, int recvcount, MPI_Datatype datatype, MPI_Op op,
                              MPI_Comm comm) {
   static const char fn[] = "MPI_Reduce_scatter_block";
   int rc;
@@ -221,10 +221,10 @@ static int scan_call(const char *fn, tsmpi_coll c, const void *sendbuf, void *re
   return tsmpi_coll_end(rc);
 }
 
-int MPI_Scan(const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op, MPI_Comm comm) {
+int PMPI_Scan(const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op, MPI_Comm comm) {
   return scan_call("MPI_Scan", COLL_SCAN, sendbuf, recvbuf, count, datatype, op, comm);
 }
 
-int MPI_Exscan(const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op, MPI_Comm comm) {
+int PMPI_Exscan(const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op, MPI_Comm comm) {
   return scan_call("MPI_Exscan", COLL_EXSCAN, sendbuf, recvbuf, count, datatype, op, comm);
 }

@@ -25,7 +25,7 @@
 
 /* ==== rank and size ======================================================= */
 
-int MPI_Comm_rank(MPI_Comm comm, int *rank) {
+int PMPI_Comm_rank(MPI_Comm comm, int *rank) {
   static const char fn[] = "MPI_Comm_rank";
   tsm *R = tsm_need(fn);
   tsm_comm *c;
@@ -36,7 +36,7 @@ int MPI_Comm_rank(MPI_Comm comm, int *rank) {
   return MPI_SUCCESS;
 }
 
-int MPI_Comm_size(MPI_Comm comm, int *size) {
+int PMPI_Comm_size(MPI_Comm comm, int *size) {
   static const char fn[] = "MPI_Comm_size";
   tsm *R = tsm_need(fn);
   tsm_comm *c;
@@ -47,7 +47,7 @@ int MPI_Comm_size(MPI_Comm comm, int *size) {
   return MPI_SUCCESS;
 }
 
-int MPI_Comm_test_inter(MPI_Comm comm, int *flag) {
+int PMPI_Comm_test_inter(MPI_Comm comm, int *flag) {
   static const char fn[] = "MPI_Comm_test_inter";
   tsm *R = tsm_need(fn);
   tsm_comm *c;
@@ -147,7 +147,7 @@ static int no_pair(tsm *R, const tsm_comm *c, const char *fn) {
 
 /* ==== constructors ======================================================== */
 
-int MPI_Comm_dup(MPI_Comm comm, MPI_Comm *newcomm) {
+int PMPI_Comm_dup(MPI_Comm comm, MPI_Comm *newcomm) {
   static const char fn[] = "MPI_Comm_dup";
   tsm *R = tsm_need(fn);
   tsm_comm *c;
@@ -174,7 +174,7 @@ static int cmp_split(const void *a, const void *b) {
   return (x->rank > y->rank) - (x->rank < y->rank);
 }
 
-int MPI_Comm_split(MPI_Comm comm, int color, int key, MPI_Comm *newcomm) {
+int PMPI_Comm_split(MPI_Comm comm, int color, int key, MPI_Comm *newcomm) {
   static const char fn[] = "MPI_Comm_split";
   tsm *R = tsm_need(fn);
   tsm_comm *c;
@@ -234,7 +234,7 @@ static int subset(const tsm_ranks *g, const tsm_comm *c) {
   return 1;
 }
 
-int MPI_Comm_create(MPI_Comm comm, MPI_Group group, MPI_Comm *newcomm) {
+int PMPI_Comm_create(MPI_Comm comm, MPI_Group group, MPI_Comm *newcomm) {
   static const char fn[] = "MPI_Comm_create";
   tsm *R = tsm_need(fn);
   tsm_comm *c;
@@ -261,7 +261,7 @@ int MPI_Comm_create(MPI_Comm comm, MPI_Group group, MPI_Comm *newcomm) {
   return MPI_SUCCESS;
 }
 
-int MPI_Comm_create_group(MPI_Comm comm, MPI_Group group, int tag, MPI_Comm *newcomm) {
+int PMPI_Comm_create_group(MPI_Comm comm, MPI_Group group, int tag, MPI_Comm *newcomm) {
   static const char fn[] = "MPI_Comm_create_group";
   tsm *R = tsm_need(fn);
   tsm_comm *c;
@@ -291,7 +291,7 @@ int MPI_Comm_create_group(MPI_Comm comm, MPI_Group group, int tag, MPI_Comm *new
   return MPI_SUCCESS;
 }
 
-int MPI_Comm_free(MPI_Comm *comm) {
+int PMPI_Comm_free(MPI_Comm *comm) {
   static const char fn[] = "MPI_Comm_free";
   tsm *R = tsm_need(fn);
   if (!comm) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL comm argument");
@@ -311,7 +311,7 @@ int MPI_Comm_free(MPI_Comm *comm) {
 
 /* ==== comparing, groups, names, attributes ================================ */
 
-int MPI_Comm_compare(MPI_Comm comm1, MPI_Comm comm2, int *result) {
+int PMPI_Comm_compare(MPI_Comm comm1, MPI_Comm comm2, int *result) {
   static const char fn[] = "MPI_Comm_compare";
   tsm *R = tsm_need(fn);
   tsm_comm *a, *b;
@@ -323,7 +323,7 @@ int MPI_Comm_compare(MPI_Comm comm1, MPI_Comm comm2, int *result) {
   return MPI_SUCCESS;
 }
 
-int MPI_Comm_group(MPI_Comm comm, MPI_Group *group) {
+int PMPI_Comm_group(MPI_Comm comm, MPI_Group *group) {
   static const char fn[] = "MPI_Comm_group";
   tsm *R = tsm_need(fn);
   tsm_comm *c;
@@ -335,7 +335,7 @@ int MPI_Comm_group(MPI_Comm comm, MPI_Group *group) {
   return MPI_SUCCESS;
 }
 
-int MPI_Comm_set_name(MPI_Comm comm, const char *comm_name) {
+int PMPI_Comm_set_name(MPI_Comm comm, const char *comm_name) {
   static const char fn[] = "MPI_Comm_set_name";
   tsm *R = tsm_need(fn);
   tsm_comm *c;
@@ -346,7 +346,7 @@ int MPI_Comm_set_name(MPI_Comm comm, const char *comm_name) {
   return MPI_SUCCESS;
 }
 
-int MPI_Comm_get_name(MPI_Comm comm, char *comm_name, int *resultlen) {
+int PMPI_Comm_get_name(MPI_Comm comm, char *comm_name, int *resultlen) {
   static const char fn[] = "MPI_Comm_get_name";
   tsm *R = tsm_need(fn);
   tsm_comm *c;
@@ -361,7 +361,7 @@ int MPI_Comm_get_name(MPI_Comm comm, char *comm_name, int *resultlen) {
 
 /* The predefined attributes of MPI 3.1 section 8.1.2, the same on every
  * communicator; no others exist (attribute keys cannot be made). */
-int MPI_Comm_get_attr(MPI_Comm comm, int comm_keyval, void *attribute_val, int *flag) {
+int PMPI_Comm_get_attr(MPI_Comm comm, int comm_keyval, void *attribute_val, int *flag) {
   static const char fn[] = "MPI_Comm_get_attr";
   tsm *R = tsm_need(fn);
   tsm_comm *c;
@@ -385,6 +385,6 @@ int MPI_Comm_get_attr(MPI_Comm comm, int comm_keyval, void *attribute_val, int *
   return MPI_SUCCESS;
 }
 
-int MPI_Attr_get(MPI_Comm comm, int keyval, void *attribute_val, int *flag) {
+int PMPI_Attr_get(MPI_Comm comm, int keyval, void *attribute_val, int *flag) {
   return MPI_Comm_get_attr(comm, keyval, attribute_val, flag);
 }

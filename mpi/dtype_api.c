@@ -79,7 +79,7 @@ static int arrays(const char *fn, int count, int **blen, MPI_Aint **disp, int **
 
 /* ==== constructors ======================================================== */
 
-int MPI_Type_contiguous(int count, MPI_Datatype oldtype, MPI_Datatype *newtype) {
+int PMPI_Type_contiguous(int count, MPI_Datatype oldtype, MPI_Datatype *newtype) {
   static const char fn[] = "MPI_Type_contiguous";
   int rc;
   if ((rc = count_ok(fn, "count", count)) || (rc = type_ok(fn, "oldtype", oldtype)) ||
@@ -110,7 +110,7 @@ static int hvector(const char *fn, int count, int blocklength, MPI_Aint stride, 
   return rc;
 }
 
-int MPI_Type_vector(int count, int blocklength, int stride, MPI_Datatype oldtype, MPI_Datatype *newtype) {
+int PMPI_Type_vector(int count, int blocklength, int stride, MPI_Datatype oldtype, MPI_Datatype *newtype) {
   static const char fn[] = "MPI_Type_vector";
   int rc = type_ok(fn, "oldtype", oldtype);
   if (rc) return rc;
@@ -120,14 +120,14 @@ int MPI_Type_vector(int count, int blocklength, int stride, MPI_Datatype oldtype
                  newtype);
 }
 
-int MPI_Type_create_hvector(int count, int blocklength, MPI_Aint stride, MPI_Datatype oldtype,
+int PMPI_Type_create_hvector(int count, int blocklength, MPI_Aint stride, MPI_Datatype oldtype,
                             MPI_Datatype *newtype) {
   int ints[2] = {count, blocklength};
   tsmpi_type_decoding dec = {MPI_COMBINER_HVECTOR, 2, 1, 1, ints, &stride, &oldtype};
   return hvector("MPI_Type_create_hvector", count, blocklength, stride, oldtype, &dec, newtype);
 }
 
-int MPI_Type_hvector(int count, int blocklength, MPI_Aint stride, MPI_Datatype oldtype,
+int PMPI_Type_hvector(int count, int blocklength, MPI_Aint stride, MPI_Datatype oldtype,
                      MPI_Datatype *newtype) {
   int ints[2] = {count, blocklength};
   tsmpi_type_decoding dec = {MPI_COMBINER_HVECTOR, 2, 1, 1, ints, &stride, &oldtype};
@@ -169,32 +169,32 @@ static int indexed(const char *fn, int combiner, int count, const int *blockleng
   return rc;
 }
 
-int MPI_Type_indexed(int count, const int array_of_blocklengths[], const int array_of_displacements[],
+int PMPI_Type_indexed(int count, const int array_of_blocklengths[], const int array_of_displacements[],
                      MPI_Datatype oldtype, MPI_Datatype *newtype) {
   return indexed("MPI_Type_indexed", MPI_COMBINER_INDEXED, count, array_of_blocklengths, 0,
                  array_of_displacements, NULL, oldtype, newtype);
 }
 
-int MPI_Type_create_hindexed(int count, const int array_of_blocklengths[],
+int PMPI_Type_create_hindexed(int count, const int array_of_blocklengths[],
                              const MPI_Aint array_of_displacements[], MPI_Datatype oldtype,
                              MPI_Datatype *newtype) {
   return indexed("MPI_Type_create_hindexed", MPI_COMBINER_HINDEXED, count, array_of_blocklengths, 0, NULL,
                  array_of_displacements, oldtype, newtype);
 }
 
-int MPI_Type_hindexed(int count, int array_of_blocklengths[], MPI_Aint array_of_displacements[],
+int PMPI_Type_hindexed(int count, int array_of_blocklengths[], MPI_Aint array_of_displacements[],
                       MPI_Datatype oldtype, MPI_Datatype *newtype) {
   return indexed("MPI_Type_hindexed", MPI_COMBINER_HINDEXED, count, array_of_blocklengths, 0, NULL,
                  array_of_displacements, oldtype, newtype);
 }
 
-int MPI_Type_create_indexed_block(int count, int blocklength, const int array_of_displacements[],
+int PMPI_Type_create_indexed_block(int count, int blocklength, const int array_of_displacements[],
                                   MPI_Datatype oldtype, MPI_Datatype *newtype) {
   return indexed("MPI_Type_create_indexed_block", MPI_COMBINER_INDEXED_BLOCK, count, NULL, blocklength,
                  array_of_displacements, NULL, oldtype, newtype);
 }
 
-int MPI_Type_create_hindexed_block(int count, int blocklength, const MPI_Aint array_of_displacements[],
+int PMPI_Type_create_hindexed_block(int count, int blocklength, const MPI_Aint array_of_displacements[],
                                    MPI_Datatype oldtype, MPI_Datatype *newtype) {
   return indexed("MPI_Type_create_hindexed_block", MPI_COMBINER_HINDEXED_BLOCK, count, NULL, blocklength,
                  NULL, array_of_displacements, oldtype, newtype);
@@ -223,20 +223,20 @@ static int create_struct(const char *fn, int count, const int *blens, const MPI_
   return rc;
 }
 
-int MPI_Type_create_struct(int count, const int array_of_blocklengths[],
+int PMPI_Type_create_struct(int count, const int array_of_blocklengths[],
                            const MPI_Aint array_of_displacements[], const MPI_Datatype array_of_types[],
                            MPI_Datatype *newtype) {
   return create_struct("MPI_Type_create_struct", count, array_of_blocklengths, array_of_displacements,
                        array_of_types, newtype);
 }
 
-int MPI_Type_struct(int count, int array_of_blocklengths[], MPI_Aint array_of_displacements[],
+int PMPI_Type_struct(int count, int array_of_blocklengths[], MPI_Aint array_of_displacements[],
                     MPI_Datatype array_of_types[], MPI_Datatype *newtype) {
   return create_struct("MPI_Type_struct", count, array_of_blocklengths, array_of_displacements,
                        array_of_types, newtype);
 }
 
-int MPI_Type_create_resized(MPI_Datatype oldtype, MPI_Aint lb, MPI_Aint extent, MPI_Datatype *newtype) {
+int PMPI_Type_create_resized(MPI_Datatype oldtype, MPI_Aint lb, MPI_Aint extent, MPI_Datatype *newtype) {
   static const char fn[] = "MPI_Type_create_resized";
   int rc;
   char why[96];
@@ -245,7 +245,7 @@ int MPI_Type_create_resized(MPI_Datatype oldtype, MPI_Aint lb, MPI_Aint extent, 
   return rc ? fail(MPI_COMM_WORLD, rc, fn, "%s", why) : rc;
 }
 
-int MPI_Type_dup(MPI_Datatype oldtype, MPI_Datatype *newtype) {
+int PMPI_Type_dup(MPI_Datatype oldtype, MPI_Datatype *newtype) {
   static const char fn[] = "MPI_Type_dup";
   int rc;
   char why[96];
@@ -256,7 +256,7 @@ int MPI_Type_dup(MPI_Datatype oldtype, MPI_Datatype *newtype) {
 
 /* MPI 3.1 section 4.1.3: the subarray of an ndims-dimensional array in C
  * or Fortran order, with the whole array's extent (lower bound 0). */
-int MPI_Type_create_subarray(int ndims, const int array_of_sizes[], const int array_of_subsizes[],
+int PMPI_Type_create_subarray(int ndims, const int array_of_sizes[], const int array_of_subsizes[],
                              const int array_of_starts[], int order, MPI_Datatype oldtype,
                              MPI_Datatype *newtype) {
   static const char fn[] = "MPI_Type_create_subarray";
@@ -337,14 +337,14 @@ int MPI_Type_create_subarray(int ndims, const int array_of_sizes[], const int ar
 
 /* ==== commit, free, names ================================================= */
 
-int MPI_Type_commit(MPI_Datatype *datatype) {
+int PMPI_Type_commit(MPI_Datatype *datatype) {
   static const char fn[] = "MPI_Type_commit";
   int rc;
   if ((rc = ptr_ok(fn, "datatype", datatype)) || (rc = type_ok(fn, "datatype", *datatype))) return rc;
   return tsmpi_type_commit(*datatype);
 }
 
-int MPI_Type_free(MPI_Datatype *datatype) {
+int PMPI_Type_free(MPI_Datatype *datatype) {
   static const char fn[] = "MPI_Type_free";
   int rc;
   if ((rc = ptr_ok(fn, "datatype", datatype)) || (rc = type_ok(fn, "datatype", *datatype))) return rc;
@@ -355,7 +355,7 @@ int MPI_Type_free(MPI_Datatype *datatype) {
   return MPI_SUCCESS;
 }
 
-int MPI_Type_get_name(MPI_Datatype datatype, char *type_name, int *resultlen) {
+int PMPI_Type_get_name(MPI_Datatype datatype, char *type_name, int *resultlen) {
   static const char fn[] = "MPI_Type_get_name";
   int rc;
   if ((rc = type_ok(fn, "datatype", datatype)) || (rc = ptr_ok(fn, "type_name", type_name)) ||
@@ -367,7 +367,7 @@ int MPI_Type_get_name(MPI_Datatype datatype, char *type_name, int *resultlen) {
   return MPI_SUCCESS;
 }
 
-int MPI_Type_set_name(MPI_Datatype datatype, const char *type_name) {
+int PMPI_Type_set_name(MPI_Datatype datatype, const char *type_name) {
   static const char fn[] = "MPI_Type_set_name";
   int rc;
   if ((rc = type_ok(fn, "datatype", datatype)) || (rc = ptr_ok(fn, "type_name", type_name))) return rc;
@@ -379,7 +379,7 @@ int MPI_Type_set_name(MPI_Datatype datatype, const char *type_name) {
 
 /* ==== queries ============================================================= */
 
-int MPI_Type_size_x(MPI_Datatype datatype, MPI_Count *size) {
+int PMPI_Type_size_x(MPI_Datatype datatype, MPI_Count *size) {
   static const char fn[] = "MPI_Type_size_x";
   int rc;
   if ((rc = type_ok(fn, "datatype", datatype)) || (rc = ptr_ok(fn, "size", size))) return rc;
@@ -387,7 +387,7 @@ int MPI_Type_size_x(MPI_Datatype datatype, MPI_Count *size) {
   return MPI_SUCCESS;
 }
 
-int MPI_Type_size(MPI_Datatype datatype, int *size) {
+int PMPI_Type_size(MPI_Datatype datatype, int *size) {
   static const char fn[] = "MPI_Type_size";
   int rc;
   if ((rc = type_ok(fn, "datatype", datatype)) || (rc = ptr_ok(fn, "size", size))) return rc;
@@ -408,11 +408,11 @@ static int extent_of(const char *fn, MPI_Datatype dt, int truly, MPI_Aint *lb, M
   return MPI_SUCCESS;
 }
 
-int MPI_Type_get_extent(MPI_Datatype datatype, MPI_Aint *lb, MPI_Aint *extent) {
+int PMPI_Type_get_extent(MPI_Datatype datatype, MPI_Aint *lb, MPI_Aint *extent) {
   return extent_of("MPI_Type_get_extent", datatype, 0, lb, extent);
 }
 
-int MPI_Type_get_true_extent(MPI_Datatype datatype, MPI_Aint *true_lb, MPI_Aint *true_extent) {
+int PMPI_Type_get_true_extent(MPI_Datatype datatype, MPI_Aint *true_lb, MPI_Aint *true_extent) {
   return extent_of("MPI_Type_get_true_extent", datatype, 1, true_lb, true_extent);
 }
 
@@ -427,32 +427,32 @@ static int extent_x(const char *fn, MPI_Datatype dt, int truly, MPI_Count *lb, M
   return MPI_SUCCESS;
 }
 
-int MPI_Type_get_extent_x(MPI_Datatype datatype, MPI_Count *lb, MPI_Count *extent) {
+int PMPI_Type_get_extent_x(MPI_Datatype datatype, MPI_Count *lb, MPI_Count *extent) {
   return extent_x("MPI_Type_get_extent_x", datatype, 0, lb, extent);
 }
 
-int MPI_Type_get_true_extent_x(MPI_Datatype datatype, MPI_Count *true_lb, MPI_Count *true_extent) {
+int PMPI_Type_get_true_extent_x(MPI_Datatype datatype, MPI_Count *true_lb, MPI_Count *true_extent) {
   return extent_x("MPI_Type_get_true_extent_x", datatype, 1, true_lb, true_extent);
 }
 
-int MPI_Type_extent(MPI_Datatype datatype, MPI_Aint *extent) {
+int PMPI_Type_extent(MPI_Datatype datatype, MPI_Aint *extent) {
   MPI_Aint lb;
   return extent_of("MPI_Type_extent", datatype, 0, &lb, extent);
 }
 
-int MPI_Type_lb(MPI_Datatype datatype, MPI_Aint *displacement) {
+int PMPI_Type_lb(MPI_Datatype datatype, MPI_Aint *displacement) {
   MPI_Aint ext;
   return extent_of("MPI_Type_lb", datatype, 0, displacement, &ext);
 }
 
-int MPI_Type_ub(MPI_Datatype datatype, MPI_Aint *displacement) {
+int PMPI_Type_ub(MPI_Datatype datatype, MPI_Aint *displacement) {
   MPI_Aint lb, ext;
   int rc = extent_of("MPI_Type_ub", datatype, 0, &lb, &ext);
   if (rc == MPI_SUCCESS && (rc = ptr_ok("MPI_Type_ub", "displacement", displacement)) == 0) *displacement = lb + ext;
   return rc;
 }
 
-int MPI_Type_get_envelope(MPI_Datatype datatype, int *num_integers, int *num_addresses, int *num_datatypes,
+int PMPI_Type_get_envelope(MPI_Datatype datatype, int *num_integers, int *num_addresses, int *num_datatypes,
                           int *combiner) {
   static const char fn[] = "MPI_Type_get_envelope";
   int rc;
@@ -463,7 +463,7 @@ int MPI_Type_get_envelope(MPI_Datatype datatype, int *num_integers, int *num_add
   return MPI_SUCCESS;
 }
 
-int MPI_Type_get_contents(MPI_Datatype datatype, int max_integers, int max_addresses, int max_datatypes,
+int PMPI_Type_get_contents(MPI_Datatype datatype, int max_integers, int max_addresses, int max_datatypes,
                           int array_of_integers[], MPI_Aint array_of_addresses[],
                           MPI_Datatype array_of_datatypes[]) {
   static const char fn[] = "MPI_Type_get_contents";
@@ -483,7 +483,7 @@ int MPI_Type_get_contents(MPI_Datatype datatype, int max_integers, int max_addre
 }
 
 /* MPI 3.1 section 17.2.5: the Fortran types of a class and size. */
-int MPI_Type_match_size(int typeclass, int size, MPI_Datatype *datatype) {
+int PMPI_Type_match_size(int typeclass, int size, MPI_Datatype *datatype) {
   static const char fn[] = "MPI_Type_match_size";
   int rc = ptr_ok(fn, "datatype", datatype);
   if (rc) return rc;
@@ -504,23 +504,23 @@ int MPI_Type_match_size(int typeclass, int size, MPI_Datatype *datatype) {
 
 /* ==== addresses =========================================================== */
 
-int MPI_Get_address(const void *location, MPI_Aint *address) {
+int PMPI_Get_address(const void *location, MPI_Aint *address) {
   int rc = ptr_ok("MPI_Get_address", "address", address);
   if (rc == MPI_SUCCESS) *address = (MPI_Aint)(uintptr_t)location;
   return rc;
 }
 
-int MPI_Address(void *location, MPI_Aint *address) {
+int PMPI_Address(void *location, MPI_Aint *address) {
   int rc = ptr_ok("MPI_Address", "address", address);
   if (rc == MPI_SUCCESS) *address = (MPI_Aint)(uintptr_t)location;
   return rc;
 }
 
-MPI_Aint MPI_Aint_add(MPI_Aint base, MPI_Aint disp) {
+MPI_Aint PMPI_Aint_add(MPI_Aint base, MPI_Aint disp) {
   return (MPI_Aint)((uintptr_t)base + (uintptr_t)disp);
 }
 
-MPI_Aint MPI_Aint_diff(MPI_Aint addr1, MPI_Aint addr2) {
+MPI_Aint PMPI_Aint_diff(MPI_Aint addr1, MPI_Aint addr2) {
   return (MPI_Aint)((uintptr_t)addr1 - (uintptr_t)addr2);
 }
 
@@ -533,7 +533,7 @@ static int commtype_ok(MPI_Comm comm, const char *fn, MPI_Datatype dt) {
   return fail(comm, MPI_ERR_TYPE, fn, "invalid datatype: %s", why);
 }
 
-int MPI_Pack(const void *inbuf, int incount, MPI_Datatype datatype, void *outbuf, int outsize, int *position,
+int PMPI_Pack(const void *inbuf, int incount, MPI_Datatype datatype, void *outbuf, int outsize, int *position,
              MPI_Comm comm) {
   static const char fn[] = "MPI_Pack";
   int rc;
@@ -551,7 +551,7 @@ int MPI_Pack(const void *inbuf, int incount, MPI_Datatype datatype, void *outbuf
   return MPI_SUCCESS;
 }
 
-int MPI_Unpack(const void *inbuf, int insize, int *position, void *outbuf, int outcount, MPI_Datatype datatype,
+int PMPI_Unpack(const void *inbuf, int insize, int *position, void *outbuf, int outcount, MPI_Datatype datatype,
                MPI_Comm comm) {
   static const char fn[] = "MPI_Unpack";
   int rc;
@@ -569,7 +569,7 @@ int MPI_Unpack(const void *inbuf, int insize, int *position, void *outbuf, int o
   return MPI_SUCCESS;
 }
 
-int MPI_Pack_size(int incount, MPI_Datatype datatype, MPI_Comm comm, int *size) {
+int PMPI_Pack_size(int incount, MPI_Datatype datatype, MPI_Comm comm, int *size) {
   static const char fn[] = "MPI_Pack_size";
   int rc;
   if ((rc = tsmpi_comm_check(comm, fn)) || (rc = tsmpi_check_count(comm, fn, incount)) ||
@@ -582,7 +582,7 @@ int MPI_Pack_size(int incount, MPI_Datatype datatype, MPI_Comm comm, int *size) 
   return MPI_SUCCESS;
 }
 
-int MPI_Get_elements_x(const MPI_Status *status, MPI_Datatype datatype, MPI_Count *count) {
+int PMPI_Get_elements_x(const MPI_Status *status, MPI_Datatype datatype, MPI_Count *count) {
   static const char fn[] = "MPI_Get_elements_x";
   int rc;
   if ((rc = ptr_ok(fn, "status", status)) || (rc = ptr_ok(fn, "count", count)) ||
@@ -592,7 +592,7 @@ int MPI_Get_elements_x(const MPI_Status *status, MPI_Datatype datatype, MPI_Coun
   return MPI_SUCCESS;
 }
 
-int MPI_Get_elements(const MPI_Status *status, MPI_Datatype datatype, int *count) {
+int PMPI_Get_elements(const MPI_Status *status, MPI_Datatype datatype, int *count) {
   MPI_Count n;
   int rc = MPI_Get_elements_x(status, datatype, &n);
   if (rc == MPI_SUCCESS) {

@@ -84,37 +84,37 @@ static int init(const char *fn, int required, int *provided) {
   return MPI_SUCCESS;
 }
 
-int MPI_Init(int *argc, char ***argv) {
+int PMPI_Init(int *argc, char ***argv) {
   (void)argc;
   (void)argv;
   return init("MPI_Init", MPI_THREAD_SINGLE, NULL);
 }
 
-int MPI_Init_thread(int *argc, char ***argv, int required, int *provided) {
+int PMPI_Init_thread(int *argc, char ***argv, int required, int *provided) {
   (void)argc;
   (void)argv;
   return init("MPI_Init_thread", required, provided);
 }
 
-int MPI_Initialized(int *flag) {
+int PMPI_Initialized(int *flag) {
   mp *self = mp_self();
   *flag = self && mp_user(self) && mp_user(self) != TSM_MARK_STOPPED;
   return MPI_SUCCESS;
 }
 
-int MPI_Finalized(int *flag) {
+int PMPI_Finalized(int *flag) {
   mp *self = mp_self();
   *flag = self && mp_user(self) == TSM_MARK_FINALIZED;
   return MPI_SUCCESS;
 }
 
-int MPI_Query_thread(int *provided) {
+int PMPI_Query_thread(int *provided) {
   tsm *R = tsm_need("MPI_Query_thread");
   *provided = R->thread_level;
   return MPI_SUCCESS;
 }
 
-int MPI_Is_thread_main(int *flag) {
+int PMPI_Is_thread_main(int *flag) {
   tsm_need("MPI_Is_thread_main");
   *flag = 1;   /* only the rank's own thread reaches its state (mp_self) */
   return MPI_SUCCESS;
@@ -140,7 +140,7 @@ static void leftovers(tsm *R) {
             R->wrank, active, active == 1 ? "" : "s");
 }
 
-int MPI_Finalize(void) {
+int PMPI_Finalize(void) {
   tsm *R = tsm_need("MPI_Finalize");
   leftovers(R);
   mp *self = R->self;
@@ -158,7 +158,7 @@ int tsmpi_rank_end(mp *self) {
   return TSMPI_UNFINALIZED;
 }
 
-int MPI_Abort(MPI_Comm comm, int errorcode) {
+int PMPI_Abort(MPI_Comm comm, int errorcode) {
   tsm *R = tsm_need("MPI_Abort");
   char b[32], why[200];
   tsm_comm *c = tsm_comm_get(R, comm);
@@ -172,7 +172,7 @@ int MPI_Abort(MPI_Comm comm, int errorcode) {
 
 /* ==== the clock and the machine =========================================== */
 
-double MPI_Wtime(void) {
+double PMPI_Wtime(void) {
   mp *self = mp_self();
   if (!self) return 0;
   double t = mp_time(self);
@@ -183,9 +183,9 @@ double MPI_Wtime(void) {
   return t;
 }
 
-double MPI_Wtick(void) { return 1e-9; }
+double PMPI_Wtick(void) { return 1e-9; }
 
-int MPI_Get_processor_name(char *name, int *resultlen) {
+int PMPI_Get_processor_name(char *name, int *resultlen) {
   tsm_need("MPI_Get_processor_name");
   /* The host's name, as an MPI library on this machine gives it (the ranks
    * share it, as processes on one node do). */
@@ -198,13 +198,13 @@ int MPI_Get_processor_name(char *name, int *resultlen) {
   return MPI_SUCCESS;
 }
 
-int MPI_Get_version(int *version, int *subversion) {
+int PMPI_Get_version(int *version, int *subversion) {
   *version = MPI_VERSION;
   *subversion = MPI_SUBVERSION;
   return MPI_SUCCESS;
 }
 
-int MPI_Get_library_version(char *version, int *resultlen) {
+int PMPI_Get_library_version(char *version, int *resultlen) {
   static const char text[] = "tilesim MPI 3.1: on tilesim's mp.h (the simulated machine, or threads)";
   memcpy(version, text, sizeof text);
   *resultlen = (int)sizeof text - 1;

@@ -120,7 +120,7 @@ int tsmpi_check_root(MPI_Comm comm, const char *fn, int root) {
 
 /* ==== handlers ============================================================ */
 
-int MPI_Comm_set_errhandler(MPI_Comm comm, MPI_Errhandler errhandler) {
+int PMPI_Comm_set_errhandler(MPI_Comm comm, MPI_Errhandler errhandler) {
   static const char fn[] = "MPI_Comm_set_errhandler";
   tsm *R = tsm_need(fn);
   tsm_comm *c;
@@ -134,7 +134,7 @@ int MPI_Comm_set_errhandler(MPI_Comm comm, MPI_Errhandler errhandler) {
   return MPI_SUCCESS;
 }
 
-int MPI_Comm_get_errhandler(MPI_Comm comm, MPI_Errhandler *errhandler) {
+int PMPI_Comm_get_errhandler(MPI_Comm comm, MPI_Errhandler *errhandler) {
   static const char fn[] = "MPI_Comm_get_errhandler";
   tsm *R = tsm_need(fn);
   tsm_comm *c;
@@ -145,7 +145,7 @@ int MPI_Comm_get_errhandler(MPI_Comm comm, MPI_Errhandler *errhandler) {
   return MPI_SUCCESS;
 }
 
-int MPI_Errhandler_free(MPI_Errhandler *errhandler) {
+int PMPI_Errhandler_free(MPI_Errhandler *errhandler) {
   static const char fn[] = "MPI_Errhandler_free";
   tsm *R = tsm_need(fn);
   if (!errhandler || (*errhandler != MPI_ERRORS_ARE_FATAL && *errhandler != MPI_ERRORS_RETURN))
@@ -233,7 +233,7 @@ static const char *const class_text[MPI_ERR_LASTCODE] = {
   [MPI_T_ERR_INVALID] = "MPI_T_ERR_INVALID: invalid use of the interface",
 };
 
-int MPI_Error_class(int errorcode, int *errorclass) {
+int PMPI_Error_class(int errorcode, int *errorclass) {
   static const char fn[] = "MPI_Error_class";
   tsm *R = tsm_get();   /* allowed before MPI_Init and after MPI_Finalize */
   if (errorcode < 0 || errorcode >= MPI_ERR_LASTCODE || !errorclass)
@@ -242,7 +242,7 @@ int MPI_Error_class(int errorcode, int *errorclass) {
   return MPI_SUCCESS;
 }
 
-int MPI_Error_string(int errorcode, char *string, int *resultlen) {
+int PMPI_Error_string(int errorcode, char *string, int *resultlen) {
   static const char fn[] = "MPI_Error_string";
   tsm *R = tsm_get();   /* allowed before MPI_Init and after MPI_Finalize */
   if (errorcode < 0 || errorcode >= MPI_ERR_LASTCODE || !string || !resultlen)

@@ -55,7 +55,7 @@ static MPI_Group make(tsm *R, int n, const int *world) { return tsm_group_add(R,
 
 /* ==== queries ============================================================= */
 
-int MPI_Group_size(MPI_Group group, int *size) {
+int PMPI_Group_size(MPI_Group group, int *size) {
   static const char fn[] = "MPI_Group_size";
   tsm *R = tsm_need(fn);
   tsm_ranks *g;
@@ -65,7 +65,7 @@ int MPI_Group_size(MPI_Group group, int *size) {
   return MPI_SUCCESS;
 }
 
-int MPI_Group_rank(MPI_Group group, int *rank) {
+int PMPI_Group_rank(MPI_Group group, int *rank) {
   static const char fn[] = "MPI_Group_rank";
   tsm *R = tsm_need(fn);
   tsm_ranks *g;
@@ -76,7 +76,7 @@ int MPI_Group_rank(MPI_Group group, int *rank) {
   return MPI_SUCCESS;
 }
 
-int MPI_Group_translate_ranks(MPI_Group group1, int n, const int ranks1[], MPI_Group group2, int ranks2[]) {
+int PMPI_Group_translate_ranks(MPI_Group group1, int n, const int ranks1[], MPI_Group group2, int ranks2[]) {
   static const char fn[] = "MPI_Group_translate_ranks";
   tsm *R = tsm_need(fn);
   tsm_ranks *a, *b;
@@ -99,7 +99,7 @@ int MPI_Group_translate_ranks(MPI_Group group1, int n, const int ranks1[], MPI_G
   return MPI_SUCCESS;
 }
 
-int MPI_Group_compare(MPI_Group group1, MPI_Group group2, int *result) {
+int PMPI_Group_compare(MPI_Group group1, MPI_Group group2, int *result) {
   static const char fn[] = "MPI_Group_compare";
   tsm *R = tsm_need(fn);
   tsm_ranks *a, *b;
@@ -130,7 +130,7 @@ static int check_ranks(tsm *R, const char *fn, const tsm_ranks *g, int n, const 
   return MPI_SUCCESS;
 }
 
-int MPI_Group_incl(MPI_Group group, int n, const int ranks[], MPI_Group *newgroup) {
+int PMPI_Group_incl(MPI_Group group, int n, const int ranks[], MPI_Group *newgroup) {
   static const char fn[] = "MPI_Group_incl";
   tsm *R = tsm_need(fn);
   tsm_ranks *g;
@@ -143,7 +143,7 @@ int MPI_Group_incl(MPI_Group group, int n, const int ranks[], MPI_Group *newgrou
   return MPI_SUCCESS;
 }
 
-int MPI_Group_excl(MPI_Group group, int n, const int ranks[], MPI_Group *newgroup) {
+int PMPI_Group_excl(MPI_Group group, int n, const int ranks[], MPI_Group *newgroup) {
   static const char fn[] = "MPI_Group_excl";
   tsm *R = tsm_need(fn);
   tsm_ranks *g;
@@ -191,7 +191,7 @@ static int *expand(tsm *R, const char *fn, const tsm_ranks *g, int n, int ranges
   return r;
 }
 
-int MPI_Group_range_incl(MPI_Group group, int n, int ranges[][3], MPI_Group *newgroup) {
+int PMPI_Group_range_incl(MPI_Group group, int n, int ranges[][3], MPI_Group *newgroup) {
   static const char fn[] = "MPI_Group_range_incl";
   tsm *R = tsm_need(fn);
   tsm_ranks *g;
@@ -209,7 +209,7 @@ int MPI_Group_range_incl(MPI_Group group, int n, int ranges[][3], MPI_Group *new
   return MPI_SUCCESS;
 }
 
-int MPI_Group_range_excl(MPI_Group group, int n, int ranges[][3], MPI_Group *newgroup) {
+int PMPI_Group_range_excl(MPI_Group group, int n, int ranges[][3], MPI_Group *newgroup) {
   static const char fn[] = "MPI_Group_range_excl";
   tsm *R = tsm_need(fn);
   tsm_ranks *g;
@@ -248,19 +248,19 @@ static int combine(const char *fn, int how, MPI_Group group1, MPI_Group group2, 
   return MPI_SUCCESS;
 }
 
-int MPI_Group_union(MPI_Group group1, MPI_Group group2, MPI_Group *newgroup) {
+int PMPI_Group_union(MPI_Group group1, MPI_Group group2, MPI_Group *newgroup) {
   return combine("MPI_Group_union", G_UNION, group1, group2, newgroup);
 }
 
-int MPI_Group_intersection(MPI_Group group1, MPI_Group group2, MPI_Group *newgroup) {
+int PMPI_Group_intersection(MPI_Group group1, MPI_Group group2, MPI_Group *newgroup) {
   return combine("MPI_Group_intersection", G_INTER, group1, group2, newgroup);
 }
 
-int MPI_Group_difference(MPI_Group group1, MPI_Group group2, MPI_Group *newgroup) {
+int PMPI_Group_difference(MPI_Group group1, MPI_Group group2, MPI_Group *newgroup) {
   return combine("MPI_Group_difference", G_DIFF, group1, group2, newgroup);
 }
 
-int MPI_Group_free(MPI_Group *group) {
+int PMPI_Group_free(MPI_Group *group) {
   static const char fn[] = "MPI_Group_free";
   tsm *R = tsm_need(fn);
   if (!group) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL group argument");

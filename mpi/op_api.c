@@ -8,14 +8,14 @@
 #include "op.h"
 #include "p2p.h"
 
-int MPI_Op_create(MPI_User_function *user_fn, int commute, MPI_Op *op) {
+int PMPI_Op_create(MPI_User_function *user_fn, int commute, MPI_Op *op) {
   static const char fn[] = "MPI_Op_create";
   if (!user_fn || !op) return tsmpi_raise(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "%s is NULL", user_fn ? "op" : "user_fn");
   int rc = tsmpi_op_create(user_fn, commute, op);
   return rc ? tsmpi_raise(MPI_COMM_WORLD, rc, fn, "out of memory") : rc;
 }
 
-int MPI_Op_free(MPI_Op *op) {
+int PMPI_Op_free(MPI_Op *op) {
   static const char fn[] = "MPI_Op_free";
   char why[96];
   if (!op) return tsmpi_raise(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "op is NULL");
@@ -27,7 +27,7 @@ int MPI_Op_free(MPI_Op *op) {
   return MPI_SUCCESS;
 }
 
-int MPI_Op_commutative(MPI_Op op, int *commute) {
+int PMPI_Op_commutative(MPI_Op op, int *commute) {
   static const char fn[] = "MPI_Op_commutative";
   char why[96];
   if (tsmpi_op_valid(op, why, sizeof why) != MPI_SUCCESS)
@@ -38,7 +38,7 @@ int MPI_Op_commutative(MPI_Op op, int *commute) {
 }
 
 /* MPI 3.1 section 5.9.7: inoutbuf = inbuf op inoutbuf, locally. */
-int MPI_Reduce_local(const void *inbuf, void *inoutbuf, int count, MPI_Datatype datatype, MPI_Op op) {
+int PMPI_Reduce_local(const void *inbuf, void *inoutbuf, int count, MPI_Datatype datatype, MPI_Op op) {
   static const char fn[] = "MPI_Reduce_local";
   MPI_Comm w = MPI_COMM_WORLD;
   char why[96];

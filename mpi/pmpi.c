@@ -1,18 +1,39 @@
-/* pmpi.c -- the PMPI_ name of every function tilesim implements (MPI 3.1 section 14.2, the
- * profiling interface): PMPI_Send calls MPI_Send, so a program's own MPI_Send wrapper can call
- * the library's.  Made from mpi_funcs.h by the preprocessor; funcs.c has the unimplemented
+/* pmpi.c -- every function tilesim implements under its two names (MPI 3.1
+ * section 14.2, the profiling interface): the library's code is PMPI_Send,
+ * and MPI_Send is PMPI_Send inside mp_call_begin and mp_call_end, so that
+ * the simulator's trace shows every MPI call a rank makes as a slice of its
+ * track (named by the function; the outermost call only, when it took time
+ * or moved a message); a program's own MPI_Send wrapper can call PMPI_Send.
+ * Made from mpi_funcs.h by the preprocessor; funcs.c has the unimplemented
  * ones'; MPI_Pcontrol is here too. */
 #include "mpi.h"
+#include "mp.h"
 
 /* MPI 3.1 section 14.2.4: without a profiling library, MPI_Pcontrol does nothing. */
-int MPI_Pcontrol(const int level, ...) {
+int PMPI_Pcontrol(const int level, ...) {
   (void)level;
   return MPI_SUCCESS;
 }
 
+/* The calling rank's call begins and ends (outside a rank: nothing). */
+static inline void call_in(const char *name) {
+  mp *self = mp_self();
+  if (self) mp_call_begin(self, name);
+}
+
+static inline void call_out(void) {
+  mp *self = mp_self();
+  if (self) mp_call_end(self);
+}
+
 #define TSMPI_PMPI_0(ret, name, params, args)
 #define TSMPI_PMPI_1(ret, name, params, args) \
-  ret P##name params { return name args; }
+  ret name params {                            \
+    call_in(#name);                            \
+    ret r_ = P##name args;                     \
+    call_out();                                \
+    return r_;                                 \
+  }
 #define TSMPI_FN(impl, chapter, ret, name, params, args) TSMPI_PMPI_##impl(ret, name, params, args)
 #include "mpi_funcs.h"
 #undef TSMPI_FN

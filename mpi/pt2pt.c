@@ -227,7 +227,7 @@ static int send_block(const char *fn, int mode, const void *buf, int count, MPI_
   return MPI_SUCCESS;
 }
 
-int MPI_Send(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm) {
+int PMPI_Send(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm) {
   static const char fn[] = "MPI_Send";
   tsm *R = tsm_need(fn);
   tsm_comm *c = comm == MPI_COMM_WORLD ? &R->world : tsm_comm_get(R, comm);
@@ -244,15 +244,15 @@ int MPI_Send(const void *buf, int count, MPI_Datatype datatype, int dest, int ta
   return send_block(fn, SM_STANDARD, buf, count, datatype, dest, tag, comm);
 }
 
-int MPI_Ssend(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm) {
+int PMPI_Ssend(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm) {
   return send_block("MPI_Ssend", SM_SYNC, buf, count, datatype, dest, tag, comm);
 }
 
-int MPI_Rsend(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm) {
+int PMPI_Rsend(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm) {
   return send_block("MPI_Rsend", SM_READY, buf, count, datatype, dest, tag, comm);
 }
 
-int MPI_Bsend(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm) {
+int PMPI_Bsend(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm) {
   return send_block("MPI_Bsend", SM_BUFFERED, buf, count, datatype, dest, tag, comm);
 }
 
@@ -282,49 +282,49 @@ static int send_req(const char *fn, int mode, int persistent, const void *buf, i
   return MPI_SUCCESS;
 }
 
-int MPI_Isend(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm,
+int PMPI_Isend(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm,
               MPI_Request *request) {
   return send_req("MPI_Isend", SM_STANDARD, 0, buf, count, datatype, dest, tag, comm, request);
 }
 
-int MPI_Issend(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm,
+int PMPI_Issend(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm,
                MPI_Request *request) {
   return send_req("MPI_Issend", SM_SYNC, 0, buf, count, datatype, dest, tag, comm, request);
 }
 
-int MPI_Irsend(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm,
+int PMPI_Irsend(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm,
                MPI_Request *request) {
   return send_req("MPI_Irsend", SM_READY, 0, buf, count, datatype, dest, tag, comm, request);
 }
 
-int MPI_Ibsend(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm,
+int PMPI_Ibsend(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm,
                MPI_Request *request) {
   return send_req("MPI_Ibsend", SM_BUFFERED, 0, buf, count, datatype, dest, tag, comm, request);
 }
 
-int MPI_Send_init(const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
+int PMPI_Send_init(const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
                   MPI_Comm comm, MPI_Request *request) {
   return send_req("MPI_Send_init", SM_STANDARD, 1, buf, count, datatype, dest, tag, comm, request);
 }
 
-int MPI_Ssend_init(const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
+int PMPI_Ssend_init(const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
                    MPI_Comm comm, MPI_Request *request) {
   return send_req("MPI_Ssend_init", SM_SYNC, 1, buf, count, datatype, dest, tag, comm, request);
 }
 
-int MPI_Rsend_init(const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
+int PMPI_Rsend_init(const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
                    MPI_Comm comm, MPI_Request *request) {
   return send_req("MPI_Rsend_init", SM_READY, 1, buf, count, datatype, dest, tag, comm, request);
 }
 
-int MPI_Bsend_init(const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
+int PMPI_Bsend_init(const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
                    MPI_Comm comm, MPI_Request *request) {
   return send_req("MPI_Bsend_init", SM_BUFFERED, 1, buf, count, datatype, dest, tag, comm, request);
 }
 
 /* ==== receives ============================================================ */
 
-int MPI_Recv(void *buf, int count, MPI_Datatype datatype, int source, int tag, MPI_Comm comm,
+int PMPI_Recv(void *buf, int count, MPI_Datatype datatype, int source, int tag, MPI_Comm comm,
              MPI_Status *status) {
   static const char fn[] = "MPI_Recv";
   tsm *R = tsm_need(fn);
@@ -386,19 +386,19 @@ static int recv_req(const char *fn, int persistent, void *buf, int count, MPI_Da
   return MPI_SUCCESS;
 }
 
-int MPI_Irecv(void *buf, int count, MPI_Datatype datatype, int source, int tag, MPI_Comm comm,
+int PMPI_Irecv(void *buf, int count, MPI_Datatype datatype, int source, int tag, MPI_Comm comm,
               MPI_Request *request) {
   return recv_req("MPI_Irecv", 0, buf, count, datatype, source, tag, comm, request);
 }
 
-int MPI_Recv_init(void *buf, int count, MPI_Datatype datatype, int source, int tag, MPI_Comm comm,
+int PMPI_Recv_init(void *buf, int count, MPI_Datatype datatype, int source, int tag, MPI_Comm comm,
                   MPI_Request *request) {
   return recv_req("MPI_Recv_init", 1, buf, count, datatype, source, tag, comm, request);
 }
 
 /* ==== send and receive ==================================================== */
 
-int MPI_Sendrecv(const void *sendbuf, int sendcount, MPI_Datatype sendtype, int dest, int sendtag,
+int PMPI_Sendrecv(const void *sendbuf, int sendcount, MPI_Datatype sendtype, int dest, int sendtag,
                  void *recvbuf, int recvcount, MPI_Datatype recvtype, int source, int recvtag,
                  MPI_Comm comm, MPI_Status *status) {
   static const char fn[] = "MPI_Sendrecv";
@@ -423,7 +423,7 @@ int MPI_Sendrecv(const void *sendbuf, int sendcount, MPI_Datatype sendtype, int 
   return recv_result(R, c, &q);
 }
 
-int MPI_Sendrecv_replace(void *buf, int count, MPI_Datatype datatype, int dest, int sendtag,
+int PMPI_Sendrecv_replace(void *buf, int count, MPI_Datatype datatype, int dest, int sendtag,
                          int source, int recvtag, MPI_Comm comm, MPI_Status *status) {
   static const char fn[] = "MPI_Sendrecv_replace";
   tsm *R = tsm_need(fn);
@@ -494,17 +494,17 @@ static int probe(const char *fn, int block, int source, int tag, MPI_Comm comm, 
   return MPI_SUCCESS;
 }
 
-int MPI_Probe(int source, int tag, MPI_Comm comm, MPI_Status *status) {
+int PMPI_Probe(int source, int tag, MPI_Comm comm, MPI_Status *status) {
   return probe("MPI_Probe", 1, source, tag, comm, NULL, status);
 }
 
-int MPI_Iprobe(int source, int tag, MPI_Comm comm, int *flag, MPI_Status *status) {
+int PMPI_Iprobe(int source, int tag, MPI_Comm comm, int *flag, MPI_Status *status) {
   return probe("MPI_Iprobe", 0, source, tag, comm, flag, status);
 }
 
 /* ==== counts ============================================================== */
 
-int MPI_Get_count(const MPI_Status *status, MPI_Datatype datatype, int *count) {
+int PMPI_Get_count(const MPI_Status *status, MPI_Datatype datatype, int *count) {
   static const char fn[] = "MPI_Get_count";
   tsm *R = tsm_need(fn);
   int rc = tsm_check_type(R, NULL, fn, datatype);
@@ -523,7 +523,7 @@ int MPI_Get_count(const MPI_Status *status, MPI_Datatype datatype, int *count) {
 
 /* ==== the attached buffer ================================================= */
 
-int MPI_Buffer_attach(void *buffer, int size) {
+int PMPI_Buffer_attach(void *buffer, int size) {
   static const char fn[] = "MPI_Buffer_attach";
   tsm *R = tsm_need(fn);
   if (R->bbuf)
@@ -535,7 +535,7 @@ int MPI_Buffer_attach(void *buffer, int size) {
   return MPI_SUCCESS;
 }
 
-int MPI_Buffer_detach(void *buffer_addr, int *size) {
+int PMPI_Buffer_detach(void *buffer_addr, int *size) {
   static const char fn[] = "MPI_Buffer_detach";
   tsm *R = tsm_need(fn);
   if (!buffer_addr || !size) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL argument");

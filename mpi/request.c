@@ -93,7 +93,7 @@ static int in_status(tsm *R, const char *fn, const tsm_req *failed) {
 
 /* ==== the Wait family ===================================================== */
 
-int MPI_Wait(MPI_Request *request, MPI_Status *status) {
+int PMPI_Wait(MPI_Request *request, MPI_Status *status) {
   static const char fn[] = "MPI_Wait";
   tsm *R = tsm_need(fn);
   if (!request) return tsm_raise(R, NULL, MPI_ERR_REQUEST, fn, "NULL request argument");
@@ -113,7 +113,7 @@ int MPI_Wait(MPI_Request *request, MPI_Status *status) {
   return finish(R, fn, request, q, status, 0, 1);
 }
 
-int MPI_Waitall(int count, MPI_Request array_of_requests[], MPI_Status array_of_statuses[]) {
+int PMPI_Waitall(int count, MPI_Request array_of_requests[], MPI_Status array_of_statuses[]) {
   static const char fn[] = "MPI_Waitall";
   tsm *R = tsm_need(fn);
   int rc = lookup_all(R, fn, count, array_of_requests);
@@ -142,7 +142,7 @@ int MPI_Waitall(int count, MPI_Request array_of_requests[], MPI_Status array_of_
   return nfailed ? in_status(R, fn, &failed) : MPI_SUCCESS;
 }
 
-int MPI_Waitany(int count, MPI_Request array_of_requests[], int *index, MPI_Status *status) {
+int PMPI_Waitany(int count, MPI_Request array_of_requests[], int *index, MPI_Status *status) {
   static const char fn[] = "MPI_Waitany";
   tsm *R = tsm_need(fn);
   int rc = lookup_all(R, fn, count, array_of_requests);
@@ -220,7 +220,7 @@ static int some(const char *fn, int block, int incount, MPI_Request reqs[], int 
   return nfailed ? in_status(R, fn, &failed) : MPI_SUCCESS;
 }
 
-int MPI_Waitsome(int incount, MPI_Request array_of_requests[], int *outcount,
+int PMPI_Waitsome(int incount, MPI_Request array_of_requests[], int *outcount,
                  int array_of_indices[], MPI_Status array_of_statuses[]) {
   return some("MPI_Waitsome", 1, incount, array_of_requests, outcount, array_of_indices,
               array_of_statuses);
@@ -228,7 +228,7 @@ int MPI_Waitsome(int incount, MPI_Request array_of_requests[], int *outcount,
 
 /* ==== the Test family ===================================================== */
 
-int MPI_Test(MPI_Request *request, int *flag, MPI_Status *status) {
+int PMPI_Test(MPI_Request *request, int *flag, MPI_Status *status) {
   static const char fn[] = "MPI_Test";
   tsm *R = tsm_need(fn);
   if (!request || !flag) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL request or flag argument");
@@ -250,7 +250,7 @@ int MPI_Test(MPI_Request *request, int *flag, MPI_Status *status) {
   return finish(R, fn, request, q, status, 0, 1);
 }
 
-int MPI_Testall(int count, MPI_Request array_of_requests[], int *flag, MPI_Status array_of_statuses[]) {
+int PMPI_Testall(int count, MPI_Request array_of_requests[], int *flag, MPI_Status array_of_statuses[]) {
   static const char fn[] = "MPI_Testall";
   tsm *R = tsm_need(fn);
   int rc = lookup_all(R, fn, count, array_of_requests);
@@ -287,7 +287,7 @@ int MPI_Testall(int count, MPI_Request array_of_requests[], int *flag, MPI_Statu
   return nfailed ? in_status(R, fn, &failed) : MPI_SUCCESS;
 }
 
-int MPI_Testany(int count, MPI_Request array_of_requests[], int *index, int *flag, MPI_Status *status) {
+int PMPI_Testany(int count, MPI_Request array_of_requests[], int *index, int *flag, MPI_Status *status) {
   static const char fn[] = "MPI_Testany";
   tsm *R = tsm_need(fn);
   int rc = lookup_all(R, fn, count, array_of_requests);
@@ -318,13 +318,13 @@ int MPI_Testany(int count, MPI_Request array_of_requests[], int *index, int *fla
   return MPI_SUCCESS;
 }
 
-int MPI_Testsome(int incount, MPI_Request array_of_requests[], int *outcount, int array_of_indices[],
+int PMPI_Testsome(int incount, MPI_Request array_of_requests[], int *outcount, int array_of_indices[],
                  MPI_Status array_of_statuses[]) {
   return some("MPI_Testsome", 0, incount, array_of_requests, outcount, array_of_indices,
               array_of_statuses);
 }
 
-int MPI_Request_get_status(MPI_Request request, int *flag, MPI_Status *status) {
+int PMPI_Request_get_status(MPI_Request request, int *flag, MPI_Status *status) {
   static const char fn[] = "MPI_Request_get_status";
   tsm *R = tsm_need(fn);
   if (!flag) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL flag argument");
@@ -347,7 +347,7 @@ int MPI_Request_get_status(MPI_Request request, int *flag, MPI_Status *status) {
 
 /* ==== freeing and starting ================================================ */
 
-int MPI_Request_free(MPI_Request *request) {
+int PMPI_Request_free(MPI_Request *request) {
   static const char fn[] = "MPI_Request_free";
   tsm *R = tsm_need(fn);
   if (!request || *request == MPI_REQUEST_NULL)
@@ -383,14 +383,14 @@ static int start(tsm *R, const char *fn, MPI_Request h) {
   return MPI_SUCCESS;
 }
 
-int MPI_Start(MPI_Request *request) {
+int PMPI_Start(MPI_Request *request) {
   static const char fn[] = "MPI_Start";
   tsm *R = tsm_need(fn);
   if (!request) return tsm_raise(R, NULL, MPI_ERR_REQUEST, fn, "NULL request argument");
   return start(R, fn, *request);
 }
 
-int MPI_Startall(int count, MPI_Request array_of_requests[]) {
+int PMPI_Startall(int count, MPI_Request array_of_requests[]) {
   static const char fn[] = "MPI_Startall";
   tsm *R = tsm_need(fn);
   int rc = lookup_all(R, fn, count, array_of_requests);

@@ -169,6 +169,14 @@ for mode in none blocks; do
   tail -1 "$T/s1.csv" | grep -q ",$mode,yes$" && ok || bad "--compute $mode: the summary: $(cat "$T/s1.csv")"
   cp "$T/o1" "$T/ring.$mode"
 done
+# The trace names every MPI call that took time or moved a message: 4 ranks,
+# 2 laps of the ring: 8 MPI_Send and 8 MPI_Recv slices, each around its
+# send or its wait and receive.
+"$RUN" -np 4 --trace "$T/calls.csv" "$T/ring" 2 > /dev/null 2> "$T/e" || bad "ring --trace: $(cat "$T/e")"
+[ "$(grep -c ',MPI_Send,' "$T/calls.csv")" -eq 8 ] && [ "$(grep -c ',MPI_Recv,' "$T/calls.csv")" -eq 8 ] \
+  && [ "$(grep -c ',send,' "$T/calls.csv")" -eq 8 ] && ok || bad "the trace's MPI calls: $(cut -d, -f4 "$T/calls.csv" | sort | uniq -c | tr '\n' ' ')"
+"$RUN" -np 4 --trace "$T/calls.json" "$T/ring" 2 > /dev/null 2>&1 && grep -q '"name":"MPI_Recv"' "$T/calls.json" && ok \
+  || bad "the JSON trace has no MPI_Recv slice"
 # Blocks cost time; none does not: the blocks' run is slower by a positive amount.
 a=$(awk '{ print $(NF - 1) }' "$T/ring.none"); b=$(awk '{ print $(NF - 1) }' "$T/ring.blocks")
 awk -v a="$a" -v b="$b" 'BEGIN { exit !(b > a) }' && ok || bad "--compute blocks charged nothing: $a s against $b s"
