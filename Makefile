@@ -81,6 +81,8 @@ TSMPIPFLAGS = -Impi -Wno-missing-prototypes
 # to the programs it loads only what they may call (mpirun/exports.list:
 # MPI_*, PMPI_*, tilesim_compute, smpi_*, the libc runtime).
 RUNSRC     = $(wildcard mpirun/*.c)
+MPIHDR     = build/include/tilesim/mpi/mpi.h build/include/tilesim/mpi/mpi_funcs.h \
+             build/include/tilesim/mpi/tilesim_mpi.h
 TSMPIINC   = -Impi -Impirun
 RUNLDFLAGS = -Wl,--dynamic-list=mpirun/exports.list
 RUNLIBS    = -ldl
@@ -118,8 +120,7 @@ build/include/tilesim/mp.h: mp/mp.h
 build/include/tilesim/tilesim.h: machine/tilesim.h
 	@mkdir -p $(dir $@)
 	cp $< $@
-# tilesim-mpicc's headers, as installed: include/tilesim/mpi/.
-MPIHDR = build/include/tilesim/mpi/mpi.h build/include/tilesim/mpi/mpi_funcs.h build/include/tilesim/mpi/tilesim_mpi.h
+# tilesim-mpicc's headers, as installed: include/tilesim/mpi/ (MPIHDR, above).
 build/include/tilesim/mpi/%.h: mpi/%.h
 	@mkdir -p $(dir $@)
 	cp $< $@
