@@ -15,24 +15,17 @@ int PMPI_Pcontrol(const int level, ...) {
   return MPI_SUCCESS;
 }
 
-/* The calling rank's call begins and ends (outside a rank: nothing). */
-static inline void call_in(const char *name) {
-  mp *self = mp_self();
-  if (self) mp_call_begin(self, name);
-}
-
-static inline void call_out(void) {
-  mp *self = mp_self();
-  if (self) mp_call_end(self);
-}
-
+/* The calling rank's call begins and ends, where a trace shows it (outside
+ * a rank, or untraced: nothing but the test; traced is set for a whole run). */
 #define TSMPI_PMPI_0(ret, name, params, args)
-#define TSMPI_PMPI_1(ret, name, params, args) \
-  ret name params {                            \
-    call_in(#name);                            \
-    ret r_ = P##name args;                     \
-    call_out();                                \
-    return r_;                                 \
+#define TSMPI_PMPI_1(ret, name, params, args)         \
+  ret name params {                                    \
+    mp *self_ = mp_self();                             \
+    int traced_ = self_ && self_->traced;              \
+    if (traced_) mp_call_begin(self_, #name);          \
+    ret r_ = P##name args;                             \
+    if (traced_) mp_call_end(self_);                   \
+    return r_;                                         \
   }
 #define TSMPI_FN(impl, chapter, ret, name, params, args) TSMPI_PMPI_##impl(ret, name, params, args)
 #include "mpi_funcs.h"

@@ -3,6 +3,8 @@
 #include "loader.h"
 
 #include <dlfcn.h>
+#include <sys/mman.h>
+#include <sys/resource.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -41,6 +43,70 @@ static unsigned char *slurp(const char *path, size_t *len, char *err, size_t err
   return b;
 }
 
+/* dlopen's words about the copy at `copy`, with the program's name for it. */
+static void why_not(char *err, size_t errlen, int r, const char *path, const char *copy) {
+  const char *e = dlerror();
+  if (!e) e = "dlopen failed";
+  size_t k = strlen(copy);
+  if (strncmp(e, copy, k) == 0) e += k + (e[k] == ':' ? 1 : 0);
+  while (*e == ' ') e++;
+  snprintf(err, errlen, "rank %d: cannot load %s: %s", r, path, e);
+}
+
+/* Rank r's main from its loaded copy, or a message. */
+static int find_main(loader *l, int r, const char *path, char *err, size_t errlen) {
+  if ((*(void **)&l->main[r] = dlsym(l->handle[r], "main"))) return 0;
+  snprintf(err, errlen, "%s has no main", path);
+  return -1;
+}
+
+/* The copies as anonymous memory files (memfd_create: nothing on any disk,
+ * nothing to remove), each opened by its /proc/self/fd name while all are
+ * open, so that no two copies share a name.  1: loaded; 0: not possible
+ * here (no memfd_create, no /proc, too few file descriptors): use files;
+ * -1: an error of the program's (a message). */
+static int load_memfd(loader *l, const unsigned char *bytes, size_t len, const char *path, char *err,
+                      size_t errlen) {
+  int n = l->n;
+  struct rlimit rl;
+  if (getrlimit(RLIMIT_NOFILE, &rl) != 0) return 0;
+  if (rl.rlim_cur != RLIM_INFINITY && rl.rlim_cur < (rlim_t)n + 64) {
+    if (rl.rlim_max != RLIM_INFINITY && rl.rlim_max < (rlim_t)n + 64) return 0;
+    rl.rlim_cur = (rlim_t)n + 64;
+    if (setrlimit(RLIMIT_NOFILE, &rl) != 0) return 0;
+  }
+  int *fd = xmallocarray((size_t)n, sizeof *fd), made = 0, res = 1;
+  char name[64];
+  for (; made < n && res == 1; made++) {
+    int f = memfd_create("tilesim-rank", MFD_CLOEXEC);
+    if (f < 0) {
+      res = made == 0 ? 0 : -1;
+      if (res < 0) snprintf(err, errlen, "rank %d: no memory for its copy of %s", made, path);
+      break;
+    }
+    fd[made] = f;
+    size_t off = 0;
+    while (off < len) {
+      ssize_t w = write(f, bytes + off, len - off);
+      if (w <= 0) break;
+      off += (size_t)w;
+    }
+    snprintf(name, sizeof name, "/proc/self/fd/%d", f);
+    if (off < len) {
+      snprintf(err, errlen, "rank %d: no memory for its copy of %s", made, path);
+      res = -1;
+    } else if (!(dlerror(), l->handle[made] = dlopen(name, RTLD_NOW | RTLD_LOCAL))) {
+      if (made == 0 && access("/proc/self/fd", F_OK) != 0) res = 0;   /* no /proc: files */
+      else why_not(err, errlen, made, path, name), res = -1;
+    } else if (find_main(l, made, path, err, errlen) != 0) {
+      res = -1;
+    }
+  }
+  for (int i = 0; i < made; i++) close(fd[i]);
+  free(fd);
+  return res;
+}
+
 loader *loader_new(const char *path, int n, char *err, size_t errlen) {
   size_t len = 0;
   unsigned char *bytes = slurp(path, &len, err, errlen);
@@ -49,6 +115,13 @@ loader *loader_new(const char *path, int n, char *err, size_t errlen) {
   l->n = n;
   l->handle = xcalloc((size_t)n, sizeof *l->handle);
   l->main = xcalloc((size_t)n, sizeof *l->main);
+  int m = load_memfd(l, bytes, len, path, err, errlen);
+  if (m != 0) {
+    free(bytes);
+    if (m > 0) return l;
+    loader_free(l);
+    return NULL;
+  }
   const char *dir = getenv("TMPDIR");
   if (!dir || !*dir) dir = "/tmp";
   char target[4200], why[600];
@@ -71,11 +144,9 @@ loader *loader_new(const char *path, int n, char *err, size_t errlen) {
       snprintf(err, errlen, "rank %d: cannot write its copy of %s in %s (full?)", r, path, dir);
       ok = 0;
     } else if (!l->handle[r]) {
-      const char *e = dlerror();
-      snprintf(err, errlen, "rank %d: cannot load %s: %s", r, path, e ? e : "dlopen failed");
+      why_not(err, errlen, r, path, a.tmp ? a.tmp : target);
       ok = 0;
-    } else if (!(*(void **)&l->main[r] = dlsym(l->handle[r], "main"))) {
-      snprintf(err, errlen, "%s has no main", path);
+    } else if (find_main(l, r, path, err, errlen) != 0) {
       ok = 0;
     }
   }

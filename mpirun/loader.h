@@ -3,10 +3,11 @@
  * privatization).
  *
  * The loader cannot open the same file twice (dlopen would give the copy it
- * has), so each rank's copy is a file of its own, written beside nothing in
- * $TMPDIR (or /tmp), opened with dlopen(RTLD_NOW | RTLD_LOCAL) and removed
- * at once: the mapping stays, no file does, also when a signal ends the
- * loading (util/atomicfile).  The program's references to MPI_* and the
+ * has), so each rank's copy is a file of its own: an anonymous memory file
+ * (memfd_create, opened as /proc/self/fd/N while every copy's is open),
+ * where Linux has them; else a file in $TMPDIR (or /tmp), opened with
+ * dlopen(RTLD_NOW | RTLD_LOCAL) and removed at once: the mapping stays, no
+ * file does, also when a signal ends the loading (util/atomicfile).  The program's references to MPI_* and the
  * runtime (tilesim_mpi.h) bind to what tilesim-mpirun exports; it binds its
  * own names to its own definitions (tilesim-mpicc links with -Bsymbolic). */
 #ifndef TSMPI_LOADER_H

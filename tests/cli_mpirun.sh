@@ -259,8 +259,13 @@ timeout 60 "$RUN" -np 4 "$T/crash" exitafter > "$T/o" 2> "$T/e"; rc=$?
 [ $rc -eq 4 ] && [ ! -s "$T/e" ] && ok || bad "exit(4) after MPI_Finalize: exit $rc, $(cat "$T/e")"
 "$RUN" -np 4 --stack 8M "$T/crash" stack > "$T/o" 2> "$T/e"; rc=$?
 [ $rc -eq 0 ] && ok || bad "--stack 8M: a deep recursion still fails: exit $rc, $(cat "$T/e")"
-# Killed while loading many copies: nothing left.
-"$RUN" -np 4096 "$T/crash" none > /dev/null 2>&1 &
+# With file descriptors for fewer copies than ranks, the copies are files in
+# $TMPDIR, each removed once loaded: the same run, and nothing left; killed
+# while loading many copies, nothing left either.
+(ulimit -n 200; "$RUN" -np 300 "$T/crash" none > "$T/o" 2> "$T/e") && [ ! -s "$T/e" ] && ok \
+  || bad "300 ranks from files: $(cat "$T/e")"
+notemp "300 ranks from files"
+(ulimit -n 1000; exec "$RUN" -np 4096 "$T/crash" none > /dev/null 2>&1) &
 pid=$!
 sleep 0.3
 kill -TERM $pid 2> /dev/null
