@@ -208,8 +208,9 @@ static int check_program(const char *path, const compute_config *cc, char *err, 
 int main(int argc, char **argv) {
   machine_config mc;
   machine_config_init(&mc);
-  mc.sim.warn = stderr;
+  mc.sim.warn = NULL;   /* mp's warnings name mp's tags, not the program's: the summary counts unread messages */
   mc.sim.stack = 1 << 20;
+  mc.name = prog;   /* a long simulated run says how far it has got */
   compute_config cc;
   compute_config_init(&cc);
   const char *stats = NULL;
