@@ -25,6 +25,7 @@
 #include <string.h>
 
 #include "dicom.h"
+#include "strbuf.h"
 #include "xmem.h"
 
 #define MODALITY DICOM_TAG(0x0008, 0x0060)
@@ -125,42 +126,6 @@ int rtstruct_ds(const char *s, size_t len, double *v) {
 
 /* ---------------------------------------------------------------- messages */
 
-typedef struct {
-  char *buf;
-  size_t len, cap;
-} sbuf;
-
-static void sb_vadd(sbuf *b, const char *fmt, va_list ap) {
-  va_list aq;
-  va_copy(aq, ap);
-  int k = vsnprintf(NULL, 0, fmt, aq);
-  va_end(aq);
-  if (k < 0) return;
-  if (b->len + (size_t)k + 1 > b->cap) {
-    b->cap = (b->len + (size_t)k + 1) * 2;
-    b->buf = xrealloc(b->buf, b->cap);
-  }
-  vsnprintf(b->buf + b->len, b->cap - b->len, fmt, ap);
-  b->len += (size_t)k;
-}
-
-static void sb_add(sbuf *b, const char *fmt, ...) {
-  va_list ap;
-  va_start(ap, fmt);
-  sb_vadd(b, fmt, ap);
-  va_end(ap);
-}
-
-static void sb_raw(sbuf *b, const char *s, size_t n) {
-  if (b->len + n + 1 > b->cap) {
-    b->cap = (b->len + n + 1) * 2;
-    b->buf = xrealloc(b->buf, b->cap);
-  }
-  memcpy(b->buf + b->len, s, n);
-  b->len += n;
-  b->buf[b->len] = 0;
-}
-
 /* Up to 40 bytes of a value as it may be shown in a message. */
 static const char *shown(const char *s, size_t len, char *buf, size_t cap) {
   size_t j = 0;
@@ -185,7 +150,7 @@ typedef struct {
   const char *name;
   char *err;
   size_t errlen;
-  sbuf warn;
+  strbuf warn;
   int nwarn;           /* file warnings: the first few are shown, the rest counted */
   struct numbered *by_number;   /* the ROIs sorted by ROI number */
 } reader;
@@ -261,24 +226,24 @@ static int sequence(reader *r, int node) {
 }
 
 static char *roi_error(const reader *r, const rtstruct_roi *roi, size_t off, const char *fmt, ...) {
-  sbuf b = {0};
+  strbuf b = {0};
   va_list ap;
-  sb_add(&b, "%s: byte %zu: ROI %d '%s', ", r->name, off, roi->number, roi->name);
+  strbuf_add(&b, "%s: byte %zu: ROI %d '%s', ", r->name, off, roi->number, roi->name);
   va_start(ap, fmt);
-  sb_vadd(&b, fmt, ap);
+  strbuf_vadd(&b, fmt, ap);
   va_end(ap);
   return b.buf;
 }
 
 static void roi_warn(const reader *r, rtstruct_roi *roi, const char *fmt, ...) {
-  sbuf b = {roi->warnings, roi->warnings ? strlen(roi->warnings) : 0, 0};
+  strbuf b = {roi->warnings, roi->warnings ? strlen(roi->warnings) : 0, 0};
   b.cap = b.len + 1;
   va_list ap;
-  sb_add(&b, "%s: ROI %d '%s': ", r->name, roi->number, roi->name);
+  strbuf_add(&b, "%s: ROI %d '%s': ", r->name, roi->number, roi->name);
   va_start(ap, fmt);
-  sb_vadd(&b, fmt, ap);
+  strbuf_vadd(&b, fmt, ap);
   va_end(ap);
-  sb_raw(&b, "\n", 1);
+  strbuf_raw(&b, "\n", 1);
   roi->warnings = b.buf;
 }
 
@@ -502,10 +467,10 @@ static void read_contours(reader *r, rtstruct_roi *roi, int cseq) {
     roi->nc++;
   }
   if (kinds) {
-    sbuf b = {0};
+    strbuf b = {0};
     for (int j = 0; j < kinds; j++) {
       char sh[80];
-      sb_add(&b, "%s%d %s", j == 0 ? "" : j + 1 == kinds ? " and " : ", ", nkind[j],
+      strbuf_add(&b, "%s%d %s", j == 0 ? "" : j + 1 == kinds ? " and " : ", ", nkind[j],
              shown(kind[j], strlen(kind[j]), sh, sizeof sh));
     }
     roi_warn(r, roi, "skipped %s contour%s; only CLOSED_PLANAR contours are tiled", b.buf,
@@ -519,11 +484,11 @@ enum { FILE_WARNINGS = 10 };   /* shown; the rest are counted */
 static void file_warn(reader *r, size_t off, const char *fmt, ...) {
   va_list ap;
   if (++r->nwarn > FILE_WARNINGS) return;
-  sb_add(&r->warn, "%s: byte %zu: ", r->name, off);
+  strbuf_add(&r->warn, "%s: byte %zu: ", r->name, off);
   va_start(ap, fmt);
-  sb_vadd(&r->warn, fmt, ap);
+  strbuf_vadd(&r->warn, fmt, ap);
   va_end(ap);
-  sb_raw(&r->warn, "\n", 1);
+  strbuf_raw(&r->warn, "\n", 1);
 }
 
 static int read_set(reader *r, rtstruct *s) {
@@ -631,7 +596,7 @@ static int read_set(reader *r, rtstruct *s) {
     if (cs >= 0) read_contours(r, roi, cs);
   }
   if (r->nwarn > FILE_WARNINGS)
-    sb_add(&r->warn, "%s: and %d more warnings like these\n", r->name, r->nwarn - FILE_WARNINGS);
+    strbuf_add(&r->warn, "%s: and %d more warnings like these\n", r->name, r->nwarn - FILE_WARNINGS);
   for (int i = 0; i < s->nroi; i++) finish_roi(r, &s->roi[i]);
   return 0;
 }
@@ -722,10 +687,10 @@ int rtstruct_find(const rtstruct *s, const char *key, char *err, size_t errlen) 
   if (key[0] && *end == 0 && errno == 0 && key[0] != ' ')
     for (int i = 0; i < s->nroi; i++)
       if (s->roi[i].number == v) return i;
-  sbuf b = {0};
+  strbuf b = {0};
   for (int i = 0; i < s->nroi && b.len < 300; i++)
-    sb_add(&b, "%s%d '%s'", i ? ", " : "", s->roi[i].number, s->roi[i].name);
-  if (b.len >= 300) sb_add(&b, ", ...");
+    strbuf_add(&b, "%s%d '%s'", i ? ", " : "", s->roi[i].number, s->roi[i].name);
+  if (b.len >= 300) strbuf_add(&b, ", ...");
   snprintf(err, errlen, "%s: no ROI named or numbered '%s' (the ROIs: %s)", s->name,
            shown(key, strlen(key), vb, sizeof vb), b.buf ? b.buf : "none");
   free(b.buf);
@@ -767,18 +732,18 @@ static void clean(const char *s, char *buf, size_t cap) {
 
 char *rtstruct_roi_text(const rtstruct *s, int ri, size_t *len) {
   const rtstruct_roi *roi = &s->roi[ri];
-  sbuf b = {0};
+  strbuf b = {0};
   char file[512], type[80];
   clean(s->name, file, sizeof file);
   clean(roi->type, type, sizeof type);
-  sb_add(&b, "# ROI %d '%s'%s%s%s of %s: %d closed planar contours, patient LPS mm\n", roi->number,
+  strbuf_add(&b, "# ROI %d '%s'%s%s%s of %s: %d closed planar contours, patient LPS mm\n", roi->number,
          roi->name, type[0] ? " (" : "", type, type[0] ? ")" : "", file, roi->nc);
   if (roi->plane == RTSTRUCT_AXIAL)
-    sb_add(&b, "# axial contours, sorted by z; each point is x y\n");
+    strbuf_add(&b, "# axial contours, sorted by z; each point is x y\n");
   else if (roi->plane == RTSTRUCT_SAGITTAL)
-    sb_add(&b, "# sagittal contours turned into z: each point is patient y z, each plane patient x\n");
+    strbuf_add(&b, "# sagittal contours turned into z: each point is patient y z, each plane patient x\n");
   else
-    sb_add(&b, "# coronal contours turned into z: each point is patient z x, each plane patient y\n");
+    strbuf_add(&b, "# coronal contours turned into z: each point is patient z x, each plane patient y\n");
   /* The numbers as the file wrote them (the same doubles: both readers
    * round correctly), in the frame's order. */
   int iu = roi->plane == RTSTRUCT_AXIAL ? 0 : roi->plane == RTSTRUCT_SAGITTAL ? 1 : 2;
@@ -787,15 +752,15 @@ char *rtstruct_roi_text(const rtstruct *s, int ri, size_t *len) {
   for (int i = 0; i < roi->nc; i++) {
     const rtstruct_contour *c = &roi->c[i];
     int k = snprintf(line, sizeof line, "C %d ", c->n);
-    sb_raw(&b, line, (size_t)k);
-    sb_raw(&b, c->txt + c->tok[ih], c->tok[ih + 1] - c->tok[ih]);
-    sb_raw(&b, "\n", 1);
+    strbuf_raw(&b, line, (size_t)k);
+    strbuf_raw(&b, c->txt + c->tok[ih], c->tok[ih + 1] - c->tok[ih]);
+    strbuf_raw(&b, "\n", 1);
     for (int j = 0; j < c->n; j++) {
       const uint32_t *t = c->tok + 3 * j;
-      sb_raw(&b, c->txt + t[iu], t[iu + 1] - t[iu]);
-      sb_raw(&b, " ", 1);
-      sb_raw(&b, c->txt + t[iv], t[iv + 1] - t[iv]);
-      sb_raw(&b, "\n", 1);
+      strbuf_raw(&b, c->txt + t[iu], t[iu + 1] - t[iu]);
+      strbuf_raw(&b, " ", 1);
+      strbuf_raw(&b, c->txt + t[iv], t[iv + 1] - t[iv]);
+      strbuf_raw(&b, "\n", 1);
     }
   }
   *len = b.len;
@@ -809,23 +774,23 @@ static const char sentinel[] = "\x01rtstruct\x01";
  * contour item k[, point j]" (with_byte), else "contour item k[, point j]",
  * or "point j" alone when it is a point of contour `cur`.  Returns the
  * contour's index (-1 for a comment line). */
-static int locate(const rtstruct_roi *roi, long line, sbuf *b, int with_byte, int cur, const char *file) {
+static int locate(const rtstruct_roi *roi, long line, strbuf *b, int with_byte, int cur, const char *file) {
   long at = HEADER_LINES + 1;
   for (int i = 0; i < roi->nc; i++) {
     const rtstruct_contour *c = &roi->c[i];
     if (line >= at && line <= at + c->n) {
       long j = line - at;
-      if (with_byte) sb_add(b, "%s: byte %zu: ROI %d '%s', ", file, j ? c->poff[j - 1] : c->offset,
+      if (with_byte) strbuf_add(b, "%s: byte %zu: ROI %d '%s', ", file, j ? c->poff[j - 1] : c->offset,
                             roi->number, roi->name);
-      if (j && i == cur) sb_add(b, "point %ld", j);
-      else if (j) sb_add(b, "contour item %d, point %ld", c->item, j);
-      else sb_add(b, "contour item %d", c->item);
+      if (j && i == cur) strbuf_add(b, "point %ld", j);
+      else if (j) strbuf_add(b, "contour item %d, point %ld", c->item, j);
+      else strbuf_add(b, "contour item %d", c->item);
       return i;
     }
     at += c->n + 1;
   }
-  if (with_byte) sb_add(b, "%s: ROI %d '%s', ", file, roi->number, roi->name);
-  sb_add(b, "line %ld of its stack", line);
+  if (with_byte) strbuf_add(b, "%s: ROI %d '%s', ", file, roi->number, roi->name);
+  strbuf_add(b, "line %ld of its stack", line);
   return -1;
 }
 
@@ -834,10 +799,10 @@ static int digit(char c) { return c >= '0' && c <= '9'; }
 /* A message with `name` and its line numbers rewritten; within a line,
  * points of the contour its prefix names are "point j". */
 static char *rewrite(const rtstruct *s, const rtstruct_roi *roi, const char *name, const char *msg) {
-  sbuf b = {0};
+  strbuf b = {0};
   size_t sl = strlen(name);
   int cur = -1;
-  sb_raw(&b, "", 0);
+  strbuf_raw(&b, "", 0);
   for (const char *p = msg; *p;) {
     if (sl && strncmp(p, name, sl) == 0) {
       const char *q = p + sl;
@@ -845,9 +810,9 @@ static char *rewrite(const rtstruct *s, const rtstruct_roi *roi, const char *nam
         long line = strtol(q + 1, (char **)&q, 10);
         if (*q == ':') q++;
         cur = locate(roi, line, &b, 1, -1, s->name);
-        sb_raw(&b, ":", 1);
+        strbuf_raw(&b, ":", 1);
       } else {
-        sb_add(&b, "%s: ROI %d '%s'", s->name, roi->number, roi->name);
+        strbuf_add(&b, "%s: ROI %d '%s'", s->name, roi->number, roi->name);
       }
       p = q;
     } else if (strncmp(p, "line ", 5) == 0 && digit(p[5]) && (p == msg || !((p[-1] >= 'a' && p[-1] <= 'z') ||
@@ -858,7 +823,7 @@ static char *rewrite(const rtstruct *s, const rtstruct_roi *roi, const char *nam
       p = q;
     } else {
       if (*p == '\n') cur = -1;
-      sb_raw(&b, p, 1);
+      strbuf_raw(&b, p, 1);
       p++;
     }
   }

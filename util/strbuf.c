@@ -1,0 +1,39 @@
+/* strbuf.c -- a growing text buffer (strbuf.h). */
+#include "strbuf.h"
+
+#include <stdio.h>
+#include <string.h>
+
+#include "xmem.h"
+
+static void room(strbuf *b, size_t n) {
+  if (b->len + n + 1 > b->cap) {
+    b->cap = (b->len + n + 1) * 2;
+    b->buf = xrealloc(b->buf, b->cap);
+  }
+}
+
+void strbuf_vadd(strbuf *b, const char *fmt, va_list ap) {
+  va_list aq;
+  va_copy(aq, ap);
+  int k = vsnprintf(NULL, 0, fmt, aq);
+  va_end(aq);
+  if (k < 0) return;
+  room(b, (size_t)k);
+  vsnprintf(b->buf + b->len, b->cap - b->len, fmt, ap);
+  b->len += (size_t)k;
+}
+
+void strbuf_add(strbuf *b, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  strbuf_vadd(b, fmt, ap);
+  va_end(ap);
+}
+
+void strbuf_raw(strbuf *b, const char *s, size_t n) {
+  room(b, n);
+  if (n) memcpy(b->buf + b->len, s, n);
+  b->len += n;
+  b->buf[b->len] = 0;
+}

@@ -1,0 +1,26 @@
+/* strbuf.h -- a growing text buffer for messages: formatted and raw appends.
+ *
+ * A zeroed strbuf is empty (buf NULL until the first append); after any
+ * append buf holds len bytes and a terminating NUL.  The caller owns buf and
+ * frees it with free(). */
+#ifndef STRBUF_H
+#define STRBUF_H
+
+#include <stdarg.h>
+#include <stddef.h>
+
+typedef struct {
+  char *buf;
+  size_t len, cap;
+} strbuf;
+
+void strbuf_vadd(strbuf *b, const char *fmt, va_list ap);
+void strbuf_add(strbuf *b, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+/* n bytes of s as they are. */
+void strbuf_raw(strbuf *b, const char *s, size_t n);
+
+#endif
