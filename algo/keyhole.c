@@ -294,7 +294,7 @@ int keyhole_repair(const vec2 *p, int n, keyhole_split *out) {
 
   /* Step 3: channels (all points collinear) and the loops kept. */
   char *flat = xcalloc((size_t)nl + 1, 1);
-  int *cnt = xcalloc((size_t)ng + 1, sizeof *cnt), kept = 0, ok = 1;
+  int kept = 0, ok = 1;
   for (int l = 0; l < nl; l++) {
     const int *v = loopidx + lstart[l];
     int m = lstart[l + 1] - lstart[l];
@@ -302,41 +302,53 @@ int keyhole_repair(const vec2 *p, int n, keyhole_split *out) {
     for (int k = 2; k < m && flat[l]; k++)
       if (exact_orient(P.pt[v[0]], P.pt[v[1]], P.pt[v[k]]) != 0) flat[l] = 0;
     if (m < 2 || (flat[l] && m != 2)) ok = 0;   /* step 1 leaves no collinear loop of 3 points */
-    for (int k = 0; k < m; k++) cnt[gid[v[k]]]++;
     kept += !flat[l];
   }
-  if (kept < 2) ok = 0;
+  if (kept < 1 || kept == nl) ok = 0;   /* nothing of zero width to drop */
   int *onloop = xcalloc((size_t)ng + 1, sizeof *onloop);   /* a point of a loop kept */
   for (int l = 0; l < nl; l++)
     if (!flat[l])
       for (int j = lstart[l]; j < lstart[l + 1]; j++) onloop[gid[loopidx[j]]] = 1;
   int *up = xmallocarray((size_t)nl + 1, sizeof *up), *piece_at = xmallocarray((size_t)ng + 1, sizeof *piece_at);
-  int first_flat = -1;
+  double *plen = xcalloc((size_t)nl + 1, sizeof *plen);
   for (int l = 0; l < nl; l++) up[l] = l;
   for (int g = 0; g < ng; g++) piece_at[g] = -1;
-  double length = 0;
   for (int l = 0; l < nl && ok; l++) {
     if (!flat[l]) continue;
     const int *v = loopidx + lstart[l];
-    int m = lstart[l + 1] - lstart[l], shared = 0;
-    for (int k = 0; k < m; k++) shared += cnt[gid[v[k]]] >= 2;
-    if (shared < 2) ok = 0;   /* a spike: it hangs off one point */
-    if (first_flat < 0 && (onloop[gid[v[0]]] || onloop[gid[v[1]]])) first_flat = l;
+    int m = lstart[l + 1] - lstart[l];
     /* Its length: the collinear loop's extent (walked out and back). */
     int lo = 0, hi = 0;
     for (int k = 1; k < m; k++) {
       if (exact_lex(P.pt[v[k]], P.pt[v[lo]]) < 0) lo = k;
       if (exact_lex(P.pt[v[k]], P.pt[v[hi]]) > 0) hi = k;
     }
-    length += hypot(P.pt[v[hi]].x - P.pt[v[lo]].x, P.pt[v[hi]].y - P.pt[v[lo]].y);
-    /* One channel: pieces that meet off the loops (channels that meet at
-     * a loop's point are two).  up[] joins pieces (by loop index) through
-     * the first piece seen at each point off the loops. */
+    plen[l] = hypot(P.pt[v[hi]].x - P.pt[v[lo]].x, P.pt[v[hi]].y - P.pt[v[lo]].y);
+    /* One piece of zero width: pieces that meet off the loops (pieces that
+     * meet at a loop's point are two).  up[] joins pieces (by loop index)
+     * through the first piece seen at each point off the loops. */
     for (int k = 0; k < 2; k++) {
       int g = gid[v[k]];
       if (onloop[g]) continue;
       if (piece_at[g] < 0) piece_at[g] = l;
       else up[find_root(up, l)] = find_root(up, piece_at[g]);
+    }
+  }
+  /* Each connected piece is a channel when it meets the loops at two or
+   * more points, a spur when it hangs off one (walked out and back from
+   * there): both enclose no area and are dropped alike.  touch[r]: the
+   * first loop point piece r meets (-1 none), -2 when it meets two. */
+  int *touch = xmallocarray((size_t)nl + 1, sizeof *touch), first_channel = -1, first_spur = -1;
+  for (int l = 0; l < nl; l++) touch[l] = -1;
+  for (int l = 0; l < nl && ok; l++) {
+    if (!flat[l]) continue;
+    const int *v = loopidx + lstart[l];
+    int r = find_root(up, l);
+    for (int k = 0; k < 2; k++) {
+      int g = gid[v[k]];
+      if (!onloop[g] || touch[r] == -2) continue;
+      if (touch[r] == -1) touch[r] = g;
+      else if (touch[r] != g) touch[r] = -2;
     }
   }
 
@@ -365,14 +377,31 @@ int keyhole_repair(const vec2 *p, int n, keyhole_split *out) {
     if (ok && !channels_apart(&P, loopidx, lstart, flat, nl)) ok = 0;
   }
   if (ok) {
-    for (int l = 0; l < nl; l++) out->channels += flat[l] && find_root(up, l) == l;
-    out->length = length;
-    int a = loopidx[lstart[first_flat]], b = loopidx[lstart[first_flat] + 1];
-    out->at = P.pt[onloop[gid[a]] ? a : b];
+    for (int l = 0; l < nl; l++) {
+      if (!flat[l]) continue;
+      int r = find_root(up, l), channel = touch[r] == -2;
+      const int *v = loopidx + lstart[l];
+      int meets = onloop[gid[v[0]]] || onloop[gid[v[1]]];
+      if (channel) {
+        out->channels += r == l;
+        out->length += plen[l];
+        if (first_channel < 0 && meets) first_channel = l;
+      } else {
+        out->spurs += r == l;
+        out->spur_length += plen[l];
+        if (first_spur < 0 && meets) first_spur = l;
+      }
+    }
+    for (int w = 0; w < 2; w++) {
+      int f = w ? first_spur : first_channel;
+      if (f < 0) continue;
+      int a = loopidx[lstart[f]], b = loopidx[lstart[f] + 1];
+      *(w ? &out->spur_at : &out->at) = P.pt[onloop[gid[a]] ? a : b];
+    }
   } else {
     keyhole_free(out);
   }
-  free(flat), free(cnt), free(up), free(piece_at), free(onloop), free(gid), free(loopidx), free(lstart);
+  free(flat), free(up), free(piece_at), free(plen), free(touch), free(onloop), free(gid), free(loopidx), free(lstart);
   free(P.pt), free(P.src);
   return ok;
 }

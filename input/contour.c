@@ -18,14 +18,27 @@
 
 #include "crossing.h"
 #include "keyhole.h"
+#include "strbuf.h"
 #include "xmem.h"
+
+/* A contour the reader cannot use (too few points, collinear, crossing
+ * itself and no keyhole): named, then refused with the others or dropped. */
+typedef struct {
+  int line, points;
+  char *why;         /* "the contour crosses itself: ..." */
+} bad_contour;
 
 typedef struct {
   const char *name;
   char *err;
   size_t errlen;
-  FILE *notes;
   const char *prefix;
+  int flags;
+  strbuf out;        /* the notes of the contours accepted so far, in order */
+  strbuf cur;        /* the current contour's notes, until it is accepted */
+  strbuf *to;        /* where note() writes */
+  bad_contour *bad;
+  int nbad, capbad;
 } reader;
 
 static int fail(reader *r, int line, const char *fmt, ...) {
@@ -43,12 +56,12 @@ static int fail(reader *r, int line, const char *fmt, ...) {
 
 static void note(reader *r, int line, const char *fmt, ...) {
   va_list ap;
-  if (!r->notes) return;
-  fprintf(r->notes, "%s: %s:%d: ", r->prefix, r->name, line);
+  if (line > 0) strbuf_add(r->to, "%s: %s:%d: ", r->prefix, r->name, line);
+  else strbuf_add(r->to, "%s: %s: ", r->prefix, r->name);
   va_start(ap, fmt);
-  vfprintf(r->notes, fmt, ap);
+  strbuf_vadd(r->to, fmt, ap);
   va_end(ap);
-  fputc('\n', r->notes);
+  strbuf_raw(r->to, "\n", 1);
 }
 
 /* A token as it may be shown in a message: printable, at most 40 bytes. */
@@ -119,17 +132,32 @@ static void raw_push(raw *c, vec2 p, int line) {
   c->ptline[c->have++] = line;
 }
 
+/* A bad contour: kept with its reason, to be named with the others. */
+static int bad(reader *r, const raw *c, int points, const char *fmt, ...) {
+  va_list ap;
+  strbuf why = {0};
+  va_start(ap, fmt);
+  strbuf_vadd(&why, fmt, ap);
+  va_end(ap);
+  if (r->nbad == r->capbad) {
+    r->capbad = r->capbad ? 2 * r->capbad : 8;
+    r->bad = xreallocarray(r->bad, (size_t)r->capbad, sizeof *r->bad);
+  }
+  r->bad[r->nbad++] = (bad_contour){c->line, points, why.buf};
+  return 1;
+}
+
 /* A contour that crosses, touches or runs back over itself (issue 14, item
  * 10): the first offending pair of segments the sweep finds (algo/crossing.h,
  * exact, O(n log n)), each named by the lines of its two points. */
-static int refuse_crossing(reader *r, const raw *c, int k, const crossing_hit *hp) {
+static int refuse_crossing(reader *r, const raw *c, int k, int points, const crossing_hit *hp) {
   crossing_hit h = *hp;
   int a = h.seg[0], b = h.seg[1];
-  return fail(r, c->line,
-              "the contour crosses itself: the segment from line %d to line %d %s the segment "
-              "from line %d to line %d (%.17g %.17g)",
-              c->ptline[a], c->ptline[(a + 1) % k], crossing_verb(h.kind), c->ptline[b],
-              c->ptline[(b + 1) % k], h.at.x, h.at.y);
+  return bad(r, c, points,
+             "the contour crosses itself: the segment from line %d to line %d %s the segment "
+             "from line %d to line %d (%.17g %.17g)",
+             c->ptline[a], c->ptline[(a + 1) % k], crossing_verb(h.kind), c->ptline[b],
+             c->ptline[(b + 1) % k], h.at.x, h.at.y);
 }
 
 static contour *grow(contour **cs, int *ncs, int *capcs) {
@@ -168,49 +196,83 @@ static void split_keyhole(reader *r, const raw *c, const keyhole_split *ks, cont
   if (ks->channels == 1)
     note(r, c->line, "keyhole: the contour split into %d loops at (%.17g %.17g), a channel of length %.17g dropped",
          ks->nloops, ks->at.x, ks->at.y, ks->length);
-  else
+  else if (ks->channels > 1)
     note(r, c->line, "keyhole: the contour split into %d loops at (%.17g %.17g) and elsewhere, %d channels of total "
          "length %.17g dropped", ks->nloops, ks->at.x, ks->at.y, ks->channels, ks->length);
+  if (ks->spurs == 1)
+    note(r, c->line, "dropped a zero-width spur (walked out and back along itself) of length %.17g at (%.17g %.17g)",
+         ks->spur_length, ks->spur_at.x, ks->spur_at.y);
+  else if (ks->spurs > 1)
+    note(r, c->line, "dropped %d zero-width spurs (walked out and back along themselves) of total length %.17g, "
+         "the first at (%.17g %.17g)", ks->spurs, ks->spur_length, ks->spur_at.x, ks->spur_at.y);
+}
+
+/* Repairs of one kind in one contour: each in full with CONTOUR_VERBOSE,
+ * else one line at the contour's header that counts them and names the
+ * first (a single one is named in full either way). */
+typedef struct {
+  int count, line;
+  vec2 p;
+} tally;
+
+static void tally_add(reader *r, tally *t, int line, vec2 p, const char *one) {
+  if (r->flags & CONTOUR_VERBOSE) note(r, line, one, p.x, p.y);
+  if (t->count++ == 0) t->line = line, t->p = p;
+}
+
+static void tally_note(reader *r, const tally *t, int header, const char *one, const char *many) {
+  if (t->count == 0 || (r->flags & CONTOUR_VERBOSE)) return;
+  if (t->count == 1) note(r, t->line, one, t->p.x, t->p.y);
+  else note(r, header, many, t->count, t->line, t->p.x, t->p.y);
 }
 
 /* Repair and check one contour; on success append it (or, a keyhole
- * contour, its loops) to *cs. */
-static int finish(reader *r, raw *c, int flags, contour **cs, int *ncs, int *capcs, int *reversed) {
-  int n = c->have, k = 0;
+ * contour, its loops) to *cs.  A contour that cannot be used is kept in
+ * r->bad (returns 1) and the reading goes on. */
+static int finish(reader *r, raw *c, contour **cs, int *ncs, int *capcs, int *reversed) {
+  int n = c->have, k = 0, rc = 0;
+  tally dup = {0}, closing = {0};
+  static const char dup_one[] = "dropped a duplicate of the point before (%.17g %.17g)";
+  static const char close_one[] = "dropped the repeated closing point (%.17g %.17g)";
+  r->cur.len = 0;
+  r->to = &r->cur;
   /* Consecutive duplicates, then a repeated closing point. */
   for (int i = 0; i < n; i++) {
     if (k > 0 && c->pt[i].x == c->pt[k - 1].x && c->pt[i].y == c->pt[k - 1].y) {
-      note(r, c->ptline[i], "dropped a duplicate of the point before (%.17g %.17g)",
-           c->pt[i].x, c->pt[i].y);
+      tally_add(r, &dup, c->ptline[i], c->pt[i], dup_one);
       continue;
     }
     c->pt[k] = c->pt[i];
     c->ptline[k++] = c->ptline[i];
   }
+  tally_note(r, &dup, c->line, dup_one, "dropped %d duplicates of the point before (the first at line %d: %.17g %.17g)");
   while (k > 1 && c->pt[k - 1].x == c->pt[0].x && c->pt[k - 1].y == c->pt[0].y) {
-    note(r, c->ptline[k - 1], "dropped the repeated closing point (%.17g %.17g)",
-         c->pt[k - 1].x, c->pt[k - 1].y);
+    tally_add(r, &closing, c->ptline[k - 1], c->pt[k - 1], close_one);
     k--;
   }
-  if (k < 3)
-    return fail(r, c->line, "contour has %d distinct point%s, needs at least 3 (z=%.17g)",
-                k, k == 1 ? "" : "s", c->z);
-  if (geom_collinear(c->pt, k))
-    return fail(r, c->line, "all %d points of the contour are collinear (z=%.17g)", k, c->z);
-  crossing_poly poly = {c->pt, k};
+  tally_note(r, &closing, c->line, close_one,
+             "dropped %d repeated closing points (the last at line %d: %.17g %.17g)");
   crossing_hit h;
-  if (crossing_find(&poly, 1, &h)) {
-    keyhole_split ks;
-    if ((flags & CONTOUR_NO_KEYHOLES) || !keyhole_repair(c->pt, k, &ks)) return refuse_crossing(r, c, k, &h);
+  keyhole_split ks;
+  if (k < 3)
+    rc = bad(r, c, n, "contour has %d distinct point%s, needs at least 3 (z=%.17g)", k, k == 1 ? "" : "s", c->z);
+  else if (geom_collinear(c->pt, k))
+    rc = bad(r, c, n, "all %d points of the contour are collinear (z=%.17g)", k, c->z);
+  else if (!crossing_find(&(crossing_poly){c->pt, k}, 1, &h)) {
+    take(grow(cs, ncs, capcs), xreallocarray(c->pt, (size_t)k, sizeof *c->pt), k, c->z, c->line, reversed);
+    c->pt = NULL;
+  } else if ((r->flags & CONTOUR_NO_KEYHOLES) || !keyhole_repair(c->pt, k, &ks)) {
+    rc = refuse_crossing(r, c, k, n, &h);
+  } else {
     split_keyhole(r, c, &ks, cs, ncs, capcs, reversed);
     keyhole_free(&ks);
-    free(c->pt);
-  } else {
-    take(grow(cs, ncs, capcs), xreallocarray(c->pt, (size_t)k, sizeof *c->pt), k, c->z, c->line, reversed);
   }
+  r->to = &r->out;
+  if (rc == 0 && r->cur.len) strbuf_raw(&r->out, r->cur.buf, r->cur.len);
+  free(c->pt);
   free(c->ptline);
   memset(c, 0, sizeof *c);
-  return 0;
+  return rc;
 }
 
 static int by_z(const void *a, const void *b) {
@@ -279,8 +341,50 @@ static int group_slices(reader *r, contour *cs, int n) {
   return nslices;
 }
 
+/* The bad contours, in file order: refused, each named on a line of its
+ * own and then one summary (as many lines as err holds; the summary says
+ * how many were left out), or with CONTOUR_SKIP_BAD dropped with a note
+ * each and one that counts them.  0 when the reading goes on. */
+static int bad_contours(reader *r, int nread, long points) {
+  long badpts = 0;
+  for (int i = 0; i < r->nbad; i++) badpts += r->bad[i].points;
+  if (r->flags & CONTOUR_SKIP_BAD) {
+    for (int i = 0; i < r->nbad; i++) note(r, r->bad[i].line, "dropped, it cannot be tiled: %s", r->bad[i].why);
+    note(r, 0, "--skip-bad dropped %d bad contour%s of %d (%ld of %ld points); the rest are tiled", r->nbad,
+         r->nbad == 1 ? "" : "s", nread, badpts, points);
+    return 0;
+  }
+  if (r->nbad == 1)
+    return fail(r, r->bad[0].line, "%s; --skip-bad drops such a contour and tiles the rest", r->bad[0].why);
+  char sum[300];
+  strbuf b = {0};
+  int shown_ = 0;
+  for (; shown_ < r->nbad; shown_++) {
+    size_t at = b.len;
+    strbuf_add(&b, "%s:%d: %s\n", r->name, r->bad[shown_].line, r->bad[shown_].why);
+    snprintf(sum, sizeof sum, "%d of %d contours cannot be tiled (%ld of %ld points)%s", r->nbad, nread,
+             badpts, points, shown_ + 1 < r->nbad ? ", the first 1000000000 named above" : "");
+    if (b.len + strlen(r->name) + strlen(sum) + 80 >= r->errlen) {
+      b.len = at;
+      break;
+    }
+  }
+  if (shown_ == r->nbad)
+    snprintf(sum, sizeof sum, "%d of %d contours cannot be tiled (%ld of %ld points), each named above", r->nbad,
+             nread, badpts, points);
+  else
+    snprintf(sum, sizeof sum, "%d of %d contours cannot be tiled (%ld of %ld points), the first %d named above",
+             r->nbad, nread, badpts, points, shown_);
+  strbuf_add(&b, "%s: %s; --skip-bad drops them and tiles the rest", r->name, sum);
+  snprintf(r->err, r->errlen, "%s", b.buf);
+  free(b.buf);
+  return -1;
+}
+
 int contour_stack_pairs(const contour_stack *s, const char *name, char *err, size_t errlen) {
-  reader rd = {name, err, errlen, NULL, NULL};
+  reader rd;
+  memset(&rd, 0, sizeof rd);
+  rd.name = name, rd.err = err, rd.errlen = errlen;
   const contour *cs = s->c, *bad = NULL;
   int n = s->n;
   /* Two contours on one slice: report the later one in file order, naming
@@ -319,14 +423,15 @@ int contour_parse_flags(const char *text, size_t len, const char *name, int flag
                         contour_stack *out, FILE *notes, const char *prefix,
                         char *err, size_t errlen) {
   /* Notes are held back and shown only if the file is accepted: a rejected
-   * file gets its one-line error and nothing else. */
-  char *held = NULL;
-  size_t heldlen = 0;
-  FILE *hold = notes ? open_memstream(&held, &heldlen) : NULL;
-  reader rd = {name, err, errlen, hold, prefix ? prefix : "tilesim"};
+   * file gets its error and nothing else. */
+  reader rd;
+  memset(&rd, 0, sizeof rd);
+  rd.name = name, rd.err = err, rd.errlen = errlen, rd.prefix = prefix ? prefix : "tilesim", rd.flags = flags;
+  rd.to = &rd.out;
   reader *r = &rd;
   contour *cs = NULL;
-  int ncs = 0, capcs = 0, line = 0, reversed = 0, rc = -1, last_want = 0, last_line = 0;
+  int ncs = 0, capcs = 0, line = 0, reversed = 0, rc = -1, last_want = 0, last_line = 0, nread = 0;
+  long points = 0;
   raw cur = {0};
   int open = 0;   /* reading the points of `cur` */
   char vb[200];
@@ -368,7 +473,7 @@ int contour_parse_flags(const char *text, size_t len, const char *name, int flag
       goto done;
     }
     if (!open && !is_header) {
-      if (ncs > 0)
+      if (nread > 0)
         fail(r, line, "more point lines than the %d announced at line %d (%s)",
              last_want, last_line, shown(s, sl, vb, sizeof vb));
       else
@@ -425,13 +530,20 @@ int contour_parse_flags(const char *text, size_t len, const char *name, int flag
     if (cur.have == cur.want) {
       last_want = cur.want;
       last_line = cur.line;
-      if (finish(r, &cur, flags, &cs, &ncs, &capcs, &reversed) != 0) goto done;
+      nread++;
+      points += cur.have;
+      finish(r, &cur, &cs, &ncs, &capcs, &reversed);
       open = 0;
     }
   }
   if (open) {
     fail(r, line, "the contour at line %d announced %d points but has %d (end of file)",
          cur.line, cur.want, cur.have);
+    goto done;
+  }
+  if (r->nbad && bad_contours(r, nread, points) != 0) goto done;
+  if (ncs == 0 && nread > 0) {
+    fail(r, 0, "no contours left to tile: all %d are bad and --skip-bad dropped them", nread);
     goto done;
   }
   if (ncs == 0) {
@@ -450,9 +562,8 @@ int contour_parse_flags(const char *text, size_t len, const char *name, int flag
   }
   /* With several contours on a slice, surface/ orients them by nesting and
    * reports what it changed. */
-  if (reversed && hold && nslices == ncs)
-    fprintf(hold, "%s: %s: %d of %d contours ran clockwise; reversed to counter-clockwise\n",
-            r->prefix, name, reversed, ncs);
+  if (reversed && nslices == ncs)
+    note(r, 0, "%d of %d contours ran clockwise; reversed to counter-clockwise", reversed, ncs);
   out->n = ncs;
   out->c = cs;
   out->nslices = nslices;
@@ -462,11 +573,11 @@ done:
   free(cur.pt);
   free(cur.ptline);
   if (rc != 0) free_contours(cs, ncs);
-  if (hold) {
-    fclose(hold);
-    if (rc == 0 && heldlen) fwrite(held, 1, heldlen, notes);
-    free(held);
-  }
+  if (rc == 0 && notes && r->out.len) fwrite(r->out.buf, 1, r->out.len, notes);
+  free(r->out.buf);
+  free(r->cur.buf);
+  for (int i = 0; i < r->nbad; i++) free(r->bad[i].why);
+  free(r->bad);
   return rc;
 }
 

@@ -40,10 +40,25 @@ enum { CONTOUR_MAX_LINE = 4096 };        /* longer lines are rejected */
 enum { CONTOUR_MAX_POINTS = 10000000 };  /* per contour */
 
 /* Read the stack in `path` ("-" is standard input).  Repairs (a repeated
- * closing point, consecutive duplicate points, keyholes (below), clockwise contours when every
- * slice has one contour, z values snapped to their slice) are reported as lines "PREFIX: FILE:LINE: ..." on `notes` (NULL: silent).
+ * closing point, consecutive duplicate points, keyholes and spurs (below),
+ * clockwise contours when every slice has one contour, z values snapped to
+ * their slice) are reported as lines "PREFIX: FILE:LINE: ..." on `notes`
+ * (NULL: silent), only when the stack is accepted; repairs of one kind in
+ * one contour are counted on one line ("dropped 212 duplicates of the point
+ * before (the first at line L: X Y)"), each on its own with CONTOUR_VERBOSE.
  * Returns 0, or -1 with "FILE:LINE: what is wrong (value)" in err; nothing
- * is allocated on failure.  The caller frees with contour_stack_free. */
+ * is allocated on failure.  The caller frees with contour_stack_free.
+ *
+ * Bad contours.  A contour that cannot be tiled -- fewer than 3 distinct
+ * points, all collinear, crossing or touching itself and no keyhole -- does
+ * not stop the reading: every one is found.  Refused, err holds one line per
+ * bad contour ("FILE:LINE: why", in file order; as many as errlen holds)
+ * and then one summary line ("FILE: 8 of 26 contours cannot be tiled (P of
+ * Q points), each named above; --skip-bad drops them and tiles the rest");
+ * a single bad contour is one line.  With CONTOUR_SKIP_BAD each is dropped
+ * with a note naming it and why, one note counts them, and the rest are read
+ * as the stack.  Errors in the file's text (a garbled line, a number that is
+ * not one) still end the reading at once, in one line. */
 int contour_read(const char *path, contour_stack *out, FILE *notes,
                  const char *prefix, char *err, size_t errlen);
 
@@ -52,19 +67,29 @@ int contour_parse(const char *text, size_t len, const char *name,
                   contour_stack *out, FILE *notes, const char *prefix,
                   char *err, size_t errlen);
 
-/* Keyholes.  A contour that crosses, touches or runs back over itself is
- * refused ("the contour crosses itself: the segment from line A to line B
- * crosses|touches|overlaps the segment from line C to line D (X Y)") unless
- * it is a keyhole contour (algo/keyhole.h: loops joined by zero-width
- * channels walked out and back, exactly): then it becomes its loops, each a
- * contour of the slice whose `line` is the line of its first point in the
- * file, and a note "keyhole: the contour split into K loops at (X Y), a
- * channel of length L dropped" names its header line.  The *_flags readers
- * take CONTOUR_NO_KEYHOLES to refuse those too; the others repair them.
- * CONTOUR_ONE_SLICE accepts a stack of one slice (one contour or more):
- * for ./tile, which makes it a slab of a given thickness (surface/stack.h)
- * or refuses it itself, naming the option; the others refuse it. */
-enum { CONTOUR_NO_KEYHOLES = 1, CONTOUR_ONE_SLICE = 2 };
+/* Keyholes and spurs.  A contour that crosses, touches or runs back over
+ * itself is bad ("the contour crosses itself: the segment from line A to
+ * line B crosses|touches|overlaps the segment from line C to line D (X Y)")
+ * unless it is a keyhole contour or has zero-width spurs (algo/keyhole.h:
+ * loops joined by channels walked out and back, spikes walked out and back
+ * along themselves, exactly): then it becomes its loops, each a contour of
+ * the slice whose `line` is the line of its first point in the file, and a
+ * note "keyhole: the contour split into K loops at (X Y), a channel of
+ * length L dropped" or "dropped a zero-width spur ... of length L at (X Y)"
+ * names its header line.  The *_flags readers take:
+ *   CONTOUR_NO_KEYHOLES  such contours are bad too (not repaired);
+ *   CONTOUR_SKIP_BAD     bad contours are dropped, with notes (above);
+ *   CONTOUR_VERBOSE      every repair on a note of its own (above);
+ *   CONTOUR_UNION        overlapping contours of a slice merged into their
+ *                        union (input/slicemerge.h); without it only exact
+ *                        duplicates are dropped and overlaps are refused
+ *                        later, by the surface (surface/slices.h);
+ *   CONTOUR_ONE_SLICE    a stack of one slice (one contour or more) is
+ *                        accepted: for ./tile, which makes it a slab of a
+ *                        given thickness (surface/stack.h) or refuses it
+ *                        itself, naming the option; without it it is refused.
+ * The others take none. */
+enum { CONTOUR_NO_KEYHOLES = 1, CONTOUR_SKIP_BAD = 2, CONTOUR_VERBOSE = 4, CONTOUR_UNION = 8, CONTOUR_ONE_SLICE = 16 };
 int contour_read_flags(const char *path, int flags, contour_stack *out, FILE *notes,
                        const char *prefix, char *err, size_t errlen);
 int contour_parse_flags(const char *text, size_t len, const char *name, int flags,

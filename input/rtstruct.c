@@ -849,6 +849,38 @@ int rtstruct_roi_check(const rtstruct *s, int ri, char *err, size_t errlen) {
   return -1;
 }
 
+/* msg into err[0..cap-1]: whole, or as many of its first lines as fit with
+ * its last line (the summary of a list) and one saying how many were left
+ * out. */
+static void fit_lines(const char *msg, char *err, size_t cap) {
+  size_t n = strlen(msg);
+  if (n < cap) {
+    memcpy(err, msg, n + 1);
+    return;
+  }
+  const char *last = strrchr(msg, '\n');
+  last = last ? last + 1 : msg;
+  int left = 0;
+  for (const char *p = msg; p < last; p++) left += *p == '\n';
+  size_t at = 0, tail = strlen(last) + 64;
+  const char *p = msg;
+  while (p < last) {
+    const char *e = strchr(p, '\n');
+    size_t l = (size_t)(e - p) + 1;
+    if (at + l + tail >= cap) break;
+    memcpy(err + at, p, l);
+    at += l;
+    left--;
+    p = e + 1;
+  }
+  if (at + tail < cap) {
+    at += (size_t)snprintf(err + at, cap - at, "(%d more line%s not shown)\n", left, left == 1 ? "" : "s");
+    snprintf(err + at, cap - at, "%s", last);
+  } else {
+    snprintf(err, cap, "%s", last);
+  }
+}
+
 int rtstruct_roi_stack(const rtstruct *s, int ri, int flags, contour_stack *out, FILE *notes,
                        const char *prefix, char *err, size_t errlen) {
   const rtstruct_roi *roi = &s->roi[ri];
@@ -856,12 +888,15 @@ int rtstruct_roi_stack(const rtstruct *s, int ri, int flags, contour_stack *out,
   if (rtstruct_roi_check(s, ri, err, errlen) != 0) return -1;
   size_t len;
   char *text_ = rtstruct_roi_text(s, ri, &len);
-  char *held = NULL, e2[1024];
-  size_t heldlen = 0;
+  char *held = NULL;
+  size_t heldlen = 0, e2len = errlen > 1024 ? errlen : 1024;
+  char *e2 = xmalloc(e2len);
   FILE *hold = notes ? open_memstream(&held, &heldlen) : NULL;
-  int cflags = (flags & RTSTRUCT_NO_KEYHOLES ? CONTOUR_NO_KEYHOLES : 0) | (flags & RTSTRUCT_ONE_SLICE ? CONTOUR_ONE_SLICE : 0);
-  int rc = contour_parse_flags(text_, len, sentinel, cflags, out, hold, prefix, e2, sizeof e2);
-  if (rc == 0 && (flags & RTSTRUCT_PAIRS) && contour_stack_pairs(out, sentinel, e2, sizeof e2) != 0) {
+  int cflags = (flags & RTSTRUCT_NO_KEYHOLES ? CONTOUR_NO_KEYHOLES : 0) |
+               (flags & RTSTRUCT_SKIP_BAD ? CONTOUR_SKIP_BAD : 0) | (flags & RTSTRUCT_UNION ? CONTOUR_UNION : 0) |
+               (flags & RTSTRUCT_VERBOSE ? CONTOUR_VERBOSE : 0) | (flags & RTSTRUCT_ONE_SLICE ? CONTOUR_ONE_SLICE : 0);
+  int rc = contour_parse_flags(text_, len, sentinel, cflags, out, hold, prefix, e2, e2len);
+  if (rc == 0 && (flags & RTSTRUCT_PAIRS) && contour_stack_pairs(out, sentinel, e2, e2len) != 0) {
     contour_stack_free(out);
     rc = -1;
   }
@@ -869,7 +904,7 @@ int rtstruct_roi_stack(const rtstruct *s, int ri, int flags, contour_stack *out,
   if (hold) fclose(hold);
   if (rc != 0) {
     char *m = rewrite(s, roi, sentinel, e2);
-    snprintf(err, errlen, "%s", m);
+    fit_lines(m, err, errlen);
     free(m);
   } else if (held && heldlen) {
     char *m = rewrite(s, roi, sentinel, held);
@@ -877,5 +912,6 @@ int rtstruct_roi_stack(const rtstruct *s, int ri, int flags, contour_stack *out,
     free(m);
   }
   free(held);
+  free(e2);
   return rc;
 }

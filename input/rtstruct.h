@@ -90,14 +90,19 @@ int rtstruct_roi_check(const rtstruct *s, int roi, char *err, size_t errlen);
 char *rtstruct_roi_text(const rtstruct *s, int roi, size_t *len);
 
 /* The ROI's stack, read from that text by contour_parse (keyhole contours
- * split into their loops unless flags has RTSTRUCT_NO_KEYHOLES; and, with
- * RTSTRUCT_PAIRS, checked by contour_stack_pairs, as ./tile checks a stack
- * that it tiles contour by contour): 0, or -1 with the refusal, rewritten to
- * name the file, ROI, contour item and byte.  Notes go to `notes` as
- * contour_read's do, rewritten alike ("contour item K, point J" for a line),
- * and only when the stack is accepted.  RTSTRUCT_ONE_SLICE accepts an ROI
- * of one slice (contour.h's CONTOUR_ONE_SLICE). */
-enum { RTSTRUCT_PAIRS = 1, RTSTRUCT_NO_KEYHOLES = 2, RTSTRUCT_ONE_SLICE = 4 };
+ * split into their loops unless flags has RTSTRUCT_NO_KEYHOLES; bad
+ * contours dropped with RTSTRUCT_SKIP_BAD, overlapping contours of a slice
+ * merged with RTSTRUCT_UNION, every note in full with RTSTRUCT_VERBOSE: the
+ * CONTOUR_ flags of contour.h; and, with RTSTRUCT_PAIRS, checked by
+ * contour_stack_pairs, as ./tile checks a stack that it tiles contour by
+ * contour): 0, or -1 with the refusal, rewritten to name the file, ROI,
+ * contour item and byte (one line per bad contour, as contour.h says, as
+ * many whole lines as errlen holds, the last line kept).  Notes go to
+ * `notes` as contour_read's do, rewritten alike ("contour item K, point J"
+ * for a line), and only when the stack is accepted.  RTSTRUCT_ONE_SLICE
+ * accepts an ROI of one slice (contour.h's CONTOUR_ONE_SLICE). */
+enum { RTSTRUCT_PAIRS = 1, RTSTRUCT_NO_KEYHOLES = 2, RTSTRUCT_SKIP_BAD = 4, RTSTRUCT_UNION = 8, RTSTRUCT_VERBOSE = 16,
+       RTSTRUCT_ONE_SLICE = 32 };
 int rtstruct_roi_stack(const rtstruct *s, int roi, int flags, contour_stack *out, FILE *notes,
                        const char *prefix, char *err, size_t errlen);
 

@@ -36,6 +36,7 @@ static const char lines_usage[] =
     "(plot --help: every option)\n";
 static const char surface_usage[] =
     "usage: plot surface STACK|FILE.dcm --roi NAME [--cost area|span] [--caps] [--join RULE] [--thickness T] "
+    "[--skip-bad] [--union] [-v] "
     "[--title T] -o OUT.svg   "
     "(plot --help: every option)\n";
 static const char any_usage[] =
@@ -54,7 +55,7 @@ static void help(const char *name) {
   printf("usage: %s lines CSV -x COL -y COL[,COL...] [--series COL[,COL...]] [--where COL=VALUE]...\n"
         "            [--labels A,B,...] [--title T] [--xlabel T] [--ylabel T] [--yzero] -o OUT.svg\n"
         "       %s surface STACK|FILE.dcm [--roi NAME|NUMBER] [--cost area|span] [--caps] [--join RULE]\n"
-        "            [--thickness T] [--title T] -o OUT.svg\n"
+        "            [--thickness T] [--skip-bad] [--union] [-v] [--title T] -o OUT.svg\n"
         "       %s claims MAP.csv [--title T] -o OUT.svg\n"
         "\n"
         "%s -- tilesim's CSV as SVG line charts, a contour stack with its surface, and\n"
@@ -83,6 +84,9 @@ static void help(const char *name) {
         "                     touch, single (default), nearest or a distance, as tile\n"
         "                     --join does\n"
         "  --thickness T      a stack of one slice becomes a closed slab T thick\n"
+        "  --skip-bad         drop the contours that cannot be tiled, as tile does\n"
+        "  --union            merge overlapping contours of a slice, as tile does\n"
+        "  -v, --verbose      every note on the input in full, as tile -v\n"
         "  --title T          the title\n"
         "  -o OUT.svg         the picture\n"
         "claims: a claims map (bench --claims-map) as a grid: a panel per configuration\n"
@@ -296,18 +300,31 @@ static int lines(int argc, char **argv) {
 }
 
 
+/* Each line of a refusal as "plot: LINE" (one names every bad contour). */
+static void say_lines(const char *text) {
+  for (const char *p = text; *p;) {
+    const char *e = strchr(p, '\n');
+    size_t n = e ? (size_t)(e - p) : strlen(p);
+    fprintf(stderr, "plot: %.*s\n", (int)n, p);
+    p += n + (e != NULL);
+  }
+}
+
 static int surface(int argc, char **argv) {
   const char *in = argc > 2 ? argv[2] : NULL, *out = NULL, *title = NULL, *roikey = NULL;
   cost_kind kind = COST_AREA;
-  int caps = 0;
+  int caps = 0, flags = 0;   /* CONTOUR_SKIP_BAD, CONTOUR_UNION, CONTOUR_VERBOSE */
   match_rule join = MATCH_SINGLE;
   double join_dist = INFINITY, thickness = 0;
-  char err[400];
+  static char err[1 << 16];   /* a refusal may name every bad contour */
   if (!in || !in[0] || (in[0] == '-' && in[1])) return usage(surface_usage, "surface needs a contour stack first", in);
   for (int i = 3; i < argc; i++) {
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
     int bad = 0;
     if (strcmp(a, "--caps") == 0) { caps = 1; continue; }
+    if (strcmp(a, "--skip-bad") == 0) { flags |= CONTOUR_SKIP_BAD; continue; }
+    if (strcmp(a, "--union") == 0) { flags |= CONTOUR_UNION; continue; }
+    if (strcmp(a, "-v") == 0 || strcmp(a, "--verbose") == 0) { flags |= CONTOUR_VERBOSE; continue; }
     if (strcmp(a, "-o") != 0 && strcmp(a, "--title") != 0 && strcmp(a, "--cost") != 0 && strcmp(a, "--roi") != 0 &&
         strcmp(a, "--join") != 0 && strcmp(a, "--thickness") != 0)
       return usage(surface_usage, a[0] == '-' ? "unknown option" : "unexpected argument", a);
@@ -339,8 +356,11 @@ static int surface(int argc, char **argv) {
       return 1;
     }
     if ((roi = rtstruct_find(&rs, roikey, err, sizeof err)) < 0 || rtstruct_roi_check(&rs, roi, err, sizeof err) != 0 ||
-        rtstruct_roi_stack(&rs, roi, RTSTRUCT_ONE_SLICE, &s, stderr, "plot", err, sizeof err) != 0) {
-      fprintf(stderr, "plot: %s\n", err);
+        rtstruct_roi_stack(&rs, roi,
+                           (flags & CONTOUR_SKIP_BAD ? RTSTRUCT_SKIP_BAD : 0) | (flags & CONTOUR_UNION ? RTSTRUCT_UNION : 0) |
+                               (flags & CONTOUR_VERBOSE ? RTSTRUCT_VERBOSE : 0) | RTSTRUCT_ONE_SLICE,
+                           &s, stderr, "plot", err, sizeof err) != 0) {
+      say_lines(err);
       rtstruct_free(&rs);
       return 1;
     }
@@ -350,8 +370,8 @@ static int surface(int argc, char **argv) {
     snprintf(title_roi, sizeof title_roi, "%s: ROI %d '%s'", in, rs.roi[roi].number, rs.roi[roi].name);
   } else if (roikey) {
     return usage(surface_usage, "--roi is for a DICOM RT structure set", in);
-  } else if (contour_read_flags(in, CONTOUR_ONE_SLICE, &s, NULL, "plot", err, sizeof err) != 0) {
-    fprintf(stderr, "plot: %s\n", err);
+  } else if (contour_read_flags(in, flags | CONTOUR_ONE_SLICE, &s, NULL, "plot", err, sizeof err) != 0) {
+    say_lines(err);
     return 1;
   } else
     snprintf(name, sizeof name, "%s", in);
@@ -372,7 +392,8 @@ static int surface(int argc, char **argv) {
     if (!said[k] || !said[k][0]) continue;
     char *m = roi >= 0 ? rtstruct_rewrite(&rs, roi, name, said[k]) : NULL;
     const char *t = m ? m : said[k];
-    fprintf(stderr, k ? "plot: %s\n" : "%s", t);
+    if (k) say_lines(t);
+    else fputs(t, stderr);
     free(m);
   }
   free(held);

@@ -84,12 +84,25 @@ static void usage(FILE *f) {
         "                     them\n"
         "  --thickness T      a stack (an ROI) of one slice becomes a closed slab T thick,\n"
         "                     half above and half below its plane (volume: area x T);\n"
-        "                     without it one slice is refused.  Other stacks ignore it\n"
-        "  -j N               tile the bands on N threads (default: the machine's cores);\n"
+        "                     without it one slice is refused.  Other stacks ignore it\n",
+        f);
+  fputs("  -j N               tile the bands on N threads (default: the machine's cores);\n"
         "                     the output is the same on any N\n"
         "  --no-keyholes      refuse a contour that touches itself instead of splitting\n"
         "                     a keyhole contour (loops joined by channels walked out\n"
-        "                     and back, exactly) into its loops\n"
+        "                     and back, exactly) into its loops and dropping its\n"
+        "                     zero-width spurs (spikes walked out and back)\n"
+        "  --skip-bad         drop the contours that cannot be tiled (fewer than 3\n"
+        "                     points, collinear, crossing themselves), each with a\n"
+        "                     note, and tile the rest; without it every one is named\n"
+        "                     and the stack refused\n"
+        "  --union            merge the overlapping contours of a slice into their\n"
+        "                     union, exactly (holes and islands included); without it\n"
+        "                     contours of a slice that cross or touch are refused\n"
+        "                     (exact duplicates of a contour are dropped either way)\n"
+        "  -v, --verbose      every note in full: each duplicate point, each\n"
+        "                     duplicate contour (by default repairs of one kind are\n"
+        "                     counted on one line per contour or stack)\n"
         "  -q, --quiet        no notes about repaired input, no progress, on stderr\n"
         "  -h, --help         this text\n"
         "\n"
@@ -101,7 +114,8 @@ static void usage(FILE *f) {
   fputs("(--trace: the trace's size is counted first, by a run that writes none.)\n"
         "\n"
         "A DICOM RT structure set (recognised by its content) instead of STACK: each ROI\n"
-        "is tiled as its closed planar contours would be as a stack (patient LPS, mm):\n"
+        "is tiled as its closed planar contours would be as a stack (patient LPS, mm;\n"
+        "contours in parallel planes of any common normal are turned into z and back):\n"
         "  --list             its ROIs, CSV (the default without --roi)\n"
         "  --roi NAME|NUMBER  tile that ROI (repeatable; 'all' for every ROI)\n"
         "  -o DIR/            with several ROIs: one mesh each, DIR/NAME.stl\n"
@@ -155,25 +169,20 @@ typedef struct {
 /* Text for stderr, through the map when there is one. */
 static void say(const tile_dicom_map *map, const char *pre, const char *text, size_t len) {
   if (!len) return;
-  if (!map) {
-    fputs(pre, stderr);
-    fwrite(text, 1, len, stderr);
-    return;
-  }
   char *t = xmalloc(len + 1);
   memcpy(t, text, len);
   t[len] = 0;
-  char *m = map->rewrite(map->ud, t);
-  fputs(pre, stderr);
-  fputs(m, stderr);
-  free(m);
+  char *m = map ? map->rewrite(map->ud, t) : t;
+  if (pre[0]) tile_say_lines(stderr, m);   /* "tile: " before each line */
+  else fputs(m, stderr);
+  if (m != t) free(m);
   free(t);
 }
 
 static int tile_stack(void *ud, const contour_stack *s, const char *name, const tile_dicom_map *map,
                       const char *hprefix, const char *prefix, int header, mesh *me) {
   tile_opts *o = ud;
-  char err[1024];
+  static char err[TILE_ERR_MAX];   /* one refusal at a time (tile_stack is not reentrant) */
   memset(me, 0, sizeof *me);
   char *held = NULL;
   size_t heldlen = 0;
@@ -233,8 +242,6 @@ static int tile_stack(void *ud, const contour_stack *s, const char *name, const 
   if (res == -2)
     fprintf(stderr, "tile: the parallel run (%s) failed: %s\n", machine_backend_name(o->rc.mc.backend), err);
   else if (res != 0) {
-    size_t el = strlen(err);
-    if (el + 1 < sizeof err) err[el] = '\n', err[el + 1] = 0;
     say(map, "tile: ", err, strlen(err));
   } else {
     say(map, "", o->held, o->heldlen);
@@ -260,6 +267,7 @@ static int tile_stack(void *ud, const contour_stack *s, const char *name, const 
 static int tile_main(int argc, char **argv) {
   const char *in = NULL, *out = NULL;
   int backend_given = 0, style_given = 0, place_given = 0, no_keyholes = 0;
+  int read_flags = 0;   /* CONTOUR_SKIP_BAD, CONTOUR_UNION, CONTOUR_VERBOSE */
   tile_opts o;
   memset(&o, 0, sizeof o);
   o.threads = pool_cores();
@@ -281,6 +289,12 @@ static int tile_main(int argc, char **argv) {
       o.quiet = 1;
     } else if (strcmp(a, "--no-keyholes") == 0) {
       no_keyholes = 1;
+    } else if (strcmp(a, "--skip-bad") == 0) {
+      read_flags |= CONTOUR_SKIP_BAD;
+    } else if (strcmp(a, "--union") == 0) {
+      read_flags |= CONTOUR_UNION;
+    } else if (strcmp(a, "-v") == 0 || strcmp(a, "--verbose") == 0) {
+      read_flags |= CONTOUR_VERBOSE;
     } else if (machine_option_flag(a)) {   /* --print-place */
       run_option(&o.rc, a, NULL, err, sizeof err);
     } else if ((k = tile_dicom_option(&dopt, a, v, err, sizeof err)) != 0) {   /* DICOM input */
@@ -370,7 +384,7 @@ static int tile_main(int argc, char **argv) {
   /* A DICOM RT structure set (by its content): tile_dicom.c. */
   if (dicom_sniff_file(in)) {
     tile_dicom_env env = {tile_stack, &o, bad_usage, out, o.quiet, tpath != NULL, 0 /* as below */, no_keyholes,
-                          o.thickness};
+                          o.thickness, read_flags};
     return tile_dicom_main(&dopt, in, &env);
   }
   if (tile_dicom_given(&dopt)) {
@@ -391,14 +405,17 @@ static int tile_main(int argc, char **argv) {
   FILE *notes = o.quiet ? NULL : open_memstream(&held, &heldlen);
   const char *name = strcmp(in, "-") == 0 ? "<stdin>" : in;
   /* One slice is read, and refused by stack_tile without --thickness. */
-  int bad = contour_read_flags(in, (no_keyholes ? CONTOUR_NO_KEYHOLES : 0) | CONTOUR_ONE_SLICE, &s, notes, "tile", err,
-                               sizeof err) != 0;
+  char *rerr = xmalloc(TILE_ERR_MAX);   /* every bad contour, a line each */
+  int bad = contour_read_flags(in, read_flags | (no_keyholes ? CONTOUR_NO_KEYHOLES : 0) | CONTOUR_ONE_SLICE, &s, notes,
+                               "tile", rerr, TILE_ERR_MAX) != 0;
   if (notes) fclose(notes);
   if (bad) {
-    fprintf(stderr, "tile: %s\n", err);
+    tile_say_lines(stderr, rerr);
+    free(rerr);
     free(held);
     return 1;
   }
+  free(rerr);
   /* The reader's notes go out with the surface's, if it can be made. */
   mesh me;
   o.held = held, o.heldlen = heldlen;

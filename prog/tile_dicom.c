@@ -189,7 +189,7 @@ static int write_text(const char *path, const char *text, size_t len) {
   return 0;
 }
 
-static void warn_lines(FILE *f, const char *lines) {
+void tile_say_lines(FILE *f, const char *lines) {
   for (const char *p = lines; f && p && *p;) {
     const char *e = strchr(p, '\n');
     size_t n = e ? (size_t)(e - p) : strlen(p);
@@ -197,6 +197,8 @@ static void warn_lines(FILE *f, const char *lines) {
     p += n + (e != NULL);
   }
 }
+
+static void warn_lines(FILE *f, const char *lines) { tile_say_lines(f, lines); }
 
 /* The surface's messages about an ROI's stack, named as the reader's are. */
 typedef struct {
@@ -213,7 +215,7 @@ static char *map_rewrite(void *ud, const char *msg) {
 /* ---------------------------------------------------------------- main */
 
 int tile_dicom_main(const tile_dicom_opts *o, const char *in, const tile_dicom_env *env) {
-  char err[1024];
+  char err[1024], *rerr = NULL;
   int all = 0;
   for (int i = 0; i < o->nroi; i++) all |= strcmp(o->roi[i], "all") == 0;
   int several = all || o->nroi > 1;
@@ -278,18 +280,22 @@ int tile_dicom_main(const tile_dicom_opts *o, const char *in, const tile_dicom_e
   }
   /* Their stacks: refused ones end the run, or with all are skipped. */
   int tile = env->out || !o->contours, kept = 0;
+  int flags = (env->pairs ? RTSTRUCT_PAIRS : 0) | (env->no_keyholes ? RTSTRUCT_NO_KEYHOLES : 0) |
+              (env->read_flags & CONTOUR_SKIP_BAD ? RTSTRUCT_SKIP_BAD : 0) |
+              (env->read_flags & CONTOUR_UNION ? RTSTRUCT_UNION : 0) |
+              (env->read_flags & CONTOUR_VERBOSE ? RTSTRUCT_VERBOSE : 0);
+  rerr = xmalloc(TILE_ERR_MAX);
   for (int i = 0; i < npick; i++) {
     const rtstruct_roi *r = &s.roi[pick[i]];
-    int bad = rtstruct_roi_check(&s, pick[i], err, sizeof err);
+    int bad = rtstruct_roi_check(&s, pick[i], rerr, TILE_ERR_MAX);
     if (!bad && tile)
-      bad = rtstruct_roi_stack(&s, pick[i], (env->pairs ? RTSTRUCT_PAIRS : 0) | (env->no_keyholes ? RTSTRUCT_NO_KEYHOLES : 0) |
-                               RTSTRUCT_ONE_SLICE, &st[kept], notes, "tile", err, sizeof err);
+      bad = rtstruct_roi_stack(&s, pick[i], flags | RTSTRUCT_ONE_SLICE, &st[kept], notes, "tile", rerr, TILE_ERR_MAX);
     if (!bad && tile) {   /* one slice: only with --thickness, said as the reader says its refusals */
       char sname[700], e2[1024];
       snprintf(sname, sizeof sname, "%s: ROI %d '%s' as a stack", s.name, r->number, r->name);
       if (stack_check_slices(&st[kept], sname, env->thickness, e2, sizeof e2) != 0) {
         char *m = rtstruct_rewrite(&s, pick[i], sname, e2);
-        snprintf(err, sizeof err, "%s", m);
+        snprintf(rerr, TILE_ERR_MAX, "%s", m);
         free(m);
         contour_stack_free(&st[kept]);
         bad = 1;
@@ -297,10 +303,14 @@ int tile_dicom_main(const tile_dicom_opts *o, const char *in, const tile_dicom_e
     }
     if (bad) {
       if (!all) {
-        fprintf(stderr, "tile: %s\n", err);
+        tile_say_lines(stderr, rerr);
         goto done;
       }
-      if (notes) fprintf(notes, "tile: %s; skipped\n", err);
+      if (notes) {
+        size_t el = strlen(rerr);
+        snprintf(rerr + el, TILE_ERR_MAX - el, "; skipped");
+        tile_say_lines(notes, rerr);
+      }
       continue;
     }
     warn_lines(notes, r->warnings);
@@ -369,6 +379,7 @@ int tile_dicom_main(const tile_dicom_opts *o, const char *in, const tile_dicom_e
 done:
   if (notes) fclose(notes);
   free(held);
+  free(rerr);
   for (int i = 0; i < nmesh; i++) mesh_free(&me[i]);
   for (int i = 0; i < s.nroi; i++) contour_stack_free(&st[i]);
   free_paths(mpath, npick);

@@ -10,6 +10,8 @@
 #ifndef TILE_DICOM_H
 #define TILE_DICOM_H
 
+#include <stdio.h>
+
 #include "contour.h"
 #include "mesh.h"
 
@@ -48,7 +50,14 @@ typedef struct {
   int pairs;           /* check stacks with contour_stack_pairs, as tile.c does */
   int no_keyholes;     /* --no-keyholes: refuse keyhole contours (contour.h) */
   double thickness;    /* --thickness: an ROI of one slice is tiled as a slab; 0 refuses it */
+  int read_flags;      /* CONTOUR_SKIP_BAD, CONTOUR_UNION, CONTOUR_VERBOSE: as for a stack */
 } tile_dicom_env;
+
+/* A refusal may name every bad contour (contour.h): this much room. */
+enum { TILE_ERR_MAX = 1 << 16 };
+
+/* Each line of text on f as "tile: LINE". */
+void tile_say_lines(FILE *f, const char *text);
 
 /* 1 if path names a directory for -o/--contours: ends in '/' or is one. */
 int tile_dicom_is_dir(const char *path);

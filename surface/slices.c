@@ -163,12 +163,27 @@ int slices_build_at(const contour_stack *s, const char *name, int scale, int thr
   job jb = {sl, name, xcalloc((size_t)ns, sizeof(char *))};
   pool_run(threads, ns, NULL, one_slice, &jb);
 
-  int rc = 0;
-  for (int k = 0; k < ns; k++)
-    if (jb.err[k] && rc == 0) {
-      snprintf(err, errlen, "%s", jb.err[k]);
-      rc = -1;
+  /* Every slice with contours that meet: one line each (its first
+   * contact, as many lines as err holds), and the way out. */
+  int rc = 0, nbad = 0, shown = 0;
+  size_t at = 0;
+  for (int k = 0; k < ns; k++) nbad += jb.err[k] != NULL;
+  for (int k = 0; k < ns && nbad; k++) {
+    if (!jb.err[k]) continue;
+    size_t l = strlen(jb.err[k]);
+    if (rc == 0 || at + l + 300 < errlen) {
+      at += (size_t)snprintf(err + at, errlen - at, "%s%s", rc ? "\n" : "", jb.err[k]);
+      if (at >= errlen) at = errlen - 1;
+      shown++;
     }
+    rc = -1;
+  }
+  if (nbad == 1)
+    snprintf(err + at, errlen - at, "; --union merges overlapping contours of a slice into their union");
+  else if (nbad > 1)
+    snprintf(err + at, errlen - at,
+             "\n%s: contours cross or touch on %d slices (%s named above); --union merges overlapping contours "
+             "of a slice into their union", name, nbad, shown == nbad ? "each" : "the first ones");
   for (int k = 0; k < ns; k++) free(jb.err[k]);
   free(jb.err);
   if (rc == 0) {

@@ -112,11 +112,22 @@ X='the contour crosses itself: the segment from line'
 refused "figure eight at a point" "C 6 0\n0 0\n2 0\n1 1\n2 2\n0 2\n1 1\n$SQ" "1: $X 3 to line 4 touches the segment from line 6 to line 7 (1 1)"
 refused "vertex on an edge" "C 5 0\n0 0\n2 0\n2 2\n1 0\n0 2\n$SQ" "1: $X 2 to line 3 touches the segment from line 5 to line 6 (1 0)"
 refused "a crossing" "C 4 0\n0 0\n1 1\n1 0\n0 1\n$SQ" "1: $X 2 to line 3 crosses the segment from line 4 to line 5 (0.5 0.5)"
-refused "a spike" "C 4 0\n0 0\n2 0\n1 0\n1 1\n$SQ" "1: $X 2 to line 3 overlaps the segment from line 3 to line 4 (2 0)"
+refused "a spur touching an edge" "C 7 0\n0 0\n4 0\n4 4\n2 4\n2 0\n2 4\n0 4\n$SQ" "1: $X 5 to line 6 overlaps the segment from line 6 to line 7 (2 0)"
 refused "an edge walked twice one way" "C 6 0\n0 0\n3 0\n3 1\n-1 1\n-1 0\n1 0\n$SQ" "1: $X 2 to line 3 overlaps the segment from line 7 to line 2 (0 0)"
 refused "a hole touching its boundary" "C 8 0\n0 0\n8 0\n8 8\n0 8\n0 0\n0 4\n4 4\n4 0\n$SQ" "1: $X"
 refused "a channel across a hole" "C 20 0\n0 0\n6 0\n6 5\n7 5\n7 7\n5 7\n5 5\n6 5\n6 0\n12 0\n12 12\n0 12\n0 6\n2 6\n2 10\n10 10\n10 2\n2 2\n2 6\n0 6\n$SQ" "1: $X"
 refused "--no-keyholes" "$(sed -n 1,13p "$T/key.contours")\n$SQ" "2: $X 3 to line 4 overlaps the segment from line 9 to line 10 (0 0)" --no-keyholes
+
+# ---- A zero-width spur (a spike walked out and back along itself) encloses
+# no area: dropped like a channel, with a note; the same bytes as the
+# contour without it.
+printf 'C 7 0\n0 0\n4 0\n4 2\n7 2\n4 2\n4 4\n0 4\n%b' "$SQ" > "$T/spur.contours"
+printf 'C 5 0\n0 0\n4 0\n4 2\n4 4\n0 4\n%b' "$SQ" > "$T/nospur.contours"
+"$TILE" "$T/spur.contours" --caps -o "$T/spur.obj" > "$T/spur.csv" 2> "$T/err" &&
+  "$TILE" "$T/nospur.contours" --caps -o "$T/nospur.obj" > "$T/nospur.csv" 2> /dev/null &&
+  cmp -s "$T/spur.csv" "$T/nospur.csv" && cmp -s "$T/spur.obj" "$T/nospur.obj" &&
+  [ "$(cat "$T/err")" = "tile: $T/spur.contours:1: dropped a zero-width spur (walked out and back along itself) of length 3 at (4 2)" ] &&
+  ok || bad "a spur: $(cat "$T/err")"
 
 # ---- MIM's export: every ROI tiles, both encodings the same bytes; each
 # mesh a closed outward 2-manifold by the checker, through every input point
@@ -156,6 +167,8 @@ rm -f "$T/n.stl"
   grep -qF "tile: $D/rtutils_dummy_rt.dcm: byte 10014: ROI 2 'ROI-2', contour item 1: the contour crosses itself: the segment from point 35 to point 36 touches the segment from point 44 to point 45 (-39.795000000000002 38.085999999999999)" "$T/err" &&
   ok || bad "--no-keyholes ROI-2: exit $rc: $(cat "$T/err")"
 "$TILE" $D/rtutils_dummy_rt.dcm --roi all --caps --no-keyholes -o "$T/n/" > "$T/out" 2> "$T/err"; rc=$?
-[ $rc -eq 0 ] && [ "$(ls "$T/n" | tr '\n' ' ')" = "ROI-1.stl ROI-3.stl " ] && [ "$(grep -c 'crosses itself.*; skipped$' "$T/err")" -eq 2 ] &&
+[ $rc -eq 0 ] && [ "$(ls "$T/n" | tr '\n' ' ')" = "ROI-1.stl ROI-3.stl " ] && [ "$(grep -c 'crosses itself.*; skipped$' "$T/err")" -eq 1 ] &&
+  grep -q "ROI 4 'ROI-4': 3 of 3 contours cannot be tiled (1015 of 1015 points), each named above; --skip-bad drops them and tiles the rest; skipped$" "$T/err" &&
+  [ "$(grep -c "ROI 4 'ROI-4', contour item [123]: the contour crosses itself" "$T/err")" -eq 3 ] &&
   ! grep -q keyhole "$T/err" && ok || bad "--no-keyholes --roi all: exit $rc: $(cat "$T/err")"
 echo "cli_keyhole: $pass passed, $fail failed"

@@ -76,7 +76,7 @@ done
 printf 'C 3 1.25\n0 0\n1 0\n0 1\nC 3 1.25\n0.5 -1\n3 -1\n0.5 0.5\nC 3 2.5\n0 0\n1 0\n0 1\n' > "$T/x0.contours"
 cp "$T/x0.contours" "$T/x.contours"
 "$TILE" "$T/x.contours" --caps -o "$T/x.obj" > "$T/out" 2> "$T/u.err"; rc=$?
-[ $rc -eq 1 ] && [ "$(cat "$T/u.err")" = "tile: $T/x.contours:5: contour crosses the contour at line 1 on slice z=1.25 (0.5 0)" ] &&
+[ $rc -eq 1 ] && [ "$(cat "$T/u.err")" = "tile: $T/x.contours:5: contour crosses the contour at line 1 on slice z=1.25 (0.5 0); --union merges overlapping contours of a slice into their union" ] &&
   ok || bad "crossing at unit scale: exit status $rc, $(cat "$T/u.err")"
 for k in -1060 -1000 1000; do
   scale "$T/x0.contours" $k > "$T/x.contours"

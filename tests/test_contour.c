@@ -75,8 +75,8 @@ static const bad cases[] = {
      "the contour crosses itself: the segment from line 2 to line 3 touches the segment from line 5 to line 6", "1 0"},
     {"C 6 0\n0 0\n3 0\n3 1\n-1 1\n-1 0\n1 0\n", 1,   /* collinear overlap */
      "the contour crosses itself: the segment from line 2 to line 3 overlaps the segment from line 7 to line 2", "0 0"},
-    {"C 4 0\n0 0\n2 0\n1 0\n1 1\n", 1,   /* a spike back along its edge */
-     "the contour crosses itself: the segment from line 2 to line 3 overlaps the segment from line 3 to line 4", "2 0"},
+    {"C 7 0\n0 0\n4 0\n4 4\n2 4\n2 0\n2 4\n0 4\n", 1,   /* a spur whose tip touches an edge */
+     "the contour crosses itself: the segment from line 5 to line 6 overlaps the segment from line 6 to line 7", "2 0"},
     {"C 5 7\n0 0\n# a comment\n1 1\n\n1 1\n1 0\n0 1\n", 1,   /* lines as in the file, after repair */
      "the contour crosses itself: the segment from line 2 to line 4 crosses the segment from line 7 to line 8", "0.5 0.5"},
     {"C 4 0\n0 0\n1e300 1e300\n1e300 0\n0 1e300\n", 1,   /* at any scale */

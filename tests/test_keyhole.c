@@ -233,9 +233,8 @@ typedef struct {
 static void refused(void) {
   static const poly cases[] = {
       {"a figure eight sharing a point", 6, {{0, 0}, {2, 0}, {1, 1}, {2, 2}, {0, 2}, {1, 1}}},
-      {"a spike walked out and back", 4, {{0, 0}, {2, 0}, {1, 0}, {1, 1}}},
-      {"a spike off a keyhole's outer boundary", 13,
-       {{0, 0}, {4, 0}, {4, -2}, {4, 0}, {8, 0}, {8, 8}, {0, 8}, {0, 0}, {2, 2}, {2, 6}, {6, 6}, {6, 2}, {2, 2}}},
+      {"a spur crossing the contour", 7, {{0, 0}, {2, 0}, {2, 6}, {2, 0}, {4, 0}, {4, 4}, {0, 4}}},
+      {"a spur whose tip touches an edge", 7, {{0, 0}, {4, 0}, {4, 4}, {2, 4}, {2, 0}, {2, 4}, {0, 4}}},
       {"an edge walked over twice one way", 6, {{0, 0}, {3, 0}, {3, 1}, {-1, 1}, {-1, 0}, {1, 0}}},
       {"a vertex on an edge", 5, {{0, 0}, {2, 0}, {2, 2}, {1, 0}, {0, 2}}},
       {"a bowtie", 4, {{0, 0}, {1, 1}, {1, 0}, {0, 1}}},
@@ -255,6 +254,74 @@ static void refused(void) {
     int got = keyhole_repair(cases[i].p, cases[i].n, &ks);
     CHECK(!got, "%s: repaired into %d loops", cases[i].what, ks.nloops);
     if (got) keyhole_free(&ks);
+  }
+}
+
+/* ---------------------------------------------------------------- spurs -- */
+
+/* Zero-width spurs (a spike walked out and back along itself) enclose no
+ * area and are dropped like channels (issue 22): a square with spurs out,
+ * in, along an edge's line, with extra points on the way out or back, a
+ * spur off a keyhole's outer boundary and one off a channel; from every
+ * start point, both ways round: the loops left are the square (and the
+ * hole), the spurs' count and length. */
+typedef struct {
+  const char *what;
+  int n;
+  vec2 p[24];
+  int nloops, spurs, channels;
+  double spur_length, area2;   /* the spurs' length; twice the loops' areas, summed */
+} spurred;
+
+static double area2(const vec2 *p, int n);
+
+static void spurs(void) {
+  static const spurred cases[] = {
+      {"a spur out of a square", 7, {{0, 0}, {4, 0}, {4, 2}, {7, 2}, {4, 2}, {4, 4}, {0, 4}}, 1, 1, 0, 3, 32},
+      {"a spur into a square", 7, {{0, 0}, {4, 0}, {4, 2}, {1, 2}, {4, 2}, {4, 4}, {0, 4}}, 1, 1, 0, 3, 32},
+      {"a spike walked out and back", 4, {{0, 0}, {2, 0}, {1, 0}, {1, 1}}, 1, 1, 0, 1, 1},
+      {"a spur with points on the way out", 9,
+       {{0, 0}, {4, 0}, {4, 2}, {5, 2}, {6, 2}, {7, 2}, {4, 2}, {4, 4}, {0, 4}}, 1, 1, 0, 3, 32},
+      {"a spur with points on the way back", 9,
+       {{0, 0}, {4, 0}, {4, 2}, {7, 2}, {6, 2}, {5, 2}, {4, 2}, {4, 4}, {0, 4}}, 1, 1, 0, 3, 32},
+      {"two spurs at one point", 9, {{0, 0}, {4, 0}, {4, 2}, {7, 2}, {4, 2}, {7, 6}, {4, 2}, {4, 4}, {0, 4}},
+       1, 2, 0, 8, 32},
+      {"a triangle's edge walked back", 5, {{0, 0}, {4, 0}, {4, 4}, {0, 4}, {4, 0}}, 1, 1, 0, 4, 16},
+      {"a spur back along an edge's line", 6, {{0, 0}, {4, 0}, {6, 0}, {4, 0}, {4, 4}, {0, 4}}, 1, 1, 0, 2, 32},
+      {"a spur off a keyhole's outer boundary", 13,
+       {{0, 0}, {4, 0}, {4, -2}, {4, 0}, {8, 0}, {8, 8}, {0, 8}, {0, 0}, {2, 2}, {2, 6}, {6, 6}, {6, 2}, {2, 2}},
+       2, 1, 1, 2, 160},
+      {"a spur off a channel", 13,
+       {{0, 0}, {1, 1}, {1, 0.5}, {1, 1}, {2, 2}, {2, 6}, {6, 6}, {6, 2}, {2, 2}, {0, 0}, {8, 0}, {8, 8}, {0, 8}},
+       2, 0, 1, 0, 160},
+  };
+  int n = (int)(sizeof cases / sizeof cases[0]);
+  for (int i = 0; i < n; i++) {
+    const spurred *c = &cases[i];
+    int fails = 0;
+    for (int rev = 0; rev < 2; rev++)
+      for (int st = 0; st < c->n; st++) {
+        vec2 r[24];
+        for (int k = 0; k < c->n; k++) r[k] = c->p[rev ? (st - k + 2 * c->n) % c->n : (st + k) % c->n];
+        keyhole_split ks;
+        if (!keyhole_repair(r, c->n, &ks)) {
+          if (fails++ < 2) CHECK(0, "%s (start %d%s): refused", c->what, st, rev ? ", reversed" : "");
+          continue;
+        }
+        int ok = ks.nloops == c->nloops && ks.spurs == c->spurs && ks.channels == c->channels &&
+                 ks.spur_length == c->spur_length;
+        /* The loops left enclose what the contour does. */
+        double area = 0;
+        for (int l = 0; l < ks.nloops; l++) area += fabs(area2(ks.pt + ks.first[l], ks.first[l + 1] - ks.first[l]));
+        double want = c->area2;
+        ok = ok && area == want;
+        if (!ok && fails++ < 2)
+          CHECK(0, "%s (start %d%s): %d loops, %d spurs (length %g), %d channels, twice the area %g; want %d, %d "
+                "(%g), %d, %g", c->what, st, rev ? ", reversed" : "", ks.nloops, ks.spurs, ks.spur_length,
+                ks.channels, area, c->nloops, c->spurs, c->spur_length, c->channels, want);
+        keyhole_free(&ks);
+      }
+    CHECK(fails == 0, "%s: %d of %d walks wrong", c->what, fails, 2 * c->n);
   }
 }
 
@@ -499,6 +566,7 @@ static void reader(void) {
 int main(void) {
   large();
   generated();
+  spurs();
   refused();
   stacks();
   reader();

@@ -549,7 +549,7 @@ static void test_refusals(void) {
   int res;
   if (sg_make_stack(ps, 3, NULL, NULL, NULL, &s) == 0) {
     stack_surface *ss = tile(&s, 1, 0, 2, NULL, err, sizeof err, &res);
-    CHECK(res == -1 && ss == NULL && strcmp(err, "t.contours:5: contour crosses the contour at line 1 on slice z=1 (0.5 0)") == 0,
+    CHECK(res == -1 && ss == NULL && strcmp(err, "t.contours:5: contour crosses the contour at line 1 on slice z=1 (0.5 0); --union merges overlapping contours of a slice into their union") == 0,
           "crossing: %d '%s'", res, err);
     contour_stack_free(&s);
   }
