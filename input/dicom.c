@@ -98,11 +98,30 @@ static int descends(const parser *p, uint32_t tag) {
   return 0;
 }
 
-/* "the file ends at byte N" or "its parent ends at byte N". */
+/* "the file ends at byte N" or "its parent ends at byte N".  A length past
+ * the file's end is what a cut file gives, and also a damaged one (a length
+ * read from the wrong bytes): both are said. */
 static const char *bound(const parser *p, size_t end, char *buf, size_t cap) {
-  if (end == p->d->len) snprintf(buf, cap, "truncated: the file ends at byte %zu", end);
+  if (end == p->d->len) snprintf(buf, cap, "corrupt or truncated: the file ends at byte %zu", end);
   else snprintf(buf, cap, "its parent ends at byte %zu", end);
   return buf;
+}
+
+/* A binary file copied as text: every LF byte (0x0a) follows a CR (0x0d),
+ * as LF turned into CR LF leaves it (at least two, for a chance match is
+ * then below 1 in 65,536).  Appended to a refusal: the byte of the first. */
+static void crlf_hint(const unsigned char *buf, size_t len, char *err, size_t errlen) {
+  size_t lf = 0, first = 0;
+  for (size_t i = 0; i < len; i++) {
+    if (buf[i] != '\n') continue;
+    if (i == 0 || buf[i - 1] != '\r') return;
+    if (lf++ == 0) first = i - 1;
+  }
+  if (lf < 2) return;
+  size_t k = strlen(err);
+  if (k + 1 < errlen)
+    snprintf(err + k, errlen - k, "; every LF byte in the file follows a CR (%zu of them, the first CR at byte %zu): "
+             "LF turned into CR LF (a binary file copied as text) corrupts it from there", lf, first);
 }
 
 /* The VRs with a 2-byte length in explicit VR (PS3.5 7.1.2); every other,
@@ -313,6 +332,7 @@ dicom *dicom_parse(const unsigned char *buf, size_t len, const char *name,
   if (read_elements(&p, &pos, len, 0, d->explicit_vr, 0, DICOM_ROOT, 0) != 0) goto fail;
   return d;
 fail:
+  crlf_hint(buf, len, err, errlen);
   dicom_free(d);
   return NULL;
 }

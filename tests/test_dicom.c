@@ -78,10 +78,10 @@ static void refusals(void) {
   refused("not dicom", &o, 0, "not a DICOM file");
 
   NEW(0), imp(&o, 0x3006, 0x0020, U, NULL), imp(&o, 0xFFFE, 0xE000, U, NULL), imp(&o, 0x3006, 0x0022, 2, "1 ");
-  refused("item without delimiter", &o, 42, "item has no item delimitation (FFFE,E00D); truncated: the file ends at byte 42");
+  refused("item without delimiter", &o, 42, "item has no item delimitation (FFFE,E00D); corrupt or truncated: the file ends at byte 42");
 
   NEW(0), raw(&o, "\x08\x00\x70\x00\x00", 5);
-  refused("short header", &o, 16, "element header needs 8 bytes, 5 left; truncated");
+  refused("short header", &o, 16, "element header needs 8 bytes, 5 left; corrupt or truncated");
 
   NEW(0), imp(&o, 0x3006, 0x0020, 16, NULL), imp(&o, 0xFFFE, 0xE000, 8, NULL), imp(&o, 0xFFFE, 0xE00D, 0, NULL);
   refused("item delimiter in a defined item", &o, 32, "item delimitation (FFFE,E00D) in an item of defined length");
@@ -102,7 +102,7 @@ static void refusals(void) {
   refused("undefined UT", &o, 16, "(0008,0070) VR UT has an undefined length");
 
   NEW(0), imp(&o, 0x0008, 0x0070, 100, "abcd");
-  refused("length past the file", &o, 16, "(0008,0070) has length 100, past the end: truncated: the file ends at byte 28");
+  refused("length past the file", &o, 16, "(0008,0070) has length 100, past the end: corrupt or truncated: the file ends at byte 28");
 
   NEW(0), imp(&o, 0x3006, 0x0020, 20, NULL), imp(&o, 0xFFFE, 0xE000, 12, NULL), imp(&o, 0x3006, 0x0022, 6, "1 ");
   raw(&o, "\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0", 16);
@@ -117,7 +117,7 @@ static void refusals(void) {
   refused("too deep", &o, 16 + 16 * 16, "sequences nested deeper than 16");
 
   NEW(0), imp(&o, 0x3006, 0x0020, U, NULL), imp(&o, 0xFFFE, 0xE000, 0, NULL);
-  refused("sequence without delimiter", &o, 16, "sequence has no sequence delimitation (FFFE,E0DD); truncated: the file ends at byte 32");
+  refused("sequence without delimiter", &o, 16, "sequence has no sequence delimitation (FFFE,E0DD); corrupt or truncated: the file ends at byte 32");
 
   NEW(0), imp(&o, 0x3006, 0x0020, U, NULL), raw(&o, "\xfe\xff\x00\xe0", 4);
   refused("short item header", &o, 24, "item header needs 8 bytes, 4 left");
@@ -300,6 +300,39 @@ static void truncations(void) {
   }
 }
 
+/* Every LF turned into CR LF (a binary file copied as text, issue 22): each
+ * sample refused in one line that says it is corrupt, names the byte where
+ * the reading went wrong (an element whose header reaches the first CR, or a
+ * later one: the data is sound before it) and the first CR's byte. */
+static void crlf(void) {
+  for (int i = 0; i < NSAMPLES; i++) {
+    size_t len, n = 0;
+    unsigned char *b = sample(i, &len);
+    if (!b) continue;
+    unsigned char *m = xmalloc(2 * len + 1);
+    size_t first = (size_t)-1;
+    for (size_t k = 0; k < len; k++) {
+      if (b[k] == '\n') {
+        if (first == (size_t)-1) first = n;
+        m[n++] = '\r';
+      }
+      m[n++] = b[k];
+    }
+    char err[1024], want[96];
+    err[0] = 0;
+    dicom *d = dicom_parse(m, n, "t.dcm", seqs, NSEQ, err, sizeof err);
+    snprintf(want, sizeof want, "the first CR at byte %zu): LF turned into CR LF", first);
+    size_t at = 0;
+    int named = sscanf(err, "t.dcm: byte %zu: ", &at) == 1;
+    CHECK(d == NULL && first != (size_t)-1 && strstr(err, want) && !strchr(err, '\n') && named && at + 12 > first &&
+              (strstr(err, "corrupt or truncated") || strstr(err, "has no VR")),
+          "%s with CR LF: '%s' (the first CR at %zu)", samples[i], err, first);
+    dicom_free(d);
+    free(m);
+    free(b);
+  }
+}
+
 static void mutations(void) {
   rng g;
   rng_seed(&g, 2026);
@@ -346,5 +379,6 @@ int main(void) {
   accepted();
   truncations();
   mutations();
+  crlf();
   return check_done("test_dicom");
 }
