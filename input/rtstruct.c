@@ -350,6 +350,199 @@ static int by_h(const void *a, const void *b) {
   return p->i - q->i;
 }
 
+/* ---------------------------------------------------------------- frames */
+
+/* Patient axis a (0 x, 1 y, 2 z) into the stack's z by the cyclic
+ * permutation that keeps the axes right-handed: axial (x, y, z), sagittal
+ * (y, z, x), coronal (z, x, y).  perm[k]: the patient axis of stack axis k. */
+static const int perm_of[3][3] = {{1, 2, 0}, {2, 0, 1}, {0, 1, 2}};
+
+static rtstruct_frame standard_frame(int axis) {
+  rtstruct_frame f;
+  memset(&f, 0, sizeof f);
+  const int *pm = perm_of[axis];
+  f.u[pm[0]] = 1, f.v[pm[1]] = 1, f.n[pm[2]] = 1;
+  return f;
+}
+
+typedef struct {
+  double p[3];
+} pt3;
+
+static int by_xyz(const void *a, const void *b) {
+  const double *p = ((const pt3 *)a)->p, *q = ((const pt3 *)b)->p;
+  for (int k = 0; k < 3; k++)
+    if (p[k] != q[k]) return p[k] < q[k] ? -1 : 1;
+  return 0;
+}
+
+static int by_six(const void *a, const void *b) {
+  const double *p = a, *q = b;
+  for (int k = 0; k < 6; k++)
+    if (p[k] != q[k]) return p[k] < q[k] ? -1 : 1;
+  return 0;
+}
+
+/* The scatter of the contour's points about their mean, xx xy xz yy yz zz,
+ * summed over the points sorted (x, y, z): a function of the point set,
+ * whatever the start point and direction. */
+static void scatter(const rtstruct_contour *c, double s[6]) {
+  pt3 *q = xmallocarray((size_t)c->n, sizeof *q);
+  memcpy(q, c->p, (size_t)c->n * sizeof *q);
+  qsort(q, (size_t)c->n, sizeof *q, by_xyz);
+  double m[3] = {0, 0, 0};
+  for (int j = 0; j < c->n; j++)
+    for (int k = 0; k < 3; k++) m[k] += q[j].p[k];
+  for (int k = 0; k < 3; k++) m[k] /= c->n;
+  memset(s, 0, 6 * sizeof *s);
+  for (int j = 0; j < c->n; j++) {
+    double d[3] = {q[j].p[0] - m[0], q[j].p[1] - m[1], q[j].p[2] - m[2]};
+    s[0] += d[0] * d[0], s[1] += d[0] * d[1], s[2] += d[0] * d[2];
+    s[3] += d[1] * d[1], s[4] += d[1] * d[2], s[5] += d[2] * d[2];
+  }
+  free(q);
+}
+
+/* The unit eigenvector of the least eigenvalue of the symmetric matrix s
+ * (xx xy xz yy yz zz): cyclic Jacobi rotations (Numerical Recipes 11.1)
+ * until the off-diagonal is zero, at most 64 sweeps.  Deterministic. */
+static void least_eigenvector(const double s[6], double n[3]) {
+  double a[3][3] = {{s[0], s[1], s[2]}, {s[1], s[3], s[4]}, {s[2], s[4], s[5]}};
+  double v[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  static const int pq[3][2] = {{0, 1}, {0, 2}, {1, 2}};
+  for (int sweep = 0; sweep < 64; sweep++) {
+    if (a[0][1] == 0 && a[0][2] == 0 && a[1][2] == 0) break;
+    for (int r = 0; r < 3; r++) {
+      int p = pq[r][0], q = pq[r][1];
+      if (a[p][q] == 0) continue;
+      double theta = (a[q][q] - a[p][p]) / (2 * a[p][q]);
+      double t = fabs(theta) > 1e150 ? 1 / (2 * theta)
+                                      : (theta >= 0 ? 1 : -1) / (fabs(theta) + sqrt(theta * theta + 1));
+      double c = 1 / sqrt(t * t + 1), sn = t * c;
+      double P[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, b[3][3], w[3][3];
+      P[p][p] = c, P[q][q] = c, P[p][q] = sn, P[q][p] = -sn;
+      for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) b[i][j] = a[i][0] * P[0][j] + a[i][1] * P[1][j] + a[i][2] * P[2][j];
+      for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) a[i][j] = P[0][i] * b[0][j] + P[1][i] * b[1][j] + P[2][i] * b[2][j];
+      a[p][q] = a[q][p] = 0;
+      for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) w[i][j] = v[i][0] * P[0][j] + v[i][1] * P[1][j] + v[i][2] * P[2][j];
+      memcpy(v, w, sizeof v);
+    }
+  }
+  int k = 0;
+  for (int i = 1; i < 3; i++)
+    if (a[i][i] < a[k][k]) k = i;
+  double len = sqrt(v[0][k] * v[0][k] + v[1][k] * v[1][k] + v[2][k] * v[2][k]);
+  for (int i = 0; i < 3; i++) n[i] = v[i][k] / len;
+}
+
+/* The smallest rotation that takes z to the unit normal n (its axis z x n),
+ * after the permutation that brings n's largest component into z: the
+ * frame's u, v and n in patient coordinates (u, v the images of x and y). */
+static rtstruct_frame oblique_frame(const double nin[3]) {
+  int axis = 2;   /* z, then x, then y on a tie, as the standard planes */
+  if (fabs(nin[0]) > fabs(nin[axis])) axis = 0;
+  if (fabs(nin[1]) > fabs(nin[axis])) axis = 1;
+  const int *pm = perm_of[axis];
+  double sg = nin[pm[2]] < 0 ? -1 : 1;
+  double a = sg * nin[pm[0]], b = sg * nin[pm[1]], c = sg * nin[pm[2]];
+  double u[3] = {1 - a * a / (1 + c), -a * b / (1 + c), -a}, v[3] = {-a * b / (1 + c), 1 - b * b / (1 + c), -b};
+  double w[3] = {a, b, c};
+  rtstruct_frame f;
+  memset(&f, 0, sizeof f);
+  for (int k = 0; k < 3; k++) f.u[pm[k]] = u[k], f.v[pm[k]] = v[k], f.n[pm[k]] = w[k];
+  f.angle = atan2(sqrt(a * a + b * b), c) * (180 / 3.14159265358979323846);
+  return f;
+}
+
+static double dot3(const double a[3], const double *p) { return a[0] * p[0] + a[1] * p[1] + a[2] * p[2]; }
+
+static int by_double(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return x < y ? -1 : x > y;
+}
+
+/* The spread of the contour's points along the unit vector n. */
+static double spread_along(const rtstruct_contour *c, const double n[3]) {
+  double lo = 0, hi = 0;
+  for (int j = 0; j < c->n; j++) {
+    double d = dot3(n, c->p + 3 * j);
+    if (j == 0 || d < lo) lo = d;
+    if (j == 0 || d > hi) hi = d;
+  }
+  return hi - lo;
+}
+
+/* Contours in parallel planes of a common normal that is none of the axes
+ * (issue 22).  Each contour must be planar by itself: within FLAT_TOL of the
+ * least-squares plane of its points (the least eigenvector of their
+ * scatter).  The common normal is the least-squares normal of all the ROI's
+ * points to a plane per contour: the least eigenvector of the summed
+ * scatters, summed in sorted order, so that neither the file's order of the
+ * contours nor their start points and directions change a bit of it.  Each
+ * contour's height is the lower median of its points' (an input's own,
+ * whatever the order), and each must lie within FLAT_TOL of it.  0, or -1
+ * with roi->error naming the first contour that is not planar, else the one
+ * most tilted to the others. */
+static int oblique(reader *r, rtstruct_roi *roi) {
+  double *sc = xmallocarray((size_t)roi->nc * 6, sizeof *sc), sum[6] = {0, 0, 0, 0, 0, 0}, nrm[3];
+  const double deg = 180 / 3.14159265358979323846;
+  for (int i = 0; i < roi->nc; i++) {
+    const rtstruct_contour *c = &roi->c[i];
+    double n1[3], sp;
+    scatter(c, sc + 6 * i);
+    least_eigenvector(sc + 6 * i, n1);
+    if ((sp = spread_along(c, n1)) > FLAT_TOL) {
+      roi->error = roi_error(r, roi, c->offset,
+                             "contour item %d: not planar (its points spread %.3g mm off their best plane): contours "
+                             "must lie in parallel planes", c->item, sp);
+      free(sc);
+      return -1;
+    }
+  }
+  qsort(sc, (size_t)roi->nc, 6 * sizeof *sc, by_six);
+  for (int i = 0; i < roi->nc; i++)
+    for (int k = 0; k < 6; k++) sum[k] += sc[6 * i + k];
+  free(sc);
+  least_eigenvector(sum, nrm);
+  rtstruct_frame f = oblique_frame(nrm);
+  double worst = 0;
+  int bad = -1;
+  for (int i = 0; i < roi->nc; i++) {
+    rtstruct_contour *c = &roi->c[i];
+    double *h = xmallocarray((size_t)c->n, sizeof *h);
+    for (int j = 0; j < c->n; j++) h[j] = dot3(f.n, c->p + 3 * j);
+    qsort(h, (size_t)c->n, sizeof *h, by_double);
+    double spread = h[c->n - 1] - h[0];
+    c->h = h[(c->n - 1) / 2];
+    free(h);
+    if (spread > worst) worst = spread, bad = spread > FLAT_TOL ? i : -1;
+  }
+  if (bad >= 0) {
+    const rtstruct_contour *c = &roi->c[bad];
+    double s1[6], n1[3];
+    scatter(c, s1);
+    least_eigenvector(s1, n1);
+    double cosang = fabs(dot3(n1, f.n));
+    roi->error = roi_error(r, roi, c->offset,
+                           "contour item %d: planar, but tilted %.3g degrees to the plane of the ROI's other contours "
+                           "(their normal %.6f %.6f %.6f; its points spread %.3g mm along it): contours must lie in "
+                           "parallel planes", c->item, acos(cosang > 1 ? 1 : cosang) * deg, f.n[0], f.n[1], f.n[2],
+                           worst);
+    return -1;
+  }
+  roi->plane = RTSTRUCT_OBLIQUE;
+  roi->frame = f;
+  int axis = fabs(f.n[2]) >= fabs(f.n[0]) && fabs(f.n[2]) >= fabs(f.n[1]) ? 2 : fabs(f.n[0]) >= fabs(f.n[1]) ? 0 : 1;
+  roi_warn(r, roi, "oblique contours: parallel planes tilted %.6g degrees from the %s plane (normal %.17g %.17g "
+           "%.17g; each point within %.3g mm of its contour's plane): turned into z to be tiled, and the mesh "
+           "turned back", f.angle, axis == 2 ? "axial" : axis == 0 ? "sagittal" : "coronal", f.n[0], f.n[1],
+           f.n[2], worst);
+  return 0;
+}
+
 /* The plane of an ROI's contours, their heights, the order, the counts. */
 static void finish_roi(reader *r, rtstruct_roi *roi) {
   if (roi->error || roi->nc == 0) return;
@@ -374,25 +567,17 @@ static void finish_roi(reader *r, rtstruct_roi *roi) {
   else if (bad[0] < 0) axis = 0;
   else if (bad[1] < 0) axis = 1;
   if (axis < 0) {
-    const rtstruct_contour *c = &roi->c[bad[2]];
-    double lo = c->p[2], hi = c->p[2];
-    for (int j = 1; j < c->n; j++) {
-      if (c->p[3 * j + 2] < lo) lo = c->p[3 * j + 2];
-      if (c->p[3 * j + 2] > hi) hi = c->p[3 * j + 2];
-    }
-    roi->error = roi_error(r, roi, c->offset,
-                           "contour item %d: not in an axial plane (z from %.17g to %.17g), and the "
-                           "contours are not all sagittal or coronal either: contours must lie in "
-                           "parallel axial, sagittal or coronal planes", c->item, lo, hi);
-    return;
+    if (oblique(r, roi) != 0) return;
+  } else {
+    roi->plane = axis == 2 ? RTSTRUCT_AXIAL : axis == 0 ? RTSTRUCT_SAGITTAL : RTSTRUCT_CORONAL;
+    roi->frame = standard_frame(axis);
+    if (worst[axis] > 0)
+      roi_warn(r, roi, "some contours are not exactly flat (%s spread up to %.3g mm); each lies in its "
+               "first point's plane", axis == 2 ? "z" : axis == 0 ? "x" : "y", worst[axis]);
+    for (int i = 0; i < roi->nc; i++) roi->c[i].h = roi->c[i].p[axis];
   }
-  roi->plane = axis == 2 ? RTSTRUCT_AXIAL : axis == 0 ? RTSTRUCT_SAGITTAL : RTSTRUCT_CORONAL;
-  if (worst[axis] > 0)
-    roi_warn(r, roi, "some contours are not exactly flat (%s spread up to %.3g mm); each lies in its "
-             "first point's plane", axis == 2 ? "z" : axis == 0 ? "x" : "y", worst[axis]);
   keyed *k = xmallocarray((size_t)roi->nc, sizeof *k);
   for (int i = 0; i < roi->nc; i++) {
-    roi->c[i].h = roi->c[i].p[axis];
     k[i].h = roi->c[i].h;
     k[i].i = i;
   }
@@ -404,9 +589,11 @@ static void finish_roi(reader *r, rtstruct_roi *roi) {
   free(k);
   roi->slices = 0;
   roi->points = 0;
+  /* Oblique heights are computed, a rounding apart within a plane. */
+  double gap = roi->plane == RTSTRUCT_OBLIQUE ? FLAT_TOL : 0;
   for (int i = 0; i < roi->nc; i++) {
     roi->points += roi->c[i].n;
-    if (i == 0 || roi->c[i].h != roi->c[i - 1].h) roi->slices++;
+    if (i == 0 || roi->c[i].h - roi->c[i - 1].h > gap) roi->slices++;
   }
   roi->hmin = roi->c[0].h;
   roi->hmax = roi->c[roi->nc - 1].h;
@@ -700,19 +887,32 @@ int rtstruct_find(const rtstruct *s, const char *key, char *err, size_t errlen) 
 /* ---------------------------------------------------------------- stacks */
 
 const char *rtstruct_plane_name(rtstruct_plane plane) {
-  return plane == RTSTRUCT_AXIAL ? "axial" : plane == RTSTRUCT_SAGITTAL ? "sagittal" : "coronal";
+  return plane == RTSTRUCT_AXIAL      ? "axial"
+         : plane == RTSTRUCT_SAGITTAL ? "sagittal"
+         : plane == RTSTRUCT_CORONAL  ? "coronal"
+                                      : "oblique";
 }
 
 /* The stack frame: axial (x, y, z); sagittal (y, z, x); coronal (z, x, y):
- * cyclic permutations of the axes, so rotations. */
-void rtstruct_to_patient(rtstruct_plane plane, double *x, double *y, double *z) {
+ * cyclic permutations of the axes, so rotations; oblique: x u + y v + h n. */
+void rtstruct_to_patient(const rtstruct_roi *roi, double *x, double *y, double *z) {
   double u = *x, v = *y, h = *z;
-  if (plane == RTSTRUCT_SAGITTAL) *x = h, *y = u, *z = v;
-  else if (plane == RTSTRUCT_CORONAL) *x = v, *y = h, *z = u;
+  if (roi->plane == RTSTRUCT_SAGITTAL) *x = h, *y = u, *z = v;
+  else if (roi->plane == RTSTRUCT_CORONAL) *x = v, *y = h, *z = u;
+  else if (roi->plane == RTSTRUCT_OBLIQUE) {
+    const rtstruct_frame *f = &roi->frame;
+    *x = u * f->u[0] + v * f->v[0] + h * f->n[0];
+    *y = u * f->u[1] + v * f->v[1] + h * f->n[1];
+    *z = u * f->u[2] + v * f->v[2] + h * f->n[2];
+  }
 }
 
 void rtstruct_height_text(const rtstruct_roi *roi, int k, char *buf, size_t cap) {
   const rtstruct_contour *c = &roi->c[k];
+  if (roi->plane == RTSTRUCT_OBLIQUE) {
+    snprintf(buf, cap, "%.17g", c->h);
+    return;
+  }
   int ih = roi->plane == RTSTRUCT_AXIAL ? 2 : roi->plane == RTSTRUCT_SAGITTAL ? 0 : 1;
   size_t n = c->tok[ih + 1] - c->tok[ih];
   if (n > cap - 1) n = cap - 1;
@@ -738,7 +938,11 @@ char *rtstruct_roi_text(const rtstruct *s, int ri, size_t *len) {
   clean(roi->type, type, sizeof type);
   strbuf_add(&b, "# ROI %d '%s'%s%s%s of %s: %d closed planar contours, patient LPS mm\n", roi->number,
          roi->name, type[0] ? " (" : "", type, type[0] ? ")" : "", file, roi->nc);
-  if (roi->plane == RTSTRUCT_AXIAL)
+  if (roi->plane == RTSTRUCT_OBLIQUE)
+    strbuf_add(&b, "# oblique contours turned into z: each point is x' = u.p, y' = v.p, each plane h = n.p, u = (%.17g %.17g %.17g), v = (%.17g %.17g %.17g), n = (%.17g %.17g %.17g)\n",
+               roi->frame.u[0], roi->frame.u[1], roi->frame.u[2], roi->frame.v[0], roi->frame.v[1], roi->frame.v[2],
+               roi->frame.n[0], roi->frame.n[1], roi->frame.n[2]);
+  else if (roi->plane == RTSTRUCT_AXIAL)
     strbuf_add(&b, "# axial contours, sorted by z; each point is x y\n");
   else if (roi->plane == RTSTRUCT_SAGITTAL)
     strbuf_add(&b, "# sagittal contours turned into z: each point is patient y z, each plane patient x\n");
@@ -751,6 +955,12 @@ char *rtstruct_roi_text(const rtstruct *s, int ri, size_t *len) {
   char line[96];
   for (int i = 0; i < roi->nc; i++) {
     const rtstruct_contour *c = &roi->c[i];
+    if (roi->plane == RTSTRUCT_OBLIQUE) {   /* computed: %.17g reads back exactly */
+      const rtstruct_frame *f = &roi->frame;
+      strbuf_add(&b, "C %d %.17g\n", c->n, c->h);
+      for (int j = 0; j < c->n; j++) strbuf_add(&b, "%.17g %.17g\n", dot3(f->u, c->p + 3 * j), dot3(f->v, c->p + 3 * j));
+      continue;
+    }
     int k = snprintf(line, sizeof line, "C %d ", c->n);
     strbuf_raw(&b, line, (size_t)k);
     strbuf_raw(&b, c->txt + c->tok[ih], c->tok[ih + 1] - c->tok[ih]);

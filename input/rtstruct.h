@@ -12,12 +12,20 @@
  * lie in parallel planes: axial (z constant in each contour) is used as it is;
  * sagittal (x constant) and coronal (y constant) are turned into z by a cyclic
  * permutation of the axes (exact, and a rotation, so windings keep their
- * meaning), and turned back with rtstruct_to_patient; anything else is
- * refused, naming the ROI.
+ * meaning), and turned back with rtstruct_to_patient.  Oblique: contours in
+ * parallel planes of any other common normal (an export in a tilted frame)
+ * are turned into z by the same permutation (the axis nearest the normal
+ * into z) and then the smallest rotation that takes z to the normal, and
+ * back; the normal is the least-squares fit of all the ROI's points to
+ * parallel planes, one per contour, computed in an order that does not
+ * depend on the file's (rtstruct_frame below).  Contours more than 0.001 mm
+ * off a plane of that normal -- not planar, or planar but not parallel to the
+ * others -- are refused, naming the contour.
  *
  * An ROI becomes a .contours stack (input/contour.h) in the text that
  * rtstruct_roi_text writes: its closed contours sorted by their plane
- * (stably), the numbers as the file wrote them.  rtstruct_roi_stack reads that text with the
+ * (stably), the numbers as the file wrote them (oblique: computed, %.17g).
+ * rtstruct_roi_stack reads that text with the
  * .contours reader, so a DICOM ROI and its converted stack give the same
  * tiling, mesh and report; the reader's refusals and notes are rewritten to
  * name the DICOM file, the byte, the ROI and the contour item. */
@@ -30,7 +38,16 @@
 
 #include "contour.h"
 
-typedef enum { RTSTRUCT_AXIAL, RTSTRUCT_SAGITTAL, RTSTRUCT_CORONAL } rtstruct_plane;
+typedef enum { RTSTRUCT_AXIAL, RTSTRUCT_SAGITTAL, RTSTRUCT_CORONAL, RTSTRUCT_OBLIQUE } rtstruct_plane;
+
+/* An ROI's stack frame: a point p of the patient is (u.p, v.p, n.p) in the
+ * stack, and a stack point (x, y, h) is x u + y v + h n; u, v, n are
+ * orthonormal (to rounding), right-handed.  Exact permutations for the three
+ * standard planes. */
+typedef struct {
+  double u[3], v[3], n[3];
+  double angle;      /* oblique: degrees between n and the nearest axis */
+} rtstruct_frame;
 
 typedef struct {
   int item;          /* 1-based item of the ROI's ContourSequence */
@@ -40,7 +57,8 @@ typedef struct {
   size_t *poff;      /* n: byte offset of each point's first value */
   char *txt;         /* the 3n values as written (blanks trimmed), one after another */
   uint32_t *tok;     /* 3n + 1: where each value starts in txt (the next, where it ends) */
-  double h;          /* its plane's height along the ROI's normal */
+  double h;          /* its plane's height along the ROI's normal (oblique:
+                        the lower median of its points' heights) */
 } rtstruct_contour;
 
 typedef struct {
@@ -55,6 +73,7 @@ typedef struct {
   long points;       /* points of the closed contours */
   double hmin, hmax; /* their heights (0 if none) */
   rtstruct_plane plane;
+  rtstruct_frame frame;
   char *error;       /* NULL, or why its contours cannot be used (one line) */
   char *warnings;    /* lines to show when the ROI is used, or NULL */
 } rtstruct_roi;
@@ -112,12 +131,15 @@ int rtstruct_roi_stack(const rtstruct *s, int roi, int flags, contour_stack *out
  * Several lines are rewritten each.  malloc'd; the caller frees. */
 char *rtstruct_rewrite(const rtstruct *s, int roi, const char *name, const char *msg);
 
-/* A point of the stack's frame (x, y, z = height) back to patient x, y, z. */
-void rtstruct_to_patient(rtstruct_plane plane, double *x, double *y, double *z);
+/* A point of the ROI's stack frame (x, y, z = height) back to patient x,
+ * y, z: exact for the three standard planes, to rounding when oblique. */
+void rtstruct_to_patient(const rtstruct_roi *roi, double *x, double *y, double *z);
 
+/* "axial", "sagittal", "coronal" or "oblique". */
 const char *rtstruct_plane_name(rtstruct_plane plane);
 
-/* Contour k's height as the file wrote it (at most cap - 1 bytes). */
+/* Contour k's height as the file wrote it (oblique: %.17g of h; at most cap
+ * - 1 bytes). */
 void rtstruct_height_text(const rtstruct_roi *roi, int k, char *buf, size_t cap);
 
 /* A decimal string (DS): optional blanks around [+-]digits[.digits][e[+-]digits].

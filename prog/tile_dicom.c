@@ -353,7 +353,7 @@ int tile_dicom_main(const tile_dicom_opts *o, const char *in, const tile_dicom_e
       }
       nmesh = i + 1;
       for (int v = 0; v < me[i].nv; v++)
-        rtstruct_to_patient(r->plane, &me[i].v[v].x, &me[i].v[v].y, &me[i].v[v].z);
+        rtstruct_to_patient(r, &me[i].v[v].x, &me[i].v[v].y, &me[i].v[v].z);
     }
     if (fflush(stdout) != 0) {
       fprintf(stderr, "tile: cannot write the report (%s)\n", strerror(errno));

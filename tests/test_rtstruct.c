@@ -393,7 +393,7 @@ static void refusals(void) {
   cs[0] = (rtw_contour){NULL, 4, sq, NULL, -1};
   cs[1] = (rtw_contour){NULL, 4, NULL, "0\\0\\5\\10\\0\\6\\10\\10\\7\\0\\10\\5", -1};
   b = write1(&r, 1, &len);
-  roi_refused("oblique", b, len, "contour item 2: not in an axial plane (z from 5 to 7), and the contours are not all sagittal or coronal either");
+  roi_refused("not planar", b, len, "contour item 2: not planar (its points spread 0.497 mm off their best plane): contours must lie in parallel planes");
   free(b);
   cs[1] = two[1];
 
@@ -572,7 +572,7 @@ static void planes(void) {
         if (pl == 0) x = q[0], y = q[1];
         else if (pl == 1) x = q[1], y = q[2];
         else x = q[2], y = q[0];
-        rtstruct_to_patient(s.roi[0].plane, &x, &y, &z);
+        rtstruct_to_patient(&s.roi[0], &x, &y, &z);
         back &= same_bits(x, q[0]) && same_bits(y, q[1]) && same_bits(z, q[2]);
       }
     CHECK(back, "plane %d: turned back differs", pl);
