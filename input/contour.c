@@ -18,6 +18,7 @@
 
 #include "crossing.h"
 #include "keyhole.h"
+#include "slicemerge.h"
 #include "strbuf.h"
 #include "xmem.h"
 
@@ -555,6 +556,11 @@ int contour_parse_flags(const char *text, size_t len, const char *name, int flag
     goto done;
   }
   int nslices = group_slices(r, cs, ncs);
+  /* Exact duplicates on a slice dropped; with --union overlapping contours
+   * merged (slicemerge.h). */
+  if (slicemerge(&cs, &ncs, (flags & CONTOUR_UNION ? SLICEMERGE_UNION : 0) | (flags & CONTOUR_VERBOSE ? SLICEMERGE_VERBOSE : 0),
+                 name, r->prefix, &r->out, err, errlen) != 0)
+    goto done;
   if (nslices < 2 && !(flags & CONTOUR_ONE_SLICE)) {
     fail(r, cs[0].line, "all %d contours lie on one slice; tiling needs at least 2 (z=%.17g)",
          ncs, cs[0].z);
@@ -562,6 +568,8 @@ int contour_parse_flags(const char *text, size_t len, const char *name, int flag
   }
   /* With several contours on a slice, surface/ orients them by nesting and
    * reports what it changed. */
+  reversed = 0;   /* of the contours kept */
+  for (int i = 0; i < ncs; i++) reversed += cs[i].cw;
   if (reversed && nslices == ncs)
     note(r, 0, "%d of %d contours ran clockwise; reversed to counter-clockwise", reversed, ncs);
   out->n = ncs;

@@ -25,11 +25,18 @@
     }                                                                          \
   } while (0)
 
+/* A refusal: one line, or (bad contours, slices with crossings) a line per
+ * contour and a summary; every line names the input first. */
 static void one_line(const char *err, const char *name) {
   INVARIANT(err[0] != 0, "a refusal without a message");
-  INVARIANT(strchr(err, '\n') == NULL, "a refusal of more than one line: %s", err);
-  INVARIANT(strncmp(err, name, strlen(name)) == 0 && err[strlen(name)] == ':',
-            "a refusal that does not name the input first: %s", err);
+  for (const char *p = err; *p;) {
+    INVARIANT(strncmp(p, name, strlen(name)) == 0 && p[strlen(name)] == ':',
+              "a refusal line that does not name the input first: %s", err);
+    const char *e = strchr(p, '\n');
+    if (!e) break;
+    INVARIANT(e[1] != 0, "a refusal ending in an empty line: %s", err);
+    p = e + 1;
+  }
 }
 
 static int same_bits(double a, double b) { return memcmp(&a, &b, sizeof a) == 0; }
@@ -82,9 +89,45 @@ static void tile(const contour_stack *s, double max_pair) {
   mesh_free(&me);
 }
 
+/* The stack read with --skip-bad, --union and -v (issue 22): refused in
+ * lines that name the input, or a stack whose slices' contours meet nowhere
+ * and which writes and reads back as itself. */
+static void merged(const char *buf, size_t len, double max_pair) {
+  contour_stack s, t;
+  static char err[1 << 14];
+  char *notes = NULL;
+  size_t nl = 0;
+  FILE *nf = open_memstream(&notes, &nl);
+  int rc = contour_parse_flags(buf, len, NAME, CONTOUR_SKIP_BAD | CONTOUR_UNION | CONTOUR_VERBOSE, &s, nf, "fuzz",
+                               err, sizeof err);
+  fclose(nf);
+  if (rc != 0) {
+    one_line(err, NAME);
+    INVARIANT(nl == 0, "notes for a refused stack: %s", notes);
+    free(notes);
+    return;
+  }
+  for (const char *p = notes; p && *p; p = strchr(p, '\n') + 1)
+    INVARIANT(strncmp(p, "fuzz: " NAME, strlen("fuzz: " NAME)) == 0 && strchr(p, '\n'), "a note: %s", p);
+  free(notes);
+  char *text = NULL;
+  size_t tl = 0;
+  FILE *f = open_memstream(&text, &tl);
+  INVARIANT(contour_write(f, &s) == 0, "contour_write failed");
+  fclose(f);
+  INVARIANT(contour_parse(text, tl, NAME, &t, NULL, "fuzz", err, sizeof err) == 0,
+            "a merged stack does not read back: %s", err);
+  INVARIANT(t.n == s.n, "a merged stack of %d contours reads back as %d", s.n, t.n);
+  if (contour_stack_pairs(&s, NAME, err, sizeof err) == 0) tile(&s, max_pair);
+  free(text);
+  contour_stack_free(&s);
+  contour_stack_free(&t);
+}
+
 int pipeline_contours(const char *buf, size_t len, double max_pair) {
   contour_stack s, t;
-  char err[1024];
+  char err[1 << 14];
+  merged(buf, len, max_pair);
   if (contour_parse(buf, len, NAME, &s, NULL, "fuzz", err, sizeof err) != 0) {
     one_line(err, NAME);
     return 1;
@@ -154,7 +197,7 @@ static void reencode(const rtstruct *s) {
 
 int pipeline_dicom(const unsigned char *buf, size_t len, double max_pair) {
   rtstruct s;
-  char err[1024];
+  static char err[1 << 14];
   if (rtstruct_parse(buf, len, NAME, &s, err, sizeof err) != 0) {
     one_line(err, NAME);
     return 1;
@@ -163,6 +206,10 @@ int pipeline_dicom(const unsigned char *buf, size_t len, double max_pair) {
   reencode(&s);
   for (int i = 0; i < s.nroi; i++) {
     contour_stack st;
+    if (rtstruct_roi_stack(&s, i, RTSTRUCT_SKIP_BAD | RTSTRUCT_UNION, &st, NULL, "fuzz", err, sizeof err) == 0)
+      contour_stack_free(&st);
+    else
+      one_line(err, NAME);
     if (rtstruct_roi_stack(&s, i, 1, &st, NULL, "fuzz", err, sizeof err) != 0) {
       one_line(err, NAME);
       continue;

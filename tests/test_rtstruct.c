@@ -314,6 +314,9 @@ static void decimal_strings(void) {
 
 static const double sq[] = {0, 0, 5, 10, 0, 5, 10, 10, 5, 0, 10, 5};   /* a ccw square at z 5 */
 static double sq2[12], sq3[12];
+/* the square at z 5 moved by (2, 2): on its slice, it crosses the square (a
+ * copy of it would be dropped as a duplicate) */
+static const double sqm[] = {2, 2, 5, 12, 2, 5, 12, 12, 5, 2, 12, 5};
 
 static unsigned char *write1(const rtw_roi *roi, int n, size_t *len) {
   rtw_opts o = {0, 1, 0, 0, NULL, NULL, 0};
@@ -402,7 +405,7 @@ static void refusals(void) {
   roi_refused("one contour", b, len, "ROI 7 'Prostate', contour item 1: only one contour; tiling needs at least 2");
   free(b);
 
-  cs[1] = (rtw_contour){NULL, 4, sq, NULL, -1};
+  cs[1] = (rtw_contour){NULL, 4, sqm, NULL, -1};
   b = write1(&r, 1, &len);
   roi_refused("two on a slice", b, len, "contour item 2: slice z=5 already has a contour (contour item 1); this program tiles each contour with the next and needs one contour per slice");
   free(b);
@@ -673,7 +676,7 @@ static int write_fixtures(const char *dir) {
       {"nonfinite.dcm", {NULL, 4, NULL, "0\\0\\5\\10\\0\\5\\10\\10\\5\\1e999\\10\\5", -1}, 0},
       {"triplets.dcm", {NULL, 4, NULL, "0\\0\\5\\10\\0\\5\\10", -2}, 0},
       {"oblique.dcm", {NULL, 4, NULL, "0\\0\\5\\10\\0\\6\\10\\10\\7\\0\\10\\5", -1}, 1},
-      {"twoperslice.dcm", {NULL, 4, sq, NULL, -1}, 1},
+      {"twoperslice.dcm", {NULL, 4, sqm, NULL, -1}, 1},
   };
   for (size_t i = 0; i < sizeof bad_roi / sizeof *bad_roi; i++) {
     cs[bad_roi[i].at] = bad_roi[i].c;

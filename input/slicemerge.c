@@ -1,0 +1,319 @@
+/* slicemerge.c -- duplicates dropped, overlapping contours merged
+ * (slicemerge.h). */
+#include "slicemerge.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "crossing.h"
+#include "exact.h"
+#include "polyunion.h"
+#include "xmem.h"
+
+/* ---------------------------------------------------------------- order */
+
+typedef struct {
+  int i;          /* index into cs */
+  vec2 lo, hi;    /* bounding box */
+} boxed;
+
+static _Thread_local const contour *sort_cs;   /* for qsort */
+
+static int by_slice_box(const void *a, const void *b) {
+  const boxed *p = a, *q = b;
+  const contour *c = &sort_cs[p->i], *d = &sort_cs[q->i];
+  if (c->slice != d->slice) return c->slice - d->slice;
+  int k = exact_lex(p->lo, q->lo);
+  if (k) return k;
+  if ((k = exact_lex(p->hi, q->hi))) return k;
+  return c->line != d->line ? c->line - d->line : p->i - q->i;
+}
+
+static int by_slice_line(const void *a, const void *b) {
+  const contour *c = &sort_cs[*(const int *)a], *d = &sort_cs[*(const int *)b];
+  if (c->slice != d->slice) return c->slice - d->slice;
+  return c->line != d->line ? c->line - d->line : *(const int *)a - *(const int *)b;
+}
+
+/* The contour from its least point (counter-clockwise, as stored). */
+static void from_least(const vec2 *p, int n, vec2 *out) {
+  int k = 0;
+  for (int i = 1; i < n; i++)
+    if (exact_lex(p[i], p[k]) < 0) k = i;
+  for (int i = 0; i < n; i++) out[i] = p[(k + i) % n];
+}
+
+/* Without the points that lie between their neighbours on one line (a
+ * simple polygon has no spike, so orient 0 means between), from its least
+ * point: the region's own sequence.  Returns its length. */
+static int reduced(const vec2 *p, int n, vec2 *out) {
+  vec2 *t = xmallocarray((size_t)n, sizeof *t);
+  int m = 0;
+  for (int i = 0; i < n; i++)
+    if (exact_orient(p[(i + n - 1) % n], p[i], p[(i + 1) % n]) != 0) t[m++] = p[i];
+  from_least(t, m, out);
+  free(t);
+  return m;
+}
+
+static int cmp_seq(const vec2 *a, int n, const vec2 *b, int m) {
+  if (n != m) return n < m ? -1 : 1;
+  for (int i = 0; i < n; i++) {
+    int k = exact_lex(a[i], b[i]);
+    if (k) return k;
+  }
+  return 0;
+}
+
+/* Which of two copies to keep: fewer points, then the lesser sequence from
+ * the least point, then the earlier line.  < 0 when c is kept over d. */
+static int keep_order(const contour *c, const contour *d) {
+  if (c->n != d->n) return c->n < d->n ? -1 : 1;
+  vec2 *a = xmallocarray((size_t)c->n, sizeof *a), *b = xmallocarray((size_t)d->n, sizeof *b);
+  from_least(c->pt, c->n, a), from_least(d->pt, d->n, b);
+  int k = cmp_seq(a, c->n, b, d->n);
+  free(a), free(b);
+  return k ? k : c->line - d->line;
+}
+
+/* ---------------------------------------------------------------- duplicates */
+
+static void note_line(strbuf *notes, const char *prefix, const char *name, int line) {
+  strbuf_add(notes, "%s: %s:%d: ", prefix, name, line);
+}
+
+/* Mark in drop[] every contour that repeats another of its slice. */
+static int duplicates(contour *cs, int ncs, char *drop, int verbose, const char *name, const char *prefix,
+                      strbuf *notes) {
+  boxed *bx = xmallocarray((size_t)ncs + 1, sizeof *bx);
+  for (int i = 0; i < ncs; i++) {
+    vec2 lo = cs[i].pt[0], hi = cs[i].pt[0];
+    for (int k = 1; k < cs[i].n; k++) {
+      vec2 q = cs[i].pt[k];
+      if (q.x < lo.x) lo.x = q.x;
+      if (q.y < lo.y) lo.y = q.y;
+      if (q.x > hi.x) hi.x = q.x;
+      if (q.y > hi.y) hi.y = q.y;
+    }
+    bx[i] = (boxed){i, lo, hi};
+  }
+  sort_cs = cs;
+  qsort(bx, (size_t)ncs, sizeof *bx, by_slice_box);
+  int dropped = 0, first = -1, first_of = -1;
+  vec2 **red = xcalloc((size_t)ncs + 1, sizeof *red);
+  int *nred = xcalloc((size_t)ncs + 1, sizeof *nred);
+  for (int a = 0, b; a < ncs; a = b) {
+    /* a run of one slice and one box: the candidates */
+    for (b = a + 1; b < ncs && cs[bx[b].i].slice == cs[bx[a].i].slice && exact_lex(bx[b].lo, bx[a].lo) == 0 &&
+                    exact_lex(bx[b].hi, bx[a].hi) == 0;
+         b++) {}
+    if (b - a < 2) continue;
+    for (int k = a; k < b; k++) {
+      const contour *c = &cs[bx[k].i];
+      red[k] = xmallocarray((size_t)c->n, sizeof **red);
+      nred[k] = reduced(c->pt, c->n, red[k]);
+    }
+    for (int k = a; k < b; k++) {
+      if (drop[bx[k].i]) continue;
+      /* k's copies among the rest: the one kept is the least by keep_order */
+      int keep = bx[k].i;
+      for (int j = k + 1; j < b; j++)
+        if (!drop[bx[j].i] && cmp_seq(red[k], nred[k], red[j], nred[j]) == 0 && keep_order(&cs[bx[j].i], &cs[keep]) < 0)
+          keep = bx[j].i;
+      for (int j = k; j < b; j++) {
+        int i = bx[j].i;
+        if (i == keep || drop[i] || cmp_seq(red[k], nred[k], red[j], nred[j]) != 0) continue;
+        drop[i] = 1;
+        if (dropped++ == 0 || cs[i].line < cs[first].line) first = i, first_of = keep;
+        if (verbose && notes) {
+          note_line(notes, prefix, name, cs[i].line);
+          strbuf_add(notes, "dropped the contour: it repeats the contour at line %d on slice z=%.17g exactly (the same "
+                     "region: another start point, direction or collinear points)\n", cs[keep].line, cs[i].z);
+        }
+      }
+    }
+  }
+  if (dropped && !verbose && notes) {
+    note_line(notes, prefix, name, cs[first].line);
+    if (dropped == 1)
+      strbuf_add(notes, "dropped the contour: it repeats the contour at line %d on slice z=%.17g exactly (the same "
+                 "region: another start point, direction or collinear points)\n", cs[first_of].line, cs[first].z);
+    else
+      strbuf_add(notes, "dropped %d contours that repeat another of their slice exactly (the same region: another "
+                 "start point, direction or collinear points), this one a copy of line %d on slice z=%.17g; -v "
+                 "names each\n", dropped, cs[first_of].line, cs[first].z);
+  }
+  for (int k = 0; k < ncs; k++) free(red[k]);
+  free(red), free(nred), free(bx);
+  return dropped;
+}
+
+/* ---------------------------------------------------------------- union */
+
+/* "lines A, B and C" for the members of a group (at most 8, then "and N more"). */
+static void lines_of(strbuf *b, const contour *cs, const int *idx, const int *mem, int nm) {
+  for (int k = 0; k < nm; k++) {
+    if (k == 8) {
+      strbuf_add(b, " and %d more", nm - 8);
+      break;
+    }
+    strbuf_add(b, "%s%d", k == 0 ? "lines " : k + 1 == nm ? " and " : ", ", cs[idx[mem[k]]].line);
+  }
+}
+
+typedef struct {
+  contour *c;
+  int n, cap;
+} clist;
+
+static contour *push(clist *l) {
+  if (l->n == l->cap) {
+    l->cap = l->cap ? 2 * l->cap : 16;
+    l->c = xreallocarray(l->c, (size_t)l->cap, sizeof *l->c);
+  }
+  return &l->c[l->n++];
+}
+
+/* Merge the groups of one slice, cs[idx[0..m-1]] (in line order): their
+ * contours marked in drop[], the loops appended to add.  0, or -1 and err. */
+static int union_slice(contour *cs, const int *idx, int m, char *drop, clist *add, int *groups, int *merged,
+                       int *news, int *holes, int verbose, const char *name, const char *prefix, strbuf *notes,
+                       strbuf *first_note, int *first_line, char *err, size_t errlen) {
+  crossing_poly *cp = xmallocarray((size_t)m, sizeof *cp);
+  for (int k = 0; k < m; k++) cp[k] = (crossing_poly){cs[idx[k]].pt, cs[idx[k]].n};
+  polyunion_result u;
+  int rc = polyunion(cp, m, &u), slice0 = add->n;
+  double z = cs[idx[0]].z;
+  if (rc != 0) {
+    int g = u.bad_group, lead = idx[u.members[u.gmember[g]]];
+    strbuf b = {0};
+    lines_of(&b, cs, idx, u.members + u.gmember[g], u.gmember[g + 1] - u.gmember[g]);
+    if (u.status == POLYUNION_PINCH)
+      snprintf(err, errlen, "%s:%d: --union: the union of the contours at %s on slice z=%.17g touches itself at "
+               "(%.17g %.17g), a point where no set of separate contours can follow it; it cannot be tiled", name,
+               cs[lead].line, b.buf, z, u.at.x, u.at.y);
+    else
+      snprintf(err, errlen, "%s:%d: --union: the union of the contours at %s on slice z=%.17g: its new vertices, "
+               "rounded to doubles, make its boundary touch itself near (%.17g %.17g); it cannot be tiled", name,
+               cs[lead].line, b.buf, z, u.at.x, u.at.y);
+    free(b.buf);
+    polyunion_free(&u);
+    free(cp);
+    return -1;
+  }
+  for (int g = 0; g < u.ngroups; g++) {
+    const int *mem = u.members + u.gmember[g];
+    int nm = u.gmember[g + 1] - u.gmember[g], nh = 0;
+    for (int k = 0; k < nm; k++) drop[idx[mem[k]]] = 1;
+    for (int l = u.gfirst[g]; l < u.gfirst[g + 1]; l++) {
+      int n = u.first[l + 1] - u.first[l];
+      contour *c = push(add);
+      c->z = z;
+      c->n = n;
+      c->pt = xmallocarray((size_t)n, sizeof *c->pt);
+      memcpy(c->pt, u.pt + u.first[l], (size_t)n * sizeof *c->pt);
+      c->cw = u.hole[l];
+      if (c->cw) geom_reverse(c->pt, n);   /* stored counter-clockwise, as the reader's */
+      c->line = cs[idx[u.src[l]]].line;
+      c->slice = cs[idx[0]].slice;
+      nh += u.hole[l];
+    }
+    int nl = u.gfirst[g + 1] - u.gfirst[g];
+    if (*groups == 0) *first_line = cs[idx[mem[0]]].line;
+    strbuf *to = verbose ? notes : (*groups == 0 ? first_note : NULL);
+    if (to) {
+      note_line(to, prefix, name, cs[idx[mem[0]]].line);
+      strbuf_add(to, "--union: merged the contours at ");
+      lines_of(to, cs, idx, mem, nm);
+      strbuf_add(to, " on slice z=%.17g into their union: %d contour%s", z, nl - nh, nl - nh == 1 ? "" : "s");
+      if (nh) strbuf_add(to, " and %d hole%s", nh, nh == 1 ? "" : "s");
+      strbuf_add(to, " (%d new vertices where they cross)\n", u.newpts[g]);
+    }
+    (*groups)++, *merged += nm, *news += u.newpts[g], *holes += nh;
+  }
+  polyunion_free(&u);
+  free(cp);
+  /* Rounding may have made a loop meet a contour of the slice that met
+   * none: checked exactly, as the surface will. */
+  if (add->n > slice0) {
+    int k = 0;
+    crossing_poly *all = xmallocarray((size_t)m + (size_t)(add->n - slice0), sizeof *all);
+    for (int i = 0; i < m; i++)
+      if (!drop[idx[i]]) all[k++] = (crossing_poly){cs[idx[i]].pt, cs[idx[i]].n};
+    for (int i = slice0; i < add->n; i++) all[k++] = (crossing_poly){add->c[i].pt, add->c[i].n};
+    crossing_hit h;
+    int hit = crossing_find(all, k, &h);
+    free(all);
+    if (hit) {
+      snprintf(err, errlen, "%s:%d: --union: on slice z=%.17g the union's new vertices, rounded to doubles, make it "
+               "touch another contour near (%.17g %.17g); it cannot be tiled", name, add->c[slice0].line, z, h.at.x,
+               h.at.y);
+      return -1;
+    }
+  }
+  return 0;
+}
+
+/* ---------------------------------------------------------------- the whole */
+
+int slicemerge(contour **csp, int *ncsp, int flags, const char *name, const char *prefix, strbuf *notes,
+               char *err, size_t errlen) {
+  contour *cs = *csp;
+  int ncs = *ncsp, verbose = (flags & SLICEMERGE_VERBOSE) != 0, rc = 0;
+  char *drop = xcalloc((size_t)ncs + 1, 1);
+  int ndup = duplicates(cs, ncs, drop, verbose, name, prefix, notes);
+  clist add = {0};
+  if (flags & SLICEMERGE_UNION) {
+    int *idx = xmallocarray((size_t)ncs + 1, sizeof *idx), m = 0;
+    for (int i = 0; i < ncs; i++)
+      if (!drop[i]) idx[m++] = i;
+    sort_cs = cs;
+    qsort(idx, (size_t)m, sizeof *idx, by_slice_line);
+    int groups = 0, merged = 0, news = 0, holes = 0, slices = 0, first_line = 0;
+    strbuf first = {0};
+    for (int a = 0, b; a < m && rc == 0; a = b) {
+      for (b = a + 1; b < m && cs[idx[b]].slice == cs[idx[a]].slice; b++) {}
+      int before = groups;
+      if (b - a >= 2)
+        rc = union_slice(cs, idx + a, b - a, drop, &add, &groups, &merged, &news, &holes, verbose, name, prefix,
+                         notes, &first, &first_line, err, errlen);
+      slices += groups > before;
+    }
+    if (rc == 0 && !verbose && notes && groups == 1) strbuf_raw(notes, first.buf, first.len);
+    else if (rc == 0 && !verbose && notes && groups > 1) {
+      note_line(notes, prefix, name, first_line);
+      strbuf_add(notes, "--union: merged %d overlapping contours in %d groups on %d slices into their unions: %d "
+                 "contours, %d of them holes (%d new vertices where they cross); -v names each group\n", merged,
+                 groups, slices, add.n, holes, news);
+    }
+    free(first.buf);
+    free(idx);
+  }
+  if (rc != 0) {
+    for (int i = 0; i < add.n; i++) free(add.c[i].pt);
+    free(add.c);
+    free(drop);
+    return -1;
+  }
+  if (ndup || add.n || (flags & SLICEMERGE_UNION)) {
+    int k = 0;
+    for (int i = 0; i < ncs; i++) {
+      if (drop[i]) {
+        free(cs[i].pt);
+        continue;
+      }
+      cs[k++] = cs[i];
+    }
+    if (add.n) {
+      cs = xreallocarray(cs, (size_t)(k + add.n), sizeof *cs);
+      memcpy(cs + k, add.c, (size_t)add.n * sizeof *cs);
+      k += add.n;
+    }
+    *csp = cs;
+    *ncsp = k;
+  }
+  free(add.c);
+  free(drop);
+  return 0;
+}

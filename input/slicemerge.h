@@ -1,0 +1,44 @@
+/* slicemerge.h -- contours of one slice that repeat or overlap each other.
+ *
+ * Planning systems export the same region several times on a slice (Monaco
+ * writes the outline three times, from other start points, with extra
+ * collinear points) and regions drawn in overlapping pieces (issue 22).
+ *
+ * Duplicates (always).  Two contours of a slice are the same region when
+ * they have the same points up to start point, direction and collinear
+ * points: each with every point that lies exactly between its neighbours on
+ * their line removed (exact_orient), from its least point, counter-clockwise,
+ * is the same sequence.  One is kept -- the one with fewest points, then the
+ * least sequence from its least point, then the first in the file: so the
+ * stack does not depend on the file's order -- and the others are dropped
+ * with a note.
+ *
+ * Union (SLICEMERGE_UNION).  Contours of a slice whose boundaries meet
+ * (cross, touch, overlap) are replaced by the boundary of the union of their
+ * regions (algo/polyunion.h: exact; holes the union encloses included);
+ * contours that meet no other keep their role by nesting (surface/slices.h),
+ * so a contour inside a union's boundary is a hole of it.  A union that
+ * pinches (touches itself at a point), or whose rounded new vertices would
+ * make contours of the slice meet, is refused.  Without the flag such
+ * contours are left for the surface to refuse. */
+#ifndef SLICEMERGE_H
+#define SLICEMERGE_H
+
+#include <stddef.h>
+
+#include "contour.h"
+#include "strbuf.h"
+
+enum { SLICEMERGE_UNION = 1, SLICEMERGE_VERBOSE = 2 };
+
+/* The contours cs[0..*ncs-1] (points counter-clockwise, each with its
+ * slice, the slices' z snapped), read from `name`: duplicates dropped and,
+ * with SLICEMERGE_UNION, overlapping ones merged; cs may be reallocated and
+ * reordered.  Notes ("PREFIX: NAME:LINE: ...") are appended to notes: one
+ * line for all duplicates and one for all unions, or with
+ * SLICEMERGE_VERBOSE one for each.  0, or -1 with "NAME:LINE: ..." in err
+ * (the contours are then still the caller's to free). */
+int slicemerge(contour **cs, int *ncs, int flags, const char *name, const char *prefix, strbuf *notes,
+               char *err, size_t errlen);
+
+#endif

@@ -1,0 +1,373 @@
+/* test_slicemerge.c -- contours of a slice that repeat or overlap (issue 22),
+ * through the reader (input/slicemerge.h) and the stack tiler:
+ *   - three copies of one region on every slice, as Monaco writes an
+ *     outline (other start points, extra collinear points, reversed): one
+ *     kept, the one with fewest points; the mesh byte for byte the mesh of
+ *     the stack with one copy, whatever the copies' order in the file;
+ *   - overlapping pieces with --union: five pieces a slice, three of them
+ *     overlapping (rectangles, and rotated squares), the union's area on
+ *     each slice against coordinate compression (rectangles) and against
+ *     inclusion-exclusion with clipped intersections (squares); holes and
+ *     islands (a ring of pieces around a hole, an island in it); the mesh a
+ *     closed, outward 2-manifold (tests/meshcheck, independent); shuffled,
+ *     start-rotated, reversed re-encodings give the same mesh bytes;
+ *   - without --union the overlap refused, naming every slice and --union;
+ *   - notes: one line for the duplicates, one for the unions; -v one each. */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "contour.h"
+#include "meshcheck.h"
+#include "rng.h"
+#include "stack.h"
+#include "strbuf.h"
+#include "xmem.h"
+
+typedef struct {
+  int n;
+  vec2 p[64];
+  double z;
+} poly;
+
+/* The stack as text: contours in the order given, each from point `start`
+ * (mod n), reversed when rev. */
+static char *text_of(const poly *ps, int np, const int *order, const int *start, const int *rev, size_t *len) {
+  strbuf b = {0};
+  for (int k = 0; k < np; k++) {
+    const poly *c = &ps[order ? order[k] : k];
+    int s = start ? start[k] : 0, r = rev ? rev[k] : 0;
+    strbuf_add(&b, "C %d %.17g\n", c->n, c->z);
+    for (int j = 0; j < c->n; j++) {
+      int i = r ? ((s - j) % c->n + c->n) % c->n : (s + j) % c->n;
+      strbuf_add(&b, "%.17g %.17g\n", c->p[i].x, c->p[i].y);
+    }
+  }
+  *len = b.len;
+  return b.buf;
+}
+
+typedef struct {
+  int rc;
+  char err[4096];
+  char *notes;
+  int nv, nt;
+  vec3 *v;
+  int (*t)[3];
+  contour_stack s;
+} result;
+
+/* Read (flags) and tile with flat caps. */
+static void run(const char *text, size_t len, int flags, result *r) {
+  memset(r, 0, sizeof *r);
+  size_t nl = 0;
+  FILE *f = open_memstream(&r->notes, &nl);
+  r->rc = contour_parse_flags(text, len, "m.contours", flags, &r->s, f, "tile", r->err, sizeof r->err);
+  fclose(f);
+  if (r->rc != 0) return;
+  stack_options o = {COST_AREA, 1, 0, 2, NULL, NULL, "tile", NULL, NULL, MATCH_SINGLE, INFINITY, 0};
+  stack_surface *ss = NULL;
+  r->rc = stack_tile(&r->s, "m.contours", &o, &ss, r->err, sizeof r->err);
+  if (r->rc == 0) {
+    mesh me;
+    stack_take_mesh(ss, &me);
+    r->nv = me.nv, r->nt = me.nt;
+    r->v = xmallocarray((size_t)me.nv + 1, sizeof *r->v);
+    r->t = xmallocarray((size_t)me.nt + 1, sizeof *r->t);
+    memcpy(r->v, me.v, (size_t)me.nv * sizeof *r->v);
+    memcpy(r->t, me.t, (size_t)me.nt * sizeof *r->t);
+    mesh_free(&me);
+  }
+  stack_free(ss);
+}
+
+static void done(result *r) {
+  free(r->notes), free(r->v), free(r->t);
+  if (r->s.c) contour_stack_free(&r->s);
+}
+
+static int same_mesh(const result *a, const result *b) {
+  return a->rc == 0 && b->rc == 0 && a->nv == b->nv && a->nt == b->nt &&
+         memcmp(a->v, b->v, (size_t)a->nv * sizeof *a->v) == 0 && memcmp(a->t, b->t, (size_t)a->nt * sizeof *a->t) == 0;
+}
+
+static int lines(const char *s) {
+  int n = 0;
+  for (; s && *s; s++) n += *s == '\n';
+  return n;
+}
+
+/* A closed, outward 2-manifold by the independent checker. */
+static int closed(const result *r, char *why, size_t cap) {
+  double *v = xmallocarray(3 * (size_t)r->nv + 1, sizeof *v);
+  for (int i = 0; i < r->nv; i++) v[3 * i] = r->v[i].x, v[3 * i + 1] = r->v[i].y, v[3 * i + 2] = r->v[i].z;
+  mc_mesh m;
+  mc_make(&m, v, r->nv, &r->t[0][0], r->nt);
+  mc_report rep;
+  mc_check(&m, &rep);
+  int ok = rep.manifold && rep.outward;
+  snprintf(why, cap, "%s", rep.first);
+  mc_report_free(&rep);
+  mc_free(&m);
+  free(v);
+  return ok;
+}
+
+/* ---------------------------------------------------------------- copies */
+
+/* An outline (a 12-gon, integer points) on 4 slices, three times on each:
+ * as it is; from another start, reversed; with a point added in the middle
+ * of every other edge.  Against the stack of one copy. */
+static void copies(void) {
+  static poly ps[12];
+  int np = 0;
+  vec2 base[12];
+  for (int i = 0; i < 12; i++) base[i] = (vec2){round(100 * cos(i * 0.5236) + i), round(80 * sin(i * 0.5236))};
+  for (int k = 0; k < 4; k++)
+    for (int c = 0; c < 3; c++) {
+      poly *p = &ps[np++];
+      p->z = 2.5 * k, p->n = 0;
+      for (int i = 0; i < 12; i++) {
+        int j = c == 1 ? (5 - i + 12) % 12 : i;
+        p->p[p->n++] = (vec2){base[j].x + k, base[j].y};
+        if (c == 2 && i % 2 == 0) {
+          vec2 a = base[i], b = base[(i + 1) % 12];
+          if (fmod(a.x + b.x, 2) == 0 && fmod(a.y + b.y, 2) == 0)
+            p->p[p->n++] = (vec2){(a.x + b.x) / 2 + k, (a.y + b.y) / 2};
+        }
+      }
+    }
+  int one_order[4] = {0, 3, 6, 9};
+  size_t l1, l3;
+  char *t1 = text_of(ps, 4, one_order, NULL, NULL, &l1);
+  result r1, r3;
+  run(t1, l1, 0, &r1);
+  CHECK(r1.rc == 0, "one copy: %s", r1.err);
+  rng g;
+  rng_seed(&g, 3);
+  int order[12], start[12], rev[12];
+  for (int trial = 0; trial < 6; trial++) {
+    for (int i = 0; i < 12; i++) order[i] = i, start[i] = trial ? rng_int(&g, 0, 11) : 0, rev[i] = trial ? rng_int(&g, 0, 1) : 0;
+    for (int i = 11; trial && i > 0; i--) {
+      int j = rng_int(&g, 0, i), t = order[i];
+      order[i] = order[j], order[j] = t;
+    }
+    char *t3 = text_of(ps, 12, order, start, rev, &l3);
+    run(t3, l3, 0, &r3);
+    CHECK(r3.rc == 0 && r3.s.n == 4, "three copies (%d): %d contours: %s", trial, r3.s.n, r3.err);
+    CHECK(same_mesh(&r1, &r3), "three copies (%d): another mesh than one copy's", trial);
+    CHECK(lines(r3.notes) >= 1 && strstr(r3.notes, "dropped 8 contours that repeat another of their slice exactly"),
+          "three copies (%d): notes '%s'", trial, r3.notes);
+    done(&r3);
+    if (trial == 0) {   /* -v: one line each */
+      run(t3, l3, CONTOUR_VERBOSE, &r3);
+      int each = 0;
+      for (const char *q = r3.notes; (q = strstr(q, "dropped the contour: it repeats the contour at line")); q++) each++;
+      CHECK(each == 8, "three copies, -v: %d notes for 8 copies: %s", each, r3.notes);
+      done(&r3);
+    }
+    free(t3);
+  }
+  done(&r1);
+  free(t1);
+}
+
+/* ---------------------------------------------------------------- union */
+
+/* Union area of axis-parallel rectangles: coordinate compression. */
+static double rects_area(const double (*r)[4], int n) {
+  double xs[32], ys[32];
+  int m = 0;
+  for (int i = 0; i < n; i++) xs[m] = r[i][0], ys[m++] = r[i][1], xs[m] = r[i][2], ys[m++] = r[i][3];
+  for (int i = 1; i < m; i++)
+    for (int j = i; j > 0 && xs[j - 1] > xs[j]; j--) { double t = xs[j]; xs[j] = xs[j - 1], xs[j - 1] = t; }
+  for (int i = 1; i < m; i++)
+    for (int j = i; j > 0 && ys[j - 1] > ys[j]; j--) { double t = ys[j]; ys[j] = ys[j - 1], ys[j - 1] = t; }
+  double a = 0;
+  for (int i = 0; i + 1 < m; i++)
+    for (int j = 0; j + 1 < m; j++) {
+      double cx = (xs[i] + xs[i + 1]) / 2, cy = (ys[j] + ys[j + 1]) / 2;
+      for (int k = 0; k < n; k++)
+        if (r[k][0] < cx && cx < r[k][2] && r[k][1] < cy && cy < r[k][3]) {
+          a += (xs[i + 1] - xs[i]) * (ys[j + 1] - ys[j]);
+          break;
+        }
+    }
+  return a;
+}
+
+static double area(const vec2 *p, int n) {
+  double a = 0;
+  for (int i = 0; i < n; i++) a += (p[i].x - p[0].x) * (p[(i + 1) % n].y - p[0].y) - (p[(i + 1) % n].x - p[0].x) * (p[i].y - p[0].y);
+  return a / 2;
+}
+
+/* The slice's region area from the stack read: holes (cw: made clockwise
+ * by the union) subtract; no other contour here lies inside another. */
+static double slice_area(const contour_stack *s, double z) {
+  double a = 0;
+  for (int i = 0; i < s->n; i++)
+    if (s->c[i].z == z) a += (s->c[i].cw ? -1 : 1) * area(s->c[i].pt, s->c[i].n);
+  return a;
+}
+
+static void rect(poly *p, double x0, double y0, double x1, double y1, double z) {
+  p->n = 4, p->z = z;
+  p->p[0] = (vec2){x0, y0}, p->p[1] = (vec2){x1, y0}, p->p[2] = (vec2){x1, y1}, p->p[3] = (vec2){x0, y1};
+}
+
+/* Five rectangles a slice, three overlapping, on 6 slices 1 apart; the
+ * second slice's three form a ring round a hole with an island in it. */
+static void rectangles(void) {
+  rng g;
+  rng_seed(&g, 21);
+  static poly ps[64];
+  double rr[6][5][4];
+  int np = 0;
+  for (int k = 0; k < 6; k++)
+    for (int i = 0; i < 5; i++) {
+      double x0, y0, x1, y1;
+      if (i < 3 && k != 1) {   /* three overlapping about (20, 20) */
+        x0 = 10 + rng_int(&g, 0, 8), y0 = 10 + rng_int(&g, 0, 8);
+        x1 = x0 + rng_int(&g, 6, 14) + 0.25, y1 = y0 + rng_int(&g, 6, 14) + 0.5;
+      } else if (i < 3) {      /* a U and a bar: a ring round (18..22, 18..22) */
+        static const double ring[3][4] = {{10, 10, 30, 18}, {10, 10, 18, 30}, {14, 22, 30, 30.5}};
+        static const double bar[4] = {22, 10, 30, 30};
+        const double *q = i < 2 ? ring[i] : ring[2];
+        x0 = q[0], y0 = q[1], x1 = q[2], y1 = q[3];
+        (void)bar;
+      } else {                 /* apart */
+        x0 = 50 + 20 * (i - 3), y0 = 5, x1 = x0 + 8, y1 = 12;
+      }
+      rr[k][i][0] = x0, rr[k][i][1] = y0, rr[k][i][2] = x1, rr[k][i][3] = y1;
+      rect(&ps[np++], x0, y0, x1, y1, k);
+    }
+  /* the ring's right side, and the island */
+  rr[1][3][0] = 22, rr[1][3][1] = 10, rr[1][3][2] = 30, rr[1][3][3] = 30;
+  rect(&ps[5 + 3], 22, 10, 30, 30, 1);
+  rect(&ps[np++], 19, 19, 21, 21, 1);
+  size_t len;
+  char *t = text_of(ps, np, NULL, NULL, NULL, &len);
+  result r;
+  run(t, len, 0, &r);
+  CHECK(r.rc != 0 && strstr(r.err, "--union merges overlapping contours of a slice into their union") &&
+            strstr(r.err, "contours cross or touch on 6 slices (each named above)") && lines(r.err) == 6,
+        "rectangles without --union: %d '%s'", r.rc, r.err);
+  done(&r);
+  run(t, len, CONTOUR_UNION, &r);
+  CHECK(r.rc == 0, "rectangles: %s", r.err);
+  if (r.rc == 0) {
+    int bad = 0;
+    for (int k = 0; k < 6; k++) {
+      double want = rects_area((const double (*)[4])rr[k], 4) + (rr[k][4][2] - rr[k][4][0]) * (rr[k][4][3] - rr[k][4][1]);
+      double got = slice_area(&r.s, k);
+      if (k == 1) want += 4;   /* the island */
+      if (fabs(got - want) > 1e-12 * want) {
+        bad++;
+        CHECK(0, "rectangles, slice %d: area %.17g, want %.17g", k, got, want);
+      }
+    }
+    int holes = 0;
+    for (int i = 0; i < r.s.n; i++) holes += r.s.c[i].cw;
+    char why[300];
+    CHECK(bad == 0 && holes == 1 && closed(&r, why, sizeof why), "rectangles: %d holes; mesh %s", holes, why);
+    CHECK(lines(r.notes) == 1 && strstr(r.notes, "--union: merged 19 overlapping contours in 6 groups on 6 slices"),
+          "rectangles: notes '%s'", r.notes);
+  }
+  /* re-encoded: the same mesh */
+  rng_seed(&g, 4);
+  int order[64], start[64], rev[64];
+  for (int trial = 0; trial < 4; trial++) {
+    for (int i = 0; i < np; i++) order[i] = i, start[i] = rng_int(&g, 0, 3), rev[i] = rng_int(&g, 0, 1);
+    for (int i = np - 1; i > 0; i--) {
+      int j = rng_int(&g, 0, i), tt = order[i];
+      order[i] = order[j], order[j] = tt;
+    }
+    size_t l2;
+    char *t2 = text_of(ps, np, order, start, rev, &l2);
+    result r2;
+    run(t2, l2, CONTOUR_UNION, &r2);
+    CHECK(same_mesh(&r, &r2), "rectangles re-encoded (%d): another mesh", trial);
+    done(&r2);
+    free(t2);
+  }
+  done(&r);
+  free(t);
+}
+
+/* Convex polygon p clipped by the half-plane left of ab (Sutherland-Hodgman). */
+static int clip(const vec2 *p, int n, vec2 a, vec2 b, vec2 *out) {
+  int m = 0;
+  for (int i = 0; i < n; i++) {
+    vec2 c = p[i], d = p[(i + 1) % n];
+    double sc = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x), sd = (b.x - a.x) * (d.y - a.y) - (b.y - a.y) * (d.x - a.x);
+    if (sc >= 0) out[m++] = c;
+    if ((sc >= 0) != (sd >= 0)) {
+      double u = sc / (sc - sd);
+      out[m++] = (vec2){c.x + u * (d.x - c.x), c.y + u * (d.y - c.y)};
+    }
+  }
+  return m;
+}
+
+static double inter(const poly *const *ps, int k) {
+  vec2 a[256], b[256];
+  int n = ps[0]->n;
+  memcpy(a, ps[0]->p, (size_t)n * sizeof *a);
+  for (int j = 1; j < k; j++)
+    for (int e = 0; e < ps[j]->n && n > 0; e++) {
+      n = clip(a, n, ps[j]->p[e], ps[j]->p[(e + 1) % ps[j]->n], b);
+      memcpy(a, b, (size_t)n * sizeof *a);
+    }
+  return n >= 3 ? area(a, n) : 0;
+}
+
+/* Three rotated squares overlapping, two apart, on 5 slices: the union's
+ * area against inclusion-exclusion (to 1e-12: new vertices are rounded). */
+static void squares(void) {
+  static poly ps[32];
+  int np = 0;
+  for (int k = 0; k < 5; k++)
+    for (int i = 0; i < 5; i++) {
+      poly *p = &ps[np++];
+      p->n = 4, p->z = 1.5 * k;
+      double cx = i < 3 ? 20 + 6 * cos(2.1 * i + k) : 60 + 25 * (i - 3), cy = i < 3 ? 20 + 6 * sin(2.1 * i + k) : 10;
+      double r = i < 3 ? 9 + i : 5, ph = 0.3 * i + 0.17 * k;
+      for (int j = 0; j < 4; j++) p->p[j] = (vec2){cx + r * cos(ph + j * 1.5707963267948966), cy + r * sin(ph + j * 1.5707963267948966)};
+    }
+  size_t len;
+  char *t = text_of(ps, np, NULL, NULL, NULL, &len);
+  result r;
+  run(t, len, CONTOUR_UNION, &r);
+  CHECK(r.rc == 0, "squares: %s", r.err);
+  if (r.rc == 0) {
+    double worst = 0;
+    for (int k = 0; k < 5; k++) {
+      const poly *q[3] = {&ps[5 * k], &ps[5 * k + 1], &ps[5 * k + 2]};
+      double want = area(q[0]->p, 4) + area(q[1]->p, 4) + area(q[2]->p, 4) + area(ps[5 * k + 3].p, 4) + area(ps[5 * k + 4].p, 4);
+      for (int i = 0; i < 3; i++)
+        for (int j = i + 1; j < 3; j++) {
+          const poly *pp[2] = {q[i], q[j]};
+          want -= inter(pp, 2);
+        }
+      want += inter(q, 3);
+      double d = fabs(slice_area(&r.s, 1.5 * k) - want) / want;
+      if (d > worst) worst = d;
+    }
+    char why[300];
+    CHECK(worst < 1e-12 && closed(&r, why, sizeof why), "squares: the union's area %.3g off inclusion-exclusion; mesh %s",
+          worst, why);
+  }
+  done(&r);
+  free(t);
+}
+
+int main(void) {
+  copies();
+  rectangles();
+  squares();
+  return check_done("test_slicemerge");
+}
