@@ -467,6 +467,7 @@ bench-tile: all
 	./bench --tiler
 	./bench --stack
 	./bench --dicom
+	./bench --union
 
 # The testbed's cost (issue 18): a user's ring through tilesim.h beside
 # ./bench --ring, the simulator driven directly (tests/bench_testbed.sh).

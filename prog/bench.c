@@ -15,6 +15,7 @@
 #include "bench_ring.h"
 #include "bench_stack.h"
 #include "bench_tiler.h"
+#include "bench_union.h"
 #ifdef TILESIM_MPI
 #include "run_mpi.h"
 #endif
@@ -73,6 +74,12 @@ static const mode modes[] = {
      "[FILE...] [--repeat R]\n"
      "      how fast a DICOM RT structure set is read (best of R runs, default 20) and its\n"
      "      ROIs made into stacks; a checksum of the coordinates (default: dicompyler_rtss.dcm)"},
+    {"--union", bench_union,
+     "[blob|star:K:N ...] [--repeat R]\n"
+     "      the exact union (./tile --union) of K overlapping contours of N points on\n"
+     "      one slice, smooth (blob) or spiky (star): its loops, holes, new vertices,\n"
+     "      the best time of R (default blob:3:100 blob:5:1000 blob:5:10000\n"
+     "      blob:8:100000 star:5:1000; best of 5), checksums"},
     {"--stack", bench_stack,
      "[STACK|FILE.dcm:ROI...] [-j LIST] [--repeat R] [--apex] [--join RULE]\n"
      "      whole stacks into one closed surface (several contours a slice: nesting,\n"

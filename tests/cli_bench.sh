@@ -42,7 +42,8 @@ for args in "--frob" "--ring" "--ring 0 --laps 1" "--ring 4" "--ring 4 --laps x"
             "--procs 0" "--procs 1..x" "--points 2" "--alloc third" "--min-diag 0" "--m -1" "--jobs 0" \
             "--tiler --points 1" "--procs 4 --net token" "--backend mpi" "--backend threads --jobs 2" \
             "--stack -j 0" "--stack -j 1,x" "--stack --repeat 0" "--stack --frob" \
-            "--model --backend threads"; do
+            "--model --backend threads" \
+            "--union 3:100" "--union blob:0:100" "--union star:3:2" "--union blob:3:100x" "--union --repeat 0"; do
   # shellcheck disable=SC2086
   "$bench" $args >"$tmp.out" 2>"$tmp.err"; rc=$?
   if [ $rc -eq 2 ] && [ ! -s "$tmp.out" ] && grep -q '^usage: bench' "$tmp.err"; then ok
@@ -53,9 +54,9 @@ rm -f "$tmp.out" "$tmp.err"
 # --help, and MODE --help (anywhere after the mode): on stdout, exit 0,
 # the program named as it was run; a mode's help is that mode's alone.
 out=$("$bench" --help 2>&1) && printf '%s\n' "$out" | grep -q '^usage: bench \[OPTIONS\]' \
-  && [ "$(printf '%s\n' "$out" | grep -c '^  bench --')" -eq 10 ] && ok || fail "bench --help: $out"
+  && [ "$(printf '%s\n' "$out" | grep -c '^  bench --')" -eq 11 ] && ok || fail "bench --help: $out"
 out=$("$bench" --procs 2 --help 2>&1) && printf '%s\n' "$out" | grep -q '^usage: bench \[OPTIONS\]' && ok || fail "bench --procs 2 --help: $out"
-for m in --ring --switch --model --glass --claims --claims-map --calibrate --dicom --stack --tiler; do
+for m in --ring --switch --model --glass --claims --claims-map --calibrate --dicom --stack --tiler --union; do
   out=$("$bench" $m --help 2>&1) && printf '%s\n' "$out" | head -1 | grep -q "^usage: bench $m" \
     && ! printf '%s\n' "$out" | grep -q '^  bench' && ok || fail "bench $m --help: $out"
 done
@@ -68,6 +69,16 @@ out=$("$bench" --stack tests/data/slicerrt/tinypatient_0.contours -j 1,2 --repea
   printf '%s\n' "$out" | awk -F, 'NR > 1 { if ($5 != 16 || $11 <= 0 || $8 != NR - 1) bad = 1; c[$14]++; v[$15]++ }
     END { n = 0; for (k in c) n++; m = 0; for (k in v) m++; exit bad || n != 1 || m != 1 }' \
   && ok || fail "--stack: $out"
+
+# --union: the exact union of overlapping contours on a slice; two smooth
+# blobs give one loop, whatever the repeats (the checksums), and spiky stars
+# a union with holes.
+out=$("$bench" --union blob:2:200 star:3:300 --repeat 2 2>&1); rc=$?
+[ $rc -eq 0 ] && [ "$(printf '%s\n' "$out" | wc -l)" -eq 3 ] && printf '%s\n' "$out" | head -1 | \
+  grep -q '^input,contours,points,groups,loops,holes,new_vertices,runs,union_ms,us_per_point,loop_points,area2$' && \
+  printf '%s\n' "$out" | awk -F, '$1 == "blob:2:200" && !($4 == 1 && $5 == 1 && $6 == 0 && $7 > 0 && $9 > 0) { bad = 1 }
+    $1 == "star:3:300" && !($4 == 1 && $6 > 0 && $5 == $6 + 1) { bad = 1 } END { exit bad }' \
+  && ok || fail "--union: $out"
 
 # Measured runs on threads: the same optimum as the simulator's, a backend column.
 out=$("$bench" --points 60 --procs 1,3 --backend threads 2>&1); rc=$?
