@@ -151,14 +151,15 @@ static int duplicates(contour *cs, int ncs, char *drop, int verbose, const char 
 
 /* ---------------------------------------------------------------- union */
 
-/* "lines A, B and C" for the members of a group (at most 8, then "and N more"). */
+/* "line A, line B and line C" for the members of a group (at most 8, then
+ * "and N more"; each "line N" as the DICOM reader's messages rewrite it). */
 static void lines_of(strbuf *b, const contour *cs, const int *idx, const int *mem, int nm) {
   for (int k = 0; k < nm; k++) {
     if (k == 8) {
       strbuf_add(b, " and %d more", nm - 8);
       break;
     }
-    strbuf_add(b, "%s%d", k == 0 ? "lines " : k + 1 == nm ? " and " : ", ", cs[idx[mem[k]]].line);
+    strbuf_add(b, "%sline %d", k == 0 ? "" : k + 1 == nm ? " and " : ", ", cs[idx[mem[k]]].line);
   }
 }
 

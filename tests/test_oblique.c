@@ -303,7 +303,32 @@ static void refusals(void) {
   }
 }
 
-int main(void) {
+/* The files tests/cli_readers.sh runs ./tile on: the set untilted, tilted 6
+ * degrees, and tilted and re-encoded. */
+static int write_fixtures(const char *dir) {
+  static axial_set a;
+  make_axial(&a);
+  static const int axial[3] = {0, 1, 2};
+  double I[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, R[3][3];
+  rotation(cos(0.5), sin(0.5), 0, 6, R);
+  encoding e;
+  int bad = 0;
+  for (int k = 0; k < 3; k++) {
+    if (k == 2) shuffled(&a, &e, 7);
+    else plain(&a, &e);
+    size_t len;
+    unsigned char *b = write_set(&a, axial, k ? R : I, &e, &len);
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s", dir, k == 0 ? "axial.dcm" : k == 1 ? "oblique.dcm" : "oblique_reenc.dcm");
+    FILE *f = fopen(path, "wb");
+    if (!f || fwrite(b, 1, len, f) != len || fclose(f) != 0) bad = 1;
+    free(b);
+  }
+  return bad;
+}
+
+int main(int argc, char **argv) {
+  if (argc == 3 && strcmp(argv[1], "--write") == 0) return write_fixtures(argv[2]);
   static const int axial[3] = {0, 1, 2}, sagittal[3] = {2, 0, 1};
   double R[3][3];
   rotation(cos(3.14159265358979323846 / 6), sin(3.14159265358979323846 / 6), 0, 6, R);   /* about an axis in the axial plane */

@@ -23,6 +23,7 @@
 #include "contour.h"
 #include "meshcheck.h"
 #include "rng.h"
+#include "rtwriter.h"
 #include "stack.h"
 #include "strbuf.h"
 #include "xmem.h"
@@ -365,7 +366,125 @@ static void squares(void) {
   free(t);
 }
 
-int main(void) {
+/* ---------------------------------------------------------------- fixtures */
+
+/* The structure sets tests/cli_readers.sh runs ./tile on, written by the
+ * tests' DICOM writer (tests/rtwriter.c):
+ *   cerr.dcm    ROI 1 'GTV': 13 slices of two contours; 3 contours cross
+ *               themselves, 5 touch themselves at a point (pinch points):
+ *               8 bad of 26, as CERR's phantom GTV; 3 have zero-width spurs
+ *               (repaired: not bad);
+ *   monaco.dcm  ROI 1 'External': an outline written three times a slice
+ *               (other start points, direction, extra collinear points);
+ *               ROI 2 'GTV': five pieces a slice, three overlapping;
+ *   monaco_reenc.dcm  the same, every contour list shuffled, start points
+ *               rotated, every other contour reversed. */
+typedef struct {
+  int n;
+  double xyz[3 * 80];
+} dcontour;
+
+static void put_poly(dcontour *c, const vec2 *p, int n, double z, int start, int rev) {
+  c->n = n;
+  for (int j = 0; j < n; j++) {
+    int i = rev ? ((start - j) % n + n) % n : (start + j) % n;
+    c->xyz[3 * j] = p[i].x, c->xyz[3 * j + 1] = p[i].y, c->xyz[3 * j + 2] = z;
+  }
+}
+
+static int write_file(const char *dir, const char *name, rtw_roi *roi, int nroi) {
+  rtw_opts o = {0, 0, 0, 0, NULL, NULL, 0};
+  size_t len;
+  unsigned char *b = rtw_write(&o, roi, nroi, &len);
+  char path[512];
+  snprintf(path, sizeof path, "%s/%s", dir, name);
+  FILE *f = fopen(path, "wb");
+  int bad = !f || fwrite(b, 1, len, f) != len || fclose(f) != 0;
+  free(b);
+  return bad;
+}
+
+static int write_fixtures(const char *dir) {
+  static dcontour dc[3][64];
+  static rtw_contour rc[3][64];
+  int bad = 0;
+  /* cerr.dcm */
+  int n = 0;
+  for (int k = 0; k < 13; k++) {
+    double z = 3.0 * k;
+    for (int side = 0; side < 2; side++) {
+      double x = side * 40.0;
+      vec2 p[16];
+      int m;
+      int i = 2 * k + side;   /* 3 crossings, 5 pinch points, 3 spurs, the rest fine */
+      int kind = i == 0 || i == 5 || i == 10 ? 0 : i == 2 || i == 7 || i == 12 || i == 17 || i == 22 ? 3
+               : i == 4 || i == 9 || i == 14 ? 6 : 7;
+      if (kind <= 2) {   /* a bow tie in the middle of a square's top edge */
+        vec2 q[] = {{x, 0}, {x + 20, 0}, {x + 20, 20}, {x + 12, 20}, {x + 8, 25}, {x + 12, 25}, {x + 8, 20}, {x, 20}};
+        m = 8, memcpy(p, q, sizeof q);
+      } else if (kind <= 5) {   /* two loops sharing one point */
+        vec2 q[] = {{x, 0}, {x + 20, 0}, {x + 10, 10}, {x + 20, 20}, {x, 20}, {x + 10, 10}};
+        m = 6, memcpy(p, q, sizeof q);
+      } else if (kind == 6) {   /* a spur walked out and back */
+        vec2 q[] = {{x, 0}, {x + 20, 0}, {x + 20, 10}, {x + 27, 10}, {x + 20, 10}, {x + 20, 20}, {x, 20}};
+        m = 7, memcpy(p, q, sizeof q);
+      } else {
+        vec2 q[] = {{x, 0}, {x + 20, 0}, {x + 20, 20}, {x, 20}};
+        m = 4, memcpy(p, q, sizeof q);
+      }
+      put_poly(&dc[0][n], p, m, z, 0, 0);
+      rc[0][n] = (rtw_contour){NULL, m, dc[0][n].xyz, NULL, -1};
+      n++;
+    }
+  }
+  rtw_roi gtv = {1, "GTV", "GTV", n, rc[0], 0, 0};
+  bad |= write_file(dir, "cerr.dcm", &gtv, 1);
+  /* monaco.dcm and its re-encoding */
+  for (int enc = 0; enc < 2; enc++) {
+    rng g;
+    rng_seed(&g, 17);
+    int ne = 0, ng = 0;
+    for (int k = 0; k < 6; k++) {
+      double z = -5 + 2.5 * k;
+      vec2 out[12], p[24];
+      for (int i = 0; i < 12; i++) out[i] = (vec2){round(120 * cos(i * 0.5236)) + k, round(90 * sin(i * 0.5236))};
+      for (int c = 0; c < 3; c++) {
+        int m = 0;
+        for (int i = 0; i < 12; i++) {
+          p[m++] = out[i];
+          if (c == 2 && fmod(out[i].x + out[(i + 1) % 12].x, 2) == 0 && fmod(out[i].y + out[(i + 1) % 12].y, 2) == 0)
+            p[m++] = (vec2){(out[i].x + out[(i + 1) % 12].x) / 2, (out[i].y + out[(i + 1) % 12].y) / 2};
+        }
+        put_poly(&dc[1][ne], p, m, z, enc ? rng_int(&g, 0, m - 1) : 3 * c, enc ? ne % 2 : c == 1);
+        rc[1][ne] = (rtw_contour){NULL, m, dc[1][ne].xyz, NULL, -1};
+        ne++;
+      }
+      for (int i = 0; i < 5; i++) {
+        double cx = i < 3 ? 6 * cos(2.1 * i + k) : -60 + 120 * (i - 3), cy = i < 3 ? 6 * sin(2.1 * i + k) : 40;
+        double r = i < 3 ? 14 + 2 * i : 10, ph = 0.3 * i + 0.2 * k;
+        for (int j = 0; j < 8; j++) p[j] = (vec2){cx + r * cos(ph + j * 0.7853981633974483), cy + r * sin(ph + j * 0.7853981633974483)};
+        put_poly(&dc[2][ng], p, 8, z, enc ? rng_int(&g, 0, 7) : 0, enc ? ng % 2 : 0);
+        rc[2][ng] = (rtw_contour){NULL, 8, dc[2][ng].xyz, NULL, -1};
+        ng++;
+      }
+    }
+    if (enc)
+      for (int q = 1; q < 3; q++) {   /* the contours' order shuffled */
+        int cnt = q == 1 ? ne : ng;
+        for (int i = cnt - 1; i > 0; i--) {
+          int j = rng_int(&g, 0, i);
+          rtw_contour t = rc[q][i];
+          rc[q][i] = rc[q][j], rc[q][j] = t;
+        }
+      }
+    rtw_roi rois[2] = {{1, "External", "EXTERNAL", ne, rc[1], 0, 0}, {2, "GTV", "GTV", ng, rc[2], 0, 0}};
+    bad |= write_file(dir, enc ? "monaco_reenc.dcm" : "monaco.dcm", rois, 2);
+  }
+  return bad;
+}
+
+int main(int argc, char **argv) {
+  if (argc == 3 && strcmp(argv[1], "--write") == 0) return write_fixtures(argv[2]);
   copies();
   rectangles();
   squares();
