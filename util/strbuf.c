@@ -6,7 +6,7 @@
 
 #include "xmem.h"
 
-static void room(strbuf *b, size_t n) {
+void strbuf_grow(strbuf *b, size_t n) {
   if (b->len + n + 1 > b->cap) {
     b->cap = (b->len + n + 1) * 2;
     b->buf = xrealloc(b->buf, b->cap);
@@ -19,7 +19,7 @@ void strbuf_vadd(strbuf *b, const char *fmt, va_list ap) {
   int k = vsnprintf(NULL, 0, fmt, aq);
   va_end(aq);
   if (k < 0) return;
-  room(b, (size_t)k);
+  strbuf_grow(b, (size_t)k);
   vsnprintf(b->buf + b->len, b->cap - b->len, fmt, ap);
   b->len += (size_t)k;
 }
@@ -31,9 +31,3 @@ void strbuf_add(strbuf *b, const char *fmt, ...) {
   va_end(ap);
 }
 
-void strbuf_raw(strbuf *b, const char *s, size_t n) {
-  room(b, n);
-  if (n) memcpy(b->buf + b->len, s, n);
-  b->len += n;
-  b->buf[b->len] = 0;
-}
