@@ -413,7 +413,65 @@ static void check_extreme(void) {
         "exactly on the line: '%s'", rc ? err : "accepted");
 }
 
+/* Bad contours (issue 22): every one named in one run, a line each in file
+ * order and a summary; in a small buffer as many whole lines as fit and a
+ * summary that says so; with CONTOUR_SKIP_BAD dropped, a note each (its own
+ * repair notes dropped with it) and one that counts them. */
+static void check_many_bad(void) {
+  static char text[8192], err[8192];
+  size_t n = 0;
+  int lines[12];
+  for (int k = 0; k < 12; k++) {
+    lines[k] = 1;
+    for (size_t i = 0; i < n; i++) lines[k] += text[i] == '\n';
+    if (k % 3 == 0)   /* good: a square, z = k */
+      n += (size_t)snprintf(text + n, sizeof text - n, "C 4 %d\n0 0\n4 0\n4 4\n0 4\n", k);
+    else if (k % 3 == 1)   /* a bow tie, with a duplicate point first */
+      n += (size_t)snprintf(text + n, sizeof text - n, "C 5 %d\n0 0\n0 0\n1 1\n1 0\n0 1\n", k);
+    else   /* collinear */
+      n += (size_t)snprintf(text + n, sizeof text - n, "C 3 %d\n0 0\n1 1\n2 2\n", k);
+  }
+  contour_stack s;
+  char *nb = NULL;
+  size_t nl = 0;
+  FILE *f = open_memstream(&nb, &nl);
+  int rc = contour_parse(text, n, "m.contours", &s, f, "tile", err, sizeof err);
+  fclose(f);
+  int nlines = 1, named = 0;
+  for (char *p = err; *p; p++) nlines += *p == '\n';
+  for (int k = 0; k < 12; k++) {
+    char want[64];
+    snprintf(want, sizeof want, "m.contours:%d: %s", lines[k], k % 3 == 1 ? "the contour crosses itself" : "all 3 points");
+    named += k % 3 != 0 && strstr(err, want) != NULL;
+  }
+  CHECK(rc == -1 && nlines == 9 && named == 8 && nl == 0 &&
+            strstr(err, "\nm.contours: 8 of 12 contours cannot be tiled (32 of 48 points), each named above; --skip-bad "
+                        "drops them and tiles the rest"),
+        "8 bad of 12: %d, %d lines, %d named: '%s'", rc, nlines, named, err);
+  free(nb);
+  /* a buffer for three lines: the first ones and a summary that says so */
+  rc = contour_parse(text, n, "m.contours", &s, NULL, "tile", err, 400);
+  nlines = 1;
+  for (char *p = err; *p; p++) nlines += *p == '\n';
+  CHECK(rc == -1 && strlen(err) < 400 && nlines >= 2 && strstr(err, "8 of 12 contours cannot be tiled") &&
+            strstr(err, "named above") && !strstr(err, "each named above"),
+        "8 bad in 400 bytes: %d lines: '%s'", nlines, err);
+  /* --skip-bad */
+  nb = NULL, nl = 0;
+  f = open_memstream(&nb, &nl);
+  rc = contour_parse_flags(text, n, "m.contours", CONTOUR_SKIP_BAD, &s, f, "tile", err, sizeof err);
+  fclose(f);
+  int dropped = 0;
+  for (char *p = nb; p && (p = strstr(p, ": dropped, it cannot be tiled: ")); p++) dropped++;
+  CHECK(rc == 0 && s.n == 4 && dropped == 8 && !strstr(nb, "duplicate") &&
+            strstr(nb, "tile: m.contours: --skip-bad dropped 8 bad contours of 12 (32 of 48 points); the rest are tiled\n"),
+        "--skip-bad: %d, %d contours, %d dropped: '%s' '%s'", rc, rc ? 0 : s.n, dropped, nb ? nb : "", err);
+  if (rc == 0) contour_stack_free(&s);
+  free(nb);
+}
+
 int main(void) {
+  check_many_bad();
   check_bad();
   check_fuzz();
   check_good();
