@@ -39,13 +39,14 @@
 /* The usage hint after a bad-usage message: one line. */
 static const char usage_line[] =
     "usage: tile STACK|FILE.dcm [-o OUT.obj|OUT.ply|OUT.stl] [--cost area|span] [--caps] [--join RULE] "
-    "[--thickness T] [-j N] [-q] [--procs P [MACHINE OPTIONS] [--trace FILE]]   (tile --help: every option)\n";
+    "[--thickness T] [-j N] [--skip-bad] [--union] [-v|-q] [--procs P [MACHINE OPTIONS] [--trace FILE]]   (tile --help: every option)\n";
 
 static void usage(FILE *f) {
   fputs(usage_line, f);
   if (f != stdout) return;
   fputs("       tile STACK [-o OUT.obj|OUT.ply|OUT.stl] [--cost area|span] [--caps]\n"
-        "            [--cap-style flat|apex] [--join RULE] [--thickness T] [-j N] [-q]\n"
+        "            [--cap-style flat|apex] [--join RULE] [--thickness T] [-j N]\n"
+        "            [--no-keyholes] [--skip-bad] [--union] [-v | -q]\n"
         "            [--procs P [--backend sim|threads] [--alloc half|size] [--min-diag d]\n"
         "             [--machine NAME] [--net ideal|bus|loggp] [--m S] [--c S]\n"
         "             [--topology NAME] [--place NAME] [--print-place]\n"
