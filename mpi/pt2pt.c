@@ -398,16 +398,17 @@ int PMPI_Recv_init(void *buf, int count, MPI_Datatype datatype, int source, int 
 
 /* ==== send and receive ==================================================== */
 
-int PMPI_Sendrecv(const void *sendbuf, int sendcount, MPI_Datatype sendtype, int dest, int sendtag,
-                 void *recvbuf, int recvcount, MPI_Datatype recvtype, int source, int recvtag,
-                 MPI_Comm comm, MPI_Status *status) {
-  static const char fn[] = "MPI_Sendrecv";
+/* Both calls: the send is eager (mp_send copies the message out), so it
+   leaves before the receive waits, and the buffer of Sendrecv_replace is
+   free to receive into once it has. */
+static int sendrecv(const char *fn, const void *sendbuf, int sendcount, MPI_Datatype sendtype,
+                    int dest, int sendtag, void *recvbuf, int recvcount, MPI_Datatype recvtype,
+                    int source, int recvtag, MPI_Comm comm, MPI_Status *status) {
   tsm *R = tsm_need(fn);
   tsm_comm *c;
   int rc = send_args(R, fn, sendbuf, sendcount, sendtype, dest, sendtag, comm, &c);
   if (rc) return rc;
   if ((rc = recv_args(R, fn, recvbuf, recvcount, recvtype, source, recvtag, comm, &c))) return rc;
-  /* The send is eager: it leaves before the receive waits. */
   tsm_req s, q;
   tsm_req_stack(&s);
   tsm_req_stack(&q);
@@ -423,28 +424,17 @@ int PMPI_Sendrecv(const void *sendbuf, int sendcount, MPI_Datatype sendtype, int
   return recv_result(R, c, &q);
 }
 
+int PMPI_Sendrecv(const void *sendbuf, int sendcount, MPI_Datatype sendtype, int dest, int sendtag,
+                 void *recvbuf, int recvcount, MPI_Datatype recvtype, int source, int recvtag,
+                 MPI_Comm comm, MPI_Status *status) {
+  return sendrecv("MPI_Sendrecv", sendbuf, sendcount, sendtype, dest, sendtag, recvbuf, recvcount,
+                  recvtype, source, recvtag, comm, status);
+}
+
 int PMPI_Sendrecv_replace(void *buf, int count, MPI_Datatype datatype, int dest, int sendtag,
                          int source, int recvtag, MPI_Comm comm, MPI_Status *status) {
-  static const char fn[] = "MPI_Sendrecv_replace";
-  tsm *R = tsm_need(fn);
-  tsm_comm *c;
-  int rc = send_args(R, fn, buf, count, datatype, dest, sendtag, comm, &c);
-  if (rc) return rc;
-  if ((rc = recv_args(R, fn, buf, count, datatype, source, recvtag, comm, &c))) return rc;
-  /* mp_send copies the message out, so the buffer is free to receive into. */
-  tsm_req s, q;
-  tsm_req_stack(&s);
-  tsm_req_stack(&q);
-  tsm_send_fill(&s, c, 0, SM_STANDARD, buf, count, datatype, dest, sendtag, comm, fn);
-  tsm_send_start(R, &s, c);
-  tsm_recv_fill(&q, c, 0, buf, count, datatype, source, recvtag, comm, fn);
-  tsm_label l = {.fn = fn, .what = L_SENDRECV, .peer = dest, .tag = sendtag, .peer2 = source,
-                 .tag2 = recvtag, .pair = c->pair};
-  tsm_label_set(R, &l);
-  tsm_recv_block(R, &q);
-  tsm_unlabel(R);
-  tsm_status_out(status, &q.st, 0);
-  return recv_result(R, c, &q);
+  return sendrecv("MPI_Sendrecv_replace", buf, count, datatype, dest, sendtag, buf, count, datatype,
+                  source, recvtag, comm, status);
 }
 
 /* ==== probes ============================================================== */

@@ -2,10 +2,15 @@
  * the clocks and sleeps of the simulated machine (libc.h; the macros of
  * tilesim_mpi.h send a program's calls here).
  *
- * getopt: glibc's own, with the rank's optind, optarg, opterr and optopt put
- * in place around each call (and optind 0 at a rank's first call, which
- * makes glibc start afresh: its hidden position belongs to whichever rank
- * parsed last).  rand and random: glibc's additive generator (TYPE_3, the
+ * getopt: glibc's own, with the rank's optind, optarg, opterr and optopt.
+ * glibc keeps more than those (the place inside a group of options such as
+ * -cb, the non-options it has passed over), in one hidden state for the
+ * process, which it exposes to no one; so each call starts glibc afresh and
+ * replays the rank's earlier calls of this parse silently before making the
+ * new one, under a lock (threads call at once).  A parse is cheap to replay
+ * (k calls cost k^2/2 glibc calls) and the rank's argv is its own, so every
+ * rank parses exactly as a process of its own would, whatever the others do
+ * between its calls.  rand and random: glibc's additive generator (TYPE_3, the
  * default) written out, a state per rank, so the sequences are glibc's on
  * any libc.  drand48: POSIX erand48, nrand48 and jrand48 on the rank's own
  * 48 bits, glibc's defaults. */
@@ -13,6 +18,7 @@
 #include "libc.h"
 
 #include <getopt.h>
+#include <pthread.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -30,6 +36,7 @@ enum { R_DEG = 31, R_SEP = 3 };   /* glibc's TYPE_3: x^31 + x^3 + 1 */
 
 typedef struct {
   int optind, opterr, optopt, opt_used;
+  int opt_start, opt_calls, opt_seen;   /* the parse: where it began, calls so far, optind after the last */
   char *optarg;
   int32_t r[R_DEG];                 /* random's state */
   int f, b;                         /* its front and rear positions */
@@ -85,22 +92,44 @@ int *tsmpi_optopt(void) { return &me()->optopt; }
 /* Which of getopt, getopt_long and getopt_long_only. */
 enum { G_SHORT, G_LONG, G_LONG_ONLY };
 
+static int glibc_getopt(int kind, int argc, char *const *argv, const char *shortopts,
+                        const struct option *longopts, int *longind) {
+  return kind == G_SHORT ? getopt(argc, argv, shortopts)
+         : kind == G_LONG ? getopt_long(argc, argv, shortopts, longopts, longind)
+                          : getopt_long_only(argc, argv, shortopts, longopts, longind);
+}
+
+static pthread_mutex_t getopt_lock = PTHREAD_MUTEX_INITIALIZER;
+
 static int any_getopt(int kind, int argc, char *const *argv, const char *shortopts, const struct option *longopts,
                       int *longind) {
   rank_libc *s = me();
-  /* The rank's state in place: optind 0 at its first call (glibc then
-   * starts afresh) unless the program set another than 1 itself. */
-  optind = !s->opt_used && s->optind == 1 ? 0 : s->optind;
+  pthread_mutex_lock(&getopt_lock);
+  /* A new parse: the rank's first call, or the program has set optind
+   * itself since its last call (0 or 1: from the start, as glibc does). */
+  if (!s->opt_used || s->optind != s->opt_seen) {
+    s->opt_start = s->optind < 1 ? 1 : s->optind;
+    s->opt_calls = 0;
+  }
+  /* glibc afresh (optind 0, over an argv of the program's name alone: it
+   * reads the ordering from shortopts and returns -1 at once), then from
+   * the parse's start the rank's calls so far, without messages. */
+  char *name[2] = {argc > 0 ? argv[0] : (char *)"", NULL};
+  int li;
+  optind = 0;
+  opterr = 0;
+  glibc_getopt(kind, 1, name, shortopts, longopts, &li);
+  optind = s->opt_start;
+  for (int i = 0; i < s->opt_calls; i++) glibc_getopt(kind, argc, argv, shortopts, longopts, &li);
   opterr = s->opterr;
   optopt = s->optopt;
-  optarg = s->optarg;
-  int c = kind == G_SHORT ? getopt(argc, argv, shortopts)
-          : kind == G_LONG ? getopt_long(argc, argv, shortopts, longopts, longind)
-                           : getopt_long_only(argc, argv, shortopts, longopts, longind);
-  s->optind = optind;
+  int c = glibc_getopt(kind, argc, argv, shortopts, longopts, longind);
+  s->optind = s->opt_seen = optind;
   s->optarg = optarg;
   s->optopt = optopt;
   s->opt_used = 1;
+  s->opt_calls++;
+  pthread_mutex_unlock(&getopt_lock);
   return c;
 }
 

@@ -46,6 +46,23 @@ int main(int argc, char **argv) {
   printf("rank %d: getopt %s; optind %d of %d, first operand %s\n", rank, got, optind, argc,
          optind < argc ? argv[optind] : "(none)");
 
+  /* A second parse from the start (optind = 1) of grouped options, each
+   * rank at its barrier after another number of calls (odd ranks inside
+   * -cb, even ones past it): glibc's place inside a group must stay the
+   * rank's own. */
+  char *v2[] = {argv[0], "-cb", "two", "word", "-xa", "one", "-c", NULL};
+  int steps = 0, stop = 1 + rank % 2;
+  got[0] = '\0';
+  optind = 1;
+  while ((c = getopt(7, v2, "a:b:c")) != -1) {
+    char one[64], q[2] = {(char)optopt, 0};
+    snprintf(one, sizeof one, "%c=%s ", c, c == 'c' ? "-" : c == '?' ? q : optarg);
+    strcat(got, one);
+    if (++steps == stop) sync_all();
+  }
+  if (steps < stop) sync_all();
+  printf("rank %d: getopt again %s; optind %d, then %s\n", rank, got, optind, optind < 7 ? v2[optind] : "(none)");
+
   /* The generators, seeded per rank, drawn in turns. */
   srand(rank + 1);
   srandom(rank + 101);
