@@ -130,34 +130,39 @@ static int check_ranks(tsm *R, const char *fn, const tsm_ranks *g, int n, const 
   return MPI_SUCCESS;
 }
 
-int PMPI_Group_incl(MPI_Group group, int n, const int ranks[], MPI_Group *newgroup) {
-  static const char fn[] = "MPI_Group_incl";
+/* The group of g's ranks listed (excl 0) or of the others (excl 1), the
+ * ranks already checked. */
+static MPI_Group incl_excl(tsm *R, const tsm_ranks *g, int excl, int n, const int ranks[]) {
+  int *w = xmallocarray((size_t)(excl ? g->n : n) + 1, sizeof *w), m = 0;
+  if (!excl) {
+    for (int i = 0; i < n; i++) w[m++] = member(g, ranks[i]);
+  } else {
+    unsigned char *out = xcalloc((size_t)g->n + 1, 1);
+    for (int i = 0; i < n; i++) out[ranks[i]] = 1;
+    for (int i = 0; i < g->n; i++)
+      if (!out[i]) w[m++] = member(g, i);
+    free(out);
+  }
+  MPI_Group ng = make(R, m, w);
+  free(w);
+  return ng;
+}
+
+static int listed(const char *fn, int excl, MPI_Group group, int n, const int ranks[], MPI_Group *newgroup) {
   tsm *R = tsm_need(fn);
   tsm_ranks *g;
   int rc = check_group(R, fn, group, &g);
   if (rc || (rc = check_ranks(R, fn, g, n, ranks))) return rc;
-  int *w = xmallocarray((size_t)n + 1, sizeof *w);
-  for (int i = 0; i < n; i++) w[i] = member(g, ranks[i]);
-  *newgroup = make(R, n, w);
-  free(w);
+  *newgroup = incl_excl(R, g, excl, n, ranks);
   return MPI_SUCCESS;
 }
 
+int PMPI_Group_incl(MPI_Group group, int n, const int ranks[], MPI_Group *newgroup) {
+  return listed("MPI_Group_incl", 0, group, n, ranks, newgroup);
+}
+
 int PMPI_Group_excl(MPI_Group group, int n, const int ranks[], MPI_Group *newgroup) {
-  static const char fn[] = "MPI_Group_excl";
-  tsm *R = tsm_need(fn);
-  tsm_ranks *g;
-  int rc = check_group(R, fn, group, &g);
-  if (rc || (rc = check_ranks(R, fn, g, n, ranks))) return rc;
-  unsigned char *out = xcalloc((size_t)g->n + 1, 1);
-  for (int i = 0; i < n; i++) out[ranks[i]] = 1;
-  int *w = xmallocarray((size_t)g->n + 1, sizeof *w), m = 0;
-  for (int i = 0; i < g->n; i++)
-    if (!out[i]) w[m++] = member(g, i);
-  *newgroup = make(R, m, w);
-  free(w);
-  free(out);
-  return MPI_SUCCESS;
+  return listed("MPI_Group_excl", 1, group, n, ranks, newgroup);
 }
 
 /* The ranks of n (first, last, stride) triplets, each a valid rank of g
@@ -191,39 +196,24 @@ static int *expand(tsm *R, const char *fn, const tsm_ranks *g, int n, int ranges
   return r;
 }
 
-int PMPI_Group_range_incl(MPI_Group group, int n, int ranges[][3], MPI_Group *newgroup) {
-  static const char fn[] = "MPI_Group_range_incl";
+static int ranged(const char *fn, int excl, MPI_Group group, int n, int ranges[][3], MPI_Group *newgroup) {
   tsm *R = tsm_need(fn);
   tsm_ranks *g;
   int rc = check_group(R, fn, group, &g), m;
   if (rc) return rc;
   int *r = expand(R, fn, g, n, ranges, &m, &rc);
   if (!r) return rc;
-  if ((rc = check_ranks(R, fn, g, m, r))) {
-    free(r);
-    return rc;
-  }
-  for (int i = 0; i < m; i++) r[i] = member(g, r[i]);
-  *newgroup = make(R, m, r);
+  if (!(rc = check_ranks(R, fn, g, m, r))) *newgroup = incl_excl(R, g, excl, m, r);
   free(r);
-  return MPI_SUCCESS;
+  return rc;
+}
+
+int PMPI_Group_range_incl(MPI_Group group, int n, int ranges[][3], MPI_Group *newgroup) {
+  return ranged("MPI_Group_range_incl", 0, group, n, ranges, newgroup);
 }
 
 int PMPI_Group_range_excl(MPI_Group group, int n, int ranges[][3], MPI_Group *newgroup) {
-  static const char fn[] = "MPI_Group_range_excl";
-  tsm *R = tsm_need(fn);
-  tsm_ranks *g;
-  int rc = check_group(R, fn, group, &g), m;
-  if (rc) return rc;
-  int *r = expand(R, fn, g, n, ranges, &m, &rc);
-  if (!r) return rc;
-  if ((rc = check_ranks(R, fn, g, m, r))) {
-    free(r);
-    return rc;
-  }
-  rc = MPI_Group_excl(group, m, r, newgroup);
-  free(r);
-  return rc;
+  return ranged("MPI_Group_range_excl", 1, group, n, ranges, newgroup);
 }
 
 /* Union, intersection, difference (MPI 3.1 section 6.3.2): the first

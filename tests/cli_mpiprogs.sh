@@ -1,11 +1,13 @@
 #!/bin/sh
-# cli_mpiprogs.sh -- the datatype, operation and collective programs of
-# tests/mpi/ (dtype_*, op_*, coll_*) built with Open MPI's mpicc and run
-# under its mpirun on 1, 3 and 8 processes: each must pass its own checks
-# and print the same "NAME: P passed, F failed" line as on tilesim's
-# simulator (build/chk/tests/test_mpiprogs NAME NP mpich).  Where $MPICC
-# cannot build an MPI program (MPI_STATUS, from make check's probe) it says
-# so and counts nothing.
+# cli_mpiprogs.sh -- the MPI programs of tests/mpi/ built with Open MPI's
+# mpicc and run under its mpirun: the datatype, operation and collective
+# programs (dtype_*, op_*, coll_*) on 1, 3 and 8 processes, the
+# point-to-point and communicator ones (p2p_*, comm_*) on 2 and 5.  Each
+# must pass its own checks and print the same "NAME: P passed, F failed"
+# line as on tilesim's simulator (build/chk/tests/test_mpiprogs NAME NP
+# mpich, build/chk/tests/test_mpiprogs_p2p NAME NP).  Where $MPICC cannot
+# build an MPI program (MPI_STATUS, from make check's probe) it says so and
+# counts nothing.
 BUILD=${BUILD:-build/chk}
 pass=0; fail=0
 ok()  { pass=$((pass + 1)); }
@@ -18,12 +20,13 @@ if [ "${MPI_STATUS:-}" != yes ]; then
 fi
 MPICC=${MPICC:-mpicc}
 MPIRUN=${MPIRUN:-mpirun}
-DRIVER="$BUILD/tests/test_mpiprogs"
-if [ ! -x "$DRIVER" ]; then
-  bad "$DRIVER is missing (make check builds it)"
-  echo "cli_mpiprogs: $pass passed, $fail failed"
-  exit 1
-fi
+for d in test_mpiprogs test_mpiprogs_p2p; do
+  if [ ! -x "$BUILD/tests/$d" ]; then
+    bad "$BUILD/tests/$d is missing (make check builds it)"
+    echo "cli_mpiprogs: $pass passed, $fail failed"
+    exit 1
+  fi
+done
 # Open MPI as root, on 2 cores (as tests/cli_mpi.sh runs it).
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMPI_MCA_btl_vader_single_copy_mechanism=none
@@ -33,23 +36,29 @@ OVER=""
 T=$(mktemp -d /tmp/tilesim-mpiprogs.XXXXXX)
 trap 'rm -rf "$T"' EXIT
 
-for src in tests/mpi/dtype_*.c tests/mpi/op_*.c tests/mpi/coll_*.c; do
-  name=$(basename "$src" .c)
-  if ! "$MPICC" -std=c11 -O1 -Itests/mpi -o "$T/$name" "$src" -lm > "$T/cc.log" 2>&1; then
-    bad "$MPICC cannot build $src: $(head -3 "$T/cc.log")"
-    continue
-  fi
-  ok
-  for np in 1 3 8; do
-    "$MPIRUN" $OVER -np $np "$T/$name" > "$T/out" 2>&1; rc=$?
-    ompi=$(grep -E "^$name: [0-9]+ passed, [0-9]+ failed\$" "$T/out")
-    "$DRIVER" "$name" $np mpich > "$T/sim" 2>&1
-    sim=$(grep -E "^$name: [0-9]+ passed, [0-9]+ failed\$" "$T/sim")
-    if [ $rc -eq 0 ] && [ -n "$ompi" ] && echo "$ompi" | grep -q ' 0 failed$'; then ok; else
-      bad "$name on $np processes under Open MPI: exit $rc: $(grep -v '^\[' "$T/out" | tail -3)"; fi
-    [ -n "$sim" ] && [ "$sim" = "$ompi" ] && ok || bad "$name on $np: Open MPI says '$ompi', tilesim '$sim'"
+# group DRIVER "DRIVER'S EXTRA ARGUMENTS" "PROCESS COUNTS" SOURCES...
+group() {
+  driver="$BUILD/tests/$1"; extra=$2; counts=$3; shift 3
+  for src in "$@"; do
+    name=$(basename "$src" .c)
+    if ! "$MPICC" -std=c11 -O1 -Itests/mpi -o "$T/$name" "$src" -lm > "$T/cc.log" 2>&1; then
+      bad "$MPICC cannot build $src: $(head -3 "$T/cc.log")"
+      continue
+    fi
+    ok
+    for np in $counts; do
+      "$MPIRUN" $OVER -np $np "$T/$name" > "$T/out" 2>&1; rc=$?
+      ompi=$(grep -E "^$name: [0-9]+ passed, [0-9]+ failed\$" "$T/out")
+      "$driver" "$name" $np $extra > "$T/sim" 2>&1
+      sim=$(grep -E "^$name: [0-9]+ passed, [0-9]+ failed\$" "$T/sim")
+      if [ $rc -eq 0 ] && [ -n "$ompi" ] && echo "$ompi" | grep -q ' 0 failed$'; then ok; else
+        bad "$name on $np processes under Open MPI: exit $rc: $(grep -v '^\[' "$T/out" | tail -3)"; fi
+      [ -n "$sim" ] && [ "$sim" = "$ompi" ] && ok || bad "$name on $np: Open MPI says '$ompi', tilesim '$sim'"
+    done
   done
-done
+}
+group test_mpiprogs mpich "1 3 8" tests/mpi/dtype_*.c tests/mpi/op_*.c tests/mpi/coll_*.c
+group test_mpiprogs_p2p "" "2 5" tests/mpi/p2p_*.c tests/mpi/comm_*.c
 
 echo "cli_mpiprogs: $pass passed, $fail failed"
 [ $fail -eq 0 ]

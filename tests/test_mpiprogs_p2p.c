@@ -6,7 +6,7 @@
  * Each program checks itself (tests/mpi/mtest.h): a run passes when every
  * rank's main returns 0 and the run ends cleanly.  The programs are linked
  * in with their main renamed tsmpi_main_NAME (the Makefile) and run by
- * tests/mpiharness.c, every rank in this process.  tests/cli_mpiprogs_p2p.sh
+ * tests/mpiharness.c, every rank in this process.  tests/cli_mpiprogs.sh
  * compares their summary lines with Open MPI's.
  *
  *   test_mpiprogs_p2p                         all that
