@@ -16,6 +16,7 @@
 #include <string.h>
 
 #include "coll.h"
+#include "coll_inter.h"
 #include "dtype.h"
 #include "mp.h"
 #include "op.h"
@@ -25,6 +26,7 @@
 
 int PMPI_Barrier(MPI_Comm comm) {
   static const char fn[] = "MPI_Barrier";
+  if (tsmpi_comm_inter(comm)) return tsmpi_inter_barrier(comm);
   int rc = tsmpi_comm_check(comm, fn);
   if (rc) return rc;
   tsmpi_cg g;
@@ -38,6 +40,7 @@ int PMPI_Barrier(MPI_Comm comm) {
 
 int PMPI_Bcast(void *buffer, int count, MPI_Datatype datatype, int root, MPI_Comm comm) {
   static const char fn[] = "MPI_Bcast";
+  if (tsmpi_comm_inter(comm)) return tsmpi_inter_bcast(buffer, count, datatype, root, comm);
   int rc;
   if ((rc = tsmpi_comm_check(comm, fn)) || (rc = tsmpi_check_root(comm, fn, root)) ||
       (rc = tsmpi_coll_data_ok(comm, fn, "datatype", buffer, count, datatype)))
@@ -75,6 +78,7 @@ int PMPI_Bcast(void *buffer, int count, MPI_Datatype datatype, int root, MPI_Com
 int PMPI_Gather(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf, int recvcount,
                MPI_Datatype recvtype, int root, MPI_Comm comm) {
   static const char fn[] = "MPI_Gather";
+  if (tsmpi_comm_inter(comm)) return tsmpi_inter_gather(sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, root, comm);
   int rc;
   if ((rc = tsmpi_comm_check(comm, fn)) || (rc = tsmpi_check_root(comm, fn, root))) return rc;
   int me = tsmpi_comm_rank(comm), size = tsmpi_comm_size(comm), in_place = sendbuf == MPI_IN_PLACE;
@@ -107,6 +111,7 @@ int PMPI_Gather(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void 
 int PMPI_Gatherv(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf, const int recvcounts[],
                 const int displs[], MPI_Datatype recvtype, int root, MPI_Comm comm) {
   static const char fn[] = "MPI_Gatherv";
+  if (tsmpi_comm_inter(comm)) return tsmpi_inter_gatherv(sendbuf, sendcount, sendtype, recvbuf, recvcounts, displs, recvtype, root, comm);
   int rc;
   if ((rc = tsmpi_comm_check(comm, fn)) || (rc = tsmpi_check_root(comm, fn, root))) return rc;
   int me = tsmpi_comm_rank(comm), size = tsmpi_comm_size(comm), in_place = sendbuf == MPI_IN_PLACE;
@@ -154,6 +159,7 @@ int PMPI_Gatherv(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void
 int PMPI_Scatter(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf, int recvcount,
                 MPI_Datatype recvtype, int root, MPI_Comm comm) {
   static const char fn[] = "MPI_Scatter";
+  if (tsmpi_comm_inter(comm)) return tsmpi_inter_scatter(sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, root, comm);
   int rc;
   if ((rc = tsmpi_comm_check(comm, fn)) || (rc = tsmpi_check_root(comm, fn, root))) return rc;
   int me = tsmpi_comm_rank(comm), size = tsmpi_comm_size(comm), in_place = recvbuf == MPI_IN_PLACE;
@@ -184,6 +190,7 @@ int PMPI_Scatter(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void
 int PMPI_Scatterv(const void *sendbuf, const int sendcounts[], const int displs[], MPI_Datatype sendtype,
                  void *recvbuf, int recvcount, MPI_Datatype recvtype, int root, MPI_Comm comm) {
   static const char fn[] = "MPI_Scatterv";
+  if (tsmpi_comm_inter(comm)) return tsmpi_inter_scatterv(sendbuf, sendcounts, displs, sendtype, recvbuf, recvcount, recvtype, root, comm);
   int rc;
   if ((rc = tsmpi_comm_check(comm, fn)) || (rc = tsmpi_check_root(comm, fn, root))) return rc;
   int me = tsmpi_comm_rank(comm), size = tsmpi_comm_size(comm), in_place = recvbuf == MPI_IN_PLACE;
@@ -259,6 +266,7 @@ static int allgather_run(const tsmpi_cg *g, tsmpi_alg a, char *buf, const size_t
 int PMPI_Allgather(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf, int recvcount,
                   MPI_Datatype recvtype, MPI_Comm comm) {
   static const char fn[] = "MPI_Allgather";
+  if (tsmpi_comm_inter(comm)) return tsmpi_inter_allgather(sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, comm);
   int rc, in_place = sendbuf == MPI_IN_PLACE;
   if ((rc = tsmpi_comm_check(comm, fn)) || (rc = tsmpi_coll_data_ok(comm, fn, "recvtype", recvbuf, recvcount, recvtype)))
     return rc;
@@ -295,6 +303,7 @@ int PMPI_Allgather(const void *sendbuf, int sendcount, MPI_Datatype sendtype, vo
 int PMPI_Allgatherv(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf, const int recvcounts[],
                    const int displs[], MPI_Datatype recvtype, MPI_Comm comm) {
   static const char fn[] = "MPI_Allgatherv";
+  if (tsmpi_comm_inter(comm)) return tsmpi_inter_allgatherv(sendbuf, sendcount, sendtype, recvbuf, recvcounts, displs, recvtype, comm);
   int rc, in_place = sendbuf == MPI_IN_PLACE;
   if ((rc = tsmpi_comm_check(comm, fn))) return rc;
   int me = tsmpi_comm_rank(comm), size = tsmpi_comm_size(comm);
@@ -340,6 +349,7 @@ int PMPI_Allgatherv(const void *sendbuf, int sendcount, MPI_Datatype sendtype, v
 int PMPI_Alltoall(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf, int recvcount,
                  MPI_Datatype recvtype, MPI_Comm comm) {
   static const char fn[] = "MPI_Alltoall";
+  if (tsmpi_comm_inter(comm)) return tsmpi_inter_alltoall(sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, comm);
   int rc, in_place = sendbuf == MPI_IN_PLACE;
   if ((rc = tsmpi_comm_check(comm, fn)) || (rc = tsmpi_coll_data_ok(comm, fn, "recvtype", recvbuf, recvcount, recvtype)))
     return rc;
@@ -395,6 +405,7 @@ int PMPI_Alltoall(const void *sendbuf, int sendcount, MPI_Datatype sendtype, voi
 int PMPI_Alltoallv(const void *sendbuf, const int sendcounts[], const int sdispls[], MPI_Datatype sendtype,
                   void *recvbuf, const int recvcounts[], const int rdispls[], MPI_Datatype recvtype, MPI_Comm comm) {
   static const char fn[] = "MPI_Alltoallv";
+  if (tsmpi_comm_inter(comm)) return tsmpi_inter_alltoallv(sendbuf, sendcounts, sdispls, sendtype, recvbuf, recvcounts, rdispls, recvtype, comm);
   int rc, in_place = sendbuf == MPI_IN_PLACE;
   if ((rc = tsmpi_comm_check(comm, fn))) return rc;
   int size = tsmpi_comm_size(comm);

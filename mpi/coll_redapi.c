@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "coll.h"
+#include "coll_inter.h"
 #include "dtype.h"
 #include "op.h"
 #include "p2p.h"
@@ -33,6 +34,7 @@ static int red_ok(MPI_Comm comm, const char *fn, const void *sendbuf, int count,
 int PMPI_Reduce(const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op, int root,
                MPI_Comm comm) {
   static const char fn[] = "MPI_Reduce";
+  if (tsmpi_comm_inter(comm)) return tsmpi_inter_reduce(sendbuf, recvbuf, count, datatype, op, root, comm);
   int rc;
   if ((rc = tsmpi_comm_check(comm, fn)) || (rc = tsmpi_check_root(comm, fn, root))) return rc;
   int me = tsmpi_comm_rank(comm);
@@ -74,6 +76,7 @@ int PMPI_Reduce(const void *sendbuf, void *recvbuf, int count, MPI_Datatype data
 
 int PMPI_Allreduce(const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op, MPI_Comm comm) {
   static const char fn[] = "MPI_Allreduce";
+  if (tsmpi_comm_inter(comm)) return tsmpi_inter_allreduce(sendbuf, recvbuf, count, datatype, op, comm);
   int rc;
   if ((rc = tsmpi_comm_check(comm, fn)) || (rc = red_ok(comm, fn, sendbuf, count, datatype, op, 1)) ||
       (rc = tsmpi_check_buf(comm, fn, recvbuf, count, datatype)))
@@ -165,6 +168,7 @@ static int redscat_call(const char *fn, tsmpi_coll c, const void *sendbuf, void 
 int PMPI_Reduce_scatter(const void *sendbuf, void *recvbuf, const int recvcounts[], MPI_Datatype datatype, MPI_Op op,
                        MPI_Comm comm) {
   static const char fn[] = "MPI_Reduce_scatter";
+  if (tsmpi_comm_inter(comm)) return tsmpi_inter_reduce_scatter(sendbuf, recvbuf, recvcounts, datatype, op, comm);
   int rc;
   if ((rc = tsmpi_comm_check(comm, fn)) ||
       (rc = tsmpi_coll_counts_ok(comm, fn, "recvcounts", recvcounts, NULL, tsmpi_comm_size(comm))))
@@ -175,6 +179,7 @@ int PMPI_Reduce_scatter(const void *sendbuf, void *recvbuf, const int recvcounts
 int PMPI_Reduce_scatter_block(const void *sendbuf, void *recvbuf, int recvcount, MPI_Datatype datatype, MPI_Op op,
                              MPI_Comm comm) {
   static const char fn[] = "MPI_Reduce_scatter_block";
+  if (tsmpi_comm_inter(comm)) return tsmpi_inter_reduce_scatter_block(sendbuf, recvbuf, recvcount, datatype, op, comm);
   int rc;
   if ((rc = tsmpi_comm_check(comm, fn)) || (rc = tsmpi_check_count(comm, fn, recvcount))) return rc;
   int size = tsmpi_comm_size(comm);
@@ -190,6 +195,7 @@ int PMPI_Reduce_scatter_block(const void *sendbuf, void *recvbuf, int recvcount,
 
 static int scan_call(const char *fn, tsmpi_coll c, const void *sendbuf, void *recvbuf, int count,
                      MPI_Datatype datatype, MPI_Op op, MPI_Comm comm) {
+  if (tsmpi_comm_inter(comm)) return tsmpi_inter_none(comm, fn);
   int rc;
   if ((rc = tsmpi_comm_check(comm, fn)) || (rc = red_ok(comm, fn, sendbuf, count, datatype, op, 1)) ||
       (rc = tsmpi_check_buf(comm, fn, recvbuf, count, datatype)))

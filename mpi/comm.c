@@ -1,23 +1,23 @@
-/* comm.c -- communicators: rank and size, Comm_dup, Comm_split,
- * Comm_create, Comm_create_group, Comm_free, Comm_compare, Comm_group,
- * names and the predefined attributes.
+/* comm.c -- communicators: rank and size, Comm_dup (and idup, and
+ * dup_with_info's dup), Comm_split, Comm_split_type, Comm_create,
+ * Comm_create_group, Comm_free, Comm_disconnect, Comm_compare, Comm_group,
+ * names; the context agreement every constructor shares (comm.h).
  *
- * CONTEXTS.  A new communicator needs a context pair (state.h) that no rank
- * of it uses for another communicator, the same on all of them.  Each rank
- * keeps a bitmap of the pairs it uses; the ranks that make the
- * communicator OR theirs up a binomial tree to the first of them, which
- * takes the lowest pair free on all (MPICH's way, with an allreduce), and
- * the pair comes back down the tree.  That is 2 ceil(log2 P) steps of
- * 128-byte and 4-byte messages on the parent's collective context: a
- * communicator costs simulated time, as on a real machine.  Comm_split first
- * gathers every rank's (color, key) at the parent's rank 0 (one message
- * each) and sends the table down a binomial tree. */
+ * Comm_split first gathers every rank's (color, key) at the parent's rank 0
+ * (one message each) and sends the table down a binomial tree; then the
+ * ranks agree on one context pair, which serves every color (their
+ * communicators share no rank).  On an intercommunicator, dup, split and
+ * create are intercomm.c's. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "attr.h"
+#include "comm.h"
 #include "engine.h"
+#include "errh.h"
 #include "group.h"
+#include "info.h"
 #include "err.h"
 #include "label.h"
 #include "pt2pt.h"
@@ -43,84 +43,86 @@ int PMPI_Comm_size(MPI_Comm comm, int *size) {
   int rc = tsm_check_comm(R, comm, fn, &c);
   if (rc) return rc;
   if (!size) return tsm_raise(R, c, MPI_ERR_ARG, fn, "NULL size argument");
-  *size = c->size;
-  return MPI_SUCCESS;
-}
-
-int PMPI_Comm_test_inter(MPI_Comm comm, int *flag) {
-  static const char fn[] = "MPI_Comm_test_inter";
-  tsm *R = tsm_need(fn);
-  tsm_comm *c;
-  int rc = tsm_check_comm(R, comm, fn, &c);
-  if (rc) return rc;
-  *flag = 0;   /* tilesim has intracommunicators only */
+  *size = tsm_comm_lsize(c);
   return MPI_SUCCESS;
 }
 
 /* ==== messages among the ranks that make a communicator =================== */
 
-/* The world rank of member i of g. */
-static int member(const tsm_ranks *g, int i) { return g->world ? g->world[i] : i; }
-
-static void xsend(tsm *R, int ctx, int wdst, int tag, const void *buf, size_t len) {
-  tsm_req q = {.slot = -1, .kind = RQ_SEND, .mode = SM_STANDARD, .wpeer = wdst, .ctx = ctx, .tag = tag};
+void tsm_xsend(tsm *R, int ctx, int w, int tag, const void *buf, size_t len) {
+  tsm_req q = {.slot = -1, .kind = RQ_SEND, .mode = SM_STANDARD, .wpeer = w, .ctx = ctx, .tag = tag};
   eng_send(R, &q, buf, len);
 }
 
-static void xrecv(tsm *R, int ctx, int wsrc, int tag, void *buf, size_t len) {
-  tsm_req q = {.slot = -1, .kind = RQ_RECV, .wpeer = wsrc, .ctx = ctx, .tag = tag, .cap = len,
+void tsm_xrecv(tsm *R, int ctx, int w, int tag, void *buf, size_t len) {
+  tsm_req q = {.slot = -1, .kind = RQ_RECV, .wpeer = w, .ctx = ctx, .tag = tag, .cap = len,
                .contig = buf, .g = R->world.g, .count = (int)len, .dt = MPI_BYTE};
   eng_recv(R, &q);
   if (q.st.MPI_ERROR || q.msglen != len) {
     fprintf(stderr, "tilesim MPI: internal error: rank %d: a %zu-byte message from rank %d where %zu were due\n",
-            R->wrank, q.msglen, wsrc, len);
+            R->wrank, q.msglen, w, len);
     abort();
   }
 }
 
-/* Broadcast len bytes from member 0 of g (the calling rank is member me)
- * down a binomial tree. */
-static void tree_bcast(tsm *R, int ctx, const tsm_ranks *g, int me, int tag, void *buf, size_t len) {
-  int n = g->n, mask = 1;
+void tsm_xswap(tsm *R, int ctx, int w, int tag, const void *out, size_t outlen, void **in, size_t *inlen) {
+  long n = (long)outlen, m = 0;
+  tsm_xsend(R, ctx, w, tag, &n, sizeof n);
+  tsm_xsend(R, ctx, w, tag, out, outlen);
+  tsm_xrecv(R, ctx, w, tag, &m, sizeof m);
+  *in = xmalloc(m ? (size_t)m : 1);
+  tsm_xrecv(R, ctx, w, tag, *in, (size_t)m);
+  *inlen = (size_t)m;
+}
+
+void tsm_tree_bcast(tsm *R, int ctx, const tsm_ranks *g, int me, int root, int tag, void *buf, size_t len) {
+  int n = g->n, rel = (me - root + n) % n, mask = 1;
   while (mask < n) {
-    if (me & mask) {
-      xrecv(R, ctx, member(g, me - mask), tag, buf, len);
+    if (rel & mask) {
+      tsm_xrecv(R, ctx, tsm_member(g, (rel - mask + root) % n), tag, buf, len);
       break;
     }
     mask <<= 1;
   }
   for (mask >>= 1; mask > 0; mask >>= 1)
-    if (me + mask < n) xsend(R, ctx, member(g, me + mask), tag, buf, len);
+    if (rel + mask < n) tsm_xsend(R, ctx, tsm_member(g, (rel + mask + root) % n), tag, buf, len);
 }
 
-/* The lowest context pair that no member of g uses, agreed by all of them
- * (and taken by the calling rank), or -1 if every pair is used by one. */
-static int agree_pair(tsm *R, int ctx, const tsm_ranks *g, int me) {
-  enum { BYTES = CTX_PAIRS / 8 };
-  unsigned char used[BYTES], other[BYTES];
-  memcpy(used, R->pairs, BYTES);
-  for (int mask = 1; mask < g->n; mask <<= 1) {
-    if (me & mask) {
-      xsend(R, ctx, member(g, me - mask), TAG_CTXID, used, BYTES);
+void tsm_tree_or(tsm *R, int ctx, const tsm_ranks *g, int me, int root, int tag, unsigned char *used) {
+  unsigned char other[PAIR_BYTES];
+  int n = g->n, rel = (me - root + n) % n;
+  for (int mask = 1; mask < n; mask <<= 1) {
+    if (rel & mask) {
+      tsm_xsend(R, ctx, tsm_member(g, (rel - mask + root) % n), tag, used, PAIR_BYTES);
       break;
     }
-    if (me + mask < g->n) {
-      xrecv(R, ctx, member(g, me + mask), TAG_CTXID, other, BYTES);
-      for (int i = 0; i < BYTES; i++) used[i] |= other[i];
+    if (rel + mask < n) {
+      tsm_xrecv(R, ctx, tsm_member(g, (rel + mask + root) % n), tag, other, PAIR_BYTES);
+      for (int i = 0; i < PAIR_BYTES; i++) used[i] |= other[i];
     }
   }
-  int pair = -1;
-  if (me == 0)
-    for (int p = 0; p < CTX_PAIRS && pair < 0; p++)
-      if (!(used[p / 8] >> (p % 8) & 1)) pair = p;
-  tree_bcast(R, ctx, g, me, TAG_CTXID_BCAST, &pair, sizeof pair);
-  if (pair >= 0) R->pairs[pair / 8] |= (unsigned char)(1u << (pair % 8));
+}
+
+int tsm_pair_lowest(const unsigned char *used, int except) {
+  for (int p = 0; p < CTX_PAIRS; p++)
+    if (p != except && !(used[p / 8] >> (p % 8) & 1)) return p;
+  return -1;
+}
+
+void tsm_pair_take(tsm *R, int p) { R->pairs[p / 8] |= (unsigned char)(1u << (p % 8)); }
+void tsm_pair_give(tsm *R, int p) { R->pairs[p / 8] &= (unsigned char)~(1u << (p % 8)); }
+
+int tsm_agree_pair(tsm *R, int ctx, const tsm_ranks *g, int me, int tag) {
+  unsigned char used[PAIR_BYTES];
+  memcpy(used, R->pairs, PAIR_BYTES);
+  tsm_tree_or(R, ctx, g, me, 0, tag, used);
+  int pair = me == 0 ? tsm_pair_lowest(used, -1) : -1;
+  tsm_tree_bcast(R, ctx, g, me, 0, tag + 1, &pair, sizeof pair);
+  if (pair >= 0) tsm_pair_take(R, pair);
   return pair;
 }
 
-/* A new communicator of R with ranks g (counted: taken), pair, the
- * calling rank's rank and handler; its handle. */
-static MPI_Comm comm_add(tsm *R, tsm_ranks *g, int pair, int rank, MPI_Errhandler eh) {
+MPI_Comm tsm_comm_add(tsm *R, tsm_ranks *g, int pair, int rank, MPI_Errhandler eh, unsigned hints) {
   int slot = 0;
   while (slot < R->ncomms && R->comms[slot]) slot++;
   if (slot == R->ncomms) {
@@ -134,33 +136,94 @@ static MPI_Comm comm_add(tsm *R, tsm_ranks *g, int pair, int rank, MPI_Errhandle
   c->size = g->n;
   c->g = g;
   c->eh = eh;
+  tsm_errh_hold(R, eh);
+  c->hints = hints;
+  c->h = (MPI_Comm)(HK_COMM << H_KIND_SHIFT | H_CREATED | slot);
+  c->local = MPI_COMM_NULL;
   R->comms[slot] = c;
-  return (MPI_Comm)(HK_COMM << H_KIND_SHIFT | H_CREATED | slot);
+  return c->h;
 }
 
-static int no_pair(tsm *R, const tsm_comm *c, const char *fn) {
+int tsm_no_pair(tsm *R, const tsm_comm *c, const char *fn) {
   return tsm_raise(R, c, MPI_ERR_OTHER, fn,
                    "no context left: a rank of it is in %d communicators at once (tilesim's limit; "
                    "free some with MPI_Comm_free)",
                    CTX_PAIRS);
 }
 
+void tsm_comm_end(tsm *R, MPI_Comm *comm) {
+  tsm_comm *c = tsm_comm_get(R, *comm);
+  if (c->inter) {
+    tsm_comm_end(R, &c->local);
+    tsm_ranks_drop(c->lg);
+  }
+  tsm_pair_give(R, c->pair);
+  tsm_ranks_drop(c->g);
+  tsm_errh_drop(R, c->eh);
+  R->comms[(unsigned)*comm & H_SLOT_MASK] = NULL;
+  free(c);
+  *comm = MPI_COMM_NULL;
+}
+
 /* ==== constructors ======================================================== */
 
-int PMPI_Comm_dup(MPI_Comm comm, MPI_Comm *newcomm) {
-  static const char fn[] = "MPI_Comm_dup";
-  tsm *R = tsm_need(fn);
+/* The duplicate's attributes, copied from comm's by their callbacks: a
+ * callback that fails undoes the duplicate (MPI_COMM_NULL), and its error
+ * is raised. */
+static int dup_attrs(tsm *R, const tsm_comm *c, MPI_Comm comm, const char *fn, MPI_Comm *newcomm) {
+  char why[128];
+  int rc = tsm_attr_copy(R, TSM_AK_COMM, comm, *newcomm, why);
+  if (!rc) return MPI_SUCCESS;
+  tsm_comm_end(R, newcomm);
+  return tsm_raise(R, c, rc, fn, "%s", why);
+}
+
+/* MPI_Comm_dup's work, for dup, idup and dup_with_info. */
+int tsm_comm_dup(tsm *R, MPI_Comm comm, const char *fn, MPI_Comm *newcomm) {
   tsm_comm *c;
   int rc = tsm_check_comm(R, comm, fn, &c);
   if (rc) return rc;
   if (!newcomm) return tsm_raise(R, c, MPI_ERR_ARG, fn, "NULL newcomm argument");
-  tsm_label l = {.fn = fn, .what = L_COMM, .pair = c->pair};
-  tsm_label_set(R, &l);
-  int pair = agree_pair(R, 2 * c->pair + 1, c->g, c->rank);
-  tsm_unlabel(R);
-  if (pair < 0) return no_pair(R, c, fn);
-  c->g->refs++;
-  *newcomm = comm_add(R, c->g, pair, c->rank, c->eh);
+  *newcomm = MPI_COMM_NULL;
+  if (c->inter) {
+    if ((rc = tsm_inter_dup(R, c, fn, newcomm))) return rc;
+  } else {
+    tsm_label l = {.fn = fn, .what = L_COMM, .pair = c->pair};
+    tsm_label_set(R, &l);
+    int pair = tsm_agree_pair(R, 2 * c->pair + 1, c->g, c->rank, TAG_CTXID);
+    tsm_unlabel(R);
+    if (pair < 0) return tsm_no_pair(R, c, fn);
+    c->g->refs++;
+    *newcomm = tsm_comm_add(R, c->g, pair, c->rank, c->eh, c->hints);
+  }
+  return dup_attrs(R, c, comm, fn, newcomm);
+}
+
+int PMPI_Comm_dup(MPI_Comm comm, MPI_Comm *newcomm) {
+  static const char fn[] = "MPI_Comm_dup";
+  return tsm_comm_dup(tsm_need(fn), comm, fn, newcomm);
+}
+
+/* MPI_Comm_idup completes at once: it is MPI_Comm_dup (the ranks agree on
+ * the context then), with a request that is done already. */
+int PMPI_Comm_idup(MPI_Comm comm, MPI_Comm *newcomm, MPI_Request *request) {
+  static const char fn[] = "MPI_Comm_idup";
+  tsm *R = tsm_need(fn);
+  if (!request) {
+    tsm_comm *c;
+    int rc = tsm_check_comm(R, comm, fn, &c);
+    return rc ? rc : tsm_raise(R, c, MPI_ERR_ARG, fn, "NULL request argument");
+  }
+  int rc = tsm_comm_dup(R, comm, fn, newcomm);
+  if (rc) return rc;
+  tsm_req *q = tsm_req_new(R);
+  q->kind = RQ_SEND;
+  q->state = RS_DONE;
+  q->fn = fn;
+  q->comm = comm;
+  q->peer = MPI_PROC_NULL;
+  tsm_status_empty(&q->st);
+  *request = tsm_req_handle(q);
   return MPI_SUCCESS;
 }
 
@@ -174,6 +237,25 @@ static int cmp_split(const void *a, const void *b) {
   return (x->rank > y->rank) - (x->rank < y->rank);
 }
 
+/* The world ranks of the ranks of `table` ((color, key) by rank of g, n
+ * ranks) with color, ordered by key then rank: their number, and the
+ * calling rank's place among them in *me (-1 if not there: mine < 0). */
+int *tsm_split_members(const int *table, int n, const tsm_ranks *g, int color, int mine, int *m, int *me) {
+  split_entry *e = xmallocarray((size_t)n + 1, sizeof *e);
+  *m = 0;
+  for (int r = 0; r < n; r++)
+    if (table[2 * r] == color) e[(*m)++] = (split_entry){color, table[2 * r + 1], r};
+  qsort(e, (size_t)*m, sizeof *e, cmp_split);
+  int *world = xmallocarray((size_t)*m + 1, sizeof *world);
+  *me = -1;
+  for (int i = 0; i < *m; i++) {
+    world[i] = tsm_member(g, e[i].rank);
+    if (e[i].rank == mine) *me = i;
+  }
+  free(e);
+  return world;
+}
+
 int PMPI_Comm_split(MPI_Comm comm, int color, int key, MPI_Comm *newcomm) {
   static const char fn[] = "MPI_Comm_split";
   tsm *R = tsm_need(fn);
@@ -183,6 +265,7 @@ int PMPI_Comm_split(MPI_Comm comm, int color, int key, MPI_Comm *newcomm) {
   if (!newcomm) return tsm_raise(R, c, MPI_ERR_ARG, fn, "NULL newcomm argument");
   if (color < 0 && color != MPI_UNDEFINED)
     return tsm_raise(R, c, MPI_ERR_ARG, fn, "invalid color %d (>= 0, or MPI_UNDEFINED)", color);
+  if (c->inter) return tsm_inter_split(R, c, fn, color, key, newcomm);
   tsm_label l = {.fn = fn, .what = L_COMM, .pair = c->pair};
   tsm_label_set(R, &l);
   int n = c->size, ctx = 2 * c->pair + 1;
@@ -190,48 +273,75 @@ int PMPI_Comm_split(MPI_Comm comm, int color, int key, MPI_Comm *newcomm) {
   if (c->rank == 0) {
     table[0] = color;
     table[1] = key;
-    for (int r = 1; r < n; r++) xrecv(R, ctx, member(c->g, r), TAG_SPLIT, &table[2 * r], 2 * sizeof *table);
+    for (int r = 1; r < n; r++) tsm_xrecv(R, ctx, tsm_member(c->g, r), TAG_SPLIT, &table[2 * r], 2 * sizeof *table);
   } else {
     int mine[2] = {color, key};
-    xsend(R, ctx, member(c->g, 0), TAG_SPLIT, mine, sizeof mine);
+    tsm_xsend(R, ctx, tsm_member(c->g, 0), TAG_SPLIT, mine, sizeof mine);
   }
-  tree_bcast(R, ctx, c->g, c->rank, TAG_SPLIT_BCAST, table, (size_t)n * 2 * sizeof *table);
-  int pair = agree_pair(R, ctx, c->g, c->rank);
+  tsm_tree_bcast(R, ctx, c->g, c->rank, 0, TAG_SPLIT_BCAST, table, (size_t)n * 2 * sizeof *table);
+  int pair = tsm_agree_pair(R, ctx, c->g, c->rank, TAG_CTXID);
   tsm_unlabel(R);
   if (pair < 0) {
     free(table);
-    return no_pair(R, c, fn);
+    return tsm_no_pair(R, c, fn);
   }
   if (color == MPI_UNDEFINED) {
     /* One pair serves every color's communicator (they share no rank);
      * this rank is in none of them. */
-    R->pairs[pair / 8] &= (unsigned char)~(1u << (pair % 8));
+    tsm_pair_give(R, pair);
     free(table);
     *newcomm = MPI_COMM_NULL;
     return MPI_SUCCESS;
   }
-  int m = 0;
-  split_entry *e = xmallocarray((size_t)n, sizeof *e);
-  for (int r = 0; r < n; r++)
-    if (table[2 * r] == color) e[m++] = (split_entry){color, table[2 * r + 1], r};
-  qsort(e, (size_t)m, sizeof *e, cmp_split);
-  int *world = xmallocarray((size_t)m, sizeof *world), me = -1;
-  for (int i = 0; i < m; i++) {
-    world[i] = member(c->g, e[i].rank);
-    if (e[i].rank == c->rank) me = i;
-  }
-  *newcomm = comm_add(R, tsm_ranks_new(m, world), pair, me, c->eh);
+  int m, me;
+  int *world = tsm_split_members(table, n, c->g, color, c->rank, &m, &me);
+  *newcomm = tsm_comm_add(R, tsm_ranks_new(m, world), pair, me, c->eh, 0);
   free(world);
-  free(e);
   free(table);
   return MPI_SUCCESS;
 }
 
-/* Is every rank of g in c? */
+/* MPI_COMM_TYPE_SHARED: a node of the simulated machine is one processor,
+ * whose memory no other rank shares, so each rank's communicator is itself
+ * alone.  Its context needs no agreement (it is free on the only rank that
+ * uses it): the call sends nothing and takes no simulated time. */
+int PMPI_Comm_split_type(MPI_Comm comm, int split_type, int key, MPI_Info info, MPI_Comm *newcomm) {
+  static const char fn[] = "MPI_Comm_split_type";
+  tsm *R = tsm_need(fn);
+  tsm_comm *c;
+  int rc = tsm_check_comm(R, comm, fn, &c);
+  if (rc) return rc;
+  (void)key;
+  if (!newcomm) return tsm_raise(R, c, MPI_ERR_ARG, fn, "NULL newcomm argument");
+  if (c->inter) return tsm_raise(R, c, MPI_ERR_COMM, fn, "an intercommunicator (MPI_Comm_split_type splits intracommunicators)");
+  if (split_type != MPI_COMM_TYPE_SHARED && split_type != MPI_UNDEFINED)
+    return tsm_raise(R, c, MPI_ERR_ARG, fn, "invalid split_type %d (MPI_COMM_TYPE_SHARED or MPI_UNDEFINED)",
+                     split_type);
+  unsigned hints;
+  if ((rc = tsm_info_hints(R, c, fn, info, &hints))) return rc;
+  *newcomm = MPI_COMM_NULL;
+  if (split_type == MPI_UNDEFINED) return MPI_SUCCESS;
+  int pair = tsm_pair_lowest(R->pairs, -1);
+  if (pair < 0) return tsm_no_pair(R, c, fn);
+  tsm_pair_take(R, pair);
+  *newcomm = tsm_comm_add(R, tsm_ranks_new(1, &R->wrank), pair, 0, c->eh, hints);
+  return MPI_SUCCESS;
+}
+
+/* Is every rank of g in c (its local group)? */
 static int subset(const tsm_ranks *g, const tsm_comm *c) {
   for (int i = 0; i < g->n; i++)
-    if (tsm_comm_rank_of(c, member(g, i)) < 0) return 0;
+    if (tsm_ranks_find(tsm_comm_lgroup(c), tsm_member(g, i)) < 0) return 0;
   return 1;
+}
+
+static int group_arg(tsm *R, const tsm_comm *c, const char *fn, MPI_Group group, tsm_ranks **g) {
+  *g = tsm_group_get(R, group);
+  if (!*g) return tsm_raise(R, c, MPI_ERR_GROUP, fn, "invalid group 0x%x", (unsigned)group);
+  if (!subset(*g, c))
+    return tsm_raise(R, c, MPI_ERR_GROUP, fn, "the group has ranks that are not in the communicator%s",
+                     c->inter ? "'s local group" : "");
+  return MPI_SUCCESS;
 }
 
 int PMPI_Comm_create(MPI_Comm comm, MPI_Group group, MPI_Comm *newcomm) {
@@ -241,23 +351,22 @@ int PMPI_Comm_create(MPI_Comm comm, MPI_Group group, MPI_Comm *newcomm) {
   int rc = tsm_check_comm(R, comm, fn, &c);
   if (rc) return rc;
   if (!newcomm) return tsm_raise(R, c, MPI_ERR_ARG, fn, "NULL newcomm argument");
-  tsm_ranks *g = tsm_group_get(R, group);
-  if (!g) return tsm_raise(R, c, MPI_ERR_GROUP, fn, "invalid group 0x%x", (unsigned)group);
-  if (!subset(g, c))
-    return tsm_raise(R, c, MPI_ERR_GROUP, fn, "the group has ranks that are not in the communicator");
+  tsm_ranks *g;
+  if ((rc = group_arg(R, c, fn, group, &g))) return rc;
+  if (c->inter) return tsm_inter_create(R, c, fn, g, newcomm);
   tsm_label l = {.fn = fn, .what = L_COMM, .pair = c->pair};
   tsm_label_set(R, &l);
-  int pair = agree_pair(R, 2 * c->pair + 1, c->g, c->rank);
+  int pair = tsm_agree_pair(R, 2 * c->pair + 1, c->g, c->rank, TAG_CTXID);
   tsm_unlabel(R);
-  if (pair < 0) return no_pair(R, c, fn);
+  if (pair < 0) return tsm_no_pair(R, c, fn);
   int me = tsm_ranks_find(g, R->wrank);
   if (me < 0) {
-    R->pairs[pair / 8] &= (unsigned char)~(1u << (pair % 8));
+    tsm_pair_give(R, pair);
     *newcomm = MPI_COMM_NULL;
     return MPI_SUCCESS;
   }
   g->refs++;
-  *newcomm = comm_add(R, g, pair, me, c->eh);
+  *newcomm = tsm_comm_add(R, g, pair, me, c->eh, 0);
   return MPI_SUCCESS;
 }
 
@@ -267,32 +376,32 @@ int PMPI_Comm_create_group(MPI_Comm comm, MPI_Group group, int tag, MPI_Comm *ne
   tsm_comm *c;
   int rc = tsm_check_comm(R, comm, fn, &c);
   if (rc) return rc;
+  if (c->inter) return tsm_raise(R, c, MPI_ERR_COMM, fn, "an intercommunicator (MPI_Comm_create_group needs an intracommunicator)");
   if ((rc = tsm_check_tag(R, c, fn, tag, 0))) return rc;
   if (!newcomm) return tsm_raise(R, c, MPI_ERR_ARG, fn, "NULL newcomm argument");
-  tsm_ranks *g = tsm_group_get(R, group);
-  if (!g) return tsm_raise(R, c, MPI_ERR_GROUP, fn, "invalid group 0x%x", (unsigned)group);
-  if (!subset(g, c))
-    return tsm_raise(R, c, MPI_ERR_GROUP, fn, "the group has ranks that are not in the communicator");
+  tsm_ranks *g;
+  if ((rc = group_arg(R, c, fn, group, &g))) return rc;
   int me = tsm_ranks_find(g, R->wrank);
   if (me < 0) {
     *newcomm = MPI_COMM_NULL;   /* MPI 3.1 section 6.4.2: a rank outside the group gets none */
     return MPI_SUCCESS;
   }
   /* Only the group's ranks take part: they agree among themselves, on the
-   * parent's collective context (one call at a time per rank, and each
-   * message from a named member). */
+   * parent's collective context, with tags of their own by the program's
+   * tag (state.h: TAG_GROUP). */
   tsm_label l = {.fn = fn, .what = L_COMM, .pair = c->pair};
   tsm_label_set(R, &l);
-  int pair = agree_pair(R, 2 * c->pair + 1, g, me);
+  int pair = tsm_agree_pair(R, 2 * c->pair + 1, g, me, TAG_GROUP + 2 * (tag % TAG_GROUP_N));
   tsm_unlabel(R);
-  if (pair < 0) return no_pair(R, c, fn);
+  if (pair < 0) return tsm_no_pair(R, c, fn);
   g->refs++;
-  *newcomm = comm_add(R, g, pair, me, c->eh);
+  *newcomm = tsm_comm_add(R, g, pair, me, c->eh, 0);
   return MPI_SUCCESS;
 }
 
-int PMPI_Comm_free(MPI_Comm *comm) {
-  static const char fn[] = "MPI_Comm_free";
+/* Free: the attributes' delete callbacks first, on a communicator still
+ * valid (MPI 3.1 section 6.7.2); one that fails leaves it as it is. */
+static int comm_free(const char *fn, MPI_Comm *comm) {
   tsm *R = tsm_need(fn);
   if (!comm) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL comm argument");
   tsm_comm *c;
@@ -300,17 +409,32 @@ int PMPI_Comm_free(MPI_Comm *comm) {
   if (rc) return rc;
   if (c == &R->world || c == &R->selfc)
     return tsm_raise(R, c, MPI_ERR_COMM, fn, "%s cannot be freed", c == &R->world ? "MPI_COMM_WORLD" : "MPI_COMM_SELF");
-  unsigned slot = (unsigned)*comm & H_SLOT_MASK;
-  R->pairs[c->pair / 8] &= (unsigned char)~(1u << (c->pair % 8));
-  tsm_ranks_drop(c->g);
-  free(c);
-  R->comms[slot] = NULL;
-  *comm = MPI_COMM_NULL;
+  char why[128];
+  if ((rc = tsm_attr_delete_all(R, TSM_AK_COMM, *comm, why))) return tsm_raise(R, c, rc, fn, "%s", why);
+  tsm_comm_end(R, comm);
   return MPI_SUCCESS;
 }
 
-/* ==== comparing, groups, names, attributes ================================ */
+int PMPI_Comm_free(MPI_Comm *comm) { return comm_free("MPI_Comm_free", comm); }
 
+/* Collective: it waits, as a barrier, for every rank of the communicator
+ * (whose messages have all left by then: sends are eager), then frees. */
+int PMPI_Comm_disconnect(MPI_Comm *comm) {
+  static const char fn[] = "MPI_Comm_disconnect";
+  tsm *R = tsm_need(fn);
+  if (!comm) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL comm argument");
+  tsm_comm *c;
+  int rc = tsm_check_comm(R, *comm, fn, &c);
+  if (rc) return rc;
+  if (c == &R->world || c == &R->selfc)
+    return tsm_raise(R, c, MPI_ERR_COMM, fn, "%s cannot be disconnected", c == &R->world ? "MPI_COMM_WORLD" : "MPI_COMM_SELF");
+  if ((rc = PMPI_Barrier(*comm))) return rc;
+  return comm_free(fn, comm);
+}
+
+/* ==== comparing, groups, names ============================================ */
+
+/* MPI 3.1 section 6.4.1; intercommunicators compare both groups. */
 int PMPI_Comm_compare(MPI_Comm comm1, MPI_Comm comm2, int *result) {
   static const char fn[] = "MPI_Comm_compare";
   tsm *R = tsm_need(fn);
@@ -319,7 +443,12 @@ int PMPI_Comm_compare(MPI_Comm comm1, MPI_Comm comm2, int *result) {
   if (rc || (rc = tsm_check_comm(R, comm2, fn, &b))) return rc;
   if (!result) return tsm_raise(R, a, MPI_ERR_ARG, fn, "NULL result argument");
   static const int verdict[3] = {MPI_UNEQUAL, MPI_SIMILAR, MPI_CONGRUENT};
-  *result = a == b ? MPI_IDENT : verdict[tsm_ranks_same(a->g, b->g)];
+  int same = a->inter != b->inter ? 0 : tsm_ranks_same(a->g, b->g);
+  if (a->inter && b->inter) {
+    int local = tsm_ranks_same(a->lg, b->lg);
+    same = local < same ? local : same;
+  }
+  *result = a == b ? MPI_IDENT : verdict[same];
   return MPI_SUCCESS;
 }
 
@@ -330,8 +459,9 @@ int PMPI_Comm_group(MPI_Comm comm, MPI_Group *group) {
   int rc = tsm_check_comm(R, comm, fn, &c);
   if (rc) return rc;
   if (!group) return tsm_raise(R, c, MPI_ERR_ARG, fn, "NULL group argument");
-  c->g->refs++;
-  *group = tsm_group_add(R, c->g);
+  tsm_ranks *g = tsm_comm_lgroup(c);
+  g->refs++;
+  *group = tsm_group_add(R, g);
   return MPI_SUCCESS;
 }
 
@@ -357,34 +487,4 @@ int PMPI_Comm_get_name(MPI_Comm comm, char *comm_name, int *resultlen) {
   memcpy(comm_name, c->name, n + 1);
   *resultlen = (int)n;
   return MPI_SUCCESS;
-}
-
-/* The predefined attributes of MPI 3.1 section 8.1.2, the same on every
- * communicator; no others exist (attribute keys cannot be made). */
-int PMPI_Comm_get_attr(MPI_Comm comm, int comm_keyval, void *attribute_val, int *flag) {
-  static const char fn[] = "MPI_Comm_get_attr";
-  tsm *R = tsm_need(fn);
-  tsm_comm *c;
-  int rc = tsm_check_comm(R, comm, fn, &c);
-  if (rc) return rc;
-  if (!attribute_val || !flag) return tsm_raise(R, c, MPI_ERR_ARG, fn, "NULL argument");
-  if (comm_keyval == MPI_KEYVAL_INVALID) return tsm_raise(R, c, MPI_ERR_KEYVAL, fn, "MPI_KEYVAL_INVALID");
-  int *v = NULL;
-  switch (comm_keyval) {
-  case MPI_TAG_UB: R->attr[0] = TSM_TAG_UB; v = &R->attr[0]; break;
-  case MPI_HOST: R->attr[1] = MPI_PROC_NULL; v = &R->attr[1]; break;
-  case MPI_IO: R->attr[2] = MPI_ANY_SOURCE; v = &R->attr[2]; break;
-  case MPI_WTIME_IS_GLOBAL: R->attr[3] = 1; v = &R->attr[3]; break;
-  case MPI_UNIVERSE_SIZE: R->attr[4] = R->wsize; v = &R->attr[4]; break;
-  case MPI_APPNUM: R->attr[5] = 0; v = &R->attr[5]; break;
-  case MPI_LASTUSEDCODE: R->attr[6] = MPI_ERR_LASTCODE - 1; v = &R->attr[6]; break;
-  default: break;
-  }
-  *flag = v != NULL;
-  if (v) memcpy(attribute_val, &v, sizeof v);
-  return MPI_SUCCESS;
-}
-
-int PMPI_Attr_get(MPI_Comm comm, int keyval, void *attribute_val, int *flag) {
-  return MPI_Comm_get_attr(comm, keyval, attribute_val, flag);
 }

@@ -251,7 +251,12 @@ int PMPI_Type_dup(MPI_Datatype oldtype, MPI_Datatype *newtype) {
   char why[96];
   if ((rc = type_ok(fn, "oldtype", oldtype)) || (rc = ptr_ok(fn, "newtype", newtype))) return rc;
   rc = tsmpi_type_dup(oldtype, newtype, why, sizeof why);
-  return rc ? fail(MPI_COMM_WORLD, rc, fn, "%s", why) : rc;
+  if (rc) return fail(MPI_COMM_WORLD, rc, fn, "%s", why);
+  if ((rc = tsmpi_type_attrs_copy(oldtype, *newtype, fn))) {
+    tsmpi_type_free(*newtype);
+    *newtype = MPI_DATATYPE_NULL;
+  }
+  return rc;
 }
 
 /* MPI 3.1 section 4.1.3: the subarray of an ndims-dimensional array in C
@@ -348,6 +353,7 @@ int PMPI_Type_free(MPI_Datatype *datatype) {
   static const char fn[] = "MPI_Type_free";
   int rc;
   if ((rc = ptr_ok(fn, "datatype", datatype)) || (rc = type_ok(fn, "datatype", *datatype))) return rc;
+  if (((unsigned)*datatype & 0x800000u) && (rc = tsmpi_type_attrs_delete(*datatype, fn))) return rc;
   if (tsmpi_type_free(*datatype) != MPI_SUCCESS)
     return fail(MPI_COMM_WORLD, MPI_ERR_TYPE, fn, "%s is predefined and cannot be freed",
                 tsmpi_type_name(*datatype));

@@ -8,8 +8,10 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "attr.h"
 #include "engine.h"
 #include "err.h"
+#include "info.h"
 #include "state.h"
 #include "xmem.h"
 
@@ -37,8 +39,10 @@ int tsmpi_set_wtime_cost(double seconds) {
 
 /* ==== Init and Finalize =================================================== */
 
-static void comm_init(tsm_comm *c, int pair, int rank, tsm_ranks *g, const char *name) {
+static void comm_init(tsm_comm *c, MPI_Comm h, int pair, int rank, tsm_ranks *g, const char *name) {
   c->live = 1;
+  c->h = h;
+  c->local = MPI_COMM_NULL;
   c->pair = pair;
   c->rank = rank;
   c->size = g->n;
@@ -47,7 +51,7 @@ static void comm_init(tsm_comm *c, int pair, int rank, tsm_ranks *g, const char 
   snprintf(c->name, sizeof c->name, "%s", name);
 }
 
-static int init(const char *fn, int required, int *provided) {
+static int init(const char *fn, int *argc, char ***argv, int required, int *provided) {
   mp *self = mp_self();
   if (!self) {
     fprintf(stderr, "tilesim MPI: %s called outside a rank: MPI programs run under tilesim-mpirun\n", fn);
@@ -75,25 +79,20 @@ static int init(const char *fn, int required, int *provided) {
   R->thread_level = required < MPI_THREAD_FUNNELED ? (required < MPI_THREAD_SINGLE ? MPI_THREAD_SINGLE : required)
                                                    : MPI_THREAD_FUNNELED;
   if (provided) *provided = R->thread_level;
-  comm_init(&R->world, 0, R->wrank, tsm_ranks_new(R->wsize, NULL), "MPI_COMM_WORLD");
+  comm_init(&R->world, MPI_COMM_WORLD, 0, R->wrank, tsm_ranks_new(R->wsize, NULL), "MPI_COMM_WORLD");
   int me = R->wrank;
-  comm_init(&R->selfc, 1, 0, tsm_ranks_new(1, &me), "MPI_COMM_SELF");
+  comm_init(&R->selfc, MPI_COMM_SELF, 1, 0, tsm_ranks_new(1, &me), "MPI_COMM_SELF");
   R->empty = tsm_ranks_new(0, NULL);
   R->pairs[0] = 3;   /* pairs 0 and 1: MPI_COMM_WORLD, MPI_COMM_SELF */
   mp_set_user(self, R);
+  tsm_info_env(R, argc, argv);
   return MPI_SUCCESS;
 }
 
-int PMPI_Init(int *argc, char ***argv) {
-  (void)argc;
-  (void)argv;
-  return init("MPI_Init", MPI_THREAD_SINGLE, NULL);
-}
+int PMPI_Init(int *argc, char ***argv) { return init("MPI_Init", argc, argv, MPI_THREAD_SINGLE, NULL); }
 
 int PMPI_Init_thread(int *argc, char ***argv, int required, int *provided) {
-  (void)argc;
-  (void)argv;
-  return init("MPI_Init_thread", required, provided);
+  return init("MPI_Init_thread", argc, argv, required, provided);
 }
 
 int PMPI_Initialized(int *flag) {
@@ -140,8 +139,16 @@ static void leftovers(tsm *R) {
             R->wrank, active, active == 1 ? "" : "s");
 }
 
+/* MPI 3.1 section 8.7.1: MPI_Finalize first frees MPI_COMM_SELF's
+ * attributes, as MPI_Comm_free would, last set first; MPI_COMM_WORLD's
+ * follow (as MPICH).  The callbacks may call MPI (MPI_Finalized says 0). */
 int PMPI_Finalize(void) {
-  tsm *R = tsm_need("MPI_Finalize");
+  static const char fn[] = "MPI_Finalize";
+  tsm *R = tsm_need(fn);
+  char why[128];
+  int rc = tsm_attr_delete_all(R, TSM_AK_COMM, MPI_COMM_SELF, why);
+  if (!rc) rc = tsm_attr_delete_all(R, TSM_AK_COMM, MPI_COMM_WORLD, why);
+  if (rc) return tsm_raise(R, NULL, rc, fn, "%s", why);
   leftovers(R);
   mp *self = R->self;
   tsm_release(R);
@@ -208,5 +215,30 @@ int PMPI_Get_library_version(char *version, int *resultlen) {
   static const char text[] = "tilesim MPI 3.1: on tilesim's mp.h (the simulated machine, or threads)";
   memcpy(version, text, sizeof text);
   *resultlen = (int)sizeof text - 1;
+  return MPI_SUCCESS;
+}
+
+/* ==== memory ============================================================== */
+
+/* MPI_Alloc_mem is malloc (no memory is special on the simulated machine);
+ * info is checked, its hints ignored.  Size 0 gives a pointer all the
+ * same, which MPI_Free_mem takes. */
+int PMPI_Alloc_mem(MPI_Aint size, MPI_Info info, void *baseptr) {
+  static const char fn[] = "MPI_Alloc_mem";
+  tsm *R = tsm_need(fn);
+  if (size < 0) return tsm_raise(R, NULL, MPI_ERR_SIZE, fn, "invalid size %td", size);
+  if (!baseptr) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL baseptr argument");
+  unsigned hints = 0;
+  int rc = tsm_info_hints(R, NULL, fn, info, &hints);
+  if (rc) return rc;
+  void *p = malloc(size ? (size_t)size : 1);
+  if (!p) return tsm_raise(R, NULL, MPI_ERR_NO_MEM, fn, "no memory for %td bytes", size);
+  memcpy(baseptr, &p, sizeof p);
+  return MPI_SUCCESS;
+}
+
+int PMPI_Free_mem(void *base) {
+  tsm_need("MPI_Free_mem");
+  free(base);
   return MPI_SUCCESS;
 }

@@ -6,12 +6,19 @@
 #include <string.h>
 
 #include "env.h"
+#include "errh.h"
 
 /* ==== raising ============================================================= */
 
-static int vraise(tsm *R, const tsm_comm *c, int cls, const char *fn, const char *fmt, va_list ap) {
-  if (!c) c = &R->world;
-  if (c->eh == MPI_ERRORS_RETURN) return cls;
+/* Apply handler eh of object `handle` to error cls of call fn. */
+static int vapply(tsm *R, MPI_Errhandler eh, int handle, int cls, const char *fn, const char *fmt, va_list ap) {
+  if (eh == MPI_ERRORS_RETURN) return cls;
+  tsm_errh_fn *f = tsm_errh_function(R, eh);
+  if (f) {
+    int h = handle, code = cls;
+    f(&h, &code);
+    return cls;
+  }
   char why[1024];
   int n = snprintf(why, sizeof why, "rank %d: %s: ", R->wrank, fn);
   if (n > 0 && (size_t)n < sizeof why) vsnprintf(why + n, sizeof why - (size_t)n, fmt, ap);
@@ -19,6 +26,19 @@ static int vraise(tsm *R, const tsm_comm *c, int cls, const char *fn, const char
   tsm_release(R);
   mp_set_user(self, TSM_MARK_STOPPED);
   mp_abort(self, 1, why);
+}
+
+static int vraise(tsm *R, const tsm_comm *c, int cls, const char *fn, const char *fmt, va_list ap) {
+  if (!c) c = &R->world;
+  return vapply(R, c->eh, c->h, cls, fn, fmt, ap);
+}
+
+int tsm_raise_on(tsm *R, MPI_Errhandler eh, int handle, int cls, const char *fn, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  int rc = vapply(R, eh, handle, cls, fn, fmt, ap);
+  va_end(ap);
+  return rc;
 }
 
 int tsm_raise(tsm *R, const tsm_comm *c, int cls, const char *fn, const char *fmt, ...) {
@@ -118,45 +138,9 @@ int tsmpi_check_root(MPI_Comm comm, const char *fn, int root) {
                    tsm_pair_name(c->pair, b), c->size, c->size == 1 ? "" : "s");
 }
 
-/* ==== handlers ============================================================ */
-
-int PMPI_Comm_set_errhandler(MPI_Comm comm, MPI_Errhandler errhandler) {
-  static const char fn[] = "MPI_Comm_set_errhandler";
-  tsm *R = tsm_need(fn);
-  tsm_comm *c;
-  int rc = tsm_check_comm(R, comm, fn, &c);
-  if (rc) return rc;
-  if (errhandler != MPI_ERRORS_ARE_FATAL && errhandler != MPI_ERRORS_RETURN)
-    return tsm_raise(R, c, MPI_ERR_ARG, fn,
-                     "invalid error handler 0x%x (tilesim has MPI_ERRORS_ARE_FATAL and MPI_ERRORS_RETURN)",
-                     (unsigned)errhandler);
-  c->eh = errhandler;
-  return MPI_SUCCESS;
-}
-
-int PMPI_Comm_get_errhandler(MPI_Comm comm, MPI_Errhandler *errhandler) {
-  static const char fn[] = "MPI_Comm_get_errhandler";
-  tsm *R = tsm_need(fn);
-  tsm_comm *c;
-  int rc = tsm_check_comm(R, comm, fn, &c);
-  if (rc) return rc;
-  if (!errhandler) return tsm_raise(R, c, MPI_ERR_ARG, fn, "NULL errhandler argument");
-  *errhandler = c->eh;
-  return MPI_SUCCESS;
-}
-
-int PMPI_Errhandler_free(MPI_Errhandler *errhandler) {
-  static const char fn[] = "MPI_Errhandler_free";
-  tsm *R = tsm_need(fn);
-  if (!errhandler || (*errhandler != MPI_ERRORS_ARE_FATAL && *errhandler != MPI_ERRORS_RETURN))
-    return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "not an error handler");
-  *errhandler = MPI_ERRHANDLER_NULL;   /* the predefined ones stay */
-  return MPI_SUCCESS;
-}
-
 /* ==== classes and strings ================================================= */
 
-static const char *const class_text[MPI_ERR_LASTCODE] = {
+static const char *const class_text[MPI_ERR_LASTCODE + 1] = {
   [MPI_SUCCESS] = "MPI_SUCCESS: no error",
   [MPI_ERR_BUFFER] = "MPI_ERR_BUFFER: invalid buffer pointer, or no room in the attached buffer",
   [MPI_ERR_COUNT] = "MPI_ERR_COUNT: invalid count argument",
@@ -231,25 +215,33 @@ static const char *const class_text[MPI_ERR_LASTCODE] = {
   [MPI_T_ERR_PVAR_NO_ATOMIC] = "MPI_T_ERR_PVAR_NO_ATOMIC: variable cannot be read and written atomically",
   [MPI_T_ERR_INVALID_NAME] = "MPI_T_ERR_INVALID_NAME: name does not match",
   [MPI_T_ERR_INVALID] = "MPI_T_ERR_INVALID: invalid use of the interface",
+  [MPI_ERR_LASTCODE] = "MPI_ERR_LASTCODE: last error code",
 };
 
+const char *tsm_class_text(int cls) { return class_text[cls]; }
+
+/* Both are allowed before MPI_Init and after MPI_Finalize (the predefined
+ * codes only, then). */
 int PMPI_Error_class(int errorcode, int *errorclass) {
   static const char fn[] = "MPI_Error_class";
-  tsm *R = tsm_get();   /* allowed before MPI_Init and after MPI_Finalize */
-  if (errorcode < 0 || errorcode >= MPI_ERR_LASTCODE || !errorclass)
+  tsm *R = tsm_get();
+  int cls = R ? tsm_err_class(R, errorcode) : errorcode >= 0 && errorcode <= MPI_ERR_LASTCODE ? errorcode : -1;
+  if (cls < 0 || !errorclass)
     return R ? tsm_raise(R, NULL, MPI_ERR_ARG, fn, "invalid error code %d", errorcode) : MPI_ERR_ARG;
-  *errorclass = errorcode;
+  *errorclass = cls;
   return MPI_SUCCESS;
 }
 
 int PMPI_Error_string(int errorcode, char *string, int *resultlen) {
   static const char fn[] = "MPI_Error_string";
-  tsm *R = tsm_get();   /* allowed before MPI_Init and after MPI_Finalize */
-  if (errorcode < 0 || errorcode >= MPI_ERR_LASTCODE || !string || !resultlen)
+  tsm *R = tsm_get();
+  int cls = R ? tsm_err_class(R, errorcode) : errorcode >= 0 && errorcode <= MPI_ERR_LASTCODE ? errorcode : -1;
+  if (cls < 0 || !string || !resultlen)
     return R ? tsm_raise(R, NULL, MPI_ERR_ARG, fn, "invalid error code %d", errorcode) : MPI_ERR_ARG;
-  size_t n = strlen(class_text[errorcode]);
+  const char *s = R ? tsm_err_string(R, errorcode) : class_text[errorcode];
+  size_t n = strlen(s);
   if (n > MPI_MAX_ERROR_STRING - 1) n = MPI_MAX_ERROR_STRING - 1;
-  memcpy(string, class_text[errorcode], n);
+  memcpy(string, s, n);
   string[n] = 0;
   *resultlen = (int)n;
   return MPI_SUCCESS;

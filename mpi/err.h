@@ -1,6 +1,6 @@
 /* err.h -- errors of the MPI layer's calls: the communicator's error
- * handler (MPI_ERRORS_ARE_FATAL, MPI_ERRORS_RETURN), the argument checks
- * every call makes, error classes and their strings.
+ * handler (MPI_ERRORS_ARE_FATAL, MPI_ERRORS_RETURN, or the program's: errh.h),
+ * the argument checks every call makes, error classes and their strings.
  *
  * A call's errors are reported with MPI's class as the error code (codes
  * and classes are one: MPI_Error_class(c) is c) and, under
@@ -13,12 +13,26 @@
 #include "state.h"
 
 /* An error of call fn in R under c's handler (c NULL: MPI_COMM_WORLD's):
- * returns cls under MPI_ERRORS_RETURN; ends the run under
+ * returns cls under MPI_ERRORS_RETURN, and after calling the program's
+ * handler with c's handle and cls; ends the run under
  * MPI_ERRORS_ARE_FATAL (never returns then). */
 #if defined(__GNUC__)
 __attribute__((format(printf, 5, 6)))
 #endif
 int tsm_raise(tsm *R, const tsm_comm *c, int cls, const char *fn, const char *fmt, ...);
+
+/* The same under handler eh of the object whose handle is `handle` (a
+ * window's, a file's: the program's handler function gets the handle and
+ * cls, then cls is returned; MPI_ERRORS_RETURN returns cls;
+ * MPI_ERRORS_ARE_FATAL ends the run). */
+#if defined(__GNUC__)
+__attribute__((format(printf, 6, 7)))
+#endif
+int tsm_raise_on(tsm *R, MPI_Errhandler eh, int handle, int cls, const char *fn, const char *fmt, ...);
+
+/* The predefined class cls's text (0 <= cls <= MPI_ERR_LASTCODE):
+ * "MPI_ERR_COMM: invalid communicator". */
+const char *tsm_class_text(int cls);
 
 /* The checks, each MPI_SUCCESS or tsm_raise's result:
  *   tsm_check_comm   comm is R's (*out: it)                 MPI_ERR_COMM

@@ -32,17 +32,17 @@
 /* --- ENV --- */
 TSMPI_FN(1, ENV, int, MPI_Abort, (MPI_Comm comm, int errorcode),
          (comm, errorcode))
-TSMPI_FN(0, ENV, int, MPI_Add_error_class, (int *errorclass),
+TSMPI_FN(1, ENV, int, MPI_Add_error_class, (int *errorclass),
          (errorclass))
-TSMPI_FN(0, ENV, int, MPI_Add_error_code, (int errorclass, int *errorcode),
+TSMPI_FN(1, ENV, int, MPI_Add_error_code, (int errorclass, int *errorcode),
          (errorclass, errorcode))
-TSMPI_FN(0, ENV, int, MPI_Add_error_string, (int errorcode, const char *string),
+TSMPI_FN(1, ENV, int, MPI_Add_error_string, (int errorcode, const char *string),
          (errorcode, string))
-TSMPI_FN(0, ENV, int, MPI_Alloc_mem, (MPI_Aint size, MPI_Info info, void *baseptr),
+TSMPI_FN(1, ENV, int, MPI_Alloc_mem, (MPI_Aint size, MPI_Info info, void *baseptr),
          (size, info, baseptr))
-TSMPI_FN(0, ENV, int, MPI_Comm_call_errhandler, (MPI_Comm comm, int errorcode),
+TSMPI_FN(1, ENV, int, MPI_Comm_call_errhandler, (MPI_Comm comm, int errorcode),
          (comm, errorcode))
-TSMPI_FN(0, ENV, int, MPI_Comm_create_errhandler, (MPI_Comm_errhandler_function *comm_errhandler_fn,
+TSMPI_FN(1, ENV, int, MPI_Comm_create_errhandler, (MPI_Comm_errhandler_function *comm_errhandler_fn,
          MPI_Errhandler *errhandler),
          (comm_errhandler_fn, errhandler))
 TSMPI_FN(1, ENV, int, MPI_Comm_get_errhandler, (MPI_Comm comm, MPI_Errhandler *errhandler),
@@ -59,7 +59,7 @@ TSMPI_FN(1, ENV, int, MPI_Finalize, (void),
          ())
 TSMPI_FN(1, ENV, int, MPI_Finalized, (int *flag),
          (flag))
-TSMPI_FN(0, ENV, int, MPI_Free_mem, (void *base),
+TSMPI_FN(1, ENV, int, MPI_Free_mem, (void *base),
          (base))
 TSMPI_FN(1, ENV, int, MPI_Get_library_version, (char *version, int *resultlen),
          (version, resultlen))
@@ -233,7 +233,7 @@ TSMPI_FN(1, DTYPE, int, MPI_Type_create_hvector, (int count, int blocklength, MP
 TSMPI_FN(1, DTYPE, int, MPI_Type_create_indexed_block, (int count, int blocklength,
          const int array_of_displacements[], MPI_Datatype oldtype, MPI_Datatype *newtype),
          (count, blocklength, array_of_displacements, oldtype, newtype))
-TSMPI_FN(0, DTYPE, int, MPI_Type_create_keyval, (MPI_Type_copy_attr_function *type_copy_attr_fn,
+TSMPI_FN(1, DTYPE, int, MPI_Type_create_keyval, (MPI_Type_copy_attr_function *type_copy_attr_fn,
          MPI_Type_delete_attr_function *type_delete_attr_fn, int *type_keyval, void *extra_state),
          (type_copy_attr_fn, type_delete_attr_fn, type_keyval, extra_state))
 TSMPI_FN(1, DTYPE, int, MPI_Type_create_resized, (MPI_Datatype oldtype, MPI_Aint lb, MPI_Aint extent,
@@ -246,15 +246,15 @@ TSMPI_FN(1, DTYPE, int, MPI_Type_create_subarray, (int ndims, const int array_of
          const int array_of_subsizes[], const int array_of_starts[], int order, MPI_Datatype oldtype,
          MPI_Datatype *newtype),
          (ndims, array_of_sizes, array_of_subsizes, array_of_starts, order, oldtype, newtype))
-TSMPI_FN(0, DTYPE, int, MPI_Type_delete_attr, (MPI_Datatype datatype, int type_keyval),
+TSMPI_FN(1, DTYPE, int, MPI_Type_delete_attr, (MPI_Datatype datatype, int type_keyval),
          (datatype, type_keyval))
 TSMPI_FN(1, DTYPE, int, MPI_Type_dup, (MPI_Datatype oldtype, MPI_Datatype *newtype),
          (oldtype, newtype))
 TSMPI_FN(1, DTYPE, int, MPI_Type_free, (MPI_Datatype *datatype),
          (datatype))
-TSMPI_FN(0, DTYPE, int, MPI_Type_free_keyval, (int *type_keyval),
+TSMPI_FN(1, DTYPE, int, MPI_Type_free_keyval, (int *type_keyval),
          (type_keyval))
-TSMPI_FN(0, DTYPE, int, MPI_Type_get_attr, (MPI_Datatype datatype, int type_keyval, void *attribute_val,
+TSMPI_FN(1, DTYPE, int, MPI_Type_get_attr, (MPI_Datatype datatype, int type_keyval, void *attribute_val,
          int *flag),
          (datatype, type_keyval, attribute_val, flag))
 TSMPI_FN(1, DTYPE, int, MPI_Type_get_contents, (MPI_Datatype datatype, int max_integers, int max_addresses,
@@ -280,7 +280,7 @@ TSMPI_FN(1, DTYPE, int, MPI_Type_get_true_extent_x, (MPI_Datatype datatype, MPI_
 TSMPI_FN(1, DTYPE, int, MPI_Type_indexed, (int count, const int array_of_blocklengths[],
          const int array_of_displacements[], MPI_Datatype oldtype, MPI_Datatype *newtype),
          (count, array_of_blocklengths, array_of_displacements, oldtype, newtype))
-TSMPI_FN(0, DTYPE, int, MPI_Type_set_attr, (MPI_Datatype datatype, int type_keyval, void *attribute_val),
+TSMPI_FN(1, DTYPE, int, MPI_Type_set_attr, (MPI_Datatype datatype, int type_keyval, void *attribute_val),
          (datatype, type_keyval, attribute_val))
 TSMPI_FN(1, DTYPE, int, MPI_Type_set_name, (MPI_Datatype datatype, const char *type_name),
          (datatype, type_name))
@@ -417,11 +417,11 @@ TSMPI_FN(1, COLL, int, MPI_Scatterv, (const void *sendbuf, const int sendcounts[
          (sendbuf, sendcounts, displs, sendtype, recvbuf, recvcount, recvtype, root, comm))
 
 /* --- COMM --- */
-TSMPI_FN(0, COMM, int, MPI_Attr_delete, (MPI_Comm comm, int keyval),
+TSMPI_FN(1, COMM, int, MPI_Attr_delete, (MPI_Comm comm, int keyval),
          (comm, keyval))
 TSMPI_FN(1, COMM, int, MPI_Attr_get, (MPI_Comm comm, int keyval, void *attribute_val, int *flag),
          (comm, keyval, attribute_val, flag))
-TSMPI_FN(0, COMM, int, MPI_Attr_put, (MPI_Comm comm, int keyval, void *attribute_val),
+TSMPI_FN(1, COMM, int, MPI_Attr_put, (MPI_Comm comm, int keyval, void *attribute_val),
          (comm, keyval, attribute_val))
 TSMPI_FN(1, COMM, int, MPI_Comm_compare, (MPI_Comm comm1, MPI_Comm comm2, int *result),
          (comm1, comm2, result))
@@ -429,38 +429,38 @@ TSMPI_FN(1, COMM, int, MPI_Comm_create, (MPI_Comm comm, MPI_Group group, MPI_Com
          (comm, group, newcomm))
 TSMPI_FN(1, COMM, int, MPI_Comm_create_group, (MPI_Comm comm, MPI_Group group, int tag, MPI_Comm *newcomm),
          (comm, group, tag, newcomm))
-TSMPI_FN(0, COMM, int, MPI_Comm_create_keyval, (MPI_Comm_copy_attr_function *comm_copy_attr_fn,
+TSMPI_FN(1, COMM, int, MPI_Comm_create_keyval, (MPI_Comm_copy_attr_function *comm_copy_attr_fn,
          MPI_Comm_delete_attr_function *comm_delete_attr_fn, int *comm_keyval, void *extra_state),
          (comm_copy_attr_fn, comm_delete_attr_fn, comm_keyval, extra_state))
-TSMPI_FN(0, COMM, int, MPI_Comm_delete_attr, (MPI_Comm comm, int comm_keyval),
+TSMPI_FN(1, COMM, int, MPI_Comm_delete_attr, (MPI_Comm comm, int comm_keyval),
          (comm, comm_keyval))
 TSMPI_FN(1, COMM, int, MPI_Comm_dup, (MPI_Comm comm, MPI_Comm *newcomm),
          (comm, newcomm))
-TSMPI_FN(0, COMM, int, MPI_Comm_dup_with_info, (MPI_Comm comm, MPI_Info info, MPI_Comm *newcomm),
+TSMPI_FN(1, COMM, int, MPI_Comm_dup_with_info, (MPI_Comm comm, MPI_Info info, MPI_Comm *newcomm),
          (comm, info, newcomm))
 TSMPI_FN(1, COMM, int, MPI_Comm_free, (MPI_Comm *comm),
          (comm))
-TSMPI_FN(0, COMM, int, MPI_Comm_free_keyval, (int *comm_keyval),
+TSMPI_FN(1, COMM, int, MPI_Comm_free_keyval, (int *comm_keyval),
          (comm_keyval))
 TSMPI_FN(1, COMM, int, MPI_Comm_get_attr, (MPI_Comm comm, int comm_keyval, void *attribute_val, int *flag),
          (comm, comm_keyval, attribute_val, flag))
-TSMPI_FN(0, COMM, int, MPI_Comm_get_info, (MPI_Comm comm, MPI_Info *info_used),
+TSMPI_FN(1, COMM, int, MPI_Comm_get_info, (MPI_Comm comm, MPI_Info *info_used),
          (comm, info_used))
 TSMPI_FN(1, COMM, int, MPI_Comm_get_name, (MPI_Comm comm, char *comm_name, int *resultlen),
          (comm, comm_name, resultlen))
 TSMPI_FN(1, COMM, int, MPI_Comm_group, (MPI_Comm comm, MPI_Group *group),
          (comm, group))
-TSMPI_FN(0, COMM, int, MPI_Comm_idup, (MPI_Comm comm, MPI_Comm *newcomm, MPI_Request *request),
+TSMPI_FN(1, COMM, int, MPI_Comm_idup, (MPI_Comm comm, MPI_Comm *newcomm, MPI_Request *request),
          (comm, newcomm, request))
 TSMPI_FN(1, COMM, int, MPI_Comm_rank, (MPI_Comm comm, int *rank),
          (comm, rank))
-TSMPI_FN(0, COMM, int, MPI_Comm_remote_group, (MPI_Comm comm, MPI_Group *group),
+TSMPI_FN(1, COMM, int, MPI_Comm_remote_group, (MPI_Comm comm, MPI_Group *group),
          (comm, group))
-TSMPI_FN(0, COMM, int, MPI_Comm_remote_size, (MPI_Comm comm, int *size),
+TSMPI_FN(1, COMM, int, MPI_Comm_remote_size, (MPI_Comm comm, int *size),
          (comm, size))
-TSMPI_FN(0, COMM, int, MPI_Comm_set_attr, (MPI_Comm comm, int comm_keyval, void *attribute_val),
+TSMPI_FN(1, COMM, int, MPI_Comm_set_attr, (MPI_Comm comm, int comm_keyval, void *attribute_val),
          (comm, comm_keyval, attribute_val))
-TSMPI_FN(0, COMM, int, MPI_Comm_set_info, (MPI_Comm comm, MPI_Info info),
+TSMPI_FN(1, COMM, int, MPI_Comm_set_info, (MPI_Comm comm, MPI_Info info),
          (comm, info))
 TSMPI_FN(1, COMM, int, MPI_Comm_set_name, (MPI_Comm comm, const char *comm_name),
          (comm, comm_name))
@@ -468,7 +468,7 @@ TSMPI_FN(1, COMM, int, MPI_Comm_size, (MPI_Comm comm, int *size),
          (comm, size))
 TSMPI_FN(1, COMM, int, MPI_Comm_split, (MPI_Comm comm, int color, int key, MPI_Comm *newcomm),
          (comm, color, key, newcomm))
-TSMPI_FN(0, COMM, int, MPI_Comm_split_type, (MPI_Comm comm, int split_type, int key, MPI_Info info,
+TSMPI_FN(1, COMM, int, MPI_Comm_split_type, (MPI_Comm comm, int split_type, int key, MPI_Info info,
          MPI_Comm *newcomm),
          (comm, split_type, key, info, newcomm))
 TSMPI_FN(1, COMM, int, MPI_Comm_test_inter, (MPI_Comm comm, int *flag),
@@ -498,15 +498,15 @@ TSMPI_FN(1, COMM, int, MPI_Group_translate_ranks, (MPI_Group group1, int n, cons
          (group1, n, ranks1, group2, ranks2))
 TSMPI_FN(1, COMM, int, MPI_Group_union, (MPI_Group group1, MPI_Group group2, MPI_Group *newgroup),
          (group1, group2, newgroup))
-TSMPI_FN(0, COMM, int, MPI_Intercomm_create, (MPI_Comm local_comm, int local_leader, MPI_Comm peer_comm,
+TSMPI_FN(1, COMM, int, MPI_Intercomm_create, (MPI_Comm local_comm, int local_leader, MPI_Comm peer_comm,
          int remote_leader, int tag, MPI_Comm *newintercomm),
          (local_comm, local_leader, peer_comm, remote_leader, tag, newintercomm))
-TSMPI_FN(0, COMM, int, MPI_Intercomm_merge, (MPI_Comm intercomm, int high, MPI_Comm *newintracomm),
+TSMPI_FN(1, COMM, int, MPI_Intercomm_merge, (MPI_Comm intercomm, int high, MPI_Comm *newintracomm),
          (intercomm, high, newintracomm))
-TSMPI_FN(0, COMM, int, MPI_Keyval_create, (MPI_Copy_function *copy_fn, MPI_Delete_function *delete_fn,
+TSMPI_FN(1, COMM, int, MPI_Keyval_create, (MPI_Copy_function *copy_fn, MPI_Delete_function *delete_fn,
          int *keyval, void *extra_state),
          (copy_fn, delete_fn, keyval, extra_state))
-TSMPI_FN(0, COMM, int, MPI_Keyval_free, (int *keyval),
+TSMPI_FN(1, COMM, int, MPI_Keyval_free, (int *keyval),
          (keyval))
 
 /* --- TOPO --- */
@@ -599,23 +599,23 @@ TSMPI_FN(0, TOPO, int, MPI_Topo_test, (MPI_Comm comm, int *status),
          (comm, status))
 
 /* --- INFO --- */
-TSMPI_FN(0, INFO, int, MPI_Info_create, (MPI_Info *info),
+TSMPI_FN(1, INFO, int, MPI_Info_create, (MPI_Info *info),
          (info))
-TSMPI_FN(0, INFO, int, MPI_Info_delete, (MPI_Info info, const char *key),
+TSMPI_FN(1, INFO, int, MPI_Info_delete, (MPI_Info info, const char *key),
          (info, key))
-TSMPI_FN(0, INFO, int, MPI_Info_dup, (MPI_Info info, MPI_Info *newinfo),
+TSMPI_FN(1, INFO, int, MPI_Info_dup, (MPI_Info info, MPI_Info *newinfo),
          (info, newinfo))
-TSMPI_FN(0, INFO, int, MPI_Info_free, (MPI_Info *info),
+TSMPI_FN(1, INFO, int, MPI_Info_free, (MPI_Info *info),
          (info))
-TSMPI_FN(0, INFO, int, MPI_Info_get, (MPI_Info info, const char *key, int valuelen, char *value, int *flag),
+TSMPI_FN(1, INFO, int, MPI_Info_get, (MPI_Info info, const char *key, int valuelen, char *value, int *flag),
          (info, key, valuelen, value, flag))
-TSMPI_FN(0, INFO, int, MPI_Info_get_nkeys, (MPI_Info info, int *nkeys),
+TSMPI_FN(1, INFO, int, MPI_Info_get_nkeys, (MPI_Info info, int *nkeys),
          (info, nkeys))
-TSMPI_FN(0, INFO, int, MPI_Info_get_nthkey, (MPI_Info info, int n, char *key),
+TSMPI_FN(1, INFO, int, MPI_Info_get_nthkey, (MPI_Info info, int n, char *key),
          (info, n, key))
-TSMPI_FN(0, INFO, int, MPI_Info_get_valuelen, (MPI_Info info, const char *key, int *valuelen, int *flag),
+TSMPI_FN(1, INFO, int, MPI_Info_get_valuelen, (MPI_Info info, const char *key, int *valuelen, int *flag),
          (info, key, valuelen, flag))
-TSMPI_FN(0, INFO, int, MPI_Info_set, (MPI_Info info, const char *key, const char *value),
+TSMPI_FN(1, INFO, int, MPI_Info_set, (MPI_Info info, const char *key, const char *value),
          (info, key, value))
 
 /* --- SPAWN --- */
@@ -627,7 +627,7 @@ TSMPI_FN(0, SPAWN, int, MPI_Comm_accept, (const char *port_name, MPI_Info info, 
 TSMPI_FN(0, SPAWN, int, MPI_Comm_connect, (const char *port_name, MPI_Info info, int root, MPI_Comm comm,
          MPI_Comm *newcomm),
          (port_name, info, root, comm, newcomm))
-TSMPI_FN(0, SPAWN, int, MPI_Comm_disconnect, (MPI_Comm *comm),
+TSMPI_FN(1, SPAWN, int, MPI_Comm_disconnect, (MPI_Comm *comm),
          (comm))
 TSMPI_FN(0, SPAWN, int, MPI_Comm_get_parent, (MPI_Comm *parent),
          (parent))
@@ -714,10 +714,10 @@ TSMPI_FN(0, RMA, int, MPI_Win_create, (void *base, MPI_Aint size, int disp_unit,
          (base, size, disp_unit, info, comm, win))
 TSMPI_FN(0, RMA, int, MPI_Win_create_dynamic, (MPI_Info info, MPI_Comm comm, MPI_Win *win),
          (info, comm, win))
-TSMPI_FN(0, RMA, int, MPI_Win_create_errhandler, (MPI_Win_errhandler_function *win_errhandler_fn,
+TSMPI_FN(1, RMA, int, MPI_Win_create_errhandler, (MPI_Win_errhandler_function *win_errhandler_fn,
          MPI_Errhandler *errhandler),
          (win_errhandler_fn, errhandler))
-TSMPI_FN(0, RMA, int, MPI_Win_create_keyval, (MPI_Win_copy_attr_function *win_copy_attr_fn,
+TSMPI_FN(1, RMA, int, MPI_Win_create_keyval, (MPI_Win_copy_attr_function *win_copy_attr_fn,
          MPI_Win_delete_attr_function *win_delete_attr_fn, int *win_keyval, void *extra_state),
          (win_copy_attr_fn, win_delete_attr_fn, win_keyval, extra_state))
 TSMPI_FN(0, RMA, int, MPI_Win_delete_attr, (MPI_Win win, int win_keyval),
@@ -736,7 +736,7 @@ TSMPI_FN(0, RMA, int, MPI_Win_flush_local_all, (MPI_Win win),
          (win))
 TSMPI_FN(0, RMA, int, MPI_Win_free, (MPI_Win *win),
          (win))
-TSMPI_FN(0, RMA, int, MPI_Win_free_keyval, (int *win_keyval),
+TSMPI_FN(1, RMA, int, MPI_Win_free_keyval, (int *win_keyval),
          (win_keyval))
 TSMPI_FN(0, RMA, int, MPI_Win_get_attr, (MPI_Win win, int win_keyval, void *attribute_val, int *flag),
          (win, win_keyval, attribute_val, flag))
@@ -803,7 +803,7 @@ TSMPI_FN(0, IO, int, MPI_File_call_errhandler, (MPI_File fh, int errorcode),
          (fh, errorcode))
 TSMPI_FN(0, IO, int, MPI_File_close, (MPI_File *fh),
          (fh))
-TSMPI_FN(0, IO, int, MPI_File_create_errhandler, (MPI_File_errhandler_function *file_errhandler_fn,
+TSMPI_FN(1, IO, int, MPI_File_create_errhandler, (MPI_File_errhandler_function *file_errhandler_fn,
          MPI_Errhandler *errhandler),
          (file_errhandler_fn, errhandler))
 TSMPI_FN(0, IO, int, MPI_File_delete, (const char *filename, MPI_Info info),
@@ -1028,43 +1028,43 @@ TSMPI_FN(0, TOOL, int, MPI_T_pvar_write, (MPI_T_pvar_session session, MPI_T_pvar
          (session, handle, buf))
 
 /* --- LANG --- */
-TSMPI_FN(0, LANG, MPI_Fint, MPI_Comm_c2f, (MPI_Comm comm),
+TSMPI_FN(1, LANG, MPI_Fint, MPI_Comm_c2f, (MPI_Comm comm),
          (comm))
-TSMPI_FN(0, LANG, MPI_Comm, MPI_Comm_f2c, (MPI_Fint comm),
+TSMPI_FN(1, LANG, MPI_Comm, MPI_Comm_f2c, (MPI_Fint comm),
          (comm))
-TSMPI_FN(0, LANG, MPI_Fint, MPI_Errhandler_c2f, (MPI_Errhandler errhandler),
+TSMPI_FN(1, LANG, MPI_Fint, MPI_Errhandler_c2f, (MPI_Errhandler errhandler),
          (errhandler))
-TSMPI_FN(0, LANG, MPI_Errhandler, MPI_Errhandler_f2c, (MPI_Fint errhandler),
+TSMPI_FN(1, LANG, MPI_Errhandler, MPI_Errhandler_f2c, (MPI_Fint errhandler),
          (errhandler))
-TSMPI_FN(0, LANG, MPI_Fint, MPI_File_c2f, (MPI_File fh),
+TSMPI_FN(1, LANG, MPI_Fint, MPI_File_c2f, (MPI_File fh),
          (fh))
-TSMPI_FN(0, LANG, MPI_File, MPI_File_f2c, (MPI_Fint fh),
+TSMPI_FN(1, LANG, MPI_File, MPI_File_f2c, (MPI_Fint fh),
          (fh))
-TSMPI_FN(0, LANG, MPI_Fint, MPI_Group_c2f, (MPI_Group group),
+TSMPI_FN(1, LANG, MPI_Fint, MPI_Group_c2f, (MPI_Group group),
          (group))
-TSMPI_FN(0, LANG, MPI_Group, MPI_Group_f2c, (MPI_Fint group),
+TSMPI_FN(1, LANG, MPI_Group, MPI_Group_f2c, (MPI_Fint group),
          (group))
-TSMPI_FN(0, LANG, MPI_Fint, MPI_Info_c2f, (MPI_Info info),
+TSMPI_FN(1, LANG, MPI_Fint, MPI_Info_c2f, (MPI_Info info),
          (info))
-TSMPI_FN(0, LANG, MPI_Info, MPI_Info_f2c, (MPI_Fint info),
+TSMPI_FN(1, LANG, MPI_Info, MPI_Info_f2c, (MPI_Fint info),
          (info))
-TSMPI_FN(0, LANG, MPI_Fint, MPI_Message_c2f, (MPI_Message message),
+TSMPI_FN(1, LANG, MPI_Fint, MPI_Message_c2f, (MPI_Message message),
          (message))
-TSMPI_FN(0, LANG, MPI_Message, MPI_Message_f2c, (MPI_Fint message),
+TSMPI_FN(1, LANG, MPI_Message, MPI_Message_f2c, (MPI_Fint message),
          (message))
-TSMPI_FN(0, LANG, MPI_Fint, MPI_Op_c2f, (MPI_Op op),
+TSMPI_FN(1, LANG, MPI_Fint, MPI_Op_c2f, (MPI_Op op),
          (op))
-TSMPI_FN(0, LANG, MPI_Op, MPI_Op_f2c, (MPI_Fint op),
+TSMPI_FN(1, LANG, MPI_Op, MPI_Op_f2c, (MPI_Fint op),
          (op))
-TSMPI_FN(0, LANG, MPI_Fint, MPI_Request_c2f, (MPI_Request request),
+TSMPI_FN(1, LANG, MPI_Fint, MPI_Request_c2f, (MPI_Request request),
          (request))
-TSMPI_FN(0, LANG, MPI_Request, MPI_Request_f2c, (MPI_Fint request),
+TSMPI_FN(1, LANG, MPI_Request, MPI_Request_f2c, (MPI_Fint request),
          (request))
-TSMPI_FN(0, LANG, int, MPI_Status_c2f, (const MPI_Status *c_status, MPI_Fint *f_status),
+TSMPI_FN(1, LANG, int, MPI_Status_c2f, (const MPI_Status *c_status, MPI_Fint *f_status),
          (c_status, f_status))
-TSMPI_FN(0, LANG, int, MPI_Status_f2c, (const MPI_Fint *f_status, MPI_Status *c_status),
+TSMPI_FN(1, LANG, int, MPI_Status_f2c, (const MPI_Fint *f_status, MPI_Status *c_status),
          (f_status, c_status))
-TSMPI_FN(0, LANG, MPI_Fint, MPI_Type_c2f, (MPI_Datatype datatype),
+TSMPI_FN(1, LANG, MPI_Fint, MPI_Type_c2f, (MPI_Datatype datatype),
          (datatype))
 TSMPI_FN(0, LANG, int, MPI_Type_create_f90_complex, (int p, int r, MPI_Datatype *newtype),
          (p, r, newtype))
@@ -1072,24 +1072,24 @@ TSMPI_FN(0, LANG, int, MPI_Type_create_f90_integer, (int r, MPI_Datatype *newtyp
          (r, newtype))
 TSMPI_FN(0, LANG, int, MPI_Type_create_f90_real, (int p, int r, MPI_Datatype *newtype),
          (p, r, newtype))
-TSMPI_FN(0, LANG, MPI_Datatype, MPI_Type_f2c, (MPI_Fint datatype),
+TSMPI_FN(1, LANG, MPI_Datatype, MPI_Type_f2c, (MPI_Fint datatype),
          (datatype))
 TSMPI_FN(1, LANG, int, MPI_Type_match_size, (int typeclass, int size, MPI_Datatype *datatype),
          (typeclass, size, datatype))
-TSMPI_FN(0, LANG, MPI_Fint, MPI_Win_c2f, (MPI_Win win),
+TSMPI_FN(1, LANG, MPI_Fint, MPI_Win_c2f, (MPI_Win win),
          (win))
-TSMPI_FN(0, LANG, MPI_Win, MPI_Win_f2c, (MPI_Fint win),
+TSMPI_FN(1, LANG, MPI_Win, MPI_Win_f2c, (MPI_Fint win),
          (win))
 
 /* --- REMOVED --- */
 TSMPI_FN(1, REMOVED, int, MPI_Address, (void *location, MPI_Aint *address),
          (location, address))
-TSMPI_FN(0, REMOVED, int, MPI_Errhandler_create, (MPI_Comm_errhandler_function *comm_errhandler_fn,
+TSMPI_FN(1, REMOVED, int, MPI_Errhandler_create, (MPI_Comm_errhandler_function *comm_errhandler_fn,
          MPI_Errhandler *errhandler),
          (comm_errhandler_fn, errhandler))
-TSMPI_FN(0, REMOVED, int, MPI_Errhandler_get, (MPI_Comm comm, MPI_Errhandler *errhandler),
+TSMPI_FN(1, REMOVED, int, MPI_Errhandler_get, (MPI_Comm comm, MPI_Errhandler *errhandler),
          (comm, errhandler))
-TSMPI_FN(0, REMOVED, int, MPI_Errhandler_set, (MPI_Comm comm, MPI_Errhandler errhandler),
+TSMPI_FN(1, REMOVED, int, MPI_Errhandler_set, (MPI_Comm comm, MPI_Errhandler errhandler),
          (comm, errhandler))
 TSMPI_FN(1, REMOVED, int, MPI_Type_extent, (MPI_Datatype datatype, MPI_Aint *extent),
          (datatype, extent))

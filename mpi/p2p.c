@@ -112,7 +112,19 @@ int tsmpi_comm_rank(MPI_Comm comm) {
 
 int tsmpi_comm_size(MPI_Comm comm) {
   tsm *R = tsm_need("tsmpi_comm_size");
-  return comm_of(R, comm, "tsmpi_comm_size")->size;
+  return tsm_comm_lsize(comm_of(R, comm, "tsmpi_comm_size"));
+}
+
+int tsmpi_comm_inter(MPI_Comm comm) {
+  tsm *R = tsm_need("tsmpi_comm_inter");
+  if (comm == MPI_COMM_WORLD) return 0;
+  tsm_comm *c = tsm_comm_get(R, comm);
+  return c && c->inter;
+}
+
+int tsmpi_comm_remote_size(MPI_Comm comm) {
+  tsm *R = tsm_need("tsmpi_comm_remote_size");
+  return comm_of(R, comm, "tsmpi_comm_remote_size")->size;
 }
 
 int tsmpi_comm_world_rank(MPI_Comm comm, int r) {

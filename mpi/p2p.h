@@ -81,9 +81,18 @@ int tsmpi_p2p_waitall(int n, MPI_Request *reqs, MPI_Status *sts);
  * MPI_COMM_NULL); else raises MPI_ERR_COMM for fn (see tsmpi_raise). */
 int tsmpi_comm_check(MPI_Comm comm, const char *fn);
 
-/* The calling rank's rank in comm and comm's size (comm checked). */
+/* The calling rank's rank in comm and comm's size (comm checked; an
+ * intercommunicator's local group's). */
 int tsmpi_comm_rank(MPI_Comm comm);
 int tsmpi_comm_size(MPI_Comm comm);
+
+/* 1 if comm is a valid intercommunicator of the calling rank, else 0 (an
+ * intracommunicator, or not a communicator: the caller's checks say so).
+ * On an intercommunicator, the point-to-point calls above name ranks of
+ * the remote group (tsmpi_comm_remote_size of them); each collective
+ * hands an intercommunicator to coll_inter.h's before anything else. */
+int tsmpi_comm_inter(MPI_Comm comm);
+int tsmpi_comm_remote_size(MPI_Comm comm);
 
 /* comm's name for messages: "MPI_COMM_WORLD", "MPI_COMM_SELF", or
  * "communicator N", N the same on every rank of it (valid until the
@@ -92,7 +101,7 @@ int tsmpi_comm_size(MPI_Comm comm);
 const char *tsmpi_comm_name(MPI_Comm comm);
 
 /* The mp rank (MPI_COMM_WORLD rank) of rank r of comm (comm checked,
- * 0 <= r < size). */
+ * 0 <= r < size; the remote group's rank r on an intercommunicator). */
 int tsmpi_comm_world_rank(MPI_Comm comm, int r);
 
 /* ==== errors ============================================================== */
@@ -120,6 +129,16 @@ int tsmpi_check_count(MPI_Comm comm, const char *fn, int count);
 int tsmpi_check_buf(MPI_Comm comm, const char *fn, const void *buf, int count, MPI_Datatype dt);
 int tsmpi_check_rank(MPI_Comm comm, const char *fn, int r, int any_ok);
 int tsmpi_check_root(MPI_Comm comm, const char *fn, int root);
+
+/* ==== attributes of datatypes ============================================= */
+
+/* MPI_Type_dup made dup from old: old's attributes copied by their
+ * callbacks (attr.h); MPI_Type_free is freeing dt: its attributes deleted
+ * first.  MPI_SUCCESS, or a callback's error raised for fn on
+ * MPI_COMM_WORLD's handler (dup then has none of old's; dt keeps those
+ * not deleted). */
+int tsmpi_type_attrs_copy(MPI_Datatype old, MPI_Datatype dup, const char *fn);
+int tsmpi_type_attrs_delete(MPI_Datatype dt, const char *fn);
 
 /* ==== the rank's state for the other parts of the layer =================== */
 

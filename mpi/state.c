@@ -7,8 +7,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "attr.h"
 #include "engine.h"
 #include "env.h"
+#include "errh.h"
+#include "info.h"
 #include "xmem.h"
 
 /* ==== finding the rank's state ============================================ */
@@ -183,6 +186,7 @@ void tsm_release(tsm *R) {
   for (int i = 0; i < R->ncomms; i++) {
     if (!R->comms[i]) continue;
     tsm_ranks_drop(R->comms[i]->g);
+    if (R->comms[i]->inter) tsm_ranks_drop(R->comms[i]->lg);
     free(R->comms[i]);
   }
   free(R->comms);
@@ -191,5 +195,8 @@ void tsm_release(tsm *R) {
   tsm_ranks_drop(R->world.g);
   tsm_ranks_drop(R->selfc.g);
   tsm_ranks_drop(R->empty);
+  tsm_attrs_release(R);
+  tsm_errs_release(R);
+  tsm_infos_release(R);
   free(R);
 }

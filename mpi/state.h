@@ -26,7 +26,7 @@ enum {
   H_SLOT_MASK = 0x7fffff
 };
 #define H_KIND(h) ((unsigned)(h) >> H_KIND_SHIFT)
-enum { HK_COMM = 1, HK_GROUP = 2, HK_ERRH = 5, HK_REQ = 6 };
+enum { HK_COMM = 1, HK_GROUP = 2, HK_ERRH = 5, HK_REQ = 6, HK_INFO = 7 };
 
 /* ==== contexts and the envelope =========================================== */
 
@@ -62,7 +62,10 @@ static inline int env_tag(int mptag) { return mptag & TSM_TAG_UB; }
 
 /* Tags the communicator constructors use on the parent's collective
  * context, above the collectives' own (p2p.h: TSMPI_COLL_TAG_MAX). */
-enum { TAG_CTXID = TSMPI_COLL_TAG_MAX + 1, TAG_CTXID_BCAST, TAG_SPLIT, TAG_SPLIT_BCAST };
+enum { TAG_CTXID = TSMPI_COLL_TAG_MAX + 1, TAG_CTXID_BCAST, TAG_SPLIT, TAG_SPLIT_BCAST, TAG_INTER, TAG_INTER_BCAST };
+/* MPI_Comm_create_group's, by the program's tag (tag % TAG_GROUP_N): a pair
+ * each, so that groups made at once with different tags keep apart. */
+enum { TAG_GROUP_N = 64, TAG_GROUP = TSM_TAG_UB + 1 - 2 * TAG_GROUP_N };
 
 /* ==== groups and communicators ============================================ */
 
@@ -75,15 +78,33 @@ typedef struct {
   int *sr;      /* ... sr[k] the rank of sw[k] (NULL with world NULL) */
 } tsm_ranks;
 
+/* An intracommunicator's g and size are its group; an
+ * intercommunicator's are the remote group's, which its point-to-point
+ * ranks name (so that sends, receives and statuses need nothing else),
+ * and lg is its local group; rank is always the calling rank's in its own
+ * group.  Use tsm_comm_lsize and tsm_comm_lgroup for the local side. */
 typedef struct {
   int live;            /* 0: a free slot */
   int pair;            /* context pair: ctx 2 * pair, collectives 2 * pair + 1 */
   int rank, size;      /* the calling rank's rank in it, and its size */
   tsm_ranks *g;
-  MPI_Errhandler eh;   /* MPI_ERRORS_ARE_FATAL or MPI_ERRORS_RETURN */
+  MPI_Errhandler eh;   /* predefined, or a handler of the rank's (errh.c): counted */
   char name[MPI_MAX_OBJECT_NAME];   /* MPI_Comm_set_name's */
   char words[32];      /* tsmpi_comm_name's answer */
+  MPI_Comm h;          /* its own handle */
+  int inter;           /* an intercommunicator */
+  int low;             /* intercommunicators: the local leader's world rank is below
+                          the remote leader's (its group comes first when merged) */
+  tsm_ranks *lg;       /* intercommunicators: the local group (counted) */
+  MPI_Comm local;      /* intercommunicators: an intracommunicator of the local
+                          group, with a context pair of its own, for the
+                          collectives' local steps (hidden from the program) */
+  int hidden;          /* such a local communicator */
+  unsigned hints;      /* the info hints it keeps (info.c: TSM_HINT_*) */
 } tsm_comm;
+
+static inline int tsm_comm_lsize(const tsm_comm *c) { return c->inter ? c->lg->n : c->size; }
+static inline tsm_ranks *tsm_comm_lgroup(const tsm_comm *c) { return c->inter ? c->lg : c->g; }
 
 /* ==== requests ============================================================ */
 
@@ -172,6 +193,11 @@ struct tsm {
   /* the other parts' slots (p2p.h) */
   void *part[TSMPI_PARTS];
   void (*release[TSMPI_PARTS])(void *);
+  /* attribute keys and attributes (attr.c), error handlers and the
+   * program's error classes and codes (errh.c), info objects (info.c) */
+  struct tsm_attrs *attrs;
+  struct tsm_errs *errs;
+  struct tsm_infos *infos;
 };
 
 /* The calling rank's state: NULL before MPI_Init, after MPI_Finalize and

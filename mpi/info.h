@@ -1,0 +1,36 @@
+/* info.h -- info objects (MPI 3.1 chapter 9), MPI_INFO_ENV, and the hints a
+ * communicator keeps (MPI_Comm_set_info, MPI_Comm_get_info,
+ * MPI_Comm_dup_with_info, MPI_Comm_split_type's info).
+ *
+ * An info object is an ordered list of (key, value) strings: keys of 1 to
+ * MPI_MAX_INFO_KEY (255) characters, values of 1 to MPI_MAX_INFO_VAL
+ * (1024), kept in the order first set (MPI_Info_get_nthkey), as MPICH.
+ * MPI_INFO_ENV holds what MPI_Init saw: "command" and "argv" (when the
+ * program passed its argv), "maxprocs" (the number of ranks) and
+ * "thread_level"; it cannot be changed or freed.
+ *
+ * HINTS.  A communicator keeps the hints tilesim knows, MPI 4.0's
+ * assertions mpi_assert_no_any_tag, mpi_assert_no_any_source,
+ * mpi_assert_exact_length and mpi_assert_allow_overtaking ("true" or
+ * "false"), and ignores the others, as MPICH does; they change nothing in
+ * how tilesim runs (a program that breaks one is not told).
+ * MPI_Comm_get_info gives back those that were set. */
+#ifndef TSMPI_INFO_H
+#define TSMPI_INFO_H
+
+#include "state.h"
+
+/* A communicator's hints word from info (MPI_INFO_NULL: none): `given`
+ * bits in the low byte, their values ("true") in the next; *hints keeps
+ * its other bits (a merge).  MPI_SUCCESS, or MPI_ERR_INFO raised on c for
+ * fn (an invalid info handle). */
+int tsm_info_hints(tsm *R, const tsm_comm *c, const char *fn, MPI_Info info, unsigned *hints);
+
+/* MPI_INFO_ENV's contents (MPI_Init, with the program's argc and argv,
+ * either NULL). */
+void tsm_info_env(tsm *R, const int *argc, char ***argv);
+
+/* Free every info object of the rank (its end). */
+void tsm_infos_release(tsm *R);
+
+#endif
