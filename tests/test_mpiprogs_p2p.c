@@ -1,5 +1,6 @@
-/* test_mpiprogs_p2p.c -- the point-to-point and communicator programs of
- * tests/mpi/ (p2p_*, comm_*) on the simulator on 2 to 16 ranks, and on the
+/* test_mpiprogs_p2p.c -- the point-to-point, communicator, attribute,
+ * error-handler and info programs of tests/mpi/ (p2p_*, comm_*, attr_*,
+ * err_*, info_*) on the simulator on 2 to 16 ranks, and on the
  * threads backend (2, 4 and 7 ranks), where messages arrive in the host's
  * order and the results must not change.
  *
@@ -32,7 +33,10 @@ static const struct {
 };
 enum { NPROGS = sizeof progs / sizeof progs[0] };
 
-static int mine(const char *name) { return !strncmp(name, "p2p_", 4) || !strncmp(name, "comm_", 5); }
+static int mine(const char *name) {
+  return !strncmp(name, "p2p_", 4) || !strncmp(name, "comm_", 5) || !strncmp(name, "attr_", 5) ||
+         !strncmp(name, "err_", 4) || !strncmp(name, "info_", 5);
+}
 
 static void run(int p, int np, int backend) {
   mpih_config cfg;
