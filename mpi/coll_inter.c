@@ -16,10 +16,18 @@
 #include "err.h"
 #include "label.h"
 #include "p2p.h"
-#include "xmem.h"
 
 enum { T_BARRIER = 1, T_BCAST, T_GATHER, T_GATHERV, T_SCATTER, T_SCATTERV, T_ALLGATHER, T_ALLGATHERV, T_ALLTOALL,
        T_ALLTOALLV, T_ALLTOALLW, T_REDUCE, T_ALLREDUCE, T_REDUCE_SCATTER };
+
+/* Scratch memory, freed at the rank's end if the run stops while a call
+ * waits (coll.h's tsmpi_cg_alloc); drop frees it. */
+static void *grab(size_t n) {
+  tsmpi_cg g = {.fn = "an MPI collective on an intercommunicator"};
+  return tsmpi_cg_alloc(&g, n);
+}
+
+static void drop(void *p) { tsmpi_cg_free(p); }
 
 /* One call: the rank, the intercommunicator, its local one, the label. */
 typedef struct {
@@ -88,7 +96,7 @@ static int counts_ok(ic *x, const char *what, const int *counts, const int *disp
 /* count elements of dt packed into new memory. */
 static char *packed(const void *buf, int count, MPI_Datatype dt) {
   size_t n = tsmpi_type_size(dt) * (size_t)count;
-  char *p = xmalloc(n ? n : 1);
+  char *p = grab(n ? n : 1);
   if (n) tsmpi_type_pack(buf, count, dt, p);
   return p;
 }
@@ -98,7 +106,7 @@ static char *packed(const void *buf, int count, MPI_Datatype dt) {
 static void *room(int count, MPI_Datatype dt, void **base) {
   MPI_Aint ext = tsmpi_type_extent(dt), text = tsmpi_type_true_extent(dt);
   size_t span = (size_t)(ext > text ? ext : text);
-  *base = xmalloc(count > 0 && span ? (size_t)count * span : 1);
+  *base = grab(count > 0 && span ? (size_t)count * span : 1);
   return (char *)*base - tsmpi_type_true_lb(dt);
 }
 
@@ -141,11 +149,11 @@ int tsmpi_inter_gather(const void *sendbuf, int sendcount, MPI_Datatype sendtype
   if ((rc = data_ok(&x, "sendtype", sendbuf, sendcount, sendtype))) return end(&x, rc);
   /* The group's blocks meet at its rank 0, which sends them on. */
   int n = (int)(tsmpi_type_size(sendtype) * (size_t)sendcount), ln = tsm_comm_lsize(x.c);
-  char *mine = packed(sendbuf, sendcount, sendtype), *all = x.c->rank == 0 ? xmalloc((size_t)n * (size_t)ln + 1) : NULL;
+  char *mine = packed(sendbuf, sendcount, sendtype), *all = x.c->rank == 0 ? grab((size_t)n * (size_t)ln + 1) : NULL;
   rc = PMPI_Gather(mine, n, MPI_BYTE, all, n, MPI_BYTE, 0, x.local);
   if (!rc && all) rc = tsmpi_p2p_send(all, n * ln, MPI_BYTE, root, T_GATHER, comm);
-  free(mine);
-  free(all);
+  drop(mine);
+  drop(all);
   return end(&x, rc);
 }
 
@@ -161,11 +169,11 @@ int tsmpi_inter_gatherv(const void *sendbuf, int sendcount, MPI_Datatype sendtyp
   }
   if ((rc = counts_ok(&x, "recvcounts", recvcounts, displs, recvbuf, recvtype))) return end(&x, rc);
   int n = x.c->size;
-  MPI_Request *reqs = xmallocarray((size_t)n, sizeof *reqs);
+  MPI_Request *reqs = grab(((size_t)n) * sizeof *reqs);
   for (int i = 0; i < n; i++)
     tsmpi_p2p_irecv(tsmpi_coll_at(recvbuf, displs[i], recvtype), recvcounts[i], recvtype, i, T_GATHERV, comm, &reqs[i]);
   rc = waitall(&x, n, reqs);
-  free(reqs);
+  drop(reqs);
   return end(&x, rc);
 }
 
@@ -182,12 +190,12 @@ int tsmpi_inter_scatter(const void *sendbuf, int sendcount, MPI_Datatype sendtyp
   if ((rc = data_ok(&x, "recvtype", recvbuf, recvcount, recvtype))) return end(&x, rc);
   /* Rank 0 takes the group's blocks and scatters them. */
   int n = (int)(tsmpi_type_size(recvtype) * (size_t)recvcount), ln = tsm_comm_lsize(x.c);
-  char *all = x.c->rank == 0 ? xmalloc((size_t)n * (size_t)ln + 1) : NULL, *mine = xmalloc((size_t)n + 1);
+  char *all = x.c->rank == 0 ? grab((size_t)n * (size_t)ln + 1) : NULL, *mine = grab((size_t)n + 1);
   if (all) rc = recv(&x, all, n * ln, MPI_BYTE, root, T_SCATTER);
   if (!rc) rc = PMPI_Scatter(all, n, MPI_BYTE, mine, n, MPI_BYTE, 0, x.local);
   if (!rc && n) tsmpi_type_unpack(mine, (size_t)n, recvbuf, recvcount, recvtype);
-  free(mine);
-  free(all);
+  drop(mine);
+  drop(all);
   return end(&x, rc);
 }
 
@@ -216,22 +224,22 @@ int tsmpi_inter_scatterv(const void *sendbuf, const int sendcounts[], const int 
 static int swap_all(ic *x, const char *mine, int n, int rn, int tag, char **out) {
   int ln = tsm_comm_lsize(x->c), rc, *sizes = NULL, *displs = NULL, total = 0;
   char *all = NULL;
-  *out = xmalloc((size_t)rn + 1);
+  *out = grab((size_t)rn + 1);
   if (x->c->rank == 0) {
-    sizes = xmallocarray(2 * (size_t)ln, sizeof *sizes);
+    sizes = grab((2 * (size_t)ln) * sizeof *sizes);
     displs = sizes + ln;
   }
   rc = PMPI_Gather(&n, 1, MPI_INT, sizes, 1, MPI_INT, 0, x->local);
   if (!rc && sizes) {
     for (int r = 0; r < ln; r++) displs[r] = total, total += sizes[r];
-    all = xmalloc((size_t)total + 1);
+    all = grab((size_t)total + 1);
   }
   if (!rc) rc = PMPI_Gatherv(mine, n, MPI_BYTE, all, sizes, displs, MPI_BYTE, 0, x->local);
   if (!rc && all && !(rc = tsmpi_p2p_send(all, total, MPI_BYTE, 0, tag, x->comm)))
     rc = recv(x, *out, rn, MPI_BYTE, 0, tag);
   if (!rc) rc = PMPI_Bcast(*out, rn, MPI_BYTE, 0, x->local);
-  free(all);
-  free(sizes);
+  drop(all);
+  drop(sizes);
   return rc;
 }
 
@@ -247,8 +255,8 @@ int tsmpi_inter_allgather(const void *sendbuf, int sendcount, MPI_Datatype sendt
   int bytes = (int)(tsmpi_type_size(recvtype) * (size_t)recvcount * (size_t)rn);
   rc = swap_all(&x, mine, (int)(tsmpi_type_size(sendtype) * (size_t)sendcount), bytes, T_ALLGATHER, &theirs);
   if (!rc && bytes) tsmpi_type_unpack(theirs, (size_t)bytes, recvbuf, recvcount * rn, recvtype);
-  free(mine);
-  free(theirs);
+  drop(mine);
+  drop(theirs);
   return end(&x, rc);
 }
 
@@ -268,8 +276,8 @@ int tsmpi_inter_allgatherv(const void *sendbuf, int sendcount, MPI_Datatype send
     if (recvcounts[i])
       tsmpi_type_unpack(theirs + off, (size_t)recvcounts[i] * ts, tsmpi_coll_at(recvbuf, displs[i], recvtype),
                         recvcounts[i], recvtype);
-  free(mine);
-  free(theirs);
+  drop(mine);
+  drop(theirs);
   return end(&x, rc);
 }
 
@@ -281,13 +289,13 @@ int tsmpi_inter_allgatherv(const void *sendbuf, int sendcount, MPI_Datatype send
 static int exchange(ic *x, const void *sbuf, const int *sc, const MPI_Aint *sd, const MPI_Datatype *st, void *rbuf,
                     const int *rcnt, const MPI_Aint *rd, const MPI_Datatype *rt, int tag) {
   int n = x->c->size;
-  MPI_Request *reqs = xmallocarray(2 * (size_t)n, sizeof *reqs);
+  MPI_Request *reqs = grab((2 * (size_t)n) * sizeof *reqs);
   for (int i = 0; i < n; i++) {
     tsmpi_p2p_irecv((char *)rbuf + rd[i], rcnt[i], rt[i], i, tag, x->comm, &reqs[i]);
     tsmpi_p2p_isend((const char *)sbuf + sd[i], sc[i], st[i], i, tag, x->comm, &reqs[n + i]);
   }
   int rc = waitall(x, 2 * n, reqs);
-  free(reqs);
+  drop(reqs);
   return rc;
 }
 
@@ -296,9 +304,9 @@ static int exchange(ic *x, const void *sbuf, const int *sc, const MPI_Aint *sd, 
 static int exchange_v(ic *x, const void *sbuf, int scount, const int *sc, const int *sdis, MPI_Datatype stype,
                       void *rbuf, int rcount, const int *rcnt, const int *rdis, MPI_Datatype rtype, int tag) {
   int n = x->c->size;
-  int *c = xmallocarray(2 * (size_t)n + 1, sizeof *c);
-  MPI_Aint *d = xmallocarray(2 * (size_t)n + 1, sizeof *d), se = tsmpi_type_extent(stype), re = tsmpi_type_extent(rtype);
-  MPI_Datatype *t = xmallocarray(2 * (size_t)n + 1, sizeof *t);
+  int *c = grab((2 * (size_t)n + 1) * sizeof *c);
+  MPI_Aint *d = grab((2 * (size_t)n + 1) * sizeof *d), se = tsmpi_type_extent(stype), re = tsmpi_type_extent(rtype);
+  MPI_Datatype *t = grab((2 * (size_t)n + 1) * sizeof *t);
   for (int i = 0; i < n; i++) {
     c[i] = sc ? sc[i] : scount;
     d[i] = (MPI_Aint)(sc ? sdis[i] : i * scount) * se;
@@ -308,9 +316,9 @@ static int exchange_v(ic *x, const void *sbuf, int scount, const int *sc, const 
     t[n + i] = rtype;
   }
   int rc = exchange(x, sbuf, c, d, t, rbuf, c + n, d + n, t + n, tag);
-  free(c);
-  free(d);
-  free(t);
+  drop(c);
+  drop(d);
+  drop(t);
   return rc;
 }
 
@@ -355,10 +363,10 @@ int tsmpi_inter_alltoallw(const void *sendbuf, const int sendcounts[], const int
     if (!(rc = tsmpi_coll_type_ok(comm, x.fn, "sendtypes[i]", sendtypes[i])))
       rc = tsmpi_coll_type_ok(comm, x.fn, "recvtypes[i]", recvtypes[i]);
   if (rc) return end(&x, rc);
-  MPI_Aint *d = xmallocarray(2 * (size_t)n + 1, sizeof *d);
+  MPI_Aint *d = grab((2 * (size_t)n + 1) * sizeof *d);
   for (int i = 0; i < n; i++) d[i] = sdispls[i], d[n + i] = rdispls[i];
   rc = exchange(&x, sendbuf, sendcounts, d, sendtypes, recvbuf, recvcounts, d + n, recvtypes, T_ALLTOALLW);
-  free(d);
+  drop(d);
   return end(&x, rc);
 }
 
@@ -391,7 +399,7 @@ int tsmpi_inter_reduce(const void *sendbuf, void *recvbuf, int count, MPI_Dataty
   void *res, *base;
   rc = reduce_local(&x, sendbuf, count, datatype, op, &res, &base);
   if (!rc && res) rc = tsmpi_p2p_send(res, count, datatype, root, T_REDUCE, comm);
-  free(base);
+  drop(base);
   return end(&x, rc);
 }
 
@@ -409,16 +417,16 @@ int tsmpi_inter_allreduce(const void *sendbuf, void *recvbuf, int count, MPI_Dat
   if (!rc && res && !(rc = tsmpi_p2p_send(res, count, datatype, 0, T_ALLREDUCE, comm)))
     rc = recv(&x, recvbuf, count, datatype, 0, T_ALLREDUCE);
   if (!rc) rc = PMPI_Bcast(recvbuf, count, datatype, 0, x.local);
-  free(base);
+  drop(base);
   return end(&x, rc);
 }
 
 /* The same over the whole vector (the sum of counts), then scattered. */
 static int redscat(ic *x, const void *sendbuf, void *recvbuf, const int *counts, MPI_Datatype dt, MPI_Op op) {
-  int ln = tsm_comm_lsize(x->c), total = 0, *displs = xmallocarray((size_t)ln + 1, sizeof *displs), rc;
+  int ln = tsm_comm_lsize(x->c), total = 0, *displs = grab(((size_t)ln + 1) * sizeof *displs), rc;
   for (int i = 0; i < ln; i++) displs[i] = total, total += counts[i];
   if ((rc = red_ok(x, sendbuf, total, dt, op)) || (rc = data_ok(x, "datatype", recvbuf, counts[x->c->rank], dt))) {
-    free(displs);
+    drop(displs);
     return rc;
   }
   void *res, *base, *theirs = NULL, *tbase = NULL;
@@ -429,9 +437,9 @@ static int redscat(ic *x, const void *sendbuf, void *recvbuf, const int *counts,
       rc = recv(x, theirs, total, dt, 0, T_REDUCE_SCATTER);
   }
   if (!rc) rc = PMPI_Scatterv(theirs, counts, displs, dt, recvbuf, counts[x->c->rank], dt, 0, x->local);
-  free(base);
-  free(tbase);
-  free(displs);
+  drop(base);
+  drop(tbase);
+  drop(displs);
   return rc;
 }
 
@@ -449,10 +457,10 @@ int tsmpi_inter_reduce_scatter_block(const void *sendbuf, void *recvbuf, int rec
   begin(&x, "MPI_Reduce_scatter_block", comm);
   int ln = tsm_comm_lsize(x.c), rc = tsmpi_check_count(comm, x.fn, recvcount);
   if (rc) return end(&x, rc);
-  int *counts = xmallocarray((size_t)ln, sizeof *counts);
+  int *counts = grab(((size_t)ln) * sizeof *counts);
   for (int i = 0; i < ln; i++) counts[i] = recvcount;
   rc = redscat(&x, sendbuf, recvbuf, counts, datatype, op);
-  free(counts);
+  drop(counts);
   return end(&x, rc);
 }
 

@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "attr.h"
+#include "coll.h"
 #include "comm.h"
 #include "engine.h"
 #include "errh.h"
@@ -49,6 +50,13 @@ int PMPI_Comm_size(MPI_Comm comm, int *size) {
 
 /* ==== messages among the ranks that make a communicator =================== */
 
+void *tsm_scratch(const char *fn, size_t n) {
+  tsmpi_cg g = {.fn = fn};
+  return tsmpi_cg_alloc(&g, n);
+}
+
+void tsm_scratch_free(void *p) { tsmpi_cg_free(p); }
+
 void tsm_xsend(tsm *R, int ctx, int w, int tag, const void *buf, size_t len) {
   tsm_req q = {.slot = -1, .kind = RQ_SEND, .mode = SM_STANDARD, .wpeer = w, .ctx = ctx, .tag = tag};
   eng_send(R, &q, buf, len);
@@ -70,7 +78,7 @@ void tsm_xswap(tsm *R, int ctx, int w, int tag, const void *out, size_t outlen, 
   tsm_xsend(R, ctx, w, tag, &n, sizeof n);
   tsm_xsend(R, ctx, w, tag, out, outlen);
   tsm_xrecv(R, ctx, w, tag, &m, sizeof m);
-  *in = xmalloc(m ? (size_t)m : 1);
+  *in = tsm_scratch("an MPI communicator constructor", (size_t)m);
   tsm_xrecv(R, ctx, w, tag, *in, (size_t)m);
   *inlen = (size_t)m;
 }
@@ -269,7 +277,7 @@ int PMPI_Comm_split(MPI_Comm comm, int color, int key, MPI_Comm *newcomm) {
   tsm_label l = {.fn = fn, .what = L_COMM, .pair = c->pair};
   tsm_label_set(R, &l);
   int n = c->size, ctx = 2 * c->pair + 1;
-  int *table = xmallocarray((size_t)n, 2 * sizeof *table);   /* (color, key) by rank */
+  int *table = tsm_scratch(fn, (size_t)n * 2 * sizeof *table);   /* (color, key) by rank */
   if (c->rank == 0) {
     table[0] = color;
     table[1] = key;
@@ -282,14 +290,14 @@ int PMPI_Comm_split(MPI_Comm comm, int color, int key, MPI_Comm *newcomm) {
   int pair = tsm_agree_pair(R, ctx, c->g, c->rank, TAG_CTXID);
   tsm_unlabel(R);
   if (pair < 0) {
-    free(table);
+    tsm_scratch_free(table);
     return tsm_no_pair(R, c, fn);
   }
   if (color == MPI_UNDEFINED) {
     /* One pair serves every color's communicator (they share no rank);
      * this rank is in none of them. */
     tsm_pair_give(R, pair);
-    free(table);
+    tsm_scratch_free(table);
     *newcomm = MPI_COMM_NULL;
     return MPI_SUCCESS;
   }
@@ -297,7 +305,7 @@ int PMPI_Comm_split(MPI_Comm comm, int color, int key, MPI_Comm *newcomm) {
   int *world = tsm_split_members(table, n, c->g, color, c->rank, &m, &me);
   *newcomm = tsm_comm_add(R, tsm_ranks_new(m, world), pair, me, c->eh, 0);
   free(world);
-  free(table);
+  tsm_scratch_free(table);
   return MPI_SUCCESS;
 }
 

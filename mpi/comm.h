@@ -21,6 +21,12 @@
 
 enum { PAIR_BYTES = CTX_PAIRS / 8 };
 
+/* Scratch memory for a constructor that may block (n bytes, from fn's
+ * call): freed at the rank's end if the run stops meanwhile (coll.h's
+ * tsmpi_cg_alloc); tsm_scratch_free frees it (NULL: nothing). */
+void *tsm_scratch(const char *fn, size_t n);
+void tsm_scratch_free(void *p);
+
 /* The world rank of member i of g. */
 static inline int tsm_member(const tsm_ranks *g, int i) { return g->world ? g->world[i] : i; }
 
@@ -29,7 +35,7 @@ static inline int tsm_member(const tsm_ranks *g, int i) { return g->world ? g->w
 void tsm_xsend(tsm *R, int ctx, int w, int tag, const void *buf, size_t len);
 void tsm_xrecv(tsm *R, int ctx, int w, int tag, void *buf, size_t len);
 
-/* The leaders of two groups swap a message of any length: *in (malloc'd,
+/* The leaders of two groups swap a message of any length: *in (scratch,
  * *inlen bytes) gets the other's. */
 void tsm_xswap(tsm *R, int ctx, int w, int tag, const void *out, size_t outlen, void **in, size_t *inlen);
 

@@ -32,8 +32,8 @@
  * rank of both groups, *q free on every rank of lg and not *p (each group
  * its own; -1 if want_q is 0), each taken by the calling rank (-1: none
  * left, nothing taken).  The leaders swap out (olen bytes: the leader's) for
- * the other leader's, which every rank of lg gets in *in (malloc'd, *ilen
- * bytes). */
+ * the other leader's, which every rank of lg gets in *in (scratch, *ilen
+ * bytes: tsm_scratch_free). */
 static void agree(tsm *R, int ctx, const tsm_ranks *lg, int me, int lead, int xctx, int wremote, int want_q,
                   const void *out, size_t olen, void **in, size_t *ilen, int *p, int *q) {
   unsigned char used[PAIR_BYTES];
@@ -42,24 +42,24 @@ static void agree(tsm *R, int ctx, const tsm_ranks *lg, int me, int lead, int xc
   long hdr[3] = {-1, -1, 0};   /* p, q, the other leader's bytes */
   void *theirs = NULL;
   if (me == lead) {
-    unsigned char *msg = xmalloc(PAIR_BYTES + olen);
+    unsigned char *msg = tsm_scratch("an MPI communicator constructor", PAIR_BYTES + olen);
     memcpy(msg, used, PAIR_BYTES);
     if (olen) memcpy(msg + PAIR_BYTES, out, olen);
     void *got;
     size_t glen;
     tsm_xswap(R, xctx, wremote, TAG_INTER, msg, PAIR_BYTES + olen, &got, &glen);
-    free(msg);
+    tsm_scratch_free(msg);
     unsigned char all[PAIR_BYTES];
     for (int i = 0; i < PAIR_BYTES; i++) all[i] = used[i] | ((unsigned char *)got)[i];
     hdr[0] = tsm_pair_lowest(all, -1);
     hdr[1] = want_q && hdr[0] >= 0 ? tsm_pair_lowest(used, (int)hdr[0]) : -1;
     hdr[2] = (long)(glen - PAIR_BYTES);
-    theirs = xmalloc(hdr[2] ? (size_t)hdr[2] : 1);
+    theirs = tsm_scratch("an MPI communicator constructor", (size_t)hdr[2]);
     memcpy(theirs, (unsigned char *)got + PAIR_BYTES, (size_t)hdr[2]);
-    free(got);
+    tsm_scratch_free(got);
   }
   tsm_tree_bcast(R, ctx, lg, me, lead, TAG_INTER_BCAST, hdr, sizeof hdr);
-  if (me != lead) theirs = xmalloc(hdr[2] ? (size_t)hdr[2] : 1);
+  if (me != lead) theirs = tsm_scratch("an MPI communicator constructor", (size_t)hdr[2]);
   tsm_tree_bcast(R, ctx, lg, me, lead, TAG_INTER_BCAST, theirs, (size_t)hdr[2]);
   *in = theirs;
   *ilen = (size_t)hdr[2];
@@ -99,9 +99,9 @@ static MPI_Comm inter_new(tsm *R, tsm_ranks *lg, tsm_ranks *rg, int rank, int p,
   return h;
 }
 
-/* The world ranks of g, in a new array. */
-static int *world_list(const tsm_ranks *g) {
-  int *w = xmallocarray((size_t)g->n + 1, sizeof *w);
+/* The world ranks of g, in new scratch memory. */
+static int *world_list(const tsm_ranks *g, const char *fn) {
+  int *w = tsm_scratch(fn, ((size_t)g->n + 1) * sizeof *w);
   for (int i = 0; i < g->n; i++) w[i] = tsm_member(g, i);
   return w;
 }
@@ -134,7 +134,7 @@ int PMPI_Intercomm_create(MPI_Comm local_comm, int local_leader, MPI_Comm peer_c
   /* The leaders swap their leader's world rank and their group's. */
   tsm_label l = {.fn = fn, .what = L_COMM, .pair = lc->pair};
   tsm_label_set(R, &l);
-  int *mine = xmallocarray((size_t)lc->size + 1, sizeof *mine), *theirs, p, q;
+  int *mine = tsm_scratch(fn, ((size_t)lc->size + 1) * sizeof *mine), *theirs, p, q;
   mine[0] = tsm_member(lc->g, local_leader);
   for (int i = 0; i < lc->size; i++) mine[i + 1] = tsm_member(lc->g, i);
   size_t tlen;
@@ -143,8 +143,8 @@ int PMPI_Intercomm_create(MPI_Comm local_comm, int local_leader, MPI_Comm peer_c
   tsm_unlabel(R);
   int rn = (int)(tlen / sizeof *theirs) - 1;
   if (p < 0) {
-    free(mine);
-    free(theirs);
+    tsm_scratch_free(mine);
+    tsm_scratch_free(theirs);
     return tsm_no_pair(R, lc, fn);
   }
   /* The group whose leader has the lower world rank comes first when
@@ -152,8 +152,8 @@ int PMPI_Intercomm_create(MPI_Comm local_comm, int local_leader, MPI_Comm peer_c
   int low = mine[0] < theirs[0];
   lc->g->refs++;
   *newintercomm = inter_new(R, lc->g, tsm_ranks_new(rn, theirs + 1), lc->rank, p, q, lc->eh, 0, low);
-  free(mine);
-  free(theirs);
+  tsm_scratch_free(mine);
+  tsm_scratch_free(theirs);
   return MPI_SUCCESS;
 }
 
@@ -176,7 +176,7 @@ int PMPI_Intercomm_merge(MPI_Comm intercomm, int high, MPI_Comm *newintracomm) {
   agree_inter(R, c, 0, &mine, sizeof mine, (void **)&theirs, &tlen, &p, &q);
   tsm_unlabel(R);
   int first = mine != *theirs ? !mine : c->low;
-  free(theirs);
+  tsm_scratch_free(theirs);
   if (p < 0) return tsm_no_pair(R, c, fn);
   int ln = c->lg->n, rn = c->g->n, *w = xmallocarray((size_t)(ln + rn), sizeof *w);
   const tsm_ranks *a = first ? c->lg : c->g, *b = first ? c->g : c->lg;
@@ -239,7 +239,7 @@ int tsm_inter_dup(tsm *R, tsm_comm *c, const char *fn, MPI_Comm *newcomm) {
   int p, q;
   agree_inter(R, c, 1, NULL, 0, &in, &ilen, &p, &q);
   tsm_unlabel(R);
-  free(in);
+  tsm_scratch_free(in);
   if (p < 0) return tsm_no_pair(R, c, fn);
   c->lg->refs++;
   c->g->refs++;
@@ -256,7 +256,7 @@ int tsm_inter_split(tsm *R, tsm_comm *c, const char *fn, int color, int key, MPI
   tsm_label_set(R, &l);
   const tsm_comm *lc = tsm_comm_get(R, c->local);
   int n = c->lg->n, ctx = 2 * lc->pair + 1;
-  int *table = xmallocarray((size_t)n, 2 * sizeof *table);   /* (color, key) by local rank */
+  int *table = tsm_scratch(fn, (size_t)n * 2 * sizeof *table);   /* (color, key) by local rank */
   if (c->rank == 0) {
     table[0] = color;
     table[1] = key;
@@ -272,8 +272,8 @@ int tsm_inter_split(tsm *R, tsm_comm *c, const char *fn, int color, int key, MPI
   tsm_unlabel(R);
   *newcomm = MPI_COMM_NULL;
   if (p < 0) {
-    free(table);
-    free(theirs);
+    tsm_scratch_free(table);
+    tsm_scratch_free(theirs);
     return tsm_no_pair(R, c, fn);
   }
   int lm = 0, rm = 0, me, none;
@@ -287,8 +287,8 @@ int tsm_inter_split(tsm *R, tsm_comm *c, const char *fn, int color, int key, MPI
   }
   free(lw);
   free(rw);
-  free(table);
-  free(theirs);
+  tsm_scratch_free(table);
+  tsm_scratch_free(theirs);
   return MPI_SUCCESS;
 }
 
@@ -298,15 +298,15 @@ int tsm_inter_split(tsm *R, tsm_comm *c, const char *fn, int color, int key, MPI
 int tsm_inter_create(tsm *R, tsm_comm *c, const char *fn, const tsm_ranks *group, MPI_Comm *newcomm) {
   tsm_label l = {.fn = fn, .what = L_COMM, .pair = c->pair};
   tsm_label_set(R, &l);
-  int *mine = world_list(group), *theirs, p, q;
+  int *mine = world_list(group, fn), *theirs, p, q;
   size_t tlen;
   agree_inter(R, c, 1, mine, (size_t)group->n * sizeof *mine, (void **)&theirs, &tlen, &p, &q);
   tsm_unlabel(R);
   *newcomm = MPI_COMM_NULL;
   int rn = (int)(tlen / sizeof *theirs), me = tsm_ranks_find(group, R->wrank);
   if (p < 0) {
-    free(mine);
-    free(theirs);
+    tsm_scratch_free(mine);
+    tsm_scratch_free(theirs);
     return tsm_no_pair(R, c, fn);
   }
   if (me >= 0 && rn > 0) {
@@ -315,7 +315,7 @@ int tsm_inter_create(tsm *R, tsm_comm *c, const char *fn, const tsm_ranks *group
     tsm_pair_give(R, p);
     tsm_pair_give(R, q);
   }
-  free(mine);
-  free(theirs);
+  tsm_scratch_free(mine);
+  tsm_scratch_free(theirs);
   return MPI_SUCCESS;
 }
