@@ -84,8 +84,8 @@ static int init(const char *fn, int *argc, char ***argv, int required, int *prov
   comm_init(&R->selfc, MPI_COMM_SELF, 1, 0, tsm_ranks_new(1, &me), "MPI_COMM_SELF");
   R->empty = tsm_ranks_new(0, NULL);
   R->pairs[0] = 3;   /* pairs 0 and 1: MPI_COMM_WORLD, MPI_COMM_SELF */
+  if (argc && argv && *argv) R->argc = *argc, R->argv = *argv;
   mp_set_user(self, R);
-  tsm_info_env(R, argc, argv);
   return MPI_SUCCESS;
 }
 

@@ -88,11 +88,38 @@ static void put(info *o, const char *key, const char *value) {
   o->n++;
 }
 
+/* ==== MPI_INFO_ENV ======================================================== */
+
+static void env_make(tsm *R, info *env) {
+  char b[64];
+  if (R->argc > 0 && R->argv[0]) {
+    put(env, "command", R->argv[0]);
+    size_t len = 1;
+    for (int i = 1; i < R->argc; i++) len += strlen(R->argv[i]) + 1;
+    char *all = xcalloc(len, 1);
+    for (int i = 1; i < R->argc; i++) {
+      if (i > 1) strcat(all, " ");
+      strcat(all, R->argv[i]);
+    }
+    if (*all && strlen(all) <= MPI_MAX_INFO_VAL) put(env, "argv", all);
+    free(all);
+  }
+  snprintf(b, sizeof b, "%d", R->wsize);
+  put(env, "maxprocs", b);
+  static const char *const level[] = {"MPI_THREAD_SINGLE", "MPI_THREAD_FUNNELED", "MPI_THREAD_SERIALIZED",
+                                      "MPI_THREAD_MULTIPLE"};
+  put(env, "thread_level", level[R->thread_level]);
+  env->live = 1;
+}
+
 /* ==== handles ============================================================= */
 
 static info *info_get(tsm *R, MPI_Info h) {
   struct tsm_infos *I = infos_of(R);
-  if (h == MPI_INFO_ENV) return &I->env;
+  if (h == MPI_INFO_ENV) {
+    if (!I->env.live) env_make(R, &I->env);
+    return &I->env;
+  }
   unsigned slot = (unsigned)h - (unsigned)(HK_INFO << H_KIND_SHIFT | H_CREATED);
   return slot < (unsigned)I->nt && I->t[slot] ? I->t[slot] : NULL;
 }
@@ -265,30 +292,6 @@ int PMPI_Info_get_nthkey(MPI_Info h, int n, char *key) {
   while (n--) e = e->next;
   memcpy(key, e->key, strlen(e->key) + 1);
   return MPI_SUCCESS;
-}
-
-/* ==== MPI_INFO_ENV ======================================================== */
-
-void tsm_info_env(tsm *R, const int *argc, char ***argv) {
-  info *env = &infos_of(R)->env;
-  char b[64];
-  if (argc && argv && *argv && *argc > 0 && (*argv)[0]) {
-    put(env, "command", (*argv)[0]);
-    size_t len = 1;
-    for (int i = 1; i < *argc; i++) len += strlen((*argv)[i]) + 1;
-    char *all = xcalloc(len, 1);
-    for (int i = 1; i < *argc; i++) {
-      if (i > 1) strcat(all, " ");
-      strcat(all, (*argv)[i]);
-    }
-    if (*all && strlen(all) <= MPI_MAX_INFO_VAL) put(env, "argv", all);
-    free(all);
-  }
-  snprintf(b, sizeof b, "%d", R->wsize);
-  put(env, "maxprocs", b);
-  static const char *const level[] = {"MPI_THREAD_SINGLE", "MPI_THREAD_FUNNELED", "MPI_THREAD_SERIALIZED",
-                                      "MPI_THREAD_MULTIPLE"};
-  put(env, "thread_level", level[R->thread_level]);
 }
 
 /* ==== communicators' hints ================================================ */

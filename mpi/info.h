@@ -7,7 +7,9 @@
  * (1024), kept in the order first set (MPI_Info_get_nthkey), as MPICH.
  * MPI_INFO_ENV holds what MPI_Init saw: "command" and "argv" (when the
  * program passed its argv), "maxprocs" (the number of ranks) and
- * "thread_level"; it cannot be changed or freed.
+ * "thread_level"; it cannot be changed or freed.  It is made when first
+ * used (a rank that never asks spends nothing on it), from the argc and
+ * argv MPI_Init kept.
  *
  * HINTS.  A communicator keeps the hints tilesim knows, MPI 4.0's
  * assertions mpi_assert_no_any_tag, mpi_assert_no_any_source,
@@ -25,10 +27,6 @@
  * its other bits (a merge).  MPI_SUCCESS, or MPI_ERR_INFO raised on c for
  * fn (an invalid info handle). */
 int tsm_info_hints(tsm *R, const tsm_comm *c, const char *fn, MPI_Info info, unsigned *hints);
-
-/* MPI_INFO_ENV's contents (MPI_Init, with the program's argc and argv,
- * either NULL). */
-void tsm_info_env(tsm *R, const int *argc, char ***argv);
 
 /* Free every info object of the rank (its end). */
 void tsm_infos_release(tsm *R);

@@ -198,6 +198,8 @@ struct tsm {
   struct tsm_attrs *attrs;
   struct tsm_errs *errs;
   struct tsm_infos *infos;
+  int argc;                /* what MPI_Init was given (0 and NULL if nothing), */
+  char **argv;             /* for MPI_INFO_ENV, made when first asked for */
 };
 
 /* The calling rank's state: NULL before MPI_Init, after MPI_Finalize and
