@@ -98,8 +98,9 @@ int tsm_check_peer(tsm *R, const tsm_comm *c, const char *fn, int r, int any_ok)
   if ((r >= 0 && r < c->size) || r == MPI_PROC_NULL || (any_ok && r == MPI_ANY_SOURCE))
     return MPI_SUCCESS;
   char b[32];
-  return tsm_raise(R, c, MPI_ERR_RANK, fn, "invalid rank %d (%s has %d rank%s)", r,
-                   tsm_pair_name(c->pair, b), c->size, c->size == 1 ? "" : "s");
+  return tsm_raise(R, c, MPI_ERR_RANK, fn, "invalid rank %d (%s%s has %d rank%s)", r,
+                   c->inter ? "the remote group of " : "", tsm_pair_name(c->pair, b), c->size,
+                   c->size == 1 ? "" : "s");
 }
 
 int tsm_check_buf(tsm *R, const tsm_comm *c, const char *fn, const void *buf, int count,

@@ -229,6 +229,16 @@ int PMPI_Comm_remote_group(MPI_Comm comm, MPI_Group *group) {
   return MPI_SUCCESS;
 }
 
+/* No rank of a tilesim run was spawned by another (MPI_Comm_spawn is not
+ * there): MPI 3.1 section 10.3.2 says MPI_COMM_NULL. */
+int PMPI_Comm_get_parent(MPI_Comm *parent) {
+  static const char fn[] = "MPI_Comm_get_parent";
+  tsm *R = tsm_need(fn);
+  if (!parent) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL parent argument");
+  *parent = MPI_COMM_NULL;
+  return MPI_SUCCESS;
+}
+
 /* ==== dup, split, create ================================================== */
 
 int tsm_inter_dup(tsm *R, tsm_comm *c, const char *fn, MPI_Comm *newcomm) {

@@ -629,7 +629,7 @@ TSMPI_FN(0, SPAWN, int, MPI_Comm_connect, (const char *port_name, MPI_Info info,
          (port_name, info, root, comm, newcomm))
 TSMPI_FN(1, SPAWN, int, MPI_Comm_disconnect, (MPI_Comm *comm),
          (comm))
-TSMPI_FN(0, SPAWN, int, MPI_Comm_get_parent, (MPI_Comm *parent),
+TSMPI_FN(1, SPAWN, int, MPI_Comm_get_parent, (MPI_Comm *parent),
          (parent))
 TSMPI_FN(0, SPAWN, int, MPI_Comm_join, (int fd, MPI_Comm *intercomm),
          (fd, intercomm))

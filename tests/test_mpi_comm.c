@@ -5,7 +5,8 @@
  * node of one rank with no message, MPI_Comm_idup done on return, the
  * 1024 contexts (an intercommunicator takes two: 511 at once), the error
  * code a program adds ending the run under MPI_ERRORS_ARE_FATAL in its own
- * words, MPI_LASTUSEDCODE, and what a deadlock report says of a rank in
+ * words, MPI_LASTUSEDCODE, a rank not in an intercommunicator's remote
+ * group named so, and what a deadlock report says of a rank in
  * MPI_Intercomm_create.  On the simulator and on threads where it applies. */
 #include <stdio.h>
 #include <stdlib.h>
@@ -164,6 +165,20 @@ static int added_code(void *ud) {
   return 0;
 }
 
+/* A rank of the remote group that is not there. */
+static int inter_bad_rank(void *ud) {
+  (void)ud;
+  MPI_Init(NULL, NULL);
+  int r, v = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  MPI_Comm ic;
+  MPI_Intercomm_create(MPI_COMM_SELF, 0, MPI_COMM_WORLD, 1 - r, 3, &ic);
+  if (r == 0) MPI_Send(&v, 1, MPI_INT, 3, 0, ic);
+  MPI_Recv(&v, 1, MPI_INT, 0, 0, ic, MPI_STATUS_IGNORE);
+  MPI_Finalize();
+  return 0;
+}
+
 /* Rank 1 makes an intercommunicator; rank 0 waits for a message. */
 static int inter_stuck(void *ud) {
   (void)ud;
@@ -190,6 +205,11 @@ static void errors(void) {
     CHECK(res.rc != 0 && res.abort_code == 1 && F.t[0][0] == 0 &&
               has(res.err, "rank 0: MPI_Comm_call_errhandler: error code 76: the reactor is too hot"),
           "%s: a fatal added code: %s", bname[b], res.err);
+    mpih_result_free(&res);
+    res = run(b, 2, inter_bad_rank, NULL);
+    CHECK(res.rc != 0 && res.abort_code == 1 &&
+              has(res.err, "rank 0: MPI_Send: invalid rank 3 (the remote group of communicator 2 has 1 rank)"),
+          "%s: a bad rank on an intercommunicator: %s", bname[b], res.err);
     mpih_result_free(&res);
     res = run(b, 2, inter_stuck, NULL);
     CHECK(res.rc != 0 && res.deadlock && has(res.err, "rank 1 waits in MPI_Intercomm_create(MPI_COMM_SELF)") &&

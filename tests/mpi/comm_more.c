@@ -2,8 +2,9 @@
  * on any number of ranks >= 2: MPI_Comm_split_type (the nodes partition
  * the ranks, each rank in its own node's communicator with the members
  * all agreeing on it; MPI_UNDEFINED gives MPI_COMM_NULL), MPI_Comm_idup,
- * MPI_Comm_disconnect, MPI_Alloc_mem and MPI_Free_mem, and the C and
- * Fortran handles and statuses (MPI_Comm_c2f, ...). */
+ * MPI_Comm_get_parent (none), MPI_Comm_disconnect, MPI_Alloc_mem and
+ * MPI_Free_mem, and the C and Fortran handles and statuses (MPI_Comm_c2f,
+ * ...). */
 #include <mpi.h>
 #include <stdlib.h>
 #include <string.h>
@@ -38,6 +39,13 @@ static void cm_split_type(mtest *t) {
   MPI_Comm_split_type(MPI_COMM_WORLD, t->rank % 2 ? MPI_UNDEFINED : MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
   MCHECK(t, (t->rank % 2) == (node == MPI_COMM_NULL), "MPI_UNDEFINED");
   if (node != MPI_COMM_NULL) MPI_Comm_free(&node);
+}
+
+/* No rank was spawned. */
+static void cm_parent(mtest *t) {
+  MPI_Comm parent = MPI_COMM_WORLD;
+  MPI_Comm_get_parent(&parent);
+  MCHECK(t, parent == MPI_COMM_NULL, "MPI_Comm_get_parent gave a communicator");
 }
 
 static void cm_idup(mtest *t) {
@@ -153,6 +161,7 @@ int main(int argc, char **argv) {
     return 1;
   }
   cm_split_type(&t);
+  cm_parent(&t);
   cm_idup(&t);
   cm_disconnect(&t);
   cm_alloc_mem(&t);
