@@ -175,6 +175,8 @@ struct mp {
   void *exit_to;              /* mp_enter's jmp_buf while main runs */
   void *stack_lo;             /* the rank's own stack, where the backend knows it */
   size_t stack_size;          /* (the simulator's coroutines; else 0) */
+  void *stack_guard;          /* a fault in [stack_guard, stack_lo) is its stack
+                                 overflowing (the simulator's; else NULL) */
   int traced;                 /* the backend traces this rank's calls (ops->call) */
   int call_depth;             /* mp_call_begin's nesting, */
   const char *call_name;      /* and the outermost call's name */

@@ -58,7 +58,8 @@ static void on_crash(int sig, siginfo_t *si, void *uc) {
   put(&l, sname);
   put(&l, " (");
   uintptr_t a = (uintptr_t)si->si_addr, lo = self ? (uintptr_t)self->stack_lo : 0;
-  if ((sig == SIGSEGV || sig == SIGBUS) && lo && a < lo && a + (1u << 20) >= lo) {
+  uintptr_t guard = self ? (uintptr_t)self->stack_guard : 0;   /* its group's guard page (coro.h) */
+  if ((sig == SIGSEGV || sig == SIGBUS) && lo && a < lo && (a + (1u << 20) >= lo || (guard && a >= guard))) {
     put(&l, "a stack overflow: its stack is ");
     put_num(&l, self->stack_size >> 10);
     put(&l, " KiB; --stack sets it");

@@ -1,4 +1,4 @@
-/* coro.c -- stackful coroutines: guarded mmap'ed stacks and the context switch.
+/* coro.c -- stackful coroutines: sets of stacks in one mapping, and the context switch.
  *
  * Three switches, chosen at compile time:
  *
@@ -62,16 +62,33 @@
 #endif
 #endif
 
+struct coro_stacks {
+  unsigned char *map;       /* one mapping for every stack */
+  size_t maplen;
+  size_t page;
+  size_t size;              /* usable bytes of each stack, whole pages */
+  size_t soft;              /* the untouched zone below each stack (0: guarded) */
+  size_t slot;              /* soft + size */
+  long group;               /* stacks above each guard page */
+  size_t gbytes;            /* a group: its guard page and its slots */
+  long count, made;         /* stacks, and coroutines made on them */
+  coro *cos;                /* count coroutines, made in order */
+};
+
 struct coro {
 #ifdef CORO_UC
   ucontext_t uc;            /* the saved context */
 #else
   void *sp;                 /* the saved stack pointer (first: the asm uses it) */
 #endif
+  const uint64_t *watch;    /* the canary below this stack, checked when it
+                               switches away; NULL where a guard page is */
   coro_fn *fn;              /* body, NULL for a coro_main_new handle */
   void *ud;
-  unsigned char *map;       /* the whole mapping, guard page first; NULL for main */
-  size_t maplen;
+  coro_stacks *own;         /* coro_new's private set of one, freed with it */
+  coro_stacks *set;         /* the set it lives on; NULL for main */
+  unsigned char *guard;     /* the guard page an overflow reaches first */
+  unsigned char *soft;      /* its soft zone: [soft, lo), untouched unless overflowed */
   unsigned char *lo;        /* usable stack: [lo, lo + size) */
   size_t size;
   int done;                 /* the body has returned */
@@ -206,7 +223,42 @@ static inline void swap(coro *from, coro *to) {
 #endif
 }
 
+/* ---- overflow checks where stacks share a guard page ---------------------- */
+
+/* The canary at the top of each stack of a set with shared guards: a value
+ * a program does not write by chance, different at every address. */
+static inline uint64_t canary_at(const uint64_t *p) {
+  return ((uint64_t)(uintptr_t)p * 0x9e3779b97f4a7c15u) ^ 0x74696c6573696d21u;
+}
+
+/* co has overflowed its stack: fault on its guard page, exactly as the
+ * overflow would have had it run on, so that a crash handler names it as
+ * a guard page's fault (coro_guard). */
+static void overflowed(const coro *co) {
+  *(volatile unsigned char *)co->guard = 1;
+  xpanic("a coroutine overflowed its stack of %zu bytes", co->size);
+}
+
+/* Has co written its soft zone?  Its pages are never touched otherwise;
+ * mincore says which are resident. */
+static int soft_touched(const coro *co) {
+  size_t len = (size_t)(co->lo - co->soft);
+  if (len == 0) return 0;
+  unsigned char vec[256];
+  size_t pages = len / co->set->page;
+  if (pages > sizeof vec) pages = sizeof vec, len = pages * co->set->page;
+  if (mincore(co->soft, len, vec) != 0) return 0;
+  for (size_t i = 0; i < pages; i++)
+    if (vec[i] & 1) return 1;
+  return 0;
+}
+
+static inline void check(const coro *co) {
+  if (co->watch && *co->watch != canary_at(co->watch)) overflowed(co);
+}
+
 void coro_switch(coro *from, coro *to) {
+  check(from);
 #ifdef CORO_ASAN
   to->caller = from;
   __sanitizer_start_switch_fiber(&from->fake, to->asan_lo, to->asan_size);
@@ -226,6 +278,7 @@ static void coro_start(coro *self) {
 #endif
   coro *next = self->fn(self->ud);
   if (!next || next == self) xpanic("coroutine body returned %s", next ? "itself" : "NULL");
+  check(self);
   self->done = 1;
 #ifdef CORO_ASAN
   next->caller = self;
@@ -256,8 +309,9 @@ static size_t page_size(void) {
   return p > 0 ? (size_t)p : 4096;
 }
 
-/* Lay out a fresh stack so that the first switch into it starts coro_start. */
-static int init_context(coro *co, char *err, size_t errlen) {
+/* Lay out a fresh stack so that the first switch into it starts
+ * coro_start; its frames begin below top. */
+static int init_context(coro *co, uintptr_t top, char *err, size_t errlen) {
 #if defined(CORO_X64)
   uint32_t mxcsr;
   uint16_t fpucw;
@@ -265,7 +319,7 @@ static int init_context(coro *co, char *err, size_t errlen) {
    * inherits its creator's floating-point environment. */
   __asm__ volatile("stmxcsr %0" : "=m"(mxcsr));
   __asm__ volatile("fnstcw %0" : "=m"(fpucw));
-  uintptr_t top = ((uintptr_t)(co->lo + co->size)) & ~(uintptr_t)15;
+  top &= ~(uintptr_t)15;
   uint64_t *sp = (uint64_t *)(top - 24); /* the return slot: rsp = top-16 after ret */
   sp[0] = (uint64_t)(uintptr_t)tilesim_coro_boot;
   sp[1] = sp[2] = 0;
@@ -280,7 +334,7 @@ static int init_context(coro *co, char *err, size_t errlen) {
   co->sp = sp;
   (void)err, (void)errlen;
 #elif defined(CORO_A64)
-  uintptr_t top = ((uintptr_t)(co->lo + co->size)) & ~(uintptr_t)15;
+  top &= ~(uintptr_t)15;
   uint64_t *sp = (uint64_t *)(top - 160);
   memset(sp, 0, 160);
   sp[0] = (uint64_t)(uintptr_t)coro_start;  /* x19: the function */
@@ -294,7 +348,7 @@ static int init_context(coro *co, char *err, size_t errlen) {
     return -1;
   }
   co->uc.uc_stack.ss_sp = co->lo;
-  co->uc.uc_stack.ss_size = co->size;
+  co->uc.uc_stack.ss_size = (size_t)((unsigned char *)top - co->lo);
   co->uc.uc_link = NULL;
   uintptr_t p = (uintptr_t)co;
   makecontext(&co->uc, (void (*)(void))uc_boot, 2, (unsigned)(p >> 16 >> 16),
@@ -303,14 +357,63 @@ static int init_context(coro *co, char *err, size_t errlen) {
   return 0;
 }
 
-coro *coro_new(coro_fn *fn, void *ud, size_t stack, char *err, size_t errlen) {
+/* ---- sets of stacks -------------------------------------------------------
+ *
+ * One mapping holds every stack of a set.  Up to CORO_GUARDED stacks, each
+ * has a guard page of its own below it; a larger set has one guard page
+ * per group of g = ceil(count / CORO_GUARDED) stacks, and each stack a soft
+ * zone of SOFT_ZONE bytes below it that nothing but an overflow touches:
+ *
+ *   guarded:  | guard | stack 0 | guard | stack 1 | ...
+ *   grouped:  | guard | soft | stack 0 | soft | stack 1 | ... (g) | guard | ...
+ *
+ * so a set costs about 2 * CORO_GUARDED kernel mappings at most, whatever
+ * its size.  A grouped stack's overflow is caught three ways: running on,
+ * it faults on its group's guard page; reaching the top of the stack below
+ * (a canary there, checked at every switch away), it is made to fault
+ * there; staying within its soft zone, it harms no other stack, and
+ * coro_overflowed finds the zone touched (mincore) when asked. */
+
+enum { SOFT_ZONE = 64 * 1024, CANARY_ROOM = 16 };
+
+/* ASan keeps a shadow byte for every 8 bytes: forget what it knew of the
+ * set's stacks (frames left poisoned by coroutines that never finished)
+ * without touching the shadow pages that were never written. */
+static void forget_poison(unsigned char *p, size_t len, size_t page) {
+#ifdef CORO_ASAN
+  size_t scale, off;
+  __asan_get_shadow_mapping(&scale, &off);
+  uintptr_t s0 = ((uintptr_t)p >> scale) + off, s1 = (((uintptr_t)p + len) >> scale) + off;
+  uintptr_t a0 = (s0 + page - 1) & ~(uintptr_t)(page - 1), a1 = s1 & ~(uintptr_t)(page - 1);
+  if (a1 > a0 && madvise((void *)a0, a1 - a0, MADV_DONTNEED) == 0) {
+    __asan_unpoison_memory_region(p, (a0 - s0) << scale);
+    __asan_unpoison_memory_region((void *)((a1 - off) << scale), (s1 - a1) << scale);
+  } else {
+    __asan_unpoison_memory_region(p, len);
+  }
+#else
+  (void)p, (void)len, (void)page;
+#endif
+}
+
+coro_stacks *coro_stacks_new(long count, size_t stack, char *err, size_t errlen) {
   size_t page = page_size();
   if (!stack) stack = CORO_STACK_DEFAULT;
-  if (stack > SIZE_MAX / 2) {
-    snprintf(err, errlen, "coroutine stack of %zu bytes is too large", stack);
+  if (count < 1 || stack > SIZE_MAX / 4) {
+    snprintf(err, errlen, "%ld coroutine stacks of %zu bytes: not a size", count, stack);
     return NULL;
   }
   size_t size = (stack + page - 1) / page * page;
+  long group = count <= CORO_GUARDED ? 1 : (count + CORO_GUARDED - 1) / CORO_GUARDED;
+  size_t soft = group > 1 ? (SOFT_ZONE + page - 1) / page * page : 0;
+  size_t slot = soft + size;
+  long groups = (count + group - 1) / group;
+  if (slot > (SIZE_MAX / 2 - page) / (size_t)group ||
+      (size_t)groups > (SIZE_MAX / 2) / (page + (size_t)group * slot)) {
+    snprintf(err, errlen, "%ld coroutine stacks of %zu bytes: more than the address space", count, stack);
+    return NULL;
+  }
+  size_t gbytes = page + (size_t)group * slot, maplen = (size_t)groups * gbytes;
   int flags = MAP_PRIVATE | MAP_ANONYMOUS;
 #ifdef MAP_NORESERVE
   flags |= MAP_NORESERVE; /* pages are committed only when touched */
@@ -318,37 +421,99 @@ coro *coro_new(coro_fn *fn, void *ud, size_t stack, char *err, size_t errlen) {
 #ifdef MAP_STACK
   flags |= MAP_STACK;
 #endif
-  unsigned char *map = mmap(NULL, size + page, PROT_READ | PROT_WRITE, flags, -1, 0);
+  unsigned char *map = mmap(NULL, maplen, PROT_READ | PROT_WRITE, flags, -1, 0);
   if (map == MAP_FAILED) {
-    snprintf(err, errlen, "cannot map a %zu-byte coroutine stack: %s", size + page,
-             strerror(errno));
+    snprintf(err, errlen, "cannot map %ld coroutine stack%s (%zu bytes): %s", count,
+             count == 1 ? "" : "s", maplen, strerror(errno));
     return NULL;
   }
-  if (mprotect(map, page, PROT_NONE) != 0) {
-    int e = errno;
-    munmap(map, size + page);
-    snprintf(err, errlen,
-             "cannot protect a coroutine stack's guard page: %s "
-             "(too many coroutines for vm.max_map_count?)",
-             strerror(e));
+#ifdef MADV_NOHUGEPAGE
+  /* A huge page would commit 2 MiB where a stack touches 4 KiB. */
+  madvise(map, maplen, MADV_NOHUGEPAGE);
+#endif
+  for (long g = 0; g < groups; g++) {
+    if (mprotect(map + (size_t)g * gbytes, page, PROT_NONE) != 0) {
+      int e = errno;
+      munmap(map, maplen);
+      snprintf(err, errlen,
+               "cannot protect a coroutine stack's guard page: %s "
+               "(too many mappings for vm.max_map_count?)",
+               strerror(e));
+      return NULL;
+    }
+  }
+  coro_stacks *set = xcalloc(1, sizeof *set);
+  set->map = map;
+  set->maplen = maplen;
+  set->page = page;
+  set->size = size;
+  set->soft = soft;
+  set->slot = slot;
+  set->group = group;
+  set->gbytes = gbytes;
+  set->count = count;
+  set->cos = xcalloc((size_t)count, sizeof *set->cos);
+  return set;
+}
+
+coro *coro_new_on(coro_stacks *set, coro_fn *fn, void *ud, char *err, size_t errlen) {
+  if (set->made == set->count) {
+    snprintf(err, errlen, "all %ld coroutine stacks of the set are taken", set->count);
     return NULL;
   }
-  coro *co = xcalloc(1, sizeof *co);
+  long i = set->made, g = i / set->group, j = i % set->group;
+  coro *co = &set->cos[i];
+  memset(co, 0, sizeof *co);
   co->fn = fn;
   co->ud = ud;
-  co->map = map;
-  co->maplen = size + page;
-  co->lo = map + page;
-  co->size = size;
+  co->set = set;
+  co->guard = set->map + (size_t)g * set->gbytes;
+  co->soft = co->guard + set->page + (size_t)j * set->slot;
+  co->lo = co->soft + set->soft;
+  co->size = set->size;
   co->asan_lo = co->lo;
   co->asan_size = co->size;
+  uintptr_t top = (uintptr_t)(co->lo + co->size);
+  if (set->group > 1) {
+    /* Grouped: a canary at the top for the stack above, and one to watch
+     * below, unless the group's guard page is there. */
+    top -= CANARY_ROOM;
+    uint64_t *c = (uint64_t *)(co->lo + co->size) - 1;
+    *c = canary_at(c);
+    if (j > 0) co->watch = (const uint64_t *)co->soft - 1;
+  }
 #ifdef CORO_VALGRIND
   co->vg_id = VALGRIND_STACK_REGISTER(co->lo, co->lo + co->size);
 #endif
-  if (init_context(co, err, errlen) != 0) {
-    coro_free(co);
+  if (init_context(co, top, err, errlen) != 0) {
+#ifdef CORO_VALGRIND
+    VALGRIND_STACK_DEREGISTER(co->vg_id);
+#endif
     return NULL;
   }
+  set->made++;
+  return co;
+}
+
+void coro_stacks_free(coro_stacks *set) {
+  if (!set) return;
+  /* The shadow first, while the range is still ours: once unmapped, other
+   * threads may be given it. */
+  forget_poison(set->map, set->maplen, set->page);
+  if (munmap(set->map, set->maplen) != 0) xpanic("munmap: %s", strerror(errno));
+  free(set->cos);
+  free(set);
+}
+
+coro *coro_new(coro_fn *fn, void *ud, size_t stack, char *err, size_t errlen) {
+  coro_stacks *set = coro_stacks_new(1, stack, err, errlen);
+  if (!set) return NULL;
+  coro *co = coro_new_on(set, fn, ud, err, errlen);
+  if (!co) {
+    coro_stacks_free(set);
+    return NULL;
+  }
+  co->own = set;
   return co;
 }
 
@@ -359,18 +524,21 @@ void coro_stack(const coro *co, void **lo, size_t *size) {
   *size = co->size;
 }
 
+void *coro_guard(const coro *co) { return co->guard; }
+
+int coro_overflowed(const coro *co) {
+  if (!co->set) return 0;
+  return (co->watch && *co->watch != canary_at(co->watch)) || soft_touched(co);
+}
+
 void coro_free(coro *co) {
   if (!co) return;
-  if (co->map) {
-#ifdef CORO_VALGRIND
-    VALGRIND_STACK_DEREGISTER(co->vg_id);
-#endif
-#ifdef CORO_ASAN
-    /* Frames left on the stack keep their redzones poisoned; clear them so
-     * that memory mapped here later does not inherit them. */
-    __asan_unpoison_memory_region(co->lo, co->size);
-#endif
-    if (munmap(co->map, co->maplen) != 0) xpanic("munmap: %s", strerror(errno));
+  if (!co->set) {   /* a coro_main_new handle */
+    free(co);
+    return;
   }
-  free(co);
+#ifdef CORO_VALGRIND
+  VALGRIND_STACK_DEREGISTER(co->vg_id);
+#endif
+  coro_stacks_free(co->own);   /* its own set, or none: a set's stacks go with the set */
 }

@@ -6,12 +6,23 @@
  * POSIX ucontext (getcontext/makecontext/swapcontext, a system call per
  * switch).  Define CORO_UCONTEXT to force the fallback.
  *
- * Stacks are mmap'ed with a PROT_NONE guard page below them, so an overflow
- * faults instead of writing over a neighbour.  Pages are reserved, not
- * committed: a coroutine costs only the pages its stack actually touches, so
- * 10,000 of them at the default 256 KiB are fine.  Each stack is two kernel
- * mappings (stack + guard): vm.max_map_count (65530 by default on Linux)
- * bounds the number of live coroutines at about 30,000.
+ * Stacks come in sets (coro_stacks), one mapping each, so that a run of a
+ * million coroutines needs a million stacks but not a million mappings.
+ * Pages are reserved, not committed: a coroutine costs only the pages its
+ * stack actually touches (one, for a shallow one).  Up to CORO_GUARDED
+ * stacks, each has a PROT_NONE guard page below it, so an overflow faults
+ * instead of writing over a neighbour.  Beyond that, guard pages would
+ * exhaust vm.max_map_count (65530 mappings by default on Linux, two a
+ * guard), so the stacks of a larger set share them, one per group of
+ * ceil(count / CORO_GUARDED), and an overflow is caught by checks instead:
+ * a soft zone of 64 KiB below each stack that only an overflow touches
+ * (coro_overflowed looks at it); a canary at the top of the stack below,
+ * looked at whenever the coroutine switches away, which then writes to the
+ * guard page, so that the overflow faults exactly where a guard page's
+ * would (coro_guard); and, running on, the group's guard page.  What the
+ * checks cannot see: an overflow of more than the soft zone that skips the
+ * canary's 8 bytes and returns before reaching the guard page may write
+ * over the stack below unnoticed until coro_overflowed is asked.
  *
  * Stacks are registered with valgrind when <valgrind/valgrind.h> is there, and
  * switches are annotated for AddressSanitizer when it is on, so neither
@@ -31,18 +42,35 @@ typedef struct coro coro;
  * coroutine must not be switched to again. */
 typedef coro *coro_fn(void *ud);
 
-enum { CORO_STACK_DEFAULT = 256 * 1024 };
+/* CORO_STACK_DEFAULT: the stack of coro_new(..., 0, ...); CORO_GUARDED:
+ * the largest set whose every stack has a guard page of its own. */
+enum { CORO_STACK_DEFAULT = 256 * 1024, CORO_GUARDED = 16384 };
 
 /* A handle on the calling thread's own context (its ordinary stack), so that
  * it can switch into coroutines and be switched back to.  Free it with
  * coro_free when no coroutine will switch to it any more. */
 coro *coro_main_new(void);
 
-/* A coroutine that will run fn(ud) on a stack of `stack` bytes (0: the
- * default, CORO_STACK_DEFAULT), rounded up to whole pages, plus a guard page.
- * It does not start until switched to.  Returns NULL and fills err (errlen
- * bytes, may be 0) when the stack cannot be mapped, e.g. when
- * vm.max_map_count is reached. */
+/* A set of `count` stacks of `stack` bytes each (0: CORO_STACK_DEFAULT),
+ * rounded up to whole pages, guarded as said above.  NULL and a message in
+ * err (errlen bytes, may be 0) when it cannot be mapped. */
+typedef struct coro_stacks coro_stacks;
+coro_stacks *coro_stacks_new(long count, size_t stack, char *err, size_t errlen);
+
+/* A coroutine that will run fn(ud) on the set's next free stack (they are
+ * taken in order); it does not start until switched to.  NULL and a
+ * message when all are taken.  The set owns it: coro_free lets it go, and
+ * coro_stacks_free frees it with the others. */
+coro *coro_new_on(coro_stacks *set, coro_fn *fn, void *ud, char *err, size_t errlen);
+
+/* Unmap the set, once none of its coroutines runs or will run again (the
+ * coroutines that never finished are dropped without unwinding).  NULL is
+ * fine. */
+void coro_stacks_free(coro_stacks *set);
+
+/* A coroutine on a set of its own: coro_new_on(coro_stacks_new(1, stack)),
+ * freed with coro_free.  NULL and a message in err when the stack cannot be
+ * mapped, e.g. when vm.max_map_count is reached. */
 coro *coro_new(coro_fn *fn, void *ud, size_t stack, char *err, size_t errlen);
 
 /* Suspend `from`, which must be the context running now, and resume `to`.
@@ -54,12 +82,24 @@ void coro_switch(coro *from, coro *to);
 /* 1 once the coroutine's body has returned. */
 int coro_done(const coro *co);
 
-/* The usable stack of a coroutine: lowest address and size in bytes (the
- * guard page lies just below lo).  Both 0 for a coro_main_new handle. */
+/* The usable stack of a coroutine: lowest address and size in bytes.  Both
+ * 0 for a coro_main_new handle. */
 void coro_stack(const coro *co, void **lo, size_t *size);
 
+/* The guard page an overflow of co faults on: just below its stack, or its
+ * group's, further down.  A fault in [coro_guard(co), lo) while co runs is
+ * its stack overflowing.  NULL for a coro_main_new handle. */
+void *coro_guard(const coro *co);
+
+/* 1 if a check finds that co has overflowed its stack (its soft zone
+ * touched, or the canary below it overwritten): what a body asks before it
+ * returns, or its owner after the fact.  Always 0 where it has a guard page
+ * of its own (the fault would have said so).  A system call. */
+int coro_overflowed(const coro *co);
+
 /* Free a coroutine that is not running now (the running context cannot
- * free itself).  A coroutine that never finished is dropped without
+ * free itself): its stack with it when coro_new made it, else only the
+ * set's claim on it.  A coroutine that never finished is dropped without
  * unwinding its stack: whatever it had allocated is lost.  NULL is fine. */
 void coro_free(coro *co);
 

@@ -177,6 +177,7 @@ struct sim {
   uint64_t seq;            /* the next sequence number (events and messages) */
   double gtime;            /* the time of the latest event started: never decreases */
   coro *main;              /* sim_run's own context */
+  coro_stacks *stacks;     /* the ranks' stacks, one set */
   const mp_proc *procs;
   int live;                /* ranks neither done nor abandoned */
   int stopped;             /* deadlock or error: every mp call fails at once */
@@ -839,11 +840,20 @@ void sim_trace_size(const sim *s, unsigned long long *csv, unsigned long long *j
   trace_size(s->tr, csv, json);
 }
 
+/* A rank whose stack shares its guard page with others (coro.h) may have
+ * overflowed where only a check sees it: say so, and the run fails. */
+static void check_stack(sim *s, rank *r) {
+  if (coro_overflowed(r->co))
+    fail(s, "rank %d overflowed its stack of %zu KiB (--stack sets it)", r->base.rank,
+         r->base.stack_size >> 10);
+}
+
 /* Every rank runs this on its own stack. */
 static coro *rank_main(void *ud) {
   rank *r = ud;
   sim *s = r->s;
   mp_enter(&r->base, s->procs[r->base.rank].main, s->procs[r->base.rank].ud);
+  check_stack(s, r);
   r->state = R_DONE;
   r->st.done = 1;
   r->st.finish = r->now;
@@ -937,14 +947,17 @@ int sim_run(sim *s, const mp_proc *procs, char *err, size_t errlen) {
   s->main = coro_main_new();
   char cerr[256];
   int made = 0;
-  for (; made < s->n; made++) {
+  s->stacks = coro_stacks_new(s->n, s->cfg.stack, cerr, sizeof cerr);
+  if (!s->stacks) fail(s, "sim_run: %s", cerr);
+  for (; s->stacks && made < s->n; made++) {
     rank *r = &s->ranks[made];
-    r->co = coro_new(rank_main, r, s->cfg.stack, cerr, sizeof cerr);
+    r->co = coro_new_on(s->stacks, rank_main, r, cerr, sizeof cerr);
     if (!r->co) {
       fail(s, "sim_run: rank %d: %s", made, cerr);
       break;
     }
     coro_stack(r->co, &r->base.stack_lo, &r->base.stack_size);
+    r->base.stack_guard = coro_guard(r->co);
   }
   if (made == s->n) {
     if (s->tr) trace_begin(s->tr, s->n, s->place, s->cfg.procs);
@@ -977,9 +990,13 @@ int sim_run(sim *s, const mp_proc *procs, char *err, size_t errlen) {
     if (s->tr && trace_end(s->tr, cerr, sizeof cerr) != 0) fail(s, "sim_run: %s", cerr);
   }
   for (int i = 0; i < made; i++) {
-    coro_free(s->ranks[i].co);
-    s->ranks[i].co = NULL;
+    rank *r = &s->ranks[i];
+    if (r->state != R_DONE) check_stack(s, r);   /* one that finished was checked then */
+    coro_free(r->co);
+    r->co = NULL;
   }
+  coro_stacks_free(s->stacks);
+  s->stacks = NULL;
   coro_free(s->main);
   s->main = NULL;
   s->st.wall_s = wallclock() - w0;
@@ -1010,6 +1027,7 @@ void sim_free(sim *s) {
     s->pool = m->next;
     free(m);
   }
+  coro_stacks_free(s->stacks);
   coro_free(s->main);
   trace_free(s->tr);
   evq_free(s->q);

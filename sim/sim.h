@@ -90,6 +90,15 @@
  *   that does not exist (MP_ERANK): the call fails, the rank goes on, and
  *   sim_run returns -1 naming the rank and the bad argument.
  *
+ *   A rank that overflows its stack (cfg.stack): in a run of up to
+ *   CORO_GUARDED ranks (coro.h) every stack has a guard page and the
+ *   overflow faults (SIGSEGV at an address in [stack_guard, stack_lo) of
+ *   the rank's mp, which a crash handler can name).  In a larger run the
+ *   stacks share guard pages: an overflow the checks find as it happens
+ *   faults the same way, and one that stayed within its stack's soft zone
+ *   is found when the rank ends (or the run does) and fails the run:
+ *     rank 5 overflowed its stack of 256 KiB (--stack sets it)
+ *
  *   Warnings (counted in sim_stats.warnings; printed to cfg.warn unless it is
  *   NULL) do not fail the run: a message longer than the recv buffer (the
  *   recv returns MP_ETRUNC, the first cap bytes are copied, the message is
@@ -195,9 +204,9 @@ void sim_trace_size(const sim *s, unsigned long long *csv, unsigned long long *j
 void sim_progress(sim *s, void (*tick)(void *ud, double t, long long events), void *ud);
 
 /* Run procs[0..nranks-1] to completion.  Once per sim.  0, or -1 and a
- * message in err: deadlock, a bad argument to an mp call, a stack that could
- * not be mapped, a trace that could not be written.  Statistics are
- * available either way. */
+ * message in err: deadlock, a bad argument to an mp call, stacks that could
+ * not be mapped, a stack overflow found by a check, a trace that could not
+ * be written.  Statistics are available either way. */
 int sim_run(sim *s, const mp_proc *procs, char *err, size_t errlen);
 
 enum { SIM_TAGS = 16 };   /* per-tag send counts for tags 0..SIM_TAGS-1 */

@@ -1,10 +1,15 @@
-/* test_coro.c -- coroutines: switching, preserved state, many stacks, the guard page. */
+/* test_coro.c -- coroutines: switching, preserved state, many stacks, the guard page,
+ * sets of stacks that share guard pages and the checks that stand in for them. */
+#define _DEFAULT_SOURCE 1 /* sigaltstack, SA_ONSTACK */
+
 #include <errno.h>
 #include <fenv.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <signal.h>
 #include <string.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "check.h"
@@ -232,6 +237,176 @@ static void test_guard(void) {
   coro_free(co);
 }
 
+/* ---- a set larger than CORO_GUARDED: guard pages shared, checks --------- */
+
+enum { BIG = CORO_GUARDED + 40, SMALL = 16 * 1024, FRAME = 1000 };
+
+/* About FRAME bytes of stack a level, every byte written with fill. */
+static long dive(int depth, unsigned char fill) {
+  volatile unsigned char buf[FRAME];
+  for (size_t i = 0; i < sizeof buf; i++) buf[i] = fill;
+  long r = depth > 0 ? dive(depth - 1, fill) : 0;
+  return r + buf[(unsigned)depth % sizeof buf];
+}
+
+/* Deeper and deeper until something stops it (the test on `forever`, never
+ * false, keeps the compiler from calling it infinite). */
+static volatile int forever = 1;
+static long runaway(long depth) {
+  volatile unsigned char buf[FRAME];
+  buf[0] = (unsigned char)depth;
+  return forever ? runaway(depth + 1) + buf[0] : 0;
+}
+
+typedef struct {
+  coro *main, *self;
+  int depth;        /* dive this deep (0: not at all; -1: run away) */
+  int finish;       /* then return (1) or switch to main and stay (0) */
+  long ran;
+} diver;
+
+static coro *diver_body(void *ud) {
+  diver *d = ud;
+  d->ran++;
+  if (d->depth > 0) d->ran += dive(d->depth, 0xab) > 0;
+  if (d->depth < 0) d->ran += runaway(0);
+  if (!d->finish) coro_switch(d->self, d->main);
+  return d->main;
+}
+
+/* Every stack made, the shared guard pages where coro.h says, and none of
+ * BIG shallow coroutines found to have overflowed. */
+static void test_set(void) {
+  char err[200];
+  coro_stacks *set = coro_stacks_new(BIG, SMALL, err, sizeof err);
+  CHECK(set != NULL, "coro_stacks_new(%d): %s", BIG, err);
+  if (!set) return;
+  static diver d[BIG];
+  coro *main = coro_main_new();
+  int made = 0;
+  for (; made < BIG; made++) {
+    d[made] = (diver){main, NULL, 0, 1, 0};
+    d[made].self = coro_new_on(set, diver_body, &d[made], err, sizeof err);
+    if (!d[made].self) break;
+  }
+  CHECK(made == BIG, "made %d coroutines of %d: %s", made, BIG, err);
+  CHECK(coro_new_on(set, diver_body, &d[0], err, sizeof err) == NULL && strstr(err, "taken"),
+        "a coroutine more than the set holds: %s", err);
+  long group = (BIG + CORO_GUARDED - 1) / CORO_GUARDED;
+  long ran = 0, overflowed = 0, shared = 0, own = 0;
+  for (int i = 0; i < made; i++) {
+    coro_switch(main, d[i].self);
+    ran += d[i].ran;
+    overflowed += coro_overflowed(d[i].self);
+    void *lo;
+    size_t size;
+    coro_stack(d[i].self, &lo, &size);
+    unsigned char *g = coro_guard(d[i].self);
+    /* Stack i of its group lies i slots of stack and 64 KiB soft zone above
+     * the group's guard page. */
+    size_t above = (size_t)((unsigned char *)lo - g);
+    shared += i % group == 0 ? above == 4096 + 64 * 1024 : above > SMALL;
+    if (i % group == 1 && g != coro_guard(d[i - 1].self)) own++;
+  }
+  CHECK(own == 0, "%ld stacks of a group have a guard page of their own", own);
+  CHECK(ran == made && overflowed == 0, "%ld ran, %ld said to have overflowed", ran, overflowed);
+  CHECK(shared == made, "%ld of %d stacks where the layout says", shared, made);
+  int fd[2];
+  if (pipe(fd) == 0) {
+    unsigned char *g = coro_guard(d[1].self);
+    ssize_t w = write(fd[1], g, 1);
+    CHECK(w == -1 && errno == EFAULT, "the shared guard page is readable (write: %zd)", w);
+    close(fd[0]);
+    close(fd[1]);
+  }
+  for (int i = 0; i < made; i++) coro_free(d[i].self);
+  coro_stacks_free(set);
+  coro_free(main);
+}
+
+/* A coroutine (the second of a group) that overflows into its soft zone
+ * and stays suspended: coro_overflowed says so, for it alone. */
+static void test_soft(void) {
+  char err[200];
+  coro_stacks *set = coro_stacks_new(BIG, SMALL, err, sizeof err);
+  CHECK(set != NULL, "coro_stacks_new: %s", err);
+  if (!set) return;
+  coro *main = coro_main_new();
+  diver a = {main, NULL, 0, 0, 0}, b = {main, NULL, 24, 0, 0}, c = {main, NULL, 0, 0, 0};
+  a.self = coro_new_on(set, diver_body, &a, err, sizeof err);
+  b.self = coro_new_on(set, diver_body, &b, err, sizeof err);
+  c.self = coro_new_on(set, diver_body, &c, err, sizeof err);
+  CHECK(a.self && b.self && c.self, "coro_new_on: %s", err);
+  if (a.self && b.self && c.self) {
+    coro_switch(main, a.self);
+    CHECK(!coro_overflowed(b.self), "b has not run yet and overflowed");
+    coro_switch(main, b.self);
+    coro_switch(main, c.self);
+    CHECK(b.ran == 2, "b dove and came back: %ld", b.ran);
+    CHECK(coro_overflowed(b.self), "24 KiB on a 16 KiB stack was not found");
+    CHECK(!coro_overflowed(a.self) && !coro_overflowed(c.self), "a neighbour is said to have overflowed");
+  }
+  coro_stacks_free(set);
+  coro_free(main);
+}
+
+/* In a child: the second coroutine of a group (BIG makes groups of two)
+ * dives `depth` levels (-1: runs away), finishing or not; it must die of
+ * SIGSEGV on its group's guard page (the fault or the check's).  1 if it
+ * did. */
+static volatile uintptr_t want_fault;
+static void on_segv(int sig, siginfo_t *si, void *uc) {
+  (void)sig, (void)uc;
+  _exit((uintptr_t)si->si_addr - want_fault < 4096 ? 42 : 43);
+}
+
+static int dies_on_guard(int depth, int finish) {
+  pid_t pid = fork();
+  if (pid < 0) return 0;
+  if (pid == 0) {
+    static char alt[1 << 16];
+    stack_t ss = {.ss_sp = alt, .ss_size = sizeof alt};
+    sigaltstack(&ss, NULL);
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_sigaction = on_segv;
+    sa.sa_flags = SA_SIGINFO | SA_ONSTACK;
+    sigaction(SIGSEGV, &sa, NULL);
+    sigaction(SIGBUS, &sa, NULL);
+    char err[200];
+    coro_stacks *set = coro_stacks_new(BIG, SMALL, err, sizeof err);
+    if (!set) _exit(2);
+    coro *main = coro_main_new();
+    diver d[3];
+    for (int i = 0; i < 3; i++) {
+      d[i] = (diver){main, NULL, i == 1 ? depth : 0, finish, 0};
+      d[i].self = coro_new_on(set, diver_body, &d[i], err, sizeof err);
+      if (!d[i].self) _exit(3);
+    }
+    want_fault = (uintptr_t)coro_guard(d[1].self);
+    for (int i = 0; i < 3; i++) coro_switch(main, d[i].self);
+    _exit(0);   /* it did not die */
+  }
+  int st;
+  if (waitpid(pid, &st, 0) != pid) return 0;
+  if (!WIFEXITED(st) || WEXITSTATUS(st) != 42)
+    fprintf(stderr, "test_coro: child %s %d\n", WIFEXITED(st) ? "exited" : "killed by", WIFEXITED(st) ? WEXITSTATUS(st) : WTERMSIG(st));
+  return WIFEXITED(st) && WEXITSTATUS(st) == 42;
+}
+
+static void test_checks(void) {
+#ifdef HAVE_VALGRIND
+  if (RUNNING_ON_VALGRIND) return; /* valgrind (rightly) reports the writes */
+#endif
+  /* Through the soft zone (64 KiB) into the stack below, its canary
+   * overwritten, but not as far as the guard page below that stack's soft
+   * zone (144 KiB): the switch away faults, finishing or not. */
+  CHECK(dies_on_guard(100, 0), "an overflow through the canary, then a switch: no fault on the guard");
+  CHECK(dies_on_guard(100, 1), "an overflow through the canary, then the end: no fault on the guard");
+  /* Running away: down to the group's guard page. */
+  CHECK(dies_on_guard(-1, 0), "a runaway recursion did not fault on the group's guard page");
+}
+
 int main(void) {
   printf("coro backend: %s\n", coro_backend());
   test_pingpong();
@@ -239,5 +414,8 @@ int main(void) {
   test_fpstate();
   test_many();
   test_guard();
+  test_set();
+  test_soft();
+  test_checks();
   return check_done("test_coro");
 }
