@@ -130,8 +130,8 @@ int launch_run(const machine_config *mc, int nranks, const mp_proc *procs, tiles
   tilesim_stats scratch;
   if (!st) st = &scratch;
   stats_begin(st, mc, nranks);
-  if (nranks < 1 || nranks > MACHINE_MAX_PROCS) {
-    snprintf(err, errlen, "%d ranks: a run has 1 to %d", nranks, MACHINE_MAX_PROCS);
+  if (nranks < 1 || nranks > MACHINE_MAX_RANKS) {
+    snprintf(err, errlen, "%d ranks: a run has 1 to %d", nranks, MACHINE_MAX_RANKS);
     return -1;
   }
   if (mc->backend != MACHINE_SIM && mc->sim.topo.kind != TOPO_NONE) {

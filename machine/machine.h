@@ -37,8 +37,13 @@ typedef enum {
 /* "sim", "threads", "mpi". */
 const char *machine_backend_name(machine_backend b);
 
-/* The most processors (and ranks) an option may ask for. */
-enum { MACHINE_MAX_PROCS = 4096 };
+/* The most ranks a run may have (--ranks), and the most processors an
+ * option may ask for (--procs; ranks beyond share them). */
+enum { MACHINE_MAX_RANKS = 1000000, MACHINE_MAX_PROCS = 4096 };
+
+/* --stack's bounds: each rank's stack on the simulator, in bytes. */
+#define MACHINE_STACK_MIN (16ULL << 10)
+#define MACHINE_STACK_MAX (1ULL << 30)
 
 typedef struct {
   int procs;                      /* --procs: processors, >= 1 */
@@ -72,9 +77,11 @@ int machine_option(machine_config *mc, const char *opt, const char *val, char *e
 int machine_option_flag(const char *opt);
 
 /* The usage lines of the machine's options, indented two spaces; --ranks
- * apart (the paper's algorithm decides its ranks). */
+ * and --stack apart (the paper's algorithm decides its ranks; tilesim-mpirun
+ * has its own default stack). */
 extern const char machine_help[];
 extern const char machine_ranks_help[];
+extern const char machine_stack_help[];
 
 /* How many ranks the backend can run: 0 for no limit (sim, threads); for
  * MPI the size of the mpirun (0 outside an MPI build). */

@@ -56,9 +56,9 @@ int tilesim_run_procs(const tilesim_machine *m, int nranks, const mp_proc *procs
 
 int tilesim_run(const tilesim_machine *m, int nranks, mp_main rank_main, void *ud, tilesim_stats *st,
                 char *err, size_t errlen) {
-  if (nranks < 1 || nranks > MACHINE_MAX_PROCS) {
+  if (nranks < 1 || nranks > MACHINE_MAX_RANKS) {
     if (st) memset(st, 0, sizeof *st);
-    snprintf(err, errlen, "%d ranks: a run has 1 to %d", nranks, MACHINE_MAX_PROCS);
+    snprintf(err, errlen, "%d ranks: a run has 1 to %d", nranks, MACHINE_MAX_RANKS);
     return -1;
   }
   mp_proc *procs = xmallocarray((size_t)nranks, sizeof *procs);
@@ -131,6 +131,7 @@ static void help(const char *prog) {
          "\n",
          prog, TILESIM_VERSION);
   fputs(machine_ranks_help, stdout);
+  fputs(machine_stack_help, stdout);
   fputs(machine_help, stdout);
   fputs("  --stats FILE       where the summary goes: a CSV header and one row (backend,\n"
         "                     ranks, procs, makespan, messages, bytes, compute, wait,\n"

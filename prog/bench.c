@@ -31,9 +31,11 @@ static const mode modes[] = {
      "P --laps K [--net ideal|bus|loggp] [--m S] [--c S] [--work U] [--profile NAME]\n"
      "      [--trace-csv FILE] [--trace-json FILE] [--trace-limit BYTES]\n"
      "      [--topology NAME] [--place NAME] [--hop-latency S] [--per-byte S]\n"
-     "      [--switching cut-through|store-and-forward] [--tokens 1|all] [--print-place]\n"
+     "      [--switching cut-through|store-and-forward] [--tokens 1|all] [--stack BYTES]\n"
+     "      [--print-place]\n"
      "      a token ring of P ranks on P processors, K laps: simulator speed (P up to\n"
-     "      1000000, K up to 1e9, P x K up to 1e10; traces up to --trace-limit, 1G);\n"
+     "      1000000, K up to 1e9, P x K up to 1e10; traces up to --trace-limit, 1G;\n"
+     "      each rank's stack --stack, 256k);\n"
      "      on a topology (tile --help lists them), --tokens all: one token a rank"},
     {"--switch", bench_switch_main,
      "N\n"

@@ -35,13 +35,13 @@ static const char ring_usage[] =
     "usage: bench --ring P --laps K [--net ideal|bus|loggp] [--m S] [--c S] [--work U] "
     "[--profile NAME] [--trace-csv FILE] [--trace-json FILE] [--trace-limit BYTES] [--topology NAME] "
     "[--place NAME] [--hop-latency S] [--per-byte S] [--switching MODE] [--tokens 1|all] "
-    "[--print-place]   (bench --help: every mode)\n";
+    "[--stack BYTES] [--print-place]   (bench --help: every mode)\n";
 static const char switch_usage[] = "usage: bench --switch N   (bench --help: every mode)\n";
 
-/* The bounds: a ring of at most a million ranks and a billion laps, and
- * at most RING_MAX_MESSAGES messages in all (P x K: about ten minutes at
- * the simulator's 15-20 million messages a second); at most 1e10
- * switches (about two minutes at 13 ns). */
+/* The bounds: a ring of at most MACHINE_MAX_RANKS ranks (a million) and a
+ * billion laps, and at most RING_MAX_MESSAGES messages in all (P x K:
+ * about ten minutes at the simulator's 15-20 million messages a second);
+ * at most 1e10 switches (about two minutes at 13 ns). */
 #define RING_MAX_MESSAGES 1e10
 #define SWITCH_MAX 10000000000ULL
 
@@ -104,7 +104,7 @@ int bench_ring_main(int argc, char **argv) {
                                      "--trace-json"};
   static const char *const theirs[] = {"--procs", "--ranks", "--backend", "--trace"};
   static const char *const ours[] = {"--net", "--m", "--c", "--per-byte", "--hop-latency", "--topology",
-                                     "--place", "--switching", "--trace-limit", "--machine"};
+                                     "--place", "--switching", "--trace-limit", "--machine", "--stack"};
   machine_config mc;
   machine_config_init(&mc);
   /* First every value checked; --profile (or --machine) set first, wherever
@@ -150,7 +150,7 @@ int bench_ring_main(int argc, char **argv) {
       i--;
       continue;
     }
-    if (strcmp(o, "--ring") == 0) no = args_long(o, v, 1, 1000000, &procs, err, sizeof err);
+    if (strcmp(o, "--ring") == 0) no = args_long(o, v, 1, MACHINE_MAX_RANKS, &procs, err, sizeof err);
     else if (strcmp(o, "--laps") == 0) no = args_long(o, v, 1, 1000000000, &laps, err, sizeof err);
     else if (strcmp(o, "--work") == 0) no = args_real(o, v, "units", 0, 1e9, &work, err, sizeof err);
     else if (strcmp(o, "--profile") == 0 || strcmp(o, "--machine") == 0) no = 0;   /* set above */

@@ -8,8 +8,11 @@
  *   exit       rank 1 leaves through mp_exit before its last send; rank 0
  *              still gets every message sent before
  *   args       rank 0 prints the program's own arguments (tilesim_argv)
- *   sleep      each rank sleeps rank seconds, then computes 1 unit */
+ *   sleep      each rank sleeps rank seconds, then computes 1 unit
+ *   deep KIB   rank 1 writes KIB KiB of its stack, a KiB a level (an
+ *              overflow, given a smaller --stack) */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include <tilesim/tilesim.h>
@@ -36,6 +39,13 @@ static void exits(mp *self) {
   }
 }
 
+/* kib levels of a KiB of stack each, every byte written. */
+static long dive(int kib) {
+  volatile unsigned char buf[1024];
+  for (size_t i = 0; i < sizeof buf; i++) buf[i] = (unsigned char)kib;
+  return (kib > 1 ? dive(kib - 1) : 0) + buf[(unsigned)kib % sizeof buf];
+}
+
 static void rank_main(mp *self, void *ud) {
   (void)ud;
   int argc;
@@ -55,6 +65,8 @@ static void rank_main(mp *self, void *ud) {
   } else if (strcmp(what, "sleep") == 0) {
     mp_sleep(self, mp_rank(self));
     mp_compute(self, 1);
+  } else if (strcmp(what, "deep") == 0 && argc > 2) {
+    if (mp_rank(self) == 1 && dive(atoi(argv[2])) < 0) printf("misbehave: never\n");
   } else if (strcmp(what, "args") == 0 && mp_rank(self) == 0) {
     for (int i = 0; i < argc; i++) printf("misbehave: argv[%d] = %s\n", i, i == 0 ? "(name)" : argv[i]);
   }
