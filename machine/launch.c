@@ -134,6 +134,11 @@ int launch_run(const machine_config *mc, int nranks, const mp_proc *procs, tiles
     snprintf(err, errlen, "%d ranks: a run has 1 to %d", nranks, MACHINE_MAX_RANKS);
     return -1;
   }
+  if (mc->backend == MACHINE_THREADS && nranks > MACHINE_MAX_THREADS) {
+    snprintf(err, errlen, "%d ranks: --backend threads runs 1 to %d (a thread each); the simulator up to %d",
+             nranks, MACHINE_MAX_THREADS, MACHINE_MAX_RANKS);
+    return -1;
+  }
   if (mc->backend != MACHINE_SIM && mc->sim.topo.kind != TOPO_NONE) {
     snprintf(err, errlen, "--topology describes the simulated machine; --backend %s measures this one",
              machine_backend_name(mc->backend));

@@ -37,9 +37,11 @@ typedef enum {
 /* "sim", "threads", "mpi". */
 const char *machine_backend_name(machine_backend b);
 
-/* The most ranks a run may have (--ranks), and the most processors an
- * option may ask for (--procs; ranks beyond share them). */
-enum { MACHINE_MAX_RANKS = 1000000, MACHINE_MAX_PROCS = 4096 };
+/* The most ranks a run may have (--ranks); on the threads backend, whose
+ * every rank is a thread of the host (with a stack and two mappings of its
+ * own: 32,000 of them took 18 GB here before the host refused more); and the
+ * most processors an option may ask for (--procs; ranks beyond share them). */
+enum { MACHINE_MAX_RANKS = 1000000, MACHINE_MAX_THREADS = 4096, MACHINE_MAX_PROCS = 4096 };
 
 /* --stack's bounds: each rank's stack on the simulator, in bytes. */
 #define MACHINE_STACK_MIN (16ULL << 10)

@@ -218,6 +218,12 @@ int tilesim_args(int *argc, char ***argv, tilesim_machine **out) {
     why = "--topology describes the simulated machine (--backend sim)";
   else if (mc->backend != MACHINE_SIM && mc->print_place)
     why = "--print-place shows the simulated machine (--backend sim)";
+  char many[160];
+  if (!why && mc->backend == MACHINE_THREADS && tilesim_machine_ranks(m) > MACHINE_MAX_THREADS) {
+    snprintf(many, sizeof many, "--backend threads runs 1 to %d ranks, a thread each (--ranks %d)",
+             MACHINE_MAX_THREADS, tilesim_machine_ranks(m));
+    why = many;
+  }
   if (why) {
     tilesim_machine_free(m);
     return bad_usage(prog, why, NULL);

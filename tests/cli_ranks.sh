@@ -5,7 +5,8 @@
 # randomisation off, a longer environment) giving byte-identical output,
 # summary and trace, and a stack overflow named in a run of more ranks than
 # have guard pages of their own (tests/testbed/misbehave.c deep), with no
-# false alarm below the stack's size.  Correctness only: no timings.
+# false alarm below the stack's size; the bounds (the threads backend keeps
+# 4096).  Correctness only: no timings.
 BUILD=${BUILD:-build/chk}
 EX=$BUILD/examples
 T=$(mktemp -d /tmp/tilesim-ranks.XXXXXX)
@@ -69,6 +70,9 @@ R=16400
 "$EX/ring" --ranks 1000001 > "$T/o" 2> "$T/e"; rc=$?
 [ $rc -eq 2 ] && grep -q '^ring: --ranks takes a whole number from 1 to 1000000 (1000001)$' "$T/e" && ok \
   || bad "--ranks 1000001: exit $rc, $(head -1 "$T/e")"
+"$EX/ring" --ranks 4097 --backend threads > "$T/o" 2> "$T/e"; rc=$?
+[ $rc -eq 2 ] && grep -q '^ring: --backend threads runs 1 to 4096 ranks, a thread each (--ranks 4097)$' "$T/e" \
+  && [ ! -s "$T/o" ] && ok || bad "--ranks 4097 on threads: exit $rc, $(head -1 "$T/e")"
 "$EX/ring" --procs 4 --stack 8k > "$T/o" 2> "$T/e"; rc=$?
 [ $rc -eq 2 ] && grep -q '^ring: --stack takes bytes from 16k to 1G (8k)$' "$T/e" && ok \
   || bad "--stack 8k: exit $rc, $(head -1 "$T/e")"
