@@ -372,7 +372,8 @@ static int init_context(coro *co, uintptr_t top, char *err, size_t errlen) {
  * it faults on its group's guard page; reaching the top of the stack below
  * (a canary there, checked at every switch away), it is made to fault
  * there; staying within its soft zone, it harms no other stack, and
- * coro_overflowed finds the zone touched (mincore) when asked. */
+ * coro_overflowed (one stack) or coro_stacks_overflowed (a whole set, a
+ * system call a group) finds the zone touched (mincore) when asked. */
 
 enum { SOFT_ZONE = 64 * 1024, CANARY_ROOM = 16 };
 
@@ -529,6 +530,28 @@ void *coro_guard(const coro *co) { return co->guard; }
 int coro_overflowed(const coro *co) {
   if (!co->set) return 0;
   return (co->watch && *co->watch != canary_at(co->watch)) || soft_touched(co);
+}
+
+long coro_stacks_overflowed(const coro_stacks *set, long from) {
+  if (!set || set->group == 1 || from < 0) return -1;
+  size_t per = set->slot / set->page;   /* pages a slot */
+  unsigned char *vec = NULL;
+  long found = -1;
+  for (long g = from / set->group; found < 0 && g * set->group < set->made; g++) {
+    long first = g * set->group, n = set->made - first < set->group ? set->made - first : set->group;
+    unsigned char *base = set->map + (size_t)g * set->gbytes + set->page;
+    if (!vec) vec = xmalloc((size_t)set->group * per);
+    /* One call for the group: its slots, soft zones and stacks. */
+    if (mincore(base, (size_t)n * set->slot, vec) != 0) xpanic("mincore: %s", strerror(errno));
+    for (long j = first < from ? from - first : 0; found < 0 && j < n; j++) {
+      const coro *co = &set->cos[first + j];
+      int hit = co->watch && *co->watch != canary_at(co->watch);
+      for (size_t k = 0; !hit && k < set->soft / set->page; k++) hit = vec[(size_t)j * per + k] & 1;
+      if (hit) found = first + j;
+    }
+  }
+  free(vec);
+  return found;
 }
 
 void coro_free(coro *co) {

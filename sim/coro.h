@@ -16,13 +16,13 @@
  * guard), so the stacks of a larger set share them, one per group of
  * ceil(count / CORO_GUARDED), and an overflow is caught by checks instead:
  * a soft zone of 64 KiB below each stack that only an overflow touches
- * (coro_overflowed looks at it); a canary at the top of the stack below,
+ * (coro_overflowed and coro_stacks_overflowed look at it); a canary at the top of the stack below,
  * looked at whenever the coroutine switches away, which then writes to the
  * guard page, so that the overflow faults exactly where a guard page's
  * would (coro_guard); and, running on, the group's guard page.  What the
  * checks cannot see: an overflow of more than the soft zone that skips the
  * canary's 8 bytes and returns before reaching the guard page may write
- * over the stack below unnoticed until coro_overflowed is asked.
+ * over the stack below unnoticed until the soft zone is looked at.
  *
  * Stacks are registered with valgrind when <valgrind/valgrind.h> is there, and
  * switches are annotated for AddressSanitizer when it is on, so neither
@@ -96,6 +96,12 @@ void *coro_guard(const coro *co);
  * returns, or its owner after the fact.  Always 0 where it has a guard page
  * of its own (the fault would have said so).  A system call. */
 int coro_overflowed(const coro *co);
+
+/* The first coroutine of the set, from the from-th made on, that
+ * coro_overflowed would say has overflowed (its index in the order made),
+ * or -1: the whole set looked at in a system call a group.  -1 at once for
+ * a set whose every stack has a guard page. */
+long coro_stacks_overflowed(const coro_stacks *set, long from);
 
 /* Free a coroutine that is not running now (the running context cannot
  * free itself): its stack with it when coro_new made it, else only the

@@ -840,20 +840,11 @@ void sim_trace_size(const sim *s, unsigned long long *csv, unsigned long long *j
   trace_size(s->tr, csv, json);
 }
 
-/* A rank whose stack shares its guard page with others (coro.h) may have
- * overflowed where only a check sees it: say so, and the run fails. */
-static void check_stack(sim *s, rank *r) {
-  if (coro_overflowed(r->co))
-    fail(s, "rank %d overflowed its stack of %zu KiB (--stack sets it)", r->base.rank,
-         r->base.stack_size >> 10);
-}
-
 /* Every rank runs this on its own stack. */
 static coro *rank_main(void *ud) {
   rank *r = ud;
   sim *s = r->s;
   mp_enter(&r->base, s->procs[r->base.rank].main, s->procs[r->base.rank].ud);
-  check_stack(s, r);
   r->state = R_DONE;
   r->st.done = 1;
   r->st.finish = r->now;
@@ -989,11 +980,13 @@ int sim_run(sim *s, const mp_proc *procs, char *err, size_t errlen) {
     sweep_unread(s);
     if (s->tr && trace_end(s->tr, cerr, sizeof cerr) != 0) fail(s, "sim_run: %s", cerr);
   }
+  /* Ranks whose stacks share guard pages (coro.h) may have overflowed
+   * where only a check sees it: the run fails naming them. */
+  for (long i = coro_stacks_overflowed(s->stacks, 0); i >= 0; i = coro_stacks_overflowed(s->stacks, i + 1))
+    fail(s, "rank %ld overflowed its stack of %zu KiB (--stack sets it)", i, s->ranks[i].base.stack_size >> 10);
   for (int i = 0; i < made; i++) {
-    rank *r = &s->ranks[i];
-    if (r->state != R_DONE) check_stack(s, r);   /* one that finished was checked then */
-    coro_free(r->co);
-    r->co = NULL;
+    coro_free(s->ranks[i].co);
+    s->ranks[i].co = NULL;
   }
   coro_stacks_free(s->stacks);
   s->stacks = NULL;

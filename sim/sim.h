@@ -96,7 +96,7 @@
  *   the rank's mp, which a crash handler can name).  In a larger run the
  *   stacks share guard pages: an overflow the checks find as it happens
  *   faults the same way, and one that stayed within its stack's soft zone
- *   is found when the rank ends (or the run does) and fails the run:
+ *   is found when the run ends, and fails it:
  *     rank 5 overflowed its stack of 256 KiB (--stack sets it)
  *
  *   Warnings (counted in sim_stats.warnings; printed to cfg.warn unless it is

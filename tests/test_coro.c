@@ -310,6 +310,7 @@ static void test_set(void) {
   }
   CHECK(own == 0, "%ld stacks of a group have a guard page of their own", own);
   CHECK(ran == made && overflowed == 0, "%ld ran, %ld said to have overflowed", ran, overflowed);
+  CHECK(coro_stacks_overflowed(set, 0) == -1, "the set is said to have overflowed");
   CHECK(shared == made, "%ld of %d stacks where the layout says", shared, made);
   int fd[2];
   if (pipe(fd) == 0) {
@@ -325,7 +326,8 @@ static void test_set(void) {
 }
 
 /* A coroutine (the second of a group) that overflows into its soft zone
- * and stays suspended: coro_overflowed says so, for it alone. */
+ * and stays suspended: coro_overflowed says so, for it alone, and so does
+ * coro_stacks_overflowed for the set. */
 static void test_soft(void) {
   char err[200];
   coro_stacks *set = coro_stacks_new(BIG, SMALL, err, sizeof err);
@@ -345,6 +347,9 @@ static void test_soft(void) {
     CHECK(b.ran == 2, "b dove and came back: %ld", b.ran);
     CHECK(coro_overflowed(b.self), "24 KiB on a 16 KiB stack was not found");
     CHECK(!coro_overflowed(a.self) && !coro_overflowed(c.self), "a neighbour is said to have overflowed");
+    long first = coro_stacks_overflowed(set, 0), next = coro_stacks_overflowed(set, 2);
+    CHECK(first == 1 && coro_stacks_overflowed(set, 1) == 1 && next == -1,
+          "the set's overflows from 0: %ld, then from 2: %ld (want 1, then none)", first, next);
   }
   coro_stacks_free(set);
   coro_free(main);
