@@ -68,9 +68,8 @@ struct coro_stacks {
   size_t page;
   size_t size;              /* usable bytes of each stack, whole pages */
   size_t soft;              /* the untouched zone below each stack (0: guarded) */
-  size_t slot;              /* soft + size */
+  size_t slot;              /* a page, soft and size: every stack's stride */
   long group;               /* stacks above each guard page */
-  size_t gbytes;            /* a group: its guard page and its slots */
   long count, made;         /* stacks, and coroutines made on them */
   coro *cos;                /* count coroutines, made in order */
 };
@@ -225,10 +224,20 @@ static inline void swap(coro *from, coro *to) {
 
 /* ---- overflow checks where stacks share a guard page ---------------------- */
 
-/* The canary at the top of each stack of a set with shared guards: a value
- * a program does not write by chance, different at every address. */
+/* The canary at the top of each stack of a set with shared guards: the
+ * cache line there, CANARY_WORDS words of values a program does not write
+ * by chance, different at every address. */
+enum { CANARY_WORDS = 8 };
+
 static inline uint64_t canary_at(const uint64_t *p) {
   return ((uint64_t)(uintptr_t)p * 0x9e3779b97f4a7c15u) ^ 0x74696c6573696d21u;
+}
+
+/* 1 if the canary line at c is intact. */
+static inline int canary_ok(const uint64_t *c) {
+  uint64_t diff = 0;
+  for (int k = 0; k < CANARY_WORDS; k++) diff |= c[k] ^ canary_at(c + k);
+  return diff == 0;
 }
 
 /* co has overflowed its stack: fault on its guard page, exactly as the
@@ -254,7 +263,7 @@ static int soft_touched(const coro *co) {
 }
 
 static inline void check(const coro *co) {
-  if (co->watch && *co->watch != canary_at(co->watch)) overflowed(co);
+  if (co->watch && !canary_ok(co->watch)) overflowed(co);
 }
 
 void coro_switch(coro *from, coro *to) {
@@ -365,7 +374,13 @@ static int init_context(coro *co, uintptr_t top, char *err, size_t errlen) {
  * zone of SOFT_ZONE bytes below it that nothing but an overflow touches:
  *
  *   guarded:  | guard | stack 0 | guard | stack 1 | ...
- *   grouped:  | guard | soft | stack 0 | soft | stack 1 | ... (g) | guard | ...
+ *   grouped:  | guard | soft | stack 0 | page | soft | stack 1 | ... (g) | guard | soft | ...
+ *
+ * Every slot is a page, a soft zone and a stack, so that the stacks lie at
+ * one stride: the processor's stride prefetcher then fetches the next
+ * rank's stack ahead of the switch.  (A guard page every other stack, the
+ * stride alternating between two values, made a ring of 30,000 ranks run
+ * 2.5 times slower here than one stride, with or without a guard page.)
  *
  * so a set costs about 2 * CORO_GUARDED kernel mappings at most, whatever
  * its size.  A grouped stack's overflow is caught three ways: running on,
@@ -375,7 +390,7 @@ static int init_context(coro *co, uintptr_t top, char *err, size_t errlen) {
  * coro_overflowed (one stack) or coro_stacks_overflowed (a whole set, a
  * system call a group) finds the zone touched (mincore) when asked. */
 
-enum { SOFT_ZONE = 64 * 1024, CANARY_ROOM = 16 };
+enum { SOFT_ZONE = 64 * 1024, CANARY_ROOM = CANARY_WORDS * 8 };
 
 /* ASan keeps a shadow byte for every 8 bytes: forget what it knew of the
  * set's stacks (frames left poisoned by coroutines that never finished)
@@ -407,14 +422,13 @@ coro_stacks *coro_stacks_new(long count, size_t stack, char *err, size_t errlen)
   size_t size = (stack + page - 1) / page * page;
   long group = count <= CORO_GUARDED ? 1 : (count + CORO_GUARDED - 1) / CORO_GUARDED;
   size_t soft = group > 1 ? (SOFT_ZONE + page - 1) / page * page : 0;
-  size_t slot = soft + size;
+  size_t slot = page + soft + size;
   long groups = (count + group - 1) / group;
-  if (slot > (SIZE_MAX / 2 - page) / (size_t)group ||
-      (size_t)groups > (SIZE_MAX / 2) / (page + (size_t)group * slot)) {
+  if ((size_t)count > (SIZE_MAX / 2) / slot) {
     snprintf(err, errlen, "%ld coroutine stacks of %zu bytes: more than the address space", count, stack);
     return NULL;
   }
-  size_t gbytes = page + (size_t)group * slot, maplen = (size_t)groups * gbytes;
+  size_t maplen = (size_t)count * slot;
   int flags = MAP_PRIVATE | MAP_ANONYMOUS;
 #ifdef MAP_NORESERVE
   flags |= MAP_NORESERVE; /* pages are committed only when touched */
@@ -433,7 +447,7 @@ coro_stacks *coro_stacks_new(long count, size_t stack, char *err, size_t errlen)
   madvise(map, maplen, MADV_NOHUGEPAGE);
 #endif
   for (long g = 0; g < groups; g++) {
-    if (mprotect(map + (size_t)g * gbytes, page, PROT_NONE) != 0) {
+    if (mprotect(map + (size_t)(g * group) * slot, page, PROT_NONE) != 0) {
       int e = errno;
       munmap(map, maplen);
       snprintf(err, errlen,
@@ -451,7 +465,6 @@ coro_stacks *coro_stacks_new(long count, size_t stack, char *err, size_t errlen)
   set->soft = soft;
   set->slot = slot;
   set->group = group;
-  set->gbytes = gbytes;
   set->count = count;
   set->cos = xcalloc((size_t)count, sizeof *set->cos);
   return set;
@@ -468,9 +481,10 @@ coro *coro_new_on(coro_stacks *set, coro_fn *fn, void *ud, char *err, size_t err
   co->fn = fn;
   co->ud = ud;
   co->set = set;
-  co->guard = set->map + (size_t)g * set->gbytes;
-  co->soft = co->guard + set->page + (size_t)j * set->slot;
-  co->lo = co->soft + set->soft;
+  unsigned char *base = set->map + (size_t)i * set->slot;
+  co->guard = set->map + (size_t)(g * set->group) * set->slot;
+  co->soft = j == 0 ? base + set->page : base;   /* a page above another stack is soft too */
+  co->lo = base + set->page + set->soft;
   co->size = set->size;
   co->asan_lo = co->lo;
   co->asan_size = co->size;
@@ -479,9 +493,9 @@ coro *coro_new_on(coro_stacks *set, coro_fn *fn, void *ud, char *err, size_t err
     /* Grouped: a canary at the top for the stack above, and one to watch
      * below, unless the group's guard page is there. */
     top -= CANARY_ROOM;
-    uint64_t *c = (uint64_t *)(co->lo + co->size) - 1;
-    *c = canary_at(c);
-    if (j > 0) co->watch = (const uint64_t *)co->soft - 1;
+    uint64_t *c = (uint64_t *)(co->lo + co->size) - CANARY_WORDS;
+    for (int k = 0; k < CANARY_WORDS; k++) c[k] = canary_at(c + k);
+    if (j > 0) co->watch = (const uint64_t *)co->soft - CANARY_WORDS;
   }
 #ifdef CORO_VALGRIND
   co->vg_id = VALGRIND_STACK_REGISTER(co->lo, co->lo + co->size);
@@ -529,7 +543,7 @@ void *coro_guard(const coro *co) { return co->guard; }
 
 int coro_overflowed(const coro *co) {
   if (!co->set) return 0;
-  return (co->watch && *co->watch != canary_at(co->watch)) || soft_touched(co);
+  return (co->watch && !canary_ok(co->watch)) || soft_touched(co);
 }
 
 long coro_stacks_overflowed(const coro_stacks *set, long from) {
@@ -539,14 +553,15 @@ long coro_stacks_overflowed(const coro_stacks *set, long from) {
   long found = -1;
   for (long g = from / set->group; found < 0 && g * set->group < set->made; g++) {
     long first = g * set->group, n = set->made - first < set->group ? set->made - first : set->group;
-    unsigned char *base = set->map + (size_t)g * set->gbytes + set->page;
+    unsigned char *base = set->map + (size_t)first * set->slot;
     if (!vec) vec = xmalloc((size_t)set->group * per);
     /* One call for the group: its slots, soft zones and stacks. */
     if (mincore(base, (size_t)n * set->slot, vec) != 0) xpanic("mincore: %s", strerror(errno));
     for (long j = first < from ? from - first : 0; found < 0 && j < n; j++) {
       const coro *co = &set->cos[first + j];
-      int hit = co->watch && *co->watch != canary_at(co->watch);
-      for (size_t k = 0; !hit && k < set->soft / set->page; k++) hit = vec[(size_t)j * per + k] & 1;
+      int hit = co->watch && !canary_ok(co->watch);
+      size_t k0 = (size_t)(co->soft - base) / set->page, k1 = (size_t)(co->lo - base) / set->page;
+      for (size_t k = k0; !hit && k < k1; k++) hit = vec[k] & 1;
       if (hit) found = first + j;
     }
   }

@@ -21,7 +21,7 @@
  * guard page, so that the overflow faults exactly where a guard page's
  * would (coro_guard); and, running on, the group's guard page.  What the
  * checks cannot see: an overflow of more than the soft zone that skips the
- * canary's 8 bytes and returns before reaching the guard page may write
+ * canary's 64 bytes and returns before reaching the guard page may write
  * over the stack below unnoticed until the soft zone is looked at.
  *
  * Stacks are registered with valgrind when <valgrind/valgrind.h> is there, and

@@ -249,6 +249,14 @@ static long dive(int depth, unsigned char fill) {
   return r + buf[(unsigned)depth % sizeof buf];
 }
 
+/* bytes of stack in one frame, every byte written (a frame's own gaps,
+ * redzones and saved registers, cannot skip what lies below). */
+static long flood(size_t bytes) {
+  volatile unsigned char buf[bytes];
+  for (size_t i = 0; i < bytes; i++) buf[i] = 0xcd;
+  return buf[bytes / 2];
+}
+
 /* Deeper and deeper until something stops it (the test on `forever`, never
  * false, keeps the compiler from calling it infinite). */
 static volatile int forever = 1;
@@ -260,7 +268,8 @@ static long runaway(long depth) {
 
 typedef struct {
   coro *main, *self;
-  int depth;        /* dive this deep (0: not at all; -1: run away) */
+  int depth;        /* dive this deep (0: not at all; -1: run away; -2:
+                       flood 100 KiB in one frame) */
   int finish;       /* then return (1) or switch to main and stay (0) */
   long ran;
 } diver;
@@ -269,7 +278,8 @@ static coro *diver_body(void *ud) {
   diver *d = ud;
   d->ran++;
   if (d->depth > 0) d->ran += dive(d->depth, 0xab) > 0;
-  if (d->depth < 0) d->ran += runaway(0);
+  if (d->depth == -1) d->ran += runaway(0);
+  if (d->depth == -2) d->ran += flood(100 * 1024) > 0;
   if (!d->finish) coro_switch(d->self, d->main);
   return d->main;
 }
@@ -403,11 +413,12 @@ static void test_checks(void) {
 #ifdef HAVE_VALGRIND
   if (RUNNING_ON_VALGRIND) return; /* valgrind (rightly) reports the writes */
 #endif
-  /* Through the soft zone (64 KiB) into the stack below, its canary
-   * overwritten, but not as far as the guard page below that stack's soft
-   * zone (144 KiB): the switch away faults, finishing or not. */
-  CHECK(dies_on_guard(100, 0), "an overflow through the canary, then a switch: no fault on the guard");
-  CHECK(dies_on_guard(100, 1), "an overflow through the canary, then the end: no fault on the guard");
+  /* 100 KiB from near the top of a 16 KiB stack: through the soft zone
+   * (64 KiB and a page) into the stack below, its canary overwritten, but
+   * not as far as the guard page below that stack's soft zone (about 148
+   * KiB): the switch away faults, finishing or not. */
+  CHECK(dies_on_guard(-2, 0), "an overflow through the canary, then a switch: no fault on the guard");
+  CHECK(dies_on_guard(-2, 1), "an overflow through the canary, then the end: no fault on the guard");
   /* Running away: down to the group's guard page. */
   CHECK(dies_on_guard(-1, 0), "a runaway recursion did not fault on the group's guard page");
 }
