@@ -216,11 +216,16 @@ commit=$(git rev-parse --short=12 HEAD 2> /dev/null || echo unknown)
     "$(smpirun --version 2> /dev/null | head -n 1 | sed 's/ *$//')."
   echo "Every message costs 2^-12 s on both; wall is the host's seconds for the whole run (start-up included)," \
     "peak the largest resident size; ratio = smpirun's / tilesim's."
+  echo "bw: $WINDOW nonblocking sends of the size from rank 0 to rank 1, $BW_ITERS times;" \
+    "alltoall: MPI_Alltoall of the size a pair, $A2A_ITERS times; ring: a token of 8 bytes, $RING_LAPS laps;" \
+    "startup: MPI_Init, an allreduce of one integer, MPI_Finalize; allreduce: $AR_ITERS of $AR_COUNT integers;" \
+    "mp-ring: examples/ring.c (mp.h, no MPI), one lap.  A row that failed says why."
   echo
   awk -F, 'NR > 1 { k = $1 "," $3 "," $4; if (!(k in seen)) { seen[k] = 1; o[++n] = k }
       w[k, $2] = $5; r[k, $2] = $6; s[k, $2] = $7; c[k, $2] = $8; st[k, $2] = $9 }
-    function mb(v) { return v == "" ? "?" : sprintf("%.0f MB", v / 1024) }
-    function cell(k, sim) { if (!((k, sim) in w)) return "| | "; if (st[k, sim] != "\"ok\"") return "| " st[k, sim] " | "
+    function mb(v) { return v == "" ? "?" : sprintf("%.0f MiB", v / 1024) }
+    function cell(k, sim,   t) { if (!((k, sim) in w)) return "| | "; t = st[k, sim]; gsub(/"/, "", t)
+      if (t != "ok") return "| " t " | "
       return "| " w[k, sim] " s | " mb(r[k, sim]) " " }
     END {
       print "| program | ranks | bytes | tilesim wall | tilesim peak | smpirun wall | smpirun peak | time ratio | memory ratio | simulated s (tilesim, smpirun) | checksums |"
@@ -244,7 +249,7 @@ commit=$(git rev-parse --short=12 HEAD 2> /dev/null || echo unknown)
 } > "$W/md" && mv "$W/md" "$OUT/bench-mpi.md"
 
 # ---- the pictures: log2 of the size, log10 of the ranks -----------------------
-awk -F, 'NR == 1 { print "program,simulator,log2_bytes,log10_ranks,wall_s,peak_rss_mb"; next }
+awk -F, 'NR == 1 { print "program,simulator,log2_bytes,log10_ranks,wall_s,peak_rss_mib"; next }
   $9 == "\"ok\"" { printf "%s,%s,%.3f,%.3f,%s,%.1f\n", $1, $2, log($4) / log(2), log($3) / log(10), $5, $6 / 1024 }' \
   "$OUT/bench-mpi.csv" > "$W/plot.csv"
 pic() {   # pic FILE X Y XLABEL YLABEL TITLE WHERE...
@@ -259,11 +264,11 @@ pic() {   # pic FILE X Y XLABEL YLABEL TITLE WHERE...
 }
 pic bench-mpi-size.svg log2_bytes wall_s "log2 of the message size (bytes)" "host seconds" \
   "bw (2 ranks) and alltoall: host time against the message size" bw alltoall
-pic bench-mpi-size-rss.svg log2_bytes peak_rss_mb "log2 of the message size (bytes)" "peak resident MB" \
+pic bench-mpi-size-rss.svg log2_bytes peak_rss_mib "log2 of the message size (bytes)" "peak resident MiB" \
   "bw (2 ranks) and alltoall: peak memory against the message size" bw alltoall
 pic bench-mpi-ranks.svg log10_ranks wall_s "log10 of the ranks" "host seconds" \
   "start-up, allreduce and the mp.h ring: host time against the ranks" startup allreduce mp-ring
-pic bench-mpi-ranks-rss.svg log10_ranks peak_rss_mb "log10 of the ranks" "peak resident MB" \
+pic bench-mpi-ranks-rss.svg log10_ranks peak_rss_mib "log10 of the ranks" "peak resident MiB" \
   "start-up, allreduce and the mp.h ring: peak memory against the ranks" startup allreduce mp-ring
 say "wrote $OUT: bench-mpi.csv, bench-mpi.md and the pictures"
 
