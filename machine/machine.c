@@ -47,8 +47,8 @@ const char machine_ranks_help[] =
     "                     processors share them, rank r on processor r mod P)\n";
 
 const char machine_stack_help[] =
-    "  --stack BYTES      each rank's stack on the simulator (default 256k; 16k to\n"
-    "                     1G): a rank that overflows it is named\n";
+    "  --stack BYTES      each rank's stack on the simulator, 16k to 1G (default\n"
+    "                     256 KiB): a rank that overflows it is named\n";
 
 const char machine_help[] =
     "  --procs P          processors (default 1)\n"
@@ -133,11 +133,10 @@ int machine_option(machine_config *mc, const char *opt, const char *val, char *e
   if (strcmp(opt, "--ranks") == 0) return integer(opt, val, 1, MACHINE_MAX_RANKS, &mc->ranks, err, errlen);
   if (strcmp(opt, "--stack") == 0) {
     unsigned long long b;
-    if (args_bytes(opt, val, &b, err, errlen) != 0) return -1;
-    if (b < MACHINE_STACK_MIN || b > MACHINE_STACK_MAX) {
+    if (args_bytes(opt, val, &b, err, errlen) != 0 || b < MACHINE_STACK_MIN || b > MACHINE_STACK_MAX) {
       char shown[80];
       args_show(val, shown, sizeof shown);
-      snprintf(err, errlen, "%s takes bytes from 16k to 1G (%s)", opt, shown);
+      snprintf(err, errlen, "%s takes bytes from 16k to 1G, like 256k or 1M (%s)", opt, shown);
       return -1;
     }
     c->stack = (size_t)b;

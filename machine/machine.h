@@ -43,9 +43,10 @@ const char *machine_backend_name(machine_backend b);
  * most processors an option may ask for (--procs; ranks beyond share them). */
 enum { MACHINE_MAX_RANKS = 1000000, MACHINE_MAX_THREADS = 4096, MACHINE_MAX_PROCS = 4096 };
 
-/* --stack's bounds: each rank's stack on the simulator, in bytes. */
-#define MACHINE_STACK_MIN (16ULL << 10)
-#define MACHINE_STACK_MAX (1ULL << 30)
+/* --stack's bounds: each rank's stack on the simulator, in bytes, 16k to
+ * 1G as the byte parser reads them (k = 10^3, G = 10^9). */
+#define MACHINE_STACK_MIN 16000ULL
+#define MACHINE_STACK_MAX 1000000000ULL
 
 typedef struct {
   int procs;                      /* --procs: processors, >= 1 */

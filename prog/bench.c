@@ -35,7 +35,7 @@ static const mode modes[] = {
      "      [--print-place]\n"
      "      a token ring of P ranks on P processors, K laps: simulator speed (P up to\n"
      "      1000000, K up to 1e9, P x K up to 1e10; traces up to --trace-limit, 1G;\n"
-     "      each rank's stack --stack, 256k);\n"
+     "      each rank's stack --stack, 256 KiB);\n"
      "      on a topology (tile --help lists them), --tokens all: one token a rank"},
     {"--switch", bench_switch_main,
      "N\n"

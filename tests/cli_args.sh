@@ -172,6 +172,7 @@ each bench "--repeat takes a whole number from 1 to 100000" "--dicom" --repeat "
 R="--ring;3;--laps;2;--trace-csv;r.csv"
 each bench "--ring takes a whole number from 1 to 1000000" "" --ring "$(whole_bad 1 1000000)" "--laps;2"
 each bench "--laps takes a whole number from 1 to 1000000000" "--ring;3" --laps "$(whole_bad 1 1000000000)"
+each bench "--stack takes bytes from 16k to 1G, like 256k or 1M" "--ring;3;--laps;2" --stack "@E;abc;1.5;0x10;15999;8k;1000000001;2G;none; 64k"
 each bench "--net takes ideal" "$R" --net "$(word_bad ideal)"
 each bench "--profile takes tc2000 or unit" "$R" --profile "$(word_bad unit)"
 for o in --m --c; do each bench "$o takes seconds from 0 to 1e9" "$R" "$o" "$seconds_bad"; done
