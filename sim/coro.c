@@ -376,14 +376,13 @@ static int init_context(coro *co, uintptr_t top, char *err, size_t errlen) {
  *   guarded:  | guard | stack 0 | guard | stack 1 | ...
  *   grouped:  | guard | soft | stack 0 | page | soft | stack 1 | ... (g) | guard | soft | ...
  *
- * Every slot is a page, a soft zone and a stack, so that the stacks lie at
- * one stride: the processor's stride prefetcher then fetches the next
- * rank's stack ahead of the switch.  (A guard page every other stack, the
- * stride alternating between two values, made a ring of 30,000 ranks run
- * 2.5 times slower here than one stride, with or without a guard page.)
- *
  * so a set costs about 2 * CORO_GUARDED kernel mappings at most, whatever
- * its size.  A grouped stack's overflow is caught three ways: running on,
+ * its size.  Every slot is a page, a soft zone and a stack, so that the
+ * stacks lie at one stride: the processor's stride prefetcher then fetches
+ * the next rank's stack ahead of the switch (doc/measurements.md,
+ * 2026-12-01: with a guard page every other stack the stride alternated,
+ * and a ring of 30,000 ranks ran about twice as slow).  A grouped stack's
+ * overflow is caught three ways: running on,
  * it faults on its group's guard page; reaching the top of the stack below
  * (a canary there, checked at every switch away), it is made to fault
  * there; staying within its soft zone, it harms no other stack, and
