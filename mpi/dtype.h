@@ -124,7 +124,7 @@ typedef struct {
   int pair_off;         /* pairs: the index's offset in the laid-out pair */
 } tsmpi_predef;
 
-enum { TSMPI_PREDEF_N = 0x3d };   /* predefined indices are 1 .. TSMPI_PREDEF_N - 1 */
+enum { TSMPI_PREDEF_N = 0x3f };   /* predefined indices are 1 .. TSMPI_PREDEF_N - 1 */
 
 /* The predefined type of index i (1 .. TSMPI_PREDEF_N - 1), or NULL. */
 const tsmpi_predef *tsmpi_predef_get(int i);
