@@ -114,17 +114,18 @@ static const char *const op_names[OP_N] = {
   NULL, "MPI_MAX", "MPI_MIN", "MPI_SUM", "MPI_PROD", "MPI_LAND", "MPI_BAND", "MPI_LOR", "MPI_BOR",
   "MPI_LXOR", "MPI_BXOR", "MPI_MINLOC", "MPI_MAXLOC", "MPI_REPLACE", "MPI_NO_OP"};
 
-/* Which classes (dtype.h) each operation applies to (MPI 3.1 section
- * 5.9.2's table). */
+/* Which classes (dtype.h) each operation applies to: MPI 3.1 section
+ * 5.9.2's table, and the logical ones on MPI_AINT, MPI_OFFSET and
+ * MPI_COUNT too, as MPICH and Open MPI (the standard leaves them out). */
 #define C(x) (1u << TSMPI_CLASS_##x)
 static const unsigned op_classes[OP_N] = {
   [OP_MAX] = C(CINT) | C(FINT) | C(FLOAT) | C(MULTI),
   [OP_MIN] = C(CINT) | C(FINT) | C(FLOAT) | C(MULTI),
   [OP_SUM] = C(CINT) | C(FINT) | C(FLOAT) | C(COMPLEX) | C(MULTI),
   [OP_PROD] = C(CINT) | C(FINT) | C(FLOAT) | C(COMPLEX) | C(MULTI),
-  [OP_LAND] = C(CINT) | C(LOGICAL),
-  [OP_LOR] = C(CINT) | C(LOGICAL),
-  [OP_LXOR] = C(CINT) | C(LOGICAL),
+  [OP_LAND] = C(CINT) | C(LOGICAL) | C(MULTI),
+  [OP_LOR] = C(CINT) | C(LOGICAL) | C(MULTI),
+  [OP_LXOR] = C(CINT) | C(LOGICAL) | C(MULTI),
   [OP_BAND] = C(CINT) | C(FINT) | C(BYTE) | C(MULTI),
   [OP_BOR] = C(CINT) | C(FINT) | C(BYTE) | C(MULTI),
   [OP_BXOR] = C(CINT) | C(FINT) | C(BYTE) | C(MULTI),
