@@ -216,7 +216,7 @@ TSMPI_FN(1, DTYPE, int, MPI_Type_commit, (MPI_Datatype *datatype),
          (datatype))
 TSMPI_FN(1, DTYPE, int, MPI_Type_contiguous, (int count, MPI_Datatype oldtype, MPI_Datatype *newtype),
          (count, oldtype, newtype))
-TSMPI_FN(0, DTYPE, int, MPI_Type_create_darray, (int size, int rank, int ndims, const int array_of_gsizes[],
+TSMPI_FN(1, DTYPE, int, MPI_Type_create_darray, (int size, int rank, int ndims, const int array_of_gsizes[],
          const int array_of_distribs[], const int array_of_dargs[], const int array_of_psizes[], int order,
          MPI_Datatype oldtype, MPI_Datatype *newtype),
          (size, rank, ndims, array_of_gsizes, array_of_distribs, array_of_dargs, array_of_psizes, order,
