@@ -419,6 +419,11 @@ void tsmpi_type_runs(MPI_Datatype h, void (*f)(void *ud, MPI_Aint disp, MPI_Coun
   for (size_t k = 0; k < t->nrun; k++) f(ud, t->runs[k].disp, t->runs[k].n);
 }
 
+void tsmpi_type_walk(MPI_Datatype h, void (*f)(void *ud, MPI_Aint disp, MPI_Count n, int type), void *ud) {
+  const dt *t = obj(h);
+  for (size_t k = 0; k < t->nrun; k++) f(ud, t->runs[k].disp, t->runs[k].n, t->runs[k].type);
+}
+
 /* ==== building ============================================================ */
 
 typedef struct {

@@ -139,6 +139,12 @@ int tsmpi_type_elem(MPI_Datatype dt, MPI_Count *per_elem);
  * type-map order; entries of a run are one element-type extent apart. */
 void tsmpi_type_runs(MPI_Datatype dt, void (*f)(void *ud, MPI_Aint disp, MPI_Count n), void *ud);
 
+/* Calls f(ud, disp, n, type) for every run of dt's type map, whatever its
+ * types: n basic entries of the predefined type of index `type` (a pair
+ * counting as one), the first at byte displacement disp from an element's
+ * start, one predefined extent apart; in type-map order. */
+void tsmpi_type_walk(MPI_Datatype dt, void (*f)(void *ud, MPI_Aint disp, MPI_Count n, int type), void *ud);
+
 /* ==== the rank's table (for the MPI functions in dtype_api.c) ============= */
 
 /* A created type's handle from its parts: count blocks, block i being

@@ -204,10 +204,10 @@ TSMPI_FN(1, DTYPE, int, MPI_Get_elements_x, (const MPI_Status *status, MPI_Datat
 TSMPI_FN(1, DTYPE, int, MPI_Pack, (const void *inbuf, int incount, MPI_Datatype datatype, void *outbuf,
          int outsize, int *position, MPI_Comm comm),
          (inbuf, incount, datatype, outbuf, outsize, position, comm))
-TSMPI_FN(0, DTYPE, int, MPI_Pack_external, (const char *datarep, const void *inbuf, int incount,
+TSMPI_FN(1, DTYPE, int, MPI_Pack_external, (const char *datarep, const void *inbuf, int incount,
          MPI_Datatype datatype, void *outbuf, MPI_Aint outsize, MPI_Aint *position),
          (datarep, inbuf, incount, datatype, outbuf, outsize, position))
-TSMPI_FN(0, DTYPE, int, MPI_Pack_external_size, (const char *datarep, int incount, MPI_Datatype datatype,
+TSMPI_FN(1, DTYPE, int, MPI_Pack_external_size, (const char *datarep, int incount, MPI_Datatype datatype,
          MPI_Aint *size),
          (datarep, incount, datatype, size))
 TSMPI_FN(1, DTYPE, int, MPI_Pack_size, (int incount, MPI_Datatype datatype, MPI_Comm comm, int *size),
@@ -294,7 +294,7 @@ TSMPI_FN(1, DTYPE, int, MPI_Type_vector, (int count, int blocklength, int stride
 TSMPI_FN(1, DTYPE, int, MPI_Unpack, (const void *inbuf, int insize, int *position, void *outbuf,
          int outcount, MPI_Datatype datatype, MPI_Comm comm),
          (inbuf, insize, position, outbuf, outcount, datatype, comm))
-TSMPI_FN(0, DTYPE, int, MPI_Unpack_external, (const char datarep[], const void *inbuf, MPI_Aint insize,
+TSMPI_FN(1, DTYPE, int, MPI_Unpack_external, (const char datarep[], const void *inbuf, MPI_Aint insize,
          MPI_Aint *position, void *outbuf, int outcount, MPI_Datatype datatype),
          (datarep, inbuf, insize, position, outbuf, outcount, datatype))
 
