@@ -403,6 +403,24 @@ MPI_Count tsmpi_type_elements(MPI_Datatype h, MPI_Count bytes) {
   return n;
 }
 
+MPI_Count tsmpi_type_elements_bytes(MPI_Datatype h, MPI_Count n) {
+  const dt *t = obj(h);
+  if (t->nbasic == 0) return n > 0 ? -1 : 0;
+  MPI_Count bytes = n / t->nbasic * t->size, rest = n % t->nbasic;
+  for (size_t k = 0; k < t->nrun && rest > 0; k++) {
+    const tsmpi_predef *p = &predef[t->runs[k].type];
+    int two = p->rep == TSMPI_REP_PAIR;
+    MPI_Count whole = rest / (two ? 2 : 1) < t->runs[k].n ? rest / (two ? 2 : 1) : t->runs[k].n;
+    bytes += whole * p->size;
+    rest -= whole * (two ? 2 : 1);
+    if (rest > 0 && whole < t->runs[k].n && two) {   /* the value of one more pair */
+      bytes += predef[p->pair_value].size;
+      rest = 0;
+    }
+  }
+  return bytes;
+}
+
 int tsmpi_type_bottom_ok(MPI_Datatype h, int count) {
   const dt *t = obj(h);
   return count == 0 || t->size == 0 || t->tlb != 0;

@@ -80,6 +80,11 @@ void tsmpi_type_release(MPI_Datatype dt);
  * inside a basic element. */
 MPI_Count tsmpi_type_elements(MPI_Datatype dt, MPI_Count bytes);
 
+/* The bytes that hold the first n basic elements of packed elements of dt
+ * (the inverse of tsmpi_type_elements, for MPI_Status_set_elements); -1 if
+ * dt has no basic elements and n > 0. */
+MPI_Count tsmpi_type_elements_bytes(MPI_Datatype dt, MPI_Count n);
+
 /* 1 if a NULL (MPI_BOTTOM) buffer can carry count elements of dt: count is
  * 0, the type has no data, or its data lie at non-zero addresses (a type
  * built from absolute addresses, MPI_Get_address). */

@@ -742,3 +742,27 @@ int PMPI_Get_elements(const MPI_Status *status, MPI_Datatype datatype, int *coun
   }
   return rc;
 }
+
+/* MPI 3.1 section 12.3: status as if count basic elements of datatype had
+ * arrived (MPI_Get_elements then says count, MPI_Get_count the whole
+ * elements or MPI_UNDEFINED). */
+int PMPI_Status_set_elements_x(MPI_Status *status, MPI_Datatype datatype, MPI_Count count) {
+  static const char fn[] = "MPI_Status_set_elements_x";
+  int rc;
+  if ((rc = ptr_ok(fn, "status", status)) || (rc = commtype_ok(MPI_COMM_WORLD, fn, datatype))) return rc;
+  MPI_Count bytes = count < 0 ? -1 : tsmpi_type_elements_bytes(datatype, count);
+  if (bytes < 0)
+    return fail(MPI_COMM_WORLD, MPI_ERR_COUNT, fn, "count %lld of %s, which has %s", (long long)count,
+                *tsmpi_type_name(datatype) ? tsmpi_type_name(datatype) : "a derived type",
+                count < 0 ? "no negative counts" : "no basic elements");
+  status->tsmpi_count = bytes;
+  return MPI_SUCCESS;
+}
+
+int PMPI_Status_set_elements(MPI_Status *status, MPI_Datatype datatype, int count) {
+  return MPI_Status_set_elements_x(status, datatype, count);
+}
+
+/* Fortran's handles are C's (MPI_Fint is an int, as the handles are). */
+MPI_Fint PMPI_Type_c2f(MPI_Datatype datatype) { return (MPI_Fint)datatype; }
+MPI_Datatype PMPI_Type_f2c(MPI_Fint datatype) { return (MPI_Datatype)datatype; }

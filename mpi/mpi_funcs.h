@@ -793,9 +793,9 @@ TSMPI_FN(1, EXT, int, MPI_Query_thread, (int *provided),
          (provided))
 TSMPI_FN(0, EXT, int, MPI_Status_set_cancelled, (MPI_Status *status, int flag),
          (status, flag))
-TSMPI_FN(0, EXT, int, MPI_Status_set_elements, (MPI_Status *status, MPI_Datatype datatype, int count),
+TSMPI_FN(1, EXT, int, MPI_Status_set_elements, (MPI_Status *status, MPI_Datatype datatype, int count),
          (status, datatype, count))
-TSMPI_FN(0, EXT, int, MPI_Status_set_elements_x, (MPI_Status *status, MPI_Datatype datatype, MPI_Count count),
+TSMPI_FN(1, EXT, int, MPI_Status_set_elements_x, (MPI_Status *status, MPI_Datatype datatype, MPI_Count count),
          (status, datatype, count))
 
 /* --- IO --- */
