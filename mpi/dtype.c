@@ -29,7 +29,9 @@ typedef struct { int32_t v, i; } pair_2integer;
 /* A char's representation: signed on most machines, unsigned on some. */
 #define CHAR_REP (CHAR_MIN < 0 ? TSMPI_REP_INT : TSMPI_REP_UINT)
 
-/* Every predefined type: B(handle, C type, class, representation),
+/* Every predefined type: B(handle, C type, class, representation) (the
+ * handle as written is the type's name: MPI_LONG_LONG, which MPI_LONG_LONG_INT
+ * is a synonym of since MPI 2.1, as MPICH names it),
  * P(handle, pair struct, value's handle, index's handle) and M(handle,
  * sticky lb, sticky ub) for the markers MPI_LB and MPI_UB. */
 #define PREDEF_LIST(B, P, M)                                                                  \
@@ -44,7 +46,7 @@ typedef struct { int32_t v, i; } pair_2integer;
   B(MPI_UNSIGNED, unsigned, TSMPI_CLASS_CINT, TSMPI_REP_UINT)                                \
   B(MPI_LONG, long, TSMPI_CLASS_CINT, TSMPI_REP_INT)                                         \
   B(MPI_UNSIGNED_LONG, unsigned long, TSMPI_CLASS_CINT, TSMPI_REP_UINT)                      \
-  B(MPI_LONG_LONG_INT, long long, TSMPI_CLASS_CINT, TSMPI_REP_INT)                           \
+  B(MPI_LONG_LONG, long long, TSMPI_CLASS_CINT, TSMPI_REP_INT)                               \
   B(MPI_UNSIGNED_LONG_LONG, unsigned long long, TSMPI_CLASS_CINT, TSMPI_REP_UINT)            \
   B(MPI_FLOAT, float, TSMPI_CLASS_FLOAT, TSMPI_REP_FLOAT)                                    \
   B(MPI_DOUBLE, double, TSMPI_CLASS_FLOAT, TSMPI_REP_FLOAT)                                  \
@@ -189,6 +191,7 @@ typedef struct {
   int n, cap;
   int *spare;   /* freed slots, reused last in first out */
   int nspare;
+  char *pname[TSMPI_PREDEF_N];   /* names this rank gave predefined types */
 } table;
 
 static void table_release(void *p) {
@@ -204,6 +207,7 @@ static void table_release(void *p) {
     free(t->name);
     free(t);
   }
+  for (int i = 0; i < TSMPI_PREDEF_N; i++) free(tb->pname[i]);
   free(tb->slot);
   free(tb->spare);
   free(tb);
@@ -740,21 +744,25 @@ int tsmpi_type_redecode(MPI_Datatype h, const tsmpi_type_decoding *dec) {
 
 const char *tsmpi_type_name(MPI_Datatype h) {
   const dt *t = obj(h);
+  const table *tb = t->predef ? tab(0) : NULL;
+  if (tb && tb->pname[t->predef]) return tb->pname[t->predef];
   if (t->name) return t->name;
   return t->predef ? predef[t->predef].name : "";
 }
 
 int tsmpi_type_set_name(MPI_Datatype h, const char *name) {
   dt *t = obj(h);
-  if (t->predef) return MPI_ERR_TYPE;
+  table *tb = t->predef ? tab(1) : NULL;
+  if (t->predef && !tb) return MPI_ERR_NO_MEM;
   size_t n = strlen(name);
   if (n >= MPI_MAX_OBJECT_NAME) n = MPI_MAX_OBJECT_NAME - 1;
   char *s = malloc(n + 1);
   if (!s) return MPI_ERR_NO_MEM;
   memcpy(s, name, n);
   s[n] = '\0';
-  free(t->name);
-  t->name = s;
+  char **slot = t->predef ? &tb->pname[t->predef] : &t->name;
+  free(*slot);
+  *slot = s;
   return MPI_SUCCESS;
 }
 

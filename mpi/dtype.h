@@ -191,8 +191,9 @@ int tsmpi_type_free(MPI_Datatype dt);     /* dt valid and created: MPI_SUCCESS; 
 void tsmpi_type_bounds(MPI_Datatype dt, MPI_Aint *lb, MPI_Aint *ub, MPI_Aint *true_lb,
                        MPI_Aint *true_ub);
 
-/* The type's name (MPI_Type_get_name): a predefined type's MPI name, or the
- * one set, or "". */
+/* The type's name (MPI_Type_get_name): the one this rank set, or a
+ * predefined type's MPI name, or "".  A predefined type's name set is the
+ * rank's own. */
 const char *tsmpi_type_name(MPI_Datatype dt);
 int tsmpi_type_set_name(MPI_Datatype dt, const char *name);
 

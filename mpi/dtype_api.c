@@ -513,8 +513,6 @@ int PMPI_Type_set_name(MPI_Datatype datatype, const char *type_name) {
   int rc;
   if ((rc = type_ok(fn, "datatype", datatype)) || (rc = ptr_ok(fn, "type_name", type_name))) return rc;
   rc = tsmpi_type_set_name(datatype, type_name);
-  if (rc == MPI_ERR_TYPE)
-    return fail(MPI_COMM_WORLD, rc, fn, "%s is predefined: tilesim keeps its name", tsmpi_type_name(datatype));
   return rc ? fail(MPI_COMM_WORLD, rc, fn, "out of memory") : rc;
 }
 

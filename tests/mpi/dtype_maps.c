@@ -5,8 +5,8 @@
  * at offsets, MPI_Pack_size, MPI_Get_address, decoding (envelope and contents), derived types
  * sent between ranks and received as another type of the same signature, MPI_Type_free before
  * a pending receive completes, MPI_Get_count and MPI_Get_elements, statuses set by
- * MPI_Status_set_elements, datatypes and operations through their Fortran handles, and
- * argument errors.
+ * MPI_Status_set_elements, datatypes and operations through their Fortran handles, names,
+ * and argument errors.
  *
  * Plain MPI C: it builds with tilesim's mpi.h and with Open MPI's mpicc, and prints the same
  * "dtype_maps: P passed, F failed" line under both. */
@@ -366,6 +366,29 @@ static void test_status(mtest *t) {
   MPI_Type_free(&id);
 }
 
+/* Names: predefined ones, set on a predefined type (each rank its own, as
+ * each process its own) and on a derived one. */
+static void test_names(mtest *t) {
+  char name[MPI_MAX_OBJECT_NAME], mine[32];
+  int len;
+  MPI_Type_get_name(MPI_DOUBLE, name, &len);
+  MCHECK(t, !strcmp(name, "MPI_DOUBLE") && len == 10, "MPI_DOUBLE's name '%s' (%d)", name, len);
+  snprintf(mine, sizeof mine, "int of rank %d", t->rank);
+  MPI_Type_set_name(MPI_INT, mine);
+  MPI_Barrier(MPI_COMM_WORLD);
+  MPI_Type_get_name(MPI_INT, name, &len);
+  MCHECK(t, !strcmp(name, mine), "MPI_INT renamed '%s', reads '%s'", mine, name);
+  MPI_Type_set_name(MPI_INT, "MPI_INT");
+  MPI_Datatype c;
+  MPI_Type_contiguous(2, MPI_INT, &c);
+  MPI_Type_get_name(c, name, &len);
+  MCHECK(t, len == 0 && name[0] == 0, "a new type's name '%s'", name);
+  MPI_Type_set_name(c, "pair of ints");
+  MPI_Type_get_name(c, name, &len);
+  MCHECK(t, !strcmp(name, "pair of ints") && len == 12, "a derived type's name '%s'", name);
+  MPI_Type_free(&c);
+}
+
 static void test_errors(mtest *t) {
   MPI_Datatype v = MPI_DATATYPE_NULL, u;
   int x[4] = {0, 0, 0, 0};
@@ -394,6 +417,7 @@ int main(int argc, char **argv) {
   test_pack_api(&t);
   test_errors(&t);
   test_status(&t);
+  test_names(&t);
   test_send(&t);
   int rc = mtest_done(&t);
   MPI_Finalize();
