@@ -760,7 +760,3 @@ int PMPI_Status_set_elements_x(MPI_Status *status, MPI_Datatype datatype, MPI_Co
 int PMPI_Status_set_elements(MPI_Status *status, MPI_Datatype datatype, int count) {
   return MPI_Status_set_elements_x(status, datatype, count);
 }
-
-/* Fortran's handles are C's (MPI_Fint is an int, as the handles are). */
-MPI_Fint PMPI_Type_c2f(MPI_Datatype datatype) { return (MPI_Fint)datatype; }
-MPI_Datatype PMPI_Type_f2c(MPI_Fint datatype) { return (MPI_Datatype)datatype; }

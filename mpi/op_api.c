@@ -56,7 +56,3 @@ int PMPI_Reduce_local(const void *inbuf, void *inoutbuf, int count, MPI_Datatype
   if (count > 0) tsmpi_op_reduce(op, datatype, inbuf, inoutbuf, count);
   return MPI_SUCCESS;
 }
-
-/* Fortran's handles are C's (MPI_Fint is an int, as the handles are). */
-MPI_Fint PMPI_Op_c2f(MPI_Op op) { return (MPI_Fint)op; }
-MPI_Op PMPI_Op_f2c(MPI_Fint op) { return (MPI_Op)op; }

@@ -5,8 +5,7 @@
  * at offsets, MPI_Pack_size, MPI_Get_address, decoding (envelope and contents), derived types
  * sent between ranks and received as another type of the same signature, MPI_Type_free before
  * a pending receive completes, MPI_Get_count and MPI_Get_elements, statuses set by
- * MPI_Status_set_elements, datatypes and operations through their Fortran handles, names,
- * and argument errors.
+ * MPI_Status_set_elements, names, and argument errors.
  *
  * Plain MPI C: it builds with tilesim's mpi.h and with Open MPI's mpicc, and prints the same
  * "dtype_maps: P passed, F failed" line under both. */
@@ -324,12 +323,7 @@ static void test_pack_api(mtest *t) {
 }
 
 /* A status made by MPI_Status_set_elements (as a generalized request's
- * query function makes one), and Fortran handles. */
-static void user_sum(void *in, void *inout, int *len, MPI_Datatype *dt) {
-  (void)dt;
-  for (int i = 0; i < *len; i++) ((int *)inout)[i] += ((int *)in)[i];
-}
-
+ * query function makes one). */
 static void test_status(mtest *t) {
   MPI_Status st;
   int n;
@@ -356,13 +350,6 @@ static void test_status(mtest *t) {
   MPI_Get_elements_x(&st, MPI_SHORT, &x);
   MPI_Get_count(&st, MPI_CHAR, &n);
   MCHECK(t, x == 7 && n == 14, "7 MPI_SHORT set: %lld elements, %d chars", (long long)x, n);
-  /* Fortran handles come back as the same C handles. */
-  MPI_Op op;
-  MPI_Op_create(user_sum, 1, &op);
-  MCHECK(t, MPI_Type_f2c(MPI_Type_c2f(id)) == id && MPI_Type_f2c(MPI_Type_c2f(MPI_INT)) == MPI_INT &&
-                MPI_Op_f2c(MPI_Op_c2f(op)) == op && MPI_Op_f2c(MPI_Op_c2f(MPI_SUM)) == MPI_SUM,
-         "a handle through Fortran and back differs");
-  MPI_Op_free(&op);
   MPI_Type_free(&id);
 }
 
