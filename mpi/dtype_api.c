@@ -358,7 +358,7 @@ int PMPI_Type_create_subarray(int ndims, const int array_of_sizes[], const int a
                   d, n, s, b);
     total += s;
   }
-  int *sz, *n, **idx, *ints = malloc((size_t)(3 * ndims + 2) * sizeof *ints);
+  int *sz = NULL, *n = NULL, **idx = NULL, *ints = malloc((size_t)(3 * ndims + 2) * sizeof *ints);
   if (!ints) return fail(MPI_COMM_WORLD, MPI_ERR_NO_MEM, fn, "out of memory");
   if ((rc = array_room(fn, ndims, total, &idx, &sz, &n))) {
     free(ints);
@@ -430,7 +430,7 @@ int PMPI_Type_create_darray(int size, int rank, int ndims, const int array_of_gs
   if (procs != size)
     return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "the process grid has %lld processes, size is %d", (long long)procs,
                 size);
-  int *sz, *n, **idx, *ints = malloc((size_t)(4 * ndims + 4) * sizeof *ints);
+  int *sz = NULL, *n = NULL, **idx = NULL, *ints = malloc((size_t)(4 * ndims + 4) * sizeof *ints);
   int *coord = malloc((size_t)ndims * sizeof *coord);
   if (!ints || !coord) {
     free(ints), free(coord);
