@@ -446,6 +446,12 @@ void tsmpi_type_walk(MPI_Datatype h, void (*f)(void *ud, MPI_Aint disp, MPI_Coun
   for (size_t k = 0; k < t->nrun; k++) f(ud, t->runs[k].disp, t->runs[k].n, t->runs[k].type);
 }
 
+size_t tsmpi_type_segments(MPI_Datatype h, void (*f)(void *ud, MPI_Aint disp, MPI_Aint len), void *ud) {
+  const dt *t = obj(h);
+  for (size_t k = 0; k < t->nseg && f; k++) f(ud, t->segs[k].disp, t->segs[k].len);
+  return t->nseg;
+}
+
 /* ==== building ============================================================ */
 
 typedef struct {

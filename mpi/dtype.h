@@ -150,6 +150,11 @@ void tsmpi_type_runs(MPI_Datatype dt, void (*f)(void *ud, MPI_Aint disp, MPI_Cou
  * start, one predefined extent apart; in type-map order. */
 void tsmpi_type_walk(MPI_Datatype dt, void (*f)(void *ud, MPI_Aint disp, MPI_Count n, int type), void *ud);
 
+/* Calls f(ud, disp, len) for every run of bytes of dt's data (what packing
+ * copies, adjacent runs merged), in type-map order: len bytes at byte
+ * displacement disp from an element's start.  Returns how many. */
+size_t tsmpi_type_segments(MPI_Datatype dt, void (*f)(void *ud, MPI_Aint disp, MPI_Aint len), void *ud);
+
 /* ==== the rank's table (for the MPI functions in dtype_api.c) ============= */
 
 /* A created type's handle from its parts: count blocks, block i being
