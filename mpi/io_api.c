@@ -79,7 +79,7 @@ static int resize_call(MPI_File fh, const char *fn, MPI_Offset size, int grow_on
   int rc = tsmpi_file_check(fh, fn, &f);
   if (rc) return rc;
   if (size < 0) return tsmpi_file_raise(fh, MPI_ERR_ARG, fn, "size %lld < 0", (long long)size);
-  if (f->amode & MPI_MODE_RDONLY) return tsmpi_file_raise(fh, MPI_ERR_ACCESS, fn, "the file is open MPI_MODE_RDONLY");
+  if (f->amode & MPI_MODE_RDONLY) return tsmpi_file_raise(fh, MPI_ERR_READ_ONLY, fn, "the file is open MPI_MODE_RDONLY");
   if (f->amode & MPI_MODE_SEQUENTIAL)
     return tsmpi_file_raise(fh, MPI_ERR_UNSUPPORTED_OPERATION, fn, "the file is open MPI_MODE_SEQUENTIAL");
   resize z = {size, grow_only, 0};

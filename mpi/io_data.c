@@ -122,7 +122,7 @@ static int args(MPI_File fh, const char *fn, tsmpi_file **fp, int wr, int where,
     return tsmpi_file_raise(fh, MPI_ERR_BUFFER, fn, "buf is NULL");
   if (where == AT && offset < 0) return tsmpi_file_raise(fh, MPI_ERR_ARG, fn, "offset %lld < 0", (long long)offset);
   if (wr && (f->amode & MPI_MODE_RDONLY))
-    return tsmpi_file_raise(fh, MPI_ERR_ACCESS, fn, "the file is open MPI_MODE_RDONLY: no writes");
+    return tsmpi_file_raise(fh, MPI_ERR_READ_ONLY, fn, "the file is open MPI_MODE_RDONLY: no writes");
   if (!wr && (f->amode & MPI_MODE_WRONLY))
     return tsmpi_file_raise(fh, MPI_ERR_ACCESS, fn, "the file is open MPI_MODE_WRONLY: no reads");
   if ((f->amode & MPI_MODE_SEQUENTIAL) && (where == AT || where == INDIV))
