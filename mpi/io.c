@@ -12,6 +12,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "coll.h"
 #include "dtype.h"
 #include "mp.h"
 #include "p2p.h"
@@ -106,15 +107,32 @@ double tsmpi_io_independent(tsmpi_file *f, double bytes) {
   return tsmpi_fs_request(f->sh->fs, mp_time(mp_self()), bytes);
 }
 
-double tsmpi_io_collective(tsmpi_file *f, double bytes, MPI_Offset *base, MPI_Offset *below,
-                           void (*first)(tsmpi_file *f, const double *counts, void *ud), void *ud) {
-  double mine[2] = {mp_time(mp_self()), bytes}, small[2 * 16], *all = small;
-  if (f->size > 16 && !(all = malloc(2 * (size_t)f->size * sizeof *all))) {
-    fprintf(stderr, "tilesim: out of memory (%zu bytes) for a collective I/O call\n",
-            2 * (size_t)f->size * sizeof *all);
-    abort();
+/* Every rank's pair of doubles (mine) to every rank of comm, under call
+ * fn's name (what a deadlock report and the trace say): MPICH's allgather
+ * for so few bytes, recursive doubling on a power of two ranks, Bruck's
+ * otherwise.  Returns the pairs by rank, scratch of the collectives
+ * (tsmpi_cg_free it). */
+static double *exchange(MPI_Comm comm, const char *fn, const double mine[2]) {
+  tsmpi_cg g;
+  tsmpi_label l;
+  tsmpi_coll_begin(&g, &l, fn, comm, COLL_ALLGATHER, -1);
+  size_t p = (size_t)g.size, *counts = tsmpi_cg_alloc(&g, 2 * p * sizeof *counts), *displs = counts + p;
+  double *all = tsmpi_cg_alloc(&g, 2 * p * sizeof *all);
+  for (size_t r = 0; r < p; r++) counts[r] = 2 * sizeof *all, displs[r] = r * 2 * sizeof *all;
+  all[2 * g.rank] = mine[0];
+  all[2 * g.rank + 1] = mine[1];
+  if (p > 1) {
+    if (tsmpi_is_pof2(g.size)) tsmpi_allgatherv_recursive_doubling(&g, all, counts, displs);
+    else tsmpi_allgatherv_brucks(&g, all, counts, displs);
   }
-  PMPI_Allgather(mine, 2, MPI_DOUBLE, all, 2, MPI_DOUBLE, f->comm);
+  tsmpi_cg_free(counts);
+  tsmpi_coll_end(MPI_SUCCESS);
+  return all;
+}
+
+double tsmpi_io_collective(tsmpi_file *f, const char *fn, double bytes, MPI_Offset *base, MPI_Offset *below,
+                           void (*first)(tsmpi_file *f, const double *counts, void *ud), void *ud) {
+  double mine[2] = {mp_time(mp_self()), bytes}, *all = exchange(f->comm, fn, mine);
   double come = 0, sum = 0;
   for (int r = 0; r < f->size; r++) {
     if (all[2 * r] > come) come = all[2 * r];
@@ -134,7 +152,7 @@ double tsmpi_io_collective(tsmpi_file *f, double bytes, MPI_Offset *base, MPI_Of
   double end = sh->cend;
   if (base) *base = sh->cbase;
   pthread_mutex_unlock(&sh->lock);
-  if (all != small) free(all);
+  tsmpi_cg_free(all);
   return end;
 }
 
@@ -244,22 +262,17 @@ int tsmpi_file_open(MPI_Comm comm, const char *path, int amode, MPI_Info info, M
   PMPI_Comm_size(comm, &size);
   PMPI_Comm_rank(comm, &rank);
   /* Every rank's amode and arrival, then rank 0's open. */
-  double mine[2] = {mp_time(mp_self()), amode}, small[2 * 16], *all = small;
-  if (size > 16 && !(all = malloc(2 * (size_t)size * sizeof *all)))
-    return tsmpi_file_raise(MPI_FILE_NULL, MPI_ERR_NO_MEM, fn, "out of memory");
+  double mine[2] = {mp_time(mp_self()), amode}, *all;
   MPI_Comm dup;
-  if ((rc = PMPI_Comm_dup(comm, &dup)) != MPI_SUCCESS) {
-    if (all != small) free(all);
-    return rc;
-  }
-  PMPI_Allgather(mine, 2, MPI_DOUBLE, all, 2, MPI_DOUBLE, dup);
+  if ((rc = PMPI_Comm_dup(comm, &dup)) != MPI_SUCCESS) return rc;
+  all = exchange(dup, fn, mine);
   double come = 0;
   int same = 1;
   for (int r = 0; r < size; r++) {
     if (all[2 * r] > come) come = all[2 * r];
     same &= all[2 * r + 1] == amode;
   }
-  if (all != small) free(all);
+  tsmpi_cg_free(all);
   opened o = {0};
   if (!same) {   /* the checks every rank makes alike */
     o.cls = MPI_ERR_NOT_SAME;
@@ -313,7 +326,7 @@ static void no_first(tsmpi_file *f, const double *counts, void *ud) {
 
 int tsmpi_file_close(MPI_File *fh) {
   tsmpi_file *f = tsmpi_file_get(*fh);
-  double end = tsmpi_io_collective(f, 0, NULL, NULL, no_first, NULL);
+  double end = tsmpi_io_collective(f, "MPI_File_close", 0, NULL, NULL, no_first, NULL);
   table *tb = tab(0);
   tb->slot[*fh & SLOT_MASK] = NULL;
   MPI_Comm c = f->comm;

@@ -85,8 +85,8 @@ void tsmpi_file_set_null_eh(MPI_Errhandler eh);
  * its end. */
 double tsmpi_io_independent(tsmpi_file *f, double bytes);
 
-/* A collective call's exchange: every rank of the file gives its bytes and
- * the time it came; the call is one request of their sum coming when the
+/* A collective call's exchange (call fn, for a deadlock report): every rank
+ * of the file gives its bytes and the time it came; the call is one request of their sum coming when the
  * last came, made by the first rank to get past the exchange, which also
  * runs first(f, counts, ud) under the shared lock before it (the one-time
  * part of the call: a resize, the shared pointer's move; counts[r] rank r's
@@ -94,7 +94,7 @@ double tsmpi_io_independent(tsmpi_file *f, double bytes);
  * not NULL) gets the shared object's cbase as first left it, *below (if not
  * NULL) the bytes of the ranks below this one.  bytes < 0 on every rank: no
  * request (a call that only agrees on something: its end is the exchange's). */
-double tsmpi_io_collective(tsmpi_file *f, double bytes, MPI_Offset *base, MPI_Offset *below,
+double tsmpi_io_collective(tsmpi_file *f, const char *fn, double bytes, MPI_Offset *base, MPI_Offset *below,
                            void (*first)(tsmpi_file *f, const double *counts, void *ud), void *ud);
 
 /* The rank's clock moves on to `end` if it is before (mp_sleep: the

@@ -83,7 +83,7 @@ static int resize_call(MPI_File fh, const char *fn, MPI_Offset size, int grow_on
   if (f->amode & MPI_MODE_SEQUENTIAL)
     return tsmpi_file_raise(fh, MPI_ERR_UNSUPPORTED_OPERATION, fn, "the file is open MPI_MODE_SEQUENTIAL");
   resize z = {size, grow_only, 0};
-  tsmpi_io_until(tsmpi_io_collective(f, 0, NULL, NULL, resize_first, &z));
+  tsmpi_io_until(tsmpi_io_collective(f, fn, 0, NULL, NULL, resize_first, &z));
   if (z.err) return tsmpi_file_raise(fh, MPI_ERR_IO, fn, "to %lld bytes: %s", (long long)size, strerror(z.err));
   return MPI_SUCCESS;
 }
@@ -116,7 +116,7 @@ int PMPI_File_sync(MPI_File fh) {
   if (rc) return rc;
   /* The data are in the host's file since each write; the host's cache
    * is not flushed (a request of the model all the same). */
-  tsmpi_io_until(tsmpi_io_collective(f, 0, NULL, NULL, NULL, NULL));
+  tsmpi_io_until(tsmpi_io_collective(f, fn, 0, NULL, NULL, NULL, NULL));
   return MPI_SUCCESS;
 }
 
@@ -148,7 +148,7 @@ int PMPI_File_set_view(MPI_File fh, MPI_Offset disp, MPI_Datatype etype, MPI_Dat
    * once, before any rank goes on. */
   f->pos = 0;
   MPI_Offset zero = 0;
-  tsmpi_io_collective(f, -1, NULL, NULL, seek_shared_first, &zero);
+  tsmpi_io_collective(f, fn, -1, NULL, NULL, seek_shared_first, &zero);
   if (info != MPI_INFO_NULL) return PMPI_File_set_info(fh, info);
   return MPI_SUCCESS;
 }
@@ -245,7 +245,7 @@ int PMPI_File_seek_shared(MPI_File fh, MPI_Offset offset, int whence) {
   pthread_mutex_unlock(&f->sh->lock);
   if ((rc = seek_to(fh, fn, f, cur, offset, whence, &to))) return rc;
   /* Collective: the pointer moves once, before any rank goes on. */
-  tsmpi_io_collective(f, -1, NULL, NULL, seek_shared_first, &to);
+  tsmpi_io_collective(f, fn, -1, NULL, NULL, seek_shared_first, &to);
   return MPI_SUCCESS;
 }
 
@@ -297,11 +297,12 @@ static void atomic_first(tsmpi_file *f, const double *counts, void *ud) {
 }
 
 int PMPI_File_set_atomicity(MPI_File fh, int flag) {
+  static const char fn[] = "MPI_File_set_atomicity";
   tsmpi_file *f;
-  int rc = tsmpi_file_check(fh, "MPI_File_set_atomicity", &f);
+  int rc = tsmpi_file_check(fh, fn, &f);
   if (rc) return rc;
   int on = flag != 0;
-  tsmpi_io_collective(f, -1, NULL, NULL, atomic_first, &on);
+  tsmpi_io_collective(f, fn, -1, NULL, NULL, atomic_first, &on);
   return MPI_SUCCESS;
 }
 

@@ -150,7 +150,7 @@ static int data_access(MPI_File fh, const char *fn, int wr, int where, int coll,
   if (coll == COLL) {
     ordered_ud o = {wr, where, n, es};
     MPI_Offset base = 0, below = 0;
-    end = tsmpi_io_collective(f, (double)n, &base, &below, where == ORDERED ? ordered_first : NULL, &o);
+    end = tsmpi_io_collective(f, fn, (double)n, &base, &below, where == ORDERED ? ordered_first : NULL, &o);
     if (where == ORDERED) pos = base * es + below;
   }
   pthread_mutex_lock(&sh->lock);

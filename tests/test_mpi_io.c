@@ -4,8 +4,8 @@
  * one request of every rank's bytes once the last rank has come), on a network that costs
  * nothing (--net ideal, m = per_byte = 0) and binary-fraction costs (exact); separate file
  * systems not contending; the mounts' host directories (/scratch among them); the --fs
- * option's refusals; SimGrid's sg_file calls; errors under MPI_ERRORS_ARE_FATAL; the same
- * data on threads. */
+ * option's refusals; SimGrid's sg_file calls; errors under MPI_ERRORS_ARE_FATAL; a deadlock
+ * in a collective file call; the same data on threads. */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <stdlib.h>
@@ -220,6 +220,37 @@ static void fatal(const char *dir) {
   mpih_result_free(&res);
 }
 
+/* Rank 0 in a collective write, rank 1 waiting for a message: the
+ * deadlock report names the file call. */
+static int stuck(void *ud) {
+  (void)ud;
+  MPI_Init(NULL, NULL);
+  int r, v = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  MPI_File fh;
+  MPI_File_open(MPI_COMM_WORLD, "/fsa/stuck", MPI_MODE_CREATE | MPI_MODE_WRONLY | MPI_MODE_DELETE_ON_CLOSE,
+                MPI_INFO_NULL, &fh);
+  if (r == 0) MPI_File_write_all(fh, &v, 1, MPI_INT, MPI_STATUS_IGNORE);
+  else MPI_Recv(&v, 1, MPI_INT, 0, 0, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  MPI_File_close(&fh);
+  MPI_Finalize();
+  return 0;
+}
+
+static void deadlock(const char *dir) {
+  job j;
+  memset(&j, 0, sizeof j);
+  snprintf(j.dir, sizeof j.dir, "%s", dir);
+  mounts(&j);
+  mpih_result res = run(MPIH_SIM, 2, stuck, &j);
+  CHECK(res.rc != 0 && res.deadlock && strstr(res.err, "MPI_File_write_all") && strstr(res.err, "MPI_Recv"),
+        "a deadlock in a collective write: rc %d, \"%s\"", res.rc, res.err);
+  mpih_result_free(&res);
+  char f[300];
+  snprintf(f, sizeof f, "%s/stuck", dir);
+  remove(f);
+}
+
 /* --fs's refusals; /scratch's directory; sg_file. */
 static void options(const char *dir) {
   char err[256];
@@ -259,6 +290,7 @@ int main(void) {
   separate(d);
   threads(d);
   fatal(d);
+  deadlock(d);
   options(d);
   char f[300];
   snprintf(f, sizeof f, "%s/f", d);
