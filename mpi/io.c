@@ -50,6 +50,8 @@ static table *tab(int create) {
   return tb;
 }
 
+void tsmpi_io_begin(void) { tab(1); }
+
 tsmpi_file *tsmpi_file_get(MPI_File fh) {
   if (((unsigned)fh & 0xff800000u) != CREATED) return NULL;
   table *tb = tab(0);

@@ -75,6 +75,11 @@ int tsmpi_file_check(MPI_File fh, const char *fn, tsmpi_file **f);
 int tsmpi_file_open(MPI_Comm comm, const char *path, int amode, MPI_Info info, MPI_File *fh);
 int tsmpi_file_close(MPI_File *fh);
 
+/* The rank uses MPI-IO from now on (its table made, the file systems'
+ * users counted: io_model.h); every call that reaches a file system does
+ * it first. */
+void tsmpi_io_begin(void);
+
 /* The handler of MPI_FILE_NULL (MPI_File_set/get_errhandler on it). */
 MPI_Errhandler tsmpi_file_null_eh(void);
 void tsmpi_file_set_null_eh(MPI_Errhandler eh);

@@ -47,6 +47,7 @@ int PMPI_File_delete(const char *filename, MPI_Info info) {
   char host[TSMPI_PATH_MAX], why[160];
   (void)info;
   if (!filename) return tsmpi_file_raise(MPI_FILE_NULL, MPI_ERR_ARG, fn, "filename is NULL");
+  tsmpi_io_begin();
   tsmpi_fs *fs = tsmpi_fs_of(filename, host, why, sizeof why);
   if (!fs) return tsmpi_file_raise(MPI_FILE_NULL, MPI_ERR_BAD_FILE, fn, "%s", why);
   int err = unlink(host) == 0 ? 0 : errno;

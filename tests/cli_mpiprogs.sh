@@ -47,10 +47,6 @@ group() {
       continue
     fi
     ok
-    # Open MPI's MPI-IO: ROMIO for the views (OMPIO seeks from the end of a
-    # view elsewhere), its default OMPIO for the rest (its ROMIO 3.2.1
-    # crashes in MPI_File_iwrite_at_all).
-    case $name in io_views) export OMPI_MCA_io=romio321;; *) unset OMPI_MCA_io;; esac
     for np in $counts; do
       "$MPIRUN" $OVER -np $np "$T/$name" > "$T/out" 2>&1; rc=$?
       ompi=$(grep -E "^$name: [0-9]+ passed, [0-9]+ failed\$" "$T/out")

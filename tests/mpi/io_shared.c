@@ -32,6 +32,14 @@
     if (TILESIM && !(cond)) MCHECK(t, 0, __VA_ARGS__); \
   } while (0)
 
+/* What other ranks wrote becomes visible: MPI 3.1 section 13.6.1's
+ * sync-barrier-sync. */
+static void settle(MPI_File fh) {
+  MPI_File_sync(fh);
+  MPI_Barrier(MPI_COMM_WORLD);
+  MPI_File_sync(fh);
+}
+
 static MPI_File open_new(mtest *t, const iotest *io, const char *name) {
   char p[640];
   MPI_File fh = MPI_FILE_NULL;
@@ -52,7 +60,7 @@ static void test_shared(mtest *t, const iotest *io) {
   int rec[4] = {rank, rank, rank, rank}, got[4] = {-1, -1, -1, -1};
   int rc = MPI_File_write_shared(fh, rec, 4, MPI_INT, MPI_STATUS_IGNORE);
   MCHECK(t, rc == MPI_SUCCESS, "write_shared: rc %d", rc);
-  MPI_Barrier(MPI_COMM_WORLD);
+  settle(fh);
   MPI_Offset pos = -1;
   MPI_File_get_position_shared(fh, &pos);
   SCHECK(t, pos == 4L * size, "the shared pointer after every rank's record: %lld", (long long)pos);
@@ -132,6 +140,7 @@ static void test_split_nonblocking(mtest *t, const iotest *io) {
   if (rc == MPI_SUCCESS) rc = MPI_File_write_at_all_end(fh, v, &st);
   MPI_Get_count(&st, MPI_INT, &n);
   MCHECK(t, rc == MPI_SUCCESS && n == 2, "write_at_all_begin/end: rc %d, count %d", rc, n);
+  settle(fh);
   MPI_File_seek(fh, (MPI_Offset)rank * 8, MPI_SEEK_SET);
   rc = MPI_File_read_all_begin(fh, w, 2, MPI_INT);
   if (rc == MPI_SUCCESS) rc = MPI_File_read_all_end(fh, w, &st);
@@ -147,7 +156,7 @@ static void test_split_nonblocking(mtest *t, const iotest *io) {
   MPI_Offset end = 8L * size;
   rc = MPI_File_iwrite_at_all(fh, end + 4L * rank, &x, 1, MPI_INT, &q[0]);
   MPI_Waitall(1, q, MPI_STATUSES_IGNORE);
-  MPI_Barrier(MPI_COMM_WORLD);
+  settle(fh);
   MPI_File_seek(fh, end + 4L * ((rank + 1) % size), MPI_SEEK_SET);
   rc |= MPI_File_iread_all(fh, &rx, 1, MPI_INT, &q[0]);
   MPI_Waitall(1, q, MPI_STATUSES_IGNORE);
@@ -155,7 +164,7 @@ static void test_split_nonblocking(mtest *t, const iotest *io) {
   MPI_File_seek_shared(fh, end + 4L * size, MPI_SEEK_SET);
   rc = MPI_File_iwrite_shared(fh, &y, 1, MPI_INT, &q[0]);
   MPI_Wait(&q[0], MPI_STATUS_IGNORE);
-  MPI_Barrier(MPI_COMM_WORLD);
+  settle(fh);
   MPI_Offset pos = -1;
   MPI_File_get_position_shared(fh, &pos);
   MCHECK(t, rc == MPI_SUCCESS, "iwrite_shared: rc %d", rc);
