@@ -14,6 +14,8 @@
 
 #include "coll.h"
 #include "dtype.h"
+#include "err.h"
+#include "errh.h"
 #include "mp.h"
 #include "p2p.h"
 #include "state.h"
@@ -34,6 +36,7 @@ static void table_release(void *p) {
   table *tb = p;
   for (int i = 0; i < tb->n; i++)
     if (tb->slot[i]) release(tb->slot[i]);   /* files left open at the rank's end */
+  tsm_errh_drop(tsm_get(), tb->null_eh);
   free(tb->slot);
   free(tb);
   tsmpi_fs_leave();
@@ -66,7 +69,10 @@ MPI_Errhandler tsmpi_file_null_eh(void) {
 
 void tsmpi_file_set_null_eh(MPI_Errhandler eh) {
   table *tb = tab(1);
-  if (tb) tb->null_eh = eh;
+  if (!tb) return;
+  tsm_errh_hold(tsm_get(), eh);
+  tsm_errh_drop(tsm_get(), tb->null_eh);
+  tb->null_eh = eh;
 }
 
 /* ==== errors ============================================================== */
@@ -74,19 +80,12 @@ void tsmpi_file_set_null_eh(MPI_Errhandler eh) {
 int tsmpi_file_raise(MPI_File fh, int cls, const char *fn, const char *fmt, ...) {
   tsmpi_file *f = tsmpi_file_get(fh);
   MPI_Errhandler eh = f ? f->eh : tsmpi_file_null_eh();
-  if (eh == MPI_ERRORS_RETURN) return cls;
   char msg[512];
   va_list ap;
   va_start(ap, fmt);
   vsnprintf(msg, sizeof msg, fmt, ap);
   va_end(ap);
-  /* MPI_ERRORS_ARE_FATAL: the run ends in the call's words. */
-  MPI_Comm c;
-  if (PMPI_Comm_dup(MPI_COMM_SELF, &c) == MPI_SUCCESS) {
-    PMPI_Comm_set_errhandler(c, MPI_ERRORS_ARE_FATAL);
-    tsmpi_raise(c, cls, fn, "%s", msg);
-  }
-  return tsmpi_raise(MPI_COMM_SELF, cls, fn, "%s", msg);
+  return tsm_raise_on(tsm_need(fn), eh, f ? fh : MPI_FILE_NULL, cls, fn, "%s", msg);
 }
 
 int tsmpi_file_check(MPI_File fh, const char *fn, tsmpi_file **f) {
@@ -249,6 +248,7 @@ static void drop_shared(tsmpi_ofile *sh) {
 }
 
 static void release(tsmpi_file *f) {
+  tsm_errh_drop(tsm_get(), f->eh);
   drop_shared(f->sh);
   tsmpi_view_free(&f->view);
   if (f->hints != MPI_INFO_NULL) PMPI_Info_free(&f->hints);

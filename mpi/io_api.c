@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "dtype.h"
+#include "errh.h"
 #include "io.h"
 #include "mp.h"
 #include "p2p.h"
@@ -352,16 +353,19 @@ int PMPI_File_get_info(MPI_File fh, MPI_Info *info_used) {
 
 int PMPI_File_set_errhandler(MPI_File file, MPI_Errhandler errhandler) {
   static const char fn[] = "MPI_File_set_errhandler";
-  if (errhandler != MPI_ERRORS_RETURN && errhandler != MPI_ERRORS_ARE_FATAL)
-    return tsmpi_file_raise(file, MPI_ERR_ARG, fn, "handler 0x%x is not one tilesim has for files",
-                            (unsigned)errhandler);
-  if (file == MPI_FILE_NULL) {
+  char why[96];
+  tsmpi_file *f = NULL;
+  if (file != MPI_FILE_NULL) {
+    int rc = tsmpi_file_check(file, fn, &f);
+    if (rc) return rc;
+  }
+  if (tsm_errh_check(tsm_need(fn), errhandler, TSM_EH_FILE, why)) return tsmpi_file_raise(file, MPI_ERR_ARG, fn, "%s", why);
+  if (!f) {
     tsmpi_file_set_null_eh(errhandler);
     return MPI_SUCCESS;
   }
-  tsmpi_file *f;
-  int rc = tsmpi_file_check(file, fn, &f);
-  if (rc) return rc;
+  tsm_errh_hold(tsm_get(), errhandler);
+  tsm_errh_drop(tsm_get(), f->eh);
   f->eh = errhandler;
   return MPI_SUCCESS;
 }
@@ -369,14 +373,16 @@ int PMPI_File_set_errhandler(MPI_File file, MPI_Errhandler errhandler) {
 int PMPI_File_get_errhandler(MPI_File file, MPI_Errhandler *errhandler) {
   static const char fn[] = "MPI_File_get_errhandler";
   if (!errhandler) return tsmpi_file_raise(file, MPI_ERR_ARG, fn, "errhandler is NULL");
+  /* The handle given is the program's to free, as MPI_Comm_get_errhandler's. */
   if (file == MPI_FILE_NULL) {
     *errhandler = tsmpi_file_null_eh();
-    return MPI_SUCCESS;
+  } else {
+    tsmpi_file *f;
+    int rc = tsmpi_file_check(file, fn, &f);
+    if (rc) return rc;
+    *errhandler = f->eh;
   }
-  tsmpi_file *f;
-  int rc = tsmpi_file_check(file, fn, &f);
-  if (rc) return rc;
-  *errhandler = f->eh;
+  tsm_errh_hold(tsm_get(), *errhandler);
   return MPI_SUCCESS;
 }
 

@@ -3,8 +3,9 @@
  * modes (create, exclusive, read-only, write-only, append, delete on close), explicit-offset
  * and individual-pointer reads and writes of every rank, seeks, positions and byte offsets,
  * reads past the end, sizes (set, preallocate, get), sync, atomicity, the amode and group
- * queries, the default error handler, and nonblocking reads and writes completed by MPI_Wait
- * and MPI_Test.
+ * queries, the default error handler, a handler of the program's (called, kept after
+ * MPI_Errhandler_free, given back, called by MPI_File_call_errhandler), hints, and nonblocking
+ * reads and writes completed by MPI_Wait and MPI_Test.
  *
  * Plain MPI C: it builds with tilesim's mpi.h and with Open MPI's mpicc, and prints the same
  * "io_files: P passed, F failed" line under both (Open MPI's ROMIO and OMPIO alike). */
@@ -248,6 +249,71 @@ static void test_nonblocking(mtest *t, const iotest *io) {
   MCHECK(t, !bad, "the file c as C reads it: %ld bytes", got);
 }
 
+/* The program's file handler finds this rank's record through
+ * MPI_COMM_SELF's name (no globals: tilesim's driver runs every rank in
+ * one process). */
+typedef struct {
+  int calls, code;
+  MPI_File file;
+} record_t;
+
+static void handler(MPI_File *fh, int *code, ...) {
+  char name[MPI_MAX_OBJECT_NAME];
+  int len;
+  void *p = NULL;
+  MPI_Comm_get_name(MPI_COMM_SELF, name, &len);
+  if (sscanf(name, "%p", &p) != 1 || !p) return;
+  record_t *r = p;
+  r->calls++;
+  r->code = *code;
+  r->file = *fh;
+}
+
+/* A handler of the program's; hints kept. */
+static void test_handlers(mtest *t, const iotest *io) {
+  char p[640], name[64];
+  record_t rec = {0, 0, MPI_FILE_NULL};
+  snprintf(name, sizeof name, "%p", (void *)&rec);
+  MPI_Comm_set_name(MPI_COMM_SELF, name);
+  MPI_Info info;
+  MPI_Info_create(&info);
+  MPI_Info_set(info, "access_style", "read_once");
+  MPI_File fh;
+  int rc = MPI_File_open(MPI_COMM_WORLD, iotest_path(io, "h", p, sizeof p), MPI_MODE_CREATE | MPI_MODE_WRONLY |
+                         MPI_MODE_DELETE_ON_CLOSE, info, &fh);
+  MPI_Info_free(&info);
+  MCHECK(t, rc == MPI_SUCCESS, "open h: rc %d", rc);
+  if (rc) return;
+  MPI_Errhandler eh, got = MPI_ERRHANDLER_NULL;
+  rc = MPI_File_create_errhandler(handler, &eh);
+  if (rc == MPI_SUCCESS) rc = MPI_File_set_errhandler(fh, eh);
+  if (rc == MPI_SUCCESS) rc = MPI_Errhandler_free(&eh);
+  MCHECK(t, rc == MPI_SUCCESS && eh == MPI_ERRHANDLER_NULL, "a handler of the program's set and freed: rc %d", rc);
+  char b[8];
+  rc = MPI_File_read_at(fh, 0, b, 8, MPI_CHAR, MPI_STATUS_IGNORE);
+  MCHECK(t, rec.calls == 1 && rec.file == fh && cls(rec.code) == MPI_ERR_ACCESS && rc == rec.code,
+         "a read of a write-only file under the program's handler: %d calls, class %d, rc %d", rec.calls,
+         cls(rec.code), rc);
+  rc = MPI_File_call_errhandler(fh, MPI_ERR_OTHER);
+  MCHECK(t, rc == MPI_SUCCESS && rec.calls == 2 && rec.code == MPI_ERR_OTHER, "MPI_File_call_errhandler: %d calls",
+         rec.calls);
+  MPI_File_get_errhandler(fh, &got);
+  MCHECK(t, got != MPI_ERRORS_RETURN && got != MPI_ERRHANDLER_NULL, "MPI_File_get_errhandler gave the predefined one");
+  if (got != MPI_ERRHANDLER_NULL) MPI_Errhandler_free(&got);
+  /* Hints: set ones are accepted; what comes back is the library's to
+   * choose (tilesim gives back those given). */
+  MPI_Info_create(&info);
+  MPI_Info_set(info, "cb_buffer_size", "1048576");
+  rc = MPI_File_set_info(fh, info);
+  MPI_Info_free(&info);
+  MPI_Info used;
+  int rc2 = MPI_File_get_info(fh, &used);
+  MCHECK(t, rc == MPI_SUCCESS && rc2 == MPI_SUCCESS, "set_info, get_info: rc %d %d", rc, rc2);
+  if (rc2 == MPI_SUCCESS) MPI_Info_free(&used);
+  MPI_File_close(&fh);
+  MPI_Comm_set_name(MPI_COMM_SELF, "MPI_COMM_SELF");
+}
+
 int main(int argc, char **argv) {
   mtest t;
   iotest io;
@@ -261,7 +327,8 @@ int main(int argc, char **argv) {
     test_pointers(&t, &io);
     test_sizes(&t, &io);
     test_nonblocking(&t, &io);
-    static const char *const names[] = {"a", "b", "c", NULL};
+    test_handlers(&t, &io);
+    static const char *const names[] = {"a", "b", "c", "h", NULL};
     iotest_done(&io, names);
   }
   int rc = mtest_done(&t);
