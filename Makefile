@@ -14,6 +14,7 @@
 #   make mpi             ./tile-mpi and ./bench-mpi with mpicc (mpirun -np P ...)
 #   make simgrid         the simulator against SimGrid's SMPI (tests/simgrid.sh)
 #   make install PREFIX=/usr/local   (tile, tilesim-bench, tilesim-plot, man pages)
+#   make uninstall PREFIX=/usr/local (every file make install wrote)
 #   make clean
 
 CC      ?= cc
@@ -542,11 +543,30 @@ install-files:
 	  > $(DESTDIR)$(PREFIX)/lib/pkgconfig/tilesim.pc
 	cp examples/*.c $(SHARE)/examples/
 
+# make uninstall PREFIX=... (and DESTDIR, MANDIR, DOCDIR as given to make
+# install): every file make install wrote, by the same lists; then the
+# folders that are tilesim's own, if nothing else is left in them (a file
+# of someone else's stays, and so does its folder).  PREFIX/bin, lib and the
+# man folders stay.
+UNINST = $(addprefix $(DESTDIR)$(PREFIX)/bin/,$(foreach p,$(PROGS),$(call iname,$(p))) $(if $(PLOT),tilesim-plot) $(MPITOOLS)) \
+         $(foreach f,$(wildcard doc/*.[1-9]),$(DESTDIR)$(MANDIR)/man$(subst .,,$(suffix $(f)))/$(notdir $(f))) \
+         $(addprefix $(DESTDIR)$(DOCDIR)/,$(notdir $(wildcard doc/*.md))) \
+         $(addprefix $(SHARE)/slicerrt/,$(notdir $(wildcard tests/data/slicerrt/*.contours)) README.md) \
+         $(addprefix $(SHARE)/rtstruct/,$(notdir $(wildcard tests/data/rtstruct/*.dcm)) README.md) \
+         $(addprefix $(SHARE)/examples/,$(notdir $(wildcard examples/*.c))) \
+         $(DESTDIR)$(PREFIX)/lib/libtilesim.a $(DESTDIR)$(PREFIX)/lib/pkgconfig/tilesim.pc \
+         $(addprefix $(DESTDIR)$(PREFIX)/include/tilesim/,mp.h tilesim.h mpi/mpi.h mpi/mpi_funcs.h mpi/tilesim_mpi.h)
+UNINSTDIRS = $(SHARE)/slicerrt $(SHARE)/rtstruct $(SHARE)/examples $(SHARE) $(DESTDIR)$(DOCDIR) \
+             $(DESTDIR)$(PREFIX)/include/tilesim/mpi $(DESTDIR)$(PREFIX)/include/tilesim
+uninstall:
+	rm -f $(UNINST)
+	@for d in $(UNINSTDIRS); do if [ -d "$$d" ]; then rmdir "$$d" 2>/dev/null || echo "make uninstall: $$d is not empty: left as it is"; fi; done
+
 clean:
 	rm -rf build $(PROGS) $(MPITOOLS) $(addsuffix -mpi,$(MPIPROGS))
 
 FORCE:
-.PHONY: all check valgrind tsan bench bench-tile bench-testbed bench-mpi bench-mpirun bench-load bench-cores install install-files clean mpi mpi-bins smpi-bins simgrid fuzz fuzz-bins FORCE \
+.PHONY: all check valgrind tsan bench bench-tile bench-testbed bench-mpi bench-mpirun bench-load bench-cores install install-files uninstall clean mpi mpi-bins smpi-bins simgrid fuzz fuzz-bins FORCE \
         mpi-probe
 .SECONDARY:
 
