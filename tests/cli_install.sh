@@ -133,7 +133,7 @@ EOF2
 # Without the data: a message saying where it looked and what to do, exit 1.
 mv "$P/share/tilesim" "$T/data"
 "$P/bin/tilesim-bench" --tiler --points 20 --input prostate_2.contours --repeat 1 > out 2> err; rc=$?
-[ $rc -eq 1 ] && grep -q '^bench: prostate_2.contours: not found.*share/tilesim.*--data DIR says where it is$' err \
+[ $rc -eq 1 ] && grep -q '^tilesim-bench: prostate_2.contours: not found.*share/tilesim.*--data DIR says where it is$' err \
   && ok || bad "no data: exit $rc, $(cat err)"
 # --data DIR: there.
 "$P/bin/tilesim-bench" --tiler --points 20 --input prostate_2.contours --data "$T/data" --repeat 1 > out 2> err \

@@ -31,7 +31,7 @@ grep '<polyline' "$T/a.svg" | sed -n 2p | sed 's/.*points="//; s/".*//' | tr ' '
 "$PLOT" lines "$T/a.csv" -x procs -y speedup,model --series points --labels sim,model -o "$T/b.svg" && [ "$(grep -c 'stroke-dasharray' "$T/b.svg")" -ge 2 ] && grep -q '>points=100, model<' "$T/b.svg" && ok || bad "two y columns"
 "$PLOT" lines "$T/a.csv" -x procs -y speedup --series points --where alloc=half --title "T <&>" --yzero -o "$T/a2.svg" && cmp -s "$T/a.svg" "$T/a2.svg" && ok || bad "two runs differ"
 # errors
-"$PLOT" lines "$T/a.csv" -x nope -y speedup -o "$T/c.svg" 2> "$T/err"; [ $? -eq 1 ] && grep -q 'not in its header' "$T/err" && [ ! -e "$T/c.svg" ] && ok || bad "unknown column"
+"$PLOT" lines "$T/a.csv" -x nope -y speedup -o "$T/c.svg" 2> "$T/err"; [ $? -eq 1 ] && grep -q "its header has no column 'nope' (-x)" "$T/err" && [ ! -e "$T/c.svg" ] && ok || bad "unknown column"
 "$PLOT" lines "$T/missing.csv" -x procs -y speedup -o "$T/c.svg" 2> "$T/err"; [ $? -eq 1 ] && grep -q 'cannot open' "$T/err" && ok || bad "missing CSV"
 printf 'a,b\n1,2,3\n' > "$T/bad.csv"
 "$PLOT" lines "$T/bad.csv" -x a -y b -o "$T/c.svg" 2> "$T/err"; [ $? -eq 1 ] && grep -q 'bad.csv:2: 3 fields' "$T/err" && ok || bad "ragged CSV: $(cat "$T/err")"

@@ -74,7 +74,9 @@ void args_show(const char *val, char *buf, size_t len);
 
 /* Bad usage, the one way every mode says it: "PROG: why" on stderr, arg (or
  * NULL) shown after it as args_show shows values, then the usage text.
- * Returns 2, the exit status of bad usage. */
+ * PROG, as a word of why and of the usage text too, is written as the name
+ * the program was run by (util/progname.h).  Returns 2, the exit status of
+ * bad usage. */
 int args_usage(const char *prog, const char *usage, const char *why, const char *arg);
 
 /* A real number in the shortest form that reads back exactly, with a short
