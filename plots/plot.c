@@ -198,7 +198,7 @@ static int lines(int argc, char **argv) {
     else if (strcmp(a, "--title") == 0) o.title = v;
     else if (strcmp(a, "--xlabel") == 0) o.xlabel = v;
     else if (strcmp(a, "--ylabel") == 0) o.ylabel = v;
-    else bad = args_name(a, v, "a file name", 0, err, sizeof err), out = v;
+    else bad = svg_name(a, v, err, sizeof err), out = v;
     if (bad) return usage(lines_usage, err, NULL);
     i++;
   }
@@ -339,7 +339,7 @@ static int surface(int argc, char **argv) {
         strcmp(a, "--join") != 0 && strcmp(a, "--thickness") != 0)
       return usage(surface_usage, a[0] == '-' ? "unknown option" : "unexpected argument", a);
     if (!v) return usage(surface_usage, "an option needs a value", a);
-    if (strcmp(a, "-o") == 0) bad = args_name(a, v, "a file name", 0, err, sizeof err), out = v;
+    if (strcmp(a, "-o") == 0) bad = svg_name(a, v, err, sizeof err), out = v;
     else if (strcmp(a, "--title") == 0) title = v;
     else if (strcmp(a, "--join") == 0) bad = stack_parse_join(a, v, &join, &join_dist, err, sizeof err) != 0;
     else if (strcmp(a, "--thickness") == 0) bad = stack_parse_thickness(a, v, &thickness, err, sizeof err) != 0;

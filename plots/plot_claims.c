@@ -186,7 +186,7 @@ int plot_claims(int argc, char **argv) {
       return usage(a[0] == '-' ? "unknown option" : "unexpected argument", a);
     if (!v) return usage("an option needs a value", a);
     if (strcmp(a, "-o") == 0) {
-      if (args_name(a, v, "a file name", 0, msg, sizeof msg) != 0) return usage(msg, NULL);
+      if (svg_name(a, v, msg, sizeof msg) != 0) return usage(msg, NULL);
       out = v;
     } else {
       title = v;

@@ -2,8 +2,12 @@
  * power of ten), one colour per series, markers, a legend box. */
 #include "svgchart.h"
 
+#include <ctype.h>
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
+
+#include "args.h"
 
 enum { W = 760, H = 480, ML = 78, MR = 190, MT = 48, MB = 62 };
 
@@ -17,6 +21,24 @@ void svg_text(FILE *f, const char *s) {
     else if (*s == '&') fputs("&amp;", f);
     else fputc(*s, f);
   }
+}
+
+int svg_name(const char *opt, const char *val, char *err, size_t errlen) {
+  if (args_name(opt, val, "a file name", 0, err, errlen) != 0) return -1;
+  size_t n = strlen(val);
+  static const char ext[] = ".svg";
+  int svg = n >= 4;
+  for (size_t k = 0; svg && k < 4; k++) svg = tolower((unsigned char)val[n - 4 + k]) == ext[k];
+  if (svg) return 0;
+  char shown[200];
+  const char *dot = strrchr(val, '.');
+  args_show(val, shown, sizeof shown);
+  if (dot && !strchr(dot, '/') && dot[1])
+    snprintf(err, errlen, "%s takes a file name ending in .svg: the plotter writes SVG only, not %s (%s); "
+             "a converter such as rsvg-convert makes other formats from it", opt, dot + 1, shown);
+  else
+    snprintf(err, errlen, "%s takes a file name ending in .svg: the plotter writes SVG only (%s)", opt, shown);
+  return -1;
 }
 
 /* A tick step for the range: 1, 2 or 5 times a power of ten, about 6 ticks. */

@@ -2,6 +2,7 @@
 #ifndef SVGCHART_H
 #define SVGCHART_H
 
+#include <stddef.h>
 #include <stdio.h>
 
 typedef struct {
@@ -22,5 +23,11 @@ void svgchart_write(FILE *f, const svgchart_opts *o, const svgchart_series *s, i
 
 /* The SVG text escapes of s, into f. */
 void svg_text(FILE *f, const char *s);
+
+/* opt's value names an SVG picture to write: a file name as args_name takes
+ * it, ending in .svg (any case), since SVG is all the plotter writes.  0, or
+ * -1 with "-o takes a file name ending in .svg: plot writes SVG only
+ * (x.png)" in err. */
+int svg_name(const char *opt, const char *val, char *err, size_t errlen);
 
 #endif

@@ -68,5 +68,17 @@ want=$("$TILE" $dcm --roi 'Lt Lung' --caps -q | awk -F, 'NR == 1 { for (i = 1; i
 printf 'C 4 0\n0 0\n4 0\n4 4\n0 4\nC 4 0\n2 2\n6 2\n6 6\n2 6\nC 4 1\n0 0\n4 0\n4 4\n0 4\n' > "$T/cross.contours"
 "$PLOT" surface "$T/cross.contours" -o "$T/s3.svg" 2> "$T/err"; [ $? -eq 1 ] && grep -q 'cross.contours:[0-9]*: .*cross' "$T/err" &&
   [ "$(wc -l < "$T/err")" -eq 1 ] && [ ! -e "$T/s3.svg" ] && ok || bad "bad stack: $(cat "$T/err")"
+# -o names an SVG file: another extension is refused with the reason,
+# before any work, in every mode; .SVG is fine
+for m in "lines $T/a.csv -x procs -y speedup" "surface $tp" "claims plots/claims_map.csv"; do
+  for o in x.png x.pdf x; do
+    # shellcheck disable=SC2086
+    "$PLOT" $m -o "$T/$o" > /dev/null 2> "$T/err"; rc=$?
+    ext=${o#x}; ext=${ext#.}
+    [ $rc -eq 2 ] && grep -q "^plot: -o takes a file name ending in .svg: the plotter writes SVG only" "$T/err" &&
+      { [ -z "$ext" ] || grep -q "not $ext (" "$T/err"; } && [ ! -e "$T/$o" ] && ok || bad "plot $m -o $o: exit $rc, $(cat "$T/err")"
+  done
+done
+"$PLOT" lines "$T/a.csv" -x procs -y speedup -o "$T/up.SVG" 2> "$T/err" && grep -q '^<svg ' "$T/up.SVG" && ok || bad "-o up.SVG: $(cat "$T/err")"
 echo "cli_plot: $pass passed, $fail failed"
 [ $fail -eq 0 ]
