@@ -276,6 +276,14 @@ int tilesim_exec(tilesim_machine *m, int nranks, mp_main rank_main, void *ud) {
     free(where);
     if (bad) status = bad_usage(prog, err, NULL);
   }
+  /* The files to write can be written, before the run: a run never ends
+   * in "cannot write" after all its work, nor prints a summary then. */
+  const char *outs[2] = {strcmp(m->stats, "-") != 0 && strcmp(m->stats, "none") != 0 ? m->stats : NULL, mc->trace};
+  for (int k = 0; k < 2 && status == 0 && me == 0; k++)
+    if (outs[k] && atomicfile_check(outs[k], err, sizeof err) != 0) {
+      fprintf(stderr, "%s: %s\n", prog, err);
+      status = 1;
+    }
   if (status == 0) {
     tilesim_stats st;
     int res = tilesim_run(m, n, rank_main, ud, &st, err, sizeof err);

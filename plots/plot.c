@@ -116,6 +116,14 @@ static int names(const char *opt, const char *val, int max, int *n, char *err, s
   return -1;
 }
 
+/* Can out be written?  Asked before any work: 0, or 1 after a message. */
+static int cannot_write(const char *out) {
+  char err[400];
+  if (atomicfile_check(out, err, sizeof err) == 0) return 0;
+  progname_eprintf("plot: %s\n", err);
+  return 1;
+}
+
 /* Write an SVG through draw(f, ud) to out, atomically; 0, or 1 after a message. */
 static int write_svg(const char *out, void (*draw)(FILE *f, void *ud), void *ud) {
   char err[400];
@@ -203,6 +211,7 @@ static int lines(int argc, char **argv) {
     i++;
   }
   if (!xc || !yc || !out) return usage(lines_usage, "lines needs -x, -y and -o", NULL);
+  if (cannot_write(out)) return 1;
   csvtab t;
   if (csvtab_read(in, &t, err, sizeof err) != 0) {
     progname_eprintf("plot: %s\n", err);
@@ -351,6 +360,7 @@ static int surface(int argc, char **argv) {
     i++;
   }
   if (!out) return usage(surface_usage, "surface needs -o", NULL);
+  if (cannot_write(out)) return 1;
   contour_stack s;
   char name[600], title_roi[600];
   rtstruct rs;

@@ -155,6 +155,10 @@ int bench_map(int argc, char **argv) {
   int u = parse(argc, argv, &o);
   if (u) return u;
   char err[400];
+  if (o.out && atomicfile_check(o.out, err, sizeof err) != 0) {   /* before any work */
+    progname_eprintf("bench: %s\n", err);
+    return 1;
+  }
   contour_stack stack = {0, NULL, 0};
   if (o.input) {
     if (contour_read(o.input, &stack, NULL, progname_as("bench"), err, sizeof err) != 0 ||

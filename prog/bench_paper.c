@@ -507,6 +507,10 @@ int bench_paper(int argc, char **argv) {
   if (ms.n == 0) ms.n = 1, ms.v[0] = rc.mc.sim.m;
   if (cs.n == 0) cs.n = 1, cs.v[0] = rc.mc.sim.c;
 
+  if (outpath && atomicfile_check(outpath, err, sizeof err) != 0) {   /* before any work */
+    progname_eprintf("bench: %s\n", err);
+    return 1;
+  }
   contour_stack stack = {0, NULL, 0};
   if (input) {
     if (contour_read(input, &stack, NULL, progname_as("bench"), err, sizeof err) != 0 ||

@@ -204,6 +204,14 @@ int bench_ring_main(int argc, char **argv) {
   ring g = {laps, work, all, 0, 0};
   mp_proc *pr = xmallocarray((size_t)procs, sizeof *pr);
   for (long r = 0; r < procs; r++) pr[r] = (mp_proc){ring_rank, &g};
+  const char *outs[2] = {tcsv, tjson};
+  for (int k = 0; k < 2; k++)   /* the traces can be written, before any work */
+    if (outs[k] && atomicfile_check(outs[k], err, sizeof err) != 0) {
+      progname_eprintf("bench: %s\n", err);
+      free(map);
+      free(pr);
+      return 1;
+    }
   /* With a trace: its size first, by the same run writing none (the
    * simulator is deterministic), and none above the limit. */
   if ((tcsv || tjson) && limit != ULLONG_MAX) {

@@ -303,6 +303,13 @@ int main(int argc, char **argv) {
     if (bad) return bad_usage(err, NULL);
   }
 
+  const char *outs[2] = {stats && strcmp(stats, "-") != 0 ? stats : NULL, mc.trace};
+  for (int k = 0; k < 2; k++)   /* the files can be written, before any work */
+    if (outs[k] && atomicfile_check(outs[k], err, sizeof err) != 0) {
+      fprintf(stderr, "%s: %s\n", prog, err);
+      return 1;
+    }
+
   loader *ld = loader_new(path, n, err, sizeof err);
   if (!ld) {
     fprintf(stderr, "%s: %s\n", prog, err);
