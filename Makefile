@@ -233,6 +233,10 @@ $(CHK)/plot: $(call chkobj,$(PLOTSRC)) $(CHK)/libtilesim.a
 
 $(CHK)/tests/%: $(CHK)/tests/%.o $(call chkobj,$(TESTLIB)) $(CHK)/libtsmpi.a $(CHK)/libtilesim.a
 	$(CC) $(CHKFLAGS) -o $@ $^ $(LDLIBS)
+# The plotter's charts, tested apart from the plotter's main.
+$(CHK)/tests/test_svgchart: $(CHK)/tests/test_svgchart.o $(CHK)/plots/svgchart.o $(call chkobj,$(TESTLIB)) \
+                            $(CHK)/libtsmpi.a $(CHK)/libtilesim.a
+	$(CC) $(CHKFLAGS) -o $@ $^ $(LDLIBS)
 
 # The tests and the sanitized programs the command-line tests drive; and,
 # where $(MPICC) (and $(SMPICC)) build an MPI program, the MPI programs for
@@ -319,6 +323,9 @@ $(VG)/tests/mpi/%.o: tests/mpi/%.c
 	$(CC) $(BASE) -O1 -g $(TSMPIPFLAGS) -Dmain=tsmpi_main_$* -MMD -MP -c $< -o $@
 $(foreach d,$(TSMPIDRIVERS),$(eval $(call tsmpi_driver_rules,$(d))))
 $(VG)/tests/%: $(VG)/tests/%.o $(patsubst %.c,$(VG)/%.o,$(TESTLIB)) $(VG)/libtsmpi.a $(VG)/libtilesim.a
+	$(CC) -g -o $@ $^ $(LDLIBS)
+$(VG)/tests/test_svgchart: $(VG)/tests/test_svgchart.o $(VG)/plots/svgchart.o $(patsubst %.c,$(VG)/%.o,$(TESTLIB)) \
+                           $(VG)/libtsmpi.a $(VG)/libtilesim.a
 	$(CC) -g -o $@ $^ $(LDLIBS)
 valgrind: $(addprefix $(VG)/tests/,$(TESTS))
 	@VALGRIND="valgrind -q --error-exitcode=99 --leak-check=full" \
@@ -447,8 +454,8 @@ bench: all
 	  { k = $$c["variant"] "," $$c["procs"] } f == 1 { a[k] = $$c["speedup"] } f == 2 && (k in a) { print k "," a[k] "," $$c["speedup"] }' \
 	  plots/variants_tc2000.csv plots/variants_xeon16.csv > build/variants.csv && mv build/variants.csv plots/variants.csv
 	$(PLOTS) plots/variants.csv -x procs -y tc2000,xeon16 --series variant \
-	  --labels "tc2000 500 points,16-core host 1000 points (dashed)" --yzero \
-	  --title "The variants: speedup, simulated tc2000 and the simulator calibrated to a 16-core host" \
+	  --labels "tc2000,16-core host" --yzero \
+	  --title "The variants: speedup on the simulated tc2000 (500 points) and on the simulator calibrated to a 16-core host (1000 points)" \
 	  --xlabel processors --ylabel "speedup T(1)/T(P)" -o plots/variants.svg
 	./bench --claims-map $(CLAIMS_GEN) --jobs $(JOBS) -o build/claims_map_gen.csv
 	./bench --claims-map $(CLAIMS_REAL) --jobs $(JOBS) -o build/claims_map_real.csv

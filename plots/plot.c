@@ -56,8 +56,8 @@ static void help(const char *name) {
         "the claims map.\n"
         "\n"
         "lines: one line per value of the --series column and per y column (up to 8; a\n"
-        "second y column dashed), from the rows that match every --where (up to 16),\n"
-        "points sorted by x.\n"
+        "value's lines share a colour and marker, later y columns dashed), from the rows\n"
+        "that match every --where (up to 16), points sorted by x.\n"
         "  -x COL             the x column\n"
         "  -y COL[,COL...]    the y columns, at most 8\n"
         "  --series COL[,COL...]  one line per value of COL (up to 4 columns: per\n"
@@ -307,7 +307,7 @@ static int lines(int argc, char **argv) {
       else if (sc && nsc > 1) snprintf(names[i], sizeof names[i], "%s", sv[a]);
       else if (sc) snprintf(names[i], sizeof names[i], "%s=%s", sc, sv[a]);
       else snprintf(names[i], sizeof names[i], "%s", yname);
-      s[i] = (svgchart_series){names[i], n, x, y, k > 0};
+      s[i] = (svgchart_series){names[i], n, x, y, k, a};   /* a size's columns: one colour, dashes */
     }
   o.xint = 1;
   chart c = {&o, s, ns};
