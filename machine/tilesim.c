@@ -49,6 +49,11 @@ int tilesim_machine_ranks(const tilesim_machine *m) {
 
 const char *tilesim_machine_help(void) { return machine_help; }
 
+char *tilesim_fmt_double(double v, char *buf, size_t len) {
+  args_fmt_double(v, buf, len);
+  return buf;
+}
+
 int tilesim_run_procs(const tilesim_machine *m, int nranks, const mp_proc *procs, tilesim_stats *st,
                       char *err, size_t errlen) {
   return launch_run(&m->mc, nranks, procs, st, err, errlen);

@@ -311,8 +311,8 @@ int bench_calibrate(int argc, char **argv) {
           break;
         }
         if (x.cost != serial_cost) {   /* (the variants may evaluate more nodes than the serial solver) */
-          progname_eprintf("bench: the threads run on %d processors gave %.17g, the serial solver %.17g\n", P,
-                  x.cost, serial_cost);
+          progname_eprintf("bench: the threads run on %d processors gave %s, the serial solver %s\n", P,
+                  ARGS_G(x.cost), ARGS_G(serial_cost));
           rcode = 1;
           break;
         }

@@ -195,8 +195,8 @@ static void fold(const plan *pl, const job *jb, outcome *acc, const outcome *o, 
     return;
   }
   if (o->cost != acc->cost || (exact_work && o->nodes != acc->nodes)) {   /* a checksum */
-    snprintf(acc->err, sizeof acc->err, "run %d of %d gave optimum %.17g (%llu nodes), run 1 %.17g (%llu)",
-             rep + 1, repeat, o->cost, (unsigned long long)o->nodes, acc->cost,
+    snprintf(acc->err, sizeof acc->err, "run %d of %d gave optimum %s (%llu nodes), run 1 %s (%llu)",
+             rep + 1, repeat, ARGS_G(o->cost), (unsigned long long)o->nodes, ARGS_G(acc->cost),
              (unsigned long long)acc->nodes);
     acc->ok = 0;
   }

@@ -163,7 +163,7 @@ int bench_stack(int argc, char **argv) {
         double v = mesh_volume(stack_mesh(ss));
         if (r == 0 && j == 0) cost = c, volume = v, bands = nb, bridges = nbr, caps = ncap;
         else if (c != cost || v != volume) {
-          progname_eprintf("bench: %s: -j %d gave another surface (cost %.17g, volume %.17g)\n", in[f], js[j], c, v);
+          progname_eprintf("bench: %s: -j %d gave another surface (cost %s, volume %s)\n", in[f], js[j], ARGS_G(c), ARGS_G(v));
           rc = 1;
         }
         stack_free(ss);

@@ -242,8 +242,8 @@ int bench_tiler(int argc, char **argv) {
   if (naive > 0) {
     if (one(NAIVE, naive, NULL, seed, kind, 1, &nv) != 0) return 1;
     if (ex500.wall > 0 && ex500.cost != nv.cost) {
-      progname_eprintf("bench: the exact solver and the naive reference disagree: %.17g, %.17g\n",
-              ex500.cost, nv.cost);
+      progname_eprintf("bench: the exact solver and the naive reference disagree: %s, %s\n",
+              ARGS_G(ex500.cost), ARGS_G(nv.cost));
       return 1;
     }
   }
@@ -251,7 +251,7 @@ int bench_tiler(int argc, char **argv) {
     if (one(STACK, 0, inputs[i], seed, kind, 1, &r) != 0) return 1;
   if (ex500.wall > 0 && nv.wall > 0)
     progname_eprintf("bench: at %d x %d the exact solver is %.0f times faster than the naive "
-                    "reference (%.0f times fewer nodes), with the same optimum %.17g\n",
-            naive, naive, nv.wall / ex500.wall, nv.nodes / ex500.nodes, nv.cost);
+                    "reference (%.0f times fewer nodes), with the same optimum %s\n",
+            naive, naive, nv.wall / ex500.wall, nv.nodes / ex500.nodes, ARGS_G(nv.cost));
   return 0;
 }

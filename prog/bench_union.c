@@ -74,8 +74,8 @@ static int one(const char *in, int star, int k, int n, int repeat) {
     int res = polyunion(cp, k, &u);
     double t = wallclock() - t0;
     if (res != 0) {
-      progname_eprintf("bench: %s: the union is refused (%s at %.17g %.17g)\n", in,
-              u.status == POLYUNION_PINCH ? "it pinches" : "rounding", u.at.x, u.at.y);
+      progname_eprintf("bench: %s: the union is refused (%s at %s %s)\n", in,
+              u.status == POLYUNION_PINCH ? "it pinches" : "rounding", ARGS_G(u.at.x), ARGS_G(u.at.y));
       rc = 1;
     } else if (r == 0) {
       groups = u.ngroups, loops = u.nloops;

@@ -102,5 +102,32 @@ else
   bad "tilesim-mpicc size.c: $(cat "$T/log")"
 fi
 
+# ---- numbers a person reads: the shortest form that reads back ----
+# shortest FILE: each number of each line that is not CSV has no more
+# significant digits than the shortest %.Ng that reads back as the same
+# double; prints the first that has more.
+shortest() {
+  awk '!/^[a-z_]+(,[^ ]*)+$/ {
+    n = split($0, w, /[ ()=,;:]+/)
+    for (i = 1; i <= n; i++) {
+      if (w[i] !~ /^-?[0-9]+\.[0-9]+(e[-+]?[0-9]+)?$/) continue
+      x = w[i] + 0
+      for (p = 1; p <= 17 && sprintf("%." p "g", x) + 0 != x; p++) ;
+      m = w[i]; sub(/e.*/, "", m); gsub(/[-.]/, "", m); sub(/^0+/, "", m)
+      if (length(m) > p) { print w[i] " (" p " digits read back): " $0; exit }
+    } }' "$1"
+}
+printf 'C 4 0\n-94.156006 -119.210999\n-94.156006 -119.210999\n10 0\n0 10\nC 3 1\n0 0\n10 0\n0 10\n' > "$T/dup.contours"
+"$BUILD/tile" "$T/dup.contours" > /dev/null 2> "$T/err"
+grep -q "dropped a duplicate of the point before (-94.156006 -119.210999)$" "$T/err" && ok \
+  || bad "a note's point: $(cat "$T/err")"
+"$BUILD/examples/ring" --procs 4 --net ideal --m 0.1 --per-byte 0 --stats none -- 1 8 > "$T/out" 2>&1
+grep -q '^ring: 0.4 s a lap' "$T/out" && ok || bad "ring's lap: $(cat "$T/out")"
+"$BUILD/tile" tests/data/rtstruct/dicompyler_rtss.dcm --roi 'Lt Lung' > "$T/out" 2> "$T/err"
+[ "$(wc -l < "$T/err")" -ge 10 ] && [ -z "$(shortest "$T/err")" ] && ok || bad "tile's notes: $(shortest "$T/err")"
+"$BUILD/examples/pingpong" --procs 2 --net ideal --m 1e-5 --per-byte 1e-9 --stats none -- 3 0 1024 > "$T/out" 2>&1
+grep -q '^pingpong: 0 bytes: round trip 2e-5 s, one way 1e-5 s' "$T/out" && [ -z "$(shortest "$T/out")" ] && ok \
+  || bad "pingpong's times: $(cat "$T/out")"
+
 echo "cli_messages: $pass passed, $fail failed"
 [ $fail -eq 0 ]

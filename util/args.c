@@ -81,6 +81,11 @@ void args_fmt_double(double v, char *buf, size_t len) {
   snprintf(buf, len, "%s", out);
 }
 
+char *args_g(char *buf, double v) {
+  args_fmt_double(v, buf, ARGS_G_LEN);
+  return buf;
+}
+
 /* [-]digits */
 static int whole_syntax(const char *s, int neg_ok) {
   if (*s == '-' && neg_ok) s++;

@@ -80,7 +80,15 @@ void args_show(const char *val, char *buf, size_t len);
 int args_usage(const char *prog, const char *usage, const char *why, const char *arg);
 
 /* A real number in the shortest form that reads back exactly, with a short
- * exponent ("1e9", "0.000275", "2.5e-5"): how the messages print ranges. */
+ * exponent ("1e9", "0.000275", "2.5e-5"): how the messages print ranges,
+ * and every number a message or summary line shows (CSV keeps %.17g). */
 void args_fmt_double(double v, char *buf, size_t len);
+
+/* The same into buf (ARGS_G_LEN bytes), returned: ARGS_G(x) gives a buffer
+ * that lasts to the end of the enclosing block, for a printf argument:
+ *     fprintf(stderr, "at (%s %s)\n", ARGS_G(p.x), ARGS_G(p.y)); */
+enum { ARGS_G_LEN = 40 };
+char *args_g(char *buf, double v);
+#define ARGS_G(v) args_g((char[ARGS_G_LEN]){0}, (v))
 
 #endif
