@@ -246,6 +246,7 @@ static void worker_fate(int st, char *buf, size_t len) {
  * are stopped then. */
 static int run_all(const plan *pl, outcome *out, int jobs, progress *pg, char *err, size_t errlen) {
   if (jobs > pl->njobs) jobs = pl->njobs;
+  progress_step(pg, 0, jobs <= 1 ? (long long)pl->njobs * pl->repeat : pl->njobs);   /* counted from the start */
   if (jobs <= 1) {   /* in rounds: every job once, then again, so that a slow
                         spell of the machine touches all jobs alike */
     for (int rep = 0; rep < pl->repeat; rep++)
@@ -262,7 +263,12 @@ static int run_all(const plan *pl, outcome *out, int jobs, progress *pg, char *e
   pid_t *pid = xmallocarray((size_t)jobs, sizeof *pid);
   for (int w = 0; w < jobs; w++) {
     int p[2] = {-1, -1};
-    if (pipe(p) != 0 || (pid[w] = fork()) < 0) {
+    /* stderr held across fork: the progress ticker is not writing a line
+     * into it then, so the worker's copy is not left locked. */
+    flockfile(stderr);
+    int forked = pipe(p) == 0 && (pid[w] = fork()) >= 0;
+    funlockfile(stderr);
+    if (!forked) {
       snprintf(err, errlen, "cannot start worker %d of %d: %s", w + 1, jobs, strerror(errno));
       if (p[0] >= 0) close(p[0]), close(p[1]);
       for (int k = 0; k < w; k++) close(fd[k]), kill(pid[k], SIGTERM), waitpid(pid[k], NULL, 0);
