@@ -549,6 +549,8 @@ install-files:
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' machine/tilesim.pc.in \
 	  > $(DESTDIR)$(PREFIX)/lib/pkgconfig/tilesim.pc
 	cp examples/*.c $(SHARE)/examples/
+	mkdir -p $(SHARE)/examples/mpi
+	cp examples/mpi/*.c $(SHARE)/examples/mpi/
 
 # make uninstall PREFIX=... (and DESTDIR, MANDIR, DOCDIR as given to make
 # install): every file make install wrote, by the same lists; then the
@@ -561,9 +563,10 @@ UNINST = $(addprefix $(DESTDIR)$(PREFIX)/bin/,$(foreach p,$(PROGS),$(call iname,
          $(addprefix $(SHARE)/slicerrt/,$(notdir $(wildcard tests/data/slicerrt/*.contours)) README.md) \
          $(addprefix $(SHARE)/rtstruct/,$(notdir $(wildcard tests/data/rtstruct/*.dcm)) README.md) \
          $(addprefix $(SHARE)/examples/,$(notdir $(wildcard examples/*.c))) \
+         $(addprefix $(SHARE)/examples/mpi/,$(notdir $(wildcard examples/mpi/*.c))) \
          $(DESTDIR)$(PREFIX)/lib/libtilesim.a $(DESTDIR)$(PREFIX)/lib/pkgconfig/tilesim.pc \
          $(addprefix $(DESTDIR)$(PREFIX)/include/tilesim/,mp.h tilesim.h mpi/mpi.h mpi/mpi_funcs.h mpi/tilesim_mpi.h)
-UNINSTDIRS = $(SHARE)/slicerrt $(SHARE)/rtstruct $(SHARE)/examples $(SHARE) $(DESTDIR)$(DOCDIR) \
+UNINSTDIRS = $(SHARE)/slicerrt $(SHARE)/rtstruct $(SHARE)/examples/mpi $(SHARE)/examples $(SHARE) $(DESTDIR)$(DOCDIR) \
              $(DESTDIR)$(PREFIX)/include/tilesim/mpi $(DESTDIR)$(PREFIX)/include/tilesim
 uninstall:
 	rm -f $(UNINST)
