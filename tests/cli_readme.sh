@@ -20,7 +20,9 @@ mk() { env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make --no-print-directory -s -C "
 
 S=$T/clone
 mkdir -p "$S/build/rel/lib"
-for f in $(git -C "$ROOT" ls-files | cut -d/ -f1 | sort -u); do ln -s "$ROOT/$f" "$S/$f"; done
+for f in "$ROOT"/* "$ROOT"/.[!.]*; do   # the tree, less what make writes
+  case ${f##*/} in build|tile|bench|tilesim-mpicc|tilesim-mpirun|*-mpi|'.[!.]*') ;; *) ln -s "$f" "$S/${f##*/}" ;; esac
+done
 for p in tile bench tilesim-mpicc tilesim-mpirun; do ln -sf "$ROOT/$BUILD/$p" "$S/$p"; done
 ln -s "$ROOT/$BUILD/plot" "$S/build/plot"
 ln -s "$ROOT/build/include" "$S/build/include"
