@@ -47,6 +47,7 @@ typedef struct {
                          junction joined without overlap moved onto the lower's
                          centroid */
   tiling t;
+  double cost;        /* its path's true cost (tiling_path_cost), scaled as the slices */
   char *err;
   int ntri;
   int (*tri)[3];      /* input ids >= 0; -1-s: Steiner s of lo, then of hi */
@@ -201,7 +202,8 @@ static void mesh_job(void *ud, int i) {
     tiling t2;
     b->span[0] = b->span[1] = 0;
     tiling_repeated_spans(&b->t, &b->span, 1);
-    b->pinched_cost = b->t.cost;
+    b->pinched_cost = tiling_path_cost(&b->t, b->lo.pt, b->lo.n, sl->z[b->slice], b->seen, b->hi.n,
+                                       sl->z[b->slice + 1], w->o->kind);
     b->pinched = 2;
     if (unpinch_solve(b->lo.pt, b->lo.n, sl->z[b->slice], b->seen, b->hi.n, sl->z[b->slice + 1], w->o->kind,
                       &t2) == 0) {
@@ -211,6 +213,8 @@ static void mesh_job(void *ud, int i) {
       b->pinched = 1;
     }
   }
+  b->cost = tiling_path_cost(&b->t, b->lo.pt, b->lo.n, sl->z[b->slice], b->seen, b->hi.n, sl->z[b->slice + 1],
+                             w->o->kind);
   int steps = b->t.m + b->t.n;
   b->ntri = steps + b->lo.ntri + b->hi.ntri;
   b->tri = xmallocarray((size_t)b->ntri, sizeof *b->tri);
@@ -542,7 +546,7 @@ static void assemble(const work *w, stack_surface *ss) {
     r->lo = positions(sl, b->j->lo, r->nlo), r->hi = positions(sl, b->j->hi, r->nhi);
     r->m = b->lo.n, r->n = b->hi.n;
     r->bridges = b->lo.nbridges + b->hi.nbridges;
-    r->cost = ldexp(b->t.quanta, b->t.qexp + w->deg * sl->scale);
+    r->cost = unscale(sl, b->cost, w->deg);   /* the path's true cost, not its sum of quanta */
     r->area = b->area, r->volume = b->volume;
     r->nodes = (unsigned long long)b->t.count.nodes;
     r->spans = b->pinched ? 1 : 0;
@@ -611,7 +615,7 @@ static void to_file_units(const work *w, const contour_stack *s, stack_surface *
   const slices *sl = w->sl;
   mesh *me = &ss->me;
   double cost = 0;
-  for (int i = 0; i < w->nb; i++) cost += w->b[i].t.cost;
+  for (int i = 0; i < w->nb; i++) cost += w->b[i].cost;
   ss->cost = unscale(sl, cost, w->deg);
   ss->area = unscale(sl, fin->area, 2);
   ss->volume = unscale(sl, fin->volume, 3);
