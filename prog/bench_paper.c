@@ -259,16 +259,14 @@ static int run_all(const plan *pl, outcome *out, int jobs, progress *pg, char *e
   }
   fflush(stdout);
   fflush(stderr);
+  /* One thread at the forks: the progress's own would leave the workers a
+   * lock it might hold (the allocator's). */
+  progress_hold(pg);
   int *fd = xmallocarray((size_t)jobs, sizeof *fd);
   pid_t *pid = xmallocarray((size_t)jobs, sizeof *pid);
   for (int w = 0; w < jobs; w++) {
     int p[2] = {-1, -1};
-    /* stderr held across fork: the progress ticker is not writing a line
-     * into it then, so the worker's copy is not left locked. */
-    flockfile(stderr);
-    int forked = pipe(p) == 0 && (pid[w] = fork()) >= 0;
-    funlockfile(stderr);
-    if (!forked) {
+    if (pipe(p) != 0 || (pid[w] = fork()) < 0) {
       snprintf(err, errlen, "cannot start worker %d of %d: %s", w + 1, jobs, strerror(errno));
       if (p[0] >= 0) close(p[0]), close(p[1]);
       for (int k = 0; k < w; k++) close(fd[k]), kill(pid[k], SIGTERM), waitpid(pid[k], NULL, 0);
@@ -290,6 +288,7 @@ static int run_all(const plan *pl, outcome *out, int jobs, progress *pg, char *e
     close(p[1]);
     fd[w] = p[0];
   }
+  progress_resume(pg);
   int done = 0, *next = xcalloc((size_t)jobs, sizeof *next), bad = 0, failed = -1;
   for (int w = 0; w < jobs; w++) next[w] = w;
   struct pollfd *pf = xmallocarray((size_t)jobs, sizeof *pf);

@@ -54,5 +54,15 @@ if longer "$t0" "$t1" 0.8; then
     && ok || bad "ring on threads: no progress: $(cat "$T/err")"
 else echo "cli_progress: skipped: ring on threads took under 0.8 s here (no long run to show)"; fi
 
+# Workers forked beside the thread that repeats the lines: a fork that
+# copied that thread's lock (the allocator's, while it started) left a
+# worker waiting for ever.  Twenty short sweeps on two workers, each given
+# two minutes (a hang, not a slow machine, runs past that).
+hung=0
+for k in 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20; do
+  timeout 120 "$BUILD/bench" --points 30 --procs 1..3 --jobs 2 --seed $k > /dev/null 2>&1 || hung=$((hung + 1))
+done
+[ $hung -eq 0 ] && ok || bad "$hung of 20 sweeps on two workers hung or failed"
+
 echo "cli_progress: $pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -127,15 +127,25 @@ void progress_note(progress *p, const char *text) {
   pthread_mutex_unlock(&p->lock);
 }
 
+void progress_hold(progress *p) {
+  if (!p || !p->ticking) return;
+  pthread_mutex_lock(&p->lock);
+  p->stop = 1;
+  pthread_cond_signal(&p->wake);
+  pthread_mutex_unlock(&p->lock);
+  pthread_join(p->ticker, NULL);
+  p->ticking = 0;
+}
+
+void progress_resume(progress *p) {
+  if (!p || p->ticking || p->every <= 0) return;
+  p->stop = 0;
+  p->ticking = pthread_create(&p->ticker, NULL, tick, p) == 0;
+}
+
 void progress_end(progress *p) {
   if (!p) return;
-  if (p->ticking) {
-    pthread_mutex_lock(&p->lock);
-    p->stop = 1;
-    pthread_cond_signal(&p->wake);
-    pthread_mutex_unlock(&p->lock);
-    pthread_join(p->ticker, NULL);
-  }
+  progress_hold(p);
   if (p->tty) fputs("\r\033[K", stderr);
   else if (p->lines && p->note[0])
     fprintf(stderr, "%s: %s, done in %.0f s\n", p->prog, p->note, wallclock() - p->start);

@@ -29,6 +29,13 @@ void progress_step(progress *p, long long done, long long total);
  * (a terminal's line, or a log line every few seconds with the time). */
 void progress_note(progress *p, const char *text);
 
+/* Stop the thread that repeats the lines, and start it again: around a
+ * fork(), which must not copy a process in which that thread may hold a
+ * lock (the allocator's: the child would wait for it for ever).  Lines
+ * still come from the steps meanwhile.  NULL is fine. */
+void progress_hold(progress *p);
+void progress_resume(progress *p);
+
 /* The run is over: clear the terminal line, or write the last log line;
  * free p (NULL is fine). */
 void progress_end(progress *p);
