@@ -24,7 +24,8 @@ head -1 "$T/a.svg" | grep -q '^<svg xmlns="http://www.w3.org/2000/svg"' && tail 
 [ "$(grep -c '<polyline' "$T/a.svg")" -eq 2 ] && ok || bad "expected 2 lines (points 100 and 200)"
 grep -q '>points=100<' "$T/a.svg" && grep -q '>points=200<' "$T/a.svg" && ok || bad "legend"
 grep -q 'T &lt;&amp;&gt;' "$T/a.svg" && ok || bad "title not escaped"
-[ "$(grep -c '<circle' "$T/a.svg")" -eq 6 ] && ok || bad "the size row should be filtered out (6 markers)"
+# markers (open: white inside): 2 lines of 3 points, and one a legend entry
+[ "$(grep -c 'fill="white" stroke-width="1.5"' "$T/a.svg")" -eq 8 ] && ok || bad "the size row should be filtered out (6 markers and 2 in the legend)"
 # points sorted by x: 200's rows come 1, 3, 2 in the file, its line 1, 2, 3 left to right
 grep '<polyline' "$T/a.svg" | sed -n 2p | sed 's/.*points="//; s/".*//' | tr ' ' '\n' | cut -d, -f1 |
   awk 'NR > 1 && $1 <= last { bad = 1 } { last = $1 } END { exit bad || NR != 3 }' && ok || bad "a line's points are not in x order"
