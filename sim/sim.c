@@ -317,7 +317,7 @@ static void chan_grow(rank *r) {
 }
 
 /* The latest arrival on the channel r -> dst (-infinity if none yet). */
-static double *chan_last(rank *r, int dst) {
+static inline double *chan_last(rank *r, int dst) {
   if (2 * (r->nchan + 1) > r->capchan) chan_grow(r);
   unsigned h = chan_hash(dst, r->capchan);
   while (r->chans[h].dst >= 0) {
@@ -482,7 +482,7 @@ static int sim_sleep(mp *self, double seconds) {
 /* When len bytes that leave processor a->proc for d's at t arrive, and the
  * network's state charged for them: the machine's model (sim.h) but for
  * the sender's processor costs (the caller's) and the channel's order. */
-static double wire(sim *s, const rank *a, const rank *d, double t, size_t len, int tag, uint64_t id) {
+static inline double wire(sim *s, const rank *a, const rank *d, double t, size_t len, int tag, uint64_t id) {
   const sim_config *c = &s->cfg;
   if (d->proc == a->proc) return t + c->local;
   if (c->net == SIM_NET_BUS) {
@@ -501,7 +501,7 @@ static double wire(sim *s, const rank *a, const rank *d, double t, size_t len, i
 /* r sends len bytes to d: its processor's costs (cpu.h's send cost, LogGP's
  * o), which move its clock; their total in *o and the start of the first
  * in *t0 (r's clock if none). */
-static void send_costs(sim *s, rank *r, const rank *d, size_t len, double *t0, double *o) {
+static inline void send_costs(sim *s, rank *r, const rank *d, size_t len, double *t0, double *o) {
   const sim_config *c = &s->cfg;
   *t0 = r->now;
   *o = 0;
@@ -519,7 +519,7 @@ static void send_costs(sim *s, rank *r, const rank *d, size_t len, double *t0, d
 
 /* The latest arrival on the channel a -> d so far, moved to arrival if
  * that is later (non-overtaking); the arrival in send order. */
-static double in_order(rank *a, int dst, double arrival) {
+static inline double in_order(rank *a, int dst, double arrival) {
   double *last = chan_last(a, dst);
   if (arrival < *last) arrival = *last;
   *last = arrival;
@@ -529,7 +529,7 @@ static double in_order(rank *a, int dst, double arrival) {
 /* m (its arrival set) into d's mailbox: a receiver blocked on a matching
  * message wakes when the earliest arrives (cpu.h: later if it has gone to
  * sleep; its first waker r pays o_wake, where remote). */
-static void deliver(sim *s, rank *r, rank *d, msg *m, int remote) {
+static inline void deliver(sim *s, rank *r, rank *d, msg *m, int remote) {
   const sim_config *c = &s->cfg;
   box_insert(d, m);
   if (d->state == R_BLOCKED && matches(m, d->wait_src, d->wait_tag)) {
@@ -546,7 +546,7 @@ static void deliver(sim *s, rank *r, rank *d, msg *m, int remote) {
   }
 }
 
-static void count_sent(sim *s, rank *r, int tag, size_t len) {
+static inline void count_sent(sim *s, rank *r, int tag, size_t len) {
   r->st.sent++;
   r->st.bytes_sent += (long long)len;
   if (tag >= 0 && tag < SIM_TAGS) r->st.sent_tag[tag]++;
