@@ -153,16 +153,26 @@ static int own_comm(tsm *R, tsm_comm *c, const char *fn, MPI_Comm *out) {
   return MPI_SUCCESS;
 }
 
-/* Rank 0's: the shared object of n parts. */
+/* Rank 0's: the shared object of n parts, held by rank 0. */
 static tsm_wshared *shared_new(int n) {
   tsm_wshared *sh = xcalloc(1, sizeof *sh + (size_t)n * sizeof(tsm_wpart));
   pthread_mutex_init(&sh->mu, NULL);
-  sh->refs = n;
+  sh->refs = 1;
   sh->n = n;
   return sh;
 }
 
+/* Another rank holds it once it has its address (before any rank can let
+ * go of it: that comes after the barrier that ends the making, or when the
+ * run stops, and then the others' broadcast fails). */
+static void hold_shared(tsm_wshared *sh) {
+  pthread_mutex_lock(&sh->mu);
+  sh->refs++;
+  pthread_mutex_unlock(&sh->mu);
+}
+
 static void drop_shared(tsm_wshared *sh) {
+  if (!sh) return;
   pthread_mutex_lock(&sh->mu);
   int last = --sh->refs == 0;
   pthread_mutex_unlock(&sh->mu);
@@ -221,6 +231,8 @@ static int make(const wmake *m, MPI_Info info, MPI_Comm comm, MPI_Win *win) {
   rc = own_comm(R, c, fn, &own);
   tsm_unlabel(R);
   if (rc) return rc;
+  /* In the rank's table at once, so that a run stopped while it is made
+   * frees it (its handle is the program's when the call returns). */
   tsm_win *w = xcalloc(1, sizeof *w);
   w->flavor = m->flavor;
   w->comm = own;
@@ -229,10 +241,16 @@ static int make(const wmake *m, MPI_Info info, MPI_Comm comm, MPI_Win *win) {
   w->size = c->size;
   w->eh = MPI_ERRORS_ARE_FATAL;
   w->hints = hints;
+  wtable *t = table(R);
+  int slot = 0;
+  while (slot < t->n && t->w[slot]) slot++;
+  if (slot == t->n) t->w = xreallocarray(t->w, (size_t)++t->n, sizeof *t->w);
+  t->w[slot] = w;
+  w->h = (MPI_Win)(HK_WIN << H_KIND_SHIFT | H_CREATED | slot);
   /* Rank 0 makes the shared object; each rank fills in its part. */
-  tsm_wshared *sh = w->rank == 0 ? shared_new(w->size) : NULL;
+  tsm_wshared *sh = w->sh = w->rank == 0 ? shared_new(w->size) : NULL;
   PMPI_Bcast(&sh, (int)sizeof sh, MPI_BYTE, 0, own);
-  w->sh = sh;
+  if (w->rank != 0) hold_shared(w->sh = sh);
   tsm_wpart *p = &sh->part[w->rank];
   p->wrank = R->wrank;
   p->size = m->flavor == MPI_WIN_FLAVOR_DYNAMIC ? 0 : m->size;
@@ -245,13 +263,6 @@ static int make(const wmake *m, MPI_Info info, MPI_Comm comm, MPI_Win *win) {
   }
   PMPI_Barrier(own);   /* every part in */
   if (m->baseptr) *(void **)m->baseptr = p->base;
-
-  wtable *t = table(R);
-  int slot = 0;
-  while (slot < t->n && t->w[slot]) slot++;
-  if (slot == t->n) t->w = xreallocarray(t->w, (size_t)++t->n, sizeof *t->w);
-  t->w[slot] = w;
-  w->h = (MPI_Win)(HK_WIN << H_KIND_SHIFT | H_CREATED | slot);
   *win = w->h;
   return MPI_SUCCESS;
 }
