@@ -7,7 +7,7 @@
  *   impl      1: tilesim implements it; 0: it is declared so that programs
  *             compile, and defined as a stub that stops the run when called
  *             (tsmpi_unimplemented in mpi/funcs.h: "rank 3 called
- *             MPI_Win_create, which tilesim does not implement").
+ *             MPI_Comm_spawn, which tilesim does not implement").
  *   chapter   ENV (environment, errors), P2P, DTYPE (datatypes), COLL
  *             (collectives and operations), COMM (groups, communicators,
  *             attributes), TOPO, INFO, SPAWN, RMA, EXT (external interfaces,
