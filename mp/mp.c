@@ -44,6 +44,16 @@ int mp_busy(mp *self, double seconds) { HOOKED(int, self, self->ops->busy(self, 
 
 int mp_sleep(mp *self, double seconds) { HOOKED(int, self, self->ops->sleep_for(self, seconds)); }
 
+double mp_transfer(mp *self, int src, int dst, size_t len, double at) {
+  if (!self->ops->transfer) return at;
+  HOOKED(double, self, self->ops->transfer(self, src, dst, len, at));
+}
+
+int mp_notify(mp *self, int dst, int tag, double at) {
+  if (!self->ops->notify) return mp_send(self, dst, tag, NULL, 0);
+  HOOKED(int, self, self->ops->notify(self, dst, tag, at));
+}
+
 const char *mp_strerror(int code) {
   switch (code) {
   case MP_OK: return "ok";

@@ -149,6 +149,33 @@ typedef struct {
 } mp_hooks;
 void   mp_set_hooks(const mp_hooks *hooks);
 
+/* --- one-sided transfers (for layers above mp: an MPI library's RMA) -----
+ * The ranks of a run share one address space, so a layer can move data
+ * between them itself (a remote put is a memcpy); these two calls give such
+ * a move its cost on the machine, as a network card's transfer would have
+ * (MPI's one-sided operations: doc/mpi-semantics.md). */
+
+/* A transfer of len bytes from rank src's processor to rank dst's starting
+ * at time `at`, charged on the network as a message of len bytes would be
+ * (the model's latency and bytes, the bus, the links of its route, the NIC's
+ * gap), after every earlier message and transfer from src to dst (the
+ * channel's order), but delivered to no mailbox and taken by no receive.
+ * When src is the calling rank and `at` its clock, its processor pays what
+ * a send's does (LogGP's o, cpu.h's send costs: its clock moves on, and the
+ * transfer starts after); otherwise no processor is involved (a network
+ * card acting for src).  The statistics count it as a message src sent
+ * and dst received.  Returns the arrival time (>= at).  Real backends:
+ * `at`, nothing charged. */
+double mp_transfer(mp *self, int src, int dst, size_t len, double at);
+
+/* A 0-byte message with tag from the calling rank to dst that arrives at
+ * `at` (its clock if that is later), charged nothing on the network or the
+ * sender's processor: how a layer wakes a rank (dst may be the caller) at
+ * a time it computed with mp_transfer.  It is received like any message
+ * (and counted as one).  MP_OK, MP_ERANK, MP_EARG or MP_ESTOPPED as
+ * mp_send.  Real backends: an mp_send of 0 bytes. */
+int    mp_notify(mp *self, int dst, int tag, double at);
+
 /* --- private part: what a backend fills in ------------------------------ */
 
 typedef struct mp_ops {
@@ -162,6 +189,10 @@ typedef struct mp_ops {
   int (*sleep_for)(mp *, double seconds);   /* not "sleep": SimGrid's headers define that macro */
   void (*stop)(mp *, int code, const char *why);   /* mp_abort's effect on the run */
   void (*call)(mp *, const char *name, int begin); /* mp_call_begin/end, where traced */
+  /* One-sided transfers: NULL where time is the host's (mp.c then does
+   * what the contract says for real backends). */
+  double (*transfer)(mp *, int src, int dst, size_t len, double at);
+  int (*notify)(mp *, int dst, int tag, double at);
 } mp_ops;
 
 /* A backend's per-rank state begins with this struct.  The backend calls

@@ -613,7 +613,7 @@ static void mpm_stop(mp *self, int code, const char *why) {
 }
 
 static const mp_ops mpm_ops = {mpm_send, mpm_recv, mpm_probe, mpm_compute, mpm_time,
-                               mpm_wait, mpm_busy, mpm_sleep, mpm_stop, NULL};
+                               mpm_wait, mpm_busy, mpm_sleep, mpm_stop, NULL, NULL, NULL};
 
 /* ==== the machine ========================================================= */
 

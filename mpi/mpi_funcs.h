@@ -7,7 +7,7 @@
  *   impl      1: tilesim implements it; 0: it is declared so that programs
  *             compile, and defined as a stub that stops the run when called
  *             (tsmpi_unimplemented in mpi/funcs.h: "rank 3 called
- *             MPI_Win_create, which tilesim does not implement").
+ *             MPI_Comm_spawn, which tilesim does not implement").
  *   chapter   ENV (environment, errors), P2P, DTYPE (datatypes), COLL
  *             (collectives and operations), COMM (groups, communicators,
  *             attributes), TOPO, INFO, SPAWN, RMA, EXT (external interfaces,
@@ -651,68 +651,68 @@ TSMPI_FN(0, SPAWN, int, MPI_Unpublish_name, (const char *service_name, MPI_Info 
          (service_name, info, port_name))
 
 /* --- RMA --- */
-TSMPI_FN(0, RMA, int, MPI_Accumulate, (const void *origin_addr, int origin_count,
+TSMPI_FN(1, RMA, int, MPI_Accumulate, (const void *origin_addr, int origin_count,
          MPI_Datatype origin_datatype, int target_rank, MPI_Aint target_disp, int target_count,
          MPI_Datatype target_datatype, MPI_Op op, MPI_Win win),
          (origin_addr, origin_count, origin_datatype, target_rank, target_disp, target_count,
          target_datatype, op, win))
-TSMPI_FN(0, RMA, int, MPI_Compare_and_swap, (const void *origin_addr, const void *compare_addr,
+TSMPI_FN(1, RMA, int, MPI_Compare_and_swap, (const void *origin_addr, const void *compare_addr,
          void *result_addr, MPI_Datatype datatype, int target_rank, MPI_Aint target_disp, MPI_Win win),
          (origin_addr, compare_addr, result_addr, datatype, target_rank, target_disp, win))
-TSMPI_FN(0, RMA, int, MPI_Fetch_and_op, (const void *origin_addr, void *result_addr, MPI_Datatype datatype,
+TSMPI_FN(1, RMA, int, MPI_Fetch_and_op, (const void *origin_addr, void *result_addr, MPI_Datatype datatype,
          int target_rank, MPI_Aint target_disp, MPI_Op op, MPI_Win win),
          (origin_addr, result_addr, datatype, target_rank, target_disp, op, win))
-TSMPI_FN(0, RMA, int, MPI_Get, (void *origin_addr, int origin_count, MPI_Datatype origin_datatype,
+TSMPI_FN(1, RMA, int, MPI_Get, (void *origin_addr, int origin_count, MPI_Datatype origin_datatype,
          int target_rank, MPI_Aint target_disp, int target_count, MPI_Datatype target_datatype, MPI_Win win),
          (origin_addr, origin_count, origin_datatype, target_rank, target_disp, target_count,
          target_datatype, win))
-TSMPI_FN(0, RMA, int, MPI_Get_accumulate, (const void *origin_addr, int origin_count,
+TSMPI_FN(1, RMA, int, MPI_Get_accumulate, (const void *origin_addr, int origin_count,
          MPI_Datatype origin_datatype, void *result_addr, int result_count, MPI_Datatype result_datatype,
          int target_rank, MPI_Aint target_disp, int target_count, MPI_Datatype target_datatype, MPI_Op op,
          MPI_Win win),
          (origin_addr, origin_count, origin_datatype, result_addr, result_count, result_datatype,
          target_rank, target_disp, target_count, target_datatype, op, win))
-TSMPI_FN(0, RMA, int, MPI_Put, (const void *origin_addr, int origin_count, MPI_Datatype origin_datatype,
+TSMPI_FN(1, RMA, int, MPI_Put, (const void *origin_addr, int origin_count, MPI_Datatype origin_datatype,
          int target_rank, MPI_Aint target_disp, int target_count, MPI_Datatype target_datatype, MPI_Win win),
          (origin_addr, origin_count, origin_datatype, target_rank, target_disp, target_count,
          target_datatype, win))
-TSMPI_FN(0, RMA, int, MPI_Raccumulate, (const void *origin_addr, int origin_count,
+TSMPI_FN(1, RMA, int, MPI_Raccumulate, (const void *origin_addr, int origin_count,
          MPI_Datatype origin_datatype, int target_rank, MPI_Aint target_disp, int target_count,
          MPI_Datatype target_datatype, MPI_Op op, MPI_Win win, MPI_Request *request),
          (origin_addr, origin_count, origin_datatype, target_rank, target_disp, target_count,
          target_datatype, op, win, request))
-TSMPI_FN(0, RMA, int, MPI_Rget, (void *origin_addr, int origin_count, MPI_Datatype origin_datatype,
+TSMPI_FN(1, RMA, int, MPI_Rget, (void *origin_addr, int origin_count, MPI_Datatype origin_datatype,
          int target_rank, MPI_Aint target_disp, int target_count, MPI_Datatype target_datatype, MPI_Win win,
          MPI_Request *request),
          (origin_addr, origin_count, origin_datatype, target_rank, target_disp, target_count,
          target_datatype, win, request))
-TSMPI_FN(0, RMA, int, MPI_Rget_accumulate, (const void *origin_addr, int origin_count,
+TSMPI_FN(1, RMA, int, MPI_Rget_accumulate, (const void *origin_addr, int origin_count,
          MPI_Datatype origin_datatype, void *result_addr, int result_count, MPI_Datatype result_datatype,
          int target_rank, MPI_Aint target_disp, int target_count, MPI_Datatype target_datatype, MPI_Op op,
          MPI_Win win, MPI_Request *request),
          (origin_addr, origin_count, origin_datatype, result_addr, result_count, result_datatype,
          target_rank, target_disp, target_count, target_datatype, op, win, request))
-TSMPI_FN(0, RMA, int, MPI_Rput, (const void *origin_addr, int origin_count, MPI_Datatype origin_datatype,
+TSMPI_FN(1, RMA, int, MPI_Rput, (const void *origin_addr, int origin_count, MPI_Datatype origin_datatype,
          int target_rank, MPI_Aint target_disp, int target_count, MPI_Datatype target_datatype, MPI_Win win,
          MPI_Request *request),
          (origin_addr, origin_count, origin_datatype, target_rank, target_disp, target_count,
          target_datatype, win, request))
-TSMPI_FN(0, RMA, int, MPI_Win_allocate, (MPI_Aint size, int disp_unit, MPI_Info info, MPI_Comm comm,
+TSMPI_FN(1, RMA, int, MPI_Win_allocate, (MPI_Aint size, int disp_unit, MPI_Info info, MPI_Comm comm,
          void *baseptr, MPI_Win *win),
          (size, disp_unit, info, comm, baseptr, win))
-TSMPI_FN(0, RMA, int, MPI_Win_allocate_shared, (MPI_Aint size, int disp_unit, MPI_Info info, MPI_Comm comm,
+TSMPI_FN(1, RMA, int, MPI_Win_allocate_shared, (MPI_Aint size, int disp_unit, MPI_Info info, MPI_Comm comm,
          void *baseptr, MPI_Win *win),
          (size, disp_unit, info, comm, baseptr, win))
-TSMPI_FN(0, RMA, int, MPI_Win_attach, (MPI_Win win, void *base, MPI_Aint size),
+TSMPI_FN(1, RMA, int, MPI_Win_attach, (MPI_Win win, void *base, MPI_Aint size),
          (win, base, size))
-TSMPI_FN(0, RMA, int, MPI_Win_call_errhandler, (MPI_Win win, int errorcode),
+TSMPI_FN(1, RMA, int, MPI_Win_call_errhandler, (MPI_Win win, int errorcode),
          (win, errorcode))
-TSMPI_FN(0, RMA, int, MPI_Win_complete, (MPI_Win win),
+TSMPI_FN(1, RMA, int, MPI_Win_complete, (MPI_Win win),
          (win))
-TSMPI_FN(0, RMA, int, MPI_Win_create, (void *base, MPI_Aint size, int disp_unit, MPI_Info info,
+TSMPI_FN(1, RMA, int, MPI_Win_create, (void *base, MPI_Aint size, int disp_unit, MPI_Info info,
          MPI_Comm comm, MPI_Win *win),
          (base, size, disp_unit, info, comm, win))
-TSMPI_FN(0, RMA, int, MPI_Win_create_dynamic, (MPI_Info info, MPI_Comm comm, MPI_Win *win),
+TSMPI_FN(1, RMA, int, MPI_Win_create_dynamic, (MPI_Info info, MPI_Comm comm, MPI_Win *win),
          (info, comm, win))
 TSMPI_FN(1, RMA, int, MPI_Win_create_errhandler, (MPI_Win_errhandler_function *win_errhandler_fn,
          MPI_Errhandler *errhandler),
@@ -720,62 +720,62 @@ TSMPI_FN(1, RMA, int, MPI_Win_create_errhandler, (MPI_Win_errhandler_function *w
 TSMPI_FN(1, RMA, int, MPI_Win_create_keyval, (MPI_Win_copy_attr_function *win_copy_attr_fn,
          MPI_Win_delete_attr_function *win_delete_attr_fn, int *win_keyval, void *extra_state),
          (win_copy_attr_fn, win_delete_attr_fn, win_keyval, extra_state))
-TSMPI_FN(0, RMA, int, MPI_Win_delete_attr, (MPI_Win win, int win_keyval),
+TSMPI_FN(1, RMA, int, MPI_Win_delete_attr, (MPI_Win win, int win_keyval),
          (win, win_keyval))
-TSMPI_FN(0, RMA, int, MPI_Win_detach, (MPI_Win win, const void *base),
+TSMPI_FN(1, RMA, int, MPI_Win_detach, (MPI_Win win, const void *base),
          (win, base))
-TSMPI_FN(0, RMA, int, MPI_Win_fence, (int assert, MPI_Win win),
+TSMPI_FN(1, RMA, int, MPI_Win_fence, (int assert, MPI_Win win),
          (assert, win))
-TSMPI_FN(0, RMA, int, MPI_Win_flush, (int rank, MPI_Win win),
+TSMPI_FN(1, RMA, int, MPI_Win_flush, (int rank, MPI_Win win),
          (rank, win))
-TSMPI_FN(0, RMA, int, MPI_Win_flush_all, (MPI_Win win),
+TSMPI_FN(1, RMA, int, MPI_Win_flush_all, (MPI_Win win),
          (win))
-TSMPI_FN(0, RMA, int, MPI_Win_flush_local, (int rank, MPI_Win win),
+TSMPI_FN(1, RMA, int, MPI_Win_flush_local, (int rank, MPI_Win win),
          (rank, win))
-TSMPI_FN(0, RMA, int, MPI_Win_flush_local_all, (MPI_Win win),
+TSMPI_FN(1, RMA, int, MPI_Win_flush_local_all, (MPI_Win win),
          (win))
-TSMPI_FN(0, RMA, int, MPI_Win_free, (MPI_Win *win),
+TSMPI_FN(1, RMA, int, MPI_Win_free, (MPI_Win *win),
          (win))
 TSMPI_FN(1, RMA, int, MPI_Win_free_keyval, (int *win_keyval),
          (win_keyval))
-TSMPI_FN(0, RMA, int, MPI_Win_get_attr, (MPI_Win win, int win_keyval, void *attribute_val, int *flag),
+TSMPI_FN(1, RMA, int, MPI_Win_get_attr, (MPI_Win win, int win_keyval, void *attribute_val, int *flag),
          (win, win_keyval, attribute_val, flag))
-TSMPI_FN(0, RMA, int, MPI_Win_get_errhandler, (MPI_Win win, MPI_Errhandler *errhandler),
+TSMPI_FN(1, RMA, int, MPI_Win_get_errhandler, (MPI_Win win, MPI_Errhandler *errhandler),
          (win, errhandler))
-TSMPI_FN(0, RMA, int, MPI_Win_get_group, (MPI_Win win, MPI_Group *group),
+TSMPI_FN(1, RMA, int, MPI_Win_get_group, (MPI_Win win, MPI_Group *group),
          (win, group))
-TSMPI_FN(0, RMA, int, MPI_Win_get_info, (MPI_Win win, MPI_Info *info_used),
+TSMPI_FN(1, RMA, int, MPI_Win_get_info, (MPI_Win win, MPI_Info *info_used),
          (win, info_used))
-TSMPI_FN(0, RMA, int, MPI_Win_get_name, (MPI_Win win, char *win_name, int *resultlen),
+TSMPI_FN(1, RMA, int, MPI_Win_get_name, (MPI_Win win, char *win_name, int *resultlen),
          (win, win_name, resultlen))
-TSMPI_FN(0, RMA, int, MPI_Win_lock, (int lock_type, int rank, int assert, MPI_Win win),
+TSMPI_FN(1, RMA, int, MPI_Win_lock, (int lock_type, int rank, int assert, MPI_Win win),
          (lock_type, rank, assert, win))
-TSMPI_FN(0, RMA, int, MPI_Win_lock_all, (int assert, MPI_Win win),
+TSMPI_FN(1, RMA, int, MPI_Win_lock_all, (int assert, MPI_Win win),
          (assert, win))
-TSMPI_FN(0, RMA, int, MPI_Win_post, (MPI_Group group, int assert, MPI_Win win),
+TSMPI_FN(1, RMA, int, MPI_Win_post, (MPI_Group group, int assert, MPI_Win win),
          (group, assert, win))
-TSMPI_FN(0, RMA, int, MPI_Win_set_attr, (MPI_Win win, int win_keyval, void *attribute_val),
+TSMPI_FN(1, RMA, int, MPI_Win_set_attr, (MPI_Win win, int win_keyval, void *attribute_val),
          (win, win_keyval, attribute_val))
-TSMPI_FN(0, RMA, int, MPI_Win_set_errhandler, (MPI_Win win, MPI_Errhandler errhandler),
+TSMPI_FN(1, RMA, int, MPI_Win_set_errhandler, (MPI_Win win, MPI_Errhandler errhandler),
          (win, errhandler))
-TSMPI_FN(0, RMA, int, MPI_Win_set_info, (MPI_Win win, MPI_Info info),
+TSMPI_FN(1, RMA, int, MPI_Win_set_info, (MPI_Win win, MPI_Info info),
          (win, info))
-TSMPI_FN(0, RMA, int, MPI_Win_set_name, (MPI_Win win, const char *win_name),
+TSMPI_FN(1, RMA, int, MPI_Win_set_name, (MPI_Win win, const char *win_name),
          (win, win_name))
-TSMPI_FN(0, RMA, int, MPI_Win_shared_query, (MPI_Win win, int rank, MPI_Aint *size, int *disp_unit,
+TSMPI_FN(1, RMA, int, MPI_Win_shared_query, (MPI_Win win, int rank, MPI_Aint *size, int *disp_unit,
          void *baseptr),
          (win, rank, size, disp_unit, baseptr))
-TSMPI_FN(0, RMA, int, MPI_Win_start, (MPI_Group group, int assert, MPI_Win win),
+TSMPI_FN(1, RMA, int, MPI_Win_start, (MPI_Group group, int assert, MPI_Win win),
          (group, assert, win))
-TSMPI_FN(0, RMA, int, MPI_Win_sync, (MPI_Win win),
+TSMPI_FN(1, RMA, int, MPI_Win_sync, (MPI_Win win),
          (win))
-TSMPI_FN(0, RMA, int, MPI_Win_test, (MPI_Win win, int *flag),
+TSMPI_FN(1, RMA, int, MPI_Win_test, (MPI_Win win, int *flag),
          (win, flag))
-TSMPI_FN(0, RMA, int, MPI_Win_unlock, (int rank, MPI_Win win),
+TSMPI_FN(1, RMA, int, MPI_Win_unlock, (int rank, MPI_Win win),
          (rank, win))
-TSMPI_FN(0, RMA, int, MPI_Win_unlock_all, (MPI_Win win),
+TSMPI_FN(1, RMA, int, MPI_Win_unlock_all, (MPI_Win win),
          (win))
-TSMPI_FN(0, RMA, int, MPI_Win_wait, (MPI_Win win),
+TSMPI_FN(1, RMA, int, MPI_Win_wait, (MPI_Win win),
          (win))
 
 /* --- EXT --- */

@@ -317,7 +317,7 @@ static void chan_grow(rank *r) {
 }
 
 /* The latest arrival on the channel r -> dst (-infinity if none yet). */
-static double *chan_last(rank *r, int dst) {
+static inline double *chan_last(rank *r, int dst) {
   if (2 * (r->nchan + 1) > r->capchan) chan_grow(r);
   unsigned h = chan_hash(dst, r->capchan);
   while (r->chans[h].dst >= 0) {
@@ -479,54 +479,110 @@ static int sim_sleep(mp *self, double seconds) {
   return MP_OK;
 }
 
+/* When len bytes that leave processor a->proc for d's at t arrive, and the
+ * network's state charged for them: the machine's model (sim.h) but for
+ * the sender's processor costs (the caller's) and the channel's order. */
+static inline double wire(sim *s, const rank *a, const rank *d, double t, size_t len, int tag, uint64_t id) {
+  const sim_config *c = &s->cfg;
+  if (d->proc == a->proc) return t + c->local;
+  if (c->net == SIM_NET_BUS) {
+    double start = t > s->bus_free ? t : s->bus_free;
+    s->bus_free = start + c->m + (double)len * c->per_byte;
+    return s->bus_free;
+  }
+  if (c->net == SIM_NET_IDEAL) return t + c->m + (double)len * c->per_byte;
+  if (c->net == SIM_NET_TOPOLOGY)   /* link.h; id names the message in a trace */
+    return links_send(s->links, a->proc, d->proc, t, len, s->tr, a->base.rank, d->base.rank, tag, id);
+  double *nic = &s->nic[a->proc], inject = t > *nic ? t : *nic;
+  *nic = inject + c->g;
+  return inject + (len > 1 ? (double)(len - 1) * c->G : 0) + c->L;
+}
+
+/* r sends len bytes to d: its processor's costs (cpu.h's send cost, LogGP's
+ * o), which move its clock; their total in *o and the start of the first
+ * in *t0 (r's clock if none). */
+static inline void send_costs(sim *s, rank *r, const rank *d, size_t len, double *t0, double *o) {
+  const sim_config *c = &s->cfg;
+  *t0 = r->now;
+  *o = 0;
+  if (d->proc == r->proc) return;
+  if (s->cpu && cpu_send_cost(&c->cpu, len) > 0) {   /* cpu.h: the send's processor time */
+    *o = cpu_send_cost(&c->cpu, len);
+    *t0 = overhead(s, r, *o);
+  }
+  if (c->net == SIM_NET_LOGGP) {
+    double t1 = overhead(s, r, c->o);
+    if (*o == 0) *t0 = t1;
+    *o += c->o;
+  }
+}
+
+/* The latest arrival on the channel a -> d so far, moved to arrival if
+ * that is later (non-overtaking); the arrival in send order. */
+static inline double in_order(rank *a, int dst, double arrival) {
+  double *last = chan_last(a, dst);
+  if (arrival < *last) arrival = *last;
+  *last = arrival;
+  return arrival;
+}
+
+/* m (its arrival set) into d's mailbox: a receiver blocked on a matching
+ * message wakes when the earliest arrives (cpu.h: later if it has gone to
+ * sleep; its first waker r pays o_wake, where remote). */
+static inline void deliver(sim *s, rank *r, rank *d, msg *m, int remote) {
+  const sim_config *c = &s->cfg;
+  box_insert(d, m);
+  if (d->state == R_BLOCKED && matches(m, d->wait_src, d->wait_tag)) {
+    double resume = m->arrival;
+    if (s->cpu && remote) {
+      resume = cpu_resume(&c->cpu, d->since, m->arrival);
+      if (d->wake == INFINITY && cpu_asleep(&c->cpu, d->since, m->arrival) && c->cpu.o_wake > 0)
+        overhead(s, r, c->cpu.o_wake);
+    }
+    if (resume < d->wake) {
+      d->wake = resume;
+      evq_set(s->q, d->base.rank, resume, s->seq++);
+    }
+  }
+}
+
+static inline void count_sent(sim *s, rank *r, int tag, size_t len) {
+  r->st.sent++;
+  r->st.bytes_sent += (long long)len;
+  if (tag >= 0 && tag < SIM_TAGS) r->st.sent_tag[tag]++;
+  s->st.messages++;
+  s->st.bytes += (long long)len;
+}
+
+/* A send's checks: MP_OK or the error (the run's error recorded). */
+static int check_send(sim *s, rank *r, const char *call, int dst, int tag, const void *buf, size_t len) {
+  if (dst < 0 || dst >= s->n) {
+    fail(s, "rank %d: %s to rank %d, which does not exist (%d ranks)", r->base.rank, call, dst, s->n);
+    return MP_ERANK;
+  }
+  if (tag < 0) {
+    fail(s, "rank %d: %s to rank %d with tag %d: tags are >= 0", r->base.rank, call, dst, tag);
+    return MP_EARG;
+  }
+  if (len && !buf) {
+    fail(s, "rank %d: %s of %zu bytes from a NULL buffer", r->base.rank, call, len);
+    return MP_EARG;
+  }
+  return MP_OK;
+}
+
 static int sim_send(mp *self, int dst, int tag, const void *buf, size_t len) {
   rank *r = (rank *)self;
   sim *s = r->s;
   if (s->stopped) return stopped_call(s, r);
   s->st.events++;
   r->probe_spins = 0;
-  if (dst < 0 || dst >= s->n) {
-    fail(s, "rank %d: mp_send to rank %d, which does not exist (%d ranks)", r->base.rank, dst,
-         s->n);
-    return MP_ERANK;
-  }
-  if (tag < 0) {
-    fail(s, "rank %d: mp_send to rank %d with tag %d: tags are >= 0", r->base.rank, dst, tag);
-    return MP_EARG;
-  }
-  if (len && !buf) {
-    fail(s, "rank %d: mp_send of %zu bytes from a NULL buffer", r->base.rank, len);
-    return MP_EARG;
-  }
-  const sim_config *c = &s->cfg;
+  int rc = check_send(s, r, "mp_send", dst, tag, buf, len);
+  if (rc != MP_OK) return rc;
   rank *d = &s->ranks[dst];
-  double before = r->now, t0 = r->now, o = 0, arrival;
-  int remote = d->proc != r->proc;
-  if (remote && s->cpu && cpu_send_cost(&c->cpu, len) > 0) {   /* cpu.h: the send's processor time */
-    o = cpu_send_cost(&c->cpu, len);
-    t0 = overhead(s, r, o);
-  }
-  if (!remote) {
-    arrival = t0 + c->local;
-  } else if (c->net == SIM_NET_BUS) {
-    double start = r->now > s->bus_free ? r->now : s->bus_free;
-    s->bus_free = start + c->m + (double)len * c->per_byte;
-    arrival = s->bus_free;
-  } else if (c->net == SIM_NET_IDEAL) {
-    arrival = r->now + c->m + (double)len * c->per_byte;
-  } else if (c->net == SIM_NET_TOPOLOGY) {   /* link.h; s->seq is the message's id */
-    arrival = links_send(s->links, r->proc, d->proc, r->now, len, s->tr, r->base.rank, dst, tag, s->seq);
-  } else {
-    double t1 = overhead(s, r, c->o);
-    if (o == 0) t0 = t1;
-    o += c->o;
-    double *nic = &s->nic[r->proc], inject = r->now > *nic ? r->now : *nic;
-    *nic = inject + c->g;
-    arrival = inject + (len > 1 ? (double)(len - 1) * c->G : 0) + c->L;
-  }
-  double *last = chan_last(r, dst);
-  if (arrival < *last) arrival = *last; /* non-overtaking */
-  *last = arrival;
+  double before = r->now, t0, o;
+  send_costs(s, r, d, len, &t0, &o);
+  double arrival = in_order(r, dst, wire(s, r, d, r->now, len, tag, s->seq));
 
   msg *m = msg_new(s, len);
   m->sent = t0;
@@ -536,30 +592,67 @@ static int sim_send(mp *self, int dst, int tag, const void *buf, size_t len) {
   m->tag = tag;
   m->len = len;
   if (len) memcpy(m->data, buf, len);
-  box_insert(d, m);
-
-  r->st.sent++;
-  r->st.bytes_sent += (long long)len;
-  if (tag < SIM_TAGS) r->st.sent_tag[tag]++;
-  s->st.messages++;
-  s->st.bytes += (long long)len;
+  count_sent(s, r, tag, len);
   if (s->tr) trace_send(s->tr, r->base.rank, r->proc, t0, o, dst, tag, len, m->seq, arrival);
-
-  /* A receiver blocked on a matching message wakes when the earliest arrives
-   * (cpu.h: later if it has gone to sleep; its first waker pays o_wake). */
-  if (d->state == R_BLOCKED && matches(m, d->wait_src, d->wait_tag)) {
-    double resume = arrival;
-    if (s->cpu && remote) {
-      resume = cpu_resume(&c->cpu, d->since, arrival);
-      if (d->wake == INFINITY && cpu_asleep(&c->cpu, d->since, arrival) && c->cpu.o_wake > 0)
-        overhead(s, r, c->cpu.o_wake);
-    }
-    if (resume < d->wake) {
-      d->wake = resume;
-      evq_set(s->q, dst, resume, s->seq++);
-    }
-  }
+  deliver(s, r, d, m, d->proc != r->proc);
   if (r->now > before) moved(s, r);
+  return MP_OK;
+}
+
+/* mp_transfer: wire's charge without a message.  The transfer counts as a
+ * message sent by src and received by dst in the statistics. */
+static double sim_transfer(mp *self, int src, int dst, size_t len, double at) {
+  rank *r = (rank *)self;
+  sim *s = r->s;
+  if (s->stopped) {
+    stopped_call(s, r);
+    return at;
+  }
+  s->st.events++;
+  r->probe_spins = 0;
+  if (src < 0 || src >= s->n || dst < 0 || dst >= s->n || !(at >= 0) || isinf(at)) {
+    fail(s, "rank %d: mp_transfer(src=%d, dst=%d, at=%g): ranks are 0..%d, times finite and >= 0",
+         r->base.rank, src, dst, at, s->n - 1);
+    return at;
+  }
+  rank *a = &s->ranks[src], *d = &s->ranks[dst];
+  double before = r->now, t = at;
+  if (a == r && at == r->now) {
+    double t0, o;
+    send_costs(s, r, d, len, &t0, &o);
+    t = r->now;
+  }
+  double arrival = in_order(a, dst, wire(s, a, d, t, len, 0, s->seq++));
+  count_sent(s, a, -1, len);
+  d->st.received++;
+  d->st.bytes_received += (long long)len;
+  s->st.received++;
+  if (r->now > before) moved(s, r);
+  return arrival;
+}
+
+/* mp_notify: a 0-byte message whose arrival the caller chose. */
+static int sim_notify(mp *self, int dst, int tag, double at) {
+  rank *r = (rank *)self;
+  sim *s = r->s;
+  if (s->stopped) return stopped_call(s, r);
+  s->st.events++;
+  r->probe_spins = 0;
+  int rc = check_send(s, r, "mp_notify", dst, tag, NULL, 0);
+  if (rc != MP_OK) return rc;
+  if (!(at >= 0) || isinf(at)) {
+    fail(s, "rank %d: mp_notify(dst=%d, at=%g): the time must be finite and >= 0", r->base.rank, dst, at);
+    return MP_EARG;
+  }
+  msg *m = msg_new(s, 0);
+  m->sent = r->now;
+  m->arrival = at > r->now ? at : r->now;
+  m->seq = s->seq++;
+  m->src = r->base.rank;
+  m->tag = tag;
+  m->len = 0;
+  count_sent(s, r, tag, 0);
+  deliver(s, r, &s->ranks[dst], m, 0);
   return MP_OK;
 }
 
@@ -727,8 +820,8 @@ static void sim_call(mp *self, const char *name, int begin) {
   }
 }
 
-static const mp_ops sim_ops = {sim_send, sim_recv, sim_probe, sim_compute, sim_time,
-                               sim_wait, sim_busy,  sim_sleep, sim_stop,  sim_call};
+static const mp_ops sim_ops = {sim_send, sim_recv,  sim_probe, sim_compute, sim_time,   sim_wait,
+                               sim_busy, sim_sleep, sim_stop,  sim_call,    sim_transfer, sim_notify};
 
 /* ==== the machine ========================================================= */
 

@@ -131,11 +131,11 @@ static int write_doc(const char *path) {
 }
 
 /* A rank that calls an unimplemented function stops the run. */
-static void calls_win_create(mp *self, void *ud) {
+static void calls_comm_spawn(mp *self, void *ud) {
   (void)self;
-  MPI_Win w;
+  MPI_Comm c;
   *(int *)ud = 1;
-  MPI_Win_create(NULL, 0, 1, MPI_INFO_NULL, MPI_COMM_WORLD, &w);
+  MPI_Comm_spawn("x", MPI_ARGV_NULL, 1, MPI_INFO_NULL, 0, MPI_COMM_WORLD, &c, MPI_ERRCODES_IGNORE);
   *(int *)ud = 2;   /* never: the call does not return */
 }
 static void waits(mp *self, void *ud) {
@@ -175,11 +175,11 @@ int main(int argc, char **argv) {
   char err[512];
   sim *s = sim_new(&cfg, 2, err, sizeof err);
   int reached = 0;
-  mp_proc procs[2] = {{waits, NULL}, {calls_win_create, &reached}};
+  mp_proc procs[2] = {{waits, NULL}, {calls_comm_spawn, &reached}};
   int rc = s ? sim_run(s, procs, err, sizeof err) : -2;
-  CHECK(rc == -1 && strstr(err, "rank 1 called MPI_Win_create, which tilesim does not implement") && reached == 1 &&
+  CHECK(rc == -1 && strstr(err, "rank 1 called MPI_Comm_spawn, which tilesim does not implement") && reached == 1 &&
             sim_stats_get(s)->aborted && sim_stats_get(s)->abort_code == 1,
-        "calling MPI_Win_create: sim_run %d, \"%s\", reached %d", rc, err, reached);
+        "calling MPI_Comm_spawn: sim_run %d, \"%s\", reached %d", rc, err, reached);
   if (s) sim_free(s);
 
   /* doc/mpi-support.md's list is the list's. */
