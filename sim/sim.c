@@ -38,6 +38,7 @@
 #include "coro.h"
 #include "evq.h"
 #include "errlog.h"
+#include "mailbox.h"
 #include "trace.h"
 #include "wallclock.h"
 #include "xmem.h"
@@ -115,21 +116,8 @@ int sim_net_parse(const char *name, sim_net *net) {
 /* ==== data ================================================================ */
 
 enum {
-  MSG_INLINE = 64,             /* payloads up to this many bytes live in the message */
   STOPPED_CALLS_MAX = 1000000, /* calls after a stop before a rank is abandoned */
   PROBE_SPINS_MAX = 1000000    /* fruitless probes at one clock before we stop */
-};
-
-typedef struct msg msg;
-struct msg {
-  msg *prev, *next;        /* in the receiver's mailbox, by (arrival, seq) */
-  double sent;             /* the sender's clock at mp_send */
-  double arrival;          /* when it can be received */
-  uint64_t seq;            /* send order, machine-wide; the message id in traces */
-  int src, tag;
-  size_t len;
-  unsigned char *data;     /* inl, or a heap block for longer payloads */
-  unsigned char inl[MSG_INLINE];
 };
 
 typedef struct {
@@ -152,7 +140,7 @@ struct rank {
   double wake;             /* the time it is queued to wake at, INFINITY if none */
   double since;            /* when it blocked */
   int deadlocked;          /* woken by the deadlock report */
-  msg *head, *tail;        /* mailbox: messages sent to it, sent or arrived */
+  mbox box;                /* messages sent to it, sent or arrived */
   chan *chans;             /* last arrival per destination, open addressing */
   int nchan, capchan;
   long stopped_calls;      /* mp calls since the run stopped */
@@ -184,7 +172,7 @@ struct sim {
   int cpu;                 /* the processor-side model (cpu.h) is on */
   unsigned char *seen;     /* per processor, for slow_factor */
   int ran;
-  msg *pool;               /* free messages */
+  mstore msgs;             /* spent messages */
   FILE *tcsv, *tjson;
   int count_csv, count_json;   /* sim_trace_count */
   void (*tick)(void *, double, long long);   /* sim_progress */
@@ -241,61 +229,7 @@ static PRINTF(2, 3) void warn(sim *s, const char *fmt, ...) {
   va_end(ap);
 }
 
-/* ==== messages, mailboxes, channels ======================================= */
-
-static msg *msg_new(sim *s, size_t len) {
-  msg *m = s->pool;
-  if (m)
-    s->pool = m->next;
-  else
-    m = xmalloc(sizeof *m);
-  m->data = len <= MSG_INLINE ? m->inl : xmalloc(len);
-  return m;
-}
-
-static void msg_free(sim *s, msg *m) {
-  if (m->data != m->inl) free(m->data);
-  m->next = s->pool;
-  s->pool = m;
-}
-
-/* Insert m into d's mailbox by (arrival, seq); its seq is the largest yet. */
-static void box_insert(rank *d, msg *m) {
-  msg *p = d->tail;
-  while (p && p->arrival > m->arrival) p = p->prev;
-  m->prev = p;
-  m->next = p ? p->next : d->head;
-  if (m->next)
-    m->next->prev = m;
-  else
-    d->tail = m;
-  if (p)
-    p->next = m;
-  else
-    d->head = m;
-}
-
-static void box_unlink(rank *r, msg *m) {
-  if (m->prev)
-    m->prev->next = m->next;
-  else
-    r->head = m->next;
-  if (m->next)
-    m->next->prev = m->prev;
-  else
-    r->tail = m->prev;
-}
-
-static inline int matches(const msg *m, int src, int tag) {
-  return (src < 0 || m->src == src) && (tag < 0 || m->tag == tag);
-}
-
-/* The earliest (arrival, seq) message matching src and tag, or NULL. */
-static msg *box_find(const rank *r, int src, int tag) {
-  for (msg *m = r->head; m; m = m->next)
-    if (matches(m, src, tag)) return m;
-  return NULL;
-}
+/* ==== channels ============================================================ */
 
 static inline unsigned chan_hash(int dst, int cap) {
   return ((unsigned)dst * 2654435761u) & (unsigned)(cap - 1);
@@ -528,7 +462,7 @@ static int sim_send(mp *self, int dst, int tag, const void *buf, size_t len) {
   if (arrival < *last) arrival = *last; /* non-overtaking */
   *last = arrival;
 
-  msg *m = msg_new(s, len);
+  msg *m = msg_new(&s->msgs, len);
   m->sent = t0;
   m->arrival = arrival;
   m->seq = s->seq++;
@@ -536,7 +470,7 @@ static int sim_send(mp *self, int dst, int tag, const void *buf, size_t len) {
   m->tag = tag;
   m->len = len;
   if (len) memcpy(m->data, buf, len);
-  box_insert(d, m);
+  box_insert(&d->box, m);
 
   r->st.sent++;
   r->st.bytes_sent += (long long)len;
@@ -547,7 +481,7 @@ static int sim_send(mp *self, int dst, int tag, const void *buf, size_t len) {
 
   /* A receiver blocked on a matching message wakes when the earliest arrives
    * (cpu.h: later if it has gone to sleep; its first waker pays o_wake). */
-  if (d->state == R_BLOCKED && matches(m, d->wait_src, d->wait_tag)) {
+  if (d->state == R_BLOCKED && msg_matches(m, d->wait_src, d->wait_tag)) {
     double resume = arrival;
     if (s->cpu && remote) {
       resume = cpu_resume(&c->cpu, d->since, arrival);
@@ -581,7 +515,7 @@ static int check_match_args(sim *s, rank *r, const char *call, int src, int tag)
  * r blocks until then.  NULL and *rc = MP_EDEADLOCK or MP_ESTOPPED if the
  * run stopped meanwhile. */
 static msg *arrived(sim *s, rank *r, int src, int tag, int *rc) {
-  msg *m = box_find(r, src, tag);
+  msg *m = box_find(&r->box, src, tag);
   if (!m || m->arrival > r->now) {
     /* Block: queued at the first matching arrival if one is on its way,
      * else not queued until a matching send queues it. */
@@ -607,7 +541,7 @@ static msg *arrived(sim *s, rank *r, int src, int tag, int *rc) {
       return NULL;
     }
     XASSERT(t == s->gtime);
-    m = box_find(r, src, tag);
+    m = box_find(&r->box, src, tag);
     XASSERT(m && m->arrival <= r->now);
   }
   return m;
@@ -627,7 +561,7 @@ static int sim_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status
   }
   msg *m = arrived(s, r, src, tag, &rc);
   if (!m) return rc;
-  box_unlink(r, m);
+  box_unlink(&r->box, m);
 
   double before = r->now, t0 = r->now, o = 0;
   if (s->cfg.net == SIM_NET_LOGGP && s->ranks[m->src].proc != r->proc) {
@@ -652,7 +586,7 @@ static int sim_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status
          r->base.rank, m->len, m->src, m->tag, cap);
     rc = MP_ETRUNC;
   }
-  msg_free(s, m);
+  msg_free(&s->msgs, m);
   if (r->now > before) moved(s, r);
   return rc;
 }
@@ -664,7 +598,7 @@ static int sim_probe(mp *self, int src, int tag, mp_status *st) {
   s->st.events++;
   int rc = check_match_args(s, r, "mp_probe", src, tag);
   if (rc != MP_OK) return rc;
-  msg *m = box_find(r, src, tag);
+  msg *m = box_find(&r->box, src, tag);
   if (m && m->arrival <= r->now) {
     r->probe_spins = 0;
     if (st) *st = (mp_status){m->src, m->tag, m->len};
@@ -901,19 +835,14 @@ static void report_deadlock(sim *s) {
 static void sweep_unread(sim *s) {
   for (int i = 0; i < s->n; i++) {
     rank *r = &s->ranks[i];
-    if (!r->head) continue;
+    if (!r->box.head) continue;
     long long count = 0;
-    for (msg *m = r->head; m; m = m->next) count++;
+    for (msg *m = r->box.head; m; m = m->next) count++;
     r->st.unread = count;
     s->st.unread += count;
     warn(s, "rank %d finished with %lld unread message%s (first from rank %d, tag %d)", i, count,
-         count == 1 ? "" : "s", r->head->src, r->head->tag);
-    while (r->head) {
-      msg *m = r->head;
-      r->head = m->next;
-      msg_free(s, m);
-    }
-    r->tail = NULL;
+         count == 1 ? "" : "s", r->box.head->src, r->box.head->tag);
+    box_clear(&r->box, &s->msgs);
   }
 }
 
@@ -1008,18 +937,10 @@ void sim_free(sim *s) {
   for (int i = 0; i < s->n; i++) {
     rank *r = &s->ranks[i];
     coro_free(r->co);
-    while (r->head) {
-      msg *m = r->head;
-      r->head = m->next;
-      msg_free(s, m);
-    }
+    box_clear(&r->box, &s->msgs);
     free(r->chans);
   }
-  while (s->pool) {
-    msg *m = s->pool;
-    s->pool = m->next;
-    free(m);
-  }
+  mstore_free(&s->msgs);
   coro_stacks_free(s->stacks);
   coro_free(s->main);
   trace_free(s->tr);
