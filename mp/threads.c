@@ -830,7 +830,9 @@ static void mpt_stop(mp *self, int code, const char *why) {
 }
 
 static const mp_ops mpt_ops = {mpt_send, mpt_recv, mpt_probe, mpt_compute, mpt_time,
-                               mpt_wait, mpt_busy, mpt_sleep, mpt_stop, NULL};
+                               mpt_wait, mpt_busy, mpt_sleep, mpt_stop,    NULL,
+                               NULL,     NULL,     NULL,      NULL,        NULL,
+                               NULL,     NULL,     NULL};
 
 /* ==== the machine ========================================================= */
 

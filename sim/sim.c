@@ -413,7 +413,8 @@ static int sim_sleep(mp *self, double seconds) {
   return MP_OK;
 }
 
-static int sim_send(mp *self, int dst, int tag, const void *buf, size_t len) {
+/* mp_send, or with ref mp_send_ref (*ref: the message, by reference). */
+static int send_msg(mp *self, int dst, int tag, const void *buf, size_t len, mp_ref **ref) {
   rank *r = (rank *)self;
   sim *s = r->s;
   if (s->stopped) return stopped_call(s, r);
@@ -462,15 +463,17 @@ static int sim_send(mp *self, int dst, int tag, const void *buf, size_t len) {
   if (arrival < *last) arrival = *last; /* non-overtaking */
   *last = arrival;
 
-  msg *m = msg_new(&s->msgs, len);
+  msg *m = ref ? msg_new_ref(&s->msgs, &d->box, buf, len) : msg_new(&s->msgs, &d->box, len);
   m->sent = t0;
   m->arrival = arrival;
   m->seq = s->seq++;
   m->src = r->base.rank;
   m->tag = tag;
-  m->len = len;
-  if (len) memcpy(m->data, buf, len);
-  box_insert(&d->box, m);
+  if (ref)
+    *ref = (mp_ref *)m;
+  else
+    box_place(&s->msgs, m, buf);
+  box_insert(m);
 
   r->st.sent++;
   r->st.bytes_sent += (long long)len;
@@ -497,6 +500,33 @@ static int sim_send(mp *self, int dst, int tag, const void *buf, size_t len) {
   return MP_OK;
 }
 
+static int sim_send(mp *self, int dst, int tag, const void *buf, size_t len) {
+  return send_msg(self, dst, tag, buf, len, NULL);
+}
+
+static int sim_send_ref(mp *self, int dst, int tag, const void *buf, size_t len, mp_ref **ref) {
+  return send_msg(self, dst, tag, buf, len, ref);
+}
+
+static void sim_settle(mp *self, mp_ref *ref) {
+  sim *s = ((rank *)self)->s;
+  msg_settle(&s->msgs, (msg *)ref, !s->stopped);
+}
+
+static int sim_withdraw(mp *self, mp_ref *ref) { return msg_withdraw(&((rank *)self)->s->msgs, (msg *)ref); }
+
+/* Promises (mailbox.h): only of a message from a rank, into a buffer. */
+static mp_promise *sim_promise(mp *self, int src, int tag, int mask, void *buf, size_t cap) {
+  rank *r = (rank *)self;
+  if (src < 0 || src >= r->s->n || !buf || !cap) return NULL;
+  return (mp_promise *)promise_add(&r->s->msgs, &r->box, src, tag, mask, buf, cap);
+}
+
+static int sim_promise_drop(mp *self, mp_promise *p, int keep) {
+  rank *r = (rank *)self;
+  return promise_drop(&r->s->msgs, &r->box, (promise *)p, keep);
+}
+
 /* Check recv's and probe's source and tag. */
 static int check_match_args(sim *s, rank *r, const char *call, int src, int tag) {
   if (src < MP_ANY || src >= s->n) {
@@ -518,19 +548,26 @@ static msg *arrived(sim *s, rank *r, int src, int tag, int *rc) {
   msg *m = box_find(&r->box, src, tag);
   if (!m || m->arrival > r->now) {
     /* Block: queued at the first matching arrival if one is on its way,
-     * else not queued until a matching send queues it. */
+     * else not queued until a matching send queues it.  Woken for a
+     * message its sender has withdrawn since (mp_withdraw), it blocks on. */
     double since = r->now;
     r->state = R_BLOCKED;
     r->wait_src = src;
     r->wait_tag = tag;
-    r->wake = INFINITY;
     r->since = since;
-    if (m) {
-      r->wake = s->cpu && s->ranks[m->src].proc != r->proc ? cpu_resume(&s->cfg.cpu, since, m->arrival)
-                                                            : m->arrival;
-      evq_set(s->q, r->base.rank, r->wake, s->seq++);
+    for (;;) {
+      r->wake = INFINITY;
+      if (m) {
+        r->wake = s->cpu && s->ranks[m->src].proc != r->proc ? cpu_resume(&s->cfg.cpu, since, m->arrival)
+                                                              : m->arrival;
+        evq_set(s->q, r->base.rank, r->wake, s->seq++);
+      }
+      give_way(s, r);
+      if (s->stopped) break;
+      XASSERT(r->wake == s->gtime);
+      m = box_find(&r->box, src, tag);
+      if (m && m->arrival <= s->gtime) break;
     }
-    give_way(s, r);
     r->state = R_READY;
     double t = s->stopped ? (s->gtime > since ? s->gtime : since) : r->wake;
     r->now = t;
@@ -540,28 +577,27 @@ static msg *arrived(sim *s, rank *r, int src, int tag, int *rc) {
       *rc = r->deadlocked ? MP_EDEADLOCK : MP_ESTOPPED;
       return NULL;
     }
-    XASSERT(t == s->gtime);
-    m = box_find(&r->box, src, tag);
-    XASSERT(m && m->arrival <= r->now);
   }
   return m;
 }
 
-static int sim_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status *st) {
+/* mp_recv into buf (cap bytes), or, with hold, mp_recv_msg: *hold holds
+ * the message. */
+static int recv_msg(mp *self, int src, int tag, void *buf, size_t cap, mp_status *st, mp_msg **hold) {
   rank *r = (rank *)self;
   sim *s = r->s;
   if (s->stopped) return stopped_call(s, r);
   s->st.events++;
   r->probe_spins = 0;
-  int rc = check_match_args(s, r, "mp_recv", src, tag);
+  const char *call = hold ? "mp_recv_msg" : "mp_recv";
+  int rc = check_match_args(s, r, call, src, tag);
   if (rc != MP_OK) return rc;
   if (cap && !buf) {
-    fail(s, "rank %d: mp_recv into a NULL buffer of %zu bytes", r->base.rank, cap);
+    fail(s, "rank %d: %s into a NULL buffer of %zu bytes", r->base.rank, call, cap);
     return MP_EARG;
   }
   msg *m = arrived(s, r, src, tag, &rc);
   if (!m) return rc;
-  box_unlink(&r->box, m);
 
   double before = r->now, t0 = r->now, o = 0;
   if (s->cfg.net == SIM_NET_LOGGP && s->ranks[m->src].proc != r->proc) {
@@ -573,22 +609,50 @@ static int sim_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status
     if (o == 0) t0 = t1;
     o += orc;
   }
-  size_t n = m->len <= cap ? m->len : cap;
-  if (n) memcpy(buf, m->data, n);
   if (st) *st = (mp_status){m->src, m->tag, m->len};
   r->st.received++;
   r->st.bytes_received += (long long)m->len;
   s->st.received++;
   if (s->tr) trace_recv(s->tr, r->base.rank, r->proc, t0, o, m->src, m->tag, m->len, m->seq);
   rc = MP_OK;
-  if (m->len > cap) {
-    warn(s, "rank %d: mp_recv truncated a %zu-byte message from rank %d (tag %d) to %zu bytes",
-         r->base.rank, m->len, m->src, m->tag, cap);
-    rc = MP_ETRUNC;
+  if (hold) {
+    msg_hold(&s->msgs, m);
+    *hold = (mp_msg *)m;
+  } else {
+    if (m->len > cap) {
+      warn(s, "rank %d: mp_recv truncated a %zu-byte message from rank %d (tag %d) to %zu bytes",
+           r->base.rank, m->len, m->src, m->tag, cap);
+      rc = MP_ETRUNC;
+    }
+    msg_read(&s->msgs, m, buf, m->len <= cap ? m->len : cap);
   }
-  msg_free(&s->msgs, m);
   if (r->now > before) moved(s, r);
   return rc;
+}
+
+static int sim_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status *st) {
+  return recv_msg(self, src, tag, buf, cap, st, NULL);
+}
+
+static int sim_recv_msg(mp *self, int src, int tag, mp_msg **hold, mp_status *st) {
+  return recv_msg(self, src, tag, NULL, 0, st, hold);
+}
+
+static int sim_msg_read(mp *self, mp_msg *hold, void *buf, size_t cap) {
+  sim *s = ((rank *)self)->s;
+  msg *m = (msg *)hold;
+  if (m->state == M_GONE) {
+    msg_take(&s->msgs, m, NULL, 0);
+    return MP_EGONE;
+  }
+  int rc = m->len > cap && buf ? MP_ETRUNC : MP_OK;
+  msg_take(&s->msgs, m, buf, m->len <= cap ? m->len : cap);
+  return rc;
+}
+
+static int sim_msg_gone(mp *self, const mp_msg *hold) {
+  (void)self;
+  return ((const msg *)hold)->state == M_GONE;
 }
 
 static int sim_probe(mp *self, int src, int tag, mp_status *st) {
@@ -661,8 +725,10 @@ static void sim_call(mp *self, const char *name, int begin) {
   }
 }
 
-static const mp_ops sim_ops = {sim_send, sim_recv, sim_probe, sim_compute, sim_time,
-                               sim_wait, sim_busy,  sim_sleep, sim_stop,  sim_call};
+static const mp_ops sim_ops = {sim_send,     sim_recv,         sim_probe,    sim_compute,  sim_time,
+                               sim_wait,     sim_busy,         sim_sleep,    sim_stop,     sim_call,
+                               sim_send_ref, sim_settle,       sim_withdraw, sim_recv_msg, sim_msg_read,
+                               sim_msg_gone, sim_promise,      sim_promise_drop};
 
 /* ==== the machine ========================================================= */
 
