@@ -24,10 +24,20 @@
 
 #include "state.h"
 
+/* Messages of this many bytes or more are worth a promise (shorter ones are
+ * copied twice: cheaper than the bookkeeping). */
+enum { TSM_REF_MIN = 1024 };
+
 /* A send's message leaves: len bytes at data to q->wpeer with q's context,
  * tag and mode (SM_SYNC: q waits in R->sync for its ack, state RS_ACTIVE;
- * else q is RS_DONE). */
+ * else q is RS_DONE).  With q->byref, by reference: data must stay as it
+ * is until eng_settle(q). */
 void eng_send(tsm *R, tsm_req *q, const void *data, size_t len);
+
+/* q's buffers are the program's again (a send by reference settled, its
+ * packed copy freed): when a request ends, or a blocking call that sent by
+ * reference returns. */
+void eng_settle(tsm *R, tsm_req *q);
 
 /* The fast paths of MPI_Send and MPI_Recv (the common case of a blocking
  * exchange, with no request made):
@@ -35,8 +45,10 @@ void eng_send(tsm *R, tsm_req *q, const void *data, size_t len);
  *   eng_recv_data: when nothing is posted and nothing unexpected, the next
  *     message from wsrc (MP_ANY) is waited for; if it is an eager one that
  *     a receive of (ctx, tag) takes and it fits cap bytes at p, it is
- *     taken there: 1 and *got (world source, MPI tag, bytes).  Else 0 and
- *     nothing taken (the general way, eng_recv, sees the same message). */
+ *     taken there: 1 and *got (world source, MPI tag, bytes).  Else 0, and
+ *     the general way (eng_recv) finds the same message: in mp's mailbox,
+ *     or, for cap < TSM_REF_MIN, taken already into the unexpected queue
+ *     (an ack acted on). */
 void eng_send_data(tsm *R, int wdst, int ctx, int tag, const void *data, size_t len);
 int eng_recv_data(tsm *R, int wsrc, int ctx, int tag, void *p, size_t cap, mp_status *got);
 
@@ -68,7 +80,8 @@ void eng_unpost(tsm *R, tsm_req *q);
  * to be received (in mp's mailbox or the unexpected queue). */
 int eng_probe(tsm *R, int wsrc, int ctx, int tag, int block, int *src, int *mtag, size_t *len);
 
-/* Free the unexpected queue (the rank's end). */
+/* Free the unexpected queue, settle every request's send, drop every
+ * promise (the rank's end). */
 void eng_release(tsm *R);
 
 #endif

@@ -44,8 +44,17 @@ int tsmpi_p2p_recv(void *buf, int count, MPI_Datatype dt, int src, int tag, MPI_
 int tsmpi_p2p_sendrecv(const void *sbuf, int scount, MPI_Datatype sdt, int dst, int stag,
                        void *rbuf, int rcount, MPI_Datatype rdt, int src, int rtag, MPI_Comm comm,
                        MPI_Status *st) {
-  int rc = tsmpi_p2p_send(sbuf, scount, sdt, dst, stag, comm);
-  return rc ? rc : tsmpi_p2p_recv(rbuf, rcount, rdt, src, rtag, comm, st);
+  tsm *R = tsm_need("tsmpi_p2p_sendrecv");
+  tsm_comm *c = comm_of(R, comm, "tsmpi_p2p_sendrecv");
+  tsm_req s;
+  tsm_req_stack(&s);
+  tsm_send_fill(&s, c, 1, SM_STANDARD, sbuf, scount, sdt, dst, stag, comm, "tsmpi_p2p_sendrecv");
+  s.byref = 1;   /* sbuf stays the call's until the receive is done */
+  int rc = tsm_send_start(R, &s, c);
+  if (rc) return rc;
+  rc = tsmpi_p2p_recv(rbuf, rcount, rdt, src, rtag, comm, st);
+  eng_settle(R, &s);
+  return rc;
 }
 
 int tsmpi_p2p_isend(const void *buf, int count, MPI_Datatype dt, int dst, int tag, MPI_Comm comm,

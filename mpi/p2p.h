@@ -57,7 +57,9 @@ int tsmpi_p2p_recv(void *buf, int count, MPI_Datatype dt, int src, int tag, MPI_
                    MPI_Status *st);
 
 /* Send, then receive (the send is eager, so this never deadlocks on a pair
- * that exchanges).  sbuf and rbuf must not overlap. */
+ * that exchanges).  The bytes received must not overlap those sent: the
+ * send's payload may stay in sbuf until the call returns (one copy, when
+ * the receiver takes it first or has promised its buffer). */
 int tsmpi_p2p_sendrecv(const void *sbuf, int scount, MPI_Datatype sdt, int dst, int stag,
                        void *rbuf, int rcount, MPI_Datatype rdt, int src, int rtag, MPI_Comm comm,
                        MPI_Status *st);

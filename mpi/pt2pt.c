@@ -34,6 +34,13 @@ void tsm_send_fill(tsm_req *q, const tsm_comm *c, int coll, int mode, const void
   q->fn = fn;
   q->wpeer = dst >= 0 ? tsm_world_of(c, dst) : -1;
   q->ctx = 2 * c->pair + coll;
+  /* A request's send goes by reference, settled when the request ends (a
+   * buffered one is copied into the attached buffer, which the next one
+   * reuses). */
+  q->byref = q->slot >= 0 && mode != SM_BUFFERED;
+  q->ref = NULL;
+  q->tmp = NULL;
+  q->prom = NULL;
 }
 
 void tsm_status_empty(MPI_Status *st) {
@@ -77,7 +84,10 @@ int tsm_send_start(tsm *R, tsm_req *q, const tsm_comm *c) {
     void *tmp = xmalloc(len);
     tsmpi_type_pack(q->buf, q->count, q->dt, tmp);
     eng_send(R, q, tmp, len);
-    free(tmp);
+    if (q->ref)
+      q->tmp = tmp;   /* the message refers to it until settled */
+    else
+      free(tmp);
   }
   return MPI_SUCCESS;
 }
@@ -103,6 +113,10 @@ void tsm_recv_fill(tsm_req *q, const tsm_comm *c, int coll, void *buf, int count
   q->cap = (size_t)count * tsmpi_type_size(dt);
   q->contig = q->cap ? (void *)tsmpi_type_contig(buf, count, dt) : NULL;
   q->g = c->g;
+  q->byref = 0;
+  q->ref = NULL;
+  q->tmp = NULL;
+  q->prom = NULL;
 }
 
 static void proc_null(tsm_req *q) {
@@ -398,9 +412,10 @@ int PMPI_Recv_init(void *buf, int count, MPI_Datatype datatype, int source, int 
 
 /* ==== send and receive ==================================================== */
 
-/* Both calls: the send is eager (mp_send copies the message out), so it
-   leaves before the receive waits, and the buffer of Sendrecv_replace is
-   free to receive into once it has. */
+/* Both calls: the send is eager, so it leaves before the receive waits;
+   Sendrecv's goes by reference, settled when the call returns (the
+   receiver may copy it straight from sendbuf), Sendrecv_replace's is
+   copied out at once, so that its buffer is free to receive into. */
 static int sendrecv(const char *fn, const void *sendbuf, int sendcount, MPI_Datatype sendtype,
                     int dest, int sendtag, void *recvbuf, int recvcount, MPI_Datatype recvtype,
                     int source, int recvtag, MPI_Comm comm, MPI_Status *status) {
@@ -413,6 +428,7 @@ static int sendrecv(const char *fn, const void *sendbuf, int sendcount, MPI_Data
   tsm_req_stack(&s);
   tsm_req_stack(&q);
   tsm_send_fill(&s, c, 0, SM_STANDARD, sendbuf, sendcount, sendtype, dest, sendtag, comm, fn);
+  s.byref = sendbuf != recvbuf;   /* Sendrecv_replace's send is copied out before the receive */
   tsm_send_start(R, &s, c);
   tsm_recv_fill(&q, c, 0, recvbuf, recvcount, recvtype, source, recvtag, comm, fn);
   tsm_label l = {.fn = fn, .what = L_SENDRECV, .peer = dest, .tag = sendtag, .peer2 = source,
@@ -420,6 +436,7 @@ static int sendrecv(const char *fn, const void *sendbuf, int sendcount, MPI_Data
   tsm_label_set(R, &l);
   tsm_recv_block(R, &q);
   tsm_unlabel(R);
+  eng_settle(R, &s);
   tsm_status_out(status, &q.st, 0);
   return recv_result(R, c, &q);
 }

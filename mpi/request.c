@@ -53,6 +53,7 @@ static int finish(tsm *R, const char *fn, MPI_Request *h, tsm_req *q, MPI_Status
                   int raise) {
   tsm_status_out(st, &q->st, with_error);
   int err = q->st.MPI_ERROR;
+  if (q->persistent) eng_settle(R, q);
   if (err && raise) {
     tsm_req copy = *q;
     if (q->persistent)

@@ -167,6 +167,7 @@ tsm_req *tsm_req_get(tsm *R, MPI_Request h) {
 }
 
 void tsm_req_free(tsm *R, tsm_req *q) {
+  eng_settle(R, q);
   if (q->slot < 0) return;
   if (q->held) tsmpi_type_release(q->dt);
   q->held = 0;

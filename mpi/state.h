@@ -143,6 +143,11 @@ struct tsm_req {
                               contiguous there, else NULL (unpacked) */
   tsm_ranks *g;            /* active receives: comm's ranks (counted), to name
                               the source in the status */
+  /* the message path (engine.h: what is copied when) */
+  unsigned char byref;     /* sends: the message goes by reference (mp_send_ref) */
+  mp_ref *ref;             /* a send by reference not yet settled */
+  void *tmp;               /* a non-contiguous send's packed copy, until settled */
+  mp_promise *prom;        /* a posted receive's promise of its buffer */
   /* the result */
   MPI_Status st;
 };
@@ -155,7 +160,7 @@ struct tsm_msg {
   int src;                 /* world rank */
   int kind, ctx, tag;      /* the envelope */
   size_t len;
-  unsigned char *data;     /* len bytes (NULL if 0) */
+  mp_msg *h;               /* the message, held (mp_recv_msg) until read */
 };
 
 /* ==== the rank ============================================================ */
@@ -183,6 +188,7 @@ struct tsm {
   tsm_req *freereq;
   /* the matching engine (engine.c) */
   tsm_req *posted, *posted_tail;   /* receives posted and not matched, in order */
+  int posted_plain;                /* ... of those, the ones without a promise */
   tsm_msg *unexp, *unexp_tail;     /* messages taken off mp and not matched, in order */
   long nunexp;
   tsm_req *sync, *sync_tail;       /* synchronous sends waiting for their ack */
