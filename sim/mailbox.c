@@ -338,6 +338,21 @@ void box_clear(mbox *b, mstore *st) {
   while (b->phead) promise_drop(st, b, b->phead, 0);
 }
 
+void chans_grow(chanset *c) {
+  int cap = c->cap ? 2 * c->cap : 4;
+  chan *old = c->t, *t = xmallocarray((size_t)cap, sizeof *t);
+  for (int i = 0; i < cap; i++) t[i].dst = -1;
+  for (int i = 0; i < c->cap; i++) {
+    if (old[i].dst < 0) continue;
+    unsigned h = chan_hash(old[i].dst, cap);
+    while (t[h].dst >= 0) h = (h + 1) & (unsigned)(cap - 1);
+    t[h] = old[i];
+  }
+  free(old);
+  c->t = t;
+  c->cap = cap;
+}
+
 void mstore_sweep(mstore *st) {
   while (st->live) {
     msg *m = st->live;

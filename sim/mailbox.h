@@ -1,7 +1,8 @@
 /* mailbox.h -- the simulator's messages and each rank's mailbox (sim.c's
  * data): a message's envelope, times and payload, the mailbox that holds a
  * rank's messages sent and not yet received, in the order a receive takes
- * them (arrival, then send order), and the rank's promises (mp_promise).
+ * them (arrival, then send order), the rank's promises (mp_promise), and
+ * its channels out (the latest arrival on each, for the order of sends).
  *
  * WHERE A PAYLOAD LIVES.  A message's payload is, at any time, in one
  * place, and a receive copies it from there into its buffer:
@@ -28,6 +29,7 @@
 #ifndef MAILBOX_H
 #define MAILBOX_H
 
+#include <math.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <string.h>
@@ -224,6 +226,39 @@ int msg_withdraw(mstore *st, msg *m);
  * delivered into it moves to the pool first: 0). */
 promise *promise_add(mstore *st, mbox *b, int src, int tag, int mask, void *buf, size_t cap);
 int promise_drop(mstore *st, mbox *b, promise *p, int keep);
+
+/* A rank's channels out: the latest arrival on each of its channels
+ * src -> dst (a message never arrives before one sent earlier on its
+ * channel), open addressing by dst. */
+typedef struct {
+  int dst;                 /* -1: empty slot */
+  double last;             /* the latest arrival sent on src -> dst */
+} chan;
+
+typedef struct {
+  chan *t;
+  int n, cap;
+} chanset;
+
+void chans_grow(chanset *c);
+
+static inline unsigned chan_hash(int dst, int cap) {
+  return ((unsigned)dst * 2654435761u) & (unsigned)(cap - 1);
+}
+
+/* The latest arrival on the channel to dst (-infinity if none yet). */
+static inline double *chan_last(chanset *c, int dst) {
+  if (2 * (c->n + 1) > c->cap) chans_grow(c);
+  unsigned h = chan_hash(dst, c->cap);
+  while (c->t[h].dst >= 0) {
+    if (c->t[h].dst == dst) return &c->t[h].last;
+    h = (h + 1) & (unsigned)(c->cap - 1);
+  }
+  c->t[h].dst = dst;
+  c->t[h].last = -INFINITY;
+  c->n++;
+  return &c->t[h].last;
+}
 
 /* Free every message of b into st (the run's end; references are void)
  * and its promises. */

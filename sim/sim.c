@@ -1,9 +1,10 @@
 /* sim.c -- the discrete-event simulator: ranks as coroutines, the timing model, errors.
  *
- * Reading order: the profiles (the one place for the machine's costs), the
- * data (messages, mailboxes, channels, ranks), scheduling (who runs next),
- * the mp calls (compute, send, recv, probe), then sim_run's main loop and
- * the deadlock report.  The timing model itself is specified in sim.h.
+ * Reading order: the data (ranks, the machine; messages, mailboxes and
+ * channels are mailbox.h's, the profiles profile.c's), scheduling (who
+ * runs next), the mp calls (compute, send, recv, probe; messages without
+ * copies), then sim_run's main loop and the deadlock report.  The timing
+ * model itself is specified in sim.h.
  *
  * Scheduling is a conservative sequential discrete-event loop.  Every rank
  * that can act is queued in `q` under the time it will act at; the running
@@ -43,87 +44,12 @@
 #include "wallclock.h"
 #include "xmem.h"
 
-/* ==== the profiles ======================================================== */
-
-/* "tc2000": the BBN TC2000 of Johnson, Livadas & Talele (1993), calibrated
- * so that the paper's experiments (sections 6 and 7) show what it reports
- * (doc/model.md, "Calibration: the tc2000 profile").
- *   c = 50 us per node: a node is two triangle areas and a comparison, about
- *       1,000 cycles of the 20 MHz Motorola 88100 with its square root in
- *       software.
- *   m = 275 us per message, on a bus: the paper's message queues were
- *       simulated in the TC2000's shared memory, so a message is a locked
- *       enqueue and dequeue, one at a time, and later ones wait; 275 us puts
- *       the speedup's flattening and decline near 12 processors (section 6).
- *   per_byte = 2.6e-8 s: the butterfly switch's 38 MB/s.
- *   local = 0: master and slave on one processor exchange for free.
- * The LogGP fields, for --net loggp: L = m, no overhead, gap or per-byte gap. */
-static void profile_tc2000(sim_config *cfg) {
-  *cfg = (sim_config){0};
-  cfg->procs = 1;
-  cfg->place = NULL;
-  cfg->c = 50e-6;          /* seconds per compute unit (a node) */
-  cfg->m = 275e-6;         /* seconds per message */
-  cfg->per_byte = 2.6e-8;  /* seconds per byte */
-  cfg->local = 0;          /* seconds per message on one processor */
-  cfg->net = SIM_NET_BUS;
-  cfg->L = 275e-6;         /* LogGP latency */
-  cfg->o = 0;              /* LogGP overhead */
-  cfg->g = 0;              /* LogGP gap */
-  cfg->G = 0;              /* LogGP gap per byte */
-  cpu_model_init(&cfg->cpu);  /* no processor overheads, wake-ups or slowdown */
-  cfg->stack = 0;
-  cfg->warn = stderr;
-}
-
-/* "unit": whole seconds, for reading a trace by eye. */
-static void profile_unit(sim_config *cfg) {
-  profile_tc2000(cfg);
-  cfg->c = 1;
-  cfg->m = 1;
-  cfg->per_byte = 0;
-  cfg->L = 1;
-}
-
-void sim_config_init(sim_config *cfg) { profile_tc2000(cfg); }
-
-int sim_profile(const char *name, sim_config *cfg) {
-  if (strcmp(name, "tc2000") == 0)
-    profile_tc2000(cfg);
-  else if (strcmp(name, "unit") == 0)
-    profile_unit(cfg);
-  else
-    return -1;
-  return 0;
-}
-
-static const char *const net_names[] = {"ideal", "bus", "loggp", "topology"};
-
-const char *sim_net_name(sim_net net) {
-  return (unsigned)net < sizeof net_names / sizeof *net_names ? net_names[net] : "?";
-}
-
-int sim_net_parse(const char *name, sim_net *net) {
-  for (unsigned i = 0; i < SIM_NET_TOPOLOGY; i++) {
-    if (strcmp(name, net_names[i]) == 0) {
-      *net = (sim_net)i;
-      return 0;
-    }
-  }
-  return -1;
-}
-
 /* ==== data ================================================================ */
 
 enum {
   STOPPED_CALLS_MAX = 1000000, /* calls after a stop before a rank is abandoned */
   PROBE_SPINS_MAX = 1000000    /* fruitless probes at one clock before we stop */
 };
-
-typedef struct {
-  int dst;                 /* -1: empty slot */
-  double last;             /* the latest arrival sent on src -> dst */
-} chan;
 
 enum { R_READY, R_BLOCKED, R_DONE, R_ABANDONED };
 
@@ -141,8 +67,7 @@ struct rank {
   double since;            /* when it blocked */
   int deadlocked;          /* woken by the deadlock report */
   mbox box;                /* messages sent to it, sent or arrived */
-  chan *chans;             /* last arrival per destination, open addressing */
-  int nchan, capchan;
+  chanset chans;           /* the latest arrival per destination */
   long stopped_calls;      /* mp calls since the run stopped */
   double call_t0;          /* mp_call_begin: when the outermost call began, */
   long long call_msgs;     /* and the messages sent and received by then */
@@ -227,41 +152,6 @@ static PRINTF(2, 3) void warn(sim *s, const char *fmt, ...) {
   vfprintf(s->cfg.warn, fmt, ap);
   fputc('\n', s->cfg.warn);
   va_end(ap);
-}
-
-/* ==== channels ============================================================ */
-
-static inline unsigned chan_hash(int dst, int cap) {
-  return ((unsigned)dst * 2654435761u) & (unsigned)(cap - 1);
-}
-
-static void chan_grow(rank *r) {
-  int cap = r->capchan ? 2 * r->capchan : 4;
-  chan *old = r->chans, *t = xmallocarray((size_t)cap, sizeof *t);
-  for (int i = 0; i < cap; i++) t[i].dst = -1;
-  for (int i = 0; i < r->capchan; i++) {
-    if (old[i].dst < 0) continue;
-    unsigned h = chan_hash(old[i].dst, cap);
-    while (t[h].dst >= 0) h = (h + 1) & (unsigned)(cap - 1);
-    t[h] = old[i];
-  }
-  free(old);
-  r->chans = t;
-  r->capchan = cap;
-}
-
-/* The latest arrival on the channel r -> dst (-infinity if none yet). */
-static double *chan_last(rank *r, int dst) {
-  if (2 * (r->nchan + 1) > r->capchan) chan_grow(r);
-  unsigned h = chan_hash(dst, r->capchan);
-  while (r->chans[h].dst >= 0) {
-    if (r->chans[h].dst == dst) return &r->chans[h].last;
-    h = (h + 1) & (unsigned)(r->capchan - 1);
-  }
-  r->chans[h].dst = dst;
-  r->chans[h].last = -INFINITY;
-  r->nchan++;
-  return &r->chans[h].last;
 }
 
 /* ==== scheduling ========================================================== */
@@ -459,7 +349,7 @@ static int send_msg(mp *self, int dst, int tag, const void *buf, size_t len, mp_
     *nic = inject + c->g;
     arrival = inject + (len > 1 ? (double)(len - 1) * c->G : 0) + c->L;
   }
-  double *last = chan_last(r, dst);
+  double *last = chan_last(&r->chans, dst);
   if (arrival < *last) arrival = *last; /* non-overtaking */
   *last = arrival;
 
@@ -508,10 +398,7 @@ static int sim_send_ref(mp *self, int dst, int tag, const void *buf, size_t len,
   return send_msg(self, dst, tag, buf, len, ref);
 }
 
-static void sim_settle(mp *self, mp_ref *ref) {
-  sim *s = ((rank *)self)->s;
-  msg_settle(&s->msgs, (msg *)ref, !s->stopped);
-}
+static void sim_settle(mp *self, mp_ref *ref) { msg_settle(&((rank *)self)->s->msgs, (msg *)ref, !((rank *)self)->s->stopped); }
 
 static int sim_withdraw(mp *self, mp_ref *ref) { return msg_withdraw(&((rank *)self)->s->msgs, (msg *)ref); }
 
@@ -650,10 +537,7 @@ static int sim_msg_read(mp *self, mp_msg *hold, void *buf, size_t cap) {
   return rc;
 }
 
-static int sim_msg_gone(mp *self, const mp_msg *hold) {
-  (void)self;
-  return ((const msg *)hold)->state == M_GONE;
-}
+static int sim_msg_gone(mp *self, const mp_msg *hold) { return (void)self, ((const msg *)hold)->state == M_GONE; }
 
 static int sim_probe(mp *self, int src, int tag, mp_status *st) {
   rank *r = (rank *)self;
@@ -1004,7 +888,7 @@ void sim_free(sim *s) {
     rank *r = &s->ranks[i];
     coro_free(r->co);
     box_clear(&r->box, &s->msgs);
-    free(r->chans);
+    free(r->chans.t);
   }
   mstore_free(&s->msgs);
   coro_stacks_free(s->stacks);
