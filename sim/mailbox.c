@@ -18,15 +18,18 @@
  * takes m copies nothing.  Nothing but the host's copying changes: the
  * message stays in the mailbox with its times and envelope, and is
  * received when and where it would have been. */
+#define _DEFAULT_SOURCE   /* madvise's MADV_HUGEPAGE, where there is one */
 #include "mailbox.h"
 
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 
 #include "xmem.h"
 
 enum {
   POOL_MIN_CLASS = 7,              /* the smallest pooled block: 128 bytes */
+  POOL_HUGE_CLASS = 21,            /* blocks of 2 MiB and more: on huge pages */
   POOL_CACHE_MAX = 64 << 20        /* bytes of free blocks kept for reuse */
 };
 
@@ -38,11 +41,27 @@ static int size_class(size_t len) {
   return k;
 }
 
+/* A new block of 2^k bytes.  From 2 MiB on, aligned to 2 MiB and advised
+ * onto huge pages where the system has them: a 4 MiB payload then costs two
+ * page faults instead of 1024. */
+static void *block_new(int k) {
+  size_t n = (size_t)1 << k;
+#ifdef MADV_HUGEPAGE
+  if (k >= POOL_HUGE_CLASS) {
+    void *p = NULL;
+    if (posix_memalign(&p, (size_t)1 << POOL_HUGE_CLASS, n) != 0) xpanic("out of memory for a message of %zu bytes", n);
+    madvise(p, n, MADV_HUGEPAGE);   /* advice: nothing is lost where it is refused */
+    return p;
+  }
+#endif
+  return xmalloc(n);
+}
+
 static void *pool_get(mstore *st, size_t len) {
   int k = size_class(len);
   XASSERT(k < POOL_CLASSES);
   void *p = st->blocks[k];
-  if (!p) return xmalloc((size_t)1 << k);
+  if (!p) return block_new(k);
   memcpy(&st->blocks[k], p, sizeof(void *));
   st->cached -= (size_t)1 << k;
   return p;
