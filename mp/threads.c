@@ -1,23 +1,13 @@
 /* threads.c -- mp.h on POSIX threads: a channel per pair of ranks, spin-then-
  * sleep waiting, deadlock detection.  threads.h states the semantics.
  *
- * Reading order: the data (records, chunks, channels, ranks, the machine),
- * errors, the channels' two ends, waking and the deadlock check, the mp
- * calls, then mpt_run.
+ * Reading order: the data (ranks, the machine; the channels are chan.h's),
+ * errors, a channel's making, choosing a message among the channels,
+ * waking and the deadlock check, the mp calls, then mpt_run.
  *
  * Messages.  Each ordered pair of ranks (s, d) that has ever talked has a
- * channel: a queue with one writer (s) and one reader (d), so that a send
- * takes no lock and no read-modify-write operation.  The queue is a list
- * of 16 KiB chunks of records, each record on cache lines of its own: a
- * header (tag, length, Lamport stamp), then the payload inline (up to
- * INLINE_MAX bytes) or a pointer to a copy.  The writer fills a record and
- * then publishes it with one store of its size (sequentially consistent:
- * see Sleeping); the reader polls
- * that word.  A message thus costs the two cores about two cache-line
- * transfers (the record and, now and then, a fresh line of the chunk), and
- * no allocation below INLINE_MAX bytes.  The reader frees a chunk when it
- * has taken everything in it; a record taken out of order (a tag or source
- * passed over) is marked and skipped.
+ * channel (chan.h): a queue with one writer (s) and one reader (d), so
+ * that a send takes no lock and no read-modify-write operation.
  *
  * Order.  Per pair, a channel is FIFO.  Between senders, mp.h asks for the
  * earliest arrival first: at the least, a message whose sender had heard,
@@ -77,6 +67,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "chan.h"
 #include "cpuload.h"
 #include "errlog.h"
 #include "wallclock.h"
@@ -88,62 +79,6 @@ void mpt_config_init(mpt_config *cfg) {
 }
 
 /* ==== data ================================================================ */
-
-enum {
-  LINE = 64,                      /* a cache line: records start on one */
-  CHUNK = 16384,                  /* a chunk of a channel, its header line included */
-  CHUNK_DATA = CHUNK - LINE,
-  REC_JUMP = 1                    /* size word of the record that says: the next chunk */
-};
-enum {
-  REC_BIG = 1,                    /* flags: the payload is a pointer to a copy */
-  REC_TAKEN = 2                   /* flags: received out of order (the reader's mark) */
-};
-
-/* A record.  `size` is 0 until the writer publishes it (seq_cst), then the
- * record's bytes (a multiple of LINE), or REC_JUMP. */
-typedef struct rec {
-  _Atomic uint32_t size;
-  int32_t tag;
-  uint32_t flags;
-  uint32_t src;
-  uint64_t stamp;     /* the sender's Lamport clock */
-  uint64_t len;       /* the payload's bytes */
-} rec;                /* 32 bytes; the payload (or its pointer) follows */
-
-enum { INLINE_MAX = 1024 - (int)sizeof(rec) };   /* longer payloads go by pointer */
-
-typedef struct chunk chunk;
-struct chunk {
-  chunk *next;        /* written before the REC_JUMP that leads to it */
-  char pad[LINE - sizeof(chunk *)];
-  /* CHUNK_DATA bytes of records follow, zeroed */
-};
-
-static inline rec *rec_at(chunk *c, size_t off) { return (rec *)((char *)c + LINE + off); }
-static inline unsigned char *rec_data(rec *x) { return (unsigned char *)(x + 1); }
-
-static chunk *chunk_new(void) {
-  chunk *c = aligned_alloc(LINE, CHUNK);
-  if (!c) xpanic("threads: out of memory for a channel's chunk of %d bytes", CHUNK);
-  memset(c, 0, CHUNK);
-  return c;
-}
-
-/* A channel from one rank to another. */
-typedef struct chan {
-  /* The writer's, on lines of their own. */
-  chunk *wc;
-  size_t woff;
-  char pad1[LINE - sizeof(chunk *) - sizeof(size_t)];
-  /* The reader's. */
-  chunk *hc;          /* head: the first record not yet taken (or a jump) */
-  size_t hoff;
-  chunk *sc;          /* scan: the first record the reader has not yet seen */
-  size_t soff;
-  int src;
-  char pad2[LINE - 2 * sizeof(chunk *) - 2 * sizeof(size_t) - sizeof(int)];
-} chan;
 
 typedef struct rank rank;
 struct rank {
@@ -231,7 +166,7 @@ static PRINTF(2, 3) void warn(mpt *t, const char *fmt, ...) {
   pthread_mutex_unlock(&t->g);
 }
 
-/* ==== a channel's writer ================================================== */
+/* ==== making a channel ==================================================== */
 
 /* The channel from r to d, made at r's first send to d: published in d's
  * table by source and appended to its list (under d's mutex: several
@@ -255,135 +190,7 @@ static chan *chan_get(rank *r, rank *d) {
   return q;
 }
 
-/* Append a record (tag, buf[0..len)) and publish it.  Returns it. */
-static rec *chan_put(chan *q, int src, int tag, uint64_t stamp, const void *buf, size_t len) {
-  int big = len > INLINE_MAX;
-  size_t need = (sizeof(rec) + (big ? sizeof(void *) : len) + LINE - 1) / LINE * LINE;
-  if (q->woff + need + LINE > CHUNK_DATA) {   /* room for a record and a jump, always */
-    chunk *c = chunk_new();
-    q->wc->next = c;
-    atomic_store_explicit(&rec_at(q->wc, q->woff)->size, REC_JUMP, memory_order_seq_cst);
-    q->wc = c;
-    q->woff = 0;
-  }
-  rec *x = rec_at(q->wc, q->woff);
-  x->tag = tag;
-  x->flags = big ? REC_BIG : 0;
-  x->src = (uint32_t)src;
-  x->stamp = stamp;
-  x->len = len;
-  if (big) {
-    void *copy = xmalloc(len);
-    memcpy(copy, buf, len);
-    memcpy(rec_data(x), &copy, sizeof copy);
-  } else if (len) {
-    memcpy(rec_data(x), buf, len);
-  }
-  atomic_store_explicit(&x->size, (uint32_t)need, memory_order_seq_cst);   /* publish (see Sleeping) */
-  q->woff += need;
-  return x;
-}
-
-/* ==== a channel's reader ================================================== */
-
-static inline int tag_ok(int want, int tag) { return want < 0 || want == tag; }
-
-/* The first record of q not yet taken whose tag matches, or NULL; records
- * published since the last look are seen now.  Only q's reader calls it. */
-static rec *chan_find(chan *q, int tag) {
-  chunk *c = q->hc;
-  size_t off = q->hoff;
-  for (;;) {
-    rec *x = rec_at(c, off);
-    if (c == q->sc && off == q->soff) {   /* beyond what was seen: published since? */
-      uint32_t sz = atomic_load_explicit(&x->size, memory_order_seq_cst);
-      if (sz == 0) return NULL;
-      if (sz == REC_JUMP) {
-        c = q->sc = c->next;
-        off = q->soff = 0;
-        continue;
-      }
-      q->soff = off + sz;
-      if (tag_ok(tag, x->tag)) return x;
-      off += sz;
-      continue;
-    }
-    uint32_t sz = atomic_load_explicit(&x->size, memory_order_relaxed);
-    if (sz == REC_JUMP) {
-      c = c->next;
-      off = 0;
-      continue;
-    }
-    if (!(x->flags & REC_TAKEN) && tag_ok(tag, x->tag)) return x;
-    off += sz;
-  }
-}
-
-/* Anything published in q since the reader last looked? */
-static inline int chan_news(chan *q) {
-  return atomic_load_explicit(&rec_at(q->sc, q->soff)->size, memory_order_relaxed) != 0;
-}
-
-/* Move q's head over the records taken out of order and the jumps (freeing
- * the chunks left behind), up to the first record not taken or what the
- * reader has not seen. */
-static void chan_settle(chan *q) {
-  while (q->hc != q->sc || q->hoff != q->soff) {
-    rec *y = rec_at(q->hc, q->hoff);
-    uint32_t sz = atomic_load_explicit(&y->size, memory_order_relaxed);
-    if (sz == REC_JUMP) {
-      chunk *old = q->hc;
-      q->hc = old->next;
-      q->hoff = 0;
-      free(old);
-    } else if (y->flags & REC_TAKEN) {
-      q->hoff += sz;
-    } else {
-      break;
-    }
-  }
-}
-
-/* x (found by chan_find, its payload already copied out) is taken: passed
- * by the head if it is the first record not taken, else marked. */
-static void chan_take(chan *q, rec *x) {
-  if (x->flags & REC_BIG) {
-    void *copy;
-    memcpy(&copy, rec_data(x), sizeof copy);
-    free(copy);
-  }
-  chan_settle(q);
-  if (x != rec_at(q->hc, q->hoff)) {
-    x->flags |= REC_TAKEN;
-    return;
-  }
-  q->hoff += atomic_load_explicit(&x->size, memory_order_relaxed);
-  chan_settle(q);
-}
-
-/* Every chunk of q, and the copies of the big payloads never taken; q. */
-static void chan_free(chan *q) {
-  chunk *c = q->hc;
-  size_t off = q->hoff;
-  while (c) {
-    rec *x = rec_at(c, off);
-    uint32_t sz = atomic_load_explicit(&x->size, memory_order_relaxed);
-    if (sz == 0 || sz == REC_JUMP) {
-      chunk *next = sz == REC_JUMP ? c->next : NULL;
-      free(c);
-      c = next;
-      off = 0;
-      continue;
-    }
-    if ((x->flags & (REC_BIG | REC_TAKEN)) == REC_BIG) {
-      void *copy;
-      memcpy(&copy, rec_data(x), sizeof copy);
-      free(copy);
-    }
-    off += sz;
-  }
-  free(q);
-}
+/* ==== choosing a message among the channels ============================== */
 
 /* A message found for a receive: its channel and record. */
 typedef struct {
