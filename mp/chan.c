@@ -13,17 +13,30 @@ chunk *chunk_new(void) {
   return c;
 }
 
-rec *chan_put(chan *q, int src, int tag, uint64_t stamp, const void *buf, size_t len) {
-  int big = len > INLINE_MAX;
-  size_t need = (sizeof(rec) + (big ? sizeof(void *) : len) + LINE - 1) / LINE * LINE;
-  if (q->woff + need + LINE > CHUNK_DATA) {   /* room for a record and a jump, always */
+/* Room for a record of `data` bytes after its header, at the writer's end
+ * (the next chunk if need be); the record, its size in *need. */
+static rec *room(chan *q, size_t data, size_t *need) {
+  *need = (sizeof(rec) + data + LINE - 1) / LINE * LINE;
+  if (q->woff + *need + LINE > CHUNK_DATA) {   /* room for a record and a jump, always */
     chunk *c = chunk_new();
     q->wc->next = c;
     atomic_store_explicit(&rec_at(q->wc, q->woff)->size, REC_JUMP, memory_order_seq_cst);
     q->wc = c;
     q->woff = 0;
   }
-  rec *x = rec_at(q->wc, q->woff);
+  return rec_at(q->wc, q->woff);
+}
+
+/* Publish x, of need bytes (see Sleeping in threads.c). */
+static void publish(chan *q, rec *x, size_t need) {
+  atomic_store_explicit(&x->size, (uint32_t)need, memory_order_seq_cst);
+  q->woff += need;
+}
+
+rec *chan_put(chan *q, int src, int tag, uint64_t stamp, const void *buf, size_t len) {
+  int big = len > INLINE_MAX;
+  size_t need;
+  rec *x = room(q, big ? sizeof(void *) : len, &need);
   x->tag = tag;
   x->flags = big ? REC_BIG : 0;
   x->src = (uint32_t)src;
@@ -36,9 +49,104 @@ rec *chan_put(chan *q, int src, int tag, uint64_t stamp, const void *buf, size_t
   } else if (len) {
     memcpy(rec_data(x), buf, len);
   }
-  atomic_store_explicit(&x->size, (uint32_t)need, memory_order_seq_cst);   /* publish (see Sleeping) */
-  q->woff += need;
+  publish(q, x, need);
   return x;
+}
+
+rec *chan_put_ref(chan *q, int src, int tag, uint64_t stamp, const void *buf, size_t len, ticket **tp) {
+  int inl = len <= INLINE_MAX - sizeof(ticket *);
+  size_t need;
+  rec *x = room(q, sizeof(ticket *) + (inl ? len : 0), &need);
+  ticket *t = xmalloc(sizeof *t);
+  atomic_init(&t->state, T_REF);
+  atomic_init(&t->refs, 2);
+  t->buf = inl ? NULL : buf;
+  t->copy = NULL;
+  t->len = len;
+  x->tag = tag;
+  x->flags = REC_REF;
+  x->src = (uint32_t)src;
+  x->stamp = stamp;
+  x->len = len;
+  memcpy(rec_data(x), &t, sizeof t);
+  if (inl && len) memcpy(rec_data(x) + sizeof t, buf, len);
+  publish(q, x, need);
+  *tp = t;
+  return x;
+}
+
+/* ==== tickets ============================================================== */
+
+static inline void relax(void) {
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+  __builtin_ia32_pause();
+#endif
+}
+
+int ticket_read(ticket *t, const unsigned char *inl, void *buf, size_t n) {
+  for (;;) {
+    int s = atomic_load(&t->state);
+    if (s == T_GONE) return -1;
+    if (s == T_MOVING) {   /* the sender copies out: a moment */
+      relax();
+      continue;
+    }
+    if (s == T_OWN) {
+      if (n) memcpy(buf, t->copy, n);
+      return 0;
+    }
+    if (atomic_compare_exchange_weak(&t->state, &s, T_BUSY)) {
+      if (n) memcpy(buf, t->buf ? t->buf : inl, n);
+      atomic_store(&t->state, T_READ);
+      return 0;
+    }
+  }
+}
+
+void ticket_settle(ticket *t) {
+  while (t->buf) {   /* (a payload in the record needs nothing) */
+    int s = atomic_load(&t->state);
+    if (s == T_BUSY) {   /* the reader copies from the buffer: a moment */
+      relax();
+      continue;
+    }
+    if (s != T_REF && s != T_SEEN) break;
+    if (atomic_compare_exchange_weak(&t->state, &s, T_MOVING)) {
+      t->copy = xmalloc(t->len ? t->len : 1);
+      memcpy(t->copy, t->buf, t->len);
+      atomic_store(&t->state, T_OWN);
+      break;
+    }
+  }
+  ticket_drop(t);
+}
+
+int ticket_withdraw(ticket *t) {
+  int s = T_REF;
+  if (atomic_compare_exchange_strong(&t->state, &s, T_GONE)) {
+    ticket_drop(t);
+    return 1;
+  }
+  return 0;
+}
+
+void ticket_drop(ticket *t) {
+  if (atomic_fetch_sub(&t->refs, 1) != 1) return;
+  free(t->copy);
+  free(t);
+}
+
+/* A receive has looked at x: a record by reference can no longer be
+ * withdrawn (T_REF -> T_SEEN); one withdrawn already is taken (skipped
+ * from now on): 0. */
+static int seen(rec *x) {
+  if (!(x->flags & REC_REF)) return 1;
+  ticket *t = rec_ticket(x);
+  int s = T_REF;
+  if (atomic_compare_exchange_strong(&t->state, &s, T_SEEN) || s != T_GONE) return 1;
+  x->flags = (x->flags & ~(uint32_t)REC_REF) | REC_TAKEN;
+  ticket_drop(t);
+  return 0;
 }
 
 rec *chan_find(chan *q, int tag) {
@@ -55,7 +163,7 @@ rec *chan_find(chan *q, int tag) {
         continue;
       }
       q->soff = off + sz;
-      if (tag_ok(tag, x->tag)) return x;
+      if (tag_ok(tag, x->tag) && seen(x)) return x;
       off += sz;
       continue;
     }
@@ -65,7 +173,7 @@ rec *chan_find(chan *q, int tag) {
       off = 0;
       continue;
     }
-    if (!(x->flags & REC_TAKEN) && tag_ok(tag, x->tag)) return x;
+    if (!(x->flags & REC_TAKEN) && tag_ok(tag, x->tag) && seen(x)) return x;
     off += sz;
   }
 }
@@ -96,6 +204,7 @@ void chan_take(chan *q, rec *x) {
     memcpy(&copy, rec_data(x), sizeof copy);
     free(copy);
   }
+  if (x->flags & REC_REF) ticket_drop(rec_ticket(x));
   chan_settle(q);
   if (x != rec_at(q->hc, q->hoff)) {
     x->flags |= REC_TAKEN;
@@ -123,6 +232,7 @@ void chan_free(chan *q) {
       memcpy(&copy, rec_data(x), sizeof copy);
       free(copy);
     }
+    if ((x->flags & (REC_REF | REC_TAKEN)) == REC_REF) ticket_drop(rec_ticket(x));
     off += sz;
   }
   free(q);

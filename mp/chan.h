@@ -19,6 +19,7 @@
 #include <stdatomic.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
 enum {
   LINE = 64,                      /* a cache line: records start on one */
@@ -28,7 +29,9 @@ enum {
 };
 enum {
   REC_BIG = 1,                    /* flags: the payload is a pointer to a copy */
-  REC_TAKEN = 2                   /* flags: received out of order (the reader's mark) */
+  REC_TAKEN = 2,                  /* flags: received out of order (the reader's mark) */
+  REC_REF = 4                     /* flags: a send by reference: a ticket pointer, then
+                                     the payload if it fits INLINE_MAX */
 };
 
 /* A record.  `size` is 0 until the writer publishes it (seq_cst), then the
@@ -74,6 +77,57 @@ typedef struct chan {
 
 /* Append a record (tag, buf[0..len)) and publish it.  Returns it. */
 rec *chan_put(chan *q, int src, int tag, uint64_t stamp, const void *buf, size_t len);
+
+/* SENDS BY REFERENCE (mp_send_ref).  The record holds a ticket that its
+ * sender and its reader share: the payload is in the record (up to
+ * INLINE_MAX bytes) or stays in the sender's buffer, and the ticket's state
+ * says who may do what, each step one compare-and-swap:
+ *
+ *   T_REF   unseen          reader: looks at it -> T_SEEN; sender: settles
+ *                           -> T_MOVING, copies out -> T_OWN; withdraws
+ *                           -> T_GONE (the reader skips it)
+ *   T_SEEN  a receive has   reader: copies -> T_BUSY ... T_READ; sender:
+ *           looked at it    settles as from T_REF; cannot withdraw
+ *   T_BUSY  the reader copies (from the sender's buffer: a settle waits
+ *           for T_READ)
+ *   T_MOVING the sender copies its buffer out: the reader waits for T_OWN
+ *
+ * A message taken by mp_recv_msg goes back from T_SEEN to T_REF (a held
+ * message may still be withdrawn; its holder sees T_GONE).  The ticket is
+ * freed by the last of its two owners to let go (the sender when it
+ * settles or withdraws, the reader when it takes the record). */
+enum { T_REF, T_SEEN, T_BUSY, T_READ, T_MOVING, T_OWN, T_GONE };
+
+typedef struct {
+  _Atomic int state;          /* T_* */
+  _Atomic int refs;           /* owners left: 2, 1, then freed */
+  const unsigned char *buf;   /* the sender's buffer, or NULL: in the record */
+  unsigned char *copy;        /* T_OWN: the payload, copied out by the settle */
+  size_t len;
+} ticket;
+
+/* Append a record by reference and publish it; *t its ticket. */
+rec *chan_put_ref(chan *q, int src, int tag, uint64_t stamp, const void *buf, size_t len, ticket **t);
+
+static inline ticket *rec_ticket(rec *x) {
+  ticket *t;
+  memcpy(&t, rec_data(x), sizeof t);
+  return t;
+}
+
+/* The reader copies n bytes of t's payload (in the sender's buffer, or at
+ * inl: the record's, or a held copy of it) into buf; 0, or -1 if its
+ * sender withdrew it (only a held message can be: one in a channel has
+ * been seen). */
+int ticket_read(ticket *t, const unsigned char *inl, void *buf, size_t n);
+
+/* The sender: settles (buf is its own again when this returns), withdraws
+ * (1, or 0: a receive has looked at it or read it; then settle it). */
+void ticket_settle(ticket *t);
+int ticket_withdraw(ticket *t);
+
+/* One owner lets go. */
+void ticket_drop(ticket *t);
 
 static inline int tag_ok(int want, int tag) { return want < 0 || want == tag; }
 

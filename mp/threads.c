@@ -344,7 +344,8 @@ static int mpt_compute(mp *self, double units) {
   return MP_OK;
 }
 
-static int mpt_send(mp *self, int dst, int tag, const void *buf, size_t len) {
+/* mp_send, or with ref mp_send_ref (*ref: the record's ticket). */
+static int send_msg(mp *self, int dst, int tag, const void *buf, size_t len, mp_ref **ref) {
   rank *r = (rank *)self;
   mpt *t = r->t;
   if (stopped(t)) return MP_ESTOPPED;
@@ -361,11 +362,32 @@ static int mpt_send(mp *self, int dst, int tag, const void *buf, size_t len) {
     return MP_EARG;
   }
   rank *d = &t->ranks[dst];
-  chan_put(chan_get(r, d), r->base.rank, tag, ++r->clock, buf, len);
+  if (ref)
+    chan_put_ref(chan_get(r, d), r->base.rank, tag, ++r->clock, buf, len, (ticket **)ref);
+  else
+    chan_put(chan_get(r, d), r->base.rank, tag, ++r->clock, buf, len);
   wake_if_waiting(t, d, r->base.rank, tag);
   r->st.sent++;
   r->st.bytes_sent += (long long)len;
   return MP_OK;
+}
+
+static int mpt_send(mp *self, int dst, int tag, const void *buf, size_t len) {
+  return send_msg(self, dst, tag, buf, len, NULL);
+}
+
+static int mpt_send_ref(mp *self, int dst, int tag, const void *buf, size_t len, mp_ref **ref) {
+  return send_msg(self, dst, tag, buf, len, ref);
+}
+
+static void mpt_settle(mp *self, mp_ref *ref) {
+  (void)self;
+  ticket_settle((ticket *)ref);
+}
+
+static int mpt_withdraw(mp *self, mp_ref *ref) {
+  (void)self;
+  return ticket_withdraw((ticket *)ref);
 }
 
 /* Check recv's and probe's source and tag. */
@@ -388,7 +410,9 @@ static int deliver(rank *r, found f, void *buf, size_t cap, mp_status *st) {
   if (x == r->pin_x) r->pin_x = NULL;   /* taken: no longer pinned (its chunk may go) */
   size_t len = (size_t)x->len, n = len <= cap ? len : cap;
   int src = (int)x->src, tag = x->tag;
-  if (n) {
+  if (x->flags & REC_REF) {
+    ticket_read(rec_ticket(x), rec_data(x) + sizeof(ticket *), buf, n);   /* seen: not withdrawn */
+  } else if (n) {
     const unsigned char *p = rec_data(x);
     if (x->flags & REC_BIG) memcpy(&p, rec_data(x), sizeof p);
     memcpy(buf, p, n);
@@ -562,6 +586,74 @@ static int mpt_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status
   return rc == MP_OK ? deliver(r, f, buf, cap, st) : rc;
 }
 
+/* A message taken by mp_recv_msg: its payload in the sender's buffer (a
+ * ticket's), in a copy (REC_BIG's), or here; a send by reference keeps its
+ * ticket, by which its sender may still withdraw it. */
+typedef struct {
+  size_t len;
+  ticket *t;
+  unsigned char *big;
+  unsigned char inl[];
+} held;
+
+static int mpt_recv_msg(mp *self, int src, int tag, mp_msg **msg, mp_status *st) {
+  rank *r = (rank *)self;
+  if (stopped(r->t)) return MP_ESTOPPED;
+  int rc = check_match_args(r, "mp_recv_msg", src, tag);
+  if (rc != MP_OK) return rc;
+  found f;
+  if ((rc = arrived(r, src, tag, &f)) != MP_OK) return rc;
+  rec *x = f.x;
+  size_t len = (size_t)x->len;
+  int inl = !(x->flags & REC_BIG) && !((x->flags & REC_REF) && rec_ticket(x)->buf);
+  held *h = xmalloc(sizeof *h + (inl ? len : 0));
+  h->len = len;
+  h->t = NULL;
+  h->big = NULL;
+  if (x->flags & REC_REF) {   /* the record's hold on the ticket passes to h */
+    h->t = rec_ticket(x);
+    if (inl && len) memcpy(h->inl, rec_data(x) + sizeof h->t, len);
+    int seen = T_SEEN;
+    atomic_compare_exchange_strong(&h->t->state, &seen, T_REF);   /* withdrawable again */
+    x->flags &= ~(uint32_t)REC_REF;
+  } else if (x->flags & REC_BIG) {   /* the copy passes to h */
+    memcpy(&h->big, rec_data(x), sizeof h->big);
+    x->flags &= ~(uint32_t)REC_BIG;
+  } else if (len) {
+    memcpy(h->inl, rec_data(x), len);
+  }
+  if (x == r->pin_x) r->pin_x = NULL;
+  if (x->stamp > r->clock) r->clock = x->stamp;
+  if (st) *st = (mp_status){(int)x->src, x->tag, len};
+  chan_take(f.q, x);
+  r->st.received++;
+  r->st.bytes_received += (long long)len;
+  *msg = (mp_msg *)h;
+  return MP_OK;
+}
+
+static int mpt_msg_read(mp *self, mp_msg *msg, void *buf, size_t cap) {
+  (void)self;
+  held *h = (held *)msg;
+  size_t n = h->len <= cap ? h->len : cap;
+  int rc = h->len > cap && buf ? MP_ETRUNC : MP_OK;
+  if (h->t) {
+    if (ticket_read(h->t, h->inl, buf, n) < 0) rc = MP_EGONE;
+    ticket_drop(h->t);
+  } else if (n) {
+    memcpy(buf, h->big ? h->big : h->inl, n);
+  }
+  free(h->big);
+  free(h);
+  return rc;
+}
+
+static int mpt_msg_gone(mp *self, const mp_msg *msg) {
+  (void)self;
+  const held *h = (const held *)msg;
+  return h->t && atomic_load(&h->t->state) == T_GONE;
+}
+
 /* A message is shown, not taken (a probe that found one, mp_wait): it has
  * arrived, so whatever this rank sends from now on comes after it, and its
  * clock moves past the message's stamp as a receive's does (else a message
@@ -636,10 +728,12 @@ static void mpt_stop(mp *self, int code, const char *why) {
   wake_all(t);
 }
 
-static const mp_ops mpt_ops = {mpt_send, mpt_recv, mpt_probe, mpt_compute, mpt_time,
-                               mpt_wait, mpt_busy, mpt_sleep, mpt_stop,    NULL,
-                               NULL,     NULL,     NULL,      NULL,        NULL,
-                               NULL,     NULL,     NULL};
+/* Promises: none here (the receiver takes a message when it comes, often
+ * before its sender settles it; where not, the settle copies it out). */
+static const mp_ops mpt_ops = {mpt_send,     mpt_recv,   mpt_probe,    mpt_compute,  mpt_time,
+                               mpt_wait,     mpt_busy,   mpt_sleep,    mpt_stop,     NULL,
+                               mpt_send_ref, mpt_settle, mpt_withdraw, mpt_recv_msg, mpt_msg_read,
+                               mpt_msg_gone, NULL,       NULL};
 
 /* ==== the machine ========================================================= */
 
@@ -728,6 +822,7 @@ static void sweep_unread(mpt *t) {
         }
         off += sz;
         if (x->flags & REC_TAKEN) continue;
+        if ((x->flags & REC_REF) && atomic_load(&rec_ticket((rec *)x)->state) == T_GONE) continue;
         count++;
         if (!first || x->stamp < first->stamp || (x->stamp == first->stamp && x->src < first->src)) first = x;
       }
