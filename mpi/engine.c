@@ -390,9 +390,18 @@ void eng_step(tsm *R) {
   dispatch(R, &st);
 }
 
+void eng_advance(tsm *R, tsm_req *q) {
+  if (q->kind != RQ_KIND || q->state != RS_ACTIVE || !q->ops->progress || !q->ops->progress(q->ext)) return;
+  q->state = RS_DONE;
+  if (q->freed) tsm_req_free(R, q);
+}
+
 void eng_wait(tsm *R, tsm_req *q) {
   while (q->state == RS_ACTIVE) {
-    if (q->kind == RQ_SEND && !R->posted) {
+    if (q->kind == RQ_KIND) {   /* its progress, between the messages that come */
+      eng_advance(R, q);
+      if (q->state == RS_ACTIVE) eng_step(R);
+    } else if (q->kind == RQ_SEND && !R->posted) {
       /* Nothing posted to progress: the ack itself (acks of one key come
        * in the order of the sends, acked() gives each to its send). */
       int wpeer = q->wpeer, ctx = q->ctx, tag = q->tag;
@@ -419,7 +428,7 @@ void eng_poll(tsm *R) {
   }
 }
 
-int eng_probe(tsm *R, int wsrc, int ctx, int tag, int block, int *src, int *mtag, size_t *len) {
+int eng_probe(tsm *R, int wsrc, int ctx, int tag, int block, int *src, int *mtag, size_t *len, tsm_msg **take) {
   for (tsm_msg *m = R->unexp, *next; m; m = next) {
     next = m->next;
     if (m->ctx == ctx && (wsrc < 0 || m->src == wsrc) && (tag < 0 || m->tag == tag)) {
@@ -431,6 +440,10 @@ int eng_probe(tsm *R, int wsrc, int ctx, int tag, int block, int *src, int *mtag
       *src = m->src;
       *mtag = m->tag;
       *len = m->len;
+      if (take) {
+        unexp_unlink(R, m);
+        *take = m;
+      }
       return 1;
     }
   }
@@ -452,10 +465,62 @@ int eng_probe(tsm *R, int wsrc, int ctx, int tag, int block, int *src, int *mtag
       *src = st.source;
       *mtag = t;
       *len = st.len;
+      if (take) {   /* taken off mp: no receive will match it but the program's own */
+        tsm_msg *m = xmalloc(sizeof *m);
+        *m = (tsm_msg){.src = st.source, .kind = k, .ctx = c, .tag = t, .len = st.len};
+        mpok(R, mp_recv_msg(R->self, st.source, st.tag, &m->h, NULL), "mp_recv_msg");
+        *take = m;
+      }
       return 1;
     }
     dispatch(R, &st);
   }
+}
+
+void eng_msg_read(tsm *R, tsm_req *q, tsm_msg *m) {
+  if (unexp_gone(R, m)) {   /* withdrawn since the probe: nothing came */
+    q->st = (MPI_Status){.MPI_SOURCE = MPI_ANY_SOURCE, .MPI_TAG = MPI_ANY_TAG, .MPI_ERROR = MPI_SUCCESS};
+    q->msglen = 0;
+    q->state = RS_DONE;
+    return;
+  }
+  size_t n = m->len < q->cap ? m->len : q->cap;
+  if (q->contig || !n) {
+    mp_msg_read(R->self, m->h, n ? q->contig : NULL, n);
+  } else {
+    unsigned char *tmp = xmalloc(n);
+    mp_msg_read(R->self, m->h, tmp, n);
+    place(q, tmp, n);
+    free(tmp);
+  }
+  complete(R, q, m->src, m->kind, m->ctx, m->tag, m->len, 0);
+  free(m);
+}
+
+void eng_msg_free(tsm *R, tsm_msg *m) { unexp_free(R, m); }
+
+int eng_cancel_recv(tsm *R, tsm_req *q) {
+  /* A promise that holds its message already: the receive has it. */
+  if (q->prom && mp_promise_drop(R->self, q->prom, 1)) return 0;
+  unlink_posted(R, q);   /* (counts q by its promise, gone now) */
+  q->prom = NULL;
+  tsm_ranks_drop(q->g);
+  q->g = NULL;
+  q->st = (MPI_Status){.MPI_SOURCE = MPI_ANY_SOURCE, .MPI_TAG = MPI_ANY_TAG, .MPI_ERROR = MPI_SUCCESS,
+                       .tsmpi_cancelled = 1};
+  q->msglen = 0;
+  q->state = RS_DONE;
+  return 1;
+}
+
+int eng_cancel_send(tsm *R, tsm_req *q) {
+  if (!q->ref || !mp_withdraw(R->self, q->ref)) return 0;
+  q->ref = NULL;   /* spent */
+  if (q->state == RS_ACTIVE) sync_unlink(R, q);   /* a synchronous send's ack will not come */
+  q->st = (MPI_Status){.MPI_SOURCE = MPI_ANY_SOURCE, .MPI_TAG = MPI_ANY_TAG, .MPI_ERROR = MPI_SUCCESS,
+                       .tsmpi_cancelled = 1};
+  q->state = RS_DONE;
+  return 1;
 }
 
 void eng_release(tsm *R) {

@@ -61,8 +61,13 @@ void eng_recv_start(tsm *R, tsm_req *q);
  * one mp_recv when nothing else is posted. */
 void eng_recv(tsm *R, tsm_req *q);
 
-/* Block until q (active) is done. */
+/* Block until q (active) is done (a request of a kind of its own: its
+ * progress between the messages that come, p2p.h). */
 void eng_wait(tsm *R, tsm_req *q);
+
+/* A request of a kind of its own, active: its progress, once (done: it
+ * goes if the program freed it). */
+void eng_advance(tsm *R, tsm_req *q);
 
 /* Block until at least one message has been taken and acted on (a receive
  * matched, an ack, an unexpected message): for waits on several requests. */
@@ -77,8 +82,24 @@ void eng_unpost(tsm *R, tsm_req *q);
 /* The message a receive from wsrc (MP_ANY) with ctx and tag (MPI_ANY_TAG)
  * would take now: 1 and its world source, tag and bytes; 0 if none has
  * arrived (block = 0); with block, waits until one has.  The message stays
- * to be received (in mp's mailbox or the unexpected queue). */
-int eng_probe(tsm *R, int wsrc, int ctx, int tag, int block, int *src, int *mtag, size_t *len);
+ * to be received (in mp's mailbox or the unexpected queue); with take, it
+ * is taken out of matching (MPI_Mprobe: *take, for eng_msg_read or
+ * eng_msg_free). */
+int eng_probe(tsm *R, int wsrc, int ctx, int tag, int block, int *src, int *mtag, size_t *len, tsm_msg **take);
+
+/* Receive m (taken by eng_probe) into q (filled, not started): q done,
+ * with its status (an empty one if m's sender withdrew it since); m freed.
+ * eng_msg_free: m released unread (the rank's end). */
+void eng_msg_read(tsm *R, tsm_req *q, tsm_msg *m);
+void eng_msg_free(tsm *R, tsm_msg *m);
+
+/* MPI_Cancel: a posted receive taken out of the posted queue (1: q done,
+ * cancelled), or not (0: a message is in its buffer already, and it
+ * completes as usual); a send's message withdrawn if no receive has read
+ * it (1: q done, cancelled; a synchronous send no longer waits for its
+ * ack), else 0. */
+int eng_cancel_recv(tsm *R, tsm_req *q);
+int eng_cancel_send(tsm *R, tsm_req *q);
 
 /* Free the unexpected queue, settle every request's send, drop every
  * promise (the rank's end). */
