@@ -106,6 +106,25 @@ int tsmpi_p2p_waitall(int n, MPI_Request *reqs, MPI_Status *sts) {
   return first;
 }
 
+int tsmpi_p2p_done(MPI_Request *req, MPI_Status *st) {
+  if (*req == MPI_REQUEST_NULL) {
+    if (st != MPI_STATUS_IGNORE) tsm_status_empty(st);
+    return 1;
+  }
+  tsm *R = tsm_need("tsmpi_p2p_done");
+  tsm_req *q = tsm_req_get(R, *req);
+  if (!q) {
+    fprintf(stderr, "tilesim MPI: internal error: rank %d: tsmpi_p2p_done of request 0x%x\n", R->wrank,
+            (unsigned)*req);
+    abort();
+  }
+  if (q->state == RS_ACTIVE) return 0;
+  tsm_status_out(st, &q->st, 1);
+  tsm_req_free(R, q);
+  *req = MPI_REQUEST_NULL;
+  return 1;
+}
+
 /* ==== communicators ======================================================= */
 
 int tsmpi_comm_check(MPI_Comm comm, const char *fn) {

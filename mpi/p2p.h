@@ -77,6 +77,13 @@ int tsmpi_p2p_irecv(void *buf, int count, MPI_Datatype dt, int src, int tag, MPI
  * first error class (without). */
 int tsmpi_p2p_waitall(int n, MPI_Request *reqs, MPI_Status *sts);
 
+/* Whether *req (of tsmpi_p2p_isend or _irecv; MPI_REQUEST_NULL: done) is
+ * done, without taking any message and without the poll cost of MPI_Test:
+ * 1 and it completed (its status in *st, which may be MPI_STATUS_IGNORE;
+ * *req MPI_REQUEST_NULL), or 0.  For a kind's progress (below), which runs
+ * after the engine has acted on every message that has arrived. */
+int tsmpi_p2p_done(MPI_Request *req, MPI_Status *st);
+
 /* ==== requests of a kind of their own ===================================== */
 
 /* A part of the layer (nonblocking collectives, one-sided operations,

@@ -9,14 +9,19 @@
  * completes is named in the deadlock report; a rank that polls (MPI_Test,
  * MPI_Iprobe, MPI_Improbe, MPI_Testany, MPI_Wtime) without its clock
  * moving is stopped with one line naming it, the call and the time, while
- * the same loop with a poll cost ends.  On the simulator (m = 1/4, 1/16 s
- * a byte, c = 1/8: exact times), and on threads where it applies. */
+ * the same loop with a poll cost ends.  And a request of a kind of its own
+ * (p2p.h: a ring exchange on the collective context, as a nonblocking
+ * collective would make one): its progress driven by MPI_Test and
+ * MPI_Wait, its status and free called once, its closed-form time, its
+ * name in a deadlock report.  On the simulator (m = 1/4, 1/16 s a byte,
+ * c = 1/8: exact times), and on threads where it applies. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "../mpi/env.h"
 #include "../mpi/mpi.h"
+#include "../mpi/p2p.h"
 #include "check.h"
 #include "mp.h"
 #include "mpiharness.h"
@@ -267,7 +272,101 @@ static void spinning(void) {
   }
 }
 
+/* ==== a request of a kind of its own ====================================== */
+
+typedef struct {
+  MPI_Request r[2];   /* receive from the left, send to the right */
+  int v, w;           /* sent, received */
+  int progress, statuses, frees;
+  int never;          /* a kind that never completes */
+} xchg;
+
+static int x_progress(void *state) {
+  xchg *x = state;
+  x->progress++;
+  int a = tsmpi_p2p_done(&x->r[0], MPI_STATUS_IGNORE), b = tsmpi_p2p_done(&x->r[1], MPI_STATUS_IGNORE);
+  return a && b && !x->never;
+}
+
+static int x_status(void *state, MPI_Status *st) {
+  xchg *x = state;
+  x->statuses++;
+  st->MPI_SOURCE = 7;
+  st->MPI_TAG = x->w;
+  return MPI_SUCCESS;
+}
+
+static int x_free(void *state) {
+  ((xchg *)state)->frees++;
+  return MPI_SUCCESS;
+}
+
+static const tsmpi_kind xchg_kind = {"MPI_Ixchg", x_progress, NULL, x_status, x_free, NULL};
+
+typedef struct {
+  int wait;           /* MPI_Wait, else MPI_Test until done */
+  int never;
+  xchg x[4];
+  double t[4];        /* each rank's clock when done */
+  long fails[4];
+} kindrun;
+
+static int kinds(void *ud) {
+  kindrun *K = ud;
+  MPI_Init(NULL, NULL);
+  int r, n;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  MPI_Comm_size(MPI_COMM_WORLD, &n);
+  xchg *x = &K->x[r];
+  x->v = 100 + r;
+  x->never = K->never;
+  tsmpi_p2p_irecv(&x->w, 1, MPI_INT, (r + n - 1) % n, 3, MPI_COMM_WORLD, &x->r[0]);
+  tsmpi_p2p_isend(&x->v, 1, MPI_INT, (r + 1) % n, 3, MPI_COMM_WORLD, &x->r[1]);
+  MPI_Request q;
+  MPI_Status st;
+  tsmpi_req_start(&xchg_kind, x, &q);
+  if (K->wait) {
+    MPI_Wait(&q, &st);
+  } else {
+    int flag = 0;
+    for (MPI_Test(&q, &flag, &st); !flag; MPI_Test(&q, &flag, &st)) K->fails[r]++;
+  }
+  K->t[r] = MPI_Wtime();
+  if (st.MPI_SOURCE != 7 || st.MPI_TAG != x->w || q != MPI_REQUEST_NULL) x->statuses = -100;
+  MPI_Finalize();
+  return 0;
+}
+
+static void kind_requests(void) {
+  for (int w = 0; w < 2; w++) {
+    kindrun K;
+    memset(&K, 0, sizeof K);
+    K.wait = w;
+    mpih_result res = run(MPIH_SIM, 4, kinds, &K, 0.0625);
+    int bad = 0;
+    for (int r = 0; r < 4; r++)
+      bad += K.x[r].w != 100 + (r + 3) % 4 || K.x[r].statuses != 1 || K.x[r].frees != 1 || K.t[r] != 0.5 ||
+             K.fails[r] != (w ? 0 : 8);
+    /* The message arrives at 1/4 + 4/16 = 1/2; tests at 0, 1/16, ...: the
+     * one at 1/2 finds it, after 8 failed. */
+    CHECK(res.rc == 0 && bad == 0, "a kind of its own (%s): %d ranks wrong (rank 0: got %d, statuses %d, frees %d, "
+                                   "done at %.17g after %ld failed tests): %s",
+          w ? "MPI_Wait" : "MPI_Test", bad, K.x[0].w, K.x[0].statuses, K.x[0].frees, K.t[0], K.fails[0], res.err);
+    mpih_result_free(&res);
+  }
+  for (int b = 0; b < 2; b++) {
+    kindrun K;
+    memset(&K, 0, sizeof K);
+    K.wait = K.never = 1;
+    mpih_result res = run(b, 2, kinds, &K, 0.0625);
+    CHECK(res.rc != 0 && res.deadlock && has(res.err, "rank 1 waits in MPI_Wait(MPI_Ixchg)"),
+          "%s: a kind that never completes: %s", bname[b], res.err);
+    mpih_result_free(&res);
+  }
+}
+
 int main(void) {
+  kind_requests();
   cancels();
   greq_deadlock();
   spinning();
