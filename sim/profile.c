@@ -1,10 +1,9 @@
-/* profile.c -- the simulator's machine profiles and network models' names
- * (sim.h: sim_config_init, sim_profile, sim_net_name, sim_net_parse): the
- * one place for the machine's default costs. */
+/* profile.c -- the simulator's configurations (profile.h). */
+#include "profile.h"
+
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
-
-#include "sim.h"
 
 /* "tc2000": the BBN TC2000 of Johnson, Livadas & Talele (1993), calibrated
  * so that the paper's experiments (sections 6 and 7) show what it reports
@@ -72,4 +71,53 @@ int sim_net_parse(const char *name, sim_net *net) {
     }
   }
   return -1;
+}
+
+int sim_config_check(const sim_config *cfg, int nranks, topo **tp, int *procs, char *err, size_t errlen) {
+  if (cfg->procs < 1) {
+    snprintf(err, errlen, "sim: %d processors: need at least 1", cfg->procs);
+    return -1;
+  }
+  const struct {
+    const char *name;
+    double v;
+  } costs[] = {{"c", cfg->c},          {"m", cfg->m}, {"per_byte", cfg->per_byte},
+               {"local", cfg->local},  {"L", cfg->L}, {"o", cfg->o},
+               {"g", cfg->g},          {"G", cfg->G}, {"hop_latency", cfg->hop_latency}};
+  for (size_t i = 0; i < sizeof costs / sizeof *costs; i++) {
+    if (!(costs[i].v >= 0) || isinf(costs[i].v)) {
+      snprintf(err, errlen, "sim: cost %s = %g: must be finite and >= 0", costs[i].name,
+               costs[i].v);
+      return -1;
+    }
+  }
+  if (cpu_model_check(&cfg->cpu, err, errlen) != 0) return -1;
+  if ((unsigned)cfg->net > SIM_NET_TOPOLOGY ||
+      (cfg->net == SIM_NET_TOPOLOGY && cfg->topo.kind == TOPO_NONE)) {
+    snprintf(err, errlen, "sim: unknown network model %d", (int)cfg->net);
+    return -1;
+  }
+  /* A topology: its processors (at least procs), its links. */
+  *tp = NULL;
+  *procs = cfg->procs;
+  if (cfg->topo.kind != TOPO_NONE) {
+    char terr[200];
+    if (!(*tp = topo_new(&cfg->topo, cfg->procs, terr, sizeof terr))) {
+      snprintf(err, errlen, "sim: %s", terr);
+      return -1;
+    }
+    *procs = topo_nodes(*tp);
+  }
+  if (cfg->place) {
+    for (int r = 0; r < nranks; r++) {
+      if (cfg->place[r] < 0 || cfg->place[r] >= *procs) {
+        snprintf(err, errlen, "sim: place[%d] = %d: processors are 0..%d", r, cfg->place[r],
+                 *procs - 1);
+        topo_free(*tp);
+        *tp = NULL;
+        return -1;
+      }
+    }
+  }
+  return 0;
 }

@@ -40,6 +40,7 @@
 #include "evq.h"
 #include "errlog.h"
 #include "mailbox.h"
+#include "profile.h"
 #include "trace.h"
 #include "wallclock.h"
 #include "xmem.h"
@@ -621,50 +622,9 @@ sim *sim_new(const sim_config *cfg, int nranks, char *err, size_t errlen) {
     snprintf(err, errlen, "sim: %d ranks: need at least 1", nranks);
     return NULL;
   }
-  if (cfg->procs < 1) {
-    snprintf(err, errlen, "sim: %d processors: need at least 1", cfg->procs);
-    return NULL;
-  }
-  const struct {
-    const char *name;
-    double v;
-  } costs[] = {{"c", cfg->c},          {"m", cfg->m}, {"per_byte", cfg->per_byte},
-               {"local", cfg->local},  {"L", cfg->L}, {"o", cfg->o},
-               {"g", cfg->g},          {"G", cfg->G}, {"hop_latency", cfg->hop_latency}};
-  for (size_t i = 0; i < sizeof costs / sizeof *costs; i++) {
-    if (!(costs[i].v >= 0) || isinf(costs[i].v)) {
-      snprintf(err, errlen, "sim: cost %s = %g: must be finite and >= 0", costs[i].name,
-               costs[i].v);
-      return NULL;
-    }
-  }
-  if (cpu_model_check(&cfg->cpu, err, errlen) != 0) return NULL;
-  if ((unsigned)cfg->net > SIM_NET_TOPOLOGY ||
-      (cfg->net == SIM_NET_TOPOLOGY && cfg->topo.kind == TOPO_NONE)) {
-    snprintf(err, errlen, "sim: unknown network model %d", (int)cfg->net);
-    return NULL;
-  }
-  /* A topology: its processors (at least procs), its links. */
-  topo *tp = NULL;
-  int procs = cfg->procs;
-  if (cfg->topo.kind != TOPO_NONE) {
-    char terr[200];
-    if (!(tp = topo_new(&cfg->topo, cfg->procs, terr, sizeof terr))) {
-      snprintf(err, errlen, "sim: %s", terr);
-      return NULL;
-    }
-    procs = topo_nodes(tp);
-  }
-  if (cfg->place) {
-    for (int r = 0; r < nranks; r++) {
-      if (cfg->place[r] < 0 || cfg->place[r] >= procs) {
-        snprintf(err, errlen, "sim: place[%d] = %d: processors are 0..%d", r, cfg->place[r],
-                 procs - 1);
-        topo_free(tp);
-        return NULL;
-      }
-    }
-  }
+  topo *tp;
+  int procs;
+  if (sim_config_check(cfg, nranks, &tp, &procs, err, errlen) != 0) return NULL;
   sim *s = xcalloc(1, sizeof *s);
   s->cfg = *cfg;
   s->cfg.procs = procs;
