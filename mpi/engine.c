@@ -268,6 +268,8 @@ static void dispatch(tsm *R, const mp_status *st) {
 
 /* ==== the calls =========================================================== */
 
+static void advance_all(tsm *R);
+
 void eng_send(tsm *R, tsm_req *q, const void *data, size_t len) {
   int kind = q->mode == SM_SYNC ? K_SYNC : K_DATA, mptag = env_encode(kind, q->ctx, q->tag);
   if (q->byref)
@@ -388,12 +390,25 @@ void eng_step(tsm *R) {
   mp_status st;
   mpok(R, mp_wait(R->self, MP_ANY, MP_ANY, &st), "mp_wait");
   dispatch(R, &st);
+  advance_all(R);
 }
 
 void eng_advance(tsm *R, tsm_req *q) {
   if (q->kind != RQ_KIND || q->state != RS_ACTIVE || !q->ops->progress || !q->ops->progress(q->ext)) return;
   q->state = RS_DONE;
   if (q->freed) tsm_req_free(R, q);
+}
+
+/* Every active request of a kind of its own advances (once each; not from
+ * within a kind's own progress). */
+static void advance_all(tsm *R) {
+  if (!R->nkinds || R->advancing) return;
+  R->advancing = 1;
+  for (int i = 0; i < R->nreqs; i++) {
+    tsm_req *q = R->reqs[i];
+    if (q->used && q->kind == RQ_KIND) eng_advance(R, q);
+  }
+  R->advancing = 0;
 }
 
 void eng_wait(tsm *R, tsm_req *q) {
@@ -422,10 +437,11 @@ void eng_poll(tsm *R) {
   mp_status st;
   for (;;) {
     int rc = mp_probe(R->self, MP_ANY, MP_ANY, &st);
-    if (rc == 0) return;
+    if (rc == 0) break;
     if (rc < 0) mpok(R, rc, "mp_probe");
     dispatch(R, &st);
   }
+  advance_all(R);
 }
 
 int eng_probe(tsm *R, int wsrc, int ctx, int tag, int block, int *src, int *mtag, size_t *len, tsm_msg **take) {

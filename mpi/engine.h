@@ -70,10 +70,13 @@ void eng_wait(tsm *R, tsm_req *q);
 void eng_advance(tsm *R, tsm_req *q);
 
 /* Block until at least one message has been taken and acted on (a receive
- * matched, an ack, an unexpected message): for waits on several requests. */
+ * matched, an ack, an unexpected message): for waits on several requests.
+ * Then every request of a kind of its own advances (MPI's progress: a
+ * nonblocking collective moves on while its rank waits for anything). */
 void eng_step(tsm *R);
 
-/* Act on every message that has arrived, without blocking. */
+/* Act on every message that has arrived, without blocking; then every
+ * request of a kind of its own advances. */
 void eng_poll(tsm *R);
 
 /* Take q out of the posted queue (a request freed or a stopped rank). */

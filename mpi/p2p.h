@@ -94,9 +94,13 @@ int tsmpi_p2p_done(MPI_Request *req, MPI_Status *st);
  *
  *   progress(state)  advance without blocking, after the engine has acted
  *                    on every message that has arrived (the Test family,
- *                    MPI_Request_get_status) or on each message that comes
- *                    (the Wait family, between them): 1 once the request
- *                    is done, 0 if not yet.  It may start and test
+ *                    MPI_Request_get_status, MPI_Iprobe) or on each message
+ *                    that comes while the rank waits in any MPI call (the
+ *                    Wait family, a blocking receive with receives posted,
+ *                    ...): every request of a kind not yet freed advances
+ *                    then, whichever the call waits for, as MPI's progress
+ *                    rule asks (not while the rank computes between calls):
+ *                    1 once the request is done, 0 if not yet.  It may start and test
  *                    point-to-point requests of its own (tsmpi_p2p_isend,
  *                    MPI_Test on them).  NULL: the request is done only by
  *                    tsmpi_req_complete.  A Wait on a request that nothing

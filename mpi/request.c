@@ -474,6 +474,7 @@ int tsmpi_req_start(const tsmpi_kind *kind, void *state, MPI_Request *req) {
   q->peer = MPI_PROC_NULL;
   q->state = RS_ACTIVE;
   tsm_status_empty(&q->st);
+  R->nkinds++;
   *req = tsm_req_handle(q);
   return MPI_SUCCESS;
 }

@@ -169,7 +169,11 @@ tsm_req *tsm_req_get(tsm *R, MPI_Request h) {
 int tsm_req_free(tsm *R, tsm_req *q) {
   eng_settle(R, q);
   if (q->slot < 0) return MPI_SUCCESS;
-  int err = q->kind == RQ_KIND && q->ops->free ? q->ops->free(q->ext) : MPI_SUCCESS;
+  int err = MPI_SUCCESS;
+  if (q->kind == RQ_KIND) {
+    R->nkinds--;
+    if (q->ops->free) err = q->ops->free(q->ext);
+  }
   if (q->held) tsmpi_type_release(q->dt);
   q->held = 0;
   q->used = 0;

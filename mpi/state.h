@@ -203,6 +203,10 @@ struct tsm {
   /* a rank that polls without its clock moving (spin.h) */
   long spins;
   double spin_t;
+  /* requests of a kind of their own not yet freed, and whether their
+   * progress runs now (engine.c: eng_advance_all) */
+  int nkinds;
+  int advancing;
   /* MPI_Buffer_attach */
   void *bbuf;
   int bsize;

@@ -13,7 +13,8 @@
  * (p2p.h: a ring exchange on the collective context, as a nonblocking
  * collective would make one): its progress driven by MPI_Test and
  * MPI_Wait, its status and free called once, its closed-form time, its
- * name in a deadlock report.  On the simulator (m = 1/4, 1/16 s a byte,
+ * name in a deadlock report; one advancing while its rank waits for
+ * another (MPI's progress).  On the simulator (m = 1/4, 1/16 s a byte,
  * c = 1/8: exact times), and on threads where it applies. */
 #include <stdio.h>
 #include <stdlib.h>
@@ -365,8 +366,74 @@ static void kind_requests(void) {
   }
 }
 
+/* MPI's progress: a request of a kind advances while its rank waits for
+ * another.  Rank 0's relay forwards rank 1's message (tag 10) back to it
+ * (tag 11) once it comes; rank 0 waits only for rank 1's answer (tag 12),
+ * which rank 1 sends once the relay's message is there: 1/2 s a hop, done
+ * at 1.5. */
+typedef struct {
+  MPI_Request in, out, answer;
+  int v, stage;
+} relay;
+
+static int relay_progress(void *state) {
+  relay *x = state;
+  if (x->stage == 0 && tsmpi_p2p_done(&x->in, MPI_STATUS_IGNORE)) {
+    tsmpi_p2p_isend(&x->v, 1, MPI_INT, 1, 11, MPI_COMM_WORLD, &x->out);
+    x->stage = 1;
+  }
+  return x->stage == 1 && tsmpi_p2p_done(&x->out, MPI_STATUS_IGNORE);
+}
+
+static int answer_progress(void *state) { return tsmpi_p2p_done(&((relay *)state)->answer, MPI_STATUS_IGNORE); }
+
+static const tsmpi_kind relay_kind = {"MPI_Irelay", relay_progress, NULL, NULL, NULL, NULL};
+static const tsmpi_kind answer_kind = {"MPI_Ianswer", answer_progress, NULL, NULL, NULL, NULL};
+
+typedef struct {
+  double t;
+  int v, w;
+} relayrun;
+
+static int relays(void *ud) {
+  relayrun *K = ud;
+  MPI_Init(NULL, NULL);
+  int r, v = 5;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  if (r == 0) {
+    relay x = {.stage = 0};
+    MPI_Request a, b;
+    tsmpi_p2p_irecv(&x.v, 1, MPI_INT, 1, 10, MPI_COMM_WORLD, &x.in);
+    tsmpi_req_start(&relay_kind, &x, &b);
+    tsmpi_p2p_irecv(&K->w, 1, MPI_INT, 1, 12, MPI_COMM_WORLD, &x.answer);
+    tsmpi_req_start(&answer_kind, &x, &a);
+    MPI_Wait(&a, MPI_STATUS_IGNORE);
+    K->t = MPI_Wtime();
+    MPI_Wait(&b, MPI_STATUS_IGNORE);
+  } else if (r == 1) {
+    tsmpi_p2p_send(&v, 1, MPI_INT, 0, 10, MPI_COMM_WORLD);
+    tsmpi_p2p_recv(&K->v, 1, MPI_INT, 0, 11, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    K->v++;
+    tsmpi_p2p_send(&K->v, 1, MPI_INT, 0, 12, MPI_COMM_WORLD);
+  }
+  MPI_Finalize();
+  return 0;
+}
+
+static void progress_of_all(void) {
+  for (int b = 0; b < 2; b++) {
+    relayrun K = {0};
+    mpih_result res = run(b, 2, relays, &K, 0.0625);
+    CHECK(res.rc == 0 && K.v == 6 && K.w == 6 && (b == MPIH_THREADS || K.t == 1.5),
+          "%s: a kind advancing while its rank waits for another: %d %d at %.17g (6 6 at 1.5 due): %s", bname[b], K.v,
+          K.w, K.t, res.err);
+    mpih_result_free(&res);
+  }
+}
+
 int main(void) {
   kind_requests();
+  progress_of_all();
   cancels();
   greq_deadlock();
   spinning();
