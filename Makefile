@@ -338,7 +338,7 @@ valgrind: $(addprefix $(VG)/tests/,$(TESTS))
 TSANCC    ?= $(CC)
 TSAN       = build/tsan
 TSANFLAGS  = -O1 -g -fsanitize=thread -fno-omit-frame-pointer
-TSAN_TESTS ?= test_mpstress test_threads test_variants test_cpuload test_mpi_match
+TSAN_TESTS ?= test_mpstress test_threads test_variants test_cpuload test_mpi_match test_mpref
 $(TSAN)/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(TSANCC) $(BASE) $(TSANFLAGS) -Werror -MMD -MP -c $< -o $@

@@ -376,8 +376,15 @@ int PMPI_Alltoall(const void *sendbuf, int sendcount, MPI_Datatype sendtype, voi
     else if (n <= 32768) a = ALG_SCATTERED;
     else a = ALG_PAIRWISE;
   }
-  char *out = tsmpi_coll_pack(&g, recvbuf, recvcount * size, recvtype), *in = NULL;
-  if (a != ALG_PAIRWISE_SENDRECV_REPLACE) {
+  /* Contiguous buffers, not in place: the algorithms read sendbuf and write
+   * recvbuf where they lie (no packed copies). */
+  char *rdirect = a != ALG_PAIRWISE_SENDRECV_REPLACE && !in_place
+                      ? (char *)tsmpi_type_contig(recvbuf, recvcount * size, recvtype) : NULL;
+  const char *sdirect = rdirect ? tsmpi_type_contig(sendbuf, sendcount * size, sendtype) : NULL;
+  char *out = sdirect ? rdirect : tsmpi_coll_pack(&g, recvbuf, recvcount * size, recvtype), *in = NULL;
+  if (sdirect) {
+    in = (char *)sdirect;
+  } else if (a != ALG_PAIRWISE_SENDRECV_REPLACE) {
     in = in_place ? out : tsmpi_coll_pack(&g, sendbuf, sendcount * size, sendtype);
     if (in_place) out = tsmpi_cg_alloc(&g, n * (size_t)size);
   } else if (!in_place) {
@@ -395,10 +402,12 @@ int PMPI_Alltoall(const void *sendbuf, int sendcount, MPI_Datatype sendtype, voi
   case ALG_PAIRWISE: rc = tsmpi_alltoall_pairwise(&g, in, out, n); break;
   default: rc = tsmpi_alltoallv_pairwise_sendrecv_replace(&g, out, cd, cd + size, cd, cd + size); break;
   }
-  if (!rc) tsmpi_coll_unpack(out, recvbuf, recvcount * size, recvtype);
+  if (!rc && !sdirect) tsmpi_coll_unpack(out, recvbuf, recvcount * size, recvtype);
   tsmpi_cg_free(cd);
-  tsmpi_cg_free(in);
-  tsmpi_cg_free(out);
+  if (!sdirect) {
+    tsmpi_cg_free(in);
+    tsmpi_cg_free(out);
+  }
   return tsmpi_coll_end(rc);
 }
 

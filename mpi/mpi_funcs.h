@@ -17,8 +17,9 @@
  *
  * The list holds the 407 functions of MPI 3.1 (Open MPI 4.1's, an MPI 3.1
  * library, plus MPI_Aint_add and MPI_Aint_diff, which it has as macros) and
- * the 10 REMOVED ones; the parameter names are those of MPICH's manual
- * pages, which follow the standard.
+ * the 10 REMOVED ones, then MPI-4's additions that tilesim has (MPI4); the
+ * parameter names are those of MPICH's manual pages, which follow the
+ * standard.
  * tests/cli_mpihdr.sh checks every prototype's types against Open MPI's mpi.h.
  *
  * Define TSMPI_FN, include this file, undefine it: mpi.h declares every
@@ -89,17 +90,17 @@ TSMPI_FN(1, P2P, int, MPI_Buffer_attach, (void *buffer, int size),
          (buffer, size))
 TSMPI_FN(1, P2P, int, MPI_Buffer_detach, (void *buffer_addr, int *size),
          (buffer_addr, size))
-TSMPI_FN(0, P2P, int, MPI_Cancel, (MPI_Request *request),
+TSMPI_FN(1, P2P, int, MPI_Cancel, (MPI_Request *request),
          (request))
 TSMPI_FN(1, P2P, int, MPI_Get_count, (const MPI_Status *status, MPI_Datatype datatype, int *count),
          (status, datatype, count))
 TSMPI_FN(1, P2P, int, MPI_Ibsend, (const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
          MPI_Comm comm, MPI_Request *request),
          (buf, count, datatype, dest, tag, comm, request))
-TSMPI_FN(0, P2P, int, MPI_Improbe, (int source, int tag, MPI_Comm comm, int *flag, MPI_Message *message,
+TSMPI_FN(1, P2P, int, MPI_Improbe, (int source, int tag, MPI_Comm comm, int *flag, MPI_Message *message,
          MPI_Status *status),
          (source, tag, comm, flag, message, status))
-TSMPI_FN(0, P2P, int, MPI_Imrecv, (void *buf, int count, MPI_Datatype datatype, MPI_Message *message,
+TSMPI_FN(1, P2P, int, MPI_Imrecv, (void *buf, int count, MPI_Datatype datatype, MPI_Message *message,
          MPI_Request *request),
          (buf, count, datatype, message, request))
 TSMPI_FN(1, P2P, int, MPI_Iprobe, (int source, int tag, MPI_Comm comm, int *flag, MPI_Status *status),
@@ -116,10 +117,10 @@ TSMPI_FN(1, P2P, int, MPI_Isend, (const void *buf, int count, MPI_Datatype datat
 TSMPI_FN(1, P2P, int, MPI_Issend, (const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
          MPI_Comm comm, MPI_Request *request),
          (buf, count, datatype, dest, tag, comm, request))
-TSMPI_FN(0, P2P, int, MPI_Mprobe, (int source, int tag, MPI_Comm comm, MPI_Message *message,
+TSMPI_FN(1, P2P, int, MPI_Mprobe, (int source, int tag, MPI_Comm comm, MPI_Message *message,
          MPI_Status *status),
          (source, tag, comm, message, status))
-TSMPI_FN(0, P2P, int, MPI_Mrecv, (void *buf, int count, MPI_Datatype datatype, MPI_Message *message,
+TSMPI_FN(1, P2P, int, MPI_Mrecv, (void *buf, int count, MPI_Datatype datatype, MPI_Message *message,
          MPI_Status *status),
          (buf, count, datatype, message, status))
 TSMPI_FN(1, P2P, int, MPI_Probe, (int source, int tag, MPI_Comm comm, MPI_Status *status),
@@ -166,7 +167,7 @@ TSMPI_FN(1, P2P, int, MPI_Startall, (int count, MPI_Request array_of_requests[])
          (count, array_of_requests))
 TSMPI_FN(1, P2P, int, MPI_Test, (MPI_Request *request, int *flag, MPI_Status *status),
          (request, flag, status))
-TSMPI_FN(0, P2P, int, MPI_Test_cancelled, (const MPI_Status *status, int *flag),
+TSMPI_FN(1, P2P, int, MPI_Test_cancelled, (const MPI_Status *status, int *flag),
          (status, flag))
 TSMPI_FN(1, P2P, int, MPI_Testall, (int count, MPI_Request array_of_requests[], int *flag,
          MPI_Status array_of_statuses[]),
@@ -779,9 +780,9 @@ TSMPI_FN(1, RMA, int, MPI_Win_wait, (MPI_Win win),
          (win))
 
 /* --- EXT --- */
-TSMPI_FN(0, EXT, int, MPI_Grequest_complete, (MPI_Request request),
+TSMPI_FN(1, EXT, int, MPI_Grequest_complete, (MPI_Request request),
          (request))
-TSMPI_FN(0, EXT, int, MPI_Grequest_start, (MPI_Grequest_query_function *query_fn,
+TSMPI_FN(1, EXT, int, MPI_Grequest_start, (MPI_Grequest_query_function *query_fn,
          MPI_Grequest_free_function *free_fn, MPI_Grequest_cancel_function *cancel_fn, void *extra_state,
          MPI_Request *request),
          (query_fn, free_fn, cancel_fn, extra_state, request))
@@ -791,7 +792,7 @@ TSMPI_FN(1, EXT, int, MPI_Is_thread_main, (int *flag),
          (flag))
 TSMPI_FN(1, EXT, int, MPI_Query_thread, (int *provided),
          (provided))
-TSMPI_FN(0, EXT, int, MPI_Status_set_cancelled, (MPI_Status *status, int flag),
+TSMPI_FN(1, EXT, int, MPI_Status_set_cancelled, (MPI_Status *status, int flag),
          (status, flag))
 TSMPI_FN(1, EXT, int, MPI_Status_set_elements, (MPI_Status *status, MPI_Datatype datatype, int count),
          (status, datatype, count))
@@ -1106,3 +1107,12 @@ TSMPI_FN(1, REMOVED, int, MPI_Type_struct, (int count, int array_of_blocklengths
          (count, array_of_blocklengths, array_of_displacements, array_of_types, newtype))
 TSMPI_FN(1, REMOVED, int, MPI_Type_ub, (MPI_Datatype datatype, MPI_Aint *displacement),
          (datatype, displacement))
+
+/* --- MPI4 --- */
+TSMPI_FN(1, MPI4, int, MPI_Isendrecv, (const void *sendbuf, int sendcount, MPI_Datatype sendtype, int dest,
+         int sendtag, void *recvbuf, int recvcount, MPI_Datatype recvtype, int source, int recvtag, MPI_Comm comm,
+         MPI_Request *request),
+         (sendbuf, sendcount, sendtype, dest, sendtag, recvbuf, recvcount, recvtype, source, recvtag, comm, request))
+TSMPI_FN(1, MPI4, int, MPI_Isendrecv_replace, (void *buf, int count, MPI_Datatype datatype, int dest, int sendtag,
+         int source, int recvtag, MPI_Comm comm, MPI_Request *request),
+         (buf, count, datatype, dest, sendtag, source, recvtag, comm, request))

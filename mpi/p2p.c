@@ -44,8 +44,17 @@ int tsmpi_p2p_recv(void *buf, int count, MPI_Datatype dt, int src, int tag, MPI_
 int tsmpi_p2p_sendrecv(const void *sbuf, int scount, MPI_Datatype sdt, int dst, int stag,
                        void *rbuf, int rcount, MPI_Datatype rdt, int src, int rtag, MPI_Comm comm,
                        MPI_Status *st) {
-  int rc = tsmpi_p2p_send(sbuf, scount, sdt, dst, stag, comm);
-  return rc ? rc : tsmpi_p2p_recv(rbuf, rcount, rdt, src, rtag, comm, st);
+  tsm *R = tsm_need("tsmpi_p2p_sendrecv");
+  tsm_comm *c = comm_of(R, comm, "tsmpi_p2p_sendrecv");
+  tsm_req s;
+  tsm_req_stack(&s);
+  tsm_send_fill(&s, c, 1, SM_STANDARD, sbuf, scount, sdt, dst, stag, comm, "tsmpi_p2p_sendrecv");
+  s.byref = 1;   /* sbuf stays the call's until the receive is done */
+  int rc = tsm_send_start(R, &s, c);
+  if (rc) return rc;
+  rc = tsmpi_p2p_recv(rbuf, rcount, rdt, src, rtag, comm, st);
+  eng_settle(R, &s);
+  return rc;
 }
 
 int tsmpi_p2p_isend(const void *buf, int count, MPI_Datatype dt, int dst, int tag, MPI_Comm comm,
@@ -95,6 +104,25 @@ int tsmpi_p2p_waitall(int n, MPI_Request *reqs, MPI_Status *sts) {
   }
   if (first && sts != MPI_STATUSES_IGNORE) return MPI_ERR_IN_STATUS;
   return first;
+}
+
+int tsmpi_p2p_done(MPI_Request *req, MPI_Status *st) {
+  if (*req == MPI_REQUEST_NULL) {
+    if (st != MPI_STATUS_IGNORE) tsm_status_empty(st);
+    return 1;
+  }
+  tsm *R = tsm_need("tsmpi_p2p_done");
+  tsm_req *q = tsm_req_get(R, *req);
+  if (!q) {
+    fprintf(stderr, "tilesim MPI: internal error: rank %d: tsmpi_p2p_done of request 0x%x\n", R->wrank,
+            (unsigned)*req);
+    abort();
+  }
+  if (q->state == RS_ACTIVE) return 0;
+  tsm_status_out(st, &q->st, 1);
+  tsm_req_free(R, q);
+  *req = MPI_REQUEST_NULL;
+  return 1;
 }
 
 /* ==== communicators ======================================================= */
