@@ -98,13 +98,15 @@ rec *chan_put(chan *q, int src, int tag, uint64_t stamp, const void *buf, size_t
  * settles or withdraws, the reader when it takes the record). */
 enum { T_REF, T_SEEN, T_BUSY, T_READ, T_MOVING, T_OWN, T_GONE };
 
-typedef struct {
+typedef struct ticket ticket;
+struct ticket {
   _Atomic int state;          /* T_* */
   _Atomic int refs;           /* owners left: 2, 1, then freed */
   const unsigned char *buf;   /* the sender's buffer, or NULL: in the record */
   unsigned char *copy;        /* T_OWN: the payload, copied out by the settle */
   size_t len;
-} ticket;
+  ticket *prev, *next;        /* the sender's tickets not yet let go (its thread's alone) */
+};
 
 /* Append a record by reference and publish it; *t its ticket. */
 rec *chan_put_ref(chan *q, int src, int tag, uint64_t stamp, const void *buf, size_t len, ticket **t);

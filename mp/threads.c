@@ -91,6 +91,7 @@ struct rank {
   struct chan *pin_q;          /* the message the latest probe from any source */
   struct rec *pin_x;           /* showed, until it is taken (NULL: none), and */
   int pin_tag;                 /* that probe's tag: see look() */
+  ticket *refs;                /* its sends by reference not yet settled or withdrawn */
   mpt_rank_stats st;
   /* Its channels in, by source, and in order of creation: written by the
    * senders (under mu), read by the rank. */
@@ -344,6 +345,23 @@ static int mpt_compute(mp *self, double units) {
   return MP_OK;
 }
 
+/* k off its sender's list: the sender lets go of it. */
+static void unlist(rank *r, ticket *k) {
+  if (k->prev)
+    k->prev->next = k->next;
+  else
+    r->refs = k->next;
+  if (k->next) k->next->prev = k->prev;
+}
+
+/* k back on its sender's list. */
+static void relist(rank *r, ticket *k) {
+  k->prev = NULL;
+  k->next = r->refs;
+  if (r->refs) r->refs->prev = k;
+  r->refs = k;
+}
+
 /* mp_send, or with ref mp_send_ref (*ref: the record's ticket). */
 static int send_msg(mp *self, int dst, int tag, const void *buf, size_t len, mp_ref **ref) {
   rank *r = (rank *)self;
@@ -362,10 +380,14 @@ static int send_msg(mp *self, int dst, int tag, const void *buf, size_t len, mp_
     return MP_EARG;
   }
   rank *d = &t->ranks[dst];
-  if (ref)
-    chan_put_ref(chan_get(r, d), r->base.rank, tag, ++r->clock, buf, len, (ticket **)ref);
-  else
+  if (ref) {
+    ticket *k;
+    chan_put_ref(chan_get(r, d), r->base.rank, tag, ++r->clock, buf, len, &k);
+    relist(r, k);   /* the sender's until it lets go (mpt_free: a stopped run) */
+    *ref = (mp_ref *)k;
+  } else {
     chan_put(chan_get(r, d), r->base.rank, tag, ++r->clock, buf, len);
+  }
   wake_if_waiting(t, d, r->base.rank, tag);
   r->st.sent++;
   r->st.bytes_sent += (long long)len;
@@ -381,13 +403,17 @@ static int mpt_send_ref(mp *self, int dst, int tag, const void *buf, size_t len,
 }
 
 static void mpt_settle(mp *self, mp_ref *ref) {
-  (void)self;
+  unlist((rank *)self, (ticket *)ref);
   ticket_settle((ticket *)ref);
 }
 
 static int mpt_withdraw(mp *self, mp_ref *ref) {
-  (void)self;
-  return ticket_withdraw((ticket *)ref);
+  rank *r = (rank *)self;
+  ticket *k = (ticket *)ref;
+  unlist(r, k);   /* first: a withdrawn ticket may be freed at once */
+  if (ticket_withdraw(k)) return 1;
+  relist(r, k);
+  return 0;
 }
 
 /* Check recv's and probe's source and tag. */
@@ -895,6 +921,12 @@ void mpt_free(mpt *t) {
   if (!t) return;
   for (int i = 0; i < t->n; i++) {
     rank *r = &t->ranks[i];
+    /* A run that stopped may leave sends by reference unsettled: the
+     * sender's hold goes here, the record's with its channel. */
+    for (ticket *k = r->refs, *next; k; k = next) {
+      next = k->next;
+      ticket_drop(k);
+    }
     int k = atomic_load(&r->nin);
     for (int j = 0; j < k; j++) chan_free(r->inlist[j]);
     free(r->out);
