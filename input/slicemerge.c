@@ -49,10 +49,10 @@ static void from_least(const vec2 *p, int n, vec2 *out) {
  * point: the region's own sequence.  Returns its length. */
 static int reduced(const vec2 *p, int n, vec2 *out) {
   vec2 *t = xmallocarray((size_t)n, sizeof *t);
-  int m = 0;
-  for (int i = 0; i < n; i++)
-    if (exact_orient(p[(i + n - 1) % n], p[i], p[(i + 1) % n]) != 0) t[m++] = p[i];
+  int *keep = xmallocarray((size_t)n, sizeof *keep), m = geom_corners(p, n, keep);
+  for (int i = 0; i < m; i++) t[i] = p[keep[i]];
   from_least(t, m, out);
+  free(keep);
   free(t);
   return m;
 }
