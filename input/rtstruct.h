@@ -142,9 +142,4 @@ const char *rtstruct_plane_name(rtstruct_plane plane);
  * - 1 bytes). */
 void rtstruct_height_text(const rtstruct_roi *roi, int k, char *buf, size_t cap);
 
-/* A decimal string (DS): optional blanks around [+-]digits[.digits][e[+-]digits].
- * 0 and *v; 1 if it is a number too large for a double; -1 if it is not a
- * number.  The result is the correctly rounded double, whatever the locale. */
-int rtstruct_ds(const char *s, size_t len, double *v);
-
 #endif

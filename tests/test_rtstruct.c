@@ -12,6 +12,7 @@
 
 #include "check.h"
 #include "contour.h"
+#include "decimal.h"
 #include "dicom.h"
 #include "gen.h"
 #include "rng.h"
@@ -250,12 +251,12 @@ static void decimal_strings(void) {
                               "1,5", "1 2", "--1", ".", "-.", "1e+", "1d5"};
   double v;
   for (size_t i = 0; i < sizeof good / sizeof *good; i++) {
-    int rc = rtstruct_ds(good[i].s, strlen(good[i].s), &v);
+    int rc = decimal_parse(good[i].s, strlen(good[i].s), &v);
     CHECK(rc == 0 && same_bits(v, good[i].v), "DS '%s': %d %.17g", good[i].s, rc, v);
   }
   for (size_t i = 0; i < sizeof bad / sizeof *bad; i++)
-    CHECK(rtstruct_ds(bad[i], strlen(bad[i]), &v) == -1, "DS '%s' accepted", bad[i]);
-  CHECK(rtstruct_ds("1e999", 5, &v) == 1 && rtstruct_ds("-1e400", 6, &v) == 1, "DS overflow not refused");
+    CHECK(decimal_parse(bad[i], strlen(bad[i]), &v) == -1, "DS '%s' accepted", bad[i]);
+  CHECK(decimal_parse("1e999", 5, &v) == 1 && decimal_parse("-1e400", 6, &v) == 1, "DS overflow not refused");
   /* Random decimal strings against strtod in the C locale, bit for bit;
    * then again with a comma as the locale's decimal point. */
   enum { N = 20000 };
@@ -276,7 +277,7 @@ static void decimal_strings(void) {
   }
   int same = 0;
   for (int i = 0; i < N; i++) {
-    int rc = rtstruct_ds(str[i], strlen(str[i]), &v);
+    int rc = decimal_parse(str[i], strlen(str[i]), &v);
     same += (rc == 0 && same_bits(v, want[i])) || (rc == 1 && !isfinite(want[i]));
   }
   CHECK(same == N, "DS against strtod: %d of %d the same", same, N);
@@ -295,7 +296,7 @@ static void decimal_strings(void) {
   if (strtod("1.5", NULL) == 1.0) {
     same = 0;
     for (int i = 0; i < N; i++) {
-      int rc = rtstruct_ds(str[i], strlen(str[i]), &v);
+      int rc = decimal_parse(str[i], strlen(str[i]), &v);
       same += (rc == 0 && same_bits(v, want[i])) || (rc == 1 && !isfinite(want[i]));
     }
     CHECK(same == N, "DS under a comma locale: %d of %d the same", same, N);
