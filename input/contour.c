@@ -40,6 +40,9 @@ typedef struct {
   strbuf *to;        /* where note() writes */
   bad_contour *bad;
   int nbad, capbad;
+  int ndegen, degen_line;   /* CONTOUR_DROP_DEGENERATE: contours dropped, the first's line */
+  long degen_points;
+  char *degen_why;          /* the first's reason */
 } reader;
 
 static int fail(reader *r, int line, const char *fmt, ...) {
@@ -145,6 +148,28 @@ static int bad(reader *r, const raw *c, int points, const char *fmt, ...) {
     r->bad = xreallocarray(r->bad, (size_t)r->capbad, sizeof *r->bad);
   }
   r->bad[r->nbad++] = (bad_contour){c->line, points, why.buf};
+  return 1;
+}
+
+/* A degenerate contour (fewer than 3 distinct points, or all collinear: no
+ * area) under CONTOUR_DROP_DEGENERATE: dropped, its own repair notes with
+ * it, and counted (one note for the stack, -v one each).  Returns 1. */
+static int degenerate(reader *r, const raw *c, int points, int k) {
+  strbuf why = {0};
+  if (k < 3) strbuf_add(&why, "%d distinct point%s", k, k == 1 ? "" : "s");
+  else strbuf_add(&why, "all %d points collinear", k);
+  strbuf_add(&why, ", no area (z=%.17g)", c->z);
+  if (r->flags & CONTOUR_VERBOSE) {
+    r->to = &r->out;
+    note(r, c->line, "dropped a degenerate contour: %s", why.buf);
+  }
+  if (r->ndegen++ == 0) {
+    r->degen_line = c->line;
+    r->degen_why = why.buf;
+  } else {
+    free(why.buf);
+  }
+  r->degen_points += points;
   return 1;
 }
 
@@ -255,7 +280,9 @@ static int finish(reader *r, raw *c, contour **cs, int *ncs, int *capcs, int *re
              "dropped %d repeated closing points (the last at line %d: %.17g %.17g)");
   crossing_hit h;
   keyhole_split ks;
-  if (k < 3)
+  if ((k < 3 || geom_collinear(c->pt, k)) && (r->flags & CONTOUR_DROP_DEGENERATE))
+    rc = degenerate(r, c, n, k);
+  else if (k < 3)
     rc = bad(r, c, n, "contour has %d distinct point%s, needs at least 3 (z=%.17g)", k, k == 1 ? "" : "s", c->z);
   else if (geom_collinear(c->pt, k))
     rc = bad(r, c, n, "all %d points of the contour are collinear (z=%.17g)", k, c->z);
@@ -543,8 +570,20 @@ int contour_parse_flags(const char *text, size_t len, const char *name, int flag
     goto done;
   }
   if (r->nbad && bad_contours(r, nread, points) != 0) goto done;
+  if (r->ndegen == 1 && !(flags & CONTOUR_VERBOSE))
+    note(r, r->degen_line, "dropped a degenerate contour: %s", r->degen_why);
+  else if (r->ndegen > 1 && !(flags & CONTOUR_VERBOSE))
+    note(r, r->degen_line, "dropped %d degenerate contours of %d (%ld points: single points, two points or all "
+         "collinear, no area), this one the first: %s; -v names each", r->ndegen, nread, r->degen_points,
+         r->degen_why);
+  if (ncs == 0 && nread > 0 && r->nbad == 0) {
+    fail(r, 0, "no contours left to tile: all %d are degenerate (a point, two points or all collinear: no area)",
+         nread);
+    goto done;
+  }
   if (ncs == 0 && nread > 0) {
-    fail(r, 0, "no contours left to tile: all %d are bad and --skip-bad dropped them", nread);
+    fail(r, 0, "no contours left to tile: all %d are bad%s and --skip-bad dropped them", nread,
+         r->ndegen ? " or degenerate" : "");
     goto done;
   }
   if (ncs == 0) {
@@ -586,6 +625,7 @@ done:
   free(r->cur.buf);
   for (int i = 0; i < r->nbad; i++) free(r->bad[i].why);
   free(r->bad);
+  free(r->degen_why);
   return rc;
 }
 

@@ -82,3 +82,26 @@ int decimal_parse(const char *s, size_t len, double *v) {
   *v = r;
   return isfinite(r) ? 0 : 1;
 }
+
+double decimal_quantum(const char *s, size_t len) {
+  size_t i = 0, j = len;
+  while (i < j && s[i] == ' ') i++;
+  while (j > i && (s[j - 1] == ' ' || s[j - 1] == 0)) j--;
+  if (i < j && (s[i] == '+' || s[i] == '-')) i++;
+  long frac = 0, e = 0;
+  int dot = 0, any = 0;
+  for (; i < j && ((s[i] >= '0' && s[i] <= '9') || (s[i] == '.' && !dot)); i++) {
+    if (s[i] == '.') dot = 1;
+    else frac += dot, any = 1;
+  }
+  if (!any) return 0;
+  if (i < j && (s[i] == 'e' || s[i] == 'E')) {
+    int neg = 0;
+    i++;
+    if (i < j && (s[i] == '+' || s[i] == '-')) neg = s[i++] == '-';
+    for (; i < j && s[i] >= '0' && s[i] <= '9'; i++)
+      if (e < 100000) e = e * 10 + (s[i] - '0');
+    if (neg) e = -e;
+  }
+  return pow(10, (double)(e - frac));
+}

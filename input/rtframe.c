@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "decimal.h"
 #include "strbuf.h"
 #include "xmem.h"
 
@@ -133,18 +134,45 @@ static double spread_along(const rtstruct_contour *c, const double n[3]) {
   return hi - lo;
 }
 
+/* How finely the ROI's coordinates were written: the least place value of
+ * the last digit over all its values (decimal_quantum; an exporter that
+ * trims trailing zeros still writes most values to its full precision). */
+static double quantum(const rtstruct_roi *roi) {
+  double q = INFINITY;
+  for (int i = 0; i < roi->nc; i++) {
+    const rtstruct_contour *c = &roi->c[i];
+    for (int v = 0; v < 3 * c->n; v++) {
+      double d = decimal_quantum(c->txt + c->tok[v], c->tok[v + 1] - c->tok[v]);
+      if (d > 0 && d < q) q = d;
+    }
+  }
+  return q;
+}
+
+/* How far apart along the unit vector n points may lie and still be in one
+ * plane, for coordinates rounded to the quantum q: each is within q/2 of
+ * the number it stands for in x, y and z, so a point within (q/2)(|nx| +
+ * |ny| + |nz|) of the plane it lies in, two points within twice that; a
+ * quarter more for the least-squares normal's own error.  At least
+ * RTFRAME_FLAT, at most RTFRAME_BENT. */
+static double tolerance(double q, const double n[3]) {
+  double t = 1.25 * q * (fabs(n[0]) + fabs(n[1]) + fabs(n[2]));
+  return t < RTFRAME_FLAT ? RTFRAME_FLAT : t > RTFRAME_BENT ? RTFRAME_BENT : t;
+}
+
 /* Contours in parallel planes of a common normal that is none of the axes
- * (issue 22).  Each contour must be planar by itself: within RTFRAME_FLAT of
- * the least-squares plane of its points (the least eigenvector of their
+ * (issue 22).  Each contour must be planar by itself: within the tolerance
+ * of its coordinates' precision (tolerance()) of the least-squares plane of
+ * its points (the least eigenvector of their
  * scatter).  The common normal is the least-squares normal of all the ROI's
  * points to a plane per contour: the least eigenvector of the summed
  * scatters, summed in sorted order, so that neither the file's order of the
  * contours nor their start points and directions change a bit of it.  Each
  * contour's height is the lower median of its points' (an input's own,
- * whatever the order), and each must lie within RTFRAME_FLAT of it.  0, or
+ * whatever the order), and each must lie within the tolerance of it.  0, or
  * -1 naming the first contour that is not planar, else the one most tilted
  * to the others. */
-static int oblique(rtstruct_roi *roi, char **warn, int *badc, char *why, size_t whylen) {
+static int oblique(rtstruct_roi *roi, double q, char **warn, int *badc, char *why, size_t whylen) {
   double *sc = xmallocarray((size_t)roi->nc * 6, sizeof *sc), sum[6] = {0, 0, 0, 0, 0, 0}, nrm[3];
   const double deg = 180 / 3.14159265358979323846;
   for (int i = 0; i < roi->nc; i++) {
@@ -152,9 +180,10 @@ static int oblique(rtstruct_roi *roi, char **warn, int *badc, char *why, size_t 
     double n1[3], sp;
     scatter(c, sc + 6 * i);
     least_eigenvector(sc + 6 * i, n1);
-    if ((sp = spread_along(c, n1)) > RTFRAME_FLAT) {
-      snprintf(why, whylen, "contour item %d: not planar (its points spread %.3g mm off their best plane): contours "
-               "must lie in parallel planes", c->item, sp);
+    if ((sp = spread_along(c, n1)) > tolerance(q, n1)) {
+      snprintf(why, whylen, "contour item %d: not planar (its points spread %.3g mm off their best plane, more than "
+               "the %.3g mm their precision allows): contours must lie in parallel planes", c->item, sp,
+               tolerance(q, n1));
       *badc = i;
       free(sc);
       return -1;
@@ -166,7 +195,7 @@ static int oblique(rtstruct_roi *roi, char **warn, int *badc, char *why, size_t 
   free(sc);
   least_eigenvector(sum, nrm);
   rtstruct_frame f = oblique_frame(nrm);
-  double worst = 0;
+  double worst = 0, tol = tolerance(q, f.n);
   int bad = -1;
   for (int i = 0; i < roi->nc; i++) {
     rtstruct_contour *c = &roi->c[i];
@@ -176,7 +205,7 @@ static int oblique(rtstruct_roi *roi, char **warn, int *badc, char *why, size_t 
     double spread = h[c->n - 1] - h[0];
     c->h = h[(c->n - 1) / 2];
     free(h);
-    if (spread > worst) worst = spread, bad = spread > RTFRAME_FLAT ? i : -1;
+    if (spread > worst) worst = spread, bad = spread > tol ? i : -1;
   }
   if (bad >= 0) {
     const rtstruct_contour *c = &roi->c[bad];
@@ -193,6 +222,7 @@ static int oblique(rtstruct_roi *roi, char **warn, int *badc, char *why, size_t 
   }
   roi->plane = RTSTRUCT_OBLIQUE;
   roi->frame = f;
+  roi->flat = tol;
   int axis = fabs(f.n[2]) >= fabs(f.n[0]) && fabs(f.n[2]) >= fabs(f.n[1]) ? 2 : fabs(f.n[0]) >= fabs(f.n[1]) ? 0 : 1;
   strbuf b = {0};
   strbuf_add(&b, "oblique contours: parallel planes tilted %.6g degrees from the %s plane (normal %.17g %.17g "
@@ -206,7 +236,7 @@ static int oblique(rtstruct_roi *roi, char **warn, int *badc, char *why, size_t 
 int rtframe_fit(rtstruct_roi *roi, char **warn, int *bad, char *why, size_t whylen) {
   *warn = NULL;
   int axis = -1, first[3] = {-1, -1, -1};
-  double worst[3] = {0, 0, 0};
+  double worst[3] = {0, 0, 0}, q = quantum(roi), tol = tolerance(q, (const double[3]){1, 0, 0});
   for (int a = 2; a >= 0; a--)   /* z (axial), then x (sagittal), then y (coronal) */
     for (int i = 0; i < roi->nc; i++) {
       const rtstruct_contour *c = &roi->c[i];
@@ -216,7 +246,7 @@ int rtframe_fit(rtstruct_roi *roi, char **warn, int *bad, char *why, size_t whyl
         if (v < lo) lo = v;
         if (v > hi) hi = v;
       }
-      if (hi - lo > RTFRAME_FLAT) {
+      if (hi - lo > tol) {
         if (first[a] < 0) first[a] = i;
       } else if (hi - lo > worst[a]) {
         worst[a] = hi - lo;
@@ -225,8 +255,9 @@ int rtframe_fit(rtstruct_roi *roi, char **warn, int *bad, char *why, size_t whyl
   if (first[2] < 0) axis = 2;
   else if (first[0] < 0) axis = 0;
   else if (first[1] < 0) axis = 1;
-  if (axis < 0) return oblique(roi, warn, bad, why, whylen);
+  if (axis < 0) return oblique(roi, q, warn, bad, why, whylen);
   roi->plane = axis == 2 ? RTSTRUCT_AXIAL : axis == 0 ? RTSTRUCT_SAGITTAL : RTSTRUCT_CORONAL;
+  roi->flat = tol;
   roi->frame = standard_frame(axis);
   if (worst[axis] > 0) {
     strbuf b = {0};

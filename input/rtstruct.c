@@ -299,7 +299,7 @@ static void finish_roi(reader *r, rtstruct_roi *roi) {
   roi->slices = 0;
   roi->points = 0;
   /* Oblique heights are computed, a rounding apart within a plane. */
-  double gap = roi->plane == RTSTRUCT_OBLIQUE ? RTFRAME_FLAT : 0;
+  double gap = roi->plane == RTSTRUCT_OBLIQUE ? roi->flat : 0;
   for (int i = 0; i < roi->nc; i++) {
     roi->points += roi->c[i].n;
     if (i == 0 || roi->c[i].h - roi->c[i - 1].h > gap) roi->slices++;
@@ -692,7 +692,10 @@ static const char sentinel[] = "\x01rtstruct\x01";
 /* Where line `line` of the ROI's text came from: "FILE: byte N: ROI r 'name',
  * contour item k[, point j]" (with_byte), else "contour item k[, point j]",
  * or "point j" alone when it is a point of contour `cur`.  Returns the
- * contour's index (-1 for a comment line). */
+ * contour's index when the line is its header (the message is about that
+ * contour: its points may be named alone), else -1 (a comment line, or a
+ * point: that names a loop of a keyhole contour, and the message's other
+ * lines name contours in full). */
 static int locate(const rtstruct_roi *roi, long line, strbuf *b, int with_byte, int cur, const char *file) {
   long at = HEADER_LINES + 1;
   for (int i = 0; i < roi->nc; i++) {
@@ -704,7 +707,7 @@ static int locate(const rtstruct_roi *roi, long line, strbuf *b, int with_byte, 
       if (j && i == cur) strbuf_add(b, "point %ld", j);
       else if (j) strbuf_add(b, "contour item %d, point %ld", c->item, j);
       else strbuf_add(b, "contour item %d", c->item);
-      return i;
+      return j ? -1 : i;   /* a point names a loop of a keyhole contour, not the contour */
     }
     at += c->n + 1;
   }
@@ -813,7 +816,8 @@ int rtstruct_roi_stack(const rtstruct *s, int ri, int flags, contour_stack *out,
   FILE *hold = notes ? open_memstream(&held, &heldlen) : NULL;
   int cflags = (flags & RTSTRUCT_NO_KEYHOLES ? CONTOUR_NO_KEYHOLES : 0) |
                (flags & RTSTRUCT_SKIP_BAD ? CONTOUR_SKIP_BAD : 0) | (flags & RTSTRUCT_UNION ? CONTOUR_UNION : 0) |
-               (flags & RTSTRUCT_VERBOSE ? CONTOUR_VERBOSE : 0) | (flags & RTSTRUCT_ONE_SLICE ? CONTOUR_ONE_SLICE : 0);
+               (flags & RTSTRUCT_VERBOSE ? CONTOUR_VERBOSE : 0) | (flags & RTSTRUCT_ONE_SLICE ? CONTOUR_ONE_SLICE : 0) |
+               (flags & RTSTRUCT_DROP_DEGENERATE ? CONTOUR_DROP_DEGENERATE : 0);
   int rc = contour_parse_flags(text_, len, sentinel, cflags, out, hold, prefix, e2, e2len);
   if (rc == 0 && (flags & RTSTRUCT_PAIRS) && contour_stack_pairs(out, sentinel, e2, e2len) != 0) {
     contour_stack_free(out);

@@ -74,6 +74,8 @@ typedef struct {
   double hmin, hmax; /* their heights (0 if none) */
   rtstruct_plane plane;
   rtstruct_frame frame;
+  double flat;       /* how far apart along the normal points of one plane may lie (mm):
+                        from the precision the file writes (input/rtframe.h) */
   char *error;       /* NULL, or why its contours cannot be used (one line) */
   char *warnings;    /* lines to show when the ROI is used, or NULL */
 } rtstruct_roi;
@@ -119,9 +121,11 @@ char *rtstruct_roi_text(const rtstruct *s, int roi, size_t *len);
  * many whole lines as errlen holds, the last line kept).  Notes go to
  * `notes` as contour_read's do, rewritten alike ("contour item K, point J"
  * for a line), and only when the stack is accepted.  RTSTRUCT_ONE_SLICE
- * accepts an ROI of one slice (contour.h's CONTOUR_ONE_SLICE). */
+ * accepts an ROI of one slice (contour.h's CONTOUR_ONE_SLICE);
+ * RTSTRUCT_DROP_DEGENERATE drops contours without area with a counted note
+ * (CONTOUR_DROP_DEGENERATE). */
 enum { RTSTRUCT_PAIRS = 1, RTSTRUCT_NO_KEYHOLES = 2, RTSTRUCT_SKIP_BAD = 4, RTSTRUCT_UNION = 8, RTSTRUCT_VERBOSE = 16,
-       RTSTRUCT_ONE_SLICE = 32 };
+       RTSTRUCT_ONE_SLICE = 32, RTSTRUCT_DROP_DEGENERATE = 64 };
 int rtstruct_roi_stack(const rtstruct *s, int roi, int flags, contour_stack *out, FILE *notes,
                        const char *prefix, char *err, size_t errlen);
 

@@ -397,7 +397,8 @@ static void refusals(void) {
   cs[0] = (rtw_contour){NULL, 4, sq, NULL, -1};
   cs[1] = (rtw_contour){NULL, 4, NULL, "0\\0\\5\\10\\0\\6\\10\\10\\7\\0\\10\\5", -1};
   b = write1(&r, 1, &len);
-  roi_refused("not planar", b, len, "contour item 2: not planar (its points spread 0.497 mm off their best plane): contours must lie in parallel planes");
+  roi_refused("not planar", b, len, "contour item 2: not planar (its points spread 0.497 mm off their best plane, more than the 0.1 mm "
+              "their precision allows): contours must lie in parallel planes");
   free(b);
   cs[1] = two[1];
 
