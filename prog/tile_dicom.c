@@ -264,6 +264,7 @@ int tile_dicom_main(const tile_dicom_opts *o, const char *in, const tile_dicom_e
   /* The ROIs, in the order asked, each once. */
   int *pick = xmallocarray((size_t)s.nroi + 1, sizeof *pick), npick = 0, rcode = 1;
   int *refused = NULL, nrefused = 0, nempty = 0;   /* with all: ROIs refused; with nothing to tile */
+  int npaths = 0;   /* mpath and cpath hold this many */
   char *chosen = xcalloc((size_t)s.nroi + 1, 1);
   contour_stack *st = xcalloc((size_t)s.nroi + 1, sizeof *st);
   mesh *me = xcalloc((size_t)s.nroi + 1, sizeof *me);
@@ -338,6 +339,7 @@ int tile_dicom_main(const tile_dicom_opts *o, const char *in, const tile_dicom_e
   int ntiled = 0;   /* ROIs tiled, in pick[0..ntiled-1] (with all, the refused ones left out) */
   if (out_dir) mpath = dir_paths(&s, pick, npick, env->out, o->format ? o->format : "stl");
   if (con_dir) cpath = dir_paths(&s, pick, npick, o->contours, "contours");
+  npaths = npick;
 
   /* The tiling, the report on stdout. */
   if (tile) {
@@ -433,8 +435,8 @@ done:
   free(rerr);
   for (int i = 0; i < nmesh; i++) mesh_free(&me[i]);
   for (int i = 0; i < s.nroi; i++) contour_stack_free(&st[i]);
-  free_paths(mpath, npick);
-  free_paths(cpath, npick);
+  free_paths(mpath, npaths);
+  free_paths(cpath, npaths);
   free(me);
   free(st);
   free(chosen);
