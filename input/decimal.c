@@ -4,6 +4,7 @@
 #include <locale.h>
 #include <math.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -83,25 +84,19 @@ int decimal_parse(const char *s, size_t len, double *v) {
   return isfinite(r) ? 0 : 1;
 }
 
-double decimal_quantum(const char *s, size_t len) {
-  size_t i = 0, j = len;
-  while (i < j && s[i] == ' ') i++;
-  while (j > i && (s[j - 1] == ' ' || s[j - 1] == 0)) j--;
-  if (i < j && (s[i] == '+' || s[i] == '-')) i++;
-  long frac = 0, e = 0;
-  int dot = 0, any = 0;
-  for (; i < j && ((s[i] >= '0' && s[i] <= '9') || (s[i] == '.' && !dot)); i++) {
-    if (s[i] == '.') dot = 1;
-    else frac += dot, any = 1;
+double decimal_quantum(double v) {
+  if (v == 0 || !isfinite(v)) return 0;
+  double a = fabs(v);
+  int e10 = (int)floor(log10(a));
+  char buf[48];
+  for (int p = 1; p <= 17; p++) {
+    int x = e10 - p + 1;   /* the place value of the p-th significant digit: 10^x */
+    double m = nearbyint(v / pow(10, x));
+    for (int d = -1; d <= 1; d++) {   /* the quotient is rounded: its neighbours too */
+      double w;
+      int n = snprintf(buf, sizeof buf, "%.0fe%d", m + d, x);   /* no decimal point: no locale */
+      if (n > 0 && (size_t)n < sizeof buf && decimal_parse(buf, (size_t)n, &w) == 0 && w == v) return pow(10, x);
+    }
   }
-  if (!any) return 0;
-  if (i < j && (s[i] == 'e' || s[i] == 'E')) {
-    int neg = 0;
-    i++;
-    if (i < j && (s[i] == '+' || s[i] == '-')) neg = s[i++] == '-';
-    for (; i < j && s[i] >= '0' && s[i] <= '9'; i++)
-      if (e < 100000) e = e * 10 + (s[i] - '0');
-    if (neg) e = -e;
-  }
-  return pow(10, (double)(e - frac));
+  return pow(10, e10 - 16);
 }

@@ -10,11 +10,12 @@
  * number.  The result is the correctly rounded double, whatever the locale. */
 int decimal_parse(const char *s, size_t len, double *v);
 
-/* The place value of the last digit written in the decimal string s: how
- * finely it was rounded ("12.34" 0.01, "-5" 1, "1.5e-3" 0.0001,
- * "1.2345678901234567" 1e-16): 10^(exponent - digits after the point).  0
- * when s has no digit.  A value so written is within half of it of the
- * number it stands for. */
-double decimal_quantum(const char *s, size_t len);
+/* How finely v was written: the place value of the last digit of its
+ * shortest decimal form that reads back as v (0.45 0.01, 12.3 0.1, 20 10,
+ * 1.2345678901234567 1e-16, 0 none: 0).  A planning system that writes two
+ * decimals (trailing zeros trimmed or not) gives 0.01 for most of its
+ * values, whatever the text: written again at full precision, the same
+ * doubles give the same answer.  Locale-free. */
+double decimal_quantum(double v);
 
 #endif

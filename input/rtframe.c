@@ -134,15 +134,17 @@ static double spread_along(const rtstruct_contour *c, const double n[3]) {
   return hi - lo;
 }
 
-/* How finely the ROI's coordinates were written: the least place value of
- * the last digit over all its values (decimal_quantum; an exporter that
- * trims trailing zeros still writes most values to its full precision). */
+/* How finely the ROI's coordinates were written: the least over its values
+ * of the last digit's place value in each one's shortest decimal form
+ * (decimal_quantum: an exporter that trims trailing zeros still writes
+ * most values to its full precision).  Found once an ROI needs it: one not
+ * exactly flat. */
 static double quantum(const rtstruct_roi *roi) {
   double q = INFINITY;
   for (int i = 0; i < roi->nc; i++) {
     const rtstruct_contour *c = &roi->c[i];
     for (int v = 0; v < 3 * c->n; v++) {
-      double d = decimal_quantum(c->txt + c->tok[v], c->tok[v + 1] - c->tok[v]);
+      double d = decimal_quantum(c->p[v]);
       if (d > 0 && d < q) q = d;
     }
   }
@@ -236,7 +238,16 @@ static int oblique(rtstruct_roi *roi, double q, char **warn, int *badc, char *wh
 int rtframe_fit(rtstruct_roi *roi, char **warn, int *bad, char *why, size_t whylen) {
   *warn = NULL;
   int axis = -1, first[3] = {-1, -1, -1};
-  double worst[3] = {0, 0, 0}, q = quantum(roi), tol = tolerance(q, (const double[3]){1, 0, 0});
+  double worst[3] = {0, 0, 0}, spread[3] = {0, 0, 0}, q = 0, tol = RTFRAME_FLAT;
+  for (int a = 0; a < 3; a++)   /* the quantum only where some contour is not exactly flat */
+    for (int i = 0; i < roi->nc; i++) {
+      const rtstruct_contour *c = &roi->c[i];
+      double lo = c->p[a], hi = c->p[a];
+      for (int j = 1; j < c->n; j++) lo = fmin(lo, c->p[3 * j + a]), hi = fmax(hi, c->p[3 * j + a]);
+      spread[a] = fmax(spread[a], hi - lo);
+    }
+  if (spread[0] > RTFRAME_FLAT && spread[1] > RTFRAME_FLAT && spread[2] > RTFRAME_FLAT)
+    q = quantum(roi), tol = tolerance(q, (const double[3]){1, 0, 0});
   for (int a = 2; a >= 0; a--)   /* z (axial), then x (sagittal), then y (coronal) */
     for (int i = 0; i < roi->nc; i++) {
       const rtstruct_contour *c = &roi->c[i];

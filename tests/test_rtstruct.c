@@ -257,6 +257,18 @@ static void decimal_strings(void) {
   for (size_t i = 0; i < sizeof bad / sizeof *bad; i++)
     CHECK(decimal_parse(bad[i], strlen(bad[i]), &v) == -1, "DS '%s' accepted", bad[i]);
   CHECK(decimal_parse("1e999", 5, &v) == 1 && decimal_parse("-1e400", 6, &v) == 1, "DS overflow not refused");
+  /* How finely a value was written: its shortest decimal form's last place. */
+  static const struct { double v, q; } quanta[] = {{0.45, 0.01}, {12.3, 0.1}, {20, 10}, {-0.07, 0.01}, {1e-20, 1e-20},
+                                                   {1.2345678901234567, 1e-16}, {-123.456, 0.001}, {0, 0}};
+  for (size_t i = 0; i < sizeof quanta / sizeof *quanta; i++)
+    CHECK(decimal_quantum(quanta[i].v) == quanta[i].q || fabs(decimal_quantum(quanta[i].v) / quanta[i].q - 1) < 1e-12,
+          "decimal_quantum(%.17g) = %.17g, want %.17g", quanta[i].v, decimal_quantum(quanta[i].v), quanta[i].q);
+  int coarse = 0;
+  for (int i = -50000; i <= 50000; i += 7) {   /* two decimals, every last digit */
+    double q = decimal_quantum(i / 100.0);
+    coarse += i % 10 ? fabs(q / 0.01 - 1) > 1e-12 : !(i == 0 || q > 0.0099999);   /* a last digit 0: coarser (or 0) */
+  }
+  CHECK(coarse == 0, "%d values of two decimals not found written to 0.01", coarse);
   /* Random decimal strings against strtod in the C locale, bit for bit;
    * then again with a comma as the locale's decimal point. */
   enum { N = 20000 };
