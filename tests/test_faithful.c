@@ -399,7 +399,7 @@ static void identity(double R[3][3]) {
 }
 
 /* The sets.  sets[k] for k = 0 .. NSETS-1. */
-enum { NSETS = 6 };
+enum { NSETS = 7 };
 static set_def sets[NSETS];
 static double cyl_area;   /* the 64-gon of radius 20 */
 
@@ -490,6 +490,19 @@ static void make_sets(void) {
   static const vec2 up[8] = {{-1, 2}, {-1, -12}, {12, -12}, {12, 2}, {9, 2}, {9, -11}, {2, -11}, {2, 2}};
   U->z = 3, U->n = 8;
   memcpy(U->p, up, sizeof up);
+  /* A keyhole contour (a square with a hole, joined by a channel) whose
+   * outer loop overlaps another contour: --union names its loop by the loop's
+   * first point, in full. */
+  d = &sets[6];
+  d->file = "faithful_names.dcm", d->nroi = 1, d->digits = -1;
+  identity(d->R);
+  roi_def *kh = &d->r[0];
+  kh->name = "Keyhole", kh->nc = 3, kh->c = take(3);
+  static const vec2 key[10] = {{0, 0}, {3, 3}, {3, 7}, {7, 7}, {7, 3}, {3, 3}, {0, 0}, {10, 0}, {10, 10}, {0, 10}};
+  kh->c[0].n = 10, kh->c[0].z = 0;
+  memcpy(kh->c[0].p, key, sizeof key);
+  square(&kh->c[1], 8, 2, 6, 1, 0);
+  square(&kh->c[2], 0, 0, 14, 1, 2);
 }
 
 static int parse(const set_def *d, rtstruct *r) {
@@ -627,6 +640,22 @@ static void exports(void) {
   }
 }
 
+/* Messages name the contours of a DICOM ROI in full: a keyhole's loop, named
+ * by its first point, beside another contour (it was 'the contours at point 1
+ * and contour item 57'). */
+static void names(void) {
+  rtstruct r;
+  char notes[8192], err[4096];
+  int res;
+  if (parse(&sets[6], &r) != 0) return;
+  stack_surface *ss = roi_tile(&r, 0, RTSTRUCT_UNION, notes, sizeof notes, err, sizeof err, &res);
+  CHECK(res == 0 && strstr(notes, "--union: merged the contours at contour item 1, point 1 and contour item 2 on slice z=0") &&
+            !strstr(notes, "contours at point"),
+        "names: %d '%s' '%s'", res, err, notes);
+  stack_free(ss);
+  rtstruct_free(&r);
+}
+
 /* The sets as files in dir, and a set of ROIs of which some are refused:
  * 1 'Good', 2 'Crossing' (a contour crosses itself), 3 'Good too', 4
  * 'Overlap' (two contours of a slice overlap), 5 'Flat' (one slice), 6
@@ -672,5 +701,6 @@ int main(int argc, char **argv) {
   solids();
   real();
   exports();
+  names();
   return check_done("test_faithful");
 }
