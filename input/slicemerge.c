@@ -268,8 +268,26 @@ static int union_slice(contour *cs, const int *idx, int m, int all, char *drop, 
   return rc;
 }
 
-/* Do contours of this slice cross or touch (the test the surface makes)? */
+/* Do contours of this slice cross or touch (the test the surface makes)?
+ * Not where no two of their boxes meet. */
 static int meet(const contour *cs, const int *idx, int m) {
+  vec2 *lo = xmallocarray((size_t)m, sizeof *lo), *hi = xmallocarray((size_t)m, sizeof *hi);
+  int any = 0;
+  for (int k = 0; k < m; k++) {
+    const contour *c = &cs[idx[k]];
+    lo[k] = hi[k] = c->pt[0];
+    for (int j = 1; j < c->n; j++) {
+      vec2 q = c->pt[j];
+      if (q.x < lo[k].x) lo[k].x = q.x;
+      if (q.y < lo[k].y) lo[k].y = q.y;
+      if (q.x > hi[k].x) hi[k].x = q.x;
+      if (q.y > hi[k].y) hi[k].y = q.y;
+    }
+    for (int j = 0; j < k && !any; j++)
+      any = lo[j].x <= hi[k].x && lo[k].x <= hi[j].x && lo[j].y <= hi[k].y && lo[k].y <= hi[j].y;
+  }
+  free(lo), free(hi);
+  if (!any) return 0;
   crossing_poly *cp = xmallocarray((size_t)m, sizeof *cp);
   for (int k = 0; k < m; k++) cp[k] = (crossing_poly){cs[idx[k]].pt, cs[idx[k]].n};
   crossing_hit h;
