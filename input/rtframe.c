@@ -235,34 +235,38 @@ static int oblique(rtstruct_roi *roi, double q, char **warn, int *badc, char *wh
   return 0;
 }
 
+/* The spread of contour c's points along axis a. */
+static double axis_spread(const rtstruct_contour *c, int a) {
+  double lo = c->p[a], hi = c->p[a];
+  for (int j = 1; j < c->n; j++) {
+    double v = c->p[3 * j + a];
+    if (v < lo) lo = v;
+    if (v > hi) hi = v;
+  }
+  return hi - lo;
+}
+
 int rtframe_fit(rtstruct_roi *roi, char **warn, int *bad, char *why, size_t whylen) {
   *warn = NULL;
-  int axis = -1, first[3] = {-1, -1, -1};
-  double worst[3] = {0, 0, 0}, spread[3] = {0, 0, 0}, q = 0, tol = RTFRAME_FLAT;
-  for (int a = 0; a < 3; a++)   /* the quantum only where some contour is not exactly flat */
-    for (int i = 0; i < roi->nc; i++) {
-      const rtstruct_contour *c = &roi->c[i];
-      double lo = c->p[a], hi = c->p[a];
-      for (int j = 1; j < c->n; j++) lo = fmin(lo, c->p[3 * j + a]), hi = fmax(hi, c->p[3 * j + a]);
-      spread[a] = fmax(spread[a], hi - lo);
-    }
-  if (spread[0] > RTFRAME_FLAT && spread[1] > RTFRAME_FLAT && spread[2] > RTFRAME_FLAT)
-    q = quantum(roi), tol = tolerance(q, (const double[3]){1, 0, 0});
-  for (int a = 2; a >= 0; a--)   /* z (axial), then x (sagittal), then y (coronal) */
-    for (int i = 0; i < roi->nc; i++) {
-      const rtstruct_contour *c = &roi->c[i];
-      double lo = c->p[a], hi = c->p[a];
-      for (int j = 1; j < c->n; j++) {
-        double v = c->p[3 * j + a];
-        if (v < lo) lo = v;
-        if (v > hi) hi = v;
-      }
-      if (hi - lo > tol) {
+  int axis = -1, first[3] = {-1, -1, -1}, nc = roi->nc;
+  double worst[3] = {0, 0, 0}, most[3] = {0, 0, 0}, q = 0, tol = RTFRAME_FLAT;
+  double *sp = xmallocarray(3 * (size_t)nc + 1, sizeof *sp);   /* each contour's spread along x, y, z */
+  for (int i = 0; i < nc; i++) sp[3 * i + 2] = axis_spread(&roi->c[i], 2), most[2] = fmax(most[2], sp[3 * i + 2]);
+  if (most[2] > RTFRAME_FLAT) {   /* not flat in z to RTFRAME_FLAT: the other axes, and perhaps the precision */
+    for (int i = 0; i < nc; i++)
+      for (int a = 0; a < 2; a++) sp[3 * i + a] = axis_spread(&roi->c[i], a), most[a] = fmax(most[a], sp[3 * i + a]);
+    if (most[0] > RTFRAME_FLAT && most[1] > RTFRAME_FLAT) q = quantum(roi), tol = tolerance(q, (const double[3]){1, 0, 0});
+  }
+  for (int a = 2; a >= 0 && (a == 2 || most[2] > RTFRAME_FLAT); a--)   /* z (axial), then x (sagittal), then y */
+    for (int i = 0; i < nc; i++) {
+      double d = sp[3 * i + a];
+      if (d > tol) {
         if (first[a] < 0) first[a] = i;
-      } else if (hi - lo > worst[a]) {
-        worst[a] = hi - lo;
+      } else if (d > worst[a]) {
+        worst[a] = d;
       }
     }
+  free(sp);
   if (first[2] < 0) axis = 2;
   else if (first[0] < 0) axis = 0;
   else if (first[1] < 0) axis = 1;
