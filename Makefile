@@ -14,6 +14,7 @@
 #   make mpi             ./tile-mpi and ./bench-mpi with mpicc (mpirun -np P ...)
 #   make simgrid         the simulator against SimGrid's SMPI (tests/simgrid.sh)
 #   make install PREFIX=/usr/local   (tile, tilesim-bench, tilesim-plot, man pages)
+#   make uninstall PREFIX=/usr/local (every file make install wrote)
 #   make clean
 
 CC      ?= cc
@@ -232,6 +233,10 @@ $(CHK)/plot: $(call chkobj,$(PLOTSRC)) $(CHK)/libtilesim.a
 
 $(CHK)/tests/%: $(CHK)/tests/%.o $(call chkobj,$(TESTLIB)) $(CHK)/libtsmpi.a $(CHK)/libtilesim.a
 	$(CC) $(CHKFLAGS) -o $@ $^ $(LDLIBS)
+# The plotter's charts, tested apart from the plotter's main.
+$(CHK)/tests/test_svgchart: $(CHK)/tests/test_svgchart.o $(CHK)/plots/svgchart.o $(call chkobj,$(TESTLIB)) \
+                            $(CHK)/libtsmpi.a $(CHK)/libtilesim.a
+	$(CC) $(CHKFLAGS) -o $@ $^ $(LDLIBS)
 
 # The tests and the sanitized programs the command-line tests drive; and,
 # where $(MPICC) (and $(SMPICC)) build an MPI program, the MPI programs for
@@ -318,6 +323,9 @@ $(VG)/tests/mpi/%.o: tests/mpi/%.c
 	$(CC) $(BASE) -O1 -g $(TSMPIPFLAGS) -Dmain=tsmpi_main_$* -MMD -MP -c $< -o $@
 $(foreach d,$(TSMPIDRIVERS),$(eval $(call tsmpi_driver_rules,$(d))))
 $(VG)/tests/%: $(VG)/tests/%.o $(patsubst %.c,$(VG)/%.o,$(TESTLIB)) $(VG)/libtsmpi.a $(VG)/libtilesim.a
+	$(CC) -g -o $@ $^ $(LDLIBS)
+$(VG)/tests/test_svgchart: $(VG)/tests/test_svgchart.o $(VG)/plots/svgchart.o $(patsubst %.c,$(VG)/%.o,$(TESTLIB)) \
+                           $(VG)/libtsmpi.a $(VG)/libtilesim.a
 	$(CC) -g -o $@ $^ $(LDLIBS)
 valgrind: $(addprefix $(VG)/tests/,$(TESTS))
 	@VALGRIND="valgrind -q --error-exitcode=99 --leak-check=full" \
@@ -446,8 +454,8 @@ bench: all
 	  { k = $$c["variant"] "," $$c["procs"] } f == 1 { a[k] = $$c["speedup"] } f == 2 && (k in a) { print k "," a[k] "," $$c["speedup"] }' \
 	  plots/variants_tc2000.csv plots/variants_xeon16.csv > build/variants.csv && mv build/variants.csv plots/variants.csv
 	$(PLOTS) plots/variants.csv -x procs -y tc2000,xeon16 --series variant \
-	  --labels "tc2000 500 points,16-core host 1000 points (dashed)" --yzero \
-	  --title "The variants: speedup, simulated tc2000 and the simulator calibrated to a 16-core host" \
+	  --labels "tc2000,16-core host" --yzero \
+	  --title "The variants: speedup on the simulated tc2000 (500 points) and on the simulator calibrated to a 16-core host (1000 points)" \
 	  --xlabel processors --ylabel "speedup T(1)/T(P)" -o plots/variants.svg
 	./bench --claims-map $(CLAIMS_GEN) --jobs $(JOBS) -o build/claims_map_gen.csv
 	./bench --claims-map $(CLAIMS_REAL) --jobs $(JOBS) -o build/claims_map_real.csv
@@ -541,12 +549,34 @@ install-files:
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' machine/tilesim.pc.in \
 	  > $(DESTDIR)$(PREFIX)/lib/pkgconfig/tilesim.pc
 	cp examples/*.c $(SHARE)/examples/
+	mkdir -p $(SHARE)/examples/mpi
+	cp examples/mpi/*.c $(SHARE)/examples/mpi/
+
+# make uninstall PREFIX=... (and DESTDIR, MANDIR, DOCDIR as given to make
+# install): every file make install wrote, by the same lists; then the
+# folders that are tilesim's own, if nothing else is left in them (a file
+# of someone else's stays, and so does its folder).  PREFIX/bin, lib and the
+# man folders stay.
+UNINST = $(addprefix $(DESTDIR)$(PREFIX)/bin/,$(foreach p,$(PROGS),$(call iname,$(p))) $(if $(PLOT),tilesim-plot) $(MPITOOLS)) \
+         $(foreach f,$(wildcard doc/*.[1-9]),$(DESTDIR)$(MANDIR)/man$(subst .,,$(suffix $(f)))/$(notdir $(f))) \
+         $(addprefix $(DESTDIR)$(DOCDIR)/,$(notdir $(wildcard doc/*.md))) \
+         $(addprefix $(SHARE)/slicerrt/,$(notdir $(wildcard tests/data/slicerrt/*.contours)) README.md) \
+         $(addprefix $(SHARE)/rtstruct/,$(notdir $(wildcard tests/data/rtstruct/*.dcm)) README.md) \
+         $(addprefix $(SHARE)/examples/,$(notdir $(wildcard examples/*.c))) \
+         $(addprefix $(SHARE)/examples/mpi/,$(notdir $(wildcard examples/mpi/*.c))) \
+         $(DESTDIR)$(PREFIX)/lib/libtilesim.a $(DESTDIR)$(PREFIX)/lib/pkgconfig/tilesim.pc \
+         $(addprefix $(DESTDIR)$(PREFIX)/include/tilesim/,mp.h tilesim.h mpi/mpi.h mpi/mpi_funcs.h mpi/tilesim_mpi.h)
+UNINSTDIRS = $(SHARE)/slicerrt $(SHARE)/rtstruct $(SHARE)/examples/mpi $(SHARE)/examples $(SHARE) $(DESTDIR)$(DOCDIR) \
+             $(DESTDIR)$(PREFIX)/include/tilesim/mpi $(DESTDIR)$(PREFIX)/include/tilesim
+uninstall:
+	rm -f $(UNINST)
+	@for d in $(UNINSTDIRS); do if [ -d "$$d" ]; then rmdir "$$d" 2>/dev/null || echo "make uninstall: $$d is not empty: left as it is"; fi; done
 
 clean:
 	rm -rf build $(PROGS) $(MPITOOLS) $(addsuffix -mpi,$(MPIPROGS))
 
 FORCE:
-.PHONY: all check valgrind tsan bench bench-tile bench-testbed bench-mpi bench-mpirun bench-load bench-cores install install-files clean mpi mpi-bins smpi-bins simgrid fuzz fuzz-bins FORCE \
+.PHONY: all check valgrind tsan bench bench-tile bench-testbed bench-mpi bench-mpirun bench-load bench-cores install install-files uninstall clean mpi mpi-bins smpi-bins simgrid fuzz fuzz-bins FORCE \
         mpi-probe
 .SECONDARY:
 

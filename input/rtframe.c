@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "args.h"
 #include "decimal.h"
 #include "strbuf.h"
 #include "xmem.h"
@@ -227,10 +228,10 @@ static int oblique(rtstruct_roi *roi, double q, char **warn, int *badc, char *wh
   roi->flat = tol;
   int axis = fabs(f.n[2]) >= fabs(f.n[0]) && fabs(f.n[2]) >= fabs(f.n[1]) ? 2 : fabs(f.n[0]) >= fabs(f.n[1]) ? 0 : 1;
   strbuf b = {0};
-  strbuf_add(&b, "oblique contours: parallel planes tilted %.6g degrees from the %s plane (normal %.17g %.17g "
-             "%.17g; each point within %.3g mm of its contour's plane): turned into z to be tiled, and the mesh "
-             "turned back", f.angle, axis == 2 ? "axial" : axis == 0 ? "sagittal" : "coronal", f.n[0], f.n[1],
-             f.n[2], worst);
+  strbuf_add(&b, "oblique contours: parallel planes tilted %.6g degrees from the %s plane (normal %s %s "
+             "%s; each point within %.3g mm of its contour's plane): turned into z to be tiled, and the mesh "
+             "turned back", f.angle, axis == 2 ? "axial" : axis == 0 ? "sagittal" : "coronal", ARGS_G(f.n[0]),
+             ARGS_G(f.n[1]), ARGS_G(f.n[2]), worst);
   *warn = b.buf;
   return 0;
 }

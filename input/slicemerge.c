@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "args.h"
 #include "crossing.h"
 #include "exact.h"
 #include "polyunion.h"
@@ -128,8 +129,8 @@ static int duplicates(contour *cs, int ncs, char *drop, int verbose, const char 
         if (dropped++ == 0 || cs[i].line < cs[first].line) first = i, first_of = keep;
         if (verbose && notes) {
           note_line(notes, prefix, name, cs[i].line);
-          strbuf_add(notes, "dropped the contour: it repeats the contour at line %d on slice z=%.17g exactly (the same "
-                     "region: another start point, direction or collinear points)\n", cs[keep].line, cs[i].z);
+          strbuf_add(notes, "dropped the contour: it repeats the contour at line %d on slice z=%s exactly (the same "
+                     "region: another start point, direction or collinear points)\n", cs[keep].line, ARGS_G(cs[i].z));
         }
       }
     }
@@ -137,12 +138,12 @@ static int duplicates(contour *cs, int ncs, char *drop, int verbose, const char 
   if (dropped && !verbose && notes) {
     note_line(notes, prefix, name, cs[first].line);
     if (dropped == 1)
-      strbuf_add(notes, "dropped the contour: it repeats the contour at line %d on slice z=%.17g exactly (the same "
-                 "region: another start point, direction or collinear points)\n", cs[first_of].line, cs[first].z);
+      strbuf_add(notes, "dropped the contour: it repeats the contour at line %d on slice z=%s exactly (the same "
+                 "region: another start point, direction or collinear points)\n", cs[first_of].line, ARGS_G(cs[first].z));
     else
       strbuf_add(notes, "dropped %d contours that repeat another of their slice exactly (the same region: another "
-                 "start point, direction or collinear points), this one a copy of line %d on slice z=%.17g; -v "
-                 "names each\n", dropped, cs[first_of].line, cs[first].z);
+                 "start point, direction or collinear points), this one a copy of line %d on slice z=%s; -v "
+                 "names each\n", dropped, cs[first_of].line, ARGS_G(cs[first].z));
   }
   for (int k = 0; k < ncs; k++) free(red[k]);
   free(red), free(nred), free(bx);
@@ -202,9 +203,9 @@ static int union_slice(contour *cs, const int *idx, int m, int all, char *drop, 
     if (u.gstatus[g] != POLYUNION_OK) {
       strbuf b = {0};
       lines_of(&b, cs, idx, mem, nm);
-      snprintf(err, errlen, "%s:%d: %sthe region of the contours at %s on slice z=%.17g: its new vertices, rounded "
-               "to doubles, make its boundary touch itself near (%.17g %.17g); it cannot be tiled", name,
-               cs[lead].line, all ? "--union: " : "", b.buf, z, u.gat[g].x, u.gat[g].y);
+      snprintf(err, errlen, "%s:%d: %sthe region of the contours at %s on slice z=%s: its new vertices, rounded "
+               "to doubles, make its boundary touch itself near (%s %s); it cannot be tiled", name,
+               cs[lead].line, all ? "--union: " : "", b.buf, ARGS_G(z), ARGS_G(u.gat[g].x), ARGS_G(u.gat[g].y));
       free(b.buf);
       rc = -1;
       break;
@@ -231,14 +232,14 @@ static int union_slice(contour *cs, const int *idx, int m, int all, char *drop, 
       if (all) strbuf_add(to, "--union: merged the contours at ");
       else strbuf_add(to, "a hole on its outer contour's boundary: the contours at ");
       lines_of(to, cs, idx, mem, nm);
-      if (all) strbuf_add(to, " on slice z=%.17g into their union", z);
-      else strbuf_add(to, " on slice z=%.17g, one inside another and meeting its boundary, made one region", z);
+      if (all) strbuf_add(to, " on slice z=%s into their union", ARGS_G(z));
+      else strbuf_add(to, " on slice z=%s, one inside another and meeting its boundary, made one region", ARGS_G(z));
       strbuf_add(to, ": %d contour%s", nl - nh, nl - nh == 1 ? "" : "s");
       if (nh) strbuf_add(to, " and %d hole%s", nh, nh == 1 ? "" : "s");
       if (all) strbuf_add(to, " (%d new vertices where they cross)", u.newpts[g]);
       if (u.pinches[g])
-        strbuf_add(to, "; it touches itself at (%.17g %.17g)%s, split there (each piece but one off the point by "
-                   "2^-20 of its edges)", u.pinch_at[g].x, u.pinch_at[g].y,
+        strbuf_add(to, "; it touches itself at (%s %s)%s, split there (each piece but one off the point by "
+                   "2^-20 of its edges)", ARGS_G(u.pinch_at[g].x), ARGS_G(u.pinch_at[g].y),
                    u.pinches[g] > 1 ? " and elsewhere" : "");
       strbuf_raw(to, "\n", 1);
     }
@@ -259,9 +260,9 @@ static int union_slice(contour *cs, const int *idx, int m, int all, char *drop, 
     free(all_);
     /* (without --union, contours left alone that meet are the surface's to refuse) */
     if (hit && (all || (h.poly[0] >= k - (add->n - slice0) || h.poly[1] >= k - (add->n - slice0)))) {
-      snprintf(err, errlen, "%s:%d: %son slice z=%.17g the merged region's new vertices, rounded to doubles, make "
-               "it touch another contour near (%.17g %.17g); it cannot be tiled", name, add->c[slice0].line,
-               all ? "--union: " : "", z, h.at.x, h.at.y);
+      snprintf(err, errlen, "%s:%d: %son slice z=%s the merged region's new vertices, rounded to doubles, make "
+               "it touch another contour near (%s %s); it cannot be tiled", name, add->c[slice0].line,
+               all ? "--union: " : "", ARGS_G(z), ARGS_G(h.at.x), ARGS_G(h.at.y));
       rc = -1;
     }
   }

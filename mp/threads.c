@@ -713,7 +713,7 @@ static int arrived(rank *r, int src, int tag, found *out) {
     pthread_mutex_lock(&t->g);
     t->sleeping++;
     atomic_fetch_sub_explicit(&t->awake, 1, memory_order_relaxed);
-    int dead = t->sleeping == t->live;
+    int dead = t->sleeping == t->live && !stopped(t);   /* a stop (an abort) is no deadlock */
     if (dead) declare_deadlock_locked(t);
     pthread_mutex_unlock(&t->g);
     if (dead) {

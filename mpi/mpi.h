@@ -350,6 +350,11 @@ typedef MPI_Comm_errhandler_function MPI_Handler_function;
 #define MPI_REAL16                  MPI_DATATYPE_NULL
 #define MPI_COMPLEX4                MPI_DATATYPE_NULL
 #define MPI_COMPLEX32               MPI_DATATYPE_NULL
+/* The lower- and upper-bound markers MPI 3.0 removed, as MPICH keeps them:
+ * no data; in MPI_Type_create_struct (and MPI_Type_struct) they set the
+ * type's bounds (MPI 3.1 section 4.1.7's explicit markers). */
+#define MPI_LB                      ((MPI_Datatype)0x0300003d)
+#define MPI_UB                      ((MPI_Datatype)0x0300003e)
 
 /* ------------------------------------------------------------------------
  * Predefined reduction operations (MPI 3.1 section 5.9.2)

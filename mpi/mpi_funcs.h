@@ -204,10 +204,10 @@ TSMPI_FN(1, DTYPE, int, MPI_Get_elements_x, (const MPI_Status *status, MPI_Datat
 TSMPI_FN(1, DTYPE, int, MPI_Pack, (const void *inbuf, int incount, MPI_Datatype datatype, void *outbuf,
          int outsize, int *position, MPI_Comm comm),
          (inbuf, incount, datatype, outbuf, outsize, position, comm))
-TSMPI_FN(0, DTYPE, int, MPI_Pack_external, (const char *datarep, const void *inbuf, int incount,
+TSMPI_FN(1, DTYPE, int, MPI_Pack_external, (const char *datarep, const void *inbuf, int incount,
          MPI_Datatype datatype, void *outbuf, MPI_Aint outsize, MPI_Aint *position),
          (datarep, inbuf, incount, datatype, outbuf, outsize, position))
-TSMPI_FN(0, DTYPE, int, MPI_Pack_external_size, (const char *datarep, int incount, MPI_Datatype datatype,
+TSMPI_FN(1, DTYPE, int, MPI_Pack_external_size, (const char *datarep, int incount, MPI_Datatype datatype,
          MPI_Aint *size),
          (datarep, incount, datatype, size))
 TSMPI_FN(1, DTYPE, int, MPI_Pack_size, (int incount, MPI_Datatype datatype, MPI_Comm comm, int *size),
@@ -216,7 +216,7 @@ TSMPI_FN(1, DTYPE, int, MPI_Type_commit, (MPI_Datatype *datatype),
          (datatype))
 TSMPI_FN(1, DTYPE, int, MPI_Type_contiguous, (int count, MPI_Datatype oldtype, MPI_Datatype *newtype),
          (count, oldtype, newtype))
-TSMPI_FN(0, DTYPE, int, MPI_Type_create_darray, (int size, int rank, int ndims, const int array_of_gsizes[],
+TSMPI_FN(1, DTYPE, int, MPI_Type_create_darray, (int size, int rank, int ndims, const int array_of_gsizes[],
          const int array_of_distribs[], const int array_of_dargs[], const int array_of_psizes[], int order,
          MPI_Datatype oldtype, MPI_Datatype *newtype),
          (size, rank, ndims, array_of_gsizes, array_of_distribs, array_of_dargs, array_of_psizes, order,
@@ -294,7 +294,7 @@ TSMPI_FN(1, DTYPE, int, MPI_Type_vector, (int count, int blocklength, int stride
 TSMPI_FN(1, DTYPE, int, MPI_Unpack, (const void *inbuf, int insize, int *position, void *outbuf,
          int outcount, MPI_Datatype datatype, MPI_Comm comm),
          (inbuf, insize, position, outbuf, outcount, datatype, comm))
-TSMPI_FN(0, DTYPE, int, MPI_Unpack_external, (const char datarep[], const void *inbuf, MPI_Aint insize,
+TSMPI_FN(1, DTYPE, int, MPI_Unpack_external, (const char datarep[], const void *inbuf, MPI_Aint insize,
          MPI_Aint *position, void *outbuf, int outcount, MPI_Datatype datatype),
          (datarep, inbuf, insize, position, outbuf, outcount, datatype))
 
@@ -793,158 +793,158 @@ TSMPI_FN(1, EXT, int, MPI_Query_thread, (int *provided),
          (provided))
 TSMPI_FN(0, EXT, int, MPI_Status_set_cancelled, (MPI_Status *status, int flag),
          (status, flag))
-TSMPI_FN(0, EXT, int, MPI_Status_set_elements, (MPI_Status *status, MPI_Datatype datatype, int count),
+TSMPI_FN(1, EXT, int, MPI_Status_set_elements, (MPI_Status *status, MPI_Datatype datatype, int count),
          (status, datatype, count))
-TSMPI_FN(0, EXT, int, MPI_Status_set_elements_x, (MPI_Status *status, MPI_Datatype datatype, MPI_Count count),
+TSMPI_FN(1, EXT, int, MPI_Status_set_elements_x, (MPI_Status *status, MPI_Datatype datatype, MPI_Count count),
          (status, datatype, count))
 
 /* --- IO --- */
-TSMPI_FN(0, IO, int, MPI_File_call_errhandler, (MPI_File fh, int errorcode),
+TSMPI_FN(1, IO, int, MPI_File_call_errhandler, (MPI_File fh, int errorcode),
          (fh, errorcode))
-TSMPI_FN(0, IO, int, MPI_File_close, (MPI_File *fh),
+TSMPI_FN(1, IO, int, MPI_File_close, (MPI_File *fh),
          (fh))
 TSMPI_FN(1, IO, int, MPI_File_create_errhandler, (MPI_File_errhandler_function *file_errhandler_fn,
          MPI_Errhandler *errhandler),
          (file_errhandler_fn, errhandler))
-TSMPI_FN(0, IO, int, MPI_File_delete, (const char *filename, MPI_Info info),
+TSMPI_FN(1, IO, int, MPI_File_delete, (const char *filename, MPI_Info info),
          (filename, info))
-TSMPI_FN(0, IO, int, MPI_File_get_amode, (MPI_File fh, int *amode),
+TSMPI_FN(1, IO, int, MPI_File_get_amode, (MPI_File fh, int *amode),
          (fh, amode))
-TSMPI_FN(0, IO, int, MPI_File_get_atomicity, (MPI_File fh, int *flag),
+TSMPI_FN(1, IO, int, MPI_File_get_atomicity, (MPI_File fh, int *flag),
          (fh, flag))
-TSMPI_FN(0, IO, int, MPI_File_get_byte_offset, (MPI_File fh, MPI_Offset offset, MPI_Offset *disp),
+TSMPI_FN(1, IO, int, MPI_File_get_byte_offset, (MPI_File fh, MPI_Offset offset, MPI_Offset *disp),
          (fh, offset, disp))
-TSMPI_FN(0, IO, int, MPI_File_get_errhandler, (MPI_File file, MPI_Errhandler *errhandler),
+TSMPI_FN(1, IO, int, MPI_File_get_errhandler, (MPI_File file, MPI_Errhandler *errhandler),
          (file, errhandler))
-TSMPI_FN(0, IO, int, MPI_File_get_group, (MPI_File fh, MPI_Group *group),
+TSMPI_FN(1, IO, int, MPI_File_get_group, (MPI_File fh, MPI_Group *group),
          (fh, group))
-TSMPI_FN(0, IO, int, MPI_File_get_info, (MPI_File fh, MPI_Info *info_used),
+TSMPI_FN(1, IO, int, MPI_File_get_info, (MPI_File fh, MPI_Info *info_used),
          (fh, info_used))
-TSMPI_FN(0, IO, int, MPI_File_get_position, (MPI_File fh, MPI_Offset *offset),
+TSMPI_FN(1, IO, int, MPI_File_get_position, (MPI_File fh, MPI_Offset *offset),
          (fh, offset))
-TSMPI_FN(0, IO, int, MPI_File_get_position_shared, (MPI_File fh, MPI_Offset *offset),
+TSMPI_FN(1, IO, int, MPI_File_get_position_shared, (MPI_File fh, MPI_Offset *offset),
          (fh, offset))
-TSMPI_FN(0, IO, int, MPI_File_get_size, (MPI_File fh, MPI_Offset *size),
+TSMPI_FN(1, IO, int, MPI_File_get_size, (MPI_File fh, MPI_Offset *size),
          (fh, size))
-TSMPI_FN(0, IO, int, MPI_File_get_type_extent, (MPI_File fh, MPI_Datatype datatype, MPI_Aint *extent),
+TSMPI_FN(1, IO, int, MPI_File_get_type_extent, (MPI_File fh, MPI_Datatype datatype, MPI_Aint *extent),
          (fh, datatype, extent))
-TSMPI_FN(0, IO, int, MPI_File_get_view, (MPI_File fh, MPI_Offset *disp, MPI_Datatype *etype,
+TSMPI_FN(1, IO, int, MPI_File_get_view, (MPI_File fh, MPI_Offset *disp, MPI_Datatype *etype,
          MPI_Datatype *filetype, char *datarep),
          (fh, disp, etype, filetype, datarep))
-TSMPI_FN(0, IO, int, MPI_File_iread, (MPI_File fh, void *buf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, IO, int, MPI_File_iread, (MPI_File fh, void *buf, int count, MPI_Datatype datatype,
          MPI_Request *request),
          (fh, buf, count, datatype, request))
-TSMPI_FN(0, IO, int, MPI_File_iread_all, (MPI_File fh, void *buf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, IO, int, MPI_File_iread_all, (MPI_File fh, void *buf, int count, MPI_Datatype datatype,
          MPI_Request *request),
          (fh, buf, count, datatype, request))
-TSMPI_FN(0, IO, int, MPI_File_iread_at, (MPI_File fh, MPI_Offset offset, void *buf, int count,
+TSMPI_FN(1, IO, int, MPI_File_iread_at, (MPI_File fh, MPI_Offset offset, void *buf, int count,
          MPI_Datatype datatype, MPI_Request *request),
          (fh, offset, buf, count, datatype, request))
-TSMPI_FN(0, IO, int, MPI_File_iread_at_all, (MPI_File fh, MPI_Offset offset, void *buf, int count,
+TSMPI_FN(1, IO, int, MPI_File_iread_at_all, (MPI_File fh, MPI_Offset offset, void *buf, int count,
          MPI_Datatype datatype, MPI_Request *request),
          (fh, offset, buf, count, datatype, request))
-TSMPI_FN(0, IO, int, MPI_File_iread_shared, (MPI_File fh, void *buf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, IO, int, MPI_File_iread_shared, (MPI_File fh, void *buf, int count, MPI_Datatype datatype,
          MPI_Request *request),
          (fh, buf, count, datatype, request))
-TSMPI_FN(0, IO, int, MPI_File_iwrite, (MPI_File fh, const void *buf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, IO, int, MPI_File_iwrite, (MPI_File fh, const void *buf, int count, MPI_Datatype datatype,
          MPI_Request *request),
          (fh, buf, count, datatype, request))
-TSMPI_FN(0, IO, int, MPI_File_iwrite_all, (MPI_File fh, const void *buf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, IO, int, MPI_File_iwrite_all, (MPI_File fh, const void *buf, int count, MPI_Datatype datatype,
          MPI_Request *request),
          (fh, buf, count, datatype, request))
-TSMPI_FN(0, IO, int, MPI_File_iwrite_at, (MPI_File fh, MPI_Offset offset, const void *buf, int count,
+TSMPI_FN(1, IO, int, MPI_File_iwrite_at, (MPI_File fh, MPI_Offset offset, const void *buf, int count,
          MPI_Datatype datatype, MPI_Request *request),
          (fh, offset, buf, count, datatype, request))
-TSMPI_FN(0, IO, int, MPI_File_iwrite_at_all, (MPI_File fh, MPI_Offset offset, const void *buf, int count,
+TSMPI_FN(1, IO, int, MPI_File_iwrite_at_all, (MPI_File fh, MPI_Offset offset, const void *buf, int count,
          MPI_Datatype datatype, MPI_Request *request),
          (fh, offset, buf, count, datatype, request))
-TSMPI_FN(0, IO, int, MPI_File_iwrite_shared, (MPI_File fh, const void *buf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, IO, int, MPI_File_iwrite_shared, (MPI_File fh, const void *buf, int count, MPI_Datatype datatype,
          MPI_Request *request),
          (fh, buf, count, datatype, request))
-TSMPI_FN(0, IO, int, MPI_File_open, (MPI_Comm comm, const char *filename, int amode, MPI_Info info,
+TSMPI_FN(1, IO, int, MPI_File_open, (MPI_Comm comm, const char *filename, int amode, MPI_Info info,
          MPI_File *fh),
          (comm, filename, amode, info, fh))
-TSMPI_FN(0, IO, int, MPI_File_preallocate, (MPI_File fh, MPI_Offset size),
+TSMPI_FN(1, IO, int, MPI_File_preallocate, (MPI_File fh, MPI_Offset size),
          (fh, size))
-TSMPI_FN(0, IO, int, MPI_File_read, (MPI_File fh, void *buf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, IO, int, MPI_File_read, (MPI_File fh, void *buf, int count, MPI_Datatype datatype,
          MPI_Status *status),
          (fh, buf, count, datatype, status))
-TSMPI_FN(0, IO, int, MPI_File_read_all, (MPI_File fh, void *buf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, IO, int, MPI_File_read_all, (MPI_File fh, void *buf, int count, MPI_Datatype datatype,
          MPI_Status *status),
          (fh, buf, count, datatype, status))
-TSMPI_FN(0, IO, int, MPI_File_read_all_begin, (MPI_File fh, void *buf, int count, MPI_Datatype datatype),
+TSMPI_FN(1, IO, int, MPI_File_read_all_begin, (MPI_File fh, void *buf, int count, MPI_Datatype datatype),
          (fh, buf, count, datatype))
-TSMPI_FN(0, IO, int, MPI_File_read_all_end, (MPI_File fh, void *buf, MPI_Status *status),
+TSMPI_FN(1, IO, int, MPI_File_read_all_end, (MPI_File fh, void *buf, MPI_Status *status),
          (fh, buf, status))
-TSMPI_FN(0, IO, int, MPI_File_read_at, (MPI_File fh, MPI_Offset offset, void *buf, int count,
+TSMPI_FN(1, IO, int, MPI_File_read_at, (MPI_File fh, MPI_Offset offset, void *buf, int count,
          MPI_Datatype datatype, MPI_Status *status),
          (fh, offset, buf, count, datatype, status))
-TSMPI_FN(0, IO, int, MPI_File_read_at_all, (MPI_File fh, MPI_Offset offset, void *buf, int count,
+TSMPI_FN(1, IO, int, MPI_File_read_at_all, (MPI_File fh, MPI_Offset offset, void *buf, int count,
          MPI_Datatype datatype, MPI_Status *status),
          (fh, offset, buf, count, datatype, status))
-TSMPI_FN(0, IO, int, MPI_File_read_at_all_begin, (MPI_File fh, MPI_Offset offset, void *buf, int count,
+TSMPI_FN(1, IO, int, MPI_File_read_at_all_begin, (MPI_File fh, MPI_Offset offset, void *buf, int count,
          MPI_Datatype datatype),
          (fh, offset, buf, count, datatype))
-TSMPI_FN(0, IO, int, MPI_File_read_at_all_end, (MPI_File fh, void *buf, MPI_Status *status),
+TSMPI_FN(1, IO, int, MPI_File_read_at_all_end, (MPI_File fh, void *buf, MPI_Status *status),
          (fh, buf, status))
-TSMPI_FN(0, IO, int, MPI_File_read_ordered, (MPI_File fh, void *buf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, IO, int, MPI_File_read_ordered, (MPI_File fh, void *buf, int count, MPI_Datatype datatype,
          MPI_Status *status),
          (fh, buf, count, datatype, status))
-TSMPI_FN(0, IO, int, MPI_File_read_ordered_begin, (MPI_File fh, void *buf, int count, MPI_Datatype datatype),
+TSMPI_FN(1, IO, int, MPI_File_read_ordered_begin, (MPI_File fh, void *buf, int count, MPI_Datatype datatype),
          (fh, buf, count, datatype))
-TSMPI_FN(0, IO, int, MPI_File_read_ordered_end, (MPI_File fh, void *buf, MPI_Status *status),
+TSMPI_FN(1, IO, int, MPI_File_read_ordered_end, (MPI_File fh, void *buf, MPI_Status *status),
          (fh, buf, status))
-TSMPI_FN(0, IO, int, MPI_File_read_shared, (MPI_File fh, void *buf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, IO, int, MPI_File_read_shared, (MPI_File fh, void *buf, int count, MPI_Datatype datatype,
          MPI_Status *status),
          (fh, buf, count, datatype, status))
-TSMPI_FN(0, IO, int, MPI_File_seek, (MPI_File fh, MPI_Offset offset, int whence),
+TSMPI_FN(1, IO, int, MPI_File_seek, (MPI_File fh, MPI_Offset offset, int whence),
          (fh, offset, whence))
-TSMPI_FN(0, IO, int, MPI_File_seek_shared, (MPI_File fh, MPI_Offset offset, int whence),
+TSMPI_FN(1, IO, int, MPI_File_seek_shared, (MPI_File fh, MPI_Offset offset, int whence),
          (fh, offset, whence))
-TSMPI_FN(0, IO, int, MPI_File_set_atomicity, (MPI_File fh, int flag),
+TSMPI_FN(1, IO, int, MPI_File_set_atomicity, (MPI_File fh, int flag),
          (fh, flag))
-TSMPI_FN(0, IO, int, MPI_File_set_errhandler, (MPI_File file, MPI_Errhandler errhandler),
+TSMPI_FN(1, IO, int, MPI_File_set_errhandler, (MPI_File file, MPI_Errhandler errhandler),
          (file, errhandler))
-TSMPI_FN(0, IO, int, MPI_File_set_info, (MPI_File fh, MPI_Info info),
+TSMPI_FN(1, IO, int, MPI_File_set_info, (MPI_File fh, MPI_Info info),
          (fh, info))
-TSMPI_FN(0, IO, int, MPI_File_set_size, (MPI_File fh, MPI_Offset size),
+TSMPI_FN(1, IO, int, MPI_File_set_size, (MPI_File fh, MPI_Offset size),
          (fh, size))
-TSMPI_FN(0, IO, int, MPI_File_set_view, (MPI_File fh, MPI_Offset disp, MPI_Datatype etype,
+TSMPI_FN(1, IO, int, MPI_File_set_view, (MPI_File fh, MPI_Offset disp, MPI_Datatype etype,
          MPI_Datatype filetype, const char *datarep, MPI_Info info),
          (fh, disp, etype, filetype, datarep, info))
-TSMPI_FN(0, IO, int, MPI_File_sync, (MPI_File fh),
+TSMPI_FN(1, IO, int, MPI_File_sync, (MPI_File fh),
          (fh))
-TSMPI_FN(0, IO, int, MPI_File_write, (MPI_File fh, const void *buf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, IO, int, MPI_File_write, (MPI_File fh, const void *buf, int count, MPI_Datatype datatype,
          MPI_Status *status),
          (fh, buf, count, datatype, status))
-TSMPI_FN(0, IO, int, MPI_File_write_all, (MPI_File fh, const void *buf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, IO, int, MPI_File_write_all, (MPI_File fh, const void *buf, int count, MPI_Datatype datatype,
          MPI_Status *status),
          (fh, buf, count, datatype, status))
-TSMPI_FN(0, IO, int, MPI_File_write_all_begin, (MPI_File fh, const void *buf, int count,
+TSMPI_FN(1, IO, int, MPI_File_write_all_begin, (MPI_File fh, const void *buf, int count,
          MPI_Datatype datatype),
          (fh, buf, count, datatype))
-TSMPI_FN(0, IO, int, MPI_File_write_all_end, (MPI_File fh, const void *buf, MPI_Status *status),
+TSMPI_FN(1, IO, int, MPI_File_write_all_end, (MPI_File fh, const void *buf, MPI_Status *status),
          (fh, buf, status))
-TSMPI_FN(0, IO, int, MPI_File_write_at, (MPI_File fh, MPI_Offset offset, const void *buf, int count,
+TSMPI_FN(1, IO, int, MPI_File_write_at, (MPI_File fh, MPI_Offset offset, const void *buf, int count,
          MPI_Datatype datatype, MPI_Status *status),
          (fh, offset, buf, count, datatype, status))
-TSMPI_FN(0, IO, int, MPI_File_write_at_all, (MPI_File fh, MPI_Offset offset, const void *buf, int count,
+TSMPI_FN(1, IO, int, MPI_File_write_at_all, (MPI_File fh, MPI_Offset offset, const void *buf, int count,
          MPI_Datatype datatype, MPI_Status *status),
          (fh, offset, buf, count, datatype, status))
-TSMPI_FN(0, IO, int, MPI_File_write_at_all_begin, (MPI_File fh, MPI_Offset offset, const void *buf,
+TSMPI_FN(1, IO, int, MPI_File_write_at_all_begin, (MPI_File fh, MPI_Offset offset, const void *buf,
          int count, MPI_Datatype datatype),
          (fh, offset, buf, count, datatype))
-TSMPI_FN(0, IO, int, MPI_File_write_at_all_end, (MPI_File fh, const void *buf, MPI_Status *status),
+TSMPI_FN(1, IO, int, MPI_File_write_at_all_end, (MPI_File fh, const void *buf, MPI_Status *status),
          (fh, buf, status))
-TSMPI_FN(0, IO, int, MPI_File_write_ordered, (MPI_File fh, const void *buf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, IO, int, MPI_File_write_ordered, (MPI_File fh, const void *buf, int count, MPI_Datatype datatype,
          MPI_Status *status),
          (fh, buf, count, datatype, status))
-TSMPI_FN(0, IO, int, MPI_File_write_ordered_begin, (MPI_File fh, const void *buf, int count,
+TSMPI_FN(1, IO, int, MPI_File_write_ordered_begin, (MPI_File fh, const void *buf, int count,
          MPI_Datatype datatype),
          (fh, buf, count, datatype))
-TSMPI_FN(0, IO, int, MPI_File_write_ordered_end, (MPI_File fh, const void *buf, MPI_Status *status),
+TSMPI_FN(1, IO, int, MPI_File_write_ordered_end, (MPI_File fh, const void *buf, MPI_Status *status),
          (fh, buf, status))
-TSMPI_FN(0, IO, int, MPI_File_write_shared, (MPI_File fh, const void *buf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, IO, int, MPI_File_write_shared, (MPI_File fh, const void *buf, int count, MPI_Datatype datatype,
          MPI_Status *status),
          (fh, buf, count, datatype, status))
 TSMPI_FN(0, IO, int, MPI_Register_datarep, (const char *datarep,

@@ -144,9 +144,9 @@ int tsmpi_type_attrs_delete(MPI_Datatype dt, const char *fn);
 
 /* One pointer per part of the MPI layer and rank (NULL after MPI_Init):
  * the datatype module's table of created types, the operations', the
- * collectives'.  release(p), if not NULL, is called once at MPI_Finalize or
+ * collectives', the open files'.  release(p), if not NULL, is called once at MPI_Finalize or
  * when the rank ends without it (a stopped run), parts in reverse order. */
-enum { TSMPI_PART_DTYPE, TSMPI_PART_OP, TSMPI_PART_COLL, TSMPI_PARTS };
+enum { TSMPI_PART_DTYPE, TSMPI_PART_OP, TSMPI_PART_COLL, TSMPI_PART_IO, TSMPI_PARTS };
 void *tsmpi_part(int part);
 void tsmpi_part_set(int part, void *p, void (*release)(void *p));
 

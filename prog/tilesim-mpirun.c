@@ -36,7 +36,8 @@ static const char prog[] = "tilesim-mpirun";
 
 static const char usage_text[] =
     "usage: tilesim-mpirun -np N [--procs P] [MACHINE OPTIONS] [--compute none|blocks|host]\n"
-    "                      [--coll SPEC] [--stack BYTES] [--stats FILE] PROGRAM [ARGS]\n"
+    "                      [--coll SPEC] [--fs SPEC] [--stack BYTES] [--stats FILE]\n"
+    "                      PROGRAM [ARGS]\n"
     "       (tilesim-mpirun --help: every option)\n";
 
 static void help(void) {
@@ -58,12 +59,17 @@ static void help(void) {
         "                     --block-c seconds: build with tilesim-mpicc --count-blocks;\n"
         "                     deterministic); host (also the host's processor time between\n"
         "                     MPI calls: not reproducible, and the summary says so)\n"
-        "  --block-c S        seconds per basic block (default 1e-9; bench --calibrate\n"
-        "                     measures this host's)\n"
+        "  --block-c S        seconds per basic block (default 1e-9; tilesim-bench\n"
+        "                     --calibrate measures this host's)\n"
         "  --flops F          smpi_execute_flops's rate, flop/s (default 1e9)\n"
         "  --coll SPEC        the collectives' algorithms: mpich (default: MPICH's choice\n"
         "                     by size and ranks), linear, or COLL=ALG,... (--coll help lists\n"
         "                     them)\n"
+        "  --fs MOUNT[,dir=DIR][,latency=S][,bandwidth=B]\n"
+        "                     a file system of the machine for MPI-IO, mounted at MOUNT:\n"
+        "                     its files in the host's DIR (default the same path; /scratch:\n"
+        "                     $TMPDIR/tilesim-scratch-UID), S seconds and 1/B seconds a\n"
+        "                     byte per request, one request at a time (default 1e-4, 1e9)\n"
         "  --poll-cost S      seconds a MPI_Test or MPI_Iprobe that finds nothing costs\n"
         "                     (default 1e-6), so that polling loops move the clock\n"
         "  --wtime-cost S     seconds each MPI_Wtime costs (default 0)\n"
@@ -230,7 +236,7 @@ int main(int argc, char **argv) {
     }
     int known = strcmp(a, "-np") == 0 || strcmp(a, "-n") == 0 || strcmp(a, "--np") == 0 || strcmp(a, "--coll") == 0 ||
                 strcmp(a, "--stack") == 0 || strcmp(a, "--stats") == 0 || strcmp(a, "--poll-cost") == 0 ||
-                strcmp(a, "--wtime-cost") == 0;
+                strcmp(a, "--wtime-cost") == 0 || strcmp(a, "--fs") == 0;
     if (!known) {
       compute_config c2 = cc;
       machine_config m2 = mc;
@@ -248,6 +254,8 @@ int main(int argc, char **argv) {
         return 0;
       }
       if (tsmpi_coll_option(v, err, sizeof err) != 0) return bad_usage(err, NULL);
+    } else if (strcmp(a, "--fs") == 0) {
+      if (tsmpi_fs_option(v, err, sizeof err) != 0) return bad_usage(err, NULL);
     } else if (strcmp(a, "--stack") == 0) {
       unsigned long long b;
       if (args_bytes(a, v, &b, err, sizeof err) != 0) return bad_usage(err, NULL);
@@ -294,6 +302,13 @@ int main(int argc, char **argv) {
     free(where);
     if (bad) return bad_usage(err, NULL);
   }
+
+  const char *outs[2] = {stats && strcmp(stats, "-") != 0 ? stats : NULL, mc.trace};
+  for (int k = 0; k < 2; k++)   /* the files can be written, before any work */
+    if (outs[k] && atomicfile_check(outs[k], err, sizeof err) != 0) {
+      fprintf(stderr, "%s: %s\n", prog, err);
+      return 1;
+    }
 
   loader *ld = loader_new(path, n, err, sizeof err);
   if (!ld) {

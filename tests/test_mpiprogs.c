@@ -37,10 +37,11 @@ static const struct {
 };
 enum { NPROGS = sizeof progs / sizeof progs[0] };
 
-/* The programs this driver runs: the datatype, operation and collective
- * ones (point-to-point's have their own). */
+/* The programs this driver runs: the datatype, operation, collective and
+ * I/O ones (point-to-point's have their own). */
 static int mine(const char *name) {
-  return !strncmp(name, "coll_", 5) || !strncmp(name, "dtype_", 6) || !strncmp(name, "op_", 3);
+  return !strncmp(name, "coll_", 5) || !strncmp(name, "dtype_", 6) || !strncmp(name, "op_", 3) ||
+         !strncmp(name, "io_", 3);
 }
 
 /* Which collectives a program's checks depend on: the settings worth
