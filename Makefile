@@ -428,7 +428,7 @@ bench: all
 	  --labels simulated,model --yzero \
 	  --title "Section 7.2: time per diagonal of D nodes; model cD/p + 2m(p-1)" \
 	  --xlabel "slaves p" --ylabel "seconds per diagonal" -o plots/model_per_diagonal.svg
-	build/plot surface plots/glass.contours \
+	build/plot surface plots/glass.contours --band plain --no-caps \
 	  --title "Fig. 17: the contours of a glass, and the surface tilesim derives" -o plots/fig17_glass.svg
 	./bench --input tests/data/slicerrt/prostate_0.contours --pair 40 --alloc half,size --jobs $(JOBS) \
 	  $(NOWALL) -o plots/real_speedup.csv

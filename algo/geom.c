@@ -32,6 +32,26 @@ int geom_collinear(const vec2 *p, int n) {
   return 1;
 }
 
+int geom_corners(const vec2 *p, int n, int *keep) {
+  int m = 0;
+  for (int i = 0; i < n; i++)
+    if (exact_orient(p[i == 0 ? n - 1 : i - 1], p[i], p[i + 1 == n ? 0 : i + 1]) != 0) keep[m++] = i;
+  return m;
+}
+
+vec2 geom_centroid(const vec2 *p, int n) {
+  double a = 0, cx = 0, cy = 0;
+  for (int i = 1; i + 1 < n; i++) {
+    double ux = p[i].x - p[0].x, uy = p[i].y - p[0].y, vx = p[i + 1].x - p[0].x, vy = p[i + 1].y - p[0].y;
+    double w = ux * vy - uy * vx;
+    a += w;
+    cx += w * (ux + vx);
+    cy += w * (uy + vy);
+  }
+  if (a == 0) return p[0];
+  return (vec2){p[0].x + cx / (3 * a), p[0].y + cy / (3 * a)};
+}
+
 int geom_orientation(const vec2 *p, int n) {
   if (n < 3) return 0;
   int v = 0;

@@ -55,6 +55,17 @@ static inline double geom_ldexp(double x, int e) {
  * else 0.  Exact for any finite coordinates (exact.h): no tolerance. */
 int geom_collinear(const vec2 *p, int n);
 
+/* The corners of the simple polygon p[0..n-1]: the points that do not lie
+ * on the line of their two neighbours (exact orientation; a simple polygon
+ * has no spike, so a point on that line lies between them).  Their indices,
+ * increasing, go to keep[]; returns how many (>= 3 unless p is degenerate).
+ * Removing the others changes no edge's line and no region. */
+int geom_corners(const vec2 *p, int n, int *keep);
+
+/* The area centroid of the polygon p[0..n-1] (computed about p[0]); p[0]
+ * when its area is 0. */
+vec2 geom_centroid(const vec2 *p, int n);
+
 /* +1 if the polygon p[0..n-1] runs counter-clockwise seen from +z, -1 if
  * clockwise, 0 if degenerate.  Exact for a simple polygon (crossing.h): the
  * turn at its lexicographically lowest vertex, which is convex.  For one that

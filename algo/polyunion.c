@@ -280,11 +280,25 @@ static void close_loop(loops *L, int hole, int src) {
   L->first[++L->nloops] = L->npt;
 }
 
+static const double PI = 3.14159265358979323846;
+
+/* What one group asks for and gives back (beyond its loops). */
+typedef struct {
+  int flags;            /* POLYUNION_NEST, POLYUNION_SPLIT */
+  const int *local;     /* polygon -> its index in the group (gn of them) */
+  int gn;
+  const int (*contact)[2];   /* the group's pairs of polygons in contact */
+  int ncontact;
+  int nested;           /* out: every pair in contact nested (one inside the other) */
+  int pinches;          /* out: points where the region touched itself, split */
+  vec2 pinch_at;        /* out: the first */
+} gjob;
+
 /* The union of one group: its points pts[gp[0..ngp-1]], the points on its
  * segments on[0..non-1] (segment, point), its segments' polygons.  Appends
  * its loops to L.  POLYUNION_OK, or a failure with *at. */
 static polyunion_status union_group(ctx *c, const int *gp, int ngp, const onseg *on, int non, loops *L,
-                                    int *newpts, vec2 *at) {
+                                    int *newpts, vec2 *at, gjob *gj) {
   polyunion_status st = POLYUNION_OK;
   /* 2. nodes */
   int *ord = xmallocarray((size_t)ngp, sizeof *ord);
@@ -331,13 +345,16 @@ static polyunion_status union_group(ctx *c, const int *gp, int ngp, const onseg 
     }
   }
   free(nodes);
-  /* Edges: pieces between the same two nodes merged. */
+  /* Edges: pieces between the same two nodes merged; each keeps its pieces
+   * (pc[pfirst[e] .. pfirst[e + 1] - 1]) for the coverage below. */
   qsort(pc, (size_t)npc, sizeof *pc, by_piece);
   edge *E = xmallocarray((size_t)npc + 1, sizeof *E);
+  int *pfirst = xmallocarray((size_t)npc + 2, sizeof *pfirst);
   int ne = 0;
   for (int i = 0; i < npc; i++) {
     int lo = pc[i].u < pc[i].v ? pc[i].u : pc[i].v, hi = pc[i].u ^ pc[i].v ^ lo;
     if (ne == 0 || E[ne - 1].lo != lo || E[ne - 1].hi != hi) {
+      pfirst[ne] = i;
       E[ne++] = (edge){lo, hi, 0, 0, pc[i].seg, exact_lex(c->s[pc[i].seg].a, c->s[pc[i].seg].b) < 0 ? 1 : -1,
                        pc[i].poly};
       /* sign: +1 when the segment runs from lo to hi (lo is the lesser node) */
@@ -345,7 +362,7 @@ static polyunion_status union_group(ctx *c, const int *gp, int ngp, const onseg 
     if (pc[i].u == lo) E[ne - 1].fwd++;
     else E[ne - 1].bwd++;
   }
-  free(pc);
+  pfirst[ne] = npc;
   /* 3. around each node, counter-clockwise */
   int nh = 2 * ne;
   int *deg = xcalloc((size_t)nn + 1, sizeof *deg), *out = xmallocarray((size_t)nh + 1, sizeof *out);
@@ -381,79 +398,240 @@ static polyunion_status union_group(ctx *c, const int *gp, int ngp, const onseg 
       if (half(&H, out[d0 + i]) == 0) last = out[d0 + i];
     unb = face[last];
   }
-  /* 4. winding numbers */
-  int *w = xmallocarray((size_t)nf + 1, sizeof *w), *queue = xmallocarray((size_t)nf + 1, sizeof *queue);
-  for (int f = 0; f < nf; f++) w[f] = INT32_MIN;
-  int qh = 0, qt = 0;
-  w[unb] = 0, queue[qt++] = unb;
-  while (qh < qt) {
-    int f = queue[qh++], h0 = fstart[f], h = h0;
-    do {
-      const edge *e = &E[h / 2];
-      int along = h & 1 ? e->bwd - e->fwd : e->fwd - e->bwd, g = face[h ^ 1];
-      int want = w[f] - along;   /* w(left of h) - w(right of h) = along */
-      if (w[g] == INT32_MIN) w[g] = want, queue[qt++] = g;
-      else XASSERT(w[g] == want);
-      int t = h ^ 1, v = tail(E, t), i = pos[t], d0 = deg[v], d = deg[v + 1] - d0;
-      h = out[d0 + (i - d0 + d - 1) % d];
-    } while (h != h0);
+  /* 4. the faces of the region, from the unbounded one (face[h] lies left
+   * of h: the polygons, all counter-clockwise, cover their left) */
+  unsigned char *mat = xcalloc((size_t)nf + 1, 1);
+  int *queue = xmallocarray((size_t)nf + 1, sizeof *queue), qh = 0, qt = 0;
+  if (!(gj->flags & POLYUNION_NEST)) {
+    /* winding numbers: the union is where they are >= 1 */
+    int *w = xmallocarray((size_t)nf + 1, sizeof *w);
+    for (int f = 0; f < nf; f++) w[f] = INT32_MIN;
+    w[unb] = 0, queue[qt++] = unb;
+    while (qh < qt) {
+      int f = queue[qh++], h0 = fstart[f], h = h0;
+      do {
+        const edge *e = &E[h / 2];
+        int along = h & 1 ? e->bwd - e->fwd : e->fwd - e->bwd, g = face[h ^ 1];
+        int want = w[f] - along;   /* w(left of h) - w(right of h) = along */
+        if (w[g] == INT32_MIN) w[g] = want, queue[qt++] = g;
+        else XASSERT(w[g] == want);
+        int t = h ^ 1, v = tail(E, t), i = pos[t], d0 = deg[v], d = deg[v + 1] - d0;
+        h = out[d0 + (i - d0 + d - 1) % d];
+      } while (h != h0);
+    }
+    for (int f = 0; f < nf; f++) {
+      XASSERT(w[f] >= 0);
+      mat[f] = w[f] >= 1;
+    }
+    free(w);
+  } else {
+    /* the polygons covering each face (a bit set), then which polygon lies
+     * inside which (i in j: every face i covers, j covers), each one's depth
+     * (the longest chain of polygons around it; 0 for a piece of a union)
+     * and the region: the faces whose deepest covering polygon lies at even
+     * depth */
+    int gn = gj->gn, W = (gn + 63) / 64;
+    uint64_t *cov = xcalloc((size_t)nf * (size_t)W + 1, sizeof *cov);
+    unsigned char *seen = xcalloc((size_t)nf + 1, 1);
+    seen[unb] = 1, queue[qt++] = unb;
+    while (qh < qt) {
+      int f = queue[qh++], h0 = fstart[f], h = h0;
+      do {
+        int g = face[h ^ 1];
+        if (!seen[g]) {
+          seen[g] = 1, queue[qt++] = g;
+          memcpy(cov + (size_t)g * W, cov + (size_t)f * W, (size_t)W * sizeof *cov);
+          for (int k = pfirst[h / 2]; k < pfirst[h / 2 + 1]; k++) {
+            int l = gj->local[pc[k].poly];
+            uint64_t bit = UINT64_C(1) << (l % 64), *x = cov + (size_t)g * W + l / 64;
+            if (pc[k].u == tail(E, h)) *x &= ~bit;   /* runs along h: covers f, not g */
+            else *x |= bit;
+          }
+        }
+        int t = h ^ 1, v = tail(E, t), i = pos[t], d0 = deg[v], d = deg[v + 1] - d0;
+        h = out[d0 + (i - d0 + d - 1) % d];
+      } while (h != h0);
+    }
+    uint64_t *notin = xcalloc((size_t)gn * (size_t)W + 1, sizeof *notin);
+    for (int f = 0; f < nf; f++)
+      for (int l = 0; l < gn; l++)
+        if (cov[(size_t)f * W + l / 64] >> (l % 64) & 1)
+          for (int k = 0; k < W; k++) notin[(size_t)l * W + k] |= ~cov[(size_t)f * W + k];
+#define INSIDE(i, j) ((i) != (j) && !(notin[(size_t)(i) * W + (j) / 64] >> ((j) % 64) & 1))
+    int *cnt = xcalloc((size_t)gn + 1, sizeof *cnt), *ord2 = xmallocarray((size_t)gn + 1, sizeof *ord2);
+    int *depth = xcalloc((size_t)gn + 1, sizeof *depth);
+    for (int i = 0; i < gn; i++)
+      for (int j = 0; j < gn; j++) cnt[i] += INSIDE(i, j);
+    for (int i = 0; i < gn; i++) ord2[i] = i;
+    for (int i = 1; i < gn; i++)   /* by how many lie around: every container comes first */
+      for (int k = i; k > 0 && cnt[ord2[k - 1]] > cnt[ord2[k]]; k--) {
+        int t = ord2[k];
+        ord2[k] = ord2[k - 1], ord2[k - 1] = t;
+      }
+    /* a polygon in contact with one neither inside it nor around it is a
+     * piece of a union (depth 0), whatever lies around it */
+    unsigned char *ispiece = xcalloc((size_t)gn + 1, 1);
+    gj->nested = 1;
+    for (int k = 0; k < gj->ncontact; k++) {
+      int i = gj->local[gj->contact[k][0]], j = gj->local[gj->contact[k][1]];
+      if (!INSIDE(i, j) && !INSIDE(j, i)) ispiece[i] = ispiece[j] = 1, gj->nested = 0;
+    }
+    for (int a2 = 0; a2 < gn; a2++) {
+      int i = ord2[a2];
+      for (int j = 0; j < gn && !ispiece[i]; j++)
+        if (INSIDE(i, j) && depth[j] + 1 > depth[i]) depth[i] = depth[j] + 1;
+    }
+    free(ispiece);
+    for (int f = 0; f < nf; f++) {
+      int best = -1;
+      for (int l = 0; l < gn; l++)
+        if ((cov[(size_t)f * W + l / 64] >> (l % 64) & 1) && depth[l] > best) best = depth[l];
+      mat[f] = best >= 0 && best % 2 == 0;
+    }
+#undef INSIDE
+    free(cnt), free(ord2), free(depth), free(notin), free(cov), free(seen);
   }
-  /* 5. the boundary, one out-edge a node */
-  int *bout = xmallocarray((size_t)nn + 1, sizeof *bout);
+  free(queue);
+  /* 5. the boundary: the half-edges with the region on the left and not on
+   * the right; each one's successor at its head.  Where the region touches
+   * itself (a pinch: more than one boundary edge leaves a node) it cannot
+   * be followed, unless POLYUNION_SPLIT: then the successor is the first
+   * boundary edge clockwise from the reverse (keeping to one wedge of the
+   * region), and a loop that comes back to a node is split there. */
+  unsigned char *isb = xcalloc((size_t)nh + 1, 1);
+  int *nextb = xmallocarray((size_t)nh + 1, sizeof *nextb), *bout = xmallocarray((size_t)nn + 1, sizeof *bout);
   for (int v = 0; v < nn; v++) bout[v] = -1;
+  for (int h = 0; h < nh; h++) isb[h] = mat[face[h]] && !mat[face[h ^ 1]];
   for (int h = 0; h < nh && st == POLYUNION_OK; h++) {
-    XASSERT(w[face[h]] >= 0);
-    if (!(w[face[h]] >= 1 && w[face[h ^ 1]] == 0)) continue;
+    if (!isb[h]) continue;
     int v = tail(E, h);
-    if (bout[v] >= 0) {
+    if (bout[v] >= 0 && !(gj->flags & POLYUNION_SPLIT)) {
       st = POLYUNION_PINCH;
       *at = nodept[v];
     }
     bout[v] = h;
   }
-  char *done = xcalloc((size_t)nh + 1, 1);
-  int first_loop = L->nloops;
-  for (int h0 = 0; h0 < nh && st == POLYUNION_OK; h0++) {
-    if (bout[tail(E, h0)] != h0 || done[h0]) continue;
-    int src = E[h0 / 2].poly, start = L->npt;
-    double a2 = 0;
-    for (int h = h0; !done[h]; h = bout[head(E, h)]) {
-      XASSERT(h >= 0);
-      done[h] = 1;
-      int v = tail(E, h);
-      if (E[h / 2].poly < src) src = E[h / 2].poly;
-      if (isnew[v]) (*newpts)++;
-      push_loop_pt(L, nodept[v]);
+  for (int h = 0; h < nh && st == POLYUNION_OK; h++) {
+    if (!isb[h]) continue;
+    int v = head(E, h), i = pos[h ^ 1], d0 = deg[v], d = deg[v + 1] - d0;
+    nextb[h] = -1;
+    for (int k = 1; k <= d && nextb[h] < 0; k++) {
+      int g = out[d0 + ((i - d0 - k) % d + d) % d];
+      if (isb[g]) nextb[h] = g;
     }
-    /* 6. rounded: consecutive equal points merged */
-    int m = 0;
+    XASSERT(nextb[h] >= 0);
+  }
+  char *done = xcalloc((size_t)nh + 1, 1);
+  int *stack = xmallocarray((size_t)nh + 1, sizeof *stack), *nodeat = xmallocarray((size_t)nn + 1, sizeof *nodeat);
+  int *lnode = xmallocarray((size_t)nh + 1, sizeof *lnode), nln = 0;   /* each loop's nodes, in order */
+  int *lfirst = xmallocarray((size_t)nh + 2, sizeof *lfirst), *lsrc = xmallocarray((size_t)nh + 1, sizeof *lsrc), nl = 0;
+  for (int v = 0; v < nn; v++) nodeat[v] = -1;
+  for (int h0 = 0; h0 < nh && st == POLYUNION_OK; h0++) {
+    if (!isb[h0] || done[h0]) continue;
+    int top = 0, h = h0;
+    for (int closing = 0; !closing;) {
+      int v = tail(E, h);
+      closing = h == h0 && top > 0;
+      if (nodeat[v] >= 0) {   /* back at v: the loop from there is closed */
+        int a = nodeat[v];
+        lfirst[nl] = nln, lsrc[nl] = E[stack[a] / 2].poly;
+        for (int k = a; k < top; k++) {
+          lnode[nln++] = tail(E, stack[k]);
+          nodeat[tail(E, stack[k])] = -1;
+          if (E[stack[k] / 2].poly < lsrc[nl]) lsrc[nl] = E[stack[k] / 2].poly;
+        }
+        nl++;
+        top = a;
+      }
+      if (closing) break;
+      nodeat[v] = top, stack[top++] = h, done[h] = 1;
+      h = nextb[h];
+    }
+    XASSERT(top == 0);
+  }
+  lfirst[nl] = nln;
+  /* Loops that share a node (split pinches): all but one are kept off it,
+   * their corner there cut 2^-20 of the way along its two edges, inside
+   * the sector between them that holds no other loop's edge; the loop kept
+   * is the one whose such sector is widest (the one loop whose sector may
+   * be 180 degrees or more, where a cut would not part them). */
+  int *uses = xcalloc((size_t)nn + 1, sizeof *uses);
+  for (int k = 0; k < nln; k++) uses[lnode[k]]++;
+  int *cut = xcalloc((size_t)nln + 1, sizeof *cut);
+  for (int v = 0; v < nn && st == POLYUNION_OK; v++) {
+    if (uses[v] < 2) continue;
+    if (gj->pinches++ == 0) gj->pinch_at = nodept[v];
+    int keep = -1;
+    double best = -1;
+    for (int l = 0; l < nl; l++)
+      for (int k = lfirst[l]; k < lfirst[l + 1]; k++) {
+        if (lnode[k] != v) continue;
+        int m = lfirst[l + 1] - lfirst[l], k0 = k - lfirst[l];
+        vec2 q = nodept[v], pv = nodept[lnode[lfirst[l] + (k0 + m - 1) % m]], nx = nodept[lnode[lfirst[l] + (k0 + 1) % m]];
+        double a0 = atan2(nx.y - q.y, nx.x - q.x), a1 = atan2(pv.y - q.y, pv.x - q.x);
+        double inside = fmod(a1 - a0 + 4 * PI, 2 * PI);   /* its left (region) side, from next to prev */
+        int other = 0;   /* another loop's edge inside that side? */
+        for (int l2 = 0; l2 < nl; l2++)
+          for (int k2 = lfirst[l2]; k2 < lfirst[l2 + 1] && l2 != l; k2++) {
+            if (lnode[k2] != v) continue;
+            int m2 = lfirst[l2 + 1] - lfirst[l2], j2 = k2 - lfirst[l2];
+            vec2 e[2] = {nodept[lnode[lfirst[l2] + (j2 + 1) % m2]], nodept[lnode[lfirst[l2] + (j2 + m2 - 1) % m2]]};
+            for (int x = 0; x < 2; x++) other |= fmod(atan2(e[x].y - q.y, e[x].x - q.x) - a0 + 4 * PI, 2 * PI) < inside;
+          }
+        double freeside = other ? 2 * PI - inside : inside;
+        if (freeside > best) best = freeside, keep = k;
+      }
+    for (int k = 0; k < nln; k++)
+      if (lnode[k] == v && k != keep) cut[k] = 1;
+  }
+  /* 6. the loops' points, rounded: consecutive equal points merged */
+  int first_loop = L->nloops;
+  for (int l = 0; l < nl && st == POLYUNION_OK; l++) {
+    int start = L->npt, m = lfirst[l + 1] - lfirst[l];
+    for (int k = 0; k < m; k++) {
+      int kk = lfirst[l] + k, v = lnode[kk];
+      if (!cut[kk]) {
+        if (isnew[v]) (*newpts)++;
+        push_loop_pt(L, nodept[v]);
+        continue;
+      }
+      vec2 q = nodept[v], pv = nodept[lnode[lfirst[l] + (k + m - 1) % m]], nx = nodept[lnode[lfirst[l] + (k + 1) % m]];
+      const double t = 0x1p-20;
+      push_loop_pt(L, (vec2){q.x + t * (pv.x - q.x), q.y + t * (pv.y - q.y)});
+      push_loop_pt(L, (vec2){q.x + t * (nx.x - q.x), q.y + t * (nx.y - q.y)});
+    }
+    int mm = 0;
     vec2 *q = L->pt + start;
     int n = L->npt - start;
     for (int i = 0; i < n; i++)
-      if (m == 0 || exact_lex(q[i], q[m - 1]) != 0) q[m++] = q[i];
-    while (m > 1 && exact_lex(q[m - 1], q[0]) == 0) m--;
-    L->npt = start + m;
-    if (m < 3 || geom_collinear(q, m)) {
+      if (mm == 0 || exact_lex(q[i], q[mm - 1]) != 0) q[mm++] = q[i];
+    while (mm > 1 && exact_lex(q[mm - 1], q[0]) == 0) mm--;
+    L->npt = start + mm;
+    if (mm < 3 || geom_collinear(q, mm)) {
       st = POLYUNION_ROUNDING;
       *at = q[0];
       break;
     }
-    a2 = geom_orientation(q, m);
-    close_loop(L, a2 < 0, src);
+    close_loop(L, geom_orientation(q, mm) < 0, lsrc[l]);
   }
   if (st == POLYUNION_OK) {
-    int nl = L->nloops - first_loop;
-    crossing_poly *cp = xmallocarray((size_t)nl + 1, sizeof *cp);
-    for (int k = 0; k < nl; k++) {
+    int nlp = L->nloops - first_loop;
+    crossing_poly *cp = xmallocarray((size_t)nlp + 1, sizeof *cp);
+    for (int k = 0; k < nlp; k++) {
       int f = L->first[first_loop + k];
       cp[k] = (crossing_poly){L->pt + f, L->first[first_loop + k + 1] - f};
     }
     crossing_hit hit;
-    if (crossing_find(cp, nl, &hit)) st = POLYUNION_ROUNDING, *at = hit.at;
+    if (crossing_find(cp, nlp, &hit)) st = POLYUNION_ROUNDING, *at = hit.at;
     free(cp);
   }
-  free(done), free(bout), free(w), free(queue), free(face), free(fstart), free(deg), free(out), free(fill), free(pos);
-  free(E), free(nodept), free(isnew);
+  if (st != POLYUNION_OK) {   /* the group's loops are not returned */
+    L->nloops = first_loop;
+    L->npt = L->first[first_loop];
+  }
+  free(uses), free(cut), free(lnode), free(lfirst), free(lsrc), free(stack), free(nodeat), free(done);
+  free(isb), free(nextb), free(bout), free(mat), free(face), free(fstart), free(deg), free(out), free(fill), free(pos);
+  free(E), free(pfirst), free(pc), free(nodept), free(isnew);
   return st;
 }
 
@@ -465,7 +643,14 @@ static int by_seg(const void *a, const void *b) {
   return p->pt - q->pt;
 }
 
-int polyunion(const crossing_poly *p, int np, polyunion_result *out) {
+static int by_pair(const void *a, const void *b) {
+  const int *p = a, *q = b;
+  return p[0] != q[0] ? p[0] - q[0] : p[1] - q[1];
+}
+
+int polyunion(const crossing_poly *p, int np, polyunion_result *out) { return polyunion_flags(p, np, 0, out); }
+
+int polyunion_flags(const crossing_poly *p, int np, int flags, polyunion_result *out) {
   memset(out, 0, sizeof *out);
   int N = 0;
   for (int k = 0; k < np; k++) N += p[k].n;
@@ -490,7 +675,8 @@ int polyunion(const crossing_poly *p, int np, polyunion_result *out) {
       int prev = off[k] + (j + p[k].n - 1) % p[k].n;
       push_on(&on, g, q), push_on(&on, prev, q);
     }
-  /* 1. contacts */
+  /* 1. contacts (and the pairs of polygons in contact) */
+  int (*con)[2] = NULL, ncon = 0, capcon = 0;
   int *up = xmallocarray((size_t)np + 1, sizeof *up);
   for (int k = 0; k < np; k++) up[k] = k;
   span *sx = xmallocarray((size_t)N + 1, sizeof *sx);
@@ -509,6 +695,8 @@ int polyunion(const crossing_poly *p, int np, polyunion_result *out) {
       crossing_kind k = crossing_segments(A->a, A->b, B->a, B->b, &at);
       if (k == CROSSING_NONE) continue;
       up[find_root(up, A->poly)] = find_root(up, B->poly);
+      if (ncon == capcon) capcon = capcon ? 2 * capcon : 16, con = xreallocarray(con, (size_t)capcon, sizeof *con);
+      con[ncon][0] = A->poly < B->poly ? A->poly : B->poly, con[ncon++][1] = A->poly < B->poly ? B->poly : A->poly;
       if (k == CROSSING_CROSS) {
         int s1 = i < j ? i : j, s2 = i < j ? j : i;
         crossing_exact(&c, s1, s2, &nx, &ny, &d);
@@ -559,6 +747,21 @@ int polyunion(const crossing_poly *p, int np, polyunion_result *out) {
   }
   out->gfirst = xcalloc((size_t)G + 2, sizeof *out->gfirst);
   out->newpts = xcalloc((size_t)G + 1, sizeof *out->newpts);
+  out->gstatus = xcalloc((size_t)G + 1, sizeof *out->gstatus);
+  out->gat = xcalloc((size_t)G + 1, sizeof *out->gat);
+  out->nested = xcalloc((size_t)G + 1, sizeof *out->nested);
+  out->pinches = xcalloc((size_t)G + 1, sizeof *out->pinches);
+  out->pinch_at = xcalloc((size_t)G + 1, sizeof *out->pinch_at);
+  /* each polygon's place in its group; the pairs in contact, once each, by group */
+  int *local = xmallocarray((size_t)np + 1, sizeof *local);
+  for (int g = 0; g < G; g++)
+    for (int k = out->gmember[g]; k < out->gmember[g + 1]; k++) local[out->members[k]] = k - out->gmember[g];
+  if (ncon) qsort(con, (size_t)ncon, sizeof *con, by_pair);
+  int nc2 = 0;
+  for (int k = 0; k < ncon; k++)
+    if (nc2 == 0 || con[k][0] != con[nc2 - 1][0] || con[k][1] != con[nc2 - 1][1])
+      con[nc2][0] = con[k][0], con[nc2++][1] = con[k][1];
+  int (*gcon)[2] = xmallocarray((size_t)nc2 + 1, sizeof *gcon);
   /* points on segments, by segment */
   qsort(on.v, (size_t)on.n, sizeof *on.v, by_seg);
   loops L = {0};
@@ -571,7 +774,7 @@ int polyunion(const crossing_poly *p, int np, polyunion_result *out) {
   int *gp = xmallocarray((size_t)c.npts + 1, sizeof *gp);
   onseg *gon = xmallocarray((size_t)on.n + 1, sizeof *gon);
   char *inpt = xcalloc((size_t)c.npts + 1, 1);
-  for (int g = 0; g < G && rc == 0; g++) {
+  for (int g = 0; g < G; g++) {
     out->gfirst[g] = L.nloops;
     int ngp = 0, non = 0;
     for (int i = 0; i < on.n; i++) {
@@ -581,10 +784,17 @@ int polyunion(const crossing_poly *p, int np, polyunion_result *out) {
       if (!inpt[on.v[i].pt]) inpt[on.v[i].pt] = 1, gp[ngp++] = on.v[i].pt;
     }
     for (int i = 0; i < ngp; i++) inpt[gp[i]] = 0;
-    polyunion_status st = union_group(&c, gp, ngp, gon, non, &L, &out->newpts[g], &out->at);
-    if (st != POLYUNION_OK) {
+    int ngc = 0;
+    for (int k = 0; k < nc2; k++)
+      if (out->group[con[k][0]] == g) gcon[ngc][0] = con[k][0], gcon[ngc++][1] = con[k][1];
+    gjob gj = {flags, local, out->gmember[g + 1] - out->gmember[g], (const int(*)[2])gcon, ngc, 0, 0, {0, 0}};
+    polyunion_status st = union_group(&c, gp, ngp, gon, non, &L, &out->newpts[g], &out->gat[g], &gj);
+    out->gstatus[g] = st;
+    out->nested[g] = gj.nested, out->pinches[g] = gj.pinches, out->pinch_at[g] = gj.pinch_at;
+    if (st != POLYUNION_OK && rc == 0) {
       out->status = st;
       out->bad_group = g;
+      out->at = out->gat[g];
       rc = -1;
     }
   }
@@ -595,11 +805,12 @@ int polyunion(const crossing_poly *p, int np, polyunion_result *out) {
   out->hole = L.hole;
   out->src = L.src;
   free(gp), free(gon), free(inpt), free(size), free(gid), free(up), free(on.v), free(c.pts), free(S), free(off);
+  free(local), free(con), free(gcon);
   return rc;
 }
 
 void polyunion_free(polyunion_result *u) {
   free(u->group), free(u->members), free(u->gmember), free(u->gfirst), free(u->first), free(u->pt), free(u->hole);
-  free(u->src), free(u->newpts);
+  free(u->src), free(u->newpts), free(u->gstatus), free(u->gat), free(u->nested), free(u->pinches), free(u->pinch_at);
   memset(u, 0, sizeof *u);
 }

@@ -57,15 +57,51 @@ typedef struct {
   int *newpts;       /* per group: its loops' vertices that are crossings (new) */
   int *gmember;      /* ngroups + 1: group g's polygons are members[gmember[g] ..] */
   polyunion_status status;
-  int bad_group;     /* on failure: the group, and a point where it fails */
+  int bad_group;     /* on failure: the first group that failed, and a point where it fails */
   vec2 at;
+  polyunion_status *gstatus;   /* per group (a failed group has no loops) */
+  vec2 *gat;         /* per group: where it failed */
+  int *nested;       /* per group, POLYUNION_NEST: 1 when every two of its polygons in
+                        contact lie one inside the other (a hole on its outer boundary) */
+  int *pinches;      /* per group, POLYUNION_SPLIT: points where its region touched
+                        itself, split (the first at pinch_at[g]) */
+  vec2 *pinch_at;
 } polyunion_result;
 
 /* The union of the groups of p[0..np-1] (each simple, n >= 3, consecutive
  * points distinct, either orientation; crossing.h's preconditions).  0 and
  * *out (free with polyunion_free), or -1 with out->status, bad_group and at
- * (and the groups filled; free it too). */
+ * (and the groups filled, every group tried, each with its gstatus; free it
+ * too). */
 int polyunion(const crossing_poly *p, int np, polyunion_result *out);
+
+/* The same with flags:
+ *   POLYUNION_NEST   a polygon that lies inside another of its group (every
+ *                    point of its closed region in the other's: a hole drawn
+ *                    on its outer contour's boundary) and meets only
+ *                    polygons around it or inside it is not merged but
+ *                    nests as on a slice without contacts: its depth is the
+ *                    longest chain of the group's polygons around it, and
+ *                    the region is where the deepest polygon covering a
+ *                    point lies at even depth (a hole takes its region out,
+ *                    an island in it puts it back).  A polygon that meets
+ *                    one neither around nor inside it is a piece of a union
+ *                    (depth 0): overlapping pieces still give their union,
+ *                    and a hole drawn across its outer contour is filled.
+ *                    Decided on the arrangement's faces, exactly.
+ *                    nested[g] says whether the group has no such pieces.
+ *   POLYUNION_SPLIT  where the region touches itself at a point (two pieces
+ *                    meeting at a corner, a hole touching its outer boundary)
+ *                    it is split there into loops that keep to one wedge
+ *                    each, instead of refused; the loops that met at the
+ *                    point are then kept apart: each but one has its corner
+ *                    there cut 2^-20 of the way along its two edges, inside
+ *                    the free sector between them (an area of about 2^-41
+ *                    of the edges' product: nothing a double can miss is
+ *                    lost), and the whole group is checked exactly as after
+ *                    rounding.  pinches[g] counts those points. */
+enum { POLYUNION_NEST = 1, POLYUNION_SPLIT = 2 };
+int polyunion_flags(const crossing_poly *p, int np, int flags, polyunion_result *out);
 
 void polyunion_free(polyunion_result *u);
 

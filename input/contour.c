@@ -41,6 +41,9 @@ typedef struct {
   strbuf *to;        /* where note() writes */
   bad_contour *bad;
   int nbad, capbad;
+  int ndegen, degen_line;   /* CONTOUR_DROP_DEGENERATE: contours dropped, the first's line */
+  long degen_points;
+  char *degen_why;          /* the first's reason */
 } reader;
 
 static int fail(reader *r, int line, const char *fmt, ...) {
@@ -146,6 +149,50 @@ static int bad(reader *r, const raw *c, int points, const char *fmt, ...) {
     r->bad = xreallocarray(r->bad, (size_t)r->capbad, sizeof *r->bad);
   }
   r->bad[r->nbad++] = (bad_contour){c->line, points, why.buf};
+  return 1;
+}
+
+/* Does the polygon p[0..k-1] enclose no area to speak of: twice its area at
+ * most 2^-40 of its bounding box's diagonal squared?  Points written to two
+ * decimals that lay on a line no longer do exactly (0.45 is no double), and
+ * the thread they make is no region (a real contour 10 mm long is 1e-11 mm
+ * wide before it counts). */
+static int no_area(const vec2 *p, int k) {
+  double lx = p[0].x, hx = p[0].x, ly = p[0].y, hy = p[0].y;
+  for (int i = 1; i < k; i++) lx = fmin(lx, p[i].x), hx = fmax(hx, p[i].x), ly = fmin(ly, p[i].y), hy = fmax(hy, p[i].y);
+  double w = hx - lx, h = hy - ly;
+  if (!isfinite(w) || !isfinite(h)) return 0;
+  int e = geom_scale_exp(fmax(w, h));   /* about p[0], at the extent's scale: no overflow */
+  double a = 0, x1 = geom_ldexp(p[1].x - p[0].x, -e), y1 = geom_ldexp(p[1].y - p[0].y, -e);
+  for (int i = 2; i < k; i++) {
+    double x2 = geom_ldexp(p[i].x - p[0].x, -e), y2 = geom_ldexp(p[i].y - p[0].y, -e);
+    a += x1 * y2 - x2 * y1, x1 = x2, y1 = y2;
+  }
+  w = geom_ldexp(w, -e), h = geom_ldexp(h, -e);
+  return fabs(a) <= 0x1p-40 * (w * w + h * h);
+}
+
+/* A degenerate contour (fewer than 3 distinct points, all collinear, or
+ * simple with no area to speak of) under CONTOUR_DROP_DEGENERATE: dropped, its own repair
+ * notes with it, and counted (one note for the stack, -v one each).
+ * Returns 1. */
+static int degenerate(reader *r, const raw *c, int points, int k) {
+  strbuf why = {0};
+  if (k < 3) strbuf_add(&why, "%d distinct point%s", k, k == 1 ? "" : "s");
+  else if (geom_collinear(c->pt, k)) strbuf_add(&why, "all %d points collinear", k);
+  else strbuf_add(&why, "%d points all but collinear (twice its area %.3g)", k, fabs(geom_area2(c->pt, k)));
+  strbuf_add(&why, ", no area (z=%s)", ARGS_G(c->z));
+  if (r->flags & CONTOUR_VERBOSE) {
+    r->to = &r->out;
+    note(r, c->line, "dropped a degenerate contour: %s", why.buf);
+  }
+  if (r->ndegen++ == 0) {
+    r->degen_line = c->line;
+    r->degen_why = why.buf;
+  } else {
+    free(why.buf);
+  }
+  r->degen_points += points;
   return 1;
 }
 
@@ -256,11 +303,16 @@ static int finish(reader *r, raw *c, contour **cs, int *ncs, int *capcs, int *re
              "dropped %d repeated closing points (the last at line %d: %s %s)");
   crossing_hit h;
   keyhole_split ks;
-  if (k < 3)
+  int simple = -1;   /* not yet known */
+  if ((k < 3 || geom_collinear(c->pt, k) ||
+       ((simple = !crossing_find(&(crossing_poly){c->pt, k}, 1, &h)) && no_area(c->pt, k))) &&
+      (r->flags & CONTOUR_DROP_DEGENERATE))
+    rc = degenerate(r, c, n, k);
+  else if (k < 3)
     rc = bad(r, c, n, "contour has %d distinct point%s, needs at least 3 (z=%s)", k, k == 1 ? "" : "s", ARGS_G(c->z));
   else if (geom_collinear(c->pt, k))
     rc = bad(r, c, n, "all %d points of the contour are collinear (z=%s)", k, ARGS_G(c->z));
-  else if (!crossing_find(&(crossing_poly){c->pt, k}, 1, &h)) {
+  else if (simple == 1 || (simple < 0 && !crossing_find(&(crossing_poly){c->pt, k}, 1, &h))) {
     take(grow(cs, ncs, capcs), xreallocarray(c->pt, (size_t)k, sizeof *c->pt), k, c->z, c->line, reversed);
     c->pt = NULL;
   } else if ((r->flags & CONTOUR_NO_KEYHOLES) || !keyhole_repair(c->pt, k, &ks)) {
@@ -544,8 +596,20 @@ int contour_parse_flags(const char *text, size_t len, const char *name, int flag
     goto done;
   }
   if (r->nbad && bad_contours(r, nread, points) != 0) goto done;
+  if (r->ndegen == 1 && !(flags & CONTOUR_VERBOSE))
+    note(r, r->degen_line, "dropped a degenerate contour: %s", r->degen_why);
+  else if (r->ndegen > 1 && !(flags & CONTOUR_VERBOSE))
+    note(r, r->degen_line, "dropped %d degenerate contours of %d (%ld points: single points, two points or all "
+         "collinear, no area), this one the first: %s; -v names each", r->ndegen, nread, r->degen_points,
+         r->degen_why);
+  if (ncs == 0 && nread > 0 && r->nbad == 0) {
+    fail(r, 0, "no contours left to tile: all %d are degenerate (a point, two points or all collinear: no area)",
+         nread);
+    goto done;
+  }
   if (ncs == 0 && nread > 0) {
-    fail(r, 0, "no contours left to tile: all %d are bad and --skip-bad dropped them", nread);
+    fail(r, 0, "no contours left to tile: all %d are bad%s and --skip-bad dropped them", nread,
+         r->ndegen ? " or degenerate" : "");
     goto done;
   }
   if (ncs == 0) {
@@ -587,6 +651,7 @@ done:
   free(r->cur.buf);
   for (int i = 0; i < r->nbad; i++) free(r->bad[i].why);
   free(r->bad);
+  free(r->degen_why);
   return rc;
 }
 

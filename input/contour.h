@@ -84,12 +84,25 @@ int contour_parse(const char *text, size_t len, const char *name,
  *                        union (input/slicemerge.h); without it only exact
  *                        duplicates are dropped and overlaps are refused
  *                        later, by the surface (surface/slices.h);
+ *   CONTOUR_DROP_DEGENERATE  a contour of fewer than 3 distinct points or
+ *                        all collinear (no area: Pinnacle writes single
+ *                        points and two-point contours among real ones) is
+ *                        dropped, not bad: one note counts them ("dropped N
+ *                        degenerate contours of M ..."), each with
+ *                        CONTOUR_VERBOSE, its own repair notes dropped with it;
  *   CONTOUR_ONE_SLICE    a stack of one slice (one contour or more) is
  *                        accepted: for ./tile, which makes it a slab of a
  *                        given thickness (surface/stack.h) or refuses it
  *                        itself, naming the option; without it it is refused.
  * The others take none. */
-enum { CONTOUR_NO_KEYHOLES = 1, CONTOUR_SKIP_BAD = 2, CONTOUR_VERBOSE = 4, CONTOUR_UNION = 8, CONTOUR_ONE_SLICE = 16 };
+enum {
+  CONTOUR_NO_KEYHOLES = 1,
+  CONTOUR_SKIP_BAD = 2,
+  CONTOUR_VERBOSE = 4,
+  CONTOUR_UNION = 8,
+  CONTOUR_ONE_SLICE = 16,
+  CONTOUR_DROP_DEGENERATE = 32
+};
 int contour_read_flags(const char *path, int flags, contour_stack *out, FILE *notes,
                        const char *prefix, char *err, size_t errlen);
 int contour_parse_flags(const char *text, size_t len, const char *name, int flags,

@@ -17,15 +17,15 @@
 #include "rtstruct.h"
 
 #include <errno.h>
-#include <locale.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "args.h"
+#include "decimal.h"
 #include "dicom.h"
+#include "rtframe.h"
 #include "strbuf.h"
 #include "xmem.h"
 
@@ -44,86 +44,7 @@
 #define INTERPRETED_TYPE DICOM_TAG(0x3006, 0x00A4)
 #define RTSTRUCT_SOP_CLASS "1.2.840.10008.5.1.4.1.1.481.3"
 
-/* A contour within this distance (mm) of a plane counts as lying in it. */
-#define FLAT_TOL 1e-3
-
 static const uint32_t sequences[] = {SS_ROI_SEQ, ROI_CONTOUR_SEQ, CONTOUR_SEQ, OBSERVATIONS_SEQ};
-
-/* ---------------------------------------------------------------- numbers */
-
-/* Powers of ten a double holds exactly. */
-static const double pow10_exact[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
-                                     1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
-                                     1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
-
-/* strtod in the "C" locale, for the numbers the fast path cannot round. */
-static double c_strtod(const char *s, size_t len) {
-  char small[64];
-  char *buf = len < sizeof small ? small : xmalloc(len + 1);
-  memcpy(buf, s, len);
-  buf[len] = 0;
-  locale_t c = newlocale(LC_NUMERIC_MASK, "C", (locale_t)0);
-  locale_t old = c ? uselocale(c) : (locale_t)0;
-  double v = strtod(buf, NULL);
-  if (c) {
-    uselocale(old);
-    freelocale(c);
-  }
-  if (buf != small) free(buf);
-  return v;
-}
-
-int rtstruct_ds(const char *s, size_t len, double *v) {
-  size_t i = 0, j = len;
-  while (i < j && s[i] == ' ') i++;
-  while (j > i && (s[j - 1] == ' ' || s[j - 1] == 0)) j--;
-  if (i == j) return -1;
-  size_t start = i;
-  int neg = 0;
-  if (s[i] == '+' || s[i] == '-') neg = s[i++] == '-';
-  uint64_t m = 0;
-  long digits = 0, sig = 0, exp10 = 0;
-  int ok = 1;
-  for (; i < j && s[i] >= '0' && s[i] <= '9'; i++, digits++) {
-    if (m == 0 && s[i] == '0') continue;
-    if (sig < 19) m = m * 10 + (uint64_t)(s[i] - '0'), sig++;
-    else exp10++, ok &= s[i] == '0';
-  }
-  if (i < j && s[i] == '.') {
-    for (i++; i < j && s[i] >= '0' && s[i] <= '9'; i++, digits++) {
-      if (m == 0 && s[i] == '0') {
-        exp10--;
-        continue;
-      }
-      if (sig < 19) m = m * 10 + (uint64_t)(s[i] - '0'), sig++, exp10--;
-      else ok &= s[i] == '0';
-    }
-  }
-  if (digits == 0) return -1;
-  if (i < j && (s[i] == 'e' || s[i] == 'E')) {
-    i++;
-    int eneg = 0;
-    long e = 0, ed = 0;
-    if (i < j && (s[i] == '+' || s[i] == '-')) eneg = s[i++] == '-';
-    for (; i < j && s[i] >= '0' && s[i] <= '9'; i++, ed++)
-      if (e < 100000) e = e * 10 + (s[i] - '0');
-    if (ed == 0) return -1;
-    exp10 += eneg ? -e : e;
-  }
-  if (i != j) return -1;
-  double r;
-  if (m == 0) {
-    r = neg ? -0.0 : 0.0;
-  } else if (ok && m <= (UINT64_C(1) << 53) && exp10 >= -22 && exp10 <= 22) {
-    /* Clinger's fast path: both operands exact, one rounding. */
-    r = exp10 >= 0 ? (double)m * pow10_exact[exp10] : (double)m / pow10_exact[-exp10];
-    if (neg) r = -r;
-  } else {
-    r = c_strtod(s + start, j - start);   /* the sign included */
-  }
-  *v = r;
-  return isfinite(r) ? 0 : 1;
-}
 
 /* ---------------------------------------------------------------- messages */
 
@@ -306,7 +227,7 @@ static int read_contour(reader *r, rtstruct_roi *roi, int item, int k, rtstruct_
     size_t e = at;
     while (e < len && v[e] != '\\') e++;
     double x;
-    int rc = rtstruct_ds(v + at, e - at, &x);
+    int rc = decimal_parse(v + at, e - at, &x);
     if (rc != 0) {
       roi->error = roi_error(r, roi, base + at, "contour item %d, point %zu: %c %s (%s)", k, i / 3 + 1,
                              "xyz"[i % 3], rc > 0 ? "is not finite" : "is not a number",
@@ -351,232 +272,19 @@ static int by_h(const void *a, const void *b) {
   return p->i - q->i;
 }
 
-/* ---------------------------------------------------------------- frames */
-
-/* Patient axis a (0 x, 1 y, 2 z) into the stack's z by the cyclic
- * permutation that keeps the axes right-handed: axial (x, y, z), sagittal
- * (y, z, x), coronal (z, x, y).  perm[k]: the patient axis of stack axis k. */
-static const int perm_of[3][3] = {{1, 2, 0}, {2, 0, 1}, {0, 1, 2}};
-
-static rtstruct_frame standard_frame(int axis) {
-  rtstruct_frame f;
-  memset(&f, 0, sizeof f);
-  const int *pm = perm_of[axis];
-  f.u[pm[0]] = 1, f.v[pm[1]] = 1, f.n[pm[2]] = 1;
-  return f;
-}
-
-typedef struct {
-  double p[3];
-} pt3;
-
-static int by_xyz(const void *a, const void *b) {
-  const double *p = ((const pt3 *)a)->p, *q = ((const pt3 *)b)->p;
-  for (int k = 0; k < 3; k++)
-    if (p[k] != q[k]) return p[k] < q[k] ? -1 : 1;
-  return 0;
-}
-
-static int by_six(const void *a, const void *b) {
-  const double *p = a, *q = b;
-  for (int k = 0; k < 6; k++)
-    if (p[k] != q[k]) return p[k] < q[k] ? -1 : 1;
-  return 0;
-}
-
-/* The scatter of the contour's points about their mean, xx xy xz yy yz zz,
- * summed over the points sorted (x, y, z): a function of the point set,
- * whatever the start point and direction. */
-static void scatter(const rtstruct_contour *c, double s[6]) {
-  pt3 *q = xmallocarray((size_t)c->n, sizeof *q);
-  memcpy(q, c->p, (size_t)c->n * sizeof *q);
-  qsort(q, (size_t)c->n, sizeof *q, by_xyz);
-  double m[3] = {0, 0, 0};
-  for (int j = 0; j < c->n; j++)
-    for (int k = 0; k < 3; k++) m[k] += q[j].p[k];
-  for (int k = 0; k < 3; k++) m[k] /= c->n;
-  memset(s, 0, 6 * sizeof *s);
-  for (int j = 0; j < c->n; j++) {
-    double d[3] = {q[j].p[0] - m[0], q[j].p[1] - m[1], q[j].p[2] - m[2]};
-    s[0] += d[0] * d[0], s[1] += d[0] * d[1], s[2] += d[0] * d[2];
-    s[3] += d[1] * d[1], s[4] += d[1] * d[2], s[5] += d[2] * d[2];
-  }
-  free(q);
-}
-
-/* The unit eigenvector of the least eigenvalue of the symmetric matrix s
- * (xx xy xz yy yz zz): cyclic Jacobi rotations (Numerical Recipes 11.1)
- * until the off-diagonal is zero, at most 64 sweeps.  Deterministic. */
-static void least_eigenvector(const double s[6], double n[3]) {
-  double a[3][3] = {{s[0], s[1], s[2]}, {s[1], s[3], s[4]}, {s[2], s[4], s[5]}};
-  double v[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  static const int pq[3][2] = {{0, 1}, {0, 2}, {1, 2}};
-  for (int sweep = 0; sweep < 64; sweep++) {
-    if (a[0][1] == 0 && a[0][2] == 0 && a[1][2] == 0) break;
-    for (int r = 0; r < 3; r++) {
-      int p = pq[r][0], q = pq[r][1];
-      if (a[p][q] == 0) continue;
-      double theta = (a[q][q] - a[p][p]) / (2 * a[p][q]);
-      double t = fabs(theta) > 1e150 ? 1 / (2 * theta)
-                                      : (theta >= 0 ? 1 : -1) / (fabs(theta) + sqrt(theta * theta + 1));
-      double c = 1 / sqrt(t * t + 1), sn = t * c;
-      double P[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, b[3][3], w[3][3];
-      P[p][p] = c, P[q][q] = c, P[p][q] = sn, P[q][p] = -sn;
-      for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) b[i][j] = a[i][0] * P[0][j] + a[i][1] * P[1][j] + a[i][2] * P[2][j];
-      for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) a[i][j] = P[0][i] * b[0][j] + P[1][i] * b[1][j] + P[2][i] * b[2][j];
-      a[p][q] = a[q][p] = 0;
-      for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++) w[i][j] = v[i][0] * P[0][j] + v[i][1] * P[1][j] + v[i][2] * P[2][j];
-      memcpy(v, w, sizeof v);
-    }
-  }
-  int k = 0;
-  for (int i = 1; i < 3; i++)
-    if (a[i][i] < a[k][k]) k = i;
-  double len = sqrt(v[0][k] * v[0][k] + v[1][k] * v[1][k] + v[2][k] * v[2][k]);
-  for (int i = 0; i < 3; i++) n[i] = v[i][k] / len;
-}
-
-/* The smallest rotation that takes z to the unit normal n (its axis z x n),
- * after the permutation that brings n's largest component into z: the
- * frame's u, v and n in patient coordinates (u, v the images of x and y). */
-static rtstruct_frame oblique_frame(const double nin[3]) {
-  int axis = 2;   /* z, then x, then y on a tie, as the standard planes */
-  if (fabs(nin[0]) > fabs(nin[axis])) axis = 0;
-  if (fabs(nin[1]) > fabs(nin[axis])) axis = 1;
-  const int *pm = perm_of[axis];
-  double sg = nin[pm[2]] < 0 ? -1 : 1;
-  double a = sg * nin[pm[0]], b = sg * nin[pm[1]], c = sg * nin[pm[2]];
-  double u[3] = {1 - a * a / (1 + c), -a * b / (1 + c), -a}, v[3] = {-a * b / (1 + c), 1 - b * b / (1 + c), -b};
-  double w[3] = {a, b, c};
-  rtstruct_frame f;
-  memset(&f, 0, sizeof f);
-  for (int k = 0; k < 3; k++) f.u[pm[k]] = u[k], f.v[pm[k]] = v[k], f.n[pm[k]] = w[k];
-  f.angle = atan2(sqrt(a * a + b * b), c) * (180 / 3.14159265358979323846);
-  return f;
-}
-
-static double dot3(const double a[3], const double *p) { return a[0] * p[0] + a[1] * p[1] + a[2] * p[2]; }
-
-static int by_double(const void *a, const void *b) {
-  double x = *(const double *)a, y = *(const double *)b;
-  return x < y ? -1 : x > y;
-}
-
-/* The spread of the contour's points along the unit vector n. */
-static double spread_along(const rtstruct_contour *c, const double n[3]) {
-  double lo = 0, hi = 0;
-  for (int j = 0; j < c->n; j++) {
-    double d = dot3(n, c->p + 3 * j);
-    if (j == 0 || d < lo) lo = d;
-    if (j == 0 || d > hi) hi = d;
-  }
-  return hi - lo;
-}
-
-/* Contours in parallel planes of a common normal that is none of the axes
- * (issue 22).  Each contour must be planar by itself: within FLAT_TOL of the
- * least-squares plane of its points (the least eigenvector of their
- * scatter).  The common normal is the least-squares normal of all the ROI's
- * points to a plane per contour: the least eigenvector of the summed
- * scatters, summed in sorted order, so that neither the file's order of the
- * contours nor their start points and directions change a bit of it.  Each
- * contour's height is the lower median of its points' (an input's own,
- * whatever the order), and each must lie within FLAT_TOL of it.  0, or -1
- * with roi->error naming the first contour that is not planar, else the one
- * most tilted to the others. */
-static int oblique(reader *r, rtstruct_roi *roi) {
-  double *sc = xmallocarray((size_t)roi->nc * 6, sizeof *sc), sum[6] = {0, 0, 0, 0, 0, 0}, nrm[3];
-  const double deg = 180 / 3.14159265358979323846;
-  for (int i = 0; i < roi->nc; i++) {
-    const rtstruct_contour *c = &roi->c[i];
-    double n1[3], sp;
-    scatter(c, sc + 6 * i);
-    least_eigenvector(sc + 6 * i, n1);
-    if ((sp = spread_along(c, n1)) > FLAT_TOL) {
-      roi->error = roi_error(r, roi, c->offset,
-                             "contour item %d: not planar (its points spread %.3g mm off their best plane): contours "
-                             "must lie in parallel planes", c->item, sp);
-      free(sc);
-      return -1;
-    }
-  }
-  qsort(sc, (size_t)roi->nc, 6 * sizeof *sc, by_six);
-  for (int i = 0; i < roi->nc; i++)
-    for (int k = 0; k < 6; k++) sum[k] += sc[6 * i + k];
-  free(sc);
-  least_eigenvector(sum, nrm);
-  rtstruct_frame f = oblique_frame(nrm);
-  double worst = 0;
-  int bad = -1;
-  for (int i = 0; i < roi->nc; i++) {
-    rtstruct_contour *c = &roi->c[i];
-    double *h = xmallocarray((size_t)c->n, sizeof *h);
-    for (int j = 0; j < c->n; j++) h[j] = dot3(f.n, c->p + 3 * j);
-    qsort(h, (size_t)c->n, sizeof *h, by_double);
-    double spread = h[c->n - 1] - h[0];
-    c->h = h[(c->n - 1) / 2];
-    free(h);
-    if (spread > worst) worst = spread, bad = spread > FLAT_TOL ? i : -1;
-  }
-  if (bad >= 0) {
-    const rtstruct_contour *c = &roi->c[bad];
-    double s1[6], n1[3];
-    scatter(c, s1);
-    least_eigenvector(s1, n1);
-    double cosang = fabs(dot3(n1, f.n));
-    roi->error = roi_error(r, roi, c->offset,
-                           "contour item %d: planar, but tilted %.3g degrees to the plane of the ROI's other contours "
-                           "(their normal %.6f %.6f %.6f; its points spread %.3g mm along it): contours must lie in "
-                           "parallel planes", c->item, acos(cosang > 1 ? 1 : cosang) * deg, f.n[0], f.n[1], f.n[2],
-                           worst);
-    return -1;
-  }
-  roi->plane = RTSTRUCT_OBLIQUE;
-  roi->frame = f;
-  int axis = fabs(f.n[2]) >= fabs(f.n[0]) && fabs(f.n[2]) >= fabs(f.n[1]) ? 2 : fabs(f.n[0]) >= fabs(f.n[1]) ? 0 : 1;
-  roi_warn(r, roi, "oblique contours: parallel planes tilted %.6g degrees from the %s plane (normal %s %s "
-           "%s; each point within %.3g mm of its contour's plane): turned into z to be tiled, and the mesh "
-           "turned back", f.angle, axis == 2 ? "axial" : axis == 0 ? "sagittal" : "coronal", ARGS_G(f.n[0]), ARGS_G(f.n[1]),
-           ARGS_G(f.n[2]), worst);
-  return 0;
-}
+/* ---------------------------------------------------------------- planes */
 
 /* The plane of an ROI's contours, their heights, the order, the counts. */
 static void finish_roi(reader *r, rtstruct_roi *roi) {
   if (roi->error || roi->nc == 0) return;
-  int axis = -1, bad[3] = {-1, -1, -1};
-  double worst[3] = {0, 0, 0};
-  for (int a = 2; a >= 0; a--)   /* z (axial), then x (sagittal), then y (coronal) */
-    for (int i = 0; i < roi->nc; i++) {
-      const rtstruct_contour *c = &roi->c[i];
-      double lo = c->p[a], hi = c->p[a];
-      for (int j = 1; j < c->n; j++) {
-        double v = c->p[3 * j + a];
-        if (v < lo) lo = v;
-        if (v > hi) hi = v;
-      }
-      if (hi - lo > FLAT_TOL) {
-        if (bad[a] < 0) bad[a] = i;
-      } else if (hi - lo > worst[a]) {
-        worst[a] = hi - lo;
-      }
-    }
-  if (bad[2] < 0) axis = 2;
-  else if (bad[0] < 0) axis = 0;
-  else if (bad[1] < 0) axis = 1;
-  if (axis < 0) {
-    if (oblique(r, roi) != 0) return;
-  } else {
-    roi->plane = axis == 2 ? RTSTRUCT_AXIAL : axis == 0 ? RTSTRUCT_SAGITTAL : RTSTRUCT_CORONAL;
-    roi->frame = standard_frame(axis);
-    if (worst[axis] > 0)
-      roi_warn(r, roi, "some contours are not exactly flat (%s spread up to %.3g mm); each lies in its "
-               "first point's plane", axis == 2 ? "z" : axis == 0 ? "x" : "y", worst[axis]);
-    for (int i = 0; i < roi->nc; i++) roi->c[i].h = roi->c[i].p[axis];
+  char why[600], *warn = NULL;
+  int bad = -1;
+  if (rtframe_fit(roi, &warn, &bad, why, sizeof why) != 0) {
+    roi->error = roi_error(r, roi, roi->c[bad].offset, "%s", why);
+    return;
   }
+  if (warn) roi_warn(r, roi, "%s", warn);
+  free(warn);
   keyed *k = xmallocarray((size_t)roi->nc, sizeof *k);
   for (int i = 0; i < roi->nc; i++) {
     k[i].h = roi->c[i].h;
@@ -591,7 +299,7 @@ static void finish_roi(reader *r, rtstruct_roi *roi) {
   roi->slices = 0;
   roi->points = 0;
   /* Oblique heights are computed, a rounding apart within a plane. */
-  double gap = roi->plane == RTSTRUCT_OBLIQUE ? FLAT_TOL : 0;
+  double gap = roi->plane == RTSTRUCT_OBLIQUE ? roi->flat : 0;
   for (int i = 0; i < roi->nc; i++) {
     roi->points += roi->c[i].n;
     if (i == 0 || roi->c[i].h - roi->c[i - 1].h > gap) roi->slices++;
@@ -959,7 +667,7 @@ char *rtstruct_roi_text(const rtstruct *s, int ri, size_t *len) {
     if (roi->plane == RTSTRUCT_OBLIQUE) {   /* computed: %.17g reads back exactly */
       const rtstruct_frame *f = &roi->frame;
       strbuf_add(&b, "C %d %.17g\n", c->n, c->h);
-      for (int j = 0; j < c->n; j++) strbuf_add(&b, "%.17g %.17g\n", dot3(f->u, c->p + 3 * j), dot3(f->v, c->p + 3 * j));
+      for (int j = 0; j < c->n; j++) strbuf_add(&b, "%.17g %.17g\n", rtframe_dot(f->u, c->p + 3 * j), rtframe_dot(f->v, c->p + 3 * j));
       continue;
     }
     int k = snprintf(line, sizeof line, "C %d ", c->n);
@@ -984,7 +692,10 @@ static const char sentinel[] = "\x01rtstruct\x01";
 /* Where line `line` of the ROI's text came from: "FILE: byte N: ROI r 'name',
  * contour item k[, point j]" (with_byte), else "contour item k[, point j]",
  * or "point j" alone when it is a point of contour `cur`.  Returns the
- * contour's index (-1 for a comment line). */
+ * contour's index when the line is its header (the message is about that
+ * contour: its points may be named alone), else -1 (a comment line, or a
+ * point: that names a loop of a keyhole contour, and the message's other
+ * lines name contours in full). */
 static int locate(const rtstruct_roi *roi, long line, strbuf *b, int with_byte, int cur, const char *file) {
   long at = HEADER_LINES + 1;
   for (int i = 0; i < roi->nc; i++) {
@@ -996,7 +707,7 @@ static int locate(const rtstruct_roi *roi, long line, strbuf *b, int with_byte, 
       if (j && i == cur) strbuf_add(b, "point %ld", j);
       else if (j) strbuf_add(b, "contour item %d, point %ld", c->item, j);
       else strbuf_add(b, "contour item %d", c->item);
-      return i;
+      return j ? -1 : i;   /* a point names a loop of a keyhole contour, not the contour */
     }
     at += c->n + 1;
   }
@@ -1105,7 +816,8 @@ int rtstruct_roi_stack(const rtstruct *s, int ri, int flags, contour_stack *out,
   FILE *hold = notes ? open_memstream(&held, &heldlen) : NULL;
   int cflags = (flags & RTSTRUCT_NO_KEYHOLES ? CONTOUR_NO_KEYHOLES : 0) |
                (flags & RTSTRUCT_SKIP_BAD ? CONTOUR_SKIP_BAD : 0) | (flags & RTSTRUCT_UNION ? CONTOUR_UNION : 0) |
-               (flags & RTSTRUCT_VERBOSE ? CONTOUR_VERBOSE : 0) | (flags & RTSTRUCT_ONE_SLICE ? CONTOUR_ONE_SLICE : 0);
+               (flags & RTSTRUCT_VERBOSE ? CONTOUR_VERBOSE : 0) | (flags & RTSTRUCT_ONE_SLICE ? CONTOUR_ONE_SLICE : 0) |
+               (flags & RTSTRUCT_DROP_DEGENERATE ? CONTOUR_DROP_DEGENERATE : 0);
   int rc = contour_parse_flags(text_, len, sentinel, cflags, out, hold, prefix, e2, e2len);
   if (rc == 0 && (flags & RTSTRUCT_PAIRS) && contour_stack_pairs(out, sentinel, e2, e2len) != 0) {
     contour_stack_free(out);

@@ -74,6 +74,8 @@ typedef struct {
   double hmin, hmax; /* their heights (0 if none) */
   rtstruct_plane plane;
   rtstruct_frame frame;
+  double flat;       /* how far apart along the normal points of one plane may lie (mm):
+                        from the precision the file writes (input/rtframe.h) */
   char *error;       /* NULL, or why its contours cannot be used (one line) */
   char *warnings;    /* lines to show when the ROI is used, or NULL */
 } rtstruct_roi;
@@ -119,9 +121,11 @@ char *rtstruct_roi_text(const rtstruct *s, int roi, size_t *len);
  * many whole lines as errlen holds, the last line kept).  Notes go to
  * `notes` as contour_read's do, rewritten alike ("contour item K, point J"
  * for a line), and only when the stack is accepted.  RTSTRUCT_ONE_SLICE
- * accepts an ROI of one slice (contour.h's CONTOUR_ONE_SLICE). */
+ * accepts an ROI of one slice (contour.h's CONTOUR_ONE_SLICE);
+ * RTSTRUCT_DROP_DEGENERATE drops contours without area with a counted note
+ * (CONTOUR_DROP_DEGENERATE). */
 enum { RTSTRUCT_PAIRS = 1, RTSTRUCT_NO_KEYHOLES = 2, RTSTRUCT_SKIP_BAD = 4, RTSTRUCT_UNION = 8, RTSTRUCT_VERBOSE = 16,
-       RTSTRUCT_ONE_SLICE = 32 };
+       RTSTRUCT_ONE_SLICE = 32, RTSTRUCT_DROP_DEGENERATE = 64 };
 int rtstruct_roi_stack(const rtstruct *s, int roi, int flags, contour_stack *out, FILE *notes,
                        const char *prefix, char *err, size_t errlen);
 
@@ -141,10 +145,5 @@ const char *rtstruct_plane_name(rtstruct_plane plane);
 /* Contour k's height as the file wrote it (oblique: %.17g of h; at most cap
  * - 1 bytes). */
 void rtstruct_height_text(const rtstruct_roi *roi, int k, char *buf, size_t cap);
-
-/* A decimal string (DS): optional blanks around [+-]digits[.digits][e[+-]digits].
- * 0 and *v; 1 if it is a number too large for a double; -1 if it is not a
- * number.  The result is the correctly rounded double, whatever the locale. */
-int rtstruct_ds(const char *s, size_t len, double *v);
 
 #endif

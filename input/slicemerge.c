@@ -50,10 +50,10 @@ static void from_least(const vec2 *p, int n, vec2 *out) {
  * point: the region's own sequence.  Returns its length. */
 static int reduced(const vec2 *p, int n, vec2 *out) {
   vec2 *t = xmallocarray((size_t)n, sizeof *t);
-  int m = 0;
-  for (int i = 0; i < n; i++)
-    if (exact_orient(p[(i + n - 1) % n], p[i], p[(i + 1) % n]) != 0) t[m++] = p[i];
+  int *keep = xmallocarray((size_t)n, sizeof *keep), m = geom_corners(p, n, keep);
+  for (int i = 0; i < m; i++) t[i] = p[keep[i]];
   from_least(t, m, out);
+  free(keep);
   free(t);
   return m;
 }
@@ -177,36 +177,39 @@ static contour *push(clist *l) {
   return &l->c[l->n++];
 }
 
-/* Merge the groups of one slice, cs[idx[0..m-1]] (in line order): their
- * contours marked in drop[], the loops appended to add.  0, or -1 and err. */
-static int union_slice(contour *cs, const int *idx, int m, char *drop, clist *add, int *groups, int *merged,
-                       int *news, int *holes, int verbose, const char *name, const char *prefix, strbuf *notes,
-                       strbuf *first_note, int *first_line, char *err, size_t errlen) {
+/* What the merges of a stack add up to, for its notes. */
+typedef struct {
+  int groups, merged, news, holes, slices, pinches;
+  int first_line;     /* the first group's lead contour */
+  strbuf first;       /* the first group's note (said alone when it is the only one) */
+} tally;
+
+/* Merge the groups of one slice, cs[idx[0..m-1]] (in line order), that
+ * `all` asks for (SLICEMERGE_UNION: every group; else the nested ones, a
+ * hole drawn on its outer contour's boundary): their contours marked in
+ * drop[], the loops appended to add.  0, or -1 and err. */
+static int union_slice(contour *cs, const int *idx, int m, int all, char *drop, clist *add, tally *t, int verbose,
+                       const char *name, const char *prefix, strbuf *notes, char *err, size_t errlen) {
   crossing_poly *cp = xmallocarray((size_t)m, sizeof *cp);
   for (int k = 0; k < m; k++) cp[k] = (crossing_poly){cs[idx[k]].pt, cs[idx[k]].n};
   polyunion_result u;
-  int rc = polyunion(cp, m, &u), slice0 = add->n;
+  polyunion_flags(cp, m, POLYUNION_NEST | POLYUNION_SPLIT, &u);
+  int slice0 = add->n, rc = 0;
   double z = cs[idx[0]].z;
-  if (rc != 0) {
-    int g = u.bad_group, lead = idx[u.members[u.gmember[g]]];
-    strbuf b = {0};
-    lines_of(&b, cs, idx, u.members + u.gmember[g], u.gmember[g + 1] - u.gmember[g]);
-    if (u.status == POLYUNION_PINCH)
-      snprintf(err, errlen, "%s:%d: --union: the union of the contours at %s on slice z=%s touches itself at "
-               "(%s %s), a point where no set of separate contours can follow it; it cannot be tiled", name,
-               cs[lead].line, b.buf, ARGS_G(z), ARGS_G(u.at.x), ARGS_G(u.at.y));
-    else
-      snprintf(err, errlen, "%s:%d: --union: the union of the contours at %s on slice z=%s: its new vertices, "
-               "rounded to doubles, make its boundary touch itself near (%s %s); it cannot be tiled", name,
-               cs[lead].line, b.buf, ARGS_G(z), ARGS_G(u.at.x), ARGS_G(u.at.y));
-    free(b.buf);
-    polyunion_free(&u);
-    free(cp);
-    return -1;
-  }
-  for (int g = 0; g < u.ngroups; g++) {
+  for (int g = 0; g < u.ngroups && rc == 0; g++) {
     const int *mem = u.members + u.gmember[g];
-    int nm = u.gmember[g + 1] - u.gmember[g], nh = 0;
+    int nm = u.gmember[g + 1] - u.gmember[g], nh = 0, lead = idx[mem[0]];
+    if (!all && !u.nested[g]) continue;   /* overlapping contours: refused by the surface */
+    if (u.gstatus[g] != POLYUNION_OK) {
+      strbuf b = {0};
+      lines_of(&b, cs, idx, mem, nm);
+      snprintf(err, errlen, "%s:%d: %sthe region of the contours at %s on slice z=%s: its new vertices, rounded "
+               "to doubles, make its boundary touch itself near (%s %s); it cannot be tiled", name,
+               cs[lead].line, all ? "--union: " : "", b.buf, ARGS_G(z), ARGS_G(u.gat[g].x), ARGS_G(u.gat[g].y));
+      free(b.buf);
+      rc = -1;
+      break;
+    }
     for (int k = 0; k < nm; k++) drop[idx[mem[k]]] = 1;
     for (int l = u.gfirst[g]; l < u.gfirst[g + 1]; l++) {
       int n = u.first[l + 1] - u.first[l];
@@ -222,39 +225,76 @@ static int union_slice(contour *cs, const int *idx, int m, char *drop, clist *ad
       nh += u.hole[l];
     }
     int nl = u.gfirst[g + 1] - u.gfirst[g];
-    if (*groups == 0) *first_line = cs[idx[mem[0]]].line;
-    strbuf *to = verbose ? notes : (*groups == 0 ? first_note : NULL);
+    if (t->groups == 0) t->first_line = cs[lead].line;
+    strbuf *to = verbose ? notes : (t->groups == 0 ? &t->first : NULL);
     if (to) {
-      note_line(to, prefix, name, cs[idx[mem[0]]].line);
-      strbuf_add(to, "--union: merged the contours at ");
+      note_line(to, prefix, name, cs[lead].line);
+      if (all) strbuf_add(to, "--union: merged the contours at ");
+      else strbuf_add(to, "a hole on its outer contour's boundary: the contours at ");
       lines_of(to, cs, idx, mem, nm);
-      strbuf_add(to, " on slice z=%s into their union: %d contour%s", ARGS_G(z), nl - nh, nl - nh == 1 ? "" : "s");
+      if (all) strbuf_add(to, " on slice z=%s into their union", ARGS_G(z));
+      else strbuf_add(to, " on slice z=%s, one inside another and meeting its boundary, made one region", ARGS_G(z));
+      strbuf_add(to, ": %d contour%s", nl - nh, nl - nh == 1 ? "" : "s");
       if (nh) strbuf_add(to, " and %d hole%s", nh, nh == 1 ? "" : "s");
-      strbuf_add(to, " (%d new vertices where they cross)\n", u.newpts[g]);
+      if (all) strbuf_add(to, " (%d new vertices where they cross)", u.newpts[g]);
+      if (u.pinches[g])
+        strbuf_add(to, "; it touches itself at (%s %s)%s, split there (each piece but one off the point by "
+                   "2^-20 of its edges)", ARGS_G(u.pinch_at[g].x), ARGS_G(u.pinch_at[g].y),
+                   u.pinches[g] > 1 ? " and elsewhere" : "");
+      strbuf_raw(to, "\n", 1);
     }
-    (*groups)++, *merged += nm, *news += u.newpts[g], *holes += nh;
+    t->groups++, t->merged += nm, t->news += u.newpts[g], t->holes += nh, t->pinches += u.pinches[g];
   }
   polyunion_free(&u);
   free(cp);
   /* Rounding may have made a loop meet a contour of the slice that met
    * none: checked exactly, as the surface will. */
-  if (add->n > slice0) {
+  if (rc == 0 && add->n > slice0) {
     int k = 0;
-    crossing_poly *all = xmallocarray((size_t)m + (size_t)(add->n - slice0), sizeof *all);
+    crossing_poly *all_ = xmallocarray((size_t)m + (size_t)(add->n - slice0), sizeof *all_);
     for (int i = 0; i < m; i++)
-      if (!drop[idx[i]]) all[k++] = (crossing_poly){cs[idx[i]].pt, cs[idx[i]].n};
-    for (int i = slice0; i < add->n; i++) all[k++] = (crossing_poly){add->c[i].pt, add->c[i].n};
+      if (!drop[idx[i]]) all_[k++] = (crossing_poly){cs[idx[i]].pt, cs[idx[i]].n};
+    for (int i = slice0; i < add->n; i++) all_[k++] = (crossing_poly){add->c[i].pt, add->c[i].n};
     crossing_hit h;
-    int hit = crossing_find(all, k, &h);
-    free(all);
-    if (hit) {
-      snprintf(err, errlen, "%s:%d: --union: on slice z=%s the union's new vertices, rounded to doubles, make it "
-               "touch another contour near (%s %s); it cannot be tiled", name, add->c[slice0].line, ARGS_G(z), ARGS_G(h.at.x),
-               ARGS_G(h.at.y));
-      return -1;
+    int hit = crossing_find(all_, k, &h);
+    free(all_);
+    /* (without --union, contours left alone that meet are the surface's to refuse) */
+    if (hit && (all || (h.poly[0] >= k - (add->n - slice0) || h.poly[1] >= k - (add->n - slice0)))) {
+      snprintf(err, errlen, "%s:%d: %son slice z=%s the merged region's new vertices, rounded to doubles, make "
+               "it touch another contour near (%s %s); it cannot be tiled", name, add->c[slice0].line,
+               all ? "--union: " : "", ARGS_G(z), ARGS_G(h.at.x), ARGS_G(h.at.y));
+      rc = -1;
     }
   }
-  return 0;
+  return rc;
+}
+
+/* Do contours of this slice cross or touch (the test the surface makes)?
+ * Not where no two of their boxes meet. */
+static int meet(const contour *cs, const int *idx, int m) {
+  vec2 *lo = xmallocarray((size_t)m, sizeof *lo), *hi = xmallocarray((size_t)m, sizeof *hi);
+  int any = 0;
+  for (int k = 0; k < m; k++) {
+    const contour *c = &cs[idx[k]];
+    lo[k] = hi[k] = c->pt[0];
+    for (int j = 1; j < c->n; j++) {
+      vec2 q = c->pt[j];
+      if (q.x < lo[k].x) lo[k].x = q.x;
+      if (q.y < lo[k].y) lo[k].y = q.y;
+      if (q.x > hi[k].x) hi[k].x = q.x;
+      if (q.y > hi[k].y) hi[k].y = q.y;
+    }
+    for (int j = 0; j < k && !any; j++)
+      any = lo[j].x <= hi[k].x && lo[k].x <= hi[j].x && lo[j].y <= hi[k].y && lo[k].y <= hi[j].y;
+  }
+  free(lo), free(hi);
+  if (!any) return 0;
+  crossing_poly *cp = xmallocarray((size_t)m, sizeof *cp);
+  for (int k = 0; k < m; k++) cp[k] = (crossing_poly){cs[idx[k]].pt, cs[idx[k]].n};
+  crossing_hit h;
+  int hit = crossing_find(cp, m, &h);
+  free(cp);
+  return hit;
 }
 
 /* ---------------------------------------------------------------- the whole */
@@ -266,30 +306,38 @@ int slicemerge(contour **csp, int *ncsp, int flags, const char *name, const char
   char *drop = xcalloc((size_t)ncs + 1, 1);
   int ndup = duplicates(cs, ncs, drop, verbose, name, prefix, notes);
   clist add = {0};
-  if (flags & SLICEMERGE_UNION) {
+  {
+    /* Each slice whose contours meet: with --union every group merged, else
+     * the groups of a contour inside another touching its boundary (a hole
+     * drawn on it), which have one meaning. */
+    int all = (flags & SLICEMERGE_UNION) != 0;
     int *idx = xmallocarray((size_t)ncs + 1, sizeof *idx), m = 0;
     for (int i = 0; i < ncs; i++)
       if (!drop[i]) idx[m++] = i;
     sort_cs = cs;
     qsort(idx, (size_t)m, sizeof *idx, by_slice_line);
-    int groups = 0, merged = 0, news = 0, holes = 0, slices = 0, first_line = 0;
-    strbuf first = {0};
+    tally t = {0};
     for (int a = 0, b; a < m && rc == 0; a = b) {
       for (b = a + 1; b < m && cs[idx[b]].slice == cs[idx[a]].slice; b++) {}
-      int before = groups;
-      if (b - a >= 2)
-        rc = union_slice(cs, idx + a, b - a, drop, &add, &groups, &merged, &news, &holes, verbose, name, prefix,
-                         notes, &first, &first_line, err, errlen);
-      slices += groups > before;
+      int before = t.groups;
+      if (b - a >= 2 && meet(cs, idx + a, b - a))
+        rc = union_slice(cs, idx + a, b - a, all, drop, &add, &t, verbose, name, prefix, notes, err, errlen);
+      t.slices += t.groups > before;
     }
-    if (rc == 0 && !verbose && notes && groups == 1) strbuf_raw(notes, first.buf, first.len);
-    else if (rc == 0 && !verbose && notes && groups > 1) {
-      note_line(notes, prefix, name, first_line);
-      strbuf_add(notes, "--union: merged %d overlapping contours in %d groups on %d slices into their unions: %d "
-                 "contours, %d of them holes (%d new vertices where they cross); -v names each group\n", merged,
-                 groups, slices, add.n, holes, news);
+    if (rc == 0 && !verbose && notes && t.groups == 1) strbuf_raw(notes, t.first.buf, t.first.len);
+    else if (rc == 0 && !verbose && notes && t.groups > 1) {
+      note_line(notes, prefix, name, t.first_line);
+      if (all)
+        strbuf_add(notes, "--union: merged %d overlapping contours in %d groups on %d slices into their unions: %d "
+                   "contours, %d of them holes (%d new vertices where they cross", t.merged, t.groups, t.slices, add.n,
+                   t.holes, t.news);
+      else
+        strbuf_add(notes, "holes on their outer contours' boundaries: %d contours in %d groups on %d slices made "
+                   "their regions: %d contours, %d of them holes", t.merged, t.groups, t.slices, add.n, t.holes);
+      if (t.pinches) strbuf_add(notes, "%s%d points where a region touches itself, split", all ? "; " : " (", t.pinches);
+      strbuf_add(notes, "%s; -v names each group\n", all || t.pinches ? ")" : "");
     }
-    free(first.buf);
+    free(t.first.buf);
     free(idx);
   }
   if (rc != 0) {
@@ -298,7 +346,7 @@ int slicemerge(contour **csp, int *ncsp, int flags, const char *name, const char
     free(drop);
     return -1;
   }
-  if (ndup || add.n || (flags & SLICEMERGE_UNION)) {
+  if (ndup || add.n) {
     int k = 0;
     for (int i = 0; i < ncs; i++) {
       if (drop[i]) {

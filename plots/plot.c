@@ -36,7 +36,7 @@ static const char lines_usage[] =
     "[--labels A,B,...] [--title T] [--xlabel T] [--ylabel T] [--yzero] -o OUT.svg   "
     "(plot --help: every option)\n";
 static const char surface_usage[] =
-    "usage: plot surface STACK|FILE.dcm --roi NAME [--cost area|span] [--caps] [--join RULE] [--thickness T] "
+    "usage: plot surface STACK|FILE.dcm --roi NAME [--cost area|span] [--no-caps] [--band aligned|plain] [--join RULE] [--thickness T] "
     "[--skip-bad] [--union] [-v] "
     "[--title T] -o OUT.svg   "
     "(plot --help: every option)\n";
@@ -48,8 +48,9 @@ static const char any_usage[] =
 static void help(const char *name) {
   printf("usage: %s lines CSV -x COL -y COL[,COL...] [--series COL[,COL...]] [--where COL=VALUE]...\n"
         "            [--labels A,B,...] [--title T] [--xlabel T] [--ylabel T] [--yzero] -o OUT.svg\n"
-        "       %s surface STACK|FILE.dcm [--roi NAME|NUMBER] [--cost area|span] [--caps] [--join RULE]\n"
-        "            [--thickness T] [--skip-bad] [--union] [-v] [--title T] -o OUT.svg\n"
+        "       %s surface STACK|FILE.dcm [--roi NAME|NUMBER] [--cost area|span] [--no-caps]\n"
+        "            [--band aligned|plain] [--join RULE] [--thickness T] [--skip-bad] [--union] [-v]\n"
+        "            [--title T] -o OUT.svg\n"
         "       %s claims MAP.csv [--title T] -o OUT.svg\n"
         "\n"
         "%s -- tilesim's CSV as SVG line charts, a contour stack with its surface, and\n"
@@ -68,12 +69,14 @@ static void help(const char *name) {
         "  --title T, --xlabel T, --ylabel T   texts\n"
         "  --yzero            the y axis starts at 0\n"
         "  -o OUT.svg         the picture (written atomically)\n"
-        "surface: the stack tiled (closed with --caps), drawn beside its contours; a\n"
+        "surface: the stack tiled (closed, as tile closes it), drawn beside its contours; a\n"
         "DICOM RT structure set's ROI with --roi, as tile FILE.dcm --roi tiles it.\n"
         "  --roi NAME|NUMBER  the ROI of a DICOM RT structure set to draw\n"
         "  --cost area|span   the tile weight (default area)\n"
-        "  --caps             close every end (the first and last slices, branch tips,\n"
-        "                     holes that start or end), as tile --caps does\n"
+        "  --no-caps          leave the ends open, as tile --no-caps does (--caps, the\n"
+        "                     default, is accepted too)\n"
+        "  --band aligned|plain  how a 1-1 band is tiled, as tile --band: on its\n"
+        "                     contours aligned (default) or the paper's plain band\n"
         "  --join RULE        which contours of neighbouring slices are joined: overlap,\n"
         "                     touch, single (default), nearest or a distance, as tile\n"
         "                     --join does\n"
@@ -332,7 +335,8 @@ static void say_lines(const char *text) {
 static int surface(int argc, char **argv) {
   const char *in = argc > 2 ? argv[2] : NULL, *out = NULL, *title = NULL, *roikey = NULL;
   cost_kind kind = COST_AREA;
-  int caps = 0, flags = 0;   /* CONTOUR_SKIP_BAD, CONTOUR_UNION, CONTOUR_VERBOSE */
+  int caps = 1, flags = CONTOUR_DROP_DEGENERATE;   /* and CONTOUR_SKIP_BAD, CONTOUR_UNION, CONTOUR_VERBOSE */
+  stack_band band = STACK_BAND_ALIGNED;
   match_rule join = MATCH_SINGLE;
   double join_dist = INFINITY, thickness = 0;
   static char err[1 << 16];   /* a refusal may name every bad contour */
@@ -341,17 +345,23 @@ static int surface(int argc, char **argv) {
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
     int bad = 0;
     if (strcmp(a, "--caps") == 0) { caps = 1; continue; }
+    if (strcmp(a, "--no-caps") == 0) { caps = 0; continue; }
     if (strcmp(a, "--skip-bad") == 0) { flags |= CONTOUR_SKIP_BAD; continue; }
     if (strcmp(a, "--union") == 0) { flags |= CONTOUR_UNION; continue; }
     if (strcmp(a, "-v") == 0 || strcmp(a, "--verbose") == 0) { flags |= CONTOUR_VERBOSE; continue; }
     if (strcmp(a, "-o") != 0 && strcmp(a, "--title") != 0 && strcmp(a, "--cost") != 0 && strcmp(a, "--roi") != 0 &&
-        strcmp(a, "--join") != 0 && strcmp(a, "--thickness") != 0)
+        strcmp(a, "--join") != 0 && strcmp(a, "--thickness") != 0 && strcmp(a, "--band") != 0)
       return usage(surface_usage, a[0] == '-' ? "unknown option" : "unexpected argument", a);
     if (!v) return usage(surface_usage, "an option needs a value", a);
     if (strcmp(a, "-o") == 0) bad = svg_name(a, v, err, sizeof err), out = v;
     else if (strcmp(a, "--title") == 0) title = v;
     else if (strcmp(a, "--join") == 0) bad = stack_parse_join(a, v, &join, &join_dist, err, sizeof err) != 0;
     else if (strcmp(a, "--thickness") == 0) bad = stack_parse_thickness(a, v, &thickness, err, sizeof err) != 0;
+    else if (strcmp(a, "--band") == 0) {
+      int b = args_word(a, v, "aligned|plain", err, sizeof err);
+      bad = b < 0;
+      band = b == 1 ? STACK_BAND_PLAIN : STACK_BAND_ALIGNED;
+    }
     else if (strcmp(a, "--roi") == 0) {
       if (!v[0]) bad = 1, snprintf(err, sizeof err, "--roi takes an ROI's name or number ('')");
       roikey = v;
@@ -378,7 +388,8 @@ static int surface(int argc, char **argv) {
     if ((roi = rtstruct_find(&rs, roikey, err, sizeof err)) < 0 || rtstruct_roi_check(&rs, roi, err, sizeof err) != 0 ||
         rtstruct_roi_stack(&rs, roi,
                            (flags & CONTOUR_SKIP_BAD ? RTSTRUCT_SKIP_BAD : 0) | (flags & CONTOUR_UNION ? RTSTRUCT_UNION : 0) |
-                               (flags & CONTOUR_VERBOSE ? RTSTRUCT_VERBOSE : 0) | RTSTRUCT_ONE_SLICE,
+                               (flags & CONTOUR_VERBOSE ? RTSTRUCT_VERBOSE : 0) | RTSTRUCT_ONE_SLICE |
+                               RTSTRUCT_DROP_DEGENERATE,
                            &s, stderr, progname_as("plot"), err, sizeof err) != 0) {
       say_lines(err);
       rtstruct_free(&rs);
@@ -403,7 +414,7 @@ static int surface(int argc, char **argv) {
   size_t heldlen = 0;
   FILE *notes = open_memstream(&held, &heldlen);
   stack_options so = {kind, caps, 0, pool_cores(), NULL, notes ? notes : stderr, progname_as("plot"), NULL, NULL,
-                      join, join_dist, thickness};
+                      join, join_dist, thickness, band};
   stack_surface *ss;
   int bad = stack_tile(&s, name, &so, &ss, err, sizeof err) != 0;
   if (notes) fclose(notes);

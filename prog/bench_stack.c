@@ -141,7 +141,8 @@ int bench_stack(int argc, char **argv) {
     for (int j = 0; j < nj; j++) best[j] = 1e300;
     for (int r = 0; r < repeat && rc == 0; r++)
       for (int j = 0; j < nj && rc == 0; j++) {
-        stack_options o = {COST_AREA, 1, apex, js[j], NULL, NULL, progname_as("bench"), NULL, NULL, join, join_dist, 0};
+        stack_options o = {COST_AREA, 1, apex, js[j], NULL, NULL, progname_as("bench"), NULL, NULL, join, join_dist, 0,
+                           STACK_BAND_ALIGNED};
         stack_surface *ss;
         double t0 = wallclock();
         char why[1024];

@@ -38,14 +38,15 @@
 
 /* The usage hint after a bad-usage message: one line. */
 static const char usage_line[] =
-    "usage: tile STACK|FILE.dcm [-o OUT.obj|OUT.ply|OUT.stl] [--cost area|span] [--caps] [--join RULE] "
+    "usage: tile STACK|FILE.dcm [-o OUT.obj|OUT.ply|OUT.stl] [--cost area|span] [--no-caps] [--band aligned|plain] [--join RULE] "
     "[--thickness T] [-j N] [--skip-bad] [--union] [-v|-q] [--procs P [MACHINE OPTIONS] [--trace FILE]]   (tile --help: every option)\n";
 
 static void usage(FILE *f) {
   fputs(usage_line, f);
   if (f != stdout) return;
-  fputs("       tile STACK [-o OUT.obj|OUT.ply|OUT.stl] [--cost area|span] [--caps]\n"
-        "            [--cap-style flat|apex] [--join RULE] [--thickness T] [-j N]\n"
+  fputs("       tile STACK [-o OUT.obj|OUT.ply|OUT.stl] [--cost area|span] [--no-caps]\n"
+        "            [--cap-style flat|apex] [--band aligned|plain] [--join RULE]\n"
+        "            [--thickness T] [-j N]\n"
         "            [--no-keyholes] [--skip-bad] [--union] [-v | -q]\n"
         "            [--procs P [--backend sim|threads] [--alloc half|size] [--min-diag d]\n"
         "             [--machine NAME] [--net ideal|bus|loggp] [--m S] [--c S]\n"
@@ -56,17 +57,24 @@ static void usage(FILE *f) {
         "\n"
         "Make one surface of the contours of STACK, any number per slice: contours\n"
         "on a slice nest (holes, islands), overlapping or touching contours of\n"
-        "neighbouring slices are joined (branching by bridges), and every band is the\n"
+        "neighbouring slices are joined (branching by bridges), every band is the\n"
         "minimum-cost acceptable path over all start rows (Fuchs, Kedem, Uselton 1977;\n"
-        "exact).\n"
+        "exact), a 1-1 band's on its contours aligned so that the surface follows the\n"
+        "structure, and every end is closed: a closed, outward surface.\n"
         "\n"
         "  -o FILE            write the mesh: .obj, .ply (ASCII) or .stl (binary)\n"
         "  --cost area        tile weight: the triangle's area (default)\n"
         "  --cost span        tile weight: the length of the span the tile adds\n"
-        "  --caps             close every end (a closed, outward 2-manifold)\n"
+        "  --no-caps          leave the ends open: the bands alone (no volumes then);\n"
+        "                     by default every end is closed (--caps, accepted too)\n"
         "  --cap-style flat   a cap is the region in its plane (default)\n"
         "  --cap-style apex   a fan to a point half a slice out, where it sees the whole\n"
         "                     contour (flat elsewhere)\n"
+        "  --band aligned     a 1-1 band is tiled on its two contours' corners, the upper\n"
+        "                     moved onto the lower's centroid and scaled to its area, and\n"
+        "                     joins them where they lie: prisms, oblique cylinders and\n"
+        "                     frustums come out exact, whatever their sampling (default)\n"
+        "  --band plain       the paper's minimum-area band of the contours as they lie\n"
         "  --join RULE        which contours of neighbouring slices are joined (same\n"
         "                     depth, parents joined; each rule joins all the one before\n"
         "                     it joins):\n"
@@ -132,12 +140,13 @@ static void usage(FILE *f) {
         "seconds on sim, wall-clock seconds on threads or mpi); with --topology also\n"
         "hops_per_msg,hop_bytes,max_link_msgs,max_link_bytes,link_wait: the band's\n"
         "messages over the network, links crossed per message, bytes x links, the\n"
-        "busiest link's messages and bytes, seconds spent waiting for links.  Then with\n"
-        "--caps (or one slice) a row 'cap' per cap; a row 'joins' (junction: the --join\n"
-        "rule; m: joins made without overlap; n: contour ends left without a partner\n"
-        "though the neighbouring slice has candidates; bridges: joins dropped for want\n"
-        "of a bridge); a row 'mesh' (vertices, triangles, area, volume, Euler\n"
-        "characteristic) and a row 'component' per connected component.\n",
+        "busiest link's messages and bytes, seconds spent waiting for links.  Then a\n"
+        "row 'cap' per cap (none with --no-caps but for one slice); a row 'joins'\n"
+        "(junction: the --join rule; m: joins made without overlap; n: contour ends\n"
+        "left without a partner though the neighbouring slice has candidates; bridges:\n"
+        "joins dropped for want of a bridge); a row 'mesh' (vertices, triangles, area,\n"
+        "volume, Euler characteristic) and a row 'component' per connected component.\n"
+        "Volumes are empty where the surface is open (--no-caps).\n",
         f);
 }
 
@@ -154,6 +163,7 @@ static void show_progress(void *ud, int done, int total) { progress_step(ud, don
 /* What tile_stack needs from the command line. */
 typedef struct {
   int caps, apex, threads, parallel, quiet;
+  stack_band band;    /* --band */
   run_config rc;   /* the machine (rc.mc: --trace, --trace-limit) and the algorithm */
   const char *held;   /* the reader's notes, printed before the surface's */
   size_t heldlen;
@@ -190,7 +200,7 @@ static int tile_stack(void *ud, const contour_stack *s, const char *name, const 
   FILE *notes = o->quiet ? NULL : open_memstream(&held, &heldlen);
   atomicfile tf = {NULL, NULL, NULL};
   stack_options so = {o->rc.kind, o->caps, o->apex, o->threads, o->parallel ? &o->rc : NULL, notes, "tile",
-                      NULL, NULL, o->join, o->join_dist, o->thickness};
+                      NULL, NULL, o->join, o->join_dist, o->thickness, o->band};
   const char *tpath = o->rc.mc.trace;
   if (o->parallel && tpath) {
     /* The trace's size first, by the same run writing none (the simulator
@@ -267,11 +277,12 @@ static int tile_stack(void *ud, const contour_stack *s, const char *name, const 
 
 static int tile_main(int argc, char **argv) {
   const char *in = NULL, *out = NULL;
-  int backend_given = 0, style_given = 0, place_given = 0, no_keyholes = 0;
-  int read_flags = 0;   /* CONTOUR_SKIP_BAD, CONTOUR_UNION, CONTOUR_VERBOSE */
+  int backend_given = 0, style_given = 0, place_given = 0, no_keyholes = 0, caps_given = 0, nocaps_given = 0;
+  int read_flags = CONTOUR_DROP_DEGENERATE;   /* and CONTOUR_SKIP_BAD, CONTOUR_UNION, CONTOUR_VERBOSE */
   tile_opts o;
   memset(&o, 0, sizeof o);
   o.threads = pool_cores();
+  o.caps = 1;   /* closed by default */
   o.join = MATCH_SINGLE, o.join_dist = INFINITY;
   tile_dicom_opts dopt;
   memset(&dopt, 0, sizeof dopt);
@@ -285,7 +296,9 @@ static int tile_main(int argc, char **argv) {
       usage(stdout);
       return 0;
     } else if (strcmp(a, "--caps") == 0) {
-      o.caps = 1;
+      o.caps = 1, caps_given = 1;
+    } else if (strcmp(a, "--no-caps") == 0) {
+      o.caps = 0, nocaps_given = 1;
     } else if (strcmp(a, "-q") == 0 || strcmp(a, "--quiet") == 0) {
       o.quiet = 1;
     } else if (strcmp(a, "--no-keyholes") == 0) {
@@ -305,7 +318,7 @@ static int tile_main(int argc, char **argv) {
       if (!v) {   /* the last argument: an option that needs a value, or none we know */
         run_config scratch = o.rc;
         int known = strcmp(a, "-o") == 0 || strcmp(a, "--cost") == 0 || strcmp(a, "-j") == 0 ||
-                    strcmp(a, "--join") == 0 || strcmp(a, "--thickness") == 0 ||
+                    strcmp(a, "--join") == 0 || strcmp(a, "--thickness") == 0 || strcmp(a, "--band") == 0 ||
                     strcmp(a, "--cap-style") == 0 || run_option(&scratch, a, "", err, sizeof err) != 0;
         args_show(a, err, sizeof err);
         return bad_usage(known ? "%s needs a value" : "unknown option (%s)", err);
@@ -318,6 +331,10 @@ static int tile_main(int argc, char **argv) {
         if (stack_parse_join(a, v, &o.join, &o.join_dist, err, sizeof err) != 0) return bad_usage("%s", err);
       } else if (strcmp(a, "--thickness") == 0) {
         if (stack_parse_thickness(a, v, &o.thickness, err, sizeof err) != 0) return bad_usage("%s", err);
+      } else if (strcmp(a, "--band") == 0) {
+        int b = args_word(a, v, "aligned|plain", err, sizeof err);
+        if (b < 0) return bad_usage("%s", err);
+        o.band = b ? STACK_BAND_PLAIN : STACK_BAND_ALIGNED;
       } else if (strcmp(a, "--cap-style") == 0) {
         if ((o.apex = args_word(a, v, "flat|apex", err, sizeof err)) < 0) return bad_usage("%s", err);
         style_given = 1;
@@ -361,7 +378,8 @@ static int tile_main(int argc, char **argv) {
   if (tpath && !o.parallel) return bad_usage("%s", "--trace needs --procs (it traces the simulated machine)");
   if (tpath && o.rc.mc.backend != MACHINE_SIM) return bad_usage("%s", "--trace traces the simulated machine (--backend sim)");
   if (backend_given && !o.parallel) return bad_usage("%s", "--backend needs --procs");
-  if (style_given && !o.caps) return bad_usage("%s", "--cap-style needs --caps");
+  if (caps_given && nocaps_given) return bad_usage("%s", "--caps and --no-caps: one or the other");
+  if (style_given && !o.caps) return bad_usage("%s", "--cap-style is for the caps; leave out --no-caps");
   int topology = o.rc.mc.sim.topo.kind != TOPO_NONE;
   if ((topology || print_place || place_given) && !o.parallel)
     return bad_usage("%s", "--topology, --place and --print-place need --procs (they describe the simulated machine)");

@@ -19,6 +19,7 @@
 #include "meshio.h"
 #include "rtstruct.h"
 #include "stack.h"
+#include "strbuf.h"
 #include "xmem.h"
 
 int tile_dicom_is_dir(const char *path) {
@@ -231,6 +232,8 @@ static char *map_rewrite(void *ud, const char *msg) {
 
 /* ---------------------------------------------------------------- main */
 
+static int by_int(const void *a, const void *b) { return *(const int *)a - *(const int *)b; }
+
 int tile_dicom_main(const tile_dicom_opts *o, const char *in, const tile_dicom_env *env) {
   char err[1024], *rerr = NULL;
   int all = 0;
@@ -277,6 +280,8 @@ int tile_dicom_main(const tile_dicom_opts *o, const char *in, const tile_dicom_e
 
   /* The ROIs, in the order asked, each once. */
   int *pick = xmallocarray((size_t)s.nroi + 1, sizeof *pick), npick = 0, rcode = 1;
+  int *refused = NULL, nrefused = 0, nempty = 0;   /* with all: ROIs refused; with nothing to tile */
+  int npaths = 0;   /* mpath and cpath hold this many */
   char *chosen = xcalloc((size_t)s.nroi + 1, 1);
   contour_stack *st = xcalloc((size_t)s.nroi + 1, sizeof *st);
   mesh *me = xcalloc((size_t)s.nroi + 1, sizeof *me);
@@ -300,11 +305,14 @@ int tile_dicom_main(const tile_dicom_opts *o, const char *in, const tile_dicom_e
   int flags = (env->pairs ? RTSTRUCT_PAIRS : 0) | (env->no_keyholes ? RTSTRUCT_NO_KEYHOLES : 0) |
               (env->read_flags & CONTOUR_SKIP_BAD ? RTSTRUCT_SKIP_BAD : 0) |
               (env->read_flags & CONTOUR_UNION ? RTSTRUCT_UNION : 0) |
-              (env->read_flags & CONTOUR_VERBOSE ? RTSTRUCT_VERBOSE : 0);
+              (env->read_flags & CONTOUR_VERBOSE ? RTSTRUCT_VERBOSE : 0) |
+              (env->read_flags & CONTOUR_DROP_DEGENERATE ? RTSTRUCT_DROP_DEGENERATE : 0);
   rerr = xmalloc(TILE_ERR_MAX);
+  refused = xmallocarray((size_t)s.nroi + 1, sizeof *refused);
   for (int i = 0; i < npick; i++) {
     const rtstruct_roi *r = &s.roi[pick[i]];
     int bad = rtstruct_roi_check(&s, pick[i], rerr, TILE_ERR_MAX);
+    int empty = bad && !r->error;   /* no closed planar contours: nothing to tile, not a refusal */
     if (!bad && tile)
       bad = rtstruct_roi_stack(&s, pick[i], flags | RTSTRUCT_ONE_SLICE, &st[kept], notes, "tile", rerr, TILE_ERR_MAX);
     if (!bad && tile) {   /* one slice: only with --thickness, said as the reader says its refusals */
@@ -323,11 +331,14 @@ int tile_dicom_main(const tile_dicom_opts *o, const char *in, const tile_dicom_e
         tile_say_lines(stderr, rerr);
         goto done;
       }
-      if (notes) {
+      /* A refusal is said even under -q; an ROI with nothing to tile is a note. */
+      if (notes || !empty) {
         size_t el = strlen(rerr);
         snprintf(rerr + el, TILE_ERR_MAX - el, "; skipped");
-        tile_say_lines(notes, rerr);
+        tile_say_lines(notes ? notes : stderr, rerr);
       }
+      if (empty) nempty++;
+      else refused[nrefused++] = pick[i];
       continue;
     }
     warn_lines(notes, r->warnings);
@@ -342,8 +353,10 @@ int tile_dicom_main(const tile_dicom_opts *o, const char *in, const tile_dicom_e
     fprintf(stderr, "tile: %s: none of the %d ROIs can be tiled\n", s.name, s.nroi);
     goto done;
   }
+  int ntiled = 0;   /* ROIs tiled, in pick[0..ntiled-1] (with all, the refused ones left out) */
   if (out_dir) mpath = dir_paths(&s, pick, npick, env->out, o->format ? o->format : "stl");
   if (con_dir) cpath = dir_paths(&s, pick, npick, o->contours, "contours");
+  npaths = npick;
   /* The files can be written (a folder: made or makeable), checked before
    * the tiling: a run never prints its report and then fails to write. */
   if (!writable(out_dir ? (mpath ? mpath[0] : NULL) : env->out, out_dir ? env->out : NULL) ||
@@ -369,19 +382,43 @@ int tile_dicom_main(const tile_dicom_opts *o, const char *in, const tile_dicom_e
       snprintf(sname, sizeof sname, "%s: ROI %d '%s' as a stack", s.name, r->number, r->name);
       roi_map rm = {&s, pick[i], sname};
       tile_dicom_map map = {map_rewrite, &rm};
-      if (env->tile(env->ud, &st[i], sname, &map, hpre, pre, i == 0, &me[i]) != 0) {
-        nmesh = i + 1;
-        goto done;
+      int k = ntiled;   /* its mesh and stack go to slot k (k <= i) */
+      if (k != i) {
+        contour_stack t = st[k];
+        st[k] = st[i], st[i] = t;
+        pick[k] = pick[i];
+        if (mpath) {
+          char *x = mpath[k];
+          mpath[k] = mpath[i], mpath[i] = x;
+        }
+        if (cpath) {
+          char *x = cpath[k];
+          cpath[k] = cpath[i], cpath[i] = x;
+        }
       }
-      nmesh = i + 1;
-      for (int v = 0; v < me[i].nv; v++)
-        rtstruct_to_patient(r, &me[i].v[v].x, &me[i].v[v].y, &me[i].v[v].z);
+      int res = env->tile(env->ud, &st[k], sname, &map, hpre, pre, k == 0, &me[k]);
+      nmesh = k + 1;
+      if (res != 0) {
+        if (!all) goto done;
+        mesh_free(&me[k]);
+        refused[nrefused++] = pick[k];
+        nmesh = k;
+        continue;
+      }
+      ntiled++;
+      for (int v = 0; v < me[k].nv; v++)
+        rtstruct_to_patient(r, &me[k].v[v].x, &me[k].v[v].y, &me[k].v[v].z);
+    }
+    if (ntiled == 0) {
+      fprintf(stderr, "tile: %s: none of the %d ROIs can be tiled\n", s.name, s.nroi);
+      goto done;
     }
     if (fflush(stdout) != 0) {
       fprintf(stderr, "tile: cannot write the report (%s)\n", strerror(errno));
       goto done;
     }
   }
+  if (tile) npick = ntiled;
   /* The files. */
   if ((out_dir && make_dir(env->out) != 0) || (con_dir && make_dir(o->contours) != 0)) goto done;
   for (int i = 0; i < npick; i++) {
@@ -398,18 +435,35 @@ int tile_dicom_main(const tile_dicom_opts *o, const char *in, const tile_dicom_e
     }
   }
   rcode = 0;
+  if (nrefused) {
+    /* One line that counts both, naming the refused (each said above), and
+     * an exit status that says some were refused. */
+    strbuf b = {0};
+    qsort(refused, (size_t)nrefused, sizeof *refused, by_int);
+    strbuf_add(&b, "tile: %s: %d of %d ROIs %s, %d refused (", s.name, npick, s.nroi,
+               tile ? "tiled" : "converted", nrefused);
+    for (int i = 0; i < nrefused; i++)
+      strbuf_add(&b, "%sROI %d '%s'", i ? ", " : "", s.roi[refused[i]].number, s.roi[refused[i]].name);
+    strbuf_add(&b, ": each said above)");
+    if (nempty) strbuf_add(&b, ", %d with nothing to tile", nempty);
+    strbuf_add(&b, "\n");
+    fputs(b.buf, stderr);
+    free(b.buf);
+    rcode = TILE_DICOM_SOME_REFUSED;
+  }
 done:
   if (notes) fclose(notes);
   free(held);
   free(rerr);
   for (int i = 0; i < nmesh; i++) mesh_free(&me[i]);
   for (int i = 0; i < s.nroi; i++) contour_stack_free(&st[i]);
-  free_paths(mpath, npick);
-  free_paths(cpath, npick);
+  free_paths(mpath, npaths);
+  free_paths(cpath, npaths);
   free(me);
   free(st);
   free(chosen);
   free(pick);
+  free(refused);
   rtstruct_free(&s);
   return rcode;
 }

@@ -67,7 +67,12 @@ int tile_dicom_is_dir(const char *path);
 int tile_dicom_option(tile_dicom_opts *o, const char *a, const char *v, char *err, size_t errlen);
 int tile_dicom_given(const tile_dicom_opts *o);   /* any of them given */
 
-/* ./tile on the DICOM file `in`: returns the exit status. */
+/* The exit status of --roi all when some ROIs were refused and the others
+ * tiled (and written). */
+enum { TILE_DICOM_SOME_REFUSED = 3 };
+
+/* ./tile on the DICOM file `in`: returns the exit status (0, 1 bad input or
+ * nothing tiled, 2 bad usage, TILE_DICOM_SOME_REFUSED). */
 int tile_dicom_main(const tile_dicom_opts *o, const char *in, const tile_dicom_env *env);
 
 #endif

@@ -19,26 +19,12 @@ int apex_sees_all(const vec2 *p, int n, vec2 q) {
   return 1;
 }
 
-/* The area centroid, about p[0]. */
-static vec2 centroid(const vec2 *p, int n) {
-  double a = 0, cx = 0, cy = 0;
-  for (int i = 1; i + 1 < n; i++) {
-    double ux = p[i].x - p[0].x, uy = p[i].y - p[0].y, vx = p[i + 1].x - p[0].x, vy = p[i + 1].y - p[0].y;
-    double w = ux * vy - uy * vx;
-    a += w;
-    cx += w * (ux + vx);
-    cy += w * (uy + vy);
-  }
-  if (a == 0) return p[0];
-  return (vec2){p[0].x + cx / (3 * a), p[0].y + cy / (3 * a)};
-}
-
 /* A finite point that sees all of p (the exact orientations take finite
  * points only; a centroid of a sliver whose area cancelled may not be). */
 static int sees_all(const vec2 *p, int n, vec2 c) { return isfinite(c.x) && isfinite(c.y) && apex_sees_all(p, n, c); }
 
 int apex_point(const vec2 *p, int n, vec2 *at) {
-  vec2 c = centroid(p, n);
+  vec2 c = geom_centroid(p, n);
   if (sees_all(p, n, c)) {
     *at = c;
     return 1;
@@ -75,7 +61,7 @@ int apex_point(const vec2 *p, int n, vec2 *at) {
   }
   int ok = 0;
   if (k >= 3) {
-    c = centroid(kr, k);
+    c = geom_centroid(kr, k);
     if (sees_all(p, n, c)) *at = c, ok = 1;
   }
   free(kr);

@@ -61,6 +61,17 @@ static int in_small(const vec2 *p, int n, vec2 q) {
   return odd;
 }
 
+/* Exact point strictly inside a small polygon: 1, else 0 (outside or on). */
+static int in_strict(const vec2 *p, vec2 q) {
+  for (int s = 0; s < 4; s++) {
+    vec2 a = p[s], b = p[(s + 1) % 4];
+    if (exact_orient(a, b, q) == 0 && q.x >= fmin(a.x, b.x) && q.x <= fmax(a.x, b.x) && q.y >= fmin(a.y, b.y) &&
+        q.y <= fmax(a.y, b.y))
+      return 0;
+  }
+  return in_small(p, 4, q);
+}
+
 static int meets(const slice_contour *c, segment s, vec2 ok1, vec2 ok2) {
   return inside_segment_meets(c->ix, s.a, s.b, ok1, ok2);
 }
@@ -102,8 +113,11 @@ static int legal(const ctx *c, int x, int i, int y, int j, int strict) {
       if (k != CROSSING_TOUCH || !shared) return 0;
     }
   }
+  /* An earlier corridor may not hold either contour: a point of it strictly
+   * inside (a contour's own corner of that corridor, on its boundary, does
+   * not count: a contour may carry several bridges). */
   for (int b = 0; b < c->nb; b++)
-    if (in_small(c->quads[b], 4, X->pt[0]) || in_small(c->quads[b], 4, Y->pt[0])) return 0;
+    if (in_strict(c->quads[b], X->pt[0]) || in_strict(c->quads[b], Y->pt[0])) return 0;
   return 1;
 }
 

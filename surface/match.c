@@ -217,6 +217,10 @@ void match_slices(const slices *sl, int k, const match_opts *o, junctions *out) 
           }
           if (r != OVERLAP_INTERIOR) continue;
         }
+        if (o->careful) {
+          if (!try_link(&m, a, b)) new_link(&m, a, b, MATCH_LINK_OVERLAP)->dropped = 1;
+          continue;
+        }
         unite(up, a - f0, b - f0);
       }
     }

@@ -33,7 +33,9 @@
  * start points or winding.  A link the overlap rule would not make (touch,
  * single, nearest) that puts two or more contours on a side of a junction
  * is made only if bridges can join them (surface/bridge.h); otherwise it is
- * dropped (match_link.dropped), never a refusal of the stack.
+ * dropped (match_link.dropped), never a refusal of the stack.  With
+ * careful, overlap links too (a branching that no bridges can join: the
+ * contours it leaves out end, capped, and are named).
  *
  * Junctions are the connected groups of links (union-find): 1-1 (a band),
  * n-m (branching and merging: bridges, surface/bridge.h), and the contours
@@ -52,6 +54,9 @@ typedef struct {
                        (slices.scale); INFINITY: any */
   int gaps;         /* 1: find the gaps of the links and each end's nearest
                        candidate (for notes); 0: only count the ends */
+  int careful;      /* 1: an overlap link too is made only where bridges can join
+                       the junction it makes (else dropped, MATCH_LINK_OVERLAP):
+                       for the slices where the links as made cannot be bridged */
 } match_opts;
 
 typedef struct {
@@ -61,9 +66,10 @@ typedef struct {
   int apart;        /* 1-1, joined without overlap (MATCH_LINK_SINGLE or _NEAREST) */
 } junction;
 
-enum { MATCH_LINK_TOUCH = 1, MATCH_LINK_SINGLE, MATCH_LINK_NEAREST };
+enum { MATCH_LINK_TOUCH = 1, MATCH_LINK_SINGLE, MATCH_LINK_NEAREST, MATCH_LINK_OVERLAP };
 
-/* A link beyond an overlap of the open regions, made or dropped. */
+/* A link beyond an overlap of the open regions, made or dropped; with
+ * careful, an overlap link dropped. */
 typedef struct {
   int a, b;         /* the contours: a on slice k, b on slice k+1 */
   int how;          /* MATCH_LINK_TOUCH, _SINGLE or _NEAREST */

@@ -6,8 +6,9 @@
  * One row per band (band = 0, 1, ...): the slices' z, the contours' depth,
  * which contours of the lower and upper slice (their places in canonical
  * order, joined by '+'), the junction type (contours below - above), the
- * points of the two contours the tiler saw (m below, n above, bridge
- * vertices included), bridges, the optimum, the band's area and slab volume,
+ * points of the two contours (m below, n above, bridge vertices included:
+ * the band has m + n tiles; a 1-1 band's tiler sees their corners only,
+ * surface/follow.h), bridges, the optimum, the band's area and slab volume,
  * the tiler's node evaluations, the spans its optimum used twice (a pinched
  * band, surface/unpinch.h: the band is then the cheapest path without, and
  * cost its cost); with --procs the parallel run's columns,
@@ -20,7 +21,10 @@
  * closed|open, vertices, triangles, bridges, cost, area, volume, nodes and
  * the Euler characteristic), and one row `component` per connected
  * component (closed|pinched|open, vertices, triangles, area, volume, Euler
- * characteristic, genus when closed). */
+ * characteristic, genus when closed).  Volumes are given only where the
+ * surface encloses one: on every row when the mesh is closed (then the
+ * bands' and caps' volumes sum to the mesh's), on a closed component's row;
+ * an open mesh's (--no-caps) volume fields are empty. */
 #ifndef REPORT_H
 #define REPORT_H
 

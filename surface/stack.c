@@ -17,6 +17,7 @@
 #include "args.h"
 #include "bridge.h"
 #include "ends.h"
+#include "follow.h"
 #include "kernel.h"
 #include "match.h"
 #include "pool.h"
@@ -43,9 +44,10 @@ typedef struct {
   int slice;
   const junction *j;
   composite lo, hi;
-  vec2 *seen;         /* the upper contour as the tiler sees it: hi.pt, or for a
-                         junction joined without overlap moved onto the lower's
-                         centroid */
+  int followed;       /* a 1-1 band tiled on its aligned pair (follow.h): fa, fb */
+  follow_side fa, fb;
+  const vec2 *P, *Q;  /* the pair the tiler sees: lo.pt and hi.pt, or fa.pt and fb.pt */
+  int np, nq;
   tiling t;
   double cost;        /* its path's true cost (tiling_path_cost), scaled as the slices */
   char *err;
@@ -88,28 +90,15 @@ static void match_job(void *ud, int k) {
   match_slices(w->sl, k, &w->mo, &w->js[k]);
 }
 
-/* The area centroid of the polygon p[0..n-1], about p[0]. */
-static vec2 centroid(const vec2 *p, int n) {
-  double a = 0, x = 0, y = 0;
-  for (int i = 1; i + 1 < n; i++) {
-    double ux = p[i].x - p[0].x, uy = p[i].y - p[0].y, vx = p[i + 1].x - p[0].x, vy = p[i + 1].y - p[0].y;
-    double c = ux * vy - uy * vx;
-    a += c, x += (ux + vx) * c, y += (uy + vy) * c;
-  }
-  return (vec2){p[0].x + x / (3 * a), p[0].y + y / (3 * a)};
-}
-
-/* Two contours joined without overlap (a tilted tube, sparse slices) are
- * tiled as if the upper lay on the lower's centroid: the minimum-area path
- * of the pair as it stands folds the band (a sheared prism is not the least
- * area between two sections side by side), the aligned pair's follows their
- * shapes; the triangles join the contours where they are. */
-static void align(band *b) {
-  b->seen = b->hi.pt;
-  if (!b->j->apart) return;
-  vec2 c0 = centroid(b->lo.pt, b->lo.n), c1 = centroid(b->hi.pt, b->hi.n);
-  b->seen = xmallocarray((size_t)b->hi.n, sizeof *b->seen);
-  for (int k = 0; k < b->hi.n; k++) b->seen[k] = (vec2){b->hi.pt[k].x + (c0.x - c1.x), b->hi.pt[k].y + (c0.y - c1.y)};
+/* The pair the tiler sees: a 1-1 band's aligned pair (follow.h), unless
+ * the paper's plain band on the contours as they lie was asked for; an n-m
+ * band's composites as they lie. */
+static void pair_of(const work *w, band *b) {
+  b->P = b->lo.pt, b->np = b->lo.n, b->Q = b->hi.pt, b->nq = b->hi.n;
+  if (w->o->band == STACK_BAND_PLAIN || b->j->nlo != 1 || b->j->nhi != 1) return;
+  follow_pair(b->lo.pt, b->lo.n, b->hi.pt, b->hi.n, &b->fa, &b->fb);
+  b->followed = 1;
+  b->P = b->fa.pt, b->np = b->fa.n, b->Q = b->fb.pt, b->nq = b->fb.n;
 }
 
 static void bridge_job(void *ud, int i) {
@@ -126,14 +115,14 @@ static void bridge_job(void *ud, int i) {
       bridge_join(sl, b->j->hi, b->j->nhi, k, hi_lift, w->name, &b->hi, err, sizeof err) != 0)
     b->err = xstrdup(err);
   else
-    align(b);
+    pair_of(w, b);
 }
 
 static void tile_job(void *ud, int i) {
   work *w = ud;
   band *b = &w->b[i];
   const slices *sl = w->sl;
-  tiling_solve(b->lo.pt, b->lo.n, sl->z[b->slice], b->seen, b->hi.n, sl->z[b->slice + 1], w->o->kind, -1, &b->t);
+  tiling_solve(b->P, b->np, sl->z[b->slice], b->Q, b->nq, sl->z[b->slice + 1], w->o->kind, -1, &b->t);
   if (w->o->progress) w->o->progress(w->o->progress_ud, atomic_fetch_add(&w->tiled, 1) + 1, w->nb);
 }
 
@@ -202,25 +191,24 @@ static void mesh_job(void *ud, int i) {
     tiling t2;
     b->span[0] = b->span[1] = 0;
     tiling_repeated_spans(&b->t, &b->span, 1);
-    b->pinched_cost = tiling_path_cost(&b->t, b->lo.pt, b->lo.n, sl->z[b->slice], b->seen, b->hi.n,
-                                       sl->z[b->slice + 1], w->o->kind);
+    b->pinched_cost = tiling_path_cost(&b->t, b->P, b->np, sl->z[b->slice], b->Q, b->nq, sl->z[b->slice + 1],
+                                       w->o->kind);
     b->pinched = 2;
-    if (unpinch_solve(b->lo.pt, b->lo.n, sl->z[b->slice], b->seen, b->hi.n, sl->z[b->slice + 1], w->o->kind,
-                      &t2) == 0) {
+    if (unpinch_solve(b->P, b->np, sl->z[b->slice], b->Q, b->nq, sl->z[b->slice + 1], w->o->kind, &t2) == 0) {
       t2.count.nodes += b->t.count.nodes;
       tiling_free(&b->t);
       b->t = t2;
       b->pinched = 1;
     }
   }
-  b->cost = tiling_path_cost(&b->t, b->lo.pt, b->lo.n, sl->z[b->slice], b->seen, b->hi.n, sl->z[b->slice + 1],
-                             w->o->kind);
-  int steps = b->t.m + b->t.n;
+  b->cost = tiling_path_cost(&b->t, b->P, b->np, sl->z[b->slice], b->Q, b->nq, sl->z[b->slice + 1], w->o->kind);
+  int steps = b->lo.n + b->hi.n;
   b->ntri = steps + b->lo.ntri + b->hi.ntri;
   b->tri = xmallocarray((size_t)b->ntri, sizeof *b->tri);
   int (*tile)[3] = xmallocarray((size_t)steps, sizeof *tile);
   unsigned char *on = xmalloc((size_t)steps);
-  tiling_tiles(&b->t, tile, on);
+  if (b->followed) follow_tiles(&b->t, &b->fa, &b->fb, tile, on);
+  else tiling_tiles(&b->t, tile, on);
   int nt = 0;
   for (int k = 0; k < steps; k++) {
     /* Seen from outside, an edge of the lower contour with the apex above
@@ -312,8 +300,8 @@ static int tile_bands(work *w, stack_surface *ss, char *err, size_t errlen) {
   ss->pairs = xcalloc((size_t)nb + 1, sizeof *ss->pairs);
   for (int i = 0; i < nb; i++) {
     par_pair *p = &ss->pairs[i];
-    p->P = w->b[i].lo.pt, p->np = w->b[i].lo.n, p->zp = sl->z[w->b[i].slice];
-    p->Q = w->b[i].seen, p->nq = w->b[i].hi.n, p->zq = sl->z[w->b[i].slice + 1];
+    p->P = w->b[i].P, p->np = w->b[i].np, p->zp = sl->z[w->b[i].slice];
+    p->Q = w->b[i].Q, p->nq = w->b[i].nq, p->zq = sl->z[w->b[i].slice + 1];
   }
   if (rc->mc.sim.topo.kind != TOPO_NONE) rc->pair_net = ss->nets = xcalloc((size_t)nb + 1, sizeof *ss->nets);
   if (run_pairs(rc, ss->pairs, nb, err, errlen) != 0) res = -2;
@@ -420,6 +408,7 @@ static void join_notes(const work *w) {
       if (l->dropped) {
         char why[120];
         if (l->how == MATCH_LINK_TOUCH) snprintf(why, sizeof why, "their regions touch");
+        else if (l->how == MATCH_LINK_OVERLAP) snprintf(why, sizeof why, "their regions overlap");
         else snprintf(why, sizeof why, "its nearest there, gap %s, %s", ARGS_G(gap_of(w, &l->gap)), w->joinopt);
         fprintf(f, "%s: %s:%d: not joined to the contour at line %d on slice z=%s (%s): no bridges can "
                 "join the contours of the junction it would make\n", o->prefix, w->name, sl->c[from].line,
@@ -465,7 +454,7 @@ static void count_joins(const work *w, stack_surface *ss) {
     const junctions *js = &w->js[k];
     for (int i = 0; i < js->nlinks; i++) {
       if (js->links[i].dropped) ss->joins.dropped++;
-      else if (js->links[i].how != MATCH_LINK_TOUCH) ss->joins.apart++;
+      else if (js->links[i].how != MATCH_LINK_TOUCH && js->links[i].how != MATCH_LINK_OVERLAP) ss->joins.apart++;
     }
     ss->joins.unjoined += js->nends;
   }
@@ -495,16 +484,18 @@ static void print_notes(const work *w) {
   }
   for (int i = 0; i < w->nb; i++) {
     const band *b = &w->b[i];
-    if (b->pinched)
-      fprintf(o->notes,
-              "%s: %s:%d: the band from this contour (slice z=%s) to the slice z=%s: its optimum "
-              "(cost %s) uses the span from (%s %s) to (%s %s) twice, a pinched, "
-              "non-manifold band; %s\n",
-              o->prefix, w->name, sl->c[b->j->lo[0]].line, ARGS_G(unscale(sl, sl->z[b->slice], 1)),
-              ARGS_G(unscale(sl, sl->z[b->slice + 1], 1)), ARGS_G(unscale(sl, b->pinched_cost, w->deg)),
-              ARGS_G(unscale(sl, b->lo.pt[b->span[0]].x, 1)), ARGS_G(unscale(sl, b->lo.pt[b->span[0]].y, 1)),
-              ARGS_G(unscale(sl, b->hi.pt[b->span[1]].x, 1)), ARGS_G(unscale(sl, b->hi.pt[b->span[1]].y, 1)),
-              b->pinched == 1 ? "the cheapest path that does not is used" : "too large to replace; kept");
+    if (!b->pinched) continue;
+    vec2 lo = b->lo.pt[b->followed ? b->fa.at[b->span[0]] : b->span[0]];
+    vec2 hi = b->hi.pt[b->followed ? b->fb.at[b->span[1]] : b->span[1]];
+    fprintf(o->notes,
+            "%s: %s:%d: the band from this contour (slice z=%s) to the slice z=%s: its optimum "
+            "(cost %s) uses the span from (%s %s) to (%s %s) twice, a pinched, "
+            "non-manifold band; %s\n",
+            o->prefix, w->name, sl->c[b->j->lo[0]].line, ARGS_G(unscale(sl, sl->z[b->slice], 1)),
+            ARGS_G(unscale(sl, sl->z[b->slice + 1], 1)), ARGS_G(unscale(sl, b->pinched_cost, w->deg)),
+            ARGS_G(unscale(sl, lo.x, 1)), ARGS_G(unscale(sl, lo.y, 1)), ARGS_G(unscale(sl, hi.x, 1)),
+            ARGS_G(unscale(sl, hi.y, 1)),
+            b->pinched == 1 ? "the cheapest path that does not is used" : "too large to replace; kept");
   }
   for (int i = 0; i < w->nends; i++)
     if (sl->nslices > 1 && w->ends[i].isolated && w->caps[i].nnew > 1)
@@ -642,9 +633,11 @@ static void to_file_units(const work *w, const contour_stack *s, stack_surface *
   }
 }
 
-static void work_free(work *w) {
+/* The bands and the ends, planned from the junctions (plan_work). */
+static void plan_free(work *w) {
   for (int i = 0; i < w->nb; i++) {
-    if (w->b[i].seen != w->b[i].hi.pt) free(w->b[i].seen);
+    follow_free(&w->b[i].fa);
+    follow_free(&w->b[i].fb);
     bridge_free(&w->b[i].lo);
     bridge_free(&w->b[i].hi);
     tiling_free(&w->b[i].t);
@@ -655,11 +648,51 @@ static void work_free(work *w) {
   if (w->ends) ends_free(w->ends, w->nends);
   free(w->caps);
   free(w->b);
+  free(w->up);
+  free(w->down);
+  w->b = NULL, w->nb = 0, w->caps = NULL, w->ends = NULL, w->nends = 0, w->up = w->down = NULL;
+}
+
+static void work_free(work *w) {
+  plan_free(w);
   free(w->verts);
   for (int k = 0; k + 1 < w->sl->nslices; k++) match_free(&w->js[k]);
   free(w->js);
-  free(w->up);
-  free(w->down);
+}
+
+/* The bands and, with caps, the ends to close. */
+static void plan_work(work *w) {
+  plan_bands(w);
+  if (w->o->caps || w->sl->nslices == 1) {   /* one slice: the slab is closed */
+    w->nends = ends_plan(w->sl, w->up, w->down, &w->ends);
+    w->caps = xcalloc((size_t)w->nends + 1, sizeof *w->caps);
+  }
+}
+
+/* A branching that no bridges can join (a contour below overlapping six
+ * above that bridges cannot gather): its slices matched again with every
+ * link, overlaps too, made only where bridges can join the junction it
+ * makes, the rest dropped, named in notes, and their contours capped; then
+ * everything planned again.  1 if some band failed so, else 0. */
+static int rematch_unbridged(work *w) {
+  int any = 0;
+  unsigned char *redo = xcalloc((size_t)w->sl->nslices + 1, 1);
+  for (int i = 0; i < w->nb; i++)
+    if (w->b[i].err) redo[w->b[i].slice] = 1, any = 1;
+  if (any) {
+    match_opts careful = w->mo;
+    careful.careful = 1;
+    plan_free(w);
+    for (int k = 0; k + 1 < w->sl->nslices; k++)
+      if (redo[k]) {
+        match_free(&w->js[k]);
+        match_slices(w->sl, k, &careful, &w->js[k]);
+      }
+    plan_work(w);
+    atomic_store(&w->tiled, 0);
+  }
+  free(redo);
+  return any;
 }
 
 int stack_check_slices(const contour_stack *s, const char *name, double thickness, char *err, size_t errlen) {
@@ -746,27 +779,26 @@ int stack_tile(const contour_stack *s, const char *name, const stack_options *o,
   w.half = ns == 1 ? geom_ldexp(o->thickness / 2, -sl.scale) : 0;
   w.js = xcalloc((size_t)ns, sizeof *w.js);
   pool_run(threads, ns - 1, NULL, match_job, &w);
-  plan_bands(&w);
+  plan_work(&w);
   w.verts = xmallocarray((size_t)sl.nverts + 1, sizeof *w.verts);
   for (int c = 0; c < sl.ncontours; c++)
     for (int k = 0; k < sl.c[c].n; k++)
       w.verts[sl.c[c].base + k] = (vec3){sl.c[c].pt[k].x, sl.c[c].pt[k].y, sl.z[sl.c[c].slice]};
-  if (o->caps || ns == 1) {   /* one slice: the slab is closed */
-    w.nends = ends_plan(&sl, w.up, w.down, &w.ends);
-    w.caps = xcalloc((size_t)w.nends + 1, sizeof *w.caps);
-  }
   int rc = 0;
   stack_surface *ss = xcalloc(1, sizeof *ss);
   rule_names(o, ss->rule, sizeof ss->rule, w.joinopt, sizeof w.joinopt);
-  count_joins(&w, ss);
   if (o->rc) {
     pool_run(threads, w.nb, NULL, bridge_job, &w);
+    if (rematch_unbridged(&w)) pool_run(threads, w.nb, NULL, bridge_job, &w);
+    count_joins(&w, ss);
     rc = first_error(&w, err, errlen);
     if (rc == 0) rc = tile_bands(&w, ss, err, errlen);
     if (rc == 0) pool_run(threads, w.nb, NULL, mesh_job, &w);
     if (rc == 0) pool_run(threads, w.nends, NULL, cap_job, &w);
   } else {
     whole_run(&w);
+    if (rematch_unbridged(&w)) whole_run(&w);
+    count_joins(&w, ss);
     rc = first_error(&w, err, errlen);
   }
   if (rc == 0) {
@@ -775,7 +807,7 @@ int stack_tile(const contour_stack *s, const char *name, const stack_options *o,
     if (o->notes && ss->me.nt == 0)
       fprintf(o->notes, "%s: %s: the mesh is empty: no contour is joined to one on a neighbouring slice%s%s\n",
               o->prefix, name, o->join != MATCH_NEAREST ? "; --join nearest joins contours that lie apart" : "",
-              o->caps ? "" : "; --caps closes each contour on its own");
+              o->caps ? "" : "; without --no-caps each contour is closed on its own");
     finish f = {ss, 0, 0};
     pool_run(threads, 2, NULL, finish_job, &f);
     to_file_units(&w, s, ss, &f);

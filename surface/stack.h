@@ -46,6 +46,14 @@
 #include "run.h"
 #include "manifold.h"
 
+/* How a 1-1 band is tiled.  STACK_BAND_ALIGNED: on its contours' corners,
+ * the upper moved and scaled onto the lower (surface/follow.h), so that the
+ * band follows the structure (prisms, oblique cylinders and frustums exact,
+ * whatever their sampling); STACK_BAND_PLAIN: the paper's minimum-cost band
+ * of the two contours as they lie, every point counted.  n-m bands (with
+ * bridges) are tiled as they lie either way. */
+typedef enum { STACK_BAND_ALIGNED = 0, STACK_BAND_PLAIN } stack_band;
+
 typedef struct {
   cost_kind kind;
   int caps;            /* 1: close every end (watertight); 0: leave them open */
@@ -62,6 +70,7 @@ typedef struct {
                           INFINITY: any */
   double thickness;    /* a stack of one slice: > 0 makes it a slab this thick, closed
                           (half above, half below); 0 refuses it */
+  stack_band band;     /* how a 1-1 band is tiled; 0 is the default, STACK_BAND_ALIGNED */
 } stack_options;
 
 /* The joins of a surface (notes on `notes`, counts in the report's joins row). */
@@ -82,8 +91,8 @@ typedef struct {
   int depth;           /* 0 outer boundaries, 1 holes, ... */
   int nlo, nhi;        /* contours on slice0 and on slice1 (cap: on one side only) */
   int *lo, *hi;        /* their places on their slices (slices.h: canonical order) */
-  int m, n;            /* band: points of the two contours the tiler saw (with bridge
-                          vertices); cap: the region's points, 0 */
+  int m, n;            /* band: points of the two contours (with bridge vertices;
+                          the band has m + n tiles); cap: the region's points, 0 */
   int bridges;         /* band: bridges on both sides */
   double cost;         /* band: the true cost of the tiler's optimal path (bridge
                           vertices in the plane; tiling_path_cost) */

@@ -156,7 +156,7 @@ refused count $F/count.dcm "ROI 7 'Prostate', contour item 1: NumberOfContourPoi
 refused nonnumeric $F/nonnumeric.dcm "ROI 7 'Prostate', contour item 1, point 3: y is not a number (abc)" --roi Prostate
 refused nonfinite $F/nonfinite.dcm "ROI 7 'Prostate', contour item 1, point 4: x is not finite (1e999)" --roi 7
 refused triplets $F/triplets.dcm "ROI 7 'Prostate', contour item 1: ContourData holds 7 values, not x y z triplets" --roi 7
-refused oblique $F/oblique.dcm "ROI 7 'Prostate', contour item 2: not planar (its points spread 0.497 mm off their best plane)" --roi 7
+refused oblique $F/oblique.dcm "ROI 7 'Prostate', contour item 2: not planar (its points spread 0.497 mm off their best plane, more than the 0.1 mm their precision allows)" --roi 7
 refused twoperslice $F/twoperslice.dcm "byte 602: ROI 7 'Prostate', contour item 2: contour crosses the contour at contour item 1 on slice z=5 (2 10); --union merges overlapping contours of a slice into their union" --roi 7
 refused onecontour $F/onecontour.dcm "ROI 7 'Prostate', contour item 1: the only contour lies on one slice (z=5): a surface needs two slices, or --thickness T" --roi 7
 refused unknown $D/dicompyler_rtss.dcm "no ROI named or numbered 'Lung' (the ROIs: 1 'BODY', 2 'Areola'," --roi Lung

@@ -106,24 +106,26 @@ for f in 1e300 1e-300; do
     bad "$f: span costs differ from unit scale: $(head -3 "$T/d.csv")"
 done
 
-# The quantum (item 9): the spike's cost equals its area to 1e-12 (was 3.4e-4).
+# The quantum (item 9): the spike's cost equals its area to 1e-12 (was 3.4e-4),
+# on the paper's plain band.
 printf 'C 4 0\n0 0\n1 0\n0.5 3e11\n0 1\nC 4 1\n0 0\n1 0\n1 1\n0 1\n' > "$T/spike.contours"
-"$TILE" "$T/spike.contours" > "$T/spike.csv" 2>&1
+"$TILE" "$T/spike.contours" --band plain > "$T/spike.csv" 2>&1
 bands "$T/spike.csv" | awk -F, 'NR == 1 { d = ($1 - $2) / $2; if (d < 0) d = -d; exit !(d < 1e-12 && $2 > 3.62e11) }' && ok ||
   bad "spike: cost and area differ: $(cat "$T/spike.csv")"
 
 # A span used twice (item 8): the issue's sliver (50 points on a diagonal near
 # 1e8, one 1e-8 off it) under a 20-gon of radius 100 one unit up, off to one
-# side.  The note names the band and the span (not with -q); the spans column
-# says 1 either way, and the mesh is closed (the band that uses no span twice).
+# side, on the paper's plain band.  The note names the band and the span (not
+# with -q); the spans column says 1 either way, and the mesh is closed (the
+# band that uses no span twice).
 awk 'BEGIN { print "C 51 0"; for (i = 0; i < 50; i++) printf "%.17g %.17g\n", 1e8 + i, 1e8 + i
              print "100000000 100000000.00000001"; print "C 20 1"
              for (k = 0; k < 20; k++) { a = 6.283185307179586 * k / 20 + 0.1
                printf "%.17g %.17g\n", 1e8 + 100 + 100 * cos(a), 1e8 + 100 + 100 * sin(a) } }' > "$T/sliver.contours"
-"$TILE" "$T/sliver.contours" --cost span --caps > "$T/sl.csv" 2> "$T/err" && ok || bad "sliver refused: $(cat "$T/err")"
+"$TILE" "$T/sliver.contours" --cost span --band plain > "$T/sl.csv" 2> "$T/err" && ok || bad "sliver refused: $(cat "$T/err")"
 grep -q "^tile: $T/sliver.contours:1: the band from this contour (slice z=0) to the slice z=1: its optimum (cost [0-9.]*) uses the span from (100000049 100000049) to ([0-9.]* [0-9.]*) twice" "$T/err" && ok ||
   bad "sliver: no note naming the span: $(cat "$T/err")"
-"$TILE" "$T/sliver.contours" --cost span --caps -q > "$T/slq.csv" 2> "$T/err"
+"$TILE" "$T/sliver.contours" --cost span --band plain -q > "$T/slq.csv" 2> "$T/err"
 [ ! -s "$T/err" ] && ok || bad "sliver -q: stderr $(cat "$T/err")"
 awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next } $1 == "0" { s = $c["spans"] } $1 == "mesh" { j = $c["junction"] }
          END { exit !(s == 1 && j == "closed") }' "$T/slq.csv" && ok || bad "sliver: spans or junction: $(cat "$T/slq.csv")"

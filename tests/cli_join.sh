@@ -58,8 +58,8 @@ judge "$T/ov.obj" "$T/sq.contours" "squares, --join overlap"
 
 # ---- Nothing joined, no caps: the empty mesh in one line.
 { sq 0 0; sq 3 1; sq 6 2; } > "$T/three.contours"
-"$TILE" "$T/three.contours" --join touch > "$T/e.csv" 2> "$T/err" && ok || bad "empty: exit status"
-grep -qxF "tile: $T/three.contours: the mesh is empty: no contour is joined to one on a neighbouring slice; --join nearest joins contours that lie apart; --caps closes each contour on its own" "$T/err" \
+"$TILE" "$T/three.contours" --join touch --no-caps > "$T/e.csv" 2> "$T/err" && ok || bad "empty: exit status"
+grep -qxF "tile: $T/three.contours: the mesh is empty: no contour is joined to one on a neighbouring slice; --join nearest joins contours that lie apart; without --no-caps each contour is closed on its own" "$T/err" \
   && [ "$(row mesh "$T/e.csv" 8-9)" = "12,0" ] && [ "$(row joins "$T/e.csv" 7-10)" = "touch,0,4,0" ] \
   && ok || bad "empty: $(cat "$T/err")"
 "$TILE" "$T/three.contours" --join 2 -q > "$T/n.csv" && [ "$(row joins "$T/n.csv" 7-10)" = "2,2,0,0" ] \

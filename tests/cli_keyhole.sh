@@ -167,7 +167,8 @@ rm -f "$T/n.stl"
   grep -qF "tile: $D/rtutils_dummy_rt.dcm: byte 10014: ROI 2 'ROI-2', contour item 1: the contour crosses itself: the segment from point 35 to point 36 touches the segment from point 44 to point 45 (-39.795 38.086)" "$T/err" &&
   ok || bad "--no-keyholes ROI-2: exit $rc: $(cat "$T/err")"
 "$TILE" $D/rtutils_dummy_rt.dcm --roi all --caps --no-keyholes -o "$T/n/" > "$T/out" 2> "$T/err"; rc=$?
-[ $rc -eq 0 ] && [ "$(ls "$T/n" | tr '\n' ' ')" = "ROI-1.stl ROI-3.stl " ] && [ "$(grep -c 'crosses itself.*; skipped$' "$T/err")" -eq 1 ] &&
+[ $rc -eq 3 ] && [ "$(ls "$T/n" | tr '\n' ' ')" = "ROI-1.stl ROI-3.stl " ] && [ "$(grep -c 'crosses itself.*; skipped$' "$T/err")" -eq 1 ] &&
+  grep -qxF "tile: $D/rtutils_dummy_rt.dcm: 2 of 4 ROIs tiled, 2 refused (ROI 2 'ROI-2', ROI 4 'ROI-4': each said above)" "$T/err" &&
   grep -q "ROI 4 'ROI-4': 3 of 3 contours cannot be tiled (1015 of 1015 points), each named above; --skip-bad drops them and tiles the rest; skipped$" "$T/err" &&
   [ "$(grep -c "ROI 4 'ROI-4', contour item [123]: the contour crosses itself" "$T/err")" -eq 3 ] &&
   ! grep -q keyhole "$T/err" && ok || bad "--no-keyholes --roi all: exit $rc: $(cat "$T/err")"

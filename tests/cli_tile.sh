@@ -36,17 +36,12 @@ expect_error nonnumeric   "C 3 0\n0 0\n1 abc\n0 1\n"          '3: y is not a num
 expect_error fewer        "C 4 0\n$P3"                        '4: the contour at line 1 announced 4 points but has 3 (end of file)'
 expect_error fewer2       "C 4 0\n${P3}C 3 1\n$P3"            '5: the contour at line 1 announced 4 points but has 3'
 expect_error more         "C 3 0\n${P3}2 2\n"                 '5: more point lines than the 3 announced at line 1 (2 2)'
-expect_error twopoints    "C 3 0\n0 0\n1 0\n1 0\nC 3 1\n$P3"  '1: contour has 2 distinct points, needs at least 3'
-expect_error collinear    "C 3 0\n0 0\n1 1\n2 2\nC 3 1\n$P3"  '1: all 3 points of the contour are collinear'
+expect_error degenerate   "C 3 0\n0 0\n1 0\n1 0\nC 3 1\n0 0\n1 1\n2 2\n"  ' no contours left to tile: all 2 are degenerate'
+expect_error oneleft      "C 3 0\n0 0\n1 0\n1 0\nC 3 1\n$P3"  '5: the only contour lies on one slice (z=1)'
 # Several contours on a slice may not cross or touch (the later one in the
 # file is named, with the other's line and the point where they meet).
 expect_error crossing     "C 3 1\n${P3}C 3 2\n${P3}C 3 1\n0.5 -1\n3 -1\n0.5 0.5\n"  '9: contour crosses the contour at line 1 on slice z=1 (0.5 0)'
 expect_error touching     "C 3 1\n${P3}C 3 2\n${P3}C 3 1\n1 0\n3 0\n3 1\n"       '9: contour touches the contour at line 1 on slice z=1 (1 0)'
-# A bridge that cannot be made: two squares on slice 0 meet one U-shaped
-# contour above, and a wall between them (a third contour of slice 0, met by
-# nothing above) blocks every segment from one square to the other.
-U='C 8 1\n-1 2\n-1 -12\n12 -12\n12 2\n9 2\n9 -11\n2 -11\n2 2\n'
-expect_error nobridge     "C 4 0\n0 0\n1 0\n1 1\n0 1\nC 4 0\n10 0\n11 0\n11 1\n10 1\nC 4 0\n5 -10\n6 -10\n6 11\n5 11\n$U" '6: no bridge can join the contour to the contour at line 1 without crossing or enclosing a contour of their slice'
 expect_error onecontour   "C 3 0\n$P3"                        '1: the only contour lies on one slice (z=0): a surface needs two slices, or --thickness T to make this one a slab T thick'
 expect_error oneslice     "C 3 0\n${P3}C 3 0\n2 2\n3 2\n2 3\n"   '1: all 2 contours lie on one slice (z=0): a surface needs two slices, or --thickness T'
 expect_error binary       "C 3 0\n\001\002\003\n"             '2: binary data, not a contour file (byte 0x01)'
@@ -99,8 +94,26 @@ nv=$(awk -F, '/^[0-9]/{s+=$8; last=$9} END{print s+last}' "$T/a.csv")
 grep -q 'tile: <stdin>:6: dropped the repeated closing point' "$T/err" && ok || bad "no repair note: $(cat "$T/err")"
 "$TILE" $DATA/tinypatient_1.contours --cost span -q > "$T/d.csv" && ok || bad "--cost span"
 ! cmp -s "$T/c.csv" "$T/d.csv" && ok || bad "span and area costs give the same report"
-# Under --cost area a band's cost is the sum of its triangles' areas.
-awk -F, '/^[0-9]/{ d=$11-$12; if (d<0) d=-d; if (d > 1e-9*$11) bad=1 } END{exit bad}' "$T/a.csv" && ok || bad "cost and area disagree"
+# Under --cost area a plain band's cost is the sum of its triangles' areas.
+"$TILE" $DATA/prostate_2.contours -q --band plain > "$T/plain.csv" && ok || bad "--band plain"
+awk -F, '/^[0-9]/{ d=$11-$12; if (d<0) d=-d; if (d > 1e-9*$11) bad=1 } END{exit bad}' "$T/plain.csv" && ok || bad "cost and area disagree"
+# A branching that no bridge can join: two squares on slice 0 meet one
+# U-shaped contour above, and a wall between them (a third contour of slice
+# 0, met by nothing above) blocks every segment from one square to the other.
+# Not refused: the U joins the first square, the second ends (capped), a note
+# names the join dropped, and the mesh is closed.
+U='C 8 1\n-1 2\n-1 -12\n12 -12\n12 2\n9 2\n9 -11\n2 -11\n2 2\n'
+printf "C 4 0\n0 0\n1 0\n1 1\n0 1\nC 4 0\n10 0\n11 0\n11 1\n10 1\nC 4 0\n5 -10\n6 -10\n6 11\n5 11\n$U" > "$T/nobridge.contours"
+"$TILE" "$T/nobridge.contours" -o "$T/nobridge.obj" > "$T/nb.csv" 2> "$T/err" && [ -s "$T/nobridge.obj" ] &&
+  grep -qxF "tile: $T/nobridge.contours:6: not joined to the contour at line 16 on slice z=1 (their regions overlap): no bridges can join the contours of the junction it would make" "$T/err" &&
+  grep -q '^mesh,.*,closed,' "$T/nb.csv" && grep -q '^joins,,,,,,single,0,[0-9]*,1,' "$T/nb.csv" && ok || bad "nobridge: $(cat "$T/err")"
+# Degenerate contours (a point, two points, collinear: no area) are dropped
+# with one note that counts them (-v: one each), and the rest tiled.
+printf 'C 1 0\n5 5\nC 4 0\n0 0\n4 0\n4 4\n0 4\nC 2 1\n1 1\n2 2\nC 3 1\n0 0\n1 1\n2 2\nC 4 1\n0 0\n4 0\n4 4\n0 4\n' > "$T/degen.contours"
+"$TILE" "$T/degen.contours" > "$T/degen.csv" 2> "$T/err" && ok || bad "degenerate contours: $(cat "$T/err")"
+[ "$(cat "$T/err")" = "tile: $T/degen.contours:1: dropped 3 degenerate contours of 5 (6 points: single points, two points or all collinear, no area), this one the first: 1 distinct point, no area (z=0); -v names each" ] && ok || bad "degenerate contours: the note: $(cat "$T/err")"
+grep -q '^mesh,0,1,,,,closed,8,12,0,16,48,16,' "$T/degen.csv" && ok || bad "degenerate contours: not the 4 x 4 x 1 box: $(grep '^mesh' "$T/degen.csv")"
+"$TILE" "$T/degen.contours" -v > /dev/null 2> "$T/err" && [ "$(grep -c 'dropped a degenerate contour' "$T/err")" -eq 3 ] && ok || bad "degenerate contours, -v: $(cat "$T/err")"
 # Any number of contours per slice: tinypatient_0 (two on each of 9 slices)
 # gives two closed components of genus 0; the same bytes on 1 and 3 threads
 # (-j), and with the contours in the reverse order of the file.
@@ -117,7 +130,9 @@ done
 usage $DATA/tinypatient_0.contours -j 0
 usage $DATA/tinypatient_0.contours -j x
 usage $DATA/tinypatient_0.contours --cap-style round --caps
-usage $DATA/tinypatient_0.contours --cap-style apex
+usage $DATA/tinypatient_0.contours --cap-style apex --no-caps
+usage $DATA/tinypatient_0.contours --caps --no-caps
+usage $DATA/tinypatient_0.contours --band least
 
 # The parallel algorithm on the simulated machine: the same report as the
 # serial solver in its seventeen columns, the same mesh, and deterministic.

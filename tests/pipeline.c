@@ -2,6 +2,7 @@
  * abort: the robustness tests' and the fuzz targets' oracle. */
 #include "pipeline.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -10,6 +11,7 @@
 #include "mesh.h"
 #include "rtstruct.h"
 #include "rtwriter.h"
+#include "stack.h"
 #include "tiling.h"
 #include "xmem.h"
 
@@ -58,6 +60,43 @@ static int cmp(const void *a, const void *b) {
 
 /* Tile the stack when it is small enough; the mesh must be closed: every
  * edge used as often in one direction as in the other. */
+/* Every directed edge of the mesh as often as its reverse: closed. */
+static int closed_mesh(const mesh *me) {
+  size_t ne = (size_t)me->nt * 3;
+  unsigned long long *e = xmallocarray(ne ? ne : 1, sizeof *e), *r = xmallocarray(ne ? ne : 1, sizeof *r);
+  for (int t = 0; t < me->nt; t++)
+    for (int k = 0; k < 3; k++) {
+      unsigned long long a = (unsigned long long)me->t[t][k], b = (unsigned long long)me->t[t][(k + 1) % 3];
+      e[3 * (size_t)t + (size_t)k] = a * (unsigned long long)me->nv + b;
+      r[3 * (size_t)t + (size_t)k] = b * (unsigned long long)me->nv + a;
+    }
+  qsort(e, ne, sizeof *e, cmp);
+  qsort(r, ne, sizeof *r, cmp);
+  int ok = memcmp(e, r, ne * sizeof *e) == 0;
+  free(e);
+  free(r);
+  return ok;
+}
+
+/* The whole stack as ./tile makes it with the default options (aligned
+ * bands, caps; a thin slab for one slice): refused in lines that name the
+ * input, or a closed mesh. */
+static void surface(const contour_stack *s, double max_pair) {
+  double pts = 0;
+  for (int i = 0; i < s->n; i++) pts += s->c[i].n;
+  if (pts * pts > 4 * max_pair) return;
+  stack_options o = {COST_AREA, 1, 0, 1, NULL, NULL, "fuzz", NULL, NULL, MATCH_SINGLE, INFINITY, 0.5,
+                     STACK_BAND_ALIGNED};
+  stack_surface *ss = NULL;
+  static char err[1 << 14];
+  if (stack_tile(s, NAME, &o, &ss, err, sizeof err) != 0) {
+    one_line(err, NAME);
+    return;
+  }
+  INVARIANT(closed_mesh(stack_mesh(ss)), "the surface of %d contours is not closed", s->n);
+  stack_free(ss);
+}
+
 static void tile(const contour_stack *s, double max_pair) {
   for (int i = 0; i + 1 < s->n; i++)
     if ((double)s->c[i].n * s->c[i + 1].n > max_pair) return;
@@ -72,34 +111,22 @@ static void tile(const contour_stack *s, double max_pair) {
     tiling_free(&t);
   }
   mesh_add_caps(&me, s);
-  /* Directed edges a->b as keys a*nv+b, sorted; each must have its reverse as often. */
-  size_t ne = (size_t)me.nt * 3;
-  unsigned long long *e = xmallocarray(ne ? ne : 1, sizeof *e), *r = xmallocarray(ne ? ne : 1, sizeof *r);
-  for (int t = 0; t < me.nt; t++)
-    for (int k = 0; k < 3; k++) {
-      unsigned long long a = (unsigned long long)me.t[t][k], b = (unsigned long long)me.t[t][(k + 1) % 3];
-      e[3 * (size_t)t + (size_t)k] = a * (unsigned long long)me.nv + b;
-      r[3 * (size_t)t + (size_t)k] = b * (unsigned long long)me.nv + a;
-    }
-  qsort(e, ne, sizeof *e, cmp);
-  qsort(r, ne, sizeof *r, cmp);
-  INVARIANT(memcmp(e, r, ne * sizeof *e) == 0, "the mesh of %d contours is not closed", s->n);
-  free(e);
-  free(r);
+  INVARIANT(closed_mesh(&me), "the mesh of %d contours is not closed", s->n);
   mesh_free(&me);
 }
 
-/* The stack read with --skip-bad, --union and -v (issue 22): refused in
- * lines that name the input, or a stack whose slices' contours meet nowhere
- * and which writes and reads back as itself. */
+/* The stack read with --skip-bad, --union and -v (issue 22) and degenerate
+ * contours dropped: refused in lines that name the input, or a stack whose
+ * slices' contours meet nowhere, which writes and reads back as itself, and
+ * whose surface (small stacks) is closed. */
 static void merged(const char *buf, size_t len, double max_pair) {
   contour_stack s, t;
   static char err[1 << 14];
   char *notes = NULL;
   size_t nl = 0;
   FILE *nf = open_memstream(&notes, &nl);
-  int rc = contour_parse_flags(buf, len, NAME, CONTOUR_SKIP_BAD | CONTOUR_UNION | CONTOUR_VERBOSE, &s, nf, "fuzz",
-                               err, sizeof err);
+  int rc = contour_parse_flags(buf, len, NAME, CONTOUR_SKIP_BAD | CONTOUR_UNION | CONTOUR_VERBOSE | CONTOUR_DROP_DEGENERATE,
+                               &s, nf, "fuzz", err, sizeof err);
   fclose(nf);
   if (rc != 0) {
     one_line(err, NAME);
@@ -119,6 +146,7 @@ static void merged(const char *buf, size_t len, double max_pair) {
             "a merged stack does not read back: %s", err);
   INVARIANT(t.n == s.n, "a merged stack of %d contours reads back as %d", s.n, t.n);
   if (contour_stack_pairs(&s, NAME, err, sizeof err) == 0) tile(&s, max_pair);
+  surface(&s, max_pair);
   free(text);
   contour_stack_free(&s);
   contour_stack_free(&t);
@@ -206,9 +234,11 @@ int pipeline_dicom(const unsigned char *buf, size_t len, double max_pair) {
   reencode(&s);
   for (int i = 0; i < s.nroi; i++) {
     contour_stack st;
-    if (rtstruct_roi_stack(&s, i, RTSTRUCT_SKIP_BAD | RTSTRUCT_UNION, &st, NULL, "fuzz", err, sizeof err) == 0)
+    if (rtstruct_roi_stack(&s, i, RTSTRUCT_SKIP_BAD | RTSTRUCT_UNION | RTSTRUCT_DROP_DEGENERATE | RTSTRUCT_ONE_SLICE, &st,
+                           NULL, "fuzz", err, sizeof err) == 0) {
+      surface(&st, max_pair);
       contour_stack_free(&st);
-    else
+    } else
       one_line(err, NAME);
     if (rtstruct_roi_stack(&s, i, 1, &st, NULL, "fuzz", err, sizeof err) != 0) {
       one_line(err, NAME);

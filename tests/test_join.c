@@ -221,7 +221,7 @@ static void run(const sg_poly *ps, int np, const int *order, const int *start, c
   }
   size_t nl = 0, rl = 0;
   FILE *nf = open_memstream(&o->notes, &nl);
-  stack_options so = {COST_AREA, h.caps, h.apex, 2, NULL, nf, "test", NULL, NULL, h.rule, h.dist, h.thickness};
+  stack_options so = {COST_AREA, h.caps, h.apex, 2, NULL, nf, "test", NULL, NULL, h.rule, h.dist, h.thickness, STACK_BAND_ALIGNED};
   o->res = stack_tile(&s, "t.contours", &so, &o->ss, o->err, sizeof o->err);
   fclose(nf);
   FILE *rf = open_memstream(&o->report, &rl);

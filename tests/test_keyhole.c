@@ -457,7 +457,7 @@ static int tile_text(const text *t, int flags, stack_surface **ss, char *err, si
   int rc = contour_parse_flags(t->buf, t->len, "k.contours", flags, &s, f, "tile", err, errlen);
   fclose(f);
   if (rc != 0) return -1;
-  stack_options o = {COST_AREA, 1, 0, 1, NULL, NULL, "test", NULL, NULL, MATCH_SINGLE, INFINITY, 0};
+  stack_options o = {COST_AREA, 1, 0, 1, NULL, NULL, "test", NULL, NULL, MATCH_SINGLE, INFINITY, 0, STACK_BAND_ALIGNED};
   rc = stack_tile(&s, "k.contours", &o, ss, err, errlen);
   contour_stack_free(&s);
   return rc;

@@ -12,6 +12,7 @@
 
 #include "check.h"
 #include "contour.h"
+#include "decimal.h"
 #include "dicom.h"
 #include "gen.h"
 #include "rng.h"
@@ -250,12 +251,24 @@ static void decimal_strings(void) {
                               "1,5", "1 2", "--1", ".", "-.", "1e+", "1d5"};
   double v;
   for (size_t i = 0; i < sizeof good / sizeof *good; i++) {
-    int rc = rtstruct_ds(good[i].s, strlen(good[i].s), &v);
+    int rc = decimal_parse(good[i].s, strlen(good[i].s), &v);
     CHECK(rc == 0 && same_bits(v, good[i].v), "DS '%s': %d %.17g", good[i].s, rc, v);
   }
   for (size_t i = 0; i < sizeof bad / sizeof *bad; i++)
-    CHECK(rtstruct_ds(bad[i], strlen(bad[i]), &v) == -1, "DS '%s' accepted", bad[i]);
-  CHECK(rtstruct_ds("1e999", 5, &v) == 1 && rtstruct_ds("-1e400", 6, &v) == 1, "DS overflow not refused");
+    CHECK(decimal_parse(bad[i], strlen(bad[i]), &v) == -1, "DS '%s' accepted", bad[i]);
+  CHECK(decimal_parse("1e999", 5, &v) == 1 && decimal_parse("-1e400", 6, &v) == 1, "DS overflow not refused");
+  /* How finely a value was written: its shortest decimal form's last place. */
+  static const struct { double v, q; } quanta[] = {{0.45, 0.01}, {12.3, 0.1}, {20, 10}, {-0.07, 0.01}, {1e-20, 1e-20},
+                                                   {1.2345678901234567, 1e-16}, {-123.456, 0.001}, {0, 0}};
+  for (size_t i = 0; i < sizeof quanta / sizeof *quanta; i++)
+    CHECK(decimal_quantum(quanta[i].v) == quanta[i].q || fabs(decimal_quantum(quanta[i].v) / quanta[i].q - 1) < 1e-12,
+          "decimal_quantum(%.17g) = %.17g, want %.17g", quanta[i].v, decimal_quantum(quanta[i].v), quanta[i].q);
+  int coarse = 0;
+  for (int i = -50000; i <= 50000; i += 7) {   /* two decimals, every last digit */
+    double q = decimal_quantum(i / 100.0);
+    coarse += i % 10 ? fabs(q / 0.01 - 1) > 1e-12 : !(i == 0 || q > 0.0099999);   /* a last digit 0: coarser (or 0) */
+  }
+  CHECK(coarse == 0, "%d values of two decimals not found written to 0.01", coarse);
   /* Random decimal strings against strtod in the C locale, bit for bit;
    * then again with a comma as the locale's decimal point. */
   enum { N = 20000 };
@@ -276,7 +289,7 @@ static void decimal_strings(void) {
   }
   int same = 0;
   for (int i = 0; i < N; i++) {
-    int rc = rtstruct_ds(str[i], strlen(str[i]), &v);
+    int rc = decimal_parse(str[i], strlen(str[i]), &v);
     same += (rc == 0 && same_bits(v, want[i])) || (rc == 1 && !isfinite(want[i]));
   }
   CHECK(same == N, "DS against strtod: %d of %d the same", same, N);
@@ -295,7 +308,7 @@ static void decimal_strings(void) {
   if (strtod("1.5", NULL) == 1.0) {
     same = 0;
     for (int i = 0; i < N; i++) {
-      int rc = rtstruct_ds(str[i], strlen(str[i]), &v);
+      int rc = decimal_parse(str[i], strlen(str[i]), &v);
       same += (rc == 0 && same_bits(v, want[i])) || (rc == 1 && !isfinite(want[i]));
     }
     CHECK(same == N, "DS under a comma locale: %d of %d the same", same, N);
@@ -396,7 +409,8 @@ static void refusals(void) {
   cs[0] = (rtw_contour){NULL, 4, sq, NULL, -1};
   cs[1] = (rtw_contour){NULL, 4, NULL, "0\\0\\5\\10\\0\\6\\10\\10\\7\\0\\10\\5", -1};
   b = write1(&r, 1, &len);
-  roi_refused("not planar", b, len, "contour item 2: not planar (its points spread 0.497 mm off their best plane): contours must lie in parallel planes");
+  roi_refused("not planar", b, len, "contour item 2: not planar (its points spread 0.497 mm off their best plane, more than the 0.1 mm "
+              "their precision allows): contours must lie in parallel planes");
   free(b);
   cs[1] = two[1];
 

@@ -69,7 +69,7 @@ static void run(const char *text, size_t len, int flags, result *r) {
   r->rc = contour_parse_flags(text, len, "m.contours", flags, &r->s, f, "tile", r->err, sizeof r->err);
   fclose(f);
   if (r->rc != 0) return;
-  stack_options o = {COST_AREA, 1, 0, 2, NULL, NULL, "tile", NULL, NULL, MATCH_SINGLE, INFINITY, 0};
+  stack_options o = {COST_AREA, 1, 0, 2, NULL, NULL, "tile", NULL, NULL, MATCH_SINGLE, INFINITY, 0, STACK_BAND_ALIGNED};
   stack_surface *ss = NULL;
   r->rc = stack_tile(&r->s, "m.contours", &o, &ss, r->err, sizeof r->err);
   if (r->rc == 0) {
