@@ -51,7 +51,7 @@ void compute_settle(void);
  * (for tests). */
 unsigned long long compute_blocks_pending(void);
 
-/* What a program charges itself (tilesim_mpi.h declares them for it; the
+/* What a program charges itself (mpi.h declares them for it; the
  * calling rank's, nothing outside a rank). */
 void tilesim_compute(double units);       /* units x --c seconds (mp_compute) */
 void smpi_execute_flops(double flops);    /* flops / --flops seconds */

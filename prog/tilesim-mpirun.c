@@ -2,10 +2,11 @@
  *
  *   tilesim-mpirun -np N [MACHINE OPTIONS] [--compute none|blocks|host] ./prog [ARGS]
  *
- * The program is built by tilesim-mpicc (a shared object).  Each of the N
- * ranks gets its own copy of it (mpirun/loader.h: its own globals and
- * statics) and its own libc state (mpirun/libc.h), and runs its main as a
- * rank of the simulated machine (machine/launch.h; or of threads), calling
+ * The program is built by tilesim-mpicc.  It is loaded once, and each of
+ * the N ranks gets its own copy of its writable data (mpirun/loader.h: its
+ * own globals and statics, its constructors and destructors run in it) and
+ * its own libc state (mpirun/libc.h), and runs its main as a rank of the
+ * simulated machine (machine/launch.h; or of threads), calling
  * the MPI library linked into this program (mpi/), which is built on mp.h.
  * The program's stdout and stderr are its ranks' own; the run's summary
  * goes where --stats says.  Exit status: the program's (the first rank, by
@@ -17,12 +18,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "args.h"
 #include "atomicfile.h"
 #include "compute.h"
 #include "crash.h"
-#include "elfsyms.h"
+#include "cxx.h"
+#include "elfprog.h"
 #include "env.h"
 #include "launch.h"
 #include "libc.h"
@@ -33,6 +36,8 @@
 #include "xmem.h"
 
 static const char prog[] = "tilesim-mpirun";
+
+extern char **environ;
 
 static const char usage_text[] =
     "usage: tilesim-mpirun -np N [--procs P] [MACHINE OPTIONS] [--compute none|blocks|host]\n"
@@ -86,7 +91,6 @@ static int bad_usage(const char *why, const char *arg) {
 /* ==== the ranks =========================================================== */
 
 typedef struct {
-  loader_main_fn main;
   int argc;
   char **argv;         /* the rank's own copy of the arguments */
   int returned;        /* main returned or the rank called exit */
@@ -94,11 +98,14 @@ typedef struct {
 } rank_info;
 
 static rank_info *info;   /* [n]: rank_entry's and on_exit's */
+static loader *ld;
 
-/* A rank called exit(status): before MPI_Finalize, the run stops (a real
+/* A rank called exit(status) (its handlers and the program's destructors
+ * run first) or _exit(status): before MPI_Finalize, the run stops (a real
  * mpirun reports such a process too). */
-static void on_exit_call(mp *self, int status) {
+static void on_exit_call(mp *self, int status, int run_handlers) {
   rank_info *ri = &info[mp_rank(self)];
+  if (run_handlers) loader_finish(ld, mp_rank(self), status);
   int mpi = tsmpi_rank_end(self);
   if (mpi == TSMPI_UNFINALIZED) {
     char why[160];
@@ -114,7 +121,10 @@ static void on_abort_call(mp *self) { tsmpi_rank_end(self); }
 
 static void rank_entry(mp *self, void *ud) {
   rank_info *ri = ud;
-  int status = ri->main(ri->argc, ri->argv);
+  int r = mp_rank(self);
+  loader_main_fn main_fn = loader_start(ld, r, ri->argc, ri->argv, environ);
+  int status = main_fn(ri->argc, ri->argv, environ);
+  loader_finish(ld, r, status);   /* as exit(status) after main returns */
   compute_settle();   /* what it computed after its last call */
   fflush(stdout);
   if (tsmpi_rank_end(self) == TSMPI_UNFINALIZED) {
@@ -167,35 +177,31 @@ static int summary(const char *path, const tilesim_stats *st, const compute_conf
 
 /* ==== checking the program before the run ================================ */
 
-typedef struct {
-  int has_main, counts_blocks;
-} program_facts;
-
-static void fact(void *ud, const char *name, int defined) {
-  program_facts *pf = ud;
-  if (defined && strcmp(name, "main") == 0) pf->has_main = 1;
-  if (!defined && strcmp(name, "__sanitizer_cov_trace_pc") == 0) pf->counts_blocks = 1;
-}
-
+/* A program built by tilesim-mpicc, and one that counts its blocks if
+ * --compute blocks asks for that: 0, or -1 and a message saying what the
+ * file is instead and how to build one. */
 static int check_program(const char *path, const compute_config *cc, char *err, size_t errlen) {
-  if (!elfsyms_is_shared(path)) {
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-      snprintf(err, errlen, "%s: no such program", path);
-      return -1;
-    }
-    fclose(f);
-    snprintf(err, errlen,
-             "%s: not a program built by tilesim-mpicc (build it with: tilesim-mpicc prog.c -o prog)", path);
+  if (access(path, F_OK) != 0) {
+    snprintf(err, errlen, "%s: no such program", path);
     return -1;
   }
-  program_facts pf = {0, 0};
-  if (elfsyms_read(path, fact, &pf, err, errlen) != 0) return -1;
-  if (!pf.has_main) {
-    snprintf(err, errlen, "%s has no main: not a program built by tilesim-mpicc", path);
+  char what[400];
+  elf_describe(path, what, sizeof what);
+  if (strcmp(what, "a program built by tilesim-mpicc") != 0) {
+    snprintf(err, errlen, "%s is %s, not a program built by tilesim-mpicc: build it with tilesim-mpicc (tilesim-mpicc "
+             "prog.c -o prog; tilesim-mpicxx for C++)", path, what);
     return -1;
   }
-  if (cc->mode == COMPUTE_BLOCKS && !pf.counts_blocks) {
+  elf_prog e;
+  if (elf_read(path, &e, err, errlen) != 0) return -1;
+  const elf_sym *cov = elf_find(&e, "__sanitizer_cov_trace_pc");
+  int has_main = e.has_main, counts = cov && !cov->defined;
+  elf_free(&e);
+  if (!has_main) {
+    snprintf(err, errlen, "%s has no main: tilesim-mpirun runs programs, not libraries", path);
+    return -1;
+  }
+  if (cc->mode == COMPUTE_BLOCKS && !counts) {
     snprintf(err, errlen, "--compute blocks: %s does not count its basic blocks (build it with tilesim-mpicc "
                           "--count-blocks)", path);
     return -1;
@@ -295,23 +301,27 @@ int main(int argc, char **argv) {
     if (bad) return bad_usage(err, NULL);
   }
 
-  loader *ld = loader_new(path, n, err, sizeof err);
+  tsmpi_libc_setup(n, on_exit_call, on_abort_call);
+  ld = loader_new(path, n, err, sizeof err);
   if (!ld) {
     fprintf(stderr, "%s: %s\n", prog, err);
+    tsmpi_libc_free();
     return 1;
   }
+  void *(*get_globals)(void) = NULL;
+  *(void **)&get_globals = loader_library_symbol(ld, "__cxa_get_globals");
+  int cxx = loader_cxx(ld) && mc.backend == MACHINE_SIM && get_globals;
+  if (cxx) cxx_ranks_begin(n, get_globals);   /* the ranks share one thread */
   info = xcalloc((size_t)n, sizeof *info);
   mp_proc *procs = xmallocarray((size_t)n, sizeof *procs);
   int pargc = argc - i;
   for (int r = 0; r < n; r++) {
     rank_info *ri = &info[r];
-    ri->main = loader_main(ld, r);
     ri->argc = pargc;
     ri->argv = xcalloc((size_t)pargc + 1, sizeof *ri->argv);
     for (int k = 0; k < pargc; k++) ri->argv[k] = xstrdup(argv[i + k]);
     procs[r] = (mp_proc){rank_entry, ri};
   }
-  tsmpi_libc_setup(n, on_exit_call, on_abort_call);
   compute_begin(&cc, n);
   crash_install(prog);
   tilesim_stats st;
@@ -333,7 +343,8 @@ int main(int argc, char **argv) {
   }
   free(info);
   free(procs);
-  tsmpi_libc_free();
+  if (cxx) cxx_ranks_end();
   loader_free(ld);
+  tsmpi_libc_free();
   return status;
 }
