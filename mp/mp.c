@@ -61,16 +61,9 @@ const char *mp_strerror(int code) {
 /* Each thread runs one rank at a time: a rank's thread (threads), the
  * process (MPI), or the simulator's thread, whose coroutines take turns. */
 static _Thread_local mp *self_now;
-static void (*resume_hook)(mp *self);   /* mp_set_resume_hook's */
 
 mp *mp_self(void) { return self_now; }
-
-void mp_set_self(mp *self) {
-  self_now = self;
-  if (resume_hook && self) resume_hook(self);
-}
-
-void mp_set_resume_hook(void (*resume)(mp *self)) { resume_hook = resume; }
+void mp_set_self(mp *self) { self_now = self; }
 
 void *mp_user(const mp *self) { return self->user; }
 void mp_set_user(mp *self, void *p) { self->user = p; }

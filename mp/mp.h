@@ -149,13 +149,6 @@ typedef struct {
 } mp_hooks;
 void   mp_set_hooks(const mp_hooks *hooks);
 
-/* A hook for a runtime that keeps state of its own per rank where the ranks
- * share a thread (tilesim-mpirun: a C++ program's exceptions in flight):
- * resume(self) runs whenever a rank starts or resumes, before its code
- * goes on (from mp_set_self).  NULL: none (the common case: one test a
- * switch).  Set before a run, not during one. */
-void   mp_set_resume_hook(void (*resume)(mp *self));
-
 /* --- private part: what a backend fills in ------------------------------ */
 
 typedef struct mp_ops {

@@ -68,30 +68,35 @@ typedef struct {
   void *propagating;
 } eh_globals;
 
-static eh_globals *saved;    /* [n]: each rank's while it is switched out */
+static eh_globals *saved;    /* [n]: each rank's while it is in a call of the machine */
 static eh_globals *live;     /* the thread's own record */
-static int nsaved, holder = -1;
+static int nsaved;
 
-static void resume(mp *self) {
+enum { EH_BYTES = sizeof(void *) + sizeof(unsigned) };   /* caught, uncaught */
+
+static void enter(mp *self) {
   int r = mp_rank(self);
-  if (r == holder || r >= nsaved) return;
-  if (holder >= 0) memcpy(&saved[holder], live, sizeof(void *) + sizeof(unsigned));
-  memcpy(live, &saved[r], sizeof(void *) + sizeof(unsigned));
-  holder = r;
+  if (r >= nsaved) return;
+  memcpy(&saved[r], live, EH_BYTES);
+  memset(live, 0, EH_BYTES);   /* the next rank starts clean or brings its own */
 }
 
-void cxx_ranks_begin(int n, void *(*get_globals)(void)) {
+static void leave(mp *self) {
+  int r = mp_rank(self);
+  if (r < nsaved) memcpy(live, &saved[r], EH_BYTES);
+}
+
+static const mp_hooks hooks = {enter, leave};
+
+const mp_hooks *cxx_ranks_begin(int n, void *(*get_globals)(void)) {
   saved = xcalloc((size_t)n, sizeof *saved);
   nsaved = n;
-  holder = -1;
   live = get_globals();
-  mp_set_resume_hook(resume);
+  return &hooks;
 }
 
 void cxx_ranks_end(void) {
-  mp_set_resume_hook(NULL);
   free(saved);
   saved = NULL;
   nsaved = 0;
-  holder = -1;
 }

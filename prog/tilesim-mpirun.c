@@ -136,6 +136,25 @@ static void rank_entry(mp *self, void *ud) {
   ri->status = status;
 }
 
+/* ==== the hooks around every call of the machine =========================
+ * The compute mode's (charging what the rank computed: it may switch ranks)
+ * and a C++ program's (its exceptions in flight), the latter first in and
+ * last out. */
+
+static const mp_hooks *hooks_compute, *hooks_cxx;
+
+static void both_enter(mp *self) {
+  hooks_cxx->enter(self);
+  hooks_compute->enter(self);
+}
+
+static void both_leave(mp *self) {
+  hooks_compute->leave(self);
+  hooks_cxx->leave(self);
+}
+
+static const mp_hooks hooks_both = {both_enter, both_leave};
+
 /* ==== the summary ========================================================= */
 
 /* tilesim_stats_csv's header and row, each with compute and reproducible after. */
@@ -308,10 +327,6 @@ int main(int argc, char **argv) {
     tsmpi_libc_free();
     return 1;
   }
-  void *(*get_globals)(void) = NULL;
-  *(void **)&get_globals = loader_library_symbol(ld, "__cxa_get_globals");
-  int cxx = loader_cxx(ld) && mc.backend == MACHINE_SIM && get_globals;
-  if (cxx) cxx_ranks_begin(n, get_globals);   /* the ranks share one thread */
   info = xcalloc((size_t)n, sizeof *info);
   mp_proc *procs = xmallocarray((size_t)n, sizeof *procs);
   int pargc = argc - i;
@@ -322,10 +337,16 @@ int main(int argc, char **argv) {
     for (int k = 0; k < pargc; k++) ri->argv[k] = xstrdup(argv[i + k]);
     procs[r] = (mp_proc){rank_entry, ri};
   }
-  compute_begin(&cc, n);
+  hooks_compute = compute_begin(&cc, n);
+  void *(*get_globals)(void) = NULL;
+  *(void **)&get_globals = loader_library_symbol(ld, "__cxa_get_globals");
+  int cxx = loader_cxx(ld) && mc.backend == MACHINE_SIM && get_globals;
+  if (cxx) hooks_cxx = cxx_ranks_begin(n, get_globals);   /* the ranks share one thread */
+  mp_set_hooks(hooks_cxx && hooks_compute ? &hooks_both : hooks_cxx ? hooks_cxx : hooks_compute);
   crash_install(prog);
   tilesim_stats st;
   int res = launch_run(&mc, n, procs, &st, err, sizeof err);
+  mp_set_hooks(NULL);
   compute_end();
   fflush(stdout);
   int status = 0;
