@@ -16,7 +16,8 @@
 #     call of a function tilesim has never heard of fails the link, named;
 #     the warning names only the unimplemented functions the program's code
 #     calls; tilesim-mpirun says what a file not built by tilesim-mpicc is;
-#   - -show, -showme, --showme:compile, --showme:link, -compile_info.
+#   - -show, -showme, --showme:compile, --showme:link, -compile_info;
+#   - libtilesim_mpi.so defines what tilesim-mpirun exports, no more, no less.
 BUILD=${BUILD:-build/chk}
 RUN=$BUILD/tilesim-mpirun
 MCC=$BUILD/tilesim-mpicc
@@ -162,6 +163,18 @@ EOF
 "$MCC" -c "$T/lib.c" -o "$T/lib.o" && ar rcs "$T/libw.a" "$T/lib.o" && "$MCC" "$T/warn.c" "$T/libw.a" -o "$T/warn" > "$T/o" 2>&1 \
   && [ "$(grep -c warning "$T/o")" -eq 1 ] && grep -q "^tilesim-mpicc: warning: $T/warn calls MPI_Comm_spawn, which tilesim does not implement: a run stops if it calls it\$" "$T/o" \
   && "$RUN" -np 2 "$T/warn" > /dev/null 2>&1 && ok || bad "the warning names what the code calls: $(cat "$T/o")"
+# libtilesim_mpi.so defines exactly what tilesim-mpirun gives programs: a
+# function one has and the other lacks would pass the link and fail the run,
+# or fail the link of a program tilesim-mpirun could run.
+LIBDIR=$(dirname "$MCC")/../lib/tilesim
+if command -v nm > /dev/null 2>&1; then
+  nm -D --defined-only "$RUN" | awk '{ print $3 }' | grep -E '^(P?MPI_|tilesim_|smpi_|__sanitizer_cov)' | sort > "$T/exp"
+  nm -D --defined-only "$LIBDIR/libtilesim_mpi.so" | awk '{ print $3 }' | grep -E '^(P?MPI_|tilesim_|smpi_|__sanitizer_cov)' | sort > "$T/stub"
+  [ "$(wc -l < "$T/exp")" -gt 800 ] && cmp -s "$T/exp" "$T/stub" && ok \
+    || bad "libtilesim_mpi.so and tilesim-mpirun's exports differ: $(diff "$T/exp" "$T/stub" | head -5)"
+else
+  echo "cli_mpiwrap: skipped: libtilesim_mpi.so against tilesim-mpirun's exports (no nm)"
+fi
 # Files not built by tilesim-mpicc: what they are, and how to build one.
 printf '#!/bin/sh\necho hi\n' > "$T/script"
 chmod +x "$T/script"
