@@ -336,8 +336,10 @@ int wrapper_main(int argc, char **argv, wrap_lang lang) {
   push(&ldflags, "-Wl,-z,max-page-size=" GAP);
   push(&ldflags, "-Wl,-z,noseparate-code");
   push(&ldflags, "-Wl,-z,norelro");
+  push(&ldflags, "-Wl,--push-state,--no-as-needed");   /* needed even by a program that calls no MPI */
   snprintf(buf, sizeof buf, "%s/%s", lib, ELF_TILESIM_LIB);
   push(&ldflags, buf);
+  push(&ldflags, "-Wl,--pop-state");
   snprintf(buf, sizeof buf, "-Wl,-rpath,%s", lib);
   push(&ldflags, buf);
   int linking = !compile_only && !shared && any_input;
