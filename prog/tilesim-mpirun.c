@@ -228,6 +228,20 @@ static int check_program(const char *path, const compute_config *cc, char *err, 
   return 0;
 }
 
+/* libc's name for the process (err(3), warn(3), error(3) print it) is the
+ * program's, as in its own processes; tilesim-mpirun's messages name
+ * tilesim-mpirun themselves. */
+static void name_process(const char *path) {
+#ifdef __GLIBC__
+  extern char *program_invocation_name, *program_invocation_short_name;
+  const char *slash = strrchr(path, '/');
+  program_invocation_name = (char *)path;
+  program_invocation_short_name = (char *)(slash ? slash + 1 : path);
+#else
+  (void)path;
+#endif
+}
+
 /* ==== main ================================================================ */
 
 int main(int argc, char **argv) {
@@ -321,6 +335,7 @@ int main(int argc, char **argv) {
   }
 
   tsmpi_libc_setup(n, on_exit_call, on_abort_call);
+  name_process(path);
   ld = loader_new(path, n, err, sizeof err);
   if (!ld) {
     fprintf(stderr, "%s: %s\n", prog, err);

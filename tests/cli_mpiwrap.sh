@@ -80,6 +80,13 @@ if [ -n "$OMPI" ]; then
   fi
 fi
 
+# err(3) and warn(3) name the program, as in its own process (each rank's
+# line whole on the simulator; Open MPI's processes write theirs in pieces
+# that interleave, so no comparison).
+printf '#include <mpi.h>\n#include <err.h>\nint main(int c, char **v) { int r; MPI_Init(&c, &v); MPI_Comm_rank(MPI_COMM_WORLD, &r); warnx("rank %%d warns", r); MPI_Finalize(); return 0; }\n' > "$T/warnx.c"
+"$MCC" "$T/warnx.c" -o "$T/warnx" > "$T/log" 2>&1 && "$RUN" -np 2 "$T/warnx" > /dev/null 2> "$T/e" \
+  && [ "$(grep -c '^warnx: rank [01] warns$' "$T/e")" -eq 2 ] && ok || bad "warnx: $(cat "$T/log" "$T/e")"
+
 # ---- a project built by make CC=tilesim-mpicc ------------------------------------
 if command -v make > /dev/null 2>&1; then
   cp -r tests/mpirun/project "$T/proj"
