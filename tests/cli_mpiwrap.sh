@@ -138,6 +138,13 @@ done
 # Run on its own: how to run it, exit 2, nothing else.
 "$T/hi" > "$T/o" 2> "$T/e"; rc=$?
 [ $rc -eq 2 ] && [ ! -s "$T/o" ] && grep -q "tilesim-mpirun -np N $T/hi\$" "$T/e" && ok || bad "run on its own: exit $rc, $(cat "$T/o" "$T/e")"
+# A program linked by the plain compiler against libtilesim_mpi.so, without
+# tilesim-mpicc's layout (read-only, code and data segments a page apart,
+# RELRO): the loader's other layout, two mappings a rank, the same answers.
+cc -fPIC -shared -I "$(dirname "$MCC")/../include/tilesim/mpi" tests/mpirun/names.c -o "$T/plain" \
+  "$(dirname "$MCC")/../lib/tilesim/libtilesim_mpi.so" > "$T/log" 2>&1 \
+  && "$RUN" -np 4 "$T/plain" -v -n word rest > "$T/plain.out" 2> "$T/e" && cmp -s "$T/plain.out" "$T/names.sim" && ok \
+  || bad "a program linked otherwise: $(cat "$T/log" "$T/e" | head -5)"
 # A program that calls no MPI function (the linker would drop a library it
 # needs nothing from): the same, and tilesim-mpirun runs it.
 printf 'int main(void) { return 0; }\n' > "$T/nompi.c"
