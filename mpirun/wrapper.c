@@ -274,7 +274,7 @@ int wrapper_main(int argc, char **argv, wrap_lang lang) {
             "wrapper\n", fl->prog, running, fl->ccvar, getenv(fl->ccvar) ? getenv(fl->ccvar) : "", fl->ccvar, fl->lang);
     return 2;
   }
-  int compile_only = 0, shared = 0, count_blocks = 0, show = SHOW_NONE, any_input = 0;
+  int compile_only = 0, shared = 0, count_blocks = 0, show = SHOW_NONE, any_input = 0, is_static = 0;
   const char *out = "a.out";
   vec user = {NULL, 0, 0};
   for (int i = 1; i < argc; i++) {
@@ -296,10 +296,17 @@ int wrapper_main(int argc, char **argv, wrap_lang lang) {
           strcmp(a, "-MM") == 0)
         compile_only = 1;
       else if (strcmp(a, "-shared") == 0) shared = 1;
+      else if (strcmp(a, "-static") == 0 || strcmp(a, "-static-pie") == 0) is_static = 1;
       else if (strcmp(a, "-o") == 0 && i + 1 < argc) push(&user, out = argv[++i]);
       else if (takes_value(a) && i + 1 < argc) push(&user, argv[++i]);
       else if (a[0] != '-' || strcmp(a, "-") == 0) any_input = 1;
     }
+  }
+  if (is_static && !compile_only && !shared && any_input) {
+    fprintf(stderr, "%s: -static: tilesim-mpirun loads the program itself, which must be linked dynamically (drop "
+            "-static)\n", fl->prog);
+    drop(&user);
+    return 2;
   }
   const char *ccenv = getenv(fl->ccvar);
   vec cc = {NULL, 0, 0}, cflags = {NULL, 0, 0}, ldflags = {NULL, 0, 0};

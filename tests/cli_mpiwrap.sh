@@ -219,6 +219,10 @@ head -c 1000 "$T/hi" > "$T/cut"
 [ $rc -eq 2 ] && [ "$(wc -l < "$T/e")" -eq 1 ] && grep -q "$T/cut is a damaged ELF file (corrupt or truncated: .* (byte [0-9]*))" "$T/e" && ok \
   || bad "a truncated program: exit $rc, $(cat "$T/e")"
 
+# -static cannot be loaded: refused, exit 2, no program.
+"$MCC" -static "$T/hi.c" -o "$T/static" > "$T/o" 2>&1; rc=$?
+[ $rc -eq 2 ] && grep -q -- '-static' "$T/o" && [ ! -e "$T/static" ] && ok || bad "-static: exit $rc, $(cat "$T/o")"
+
 # ---- -show and friends ----------------------------------------------------------------
 "$MCC" -show x.c -o x > "$T/o" 2>&1 && grep -q '^cc -I[^ ]*/include/tilesim/mpi x.c -o x -fPIC .* -shared .*libtilesim_mpi.so' "$T/o" && ok \
   || bad "tilesim-mpicc -show: $(cat "$T/o")"
