@@ -3,8 +3,9 @@
 # tilesim-mpicc and tilesim-mpicxx and run by tilesim-mpirun:
 #   - a C program that uses libc's per-process names for its own purposes
 #     (tests/mpirun/names.c: a struct member optarg, locals named rand and
-#     time, ...) and a C++ program (tests/mpirun/cxxranks.cc: static objects,
-#     exceptions, containers, iostreams, thread_local) print, sorted, what
+#     time, ...) and C++ programs (tests/mpirun/cxxranks.cc: static objects,
+#     exceptions, containers, iostreams, thread_local; cxxenv.cc: MPI_Init
+#     and MPI_Finalize in a static object's constructor and destructor) print, sorted, what
 #     Open MPI's mpicc/mpicxx and mpirun print, on the simulator and on
 #     threads;
 #   - a project with a Makefile (tests/mpirun/project) built by make
@@ -68,6 +69,10 @@ if [ -n "$HAVECXX" ]; then
   [ "$(grep -c '^rank \([0-4]\): first rank \1 hit bottom; again rank \1 hit bottom code \1\?0; depth ' "$T/cxx.sim")" -eq 5 ] \
     && [ "$(grep -c 'constructions 1 order registry second; local static 101 102$' "$T/cxx.sim")" -eq 5 ] \
     && [ "$(grep -c 'registry destroyed after main' "$T/cxx.sim")" -eq 5 ] && ok || bad "cxxranks: $(cat "$T/cxx.sim")"
+  # MPI_Init in a static object's constructor, MPI_Finalize in its destructor.
+  "$MCXX" tests/mpirun/cxxenv.cc -o "$T/cxxenv" > "$T/log" 2>&1 && ok || bad "tilesim-mpicxx cxxenv.cc: $(cat "$T/log")"
+  ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}alloc_dealloc_mismatch=0" "$RUN" -np 3 "$T/cxxenv" > "$T/cxxenv.sim" 2> "$T/e" \
+    && [ "$(grep -c 'finalized 1 after main$' "$T/cxxenv.sim")" -eq 3 ] && ok || bad "cxxenv: $(cat "$T/cxxenv.sim" "$T/e")"
 fi
 if [ -n "$OMPI" ]; then
   ${MPICC:-mpicc} tests/mpirun/names.c -o "$T/names.ompi" > "$T/log" 2>&1 || bad "mpicc names.c: $(cat "$T/log")"
@@ -77,6 +82,9 @@ if [ -n "$OMPI" ]; then
     ${MPICXX:-mpicxx} -O2 tests/mpirun/cxxranks.cc -o "$T/cxx.ompi" > "$T/log" 2>&1 || bad "mpicxx cxxranks.cc: $(cat "$T/log")"
     timeout 60 ${MPIRUN:-mpirun} -np 5 "$T/cxx.ompi" > "$T/oout" 2> "$T/oerr" || bad "cxxranks under Open MPI: $(cat "$T/oerr")"
     for be in sim threads; do same_lines "cxxranks ($be)" "$T/cxx.$be" "$T/oout"; done
+    ${MPICXX:-mpicxx} tests/mpirun/cxxenv.cc -o "$T/cxxenv.ompi" > "$T/log" 2>&1 || bad "mpicxx cxxenv.cc: $(cat "$T/log")"
+    timeout 60 ${MPIRUN:-mpirun} -np 3 "$T/cxxenv.ompi" > "$T/oout" 2> "$T/oerr" || bad "cxxenv under Open MPI: $(cat "$T/oerr")"
+    same_lines "cxxenv" "$T/cxxenv.sim" "$T/oout"
   fi
 fi
 
