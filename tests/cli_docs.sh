@@ -76,7 +76,7 @@ plot --m                  tilesim-bench'"'"'s, in the example that makes a map
 # them), a pragma's warning, and mpirun's -np.
 NOTOPTS='-MM -Wunused-parameter -fPIC -include -shared -np -D -L -MF -MQ -MT -T -U -e -l -u -z --param -aux-info
   -Xassembler -Xlinker -Xpreprocessor -idirafter -imacros -iprefix -iquote -isystem -fdata-sections
-  -ffunction-sections -show -showme -compile-info -link-info'
+  -ffunction-sections -show -showme -compile-info -link-info -static -static-pie'
 allowed() { printf '%s\n' "$ALLOW" | awk -v w="$1" '$1 == w { print $2 }' | sort -u; }
 
 # The options a text names: --long, and -x alone (not -np, not x-y).
