@@ -52,7 +52,7 @@ static void help(void) {
         "of the program's globals and of its libc state (getopt, rand, strtok), the clocks\n"
         "and sleeps the machine's.\n"
         "\n"
-        "  -np N, -n N, --np N   ranks (1 to 4096)\n",
+        "  -np N, -n N, --np N   ranks (1 to 1000000; threads: 1 to 4096)\n",
         stdout);
   fputs(machine_help, stdout);
   fputs("                     (--procs: default one per rank; --trace names the MPI calls\n"
@@ -72,7 +72,7 @@ static void help(void) {
         "  --poll-cost S      seconds a MPI_Test or MPI_Iprobe that finds nothing costs\n"
         "                     (default 1e-6), so that polling loops move the clock\n"
         "  --wtime-cost S     seconds each MPI_Wtime costs (default 0)\n"
-        "  --stack BYTES      each rank's stack (default 1M; 64k to 1G)\n"
+        "  --stack BYTES      each rank's stack (default 1 MiB; 16k to 1G)\n"
         "  --stats FILE       the run's summary, a CSV header and one row (tilesim(7)'s\n"
         "                     columns, then compute and reproducible): FILE, or - for\n"
         "                     stdout after the program's output\n"
@@ -268,7 +268,7 @@ int main(int argc, char **argv) {
       continue;
     }
     int known = strcmp(a, "-np") == 0 || strcmp(a, "-n") == 0 || strcmp(a, "--np") == 0 || strcmp(a, "--coll") == 0 ||
-                strcmp(a, "--stack") == 0 || strcmp(a, "--stats") == 0 || strcmp(a, "--poll-cost") == 0 ||
+                strcmp(a, "--stats") == 0 || strcmp(a, "--poll-cost") == 0 ||
                 strcmp(a, "--wtime-cost") == 0;
     if (!known) {
       compute_config c2 = cc;
@@ -280,18 +280,13 @@ int main(int argc, char **argv) {
     i++;
     int k;
     if (strcmp(a, "-np") == 0 || strcmp(a, "-n") == 0 || strcmp(a, "--np") == 0) {
-      if (args_long(a, v, 1, MACHINE_MAX_PROCS, &np, err, sizeof err) != 0) return bad_usage(err, NULL);
+      if (args_long(a, v, 1, MACHINE_MAX_RANKS, &np, err, sizeof err) != 0) return bad_usage(err, NULL);
     } else if (strcmp(a, "--coll") == 0) {
       if (strcmp(v, "help") == 0) {
         tsmpi_coll_usage(stdout);
         return 0;
       }
       if (tsmpi_coll_option(v, err, sizeof err) != 0) return bad_usage(err, NULL);
-    } else if (strcmp(a, "--stack") == 0) {
-      unsigned long long b;
-      if (args_bytes(a, v, &b, err, sizeof err) != 0) return bad_usage(err, NULL);
-      if (b < (1 << 16) || b > (1ULL << 30)) return bad_usage("--stack takes bytes from 64k to 1G", v);
-      mc.sim.stack = (size_t)b;
     } else if (strcmp(a, "--stats") == 0) {
       if (args_name(a, v, "a file name or -", 1, err, sizeof err) != 0) return bad_usage(err, NULL);
       stats = v;
@@ -315,6 +310,11 @@ int main(int argc, char **argv) {
   if (mc.backend == MACHINE_MPI)
     return bad_usage("--backend mpi: an MPI program runs under a real mpirun; tilesim-mpirun runs it on sim or "
                      "threads", NULL);
+  if (mc.backend == MACHINE_THREADS && np > MACHINE_MAX_THREADS) {
+    snprintf(err, sizeof err, "--backend threads runs 1 to %d ranks, a thread each; the simulator up to %d",
+             MACHINE_MAX_THREADS, MACHINE_MAX_RANKS);
+    return bad_usage(err, NULL);
+  }
   if (mc.trace_limit_given && !mc.trace) return bad_usage("--trace-limit needs --trace", NULL);
   if (mc.backend != MACHINE_SIM && (mc.trace || mc.print_place || mc.sim.topo.kind != TOPO_NONE))
     return bad_usage("--trace, --print-place and --topology describe the simulated machine (--backend sim)", NULL);

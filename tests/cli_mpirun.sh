@@ -18,7 +18,7 @@
 #     stack overflow, SIGFPE, abort), exit and return without MPI_Finalize, an
 #     unimplemented call, an invalid argument under MPI_ERRORS_ARE_FATAL; no
 #     copy of a program left in $TMPDIR, also when killed; bad usage;
-#   - 4096 ranks of a small program.
+#   - 4096 ranks of a small program; 20,000, sharing mappings of its code.
 BUILD=${BUILD:-build/chk}
 RUN=$BUILD/tilesim-mpirun
 CC_=$BUILD/tilesim-mpicc
@@ -279,7 +279,7 @@ fi
 notemp "killed while loading"
 
 # ---- bad usage ----------------------------------------------------------------------
-for args in "" "-np 4" "-np 0 $T/ring" "-np 4097 $T/ring" "--bogus 1 -np 2 $T/ring" "-np 2 --backend mpi $T/ring" \
+for args in "" "-np 4" "-np 0 $T/ring" "-np 1000001 $T/ring" "-np 4097 --backend threads $T/ring" "--bogus 1 -np 2 $T/ring" "-np 2 --backend mpi $T/ring" \
             "-np 2 --compute fast $T/ring" "-np 2 --coll bcast=ring $T/ring" "-np 2 /bin/true" "-np 2 $T/nothing" \
             "-np 2 --backend threads --trace x.csv $T/ring" "-np 2 --stack 1k $T/ring"; do
   "$RUN" $args > "$T/o" 2> "$T/e"; rc=$?
@@ -317,6 +317,36 @@ build hello "$T/hello.c"
 "$RUN" -np 4096 --stack 256k "$T/hello" > "$T/o" 2> "$T/e" && grep -q '^4096 ranks, sum 8386560$' "$T/o" && ok \
   || bad "4096 ranks: $(cat "$T/o" "$T/e" | head -3)"
 notemp "4096 ranks"
+# 20,000 ranks: more than the loader gives a code mapping each (a quarter of
+# vm.max_map_count's room): consecutive ranks share mappings of repeated
+# code, and the run stays within the kernel's mappings.  The last rank counts
+# them in /proc/self/maps.
+cat > "$T/maps.c" <<'EOF'
+#include <mpi.h>
+#include <stdio.h>
+#include <string.h>
+int main(int argc, char **argv) {
+  int r, p, sum = 0;
+  MPI_Init(&argc, &argv);
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  MPI_Comm_size(MPI_COMM_WORLD, &p);
+  MPI_Allreduce(&r, &sum, 1, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
+  if (r == p - 1) {
+    char line[1024];
+    int all = 0, code = 0;
+    FILE *f = fopen("/proc/self/maps", "r");
+    while (f && fgets(line, sizeof line, f)) all++, code += strstr(line, "tilesim-program") != NULL;
+    if (f) fclose(f);
+    printf("%d ranks, sum %d, %d mappings, %d of code\n", p, sum, all, code);
+  }
+  MPI_Finalize();
+  return 0;
+}
+EOF
+build maps "$T/maps.c"
+"$RUN" -np 20000 --stack 64k "$T/maps" > "$T/o" 2> "$T/e" \
+  && awk '$1 == 20000 && $4 == "199990000," && $5 < 65530 && $7 > 0 && $7 < 20000 { ok = 1 } END { exit !ok }' "$T/o" && ok \
+  || bad "20,000 ranks: $(cat "$T/o" "$T/e" | head -3)"
 
 echo "cli_mpirun: $pass passed, $fail failed"
 [ $fail -eq 0 ]
