@@ -110,8 +110,8 @@ struct loader {
   library *libs;
   int nlibs;
   unsigned char *made, *ended;           /* [n]: the rank's copy is made; its destructors ran */
-  void **tls;                            /* [n]: the rank's thread-local block, once used */
-  void *tls_outside;
+  void **tls, **tls_raw;                 /* [n + 1]: each rank's thread-local block once used, and
+                                            what to free; the last outside any rank */
   const void **eh;                       /* [n + 1]: each rank's .eh_frame, registered */
   void *eh_object;
   void *(*deregister)(const void *);
@@ -139,19 +139,21 @@ typedef struct {
 } tls_index;
 
 /* The program's thread-local block for rank r (-1: outside a rank): its
- * template from the rank's image, the rest zeros; the block starts at the
- * same place in its alignment as the template does in the image. */
+ * template from the rank's image, the rest zeros (calloc's: a large block
+ * costs the pages the rank writes); the block starts at the same place in
+ * its alignment as the template does in the image.  *raw: what to free. */
 static size_t tls_align(const loader *l) { return l->e.tls_align < sizeof(void *) ? sizeof(void *) : l->e.tls_align; }
 
 /* Where the template starts in its first aligned unit. */
 static size_t tls_first(const loader *l) { return l->e.tls_vaddr & (tls_align(l) - 1); }
 
-static void *tls_block(loader *l, int r) {
+static void *tls_block(loader *l, int r, void **raw) {
   size_t align = tls_align(l), first = tls_first(l);
-  size_t size = (first + l->e.tls_memsz + align - 1) / align * align;
-  unsigned char *b = aligned_alloc(align, size ? size : align);
+  size_t size = first + l->e.tls_memsz;
+  unsigned char *b = calloc(1, size + align);
   if (!b) xpanic("no memory for a rank's thread-local variables (%zu bytes)", size);
-  memset(b, 0, size);
+  *raw = b;
+  b += (align - (uintptr_t)b % align) % align;
   memcpy(b + first, (const void *)(base(l, r < 0 ? 0 : r) + l->e.tls_vaddr), l->e.tls_filesz);
   return b + first;
 }
@@ -162,9 +164,9 @@ static void *tls_get_addr(tls_index *ti) {
   loader *l = the;
   mp *self = mp_self();
   int r = self ? mp_rank(self) : -1;
-  void **slot = r >= 0 && r < l->n ? &l->tls[r] : &l->tls_outside;
-  if (!*slot) *slot = tls_block(l, r);
-  return (char *)*slot + ti->offset;
+  int i = r >= 0 && r < l->n ? r : l->n;   /* the last slot: outside a rank */
+  if (!l->tls[i]) l->tls[i] = tls_block(l, r, &l->tls_raw[i]);
+  return (char *)l->tls[i] + ti->offset;
 }
 
 /* ==== libraries and names ================================================= */
@@ -604,7 +606,8 @@ loader *loader_new(const char *path, int n, char *err, size_t errlen) {
   mark_used(l);
   l->made = xcalloc((size_t)n, 1);
   l->ended = xcalloc((size_t)n, 1);
-  l->tls = xcalloc((size_t)n, sizeof *l->tls);
+  l->tls = xcalloc((size_t)n + 1, sizeof *l->tls);
+  l->tls_raw = xcalloc((size_t)n + 1, sizeof *l->tls_raw);
   register_frames(l);
   return l;
 fail:
@@ -665,10 +668,9 @@ void loader_free(loader *l) {
   if (l->eh_object && l->deregister) l->deregister(l->eh);
   free(l->eh);
   free(l->eh_object);
-  for (int r = 0; l->tls && r < l->n; r++)
-    if (l->tls[r]) free((char *)l->tls[r] - tls_first(l));
-  if (l->tls_outside) free((char *)l->tls_outside - tls_first(l));
+  for (int r = 0; l->tls_raw && r <= l->n; r++) free(l->tls_raw[r]);
   free(l->tls);
+  free(l->tls_raw);
   if (l->res) munmap(l->res, l->reslen);
   for (int i = 0; i < l->nlibs; i++)
     if (l->libs[i].h) dlclose(l->libs[i].h);

@@ -5,7 +5,8 @@
 #     (tests/mpirun/names.c: a struct member optarg, locals named rand and
 #     time, ...) and C++ programs (tests/mpirun/cxxranks.cc: static objects,
 #     exceptions, containers, iostreams, thread_local; cxxenv.cc: MPI_Init
-#     and MPI_Finalize in a static object's constructor and destructor) print, sorted, what
+#     and MPI_Finalize in a static object's constructor and destructor), and
+#     thread-local variables (tests/mpirun/tls.c) print, sorted, what
 #     Open MPI's mpicc/mpicxx and mpirun print, on the simulator and on
 #     threads;
 #   - a project with a Makefile (tests/mpirun/project) built by make
@@ -54,6 +55,12 @@ for be in sim threads; do
   "$RUN" -np 4 --backend $be "$T/names" -v -n word rest > "$T/names.$be" 2> "$T/e" && ok || bad "names ($be): $(cat "$T/e")"
 done
 grep -q '^rank 3: o.optarg member o.optind 10 o.rand() 4 exits 4 ' "$T/names.sim" && ok || bad "names: $(cat "$T/names.sim")"
+# Thread-local variables, each rank's own (the program's __tls_get_addr is the loader's).
+"$MCC" -O2 tests/mpirun/tls.c -o "$T/tls" > "$T/log" 2>&1 && ok || bad "tilesim-mpicc tls.c: $(cat "$T/log")"
+for be in sim threads; do
+  "$RUN" -np 7 --backend $be "$T/tls" > "$T/tls.$be" 2> "$T/e" && grep -qx '7 of 7 ranks see their own thread-local variables' "$T/tls.$be" \
+    && ok || bad "tls ($be): $(cat "$T/tls.$be" "$T/e")"
+done
 if [ -n "$HAVECXX" ]; then
   "$MCXX" -Wall -O2 tests/mpirun/cxxranks.cc -o "$T/cxx" > "$T/log" 2>&1 && ok || bad "tilesim-mpicxx cxxranks.cc: $(cat "$T/log")"
   # Under make check's sanitized tilesim-mpirun, a program's delete of what
@@ -78,6 +85,9 @@ if [ -n "$OMPI" ]; then
   ${MPICC:-mpicc} tests/mpirun/names.c -o "$T/names.ompi" > "$T/log" 2>&1 || bad "mpicc names.c: $(cat "$T/log")"
   timeout 60 ${MPIRUN:-mpirun} -np 4 "$T/names.ompi" -v -n word rest > "$T/oout" 2> "$T/oerr" || bad "names under Open MPI: $(cat "$T/oerr")"
   for be in sim threads; do same_lines "names ($be)" "$T/names.$be" "$T/oout"; done
+  ${MPICC:-mpicc} -O2 tests/mpirun/tls.c -o "$T/tls.ompi" > "$T/log" 2>&1 || bad "mpicc tls.c: $(cat "$T/log")"
+  timeout 60 ${MPIRUN:-mpirun} -np 7 "$T/tls.ompi" > "$T/oout" 2> "$T/oerr" || bad "tls under Open MPI: $(cat "$T/oerr")"
+  same_lines "tls" "$T/tls.sim" "$T/oout"
   if [ -n "$HAVECXX" ]; then
     ${MPICXX:-mpicxx} -O2 tests/mpirun/cxxranks.cc -o "$T/cxx.ompi" > "$T/log" 2>&1 || bad "mpicxx cxxranks.cc: $(cat "$T/log")"
     timeout 60 ${MPIRUN:-mpirun} -np 5 "$T/cxx.ompi" > "$T/oout" 2> "$T/oerr" || bad "cxxranks under Open MPI: $(cat "$T/oerr")"
