@@ -573,8 +573,9 @@ UNINST = $(addprefix $(DESTDIR)$(PREFIX)/bin/,$(foreach p,$(PROGS),$(call iname,
          $(addprefix $(SHARE)/examples/,$(notdir $(wildcard examples/*.c))) \
          $(addprefix $(SHARE)/examples/mpi/,$(notdir $(wildcard examples/mpi/*.c))) \
          $(DESTDIR)$(PREFIX)/lib/libtilesim.a $(DESTDIR)$(PREFIX)/lib/pkgconfig/tilesim.pc \
-         $(addprefix $(DESTDIR)$(PREFIX)/include/tilesim/,mp.h tilesim.h mpi/mpi.h mpi/mpi_funcs.h mpi/tilesim_mpi.h)
-UNINSTDIRS = $(SHARE)/slicerrt $(SHARE)/rtstruct $(SHARE)/examples/mpi $(SHARE)/examples $(SHARE) $(DESTDIR)$(DOCDIR) \
+         $(addprefix $(DESTDIR)$(PREFIX)/include/tilesim/,mp.h tilesim.h mpi/mpi.h mpi/mpi_funcs.h) \
+         $(DESTDIR)$(PREFIX)/lib/tilesim/$(notdir $(STUBLIB))
+UNINSTDIRS = $(DESTDIR)$(PREFIX)/lib/tilesim $(SHARE)/slicerrt $(SHARE)/rtstruct $(SHARE)/examples/mpi $(SHARE)/examples $(SHARE) $(DESTDIR)$(DOCDIR) \
              $(DESTDIR)$(PREFIX)/include/tilesim/mpi $(DESTDIR)$(PREFIX)/include/tilesim
 uninstall:
 	rm -f $(UNINST)
