@@ -47,7 +47,7 @@ MPISRC   = $(wildcard $(addsuffix /*.c,$(LIBDIRS)))
 MPIPROGS = tile bench
 # Programs: prog/NAME.c holds main; prog/NAME_*.c are linked into NAME only.
 # The MPI tools (tilesim-mpicc, tilesim-mpirun) are built apart, below.
-MPITOOLS = tilesim-mpicc tilesim-mpirun
+MPITOOLS = tilesim-mpicc tilesim-mpicxx tilesim-mpirun
 PROGS    = $(filter-out $(MPITOOLS),$(basename $(notdir $(filter-out $(wildcard prog/*_*.c),$(wildcard prog/*.c)))))
 # The SVG plotter, plots/*.c, builds to build/plot.
 PLOTSRC  = $(wildcard plots/*.c)
@@ -77,13 +77,15 @@ TESTLIB  = $(filter-out $(wildcard tests/test_*.c),$(wildcard tests/*.c))
 TSMPISRC   = $(wildcard mpi/*.c)
 TSMPIPROGS = $(basename $(notdir $(filter-out tests/mpi/contract.c,$(wildcard tests/mpi/*.c))))
 TSMPIPFLAGS = -Impi -Wno-missing-prototypes
-# The runner's own (mpirun/*.c: each rank's libc, the compute modes, the
-# loader, crashes, the ELF reader) into libtsmpirun.a; tilesim-mpirun exports
-# to the programs it loads only what they may call (mpirun/exports.list:
-# MPI_*, PMPI_*, tilesim_compute, smpi_*, the libc runtime).
-RUNSRC     = $(wildcard mpirun/*.c)
-MPIHDR     = build/include/tilesim/mpi/mpi.h build/include/tilesim/mpi/mpi_funcs.h \
-             build/include/tilesim/mpi/tilesim_mpi.h
+# The runner's own (mpirun/*.c: each rank's libc and C++ runtime, the
+# compute modes, the loader, crashes, the ELF reader, the compiler wrapper)
+# into libtsmpirun.a; tilesim-mpirun exports to the programs it loads only
+# what they may call (mpirun/exports.list: MPI_*, PMPI_*, tilesim_compute,
+# smpi_*).  mpirun/stublib.c is apart: the library programs link against
+# (STUBLIB, below).
+RUNSRC     = $(filter-out mpirun/stublib.c,$(wildcard mpirun/*.c))
+MPIHDR     = build/include/tilesim/mpi/mpi.h build/include/tilesim/mpi/mpi_funcs.h
+STUBLIB    = build/lib/tilesim/libtilesim_mpi.so
 TSMPIINC   = -Impi -Impirun
 RUNLDFLAGS = -Wl,--dynamic-list=mpirun/exports.list
 RUNLIBS    = -ldl
@@ -96,7 +98,7 @@ chkobj = $(patsubst %.c,$(CHK)/%.o,$(1))
 # Programs build into build/bin and are copied to the root when they change,
 # so that `make bench` can be the experiments rather than the program.
 all: $(addprefix build/bin/,$(PROGS) $(MPITOOLS)) $(PLOT) $(REL)/lib/libtilesim.a \
-     $(addprefix build/examples/,$(EXAMPLES)) $(REL)/libtsmpi.a $(MPIHDR)
+     $(addprefix build/examples/,$(EXAMPLES)) $(REL)/libtsmpi.a $(MPIHDR) $(STUBLIB)
 	@for p in $(PROGS) $(MPITOOLS); do cmp -s build/bin/$$p $$p || cp -f build/bin/$$p $$p; done
 
 $(REL)/%.o: %.c
@@ -125,9 +127,13 @@ build/include/tilesim/tilesim.h: machine/tilesim.h
 build/include/tilesim/mpi/%.h: mpi/%.h
 	@mkdir -p $(dir $@)
 	cp $< $@
-build/include/tilesim/mpi/tilesim_mpi.h: mpirun/tilesim_mpi.h
+# The library every program tilesim-mpicc links is linked against: each
+# name tilesim-mpirun provides, and the word for a program run on its own
+# (mpirun/stublib.c); the predefined callbacks are mpi/callbacks.c's.
+$(STUBLIB): mpirun/stublib.c mpi/callbacks.c mpi/mpi.h mpi/mpi_funcs.h
 	@mkdir -p $(dir $@)
-	cp $< $@
+	$(CC) $(BASE) $(TSMPIINC) $(CFLAGS) -fPIC -shared -Wl,-soname,libtilesim_mpi.so -o $@ mpirun/stublib.c \
+	  mpi/callbacks.c
 
 # The runner's library and the MPI tools' include path.
 $(REL)/mpirun/%.o $(CHK)/mpirun/%.o: BASE += $(TSMPIINC)
@@ -148,10 +154,10 @@ build/bin/tilesim-mpirun: $(REL)/prog/tilesim-mpirun.o $(REL)/libtsmpirun.a $(RE
 $(CHK)/tilesim-mpirun: $(CHK)/prog/tilesim-mpirun.o $(CHK)/libtsmpirun.a $(CHK)/libtsmpi.a $(CHK)/libtilesim.a
 	$$(CC) $$(CHKFLAGS) $$(RUNLDFLAGS) -o $$@ $$< -Wl,--whole-archive $(CHK)/libtsmpirun.a $(CHK)/libtsmpi.a \
 	  -Wl,--no-whole-archive $(CHK)/libtilesim.a $$(LDLIBS) $$(RUNLIBS)
-build/bin/tilesim-mpicc: $(REL)/prog/tilesim-mpicc.o $(REL)/libtsmpirun.a $(REL)/libtsmpi.a $(REL)/libtilesim.a
+build/bin/tilesim-mpic%: $(REL)/prog/tilesim-mpic%.o $(REL)/libtsmpirun.a $(REL)/libtsmpi.a $(REL)/libtilesim.a
 	@mkdir -p build/bin
 	$$(CC) $$(CFLAGS) -o $$@ $$^ $$(LDLIBS) $$(RUNLIBS)
-$(CHK)/tilesim-mpicc: $(CHK)/prog/tilesim-mpicc.o $(CHK)/libtsmpirun.a $(CHK)/libtsmpi.a $(CHK)/libtilesim.a
+$(CHK)/tilesim-mpic%: $(CHK)/prog/tilesim-mpic%.o $(CHK)/libtsmpirun.a $(CHK)/libtsmpi.a $(CHK)/libtilesim.a
 	$$(CC) $$(CHKFLAGS) -o $$@ $$^ $$(LDLIBS) $$(RUNLIBS)
 endef
 $(eval $(mpitool_rules))
@@ -246,7 +252,7 @@ $(CHK)/tests/test_svgchart: $(CHK)/tests/test_svgchart.o $(CHK)/plots/svgchart.o
 # tests/run.sh lists what was skipped and why before its last line.
 check: $(addprefix $(CHK)/tests/,$(TESTS)) $(addprefix $(CHK)/,$(PROGS)) $(if $(PLOTSRC),$(CHK)/plot) \
        $(addprefix $(CHK)/examples/,$(EXAMPLES)) $(addprefix $(CHK)/testbed/,$(TESTBED)) \
-       $(addprefix $(CHK)/,$(MPITOOLS)) $(MPIHDR)
+       $(addprefix $(CHK)/,$(MPITOOLS)) $(MPIHDR) $(STUBLIB)
 	@$(MAKE) --no-print-directory -s mpi-probe
 	@mpi=$$(cat $(PROBE)/mpicc); smpi=$$(cat $(PROBE)/smpicc); \
 	if [ "$$mpi" = yes ] && ! $(MAKE) --no-print-directory -s mpi-bins; then mpi="the MPI build failed (make mpi-bins)"; fi; \
@@ -545,7 +551,9 @@ install-files:
 	cp mp/mp.h machine/tilesim.h $(DESTDIR)$(PREFIX)/include/tilesim/
 	mkdir -p $(DESTDIR)$(PREFIX)/include/tilesim/mpi
 	cp $(addprefix $(IBIN)/,$(MPITOOLS)) $(DESTDIR)$(PREFIX)/bin/
-	cp mpi/mpi.h mpi/mpi_funcs.h mpirun/tilesim_mpi.h $(DESTDIR)$(PREFIX)/include/tilesim/mpi/
+	cp mpi/mpi.h mpi/mpi_funcs.h $(DESTDIR)$(PREFIX)/include/tilesim/mpi/
+	mkdir -p $(DESTDIR)$(PREFIX)/lib/tilesim
+	cp $(STUBLIB) $(DESTDIR)$(PREFIX)/lib/tilesim/
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' machine/tilesim.pc.in \
 	  > $(DESTDIR)$(PREFIX)/lib/pkgconfig/tilesim.pc
 	cp examples/*.c $(SHARE)/examples/
@@ -565,8 +573,9 @@ UNINST = $(addprefix $(DESTDIR)$(PREFIX)/bin/,$(foreach p,$(PROGS),$(call iname,
          $(addprefix $(SHARE)/examples/,$(notdir $(wildcard examples/*.c))) \
          $(addprefix $(SHARE)/examples/mpi/,$(notdir $(wildcard examples/mpi/*.c))) \
          $(DESTDIR)$(PREFIX)/lib/libtilesim.a $(DESTDIR)$(PREFIX)/lib/pkgconfig/tilesim.pc \
-         $(addprefix $(DESTDIR)$(PREFIX)/include/tilesim/,mp.h tilesim.h mpi/mpi.h mpi/mpi_funcs.h mpi/tilesim_mpi.h)
-UNINSTDIRS = $(SHARE)/slicerrt $(SHARE)/rtstruct $(SHARE)/examples/mpi $(SHARE)/examples $(SHARE) $(DESTDIR)$(DOCDIR) \
+         $(addprefix $(DESTDIR)$(PREFIX)/include/tilesim/,mp.h tilesim.h mpi/mpi.h mpi/mpi_funcs.h) \
+         $(DESTDIR)$(PREFIX)/lib/tilesim/$(notdir $(STUBLIB))
+UNINSTDIRS = $(DESTDIR)$(PREFIX)/lib/tilesim $(SHARE)/slicerrt $(SHARE)/rtstruct $(SHARE)/examples/mpi $(SHARE)/examples $(SHARE) $(DESTDIR)$(DOCDIR) \
              $(DESTDIR)$(PREFIX)/include/tilesim/mpi $(DESTDIR)$(PREFIX)/include/tilesim
 uninstall:
 	rm -f $(UNINST)

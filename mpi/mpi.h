@@ -551,6 +551,16 @@ MPI_Delete_function MPI_NULL_DELETE_FN;           /* deprecated */
 #include "mpi_funcs.h"
 #undef TSMPI_FN
 
+/* ------------------------------------------------------------------------
+ * Computing on the simulated machine: the calling rank's processor is busy
+ * (tilesim-mpirun(1), --compute)
+ * ------------------------------------------------------------------------ */
+
+void tilesim_compute(double units);      /* units x --c seconds */
+void smpi_execute_flops(double flops);   /* flops / --flops seconds (SMPI's name) */
+void smpi_execute(double seconds);       /* seconds (SMPI's name) */
+void smpi_execute_benched(double seconds);
+
 #ifdef __cplusplus
 }
 #endif

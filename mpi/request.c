@@ -284,7 +284,7 @@ int PMPI_Test(MPI_Request *request, int *flag, MPI_Status *status) {
   if (rc) return rc;
   if (!live(q)) {
     *flag = 1;
-    empty_out(status, 0);
+    empty_out(status, 1);   /* the empty status, MPI_ERROR (MPI_SUCCESS) too, as MPI 3.1 3.7.3 defines it */
     return MPI_SUCCESS;
   }
   if (q->state == RS_ACTIVE) {
@@ -378,7 +378,7 @@ int PMPI_Request_get_status(MPI_Request request, int *flag, MPI_Status *status) 
   if (rc) return rc;
   if (!live(q)) {
     *flag = 1;
-    empty_out(status, 0);
+    empty_out(status, 1);   /* the empty status, MPI_ERROR (MPI_SUCCESS) too, as MPI 3.1 3.7.3 defines it */
     return MPI_SUCCESS;
   }
   if (q->state == RS_ACTIVE) {

@@ -108,9 +108,12 @@ else
   echo "cli_install: skipped: the library through pkg-config (pkg-config not found)"
 fi
 
-# The MPI tools (issue 19): the installed tilesim-mpicc finds the installed
-# mpi.h beside itself, and the installed tilesim-mpirun runs what it built.
-for f in bin/tilesim-mpicc bin/tilesim-mpirun include/tilesim/mpi/mpi.h include/tilesim/mpi/tilesim_mpi.h; do
+# The MPI tools (issues 19 and 25): the installed tilesim-mpicc finds the
+# installed mpi.h and libtilesim_mpi.so beside itself, the installed
+# tilesim-mpirun runs what it built, and the program run on its own finds
+# the installed library and says how to run it.
+for f in bin/tilesim-mpicc bin/tilesim-mpicxx bin/tilesim-mpirun include/tilesim/mpi/mpi.h \
+         include/tilesim/mpi/mpi_funcs.h lib/tilesim/libtilesim_mpi.so; do
   [ -e "$P/$f" ] && ok || bad "not installed: $f"
 done
 cat > hello.c <<'EOF2'
@@ -129,6 +132,13 @@ EOF2
 "$P/bin/tilesim-mpicc" hello.c -o hello > log 2>&1 && "$P/bin/tilesim-mpirun" -np 3 ./hello > out 2> err \
   && [ "$(sort out | tr '\n' ' ')" = "rank 0 of 3 rank 1 of 3 rank 2 of 3 " ] && ok \
   || bad "the installed tilesim-mpicc and tilesim-mpirun: $(cat log out err)"
+./hello > out 2> err; rc=$?
+[ $rc -eq 2 ] && grep -q 'tilesim-mpirun -np N ./hello$' err && ok || bad "the installed program run on its own: exit $rc, $(cat out err)"
+if command -v c++ > /dev/null 2>&1; then
+  "$P/bin/tilesim-mpicxx" -x c++ hello.c -o hellox > log 2>&1 && "$P/bin/tilesim-mpirun" -np 2 ./hellox > out 2> err \
+    && [ "$(sort out | tr '\n' ' ')" = "rank 0 of 2 rank 1 of 2 " ] && ok \
+    || bad "the installed tilesim-mpicxx: $(cat log out err)"
+fi
 
 # Without the data: a message saying where it looked and what to do, exit 1.
 mv "$P/share/tilesim" "$T/data"
