@@ -145,8 +145,21 @@ static void complete(tsm *R, tsm_req *q, int src, int kind, int ctx, int tag, si
   if (counted) tsm_ranks_drop(q->g);
   q->g = NULL;
   q->state = RS_DONE;
+  if (q->watch) R->progress_due = 1;
   if (kind == K_SYNC) mpok(R, mp_send(R->self, src, env_encode(K_ACK, ctx, tag), NULL, 0), "mp_send");
   if (q->freed) tsm_req_free(R, q);
+}
+
+/* The nonblocking collectives' progress, after a watched request completed
+ * (never inside itself: what it starts is seen by its own loop). */
+static void progress(tsm *R) {
+  if (R->in_progress || !R->progress) return;
+  R->in_progress = 1;
+  while (R->progress_due) {
+    R->progress_due = 0;
+    R->progress();
+  }
+  R->in_progress = 0;
 }
 
 /* Take the message shown (src, mptag, len) off mp into q's buffer. */
@@ -177,8 +190,15 @@ static void acked(tsm *R, int src, int ctx, int tag) {
 }
 
 /* Take the message mp has shown (st) and act on it: an ack, a posted
- * receive's message, or an unexpected one. */
+ * receive's message, or an unexpected one; then the progress of the
+ * nonblocking collectives it moved. */
+static void act(tsm *R, const mp_status *st);
 static void dispatch(tsm *R, const mp_status *st) {
+  act(R, st);
+  if (R->progress_due) progress(R);
+}
+
+static void act(tsm *R, const mp_status *st) {
   int kind = env_kind(st->tag), ctx = env_ctx(st->tag), tag = env_tag(st->tag);
   if (kind == K_ACK) {
     mpok(R, mp_recv(R->self, st->source, st->tag, NULL, 0, NULL), "mp_recv");

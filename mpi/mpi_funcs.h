@@ -315,7 +315,7 @@ TSMPI_FN(1, COLL, int, MPI_Alltoallv, (const void *sendbuf, const int sendcounts
          MPI_Datatype sendtype, void *recvbuf, const int recvcounts[], const int rdispls[],
          MPI_Datatype recvtype, MPI_Comm comm),
          (sendbuf, sendcounts, sdispls, sendtype, recvbuf, recvcounts, rdispls, recvtype, comm))
-TSMPI_FN(0, COLL, int, MPI_Alltoallw, (const void *sendbuf, const int sendcounts[], const int sdispls[],
+TSMPI_FN(1, COLL, int, MPI_Alltoallw, (const void *sendbuf, const int sendcounts[], const int sdispls[],
          const MPI_Datatype sendtypes[], void *recvbuf, const int recvcounts[], const int rdispls[],
          const MPI_Datatype recvtypes[], MPI_Comm comm),
          (sendbuf, sendcounts, sdispls, sendtypes, recvbuf, recvcounts, rdispls, recvtypes, comm))
@@ -333,58 +333,58 @@ TSMPI_FN(1, COLL, int, MPI_Gatherv, (const void *sendbuf, int sendcount, MPI_Dat
          void *recvbuf, const int recvcounts[], const int displs[], MPI_Datatype recvtype, int root,
          MPI_Comm comm),
          (sendbuf, sendcount, sendtype, recvbuf, recvcounts, displs, recvtype, root, comm))
-TSMPI_FN(0, COLL, int, MPI_Iallgather, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
+TSMPI_FN(1, COLL, int, MPI_Iallgather, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
          void *recvbuf, int recvcount, MPI_Datatype recvtype, MPI_Comm comm, MPI_Request *request),
          (sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Iallgatherv, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
+TSMPI_FN(1, COLL, int, MPI_Iallgatherv, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
          void *recvbuf, const int recvcounts[], const int displs[], MPI_Datatype recvtype, MPI_Comm comm,
          MPI_Request *request),
          (sendbuf, sendcount, sendtype, recvbuf, recvcounts, displs, recvtype, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Iallreduce, (const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, COLL, int, MPI_Iallreduce, (const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype,
          MPI_Op op, MPI_Comm comm, MPI_Request *request),
          (sendbuf, recvbuf, count, datatype, op, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Ialltoall, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
+TSMPI_FN(1, COLL, int, MPI_Ialltoall, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
          void *recvbuf, int recvcount, MPI_Datatype recvtype, MPI_Comm comm, MPI_Request *request),
          (sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Ialltoallv, (const void *sendbuf, const int sendcounts[], const int sdispls[],
+TSMPI_FN(1, COLL, int, MPI_Ialltoallv, (const void *sendbuf, const int sendcounts[], const int sdispls[],
          MPI_Datatype sendtype, void *recvbuf, const int recvcounts[], const int rdispls[],
          MPI_Datatype recvtype, MPI_Comm comm, MPI_Request *request),
          (sendbuf, sendcounts, sdispls, sendtype, recvbuf, recvcounts, rdispls, recvtype, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Ialltoallw, (const void *sendbuf, const int sendcounts[], const int sdispls[],
+TSMPI_FN(1, COLL, int, MPI_Ialltoallw, (const void *sendbuf, const int sendcounts[], const int sdispls[],
          const MPI_Datatype sendtypes[], void *recvbuf, const int recvcounts[], const int rdispls[],
          const MPI_Datatype recvtypes[], MPI_Comm comm, MPI_Request *request),
          (sendbuf, sendcounts, sdispls, sendtypes, recvbuf, recvcounts, rdispls, recvtypes, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Ibarrier, (MPI_Comm comm, MPI_Request *request),
+TSMPI_FN(1, COLL, int, MPI_Ibarrier, (MPI_Comm comm, MPI_Request *request),
          (comm, request))
-TSMPI_FN(0, COLL, int, MPI_Ibcast, (void *buffer, int count, MPI_Datatype datatype, int root, MPI_Comm comm,
+TSMPI_FN(1, COLL, int, MPI_Ibcast, (void *buffer, int count, MPI_Datatype datatype, int root, MPI_Comm comm,
          MPI_Request *request),
          (buffer, count, datatype, root, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Iexscan, (const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, COLL, int, MPI_Iexscan, (const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype,
          MPI_Op op, MPI_Comm comm, MPI_Request *request),
          (sendbuf, recvbuf, count, datatype, op, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Igather, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
+TSMPI_FN(1, COLL, int, MPI_Igather, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
          void *recvbuf, int recvcount, MPI_Datatype recvtype, int root, MPI_Comm comm, MPI_Request *request),
          (sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, root, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Igatherv, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
+TSMPI_FN(1, COLL, int, MPI_Igatherv, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
          void *recvbuf, const int recvcounts[], const int displs[], MPI_Datatype recvtype, int root,
          MPI_Comm comm, MPI_Request *request),
          (sendbuf, sendcount, sendtype, recvbuf, recvcounts, displs, recvtype, root, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Ireduce, (const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, COLL, int, MPI_Ireduce, (const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype,
          MPI_Op op, int root, MPI_Comm comm, MPI_Request *request),
          (sendbuf, recvbuf, count, datatype, op, root, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Ireduce_scatter, (const void *sendbuf, void *recvbuf, const int recvcounts[],
+TSMPI_FN(1, COLL, int, MPI_Ireduce_scatter, (const void *sendbuf, void *recvbuf, const int recvcounts[],
          MPI_Datatype datatype, MPI_Op op, MPI_Comm comm, MPI_Request *request),
          (sendbuf, recvbuf, recvcounts, datatype, op, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Ireduce_scatter_block, (const void *sendbuf, void *recvbuf, int recvcount,
+TSMPI_FN(1, COLL, int, MPI_Ireduce_scatter_block, (const void *sendbuf, void *recvbuf, int recvcount,
          MPI_Datatype datatype, MPI_Op op, MPI_Comm comm, MPI_Request *request),
          (sendbuf, recvbuf, recvcount, datatype, op, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Iscan, (const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, COLL, int, MPI_Iscan, (const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype,
          MPI_Op op, MPI_Comm comm, MPI_Request *request),
          (sendbuf, recvbuf, count, datatype, op, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Iscatter, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
+TSMPI_FN(1, COLL, int, MPI_Iscatter, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
          void *recvbuf, int recvcount, MPI_Datatype recvtype, int root, MPI_Comm comm, MPI_Request *request),
          (sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, root, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Iscatterv, (const void *sendbuf, const int sendcounts[], const int displs[],
+TSMPI_FN(1, COLL, int, MPI_Iscatterv, (const void *sendbuf, const int sendcounts[], const int displs[],
          MPI_Datatype sendtype, void *recvbuf, int recvcount, MPI_Datatype recvtype, int root, MPI_Comm comm,
          MPI_Request *request),
          (sendbuf, sendcounts, displs, sendtype, recvbuf, recvcount, recvtype, root, comm, request))

@@ -97,6 +97,85 @@ int tsmpi_p2p_waitall(int n, MPI_Request *reqs, MPI_Status *sts) {
   return first;
 }
 
+/* ==== the nonblocking collectives' requests and progress ================== */
+
+static tsm_req *req_of(tsm *R, MPI_Request h, const char *fn) {
+  tsm_req *q = tsm_req_get(R, h);
+  if (q) return q;
+  fprintf(stderr, "tilesim MPI: internal error: rank %d: %s of request 0x%x\n", R->wrank, fn, (unsigned)h);
+  abort();
+}
+
+void tsmpi_p2p_watch(MPI_Request req) {
+  tsm *R = tsm_need("tsmpi_p2p_watch");
+  req_of(R, req, "tsmpi_p2p_watch")->watch = 1;
+}
+
+int tsmpi_p2p_done(MPI_Request *req, int *err) {
+  tsm *R = tsm_need("tsmpi_p2p_done");
+  tsm_req *q = req_of(R, *req, "tsmpi_p2p_done");
+  if (q->state == RS_ACTIVE) return 0;
+  *err = q->st.MPI_ERROR;
+  tsm_req_free(R, q);
+  *req = MPI_REQUEST_NULL;
+  return 1;
+}
+
+void tsmpi_p2p_drop(MPI_Request *req) {
+  tsm *R = tsm_need("tsmpi_p2p_drop");
+  if (*req == MPI_REQUEST_NULL) return;
+  tsm_req *q = req_of(R, *req, "tsmpi_p2p_drop");
+  if (q->state == RS_ACTIVE && q->kind == RQ_RECV) eng_unpost(R, q);
+  tsm_req_free(R, q);
+  *req = MPI_REQUEST_NULL;
+}
+
+void tsmpi_p2p_poll(void) { eng_poll(tsm_need("tsmpi_p2p_poll")); }
+
+/* mp's progress while the rank computes: at each arrival, act on what came
+ * (the progress function runs from the engine). */
+static void computing(mp *self, void *ud) {
+  (void)ud;
+  tsm *R = mp_user(self);
+  eng_poll(R);
+}
+
+void tsmpi_set_progress(void (*fn)(void), int live) {
+  tsm *R = tsm_need("tsmpi_set_progress");
+  R->progress = fn;
+  mp_set_progress(R->self, fn && live ? computing : NULL, NULL);
+}
+
+MPI_Request tsmpi_req_coll(const char *fn, MPI_Comm comm, int root) {
+  tsm *R = tsm_need(fn);
+  tsm_comm *c = comm_of(R, comm, fn);
+  tsm_req *q = tsm_req_new(R);
+  q->kind = RQ_COLL;
+  q->state = RS_ACTIVE;
+  q->fn = fn;
+  q->comm = comm;
+  q->pair = c->pair;
+  q->peer = root;
+  q->tag = MPI_ANY_TAG;
+  tsm_status_empty(&q->st);
+  return tsm_req_handle(q);
+}
+
+void tsmpi_req_complete(MPI_Request req, int err) {
+  tsm *R = tsm_need("tsmpi_req_complete");
+  tsm_req *q = req_of(R, req, "tsmpi_req_complete");
+  q->st.MPI_ERROR = err;
+  q->state = RS_DONE;
+  if (q->freed) tsm_req_free(R, q);
+}
+
+int tsmpi_comm_nbc_tag(MPI_Comm comm) {
+  tsm *R = tsm_need("tsmpi_comm_nbc_tag");
+  tsm_comm *c = comm_of(R, comm, "tsmpi_comm_nbc_tag");
+  unsigned span = TSMPI_COLL_TAG_MAX - TSMPI_NBC_TAG_MIN + 1;
+  return TSMPI_NBC_TAG_MIN + (int)(c->nbc_seq++ % span);
+}
+
 /* ==== communicators ======================================================= */
 
 int tsmpi_comm_check(MPI_Comm comm, const char *fn) {

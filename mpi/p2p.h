@@ -75,6 +75,49 @@ int tsmpi_p2p_irecv(void *buf, int count, MPI_Datatype dt, int src, int tag, MPI
  * first error class (without). */
 int tsmpi_p2p_waitall(int n, MPI_Request *reqs, MPI_Status *sts);
 
+/* ==== the nonblocking collectives' requests and progress ================== */
+
+/* Mark a request of tsmpi_p2p_isend/irecv as a step of a nonblocking
+ * collective: when the engine completes it (in any MPI call of the rank, or
+ * while the rank computes), the rank's progress function runs (see
+ * tsmpi_set_progress), after the message was acted on. */
+void tsmpi_p2p_watch(MPI_Request req);
+
+/* Without acting on any message: 1 if *req is done (then it is freed, *req
+ * is MPI_REQUEST_NULL and *err its status's error class), else 0. */
+int tsmpi_p2p_done(MPI_Request *req, int *err);
+
+/* A request given up (a schedule freed before it finished): a receive still
+ * posted is taken out of the posted queue; the request is freed and *req is
+ * MPI_REQUEST_NULL. */
+void tsmpi_p2p_drop(MPI_Request *req);
+
+/* Act on every message that has arrived, without blocking (the engine's
+ * poll: receives matched, progress run). */
+void tsmpi_p2p_poll(void);
+
+/* The rank's progress function: fn() runs after the engine completed a
+ * watched request, at a point where it may send and post receives (never
+ * block); while live (nonzero) the rank also makes progress while it
+ * computes (mp_set_progress: each message that arrives while the rank
+ * computes is acted on at its arrival).  fn NULL: none. */
+void tsmpi_set_progress(void (*fn)(void), int live);
+
+/* A request of the program's for nonblocking collective fn on comm (root:
+ * its root, or -1): active until tsmpi_req_complete.  Its status is the
+ * empty one; a program's MPI_Request_free lets it go on until complete. */
+MPI_Request tsmpi_req_coll(const char *fn, MPI_Comm comm, int root);
+/* The collective is done, with error class err (already raised under the
+ * communicator's handler). */
+void tsmpi_req_complete(MPI_Request req, int err);
+
+/* The tag of the next nonblocking collective on comm: the same on every
+ * rank, as every rank starts a communicator's collectives in the same
+ * order (MPI 3.1 section 5.12), and never one of the blocking ones'
+ * (TSMPI_NBC_TAG_MIN .. TSMPI_COLL_TAG_MAX, round and round). */
+enum { TSMPI_NBC_TAG_MIN = 0x100 };
+int tsmpi_comm_nbc_tag(MPI_Comm comm);
+
 /* ==== communicators ======================================================= */
 
 /* MPI_SUCCESS if comm is a communicator of the calling rank (not freed, not
@@ -146,7 +189,7 @@ int tsmpi_type_attrs_delete(MPI_Datatype dt, const char *fn);
  * the datatype module's table of created types, the operations', the
  * collectives'.  release(p), if not NULL, is called once at MPI_Finalize or
  * when the rank ends without it (a stopped run), parts in reverse order. */
-enum { TSMPI_PART_DTYPE, TSMPI_PART_OP, TSMPI_PART_COLL, TSMPI_PARTS };
+enum { TSMPI_PART_DTYPE, TSMPI_PART_OP, TSMPI_PART_COLL, TSMPI_PART_SCHED, TSMPI_PART_NBC, TSMPI_PARTS };
 void *tsmpi_part(int part);
 void tsmpi_part_set(int part, void *p, void (*release)(void *p));
 

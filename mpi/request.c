@@ -53,7 +53,7 @@ static int finish(tsm *R, const char *fn, MPI_Request *h, tsm_req *q, MPI_Status
                   int raise) {
   tsm_status_out(st, &q->st, with_error);
   int err = q->st.MPI_ERROR;
-  if (err && raise) {
+  if (err && raise && q->kind != RQ_COLL) {   /* a collective's error was raised when it happened */
     tsm_req copy = *q;
     if (q->persistent)
       q->state = RS_INACTIVE;

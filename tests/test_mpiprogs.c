@@ -47,15 +47,19 @@ static int mine(const char *name) {
  * forcing for it (the others run MPICH's choice and linear only). */
 static const struct {
   const char *prefix;
-  tsmpi_coll colls[6];
+  tsmpi_coll colls[COLL_N];
   int n;
+  int np[2];   /* forced on these rank counts only (0: on every one of forced_np) */
 } uses[] = {
-  {"coll_bcast", {COLL_BCAST, COLL_BARRIER}, 2},
-  {"coll_reduce", {COLL_REDUCE, COLL_ALLREDUCE}, 2},
-  {"coll_gather", {COLL_GATHER, COLL_GATHERV, COLL_SCATTER, COLL_SCATTERV, COLL_ALLGATHER, COLL_ALLGATHERV}, 6},
-  {"coll_alltoall", {COLL_ALLTOALL, COLL_ALLTOALLV}, 2},
-  {"coll_scan", {COLL_SCAN, COLL_EXSCAN, COLL_REDUCE_SCATTER, COLL_REDUCE_SCATTER_BLOCK}, 4},
-  {"coll_order", {COLL_REDUCE, COLL_ALLREDUCE, COLL_SCAN, COLL_EXSCAN}, 4},
+  {"coll_bcast", {COLL_BCAST, COLL_BARRIER}, 2, {0, 0}},
+  {"coll_reduce", {COLL_REDUCE, COLL_ALLREDUCE}, 2, {0, 0}},
+  {"coll_gather", {COLL_GATHER, COLL_GATHERV, COLL_SCATTER, COLL_SCATTERV, COLL_ALLGATHER, COLL_ALLGATHERV}, 6, {0, 0}},
+  {"coll_alltoall", {COLL_ALLTOALL, COLL_ALLTOALLV}, 2, {0, 0}},
+  {"coll_scan", {COLL_SCAN, COLL_EXSCAN, COLL_REDUCE_SCATTER, COLL_REDUCE_SCATTER_BLOCK}, 4, {0, 0}},
+  {"coll_order", {COLL_REDUCE, COLL_ALLREDUCE, COLL_SCAN, COLL_EXSCAN}, 4, {0, 0}},
+  {"coll_nbc", {COLL_BARRIER, COLL_BCAST, COLL_REDUCE, COLL_ALLREDUCE, COLL_GATHER, COLL_SCATTER, COLL_ALLGATHER,
+                COLL_ALLGATHERV, COLL_ALLTOALL, COLL_ALLTOALLV, COLL_ALLTOALLW, COLL_SCAN, COLL_EXSCAN,
+                COLL_REDUCE_SCATTER, COLL_REDUCE_SCATTER_BLOCK}, 15, {5, 8}},
 };
 
 /* Run one program on np ranks under one setting ("mpich", "linear",
@@ -99,6 +103,7 @@ static void settings(int p, int np, int all) {
   if (!all && !in(np, forced_np, 6)) return;
   for (size_t u = 0; u < sizeof uses / sizeof uses[0]; u++) {
     if (strncmp(progs[p].name, uses[u].prefix, strlen(uses[u].prefix))) continue;
+    if (!all && uses[u].np[0] && np != uses[u].np[0] && np != uses[u].np[1]) continue;
     for (int c = 0; c < uses[u].n; c++) {
       tsmpi_coll coll = uses[u].colls[c];
       for (int a = ALG_DISSEMINATION; a < ALG_N; a++) {
