@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "dtype.h"
+#include "op.h"
 #include "p2p.h"
 
 enum { OP_SEND, OP_RECV, OP_ISEND, OP_IRECV, OP_WAITALL, OP_REDUCE, OP_COPY, OP_UNPACK, OP_CALL };
@@ -44,6 +45,7 @@ struct tsmpi_sched {
   MPI_Datatype *held;         /* types the unpack steps hold */
   int nheld, capheld;
   void *frame;                /* tsmpi_sched_frame */
+  int red_held;               /* red's type and operation are held */
 };
 
 /* ==== the rank's live schedules =========================================== */
@@ -94,7 +96,7 @@ tsmpi_sched *tsmpi_sched_new(const tsmpi_cg *g, const tsmpi_red *r) {
   tsmpi_sched *s = xalloc(sizeof *s);
   memset(s, 0, sizeof *s);
   s->g = *g;
-  if (r) s->red = *r;
+  if (r) tsmpi_sched_set_red(s, r);
   s->cur = MPI_REQUEST_NULL;
   live *l = rank_live();
   s->next = l->head;
@@ -105,7 +107,22 @@ tsmpi_sched *tsmpi_sched_new(const tsmpi_cg *g, const tsmpi_red *r) {
 
 const tsmpi_cg *tsmpi_sched_group(const tsmpi_sched *s) { return &s->g; }
 const tsmpi_red *tsmpi_sched_red(const tsmpi_sched *s) { return &s->red; }
-void tsmpi_sched_set_red(tsmpi_sched *s, const tsmpi_red *r) { s->red = *r; }
+/* The reduction's type and operation are held as long as the schedule: the
+ * program may free them before a nonblocking collective completes. */
+static void red_release(tsmpi_sched *s) {
+  if (!s->red_held) return;
+  tsmpi_type_release(s->red.dt);
+  tsmpi_op_release(s->red.op);
+  s->red_held = 0;
+}
+
+void tsmpi_sched_set_red(tsmpi_sched *s, const tsmpi_red *r) {
+  red_release(s);
+  s->red = *r;
+  tsmpi_type_hold(r->dt);
+  tsmpi_op_hold(r->op);
+  s->red_held = 1;
+}
 void *tsmpi_sched_frame(const tsmpi_sched *s) { return s->frame; }
 void tsmpi_sched_set_frame(tsmpi_sched *s, void *frame) { s->frame = frame; }
 
@@ -307,6 +324,7 @@ void tsmpi_sched_free(tsmpi_sched *s) {
     free(b);
   }
   for (int i = 0; i < s->nheld; i++) tsmpi_type_release(s->held[i]);
+  red_release(s);
   free(s->held);
   free(s->ops);
   free(s->reqs);
