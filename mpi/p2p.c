@@ -8,6 +8,7 @@
 #include "engine.h"
 #include "err.h"
 #include "pt2pt.h"
+#include "topo.h"
 
 /* The calling rank and comm, which the caller has checked: a bad one is a
  * bug of the layer. */
@@ -174,6 +175,20 @@ int tsmpi_comm_nbc_tag(MPI_Comm comm) {
   tsm_comm *c = comm_of(R, comm, "tsmpi_comm_nbc_tag");
   unsigned span = TSMPI_COLL_TAG_MAX - TSMPI_NBC_TAG_MIN + 1;
   return TSMPI_NBC_TAG_MIN + (int)(c->nbc_seq++ % span);
+}
+
+/* ==== a communicator's process topology ================================== */
+
+struct tsmpi_topo *tsmpi_comm_topo(MPI_Comm comm) {
+  tsm *R = tsm_need("tsmpi_comm_topo");
+  return comm_of(R, comm, "tsmpi_comm_topo")->topo;
+}
+
+void tsmpi_comm_set_topo(MPI_Comm comm, struct tsmpi_topo *t) {
+  tsm *R = tsm_need("tsmpi_comm_set_topo");
+  tsm_comm *c = comm_of(R, comm, "tsmpi_comm_set_topo");
+  tsmpi_topo_unref(c->topo);
+  c->topo = t;
 }
 
 /* ==== communicators ======================================================= */

@@ -118,6 +118,14 @@ void tsmpi_req_complete(MPI_Request req, int err);
 enum { TSMPI_NBC_TAG_MIN = 0x100 };
 int tsmpi_comm_nbc_tag(MPI_Comm comm);
 
+/* ==== a communicator's process topology ================================== */
+
+/* comm's topology (topo.h), or NULL; comm checked.  set: comm (just made
+ * by the caller) takes t and the caller's count of it.  MPI_Comm_dup shares
+ * it (counted), MPI_Comm_free drops its count. */
+struct tsmpi_topo *tsmpi_comm_topo(MPI_Comm comm);
+void tsmpi_comm_set_topo(MPI_Comm comm, struct tsmpi_topo *t);
+
 /* ==== communicators ======================================================= */
 
 /* MPI_SUCCESS if comm is a communicator of the calling rank (not freed, not

@@ -12,6 +12,7 @@
 #include "env.h"
 #include "errh.h"
 #include "info.h"
+#include "topo.h"
 #include "xmem.h"
 
 /* ==== finding the rank's state ============================================ */
@@ -187,6 +188,7 @@ void tsm_release(tsm *R) {
     if (!R->comms[i]) continue;
     tsm_ranks_drop(R->comms[i]->g);
     if (R->comms[i]->inter) tsm_ranks_drop(R->comms[i]->lg);
+    tsmpi_topo_unref(R->comms[i]->topo);
     free(R->comms[i]);
   }
   free(R->comms);

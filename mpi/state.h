@@ -102,6 +102,7 @@ typedef struct {
   int hidden;          /* such a local communicator */
   unsigned hints;      /* the info hints it keeps (info.c: TSM_HINT_*) */
   unsigned nbc_seq;    /* nonblocking collectives started on it (tsmpi_comm_nbc_tag) */
+  struct tsmpi_topo *topo;   /* its process topology (topo.h), counted, or NULL */
 } tsm_comm;
 
 static inline int tsm_comm_lsize(const tsm_comm *c) { return c->inter ? c->lg->n : c->size; }

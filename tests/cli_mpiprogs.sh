@@ -1,8 +1,8 @@
 #!/bin/sh
 # cli_mpiprogs.sh -- the MPI programs of tests/mpi/ built with Open MPI's
-# mpicc and run under its mpirun: the datatype, operation and collective
-# programs (dtype_*, op_*, coll_*) on 1, 3 and 8 processes, the
-# point-to-point, communicator, attribute, error-handler and info ones
+# mpicc and run under its mpirun: the datatype, operation, collective and
+# topology programs (dtype_*, op_*, coll_*, topo_*) on 1, 3 and 8 processes,
+# the point-to-point, communicator, attribute, error-handler and info ones
 # (p2p_*, comm_*, attr_*, err_*, info_*) on 2 and 5.  Each
 # must pass its own checks and print the same "NAME: P passed, F failed"
 # line as on tilesim's simulator (build/chk/tests/test_mpiprogs NAME NP
@@ -58,7 +58,7 @@ group() {
     done
   done
 }
-group test_mpiprogs mpich "1 3 8" tests/mpi/dtype_*.c tests/mpi/op_*.c tests/mpi/coll_*.c
+group test_mpiprogs mpich "1 3 8" tests/mpi/dtype_*.c tests/mpi/op_*.c tests/mpi/coll_*.c tests/mpi/topo_*.c
 group test_mpiprogs_p2p "" "2 5" tests/mpi/p2p_*.c tests/mpi/comm_*.c tests/mpi/attr_*.c tests/mpi/err_*.c \
   tests/mpi/info_*.c
 

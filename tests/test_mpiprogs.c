@@ -40,7 +40,8 @@ enum { NPROGS = sizeof progs / sizeof progs[0] };
 /* The programs this driver runs: the datatype, operation and collective
  * ones (point-to-point's have their own). */
 static int mine(const char *name) {
-  return !strncmp(name, "coll_", 5) || !strncmp(name, "dtype_", 6) || !strncmp(name, "op_", 3);
+  return !strncmp(name, "coll_", 5) || !strncmp(name, "dtype_", 6) || !strncmp(name, "op_", 3) ||
+         !strncmp(name, "topo_", 5);
 }
 
 /* Which collectives a program's checks depend on: the settings worth
