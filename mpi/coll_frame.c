@@ -30,7 +30,7 @@ typedef struct {
 tsmpi_sched *tsmpi_coll_start(const char *fn, MPI_Comm comm, tsmpi_coll which, int root, MPI_Request *req) {
   tsmpi_cg g = {comm, tsmpi_comm_rank(comm), tsmpi_comm_size(comm), 1 + (int)which, fn};
   if (req) g.tag = tsmpi_comm_nbc_tag(comm);
-  tsmpi_sched *s = tsmpi_sched_new(&g, NULL);
+  tsmpi_sched *s = tsmpi_sched_new(&g, NULL, req == NULL);
   frame *f = tsmpi_sched_mem(s, sizeof *f);
   f->req = req;
   f->l.fn = fn;

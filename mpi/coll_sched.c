@@ -46,6 +46,7 @@ struct tsmpi_sched {
   int nheld, capheld;
   void *frame;                /* tsmpi_sched_frame */
   int red_held;               /* red's type and operation are held */
+  int now;                    /* blocking: each step runs as it is added */
 };
 
 /* ==== the rank's live schedules =========================================== */
@@ -92,10 +93,11 @@ static live *rank_live(void) {
 
 /* ==== building ============================================================ */
 
-tsmpi_sched *tsmpi_sched_new(const tsmpi_cg *g, const tsmpi_red *r) {
+tsmpi_sched *tsmpi_sched_new(const tsmpi_cg *g, const tsmpi_red *r, int blocking) {
   tsmpi_sched *s = xalloc(sizeof *s);
   memset(s, 0, sizeof *s);
   s->g = *g;
+  s->now = blocking;
   if (r) tsmpi_sched_set_red(s, r);
   s->cur = MPI_REQUEST_NULL;
   live *l = rank_live();
@@ -119,6 +121,7 @@ static void red_release(tsmpi_sched *s) {
 void tsmpi_sched_set_red(tsmpi_sched *s, const tsmpi_red *r) {
   red_release(s);
   s->red = *r;
+  if (s->now) return;   /* used before the call returns */
   tsmpi_type_hold(r->dt);
   tsmpi_op_hold(r->op);
   s->red_held = 1;
@@ -134,61 +137,59 @@ void *tsmpi_sched_mem(tsmpi_sched *s, size_t n) {
   return b->data;
 }
 
-static op *add(tsmpi_sched *s, int kind) {
+/* A step: run now (a blocking schedule; nothing after an error) or kept. */
+static void run_now(tsmpi_sched *s, const op *o);
+static void emit(tsmpi_sched *s, const op *o) {
+  if (s->now) {
+    if (!s->err) run_now(s, o);
+    return;
+  }
   if (s->nops == s->cap) {
     int cap = s->cap ? 2 * s->cap : 16;
-    op *o = realloc(s->ops, (size_t)cap * sizeof *o);
-    if (!o) oom((size_t)cap * sizeof *o);
-    s->ops = o;
+    op *p = realloc(s->ops, (size_t)cap * sizeof *p);
+    if (!p) oom((size_t)cap * sizeof *p);
+    s->ops = p;
     s->cap = cap;
   }
-  op *o = &s->ops[s->nops++];
-  memset(o, 0, sizeof *o);
-  o->kind = (unsigned char)kind;
-  return o;
+  s->ops[s->nops++] = *o;
 }
 
 static void xfer(tsmpi_sched *s, int kind, const void *buf, size_t n, int peer) {
-  op *o = add(s, kind);
-  o->peer = peer;
-  o->n = n;
+  op o = {.kind = (unsigned char)kind, .peer = peer, .n = n};
   if (kind == OP_SEND || kind == OP_ISEND)
-    o->b = buf;
+    o.b = buf;
   else
-    o->a.p = (void *)buf;
+    o.a.p = (void *)buf;
+  emit(s, &o);
 }
 
 void tsmpi_sched_send(tsmpi_sched *s, const void *buf, size_t n, int dst) { xfer(s, OP_SEND, buf, n, dst); }
 void tsmpi_sched_recv(tsmpi_sched *s, void *buf, size_t n, int src) { xfer(s, OP_RECV, buf, n, src); }
 void tsmpi_sched_isend(tsmpi_sched *s, const void *buf, size_t n, int dst) { xfer(s, OP_ISEND, buf, n, dst); }
 void tsmpi_sched_irecv(tsmpi_sched *s, void *buf, size_t n, int src) { xfer(s, OP_IRECV, buf, n, src); }
-void tsmpi_sched_waitall(tsmpi_sched *s) { add(s, OP_WAITALL); }
+
+void tsmpi_sched_waitall(tsmpi_sched *s) {
+  op o = {.kind = OP_WAITALL};
+  emit(s, &o);
+}
 
 void tsmpi_sched_reduce(tsmpi_sched *s, const void *left, void *right, int count) {
   if (count <= 0) return;
-  op *o = add(s, OP_REDUCE);
-  o->b = left;
-  o->a.p = right;
-  o->peer = count;
+  op o = {.kind = OP_REDUCE, .peer = count, .a.p = right, .b = left};
+  emit(s, &o);
 }
 
 void tsmpi_sched_copy(tsmpi_sched *s, void *dst, const void *src, size_t n) {
   if (n == 0 || dst == src) return;
-  op *o = add(s, OP_COPY);
-  o->a.p = dst;
-  o->b = src;
-  o->n = n;
+  op o = {.kind = OP_COPY, .n = n, .a.p = dst, .b = src};
+  emit(s, &o);
 }
 
 void tsmpi_sched_unpack(tsmpi_sched *s, const void *p, size_t n, void *buf, int count, MPI_Datatype dt) {
   if (n == 0) return;
-  op *o = add(s, OP_UNPACK);
-  o->a.p = buf;
-  o->b = p;
-  o->peer = count;
-  o->dt = dt;
-  o->n = n;
-  if (s->nheld && s->held[s->nheld - 1] == dt) return;   /* held already */
+  op o = {.kind = OP_UNPACK, .peer = count, .dt = dt, .n = n, .a.p = buf, .b = p};
+  emit(s, &o);
+  if (s->now || (s->nheld && s->held[s->nheld - 1] == dt)) return;   /* used now, or held already */
   if (s->nheld == s->capheld) {
     int cap = s->capheld ? 2 * s->capheld : 4;
     MPI_Datatype *h = realloc(s->held, (size_t)cap * sizeof *h);
@@ -201,9 +202,8 @@ void tsmpi_sched_unpack(tsmpi_sched *s, const void *p, size_t n, void *buf, int 
 }
 
 void tsmpi_sched_call(tsmpi_sched *s, void (*fn)(void *ud), void *ud) {
-  op *o = add(s, OP_CALL);
-  o->a.fn = fn;
-  o->b = ud;
+  op o = {.kind = OP_CALL, .a.fn = fn, .b = ud};
+  emit(s, &o);
 }
 
 /* ==== running ============================================================= */
@@ -230,29 +230,32 @@ static void req_add(tsmpi_sched *s, MPI_Request r) {
   s->reqs[s->nreqs++] = r;
 }
 
-int tsmpi_sched_run(tsmpi_sched *s) {
+/* A blocking schedule's step, at once: the algorithm's own call in line. */
+static void run_now(tsmpi_sched *s, const op *o) {
   const tsmpi_cg *g = &s->g;
+  MPI_Request r;
   int rc = MPI_SUCCESS;
-  for (int i = 0; i < s->nops && !rc; i++) {
-    const op *o = &s->ops[i];
-    MPI_Request r;
-    switch (o->kind) {
-    case OP_SEND: rc = tsmpi_cg_send(g, o->b, o->n, o->peer); break;
-    case OP_RECV: rc = tsmpi_cg_recv(g, o->a.p, o->n, o->peer, NULL); break;
-    case OP_ISEND:
-      if ((rc = tsmpi_cg_isend(g, o->b, o->n, o->peer, &r)) == 0) req_add(s, r);
-      break;
-    case OP_IRECV:
-      if ((rc = tsmpi_cg_irecv(g, o->a.p, o->n, o->peer, &r)) == 0) req_add(s, r);
-      break;
-    case OP_WAITALL:
-      rc = tsmpi_cg_waitall(g, s->nreqs, s->reqs);
-      s->nreqs = 0;
-      break;
-    default: local(s, o); break;
-    }
+  switch (o->kind) {
+  case OP_SEND: rc = tsmpi_cg_send(g, o->b, o->n, o->peer); break;
+  case OP_RECV: rc = tsmpi_cg_recv(g, o->a.p, o->n, o->peer, NULL); break;
+  case OP_ISEND:
+    if ((rc = tsmpi_cg_isend(g, o->b, o->n, o->peer, &r)) == 0) req_add(s, r);
+    break;
+  case OP_IRECV:
+    if ((rc = tsmpi_cg_irecv(g, o->a.p, o->n, o->peer, &r)) == 0) req_add(s, r);
+    break;
+  case OP_WAITALL:
+    rc = tsmpi_cg_waitall(g, s->nreqs, s->reqs);
+    s->nreqs = 0;
+    break;
+  default: local(s, o); break;
   }
-  if (rc && s->nreqs) tsmpi_cg_waitall(g, s->nreqs, s->reqs);   /* as the algorithms did: theirs finish */
+  s->err = rc;
+}
+
+int tsmpi_sched_run(tsmpi_sched *s) {
+  int rc = s->err;
+  if (rc && s->nreqs) tsmpi_cg_waitall(&s->g, s->nreqs, s->reqs);   /* as the algorithms did: theirs finish */
   s->nreqs = 0;
   tsmpi_sched_free(s);
   return rc;

@@ -7,18 +7,19 @@
  * calling rank to a schedule, with every size known when it is built (the sizes a rank
  * receives are computed, as MPICH's schedules compute them, never read from a message).
  *
- *   build                               run (blocking)          step (nonblocking)
- *   tsmpi_sched_send(s, buf, n, dst)    mp_send now             mp_send when reached
+ *   step                                blocking (at once)      nonblocking (stepped)
+ *   tsmpi_sched_send(s, buf, n, dst)    mp_send                 mp_send when reached
  *   tsmpi_sched_recv(s, buf, n, src)    blocking receive        posted when reached; the
  *                                                               schedule waits there
- *   tsmpi_sched_isend/irecv(...)        posted when reached, completed by the next waitall
+ *   tsmpi_sched_isend/irecv(...)        posted, completed by the next waitall
  *   tsmpi_sched_waitall(s)              waits for those         waits there until all are done
- *   tsmpi_sched_reduce/copy/unpack/call local, when reached
+ *   tsmpi_sched_reduce/copy/unpack/call local
  *
- * A step runs only when every step before it has (a receive's buffer is free for it, a send's
- * data is there), so running a schedule makes exactly the calls, in exactly the order, that the
- * algorithm's code would make in line: the blocking collectives' simulated times are the
- * algorithm's.
+ * A blocking schedule runs each step as the algorithm adds it, and is never stored: the calls
+ * are exactly, in exactly the order, those the algorithm's code would make in line, and the
+ * blocking collectives' simulated times are the algorithm's.  A nonblocking one keeps its steps
+ * and runs each only when every step before it has (a receive's buffer is free for it, a
+ * send's data is there).
  *
  * MEMORY.  A schedule owns what tsmpi_sched_mem gives and is freed with it.  Every live
  * schedule of a rank is on the rank's list, so a run stopped while a rank waits inside one
@@ -33,8 +34,10 @@
 typedef struct tsmpi_sched tsmpi_sched;
 
 /* A new, empty schedule of the calling rank on group g (copied); r, if not NULL, is the
- * reduction its reduce steps apply (copied). */
-tsmpi_sched *tsmpi_sched_new(const tsmpi_cg *g, const tsmpi_red *r);
+ * reduction its reduce steps apply (copied).  blocking: each step runs as it is added (the
+ * receives blocking), so that the schedule is never stored: tsmpi_sched_run then ends it;
+ * else the steps are kept for tsmpi_sched_step. */
+tsmpi_sched *tsmpi_sched_new(const tsmpi_cg *g, const tsmpi_red *r, int blocking);
 
 /* The schedule's group and reduction. */
 const tsmpi_cg *tsmpi_sched_group(const tsmpi_sched *s);
@@ -69,8 +72,9 @@ void tsmpi_sched_unpack(tsmpi_sched *s, const void *p, size_t n, void *buf, int 
 /* A local step of the algorithm's own: fn(ud) (ud in the schedule's memory, typically). */
 void tsmpi_sched_call(tsmpi_sched *s, void (*fn)(void *ud), void *ud);
 
-/* Blocking: run every step in order (receives and waitalls block), then free s.  MPI_SUCCESS or
- * the first error, already raised under the communicator's handler. */
+/* Blocking: the end of a schedule whose steps ran as they were added (receives and waitalls
+ * blocking; none after an error): the requests an error left are waited for, s is freed.
+ * MPI_SUCCESS or the first error, already raised under the communicator's handler. */
 int tsmpi_sched_run(tsmpi_sched *s);
 
 /* Nonblocking: run the steps from where s stands until one must wait (a receive or a waitall
