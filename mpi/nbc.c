@@ -39,11 +39,14 @@ static list *rank_list(void) {
   return l;
 }
 
-/* e's schedule is at its end: its request completes, it goes. */
-static void finish(nbc *e) {
+/* e's schedule is at its end: its request completes, it goes, and so does
+ * its hold on the communicator (held: it was). */
+static void finish(nbc *e, int held) {
+  MPI_Comm comm = tsmpi_sched_group(e->s)->comm;
   tsmpi_req_complete(e->req, tsmpi_sched_error(e->s));
   tsmpi_sched_free(e->s);
   free(e);
+  if (held) tsmpi_comm_release(comm);
 }
 
 /* The engine completed a watched request: step every live schedule that can
@@ -61,7 +64,7 @@ static void progress(void) {
     }
     *pp = e->next;
     if (l->tail == e) l->tail = prev;
-    finish(e);
+    finish(e, 1);
   }
   if (!l->head) tsmpi_set_progress(progress, 0);
 }
@@ -78,9 +81,10 @@ void tsmpi_nbc_start(tsmpi_sched *s, const char *fn, MPI_Comm comm, int root, MP
   e->s = s;
   e->req = h;
   if (tsmpi_sched_step(s)) {   /* nothing to wait for */
-    finish(e);
+    finish(e, 0);
     return;
   }
+  tsmpi_comm_hold(comm);
   list *l = rank_list();
   if (l->tail)
     l->tail->next = e;

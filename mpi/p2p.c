@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "comm.h"
 #include "engine.h"
 #include "err.h"
 #include "pt2pt.h"
@@ -168,6 +169,17 @@ void tsmpi_req_complete(MPI_Request req, int err) {
   q->st.MPI_ERROR = err;
   q->state = RS_DONE;
   if (q->freed) tsm_req_free(R, q);
+}
+
+void tsmpi_comm_hold(MPI_Comm comm) {
+  tsm *R = tsm_need("tsmpi_comm_hold");
+  comm_of(R, comm, "tsmpi_comm_hold")->holds++;
+}
+
+void tsmpi_comm_release(MPI_Comm comm) {
+  tsm *R = tsm_need("tsmpi_comm_release");
+  tsm_comm *c = comm_of(R, comm, "tsmpi_comm_release");
+  if (--c->holds == 0 && c->freed) tsm_comm_end(R, &comm);
 }
 
 int tsmpi_comm_nbc_tag(MPI_Comm comm) {

@@ -111,6 +111,12 @@ MPI_Request tsmpi_req_coll(const char *fn, MPI_Comm comm, int root);
  * communicator's handler). */
 void tsmpi_req_complete(MPI_Request req, int err);
 
+/* A nonblocking collective on comm keeps it alive: MPI_Comm_free while it
+ * is held takes it from the program only, and the last release ends it
+ * (MPI 3.1 section 6.4.3: freed once its pending operations complete). */
+void tsmpi_comm_hold(MPI_Comm comm);
+void tsmpi_comm_release(MPI_Comm comm);
+
 /* The tag of the next nonblocking collective on comm: the same on every
  * rank, as every rank starts a communicator's collectives in the same
  * order (MPI 3.1 section 5.12), and never one of the blocking ones'

@@ -103,6 +103,9 @@ typedef struct {
   unsigned hints;      /* the info hints it keeps (info.c: TSM_HINT_*) */
   unsigned nbc_seq;    /* nonblocking collectives started on it (tsmpi_comm_nbc_tag) */
   struct tsmpi_topo *topo;   /* its process topology (topo.h), counted, or NULL */
+  int holds;           /* nonblocking collectives on it going on (tsmpi_comm_hold) */
+  int freed;           /* MPI_Comm_free'd while held: gone for the program, and
+                          ended when the last hold goes */
 } tsm_comm;
 
 static inline int tsm_comm_lsize(const tsm_comm *c) { return c->inter ? c->lg->n : c->size; }

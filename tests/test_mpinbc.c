@@ -172,6 +172,38 @@ static void deadlock(void) {
   mpih_result_free(&res);
 }
 
+/* A communicator freed while its nonblocking collective goes on: MPI frees
+ * it once the collective is done (Open MPI 4.1 crashes on this). */
+static int freed_early(void *ud) {
+  int *bad = ud, me, size, sum = -1, status;
+  MPI_Init(NULL, NULL);
+  MPI_Comm_rank(MPI_COMM_WORLD, &me);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  MPI_Comm d;
+  MPI_Request r;
+  MPI_Comm_dup(MPI_COMM_WORLD, &d);
+  MPI_Iallreduce(&me, &sum, 1, MPI_INT, MPI_SUM, d, &r);
+  MPI_Comm_free(&d);
+  MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
+  int rc = MPI_Topo_test(d, &status);   /* the program's handle is gone at once */
+  MPI_Wait(&r, MPI_STATUS_IGNORE);
+  if (d != MPI_COMM_NULL || rc == MPI_SUCCESS || sum != size * (size - 1) / 2) bad[me] = 1;
+  MPI_Finalize();
+  return 0;
+}
+
+static void freed(void) {
+  int bad[5] = {0, 0, 0, 0, 0};
+  mpih_config cfg;
+  mpih_config_init(&cfg, MPIH_SIM, 5);
+  mpih_result res;
+  mpih_run_fn(&cfg, freed_early, bad, &res);
+  CHECK(res.rc == 0 && !bad[0] && !bad[1] && !bad[2] && !bad[3] && !bad[4],
+        "MPI_Comm_free before the wait of an MPI_Iallreduce on it, 5 ranks: rc %d (%s), bad %d %d %d %d %d", res.rc,
+        res.err, bad[0], bad[1], bad[2], bad[3], bad[4]);
+  mpih_result_free(&res);
+}
+
 /* On threads the results, whatever the order the messages come in. */
 static void threads(void) {
   for (int which = 0; which < NCASES; which++) {
@@ -189,6 +221,7 @@ int main(void) {
   overlap();
   overhead();
   deadlock();
+  freed();
   threads();
   return check_done("test_mpinbc");
 }
