@@ -1,8 +1,9 @@
-/* test_mpiprogs.c -- the datatype, operation and collective programs of tests/mpi/ on the
- * simulator: on 1 to 16 ranks with MPICH's choices, and on six rank counts each (powers of two
- * and others) with --coll linear and with each algorithm of each collective they use forced in
- * turn, so that every algorithm runs at the sizes the programs use, on both sides of MPICH's
- * thresholds; and on the threads backend, where messages arrive in the host's order.
+/* test_mpiprogs.c -- the datatype, operation, collective and topology programs of tests/mpi/
+ * on the simulator: on 1 to 16 ranks with MPICH's choices, and on six rank counts each (powers
+ * of two and others; the nonblocking collectives' program on 5 and 8) with --coll linear and
+ * with each algorithm of each collective they use forced in turn, so that every algorithm runs
+ * at the sizes the programs use, on both sides of MPICH's thresholds, blocking and not; and on
+ * the threads backend, where messages arrive in the host's order.
  *
  * Each program checks itself (tests/mpi/mtest.h): a run passes when every rank's main returns
  * 0 and the run ends cleanly.  The programs are linked in with their main renamed
