@@ -179,6 +179,7 @@ void tsm_req_free(tsm *R, tsm_req *q) {
 /* ==== the end ============================================================= */
 
 void tsm_release(tsm *R) {
+  mp_set_progress(R->self, NULL, NULL);   /* no nonblocking collective goes on past the rank's MPI */
   for (int i = TSMPI_PARTS - 1; i >= 0; i--)
     if (R->release[i]) R->release[i](R->part[i]);
   eng_release(R);

@@ -204,6 +204,34 @@ static void freed(void) {
   mpih_result_free(&res);
 }
 
+/* Rank 0 finalizes with its MPI_Ibcast (request freed) still waiting for
+ * the message, then computes while it arrives: nothing of the MPI layer
+ * may run then. */
+static int late(void *ud) {
+  int *bad = ud, me, x = 5;
+  MPI_Init(NULL, NULL);
+  MPI_Comm_rank(MPI_COMM_WORLD, &me);
+  MPI_Request r;
+  MPI_Ibcast(&x, 1, MPI_INT, 1, MPI_COMM_WORLD, &r);
+  if (me == 0) MPI_Request_free(&r);
+  else MPI_Wait(&r, MPI_STATUS_IGNORE);
+  MPI_Finalize();
+  if (me == 0 && mp_busy(mp_self(), 1.0) != MP_OK) *bad = 1;
+  return 0;
+}
+
+static void finalized(void) {
+  int bad = 0;
+  mpih_config cfg;
+  mpih_config_init(&cfg, MPIH_SIM, 2);
+  mpih_result res;
+  mpih_run_fn(&cfg, late, &bad, &res);
+  CHECK(res.rc == 0 && !bad && res.finish[0] == 1.0,
+        "computing after MPI_Finalize with a nonblocking collective left: rc %d (%s), bad %d, rank 0 ends at %g",
+        res.rc, res.err, bad, res.finish[0]);
+  mpih_result_free(&res);
+}
+
 /* On threads the results, whatever the order the messages come in. */
 static void threads(void) {
   for (int which = 0; which < NCASES; which++) {
@@ -222,6 +250,7 @@ int main(void) {
   overhead();
   deadlock();
   freed();
+  finalized();
   threads();
   return check_done("test_mpinbc");
 }
