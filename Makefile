@@ -14,6 +14,7 @@
 #   make mpi             ./tile-mpi and ./bench-mpi with mpicc (mpirun -np P ...)
 #   make simgrid         the simulator against SimGrid's SMPI (tests/simgrid.sh)
 #   make install PREFIX=/usr/local   (tile, tilesim-bench, tilesim-plot, man pages)
+#   make uninstall PREFIX=/usr/local (every file make install wrote)
 #   make clean
 
 CC      ?= cc
@@ -46,7 +47,7 @@ MPISRC   = $(wildcard $(addsuffix /*.c,$(LIBDIRS)))
 MPIPROGS = tile bench
 # Programs: prog/NAME.c holds main; prog/NAME_*.c are linked into NAME only.
 # The MPI tools (tilesim-mpicc, tilesim-mpirun) are built apart, below.
-MPITOOLS = tilesim-mpicc tilesim-mpirun
+MPITOOLS = tilesim-mpicc tilesim-mpicxx tilesim-mpirun
 PROGS    = $(filter-out $(MPITOOLS),$(basename $(notdir $(filter-out $(wildcard prog/*_*.c),$(wildcard prog/*.c)))))
 # The SVG plotter, plots/*.c, builds to build/plot.
 PLOTSRC  = $(wildcard plots/*.c)
@@ -76,13 +77,15 @@ TESTLIB  = $(filter-out $(wildcard tests/test_*.c),$(wildcard tests/*.c))
 TSMPISRC   = $(wildcard mpi/*.c)
 TSMPIPROGS = $(basename $(notdir $(filter-out tests/mpi/contract.c,$(wildcard tests/mpi/*.c))))
 TSMPIPFLAGS = -Impi -Wno-missing-prototypes
-# The runner's own (mpirun/*.c: each rank's libc, the compute modes, the
-# loader, crashes, the ELF reader) into libtsmpirun.a; tilesim-mpirun exports
-# to the programs it loads only what they may call (mpirun/exports.list:
-# MPI_*, PMPI_*, tilesim_compute, smpi_*, the libc runtime).
-RUNSRC     = $(wildcard mpirun/*.c)
-MPIHDR     = build/include/tilesim/mpi/mpi.h build/include/tilesim/mpi/mpi_funcs.h \
-             build/include/tilesim/mpi/tilesim_mpi.h
+# The runner's own (mpirun/*.c: each rank's libc and C++ runtime, the
+# compute modes, the loader, crashes, the ELF reader, the compiler wrapper)
+# into libtsmpirun.a; tilesim-mpirun exports to the programs it loads only
+# what they may call (mpirun/exports.list: MPI_*, PMPI_*, tilesim_compute,
+# smpi_*).  mpirun/stublib.c is apart: the library programs link against
+# (STUBLIB, below).
+RUNSRC     = $(filter-out mpirun/stublib.c,$(wildcard mpirun/*.c))
+MPIHDR     = build/include/tilesim/mpi/mpi.h build/include/tilesim/mpi/mpi_funcs.h
+STUBLIB    = build/lib/tilesim/libtilesim_mpi.so
 TSMPIINC   = -Impi -Impirun
 RUNLDFLAGS = -Wl,--dynamic-list=mpirun/exports.list
 RUNLIBS    = -ldl
@@ -95,7 +98,7 @@ chkobj = $(patsubst %.c,$(CHK)/%.o,$(1))
 # Programs build into build/bin and are copied to the root when they change,
 # so that `make bench` can be the experiments rather than the program.
 all: $(addprefix build/bin/,$(PROGS) $(MPITOOLS)) $(PLOT) $(REL)/lib/libtilesim.a \
-     $(addprefix build/examples/,$(EXAMPLES)) $(REL)/libtsmpi.a $(MPIHDR)
+     $(addprefix build/examples/,$(EXAMPLES)) $(REL)/libtsmpi.a $(MPIHDR) $(STUBLIB)
 	@for p in $(PROGS) $(MPITOOLS); do cmp -s build/bin/$$p $$p || cp -f build/bin/$$p $$p; done
 
 $(REL)/%.o: %.c
@@ -124,9 +127,13 @@ build/include/tilesim/tilesim.h: machine/tilesim.h
 build/include/tilesim/mpi/%.h: mpi/%.h
 	@mkdir -p $(dir $@)
 	cp $< $@
-build/include/tilesim/mpi/tilesim_mpi.h: mpirun/tilesim_mpi.h
+# The library every program tilesim-mpicc links is linked against: each
+# name tilesim-mpirun provides, and the word for a program run on its own
+# (mpirun/stublib.c); the predefined callbacks are mpi/callbacks.c's.
+$(STUBLIB): mpirun/stublib.c mpi/callbacks.c mpi/mpi.h mpi/mpi_funcs.h
 	@mkdir -p $(dir $@)
-	cp $< $@
+	$(CC) $(BASE) $(TSMPIINC) $(CFLAGS) -fPIC -shared -Wl,-soname,libtilesim_mpi.so -o $@ mpirun/stublib.c \
+	  mpi/callbacks.c
 
 # The runner's library and the MPI tools' include path.
 $(REL)/mpirun/%.o $(CHK)/mpirun/%.o: BASE += $(TSMPIINC)
@@ -147,10 +154,10 @@ build/bin/tilesim-mpirun: $(REL)/prog/tilesim-mpirun.o $(REL)/libtsmpirun.a $(RE
 $(CHK)/tilesim-mpirun: $(CHK)/prog/tilesim-mpirun.o $(CHK)/libtsmpirun.a $(CHK)/libtsmpi.a $(CHK)/libtilesim.a
 	$$(CC) $$(CHKFLAGS) $$(RUNLDFLAGS) -o $$@ $$< -Wl,--whole-archive $(CHK)/libtsmpirun.a $(CHK)/libtsmpi.a \
 	  -Wl,--no-whole-archive $(CHK)/libtilesim.a $$(LDLIBS) $$(RUNLIBS)
-build/bin/tilesim-mpicc: $(REL)/prog/tilesim-mpicc.o $(REL)/libtsmpirun.a $(REL)/libtsmpi.a $(REL)/libtilesim.a
+build/bin/tilesim-mpic%: $(REL)/prog/tilesim-mpic%.o $(REL)/libtsmpirun.a $(REL)/libtsmpi.a $(REL)/libtilesim.a
 	@mkdir -p build/bin
 	$$(CC) $$(CFLAGS) -o $$@ $$^ $$(LDLIBS) $$(RUNLIBS)
-$(CHK)/tilesim-mpicc: $(CHK)/prog/tilesim-mpicc.o $(CHK)/libtsmpirun.a $(CHK)/libtsmpi.a $(CHK)/libtilesim.a
+$(CHK)/tilesim-mpic%: $(CHK)/prog/tilesim-mpic%.o $(CHK)/libtsmpirun.a $(CHK)/libtsmpi.a $(CHK)/libtilesim.a
 	$$(CC) $$(CHKFLAGS) -o $$@ $$^ $$(LDLIBS) $$(RUNLIBS)
 endef
 $(eval $(mpitool_rules))
@@ -232,6 +239,10 @@ $(CHK)/plot: $(call chkobj,$(PLOTSRC)) $(CHK)/libtilesim.a
 
 $(CHK)/tests/%: $(CHK)/tests/%.o $(call chkobj,$(TESTLIB)) $(CHK)/libtsmpi.a $(CHK)/libtilesim.a
 	$(CC) $(CHKFLAGS) -o $@ $^ $(LDLIBS)
+# The plotter's charts, tested apart from the plotter's main.
+$(CHK)/tests/test_svgchart: $(CHK)/tests/test_svgchart.o $(CHK)/plots/svgchart.o $(call chkobj,$(TESTLIB)) \
+                            $(CHK)/libtsmpi.a $(CHK)/libtilesim.a
+	$(CC) $(CHKFLAGS) -o $@ $^ $(LDLIBS)
 
 # The tests and the sanitized programs the command-line tests drive; and,
 # where $(MPICC) (and $(SMPICC)) build an MPI program, the MPI programs for
@@ -241,7 +252,7 @@ $(CHK)/tests/%: $(CHK)/tests/%.o $(call chkobj,$(TESTLIB)) $(CHK)/libtsmpi.a $(C
 # tests/run.sh lists what was skipped and why before its last line.
 check: $(addprefix $(CHK)/tests/,$(TESTS)) $(addprefix $(CHK)/,$(PROGS)) $(if $(PLOTSRC),$(CHK)/plot) \
        $(addprefix $(CHK)/examples/,$(EXAMPLES)) $(addprefix $(CHK)/testbed/,$(TESTBED)) \
-       $(addprefix $(CHK)/,$(MPITOOLS)) $(MPIHDR)
+       $(addprefix $(CHK)/,$(MPITOOLS)) $(MPIHDR) $(STUBLIB)
 	@$(MAKE) --no-print-directory -s mpi-probe
 	@mpi=$$(cat $(PROBE)/mpicc); smpi=$$(cat $(PROBE)/smpicc); \
 	if [ "$$mpi" = yes ] && ! $(MAKE) --no-print-directory -s mpi-bins; then mpi="the MPI build failed (make mpi-bins)"; fi; \
@@ -319,6 +330,9 @@ $(VG)/tests/mpi/%.o: tests/mpi/%.c
 $(foreach d,$(TSMPIDRIVERS),$(eval $(call tsmpi_driver_rules,$(d))))
 $(VG)/tests/%: $(VG)/tests/%.o $(patsubst %.c,$(VG)/%.o,$(TESTLIB)) $(VG)/libtsmpi.a $(VG)/libtilesim.a
 	$(CC) -g -o $@ $^ $(LDLIBS)
+$(VG)/tests/test_svgchart: $(VG)/tests/test_svgchart.o $(VG)/plots/svgchart.o $(patsubst %.c,$(VG)/%.o,$(TESTLIB)) \
+                           $(VG)/libtsmpi.a $(VG)/libtilesim.a
+	$(CC) -g -o $@ $^ $(LDLIBS)
 valgrind: $(addprefix $(VG)/tests/,$(TESTS))
 	@VALGRIND="valgrind -q --error-exitcode=99 --leak-check=full" \
 	  sh tests/run.sh $(VG) $(addprefix $(VG)/tests/,$(TESTS))
@@ -330,7 +344,7 @@ valgrind: $(addprefix $(VG)/tests/,$(TESTS))
 TSANCC    ?= $(CC)
 TSAN       = build/tsan
 TSANFLAGS  = -O1 -g -fsanitize=thread -fno-omit-frame-pointer
-TSAN_TESTS ?= test_mpstress test_threads test_variants test_cpuload test_mpi_match
+TSAN_TESTS ?= test_mpstress test_threads test_variants test_cpuload test_mpi_match test_mpref
 $(TSAN)/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(TSANCC) $(BASE) $(TSANFLAGS) -Werror -MMD -MP -c $< -o $@
@@ -446,8 +460,8 @@ bench: all
 	  { k = $$c["variant"] "," $$c["procs"] } f == 1 { a[k] = $$c["speedup"] } f == 2 && (k in a) { print k "," a[k] "," $$c["speedup"] }' \
 	  plots/variants_tc2000.csv plots/variants_xeon16.csv > build/variants.csv && mv build/variants.csv plots/variants.csv
 	$(PLOTS) plots/variants.csv -x procs -y tc2000,xeon16 --series variant \
-	  --labels "tc2000 500 points,16-core host 1000 points (dashed)" --yzero \
-	  --title "The variants: speedup, simulated tc2000 and the simulator calibrated to a 16-core host" \
+	  --labels "tc2000,16-core host" --yzero \
+	  --title "The variants: speedup on the simulated tc2000 (500 points) and on the simulator calibrated to a 16-core host (1000 points)" \
 	  --xlabel processors --ylabel "speedup T(1)/T(P)" -o plots/variants.svg
 	./bench --claims-map $(CLAIMS_GEN) --jobs $(JOBS) -o build/claims_map_gen.csv
 	./bench --claims-map $(CLAIMS_REAL) --jobs $(JOBS) -o build/claims_map_real.csv
@@ -537,16 +551,41 @@ install-files:
 	cp mp/mp.h machine/tilesim.h $(DESTDIR)$(PREFIX)/include/tilesim/
 	mkdir -p $(DESTDIR)$(PREFIX)/include/tilesim/mpi
 	cp $(addprefix $(IBIN)/,$(MPITOOLS)) $(DESTDIR)$(PREFIX)/bin/
-	cp mpi/mpi.h mpi/mpi_funcs.h mpirun/tilesim_mpi.h $(DESTDIR)$(PREFIX)/include/tilesim/mpi/
+	cp mpi/mpi.h mpi/mpi_funcs.h $(DESTDIR)$(PREFIX)/include/tilesim/mpi/
+	mkdir -p $(DESTDIR)$(PREFIX)/lib/tilesim
+	cp $(STUBLIB) $(DESTDIR)$(PREFIX)/lib/tilesim/
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' machine/tilesim.pc.in \
 	  > $(DESTDIR)$(PREFIX)/lib/pkgconfig/tilesim.pc
 	cp examples/*.c $(SHARE)/examples/
+	mkdir -p $(SHARE)/examples/mpi
+	cp examples/mpi/*.c $(SHARE)/examples/mpi/
+
+# make uninstall PREFIX=... (and DESTDIR, MANDIR, DOCDIR as given to make
+# install): every file make install wrote, by the same lists; then the
+# folders that are tilesim's own, if nothing else is left in them (a file
+# of someone else's stays, and so does its folder).  PREFIX/bin, lib and the
+# man folders stay.
+UNINST = $(addprefix $(DESTDIR)$(PREFIX)/bin/,$(foreach p,$(PROGS),$(call iname,$(p))) $(if $(PLOT),tilesim-plot) $(MPITOOLS)) \
+         $(foreach f,$(wildcard doc/*.[1-9]),$(DESTDIR)$(MANDIR)/man$(subst .,,$(suffix $(f)))/$(notdir $(f))) \
+         $(addprefix $(DESTDIR)$(DOCDIR)/,$(notdir $(wildcard doc/*.md))) \
+         $(addprefix $(SHARE)/slicerrt/,$(notdir $(wildcard tests/data/slicerrt/*.contours)) README.md) \
+         $(addprefix $(SHARE)/rtstruct/,$(notdir $(wildcard tests/data/rtstruct/*.dcm)) README.md) \
+         $(addprefix $(SHARE)/examples/,$(notdir $(wildcard examples/*.c))) \
+         $(addprefix $(SHARE)/examples/mpi/,$(notdir $(wildcard examples/mpi/*.c))) \
+         $(DESTDIR)$(PREFIX)/lib/libtilesim.a $(DESTDIR)$(PREFIX)/lib/pkgconfig/tilesim.pc \
+         $(addprefix $(DESTDIR)$(PREFIX)/include/tilesim/,mp.h tilesim.h mpi/mpi.h mpi/mpi_funcs.h) \
+         $(DESTDIR)$(PREFIX)/lib/tilesim/$(notdir $(STUBLIB))
+UNINSTDIRS = $(DESTDIR)$(PREFIX)/lib/tilesim $(SHARE)/slicerrt $(SHARE)/rtstruct $(SHARE)/examples/mpi $(SHARE)/examples $(SHARE) $(DESTDIR)$(DOCDIR) \
+             $(DESTDIR)$(PREFIX)/include/tilesim/mpi $(DESTDIR)$(PREFIX)/include/tilesim
+uninstall:
+	rm -f $(UNINST)
+	@for d in $(UNINSTDIRS); do if [ -d "$$d" ]; then rmdir "$$d" 2>/dev/null || echo "make uninstall: $$d is not empty: left as it is"; fi; done
 
 clean:
 	rm -rf build $(PROGS) $(MPITOOLS) $(addsuffix -mpi,$(MPIPROGS))
 
 FORCE:
-.PHONY: all check valgrind tsan bench bench-tile bench-testbed bench-mpi bench-mpirun bench-load bench-cores install install-files clean mpi mpi-bins smpi-bins simgrid fuzz fuzz-bins FORCE \
+.PHONY: all check valgrind tsan bench bench-tile bench-testbed bench-mpi bench-mpirun bench-load bench-cores install install-files uninstall clean mpi mpi-bins smpi-bins simgrid fuzz fuzz-bins FORCE \
         mpi-probe
 .SECONDARY:
 

@@ -136,6 +136,41 @@ void tiling_tiles(const tiling *t, int (*tile)[3], unsigned char *on) {
   }
 }
 
+double tiling_path_cost(const tiling *t, const vec2 *P, int np, double zp, const vec2 *Q, int nq, double zq,
+                        cost_kind kind) {
+  /* The scale: the largest coordinate and the height into [1/2, 1). */
+  double mx = 0, h = zq - zp;
+  for (int i = 0; i < np; i++) mx = fmax(mx, fmax(fabs(P[i].x), fabs(P[i].y)));
+  for (int i = 0; i < nq; i++) mx = fmax(mx, fmax(fabs(Q[i].x), fabs(Q[i].y)));
+  int e = 0, eh = 0;
+  if (mx > 0) frexp(mx, &e);
+  if (isfinite(h) && h != 0) frexp(h, &eh);
+  else if (!isfinite(h)) frexp(0.5 * zq - 0.5 * zp, &eh), eh++;
+  if (eh > e || mx == 0) e = eh;
+  double hs = isfinite(h) ? ldexp(h, -e) : ldexp(0.5 * zq - 0.5 * zp, 1 - e);
+  int steps = t->m + t->n;
+  int (*tile)[3] = xmallocarray((size_t)steps + 1, sizeof *tile);
+  unsigned char *on = xmallocarray((size_t)steps + 1, 1);
+  tiling_tiles(t, tile, on);
+  double sum = 0;
+  for (int k = 0; k < steps; k++) {
+    const vec2 *E = on[k] ? Q : P, *X = on[k] ? P : Q;   /* the edge's contour, the apex's */
+    vec2 a = E[tile[k][0]], b = E[tile[k][1]], c = X[tile[k][2]];
+    double ax = ldexp(a.x, -e), ay = ldexp(a.y, -e), bx = ldexp(b.x, -e), by = ldexp(b.y, -e);
+    double cx = ldexp(c.x, -e), cy = ldexp(c.y, -e);
+    if (kind == COST_AREA) {   /* |(b - a) x (c - a)| / 2, c one height away */
+      double ux = bx - ax, uy = by - ay, vx = cx - ax, vy = cy - ay;
+      double x = uy * hs, y = -ux * hs, z = ux * vy - uy * vx;
+      sum += 0.5 * hypot(hypot(x, y), z);   /* (squares of a tiny height would underflow) */
+    } else {                   /* the span from the edge's end to the apex */
+      sum += hypot(hypot(cx - bx, cy - by), hs);
+    }
+  }
+  free(tile);
+  free(on);
+  return ldexp(sum, kind == COST_AREA ? 2 * e : e);
+}
+
 typedef struct {
   int64_t key;   /* the span: (r mod m) n + (c mod n) */
   int step;      /* where the path is at it */

@@ -60,6 +60,20 @@ void tiling_range(const weights *w, band_ws *ws, const gpath *U, const gpath *L,
  * lies on P, 1 when on Q. */
 void tiling_tiles(const tiling *t, int (*tile)[3], unsigned char *on);
 
+/* The cost of t's path in the pair's own numbers: every tile's weight (the
+ * triangle's area, or the span it adds, as weights.h defines them) computed
+ * without rounding to quanta and summed in path order, at any scale (the
+ * pair is scaled by a power of two first, as weights.c scales it).
+ * t->cost sums the weights rounded to the pair's quantum, exact as a whole
+ * number of quanta, and a quantum is about 2^-52 (m + n) of the largest tile
+ * of the graph: next to that tile the path's own can be small (slices very
+ * close for the contours' width), and t->cost then lies far from the path's
+ * true cost (2.25e15 for 3.41e15 at 1e15 wide and 1 apart; 0 at 1e20).
+ * This is the true one, to the tiles' own rounding.  P, np, zp, Q, nq, zq,
+ * kind as given to tiling_solve (or the weights t was solved on). */
+double tiling_path_cost(const tiling *t, const vec2 *P, int np, double zp, const vec2 *Q, int nq, double zq,
+                        cost_kind kind);
+
 /* The spans the path uses twice (issue 14, item 8).  The paper allows it
  * (section 3: an acceptable path may be "two vertex-simple cycles that share
  * one vertex"): when the path takes all m vertical steps at one column, one

@@ -57,7 +57,8 @@ static void master(mp *self, const farm_args *a) {
   int64_t t = a->tasks, expect = t * (t - 1) * (2 * t - 1) / 6;
   if (total != expect) mp_abort(self, 1, "farm: the total is wrong");
   printf("farm: %d tasks on %d workers: total %lld, checked\n", a->tasks, workers, (long long)total);
-  printf("farm: %.17g s\n", mp_time(self));
+  char b[32];
+  printf("farm: %s s\n", tilesim_fmt_double(mp_time(self), b, sizeof b));
 }
 
 static void worker(mp *self, const farm_args *a) {

@@ -80,8 +80,9 @@ static void jacobi(mp *self, void *ud) {
     }
     double total = 0;
     for (int y = 0; y < a->ny; y++) total += sums[y];
-    printf("jacobi: %d x %d, %d steps on %d ranks: %.17g s\n", nx, a->ny, a->steps, p, t);
-    printf("jacobi: checksum %.17g\n", total);
+    char b[32];
+    printf("jacobi: %d x %d, %d steps on %d ranks: %s s\n", nx, a->ny, a->steps, p, tilesim_fmt_double(t, b, sizeof b));
+    printf("jacobi: checksum %s\n", tilesim_fmt_double(total, b, sizeof b));
   }
   free(sums);
   free(u);

@@ -54,8 +54,10 @@ static void pingpong(mp *self, void *ud) {
     }
     if (me == 0) {
       double rt = (mp_time(self) - t0) / a->rounds, one = rt / 2;
-      printf("pingpong: %ld bytes: round trip %.17g s, one way %.17g s, %.6g bytes/s\n", a->sizes[i], rt,
-             one, one > 0 ? (double)len / one : 0.0);
+      char b1[32], b2[32];
+      printf("pingpong: %ld bytes: round trip %s s, one way %s s, %.6g bytes/s\n", a->sizes[i],
+             tilesim_fmt_double(rt, b1, sizeof b1), tilesim_fmt_double(one, b2, sizeof b2),
+             one > 0 ? (double)len / one : 0.0);
     }
   }
   if (me == 1) {

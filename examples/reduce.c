@@ -45,7 +45,8 @@ static void reduce(mp *self, int me, int p) {
   }
   if (part != squares(p)) mp_abort(self, 1, "reduce: the total is wrong");
   printf("reduce: %d ranks: total %lld, checked\n", p, (long long)part);
-  printf("reduce: reduction %.17g s\n", mp_time(self));
+  char b[32];
+  printf("reduce: reduction %s s\n", tilesim_fmt_double(mp_time(self), b, sizeof b));
 }
 
 static void scan(mp *self, int me, int p) {
@@ -61,7 +62,8 @@ static void scan(mp *self, int me, int p) {
   if (part != squares(me + 1)) mp_abort(self, 1, "reduce: a rank's prefix sum is wrong");
   if (me == p - 1) {
     printf("reduce: %d ranks: prefixes checked\n", p);
-    printf("reduce: scan %.17g s\n", mp_time(self));
+    char b[32];
+    printf("reduce: scan %s s\n", tilesim_fmt_double(mp_time(self), b, sizeof b));
   }
 }
 

@@ -43,7 +43,9 @@ static void ring(mp *self, void *ud) {
   if (me == 0) {
     double t = mp_time(self) - t0;
     printf("ring: %d ranks, %d laps of %d bytes: the token came back every lap\n", n, a->laps, a->bytes);
-    printf("ring: %.17g s a lap, %.6g messages a second\n", t / a->laps, t > 0 ? (double)n * a->laps / t : 0.0);
+    char b[32];
+    printf("ring: %s s a lap, %.6g messages a second\n", tilesim_fmt_double(t / a->laps, b, sizeof b),
+           t > 0 ? (double)n * a->laps / t : 0.0);
   }
   free(token);
 }

@@ -16,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "args.h"
 #include "crossing.h"
 #include "keyhole.h"
 #include "slicemerge.h"
@@ -156,9 +157,9 @@ static int refuse_crossing(reader *r, const raw *c, int k, int points, const cro
   int a = h.seg[0], b = h.seg[1];
   return bad(r, c, points,
              "the contour crosses itself: the segment from line %d to line %d %s the segment "
-             "from line %d to line %d (%.17g %.17g)",
+             "from line %d to line %d (%s %s)",
              c->ptline[a], c->ptline[(a + 1) % k], crossing_verb(h.kind), c->ptline[b],
-             c->ptline[(b + 1) % k], h.at.x, h.at.y);
+             c->ptline[(b + 1) % k], ARGS_G(h.at.x), ARGS_G(h.at.y));
 }
 
 static contour *grow(contour **cs, int *ncs, int *capcs) {
@@ -195,17 +196,17 @@ static void split_keyhole(reader *r, const raw *c, const keyhole_split *ks, cont
     take(grow(cs, ncs, capcs), pt, m, c->z, line, reversed);
   }
   if (ks->channels == 1)
-    note(r, c->line, "keyhole: the contour split into %d loops at (%.17g %.17g), a channel of length %.17g dropped",
-         ks->nloops, ks->at.x, ks->at.y, ks->length);
+    note(r, c->line, "keyhole: the contour split into %d loops at (%s %s), a channel of length %s dropped",
+         ks->nloops, ARGS_G(ks->at.x), ARGS_G(ks->at.y), ARGS_G(ks->length));
   else if (ks->channels > 1)
-    note(r, c->line, "keyhole: the contour split into %d loops at (%.17g %.17g) and elsewhere, %d channels of total "
-         "length %.17g dropped", ks->nloops, ks->at.x, ks->at.y, ks->channels, ks->length);
+    note(r, c->line, "keyhole: the contour split into %d loops at (%s %s) and elsewhere, %d channels of total "
+         "length %s dropped", ks->nloops, ARGS_G(ks->at.x), ARGS_G(ks->at.y), ks->channels, ARGS_G(ks->length));
   if (ks->spurs == 1)
-    note(r, c->line, "dropped a zero-width spur (walked out and back along itself) of length %.17g at (%.17g %.17g)",
-         ks->spur_length, ks->spur_at.x, ks->spur_at.y);
+    note(r, c->line, "dropped a zero-width spur (walked out and back along itself) of length %s at (%s %s)",
+         ARGS_G(ks->spur_length), ARGS_G(ks->spur_at.x), ARGS_G(ks->spur_at.y));
   else if (ks->spurs > 1)
-    note(r, c->line, "dropped %d zero-width spurs (walked out and back along themselves) of total length %.17g, "
-         "the first at (%.17g %.17g)", ks->spurs, ks->spur_length, ks->spur_at.x, ks->spur_at.y);
+    note(r, c->line, "dropped %d zero-width spurs (walked out and back along themselves) of total length %s, "
+         "the first at (%s %s)", ks->spurs, ARGS_G(ks->spur_length), ARGS_G(ks->spur_at.x), ARGS_G(ks->spur_at.y));
 }
 
 /* Repairs of one kind in one contour: each in full with CONTOUR_VERBOSE,
@@ -217,14 +218,14 @@ typedef struct {
 } tally;
 
 static void tally_add(reader *r, tally *t, int line, vec2 p, const char *one) {
-  if (r->flags & CONTOUR_VERBOSE) note(r, line, one, p.x, p.y);
+  if (r->flags & CONTOUR_VERBOSE) note(r, line, one, ARGS_G(p.x), ARGS_G(p.y));
   if (t->count++ == 0) t->line = line, t->p = p;
 }
 
 static void tally_note(reader *r, const tally *t, int header, const char *one, const char *many) {
   if (t->count == 0 || (r->flags & CONTOUR_VERBOSE)) return;
-  if (t->count == 1) note(r, t->line, one, t->p.x, t->p.y);
-  else note(r, header, many, t->count, t->line, t->p.x, t->p.y);
+  if (t->count == 1) note(r, t->line, one, ARGS_G(t->p.x), ARGS_G(t->p.y));
+  else note(r, header, many, t->count, t->line, ARGS_G(t->p.x), ARGS_G(t->p.y));
 }
 
 /* Repair and check one contour; on success append it (or, a keyhole
@@ -233,8 +234,8 @@ static void tally_note(reader *r, const tally *t, int header, const char *one, c
 static int finish(reader *r, raw *c, contour **cs, int *ncs, int *capcs, int *reversed) {
   int n = c->have, k = 0, rc = 0;
   tally dup = {0}, closing = {0};
-  static const char dup_one[] = "dropped a duplicate of the point before (%.17g %.17g)";
-  static const char close_one[] = "dropped the repeated closing point (%.17g %.17g)";
+  static const char dup_one[] = "dropped a duplicate of the point before (%s %s)";
+  static const char close_one[] = "dropped the repeated closing point (%s %s)";
   r->cur.len = 0;
   r->to = &r->cur;
   /* Consecutive duplicates, then a repeated closing point. */
@@ -246,19 +247,19 @@ static int finish(reader *r, raw *c, contour **cs, int *ncs, int *capcs, int *re
     c->pt[k] = c->pt[i];
     c->ptline[k++] = c->ptline[i];
   }
-  tally_note(r, &dup, c->line, dup_one, "dropped %d duplicates of the point before (the first at line %d: %.17g %.17g)");
+  tally_note(r, &dup, c->line, dup_one, "dropped %d duplicates of the point before (the first at line %d: %s %s)");
   while (k > 1 && c->pt[k - 1].x == c->pt[0].x && c->pt[k - 1].y == c->pt[0].y) {
     tally_add(r, &closing, c->ptline[k - 1], c->pt[k - 1], close_one);
     k--;
   }
   tally_note(r, &closing, c->line, close_one,
-             "dropped %d repeated closing points (the last at line %d: %.17g %.17g)");
+             "dropped %d repeated closing points (the last at line %d: %s %s)");
   crossing_hit h;
   keyhole_split ks;
   if (k < 3)
-    rc = bad(r, c, n, "contour has %d distinct point%s, needs at least 3 (z=%.17g)", k, k == 1 ? "" : "s", c->z);
+    rc = bad(r, c, n, "contour has %d distinct point%s, needs at least 3 (z=%s)", k, k == 1 ? "" : "s", ARGS_G(c->z));
   else if (geom_collinear(c->pt, k))
-    rc = bad(r, c, n, "all %d points of the contour are collinear (z=%.17g)", k, c->z);
+    rc = bad(r, c, n, "all %d points of the contour are collinear (z=%s)", k, ARGS_G(c->z));
   else if (!crossing_find(&(crossing_poly){c->pt, k}, 1, &h)) {
     take(grow(cs, ncs, capcs), xreallocarray(c->pt, (size_t)k, sizeof *c->pt), k, c->z, c->line, reversed);
     c->pt = NULL;
@@ -397,15 +398,15 @@ int contour_stack_pairs(const contour_stack *s, const char *name, char *err, siz
     int first = 0;
     while (cs[first].slice != bad->slice) first++;
     return fail(&rd, bad->line,
-                "slice z=%.17g already has a contour (line %d); this program tiles each "
-                "contour with the next and needs one contour per slice (%.17g)",
-                bad->z, cs[first].line, bad->z);
+                "slice z=%s already has a contour (line %d); this program tiles each "
+                "contour with the next and needs one contour per slice (%s)",
+                ARGS_G(bad->z), cs[first].line, ARGS_G(bad->z));
   }
   for (int i = 2; i < n; i++)
     if ((cs[i].z > cs[i - 1].z) != (cs[1].z > cs[0].z))
       return fail(&rd, cs[i].line,
-                  "z goes back: contours must come in increasing or decreasing z (%.17g after %.17g)",
-                  cs[i].z, cs[i - 1].z);
+                  "z goes back: contours must come in increasing or decreasing z (%s after %s)",
+                  ARGS_G(cs[i].z), ARGS_G(cs[i - 1].z));
   return 0;
 }
 
@@ -552,7 +553,7 @@ int contour_parse_flags(const char *text, size_t len, const char *name, int flag
     goto done;
   }
   if (ncs < 2 && !(flags & CONTOUR_ONE_SLICE)) {
-    fail(r, cs[0].line, "only one contour; tiling needs at least 2 (z=%.17g)", cs[0].z);
+    fail(r, cs[0].line, "only one contour; tiling needs at least 2 (z=%s)", ARGS_G(cs[0].z));
     goto done;
   }
   int nslices = group_slices(r, cs, ncs);
@@ -562,8 +563,8 @@ int contour_parse_flags(const char *text, size_t len, const char *name, int flag
                  name, r->prefix, &r->out, err, errlen) != 0)
     goto done;
   if (nslices < 2 && !(flags & CONTOUR_ONE_SLICE)) {
-    fail(r, cs[0].line, "all %d contours lie on one slice; tiling needs at least 2 (z=%.17g)",
-         ncs, cs[0].z);
+    fail(r, cs[0].line, "all %d contours lie on one slice; tiling needs at least 2 (z=%s)",
+         ncs, ARGS_G(cs[0].z));
     goto done;
   }
   /* With several contours on a slice, surface/ orients them by nesting and

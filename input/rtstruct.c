@@ -24,6 +24,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "args.h"
 #include "dicom.h"
 #include "strbuf.h"
 #include "xmem.h"
@@ -536,10 +537,10 @@ static int oblique(reader *r, rtstruct_roi *roi) {
   roi->plane = RTSTRUCT_OBLIQUE;
   roi->frame = f;
   int axis = fabs(f.n[2]) >= fabs(f.n[0]) && fabs(f.n[2]) >= fabs(f.n[1]) ? 2 : fabs(f.n[0]) >= fabs(f.n[1]) ? 0 : 1;
-  roi_warn(r, roi, "oblique contours: parallel planes tilted %.6g degrees from the %s plane (normal %.17g %.17g "
-           "%.17g; each point within %.3g mm of its contour's plane): turned into z to be tiled, and the mesh "
-           "turned back", f.angle, axis == 2 ? "axial" : axis == 0 ? "sagittal" : "coronal", f.n[0], f.n[1],
-           f.n[2], worst);
+  roi_warn(r, roi, "oblique contours: parallel planes tilted %.6g degrees from the %s plane (normal %s %s "
+           "%s; each point within %.3g mm of its contour's plane): turned into z to be tiled, and the mesh "
+           "turned back", f.angle, axis == 2 ? "axial" : axis == 0 ? "sagittal" : "coronal", ARGS_G(f.n[0]), ARGS_G(f.n[1]),
+           ARGS_G(f.n[2]), worst);
   return 0;
 }
 

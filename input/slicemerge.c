@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "args.h"
 #include "crossing.h"
 #include "exact.h"
 #include "polyunion.h"
@@ -128,8 +129,8 @@ static int duplicates(contour *cs, int ncs, char *drop, int verbose, const char 
         if (dropped++ == 0 || cs[i].line < cs[first].line) first = i, first_of = keep;
         if (verbose && notes) {
           note_line(notes, prefix, name, cs[i].line);
-          strbuf_add(notes, "dropped the contour: it repeats the contour at line %d on slice z=%.17g exactly (the same "
-                     "region: another start point, direction or collinear points)\n", cs[keep].line, cs[i].z);
+          strbuf_add(notes, "dropped the contour: it repeats the contour at line %d on slice z=%s exactly (the same "
+                     "region: another start point, direction or collinear points)\n", cs[keep].line, ARGS_G(cs[i].z));
         }
       }
     }
@@ -137,12 +138,12 @@ static int duplicates(contour *cs, int ncs, char *drop, int verbose, const char 
   if (dropped && !verbose && notes) {
     note_line(notes, prefix, name, cs[first].line);
     if (dropped == 1)
-      strbuf_add(notes, "dropped the contour: it repeats the contour at line %d on slice z=%.17g exactly (the same "
-                 "region: another start point, direction or collinear points)\n", cs[first_of].line, cs[first].z);
+      strbuf_add(notes, "dropped the contour: it repeats the contour at line %d on slice z=%s exactly (the same "
+                 "region: another start point, direction or collinear points)\n", cs[first_of].line, ARGS_G(cs[first].z));
     else
       strbuf_add(notes, "dropped %d contours that repeat another of their slice exactly (the same region: another "
-                 "start point, direction or collinear points), this one a copy of line %d on slice z=%.17g; -v "
-                 "names each\n", dropped, cs[first_of].line, cs[first].z);
+                 "start point, direction or collinear points), this one a copy of line %d on slice z=%s; -v "
+                 "names each\n", dropped, cs[first_of].line, ARGS_G(cs[first].z));
   }
   for (int k = 0; k < ncs; k++) free(red[k]);
   free(red), free(nred), free(bx);
@@ -191,13 +192,13 @@ static int union_slice(contour *cs, const int *idx, int m, char *drop, clist *ad
     strbuf b = {0};
     lines_of(&b, cs, idx, u.members + u.gmember[g], u.gmember[g + 1] - u.gmember[g]);
     if (u.status == POLYUNION_PINCH)
-      snprintf(err, errlen, "%s:%d: --union: the union of the contours at %s on slice z=%.17g touches itself at "
-               "(%.17g %.17g), a point where no set of separate contours can follow it; it cannot be tiled", name,
-               cs[lead].line, b.buf, z, u.at.x, u.at.y);
+      snprintf(err, errlen, "%s:%d: --union: the union of the contours at %s on slice z=%s touches itself at "
+               "(%s %s), a point where no set of separate contours can follow it; it cannot be tiled", name,
+               cs[lead].line, b.buf, ARGS_G(z), ARGS_G(u.at.x), ARGS_G(u.at.y));
     else
-      snprintf(err, errlen, "%s:%d: --union: the union of the contours at %s on slice z=%.17g: its new vertices, "
-               "rounded to doubles, make its boundary touch itself near (%.17g %.17g); it cannot be tiled", name,
-               cs[lead].line, b.buf, z, u.at.x, u.at.y);
+      snprintf(err, errlen, "%s:%d: --union: the union of the contours at %s on slice z=%s: its new vertices, "
+               "rounded to doubles, make its boundary touch itself near (%s %s); it cannot be tiled", name,
+               cs[lead].line, b.buf, ARGS_G(z), ARGS_G(u.at.x), ARGS_G(u.at.y));
     free(b.buf);
     polyunion_free(&u);
     free(cp);
@@ -227,7 +228,7 @@ static int union_slice(contour *cs, const int *idx, int m, char *drop, clist *ad
       note_line(to, prefix, name, cs[idx[mem[0]]].line);
       strbuf_add(to, "--union: merged the contours at ");
       lines_of(to, cs, idx, mem, nm);
-      strbuf_add(to, " on slice z=%.17g into their union: %d contour%s", z, nl - nh, nl - nh == 1 ? "" : "s");
+      strbuf_add(to, " on slice z=%s into their union: %d contour%s", ARGS_G(z), nl - nh, nl - nh == 1 ? "" : "s");
       if (nh) strbuf_add(to, " and %d hole%s", nh, nh == 1 ? "" : "s");
       strbuf_add(to, " (%d new vertices where they cross)\n", u.newpts[g]);
     }
@@ -247,9 +248,9 @@ static int union_slice(contour *cs, const int *idx, int m, char *drop, clist *ad
     int hit = crossing_find(all, k, &h);
     free(all);
     if (hit) {
-      snprintf(err, errlen, "%s:%d: --union: on slice z=%.17g the union's new vertices, rounded to doubles, make it "
-               "touch another contour near (%.17g %.17g); it cannot be tiled", name, add->c[slice0].line, z, h.at.x,
-               h.at.y);
+      snprintf(err, errlen, "%s:%d: --union: on slice z=%s the union's new vertices, rounded to doubles, make it "
+               "touch another contour near (%s %s); it cannot be tiled", name, add->c[slice0].line, ARGS_G(z), ARGS_G(h.at.x),
+               ARGS_G(h.at.y));
       return -1;
     }
   }

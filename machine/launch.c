@@ -108,9 +108,18 @@ static int run_threads(const machine_config *mc, int nranks, const mp_proc *proc
                        tilesim_stats *st, char *err, size_t errlen) {
   mpt_config cfg = mc->threads;
   cfg.warn = mc->sim.warn;
+  /* No simulated clock to show: the ranks and the time so far. */
+  progress *pg = mc->name ? progress_new(mc->name, "run", 0) : NULL;
+  char text[96];
+  snprintf(text, sizeof text, "%d rank%s on threads", nranks, nranks == 1 ? "" : "s");
+  progress_note(pg, text);
   mpt *t = mpt_new(&cfg, nranks, err, errlen);
-  if (!t) return -1;
+  if (!t) {
+    progress_end(pg);
+    return -1;
+  }
   int res = mpt_run(t, procs, err, errlen);
+  progress_end(pg);
   const mpt_stats *ts = mpt_stats_get(t);
   st->makespan = ts->wall_s;
   st->messages = ts->messages;

@@ -51,7 +51,7 @@ const char machine_stack_help[] =
     "                     256 KiB): a rank that overflows it is named\n";
 
 const char machine_help[] =
-    "  --procs P          processors (default 1)\n"
+    "  --procs P          processors (default 1; tilesim-mpirun: one per rank)\n"
 #ifdef TILESIM_MPI
     "  --backend NAME     mpi (default: the ranks of mpirun), sim or threads\n"
 #else

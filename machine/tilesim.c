@@ -49,6 +49,11 @@ int tilesim_machine_ranks(const tilesim_machine *m) {
 
 const char *tilesim_machine_help(void) { return machine_help; }
 
+char *tilesim_fmt_double(double v, char *buf, size_t len) {
+  args_fmt_double(v, buf, len);
+  return buf;
+}
+
 int tilesim_run_procs(const tilesim_machine *m, int nranks, const mp_proc *procs, tilesim_stats *st,
                       char *err, size_t errlen) {
   return launch_run(&m->mc, nranks, procs, st, err, errlen);
@@ -276,6 +281,14 @@ int tilesim_exec(tilesim_machine *m, int nranks, mp_main rank_main, void *ud) {
     free(where);
     if (bad) status = bad_usage(prog, err, NULL);
   }
+  /* The files to write can be written, before the run: a run never ends
+   * in "cannot write" after all its work, nor prints a summary then. */
+  const char *outs[2] = {strcmp(m->stats, "-") != 0 && strcmp(m->stats, "none") != 0 ? m->stats : NULL, mc->trace};
+  for (int k = 0; k < 2 && status == 0 && me == 0; k++)
+    if (outs[k] && atomicfile_check(outs[k], err, sizeof err) != 0) {
+      fprintf(stderr, "%s: %s\n", prog, err);
+      status = 1;
+    }
   if (status == 0) {
     tilesim_stats st;
     int res = tilesim_run(m, n, rank_main, ud, &st, err, sizeof err);

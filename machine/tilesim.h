@@ -59,6 +59,12 @@ extern "C" {
 /* TILESIM_VERSION, of the library linked in. */
 const char *tilesim_version(void);
 
+/* v in the shortest decimal form that reads back exactly, with a short
+ * exponent ("0.1", "2.5e-5", "1e20"): a number for a person to read,
+ * where %.17g would print 0.10000000000000001.  Writes at most len bytes into buf (32 hold any
+ * double) and returns buf. */
+char *tilesim_fmt_double(double v, char *buf, size_t len);
+
 /* ==== a whole program ====================================================
  *
  * tilesim_main(argc, argv, rank_main, ud) is a program's main: it reads

@@ -5,6 +5,7 @@
 #include <setjmp.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 int mp_rank(const mp *self) { return self->rank; }
 int mp_size(const mp *self) { return self->size; }
@@ -44,6 +45,85 @@ int mp_busy(mp *self, double seconds) { HOOKED(int, self, self->ops->busy(self, 
 
 int mp_sleep(mp *self, double seconds) { HOOKED(int, self, self->ops->sleep_for(self, seconds)); }
 
+/* ==== messages without copies ============================================= */
+
+/* A held message where the backend copies: its bytes, taken by mp_recv. */
+struct mp_msg {
+  size_t len;
+  unsigned char data[];
+};
+
+int mp_send_ref(mp *self, int dst, int tag, const void *buf, size_t len, mp_ref **ref) {
+  *ref = NULL;
+  if (!self->ops->send_ref) HOOKED(int, self, self->ops->send(self, dst, tag, buf, len));
+  HOOKED(int, self, self->ops->send_ref(self, dst, tag, buf, len, ref));
+}
+
+void mp_settle(mp *self, mp_ref *ref) {
+  if (ref) self->ops->settle(self, ref);
+}
+
+int mp_withdraw(mp *self, mp_ref *ref) { return ref ? self->ops->withdraw(self, ref) : 0; }
+
+/* The message mp_recv(src, tag) would take, into memory of its own. */
+static int recv_copy(mp *self, int src, int tag, mp_msg **msg, mp_status *st) {
+  mp_status s;
+  int rc = self->ops->wait(self, src, tag, &s);
+  if (rc != MP_OK) return rc;
+  mp_msg *m = malloc(sizeof *m + s.len);
+  if (!m) {
+    fprintf(stderr, "mp_recv_msg: out of memory for a message of %zu bytes\n", s.len);
+    abort();
+  }
+  m->len = s.len;
+  rc = self->ops->recv(self, s.source, s.tag, m->data, s.len, st);
+  if (rc != MP_OK) {
+    free(m);
+    return rc;
+  }
+  *msg = m;
+  return MP_OK;
+}
+
+int mp_recv_msg(mp *self, int src, int tag, mp_msg **msg, mp_status *st) {
+  *msg = NULL;
+  if (!self->ops->recv_msg) HOOKED(int, self, recv_copy(self, src, tag, msg, st));
+  HOOKED(int, self, self->ops->recv_msg(self, src, tag, msg, st));
+}
+
+int mp_msg_read(mp *self, mp_msg *msg, void *buf, size_t cap) {
+  if (self->ops->msg_read) return self->ops->msg_read(self, msg, buf, cap);
+  size_t n = msg->len < cap ? msg->len : cap;
+  if (n) memcpy(buf, msg->data, n);
+  int rc = msg->len > cap && buf ? MP_ETRUNC : MP_OK;
+  free(msg);
+  return rc;
+}
+
+int mp_msg_gone(mp *self, const mp_msg *msg) {
+  return self->ops->msg_gone ? self->ops->msg_gone(self, msg) : 0;
+}
+
+mp_promise *mp_promise_make(mp *self, int src, int tag, int mask, void *buf, size_t cap) {
+  return self->ops->promise ? self->ops->promise(self, src, tag, mask, buf, cap) : NULL;
+}
+
+int mp_promise_drop(mp *self, mp_promise *p, int keep) {
+  return p ? self->ops->promise_drop(self, p, keep) : 0;
+}
+
+/* ==== one-sided transfers ================================================= */
+
+double mp_transfer(mp *self, int src, int dst, size_t len, double at) {
+  if (!self->ops->transfer) return at;
+  HOOKED(double, self, self->ops->transfer(self, src, dst, len, at));
+}
+
+int mp_notify(mp *self, int dst, int tag, double at) {
+  if (!self->ops->notify) return mp_send(self, dst, tag, NULL, 0);
+  HOOKED(int, self, self->ops->notify(self, dst, tag, at));
+}
+
 const char *mp_strerror(int code) {
   switch (code) {
   case MP_OK: return "ok";
@@ -52,6 +132,7 @@ const char *mp_strerror(int code) {
   case MP_ETRUNC: return "message longer than the buffer";
   case MP_EARG: return "bad argument";
   case MP_ESTOPPED: return "run stopped";
+  case MP_EGONE: return "message withdrawn by its sender";
   default: return "unknown error";
   }
 }

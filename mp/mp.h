@@ -6,7 +6,9 @@
  *
  * A program is one entry function per rank with a user pointer (mp_proc).
  * Ranks share no memory through this interface: a message is copied out of
- * the sender's buffer at mp_send and into the receiver's at mp_recv.
+ * the sender's buffer at mp_send and into the receiver's at mp_recv (a
+ * layer that wants one copy instead of two has the calls of "Messages
+ * without copies", below).
  * Messages between one pair of ranks are received in the order they were
  * sent (MPI's non-overtaking rule); every backend guarantees it. */
 #ifndef MP_H
@@ -37,7 +39,8 @@ enum {
   MP_ERANK = -2,      /* no such rank */
   MP_ETRUNC = -3,     /* the message is longer than the buffer (it is consumed) */
   MP_EARG = -4,       /* bad argument: negative tag, negative compute, ... */
-  MP_ESTOPPED = -5    /* the run was stopped (deadlock or error): return now */
+  MP_ESTOPPED = -5,   /* the run was stopped (deadlock or error): return now */
+  MP_EGONE = -6       /* a held message its sender withdrew (mp_msg_read) */
 };
 
 typedef struct {
@@ -164,6 +167,101 @@ typedef struct {
 } mp_hooks;
 void   mp_set_hooks(const mp_hooks *hooks);
 
+/* --- messages without copies (for layers above mp) -----------------------
+ * mp_send copies a payload out at once and mp_recv copies it in: for large
+ * messages the two copies cost more than the rest.  A layer that knows when
+ * it needs a buffer back can do with one:
+ *   - a send by reference leaves the payload in the sender's buffer until a
+ *     receive copies it straight out, or until the sender settles it
+ *     (needs its buffer back): then a payload still unread is copied out;
+ *   - a receive may take a message now and copy it later, once it knows
+ *     where it goes (mp_recv_msg, mp_msg_read: an MPI library's unexpected
+ *     messages);
+ *   - a rank may promise where it will receive the next message from a
+ *     source (mp_promise: an MPI library's posted receive): a message that
+ *     will certainly be received there is copied there when its sender
+ *     settles it (or at mp_send), and the receive then copies nothing.
+ * Which calls move a message changes nothing but the host's copying: the
+ * simulator's times, statistics and traces are the same as with mp_send
+ * and mp_recv.  A backend may copy at once (the MPI backend does; promises
+ * are hints the threads backend ignores): the calls then behave as mp_send
+ * and mp_recv, a withdrawal always fails, and a promise is NULL. */
+
+typedef struct mp_ref mp_ref;           /* a send by reference, until settled */
+typedef struct mp_msg mp_msg;           /* a message taken and not yet read */
+typedef struct mp_promise mp_promise;   /* a promise of a receive buffer */
+
+/* As mp_send (the same costs, order and errors), but the payload may stay
+ * in buf: buf must not change until mp_settle(*ref).  *ref is set on MP_OK
+ * (possibly NULL: nothing to settle), else NULL. */
+int    mp_send_ref(mp *self, int dst, int tag, const void *buf, size_t len, mp_ref **ref);
+
+/* The sender wants buf back: a payload still unread is copied out first
+ * (into the buffer promised for it, or the backend's memory).  ref (from
+ * this rank's mp_send_ref; NULL is fine) is spent. */
+void   mp_settle(mp *self, mp_ref *ref);
+
+/* Take the message back if no receive has read it: 1 (it is gone: no rank
+ * receives it, the statistics still count its send; ref is spent) or 0 (a
+ * receive read it: nothing changes, settle ref as before).  A message held
+ * by mp_recv_msg and not yet read counts as unread. */
+int    mp_withdraw(mp *self, mp_ref *ref);
+
+/* As mp_recv (the same choice of message, costs and statistics), but
+ * nothing is copied: *msg holds the message, *st its envelope, until
+ * mp_msg_read.  MP_OK, MP_EDEADLOCK or MP_ESTOPPED (*msg NULL), as mp_recv. */
+int    mp_recv_msg(mp *self, int src, int tag, mp_msg **msg, mp_status *st);
+
+/* Copy the held message's first min(len, cap) bytes into buf and release
+ * it (buf NULL, cap 0: release only).  MP_OK, MP_ETRUNC (it was longer
+ * than cap), or MP_EGONE (its sender withdrew it: nothing copied). */
+int    mp_msg_read(mp *self, mp_msg *msg, void *buf, size_t cap);
+
+/* 1 if the sender of the held message has withdrawn it (mp_withdraw). */
+int    mp_msg_gone(mp *self, const mp_msg *msg);
+
+/* A promise of this rank's: the first message from rank src (not MP_ANY)
+ * whose tag t has (t & mask) == (tag & mask), among those it has not yet
+ * received, will be received into buf (cap bytes) with mp_recv, unless the
+ * promise is withdrawn first.  Promises are kept in the order made: a
+ * message is the one of the first promise it fits whose message has not
+ * come.  Returns the promise, or NULL where the backend ignores them. */
+mp_promise *mp_promise_make(mp *self, int src, int tag, int mask, void *buf, size_t cap);
+
+/* Withdraw a promise (NULL is fine).  keep = 1 and a message was copied
+ * into its buffer already: nothing changes, 1 is returned (the message is
+ * to be received there as promised).  Else the promise is gone, 0 (a
+ * message copied into its buffer and not received is moved out first; buf
+ * is the caller's again). */
+int    mp_promise_drop(mp *self, mp_promise *p, int keep);
+
+/* --- one-sided transfers (for layers above mp: an MPI library's RMA) -----
+ * The ranks of a run share one address space, so a layer can move data
+ * between them itself (a remote put is a memcpy); these two calls give such
+ * a move its cost on the machine, as a network card's transfer would have
+ * (MPI's one-sided operations: doc/mpi-semantics.md). */
+
+/* A transfer of len bytes from rank src's processor to rank dst's starting
+ * at time `at`, charged on the network as a message of len bytes would be
+ * (the model's latency and bytes, the bus, the links of its route, the NIC's
+ * gap), after every earlier message and transfer from src to dst (the
+ * channel's order), but delivered to no mailbox and taken by no receive.
+ * When src is the calling rank and `at` its clock, its processor pays what
+ * a send's does (LogGP's o, cpu.h's send costs: its clock moves on, and the
+ * transfer starts after); otherwise no processor is involved (a network
+ * card acting for src).  The statistics count it as a message src sent
+ * and dst received.  Returns the arrival time (>= at).  Real backends:
+ * `at`, nothing charged. */
+double mp_transfer(mp *self, int src, int dst, size_t len, double at);
+
+/* A 0-byte message with tag from the calling rank to dst that arrives at
+ * `at` (its clock if that is later), charged nothing on the network or the
+ * sender's processor: how a layer wakes a rank (dst may be the caller) at
+ * a time it computed with mp_transfer.  It is received like any message
+ * (and counted as one).  MP_OK, MP_ERANK, MP_EARG or MP_ESTOPPED as
+ * mp_send.  Real backends: an mp_send of 0 bytes. */
+int    mp_notify(mp *self, int dst, int tag, double at);
+
 /* --- private part: what a backend fills in ------------------------------ */
 
 typedef struct mp_ops {
@@ -177,6 +275,21 @@ typedef struct mp_ops {
   int (*sleep_for)(mp *, double seconds);   /* not "sleep": SimGrid's headers define that macro */
   void (*stop)(mp *, int code, const char *why);   /* mp_abort's effect on the run */
   void (*call)(mp *, const char *name, int begin); /* mp_call_begin/end, where traced */
+  /* Messages without copies: NULL where the backend copies (mp.c then
+   * does what the contract allows with send, wait and recv). */
+  int (*send_ref)(mp *, int dst, int tag, const void *buf, size_t len, mp_ref **ref);
+  void (*settle)(mp *, mp_ref *ref);
+  int (*withdraw)(mp *, mp_ref *ref);
+  int (*recv_msg)(mp *, int src, int tag, mp_msg **msg, mp_status *st);
+  int (*msg_read)(mp *, mp_msg *msg, void *buf, size_t cap);
+  int (*msg_gone)(mp *, const mp_msg *msg);
+  mp_promise *(*promise)(mp *, int src, int tag, int mask, void *buf, size_t cap);
+  int (*promise_drop)(mp *, mp_promise *p, int keep);
+
+  /* One-sided transfers: NULL where time is the host's (mp.c then does
+   * what the contract says for real backends). */
+  double (*transfer)(mp *, int src, int dst, size_t len, double at);
+  int (*notify)(mp *, int dst, int tag, double at);
 } mp_ops;
 
 /* A backend's per-rank state begins with this struct.  The backend calls

@@ -612,8 +612,12 @@ static void mpm_stop(mp *self, int code, const char *why) {
   MPI_Abort(MPI_COMM_WORLD, code);
 }
 
+/* Messages without copies: none here (mp.c copies: mp_send_ref is mp_send,
+ * mp_recv_msg is mp_recv into memory of its own, no promises). */
 static const mp_ops mpm_ops = {mpm_send, mpm_recv, mpm_probe, mpm_compute, mpm_time,
-                               mpm_wait, mpm_busy, mpm_sleep, mpm_stop, NULL};
+                               mpm_wait, mpm_busy, mpm_sleep, mpm_stop,    NULL,
+                               NULL,     NULL,     NULL,      NULL,        NULL,
+                               NULL,     NULL,     NULL,     NULL,     NULL};
 
 /* ==== the machine ========================================================= */
 

@@ -1,23 +1,13 @@
 /* threads.c -- mp.h on POSIX threads: a channel per pair of ranks, spin-then-
  * sleep waiting, deadlock detection.  threads.h states the semantics.
  *
- * Reading order: the data (records, chunks, channels, ranks, the machine),
- * errors, the channels' two ends, waking and the deadlock check, the mp
- * calls, then mpt_run.
+ * Reading order: the data (ranks, the machine; the channels are chan.h's),
+ * errors, a channel's making, choosing a message among the channels,
+ * waking and the deadlock check, the mp calls, then mpt_run.
  *
  * Messages.  Each ordered pair of ranks (s, d) that has ever talked has a
- * channel: a queue with one writer (s) and one reader (d), so that a send
- * takes no lock and no read-modify-write operation.  The queue is a list
- * of 16 KiB chunks of records, each record on cache lines of its own: a
- * header (tag, length, Lamport stamp), then the payload inline (up to
- * INLINE_MAX bytes) or a pointer to a copy.  The writer fills a record and
- * then publishes it with one store of its size (sequentially consistent:
- * see Sleeping); the reader polls
- * that word.  A message thus costs the two cores about two cache-line
- * transfers (the record and, now and then, a fresh line of the chunk), and
- * no allocation below INLINE_MAX bytes.  The reader frees a chunk when it
- * has taken everything in it; a record taken out of order (a tag or source
- * passed over) is marked and skipped.
+ * channel (chan.h): a queue with one writer (s) and one reader (d), so
+ * that a send takes no lock and no read-modify-write operation.
  *
  * Order.  Per pair, a channel is FIFO.  Between senders, mp.h asks for the
  * earliest arrival first: at the least, a message whose sender had heard,
@@ -77,6 +67,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "chan.h"
 #include "cpuload.h"
 #include "errlog.h"
 #include "wallclock.h"
@@ -88,62 +79,6 @@ void mpt_config_init(mpt_config *cfg) {
 }
 
 /* ==== data ================================================================ */
-
-enum {
-  LINE = 64,                      /* a cache line: records start on one */
-  CHUNK = 16384,                  /* a chunk of a channel, its header line included */
-  CHUNK_DATA = CHUNK - LINE,
-  REC_JUMP = 1                    /* size word of the record that says: the next chunk */
-};
-enum {
-  REC_BIG = 1,                    /* flags: the payload is a pointer to a copy */
-  REC_TAKEN = 2                   /* flags: received out of order (the reader's mark) */
-};
-
-/* A record.  `size` is 0 until the writer publishes it (seq_cst), then the
- * record's bytes (a multiple of LINE), or REC_JUMP. */
-typedef struct rec {
-  _Atomic uint32_t size;
-  int32_t tag;
-  uint32_t flags;
-  uint32_t src;
-  uint64_t stamp;     /* the sender's Lamport clock */
-  uint64_t len;       /* the payload's bytes */
-} rec;                /* 32 bytes; the payload (or its pointer) follows */
-
-enum { INLINE_MAX = 1024 - (int)sizeof(rec) };   /* longer payloads go by pointer */
-
-typedef struct chunk chunk;
-struct chunk {
-  chunk *next;        /* written before the REC_JUMP that leads to it */
-  char pad[LINE - sizeof(chunk *)];
-  /* CHUNK_DATA bytes of records follow, zeroed */
-};
-
-static inline rec *rec_at(chunk *c, size_t off) { return (rec *)((char *)c + LINE + off); }
-static inline unsigned char *rec_data(rec *x) { return (unsigned char *)(x + 1); }
-
-static chunk *chunk_new(void) {
-  chunk *c = aligned_alloc(LINE, CHUNK);
-  if (!c) xpanic("threads: out of memory for a channel's chunk of %d bytes", CHUNK);
-  memset(c, 0, CHUNK);
-  return c;
-}
-
-/* A channel from one rank to another. */
-typedef struct chan {
-  /* The writer's, on lines of their own. */
-  chunk *wc;
-  size_t woff;
-  char pad1[LINE - sizeof(chunk *) - sizeof(size_t)];
-  /* The reader's. */
-  chunk *hc;          /* head: the first record not yet taken (or a jump) */
-  size_t hoff;
-  chunk *sc;          /* scan: the first record the reader has not yet seen */
-  size_t soff;
-  int src;
-  char pad2[LINE - 2 * sizeof(chunk *) - 2 * sizeof(size_t) - sizeof(int)];
-} chan;
 
 typedef struct rank rank;
 struct rank {
@@ -231,7 +166,7 @@ static PRINTF(2, 3) void warn(mpt *t, const char *fmt, ...) {
   pthread_mutex_unlock(&t->g);
 }
 
-/* ==== a channel's writer ================================================== */
+/* ==== making a channel ==================================================== */
 
 /* The channel from r to d, made at r's first send to d: published in d's
  * table by source and appended to its list (under d's mutex: several
@@ -255,135 +190,7 @@ static chan *chan_get(rank *r, rank *d) {
   return q;
 }
 
-/* Append a record (tag, buf[0..len)) and publish it.  Returns it. */
-static rec *chan_put(chan *q, int src, int tag, uint64_t stamp, const void *buf, size_t len) {
-  int big = len > INLINE_MAX;
-  size_t need = (sizeof(rec) + (big ? sizeof(void *) : len) + LINE - 1) / LINE * LINE;
-  if (q->woff + need + LINE > CHUNK_DATA) {   /* room for a record and a jump, always */
-    chunk *c = chunk_new();
-    q->wc->next = c;
-    atomic_store_explicit(&rec_at(q->wc, q->woff)->size, REC_JUMP, memory_order_seq_cst);
-    q->wc = c;
-    q->woff = 0;
-  }
-  rec *x = rec_at(q->wc, q->woff);
-  x->tag = tag;
-  x->flags = big ? REC_BIG : 0;
-  x->src = (uint32_t)src;
-  x->stamp = stamp;
-  x->len = len;
-  if (big) {
-    void *copy = xmalloc(len);
-    memcpy(copy, buf, len);
-    memcpy(rec_data(x), &copy, sizeof copy);
-  } else if (len) {
-    memcpy(rec_data(x), buf, len);
-  }
-  atomic_store_explicit(&x->size, (uint32_t)need, memory_order_seq_cst);   /* publish (see Sleeping) */
-  q->woff += need;
-  return x;
-}
-
-/* ==== a channel's reader ================================================== */
-
-static inline int tag_ok(int want, int tag) { return want < 0 || want == tag; }
-
-/* The first record of q not yet taken whose tag matches, or NULL; records
- * published since the last look are seen now.  Only q's reader calls it. */
-static rec *chan_find(chan *q, int tag) {
-  chunk *c = q->hc;
-  size_t off = q->hoff;
-  for (;;) {
-    rec *x = rec_at(c, off);
-    if (c == q->sc && off == q->soff) {   /* beyond what was seen: published since? */
-      uint32_t sz = atomic_load_explicit(&x->size, memory_order_seq_cst);
-      if (sz == 0) return NULL;
-      if (sz == REC_JUMP) {
-        c = q->sc = c->next;
-        off = q->soff = 0;
-        continue;
-      }
-      q->soff = off + sz;
-      if (tag_ok(tag, x->tag)) return x;
-      off += sz;
-      continue;
-    }
-    uint32_t sz = atomic_load_explicit(&x->size, memory_order_relaxed);
-    if (sz == REC_JUMP) {
-      c = c->next;
-      off = 0;
-      continue;
-    }
-    if (!(x->flags & REC_TAKEN) && tag_ok(tag, x->tag)) return x;
-    off += sz;
-  }
-}
-
-/* Anything published in q since the reader last looked? */
-static inline int chan_news(chan *q) {
-  return atomic_load_explicit(&rec_at(q->sc, q->soff)->size, memory_order_relaxed) != 0;
-}
-
-/* Move q's head over the records taken out of order and the jumps (freeing
- * the chunks left behind), up to the first record not taken or what the
- * reader has not seen. */
-static void chan_settle(chan *q) {
-  while (q->hc != q->sc || q->hoff != q->soff) {
-    rec *y = rec_at(q->hc, q->hoff);
-    uint32_t sz = atomic_load_explicit(&y->size, memory_order_relaxed);
-    if (sz == REC_JUMP) {
-      chunk *old = q->hc;
-      q->hc = old->next;
-      q->hoff = 0;
-      free(old);
-    } else if (y->flags & REC_TAKEN) {
-      q->hoff += sz;
-    } else {
-      break;
-    }
-  }
-}
-
-/* x (found by chan_find, its payload already copied out) is taken: passed
- * by the head if it is the first record not taken, else marked. */
-static void chan_take(chan *q, rec *x) {
-  if (x->flags & REC_BIG) {
-    void *copy;
-    memcpy(&copy, rec_data(x), sizeof copy);
-    free(copy);
-  }
-  chan_settle(q);
-  if (x != rec_at(q->hc, q->hoff)) {
-    x->flags |= REC_TAKEN;
-    return;
-  }
-  q->hoff += atomic_load_explicit(&x->size, memory_order_relaxed);
-  chan_settle(q);
-}
-
-/* Every chunk of q, and the copies of the big payloads never taken; q. */
-static void chan_free(chan *q) {
-  chunk *c = q->hc;
-  size_t off = q->hoff;
-  while (c) {
-    rec *x = rec_at(c, off);
-    uint32_t sz = atomic_load_explicit(&x->size, memory_order_relaxed);
-    if (sz == 0 || sz == REC_JUMP) {
-      chunk *next = sz == REC_JUMP ? c->next : NULL;
-      free(c);
-      c = next;
-      off = 0;
-      continue;
-    }
-    if ((x->flags & (REC_BIG | REC_TAKEN)) == REC_BIG) {
-      void *copy;
-      memcpy(&copy, rec_data(x), sizeof copy);
-      free(copy);
-    }
-    off += sz;
-  }
-  free(q);
-}
+/* ==== choosing a message among the channels ============================== */
 
 /* A message found for a receive: its channel and record. */
 typedef struct {
@@ -548,7 +355,8 @@ static int mpt_compute(mp *self, double units) {
   return progress_now(r);
 }
 
-static int mpt_send(mp *self, int dst, int tag, const void *buf, size_t len) {
+/* mp_send, or with ref mp_send_ref (*ref: the record's ticket). */
+static int send_msg(mp *self, int dst, int tag, const void *buf, size_t len, mp_ref **ref) {
   rank *r = (rank *)self;
   mpt *t = r->t;
   if (stopped(t)) return MP_ESTOPPED;
@@ -565,11 +373,32 @@ static int mpt_send(mp *self, int dst, int tag, const void *buf, size_t len) {
     return MP_EARG;
   }
   rank *d = &t->ranks[dst];
-  chan_put(chan_get(r, d), r->base.rank, tag, ++r->clock, buf, len);
+  if (ref)
+    chan_put_ref(chan_get(r, d), r->base.rank, tag, ++r->clock, buf, len, (ticket **)ref);
+  else
+    chan_put(chan_get(r, d), r->base.rank, tag, ++r->clock, buf, len);
   wake_if_waiting(t, d, r->base.rank, tag);
   r->st.sent++;
   r->st.bytes_sent += (long long)len;
   return MP_OK;
+}
+
+static int mpt_send(mp *self, int dst, int tag, const void *buf, size_t len) {
+  return send_msg(self, dst, tag, buf, len, NULL);
+}
+
+static int mpt_send_ref(mp *self, int dst, int tag, const void *buf, size_t len, mp_ref **ref) {
+  return send_msg(self, dst, tag, buf, len, ref);
+}
+
+static void mpt_settle(mp *self, mp_ref *ref) {
+  (void)self;
+  ticket_settle((ticket *)ref);
+}
+
+static int mpt_withdraw(mp *self, mp_ref *ref) {
+  (void)self;
+  return ticket_withdraw((ticket *)ref);
 }
 
 /* Check recv's and probe's source and tag. */
@@ -592,7 +421,9 @@ static int deliver(rank *r, found f, void *buf, size_t cap, mp_status *st) {
   if (x == r->pin_x) r->pin_x = NULL;   /* taken: no longer pinned (its chunk may go) */
   size_t len = (size_t)x->len, n = len <= cap ? len : cap;
   int src = (int)x->src, tag = x->tag;
-  if (n) {
+  if (x->flags & REC_REF) {
+    ticket_read(rec_ticket(x), rec_data(x) + sizeof(ticket *), buf, n);   /* seen: not withdrawn */
+  } else if (n) {
     const unsigned char *p = rec_data(x);
     if (x->flags & REC_BIG) memcpy(&p, rec_data(x), sizeof p);
     memcpy(buf, p, n);
@@ -724,7 +555,7 @@ static int arrived(rank *r, int src, int tag, found *out) {
     pthread_mutex_lock(&t->g);
     t->sleeping++;
     atomic_fetch_sub_explicit(&t->awake, 1, memory_order_relaxed);
-    int dead = t->sleeping == t->live;
+    int dead = t->sleeping == t->live && !stopped(t);   /* a stop (an abort) is no deadlock */
     if (dead) declare_deadlock_locked(t);
     pthread_mutex_unlock(&t->g);
     if (dead) {
@@ -764,6 +595,74 @@ static int mpt_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status
   found f;
   rc = arrived(r, src, tag, &f);
   return rc == MP_OK ? deliver(r, f, buf, cap, st) : rc;
+}
+
+/* A message taken by mp_recv_msg: its payload in the sender's buffer (a
+ * ticket's), in a copy (REC_BIG's), or here; a send by reference keeps its
+ * ticket, by which its sender may still withdraw it. */
+typedef struct {
+  size_t len;
+  ticket *t;
+  unsigned char *big;
+  unsigned char inl[];
+} held;
+
+static int mpt_recv_msg(mp *self, int src, int tag, mp_msg **msg, mp_status *st) {
+  rank *r = (rank *)self;
+  if (stopped(r->t)) return MP_ESTOPPED;
+  int rc = check_match_args(r, "mp_recv_msg", src, tag);
+  if (rc != MP_OK) return rc;
+  found f;
+  if ((rc = arrived(r, src, tag, &f)) != MP_OK) return rc;
+  rec *x = f.x;
+  size_t len = (size_t)x->len;
+  int inl = !(x->flags & REC_BIG) && !((x->flags & REC_REF) && rec_ticket(x)->buf);
+  held *h = xmalloc(sizeof *h + (inl ? len : 0));
+  h->len = len;
+  h->t = NULL;
+  h->big = NULL;
+  if (x->flags & REC_REF) {   /* the record's hold on the ticket passes to h */
+    h->t = rec_ticket(x);
+    if (inl && len) memcpy(h->inl, rec_data(x) + sizeof h->t, len);
+    int seen = T_SEEN;
+    atomic_compare_exchange_strong(&h->t->state, &seen, T_REF);   /* withdrawable again */
+    x->flags &= ~(uint32_t)REC_REF;
+  } else if (x->flags & REC_BIG) {   /* the copy passes to h */
+    memcpy(&h->big, rec_data(x), sizeof h->big);
+    x->flags &= ~(uint32_t)REC_BIG;
+  } else if (len) {
+    memcpy(h->inl, rec_data(x), len);
+  }
+  if (x == r->pin_x) r->pin_x = NULL;
+  if (x->stamp > r->clock) r->clock = x->stamp;
+  if (st) *st = (mp_status){(int)x->src, x->tag, len};
+  chan_take(f.q, x);
+  r->st.received++;
+  r->st.bytes_received += (long long)len;
+  *msg = (mp_msg *)h;
+  return MP_OK;
+}
+
+static int mpt_msg_read(mp *self, mp_msg *msg, void *buf, size_t cap) {
+  (void)self;
+  held *h = (held *)msg;
+  size_t n = h->len <= cap ? h->len : cap;
+  int rc = h->len > cap && buf ? MP_ETRUNC : MP_OK;
+  if (h->t) {
+    if (ticket_read(h->t, h->inl, buf, n) < 0) rc = MP_EGONE;
+    ticket_drop(h->t);
+  } else if (n) {
+    memcpy(buf, h->big ? h->big : h->inl, n);
+  }
+  free(h->big);
+  free(h);
+  return rc;
+}
+
+static int mpt_msg_gone(mp *self, const mp_msg *msg) {
+  (void)self;
+  const held *h = (const held *)msg;
+  return h->t && atomic_load(&h->t->state) == T_GONE;
 }
 
 /* A message is shown, not taken (a probe that found one, mp_wait): it has
@@ -840,8 +739,12 @@ static void mpt_stop(mp *self, int code, const char *why) {
   wake_all(t);
 }
 
-static const mp_ops mpt_ops = {mpt_send, mpt_recv, mpt_probe, mpt_compute, mpt_time,
-                               mpt_wait, mpt_busy, mpt_sleep, mpt_stop, NULL};
+/* Promises: none here (the receiver takes a message when it comes, often
+ * before its sender settles it; where not, the settle copies it out). */
+static const mp_ops mpt_ops = {mpt_send,     mpt_recv,   mpt_probe,    mpt_compute,  mpt_time,
+                               mpt_wait,     mpt_busy,   mpt_sleep,    mpt_stop,     NULL,
+                               mpt_send_ref, mpt_settle, mpt_withdraw, mpt_recv_msg, mpt_msg_read,
+                               mpt_msg_gone, NULL,       NULL,         NULL,         NULL};
 
 /* ==== the machine ========================================================= */
 
@@ -930,6 +833,7 @@ static void sweep_unread(mpt *t) {
         }
         off += sz;
         if (x->flags & REC_TAKEN) continue;
+        if ((x->flags & REC_REF) && atomic_load(&rec_ticket((rec *)x)->state) == T_GONE) continue;
         count++;
         if (!first || x->stamp < first->stamp || (x->stamp == first->stamp && x->src < first->src)) first = x;
       }

@@ -72,6 +72,16 @@
  *   the run from ending (threads cannot be abandoned the way the
  *   simulator abandons a coroutine).
  *
+ *   Messages without copies (mp.h).  A send by reference leaves the
+ *   payload in the sender's buffer (up to about 1 KiB it is copied into
+ *   the record all the same) with a ticket the sender and the receiver
+ *   share (chan.h): a receive that comes first copies straight from the
+ *   sender's buffer, a settle that comes first copies it out; a message a
+ *   receive has looked at (found by a recv, probe or wait) can no longer
+ *   be withdrawn, one taken by mp_recv_msg can until it is read.
+ *   Promises are ignored (mp_promise_make gives NULL): a receiver here
+ *   takes a message when it comes, often before its sender settles it.
+ *
  *   Errors, as on the simulator: a send to, or a recv or probe from, a rank
  *   that does not exist (MP_ERANK), a negative tag, a negative or non-finite
  *   compute, a NULL buffer with a length (MP_EARG): the call fails, the rank

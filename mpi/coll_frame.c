@@ -66,7 +66,7 @@ int tsmpi_coll_ran(const char *fn, MPI_Comm comm, int rc, MPI_Request *req) {
   *req = MPI_REQUEST_NULL;
   if (rc) return rc;
   *req = tsmpi_req_coll(fn, comm, -1);
-  tsmpi_req_complete(*req, MPI_SUCCESS);
+  tsmpi_req_coll_complete(*req, MPI_SUCCESS);
   return MPI_SUCCESS;
 }
 

@@ -264,8 +264,9 @@ int tsmpi_sched_run(tsmpi_sched *s) {
 /* A request of ours (from src, or -1) that may be done: 1 (and freed) if it
  * is; an error is raised and kept. */
 static int req_done(tsmpi_sched *s, MPI_Request *r, int src) {
-  int err = MPI_SUCCESS;
-  if (!tsmpi_p2p_done(r, &err)) return 0;
+  MPI_Status st;
+  if (!tsmpi_p2p_done(r, &st)) return 0;
+  int err = st.MPI_ERROR;
   if (err && !s->err) s->err = tsmpi_cg_failed(&s->g, err, src);
   return 1;
 }

@@ -29,9 +29,12 @@ typedef struct { int32_t v, i; } pair_2integer;
 /* A char's representation: signed on most machines, unsigned on some. */
 #define CHAR_REP (CHAR_MIN < 0 ? TSMPI_REP_INT : TSMPI_REP_UINT)
 
-/* Every predefined type: B(handle, C type, class, representation) and
- * P(handle, pair struct, value's handle, index's handle). */
-#define PREDEF_LIST(B, P)                                                                     \
+/* Every predefined type: B(handle, C type, class, representation) (the
+ * handle as written is the type's name: MPI_LONG_LONG, which MPI_LONG_LONG_INT
+ * is a synonym of since MPI 2.1, as MPICH names it),
+ * P(handle, pair struct, value's handle, index's handle) and M(handle,
+ * sticky lb, sticky ub) for the markers MPI_LB and MPI_UB. */
+#define PREDEF_LIST(B, P, M)                                                                  \
   B(MPI_CHAR, char, TSMPI_CLASS_CINT, CHAR_REP)                                              \
   B(MPI_SIGNED_CHAR, signed char, TSMPI_CLASS_CINT, TSMPI_REP_INT)                           \
   B(MPI_UNSIGNED_CHAR, unsigned char, TSMPI_CLASS_CINT, TSMPI_REP_UINT)                      \
@@ -43,7 +46,7 @@ typedef struct { int32_t v, i; } pair_2integer;
   B(MPI_UNSIGNED, unsigned, TSMPI_CLASS_CINT, TSMPI_REP_UINT)                                \
   B(MPI_LONG, long, TSMPI_CLASS_CINT, TSMPI_REP_INT)                                         \
   B(MPI_UNSIGNED_LONG, unsigned long, TSMPI_CLASS_CINT, TSMPI_REP_UINT)                      \
-  B(MPI_LONG_LONG_INT, long long, TSMPI_CLASS_CINT, TSMPI_REP_INT)                           \
+  B(MPI_LONG_LONG, long long, TSMPI_CLASS_CINT, TSMPI_REP_INT)                               \
   B(MPI_UNSIGNED_LONG_LONG, unsigned long long, TSMPI_CLASS_CINT, TSMPI_REP_UINT)            \
   B(MPI_FLOAT, float, TSMPI_CLASS_FLOAT, TSMPI_REP_FLOAT)                                    \
   B(MPI_DOUBLE, double, TSMPI_CLASS_FLOAT, TSMPI_REP_FLOAT)                                  \
@@ -91,7 +94,9 @@ typedef struct { int32_t v, i; } pair_2integer;
   B(MPI_REAL4, float, TSMPI_CLASS_FLOAT, TSMPI_REP_FLOAT)                                    \
   B(MPI_REAL8, double, TSMPI_CLASS_FLOAT, TSMPI_REP_FLOAT)                                   \
   B(MPI_COMPLEX8, float _Complex, TSMPI_CLASS_COMPLEX, TSMPI_REP_COMPLEX)                    \
-  B(MPI_COMPLEX16, double _Complex, TSMPI_CLASS_COMPLEX, TSMPI_REP_COMPLEX)
+  B(MPI_COMPLEX16, double _Complex, TSMPI_CLASS_COMPLEX, TSMPI_REP_COMPLEX)                 \
+  M(MPI_LB, 1, 0)                                                                            \
+  M(MPI_UB, 0, 1)
 
 /* A pair's parts: the value's and the index's sizes, the index's offset;
  * laid out without a gap between them, a pair is one run of bytes. */
@@ -105,7 +110,8 @@ typedef struct { int32_t v, i; } pair_2integer;
 #define DESC_P(h, st, vh, ih)                                                                  \
   [IDX(h)] = {#h, VSIZE(st) + ISIZE(st), (int)sizeof(st), (int)_Alignof(st), TSMPI_CLASS_PAIR, \
               TSMPI_REP_PAIR, IDX(vh), IDX(ih), IOFF(st)},
-static const tsmpi_predef predef[TSMPI_PREDEF_N] = {PREDEF_LIST(DESC_B, DESC_P)};
+#define DESC_M(h, l, u) [IDX(h)] = {#h, 0, 0, 1, TSMPI_CLASS_NONE, TSMPI_REP_NONE, 0, 0, 0},
+static const tsmpi_predef predef[TSMPI_PREDEF_N] = {PREDEF_LIST(DESC_B, DESC_P, DESC_M)};
 
 const tsmpi_predef *tsmpi_predef_get(int i) {
   return i > 0 && i < TSMPI_PREDEF_N && predef[i].name ? &predef[i] : NULL;
@@ -127,7 +133,7 @@ typedef struct dt {
   int refs;              /* created types: handles, holds and decoding parents */
   int committed;
   int predef;            /* the predefined index, or 0 */
-  int markers;           /* resized somewhere inside: no struct padding */
+  int slb, sub;          /* explicit (sticky) lb and ub markers: MPI_LB, MPI_UB, resized */
   int align;             /* the strictest alignment of its basic types */
   int contig;            /* one run of bytes, size == extent (or no data) */
   int elem;              /* the one predefined type of its entries, or 0 */
@@ -149,12 +155,13 @@ typedef struct dt {
  * entry; a pair's bytes in one piece or two. */
 #define RUN_B(h, ctype, cls, rep) [IDX(h)] = {0, 1, IDX(h)},
 #define RUN_P(h, st, vh, ih) [IDX(h)] = {0, 1, IDX(h)},
-static const run pre_run[TSMPI_PREDEF_N] = {PREDEF_LIST(RUN_B, RUN_P)};
+#define NONE_M(h, l, u)
+static const run pre_run[TSMPI_PREDEF_N] = {PREDEF_LIST(RUN_B, RUN_P, NONE_M)};
 
 #define SEG_B(h, ctype, cls, rep) [IDX(h)] = {{0, (MPI_Aint)sizeof(ctype)}, {0, 0}},
 #define SEG_P(h, st, vh, ih) \
   [IDX(h)] = {{0, PACKED_LIKE(st) ? VSIZE(st) + ISIZE(st) : VSIZE(st)}, {IOFF(st), ISIZE(st)}},
-static const seg pre_seg[TSMPI_PREDEF_N][2] = {PREDEF_LIST(SEG_B, SEG_P)};
+static const seg pre_seg[TSMPI_PREDEF_N][2] = {PREDEF_LIST(SEG_B, SEG_P, NONE_M)};
 
 #define OBJ_B(h, ctype, cls, rep)                                                          \
   [IDX(h)] = {.committed = 1, .predef = IDX(h), .align = (int)_Alignof(ctype), .contig = 1, \
@@ -169,7 +176,11 @@ static const seg pre_seg[TSMPI_PREDEF_N][2] = {PREDEF_LIST(SEG_B, SEG_P)};
               .ub = sizeof(st), .tub = IOFF(st) + ISIZE(st), .nrun = 1,                    \
               .nseg = PACKED_LIKE(st) ? 1 : 2, .runs = &pre_run[IDX(h)],                   \
               .segs = pre_seg[IDX(h)], .combiner = MPI_COMBINER_NAMED},
-static const dt pre_obj[TSMPI_PREDEF_N] = {PREDEF_LIST(OBJ_B, OBJ_P)};
+/* A marker: no data, lower and upper bound 0, one of them sticky. */
+#define OBJ_M(h, l, u)                                                                     \
+  [IDX(h)] = {.committed = 1, .predef = IDX(h), .slb = l, .sub = u, .align = 1, .contig = 1, \
+              .combiner = MPI_COMBINER_NAMED},
+static const dt pre_obj[TSMPI_PREDEF_N] = {PREDEF_LIST(OBJ_B, OBJ_P, OBJ_M)};
 
 /* ==== the rank's table ==================================================== */
 
@@ -180,6 +191,7 @@ typedef struct {
   int n, cap;
   int *spare;   /* freed slots, reused last in first out */
   int nspare;
+  char *pname[TSMPI_PREDEF_N];   /* names this rank gave predefined types */
 } table;
 
 static void table_release(void *p) {
@@ -195,6 +207,7 @@ static void table_release(void *p) {
     free(t->name);
     free(t);
   }
+  for (int i = 0; i < TSMPI_PREDEF_N; i++) free(tb->pname[i]);
   free(tb->slot);
   free(tb->spare);
   free(tb);
@@ -394,6 +407,24 @@ MPI_Count tsmpi_type_elements(MPI_Datatype h, MPI_Count bytes) {
   return n;
 }
 
+MPI_Count tsmpi_type_elements_bytes(MPI_Datatype h, MPI_Count n) {
+  const dt *t = obj(h);
+  if (t->nbasic == 0) return n > 0 ? -1 : 0;
+  MPI_Count bytes = n / t->nbasic * t->size, rest = n % t->nbasic;
+  for (size_t k = 0; k < t->nrun && rest > 0; k++) {
+    const tsmpi_predef *p = &predef[t->runs[k].type];
+    int two = p->rep == TSMPI_REP_PAIR;
+    MPI_Count whole = rest / (two ? 2 : 1) < t->runs[k].n ? rest / (two ? 2 : 1) : t->runs[k].n;
+    bytes += whole * p->size;
+    rest -= whole * (two ? 2 : 1);
+    if (rest > 0 && whole < t->runs[k].n && two) {   /* the value of one more pair */
+      bytes += predef[p->pair_value].size;
+      rest = 0;
+    }
+  }
+  return bytes;
+}
+
 int tsmpi_type_bottom_ok(MPI_Datatype h, int count) {
   const dt *t = obj(h);
   return count == 0 || t->size == 0 || t->tlb != 0;
@@ -408,6 +439,17 @@ int tsmpi_type_elem(MPI_Datatype h, MPI_Count *per_elem) {
 void tsmpi_type_runs(MPI_Datatype h, void (*f)(void *ud, MPI_Aint disp, MPI_Count n), void *ud) {
   const dt *t = obj(h);
   for (size_t k = 0; k < t->nrun; k++) f(ud, t->runs[k].disp, t->runs[k].n);
+}
+
+void tsmpi_type_walk(MPI_Datatype h, void (*f)(void *ud, MPI_Aint disp, MPI_Count n, int type), void *ud) {
+  const dt *t = obj(h);
+  for (size_t k = 0; k < t->nrun; k++) f(ud, t->runs[k].disp, t->runs[k].n, t->runs[k].type);
+}
+
+size_t tsmpi_type_segments(MPI_Datatype h, void (*f)(void *ud, MPI_Aint disp, MPI_Aint len), void *ud) {
+  const dt *t = obj(h);
+  for (size_t k = 0; k < t->nseg && f; k++) f(ud, t->segs[k].disp, t->segs[k].len);
+  return t->nseg;
 }
 
 /* ==== building ============================================================ */
@@ -539,7 +581,11 @@ int tsmpi_type_build(int count, const int *blen, const MPI_Aint *disp, const MPI
   builder b = {0};
   dt *t = calloc(1, sizeof *t);
   if (!t) goto oom;
+  /* MPI 3.1 section 4.1.7: the lower bound is the least displacement of
+   * the explicit lb markers (sticky) if the type map has any, else the
+   * least of all entries; the upper bound likewise. */
   int any = 0, anydata = 0;
+  MPI_Aint slb = 0, sub = 0;
   t->align = 1;
   for (int i = 0; i < count; i++) {
     const dt *c = obj(types ? types[i] : type);
@@ -554,6 +600,14 @@ int tsmpi_type_build(int count, const int *blen, const MPI_Aint *disp, const MPI
       t->ub = amax(t->ub, hi + c->ub);
     }
     any = 1;
+    if (c->slb) {
+      slb = t->slb ? amin(slb, lo + c->lb) : lo + c->lb;
+      t->slb = 1;
+    }
+    if (c->sub) {
+      sub = t->sub ? amax(sub, hi + c->ub) : hi + c->ub;
+      t->sub = 1;
+    }
     if (c->size > 0) {
       if (!anydata) {
         t->tlb = lo + c->tlb;
@@ -565,13 +619,16 @@ int tsmpi_type_build(int count, const int *blen, const MPI_Aint *disp, const MPI
       anydata = 1;
     }
     if (c->align > t->align) t->align = c->align;
-    t->markers |= c->markers;
     add_type(&b, c, disp[i], blen[i]);
   }
   if (b.oom) goto oom;
-  if (struct_pad && !t->markers && any) {
+  if (t->slb) t->lb = slb;
+  if (t->sub) t->ub = sub;
+  /* The struct's epsilon: with no explicit upper bound, the extent rounded
+   * up to the strictest alignment. */
+  if (struct_pad && !t->sub && any) {
     MPI_Aint ext = t->ub - t->lb, r = ext % t->align;
-    if (r) t->ub += t->align - r;
+    if (r) t->ub += t->align - (r < 0 ? r + t->align : r);
   }
   t->runs = b.r;
   t->nrun = b.nr;
@@ -645,7 +702,7 @@ int tsmpi_type_resized(MPI_Datatype h, MPI_Aint lb, MPI_Aint extent, MPI_Datatyp
   t->committed = 0;
   t->lb = lb;
   t->ub = lb + extent;
-  t->markers = 1;
+  t->slb = t->sub = 1;
   finish(t);
   return entered(t, newtype, why, len);
 }
@@ -693,21 +750,25 @@ int tsmpi_type_redecode(MPI_Datatype h, const tsmpi_type_decoding *dec) {
 
 const char *tsmpi_type_name(MPI_Datatype h) {
   const dt *t = obj(h);
+  const table *tb = t->predef ? tab(0) : NULL;
+  if (tb && tb->pname[t->predef]) return tb->pname[t->predef];
   if (t->name) return t->name;
   return t->predef ? predef[t->predef].name : "";
 }
 
 int tsmpi_type_set_name(MPI_Datatype h, const char *name) {
   dt *t = obj(h);
-  if (t->predef) return MPI_ERR_TYPE;
+  table *tb = t->predef ? tab(1) : NULL;
+  if (t->predef && !tb) return MPI_ERR_NO_MEM;
   size_t n = strlen(name);
   if (n >= MPI_MAX_OBJECT_NAME) n = MPI_MAX_OBJECT_NAME - 1;
   char *s = malloc(n + 1);
   if (!s) return MPI_ERR_NO_MEM;
   memcpy(s, name, n);
   s[n] = '\0';
-  free(t->name);
-  t->name = s;
+  char **slot = t->predef ? &tb->pname[t->predef] : &t->name;
+  free(*slot);
+  *slot = s;
   return MPI_SUCCESS;
 }
 

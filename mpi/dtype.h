@@ -80,6 +80,11 @@ void tsmpi_type_release(MPI_Datatype dt);
  * inside a basic element. */
 MPI_Count tsmpi_type_elements(MPI_Datatype dt, MPI_Count bytes);
 
+/* The bytes that hold the first n basic elements of packed elements of dt
+ * (the inverse of tsmpi_type_elements, for MPI_Status_set_elements); -1 if
+ * dt has no basic elements and n > 0. */
+MPI_Count tsmpi_type_elements_bytes(MPI_Datatype dt, MPI_Count n);
+
 /* 1 if a NULL (MPI_BOTTOM) buffer can carry count elements of dt: count is
  * 0, the type has no data, or its data lie at non-zero addresses (a type
  * built from absolute addresses, MPI_Get_address). */
@@ -124,7 +129,7 @@ typedef struct {
   int pair_off;         /* pairs: the index's offset in the laid-out pair */
 } tsmpi_predef;
 
-enum { TSMPI_PREDEF_N = 0x3d };   /* predefined indices are 1 .. TSMPI_PREDEF_N - 1 */
+enum { TSMPI_PREDEF_N = 0x3f };   /* predefined indices are 1 .. TSMPI_PREDEF_N - 1 */
 
 /* The predefined type of index i (1 .. TSMPI_PREDEF_N - 1), or NULL. */
 const tsmpi_predef *tsmpi_predef_get(int i);
@@ -138,6 +143,17 @@ int tsmpi_type_elem(MPI_Datatype dt, MPI_Count *per_elem);
  * (tsmpi_type_elem) at byte displacement disp from an element's start, in
  * type-map order; entries of a run are one element-type extent apart. */
 void tsmpi_type_runs(MPI_Datatype dt, void (*f)(void *ud, MPI_Aint disp, MPI_Count n), void *ud);
+
+/* Calls f(ud, disp, n, type) for every run of dt's type map, whatever its
+ * types: n basic entries of the predefined type of index `type` (a pair
+ * counting as one), the first at byte displacement disp from an element's
+ * start, one predefined extent apart; in type-map order. */
+void tsmpi_type_walk(MPI_Datatype dt, void (*f)(void *ud, MPI_Aint disp, MPI_Count n, int type), void *ud);
+
+/* Calls f(ud, disp, len) for every run of bytes of dt's data (what packing
+ * copies, adjacent runs merged), in type-map order: len bytes at byte
+ * displacement disp from an element's start.  Returns how many. */
+size_t tsmpi_type_segments(MPI_Datatype dt, void (*f)(void *ud, MPI_Aint disp, MPI_Aint len), void *ud);
 
 /* ==== the rank's table (for the MPI functions in dtype_api.c) ============= */
 
@@ -180,8 +196,9 @@ int tsmpi_type_free(MPI_Datatype dt);     /* dt valid and created: MPI_SUCCESS; 
 void tsmpi_type_bounds(MPI_Datatype dt, MPI_Aint *lb, MPI_Aint *ub, MPI_Aint *true_lb,
                        MPI_Aint *true_ub);
 
-/* The type's name (MPI_Type_get_name): a predefined type's MPI name, or the
- * one set, or "". */
+/* The type's name (MPI_Type_get_name): the one this rank set, or a
+ * predefined type's MPI name, or "".  A predefined type's name set is the
+ * rank's own. */
 const char *tsmpi_type_name(MPI_Datatype dt);
 int tsmpi_type_set_name(MPI_Datatype dt, const char *name);
 

@@ -259,61 +259,119 @@ int PMPI_Type_dup(MPI_Datatype oldtype, MPI_Datatype *newtype) {
   return rc;
 }
 
+/* ==== arrays: subarray and darray ======================================== */
+
+/* A part of an ndims-dimensional array of oldtype as a type: in dimension
+ * d (dimension 0 varies slowest), the n[d] increasing indices idx[d] of
+ * sz[d]; the elements in row-major order, each at its index's offset in
+ * the whole array, which is the type's extent (lower bound 0; MPI 3.1
+ * sections 4.1.3 and 4.1.4).  Rows of the innermost dimension are cut
+ * into blocks of consecutive indices.  Decoded as dec. */
+static int array_part(const char *fn, int ndims, const int *sz, int *const *idx, const int *n,
+                      MPI_Datatype oldtype, const tsmpi_type_decoding *dec, MPI_Datatype *newtype) {
+  int in = ndims - 1, runs = 0;
+  MPI_Count rows = 1, whole = 1, blocks;
+  for (int d = 0; d < ndims; d++) whole *= sz[d];
+  for (int d = 0; d < in; d++) rows *= n[d];
+  for (int k = 0; k < n[in]; k++) runs += k == 0 || idx[in][k] != idx[in][k - 1] + 1;
+  blocks = rows * runs;
+  if (blocks > INT_MAX)
+    return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "too many blocks (%lld)", (long long)blocks);
+  MPI_Aint ext = tsmpi_type_extent(oldtype);
+  int *blen = malloc((size_t)(blocks ? blocks : 1) * sizeof *blen), *at = calloc((size_t)ndims, sizeof *at);
+  MPI_Aint *disp = malloc((size_t)(blocks ? blocks : 1) * sizeof *disp);
+  if (!blen || !disp || !at) {
+    free(blen), free(disp), free(at);
+    return fail(MPI_COMM_WORLD, MPI_ERR_NO_MEM, fn, "out of memory for %lld blocks", (long long)blocks);
+  }
+  MPI_Count b = 0;
+  for (MPI_Count r = 0; r < rows && runs; r++) {
+    MPI_Aint row = 0;   /* the offset of the row's index 0, in elements */
+    for (int d = 0; d < in; d++) row = (row + idx[d][at[d]]) * sz[d + 1];
+    for (int k = 0; k < n[in]; k++) {
+      if (k == 0 || idx[in][k] != idx[in][k - 1] + 1) {
+        disp[b] = (row + idx[in][k]) * ext;
+        blen[b++] = 0;
+      }
+      blen[b - 1]++;
+    }
+    for (int d = in - 1; d >= 0; d--) {
+      if (++at[d] < n[d]) break;
+      at[d] = 0;
+    }
+  }
+  /* The blocks, then their bounds: 0 and the whole array. */
+  MPI_Datatype part;
+  tsmpi_type_decoding none = {MPI_COMBINER_HINDEXED, 0, 0, 0, NULL, NULL, NULL};
+  int rc = build(fn, (int)blocks, blen, disp, NULL, oldtype, 0, &none, &part);
+  if (rc == MPI_SUCCESS) {
+    char why[96];
+    rc = tsmpi_type_resized(part, 0, (MPI_Aint)whole * ext, newtype, why, sizeof why);
+    tsmpi_type_free(part);
+    if (rc == MPI_SUCCESS) rc = tsmpi_type_redecode(*newtype, dec);
+    if (rc) rc = fail(MPI_COMM_WORLD, rc, fn, "out of memory");
+  }
+  free(blen), free(disp), free(at);
+  return rc;
+}
+
+/* The checks subarray and darray share. */
+static int array_args(const char *fn, int ndims, const int **arrays, int narrays, int order, MPI_Datatype oldtype,
+                      MPI_Datatype *newtype) {
+  int rc;
+  if ((rc = type_ok(fn, "oldtype", oldtype)) || (rc = ptr_ok(fn, "newtype", newtype))) return rc;
+  if (ndims < 1) return fail(MPI_COMM_WORLD, MPI_ERR_DIMS, fn, "ndims %d < 1", ndims);
+  for (int k = 0; k < narrays; k++)
+    if (!arrays[k]) return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "an array argument is NULL");
+  if (order != MPI_ORDER_C && order != MPI_ORDER_FORTRAN)
+    return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "order %d is neither MPI_ORDER_C nor MPI_ORDER_FORTRAN", order);
+  return MPI_SUCCESS;
+}
+
+/* Room for a part: idx, sz and n of ndims each, then the index lists,
+ * total ints from n + ndims on; one block, freed with free(*idx). */
+static int array_room(const char *fn, int ndims, MPI_Count total, int ***idx, int **sz, int **n) {
+  size_t ptrs = (size_t)ndims * sizeof(int *), ints = 2 * (size_t)ndims + (size_t)total;
+  char *m = malloc(ptrs + ints * sizeof(int));
+  if (!m) return fail(MPI_COMM_WORLD, MPI_ERR_NO_MEM, fn, "out of memory");
+  *idx = (int **)(void *)m;
+  *sz = (int *)(void *)(m + ptrs);
+  *n = *sz + ndims;
+  return MPI_SUCCESS;
+}
+
 /* MPI 3.1 section 4.1.3: the subarray of an ndims-dimensional array in C
- * or Fortran order, with the whole array's extent (lower bound 0). */
+ * or Fortran order. */
 int PMPI_Type_create_subarray(int ndims, const int array_of_sizes[], const int array_of_subsizes[],
                              const int array_of_starts[], int order, MPI_Datatype oldtype,
                              MPI_Datatype *newtype) {
   static const char fn[] = "MPI_Type_create_subarray";
-  int rc;
-  if ((rc = type_ok(fn, "oldtype", oldtype)) || (rc = ptr_ok(fn, "newtype", newtype))) return rc;
-  if (ndims < 1) return fail(MPI_COMM_WORLD, MPI_ERR_DIMS, fn, "ndims %d < 1", ndims);
-  if (!array_of_sizes || !array_of_subsizes || !array_of_starts)
-    return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "an array argument is NULL");
-  if (order != MPI_ORDER_C && order != MPI_ORDER_FORTRAN)
-    return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "order %d is neither MPI_ORDER_C nor MPI_ORDER_FORTRAN", order);
-  MPI_Count rows = 1, whole = 1;
+  const int *arrays[3] = {array_of_sizes, array_of_subsizes, array_of_starts};
+  int rc = array_args(fn, ndims, arrays, 3, order, oldtype, newtype);
+  if (rc) return rc;
+  MPI_Count total = 0;
   for (int d = 0; d < ndims; d++) {
     int n = array_of_sizes[d], s = array_of_subsizes[d], b = array_of_starts[d];
     if (n < 1 || s < 1 || s > n || b < 0 || b > n - s)
       return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn,
                   "dimension %d: size %d, subsize %d, start %d (need 1 <= subsize <= size, 0 <= start <= size - subsize)",
                   d, n, s, b);
-    whole *= n;
+    total += s;
   }
-  /* dims[0] varies slowest: C order as given, Fortran order reversed. */
-  int *sz = malloc((size_t)ndims * 3 * sizeof *sz);
-  if (!sz) return fail(MPI_COMM_WORLD, MPI_ERR_NO_MEM, fn, "out of memory");
-  int *sub = sz + ndims, *st = sz + 2 * ndims;
+  int *sz = NULL, *n = NULL, **idx = NULL, *ints = malloc((size_t)(3 * ndims + 2) * sizeof *ints);
+  if (!ints) return fail(MPI_COMM_WORLD, MPI_ERR_NO_MEM, fn, "out of memory");
+  if ((rc = array_room(fn, ndims, total, &idx, &sz, &n))) {
+    free(ints);
+    return rc;
+  }
+  /* Dimension 0 varies slowest: C order as given, Fortran order reversed. */
+  int *list = n + ndims;
   for (int d = 0; d < ndims; d++) {
     int e = order == MPI_ORDER_C ? d : ndims - 1 - d;
     sz[d] = array_of_sizes[e];
-    sub[d] = array_of_subsizes[e];
-    st[d] = array_of_starts[e];
-  }
-  for (int d = 0; d + 1 < ndims; d++) rows *= sub[d];
-  if (rows > INT_MAX) {
-    free(sz);
-    return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "too many rows (%lld)", (long long)rows);
-  }
-  MPI_Aint ext = tsmpi_type_extent(oldtype);
-  int *blen = malloc((size_t)rows * sizeof *blen), *ints = malloc((size_t)(3 * ndims + 2) * sizeof *ints);
-  MPI_Aint *disp = malloc((size_t)rows * sizeof *disp);
-  int *idx = calloc((size_t)ndims, sizeof *idx);
-  if (!blen || !disp || !ints || !idx) {
-    free(blen), free(disp), free(ints), free(idx), free(sz);
-    return fail(MPI_COMM_WORLD, MPI_ERR_NO_MEM, fn, "out of memory");
-  }
-  /* Each row of the innermost dimension, in row-major order of the rest. */
-  for (MPI_Count r = 0; r < rows; r++) {
-    MPI_Aint off = 0;
-    for (int d = 0; d < ndims; d++) off = off * sz[d] + st[d] + (d + 1 < ndims ? idx[d] : 0);
-    blen[r] = sub[ndims - 1];
-    disp[r] = off * ext;
-    for (int d = ndims - 2; d >= 0; d--) {
-      if (++idx[d] < sub[d]) break;
-      idx[d] = 0;
-    }
+    n[d] = array_of_subsizes[e];
+    idx[d] = list;
+    for (int k = 0; k < n[d]; k++) *list++ = array_of_starts[e] + k;
   }
   ints[0] = ndims;
   for (int d = 0; d < ndims; d++) {
@@ -322,21 +380,98 @@ int PMPI_Type_create_subarray(int ndims, const int array_of_sizes[], const int a
     ints[1 + 2 * ndims + d] = array_of_starts[d];
   }
   ints[1 + 3 * ndims] = order;
-  /* The subarray's blocks, then its bounds: 0 and the whole array. */
-  MPI_Datatype blocks;
-  tsmpi_type_decoding none = {MPI_COMBINER_HINDEXED, 0, 0, 0, NULL, NULL, NULL};
-  rc = build(fn, (int)rows, blen, disp, NULL, oldtype, 0, &none, &blocks);
-  if (rc == MPI_SUCCESS) {
-    char why[96];
-    rc = tsmpi_type_resized(blocks, 0, (MPI_Aint)whole * ext, newtype, why, sizeof why);
-    tsmpi_type_free(blocks);
-    if (rc == MPI_SUCCESS) {
-      tsmpi_type_decoding dec = {MPI_COMBINER_SUBARRAY, 3 * ndims + 2, 0, 1, ints, NULL, &oldtype};
-      rc = tsmpi_type_redecode(*newtype, &dec);
-    }
-    if (rc) rc = fail(MPI_COMM_WORLD, rc, fn, "out of memory");
+  tsmpi_type_decoding dec = {MPI_COMBINER_SUBARRAY, 3 * ndims + 2, 0, 1, ints, NULL, &oldtype};
+  rc = array_part(fn, ndims, sz, idx, n, oldtype, &dec, newtype);
+  free(idx);
+  free(ints);
+  return rc;
+}
+
+/* MPI 3.1 section 4.1.4: the part of an ndims-dimensional array that
+ * process rank of size owns under HPF's distributions, the processes a
+ * grid of psizes in row-major order.  In a dimension of g elements on p
+ * processes, coordinate c owns: MPI_DISTRIBUTE_BLOCK, the indices
+ * [c b, (c + 1) b) below g (b the darg, by default ceil(g / p), and b p >=
+ * g); MPI_DISTRIBUTE_CYCLIC, the indices i with (i / b) mod p = c (b the
+ * darg, by default 1); MPI_DISTRIBUTE_NONE, all (p must be 1: MPI 3.1's
+ * definition, MPICH and Open MPI disagree on more).  C or Fortran order, as
+ * for subarray. */
+int PMPI_Type_create_darray(int size, int rank, int ndims, const int array_of_gsizes[],
+                           const int array_of_distribs[], const int array_of_dargs[],
+                           const int array_of_psizes[], int order, MPI_Datatype oldtype,
+                           MPI_Datatype *newtype) {
+  static const char fn[] = "MPI_Type_create_darray";
+  const int *arrays[4] = {array_of_gsizes, array_of_distribs, array_of_dargs, array_of_psizes};
+  int rc = array_args(fn, ndims, arrays, 4, order, oldtype, newtype);
+  if (rc) return rc;
+  if (size < 1) return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "size %d < 1", size);
+  if (rank < 0 || rank >= size)
+    return fail(MPI_COMM_WORLD, MPI_ERR_RANK, fn, "rank %d is not in 0..%d", rank, size - 1);
+  MPI_Count procs = 1, total = 0;
+  for (int d = 0; d < ndims; d++) {
+    int g = array_of_gsizes[d], dist = array_of_distribs[d], b = array_of_dargs[d], p = array_of_psizes[d];
+    if (g < 1 || p < 1)
+      return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "dimension %d: gsize %d, psize %d (need both >= 1)", d, g, p);
+    if (dist != MPI_DISTRIBUTE_BLOCK && dist != MPI_DISTRIBUTE_CYCLIC && dist != MPI_DISTRIBUTE_NONE)
+      return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "dimension %d: distribution %d is not MPI_DISTRIBUTE_BLOCK, "
+                  "_CYCLIC or _NONE", d, dist);
+    if (dist != MPI_DISTRIBUTE_NONE && b != MPI_DISTRIBUTE_DFLT_DARG && b < 1)
+      return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "dimension %d: darg %d (need >= 1 or MPI_DISTRIBUTE_DFLT_DARG)",
+                  d, b);
+    if (dist == MPI_DISTRIBUTE_BLOCK && b != MPI_DISTRIBUTE_DFLT_DARG && (MPI_Count)b * p < g)
+      return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "dimension %d: %d blocks of %d cover %lld of %d elements", d, p,
+                  b, (long long)b * p, g);
+    if (dist == MPI_DISTRIBUTE_NONE && p != 1)
+      return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "dimension %d is MPI_DISTRIBUTE_NONE on a grid dimension of %d "
+                  "processes (need 1)", d, p);
+    procs *= p;
+    total += g;
   }
-  free(blen), free(disp), free(ints), free(idx), free(sz);
+  if (procs != size)
+    return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "the process grid has %lld processes, size is %d", (long long)procs,
+                size);
+  int *sz = NULL, *n = NULL, **idx = NULL, *ints = malloc((size_t)(4 * ndims + 4) * sizeof *ints);
+  int *coord = malloc((size_t)ndims * sizeof *coord);
+  if (!ints || !coord) {
+    free(ints), free(coord);
+    return fail(MPI_COMM_WORLD, MPI_ERR_NO_MEM, fn, "out of memory");
+  }
+  if ((rc = array_room(fn, ndims, total, &idx, &sz, &n))) {
+    free(ints), free(coord);
+    return rc;
+  }
+  /* The process's coordinates, row-major whatever the order. */
+  for (int d = ndims - 1, r = rank; d >= 0; d--) {
+    coord[d] = r % array_of_psizes[d];
+    r /= array_of_psizes[d];
+  }
+  int *list = n + ndims;
+  for (int d = 0; d < ndims; d++) {
+    int e = order == MPI_ORDER_C ? d : ndims - 1 - d;
+    int g = array_of_gsizes[e], p = array_of_psizes[e], c = coord[e], b = array_of_dargs[e];
+    if (array_of_distribs[e] == MPI_DISTRIBUTE_NONE) b = g;
+    else if (b == MPI_DISTRIBUTE_DFLT_DARG) b = array_of_distribs[e] == MPI_DISTRIBUTE_BLOCK ? (g + p - 1) / p : 1;
+    sz[d] = g;
+    idx[d] = list;
+    n[d] = 0;
+    for (int i = 0; i < g; i++)
+      if ((i / b) % p == c) list[n[d]++] = i;
+    list += n[d];
+  }
+  ints[0] = size;
+  ints[1] = rank;
+  ints[2] = ndims;
+  for (int d = 0; d < ndims; d++) {
+    ints[3 + d] = array_of_gsizes[d];
+    ints[3 + ndims + d] = array_of_distribs[d];
+    ints[3 + 2 * ndims + d] = array_of_dargs[d];
+    ints[3 + 3 * ndims + d] = array_of_psizes[d];
+  }
+  ints[3 + 4 * ndims] = order;
+  tsmpi_type_decoding dec = {MPI_COMBINER_DARRAY, 4 * ndims + 4, 0, 1, ints, NULL, &oldtype};
+  rc = array_part(fn, ndims, sz, idx, n, oldtype, &dec, newtype);
+  free(idx);
+  free(ints), free(coord);
   return rc;
 }
 
@@ -378,8 +513,6 @@ int PMPI_Type_set_name(MPI_Datatype datatype, const char *type_name) {
   int rc;
   if ((rc = type_ok(fn, "datatype", datatype)) || (rc = ptr_ok(fn, "type_name", type_name))) return rc;
   rc = tsmpi_type_set_name(datatype, type_name);
-  if (rc == MPI_ERR_TYPE)
-    return fail(MPI_COMM_WORLD, rc, fn, "%s is predefined: tilesim keeps its name", tsmpi_type_name(datatype));
   return rc ? fail(MPI_COMM_WORLD, rc, fn, "out of memory") : rc;
 }
 
@@ -606,4 +739,24 @@ int PMPI_Get_elements(const MPI_Status *status, MPI_Datatype datatype, int *coun
     *count = n > INT_MAX ? MPI_UNDEFINED : (int)n;
   }
   return rc;
+}
+
+/* MPI 3.1 section 12.3: status as if count basic elements of datatype had
+ * arrived (MPI_Get_elements then says count, MPI_Get_count the whole
+ * elements or MPI_UNDEFINED). */
+int PMPI_Status_set_elements_x(MPI_Status *status, MPI_Datatype datatype, MPI_Count count) {
+  static const char fn[] = "MPI_Status_set_elements_x";
+  int rc;
+  if ((rc = ptr_ok(fn, "status", status)) || (rc = commtype_ok(MPI_COMM_WORLD, fn, datatype))) return rc;
+  MPI_Count bytes = count < 0 ? -1 : tsmpi_type_elements_bytes(datatype, count);
+  if (bytes < 0)
+    return fail(MPI_COMM_WORLD, MPI_ERR_COUNT, fn, "count %lld of %s, which has %s", (long long)count,
+                *tsmpi_type_name(datatype) ? tsmpi_type_name(datatype) : "a derived type",
+                count < 0 ? "no negative counts" : "no basic elements");
+  status->tsmpi_count = bytes;
+  return MPI_SUCCESS;
+}
+
+int PMPI_Status_set_elements(MPI_Status *status, MPI_Datatype datatype, int count) {
+  return MPI_Status_set_elements_x(status, datatype, count);
 }

@@ -25,7 +25,17 @@
  * complete()); the ack carries the message's context and tag back, and the
  * sender's sync queue gives it to the oldest send with those: acks of
  * messages with one (receiver, context, tag) come back in the order the
- * messages were sent, as the receiver takes those in that order. */
+ * messages were sent, as the receiver takes those in that order.
+ *
+ * Copies (mp.h, "Messages without copies").  A request's send goes by
+ * reference (mp_send_ref) and is settled when the request ends; a posted
+ * receive of TSM_REF_MIN bytes or more into a contiguous buffer from a
+ * named source promises its buffer (mp_promise_make) when every receive
+ * posted before it has done so too (then the receives the promises name
+ * are exactly the ones MPI's order gives, and a message delivered into one
+ * is the one that receive takes); a blocking receive promises its buffer
+ * while it waits; an unexpected message is held (mp_recv_msg) and read
+ * into the receive that matches it. */
 #include "engine.h"
 
 #include <stdio.h>
@@ -45,9 +55,32 @@ static void mpok(tsm *R, int rc, const char *call) {
   abort();
 }
 
+/* ==== promises ============================================================ */
+
+/* The mp tag mask of a receive's promise: the context, the MPI tag unless
+ * MPI_ANY_TAG, and K_ACK's bit (a message of kind K_DATA or K_SYNC fits,
+ * an ack never). */
+static inline int prom_mask(int tag) {
+  return 1 << (ENV_KIND_SHIFT + 1) | ((1 << ENV_CTX_BITS) - 1) << ENV_TAG_BITS | (tag >= 0 ? TSM_TAG_UB : 0);
+}
+
+static inline mp_promise *promise_of(tsm *R, int wsrc, int ctx, int tag, void *buf, size_t cap) {
+  if (cap < TSM_REF_MIN || wsrc < 0 || !buf || R->posted_plain) return NULL;
+  return mp_promise_make(R->self, wsrc, env_encode(K_DATA, ctx, tag >= 0 ? tag : 0), prom_mask(tag), buf, cap);
+}
+
+static void unpromise(tsm *R, tsm_req *q) {
+  if (!q->prom) return;
+  mp_promise_drop(R->self, q->prom, 0);
+  q->prom = NULL;
+}
+
 /* ==== queues ============================================================== */
 
+/* q goes to the end of the posted queue, with a promise if it may. */
 static void post(tsm *R, tsm_req *q) {
+  q->prom = promise_of(R, q->wpeer, q->ctx, q->tag, q->contig, q->cap);
+  if (!q->prom) R->posted_plain++;
   q->next = NULL;
   q->prev = R->posted_tail;
   if (R->posted_tail)
@@ -60,6 +93,7 @@ static void post(tsm *R, tsm_req *q) {
 }
 
 static void unlink_posted(tsm *R, tsm_req *q) {
+  if (!q->prom) R->posted_plain--;
   if (q->prev)
     q->prev->next = q->next;
   else
@@ -73,6 +107,7 @@ static void unlink_posted(tsm *R, tsm_req *q) {
 
 void eng_unpost(tsm *R, tsm_req *q) {
   unlink_posted(R, q);
+  unpromise(R, q);
   tsm_ranks_drop(q->g);
   q->g = NULL;
 }
@@ -109,6 +144,19 @@ static void unexp_unlink(tsm *R, tsm_msg *m) {
   else
     R->unexp_tail = m->prev;
   R->nunexp--;
+}
+
+/* An unexpected message's end (its mp message released). */
+static void unexp_free(tsm *R, tsm_msg *m) {
+  mp_msg_read(R->self, m->h, NULL, 0);
+  free(m);
+}
+
+/* m (unlinked) is gone if its sender withdrew it (MPI_Cancel): then freed. */
+static int unexp_gone(tsm *R, tsm_msg *m) {
+  if (!mp_msg_gone(R->self, m->h)) return 0;
+  unexp_free(R, m);
+  return 1;
 }
 
 static inline int fits(const tsm_req *q, int src, int ctx, int tag) {
@@ -189,6 +237,26 @@ static void acked(tsm *R, int src, int ctx, int tag) {
   abort();
 }
 
+/* The message h (held; envelope st) goes to the end of the unexpected
+ * queue. */
+static void unexpected(tsm *R, const mp_status *st, mp_msg *h) {
+  tsm_msg *m = xmalloc(sizeof *m);
+  m->src = st->source;
+  m->kind = env_kind(st->tag);
+  m->ctx = env_ctx(st->tag);
+  m->tag = env_tag(st->tag);
+  m->len = st->len;
+  m->h = h;
+  m->next = NULL;
+  m->prev = R->unexp_tail;
+  if (R->unexp_tail)
+    R->unexp_tail->next = m;
+  else
+    R->unexp = m;
+  R->unexp_tail = m;
+  R->nunexp++;
+}
+
 /* Take the message mp has shown (st) and act on it: an ack, a posted
  * receive's message, or an unexpected one; then the progress of the
  * nonblocking collectives it moved. */
@@ -209,32 +277,25 @@ static void act(tsm *R, const mp_status *st) {
   if (q) {
     unlink_posted(R, q);
     take_into(R, q, st->source, st->tag, st->len);
+    unpromise(R, q);
     complete(R, q, st->source, kind, ctx, tag, st->len, 1);
     return;
   }
-  tsm_msg *m = xmalloc(sizeof *m);
-  m->src = st->source;
-  m->kind = kind;
-  m->ctx = ctx;
-  m->tag = tag;
-  m->len = st->len;
-  m->data = st->len ? xmalloc(st->len) : NULL;
-  mpok(R, mp_recv(R->self, st->source, st->tag, m->data, st->len, NULL), "mp_recv");
-  m->next = NULL;
-  m->prev = R->unexp_tail;
-  if (R->unexp_tail)
-    R->unexp_tail->next = m;
-  else
-    R->unexp = m;
-  R->unexp_tail = m;
-  R->nunexp++;
+  mp_msg *h;
+  mpok(R, mp_recv_msg(R->self, st->source, st->tag, &h, NULL), "mp_recv_msg");
+  unexpected(R, st, h);
 }
 
 /* ==== the calls =========================================================== */
 
+static void advance_all(tsm *R);
+
 void eng_send(tsm *R, tsm_req *q, const void *data, size_t len) {
-  int kind = q->mode == SM_SYNC ? K_SYNC : K_DATA;
-  mpok(R, mp_send(R->self, q->wpeer, env_encode(kind, q->ctx, q->tag), data, len), "mp_send");
+  int kind = q->mode == SM_SYNC ? K_SYNC : K_DATA, mptag = env_encode(kind, q->ctx, q->tag);
+  if (q->byref)
+    mpok(R, mp_send_ref(R->self, q->wpeer, mptag, data, len, &q->ref), "mp_send_ref");
+  else
+    mpok(R, mp_send(R->self, q->wpeer, mptag, data, len), "mp_send");
   q->st = (MPI_Status){.MPI_SOURCE = MPI_ANY_SOURCE, .MPI_TAG = MPI_ANY_TAG, .MPI_ERROR = MPI_SUCCESS};
   if (kind == K_SYNC) {
     q->state = RS_ACTIVE;
@@ -248,25 +309,70 @@ void eng_send_data(tsm *R, int wdst, int ctx, int tag, const void *data, size_t 
   mpok(R, mp_send(R->self, wdst, env_encode(K_DATA, ctx, tag), data, len), "mp_send");
 }
 
+void eng_settle(tsm *R, tsm_req *q) {
+  if (q->ref) {
+    mp_settle(R->self, q->ref);
+    q->ref = NULL;
+  }
+  if (q->tmp) {
+    free(q->tmp);
+    q->tmp = NULL;
+  }
+}
+
 int eng_recv_data(tsm *R, int wsrc, int ctx, int tag, void *p, size_t cap, mp_status *got) {
   mp_status st;
+  if (cap < TSM_REF_MIN) {
+    /* The source's next message, taken; read into p if it is the one, else
+     * acted on as a message taken off mp (no posted receive wants it). */
+    mp_msg *h;
+    mpok(R, mp_recv_msg(R->self, wsrc, MP_ANY, &h, &st), "mp_recv_msg");
+    int kind = env_kind(st.tag);
+    if (kind == K_DATA && env_ctx(st.tag) == ctx && (tag < 0 || env_tag(st.tag) == tag) && st.len <= cap) {
+      mp_msg_read(R->self, h, p, st.len);
+      *got = (mp_status){st.source, env_tag(st.tag), st.len};
+      return 1;
+    }
+    if (kind == K_ACK) {
+      mp_msg_read(R->self, h, NULL, 0);
+      acked(R, st.source, env_ctx(st.tag), env_tag(st.tag));
+    } else {
+      unexpected(R, &st, h);
+    }
+    return 0;
+  }
+  /* Long enough for a promise: the message is received into p, where its
+   * sender may have copied it already. */
+  mp_promise *pr = promise_of(R, wsrc, ctx, tag, p, cap);
   mpok(R, mp_wait(R->self, wsrc, MP_ANY, &st), "mp_wait");
   if (env_kind(st.tag) != K_DATA || env_ctx(st.tag) != ctx || (tag >= 0 && env_tag(st.tag) != tag) ||
-      st.len > cap)
+      st.len > cap) {
+    if (pr) mp_promise_drop(R->self, pr, 0);
     return 0;
+  }
   mpok(R, mp_recv(R->self, st.source, st.tag, st.len ? p : NULL, st.len, NULL), "mp_recv");
+  if (pr) mp_promise_drop(R->self, pr, 0);
   *got = (mp_status){st.source, env_tag(st.tag), st.len};
   return 1;
 }
 
 /* The first unexpected message q fits, taken into q; 1, or 0 if none. */
 static int from_unexp(tsm *R, tsm_req *q) {
-  for (tsm_msg *m = R->unexp; m; m = m->next) {
+  for (tsm_msg *m = R->unexp, *next; m; m = next) {
+    next = m->next;
     if (!fits(q, m->src, m->ctx, m->tag)) continue;
     unexp_unlink(R, m);
-    place(q, m->data, m->len < q->cap ? m->len : q->cap);
+    if (unexp_gone(R, m)) continue;
+    size_t n = m->len < q->cap ? m->len : q->cap;
+    if (q->contig || !n) {
+      mp_msg_read(R->self, m->h, n ? q->contig : NULL, n);
+    } else {
+      unsigned char *tmp = xmalloc(n);
+      mp_msg_read(R->self, m->h, tmp, n);
+      place(q, tmp, n);
+      free(tmp);
+    }
     complete(R, q, m->src, m->kind, m->ctx, m->tag, m->len, 0);
-    free(m->data);
     free(m);
     return 1;
   }
@@ -285,12 +391,14 @@ void eng_recv(tsm *R, tsm_req *q) {
     eng_wait(R, q);
     return;
   }
+  q->prom = promise_of(R, q->wpeer, q->ctx, q->tag, q->contig, q->cap);
   for (;;) {   /* the fast path: the source's (or anyone's) next message */
     mp_status st;
     mpok(R, mp_wait(R->self, q->wpeer, MP_ANY, &st), "mp_wait");
     int kind = env_kind(st.tag), ctx = env_ctx(st.tag), tag = env_tag(st.tag);
     if (kind != K_ACK && fits(q, st.source, ctx, tag)) {
       take_into(R, q, st.source, st.tag, st.len);
+      unpromise(R, q);
       complete(R, q, st.source, kind, ctx, tag, st.len, 0);
       return;
     }
@@ -302,11 +410,33 @@ void eng_step(tsm *R) {
   mp_status st;
   mpok(R, mp_wait(R->self, MP_ANY, MP_ANY, &st), "mp_wait");
   dispatch(R, &st);
+  advance_all(R);
+}
+
+void eng_advance(tsm *R, tsm_req *q) {
+  if (q->kind != RQ_KIND || q->state != RS_ACTIVE || !q->ops->progress || !q->ops->progress(q->ext)) return;
+  q->state = RS_DONE;
+  if (q->freed) tsm_req_free(R, q);
+}
+
+/* Every active request of a kind of its own advances (once each; not from
+ * within a kind's own progress). */
+static void advance_all(tsm *R) {
+  if (!R->nkinds || R->advancing) return;
+  R->advancing = 1;
+  for (int i = 0; i < R->nreqs; i++) {
+    tsm_req *q = R->reqs[i];
+    if (q->used && q->kind == RQ_KIND) eng_advance(R, q);
+  }
+  R->advancing = 0;
 }
 
 void eng_wait(tsm *R, tsm_req *q) {
   while (q->state == RS_ACTIVE) {
-    if (q->kind == RQ_SEND && !R->posted) {
+    if (q->kind == RQ_KIND) {   /* its progress, between the messages that come */
+      eng_advance(R, q);
+      if (q->state == RS_ACTIVE) eng_step(R);
+    } else if (q->kind == RQ_SEND && !R->posted) {
       /* Nothing posted to progress: the ack itself (acks of one key come
        * in the order of the sends, acked() gives each to its send). */
       int wpeer = q->wpeer, ctx = q->ctx, tag = q->tag;
@@ -327,18 +457,29 @@ void eng_poll(tsm *R) {
   mp_status st;
   for (;;) {
     int rc = mp_probe(R->self, MP_ANY, MP_ANY, &st);
-    if (rc == 0) return;
+    if (rc == 0) break;
     if (rc < 0) mpok(R, rc, "mp_probe");
     dispatch(R, &st);
   }
+  advance_all(R);
 }
 
-int eng_probe(tsm *R, int wsrc, int ctx, int tag, int block, int *src, int *mtag, size_t *len) {
-  for (tsm_msg *m = R->unexp; m; m = m->next) {
+int eng_probe(tsm *R, int wsrc, int ctx, int tag, int block, int *src, int *mtag, size_t *len, tsm_msg **take) {
+  for (tsm_msg *m = R->unexp, *next; m; m = next) {
+    next = m->next;
     if (m->ctx == ctx && (wsrc < 0 || m->src == wsrc) && (tag < 0 || m->tag == tag)) {
+      if (mp_msg_gone(R->self, m->h)) {
+        unexp_unlink(R, m);
+        unexp_free(R, m);
+        continue;
+      }
       *src = m->src;
       *mtag = m->tag;
       *len = m->len;
+      if (take) {
+        unexp_unlink(R, m);
+        *take = m;
+      }
       return 1;
     }
   }
@@ -360,19 +501,72 @@ int eng_probe(tsm *R, int wsrc, int ctx, int tag, int block, int *src, int *mtag
       *src = st.source;
       *mtag = t;
       *len = st.len;
+      if (take) {   /* taken off mp: no receive will match it but the program's own */
+        tsm_msg *m = xmalloc(sizeof *m);
+        *m = (tsm_msg){.src = st.source, .kind = k, .ctx = c, .tag = t, .len = st.len};
+        mpok(R, mp_recv_msg(R->self, st.source, st.tag, &m->h, NULL), "mp_recv_msg");
+        *take = m;
+      }
       return 1;
     }
     dispatch(R, &st);
   }
 }
 
+void eng_msg_read(tsm *R, tsm_req *q, tsm_msg *m) {
+  if (unexp_gone(R, m)) {   /* withdrawn since the probe: nothing came */
+    q->st = (MPI_Status){.MPI_SOURCE = MPI_ANY_SOURCE, .MPI_TAG = MPI_ANY_TAG, .MPI_ERROR = MPI_SUCCESS};
+    q->msglen = 0;
+    q->state = RS_DONE;
+    return;
+  }
+  size_t n = m->len < q->cap ? m->len : q->cap;
+  if (q->contig || !n) {
+    mp_msg_read(R->self, m->h, n ? q->contig : NULL, n);
+  } else {
+    unsigned char *tmp = xmalloc(n);
+    mp_msg_read(R->self, m->h, tmp, n);
+    place(q, tmp, n);
+    free(tmp);
+  }
+  complete(R, q, m->src, m->kind, m->ctx, m->tag, m->len, 0);
+  free(m);
+}
+
+void eng_msg_free(tsm *R, tsm_msg *m) { unexp_free(R, m); }
+
+int eng_cancel_recv(tsm *R, tsm_req *q) {
+  /* A promise that holds its message already: the receive has it. */
+  if (q->prom && mp_promise_drop(R->self, q->prom, 1)) return 0;
+  unlink_posted(R, q);   /* (counts q by its promise, gone now) */
+  q->prom = NULL;
+  tsm_ranks_drop(q->g);
+  q->g = NULL;
+  q->st = (MPI_Status){.MPI_SOURCE = MPI_ANY_SOURCE, .MPI_TAG = MPI_ANY_TAG, .MPI_ERROR = MPI_SUCCESS,
+                       .tsmpi_cancelled = 1};
+  q->msglen = 0;
+  q->state = RS_DONE;
+  return 1;
+}
+
+int eng_cancel_send(tsm *R, tsm_req *q) {
+  if (!q->ref || !mp_withdraw(R->self, q->ref)) return 0;
+  q->ref = NULL;   /* spent */
+  if (q->state == RS_ACTIVE) sync_unlink(R, q);   /* a synchronous send's ack will not come */
+  q->st = (MPI_Status){.MPI_SOURCE = MPI_ANY_SOURCE, .MPI_TAG = MPI_ANY_TAG, .MPI_ERROR = MPI_SUCCESS,
+                       .tsmpi_cancelled = 1};
+  q->state = RS_DONE;
+  return 1;
+}
+
 void eng_release(tsm *R) {
   while (R->posted) eng_unpost(R, R->posted);
   R->sync = R->sync_tail = NULL;
+  for (int i = 0; i < R->nreqs; i++)
+    if (R->reqs[i]->used) eng_settle(R, R->reqs[i]);
   for (tsm_msg *m = R->unexp, *n; m; m = n) {
     n = m->next;
-    free(m->data);
-    free(m);
+    unexp_free(R, m);
   }
   R->unexp = R->unexp_tail = NULL;
   R->nunexp = 0;

@@ -24,10 +24,20 @@
 
 #include "state.h"
 
+/* Messages of this many bytes or more are worth a promise (shorter ones are
+ * copied twice: cheaper than the bookkeeping). */
+enum { TSM_REF_MIN = 1024 };
+
 /* A send's message leaves: len bytes at data to q->wpeer with q's context,
  * tag and mode (SM_SYNC: q waits in R->sync for its ack, state RS_ACTIVE;
- * else q is RS_DONE). */
+ * else q is RS_DONE).  With q->byref, by reference: data must stay as it
+ * is until eng_settle(q). */
 void eng_send(tsm *R, tsm_req *q, const void *data, size_t len);
+
+/* q's buffers are the program's again (a send by reference settled, its
+ * packed copy freed): when a request ends, or a blocking call that sent by
+ * reference returns. */
+void eng_settle(tsm *R, tsm_req *q);
 
 /* The fast paths of MPI_Send and MPI_Recv (the common case of a blocking
  * exchange, with no request made):
@@ -35,8 +45,10 @@ void eng_send(tsm *R, tsm_req *q, const void *data, size_t len);
  *   eng_recv_data: when nothing is posted and nothing unexpected, the next
  *     message from wsrc (MP_ANY) is waited for; if it is an eager one that
  *     a receive of (ctx, tag) takes and it fits cap bytes at p, it is
- *     taken there: 1 and *got (world source, MPI tag, bytes).  Else 0 and
- *     nothing taken (the general way, eng_recv, sees the same message). */
+ *     taken there: 1 and *got (world source, MPI tag, bytes).  Else 0, and
+ *     the general way (eng_recv) finds the same message: in mp's mailbox,
+ *     or, for cap < TSM_REF_MIN, taken already into the unexpected queue
+ *     (an ack acted on). */
 void eng_send_data(tsm *R, int wdst, int ctx, int tag, const void *data, size_t len);
 int eng_recv_data(tsm *R, int wsrc, int ctx, int tag, void *p, size_t cap, mp_status *got);
 
@@ -49,14 +61,22 @@ void eng_recv_start(tsm *R, tsm_req *q);
  * one mp_recv when nothing else is posted. */
 void eng_recv(tsm *R, tsm_req *q);
 
-/* Block until q (active) is done. */
+/* Block until q (active) is done (a request of a kind of its own: its
+ * progress between the messages that come, p2p.h). */
 void eng_wait(tsm *R, tsm_req *q);
 
+/* A request of a kind of its own, active: its progress, once (done: it
+ * goes if the program freed it). */
+void eng_advance(tsm *R, tsm_req *q);
+
 /* Block until at least one message has been taken and acted on (a receive
- * matched, an ack, an unexpected message): for waits on several requests. */
+ * matched, an ack, an unexpected message): for waits on several requests.
+ * Then every request of a kind of its own advances (MPI's progress: a
+ * nonblocking collective moves on while its rank waits for anything). */
 void eng_step(tsm *R);
 
-/* Act on every message that has arrived, without blocking. */
+/* Act on every message that has arrived, without blocking; then every
+ * request of a kind of its own advances. */
 void eng_poll(tsm *R);
 
 /* Take q out of the posted queue (a request freed or a stopped rank). */
@@ -65,10 +85,27 @@ void eng_unpost(tsm *R, tsm_req *q);
 /* The message a receive from wsrc (MP_ANY) with ctx and tag (MPI_ANY_TAG)
  * would take now: 1 and its world source, tag and bytes; 0 if none has
  * arrived (block = 0); with block, waits until one has.  The message stays
- * to be received (in mp's mailbox or the unexpected queue). */
-int eng_probe(tsm *R, int wsrc, int ctx, int tag, int block, int *src, int *mtag, size_t *len);
+ * to be received (in mp's mailbox or the unexpected queue); with take, it
+ * is taken out of matching (MPI_Mprobe: *take, for eng_msg_read or
+ * eng_msg_free). */
+int eng_probe(tsm *R, int wsrc, int ctx, int tag, int block, int *src, int *mtag, size_t *len, tsm_msg **take);
 
-/* Free the unexpected queue (the rank's end). */
+/* Receive m (taken by eng_probe) into q (filled, not started): q done,
+ * with its status (an empty one if m's sender withdrew it since); m freed.
+ * eng_msg_free: m released unread (the rank's end). */
+void eng_msg_read(tsm *R, tsm_req *q, tsm_msg *m);
+void eng_msg_free(tsm *R, tsm_msg *m);
+
+/* MPI_Cancel: a posted receive taken out of the posted queue (1: q done,
+ * cancelled), or not (0: a message is in its buffer already, and it
+ * completes as usual); a send's message withdrawn if no receive has read
+ * it (1: q done, cancelled; a synchronous send no longer waits for its
+ * ack), else 0. */
+int eng_cancel_recv(tsm *R, tsm_req *q);
+int eng_cancel_send(tsm *R, tsm_req *q);
+
+/* Free the unexpected queue, settle every request's send, drop every
+ * promise (the rank's end). */
 void eng_release(tsm *R);
 
 #endif

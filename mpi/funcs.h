@@ -7,9 +7,9 @@
 #ifndef TSMPI_FUNCS_H
 #define TSMPI_FUNCS_H
 
-/* Stop the run: the calling rank called `name` ("MPI_Win_create"), which
+/* Stop the run: the calling rank called `name` ("MPI_Comm_spawn"), which
  * tilesim does not implement.  In a rank: mp_abort(self, 1, "rank 3 called
- * MPI_Win_create, which tilesim does not implement"), which the runner
+ * MPI_Comm_spawn, which tilesim does not implement"), which the runner
  * prints after "tilesim-mpirun: " and ends the run with exit status 1.
  * Outside a rank: that line on stderr (without the rank) and exit(1). */
 _Noreturn void tsmpi_unimplemented(const char *name);

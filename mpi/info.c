@@ -316,6 +316,16 @@ int tsm_info_hints(tsm *R, const tsm_comm *c, const char *fn, MPI_Info h, unsign
   return MPI_SUCCESS;
 }
 
+int tsm_info_value(tsm *R, MPI_Info h, const char *key, char *value, size_t len) {
+  if (h == MPI_INFO_NULL) return 0;
+  info *o = info_get(R, h);
+  if (!o) return -1;
+  entry *e = find(o, key);
+  if (!e) return 0;
+  snprintf(value, len, "%s", e->value);
+  return 1;
+}
+
 int PMPI_Comm_set_info(MPI_Comm comm, MPI_Info h) {
   static const char fn[] = "MPI_Comm_set_info";
   tsm *R = tsm_need(fn);

@@ -28,6 +28,11 @@
  * fn (an invalid info handle). */
 int tsm_info_hints(tsm *R, const tsm_comm *c, const char *fn, MPI_Info info, unsigned *hints);
 
+/* The value of key in info object h (a window's hints): 1 and up to len
+ * bytes of it in value (NUL-terminated), 0 if h has no such key, -1 if h
+ * is not a valid info object (MPI_INFO_NULL: 0). */
+int tsm_info_value(tsm *R, MPI_Info h, const char *key, char *value, size_t len);
+
 /* Free every info object of the rank (its end). */
 void tsm_infos_release(tsm *R);
 

@@ -65,6 +65,10 @@ void tsm_label_describe(void *ud, char *buf, size_t len) {
         add(buf, len, &at, ", ...");
         break;
       }
+      if (q->kind == RQ_KIND) {   /* a kind of its own: the call that made it */
+        add(buf, len, &at, "%s%s", shown > 1 ? ", " : "", q->fn);
+        continue;
+      }
       add(buf, len, &at, "%s%s(", shown > 1 ? ", " : "", q->fn);
       if (q->kind == RQ_COLL) {   /* a nonblocking collective: its root, if any, and communicator */
         if (q->peer >= 0) add(buf, len, &at, "root=%d, ", q->peer);

@@ -350,6 +350,11 @@ typedef MPI_Comm_errhandler_function MPI_Handler_function;
 #define MPI_REAL16                  MPI_DATATYPE_NULL
 #define MPI_COMPLEX4                MPI_DATATYPE_NULL
 #define MPI_COMPLEX32               MPI_DATATYPE_NULL
+/* The lower- and upper-bound markers MPI 3.0 removed, as MPICH keeps them:
+ * no data; in MPI_Type_create_struct (and MPI_Type_struct) they set the
+ * type's bounds (MPI 3.1 section 4.1.7's explicit markers). */
+#define MPI_LB                      ((MPI_Datatype)0x0300003d)
+#define MPI_UB                      ((MPI_Datatype)0x0300003e)
 
 /* ------------------------------------------------------------------------
  * Predefined reduction operations (MPI 3.1 section 5.9.2)
@@ -545,6 +550,16 @@ MPI_Delete_function MPI_NULL_DELETE_FN;           /* deprecated */
 #define TSMPI_FN(impl, chapter, ret, name, params, args) ret name params; ret P##name params;
 #include "mpi_funcs.h"
 #undef TSMPI_FN
+
+/* ------------------------------------------------------------------------
+ * Computing on the simulated machine: the calling rank's processor is busy
+ * (tilesim-mpirun(1), --compute)
+ * ------------------------------------------------------------------------ */
+
+void tilesim_compute(double units);      /* units x --c seconds */
+void smpi_execute_flops(double flops);   /* flops / --flops seconds (SMPI's name) */
+void smpi_execute(double seconds);       /* seconds (SMPI's name) */
+void smpi_execute_benched(double seconds);
 
 #ifdef __cplusplus
 }

@@ -7,7 +7,7 @@
  *   impl      1: tilesim implements it; 0: it is declared so that programs
  *             compile, and defined as a stub that stops the run when called
  *             (tsmpi_unimplemented in mpi/funcs.h: "rank 3 called
- *             MPI_Win_create, which tilesim does not implement").
+ *             MPI_Comm_spawn, which tilesim does not implement").
  *   chapter   ENV (environment, errors), P2P, DTYPE (datatypes), COLL
  *             (collectives and operations), COMM (groups, communicators,
  *             attributes), TOPO, INFO, SPAWN, RMA, EXT (external interfaces,
@@ -17,8 +17,9 @@
  *
  * The list holds the 407 functions of MPI 3.1 (Open MPI 4.1's, an MPI 3.1
  * library, plus MPI_Aint_add and MPI_Aint_diff, which it has as macros) and
- * the 10 REMOVED ones; the parameter names are those of MPICH's manual
- * pages, which follow the standard.
+ * the 10 REMOVED ones, then MPI-4's additions that tilesim has (MPI4); the
+ * parameter names are those of MPICH's manual pages, which follow the
+ * standard.
  * tests/cli_mpihdr.sh checks every prototype's types against Open MPI's mpi.h.
  *
  * Define TSMPI_FN, include this file, undefine it: mpi.h declares every
@@ -89,17 +90,17 @@ TSMPI_FN(1, P2P, int, MPI_Buffer_attach, (void *buffer, int size),
          (buffer, size))
 TSMPI_FN(1, P2P, int, MPI_Buffer_detach, (void *buffer_addr, int *size),
          (buffer_addr, size))
-TSMPI_FN(0, P2P, int, MPI_Cancel, (MPI_Request *request),
+TSMPI_FN(1, P2P, int, MPI_Cancel, (MPI_Request *request),
          (request))
 TSMPI_FN(1, P2P, int, MPI_Get_count, (const MPI_Status *status, MPI_Datatype datatype, int *count),
          (status, datatype, count))
 TSMPI_FN(1, P2P, int, MPI_Ibsend, (const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
          MPI_Comm comm, MPI_Request *request),
          (buf, count, datatype, dest, tag, comm, request))
-TSMPI_FN(0, P2P, int, MPI_Improbe, (int source, int tag, MPI_Comm comm, int *flag, MPI_Message *message,
+TSMPI_FN(1, P2P, int, MPI_Improbe, (int source, int tag, MPI_Comm comm, int *flag, MPI_Message *message,
          MPI_Status *status),
          (source, tag, comm, flag, message, status))
-TSMPI_FN(0, P2P, int, MPI_Imrecv, (void *buf, int count, MPI_Datatype datatype, MPI_Message *message,
+TSMPI_FN(1, P2P, int, MPI_Imrecv, (void *buf, int count, MPI_Datatype datatype, MPI_Message *message,
          MPI_Request *request),
          (buf, count, datatype, message, request))
 TSMPI_FN(1, P2P, int, MPI_Iprobe, (int source, int tag, MPI_Comm comm, int *flag, MPI_Status *status),
@@ -116,10 +117,10 @@ TSMPI_FN(1, P2P, int, MPI_Isend, (const void *buf, int count, MPI_Datatype datat
 TSMPI_FN(1, P2P, int, MPI_Issend, (const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
          MPI_Comm comm, MPI_Request *request),
          (buf, count, datatype, dest, tag, comm, request))
-TSMPI_FN(0, P2P, int, MPI_Mprobe, (int source, int tag, MPI_Comm comm, MPI_Message *message,
+TSMPI_FN(1, P2P, int, MPI_Mprobe, (int source, int tag, MPI_Comm comm, MPI_Message *message,
          MPI_Status *status),
          (source, tag, comm, message, status))
-TSMPI_FN(0, P2P, int, MPI_Mrecv, (void *buf, int count, MPI_Datatype datatype, MPI_Message *message,
+TSMPI_FN(1, P2P, int, MPI_Mrecv, (void *buf, int count, MPI_Datatype datatype, MPI_Message *message,
          MPI_Status *status),
          (buf, count, datatype, message, status))
 TSMPI_FN(1, P2P, int, MPI_Probe, (int source, int tag, MPI_Comm comm, MPI_Status *status),
@@ -166,7 +167,7 @@ TSMPI_FN(1, P2P, int, MPI_Startall, (int count, MPI_Request array_of_requests[])
          (count, array_of_requests))
 TSMPI_FN(1, P2P, int, MPI_Test, (MPI_Request *request, int *flag, MPI_Status *status),
          (request, flag, status))
-TSMPI_FN(0, P2P, int, MPI_Test_cancelled, (const MPI_Status *status, int *flag),
+TSMPI_FN(1, P2P, int, MPI_Test_cancelled, (const MPI_Status *status, int *flag),
          (status, flag))
 TSMPI_FN(1, P2P, int, MPI_Testall, (int count, MPI_Request array_of_requests[], int *flag,
          MPI_Status array_of_statuses[]),
@@ -204,10 +205,10 @@ TSMPI_FN(1, DTYPE, int, MPI_Get_elements_x, (const MPI_Status *status, MPI_Datat
 TSMPI_FN(1, DTYPE, int, MPI_Pack, (const void *inbuf, int incount, MPI_Datatype datatype, void *outbuf,
          int outsize, int *position, MPI_Comm comm),
          (inbuf, incount, datatype, outbuf, outsize, position, comm))
-TSMPI_FN(0, DTYPE, int, MPI_Pack_external, (const char *datarep, const void *inbuf, int incount,
+TSMPI_FN(1, DTYPE, int, MPI_Pack_external, (const char *datarep, const void *inbuf, int incount,
          MPI_Datatype datatype, void *outbuf, MPI_Aint outsize, MPI_Aint *position),
          (datarep, inbuf, incount, datatype, outbuf, outsize, position))
-TSMPI_FN(0, DTYPE, int, MPI_Pack_external_size, (const char *datarep, int incount, MPI_Datatype datatype,
+TSMPI_FN(1, DTYPE, int, MPI_Pack_external_size, (const char *datarep, int incount, MPI_Datatype datatype,
          MPI_Aint *size),
          (datarep, incount, datatype, size))
 TSMPI_FN(1, DTYPE, int, MPI_Pack_size, (int incount, MPI_Datatype datatype, MPI_Comm comm, int *size),
@@ -216,7 +217,7 @@ TSMPI_FN(1, DTYPE, int, MPI_Type_commit, (MPI_Datatype *datatype),
          (datatype))
 TSMPI_FN(1, DTYPE, int, MPI_Type_contiguous, (int count, MPI_Datatype oldtype, MPI_Datatype *newtype),
          (count, oldtype, newtype))
-TSMPI_FN(0, DTYPE, int, MPI_Type_create_darray, (int size, int rank, int ndims, const int array_of_gsizes[],
+TSMPI_FN(1, DTYPE, int, MPI_Type_create_darray, (int size, int rank, int ndims, const int array_of_gsizes[],
          const int array_of_distribs[], const int array_of_dargs[], const int array_of_psizes[], int order,
          MPI_Datatype oldtype, MPI_Datatype *newtype),
          (size, rank, ndims, array_of_gsizes, array_of_distribs, array_of_dargs, array_of_psizes, order,
@@ -294,7 +295,7 @@ TSMPI_FN(1, DTYPE, int, MPI_Type_vector, (int count, int blocklength, int stride
 TSMPI_FN(1, DTYPE, int, MPI_Unpack, (const void *inbuf, int insize, int *position, void *outbuf,
          int outcount, MPI_Datatype datatype, MPI_Comm comm),
          (inbuf, insize, position, outbuf, outcount, datatype, comm))
-TSMPI_FN(0, DTYPE, int, MPI_Unpack_external, (const char datarep[], const void *inbuf, MPI_Aint insize,
+TSMPI_FN(1, DTYPE, int, MPI_Unpack_external, (const char datarep[], const void *inbuf, MPI_Aint insize,
          MPI_Aint *position, void *outbuf, int outcount, MPI_Datatype datatype),
          (datarep, inbuf, insize, position, outbuf, outcount, datatype))
 
@@ -651,68 +652,68 @@ TSMPI_FN(0, SPAWN, int, MPI_Unpublish_name, (const char *service_name, MPI_Info 
          (service_name, info, port_name))
 
 /* --- RMA --- */
-TSMPI_FN(0, RMA, int, MPI_Accumulate, (const void *origin_addr, int origin_count,
+TSMPI_FN(1, RMA, int, MPI_Accumulate, (const void *origin_addr, int origin_count,
          MPI_Datatype origin_datatype, int target_rank, MPI_Aint target_disp, int target_count,
          MPI_Datatype target_datatype, MPI_Op op, MPI_Win win),
          (origin_addr, origin_count, origin_datatype, target_rank, target_disp, target_count,
          target_datatype, op, win))
-TSMPI_FN(0, RMA, int, MPI_Compare_and_swap, (const void *origin_addr, const void *compare_addr,
+TSMPI_FN(1, RMA, int, MPI_Compare_and_swap, (const void *origin_addr, const void *compare_addr,
          void *result_addr, MPI_Datatype datatype, int target_rank, MPI_Aint target_disp, MPI_Win win),
          (origin_addr, compare_addr, result_addr, datatype, target_rank, target_disp, win))
-TSMPI_FN(0, RMA, int, MPI_Fetch_and_op, (const void *origin_addr, void *result_addr, MPI_Datatype datatype,
+TSMPI_FN(1, RMA, int, MPI_Fetch_and_op, (const void *origin_addr, void *result_addr, MPI_Datatype datatype,
          int target_rank, MPI_Aint target_disp, MPI_Op op, MPI_Win win),
          (origin_addr, result_addr, datatype, target_rank, target_disp, op, win))
-TSMPI_FN(0, RMA, int, MPI_Get, (void *origin_addr, int origin_count, MPI_Datatype origin_datatype,
+TSMPI_FN(1, RMA, int, MPI_Get, (void *origin_addr, int origin_count, MPI_Datatype origin_datatype,
          int target_rank, MPI_Aint target_disp, int target_count, MPI_Datatype target_datatype, MPI_Win win),
          (origin_addr, origin_count, origin_datatype, target_rank, target_disp, target_count,
          target_datatype, win))
-TSMPI_FN(0, RMA, int, MPI_Get_accumulate, (const void *origin_addr, int origin_count,
+TSMPI_FN(1, RMA, int, MPI_Get_accumulate, (const void *origin_addr, int origin_count,
          MPI_Datatype origin_datatype, void *result_addr, int result_count, MPI_Datatype result_datatype,
          int target_rank, MPI_Aint target_disp, int target_count, MPI_Datatype target_datatype, MPI_Op op,
          MPI_Win win),
          (origin_addr, origin_count, origin_datatype, result_addr, result_count, result_datatype,
          target_rank, target_disp, target_count, target_datatype, op, win))
-TSMPI_FN(0, RMA, int, MPI_Put, (const void *origin_addr, int origin_count, MPI_Datatype origin_datatype,
+TSMPI_FN(1, RMA, int, MPI_Put, (const void *origin_addr, int origin_count, MPI_Datatype origin_datatype,
          int target_rank, MPI_Aint target_disp, int target_count, MPI_Datatype target_datatype, MPI_Win win),
          (origin_addr, origin_count, origin_datatype, target_rank, target_disp, target_count,
          target_datatype, win))
-TSMPI_FN(0, RMA, int, MPI_Raccumulate, (const void *origin_addr, int origin_count,
+TSMPI_FN(1, RMA, int, MPI_Raccumulate, (const void *origin_addr, int origin_count,
          MPI_Datatype origin_datatype, int target_rank, MPI_Aint target_disp, int target_count,
          MPI_Datatype target_datatype, MPI_Op op, MPI_Win win, MPI_Request *request),
          (origin_addr, origin_count, origin_datatype, target_rank, target_disp, target_count,
          target_datatype, op, win, request))
-TSMPI_FN(0, RMA, int, MPI_Rget, (void *origin_addr, int origin_count, MPI_Datatype origin_datatype,
+TSMPI_FN(1, RMA, int, MPI_Rget, (void *origin_addr, int origin_count, MPI_Datatype origin_datatype,
          int target_rank, MPI_Aint target_disp, int target_count, MPI_Datatype target_datatype, MPI_Win win,
          MPI_Request *request),
          (origin_addr, origin_count, origin_datatype, target_rank, target_disp, target_count,
          target_datatype, win, request))
-TSMPI_FN(0, RMA, int, MPI_Rget_accumulate, (const void *origin_addr, int origin_count,
+TSMPI_FN(1, RMA, int, MPI_Rget_accumulate, (const void *origin_addr, int origin_count,
          MPI_Datatype origin_datatype, void *result_addr, int result_count, MPI_Datatype result_datatype,
          int target_rank, MPI_Aint target_disp, int target_count, MPI_Datatype target_datatype, MPI_Op op,
          MPI_Win win, MPI_Request *request),
          (origin_addr, origin_count, origin_datatype, result_addr, result_count, result_datatype,
          target_rank, target_disp, target_count, target_datatype, op, win, request))
-TSMPI_FN(0, RMA, int, MPI_Rput, (const void *origin_addr, int origin_count, MPI_Datatype origin_datatype,
+TSMPI_FN(1, RMA, int, MPI_Rput, (const void *origin_addr, int origin_count, MPI_Datatype origin_datatype,
          int target_rank, MPI_Aint target_disp, int target_count, MPI_Datatype target_datatype, MPI_Win win,
          MPI_Request *request),
          (origin_addr, origin_count, origin_datatype, target_rank, target_disp, target_count,
          target_datatype, win, request))
-TSMPI_FN(0, RMA, int, MPI_Win_allocate, (MPI_Aint size, int disp_unit, MPI_Info info, MPI_Comm comm,
+TSMPI_FN(1, RMA, int, MPI_Win_allocate, (MPI_Aint size, int disp_unit, MPI_Info info, MPI_Comm comm,
          void *baseptr, MPI_Win *win),
          (size, disp_unit, info, comm, baseptr, win))
-TSMPI_FN(0, RMA, int, MPI_Win_allocate_shared, (MPI_Aint size, int disp_unit, MPI_Info info, MPI_Comm comm,
+TSMPI_FN(1, RMA, int, MPI_Win_allocate_shared, (MPI_Aint size, int disp_unit, MPI_Info info, MPI_Comm comm,
          void *baseptr, MPI_Win *win),
          (size, disp_unit, info, comm, baseptr, win))
-TSMPI_FN(0, RMA, int, MPI_Win_attach, (MPI_Win win, void *base, MPI_Aint size),
+TSMPI_FN(1, RMA, int, MPI_Win_attach, (MPI_Win win, void *base, MPI_Aint size),
          (win, base, size))
-TSMPI_FN(0, RMA, int, MPI_Win_call_errhandler, (MPI_Win win, int errorcode),
+TSMPI_FN(1, RMA, int, MPI_Win_call_errhandler, (MPI_Win win, int errorcode),
          (win, errorcode))
-TSMPI_FN(0, RMA, int, MPI_Win_complete, (MPI_Win win),
+TSMPI_FN(1, RMA, int, MPI_Win_complete, (MPI_Win win),
          (win))
-TSMPI_FN(0, RMA, int, MPI_Win_create, (void *base, MPI_Aint size, int disp_unit, MPI_Info info,
+TSMPI_FN(1, RMA, int, MPI_Win_create, (void *base, MPI_Aint size, int disp_unit, MPI_Info info,
          MPI_Comm comm, MPI_Win *win),
          (base, size, disp_unit, info, comm, win))
-TSMPI_FN(0, RMA, int, MPI_Win_create_dynamic, (MPI_Info info, MPI_Comm comm, MPI_Win *win),
+TSMPI_FN(1, RMA, int, MPI_Win_create_dynamic, (MPI_Info info, MPI_Comm comm, MPI_Win *win),
          (info, comm, win))
 TSMPI_FN(1, RMA, int, MPI_Win_create_errhandler, (MPI_Win_errhandler_function *win_errhandler_fn,
          MPI_Errhandler *errhandler),
@@ -720,68 +721,68 @@ TSMPI_FN(1, RMA, int, MPI_Win_create_errhandler, (MPI_Win_errhandler_function *w
 TSMPI_FN(1, RMA, int, MPI_Win_create_keyval, (MPI_Win_copy_attr_function *win_copy_attr_fn,
          MPI_Win_delete_attr_function *win_delete_attr_fn, int *win_keyval, void *extra_state),
          (win_copy_attr_fn, win_delete_attr_fn, win_keyval, extra_state))
-TSMPI_FN(0, RMA, int, MPI_Win_delete_attr, (MPI_Win win, int win_keyval),
+TSMPI_FN(1, RMA, int, MPI_Win_delete_attr, (MPI_Win win, int win_keyval),
          (win, win_keyval))
-TSMPI_FN(0, RMA, int, MPI_Win_detach, (MPI_Win win, const void *base),
+TSMPI_FN(1, RMA, int, MPI_Win_detach, (MPI_Win win, const void *base),
          (win, base))
-TSMPI_FN(0, RMA, int, MPI_Win_fence, (int assert, MPI_Win win),
+TSMPI_FN(1, RMA, int, MPI_Win_fence, (int assert, MPI_Win win),
          (assert, win))
-TSMPI_FN(0, RMA, int, MPI_Win_flush, (int rank, MPI_Win win),
+TSMPI_FN(1, RMA, int, MPI_Win_flush, (int rank, MPI_Win win),
          (rank, win))
-TSMPI_FN(0, RMA, int, MPI_Win_flush_all, (MPI_Win win),
+TSMPI_FN(1, RMA, int, MPI_Win_flush_all, (MPI_Win win),
          (win))
-TSMPI_FN(0, RMA, int, MPI_Win_flush_local, (int rank, MPI_Win win),
+TSMPI_FN(1, RMA, int, MPI_Win_flush_local, (int rank, MPI_Win win),
          (rank, win))
-TSMPI_FN(0, RMA, int, MPI_Win_flush_local_all, (MPI_Win win),
+TSMPI_FN(1, RMA, int, MPI_Win_flush_local_all, (MPI_Win win),
          (win))
-TSMPI_FN(0, RMA, int, MPI_Win_free, (MPI_Win *win),
+TSMPI_FN(1, RMA, int, MPI_Win_free, (MPI_Win *win),
          (win))
 TSMPI_FN(1, RMA, int, MPI_Win_free_keyval, (int *win_keyval),
          (win_keyval))
-TSMPI_FN(0, RMA, int, MPI_Win_get_attr, (MPI_Win win, int win_keyval, void *attribute_val, int *flag),
+TSMPI_FN(1, RMA, int, MPI_Win_get_attr, (MPI_Win win, int win_keyval, void *attribute_val, int *flag),
          (win, win_keyval, attribute_val, flag))
-TSMPI_FN(0, RMA, int, MPI_Win_get_errhandler, (MPI_Win win, MPI_Errhandler *errhandler),
+TSMPI_FN(1, RMA, int, MPI_Win_get_errhandler, (MPI_Win win, MPI_Errhandler *errhandler),
          (win, errhandler))
-TSMPI_FN(0, RMA, int, MPI_Win_get_group, (MPI_Win win, MPI_Group *group),
+TSMPI_FN(1, RMA, int, MPI_Win_get_group, (MPI_Win win, MPI_Group *group),
          (win, group))
-TSMPI_FN(0, RMA, int, MPI_Win_get_info, (MPI_Win win, MPI_Info *info_used),
+TSMPI_FN(1, RMA, int, MPI_Win_get_info, (MPI_Win win, MPI_Info *info_used),
          (win, info_used))
-TSMPI_FN(0, RMA, int, MPI_Win_get_name, (MPI_Win win, char *win_name, int *resultlen),
+TSMPI_FN(1, RMA, int, MPI_Win_get_name, (MPI_Win win, char *win_name, int *resultlen),
          (win, win_name, resultlen))
-TSMPI_FN(0, RMA, int, MPI_Win_lock, (int lock_type, int rank, int assert, MPI_Win win),
+TSMPI_FN(1, RMA, int, MPI_Win_lock, (int lock_type, int rank, int assert, MPI_Win win),
          (lock_type, rank, assert, win))
-TSMPI_FN(0, RMA, int, MPI_Win_lock_all, (int assert, MPI_Win win),
+TSMPI_FN(1, RMA, int, MPI_Win_lock_all, (int assert, MPI_Win win),
          (assert, win))
-TSMPI_FN(0, RMA, int, MPI_Win_post, (MPI_Group group, int assert, MPI_Win win),
+TSMPI_FN(1, RMA, int, MPI_Win_post, (MPI_Group group, int assert, MPI_Win win),
          (group, assert, win))
-TSMPI_FN(0, RMA, int, MPI_Win_set_attr, (MPI_Win win, int win_keyval, void *attribute_val),
+TSMPI_FN(1, RMA, int, MPI_Win_set_attr, (MPI_Win win, int win_keyval, void *attribute_val),
          (win, win_keyval, attribute_val))
-TSMPI_FN(0, RMA, int, MPI_Win_set_errhandler, (MPI_Win win, MPI_Errhandler errhandler),
+TSMPI_FN(1, RMA, int, MPI_Win_set_errhandler, (MPI_Win win, MPI_Errhandler errhandler),
          (win, errhandler))
-TSMPI_FN(0, RMA, int, MPI_Win_set_info, (MPI_Win win, MPI_Info info),
+TSMPI_FN(1, RMA, int, MPI_Win_set_info, (MPI_Win win, MPI_Info info),
          (win, info))
-TSMPI_FN(0, RMA, int, MPI_Win_set_name, (MPI_Win win, const char *win_name),
+TSMPI_FN(1, RMA, int, MPI_Win_set_name, (MPI_Win win, const char *win_name),
          (win, win_name))
-TSMPI_FN(0, RMA, int, MPI_Win_shared_query, (MPI_Win win, int rank, MPI_Aint *size, int *disp_unit,
+TSMPI_FN(1, RMA, int, MPI_Win_shared_query, (MPI_Win win, int rank, MPI_Aint *size, int *disp_unit,
          void *baseptr),
          (win, rank, size, disp_unit, baseptr))
-TSMPI_FN(0, RMA, int, MPI_Win_start, (MPI_Group group, int assert, MPI_Win win),
+TSMPI_FN(1, RMA, int, MPI_Win_start, (MPI_Group group, int assert, MPI_Win win),
          (group, assert, win))
-TSMPI_FN(0, RMA, int, MPI_Win_sync, (MPI_Win win),
+TSMPI_FN(1, RMA, int, MPI_Win_sync, (MPI_Win win),
          (win))
-TSMPI_FN(0, RMA, int, MPI_Win_test, (MPI_Win win, int *flag),
+TSMPI_FN(1, RMA, int, MPI_Win_test, (MPI_Win win, int *flag),
          (win, flag))
-TSMPI_FN(0, RMA, int, MPI_Win_unlock, (int rank, MPI_Win win),
+TSMPI_FN(1, RMA, int, MPI_Win_unlock, (int rank, MPI_Win win),
          (rank, win))
-TSMPI_FN(0, RMA, int, MPI_Win_unlock_all, (MPI_Win win),
+TSMPI_FN(1, RMA, int, MPI_Win_unlock_all, (MPI_Win win),
          (win))
-TSMPI_FN(0, RMA, int, MPI_Win_wait, (MPI_Win win),
+TSMPI_FN(1, RMA, int, MPI_Win_wait, (MPI_Win win),
          (win))
 
 /* --- EXT --- */
-TSMPI_FN(0, EXT, int, MPI_Grequest_complete, (MPI_Request request),
+TSMPI_FN(1, EXT, int, MPI_Grequest_complete, (MPI_Request request),
          (request))
-TSMPI_FN(0, EXT, int, MPI_Grequest_start, (MPI_Grequest_query_function *query_fn,
+TSMPI_FN(1, EXT, int, MPI_Grequest_start, (MPI_Grequest_query_function *query_fn,
          MPI_Grequest_free_function *free_fn, MPI_Grequest_cancel_function *cancel_fn, void *extra_state,
          MPI_Request *request),
          (query_fn, free_fn, cancel_fn, extra_state, request))
@@ -791,160 +792,160 @@ TSMPI_FN(1, EXT, int, MPI_Is_thread_main, (int *flag),
          (flag))
 TSMPI_FN(1, EXT, int, MPI_Query_thread, (int *provided),
          (provided))
-TSMPI_FN(0, EXT, int, MPI_Status_set_cancelled, (MPI_Status *status, int flag),
+TSMPI_FN(1, EXT, int, MPI_Status_set_cancelled, (MPI_Status *status, int flag),
          (status, flag))
-TSMPI_FN(0, EXT, int, MPI_Status_set_elements, (MPI_Status *status, MPI_Datatype datatype, int count),
+TSMPI_FN(1, EXT, int, MPI_Status_set_elements, (MPI_Status *status, MPI_Datatype datatype, int count),
          (status, datatype, count))
-TSMPI_FN(0, EXT, int, MPI_Status_set_elements_x, (MPI_Status *status, MPI_Datatype datatype, MPI_Count count),
+TSMPI_FN(1, EXT, int, MPI_Status_set_elements_x, (MPI_Status *status, MPI_Datatype datatype, MPI_Count count),
          (status, datatype, count))
 
 /* --- IO --- */
-TSMPI_FN(0, IO, int, MPI_File_call_errhandler, (MPI_File fh, int errorcode),
+TSMPI_FN(1, IO, int, MPI_File_call_errhandler, (MPI_File fh, int errorcode),
          (fh, errorcode))
-TSMPI_FN(0, IO, int, MPI_File_close, (MPI_File *fh),
+TSMPI_FN(1, IO, int, MPI_File_close, (MPI_File *fh),
          (fh))
 TSMPI_FN(1, IO, int, MPI_File_create_errhandler, (MPI_File_errhandler_function *file_errhandler_fn,
          MPI_Errhandler *errhandler),
          (file_errhandler_fn, errhandler))
-TSMPI_FN(0, IO, int, MPI_File_delete, (const char *filename, MPI_Info info),
+TSMPI_FN(1, IO, int, MPI_File_delete, (const char *filename, MPI_Info info),
          (filename, info))
-TSMPI_FN(0, IO, int, MPI_File_get_amode, (MPI_File fh, int *amode),
+TSMPI_FN(1, IO, int, MPI_File_get_amode, (MPI_File fh, int *amode),
          (fh, amode))
-TSMPI_FN(0, IO, int, MPI_File_get_atomicity, (MPI_File fh, int *flag),
+TSMPI_FN(1, IO, int, MPI_File_get_atomicity, (MPI_File fh, int *flag),
          (fh, flag))
-TSMPI_FN(0, IO, int, MPI_File_get_byte_offset, (MPI_File fh, MPI_Offset offset, MPI_Offset *disp),
+TSMPI_FN(1, IO, int, MPI_File_get_byte_offset, (MPI_File fh, MPI_Offset offset, MPI_Offset *disp),
          (fh, offset, disp))
-TSMPI_FN(0, IO, int, MPI_File_get_errhandler, (MPI_File file, MPI_Errhandler *errhandler),
+TSMPI_FN(1, IO, int, MPI_File_get_errhandler, (MPI_File file, MPI_Errhandler *errhandler),
          (file, errhandler))
-TSMPI_FN(0, IO, int, MPI_File_get_group, (MPI_File fh, MPI_Group *group),
+TSMPI_FN(1, IO, int, MPI_File_get_group, (MPI_File fh, MPI_Group *group),
          (fh, group))
-TSMPI_FN(0, IO, int, MPI_File_get_info, (MPI_File fh, MPI_Info *info_used),
+TSMPI_FN(1, IO, int, MPI_File_get_info, (MPI_File fh, MPI_Info *info_used),
          (fh, info_used))
-TSMPI_FN(0, IO, int, MPI_File_get_position, (MPI_File fh, MPI_Offset *offset),
+TSMPI_FN(1, IO, int, MPI_File_get_position, (MPI_File fh, MPI_Offset *offset),
          (fh, offset))
-TSMPI_FN(0, IO, int, MPI_File_get_position_shared, (MPI_File fh, MPI_Offset *offset),
+TSMPI_FN(1, IO, int, MPI_File_get_position_shared, (MPI_File fh, MPI_Offset *offset),
          (fh, offset))
-TSMPI_FN(0, IO, int, MPI_File_get_size, (MPI_File fh, MPI_Offset *size),
+TSMPI_FN(1, IO, int, MPI_File_get_size, (MPI_File fh, MPI_Offset *size),
          (fh, size))
-TSMPI_FN(0, IO, int, MPI_File_get_type_extent, (MPI_File fh, MPI_Datatype datatype, MPI_Aint *extent),
+TSMPI_FN(1, IO, int, MPI_File_get_type_extent, (MPI_File fh, MPI_Datatype datatype, MPI_Aint *extent),
          (fh, datatype, extent))
-TSMPI_FN(0, IO, int, MPI_File_get_view, (MPI_File fh, MPI_Offset *disp, MPI_Datatype *etype,
+TSMPI_FN(1, IO, int, MPI_File_get_view, (MPI_File fh, MPI_Offset *disp, MPI_Datatype *etype,
          MPI_Datatype *filetype, char *datarep),
          (fh, disp, etype, filetype, datarep))
-TSMPI_FN(0, IO, int, MPI_File_iread, (MPI_File fh, void *buf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, IO, int, MPI_File_iread, (MPI_File fh, void *buf, int count, MPI_Datatype datatype,
          MPI_Request *request),
          (fh, buf, count, datatype, request))
-TSMPI_FN(0, IO, int, MPI_File_iread_all, (MPI_File fh, void *buf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, IO, int, MPI_File_iread_all, (MPI_File fh, void *buf, int count, MPI_Datatype datatype,
          MPI_Request *request),
          (fh, buf, count, datatype, request))
-TSMPI_FN(0, IO, int, MPI_File_iread_at, (MPI_File fh, MPI_Offset offset, void *buf, int count,
+TSMPI_FN(1, IO, int, MPI_File_iread_at, (MPI_File fh, MPI_Offset offset, void *buf, int count,
          MPI_Datatype datatype, MPI_Request *request),
          (fh, offset, buf, count, datatype, request))
-TSMPI_FN(0, IO, int, MPI_File_iread_at_all, (MPI_File fh, MPI_Offset offset, void *buf, int count,
+TSMPI_FN(1, IO, int, MPI_File_iread_at_all, (MPI_File fh, MPI_Offset offset, void *buf, int count,
          MPI_Datatype datatype, MPI_Request *request),
          (fh, offset, buf, count, datatype, request))
-TSMPI_FN(0, IO, int, MPI_File_iread_shared, (MPI_File fh, void *buf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, IO, int, MPI_File_iread_shared, (MPI_File fh, void *buf, int count, MPI_Datatype datatype,
          MPI_Request *request),
          (fh, buf, count, datatype, request))
-TSMPI_FN(0, IO, int, MPI_File_iwrite, (MPI_File fh, const void *buf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, IO, int, MPI_File_iwrite, (MPI_File fh, const void *buf, int count, MPI_Datatype datatype,
          MPI_Request *request),
          (fh, buf, count, datatype, request))
-TSMPI_FN(0, IO, int, MPI_File_iwrite_all, (MPI_File fh, const void *buf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, IO, int, MPI_File_iwrite_all, (MPI_File fh, const void *buf, int count, MPI_Datatype datatype,
          MPI_Request *request),
          (fh, buf, count, datatype, request))
-TSMPI_FN(0, IO, int, MPI_File_iwrite_at, (MPI_File fh, MPI_Offset offset, const void *buf, int count,
+TSMPI_FN(1, IO, int, MPI_File_iwrite_at, (MPI_File fh, MPI_Offset offset, const void *buf, int count,
          MPI_Datatype datatype, MPI_Request *request),
          (fh, offset, buf, count, datatype, request))
-TSMPI_FN(0, IO, int, MPI_File_iwrite_at_all, (MPI_File fh, MPI_Offset offset, const void *buf, int count,
+TSMPI_FN(1, IO, int, MPI_File_iwrite_at_all, (MPI_File fh, MPI_Offset offset, const void *buf, int count,
          MPI_Datatype datatype, MPI_Request *request),
          (fh, offset, buf, count, datatype, request))
-TSMPI_FN(0, IO, int, MPI_File_iwrite_shared, (MPI_File fh, const void *buf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, IO, int, MPI_File_iwrite_shared, (MPI_File fh, const void *buf, int count, MPI_Datatype datatype,
          MPI_Request *request),
          (fh, buf, count, datatype, request))
-TSMPI_FN(0, IO, int, MPI_File_open, (MPI_Comm comm, const char *filename, int amode, MPI_Info info,
+TSMPI_FN(1, IO, int, MPI_File_open, (MPI_Comm comm, const char *filename, int amode, MPI_Info info,
          MPI_File *fh),
          (comm, filename, amode, info, fh))
-TSMPI_FN(0, IO, int, MPI_File_preallocate, (MPI_File fh, MPI_Offset size),
+TSMPI_FN(1, IO, int, MPI_File_preallocate, (MPI_File fh, MPI_Offset size),
          (fh, size))
-TSMPI_FN(0, IO, int, MPI_File_read, (MPI_File fh, void *buf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, IO, int, MPI_File_read, (MPI_File fh, void *buf, int count, MPI_Datatype datatype,
          MPI_Status *status),
          (fh, buf, count, datatype, status))
-TSMPI_FN(0, IO, int, MPI_File_read_all, (MPI_File fh, void *buf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, IO, int, MPI_File_read_all, (MPI_File fh, void *buf, int count, MPI_Datatype datatype,
          MPI_Status *status),
          (fh, buf, count, datatype, status))
-TSMPI_FN(0, IO, int, MPI_File_read_all_begin, (MPI_File fh, void *buf, int count, MPI_Datatype datatype),
+TSMPI_FN(1, IO, int, MPI_File_read_all_begin, (MPI_File fh, void *buf, int count, MPI_Datatype datatype),
          (fh, buf, count, datatype))
-TSMPI_FN(0, IO, int, MPI_File_read_all_end, (MPI_File fh, void *buf, MPI_Status *status),
+TSMPI_FN(1, IO, int, MPI_File_read_all_end, (MPI_File fh, void *buf, MPI_Status *status),
          (fh, buf, status))
-TSMPI_FN(0, IO, int, MPI_File_read_at, (MPI_File fh, MPI_Offset offset, void *buf, int count,
+TSMPI_FN(1, IO, int, MPI_File_read_at, (MPI_File fh, MPI_Offset offset, void *buf, int count,
          MPI_Datatype datatype, MPI_Status *status),
          (fh, offset, buf, count, datatype, status))
-TSMPI_FN(0, IO, int, MPI_File_read_at_all, (MPI_File fh, MPI_Offset offset, void *buf, int count,
+TSMPI_FN(1, IO, int, MPI_File_read_at_all, (MPI_File fh, MPI_Offset offset, void *buf, int count,
          MPI_Datatype datatype, MPI_Status *status),
          (fh, offset, buf, count, datatype, status))
-TSMPI_FN(0, IO, int, MPI_File_read_at_all_begin, (MPI_File fh, MPI_Offset offset, void *buf, int count,
+TSMPI_FN(1, IO, int, MPI_File_read_at_all_begin, (MPI_File fh, MPI_Offset offset, void *buf, int count,
          MPI_Datatype datatype),
          (fh, offset, buf, count, datatype))
-TSMPI_FN(0, IO, int, MPI_File_read_at_all_end, (MPI_File fh, void *buf, MPI_Status *status),
+TSMPI_FN(1, IO, int, MPI_File_read_at_all_end, (MPI_File fh, void *buf, MPI_Status *status),
          (fh, buf, status))
-TSMPI_FN(0, IO, int, MPI_File_read_ordered, (MPI_File fh, void *buf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, IO, int, MPI_File_read_ordered, (MPI_File fh, void *buf, int count, MPI_Datatype datatype,
          MPI_Status *status),
          (fh, buf, count, datatype, status))
-TSMPI_FN(0, IO, int, MPI_File_read_ordered_begin, (MPI_File fh, void *buf, int count, MPI_Datatype datatype),
+TSMPI_FN(1, IO, int, MPI_File_read_ordered_begin, (MPI_File fh, void *buf, int count, MPI_Datatype datatype),
          (fh, buf, count, datatype))
-TSMPI_FN(0, IO, int, MPI_File_read_ordered_end, (MPI_File fh, void *buf, MPI_Status *status),
+TSMPI_FN(1, IO, int, MPI_File_read_ordered_end, (MPI_File fh, void *buf, MPI_Status *status),
          (fh, buf, status))
-TSMPI_FN(0, IO, int, MPI_File_read_shared, (MPI_File fh, void *buf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, IO, int, MPI_File_read_shared, (MPI_File fh, void *buf, int count, MPI_Datatype datatype,
          MPI_Status *status),
          (fh, buf, count, datatype, status))
-TSMPI_FN(0, IO, int, MPI_File_seek, (MPI_File fh, MPI_Offset offset, int whence),
+TSMPI_FN(1, IO, int, MPI_File_seek, (MPI_File fh, MPI_Offset offset, int whence),
          (fh, offset, whence))
-TSMPI_FN(0, IO, int, MPI_File_seek_shared, (MPI_File fh, MPI_Offset offset, int whence),
+TSMPI_FN(1, IO, int, MPI_File_seek_shared, (MPI_File fh, MPI_Offset offset, int whence),
          (fh, offset, whence))
-TSMPI_FN(0, IO, int, MPI_File_set_atomicity, (MPI_File fh, int flag),
+TSMPI_FN(1, IO, int, MPI_File_set_atomicity, (MPI_File fh, int flag),
          (fh, flag))
-TSMPI_FN(0, IO, int, MPI_File_set_errhandler, (MPI_File file, MPI_Errhandler errhandler),
+TSMPI_FN(1, IO, int, MPI_File_set_errhandler, (MPI_File file, MPI_Errhandler errhandler),
          (file, errhandler))
-TSMPI_FN(0, IO, int, MPI_File_set_info, (MPI_File fh, MPI_Info info),
+TSMPI_FN(1, IO, int, MPI_File_set_info, (MPI_File fh, MPI_Info info),
          (fh, info))
-TSMPI_FN(0, IO, int, MPI_File_set_size, (MPI_File fh, MPI_Offset size),
+TSMPI_FN(1, IO, int, MPI_File_set_size, (MPI_File fh, MPI_Offset size),
          (fh, size))
-TSMPI_FN(0, IO, int, MPI_File_set_view, (MPI_File fh, MPI_Offset disp, MPI_Datatype etype,
+TSMPI_FN(1, IO, int, MPI_File_set_view, (MPI_File fh, MPI_Offset disp, MPI_Datatype etype,
          MPI_Datatype filetype, const char *datarep, MPI_Info info),
          (fh, disp, etype, filetype, datarep, info))
-TSMPI_FN(0, IO, int, MPI_File_sync, (MPI_File fh),
+TSMPI_FN(1, IO, int, MPI_File_sync, (MPI_File fh),
          (fh))
-TSMPI_FN(0, IO, int, MPI_File_write, (MPI_File fh, const void *buf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, IO, int, MPI_File_write, (MPI_File fh, const void *buf, int count, MPI_Datatype datatype,
          MPI_Status *status),
          (fh, buf, count, datatype, status))
-TSMPI_FN(0, IO, int, MPI_File_write_all, (MPI_File fh, const void *buf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, IO, int, MPI_File_write_all, (MPI_File fh, const void *buf, int count, MPI_Datatype datatype,
          MPI_Status *status),
          (fh, buf, count, datatype, status))
-TSMPI_FN(0, IO, int, MPI_File_write_all_begin, (MPI_File fh, const void *buf, int count,
+TSMPI_FN(1, IO, int, MPI_File_write_all_begin, (MPI_File fh, const void *buf, int count,
          MPI_Datatype datatype),
          (fh, buf, count, datatype))
-TSMPI_FN(0, IO, int, MPI_File_write_all_end, (MPI_File fh, const void *buf, MPI_Status *status),
+TSMPI_FN(1, IO, int, MPI_File_write_all_end, (MPI_File fh, const void *buf, MPI_Status *status),
          (fh, buf, status))
-TSMPI_FN(0, IO, int, MPI_File_write_at, (MPI_File fh, MPI_Offset offset, const void *buf, int count,
+TSMPI_FN(1, IO, int, MPI_File_write_at, (MPI_File fh, MPI_Offset offset, const void *buf, int count,
          MPI_Datatype datatype, MPI_Status *status),
          (fh, offset, buf, count, datatype, status))
-TSMPI_FN(0, IO, int, MPI_File_write_at_all, (MPI_File fh, MPI_Offset offset, const void *buf, int count,
+TSMPI_FN(1, IO, int, MPI_File_write_at_all, (MPI_File fh, MPI_Offset offset, const void *buf, int count,
          MPI_Datatype datatype, MPI_Status *status),
          (fh, offset, buf, count, datatype, status))
-TSMPI_FN(0, IO, int, MPI_File_write_at_all_begin, (MPI_File fh, MPI_Offset offset, const void *buf,
+TSMPI_FN(1, IO, int, MPI_File_write_at_all_begin, (MPI_File fh, MPI_Offset offset, const void *buf,
          int count, MPI_Datatype datatype),
          (fh, offset, buf, count, datatype))
-TSMPI_FN(0, IO, int, MPI_File_write_at_all_end, (MPI_File fh, const void *buf, MPI_Status *status),
+TSMPI_FN(1, IO, int, MPI_File_write_at_all_end, (MPI_File fh, const void *buf, MPI_Status *status),
          (fh, buf, status))
-TSMPI_FN(0, IO, int, MPI_File_write_ordered, (MPI_File fh, const void *buf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, IO, int, MPI_File_write_ordered, (MPI_File fh, const void *buf, int count, MPI_Datatype datatype,
          MPI_Status *status),
          (fh, buf, count, datatype, status))
-TSMPI_FN(0, IO, int, MPI_File_write_ordered_begin, (MPI_File fh, const void *buf, int count,
+TSMPI_FN(1, IO, int, MPI_File_write_ordered_begin, (MPI_File fh, const void *buf, int count,
          MPI_Datatype datatype),
          (fh, buf, count, datatype))
-TSMPI_FN(0, IO, int, MPI_File_write_ordered_end, (MPI_File fh, const void *buf, MPI_Status *status),
+TSMPI_FN(1, IO, int, MPI_File_write_ordered_end, (MPI_File fh, const void *buf, MPI_Status *status),
          (fh, buf, status))
-TSMPI_FN(0, IO, int, MPI_File_write_shared, (MPI_File fh, const void *buf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, IO, int, MPI_File_write_shared, (MPI_File fh, const void *buf, int count, MPI_Datatype datatype,
          MPI_Status *status),
          (fh, buf, count, datatype, status))
 TSMPI_FN(0, IO, int, MPI_Register_datarep, (const char *datarep,
@@ -1106,3 +1107,12 @@ TSMPI_FN(1, REMOVED, int, MPI_Type_struct, (int count, int array_of_blocklengths
          (count, array_of_blocklengths, array_of_displacements, array_of_types, newtype))
 TSMPI_FN(1, REMOVED, int, MPI_Type_ub, (MPI_Datatype datatype, MPI_Aint *displacement),
          (datatype, displacement))
+
+/* --- MPI4 --- */
+TSMPI_FN(1, MPI4, int, MPI_Isendrecv, (const void *sendbuf, int sendcount, MPI_Datatype sendtype, int dest,
+         int sendtag, void *recvbuf, int recvcount, MPI_Datatype recvtype, int source, int recvtag, MPI_Comm comm,
+         MPI_Request *request),
+         (sendbuf, sendcount, sendtype, dest, sendtag, recvbuf, recvcount, recvtype, source, recvtag, comm, request))
+TSMPI_FN(1, MPI4, int, MPI_Isendrecv_replace, (void *buf, int count, MPI_Datatype datatype, int dest, int sendtag,
+         int source, int recvtag, MPI_Comm comm, MPI_Request *request),
+         (buf, count, datatype, dest, sendtag, source, recvtag, comm, request))

@@ -43,7 +43,7 @@ static list *rank_list(void) {
  * its hold on the communicator (held: it was). */
 static void finish(nbc *e, int held) {
   MPI_Comm comm = tsmpi_sched_group(e->s)->comm;
-  tsmpi_req_complete(e->req, tsmpi_sched_error(e->s));
+  tsmpi_req_coll_complete(e->req, tsmpi_sched_error(e->s));
   tsmpi_sched_free(e->s);
   free(e);
   if (held) tsmpi_comm_release(comm);

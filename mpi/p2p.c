@@ -46,8 +46,17 @@ int tsmpi_p2p_recv(void *buf, int count, MPI_Datatype dt, int src, int tag, MPI_
 int tsmpi_p2p_sendrecv(const void *sbuf, int scount, MPI_Datatype sdt, int dst, int stag,
                        void *rbuf, int rcount, MPI_Datatype rdt, int src, int rtag, MPI_Comm comm,
                        MPI_Status *st) {
-  int rc = tsmpi_p2p_send(sbuf, scount, sdt, dst, stag, comm);
-  return rc ? rc : tsmpi_p2p_recv(rbuf, rcount, rdt, src, rtag, comm, st);
+  tsm *R = tsm_need("tsmpi_p2p_sendrecv");
+  tsm_comm *c = comm_of(R, comm, "tsmpi_p2p_sendrecv");
+  tsm_req s;
+  tsm_req_stack(&s);
+  tsm_send_fill(&s, c, 1, SM_STANDARD, sbuf, scount, sdt, dst, stag, comm, "tsmpi_p2p_sendrecv");
+  s.byref = 1;   /* sbuf stays the call's until the receive is done */
+  int rc = tsm_send_start(R, &s, c);
+  if (rc) return rc;
+  rc = tsmpi_p2p_recv(rbuf, rcount, rdt, src, rtag, comm, st);
+  eng_settle(R, &s);
+  return rc;
 }
 
 int tsmpi_p2p_isend(const void *buf, int count, MPI_Datatype dt, int dst, int tag, MPI_Comm comm,
@@ -113,11 +122,15 @@ void tsmpi_p2p_watch(MPI_Request req) {
   req_of(R, req, "tsmpi_p2p_watch")->watch = 1;
 }
 
-int tsmpi_p2p_done(MPI_Request *req, int *err) {
+int tsmpi_p2p_done(MPI_Request *req, MPI_Status *st) {
+  if (*req == MPI_REQUEST_NULL) {
+    if (st != MPI_STATUS_IGNORE) tsm_status_empty(st);
+    return 1;
+  }
   tsm *R = tsm_need("tsmpi_p2p_done");
   tsm_req *q = req_of(R, *req, "tsmpi_p2p_done");
   if (q->state == RS_ACTIVE) return 0;
-  *err = q->st.MPI_ERROR;
+  tsm_status_out(st, &q->st, 1);
   tsm_req_free(R, q);
   *req = MPI_REQUEST_NULL;
   return 1;
@@ -163,9 +176,9 @@ MPI_Request tsmpi_req_coll(const char *fn, MPI_Comm comm, int root) {
   return tsm_req_handle(q);
 }
 
-void tsmpi_req_complete(MPI_Request req, int err) {
-  tsm *R = tsm_need("tsmpi_req_complete");
-  tsm_req *q = req_of(R, req, "tsmpi_req_complete");
+void tsmpi_req_coll_complete(MPI_Request req, int err) {
+  tsm *R = tsm_need("tsmpi_req_coll_complete");
+  tsm_req *q = req_of(R, req, "tsmpi_req_coll_complete");
   q->st.MPI_ERROR = err;
   q->state = RS_DONE;
   if (q->freed) tsm_req_free(R, q);

@@ -57,7 +57,9 @@ int tsmpi_p2p_recv(void *buf, int count, MPI_Datatype dt, int src, int tag, MPI_
                    MPI_Status *st);
 
 /* Send, then receive (the send is eager, so this never deadlocks on a pair
- * that exchanges).  sbuf and rbuf must not overlap. */
+ * that exchanges).  The bytes received must not overlap those sent: the
+ * send's payload may stay in sbuf until the call returns (one copy, when
+ * the receiver takes it first or has promised its buffer). */
 int tsmpi_p2p_sendrecv(const void *sbuf, int scount, MPI_Datatype sdt, int dst, int stag,
                        void *rbuf, int rcount, MPI_Datatype rdt, int src, int rtag, MPI_Comm comm,
                        MPI_Status *st);
@@ -75,6 +77,13 @@ int tsmpi_p2p_irecv(void *buf, int count, MPI_Datatype dt, int src, int tag, MPI
  * first error class (without). */
 int tsmpi_p2p_waitall(int n, MPI_Request *reqs, MPI_Status *sts);
 
+/* Whether *req (of tsmpi_p2p_isend or _irecv; MPI_REQUEST_NULL: done) is
+ * done, without taking any message and without the poll cost of MPI_Test:
+ * 1 and it completed (its status in *st, which may be MPI_STATUS_IGNORE;
+ * *req MPI_REQUEST_NULL), or 0.  For a kind's progress (below), which runs
+ * after the engine has acted on every message that has arrived. */
+int tsmpi_p2p_done(MPI_Request *req, MPI_Status *st);
+
 /* ==== the nonblocking collectives' requests and progress ================== */
 
 /* Mark a request of tsmpi_p2p_isend/irecv as a step of a nonblocking
@@ -82,10 +91,6 @@ int tsmpi_p2p_waitall(int n, MPI_Request *reqs, MPI_Status *sts);
  * while the rank computes), the rank's progress function runs (see
  * tsmpi_set_progress), after the message was acted on. */
 void tsmpi_p2p_watch(MPI_Request req);
-
-/* Without acting on any message: 1 if *req is done (then it is freed, *req
- * is MPI_REQUEST_NULL and *err its status's error class), else 0. */
-int tsmpi_p2p_done(MPI_Request *req, int *err);
 
 /* A request given up (a schedule freed before it finished): a receive still
  * posted is taken out of the posted queue; the request is freed and *req is
@@ -104,12 +109,12 @@ void tsmpi_p2p_poll(void);
 void tsmpi_set_progress(void (*fn)(void), int live);
 
 /* A request of the program's for nonblocking collective fn on comm (root:
- * its root, or -1): active until tsmpi_req_complete.  Its status is the
+ * its root, or -1): active until tsmpi_req_coll_complete.  Its status is the
  * empty one; a program's MPI_Request_free lets it go on until complete. */
 MPI_Request tsmpi_req_coll(const char *fn, MPI_Comm comm, int root);
 /* The collective is done, with error class err (already raised under the
  * communicator's handler). */
-void tsmpi_req_complete(MPI_Request req, int err);
+void tsmpi_req_coll_complete(MPI_Request req, int err);
 
 /* A nonblocking collective on comm keeps it alive: MPI_Comm_free while it
  * is held takes it from the program only, and the last release ends it
@@ -123,6 +128,68 @@ void tsmpi_comm_release(MPI_Comm comm);
  * (TSMPI_NBC_TAG_MIN .. TSMPI_COLL_TAG_MAX, round and round). */
 enum { TSMPI_NBC_TAG_MIN = 0x100 };
 int tsmpi_comm_nbc_tag(MPI_Comm comm);
+
+/* ==== requests of a kind of their own ===================================== */
+
+/* A part of the layer (MPI_Grequest_start; the nonblocking collectives'
+ * requests are of their own, above) makes requests that the program completes with the
+ * Wait and Test families, frees with MPI_Request_free and cancels with
+ * MPI_Cancel like any other.  Its kind says what they do; state is the
+ * part's own, passed to each callback:
+ *
+ *   progress(state)  advance without blocking, after the engine has acted
+ *                    on every message that has arrived (the Test family,
+ *                    MPI_Request_get_status, MPI_Iprobe) or on each message
+ *                    that comes while the rank waits in any MPI call (the
+ *                    Wait family, a blocking receive with receives posted,
+ *                    ...): every request of a kind not yet freed advances
+ *                    then, whichever the call waits for, as MPI's progress
+ *                    rule asks (not while the rank computes between calls):
+ *                    1 once the request is done, 0 if not yet.  It may start and test
+ *                    point-to-point requests of its own (tsmpi_p2p_isend,
+ *                    MPI_Test on them).  NULL: the request is done only by
+ *                    tsmpi_req_complete.  A Wait on a request that nothing
+ *                    can complete waits for messages, and the simulator
+ *                    reports a deadlock naming the kind when no rank can
+ *                    go on.
+ *   cancel(state, done)  MPI_Cancel (done: whether it is done already);
+ *                    returns an MPI error class (MPI_SUCCESS).  Whether a
+ *                    request was cancelled is its status's (MPI_Status's
+ *                    cancelled flag, set by status).  NULL: MPI_Cancel
+ *                    does nothing.
+ *   status(state, st)  when the request completes (a Wait or Test that
+ *                    returns it, MPI_Request_get_status): fill *st (its
+ *                    source, tag, count, cancelled flag; it comes in as the
+ *                    empty status) and return an MPI error class, which
+ *                    the call returns.  NULL: the empty status, success.
+ *   free(state)      the request is gone (completed and freed, or freed by
+ *                    MPI_Request_free once done); returns an error class
+ *                    the call that freed it returns.  NULL: nothing.
+ *   drop(state)      the rank ends with the request still there
+ *                    (MPI_Finalize, a stopped run): release what state
+ *                    holds, calling nothing of the program's.  NULL:
+ *                    nothing.
+ *
+ * The calls run on the calling rank; a run stopped by another rank ends
+ * the rank inside them as everywhere in the layer. */
+typedef struct {
+  const char *name;   /* the call that made it ("MPI_Ibarrier"): deadlock reports name it */
+  int (*progress)(void *state);
+  int (*cancel)(void *state, int done);
+  int (*status)(void *state, MPI_Status *st);
+  int (*free)(void *state);
+  void (*drop)(void *state);
+} tsmpi_kind;
+
+/* A new active request of kind (which must outlive it) with state; its
+ * handle in *req.  MPI_SUCCESS. */
+int tsmpi_req_start(const tsmpi_kind *kind, void *state, MPI_Request *req);
+
+/* Request req (of a kind without progress, or whose part completes it from
+ * outside) is done: MPI_SUCCESS, or MPI_ERR_REQUEST if req is no active
+ * request of a kind of its own.  If the program freed it already, it goes
+ * now (free's error class is returned). */
+int tsmpi_req_complete(MPI_Request req);
 
 /* ==== a communicator's process topology ================================== */
 
@@ -201,9 +268,11 @@ int tsmpi_type_attrs_delete(MPI_Datatype dt, const char *fn);
 
 /* One pointer per part of the MPI layer and rank (NULL after MPI_Init):
  * the datatype module's table of created types, the operations', the
- * collectives'.  release(p), if not NULL, is called once at MPI_Finalize or
- * when the rank ends without it (a stopped run), parts in reverse order. */
-enum { TSMPI_PART_DTYPE, TSMPI_PART_OP, TSMPI_PART_COLL, TSMPI_PART_SCHED, TSMPI_PART_NBC, TSMPI_PARTS };
+ * collectives', the collectives' schedules, the nonblocking collectives',
+ * the open files', the windows'.  release(p), if not NULL, is
+ * called once at MPI_Finalize or when the rank ends without it (a stopped
+ * run), parts in reverse order. */
+enum { TSMPI_PART_DTYPE, TSMPI_PART_OP, TSMPI_PART_COLL, TSMPI_PART_SCHED, TSMPI_PART_NBC, TSMPI_PART_IO, TSMPI_PART_WIN, TSMPI_PARTS };
 void *tsmpi_part(int part);
 void tsmpi_part_set(int part, void *p, void (*release)(void *p));
 

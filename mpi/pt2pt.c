@@ -10,6 +10,7 @@
 #include "env.h"
 #include "err.h"
 #include "label.h"
+#include "spin.h"
 #include "xmem.h"
 
 /* ==== starting sends and receives ========================================= */
@@ -34,6 +35,13 @@ void tsm_send_fill(tsm_req *q, const tsm_comm *c, int coll, int mode, const void
   q->fn = fn;
   q->wpeer = dst >= 0 ? tsm_world_of(c, dst) : -1;
   q->ctx = 2 * c->pair + coll;
+  /* A request's send goes by reference, settled when the request ends (a
+   * buffered one is copied into the attached buffer, which the next one
+   * reuses). */
+  q->byref = q->slot >= 0 && mode != SM_BUFFERED;
+  q->ref = NULL;
+  q->tmp = NULL;
+  q->prom = NULL;
 }
 
 void tsm_status_empty(MPI_Status *st) {
@@ -62,12 +70,18 @@ int tsm_send_start(tsm *R, tsm_req *q, const tsm_comm *c) {
                        "(MPI_BSEND_OVERHEAD = %d more), which has %d",
                        len, need, MPI_BSEND_OVERHEAD, R->bsize);
     }
+    /* A request's (MPI_Ibsend, MPI_Bsend_init) goes by reference from a
+     * copy of its own, freed when the request ends: it can be cancelled
+     * (withdrawn) until a receive reads it, as MPICH's can. */
+    void *to = q->slot >= 0 ? xmalloc(len ? len : 1) : R->bbuf;
     const void *p = tsmpi_type_contig(q->buf, q->count, q->dt);
     if (p)
-      memcpy(R->bbuf, p, len);
+      memcpy(to, p, len);
     else
-      tsmpi_type_pack(q->buf, q->count, q->dt, R->bbuf);
-    eng_send(R, q, R->bbuf, len);
+      tsmpi_type_pack(q->buf, q->count, q->dt, to);
+    q->byref = q->slot >= 0;
+    eng_send(R, q, to, len);
+    if (q->slot >= 0) q->tmp = to;
     return MPI_SUCCESS;
   }
   const void *p = len ? tsmpi_type_contig(q->buf, q->count, q->dt) : NULL;
@@ -77,7 +91,10 @@ int tsm_send_start(tsm *R, tsm_req *q, const tsm_comm *c) {
     void *tmp = xmalloc(len);
     tsmpi_type_pack(q->buf, q->count, q->dt, tmp);
     eng_send(R, q, tmp, len);
-    free(tmp);
+    if (q->ref)
+      q->tmp = tmp;   /* the message refers to it until settled */
+    else
+      free(tmp);
   }
   return MPI_SUCCESS;
 }
@@ -103,6 +120,10 @@ void tsm_recv_fill(tsm_req *q, const tsm_comm *c, int coll, void *buf, int count
   q->cap = (size_t)count * tsmpi_type_size(dt);
   q->contig = q->cap ? (void *)tsmpi_type_contig(buf, count, dt) : NULL;
   q->g = c->g;
+  q->byref = 0;
+  q->ref = NULL;
+  q->tmp = NULL;
+  q->prom = NULL;
 }
 
 static void proc_null(tsm_req *q) {
@@ -398,9 +419,10 @@ int PMPI_Recv_init(void *buf, int count, MPI_Datatype datatype, int source, int 
 
 /* ==== send and receive ==================================================== */
 
-/* Both calls: the send is eager (mp_send copies the message out), so it
-   leaves before the receive waits, and the buffer of Sendrecv_replace is
-   free to receive into once it has. */
+/* Both calls: the send is eager, so it leaves before the receive waits;
+   Sendrecv's goes by reference, settled when the call returns (the
+   receiver may copy it straight from sendbuf), Sendrecv_replace's is
+   copied out at once, so that its buffer is free to receive into. */
 static int sendrecv(const char *fn, const void *sendbuf, int sendcount, MPI_Datatype sendtype,
                     int dest, int sendtag, void *recvbuf, int recvcount, MPI_Datatype recvtype,
                     int source, int recvtag, MPI_Comm comm, MPI_Status *status) {
@@ -413,6 +435,7 @@ static int sendrecv(const char *fn, const void *sendbuf, int sendcount, MPI_Data
   tsm_req_stack(&s);
   tsm_req_stack(&q);
   tsm_send_fill(&s, c, 0, SM_STANDARD, sendbuf, sendcount, sendtype, dest, sendtag, comm, fn);
+  s.byref = sendbuf != recvbuf;   /* Sendrecv_replace's send is copied out before the receive */
   tsm_send_start(R, &s, c);
   tsm_recv_fill(&q, c, 0, recvbuf, recvcount, recvtype, source, recvtag, comm, fn);
   tsm_label l = {.fn = fn, .what = L_SENDRECV, .peer = dest, .tag = sendtag, .peer2 = source,
@@ -420,6 +443,7 @@ static int sendrecv(const char *fn, const void *sendbuf, int sendcount, MPI_Data
   tsm_label_set(R, &l);
   tsm_recv_block(R, &q);
   tsm_unlabel(R);
+  eng_settle(R, &s);
   tsm_status_out(status, &q.st, 0);
   return recv_result(R, c, &q);
 }
@@ -437,10 +461,54 @@ int PMPI_Sendrecv_replace(void *buf, int count, MPI_Datatype datatype, int dest,
                   source, recvtag, comm, status);
 }
 
+/* MPI-4's MPI_Isendrecv and MPI_Isendrecv_replace: the send leaves at once
+ * (eager), the receive is posted; the request is the receive's and
+ * completes with it, its status the receive's.  Isendrecv's send goes by
+ * reference, settled when the request ends; Isendrecv_replace's is copied
+ * out first (its buffer receives). */
+static int isendrecv(const char *fn, const void *sendbuf, int sendcount, MPI_Datatype sendtype, int dest,
+                     int sendtag, void *recvbuf, int recvcount, MPI_Datatype recvtype, int source, int recvtag,
+                     MPI_Comm comm, MPI_Request *request) {
+  tsm *R = tsm_need(fn);
+  tsm_comm *c;
+  int rc = send_args(R, fn, sendbuf, sendcount, sendtype, dest, sendtag, comm, &c);
+  if (rc) return rc;
+  if ((rc = recv_args(R, fn, recvbuf, recvcount, recvtype, source, recvtag, comm, &c))) return rc;
+  if (!request) return tsm_raise(R, c, MPI_ERR_ARG, fn, "NULL request argument");
+  tsm_req s, *q = tsm_req_new(R);
+  tsm_req_stack(&s);
+  tsm_send_fill(&s, c, 0, SM_STANDARD, sendbuf, sendcount, sendtype, dest, sendtag, comm, fn);
+  s.byref = sendbuf != recvbuf;
+  tsm_send_start(R, &s, c);
+  tsm_recv_fill(q, c, 0, recvbuf, recvcount, recvtype, source, recvtag, comm, fn);
+  q->ref = s.ref;   /* the send's, settled when the request ends */
+  q->tmp = s.tmp;
+  tsmpi_type_hold(recvtype);
+  q->held = 1;
+  tsm_recv_start(R, q);
+  *request = tsm_req_handle(q);
+  return MPI_SUCCESS;
+}
+
+int PMPI_Isendrecv(const void *sendbuf, int sendcount, MPI_Datatype sendtype, int dest, int sendtag,
+                   void *recvbuf, int recvcount, MPI_Datatype recvtype, int source, int recvtag, MPI_Comm comm,
+                   MPI_Request *request) {
+  return isendrecv("MPI_Isendrecv", sendbuf, sendcount, sendtype, dest, sendtag, recvbuf, recvcount, recvtype,
+                   source, recvtag, comm, request);
+}
+
+int PMPI_Isendrecv_replace(void *buf, int count, MPI_Datatype datatype, int dest, int sendtag, int source,
+                           int recvtag, MPI_Comm comm, MPI_Request *request) {
+  return isendrecv("MPI_Isendrecv_replace", buf, count, datatype, dest, sendtag, buf, count, datatype, source,
+                   recvtag, comm, request);
+}
+
 /* ==== probes ============================================================== */
 
+/* MPI_Probe and MPI_Iprobe, and with message, MPI_Mprobe and MPI_Improbe:
+ * the message shown is taken out of matching into *message. */
 static int probe(const char *fn, int block, int source, int tag, MPI_Comm comm, int *flag,
-                 MPI_Status *status) {
+                 MPI_Message *message, int matched, MPI_Status *status) {
   tsm *R = tsm_need(fn);
   tsm_comm *c;
   int rc;
@@ -448,11 +516,13 @@ static int probe(const char *fn, int block, int source, int tag, MPI_Comm comm, 
   if ((rc = tsm_check_tag(R, c, fn, tag, 1))) return rc;
   if ((rc = tsm_check_peer(R, c, fn, source, 1))) return rc;
   if (!block && !flag) return tsm_raise(R, c, MPI_ERR_ARG, fn, "NULL flag argument");
+  if (matched && !message) return tsm_raise(R, c, MPI_ERR_ARG, fn, "NULL message argument");
   if (source == MPI_PROC_NULL) {
     if (flag) *flag = 1;
+    if (matched) *message = MPI_MESSAGE_NO_PROC;
     if (status != MPI_STATUS_IGNORE) {
       tsm_req q;
-  tsm_req_stack(&q);
+      tsm_req_stack(&q);
       proc_null(&q);
       tsm_status_out(status, &q.st, 0);
     }
@@ -461,19 +531,27 @@ static int probe(const char *fn, int block, int source, int tag, MPI_Comm comm, 
   int wsrc = source >= 0 ? tsm_world_of(c, source) : MP_ANY, src, mtag;
   size_t len;
   int found;
+  tsm_msg *m = NULL;
   if (block) {
     tsm_label l = {.fn = fn, .what = L_PROBE, .peer = source, .tag = tag, .pair = c->pair};
     tsm_label_set(R, &l);
-    found = eng_probe(R, wsrc, 2 * c->pair, tag, 1, &src, &mtag, &len);
+    found = eng_probe(R, wsrc, 2 * c->pair, tag, 1, &src, &mtag, &len, matched ? &m : NULL);
     tsm_unlabel(R);
   } else {
-    found = eng_probe(R, wsrc, 2 * c->pair, tag, 0, &src, &mtag, &len);
+    found = eng_probe(R, wsrc, 2 * c->pair, tag, 0, &src, &mtag, &len, matched ? &m : NULL);
   }
   if (flag) *flag = found;
   if (!found) {
+    if (matched) *message = MPI_MESSAGE_NULL;
     double cost = tsmpi_poll_cost();
     if (cost > 0 && mp_busy(R->self, cost) != MP_OK) tsm_stopped(R);
+    tsm_spin(R, fn);
     return MPI_SUCCESS;
+  }
+  tsm_unspin(R);
+  if (matched) {
+    m->comm = comm;
+    *message = tsm_msg_handle(R, m);
   }
   if (status != MPI_STATUS_IGNORE) {
     status->MPI_SOURCE = tsm_comm_rank_of(c, src);
@@ -485,11 +563,74 @@ static int probe(const char *fn, int block, int source, int tag, MPI_Comm comm, 
 }
 
 int PMPI_Probe(int source, int tag, MPI_Comm comm, MPI_Status *status) {
-  return probe("MPI_Probe", 1, source, tag, comm, NULL, status);
+  return probe("MPI_Probe", 1, source, tag, comm, NULL, NULL, 0, status);
 }
 
 int PMPI_Iprobe(int source, int tag, MPI_Comm comm, int *flag, MPI_Status *status) {
-  return probe("MPI_Iprobe", 0, source, tag, comm, flag, status);
+  return probe("MPI_Iprobe", 0, source, tag, comm, flag, NULL, 0, status);
+}
+
+int PMPI_Mprobe(int source, int tag, MPI_Comm comm, MPI_Message *message, MPI_Status *status) {
+  return probe("MPI_Mprobe", 1, source, tag, comm, NULL, message, 1, status);
+}
+
+int PMPI_Improbe(int source, int tag, MPI_Comm comm, int *flag, MPI_Message *message, MPI_Status *status) {
+  return probe("MPI_Improbe", 0, source, tag, comm, flag, message, 1, status);
+}
+
+/* MPI_Mrecv (request NULL) and MPI_Imrecv: the message a matched probe
+ * took, received into buf (the request done at once). */
+static int mrecv(const char *fn, void *buf, int count, MPI_Datatype dt, MPI_Message *message, MPI_Status *status,
+                 MPI_Request *request, int nonblocking) {
+  tsm *R = tsm_need(fn);
+  if (!message || (nonblocking && !request))
+    return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL %s argument", message ? "request" : "message");
+  tsm_req sq, *q = &sq;
+  if (*message == MPI_MESSAGE_NO_PROC) {   /* from MPI_PROC_NULL: done, empty */
+    if (nonblocking) {
+      q = tsm_req_new(R);
+      q->kind = RQ_RECV;
+      q->fn = fn;
+      q->comm = MPI_COMM_NULL;
+      *request = tsm_req_handle(q);
+    }
+    proc_null(q);
+    if (!nonblocking) tsm_status_out(status, &q->st, 0);
+    *message = MPI_MESSAGE_NULL;
+    return MPI_SUCCESS;
+  }
+  tsm_msg *m = tsm_msg_take(R, *message);
+  if (!m)
+    return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "invalid message handle 0x%x (%s)", (unsigned)*message,
+                     *message == MPI_MESSAGE_NULL ? "MPI_MESSAGE_NULL" : "received already, or not a message");
+  tsm_comm *c = tsm_comm_get(R, m->comm);
+  int rc = !c ? tsm_check_comm(R, m->comm, fn, &c) : tsm_check_count(R, c, fn, count);
+  if (!rc) rc = tsm_check_type(R, c, fn, dt);
+  if (!rc) rc = tsm_check_buf(R, c, fn, buf, count, dt);
+  if (rc) {   /* the message stays the program's to receive */
+    *message = tsm_msg_handle(R, m);
+    return rc;
+  }
+  if (nonblocking) {
+    q = tsm_req_new(R);
+    *request = tsm_req_handle(q);
+  } else {
+    tsm_req_stack(q);
+  }
+  tsm_recv_fill(q, c, 0, buf, count, dt, tsm_comm_rank_of(c, m->src), m->tag, m->comm, fn);
+  eng_msg_read(R, q, m);
+  *message = MPI_MESSAGE_NULL;
+  if (nonblocking) return MPI_SUCCESS;
+  tsm_status_out(status, &q->st, 0);
+  return recv_result(R, c, q);
+}
+
+int PMPI_Mrecv(void *buf, int count, MPI_Datatype datatype, MPI_Message *message, MPI_Status *status) {
+  return mrecv("MPI_Mrecv", buf, count, datatype, message, status, NULL, 0);
+}
+
+int PMPI_Imrecv(void *buf, int count, MPI_Datatype datatype, MPI_Message *message, MPI_Request *request) {
+  return mrecv("MPI_Imrecv", buf, count, datatype, message, MPI_STATUS_IGNORE, request, 1);
 }
 
 /* ==== counts ============================================================== */

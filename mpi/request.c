@@ -1,6 +1,7 @@
 /* request.c -- completing requests: the Wait and Test families,
- * MPI_Request_free, MPI_Request_get_status, and starting persistent
- * requests (MPI_Start, MPI_Startall).
+ * MPI_Request_free, MPI_Request_get_status, starting persistent requests
+ * (MPI_Start, MPI_Startall), and requests of a kind of their own (p2p.h:
+ * tsmpi_req_start, tsmpi_req_complete).
  *
  * A request is active from its start until it is done (a send: at once,
  * or when its ack comes; a receive: when a message is matched to it); a
@@ -8,7 +9,11 @@
  * persistent one inactive for its next MPI_Start.  Waiting runs the
  * matching engine until the request is done (eng_wait, eng_step); testing
  * first acts on every message that has arrived (eng_poll), and a test that
- * finds nothing done charges the per-run poll cost (env.h). */
+ * finds nothing done charges the per-run poll cost (env.h) and counts
+ * toward a rank that polls forever (spin.h).  A request of a kind of its
+ * own advances by its kind's progress after the engine has acted on the
+ * messages, its status comes from its kind when it completes, and its
+ * kind's free ends it. */
 #include <stdio.h>
 
 #include "engine.h"
@@ -16,6 +21,7 @@
 #include "err.h"
 #include "label.h"
 #include "pt2pt.h"
+#include "spin.h"
 
 /* ==== one request ========================================================= */
 
@@ -51,8 +57,23 @@ static int live(const tsm_req *q) { return q && q->state != RS_INACTIVE; }
  * call fn when raise is set (the single-status calls). */
 static int finish(tsm *R, const char *fn, MPI_Request *h, tsm_req *q, MPI_Status *st, int with_error,
                   int raise) {
+  if (q->kind == RQ_KIND) {   /* its kind's status, then its end */
+    MPI_Status ks;
+    tsm_status_empty(&ks);
+    int err = q->ops->status ? q->ops->status(q->ext, &ks) : MPI_SUCCESS;
+    ks.MPI_ERROR = err;
+    tsm_status_out(st, &ks, with_error);
+    const char *made = q->fn;
+    int e2 = tsm_req_free(R, q);
+    *h = MPI_REQUEST_NULL;
+    if (!err) err = e2;
+    if (err && raise)
+      return tsm_raise(R, NULL, err, fn, "the request of %s failed (error %d from its callbacks)", made, err);
+    return err;
+  }
   tsm_status_out(st, &q->st, with_error);
   int err = q->st.MPI_ERROR;
+  if (q->persistent) eng_settle(R, q);
   if (err && raise && q->kind != RQ_COLL) {   /* a collective's error was raised when it happened */
     tsm_req copy = *q;
     if (q->persistent)
@@ -70,25 +91,57 @@ static int finish(tsm *R, const char *fn, MPI_Request *h, tsm_req *q, MPI_Status
   return err;
 }
 
+/* Every active request of a kind of its own among n handles advances. */
+static void advance_all(tsm *R, int n, const MPI_Request *reqs) {
+  for (int i = 0; i < n; i++) {
+    tsm_req *q = tsm_req_get(R, reqs[i]);
+    if (q && q->kind == RQ_KIND) eng_advance(R, q);
+  }
+}
+
 static void empty_out(MPI_Status *st, int with_error) {
   MPI_Status e;
   tsm_status_empty(&e);
   tsm_status_out(st, &e, with_error);
 }
 
-static void poll_charge(tsm *R) {
+/* A test of fn that found nothing done. */
+static void poll_charge(tsm *R, const char *fn) {
   double cost = tsmpi_poll_cost();
   if (cost > 0 && mp_busy(R->self, cost) != MP_OK) tsm_stopped(R);
+  tsm_spin(R, fn);
 }
 
 /* Several statuses: the first request that failed, raised as
  * MPI_ERR_IN_STATUS on its communicator. */
-static int in_status(tsm *R, const char *fn, const tsm_req *failed) {
+static int in_status(tsm *R, const char *fn, const tsm_req *failed, int err) {
+  if (failed->kind == RQ_KIND || failed->kind == RQ_COLL)
+    return tsm_raise(R, NULL, MPI_ERR_IN_STATUS, fn, "the request of %s failed (error %d in its status)",
+                     failed->fn, err);
   return tsm_raise(R, tsm_comm_get(R, failed->comm), MPI_ERR_IN_STATUS, fn,
                    "%s (from rank %d, tag %d): a %zu-byte message is longer than the receive buffer "
                    "(%d elements, %zu bytes): truncated (MPI_ERR_TRUNCATE in its status)",
                    failed->fn, failed->st.MPI_SOURCE, failed->st.MPI_TAG, failed->msglen, failed->count,
                    failed->cap);
+}
+
+/* Waitall's and Testall's end: every request (all done) completes; the
+ * first that failed raised as MPI_ERR_IN_STATUS. */
+static int finish_all(tsm *R, const char *fn, int count, MPI_Request reqs[], MPI_Status sts[]) {
+  tsm_req failed = {.slot = -1};
+  int nfailed = 0, ferr = 0;
+  for (int i = 0; i < count; i++) {
+    MPI_Status *st = sts == MPI_STATUSES_IGNORE ? MPI_STATUS_IGNORE : &sts[i];
+    tsm_req *q = tsm_req_get(R, reqs[i]);
+    if (!live(q)) {
+      empty_out(st, 1);
+      continue;
+    }
+    tsm_req copy = *q;
+    int e = finish(R, fn, &reqs[i], q, st, 1, 0);
+    if (e && !nfailed++) failed = copy, ferr = e;
+  }
+  return nfailed ? in_status(R, fn, &failed, ferr) : MPI_SUCCESS;
 }
 
 /* ==== the Wait family ===================================================== */
@@ -127,19 +180,7 @@ int PMPI_Waitall(int count, MPI_Request array_of_requests[], MPI_Status array_of
     eng_wait(R, q);
   }
   if (labelled) tsm_unlabel(R);
-  tsm_req failed = {.slot = -1};
-  int nfailed = 0;
-  for (int i = 0; i < count; i++) {
-    MPI_Status *st = array_of_statuses == MPI_STATUSES_IGNORE ? MPI_STATUS_IGNORE : &array_of_statuses[i];
-    tsm_req *q = tsm_req_get(R, array_of_requests[i]);
-    if (!live(q)) {
-      empty_out(st, 1);
-      continue;
-    }
-    if (q->st.MPI_ERROR && !nfailed++) failed = *q;
-    finish(R, fn, &array_of_requests[i], q, st, 1, 0);
-  }
-  return nfailed ? in_status(R, fn, &failed) : MPI_SUCCESS;
+  return finish_all(R, fn, count, array_of_requests, array_of_statuses);
 }
 
 int PMPI_Waitany(int count, MPI_Request array_of_requests[], int *index, MPI_Status *status) {
@@ -152,6 +193,7 @@ int PMPI_Waitany(int count, MPI_Request array_of_requests[], int *index, MPI_Sta
   int labelled = 0;
   for (;;) {
     int any = 0;
+    advance_all(R, count, array_of_requests);
     for (int i = 0; i < count; i++) {
       tsm_req *q = tsm_req_get(R, array_of_requests[i]);
       if (!live(q)) continue;
@@ -185,6 +227,7 @@ static int some(const char *fn, int block, int incount, MPI_Request reqs[], int 
   int labelled = 0, polled = 0;
   for (;;) {
     int any = 0, done = 0;
+    advance_all(R, incount, reqs);
     for (int i = 0; i < incount; i++) {
       tsm_req *q = tsm_req_get(R, reqs[i]);
       if (!live(q)) continue;
@@ -200,24 +243,28 @@ static int some(const char *fn, int block, int incount, MPI_Request reqs[], int 
     if (!block) {
       eng_poll(R);
       polled = 1;
-      continue;
+      continue;   /* (advance_all at the top) */
     }
     if (!labelled++) tsm_label_set(R, &l);
     eng_step(R);
   }
   if (labelled) tsm_unlabel(R);
-  int n = 0, nfailed = 0;
+  int n = 0, nfailed = 0, ferr = 0;
   tsm_req failed = {.slot = -1};
   for (int i = 0; i < incount; i++) {
     tsm_req *q = tsm_req_get(R, reqs[i]);
     if (!live(q) || q->state != RS_DONE) continue;
-    if (q->st.MPI_ERROR && !nfailed++) failed = *q;
-    finish(R, fn, &reqs[i], q, sts == MPI_STATUSES_IGNORE ? MPI_STATUS_IGNORE : &sts[n], 1, 0);
+    tsm_req copy = *q;
+    int e = finish(R, fn, &reqs[i], q, sts == MPI_STATUSES_IGNORE ? MPI_STATUS_IGNORE : &sts[n], 1, 0);
+    if (e && !nfailed++) failed = copy, ferr = e;
     indices[n++] = i;
   }
   *outcount = n;
-  if (n == 0) poll_charge(R);
-  return nfailed ? in_status(R, fn, &failed) : MPI_SUCCESS;
+  if (n == 0)
+    poll_charge(R, fn);
+  else
+    tsm_unspin(R);
+  return nfailed ? in_status(R, fn, &failed, ferr) : MPI_SUCCESS;
 }
 
 int PMPI_Waitsome(int incount, MPI_Request array_of_requests[], int *outcount,
@@ -237,16 +284,20 @@ int PMPI_Test(MPI_Request *request, int *flag, MPI_Status *status) {
   if (rc) return rc;
   if (!live(q)) {
     *flag = 1;
-    empty_out(status, 0);
+    empty_out(status, 1);   /* the empty status, MPI_ERROR (MPI_SUCCESS) too, as MPI 3.1 3.7.3 defines it */
     return MPI_SUCCESS;
   }
-  if (q->state == RS_ACTIVE) eng_poll(R);
+  if (q->state == RS_ACTIVE) {
+    eng_poll(R);
+    eng_advance(R, q);
+  }
   if (q->state != RS_DONE) {
     *flag = 0;
-    poll_charge(R);
+    poll_charge(R, fn);
     return MPI_SUCCESS;
   }
   *flag = 1;
+  tsm_unspin(R);
   return finish(R, fn, request, q, status, 0, 1);
 }
 
@@ -265,26 +316,16 @@ int PMPI_Testall(int count, MPI_Request array_of_requests[], int *flag, MPI_Stat
     }
     if (!pending || pass) break;
     eng_poll(R);
+    advance_all(R, count, array_of_requests);
   }
   if (pending) {   /* nothing changes: MPI 3.1 section 3.7.5 */
     *flag = 0;
-    poll_charge(R);
+    poll_charge(R, fn);
     return MPI_SUCCESS;
   }
   *flag = 1;
-  tsm_req failed = {.slot = -1};
-  int nfailed = 0;
-  for (int i = 0; i < count; i++) {
-    MPI_Status *st = array_of_statuses == MPI_STATUSES_IGNORE ? MPI_STATUS_IGNORE : &array_of_statuses[i];
-    tsm_req *q = tsm_req_get(R, array_of_requests[i]);
-    if (!live(q)) {
-      empty_out(st, 1);
-      continue;
-    }
-    if (q->st.MPI_ERROR && !nfailed++) failed = *q;
-    finish(R, fn, &array_of_requests[i], q, st, 1, 0);
-  }
-  return nfailed ? in_status(R, fn, &failed) : MPI_SUCCESS;
+  tsm_unspin(R);
+  return finish_all(R, fn, count, array_of_requests, array_of_statuses);
 }
 
 int PMPI_Testany(int count, MPI_Request array_of_requests[], int *index, int *flag, MPI_Status *status) {
@@ -302,6 +343,7 @@ int PMPI_Testany(int count, MPI_Request array_of_requests[], int *index, int *fl
       if (q->state != RS_DONE) continue;
       *flag = 1;
       *index = i;
+      tsm_unspin(R);
       return finish(R, fn, &array_of_requests[i], q, status, 0, 1);
     }
     if (!any) {   /* nothing active: flag true, no index (MPI 3.1 section 3.7.5) */
@@ -310,11 +352,14 @@ int PMPI_Testany(int count, MPI_Request array_of_requests[], int *index, int *fl
       empty_out(status, 0);
       return MPI_SUCCESS;
     }
-    if (pass == 0) eng_poll(R);
+    if (pass == 0) {
+      eng_poll(R);
+      advance_all(R, count, array_of_requests);
+    }
   }
   *flag = 0;
   *index = MPI_UNDEFINED;
-  poll_charge(R);
+  poll_charge(R, fn);
   return MPI_SUCCESS;
 }
 
@@ -333,16 +378,29 @@ int PMPI_Request_get_status(MPI_Request request, int *flag, MPI_Status *status) 
   if (rc) return rc;
   if (!live(q)) {
     *flag = 1;
-    empty_out(status, 0);
+    empty_out(status, 1);   /* the empty status, MPI_ERROR (MPI_SUCCESS) too, as MPI 3.1 3.7.3 defines it */
     return MPI_SUCCESS;
   }
-  if (q->state == RS_ACTIVE) eng_poll(R);
+  if (q->state == RS_ACTIVE) {
+    eng_poll(R);
+    eng_advance(R, q);
+  }
   *flag = q->state == RS_DONE;
-  if (*flag)
+  if (!*flag) {
+    poll_charge(R, fn);
+    return MPI_SUCCESS;
+  }
+  tsm_unspin(R);
+  if (q->kind != RQ_KIND) {
     tsm_status_out(status, &q->st, 0);
-  else
-    poll_charge(R);
-  return MPI_SUCCESS;
+    return MPI_SUCCESS;
+  }
+  MPI_Status ks;   /* its kind's status; the request stays */
+  tsm_status_empty(&ks);
+  int err = q->ops->status ? q->ops->status(q->ext, &ks) : MPI_SUCCESS;
+  tsm_status_out(status, &ks, 0);
+  return err ? tsm_raise(R, NULL, err, fn, "the request of %s failed (error %d from its callbacks)", q->fn, err)
+             : MPI_SUCCESS;
 }
 
 /* ==== freeing and starting ================================================ */
@@ -355,12 +413,15 @@ int PMPI_Request_free(MPI_Request *request) {
   tsm_req *q;
   int rc = lookup(R, fn, *request, &q);
   if (rc) return rc;
-  if (q->state == RS_ACTIVE)
-    q->freed = 1;   /* it goes on, and goes when it is done (engine.c) */
-  else
-    tsm_req_free(R, q);
   *request = MPI_REQUEST_NULL;
-  return MPI_SUCCESS;
+  if (q->state == RS_ACTIVE) {
+    q->freed = 1;   /* it goes on, and goes when it is done (engine.c) */
+    return MPI_SUCCESS;
+  }
+  const char *made = q->fn;
+  int err = tsm_req_free(R, q);
+  return err ? tsm_raise(R, NULL, err, fn, "the request of %s failed (error %d from its free callback)", made, err)
+             : MPI_SUCCESS;
 }
 
 static int start(tsm *R, const char *fn, MPI_Request h) {
@@ -398,4 +459,30 @@ int PMPI_Startall(int count, MPI_Request array_of_requests[]) {
   for (int i = 0; i < count; i++)
     if ((rc = start(R, fn, array_of_requests[i]))) return rc;
   return MPI_SUCCESS;
+}
+
+/* ==== requests of a kind of their own (p2p.h) ============================= */
+
+int tsmpi_req_start(const tsmpi_kind *kind, void *state, MPI_Request *req) {
+  tsm *R = tsm_need(kind->name);
+  tsm_req *q = tsm_req_new(R);
+  q->kind = RQ_KIND;
+  q->ops = kind;
+  q->ext = state;
+  q->fn = kind->name;
+  q->comm = MPI_COMM_NULL;
+  q->peer = MPI_PROC_NULL;
+  q->state = RS_ACTIVE;
+  tsm_status_empty(&q->st);
+  R->nkinds++;
+  *req = tsm_req_handle(q);
+  return MPI_SUCCESS;
+}
+
+int tsmpi_req_complete(MPI_Request req) {
+  tsm *R = tsm_need("tsmpi_req_complete");
+  tsm_req *q = tsm_req_get(R, req);
+  if (!q || q->kind != RQ_KIND || q->state != RS_ACTIVE) return MPI_ERR_REQUEST;
+  q->state = RS_DONE;
+  return q->freed ? tsm_req_free(R, q) : MPI_SUCCESS;
 }

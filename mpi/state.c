@@ -167,13 +167,48 @@ tsm_req *tsm_req_get(tsm *R, MPI_Request h) {
   return q->used ? q : NULL;
 }
 
-void tsm_req_free(tsm *R, tsm_req *q) {
-  if (q->slot < 0) return;
+int tsm_req_free(tsm *R, tsm_req *q) {
+  eng_settle(R, q);
+  if (q->slot < 0) return MPI_SUCCESS;
+  int err = MPI_SUCCESS;
+  if (q->kind == RQ_KIND) {
+    R->nkinds--;
+    if (q->ops->free) err = q->ops->free(q->ext);
+  }
   if (q->held) tsmpi_type_release(q->dt);
   q->held = 0;
   q->used = 0;
+  q->kind = RQ_SEND;   /* no kind's callbacks once freed */
   q->next = R->freereq;
   R->freereq = q;
+  return err;
+}
+
+/* ==== matched probes' messages ============================================ */
+
+MPI_Message tsm_msg_handle(tsm *R, tsm_msg *m) {
+  int slot = 0;
+  while (slot < R->nmsgs && R->msgs[slot]) slot++;
+  if (slot == R->nmsgs) {
+    if (R->nmsgs >= H_SLOT_MASK) {
+      fprintf(stderr, "tilesim MPI: rank %d holds %d matched messages at once: too many\n", R->wrank, R->nmsgs);
+      abort();
+    }
+    int n = R->nmsgs ? 2 * R->nmsgs : 4;
+    R->msgs = xreallocarray(R->msgs, (size_t)n, sizeof *R->msgs);
+    for (int i = R->nmsgs; i < n; i++) R->msgs[i] = NULL;
+    R->nmsgs = n;
+  }
+  R->msgs[slot] = m;
+  return (MPI_Message)(HK_MSG << H_KIND_SHIFT | H_CREATED | slot);
+}
+
+tsm_msg *tsm_msg_take(tsm *R, MPI_Message h) {
+  unsigned slot = (unsigned)h - (unsigned)(HK_MSG << H_KIND_SHIFT | H_CREATED);
+  if (slot >= (unsigned)R->nmsgs || !R->msgs[slot]) return NULL;
+  tsm_msg *m = R->msgs[slot];
+  R->msgs[slot] = NULL;
+  return m;
 }
 
 /* ==== the end ============================================================= */
@@ -183,6 +218,13 @@ void tsm_release(tsm *R) {
   for (int i = TSMPI_PARTS - 1; i >= 0; i--)
     if (R->release[i]) R->release[i](R->part[i]);
   eng_release(R);
+  for (int i = 0; i < R->nreqs; i++) {
+    tsm_req *q = R->reqs[i];
+    if (q->used && q->kind == RQ_KIND && q->ops->drop) q->ops->drop(q->ext);
+  }
+  for (int i = 0; i < R->nmsgs; i++)
+    if (R->msgs[i]) eng_msg_free(R, R->msgs[i]);
+  free(R->msgs);
   for (int i = 0; i < R->nreqs; i++) free(R->reqs[i]);
   free(R->reqs);
   for (int i = 0; i < R->ncomms; i++) {

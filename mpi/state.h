@@ -26,7 +26,7 @@ enum {
   H_SLOT_MASK = 0x7fffff
 };
 #define H_KIND(h) ((unsigned)(h) >> H_KIND_SHIFT)
-enum { HK_COMM = 1, HK_GROUP = 2, HK_ERRH = 5, HK_REQ = 6, HK_INFO = 7 };
+enum { HK_COMM = 1, HK_GROUP = 2, HK_ERRH = 5, HK_REQ = 6, HK_INFO = 7, HK_MSG = 10 };
 
 /* ==== contexts and the envelope =========================================== */
 
@@ -113,7 +113,8 @@ static inline tsm_ranks *tsm_comm_lgroup(const tsm_comm *c) { return c->inter ? 
 
 /* ==== requests ============================================================ */
 
-enum { RQ_SEND, RQ_RECV, RQ_COLL };   /* RQ_COLL: a nonblocking collective (tsmpi_req_coll) */
+enum { RQ_SEND, RQ_RECV, RQ_KIND, RQ_COLL };   /* RQ_KIND: a kind of its own (q->ops, p2p.h);
+                                                RQ_COLL: a nonblocking collective (tsmpi_req_coll) */
 enum { SM_STANDARD, SM_SYNC, SM_BUFFERED, SM_READY };
 enum { RS_INACTIVE, RS_ACTIVE, RS_DONE };
 
@@ -150,6 +151,14 @@ struct tsm_req {
                               contiguous there, else NULL (unpacked) */
   tsm_ranks *g;            /* active receives: comm's ranks (counted), to name
                               the source in the status */
+  /* RQ_KIND: its kind and its state (p2p.h: tsmpi_req_start) */
+  const tsmpi_kind *ops;
+  void *ext;
+  /* the message path (engine.h: what is copied when) */
+  unsigned char byref;     /* sends: the message goes by reference (mp_send_ref) */
+  mp_ref *ref;             /* a send by reference not yet settled */
+  void *tmp;               /* a non-contiguous send's packed copy, until settled */
+  mp_promise *prom;        /* a posted receive's promise of its buffer */
   /* the result */
   MPI_Status st;
 };
@@ -162,7 +171,8 @@ struct tsm_msg {
   int src;                 /* world rank */
   int kind, ctx, tag;      /* the envelope */
   size_t len;
-  unsigned char *data;     /* len bytes (NULL if 0) */
+  mp_msg *h;               /* the message, held (mp_recv_msg) until read */
+  MPI_Comm comm;           /* a matched probe's (MPI_Mprobe) communicator */
 };
 
 /* ==== the rank ============================================================ */
@@ -190,10 +200,21 @@ struct tsm {
   tsm_req *freereq;
   /* the matching engine (engine.c) */
   tsm_req *posted, *posted_tail;   /* receives posted and not matched, in order */
+  int posted_plain;                /* ... of those, the ones without a promise */
   tsm_msg *unexp, *unexp_tail;     /* messages taken off mp and not matched, in order */
   long nunexp;
   tsm_req *sync, *sync_tail;       /* synchronous sends waiting for their ack */
   int attr[8];             /* MPI_Comm_get_attr's values, by predefined key */
+  /* matched probes' messages by slot (MPI_Mprobe), and the free slots */
+  tsm_msg **msgs;
+  int nmsgs;
+  /* a rank that polls without its clock moving (spin.h) */
+  long spins;
+  double spin_t;
+  /* requests of a kind of their own not yet freed, and whether their
+   * progress runs now (engine.c: eng_advance_all) */
+  int nkinds;
+  int advancing;
   /* MPI_Buffer_attach */
   void *bbuf;
   int bsize;
@@ -236,13 +257,19 @@ int tsm_comm_rank_of(const tsm_comm *c, int w);
 
 /* Requests: a new one in the table (zeroed but for its slot), the one a
  * handle names (NULL if none), its handle, and its end (out of the table, or
- * just freed for one on the stack). */
+ * just freed for one on the stack; a send by reference settled; a kind of
+ * its own's free called, whose error class is returned). */
 tsm_req *tsm_req_new(tsm *R);
 tsm_req *tsm_req_get(tsm *R, MPI_Request h);
 static inline MPI_Request tsm_req_handle(const tsm_req *q) {
   return (MPI_Request)(HK_REQ << H_KIND_SHIFT | H_CREATED | q->slot);
 }
-void tsm_req_free(tsm *R, tsm_req *q);
+int tsm_req_free(tsm *R, tsm_req *q);
+
+/* Matched probes' messages (MPI_Mprobe): a handle for m, and the message a
+ * handle names, taken out of the table (NULL: none). */
+MPI_Message tsm_msg_handle(tsm *R, tsm_msg *m);
+tsm_msg *tsm_msg_take(tsm *R, MPI_Message h);
 
 /* A blocking call's request, on its stack (the fill functions of pt2pt.h
  * set the rest; no zeroing of the whole struct on the fast path). */

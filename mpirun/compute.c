@@ -78,7 +78,7 @@ static void leave(mp *self) {
 
 static const mp_hooks hooks = {enter, leave};
 
-void compute_begin(const compute_config *cc, int n) {
+const mp_hooks *compute_begin(const compute_config *cc, int n) {
   cfg = *cc;
   blocks = 0;
   free(last_cpu);
@@ -87,11 +87,10 @@ void compute_begin(const compute_config *cc, int n) {
     last_cpu = xmallocarray((size_t)n, sizeof *last_cpu);
     for (int i = 0; i < n; i++) last_cpu[i] = -1;
   }
-  mp_set_hooks(cfg.mode == COMPUTE_NONE ? NULL : &hooks);
+  return cfg.mode == COMPUTE_NONE ? NULL : &hooks;
 }
 
 void compute_end(void) {
-  mp_set_hooks(NULL);
   free(last_cpu);
   last_cpu = NULL;
 }

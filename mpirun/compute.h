@@ -20,6 +20,8 @@
 
 #include <stddef.h>
 
+#include "mp.h"
+
 typedef enum { COMPUTE_NONE, COMPUTE_BLOCKS, COMPUTE_HOST } compute_mode;
 
 /* "none", "blocks", "host". */
@@ -39,8 +41,9 @@ void compute_config_init(compute_config *cc);
 int compute_option(compute_config *cc, const char *opt, const char *val, char *err, size_t errlen);
 
 /* Charge as cc says from now on, for n ranks (before a run; compute_end
- * after it). */
-void compute_begin(const compute_config *cc, int n);
+ * after it).  Returns the hooks to install (mp_set_hooks), or NULL for
+ * none (--compute none). */
+const mp_hooks *compute_begin(const compute_config *cc, int n);
 void compute_end(void);
 
 /* Charge what the calling rank has computed since its last call now (a
@@ -51,7 +54,7 @@ void compute_settle(void);
  * (for tests). */
 unsigned long long compute_blocks_pending(void);
 
-/* What a program charges itself (tilesim_mpi.h declares them for it; the
+/* What a program charges itself (mpi.h declares them for it; the
  * calling rank's, nothing outside a rank). */
 void tilesim_compute(double units);       /* units x --c seconds (mp_compute) */
 void smpi_execute_flops(double flops);    /* flops / --flops seconds */

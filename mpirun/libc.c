@@ -1,6 +1,6 @@
 /* libc.c -- the libc state each rank of an MPI program keeps for itself, and
- * the clocks and sleeps of the simulated machine (libc.h; the macros of
- * tilesim_mpi.h send a program's calls here).
+ * the clocks and sleeps of the simulated machine (libc.h; the loader binds a
+ * program's references to libc's names to the functions here).
  *
  * getopt: glibc's own, with the rank's optind, optarg, opterr and optopt.
  * glibc keeps more than those (the place inside a group of options such as
@@ -34,6 +34,21 @@
 
 enum { R_DEG = 31, R_SEP = 3 };   /* glibc's TYPE_3: x^31 + x^3 + 1 */
 
+/* An exit handler: atexit's, on_exit's, __cxa_atexit's or a thread-local
+ * object's destructor (__cxa_thread_atexit). */
+typedef struct {
+  int kind;                          /* H_ATEXIT, H_ONEXIT, H_CXA */
+  void (*fn)(void);                  /* called as its kind says */
+  void *arg, *dso;
+} handler;
+
+enum { H_ATEXIT, H_ONEXIT, H_CXA };
+
+typedef struct {
+  handler *h;
+  int n, cap;
+} handlers;
+
 typedef struct {
   int optind, opterr, optopt, opt_used;
   int opt_start, opt_calls, opt_seen;   /* the parse: where it began, calls so far, optind after the last */
@@ -42,11 +57,12 @@ typedef struct {
   int f, b;                         /* its front and rear positions */
   unsigned short x48[3], old48[3];  /* drand48's */
   char *strtok_at;
+  handlers at_exit, tls_dtors;      /* run when the rank ends */
 } rank_libc;
 
 static rank_libc *ranks;   /* [n], one per rank of the run */
 static int nranks;
-static rank_libc outside;  /* calls outside any rank (a constructor) */
+static rank_libc outside;  /* calls outside any rank */
 static tsmpi_exit_fn on_exit_fn;
 static tsmpi_abort_fn on_abort_fn;
 
@@ -62,15 +78,19 @@ static void init_one(rank_libc *s) {
 
 void tsmpi_libc_setup(int n, tsmpi_exit_fn fn, tsmpi_abort_fn afn) {
   free(ranks);
-  ranks = xcalloc((size_t)n, sizeof *ranks);
+  ranks = xmallocarray((size_t)n, sizeof *ranks);
   nranks = n;
-  for (int i = 0; i < n; i++) init_one(&ranks[i]);
   init_one(&outside);
+  for (int i = 0; i < n; i++) ranks[i] = outside;
   on_exit_fn = fn;
   on_abort_fn = afn;
 }
 
 void tsmpi_libc_free(void) {
+  for (int i = 0; i < nranks; i++) {
+    free(ranks[i].at_exit.h);
+    free(ranks[i].tls_dtors.h);
+  }
   free(ranks);
   ranks = NULL;
   nranks = 0;
@@ -84,10 +104,15 @@ static rank_libc *me(void) {
 
 /* ==== getopt ============================================================== */
 
-int *tsmpi_optind(void) { return &me()->optind; }
-char **tsmpi_optarg(void) { return &me()->optarg; }
-int *tsmpi_opterr(void) { return &me()->opterr; }
-int *tsmpi_optopt(void) { return &me()->optopt; }
+void *tsmpi_libc_var(int r, int var) {
+  rank_libc *s = r >= 0 && r < nranks ? &ranks[r] : &outside;
+  switch (var) {
+  case TSMPI_OPTIND: return &s->optind;
+  case TSMPI_OPTARG: return &s->optarg;
+  case TSMPI_OPTERR: return &s->opterr;
+  default: return &s->optopt;
+  }
+}
 
 /* Which of getopt, getopt_long and getopt_long_only. */
 enum { G_SHORT, G_LONG, G_LONG_ONLY };
@@ -133,7 +158,7 @@ static int any_getopt(int kind, int argc, char *const *argv, const char *shortop
   return c;
 }
 
-int tsmpi_getopt(int argc, char *const *argv, const char *shortopts) {
+static int r_getopt(int argc, char *const *argv, const char *shortopts) {
   return any_getopt(G_SHORT, argc, argv, shortopts, NULL, NULL);
 }
 
@@ -141,7 +166,7 @@ int tsmpi_getopt(int argc, char *const *argv, const char *shortopts) {
  * _GNU_SOURCE), binds getopt to the symbol __posix_getopt (which stops at
  * the first operand): a program built so calls this, which tilesim-mpirun
  * exports in glibc's place. */
-int __posix_getopt(int argc, char *const *argv, const char *shortopts) {
+static int r_posix_getopt(int argc, char *const *argv, const char *shortopts) {
   if (shortopts[0] == '+' || shortopts[0] == '-') return any_getopt(G_SHORT, argc, argv, shortopts, NULL, NULL);
   size_t n = strlen(shortopts);
   char *plus = xmalloc(n + 2);
@@ -152,12 +177,12 @@ int __posix_getopt(int argc, char *const *argv, const char *shortopts) {
   return c;
 }
 
-int tsmpi_getopt_long(int argc, char *const *argv, const char *shortopts, const struct option *longopts,
+static int r_getopt_long(int argc, char *const *argv, const char *shortopts, const struct option *longopts,
                       int *longind) {
   return any_getopt(G_LONG, argc, argv, shortopts, longopts, longind);
 }
 
-int tsmpi_getopt_long_only(int argc, char *const *argv, const char *shortopts, const struct option *longopts,
+static int r_getopt_long_only(int argc, char *const *argv, const char *shortopts, const struct option *longopts,
                            int *longind) {
   return any_getopt(G_LONG_ONLY, argc, argv, shortopts, longopts, longind);
 }
@@ -190,25 +215,25 @@ static void seed_random(rank_libc *s, uint32_t seed) {
   for (int k = 0; k < 10 * R_DEG; k++) next_random(s);
 }
 
-int tsmpi_rand(void) { return (int)next_random(me()); }
-void tsmpi_srand(unsigned seed) { seed_random(me(), seed); }
-long tsmpi_random(void) { return (long)next_random(me()); }
-void tsmpi_srandom(unsigned seed) { seed_random(me(), seed); }
+static int r_rand(void) { return (int)next_random(me()); }
+static void r_srand(unsigned seed) { seed_random(me(), seed); }
+static long r_random(void) { return (long)next_random(me()); }
+static void r_srandom(unsigned seed) { seed_random(me(), seed); }
 
 /* ==== drand48 ============================================================= */
 
-double tsmpi_drand48(void) { return erand48(me()->x48); }
-long tsmpi_lrand48(void) { return nrand48(me()->x48); }
-long tsmpi_mrand48(void) { return jrand48(me()->x48); }
+static double r_drand48(void) { return erand48(me()->x48); }
+static long r_lrand48(void) { return nrand48(me()->x48); }
+static long r_mrand48(void) { return jrand48(me()->x48); }
 
-void tsmpi_srand48(long seed) {
+static void r_srand48(long seed) {
   rank_libc *s = me();
   s->x48[0] = 0x330e;
   s->x48[1] = (unsigned short)(seed & 0xffff);
   s->x48[2] = (unsigned short)((seed >> 16) & 0xffff);
 }
 
-unsigned short *tsmpi_seed48(unsigned short seed16v[3]) {
+static unsigned short *r_seed48(unsigned short seed16v[3]) {
   rank_libc *s = me();
   memcpy(s->old48, s->x48, sizeof s->old48);
   memcpy(s->x48, seed16v, sizeof s->x48);
@@ -217,7 +242,7 @@ unsigned short *tsmpi_seed48(unsigned short seed16v[3]) {
 
 /* ==== strtok ============================================================== */
 
-char *tsmpi_strtok(char *restrict str, const char *restrict delim) { return strtok_r(str, delim, &me()->strtok_at); }
+static char *r_strtok(char *restrict str, const char *restrict delim) { return strtok_r(str, delim, &me()->strtok_at); }
 
 /* ==== clocks and sleeps: the simulated machine's ========================== */
 
@@ -229,14 +254,14 @@ static int now(double *t) {
   return 1;
 }
 
-time_t tsmpi_time(time_t *t) {
+static time_t r_time(time_t *t) {
   double s;
   time_t v = now(&s) ? (time_t)s : time(NULL);
   if (t) *t = v;
   return v;
 }
 
-int tsmpi_gettimeofday(struct timeval *restrict tv, void *restrict tz) {
+static int r_gettimeofday(struct timeval *restrict tv, void *restrict tz) {
   double s;
   if (!now(&s)) return gettimeofday(tv, tz);
   if (tv) {
@@ -246,7 +271,7 @@ int tsmpi_gettimeofday(struct timeval *restrict tv, void *restrict tz) {
   return 0;
 }
 
-int tsmpi_clock_gettime(clockid_t id, struct timespec *tp) {
+static int r_clock_gettime(clockid_t id, struct timespec *tp) {
   double s;
   if (!now(&s)) return clock_gettime(id, tp);
   if (tp) {
@@ -256,7 +281,7 @@ int tsmpi_clock_gettime(clockid_t id, struct timespec *tp) {
   return 0;
 }
 
-clock_t tsmpi_clock(void) {
+static clock_t r_clock(void) {
   double s;
   return now(&s) ? (clock_t)(s * CLOCKS_PER_SEC) : clock();
 }
@@ -266,36 +291,95 @@ static void nap(double seconds) {
   if (self) mp_sleep(self, seconds);
 }
 
-unsigned tsmpi_sleep(unsigned seconds) {
+static unsigned r_sleep(unsigned seconds) {
   if (!mp_self()) return sleep(seconds);
   nap(seconds);
   return 0;
 }
 
-int tsmpi_usleep(unsigned us) {
+static int r_usleep(unsigned us) {
   if (!mp_self()) return usleep(us);
   nap((double)us * 1e-6);
   return 0;
 }
 
-int tsmpi_nanosleep(const struct timespec *req, struct timespec *rem) {
+static int r_nanosleep(const struct timespec *req, struct timespec *rem) {
   if (!mp_self()) return nanosleep(req, rem);
   if (req) nap((double)req->tv_sec + (double)req->tv_nsec * 1e-9);
   if (rem) rem->tv_sec = 0, rem->tv_nsec = 0;
   return 0;
 }
 
+/* ==== exit handlers ======================================================= */
+
+static void add(handlers *hs, int kind, void (*fn)(void), void *arg, void *dso) {
+  if (hs->n == hs->cap) hs->h = xreallocarray(hs->h, (size_t)(hs->cap = hs->cap ? 2 * hs->cap : 8), sizeof *hs->h);
+  hs->h[hs->n++] = (handler){kind, fn, arg, dso};
+}
+
+/* The last registered first, each taken off before it runs (so that one
+ * which registers another, or calls exit, sees the rest as libc would);
+ * only dso's when dso is not NULL (__cxa_finalize). */
+static void run(handlers *hs, int status, void *dso) {
+  for (;;) {
+    int i = hs->n - 1;
+    while (i >= 0 && dso && hs->h[i].dso != dso) i--;
+    if (i < 0) break;
+    handler h = hs->h[i];
+    memmove(&hs->h[i], &hs->h[i + 1], (size_t)(hs->n - i - 1) * sizeof *hs->h);
+    hs->n--;
+    if (h.kind == H_ATEXIT) h.fn();
+    else if (h.kind == H_ONEXIT) ((void (*)(int, void *))h.fn)(status, h.arg);
+    else ((void (*)(void *))h.fn)(h.arg);
+  }
+}
+
+void tsmpi_libc_run_exit(int r, int status) {
+  rank_libc *s = r >= 0 && r < nranks ? &ranks[r] : &outside;
+  run(&s->tls_dtors, status, NULL);
+  run(&s->at_exit, status, NULL);
+}
+
+static int r_atexit(void (*fn)(void)) {
+  add(&me()->at_exit, H_ATEXIT, fn, NULL, NULL);
+  return 0;
+}
+
+static int r_on_exit(void (*fn)(int, void *), void *arg) {
+  add(&me()->at_exit, H_ONEXIT, (void (*)(void))fn, arg, NULL);
+  return 0;
+}
+
+static int r_cxa_atexit(void (*fn)(void *), void *arg, void *dso) {
+  add(&me()->at_exit, H_CXA, (void (*)(void))fn, arg, dso);
+  return 0;
+}
+
+static void r_cxa_finalize(void *dso) { run(&me()->at_exit, 0, dso); }
+
+static int r_cxa_thread_atexit(void (*fn)(void *), void *obj, void *dso) {
+  add(&me()->tls_dtors, H_CXA, (void (*)(void))fn, obj, dso);
+  return 0;
+}
+
 /* ==== ending ============================================================== */
 
-void tsmpi_exit(int status) {
+static _Noreturn void end_rank(int status, int run_handlers) {
   mp *self = mp_self();
-  if (!self) exit(status);
+  if (!self) {
+    if (run_handlers) exit(status);
+    _exit(status);
+  }
   fflush(stdout);
-  if (on_exit_fn) on_exit_fn(self, status);   /* the runner's: may stop the run */
+  if (on_exit_fn) on_exit_fn(self, status, run_handlers);   /* the runner's: may stop the run */
+  fflush(stdout);
   mp_exit(self);
 }
 
-void tsmpi_abort(void) {
+static void r_exit(int status) { end_rank(status, 1); }
+static void r__exit(int status) { end_rank(status, 0); }
+
+static void r_abort(void) {
   mp *self = mp_self();
   if (!self) abort();
   char why[80];
@@ -305,7 +389,42 @@ void tsmpi_abort(void) {
   mp_abort(self, 134, why);
 }
 
-pid_t tsmpi_getpid(void) {
+static pid_t r_getpid(void) {
   mp *self = mp_self();
   return self ? (pid_t)(100000 + mp_rank(self)) : getpid();
+}
+
+/* ==== the names bound here ================================================ */
+
+#define F(name, fn) {name, (tsmpi_any_fn)(fn), -1}
+#define V(name, var) {name, NULL, var}
+static const struct {
+  const char *name;
+  tsmpi_any_fn fn;
+  int var;
+} bound[] = {
+    F("getopt", r_getopt), F("getopt_long", r_getopt_long), F("getopt_long_only", r_getopt_long_only),
+    F("__posix_getopt", r_posix_getopt), V("optind", TSMPI_OPTIND), V("optarg", TSMPI_OPTARG),
+    V("opterr", TSMPI_OPTERR), V("optopt", TSMPI_OPTOPT),
+    F("rand", r_rand), F("srand", r_srand), F("random", r_random), F("srandom", r_srandom), F("drand48", r_drand48),
+    F("lrand48", r_lrand48), F("mrand48", r_mrand48), F("srand48", r_srand48), F("seed48", r_seed48),
+    F("strtok", r_strtok),
+    F("time", r_time), F("gettimeofday", r_gettimeofday), F("clock_gettime", r_clock_gettime), F("clock", r_clock),
+    F("sleep", r_sleep), F("usleep", r_usleep), F("nanosleep", r_nanosleep),
+    F("atexit", r_atexit), F("on_exit", r_on_exit), F("__cxa_atexit", r_cxa_atexit),
+    F("__cxa_finalize", r_cxa_finalize), F("__cxa_thread_atexit", r_cxa_thread_atexit),
+    F("__cxa_thread_atexit_impl", r_cxa_thread_atexit),
+    F("exit", r_exit), F("_exit", r__exit), F("_Exit", r__exit), F("abort", r_abort), F("getpid", r_getpid),
+};
+#undef F
+#undef V
+
+int tsmpi_libc_bind(const char *name, tsmpi_any_fn *fn, int *var) {
+  for (size_t i = 0; i < sizeof bound / sizeof *bound; i++)
+    if (strcmp(bound[i].name, name) == 0) {
+      *fn = bound[i].fn;
+      *var = bound[i].var;
+      return 1;
+    }
+  return 0;
 }

@@ -1,68 +1,65 @@
-/* libc.h -- the libc a rank of an MPI program sees through tilesim_mpi.h:
- * its own getopt, rand, drand48 and strtok state; the simulated machine's
- * clocks and sleeps; exit and abort that end a rank or the run.
+/* libc.h -- the libc a rank of an MPI program sees: its own getopt, rand,
+ * drand48 and strtok state and its own exit handlers; the simulated
+ * machine's clocks and sleeps; exit, _exit and abort that end a rank or the
+ * run; getpid, a number of its own.
  *
- * The functions are the targets of tilesim_mpi.h's macros: tilesim-mpirun
- * exports them to the programs it loads.  Each works on the calling rank's
- * state (mp_self); called outside any rank (a constructor of the program),
+ * Nothing here is named in the program's headers: when tilesim-mpirun loads
+ * the program (mpirun/loader.h), each reference of its code to one of libc's
+ * names below is bound to this module's function instead, and each
+ * reference to getopt's variables (optind, optarg, opterr, optopt) to the
+ * rank's own variable, so that the program's source means what it says and
+ * any name it uses for its own purposes stays its own:
+ *   getopt, getopt_long, getopt_long_only, __posix_getopt, optind, optarg,
+ *     opterr, optopt;
+ *   rand, srand, random, srandom, drand48, lrand48, mrand48, srand48, seed48
+ *     (glibc's sequences, each rank its own);
+ *   strtok (its own position);
+ *   time, gettimeofday, clock_gettime, clock: simulated time (seconds from
+ *     the run's start; clock counts it as processor time);
+ *   sleep, usleep, nanosleep: the rank's clock moves on, its processor free;
+ *   atexit, on_exit, __cxa_atexit, __cxa_finalize, __cxa_thread_atexit,
+ *     __cxa_thread_atexit_impl: the rank's own handlers, run when it ends;
+ *   exit: ends this rank (its handlers first); _exit, _Exit: without them;
+ *   abort: stops the run; getpid: 100000 + the rank, the same on every run.
+ * Each works on the calling rank's state (mp_self); called outside any rank,
  * it behaves as libc's own. */
 #ifndef TSMPI_LIBC_H
 #define TSMPI_LIBC_H
 
-#include <getopt.h>
-#include <sys/time.h>
-#include <sys/types.h>
-#include <time.h>
-
 #include "mp.h"
 
-/* A rank called exit(status) (tsmpi_exit): the runner's say before the rank
- * ends (it may stop the run with mp_abort instead). */
-typedef void (*tsmpi_exit_fn)(mp *self, int status);
+/* A rank called exit(status) or _exit(status) (run_handlers: exit, which
+ * runs its handlers first): the runner's say before the rank ends (it may
+ * stop the run with mp_abort instead).  The runner runs the rank's handlers
+ * (tsmpi_libc_run_exit) and the program's destructors when run_handlers. */
+typedef void (*tsmpi_exit_fn)(mp *self, int status, int run_handlers);
 
-/* A rank called abort() (tsmpi_abort): the runner's last word before the
- * run stops. */
+/* A rank called abort(): the runner's last word before the run stops. */
 typedef void (*tsmpi_abort_fn)(mp *self);
 
 /* State for n ranks, all as a fresh process has it; on_exit and on_abort
- * (or NULL) hear of every exit and abort.  Call before a run;
- * tsmpi_libc_free after it. */
+ * (or NULL) hear of every exit and abort.  Call before loading the program
+ * (its variables' addresses are bound then); tsmpi_libc_free after the run. */
 void tsmpi_libc_setup(int n, tsmpi_exit_fn on_exit, tsmpi_abort_fn on_abort);
 void tsmpi_libc_free(void);
 
-int *tsmpi_optind(void);
-char **tsmpi_optarg(void);
-int *tsmpi_opterr(void);
-int *tsmpi_optopt(void);
-int tsmpi_getopt(int argc, char *const *argv, const char *shortopts);
-int __posix_getopt(int argc, char *const *argv, const char *shortopts);   /* glibc's POSIX-mode getopt */
-int tsmpi_getopt_long(int argc, char *const *argv, const char *shortopts, const struct option *longopts,
-                      int *longind);
-int tsmpi_getopt_long_only(int argc, char *const *argv, const char *shortopts, const struct option *longopts,
-                           int *longind);
+/* The per-rank variables a program may name. */
+enum { TSMPI_OPTIND, TSMPI_OPTARG, TSMPI_OPTERR, TSMPI_OPTOPT, TSMPI_NVARS };
 
-int tsmpi_rand(void);
-void tsmpi_srand(unsigned seed);
-long tsmpi_random(void);
-void tsmpi_srandom(unsigned seed);
-double tsmpi_drand48(void);
-long tsmpi_lrand48(void);
-long tsmpi_mrand48(void);
-void tsmpi_srand48(long seed);
-unsigned short *tsmpi_seed48(unsigned short seed16v[3]);
+/* What the program's reference to `name` binds to in libc's place: 1 with
+ * *fn (a function of this module, to be called with libc's function's
+ * arguments) or with *fn NULL and *var (a per-rank variable, TSMPI_OPT*);
+ * 0 for a name that stays libc's. */
+typedef void (*tsmpi_any_fn)(void);
+int tsmpi_libc_bind(const char *name, tsmpi_any_fn *fn, int *var);
 
-char *tsmpi_strtok(char *restrict str, const char *restrict delim);
+/* Rank r's variable var (after tsmpi_libc_setup): where its GOT points. */
+void *tsmpi_libc_var(int r, int var);
 
-time_t tsmpi_time(time_t *t);
-int tsmpi_gettimeofday(struct timeval *restrict tv, void *restrict tz);
-int tsmpi_clock_gettime(clockid_t id, struct timespec *tp);
-clock_t tsmpi_clock(void);
-unsigned tsmpi_sleep(unsigned seconds);
-int tsmpi_usleep(unsigned us);   /* useconds_t: unsigned int */
-int tsmpi_nanosleep(const struct timespec *req, struct timespec *rem);
-
-_Noreturn void tsmpi_exit(int status);
-_Noreturn void tsmpi_abort(void);
-pid_t tsmpi_getpid(void);
+/* Run rank r's exit handlers, each once: its thread-local destructors, then
+ * those of atexit, on_exit (given status) and __cxa_atexit, the last
+ * registered first, as libc's exit does (a handler may register more).  On
+ * the rank's own thread or coroutine. */
+void tsmpi_libc_run_exit(int r, int status);
 
 #endif

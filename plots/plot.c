@@ -22,6 +22,7 @@
 #include "dicom.h"
 #include "mesh.h"
 #include "plot_claims.h"
+#include "progname.h"
 #include "rtstruct.h"
 #include "pool.h"
 #include "stack.h"
@@ -44,13 +45,6 @@ static const char any_usage[] =
     "plot claims MAP.csv ... -o OUT.svg   "
     "(plot --help: every option)\n";
 
-/* The name the program was run by (plot in the source tree, tilesim-plot
- * installed), for --help. */
-static const char *progname(const char *argv0) {
-  const char *slash = argv0 ? strrchr(argv0, '/') : NULL;
-  return slash ? slash + 1 : argv0 && *argv0 ? argv0 : "plot";
-}
-
 static void help(const char *name) {
   printf("usage: %s lines CSV -x COL -y COL[,COL...] [--series COL[,COL...]] [--where COL=VALUE]...\n"
         "            [--labels A,B,...] [--title T] [--xlabel T] [--ylabel T] [--yzero] -o OUT.svg\n"
@@ -62,8 +56,8 @@ static void help(const char *name) {
         "the claims map.\n"
         "\n"
         "lines: one line per value of the --series column and per y column (up to 8; a\n"
-        "second y column dashed), from the rows that match every --where (up to 16),\n"
-        "points sorted by x.\n"
+        "value's lines share a colour and marker, later y columns dashed), from the rows\n"
+        "that match every --where (up to 16), points sorted by x.\n"
         "  -x COL             the x column\n"
         "  -y COL[,COL...]    the y columns, at most 8\n"
         "  --series COL[,COL...]  one line per value of COL (up to 4 columns: per\n"
@@ -89,8 +83,9 @@ static void help(const char *name) {
         "  -v, --verbose      every note on the input in full, as tile -v\n"
         "  --title T          the title\n"
         "  -o OUT.svg         the picture\n"
-        "claims: a claims map (bench --claims-map) as a grid: a panel per configuration\n"
-        "less its m, the claims down, m/c across on a log scale, held, failed or n/a.\n"
+        "claims: a claims map (tilesim-bench --claims-map) as a grid: a panel per\n"
+        "configuration less its m, the claims down, m/c across on a log scale, held,\n"
+        "failed or n/a.\n"
         "  --title T          the title\n"
         "  -o OUT.svg         the picture\n"
         "\n"
@@ -121,17 +116,25 @@ static int names(const char *opt, const char *val, int max, int *n, char *err, s
   return -1;
 }
 
+/* Can out be written?  Asked before any work: 0, or 1 after a message. */
+static int cannot_write(const char *out) {
+  char err[400];
+  if (atomicfile_check(out, err, sizeof err) == 0) return 0;
+  progname_eprintf("plot: %s\n", err);
+  return 1;
+}
+
 /* Write an SVG through draw(f, ud) to out, atomically; 0, or 1 after a message. */
 static int write_svg(const char *out, void (*draw)(FILE *f, void *ud), void *ud) {
   char err[400];
   atomicfile af;
   if (atomicfile_open(&af, out, "w", err, sizeof err) != 0) {
-    fprintf(stderr, "plot: %s\n", err);
+    progname_eprintf("plot: %s\n", err);
     return 1;
   }
   draw(af.f, ud);
   if (atomicfile_close(&af, 1, err, sizeof err) != 0) {
-    fprintf(stderr, "plot: %s\n", err);
+    progname_eprintf("plot: %s\n", err);
     return 1;
   }
   return 0;
@@ -203,14 +206,15 @@ static int lines(int argc, char **argv) {
     else if (strcmp(a, "--title") == 0) o.title = v;
     else if (strcmp(a, "--xlabel") == 0) o.xlabel = v;
     else if (strcmp(a, "--ylabel") == 0) o.ylabel = v;
-    else bad = args_name(a, v, "a file name", 0, err, sizeof err), out = v;
+    else bad = svg_name(a, v, err, sizeof err), out = v;
     if (bad) return usage(lines_usage, err, NULL);
     i++;
   }
   if (!xc || !yc || !out) return usage(lines_usage, "lines needs -x, -y and -o", NULL);
+  if (cannot_write(out)) return 1;
   csvtab t;
   if (csvtab_read(in, &t, err, sizeof err) != 0) {
-    fprintf(stderr, "plot: %s\n", err);
+    progname_eprintf("plot: %s\n", err);
     return 1;
   }
   int xi = csvtab_col(&t, xc), wi[16], si[4], nsc = 0, sbad = 0;
@@ -225,8 +229,22 @@ static int lines(int argc, char **argv) {
   int ny = 0, yi[8];
   snprintf(ybuf, sizeof ybuf, "%s", yc);
   for (char *p = strtok(ybuf, ","); p && ny < 8; p = strtok(NULL, ",")) ycols[ny] = p, yi[ny++] = csvtab_col(&t, p);
-  int bad = xi < 0 || sbad || (sc && nsc == 0);
-  for (int k = 0; k < ny; k++) bad |= yi[k] < 0;
+  /* Every column named that the header lacks, by its option:
+   * "no column 'nosuch' (-y), 'x' (--where)". */
+  char missing[1024] = "";
+  size_t ml = 0;
+#define MISSING(name, opt) \
+  ml += (size_t)snprintf(missing + ml, ml < sizeof missing ? sizeof missing - ml : 0, "%s'%.60s' (%s)", \
+                         ml ? ", " : "", name, opt)
+  if (xi < 0) MISSING(xc, "-x");
+  for (int k = 0; k < ny; k++)
+    if (yi[k] < 0) MISSING(ycols[k], "-y");
+  if (sc) {
+    char sb2[256];
+    snprintf(sb2, sizeof sb2, "%s", sc);
+    for (char *p = strtok(sb2, ","); p; p = strtok(NULL, ","))
+      if (csvtab_col(&t, p) < 0) MISSING(p, "--series");
+  }
   char wname[16][64];
   const char *wval[16];
   for (int k = 0; k < nwhere; k++) {
@@ -234,10 +252,11 @@ static int lines(int argc, char **argv) {
     snprintf(wname[k], sizeof wname[k], "%.*s", (int)(eq - where[k]), where[k]);
     wval[k] = eq + 1;
     wi[k] = csvtab_col(&t, wname[k]);
-    bad |= wi[k] < 0;
+    if (wi[k] < 0) MISSING(wname[k], "--where");
   }
-  if (bad) {
-    fprintf(stderr, "plot: %s: a column named in -x, -y, --series or --where is not in its header\n", in);
+#undef MISSING
+  if (ml > 0 || sbad || (sc && nsc == 0)) {
+    progname_eprintf("plot: %s: its header has no column %s\n", in, ml ? missing : "named in --series");
     csvtab_free(&t);
     return 1;
   }
@@ -288,7 +307,7 @@ static int lines(int argc, char **argv) {
       else if (sc && nsc > 1) snprintf(names[i], sizeof names[i], "%s", sv[a]);
       else if (sc) snprintf(names[i], sizeof names[i], "%s=%s", sc, sv[a]);
       else snprintf(names[i], sizeof names[i], "%s", yname);
-      s[i] = (svgchart_series){names[i], n, x, y, k > 0};
+      s[i] = (svgchart_series){names[i], n, x, y, k, a};   /* a size's columns: one colour, dashes */
     }
   o.xint = 1;
   chart c = {&o, s, ns};
@@ -305,7 +324,7 @@ static void say_lines(const char *text) {
   for (const char *p = text; *p;) {
     const char *e = strchr(p, '\n');
     size_t n = e ? (size_t)(e - p) : strlen(p);
-    fprintf(stderr, "plot: %.*s\n", (int)n, p);
+    progname_eprintf("plot: %.*s\n", (int)n, p);
     p += n + (e != NULL);
   }
 }
@@ -329,7 +348,7 @@ static int surface(int argc, char **argv) {
         strcmp(a, "--join") != 0 && strcmp(a, "--thickness") != 0)
       return usage(surface_usage, a[0] == '-' ? "unknown option" : "unexpected argument", a);
     if (!v) return usage(surface_usage, "an option needs a value", a);
-    if (strcmp(a, "-o") == 0) bad = args_name(a, v, "a file name", 0, err, sizeof err), out = v;
+    if (strcmp(a, "-o") == 0) bad = svg_name(a, v, err, sizeof err), out = v;
     else if (strcmp(a, "--title") == 0) title = v;
     else if (strcmp(a, "--join") == 0) bad = stack_parse_join(a, v, &join, &join_dist, err, sizeof err) != 0;
     else if (strcmp(a, "--thickness") == 0) bad = stack_parse_thickness(a, v, &thickness, err, sizeof err) != 0;
@@ -341,25 +360,26 @@ static int surface(int argc, char **argv) {
     i++;
   }
   if (!out) return usage(surface_usage, "surface needs -o", NULL);
+  if (cannot_write(out)) return 1;
   contour_stack s;
   char name[600], title_roi[600];
   rtstruct rs;
   int roi = -1;
   if (dicom_sniff_file(in)) {
     if (!roikey) {
-      fprintf(stderr, "plot: %s: a DICOM RT structure set: name the ROI to draw with --roi (./tile %s --list "
+      progname_eprintf("plot: %s: a DICOM RT structure set: name the ROI to draw with --roi (tile %s --list "
               "lists them)\n", in, in);
       return 1;
     }
     if (rtstruct_read(in, &rs, err, sizeof err) != 0) {
-      fprintf(stderr, "plot: %s\n", err);
+      progname_eprintf("plot: %s\n", err);
       return 1;
     }
     if ((roi = rtstruct_find(&rs, roikey, err, sizeof err)) < 0 || rtstruct_roi_check(&rs, roi, err, sizeof err) != 0 ||
         rtstruct_roi_stack(&rs, roi,
                            (flags & CONTOUR_SKIP_BAD ? RTSTRUCT_SKIP_BAD : 0) | (flags & CONTOUR_UNION ? RTSTRUCT_UNION : 0) |
                                (flags & CONTOUR_VERBOSE ? RTSTRUCT_VERBOSE : 0) | RTSTRUCT_ONE_SLICE,
-                           &s, stderr, "plot", err, sizeof err) != 0) {
+                           &s, stderr, progname_as("plot"), err, sizeof err) != 0) {
       say_lines(err);
       rtstruct_free(&rs);
       return 1;
@@ -370,7 +390,7 @@ static int surface(int argc, char **argv) {
     snprintf(title_roi, sizeof title_roi, "%s: ROI %d '%s'", in, rs.roi[roi].number, rs.roi[roi].name);
   } else if (roikey) {
     return usage(surface_usage, "--roi is for a DICOM RT structure set", in);
-  } else if (contour_read_flags(in, flags | CONTOUR_ONE_SLICE, &s, NULL, "plot", err, sizeof err) != 0) {
+  } else if (contour_read_flags(in, flags | CONTOUR_ONE_SLICE, &s, NULL, progname_as("plot"), err, sizeof err) != 0) {
     say_lines(err);
     return 1;
   } else
@@ -382,7 +402,7 @@ static int surface(int argc, char **argv) {
   char *held = NULL;
   size_t heldlen = 0;
   FILE *notes = open_memstream(&held, &heldlen);
-  stack_options so = {kind, caps, 0, pool_cores(), NULL, notes ? notes : stderr, "plot", NULL, NULL,
+  stack_options so = {kind, caps, 0, pool_cores(), NULL, notes ? notes : stderr, progname_as("plot"), NULL, NULL,
                       join, join_dist, thickness};
   stack_surface *ss;
   int bad = stack_tile(&s, name, &so, &ss, err, sizeof err) != 0;
@@ -413,11 +433,14 @@ static int surface(int argc, char **argv) {
 }
 
 int main(int argc, char **argv) {
+  /* Its messages and --help name it as it was run: plot in the source tree
+   * (build/plot), tilesim-plot installed (util/progname.h). */
+  progname_init("plot", argc > 0 ? argv[0] : NULL);
   if (argc >= 2 && strcmp(argv[1], "lines") == 0) return lines(argc, argv);
   if (argc >= 2 && strcmp(argv[1], "surface") == 0) return surface(argc, argv);
   if (argc >= 2 && strcmp(argv[1], "claims") == 0) return plot_claims(argc, argv);
   if (argc >= 2 && (strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "--help") == 0)) {
-    help(progname(argv[0]));
+    help(progname());
     return 0;
   }
   return usage(any_usage, argc >= 2 ? "unknown mode, use lines, surface or claims"

@@ -18,6 +18,7 @@
 #include "args.h"
 #include "atomicfile.h"
 #include "csvtab.h"
+#include "progname.h"
 #include "sim.h"
 #include "svgchart.h"
 #include "xmem.h"
@@ -178,14 +179,14 @@ static int usage(const char *why, const char *val) {
 int plot_claims(int argc, char **argv) {
   const char *in = argc > 2 ? argv[2] : NULL, *out = NULL, *title = "Where the paper's claims hold";
   char msg[400];
-  if (!in || !in[0] || in[0] == '-') return usage("no claims map (bench --claims-map -o MAP.csv)", NULL);
+  if (!in || !in[0] || in[0] == '-') return usage("no claims map (tilesim-bench --claims-map -o MAP.csv)", NULL);
   for (int i = 3; i < argc; i += 2) {
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
     if (strcmp(a, "-o") != 0 && strcmp(a, "--title") != 0)
       return usage(a[0] == '-' ? "unknown option" : "unexpected argument", a);
     if (!v) return usage("an option needs a value", a);
     if (strcmp(a, "-o") == 0) {
-      if (args_name(a, v, "a file name", 0, msg, sizeof msg) != 0) return usage(msg, NULL);
+      if (svg_name(a, v, msg, sizeof msg) != 0) return usage(msg, NULL);
       out = v;
     } else {
       title = v;
@@ -195,7 +196,7 @@ int plot_claims(int argc, char **argv) {
   char err[400];
   csvtab t;
   if (csvtab_read(in, &t, err, sizeof err) != 0) {
-    fprintf(stderr, "plot: %s\n", err);
+    progname_eprintf("plot: %s\n", err);
     return 1;
   }
   grid g;
@@ -209,7 +210,7 @@ int plot_claims(int argc, char **argv) {
     bad |= (g.cc[c] = csvtab_col(&t, name)) < 0;
   }
   if (bad) {
-    fprintf(stderr, "plot: %s: not a claims map (bench --claims-map): no m_over_c, claim1..claim7 or "
+    progname_eprintf("plot: %s: not a claims map (tilesim-bench --claims-map): no m_over_c, claim1..claim7 or "
                     "configuration columns\n", in);
     csvtab_free(&t);
     return 1;
@@ -230,7 +231,7 @@ int plot_claims(int argc, char **argv) {
     g.p[q].rows[g.p[q].n++] = r;
   }
   if (g.np == 0) {
-    fprintf(stderr, "plot: %s: no configuration with an m/c above 0\n", in);
+    progname_eprintf("plot: %s: no configuration with an m/c above 0\n", in);
     free(g.p);
     csvtab_free(&t);
     return 1;
@@ -250,12 +251,12 @@ int plot_claims(int argc, char **argv) {
   int rc = 0;
   atomicfile af;
   if (atomicfile_open(&af, out, "w", err, sizeof err) != 0) {
-    fprintf(stderr, "plot: %s\n", err);
+    progname_eprintf("plot: %s\n", err);
     rc = 1;
   } else {
     draw(af.f, &g);
     if (atomicfile_close(&af, 1, err, sizeof err) != 0) {
-      fprintf(stderr, "plot: %s\n", err);
+      progname_eprintf("plot: %s\n", err);
       rc = 1;
     }
   }

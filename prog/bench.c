@@ -16,6 +16,7 @@
 #include "bench_stack.h"
 #include "bench_tiler.h"
 #include "bench_union.h"
+#include "progname.h"
 #ifdef TILESIM_MPI
 #include "run_mpi.h"
 #endif
@@ -98,13 +99,6 @@ static const mode modes[] = {
 };
 enum { NMODES = sizeof modes / sizeof *modes };
 
-/* The name the program was run by (bench in the source tree, tilesim-bench
- * installed), for --help. */
-static const char *progname(const char *argv0) {
-  const char *slash = argv0 ? strrchr(argv0, '/') : NULL;
-  return slash ? slash + 1 : argv0 && *argv0 ? argv0 : "bench";
-}
-
 static void help_tail(void) {
   puts("Exit status: 0 done, 1 bad input or a failed run (no data row is printed for\n"
        "it), 2 bad usage (one line saying what the option takes, and the usage line).\n"
@@ -125,7 +119,10 @@ static void help(const char *name) {
 static int is_help(const char *a) { return strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0; }
 
 static int bench_main(int argc, char **argv) {
-  const char *name = progname(argc > 0 ? argv[0] : NULL);
+  /* Its messages and --help name it as it was run: bench in the source
+   * tree, tilesim-bench installed (util/progname.h). */
+  progname_init("bench", argc > 0 ? argv[0] : NULL);
+  const char *name = progname();
   if (argc >= 2 && is_help(argv[1])) {
     help(name);
     return 0;

@@ -52,6 +52,7 @@
 #include "bench_paper.h"
 #include "cpuload.h"
 #include "par_slave.h"
+#include "progname.h"
 #include "progress.h"
 #include "run.h"
 #include "threads.h"
@@ -153,17 +154,17 @@ static double slowdown(const vec2 *A, const vec2 *B, int n, int repeat, double *
     }
   }
   double sxy = 0, sxx = 0;
-  fprintf(stderr, "bench: busy cores: the serial solver (%d points) k times at once, each copy's mean time"
+  progname_eprintf("bench: busy cores: the serial solver (%d points) k times at once, each copy's mean time"
                   " (fastest of %d):\n", n, repeat);
   for (int i = 0; i < nk && t[0] > 0; i++) {
     if (t[i] < 0) continue;
     double f = t[i] / t[0], x = ks[i] - 1;
     sxy += x * (f - 1), sxx += x * x;
-    fprintf(stderr, "bench:   k = %2d: %.6f s, %.3f times one alone\n", ks[i], t[i], f);
+    progname_eprintf("bench:   k = %2d: %.6f s, %.3f times one alone\n", ks[i], t[i], f);
   }
   *spin_slow = 0;
   if (spun > 0 && t[0] > 0) {
-    fprintf(stderr, "bench:   one copy beside %d spinning threads: %.6f s, %.3f times alone\n", cpus - 1, spun,
+    progname_eprintf("bench:   one copy beside %d spinning threads: %.6f s, %.3f times alone\n", cpus - 1, spun,
             spun / t[0]);
     double f = (spun / t[0] - 1) / (cpus - 1);
     *spin_slow = f > 0 ? f : 0;
@@ -223,7 +224,7 @@ int bench_calibrate(int argc, char **argv) {
   /* The micro-benchmarks: messages, then busy cores. */
   micro_msgs mm;
   if (micro_messages(messages, repeat, &mm, err, sizeof err) != 0) {
-    fprintf(stderr, "bench: the message benchmarks failed: %s\n", err);
+    progname_eprintf("bench: the message benchmarks failed: %s\n", err);
     return 1;
   }
   micro_model d;
@@ -231,7 +232,7 @@ int bench_calibrate(int argc, char **argv) {
   mpt_config tcfg;
   mpt_config_init(&tcfg);
   double spin = (double)tcfg.spin_ns * 1e-9;
-  fprintf(stderr,
+  progname_eprintf(
           "bench: messages between threads (fastest of %d; %d messages, %d of the big ones):\n"
           "bench:   ping-pong one way: %.4g s (%zu bytes), %.4g s (%zu bytes)\n"
           "bench:   exchange with two neighbours (%d ranks in a ring): a send %.4g s, %.4g s; a receive %.4g s, %.4g s\n"
@@ -246,15 +247,15 @@ int bench_calibrate(int argc, char **argv) {
   vec2 *A0, *B0;
   bench_make_pair(seed, (int)sizes.v[0], &A0, &B0);
   double slow_spin, slow = slowdown(A0, B0, (int)sizes.v[0], repeat, &slow_spin);
-  fprintf(stderr, "bench:   so slowdown %.4g per other working core (the least-squares slope), %.4g per spinning one\n",
+  progname_eprintf("bench:   so slowdown %.4g per other working core (the least-squares slope), %.4g per spinning one\n",
           slow, slow_spin);
   double back = micro_backtrack(A0, B0, (int)sizes.v[0], repeat);
   free(A0), free(B0);
-  fprintf(stderr, "bench: a backtracking step (a bit looked up, the edge's weight computed and stored): %.4g s\n",
+  progname_eprintf("bench: a backtracking step (a bit looked up, the edge's weight computed and stored): %.4g s\n",
           back);
   unsigned long long nblocks = 0;
   double block = micro_block(repeat, &nblocks);
-  fprintf(stderr, "bench: a basic block of an MPI program (cpi's loop, %llu blocks): %.4g s, "
+  progname_eprintf("bench: a basic block of an MPI program (cpi's loop, %llu blocks): %.4g s, "
                   "tilesim-mpirun --compute blocks --block-c %.4g\n", nblocks, block, block);
   char opts[700];
   model_options(&d, spin, slow, slow_spin, opts, sizeof opts);
@@ -266,7 +267,7 @@ int bench_calibrate(int argc, char **argv) {
     printf("points,procs,slaves,tables,c,options,measured_s,predicted_s,error,measured_speedup,"
            "predicted_speedup,ideal_s,ideal_error,measured_median_s,sleeps,wake_us,nodes,messages,cost\n");
   int rcode = 0;
-  progress *pg = progress_new("bench", "calibration rounds done:", 0);   /* a line every 5 s in a log */
+  progress *pg = progress_new(progname_as("bench"), "calibration rounds done:", 0);   /* a line every 5 s in a log */
   for (int si = 0; si < sizes.n && !rcode; si++) {
     int points = (int)sizes.v[si];
     vec2 *A, *B;
@@ -305,13 +306,13 @@ int bench_calibrate(int argc, char **argv) {
         int P = (int)order.v[i];
         result x;
         if (one(&rc, MACHINE_THREADS, P, A, B, points, &x, err, sizeof err) != 0) {
-          fprintf(stderr, "bench: the threads run on %d processors failed: %s\n", P, err);
+          progname_eprintf("bench: the threads run on %d processors failed: %s\n", P, err);
           rcode = 1;
           break;
         }
         if (x.cost != serial_cost) {   /* (the variants may evaluate more nodes than the serial solver) */
-          fprintf(stderr, "bench: the threads run on %d processors gave %.17g, the serial solver %.17g\n", P,
-                  x.cost, serial_cost);
+          progname_eprintf("bench: the threads run on %d processors gave %s, the serial solver %s\n", P,
+                  ARGS_G(x.cost), ARGS_G(serial_cost));
           rcode = 1;
           break;
         }
@@ -334,17 +335,17 @@ int bench_calibrate(int argc, char **argv) {
     snprintf(sopts, sizeof sopts, "%s", opts);
     if (any_tab) snprintf(sopts + strlen(sopts), sizeof sopts - strlen(sopts), " --table-c %.4g", table_c);
     if (!rcode) {
-      fprintf(stderr, "bench: %d points: c = %.4g s per node (the serial solver, %.6f s for %llu nodes)", points, c,
+      progname_eprintf("bench: %d points: c = %.4g s per node (the serial solver, %.6f s for %llu nodes)", points, c,
               solve, (unsigned long long)nodes);
       if (any_tab && !apart)
-        fprintf(stderr, ";\nbench:   with weight tables %.6f s, of which %.6f s building the table: too noisy to tell\n"
+        progname_eprintf(";\nbench:   with weight tables %.6f s, of which %.6f s building the table: too noisy to tell\n"
                         "bench:   apart, so %.4g s per node with the table's build in it (--table-c 0)",
                 solve_t, build, c_kern);
       else if (any_tab)
-        fprintf(stderr, ";\nbench:   with weight tables %.6f s, of which %.6f s building the table: %.4g s per node\n"
+        progname_eprintf(";\nbench:   with weight tables %.6f s, of which %.6f s building the table: %.4g s per node\n"
                         "bench:   and %.4g s per cell of the table (%d x %d), which every slave that uses one builds",
                 solve_t, build, c_kern, table_c, points, points + 1);
-      fprintf(stderr, "\nbench: %d points: the simulator models this host with\n    %s --c %.4g%s\n", points, sopts,
+      progname_eprintf("\nbench: %d points: the simulator models this host with\n    %s --c %.4g%s\n", points, sopts,
               any_tab ? c : c, any_tab ? " (--c c_table where the slaves use tables)" : "");
     }
     for (int i = 0; i < order.n && options_only; i++) {   /* each P's options, as below */
@@ -363,7 +364,7 @@ int bench_calibrate(int argc, char **argv) {
       result pred, ideal;
       set_options(&rc, sopts, cp);
       if (one(&rc, MACHINE_SIM, P, A, B, points, &pred, err, sizeof err) != 0) {
-        fprintf(stderr, "bench: the simulated run on %d processors failed: %s\n", P, err);
+        progname_eprintf("bench: the simulated run on %d processors failed: %s\n", P, err);
         rcode = 1;
         break;
       }
@@ -372,7 +373,7 @@ int bench_calibrate(int argc, char **argv) {
                mm.pp_big > mm.pp_small ? (mm.pp_big - mm.pp_small) / (double)(mm.big - mm.small) : 0);
       set_options(&rc, iopt, cold);   /* the old calibration: the table spread over a slave's nodes */
       if (one(&rc, MACHINE_SIM, P, A, B, points, &ideal, err, sizeof err) != 0) {
-        fprintf(stderr, "bench: the simulated run on %d processors failed: %s\n", P, err);
+        progname_eprintf("bench: the simulated run on %d processors failed: %s\n", P, err);
         rcode = 1;
         break;
       }
@@ -396,6 +397,6 @@ int bench_calibrate(int argc, char **argv) {
   }
   progress_step(pg, (long long)sizes.n * repeat, (long long)sizes.n * repeat);
   progress_end(pg);
-  fprintf(stderr, "bench: the calibration took %.1f s\n", wallclock() - w0);
+  progname_eprintf("bench: the calibration took %.1f s\n", wallclock() - w0);
   return rcode;
 }

@@ -20,6 +20,7 @@
 #include "args.h"
 #include "bench_judge.h"
 #include "csvtab.h"
+#include "progname.h"
 
 /* The d = 1 rows of a speedup sweep into s. */
 static int read_sweep(const char *path, judge_sweep *s, char *err, size_t errlen) {
@@ -87,12 +88,12 @@ int bench_claims(int argc, char **argv) {
   static judge_sweep s;
   judge_init(&s);
   if (read_sweep(sp, &s, err, sizeof err) != 0 || (md && read_dsweep(md, &s, err, sizeof err) != 0)) {
-    fprintf(stderr, "bench: %s\n", err);
+    progname_eprintf("bench: %s\n", err);
     return 1;
   }
   judge_verdict v;
   if (judge_run(&s, &v, err, sizeof err) != 0) {
-    fprintf(stderr, "bench: %s %s\n", sp, err);
+    progname_eprintf("bench: %s %s\n", sp, err);
     return 1;
   }
   printf("claim,holds,detail\n");
@@ -102,7 +103,7 @@ int bench_claims(int argc, char **argv) {
            v.detail[c]);
   for (int i = 0; i < req.n; i++)
     if (v.holds[(int)req.v[i]] != 1) {
-      fprintf(stderr, "bench: claim %d does not hold: %s\n", (int)req.v[i], v.detail[(int)req.v[i]]);
+      progname_eprintf("bench: claim %d does not hold: %s\n", (int)req.v[i], v.detail[(int)req.v[i]]);
       fail = 1;
     }
   return fail;

@@ -17,16 +17,17 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "args.h"
+#include "bench_data.h"
+#include "progname.h"
 #include "rtstruct.h"
 #include "wallclock.h"
 #include "xmem.h"
-#include "args.h"
-#include "bench_data.h"
 
 static unsigned char *slurp(const char *path, size_t *len) {
   FILE *f = fopen(path, "rb");
   if (!f) {
-    fprintf(stderr, "bench: %s: cannot open (%s)\n", path, strerror(errno));
+    progname_eprintf("bench: %s: cannot open (%s)\n", path, strerror(errno));
     return NULL;
   }
   size_t cap = 1 << 20, n = 0;
@@ -50,7 +51,7 @@ static int one(const char *path, int repeat) {
     rtstruct s;
     double t0 = wallclock();
     if (rtstruct_parse(buf, len, path, &s, err, sizeof err) != 0) {
-      fprintf(stderr, "bench: %s\n", err);
+      progname_eprintf("bench: %s\n", err);
       free(buf);
       return 1;
     }
@@ -59,7 +60,7 @@ static int one(const char *path, int repeat) {
     stacks = 0;
     for (int i = 0; i < s.nroi; i++) {
       contour_stack st;
-      if (rtstruct_roi_stack(&s, i, 0, &st, NULL, "bench", err, sizeof err) == 0) {
+      if (rtstruct_roi_stack(&s, i, 0, &st, NULL, progname_as("bench"), err, sizeof err) == 0) {
         stacks++;
         contour_stack_free(&st);
       }
@@ -105,7 +106,7 @@ int bench_dicom(int argc, char **argv) {
       files[nfiles++] = argv[i];
     }
     if (why) {
-      fprintf(stderr, "bench: %s\n%s", why, dicom_usage);
+      progname_eprintf("bench: %s\n%s", why, dicom_usage);
       free(files);
       return 2;
     }
@@ -113,7 +114,7 @@ int bench_dicom(int argc, char **argv) {
   static char found[3000];
   if (nfiles == 0) {   /* installed, or the source tree */
     if (bench_data_find("tests/data/rtstruct/dicompyler_rtss.dcm", NULL, found, sizeof found) != 0) {
-      fprintf(stderr, "bench: %s\n", found);
+      progname_eprintf("bench: %s\n", found);
       free(files);
       return 1;
     }

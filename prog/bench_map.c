@@ -30,11 +30,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "args.h"
 #include "atomicfile.h"
 #include "bench_judge.h"
-#include "args.h"
 #include "bench_paper.h"
 #include "contour.h"
+#include "progname.h"
 #include "run.h"
 #include "xmem.h"
 
@@ -154,22 +155,26 @@ int bench_map(int argc, char **argv) {
   int u = parse(argc, argv, &o);
   if (u) return u;
   char err[400];
+  if (o.out && atomicfile_check(o.out, err, sizeof err) != 0) {   /* before any work */
+    progname_eprintf("bench: %s\n", err);
+    return 1;
+  }
   contour_stack stack = {0, NULL, 0};
   if (o.input) {
-    if (contour_read(o.input, &stack, NULL, "bench", err, sizeof err) != 0 ||
+    if (contour_read(o.input, &stack, NULL, progname_as("bench"), err, sizeof err) != 0 ||
         contour_stack_pairs(&stack, o.input, err, sizeof err) != 0) {
       if (stack.c) contour_stack_free(&stack);
-      fprintf(stderr, "bench: %s\n", err);
+      progname_eprintf("bench: %s\n", err);
       return 1;
     }
     for (int i = 0; i < o.pairs.n; i++)
       if ((int)o.pairs.v[i] + 1 >= stack.n) {
-        fprintf(stderr, "bench: %s has %d pairs, no pair %d\n", o.input, stack.n - 1, (int)o.pairs.v[i]);
+        progname_eprintf("bench: %s has %d pairs, no pair %d\n", o.input, stack.n - 1, (int)o.pairs.v[i]);
         contour_stack_free(&stack);
         return 1;
       }
     if (strchr(o.input, ',') || strchr(o.input, '\n')) {
-      fprintf(stderr, "bench: %s: a comma or newline in the name would break the CSV\n", o.input);
+      progname_eprintf("bench: %s: a comma or newline in the name would break the CSV\n", o.input);
       contour_stack_free(&stack);
       return 1;
     }
@@ -229,13 +234,13 @@ int bench_map(int argc, char **argv) {
   first[ncfg] = r;
   double *times = xmallocarray((size_t)nrun, sizeof *times);
   int bad = bench_sweep_runs(cfg, run, nrun, o.jobs, times, err, sizeof err) != 0;
-  if (bad) fprintf(stderr, "bench: %s\n", err);
+  if (bad) progname_eprintf("bench: %s\n", err);
 
   FILE *f = stdout;
   atomicfile af = {NULL, NULL, NULL};
   if (!bad && o.out) {
     if (atomicfile_open(&af, o.out, "w", err, sizeof err) != 0) {
-      fprintf(stderr, "bench: %s\n", err);
+      progname_eprintf("bench: %s\n", err);
       bad = 1;
     }
     f = af.f;
@@ -272,7 +277,7 @@ int bench_map(int argc, char **argv) {
     fputc('\n', f);
   }
   if (!bad && o.out && atomicfile_close(&af, 1, err, sizeof err) != 0) {
-    fprintf(stderr, "bench: %s\n", err);
+    progname_eprintf("bench: %s\n", err);
     bad = 1;
   }
   free(times), free(run), free(first), free(cfg), free(largest);

@@ -21,6 +21,7 @@
 #include "atomicfile.h"
 #include "contour.h"
 #include "gen.h"
+#include "progname.h"
 #include "run.h"
 #include "xmem.h"
 
@@ -61,7 +62,7 @@ int bench_model(int argc, char **argv) {
   FILE *f = stdout;
   if (outpath) {
     if (atomicfile_open(&af, outpath, "w", err, sizeof err) != 0) {
-      fprintf(stderr, "bench: %s\n", err);
+      progname_eprintf("bench: %s\n", err);
       return 1;
     }
     f = af.f;
@@ -85,7 +86,7 @@ int bench_model(int argc, char **argv) {
       memset(&pr, 0, sizeof pr);
       pr.P = P, pr.np = m, pr.zp = 0, pr.Q = Q, pr.nq = n, pr.zq = 5;
       if (run_sim(&r, &pr, 1, NULL, err, sizeof err) != 0) {
-        fprintf(stderr, "bench: the run on %d processors failed: %s\n", r.mc.procs, err);
+        progname_eprintf("bench: the run on %d processors failed: %s\n", r.mc.procs, err);
         status = 1;
         break;
       }
@@ -98,7 +99,7 @@ int bench_model(int argc, char **argv) {
     free(P), free(Q);
   }
   if (outpath && atomicfile_close(&af, status == 0, err, sizeof err) != 0 && status == 0) {
-    fprintf(stderr, "bench: %s\n", err);
+    progname_eprintf("bench: %s\n", err);
     status = 1;
   }
   return status;
@@ -126,7 +127,7 @@ int bench_glass(int argc, char **argv) {
   FILE *f = stdout;
   if (outpath) {
     if (atomicfile_open(&af, outpath, "w", err, sizeof err) != 0) {
-      fprintf(stderr, "bench: %s\n", err);
+      progname_eprintf("bench: %s\n", err);
       contour_stack_free(&s);
       return 1;
     }
@@ -137,7 +138,7 @@ int bench_glass(int argc, char **argv) {
   int bad = contour_write(f, &s) != 0;
   contour_stack_free(&s);
   if (outpath && atomicfile_close(&af, !bad, err, sizeof err) != 0) {
-    fprintf(stderr, "bench: %s\n", err);
+    progname_eprintf("bench: %s\n", err);
     return 1;
   }
   return bad;

@@ -29,6 +29,7 @@
 #include <limits.h>
 #include <math.h>
 #include <poll.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -41,6 +42,7 @@
 #include "bench_variant.h"
 #include "contour.h"
 #include "gen.h"
+#include "progname.h"
 #include "progress.h"
 #include "run.h"
 #include "wallclock.h"
@@ -193,8 +195,8 @@ static void fold(const plan *pl, const job *jb, outcome *acc, const outcome *o, 
     return;
   }
   if (o->cost != acc->cost || (exact_work && o->nodes != acc->nodes)) {   /* a checksum */
-    snprintf(acc->err, sizeof acc->err, "run %d of %d gave optimum %.17g (%llu nodes), run 1 %.17g (%llu)",
-             rep + 1, repeat, o->cost, (unsigned long long)o->nodes, acc->cost,
+    snprintf(acc->err, sizeof acc->err, "run %d of %d gave optimum %s (%llu nodes), run 1 %s (%llu)",
+             rep + 1, repeat, ARGS_G(o->cost), (unsigned long long)o->nodes, ARGS_G(acc->cost),
              (unsigned long long)acc->nodes);
     acc->ok = 0;
   }
@@ -202,10 +204,49 @@ static void fold(const plan *pl, const job *jb, outcome *acc, const outcome *o, 
   acc->wall += o->wall;
 }
 
+/* What became of a worker that stopped before its last outcome (st from
+ * waitpid): "was killed by signal 9 (SIGKILL): ...", with the likely cause. */
+static void worker_fate(int st, char *buf, size_t len) {
+  if (WIFSIGNALED(st)) {
+    int sig = WTERMSIG(st);
+    const char *name = "", *why = "";
+    switch (sig) {
+    case SIGKILL:
+      name = " (SIGKILL)";
+      why = ": most likely the system ran out of memory and killed it (fewer --jobs, or fewer points, "
+            "need less; dmesg says if it was the out-of-memory killer)";
+      break;
+    case SIGSEGV: name = " (SIGSEGV)"; goto crash;
+    case SIGBUS: name = " (SIGBUS)"; goto crash;
+    case SIGFPE: name = " (SIGFPE)"; goto crash;
+    case SIGILL: name = " (SIGILL)"; goto crash;
+    case SIGABRT: name = " (SIGABRT)";
+    crash:
+      why = ": it crashed, a bug (please report it with the command line)";
+      break;
+    case SIGXCPU: name = " (SIGXCPU)", why = ": the processor time limit (ulimit -t) ran out"; break;
+    case SIGXFSZ: name = " (SIGXFSZ)", why = ": the file size limit (ulimit -f) ran out"; break;
+    case SIGTERM: name = " (SIGTERM)", why = ": stopped from outside"; break;
+    case SIGINT: name = " (SIGINT)", why = ": interrupted"; break;
+    case SIGHUP: name = " (SIGHUP)", why = ": its terminal went away"; break;
+    default: break;
+    }
+    snprintf(buf, len, "was killed by signal %d%s%s", sig, name, why);
+  } else if (WIFEXITED(st)) {
+    snprintf(buf, len, "exited with status %d before its last result", WEXITSTATUS(st));
+  } else {
+    snprintf(buf, len, "stopped before its last result");
+  }
+}
+
 /* Run every job, on `jobs` forked workers (job i on worker i mod jobs); the
- * outcomes come back in job order whatever the workers' speed. */
-static int run_all(const plan *pl, outcome *out, int jobs, progress *pg) {
+ * outcomes come back in job order whatever the workers' speed.  0, or -1
+ * with why in err ("worker 2 of 2, on the run with 30000 points on 3
+ * processors, was killed by signal 9 (SIGKILL): ..."); the other workers
+ * are stopped then. */
+static int run_all(const plan *pl, outcome *out, int jobs, progress *pg, char *err, size_t errlen) {
   if (jobs > pl->njobs) jobs = pl->njobs;
+  progress_step(pg, 0, jobs <= 1 ? (long long)pl->njobs * pl->repeat : pl->njobs);   /* counted from the start */
   if (jobs <= 1) {   /* in rounds: every job once, then again, so that a slow
                         spell of the machine touches all jobs alike */
     for (int rep = 0; rep < pl->repeat; rep++)
@@ -218,13 +259,20 @@ static int run_all(const plan *pl, outcome *out, int jobs, progress *pg) {
   }
   fflush(stdout);
   fflush(stderr);
+  /* One thread at the forks: the progress's own would leave the workers a
+   * lock it might hold (the allocator's). */
+  progress_hold(pg);
   int *fd = xmallocarray((size_t)jobs, sizeof *fd);
   pid_t *pid = xmallocarray((size_t)jobs, sizeof *pid);
   for (int w = 0; w < jobs; w++) {
-    int p[2];
-    if (pipe(p) != 0) return -1;
-    pid[w] = fork();
-    if (pid[w] < 0) return -1;
+    int p[2] = {-1, -1};
+    if (pipe(p) != 0 || (pid[w] = fork()) < 0) {
+      snprintf(err, errlen, "cannot start worker %d of %d: %s", w + 1, jobs, strerror(errno));
+      if (p[0] >= 0) close(p[0]), close(p[1]);
+      for (int k = 0; k < w; k++) close(fd[k]), kill(pid[k], SIGTERM), waitpid(pid[k], NULL, 0);
+      free(fd), free(pid);
+      return -1;
+    }
     if (pid[w] == 0) {
       close(p[0]);
       for (int i = w; i < pl->njobs; i += jobs) {
@@ -240,13 +288,15 @@ static int run_all(const plan *pl, outcome *out, int jobs, progress *pg) {
     close(p[1]);
     fd[w] = p[0];
   }
-  int done = 0, *next = xcalloc((size_t)jobs, sizeof *next), bad = 0;
+  progress_resume(pg);
+  int done = 0, *next = xcalloc((size_t)jobs, sizeof *next), bad = 0, failed = -1;
   for (int w = 0; w < jobs; w++) next[w] = w;
   struct pollfd *pf = xmallocarray((size_t)jobs, sizeof *pf);
   while (done < pl->njobs && !bad) {
     for (int w = 0; w < jobs; w++) pf[w] = (struct pollfd){next[w] < pl->njobs ? fd[w] : -1, POLLIN, 0};
     if (poll(pf, (nfds_t)jobs, -1) < 0) {
       if (errno == EINTR) continue;
+      snprintf(err, errlen, "waiting for the workers: %s", strerror(errno));
       bad = 1;
       break;
     }
@@ -260,7 +310,7 @@ static int run_all(const plan *pl, outcome *out, int jobs, progress *pg) {
         got += (size_t)k;
       }
       if (got != sizeof(outcome)) {
-        bad = 1;
+        bad = 1, failed = w;
         break;
       }
       next[w] += jobs;
@@ -270,9 +320,17 @@ static int run_all(const plan *pl, outcome *out, int jobs, progress *pg) {
   }
   for (int w = 0; w < jobs; w++) {
     close(fd[w]);
+    if (bad && w != failed) kill(pid[w], SIGTERM);   /* its work is of no use now */
     int st;
     waitpid(pid[w], &st, 0);
-    if (!WIFEXITED(st) || WEXITSTATUS(st) != 0) bad = 1;
+    if (w == failed || (!bad && (!WIFEXITED(st) || WEXITSTATUS(st) != 0))) {
+      char fate[300];
+      const job *j = &pl->jobs[next[w] < pl->njobs ? next[w] : pl->njobs - 1];
+      worker_fate(st, fate, sizeof fate);
+      snprintf(err, errlen, "worker %d of %d, on the run with %d points on %d processor%s, %s", w + 1, jobs,
+               j->points, j->procs, j->procs == 1 ? "" : "s", fate);
+      bad = 1, failed = w;
+    }
   }
   free(fd), free(pid), free(next), free(pf);
   return bad ? -1 : 0;
@@ -287,11 +345,7 @@ static const char usage_line[] =
     "(bench --help: every mode)\n";
 
 /* Bad usage: "bench: why" (why already says the value), the usage line, 2. */
-static int usage(const char *why) {
-  fprintf(stderr, "bench: %s\n", why);
-  fputs(usage_line, stderr);
-  return 2;
-}
+static int usage(const char *why) { return args_usage("bench", usage_line, why, NULL); }
 
 /* The same for a message about one argument, shown as util/args shows values. */
 static int usage_arg(const char *why, const char *arg) {
@@ -458,16 +512,20 @@ int bench_paper(int argc, char **argv) {
   if (ms.n == 0) ms.n = 1, ms.v[0] = rc.mc.sim.m;
   if (cs.n == 0) cs.n = 1, cs.v[0] = rc.mc.sim.c;
 
+  if (outpath && atomicfile_check(outpath, err, sizeof err) != 0) {   /* before any work */
+    progname_eprintf("bench: %s\n", err);
+    return 1;
+  }
   contour_stack stack = {0, NULL, 0};
   if (input) {
-    if (contour_read(input, &stack, NULL, "bench", err, sizeof err) != 0 ||
+    if (contour_read(input, &stack, NULL, progname_as("bench"), err, sizeof err) != 0 ||
         contour_stack_pairs(&stack, input, err, sizeof err) != 0) {
       if (stack.c) contour_stack_free(&stack);
-      fprintf(stderr, "bench: %s\n", err);
+      progname_eprintf("bench: %s\n", err);
       return 1;
     }
     if (pairk + 1 >= stack.n) {
-      fprintf(stderr, "bench: %s has %d pairs, no pair %d\n", input, stack.n - 1, pairk);
+      progname_eprintf("bench: %s has %d pairs, no pair %d\n", input, stack.n - 1, pairk);
       contour_stack_free(&stack);
       return 1;
     }
@@ -521,17 +579,18 @@ int bench_paper(int argc, char **argv) {
     }
   }
   outcome *o = xcalloc((size_t)njobs, sizeof *o);
-  progress *pg = progress_new("bench", "run", 0);   /* a line every 5 s in a log */
-  int rcode = run_all(&pl, o, jobs, pg);
+  progress *pg = progress_new(progname_as("bench"), "run", 0);   /* a line every 5 s in a log */
+  char why[600] = "";
+  int rcode = run_all(&pl, o, jobs, pg, why, sizeof why);
   progress_end(pg);
+  if (rcode != 0) progname_eprintf("bench: %s\n", why);
   for (int i = 0; rcode == 0 && i < njobs; i++)
     if (!o[i].ok) {
-      fprintf(stderr, "bench: the run with %d points on %d processors failed: %s\n", jb[i].points,
+      progname_eprintf("bench: the run with %d points on %d processors failed: %s\n", jb[i].points,
               jb[i].procs, o[i].err);
       rcode = -1;
     }
   if (rcode != 0) {
-    if (rcode < 0 && !o[0].err[0]) fprintf(stderr, "bench: a worker failed\n");
     free(jb), free(o);
     contour_stack_free(&stack);
     return 1;
@@ -541,7 +600,7 @@ int bench_paper(int argc, char **argv) {
   atomicfile af = {NULL, NULL, NULL};
   if (outpath) {   /* a temporary file beside it, renamed when complete */
     if (atomicfile_open(&af, outpath, "w", err, sizeof err) != 0) {
-      fprintf(stderr, "bench: %s\n", err);
+      progname_eprintf("bench: %s\n", err);
       free(jb), free(o);
       contour_stack_free(&stack);
       return 1;
@@ -584,7 +643,7 @@ int bench_paper(int argc, char **argv) {
   }
   int wbad = 0;
   if (outpath && atomicfile_close(&af, 1, err, sizeof err) != 0) {
-    fprintf(stderr, "bench: %s\n", err);
+    progname_eprintf("bench: %s\n", err);
     wbad = 1;
   }
   free(jb);
@@ -605,10 +664,9 @@ int bench_sweep_runs(const bench_cfg *cfgs, const bench_run *runs, int n, int jo
   }
   plan pl = {jb, n, cfgs[0].rc, 0, 1, NULL, 0, &notopo, &noplace, cfgs};
   outcome *o = xcalloc((size_t)(n > 0 ? n : 1), sizeof *o);
-  progress *pg = progress_new("bench", "run", 0);   /* a line every 5 s in a log */
-  int rcode = run_all(&pl, o, jobs, pg);
+  progress *pg = progress_new(progname_as("bench"), "run", 0);   /* a line every 5 s in a log */
+  int rcode = run_all(&pl, o, jobs, pg, err, errlen);
   progress_end(pg);
-  if (rcode != 0) snprintf(err, errlen, "a worker failed");
   for (int i = 0; rcode == 0 && i < n; i++) {
     if (!o[i].ok) {
       snprintf(err, errlen, "the run with %d points on %d processors failed: %s", runs[i].points, runs[i].procs,

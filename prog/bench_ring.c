@@ -23,9 +23,10 @@
 #include "args.h"
 #include "atomicfile.h"
 #include "coro.h"
+#include "machine.h"
 #include "mp.h"
 #include "place.h"
-#include "machine.h"
+#include "progname.h"
 #include "sim.h"
 #include "trace.h"
 #include "wallclock.h"
@@ -203,6 +204,14 @@ int bench_ring_main(int argc, char **argv) {
   ring g = {laps, work, all, 0, 0};
   mp_proc *pr = xmallocarray((size_t)procs, sizeof *pr);
   for (long r = 0; r < procs; r++) pr[r] = (mp_proc){ring_rank, &g};
+  const char *outs[2] = {tcsv, tjson};
+  for (int k = 0; k < 2; k++)   /* the traces can be written, before any work */
+    if (outs[k] && atomicfile_check(outs[k], err, sizeof err) != 0) {
+      progname_eprintf("bench: %s\n", err);
+      free(map);
+      free(pr);
+      return 1;
+    }
   /* With a trace: its size first, by the same run writing none (the
    * simulator is deterministic), and none above the limit. */
   if ((tcsv || tjson) && limit != ULLONG_MAX) {
@@ -216,7 +225,7 @@ int bench_ring_main(int argc, char **argv) {
       sim_trace_size(dry, &nc, &nj);
       sim_free(dry);
       if (ok && trace_over_limit(nc + nj, limit, err, sizeof err) != 0) {
-        fprintf(stderr, "bench: %s%s%s: %s\n", tcsv ? tcsv : "", tcsv && tjson ? " and " : "",
+        progname_eprintf("bench: %s%s%s: %s\n", tcsv ? tcsv : "", tcsv && tjson ? " and " : "",
                 tjson ? tjson : "", err);
         free(map);
         free(pr);
@@ -228,7 +237,7 @@ int bench_ring_main(int argc, char **argv) {
   sim *s = sim_new(&cfg, (int)procs, err, sizeof err);
   free(map);
   if (!s) {
-    fprintf(stderr, "bench: %s\n", err);
+    progname_eprintf("bench: %s\n", err);
     free(pr);
     return 1;
   }
@@ -238,7 +247,7 @@ int bench_ring_main(int argc, char **argv) {
   atomicfile ac = {NULL, NULL, NULL}, aj = {NULL, NULL, NULL};
   if ((tcsv && atomicfile_open(&ac, tcsv, "w", err, sizeof err) != 0) ||
       (tjson && atomicfile_open(&aj, tjson, "w", err, sizeof err) != 0)) {
-    fprintf(stderr, "bench: %s\n", err);
+    progname_eprintf("bench: %s\n", err);
     if (ac.f) atomicfile_close(&ac, 0, err, sizeof err);
     sim_free(s);
     free(pr);
@@ -250,10 +259,10 @@ int bench_ring_main(int argc, char **argv) {
   const sim_stats *st = sim_stats_get(s);
   links *net = sim_links(s);
   if (rc != 0) {
-    fprintf(stderr, "bench: %s\n", err);
+    progname_eprintf("bench: %s\n", err);
     status = 1;
   } else if (g.failed || g.token != (long long)procs * laps) {
-    fprintf(stderr, "bench: wrong checksum %lld, expected %lld\n", g.token,
+    progname_eprintf("bench: wrong checksum %lld, expected %lld\n", g.token,
             (long long)procs * laps);
     status = 1;
   } else if (cfg.net != SIM_NET_LOGGP && !all) {
@@ -279,16 +288,16 @@ int bench_ring_main(int argc, char **argv) {
     double diff = st->makespan - want;
     if (diff < 0) diff = -diff;
     if (diff > 1e-9 * want) {
-      fprintf(stderr, "bench: simulated time %.9g, the model says %.9g\n", st->makespan, want);
+      progname_eprintf("bench: simulated time %.9g, the model says %.9g\n", st->makespan, want);
       status = 1;
     }
   }
   if (ac.f && atomicfile_close(&ac, status == 0, err, sizeof err) != 0 && status == 0) {
-    fprintf(stderr, "bench: %s\n", err);
+    progname_eprintf("bench: %s\n", err);
     status = 1;
   }
   if (aj.f && atomicfile_close(&aj, status == 0, err, sizeof err) != 0 && status == 0) {
-    fprintf(stderr, "bench: %s\n", err);
+    progname_eprintf("bench: %s\n", err);
     status = 1;
   }
   if (status == 0) {   /* a failed run prints no data row */
@@ -348,7 +357,7 @@ int bench_switch_main(int argc, char **argv) {
   d.a = coro_new(duo_a, &d, 0, err, sizeof err);
   d.b = d.a ? coro_new(duo_b, &d, 0, err, sizeof err) : NULL;
   if (!d.a || !d.b) {
-    fprintf(stderr, "bench: %s\n", err);
+    progname_eprintf("bench: %s\n", err);
     return 1;
   }
   double t0 = wallclock();

@@ -27,6 +27,7 @@
 #include "args.h"
 #include "bench_data.h"
 #include "contour.h"
+#include "progname.h"
 #include "rtstruct.h"
 #include "stack.h"
 #include "wallclock.h"
@@ -43,29 +44,29 @@ static int load(const char *input, contour_stack *s, double *ms) {
   double t0 = wallclock();
   if (!colon) {
     if (bench_data_find(input, NULL, found, sizeof found) != 0) {   /* installed, or the source tree */
-      fprintf(stderr, "bench: %s\n", found);
+      progname_eprintf("bench: %s\n", found);
       return -1;
     }
-    int rc = contour_read(found, s, NULL, "bench", err, sizeof err);
+    int rc = contour_read(found, s, NULL, progname_as("bench"), err, sizeof err);
     *ms = (wallclock() - t0) * 1e3;
-    if (rc != 0) fprintf(stderr, "bench: %s\n", err);
+    if (rc != 0) progname_eprintf("bench: %s\n", err);
     return rc;
   }
   snprintf(path, sizeof path, "%.*s", (int)(colon + 4 - input), input);
   if (bench_data_find(path, NULL, found, sizeof found) != 0) {
-    fprintf(stderr, "bench: %s\n", found);
+    progname_eprintf("bench: %s\n", found);
     return -1;
   }
   rtstruct r;
   if (rtstruct_read(found, &r, err, sizeof err) != 0) {
-    fprintf(stderr, "bench: %s\n", err);
+    progname_eprintf("bench: %s\n", err);
     return -1;
   }
   int k = rtstruct_find(&r, colon + 5, err, sizeof err);
   t0 = wallclock();
-  int rc = k < 0 ? -1 : rtstruct_roi_stack(&r, k, 0, s, NULL, "bench", err, sizeof err);
+  int rc = k < 0 ? -1 : rtstruct_roi_stack(&r, k, 0, s, NULL, progname_as("bench"), err, sizeof err);
   *ms = (wallclock() - t0) * 1e3;
-  if (rc != 0) fprintf(stderr, "bench: %s\n", err);
+  if (rc != 0) progname_eprintf("bench: %s\n", err);
   rtstruct_free(&r);
   return rc;
 }
@@ -117,7 +118,7 @@ int bench_stack(int argc, char **argv) {
       in[nin++] = a;
     }
     if (why) {
-      fprintf(stderr, "bench: %s\n%s", why, stack_usage);
+      progname_eprintf("bench: %s\n%s", why, stack_usage);
       free(in);
       return 2;
     }
@@ -140,14 +141,14 @@ int bench_stack(int argc, char **argv) {
     for (int j = 0; j < nj; j++) best[j] = 1e300;
     for (int r = 0; r < repeat && rc == 0; r++)
       for (int j = 0; j < nj && rc == 0; j++) {
-        stack_options o = {COST_AREA, 1, apex, js[j], NULL, NULL, "bench", NULL, NULL, join, join_dist, 0};
+        stack_options o = {COST_AREA, 1, apex, js[j], NULL, NULL, progname_as("bench"), NULL, NULL, join, join_dist, 0};
         stack_surface *ss;
         double t0 = wallclock();
         char why[1024];
         int res = stack_tile(&s, in[f], &o, &ss, why, sizeof why);
         double t = wallclock() - t0;
         if (res != 0) {
-          fprintf(stderr, "bench: %s\n", why);
+          progname_eprintf("bench: %s\n", why);
           rc = 1;
           break;
         }
@@ -162,7 +163,7 @@ int bench_stack(int argc, char **argv) {
         double v = mesh_volume(stack_mesh(ss));
         if (r == 0 && j == 0) cost = c, volume = v, bands = nb, bridges = nbr, caps = ncap;
         else if (c != cost || v != volume) {
-          fprintf(stderr, "bench: %s: -j %d gave another surface (cost %.17g, volume %.17g)\n", in[f], js[j], c, v);
+          progname_eprintf("bench: %s: -j %d gave another surface (cost %s, volume %s)\n", in[f], js[j], ARGS_G(c), ARGS_G(v));
           rc = 1;
         }
         stack_free(ss);

@@ -30,6 +30,7 @@
 #include "contour.h"
 #include "gen.h"
 #include "naive.h"
+#include "progname.h"
 #include "tiling.h"
 #include "wallclock.h"
 #include "xmem.h"
@@ -102,12 +103,12 @@ static void run_naive(row *r, int n, unsigned long long seed, cost_kind kind) {
 static int run_stack(row *r, const char *file, cost_kind kind) {
   contour_stack s;
   char err[512];
-  if (contour_read(file, &s, NULL, "bench", err, sizeof err) != 0) {
-    fprintf(stderr, "bench: %s\n", err);
+  if (contour_read(file, &s, NULL, progname_as("bench"), err, sizeof err) != 0) {
+    progname_eprintf("bench: %s\n", err);
     return -1;
   }
   if (contour_stack_pairs(&s, file, err, sizeof err) != 0) {
-    fprintf(stderr, "bench: %s\n", err);
+    progname_eprintf("bench: %s\n", err);
     contour_stack_free(&s);
     return -1;
   }
@@ -227,7 +228,7 @@ int bench_tiler(int argc, char **argv) {
   static char paths[16][2300];
   for (int i = 0; i < ninputs; i++) {
     if (bench_data_find(inputs[i], data, paths[i], sizeof paths[i]) != 0) {
-      fprintf(stderr, "bench: %s\n", paths[i]);
+      progname_eprintf("bench: %s\n", paths[i]);
       return 1;
     }
     inputs[i] = paths[i];
@@ -241,16 +242,16 @@ int bench_tiler(int argc, char **argv) {
   if (naive > 0) {
     if (one(NAIVE, naive, NULL, seed, kind, 1, &nv) != 0) return 1;
     if (ex500.wall > 0 && ex500.cost != nv.cost) {
-      fprintf(stderr, "bench: the exact solver and the naive reference disagree: %.17g, %.17g\n",
-              ex500.cost, nv.cost);
+      progname_eprintf("bench: the exact solver and the naive reference disagree: %s, %s\n",
+              ARGS_G(ex500.cost), ARGS_G(nv.cost));
       return 1;
     }
   }
   for (int i = 0; i < ninputs; i++)
     if (one(STACK, 0, inputs[i], seed, kind, 1, &r) != 0) return 1;
   if (ex500.wall > 0 && nv.wall > 0)
-    fprintf(stderr, "bench: at %d x %d the exact solver is %.0f times faster than the naive "
-                    "reference (%.0f times fewer nodes), with the same optimum %.17g\n",
-            naive, naive, nv.wall / ex500.wall, nv.nodes / ex500.nodes, nv.cost);
+    progname_eprintf("bench: at %d x %d the exact solver is %.0f times faster than the naive "
+                    "reference (%.0f times fewer nodes), with the same optimum %s\n",
+            naive, naive, nv.wall / ex500.wall, nv.nodes / ex500.nodes, ARGS_G(nv.cost));
   return 0;
 }

@@ -30,6 +30,7 @@
 #include "args.h"
 #include "gen.h"
 #include "polyunion.h"
+#include "progname.h"
 #include "rng.h"
 #include "wallclock.h"
 #include "xmem.h"
@@ -73,8 +74,8 @@ static int one(const char *in, int star, int k, int n, int repeat) {
     int res = polyunion(cp, k, &u);
     double t = wallclock() - t0;
     if (res != 0) {
-      fprintf(stderr, "bench: %s: the union is refused (%s at %.17g %.17g)\n", in,
-              u.status == POLYUNION_PINCH ? "it pinches" : "rounding", u.at.x, u.at.y);
+      progname_eprintf("bench: %s: the union is refused (%s at %s %s)\n", in,
+              u.status == POLYUNION_PINCH ? "it pinches" : "rounding", ARGS_G(u.at.x), ARGS_G(u.at.y));
       rc = 1;
     } else if (r == 0) {
       groups = u.ngroups, loops = u.nloops;
@@ -107,12 +108,12 @@ int bench_union(int argc, char **argv) {
     char c;
     if (strcmp(a, "--repeat") == 0) {
       if (!v) {
-        fprintf(stderr, "bench: an option needs a value (%s)\n%s", a, union_usage);
+        progname_eprintf("bench: an option needs a value (%s)\n%s", a, union_usage);
         free(in);
         return 2;
       }
       if (args_long(a, v, 1, 10000, &x, err, sizeof err) != 0) {
-        fprintf(stderr, "bench: %s\n%s", err, union_usage);
+        progname_eprintf("bench: %s\n%s", err, union_usage);
         free(in);
         return 2;
       }
@@ -124,7 +125,7 @@ int bench_union(int argc, char **argv) {
       in[nin++] = a;
     } else {
       args_show(a, shown, sizeof shown);
-      fprintf(stderr, "bench: --union takes blob:K:N or star:K:N, K contours (1 to 64) of N points (3 to 1000000) "
+      progname_eprintf("bench: --union takes blob:K:N or star:K:N, K contours (1 to 64) of N points (3 to 1000000) "
               "(%s)\n%s", shown, union_usage);
       free(in);
       return 2;

@@ -382,6 +382,15 @@ static int tile_main(int argc, char **argv) {
     return bad_usage("%s", msg);
   }
 
+  /* The files to write can be written, checked before any work: a run
+   * never prints its report and then fails to write its mesh or trace. */
+  const char *outs[2] = {out && meshio_format_of(out) != MESHIO_NONE ? out : NULL, tpath};
+  for (int k = 0; k < 2; k++)
+    if (outs[k] && atomicfile_check(outs[k], err, sizeof err) != 0) {
+      fprintf(stderr, "tile: %s\n", err);
+      return 1;
+    }
+
   /* A DICOM RT structure set (by its content): tile_dicom.c. */
   if (dicom_sniff_file(in)) {
     tile_dicom_env env = {tile_stack, &o, bad_usage, out, o.quiet, tpath != NULL, 0 /* as below */, no_keyholes,

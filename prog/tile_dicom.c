@@ -174,6 +174,23 @@ static int make_dir(const char *dir) {
   return -1;
 }
 
+/* Can file be written (NULL: nothing to write)?  dir, when not NULL, is the
+ * folder it goes in, made later: if it is not there yet, its parent must
+ * take it.  1, or 0 after a message. */
+static int writable(const char *file, const char *dir) {
+  char err[1200], d[1024];
+  struct stat st;
+  const char *check = file;
+  if (dir && stat(dir, &st) != 0) {   /* not made yet: a file of its name beside it */
+    snprintf(d, sizeof d, "%s", dir);
+    for (size_t n = strlen(d); n > 1 && d[n - 1] == '/'; n--) d[n - 1] = 0;
+    check = d;
+  }
+  if (!check || atomicfile_check(check, err, sizeof err) == 0) return 1;
+  fprintf(stderr, "tile: %s\n", err);
+  return 0;
+}
+
 static int write_text(const char *path, const char *text, size_t len) {
   atomicfile af;
   char err[512];
@@ -327,6 +344,11 @@ int tile_dicom_main(const tile_dicom_opts *o, const char *in, const tile_dicom_e
   }
   if (out_dir) mpath = dir_paths(&s, pick, npick, env->out, o->format ? o->format : "stl");
   if (con_dir) cpath = dir_paths(&s, pick, npick, o->contours, "contours");
+  /* The files can be written (a folder: made or makeable), checked before
+   * the tiling: a run never prints its report and then fails to write. */
+  if (!writable(out_dir ? (mpath ? mpath[0] : NULL) : env->out, out_dir ? env->out : NULL) ||
+      !writable(con_dir ? (cpath ? cpath[0] : NULL) : o->contours, con_dir ? o->contours : NULL))
+    goto done;
 
   /* The tiling, the report on stdout. */
   if (tile) {

@@ -2,10 +2,11 @@
  *
  *   tilesim-mpirun -np N [MACHINE OPTIONS] [--compute none|blocks|host] ./prog [ARGS]
  *
- * The program is built by tilesim-mpicc (a shared object).  Each of the N
- * ranks gets its own copy of it (mpirun/loader.h: its own globals and
- * statics) and its own libc state (mpirun/libc.h), and runs its main as a
- * rank of the simulated machine (machine/launch.h; or of threads), calling
+ * The program is built by tilesim-mpicc.  It is loaded once, and each of
+ * the N ranks gets its own copy of its writable data (mpirun/loader.h: its
+ * own globals and statics, its constructors and destructors run in it) and
+ * its own libc state (mpirun/libc.h), and runs its main as a rank of the
+ * simulated machine (machine/launch.h; or of threads), calling
  * the MPI library linked into this program (mpi/), which is built on mp.h.
  * The program's stdout and stderr are its ranks' own; the run's summary
  * goes where --stats says.  Exit status: the program's (the first rank, by
@@ -17,12 +18,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "args.h"
 #include "atomicfile.h"
 #include "compute.h"
 #include "crash.h"
-#include "elfsyms.h"
+#include "cxx.h"
+#include "elfprog.h"
 #include "env.h"
 #include "launch.h"
 #include "libc.h"
@@ -34,9 +37,12 @@
 
 static const char prog[] = "tilesim-mpirun";
 
+extern char **environ;
+
 static const char usage_text[] =
     "usage: tilesim-mpirun -np N [--procs P] [MACHINE OPTIONS] [--compute none|blocks|host]\n"
-    "                      [--coll SPEC] [--stack BYTES] [--stats FILE] PROGRAM [ARGS]\n"
+    "                      [--coll SPEC] [--fs SPEC] [--stack BYTES] [--stats FILE]\n"
+    "                      PROGRAM [ARGS]\n"
     "       (tilesim-mpirun --help: every option)\n";
 
 static void help(void) {
@@ -47,7 +53,7 @@ static void help(void) {
         "of the program's globals and of its libc state (getopt, rand, strtok), the clocks\n"
         "and sleeps the machine's.\n"
         "\n"
-        "  -np N, -n N, --np N   ranks (1 to 4096)\n",
+        "  -np N, -n N, --np N   ranks (1 to 1000000; threads: 1 to 4096)\n",
         stdout);
   fputs(machine_help, stdout);
   fputs("                     (--procs: default one per rank; --trace names the MPI calls\n"
@@ -58,16 +64,22 @@ static void help(void) {
         "                     --block-c seconds: build with tilesim-mpicc --count-blocks;\n"
         "                     deterministic); host (also the host's processor time between\n"
         "                     MPI calls: not reproducible, and the summary says so)\n"
-        "  --block-c S        seconds per basic block (default 1e-9; bench --calibrate\n"
-        "                     measures this host's)\n"
+        "  --block-c S        seconds per basic block (default 1e-9; tilesim-bench\n"
+        "                     --calibrate measures this host's)\n"
         "  --flops F          smpi_execute_flops's rate, flop/s (default 1e9)\n"
         "  --coll SPEC        the collectives' algorithms: mpich (default: MPICH's choice\n"
         "                     by size and ranks), linear, or COLL=ALG,... (--coll help lists\n"
         "                     them)\n"
+        "  --fs MOUNT[,dir=DIR][,latency=S][,bandwidth=B]\n"
+        "                     a file system of the machine for MPI-IO, mounted at MOUNT:\n"
+        "                     its files in the host's DIR (default the same path; /scratch:\n"
+        "                     $TMPDIR/tilesim-scratch-UID), S seconds and 1/B seconds a\n"
+        "                     byte per request, one request at a time (default 1e-4, 1e9)\n"
         "  --poll-cost S      seconds a MPI_Test or MPI_Iprobe that finds nothing costs\n"
-        "                     (default 1e-6), so that polling loops move the clock\n"
+        "                     (default 1e-6), and a one-sided synchronisation that waits\n"
+        "                     for nothing, so that polling loops move the clock\n"
         "  --wtime-cost S     seconds each MPI_Wtime costs (default 0)\n"
-        "  --stack BYTES      each rank's stack (default 1M; 64k to 1G)\n"
+        "  --stack BYTES      each rank's stack (default 1 MiB; 16k to 1G)\n"
         "  --stats FILE       the run's summary, a CSV header and one row (tilesim(7)'s\n"
         "                     columns, then compute and reproducible): FILE, or - for\n"
         "                     stdout after the program's output\n"
@@ -86,7 +98,6 @@ static int bad_usage(const char *why, const char *arg) {
 /* ==== the ranks =========================================================== */
 
 typedef struct {
-  loader_main_fn main;
   int argc;
   char **argv;         /* the rank's own copy of the arguments */
   int returned;        /* main returned or the rank called exit */
@@ -94,11 +105,14 @@ typedef struct {
 } rank_info;
 
 static rank_info *info;   /* [n]: rank_entry's and on_exit's */
+static loader *ld;
 
-/* A rank called exit(status): before MPI_Finalize, the run stops (a real
+/* A rank called exit(status) (its handlers and the program's destructors
+ * run first) or _exit(status): before MPI_Finalize, the run stops (a real
  * mpirun reports such a process too). */
-static void on_exit_call(mp *self, int status) {
+static void on_exit_call(mp *self, int status, int run_handlers) {
   rank_info *ri = &info[mp_rank(self)];
+  if (run_handlers) loader_finish(ld, mp_rank(self), status);
   int mpi = tsmpi_rank_end(self);
   if (mpi == TSMPI_UNFINALIZED) {
     char why[160];
@@ -114,7 +128,10 @@ static void on_abort_call(mp *self) { tsmpi_rank_end(self); }
 
 static void rank_entry(mp *self, void *ud) {
   rank_info *ri = ud;
-  int status = ri->main(ri->argc, ri->argv);
+  int r = mp_rank(self);
+  loader_main_fn main_fn = loader_start(ld, r, ri->argc, ri->argv, environ);
+  int status = main_fn(ri->argc, ri->argv, environ);
+  loader_finish(ld, r, status);   /* as exit(status) after main returns */
   compute_settle();   /* what it computed after its last call */
   fflush(stdout);
   if (tsmpi_rank_end(self) == TSMPI_UNFINALIZED) {
@@ -125,6 +142,25 @@ static void rank_entry(mp *self, void *ud) {
   ri->returned = 1;
   ri->status = status;
 }
+
+/* ==== the hooks around every call of the machine =========================
+ * The compute mode's (charging what the rank computed: it may switch ranks)
+ * and a C++ program's (its exceptions in flight), the latter first in and
+ * last out. */
+
+static const mp_hooks *hooks_compute, *hooks_cxx;
+
+static void both_enter(mp *self) {
+  hooks_cxx->enter(self);
+  hooks_compute->enter(self);
+}
+
+static void both_leave(mp *self) {
+  hooks_compute->leave(self);
+  hooks_cxx->leave(self);
+}
+
+static const mp_hooks hooks_both = {both_enter, both_leave};
 
 /* ==== the summary ========================================================= */
 
@@ -167,40 +203,50 @@ static int summary(const char *path, const tilesim_stats *st, const compute_conf
 
 /* ==== checking the program before the run ================================ */
 
-typedef struct {
-  int has_main, counts_blocks;
-} program_facts;
-
-static void fact(void *ud, const char *name, int defined) {
-  program_facts *pf = ud;
-  if (defined && strcmp(name, "main") == 0) pf->has_main = 1;
-  if (!defined && strcmp(name, "__sanitizer_cov_trace_pc") == 0) pf->counts_blocks = 1;
-}
-
+/* A program built by tilesim-mpicc, and one that counts its blocks if
+ * --compute blocks asks for that: 0, or -1 and a message saying what the
+ * file is instead and how to build one. */
 static int check_program(const char *path, const compute_config *cc, char *err, size_t errlen) {
-  if (!elfsyms_is_shared(path)) {
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-      snprintf(err, errlen, "%s: no such program", path);
-      return -1;
-    }
-    fclose(f);
-    snprintf(err, errlen,
-             "%s: not a program built by tilesim-mpicc (build it with: tilesim-mpicc prog.c -o prog)", path);
+  if (access(path, F_OK) != 0) {
+    snprintf(err, errlen, "%s: no such program", path);
     return -1;
   }
-  program_facts pf = {0, 0};
-  if (elfsyms_read(path, fact, &pf, err, errlen) != 0) return -1;
-  if (!pf.has_main) {
-    snprintf(err, errlen, "%s has no main: not a program built by tilesim-mpicc", path);
+  char what[400];
+  elf_describe(path, what, sizeof what);
+  if (strcmp(what, "a program built by tilesim-mpicc") != 0) {
+    snprintf(err, errlen, "%s is %s, not a program built by tilesim-mpicc: build it with tilesim-mpicc (tilesim-mpicc "
+             "prog.c -o prog; tilesim-mpicxx for C++)", path, what);
     return -1;
   }
-  if (cc->mode == COMPUTE_BLOCKS && !pf.counts_blocks) {
+  elf_prog e;
+  if (elf_read(path, &e, err, errlen) != 0) return -1;
+  const elf_sym *cov = elf_find(&e, "__sanitizer_cov_trace_pc");
+  int has_main = e.has_main, counts = cov && !cov->defined;
+  elf_free(&e);
+  if (!has_main) {
+    snprintf(err, errlen, "%s has no main: tilesim-mpirun runs programs, not libraries", path);
+    return -1;
+  }
+  if (cc->mode == COMPUTE_BLOCKS && !counts) {
     snprintf(err, errlen, "--compute blocks: %s does not count its basic blocks (build it with tilesim-mpicc "
                           "--count-blocks)", path);
     return -1;
   }
   return 0;
+}
+
+/* libc's name for the process (err(3), warn(3), error(3) print it) is the
+ * program's, as in its own processes; tilesim-mpirun's messages name
+ * tilesim-mpirun themselves. */
+static void name_process(const char *path) {
+#ifdef __GLIBC__
+  extern char *program_invocation_name, *program_invocation_short_name;
+  const char *slash = strrchr(path, '/');
+  program_invocation_name = (char *)path;
+  program_invocation_short_name = (char *)(slash ? slash + 1 : path);
+#else
+  (void)path;
+#endif
 }
 
 /* ==== main ================================================================ */
@@ -229,8 +275,8 @@ int main(int argc, char **argv) {
       continue;
     }
     int known = strcmp(a, "-np") == 0 || strcmp(a, "-n") == 0 || strcmp(a, "--np") == 0 || strcmp(a, "--coll") == 0 ||
-                strcmp(a, "--stack") == 0 || strcmp(a, "--stats") == 0 || strcmp(a, "--poll-cost") == 0 ||
-                strcmp(a, "--wtime-cost") == 0;
+                strcmp(a, "--stats") == 0 || strcmp(a, "--poll-cost") == 0 ||
+                strcmp(a, "--wtime-cost") == 0 || strcmp(a, "--fs") == 0;
     if (!known) {
       compute_config c2 = cc;
       machine_config m2 = mc;
@@ -241,18 +287,15 @@ int main(int argc, char **argv) {
     i++;
     int k;
     if (strcmp(a, "-np") == 0 || strcmp(a, "-n") == 0 || strcmp(a, "--np") == 0) {
-      if (args_long(a, v, 1, MACHINE_MAX_PROCS, &np, err, sizeof err) != 0) return bad_usage(err, NULL);
+      if (args_long(a, v, 1, MACHINE_MAX_RANKS, &np, err, sizeof err) != 0) return bad_usage(err, NULL);
     } else if (strcmp(a, "--coll") == 0) {
       if (strcmp(v, "help") == 0) {
         tsmpi_coll_usage(stdout);
         return 0;
       }
       if (tsmpi_coll_option(v, err, sizeof err) != 0) return bad_usage(err, NULL);
-    } else if (strcmp(a, "--stack") == 0) {
-      unsigned long long b;
-      if (args_bytes(a, v, &b, err, sizeof err) != 0) return bad_usage(err, NULL);
-      if (b < (1 << 16) || b > (1ULL << 30)) return bad_usage("--stack takes bytes from 64k to 1G", v);
-      mc.sim.stack = (size_t)b;
+    } else if (strcmp(a, "--fs") == 0) {
+      if (tsmpi_fs_option(v, err, sizeof err) != 0) return bad_usage(err, NULL);
     } else if (strcmp(a, "--stats") == 0) {
       if (args_name(a, v, "a file name or -", 1, err, sizeof err) != 0) return bad_usage(err, NULL);
       stats = v;
@@ -276,6 +319,11 @@ int main(int argc, char **argv) {
   if (mc.backend == MACHINE_MPI)
     return bad_usage("--backend mpi: an MPI program runs under a real mpirun; tilesim-mpirun runs it on sim or "
                      "threads", NULL);
+  if (mc.backend == MACHINE_THREADS && np > MACHINE_MAX_THREADS) {
+    snprintf(err, sizeof err, "--backend threads runs 1 to %d ranks, a thread each; the simulator up to %d",
+             MACHINE_MAX_THREADS, MACHINE_MAX_RANKS);
+    return bad_usage(err, NULL);
+  }
   if (mc.trace_limit_given && !mc.trace) return bad_usage("--trace-limit needs --trace", NULL);
   if (mc.backend != MACHINE_SIM && (mc.trace || mc.print_place || mc.sim.topo.kind != TOPO_NONE))
     return bad_usage("--trace, --print-place and --topology describe the simulated machine (--backend sim)", NULL);
@@ -295,9 +343,19 @@ int main(int argc, char **argv) {
     if (bad) return bad_usage(err, NULL);
   }
 
-  loader *ld = loader_new(path, n, err, sizeof err);
+  const char *outs[2] = {stats && strcmp(stats, "-") != 0 ? stats : NULL, mc.trace};
+  for (int k = 0; k < 2; k++)   /* the files can be written, before any work */
+    if (outs[k] && atomicfile_check(outs[k], err, sizeof err) != 0) {
+      fprintf(stderr, "%s: %s\n", prog, err);
+      return 1;
+    }
+
+  tsmpi_libc_setup(n, on_exit_call, on_abort_call);
+  name_process(path);
+  ld = loader_new(path, n, err, sizeof err);
   if (!ld) {
     fprintf(stderr, "%s: %s\n", prog, err);
+    tsmpi_libc_free();
     return 1;
   }
   info = xcalloc((size_t)n, sizeof *info);
@@ -305,17 +363,21 @@ int main(int argc, char **argv) {
   int pargc = argc - i;
   for (int r = 0; r < n; r++) {
     rank_info *ri = &info[r];
-    ri->main = loader_main(ld, r);
     ri->argc = pargc;
     ri->argv = xcalloc((size_t)pargc + 1, sizeof *ri->argv);
     for (int k = 0; k < pargc; k++) ri->argv[k] = xstrdup(argv[i + k]);
     procs[r] = (mp_proc){rank_entry, ri};
   }
-  tsmpi_libc_setup(n, on_exit_call, on_abort_call);
-  compute_begin(&cc, n);
+  hooks_compute = compute_begin(&cc, n);
+  void *(*get_globals)(void) = NULL;
+  *(void **)&get_globals = loader_library_symbol(ld, "__cxa_get_globals");
+  int cxx = loader_cxx(ld) && mc.backend == MACHINE_SIM && get_globals;
+  if (cxx) hooks_cxx = cxx_ranks_begin(n, get_globals);   /* the ranks share one thread */
+  mp_set_hooks(hooks_cxx && hooks_compute ? &hooks_both : hooks_cxx ? hooks_cxx : hooks_compute);
   crash_install(prog);
   tilesim_stats st;
   int res = launch_run(&mc, n, procs, &st, err, sizeof err);
+  mp_set_hooks(NULL);
   compute_end();
   fflush(stdout);
   int status = 0;
@@ -333,7 +395,8 @@ int main(int argc, char **argv) {
   }
   free(info);
   free(procs);
-  tsmpi_libc_free();
+  if (cxx) cxx_ranks_end();
   loader_free(ld);
+  tsmpi_libc_free();
   return status;
 }

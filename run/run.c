@@ -34,7 +34,8 @@ const char run_options_help[] =
     "                     a path it assembles, copies or measures); default c/100\n"
     "  --table-c S        seconds per cell of a slave's weight table (where slaves\n"
     "                     build one); --back-c S: per step of a slave's backtracking;\n"
-    "                     default 0: not charged (bench --calibrate measures both)\n";
+    "                     default 0: not charged (tilesim-bench --calibrate measures\n"
+    "                     both)\n";
 
 /* The seconds options' range: from 0 to a billion seconds (31 years). */
 #define RUN_MAX_SECONDS 1e9

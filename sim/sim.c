@@ -1,9 +1,10 @@
 /* sim.c -- the discrete-event simulator: ranks as coroutines, the timing model, errors.
  *
- * Reading order: the profiles (the one place for the machine's costs), the
- * data (messages, mailboxes, channels, ranks), scheduling (who runs next),
- * the mp calls (compute, send, recv, probe), then sim_run's main loop and
- * the deadlock report.  The timing model itself is specified in sim.h.
+ * Reading order: the data (ranks, the machine; messages, mailboxes and
+ * channels are mailbox.h's, the profiles profile.c's), scheduling (who
+ * runs next), the mp calls (compute, send, recv, probe; messages without
+ * copies), then sim_run's main loop and the deadlock report.  The timing
+ * model itself is specified in sim.h.
  *
  * Scheduling is a conservative sequential discrete-event loop.  Every rank
  * that can act is queued in `q` under the time it will act at; the running
@@ -38,104 +39,18 @@
 #include "coro.h"
 #include "evq.h"
 #include "errlog.h"
+#include "mailbox.h"
+#include "profile.h"
 #include "trace.h"
 #include "wallclock.h"
 #include "xmem.h"
 
-/* ==== the profiles ======================================================== */
-
-/* "tc2000": the BBN TC2000 of Johnson, Livadas & Talele (1993), calibrated
- * so that the paper's experiments (sections 6 and 7) show what it reports
- * (doc/model.md, "Calibration: the tc2000 profile").
- *   c = 50 us per node: a node is two triangle areas and a comparison, about
- *       1,000 cycles of the 20 MHz Motorola 88100 with its square root in
- *       software.
- *   m = 275 us per message, on a bus: the paper's message queues were
- *       simulated in the TC2000's shared memory, so a message is a locked
- *       enqueue and dequeue, one at a time, and later ones wait; 275 us puts
- *       the speedup's flattening and decline near 12 processors (section 6).
- *   per_byte = 2.6e-8 s: the butterfly switch's 38 MB/s.
- *   local = 0: master and slave on one processor exchange for free.
- * The LogGP fields, for --net loggp: L = m, no overhead, gap or per-byte gap. */
-static void profile_tc2000(sim_config *cfg) {
-  *cfg = (sim_config){0};
-  cfg->procs = 1;
-  cfg->place = NULL;
-  cfg->c = 50e-6;          /* seconds per compute unit (a node) */
-  cfg->m = 275e-6;         /* seconds per message */
-  cfg->per_byte = 2.6e-8;  /* seconds per byte */
-  cfg->local = 0;          /* seconds per message on one processor */
-  cfg->net = SIM_NET_BUS;
-  cfg->L = 275e-6;         /* LogGP latency */
-  cfg->o = 0;              /* LogGP overhead */
-  cfg->g = 0;              /* LogGP gap */
-  cfg->G = 0;              /* LogGP gap per byte */
-  cpu_model_init(&cfg->cpu);  /* no processor overheads, wake-ups or slowdown */
-  cfg->stack = 0;
-  cfg->warn = stderr;
-}
-
-/* "unit": whole seconds, for reading a trace by eye. */
-static void profile_unit(sim_config *cfg) {
-  profile_tc2000(cfg);
-  cfg->c = 1;
-  cfg->m = 1;
-  cfg->per_byte = 0;
-  cfg->L = 1;
-}
-
-void sim_config_init(sim_config *cfg) { profile_tc2000(cfg); }
-
-int sim_profile(const char *name, sim_config *cfg) {
-  if (strcmp(name, "tc2000") == 0)
-    profile_tc2000(cfg);
-  else if (strcmp(name, "unit") == 0)
-    profile_unit(cfg);
-  else
-    return -1;
-  return 0;
-}
-
-static const char *const net_names[] = {"ideal", "bus", "loggp", "topology"};
-
-const char *sim_net_name(sim_net net) {
-  return (unsigned)net < sizeof net_names / sizeof *net_names ? net_names[net] : "?";
-}
-
-int sim_net_parse(const char *name, sim_net *net) {
-  for (unsigned i = 0; i < SIM_NET_TOPOLOGY; i++) {
-    if (strcmp(name, net_names[i]) == 0) {
-      *net = (sim_net)i;
-      return 0;
-    }
-  }
-  return -1;
-}
-
 /* ==== data ================================================================ */
 
 enum {
-  MSG_INLINE = 64,             /* payloads up to this many bytes live in the message */
   STOPPED_CALLS_MAX = 1000000, /* calls after a stop before a rank is abandoned */
   PROBE_SPINS_MAX = 1000000    /* fruitless probes at one clock before we stop */
 };
-
-typedef struct msg msg;
-struct msg {
-  msg *prev, *next;        /* in the receiver's mailbox, by (arrival, seq) */
-  double sent;             /* the sender's clock at mp_send */
-  double arrival;          /* when it can be received */
-  uint64_t seq;            /* send order, machine-wide; the message id in traces */
-  int src, tag;
-  size_t len;
-  unsigned char *data;     /* inl, or a heap block for longer payloads */
-  unsigned char inl[MSG_INLINE];
-};
-
-typedef struct {
-  int dst;                 /* -1: empty slot */
-  double last;             /* the latest arrival sent on src -> dst */
-} chan;
 
 /* R_BUSY: computing with a progress function (mp_set_progress), queued at the
  * computing's end or at the next arrival, whichever is first. */
@@ -154,9 +69,8 @@ struct rank {
   double wake;             /* the time it is queued to wake at, INFINITY if none */
   double since;            /* when it blocked */
   int deadlocked;          /* woken by the deadlock report */
-  msg *head, *tail;        /* mailbox: messages sent to it, sent or arrived */
-  chan *chans;             /* last arrival per destination, open addressing */
-  int nchan, capchan;
+  mbox box;                /* messages sent to it, sent or arrived */
+  chanset chans;           /* the latest arrival per destination */
   long stopped_calls;      /* mp calls since the run stopped */
   double call_t0;          /* mp_call_begin: when the outermost call began, */
   long long call_msgs;     /* and the messages sent and received by then */
@@ -186,7 +100,7 @@ struct sim {
   int cpu;                 /* the processor-side model (cpu.h) is on */
   unsigned char *seen;     /* per processor, for slow_factor */
   int ran;
-  msg *pool;               /* free messages */
+  mstore msgs;             /* spent messages */
   FILE *tcsv, *tjson;
   int count_csv, count_json;   /* sim_trace_count */
   void (*tick)(void *, double, long long);   /* sim_progress */
@@ -241,95 +155,6 @@ static PRINTF(2, 3) void warn(sim *s, const char *fmt, ...) {
   vfprintf(s->cfg.warn, fmt, ap);
   fputc('\n', s->cfg.warn);
   va_end(ap);
-}
-
-/* ==== messages, mailboxes, channels ======================================= */
-
-static msg *msg_new(sim *s, size_t len) {
-  msg *m = s->pool;
-  if (m)
-    s->pool = m->next;
-  else
-    m = xmalloc(sizeof *m);
-  m->data = len <= MSG_INLINE ? m->inl : xmalloc(len);
-  return m;
-}
-
-static void msg_free(sim *s, msg *m) {
-  if (m->data != m->inl) free(m->data);
-  m->next = s->pool;
-  s->pool = m;
-}
-
-/* Insert m into d's mailbox by (arrival, seq); its seq is the largest yet. */
-static void box_insert(rank *d, msg *m) {
-  msg *p = d->tail;
-  while (p && p->arrival > m->arrival) p = p->prev;
-  m->prev = p;
-  m->next = p ? p->next : d->head;
-  if (m->next)
-    m->next->prev = m;
-  else
-    d->tail = m;
-  if (p)
-    p->next = m;
-  else
-    d->head = m;
-}
-
-static void box_unlink(rank *r, msg *m) {
-  if (m->prev)
-    m->prev->next = m->next;
-  else
-    r->head = m->next;
-  if (m->next)
-    m->next->prev = m->prev;
-  else
-    r->tail = m->prev;
-}
-
-static inline int matches(const msg *m, int src, int tag) {
-  return (src < 0 || m->src == src) && (tag < 0 || m->tag == tag);
-}
-
-/* The earliest (arrival, seq) message matching src and tag, or NULL. */
-static msg *box_find(const rank *r, int src, int tag) {
-  for (msg *m = r->head; m; m = m->next)
-    if (matches(m, src, tag)) return m;
-  return NULL;
-}
-
-static inline unsigned chan_hash(int dst, int cap) {
-  return ((unsigned)dst * 2654435761u) & (unsigned)(cap - 1);
-}
-
-static void chan_grow(rank *r) {
-  int cap = r->capchan ? 2 * r->capchan : 4;
-  chan *old = r->chans, *t = xmallocarray((size_t)cap, sizeof *t);
-  for (int i = 0; i < cap; i++) t[i].dst = -1;
-  for (int i = 0; i < r->capchan; i++) {
-    if (old[i].dst < 0) continue;
-    unsigned h = chan_hash(old[i].dst, cap);
-    while (t[h].dst >= 0) h = (h + 1) & (unsigned)(cap - 1);
-    t[h] = old[i];
-  }
-  free(old);
-  r->chans = t;
-  r->capchan = cap;
-}
-
-/* The latest arrival on the channel r -> dst (-infinity if none yet). */
-static double *chan_last(rank *r, int dst) {
-  if (2 * (r->nchan + 1) > r->capchan) chan_grow(r);
-  unsigned h = chan_hash(dst, r->capchan);
-  while (r->chans[h].dst >= 0) {
-    if (r->chans[h].dst == dst) return &r->chans[h].last;
-    h = (h + 1) & (unsigned)(r->capchan - 1);
-  }
-  r->chans[h].dst = dst;
-  r->chans[h].last = -INFINITY;
-  r->nchan++;
-  return &r->chans[h].last;
 }
 
 /* ==== scheduling ========================================================== */
@@ -428,7 +253,7 @@ static double slow_factor(sim *s, const rank *r) {
 static int busy_progress(sim *s, rank *r, double end) {
   double shown = -INFINITY, at = r->now;   /* messages up to shown were offered; at: last resumed */
   for (;;) {
-    msg *m = r->head;
+    msg *m = r->box.head;
     while (m && m->arrival <= shown) m = m->next;
     double next = m ? m->arrival : INFINITY;
     if (next < r->now) next = r->now;
@@ -525,91 +350,213 @@ static int sim_sleep(mp *self, double seconds) {
   return MP_OK;
 }
 
-static int sim_send(mp *self, int dst, int tag, const void *buf, size_t len) {
+/* When len bytes that leave processor a->proc for d's at t arrive, and the
+ * network's state charged for them: the machine's model (sim.h) but for
+ * the sender's processor costs (the caller's) and the channel's order. */
+static inline double wire(sim *s, const rank *a, const rank *d, double t, size_t len, int tag, uint64_t id) {
+  const sim_config *c = &s->cfg;
+  if (d->proc == a->proc) return t + c->local;
+  if (c->net == SIM_NET_BUS) {
+    double start = t > s->bus_free ? t : s->bus_free;
+    s->bus_free = start + c->m + (double)len * c->per_byte;
+    return s->bus_free;
+  }
+  if (c->net == SIM_NET_IDEAL) return t + c->m + (double)len * c->per_byte;
+  if (c->net == SIM_NET_TOPOLOGY)   /* link.h; id names the message in a trace */
+    return links_send(s->links, a->proc, d->proc, t, len, s->tr, a->base.rank, d->base.rank, tag, id);
+  double *nic = &s->nic[a->proc], inject = t > *nic ? t : *nic;
+  *nic = inject + c->g;
+  return inject + (len > 1 ? (double)(len - 1) * c->G : 0) + c->L;
+}
+
+/* r sends len bytes to d: its processor's costs (cpu.h's send cost, LogGP's
+ * o), which move its clock; their total in *o and the start of the first
+ * in *t0 (r's clock if none). */
+static inline void send_costs(sim *s, rank *r, const rank *d, size_t len, double *t0, double *o) {
+  const sim_config *c = &s->cfg;
+  *t0 = r->now;
+  *o = 0;
+  if (d->proc == r->proc) return;
+  if (s->cpu && cpu_send_cost(&c->cpu, len) > 0) {   /* cpu.h: the send's processor time */
+    *o = cpu_send_cost(&c->cpu, len);
+    *t0 = overhead(s, r, *o);
+  }
+  if (c->net == SIM_NET_LOGGP) {
+    double t1 = overhead(s, r, c->o);
+    if (*o == 0) *t0 = t1;
+    *o += c->o;
+  }
+}
+
+/* The latest arrival on the channel a -> d so far, moved to arrival if
+ * that is later (non-overtaking); the arrival in send order. */
+static inline double in_order(rank *a, int dst, double arrival) {
+  double *last = chan_last(&a->chans, dst);
+  if (arrival < *last) arrival = *last;
+  *last = arrival;
+  return arrival;
+}
+
+/* m (its arrival set, placed) into d's mailbox: a receiver blocked on a
+ * matching message wakes when the earliest arrives (cpu.h: later if it has
+ * gone to sleep; its first waker r pays o_wake, where remote); a receiver
+ * computing with a progress function (R_BUSY) wakes at the arrival. */
+static inline void deliver(sim *s, rank *r, rank *d, msg *m, int remote) {
+  const sim_config *c = &s->cfg;
+  box_insert(m);
+  if (d->state == R_BLOCKED && msg_matches(m, d->wait_src, d->wait_tag)) {
+    double resume = m->arrival;
+    if (s->cpu && remote) {
+      resume = cpu_resume(&c->cpu, d->since, m->arrival);
+      if (d->wake == INFINITY && cpu_asleep(&c->cpu, d->since, m->arrival) && c->cpu.o_wake > 0)
+        overhead(s, r, c->cpu.o_wake);
+    }
+    if (resume < d->wake) {
+      d->wake = resume;
+      evq_set(s->q, d->base.rank, resume, s->seq++);
+    }
+  } else if (d->state == R_BUSY && m->arrival < d->wake) {   /* computing: its progress acts at the arrival */
+    d->wake = m->arrival;
+    evq_set(s->q, d->base.rank, m->arrival, s->seq++);
+  }
+}
+
+static inline void count_sent(sim *s, rank *r, int tag, size_t len) {
+  r->st.sent++;
+  r->st.bytes_sent += (long long)len;
+  if (tag >= 0 && tag < SIM_TAGS) r->st.sent_tag[tag]++;
+  s->st.messages++;
+  s->st.bytes += (long long)len;
+}
+
+/* A send's checks: MP_OK or the error (the run's error recorded). */
+static int check_send(sim *s, rank *r, const char *call, int dst, int tag, const void *buf, size_t len) {
+  if (dst < 0 || dst >= s->n) {
+    fail(s, "rank %d: %s to rank %d, which does not exist (%d ranks)", r->base.rank, call, dst, s->n);
+    return MP_ERANK;
+  }
+  if (tag < 0) {
+    fail(s, "rank %d: %s to rank %d with tag %d: tags are >= 0", r->base.rank, call, dst, tag);
+    return MP_EARG;
+  }
+  if (len && !buf) {
+    fail(s, "rank %d: %s of %zu bytes from a NULL buffer", r->base.rank, call, len);
+    return MP_EARG;
+  }
+  return MP_OK;
+}
+
+/* mp_send, or with ref mp_send_ref (*ref: the message, by reference). */
+static int send_msg(mp *self, int dst, int tag, const void *buf, size_t len, mp_ref **ref) {
   rank *r = (rank *)self;
   sim *s = r->s;
   if (s->stopped) return stopped_call(s, r);
   s->st.events++;
   r->probe_spins = 0;
-  if (dst < 0 || dst >= s->n) {
-    fail(s, "rank %d: mp_send to rank %d, which does not exist (%d ranks)", r->base.rank, dst,
-         s->n);
-    return MP_ERANK;
-  }
-  if (tag < 0) {
-    fail(s, "rank %d: mp_send to rank %d with tag %d: tags are >= 0", r->base.rank, dst, tag);
-    return MP_EARG;
-  }
-  if (len && !buf) {
-    fail(s, "rank %d: mp_send of %zu bytes from a NULL buffer", r->base.rank, len);
-    return MP_EARG;
-  }
-  const sim_config *c = &s->cfg;
+  int rc = check_send(s, r, "mp_send", dst, tag, buf, len);
+  if (rc != MP_OK) return rc;
   rank *d = &s->ranks[dst];
-  double before = r->now, t0 = r->now, o = 0, arrival;
-  int remote = d->proc != r->proc;
-  if (remote && s->cpu && cpu_send_cost(&c->cpu, len) > 0) {   /* cpu.h: the send's processor time */
-    o = cpu_send_cost(&c->cpu, len);
-    t0 = overhead(s, r, o);
-  }
-  if (!remote) {
-    arrival = t0 + c->local;
-  } else if (c->net == SIM_NET_BUS) {
-    double start = r->now > s->bus_free ? r->now : s->bus_free;
-    s->bus_free = start + c->m + (double)len * c->per_byte;
-    arrival = s->bus_free;
-  } else if (c->net == SIM_NET_IDEAL) {
-    arrival = r->now + c->m + (double)len * c->per_byte;
-  } else if (c->net == SIM_NET_TOPOLOGY) {   /* link.h; s->seq is the message's id */
-    arrival = links_send(s->links, r->proc, d->proc, r->now, len, s->tr, r->base.rank, dst, tag, s->seq);
-  } else {
-    double t1 = overhead(s, r, c->o);
-    if (o == 0) t0 = t1;
-    o += c->o;
-    double *nic = &s->nic[r->proc], inject = r->now > *nic ? r->now : *nic;
-    *nic = inject + c->g;
-    arrival = inject + (len > 1 ? (double)(len - 1) * c->G : 0) + c->L;
-  }
-  double *last = chan_last(r, dst);
-  if (arrival < *last) arrival = *last; /* non-overtaking */
-  *last = arrival;
+  double before = r->now, t0, o;
+  send_costs(s, r, d, len, &t0, &o);
+  double arrival = in_order(r, dst, wire(s, r, d, r->now, len, tag, s->seq));
 
-  msg *m = msg_new(s, len);
+  msg *m = ref ? msg_new_ref(&s->msgs, &d->box, buf, len) : msg_new(&s->msgs, &d->box, len);
   m->sent = t0;
   m->arrival = arrival;
   m->seq = s->seq++;
   m->src = r->base.rank;
   m->tag = tag;
-  m->len = len;
-  if (len) memcpy(m->data, buf, len);
-  box_insert(d, m);
-
-  r->st.sent++;
-  r->st.bytes_sent += (long long)len;
-  if (tag < SIM_TAGS) r->st.sent_tag[tag]++;
-  s->st.messages++;
-  s->st.bytes += (long long)len;
+  if (ref)
+    *ref = (mp_ref *)m;
+  else
+    box_place(&s->msgs, m, buf);
+  count_sent(s, r, tag, len);
   if (s->tr) trace_send(s->tr, r->base.rank, r->proc, t0, o, dst, tag, len, m->seq, arrival);
-
-  /* A receiver blocked on a matching message wakes when the earliest arrives
-   * (cpu.h: later if it has gone to sleep; its first waker pays o_wake). */
-  if (d->state == R_BLOCKED && matches(m, d->wait_src, d->wait_tag)) {
-    double resume = arrival;
-    if (s->cpu && remote) {
-      resume = cpu_resume(&c->cpu, d->since, arrival);
-      if (d->wake == INFINITY && cpu_asleep(&c->cpu, d->since, arrival) && c->cpu.o_wake > 0)
-        overhead(s, r, c->cpu.o_wake);
-    }
-    if (resume < d->wake) {
-      d->wake = resume;
-      evq_set(s->q, dst, resume, s->seq++);
-    }
-  } else if (d->state == R_BUSY && arrival < d->wake) {   /* computing: its progress acts at the arrival */
-    d->wake = arrival;
-    evq_set(s->q, dst, arrival, s->seq++);
-  }
+  deliver(s, r, d, m, d->proc != r->proc);
   if (r->now > before) moved(s, r);
   return MP_OK;
+}
+
+/* mp_transfer: wire's charge without a message.  The transfer counts as a
+ * message sent by src and received by dst in the statistics. */
+static double sim_transfer(mp *self, int src, int dst, size_t len, double at) {
+  rank *r = (rank *)self;
+  sim *s = r->s;
+  if (s->stopped) {
+    stopped_call(s, r);
+    return at;
+  }
+  s->st.events++;
+  r->probe_spins = 0;
+  if (src < 0 || src >= s->n || dst < 0 || dst >= s->n || !(at >= 0) || isinf(at)) {
+    fail(s, "rank %d: mp_transfer(src=%d, dst=%d, at=%g): ranks are 0..%d, times finite and >= 0",
+         r->base.rank, src, dst, at, s->n - 1);
+    return at;
+  }
+  rank *a = &s->ranks[src], *d = &s->ranks[dst];
+  double before = r->now, t = at;
+  if (a == r && at == r->now) {
+    double t0, o;
+    send_costs(s, r, d, len, &t0, &o);
+    t = r->now;
+  }
+  double arrival = in_order(a, dst, wire(s, a, d, t, len, 0, s->seq++));
+  count_sent(s, a, -1, len);
+  d->st.received++;
+  d->st.bytes_received += (long long)len;
+  s->st.received++;
+  if (r->now > before) moved(s, r);
+  return arrival;
+}
+
+/* mp_notify: a 0-byte message whose arrival the caller chose. */
+static int sim_notify(mp *self, int dst, int tag, double at) {
+  rank *r = (rank *)self;
+  sim *s = r->s;
+  if (s->stopped) return stopped_call(s, r);
+  s->st.events++;
+  r->probe_spins = 0;
+  int rc = check_send(s, r, "mp_notify", dst, tag, NULL, 0);
+  if (rc != MP_OK) return rc;
+  if (!(at >= 0) || isinf(at)) {
+    fail(s, "rank %d: mp_notify(dst=%d, at=%g): the time must be finite and >= 0", r->base.rank, dst, at);
+    return MP_EARG;
+  }
+  rank *d = &s->ranks[dst];
+  msg *m = msg_new(&s->msgs, &d->box, 0);
+  m->sent = r->now;
+  m->arrival = at > r->now ? at : r->now;
+  m->seq = s->seq++;
+  m->src = r->base.rank;
+  m->tag = tag;
+  box_place(&s->msgs, m, "");   /* no bytes */
+  count_sent(s, r, tag, 0);
+  deliver(s, r, d, m, 0);
+  return MP_OK;
+}
+
+static int sim_send(mp *self, int dst, int tag, const void *buf, size_t len) {
+  return send_msg(self, dst, tag, buf, len, NULL);
+}
+
+static int sim_send_ref(mp *self, int dst, int tag, const void *buf, size_t len, mp_ref **ref) {
+  return send_msg(self, dst, tag, buf, len, ref);
+}
+
+static void sim_settle(mp *self, mp_ref *ref) { msg_settle(&((rank *)self)->s->msgs, (msg *)ref, !((rank *)self)->s->stopped); }
+
+static int sim_withdraw(mp *self, mp_ref *ref) { return msg_withdraw(&((rank *)self)->s->msgs, (msg *)ref); }
+
+/* Promises (mailbox.h): only of a message from a rank, into a buffer. */
+static mp_promise *sim_promise(mp *self, int src, int tag, int mask, void *buf, size_t cap) {
+  rank *r = (rank *)self;
+  if (src < 0 || src >= r->s->n || !buf || !cap) return NULL;
+  return (mp_promise *)promise_add(&r->s->msgs, &r->box, src, tag, mask, buf, cap);
+}
+
+static int sim_promise_drop(mp *self, mp_promise *p, int keep) {
+  rank *r = (rank *)self;
+  return promise_drop(&r->s->msgs, &r->box, (promise *)p, keep);
 }
 
 /* Check recv's and probe's source and tag. */
@@ -630,22 +577,29 @@ static int check_match_args(sim *s, rank *r, const char *call, int src, int tag)
  * r blocks until then.  NULL and *rc = MP_EDEADLOCK or MP_ESTOPPED if the
  * run stopped meanwhile. */
 static msg *arrived(sim *s, rank *r, int src, int tag, int *rc) {
-  msg *m = box_find(r, src, tag);
+  msg *m = box_find(&r->box, src, tag);
   if (!m || m->arrival > r->now) {
     /* Block: queued at the first matching arrival if one is on its way,
-     * else not queued until a matching send queues it. */
+     * else not queued until a matching send queues it.  Woken for a
+     * message its sender has withdrawn since (mp_withdraw), it blocks on. */
     double since = r->now;
     r->state = R_BLOCKED;
     r->wait_src = src;
     r->wait_tag = tag;
-    r->wake = INFINITY;
     r->since = since;
-    if (m) {
-      r->wake = s->cpu && s->ranks[m->src].proc != r->proc ? cpu_resume(&s->cfg.cpu, since, m->arrival)
-                                                            : m->arrival;
-      evq_set(s->q, r->base.rank, r->wake, s->seq++);
+    for (;;) {
+      r->wake = INFINITY;
+      if (m) {
+        r->wake = s->cpu && s->ranks[m->src].proc != r->proc ? cpu_resume(&s->cfg.cpu, since, m->arrival)
+                                                              : m->arrival;
+        evq_set(s->q, r->base.rank, r->wake, s->seq++);
+      }
+      give_way(s, r);
+      if (s->stopped) break;
+      XASSERT(r->wake == s->gtime);
+      m = box_find(&r->box, src, tag);
+      if (m && m->arrival <= s->gtime) break;
     }
-    give_way(s, r);
     r->state = R_READY;
     double t = s->stopped ? (s->gtime > since ? s->gtime : since) : r->wake;
     r->now = t;
@@ -655,28 +609,27 @@ static msg *arrived(sim *s, rank *r, int src, int tag, int *rc) {
       *rc = r->deadlocked ? MP_EDEADLOCK : MP_ESTOPPED;
       return NULL;
     }
-    XASSERT(t == s->gtime);
-    m = box_find(r, src, tag);
-    XASSERT(m && m->arrival <= r->now);
   }
   return m;
 }
 
-static int sim_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status *st) {
+/* mp_recv into buf (cap bytes), or, with hold, mp_recv_msg: *hold holds
+ * the message. */
+static int recv_msg(mp *self, int src, int tag, void *buf, size_t cap, mp_status *st, mp_msg **hold) {
   rank *r = (rank *)self;
   sim *s = r->s;
   if (s->stopped) return stopped_call(s, r);
   s->st.events++;
   r->probe_spins = 0;
-  int rc = check_match_args(s, r, "mp_recv", src, tag);
+  const char *call = hold ? "mp_recv_msg" : "mp_recv";
+  int rc = check_match_args(s, r, call, src, tag);
   if (rc != MP_OK) return rc;
   if (cap && !buf) {
-    fail(s, "rank %d: mp_recv into a NULL buffer of %zu bytes", r->base.rank, cap);
+    fail(s, "rank %d: %s into a NULL buffer of %zu bytes", r->base.rank, call, cap);
     return MP_EARG;
   }
   msg *m = arrived(s, r, src, tag, &rc);
   if (!m) return rc;
-  box_unlink(r, m);
 
   double before = r->now, t0 = r->now, o = 0;
   if (s->cfg.net == SIM_NET_LOGGP && s->ranks[m->src].proc != r->proc) {
@@ -688,23 +641,48 @@ static int sim_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status
     if (o == 0) t0 = t1;
     o += orc;
   }
-  size_t n = m->len <= cap ? m->len : cap;
-  if (n) memcpy(buf, m->data, n);
   if (st) *st = (mp_status){m->src, m->tag, m->len};
   r->st.received++;
   r->st.bytes_received += (long long)m->len;
   s->st.received++;
   if (s->tr) trace_recv(s->tr, r->base.rank, r->proc, t0, o, m->src, m->tag, m->len, m->seq);
   rc = MP_OK;
-  if (m->len > cap) {
-    warn(s, "rank %d: mp_recv truncated a %zu-byte message from rank %d (tag %d) to %zu bytes",
-         r->base.rank, m->len, m->src, m->tag, cap);
-    rc = MP_ETRUNC;
+  if (hold) {
+    msg_hold(&s->msgs, m);
+    *hold = (mp_msg *)m;
+  } else {
+    if (m->len > cap) {
+      warn(s, "rank %d: mp_recv truncated a %zu-byte message from rank %d (tag %d) to %zu bytes",
+           r->base.rank, m->len, m->src, m->tag, cap);
+      rc = MP_ETRUNC;
+    }
+    msg_read(&s->msgs, m, buf, m->len <= cap ? m->len : cap);
   }
-  msg_free(s, m);
   if (r->now > before) moved(s, r);
   return rc;
 }
+
+static int sim_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status *st) {
+  return recv_msg(self, src, tag, buf, cap, st, NULL);
+}
+
+static int sim_recv_msg(mp *self, int src, int tag, mp_msg **hold, mp_status *st) {
+  return recv_msg(self, src, tag, NULL, 0, st, hold);
+}
+
+static int sim_msg_read(mp *self, mp_msg *hold, void *buf, size_t cap) {
+  sim *s = ((rank *)self)->s;
+  msg *m = (msg *)hold;
+  if (m->state == M_GONE) {
+    msg_take(&s->msgs, m, NULL, 0);
+    return MP_EGONE;
+  }
+  int rc = m->len > cap && buf ? MP_ETRUNC : MP_OK;
+  msg_take(&s->msgs, m, buf, m->len <= cap ? m->len : cap);
+  return rc;
+}
+
+static int sim_msg_gone(mp *self, const mp_msg *hold) { return (void)self, ((const msg *)hold)->state == M_GONE; }
 
 static int sim_probe(mp *self, int src, int tag, mp_status *st) {
   rank *r = (rank *)self;
@@ -713,7 +691,7 @@ static int sim_probe(mp *self, int src, int tag, mp_status *st) {
   s->st.events++;
   int rc = check_match_args(s, r, "mp_probe", src, tag);
   if (rc != MP_OK) return rc;
-  msg *m = box_find(r, src, tag);
+  msg *m = box_find(&r->box, src, tag);
   if (m && m->arrival <= r->now) {
     r->probe_spins = 0;
     if (st) *st = (mp_status){m->src, m->tag, m->len};
@@ -776,8 +754,10 @@ static void sim_call(mp *self, const char *name, int begin) {
   }
 }
 
-static const mp_ops sim_ops = {sim_send, sim_recv, sim_probe, sim_compute, sim_time,
-                               sim_wait, sim_busy,  sim_sleep, sim_stop,  sim_call};
+static const mp_ops sim_ops = {sim_send,     sim_recv,         sim_probe,    sim_compute,  sim_time,
+                               sim_wait,     sim_busy,         sim_sleep,    sim_stop,     sim_call,
+                               sim_send_ref, sim_settle,       sim_withdraw, sim_recv_msg, sim_msg_read,
+                               sim_msg_gone, sim_promise,      sim_promise_drop, sim_transfer, sim_notify};
 
 /* ==== the machine ========================================================= */
 
@@ -786,50 +766,9 @@ sim *sim_new(const sim_config *cfg, int nranks, char *err, size_t errlen) {
     snprintf(err, errlen, "sim: %d ranks: need at least 1", nranks);
     return NULL;
   }
-  if (cfg->procs < 1) {
-    snprintf(err, errlen, "sim: %d processors: need at least 1", cfg->procs);
-    return NULL;
-  }
-  const struct {
-    const char *name;
-    double v;
-  } costs[] = {{"c", cfg->c},          {"m", cfg->m}, {"per_byte", cfg->per_byte},
-               {"local", cfg->local},  {"L", cfg->L}, {"o", cfg->o},
-               {"g", cfg->g},          {"G", cfg->G}, {"hop_latency", cfg->hop_latency}};
-  for (size_t i = 0; i < sizeof costs / sizeof *costs; i++) {
-    if (!(costs[i].v >= 0) || isinf(costs[i].v)) {
-      snprintf(err, errlen, "sim: cost %s = %g: must be finite and >= 0", costs[i].name,
-               costs[i].v);
-      return NULL;
-    }
-  }
-  if (cpu_model_check(&cfg->cpu, err, errlen) != 0) return NULL;
-  if ((unsigned)cfg->net > SIM_NET_TOPOLOGY ||
-      (cfg->net == SIM_NET_TOPOLOGY && cfg->topo.kind == TOPO_NONE)) {
-    snprintf(err, errlen, "sim: unknown network model %d", (int)cfg->net);
-    return NULL;
-  }
-  /* A topology: its processors (at least procs), its links. */
-  topo *tp = NULL;
-  int procs = cfg->procs;
-  if (cfg->topo.kind != TOPO_NONE) {
-    char terr[200];
-    if (!(tp = topo_new(&cfg->topo, cfg->procs, terr, sizeof terr))) {
-      snprintf(err, errlen, "sim: %s", terr);
-      return NULL;
-    }
-    procs = topo_nodes(tp);
-  }
-  if (cfg->place) {
-    for (int r = 0; r < nranks; r++) {
-      if (cfg->place[r] < 0 || cfg->place[r] >= procs) {
-        snprintf(err, errlen, "sim: place[%d] = %d: processors are 0..%d", r, cfg->place[r],
-                 procs - 1);
-        topo_free(tp);
-        return NULL;
-      }
-    }
-  }
+  topo *tp;
+  int procs;
+  if (sim_config_check(cfg, nranks, &tp, &procs, err, errlen) != 0) return NULL;
   sim *s = xcalloc(1, sizeof *s);
   s->cfg = *cfg;
   s->cfg.procs = procs;
@@ -950,19 +889,14 @@ static void report_deadlock(sim *s) {
 static void sweep_unread(sim *s) {
   for (int i = 0; i < s->n; i++) {
     rank *r = &s->ranks[i];
-    if (!r->head) continue;
+    if (!r->box.head) continue;
     long long count = 0;
-    for (msg *m = r->head; m; m = m->next) count++;
+    for (msg *m = r->box.head; m; m = m->next) count++;
     r->st.unread = count;
     s->st.unread += count;
     warn(s, "rank %d finished with %lld unread message%s (first from rank %d, tag %d)", i, count,
-         count == 1 ? "" : "s", r->head->src, r->head->tag);
-    while (r->head) {
-      msg *m = r->head;
-      r->head = m->next;
-      msg_free(s, m);
-    }
-    r->tail = NULL;
+         count == 1 ? "" : "s", r->box.head->src, r->box.head->tag);
+    box_clear(&r->box, &s->msgs);
   }
 }
 
@@ -1057,18 +991,10 @@ void sim_free(sim *s) {
   for (int i = 0; i < s->n; i++) {
     rank *r = &s->ranks[i];
     coro_free(r->co);
-    while (r->head) {
-      msg *m = r->head;
-      r->head = m->next;
-      msg_free(s, m);
-    }
-    free(r->chans);
+    box_clear(&r->box, &s->msgs);
+    free(r->chans.t);
   }
-  while (s->pool) {
-    msg *m = s->pool;
-    s->pool = m->next;
-    free(m);
-  }
+  mstore_free(&s->msgs);
   coro_stacks_free(s->stacks);
   coro_free(s->main);
   trace_free(s->tr);

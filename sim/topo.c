@@ -61,7 +61,7 @@ int topo_parse(const char *s, topo_spec *out, char *err, size_t errlen) {
            whole(x + 1, vlen - (size_t)(x + 1 - v), 1, TOPO_MAX_NODES, &sp.b) == 0 &&
            (long)sp.a * sp.b <= TOPO_MAX_NODES;
       if (!ok) {
-        snprintf(err, errlen, "topology '%s': %s:WxH takes two whole numbers, W*H at most %d", s,
+        snprintf(err, errlen, "topology '%s': %s:WxH takes two whole numbers from 1 up, W*H at most %d", s,
                  kind_names[kind], TOPO_MAX_NODES);
         return -1;
       }
@@ -156,7 +156,7 @@ topo *topo_new(const topo_spec *sp, int procs, char *err, size_t errlen) {
     return NULL;
   }
   if (N < procs) {
-    snprintf(err, errlen, "topology %s has %ld processors; the run needs %d", name, N, procs);
+    snprintf(err, errlen, "topology %s has %ld processor%s; the run needs %d", name, N, N == 1 ? "" : "s", procs);
     return NULL;
   }
   t.N = (int)N;

@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "args.h"
 #include "crossing.h"
 #include "exact.h"
 #include "xmem.h"
@@ -303,8 +304,8 @@ int bridge_join(const slices *sl, const int *cs, int count, int other, double li
     snprintf(err, errlen,
              "%s:%d: no bridge can join the contour to the contour at line %d without crossing "
              "or enclosing a contour of their slice (they meet one contour of the slice at "
-             "z=%.17g; slice z=%.17g)",
-             name, L->line, first->line, ldexp(sl->z[other], sl->scale), ldexp(sl->z[c.slice], sl->scale));
+             "z=%s; slice z=%s)",
+             name, L->line, first->line, ARGS_G(ldexp(sl->z[other], sl->scale)), ARGS_G(ldexp(sl->z[c.slice], sl->scale)));
     rc = -1;
   } else {
     seq *r = &g[find_root(up, 0)];

@@ -17,6 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "args.h"
 #include "crossing.h"
 #include "exact.h"
 #include "pool.h"
@@ -69,16 +70,16 @@ static void one_slice(void *ud, int k) {
     const slice_contour *a = &c[h.poly[0]], *b = &c[h.poly[1]];
     int e = sl->scale;   /* in the file's units */
     if (a == b)
-      snprintf(buf, sizeof buf, "%s:%d: contour %s itself on slice z=%.17g (%.17g %.17g)", jb->name,
-               a->line, crossing_verb(h.kind), ldexp(sl->z[k], e), ldexp(h.at.x, e), ldexp(h.at.y, e));
+      snprintf(buf, sizeof buf, "%s:%d: contour %s itself on slice z=%s (%s %s)", jb->name,
+               a->line, crossing_verb(h.kind), ARGS_G(ldexp(sl->z[k], e)), ARGS_G(ldexp(h.at.x, e)), ARGS_G(ldexp(h.at.y, e)));
     else {
       if (a->line > b->line) {
         const slice_contour *t = a;
         a = b, b = t;
       }
-      snprintf(buf, sizeof buf, "%s:%d: contour %s the contour at line %d on slice z=%.17g (%.17g %.17g)",
-               jb->name, b->line, crossing_verb(h.kind), a->line, ldexp(sl->z[k], e), ldexp(h.at.x, e),
-               ldexp(h.at.y, e));
+      snprintf(buf, sizeof buf, "%s:%d: contour %s the contour at line %d on slice z=%s (%s %s)",
+               jb->name, b->line, crossing_verb(h.kind), a->line, ARGS_G(ldexp(sl->z[k], e)), ARGS_G(ldexp(h.at.x, e)),
+               ARGS_G(ldexp(h.at.y, e)));
     }
     jb->err[k] = xstrdup(buf);
     free(poly);

@@ -47,6 +47,7 @@ typedef struct {
                          junction joined without overlap moved onto the lower's
                          centroid */
   tiling t;
+  double cost;        /* its path's true cost (tiling_path_cost), scaled as the slices */
   char *err;
   int ntri;
   int (*tri)[3];      /* input ids >= 0; -1-s: Steiner s of lo, then of hi */
@@ -201,7 +202,8 @@ static void mesh_job(void *ud, int i) {
     tiling t2;
     b->span[0] = b->span[1] = 0;
     tiling_repeated_spans(&b->t, &b->span, 1);
-    b->pinched_cost = b->t.cost;
+    b->pinched_cost = tiling_path_cost(&b->t, b->lo.pt, b->lo.n, sl->z[b->slice], b->seen, b->hi.n,
+                                       sl->z[b->slice + 1], w->o->kind);
     b->pinched = 2;
     if (unpinch_solve(b->lo.pt, b->lo.n, sl->z[b->slice], b->seen, b->hi.n, sl->z[b->slice + 1], w->o->kind,
                       &t2) == 0) {
@@ -211,6 +213,8 @@ static void mesh_job(void *ud, int i) {
       b->pinched = 1;
     }
   }
+  b->cost = tiling_path_cost(&b->t, b->lo.pt, b->lo.n, sl->z[b->slice], b->seen, b->hi.n, sl->z[b->slice + 1],
+                             w->o->kind);
   int steps = b->t.m + b->t.n;
   b->ntri = steps + b->lo.ntri + b->hi.ntri;
   b->tri = xmallocarray((size_t)b->ntri, sizeof *b->tri);
@@ -398,14 +402,14 @@ static void join_notes(const work *w) {
       g0 = fmin(g0, g), g1 = fmax(g1, g), last = x, k1++;
     }
     if (k1 == k)
-      fprintf(f, "%s: %s:%d: joined to the contour at line %d (slice z=%.17g to z=%.17g) without overlap: "
-              "one outer contour on each slice (--join single), gap %.17g\n", o->prefix, w->name,
-              sl->c[l->a].line, sl->c[l->b].line, unscale(sl, sl->z[k], 1), unscale(sl, sl->z[k + 1], 1), g0);
+      fprintf(f, "%s: %s:%d: joined to the contour at line %d (slice z=%s to z=%s) without overlap: "
+              "one outer contour on each slice (--join single), gap %s\n", o->prefix, w->name,
+              sl->c[l->a].line, sl->c[l->b].line, ARGS_G(unscale(sl, sl->z[k], 1)), ARGS_G(unscale(sl, sl->z[k + 1], 1)), ARGS_G(g0));
     else
-      fprintf(f, "%s: %s:%d: joined to the contour above, and so on up to line %d (%d joins, slices z=%.17g "
-              "to z=%.17g) without overlap: one outer contour on each slice (--join single), gaps %.17g to "
-              "%.17g\n", o->prefix, w->name, sl->c[l->a].line, sl->c[last->b].line, k1 - k + 1,
-              unscale(sl, sl->z[k], 1), unscale(sl, sl->z[k1 + 1], 1), g0, g1);
+      fprintf(f, "%s: %s:%d: joined to the contour above, and so on up to line %d (%d joins, slices z=%s "
+              "to z=%s) without overlap: one outer contour on each slice (--join single), gaps %s to "
+              "%s\n", o->prefix, w->name, sl->c[l->a].line, sl->c[last->b].line, k1 - k + 1,
+              ARGS_G(unscale(sl, sl->z[k], 1)), ARGS_G(unscale(sl, sl->z[k1 + 1], 1)), ARGS_G(g0), ARGS_G(g1));
     k = k1 + 1;
   }
   for (int k = 0; k + 1 < ns; k++)
@@ -416,14 +420,14 @@ static void join_notes(const work *w) {
       if (l->dropped) {
         char why[120];
         if (l->how == MATCH_LINK_TOUCH) snprintf(why, sizeof why, "their regions touch");
-        else snprintf(why, sizeof why, "its nearest there, gap %.17g, %s", gap_of(w, &l->gap), w->joinopt);
-        fprintf(f, "%s: %s:%d: not joined to the contour at line %d on slice z=%.17g (%s): no bridges can "
+        else snprintf(why, sizeof why, "its nearest there, gap %s, %s", ARGS_G(gap_of(w, &l->gap)), w->joinopt);
+        fprintf(f, "%s: %s:%d: not joined to the contour at line %d on slice z=%s (%s): no bridges can "
                 "join the contours of the junction it would make\n", o->prefix, w->name, sl->c[from].line,
-                sl->c[to].line, unscale(sl, sl->z[sl->c[to].slice], 1), why);
+                sl->c[to].line, ARGS_G(unscale(sl, sl->z[sl->c[to].slice], 1)), why);
       } else if (l->how == MATCH_LINK_NEAREST) {
-        fprintf(f, "%s: %s:%d: joined to its nearest contour on slice z=%.17g, the contour at line %d, "
-                "without overlap (%s), gap %.17g\n", o->prefix, w->name, sl->c[from].line,
-                unscale(sl, sl->z[sl->c[to].slice], 1), sl->c[to].line, w->joinopt, gap_of(w, &l->gap));
+        fprintf(f, "%s: %s:%d: joined to its nearest contour on slice z=%s, the contour at line %d, "
+                "without overlap (%s), gap %s\n", o->prefix, w->name, sl->c[from].line,
+                ARGS_G(unscale(sl, sl->z[sl->c[to].slice], 1)), sl->c[to].line, w->joinopt, ARGS_G(gap_of(w, &l->gap)));
       }
     }
   /* Each contour's ends, below and above, in one line. */
@@ -437,18 +441,18 @@ static void join_notes(const work *w) {
   for (int c = 0; c < sl->ncontours; c++) {
     int n = (end[0][c] != NULL) + (end[1][c] != NULL), said = 0;
     if (!n) continue;
-    fprintf(f, "%s: %s:%d: no partner for this contour (slice z=%.17g) on slice", o->prefix, w->name, sl->c[c].line,
-            unscale(sl, sl->z[sl->c[c].slice], 1));
+    fprintf(f, "%s: %s:%d: no partner for this contour (slice z=%s) on slice", o->prefix, w->name, sl->c[c].line,
+            ARGS_G(unscale(sl, sl->z[sl->c[c].slice], 1)));
     for (int s = 0; s < 2; s++) {
       const match_end *e = end[s][c];
       if (!e) continue;
       int other = sl->c[c].slice + (s ? 1 : -1);
       if (n == 1)
-        fprintf(f, " z=%.17g; nearest there: the contour at line %d, gap %.17g", unscale(sl, sl->z[other], 1),
-                sl->c[e->nearest].line, gap_of(w, &e->gap));
+        fprintf(f, " z=%s; nearest there: the contour at line %d, gap %s", ARGS_G(unscale(sl, sl->z[other], 1)),
+                sl->c[e->nearest].line, ARGS_G(gap_of(w, &e->gap)));
       else
-        fprintf(f, "%s z=%.17g (nearest: the contour at line %d, gap %.17g)", said++ ? " nor on slice" : "",
-                unscale(sl, sl->z[other], 1), sl->c[e->nearest].line, gap_of(w, &e->gap));
+        fprintf(f, "%s z=%s (nearest: the contour at line %d, gap %s)", said++ ? " nor on slice" : "",
+                ARGS_G(unscale(sl, sl->z[other], 1)), sl->c[e->nearest].line, ARGS_G(gap_of(w, &e->gap)));
     }
     fputc('\n', f);
   }
@@ -483,9 +487,9 @@ static void print_notes(const work *w) {
       if (c->relaxed)
         fprintf(o->notes,
                 "%s: %s:%d: no bridge from this contour to the contour at line %d on slice "
-                "z=%.17g avoids the contours of slice z=%.17g; it crosses them in projection%s\n",
-                o->prefix, w->name, c->relaxed_line[1], c->relaxed_line[0], unscale(sl, sl->z[k], 1),
-                unscale(sl, sl->z[side ? k - 1 : k + 1], 1),
+                "z=%s avoids the contours of slice z=%s; it crosses them in projection%s\n",
+                o->prefix, w->name, c->relaxed_line[1], c->relaxed_line[0], ARGS_G(unscale(sl, sl->z[k], 1)),
+                ARGS_G(unscale(sl, sl->z[side ? k - 1 : k + 1], 1)),
                 c->relaxed > 1 ? " (and other bridges of the band too)" : "");
     }
   }
@@ -493,13 +497,13 @@ static void print_notes(const work *w) {
     const band *b = &w->b[i];
     if (b->pinched)
       fprintf(o->notes,
-              "%s: %s:%d: the band from this contour (slice z=%.17g) to the slice z=%.17g: its optimum "
-              "(cost %.17g) uses the span from (%.17g %.17g) to (%.17g %.17g) twice, a pinched, "
+              "%s: %s:%d: the band from this contour (slice z=%s) to the slice z=%s: its optimum "
+              "(cost %s) uses the span from (%s %s) to (%s %s) twice, a pinched, "
               "non-manifold band; %s\n",
-              o->prefix, w->name, sl->c[b->j->lo[0]].line, unscale(sl, sl->z[b->slice], 1),
-              unscale(sl, sl->z[b->slice + 1], 1), unscale(sl, b->pinched_cost, w->deg),
-              unscale(sl, b->lo.pt[b->span[0]].x, 1), unscale(sl, b->lo.pt[b->span[0]].y, 1),
-              unscale(sl, b->hi.pt[b->span[1]].x, 1), unscale(sl, b->hi.pt[b->span[1]].y, 1),
+              o->prefix, w->name, sl->c[b->j->lo[0]].line, ARGS_G(unscale(sl, sl->z[b->slice], 1)),
+              ARGS_G(unscale(sl, sl->z[b->slice + 1], 1)), ARGS_G(unscale(sl, b->pinched_cost, w->deg)),
+              ARGS_G(unscale(sl, b->lo.pt[b->span[0]].x, 1)), ARGS_G(unscale(sl, b->lo.pt[b->span[0]].y, 1)),
+              ARGS_G(unscale(sl, b->hi.pt[b->span[1]].x, 1)), ARGS_G(unscale(sl, b->hi.pt[b->span[1]].y, 1)),
               b->pinched == 1 ? "the cheapest path that does not is used" : "too large to replace; kept");
   }
   for (int i = 0; i < w->nends; i++)
@@ -542,7 +546,7 @@ static void assemble(const work *w, stack_surface *ss) {
     r->lo = positions(sl, b->j->lo, r->nlo), r->hi = positions(sl, b->j->hi, r->nhi);
     r->m = b->lo.n, r->n = b->hi.n;
     r->bridges = b->lo.nbridges + b->hi.nbridges;
-    r->cost = ldexp(b->t.quanta, b->t.qexp + w->deg * sl->scale);
+    r->cost = unscale(sl, b->cost, w->deg);   /* the path's true cost, not its sum of quanta */
     r->area = b->area, r->volume = b->volume;
     r->nodes = (unsigned long long)b->t.count.nodes;
     r->spans = b->pinched ? 1 : 0;
@@ -611,7 +615,7 @@ static void to_file_units(const work *w, const contour_stack *s, stack_surface *
   const slices *sl = w->sl;
   mesh *me = &ss->me;
   double cost = 0;
-  for (int i = 0; i < w->nb; i++) cost += w->b[i].t.cost;
+  for (int i = 0; i < w->nb; i++) cost += w->b[i].cost;
   ss->cost = unscale(sl, cost, w->deg);
   ss->area = unscale(sl, fin->area, 2);
   ss->volume = unscale(sl, fin->volume, 3);
@@ -666,8 +670,8 @@ int stack_check_slices(const contour_stack *s, const char *name, double thicknes
   char what[64];
   if (s->n == 1) snprintf(what, sizeof what, "the only contour lies");
   else snprintf(what, sizeof what, "all %d contours lie", s->n);
-  snprintf(err, errlen, "%s:%d: %s on one slice (z=%.17g): a surface needs two slices, or --thickness T "
-           "to make this one a slab T thick", name, s->c[first].line, what, s->c[first].z);
+  snprintf(err, errlen, "%s:%d: %s on one slice (z=%s): a surface needs two slices, or --thickness T "
+           "to make this one a slab T thick", name, s->c[first].line, what, ARGS_G(s->c[first].z));
   return -1;
 }
 

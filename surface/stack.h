@@ -85,7 +85,8 @@ typedef struct {
   int m, n;            /* band: points of the two contours the tiler saw (with bridge
                           vertices); cap: the region's points, 0 */
   int bridges;         /* band: bridges on both sides */
-  double cost;         /* band: the tiler's optimum (bridge vertices in the plane) */
+  double cost;         /* band: the true cost of the tiler's optimal path (bridge
+                          vertices in the plane; tiling_path_cost) */
   double area;         /* the triangles' area (band: with the bridges' fill) */
   double volume;       /* band: the slab closed by it and the slices' regions;
                           cap: what it adds beyond the flat region (0 flat) */

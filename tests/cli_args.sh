@@ -91,7 +91,7 @@ each tile "--schedule takes static or dynamic" "$P" --schedule "$(word_bad stati
 each tile "--machine takes tc2000" "$P" --machine "$(word_bad unit)"
 each tile "--net takes ideal" "$P" --net "$(word_bad bus)"
 each tile "--topology: unknown topology" "$P" --topology "@E;x; ring;RING;ring,ring"
-each tile "--topology: topology 'mesh:0x3': mesh:WxH takes two whole numbers" "$P" --topology "mesh:0x3"
+each tile "--topology: topology 'mesh:0x3': mesh:WxH takes two whole numbers from 1 up" "$P" --topology "mesh:0x3"
 each tile "--topology: topology 'hypercube:23': hypercube:d takes a dimension from 0 to 22" "$P" --topology "hypercube:23"
 each tile "--hop-latency takes seconds from 0 to 1e9" "$P;--topology;ring" --hop-latency "$seconds_bad"
 each tile "--switching takes cut-through or store-and-forward" "$P;--topology;ring" --switching "$(word_bad cut-through)"

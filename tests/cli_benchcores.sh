@@ -13,7 +13,6 @@ trap 'rm -rf "$T"' EXIT
 pass=0; fail=0
 ok()  { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "cli_benchcores: $*"; }
-now() { date +%s; }
 run() { env BIN="$BUILD" PLOT="$BUILD/plot" CORES=2 CAL_REPEAT=1 "$@" sh tests/bench_cores.sh; }
 HEADER=what,variant,input,procs,runs,measured_s,measured_speedup,predicted_s,predicted_speedup,error,median_s,checksum
 SMALL="tests/data/slicerrt/tinypatient_0.contours|tests/data/slicerrt/prostate_3.contours"
@@ -61,15 +60,15 @@ tables() {
 }
 
 # ---- A complete run: every step, the figures checked against the runs --------------
-t0=$(now)
-guarded 90 "$T/a.out" "$T/a.err" BUDGET=120 OUT="$T/a" POINTS=200,120 VARIANTS=paper,dynamic+block8 REPEAT=2 MESSAGES=300 STACKS="$SMALL"; rc=$?
-t1=$(now)
-[ $rc -eq 0 ] && [ ! -s "$T/a.out" ] && grep -q '^bench-cores: \[[0-9]* s of 120\] done: .*(complete: 2 passes in [0-9]* s)$' "$T/a.err" \
+# (A budget and a guard far beyond what the run takes, so that a loaded
+# machine still completes it: no check here is a timing.)
+guarded 900 "$T/a.out" "$T/a.err" BUDGET=600 OUT="$T/a" POINTS=200,120 VARIANTS=paper,dynamic+block8 REPEAT=2 MESSAGES=300 STACKS="$SMALL"; rc=$?
+[ $rc -eq 0 ] && [ ! -s "$T/a.out" ] && grep -q '^bench-cores: \[[0-9]* s of 600\] done: .*(complete: 2 passes in [0-9]* s)$' "$T/a.err" \
   && ok || bad "a complete run: exit $rc: $(cat "$T/a.err")"
 [ "$(cd "$T/a" && ls -A | tr '\n' ' ')" = "bench-cores.log calibrate.csv cores.csv cores.md cores.svg cores_tile.svg runs.csv " ] \
   && ok || bad "the output folder holds: $(ls -A "$T/a")"
-grep -q '^bench-cores: \[[0-9]* s of 120\] pass 1: threads, 200 points, P = 1,2,3: [0-9.]* s$' "$T/a/bench-cores.log" \
-  && grep -q '^bench-cores: \[[0-9]* s of 120\] pass 2: ./tile.s stacks, N = 2,1: [0-9.]* s$' "$T/a/bench-cores.log" \
+grep -q '^bench-cores: \[[0-9]* s of 600\] pass 1: threads, 200 points, P = 1,2,3: [0-9.]* s$' "$T/a/bench-cores.log" \
+  && grep -q '^bench-cores: \[[0-9]* s of 600\] pass 2: ./tile.s stacks, N = 2,1: [0-9.]* s$' "$T/a/bench-cores.log" \
   && grep -q '^bench: the calibration took' "$T/a/bench-cores.log" && ok || bad "the log: $(cat "$T/a/bench-cores.log")"
 csv=$T/a/cores.csv
 [ "$(head -n 1 "$csv")" = "$HEADER" ] && ok || bad "cores.csv header: $(head -n 1 "$csv")"
@@ -117,20 +116,21 @@ got=$(awk -F, '$1 == "tile" && $3 ~ /prostate_3/ { printf "%.6f\n", $12 }' "$csv
 # The Markdown: what ran, where; a table per variant and one for the stacks.
 md=$T/a/cores.md
 n=$(tables "$md") && [ "$n" -eq 3 ] && ok || bad "cores.md tables: $n"
-grep -q '^## Cores: 2 cores' "$md" && grep -q '^Measured by `make bench-cores BUDGET=120 OUT=.*`.*: complete: 2 passes in' "$md" \
+grep -q '^## Cores: 2 cores' "$md" && grep -q '^Measured by `make bench-cores BUDGET=600 OUT=.*`.*: complete: 2 passes in' "$md" \
   && grep -q '^- commit: ' "$md" && grep -q '^- compiler: ' "$md" && grep -q '^| 3 | .* ms | .* | .* ms | .* | [-+][0-9.]*% |' "$md" \
   && grep -q '^| 2 | .* ms | .* | .* ms | .* |$' "$md" && [ $(($(grep -c '^```' "$md") % 2)) -eq 0 ] && ! grep -q 'Not measured' "$md" \
   && ok || bad "cores.md: $(cat "$md")"
 well_svg "$T/a/cores.svg" 8
 well_svg "$T/a/cores_tile.svg" 3
-[ $((t1 - t0)) -lt 100 ] && ok || bad "the complete run took $((t1 - t0)) s"
 
 # ---- A short budget: the calibration, far too long, stopped at the budget ------------
-t0=$(now)
-guarded 20 "$T/b.out" "$T/b.err" BUDGET=4 OUT="$T/b" POINTS=100 VARIANTS=paper REPEAT=3 MESSAGES=100000000 STACKS="$SMALL"; rc=$?
-t1=$(now)
-[ $rc -eq 0 ] && [ $((t1 - t0)) -le 6 ] && grep -q 'calibration.*: stopped at the budget after' "$T/b.err" \
-  && ok || bad "a short budget: exit $rc after $((t1 - t0)) s: $(cat "$T/b.err")"
+# What shows that it stopped at its budget is its own account (the step
+# stopped, the files saying so, nothing left running), not the time it took
+# here, which a loaded machine stretches; the budget leaves pass 1's short
+# steps room on a loaded machine, and the guard only catches a hang.
+guarded 300 "$T/b.out" "$T/b.err" BUDGET=10 OUT="$T/b" POINTS=100 VARIANTS=paper REPEAT=3 MESSAGES=100000000 STACKS="$SMALL"; rc=$?
+[ $rc -eq 0 ] && grep -q 'calibration.*: stopped at the budget after' "$T/b.err" \
+  && ok || bad "a short budget: exit $rc: $(cat "$T/b.err")"
 left=$(for f in /proc/[0-9]*/cmdline; do { tr '\0' ' ' < "$f"; } 2> /dev/null; echo; done | grep -c -- '--messages 10000000[0]')
 [ "$left" -eq 0 ] && ok || bad "$left calibration processes left running"
 [ "$(head -n 1 "$T/b/cores.csv")" = "$HEADER" ] && [ "$(grep -c '^threads,paper,100,[123],1,[0-9.]*,[0-9.]*,,,,' "$T/b/cores.csv")" -eq 3 ] \

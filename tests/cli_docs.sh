@@ -63,13 +63,20 @@ tilesim-mpirun --ranks    the machine option it refuses (-np gives the ranks)
 tilesim-mpirun -o         tilesim-mpicc'"'"'s, in the examples
 tilesim-mpirun --count-blocks  tilesim-mpicc'"'"'s, which --compute blocks needs
 tilesim-mpirun --calibrate     tilesim-bench'"'"'s, which measures --block-c
+tilesim-mpicc -I          the compiler'"'"'s, which the page says comes first
+tilesim-mpicc --gc-sections  the linker'"'"'s, which the page says it passes
+tilesim-mpicxx -I         the compiler'"'"'s
 plot --claims-map         tilesim-bench'"'"'s, whose CSV it draws
 plot --m                  tilesim-bench'"'"'s, in the example that makes a map
 '
 # Strings in the sources that look like options and are not tilesim's: the
-# compiler flags tilesim-mpicc passes on or tests for, a pragma's warning,
-# and mpirun's -np (which opts() cannot tell from a word: the page has it).
-NOTOPTS='-MM -Wunused-parameter -fPIC -include -shared -np'
+# compiler flags tilesim-mpicc passes on or tests for (those that take a
+# value, those it adds), MPICH's and Open MPI's one-dash names of -show
+# and --showme:compile (which opts() cannot tell from words: the page has
+# them), a pragma's warning, and mpirun's -np.
+NOTOPTS='-MM -Wunused-parameter -fPIC -include -shared -np -D -L -MF -MQ -MT -T -U -e -l -u -z --param -aux-info
+  -Xassembler -Xlinker -Xpreprocessor -idirafter -imacros -iprefix -iquote -isystem -fdata-sections
+  -ffunction-sections -show -showme -compile-info -link-info -static -static-pie'
 allowed() { printf '%s\n' "$ALLOW" | awk -v w="$1" '$1 == w { print $2 }' | sort -u; }
 
 # The options a text names: --long, and -x alone (not -np, not x-y).
@@ -120,7 +127,7 @@ render() {
     groff) groff -mdoc -Tascii -P-cbou -rLL=1000n "$1" 2> /dev/null ;;
   esac | sed "s/.$BS//g"
 }
-PAGES="doc/tile.1 doc/tilesim-bench.1 doc/tilesim-plot.1 doc/tilesim-mpicc.1 doc/tilesim-mpirun.1 doc/tilesim.3 doc/tilesim-contours.5 doc/tilesim.7"
+PAGES="doc/tile.1 doc/tilesim-bench.1 doc/tilesim-plot.1 doc/tilesim-mpicc.1 doc/tilesim-mpicxx.1 doc/tilesim-mpirun.1 doc/tilesim.3 doc/tilesim-contours.5 doc/tilesim.7"
 for pg in $PAGES; do [ -f "$pg" ] && ok || bad "$pg is missing"; done
 # Every page in doc/ is one of those (a new page joins the checks here).
 for pg in doc/*.[1-9]; do
@@ -210,9 +217,11 @@ if [ -n "$RENDER" ]; then
     [ $taken -eq 1 ] && ok || bad "plot: the page names $o, which no mode of plot takes"
   done
 
-  # ---- tilesim-mpicc, tilesim-mpirun ----
+  # ---- tilesim-mpicc, tilesim-mpicxx, tilesim-mpirun ----
   "$BUILD/tilesim-mpicc" --help > "$T/mpicc.help" 2>&1 && ok || bad "tilesim-mpicc --help failed"
   compare tilesim-mpicc "$T/mpicc.help" "$T/tilesim-mpicc.1.txt"
+  "$BUILD/tilesim-mpicxx" --help > "$T/mpicxx.help" 2>&1 && ok || bad "tilesim-mpicxx --help failed"
+  compare tilesim-mpicxx "$T/mpicxx.help" "$T/tilesim-mpicxx.1.txt"
   "$BUILD/tilesim-mpirun" --help > "$T/mpirun.help" 2>&1 && ok || bad "tilesim-mpirun --help failed"
   compare tilesim-mpirun "$T/mpirun.help" "$T/tilesim-mpirun.1.txt"
   opts < "$T/tilesim-mpirun.1.txt" | grep -vxF -f "$T/allow" > "$T/mpirun.opts"

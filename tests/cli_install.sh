@@ -8,7 +8,8 @@
 # the program as installed; man -w finds every page through MANPATH, and
 # through PATH alone (man-db adds PATH_ELEMENT/../share/man).  Installs
 # make check's sanitized build into a folder of its own (make install-files
-# IBIN=... DESTDIR=...), and runs it from another.
+# IBIN=... DESTDIR=...), and runs it from another; then make uninstall
+# removes every file it wrote, and nothing else.
 BUILD=${BUILD:-build/chk}
 T=$(mktemp -d /tmp/tilesim-install.XXXXXX)
 trap 'rm -rf "$T"' EXIT
@@ -107,9 +108,12 @@ else
   echo "cli_install: skipped: the library through pkg-config (pkg-config not found)"
 fi
 
-# The MPI tools (issue 19): the installed tilesim-mpicc finds the installed
-# mpi.h beside itself, and the installed tilesim-mpirun runs what it built.
-for f in bin/tilesim-mpicc bin/tilesim-mpirun include/tilesim/mpi/mpi.h include/tilesim/mpi/tilesim_mpi.h; do
+# The MPI tools (issues 19 and 25): the installed tilesim-mpicc finds the
+# installed mpi.h and libtilesim_mpi.so beside itself, the installed
+# tilesim-mpirun runs what it built, and the program run on its own finds
+# the installed library and says how to run it.
+for f in bin/tilesim-mpicc bin/tilesim-mpicxx bin/tilesim-mpirun include/tilesim/mpi/mpi.h \
+         include/tilesim/mpi/mpi_funcs.h lib/tilesim/libtilesim_mpi.so; do
   [ -e "$P/$f" ] && ok || bad "not installed: $f"
 done
 cat > hello.c <<'EOF2'
@@ -128,15 +132,40 @@ EOF2
 "$P/bin/tilesim-mpicc" hello.c -o hello > log 2>&1 && "$P/bin/tilesim-mpirun" -np 3 ./hello > out 2> err \
   && [ "$(sort out | tr '\n' ' ')" = "rank 0 of 3 rank 1 of 3 rank 2 of 3 " ] && ok \
   || bad "the installed tilesim-mpicc and tilesim-mpirun: $(cat log out err)"
+./hello > out 2> err; rc=$?
+[ $rc -eq 2 ] && grep -q 'tilesim-mpirun -np N ./hello$' err && ok || bad "the installed program run on its own: exit $rc, $(cat out err)"
+if command -v c++ > /dev/null 2>&1; then
+  "$P/bin/tilesim-mpicxx" -x c++ hello.c -o hellox > log 2>&1 && "$P/bin/tilesim-mpirun" -np 2 ./hellox > out 2> err \
+    && [ "$(sort out | tr '\n' ' ')" = "rank 0 of 2 rank 1 of 2 " ] && ok \
+    || bad "the installed tilesim-mpicxx: $(cat log out err)"
+fi
 
 # Without the data: a message saying where it looked and what to do, exit 1.
 mv "$P/share/tilesim" "$T/data"
 "$P/bin/tilesim-bench" --tiler --points 20 --input prostate_2.contours --repeat 1 > out 2> err; rc=$?
-[ $rc -eq 1 ] && grep -q '^bench: prostate_2.contours: not found.*share/tilesim.*--data DIR says where it is$' err \
+[ $rc -eq 1 ] && grep -q '^tilesim-bench: prostate_2.contours: not found.*share/tilesim.*--data DIR says where it is$' err \
   && ok || bad "no data: exit $rc, $(cat err)"
 # --data DIR: there.
 "$P/bin/tilesim-bench" --tiler --points 20 --input prostate_2.contours --data "$T/data" --repeat 1 > out 2> err \
   && grep -q '^stack:prostate_2.contours,' out && ok || bad "--data: $(cat err)"
+
+# make uninstall: every file make install wrote is gone, and the folders
+# that are tilesim's own; a file of someone else's, and its folder, stay.
+cd - > /dev/null || exit 1
+mv "$T/data" "$P/share/tilesim"
+echo mine > "$P/bin/mytool"
+mkdir -p "$P/share/doc/tilesim/notes" && echo mine > "$P/share/doc/tilesim/notes/mine.txt"
+mk uninstall DESTDIR="$T/root" PREFIX=/opt/ts > "$T/log" 2>&1 && ok || bad "make uninstall: $(cat "$T/log")"
+left=$(cd "$T/root" && find . -type f | sort | tr '\n' ' ')
+[ "$left" = "./opt/ts/bin/mytool ./opt/ts/share/doc/tilesim/notes/mine.txt " ] && ok \
+  || bad "make uninstall left files of its own, or removed another's: $left"
+for d in share/tilesim include/tilesim; do
+  [ ! -e "$P/$d" ] && ok || bad "make uninstall left $d"
+done
+grep -q "share/doc/tilesim is not empty: left as it is" "$T/log" && ok || bad "make uninstall does not say what it left: $(cat "$T/log")"
+rm -r "$P/share/doc/tilesim/notes" "$P/bin/mytool"
+mk uninstall DESTDIR="$T/root" PREFIX=/opt/ts > "$T/log" 2>&1 && [ ! -e "$P/share/doc/tilesim" ] && ok \
+  || bad "make uninstall twice: $(cat "$T/log")"
 
 echo "cli_install: $pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -3,8 +3,9 @@
 # 4.1 is an MPI 3.1 library): every function Open MPI declares, tilesim
 # declares with the same return and parameter types (gcc -aux-info lists
 # both headers' prototypes; MPI_Fint, which is int, aside), and the
-# functions only tilesim declares are the ten MPI 3.0 removed and
-# MPI_Aint_add/diff (macros in Open MPI), each with its PMPI_ name.  Where
+# functions only tilesim declares are the ten MPI 3.0 removed,
+# MPI_Aint_add/diff (macros in Open MPI) and MPI-4's MPI_Isendrecv and
+# MPI_Isendrecv_replace, each with its PMPI_ name.  Where
 # $MPICC cannot build an MPI program (MPI_STATUS) or the compiler is not
 # gcc, it says so and counts nothing.
 pass=0; fail=0
@@ -42,7 +43,7 @@ missing=$(comm -23 "$T/ompi.names" "$T/mine.names" | tr '\n' ' ')
 differ=$(comm -23 "$T/ompi.f" "$T/mine" | cut -d'|' -f1 | tr '\n' ' ')
 [ -z "$differ" ] && ok || bad "other types than Open MPI's: $differ"
 extra=$(comm -13 "$T/ompi.names" "$T/mine.names" | sed 's/^P//' | sort -u | tr '\n' ' ')
-want="MPI_Address MPI_Aint_add MPI_Aint_diff MPI_Errhandler_create MPI_Errhandler_get MPI_Errhandler_set MPI_Type_extent MPI_Type_hindexed MPI_Type_hvector MPI_Type_lb MPI_Type_struct MPI_Type_ub "
+want="MPI_Address MPI_Aint_add MPI_Aint_diff MPI_Errhandler_create MPI_Errhandler_get MPI_Errhandler_set MPI_Isendrecv MPI_Isendrecv_replace MPI_Type_extent MPI_Type_hindexed MPI_Type_hvector MPI_Type_lb MPI_Type_struct MPI_Type_ub "
 [ "$extra" = "$want" ] && ok || bad "tilesim alone declares: $extra"
 echo "cli_mpihdr: $pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -24,14 +24,15 @@ head -1 "$T/a.svg" | grep -q '^<svg xmlns="http://www.w3.org/2000/svg"' && tail 
 [ "$(grep -c '<polyline' "$T/a.svg")" -eq 2 ] && ok || bad "expected 2 lines (points 100 and 200)"
 grep -q '>points=100<' "$T/a.svg" && grep -q '>points=200<' "$T/a.svg" && ok || bad "legend"
 grep -q 'T &lt;&amp;&gt;' "$T/a.svg" && ok || bad "title not escaped"
-[ "$(grep -c '<circle' "$T/a.svg")" -eq 6 ] && ok || bad "the size row should be filtered out (6 markers)"
+# markers (open: white inside): 2 lines of 3 points, and one a legend entry
+[ "$(grep -c 'fill="white" stroke-width="1.5"' "$T/a.svg")" -eq 8 ] && ok || bad "the size row should be filtered out (6 markers and 2 in the legend)"
 # points sorted by x: 200's rows come 1, 3, 2 in the file, its line 1, 2, 3 left to right
 grep '<polyline' "$T/a.svg" | sed -n 2p | sed 's/.*points="//; s/".*//' | tr ' ' '\n' | cut -d, -f1 |
   awk 'NR > 1 && $1 <= last { bad = 1 } { last = $1 } END { exit bad || NR != 3 }' && ok || bad "a line's points are not in x order"
 "$PLOT" lines "$T/a.csv" -x procs -y speedup,model --series points --labels sim,model -o "$T/b.svg" && [ "$(grep -c 'stroke-dasharray' "$T/b.svg")" -ge 2 ] && grep -q '>points=100, model<' "$T/b.svg" && ok || bad "two y columns"
 "$PLOT" lines "$T/a.csv" -x procs -y speedup --series points --where alloc=half --title "T <&>" --yzero -o "$T/a2.svg" && cmp -s "$T/a.svg" "$T/a2.svg" && ok || bad "two runs differ"
 # errors
-"$PLOT" lines "$T/a.csv" -x nope -y speedup -o "$T/c.svg" 2> "$T/err"; [ $? -eq 1 ] && grep -q 'not in its header' "$T/err" && [ ! -e "$T/c.svg" ] && ok || bad "unknown column"
+"$PLOT" lines "$T/a.csv" -x nope -y speedup -o "$T/c.svg" 2> "$T/err"; [ $? -eq 1 ] && grep -q "its header has no column 'nope' (-x)" "$T/err" && [ ! -e "$T/c.svg" ] && ok || bad "unknown column"
 "$PLOT" lines "$T/missing.csv" -x procs -y speedup -o "$T/c.svg" 2> "$T/err"; [ $? -eq 1 ] && grep -q 'cannot open' "$T/err" && ok || bad "missing CSV"
 printf 'a,b\n1,2,3\n' > "$T/bad.csv"
 "$PLOT" lines "$T/bad.csv" -x a -y b -o "$T/c.svg" 2> "$T/err"; [ $? -eq 1 ] && grep -q 'bad.csv:2: 3 fields' "$T/err" && ok || bad "ragged CSV: $(cat "$T/err")"
@@ -68,5 +69,17 @@ want=$("$TILE" $dcm --roi 'Lt Lung' --caps -q | awk -F, 'NR == 1 { for (i = 1; i
 printf 'C 4 0\n0 0\n4 0\n4 4\n0 4\nC 4 0\n2 2\n6 2\n6 6\n2 6\nC 4 1\n0 0\n4 0\n4 4\n0 4\n' > "$T/cross.contours"
 "$PLOT" surface "$T/cross.contours" -o "$T/s3.svg" 2> "$T/err"; [ $? -eq 1 ] && grep -q 'cross.contours:[0-9]*: .*cross' "$T/err" &&
   [ "$(wc -l < "$T/err")" -eq 1 ] && [ ! -e "$T/s3.svg" ] && ok || bad "bad stack: $(cat "$T/err")"
+# -o names an SVG file: another extension is refused with the reason,
+# before any work, in every mode; .SVG is fine
+for m in "lines $T/a.csv -x procs -y speedup" "surface $tp" "claims plots/claims_map.csv"; do
+  for o in x.png x.pdf x; do
+    # shellcheck disable=SC2086
+    "$PLOT" $m -o "$T/$o" > /dev/null 2> "$T/err"; rc=$?
+    ext=${o#x}; ext=${ext#.}
+    [ $rc -eq 2 ] && grep -q "^plot: -o takes a file name ending in .svg: the plotter writes SVG only" "$T/err" &&
+      { [ -z "$ext" ] || grep -q "not $ext (" "$T/err"; } && [ ! -e "$T/$o" ] && ok || bad "plot $m -o $o: exit $rc, $(cat "$T/err")"
+  done
+done
+"$PLOT" lines "$T/a.csv" -x procs -y speedup -o "$T/up.SVG" 2> "$T/err" && grep -q '^<svg ' "$T/up.SVG" && ok || bad "-o up.SVG: $(cat "$T/err")"
 echo "cli_plot: $pass passed, $fail failed"
 [ $fail -eq 0 ]

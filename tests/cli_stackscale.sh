@@ -32,7 +32,7 @@ same_words() {
       for (i = 1; i <= n; i++) {
         if (a[i] != b[i]) {
           x = a[i] + 0; for (j = 0; j < d; j++) x *= 2 ^ k
-          if (!num(a[i]) || sprintf("%.17g", x) != b[i]) bad = 1
+          if (!num(a[i]) || !num(b[i]) || x != b[i] + 0) bad = 1
         }
         d = a[i] == "cost" ? 2 : 1
       } }

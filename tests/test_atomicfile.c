@@ -59,6 +59,19 @@ static void basics(void) {
   CHECK(atomicfile_open(&a, p, "w", err, sizeof err) == -1 && strstr(err, "cannot create a temporary file"),
         "no folder: %s", err);
   CHECK(atomicfile_live() == 0, "a failed open holds no slot");
+  /* Checked before the work: no folder, a folder in the file's place, a
+   * target that exists (kept as it is), a new one (not made). */
+  CHECK(atomicfile_check(p, err, sizeof err) == -1 && strstr(err, "nodir/x.txt: cannot create a temporary file"),
+        "check, no folder: %s", err);
+  char d[128];
+  path_of(d, sizeof d, "");
+  CHECK(atomicfile_check(d, err, sizeof err) == -1 && strstr(err, "is a folder"), "check, a folder: %s", err);
+  path_of(p, sizeof p, "a.txt");
+  CHECK(atomicfile_check(p, err, sizeof err) == 0 && contents_are("a.txt", "hello") && count("a.txt") == 1,
+        "check, an existing file: %s", err);
+  path_of(p, sizeof p, "new.txt");
+  CHECK(atomicfile_check(p, err, sizeof err) == 0 && count("new.txt") == 0 && atomicfile_live() == 0,
+        "check, a new file: nothing made, no slot held (%s)", err);
   /* At most 64 at once, and a slot comes back when closed. */
   static atomicfile many[65];
   int opened = 0;

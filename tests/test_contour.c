@@ -80,7 +80,7 @@ static const bad cases[] = {
     {"C 5 7\n0 0\n# a comment\n1 1\n\n1 1\n1 0\n0 1\n", 1,   /* lines as in the file, after repair */
      "the contour crosses itself: the segment from line 2 to line 4 crosses the segment from line 7 to line 8", "0.5 0.5"},
     {"C 4 0\n0 0\n1e300 1e300\n1e300 0\n0 1e300\n", 1,   /* at any scale */
-     "the contour crosses itself: the segment from line 2 to line 3 crosses the segment from line 4 to line 5", "5.0000000000000003e+299 5.0000000000000003e+299"},
+     "the contour crosses itself: the segment from line 2 to line 3 crosses the segment from line 4 to line 5", "5e299 5e299"},
     {"C 4 0\n0 0\n4e-323 4e-323\n4e-323 0\n0 4e-323\n", 1,   /* subnormals */
      "the contour crosses itself: the segment from line 2 to line 3 crosses the segment from line 4 to line 5", NULL},
     {"C 3 0\n0 0\n1\x01 0\n0 1\n", 3, "binary data", "byte 0x01"},

@@ -1,4 +1,4 @@
-/* test_mpiprogs.c -- the datatype, operation, collective and topology programs of tests/mpi/
+/* test_mpiprogs.c -- the datatype, operation, collective, topology and I/O programs of tests/mpi/
  * on the simulator: on 1 to 16 ranks with MPICH's choices, and on six rank counts each (powers
  * of two and others; the nonblocking collectives' program on 5 and 8) with --coll linear and
  * with each algorithm of each collective they use forced in turn, so that every algorithm runs
@@ -38,11 +38,11 @@ static const struct {
 };
 enum { NPROGS = sizeof progs / sizeof progs[0] };
 
-/* The programs this driver runs: the datatype, operation and collective
- * ones (point-to-point's have their own). */
+/* The programs this driver runs: the datatype, operation, collective,
+ * topology and I/O ones (point-to-point's have their own). */
 static int mine(const char *name) {
   return !strncmp(name, "coll_", 5) || !strncmp(name, "dtype_", 6) || !strncmp(name, "op_", 3) ||
-         !strncmp(name, "topo_", 5);
+         !strncmp(name, "topo_", 5) || !strncmp(name, "io_", 3);
 }
 
 /* Which collectives a program's checks depend on: the settings worth

@@ -1,6 +1,6 @@
 /* test_mpiprogs_p2p.c -- the point-to-point, communicator, attribute,
- * error-handler and info programs of tests/mpi/ (p2p_*, comm_*, attr_*,
- * err_*, info_*) on the simulator on 2 to 16 ranks, and on the
+ * error-handler, info and one-sided programs of tests/mpi/ (p2p_*, comm_*,
+ * attr_*, err_*, info_*, rma_*) on the simulator on 2 to 16 ranks, and on the
  * threads backend (2, 4 and 7 ranks), where messages arrive in the host's
  * order and the results must not change.
  *
@@ -35,7 +35,7 @@ enum { NPROGS = sizeof progs / sizeof progs[0] };
 
 static int mine(const char *name) {
   return !strncmp(name, "p2p_", 4) || !strncmp(name, "comm_", 5) || !strncmp(name, "attr_", 5) ||
-         !strncmp(name, "err_", 4) || !strncmp(name, "info_", 5);
+         !strncmp(name, "err_", 4) || !strncmp(name, "info_", 5) || !strncmp(name, "rma_", 4);
 }
 
 static void run(int p, int np, int backend) {

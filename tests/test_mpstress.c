@@ -25,6 +25,10 @@
  * declared beside a deliverable message is a lost wake-up or a missed
  * look), and the messages sent but never taken as unread.
  *
+ * Senders send some messages by reference (mp_send_ref), settled a few
+ * steps later, their buffers then overwritten and freed; receivers take
+ * some through mp_recv_msg and mp_msg_read: the same checks hold.
+ *
  * Before the random programs, small fixed programs for bugs found here
  * (each fails on the backend before its fix).
  *
@@ -177,21 +181,53 @@ static void causal(sprog *p, int me, int k, int tag, const char *call) {
   wrong(p, me, k, w);
 }
 
+/* Sends by reference not yet settled: settled when due (all at the end),
+ * their buffers overwritten and freed. */
+typedef struct {
+  mp_ref *ref;
+  unsigned char *buf;
+  int due;
+} byref;
+
+static void settle(mp *self, byref *br, int *n, int step) {
+  for (int k = 0; k < *n;) {
+    if (step >= 0 && br[k].due > step) {
+      k++;
+      continue;
+    }
+    mp_settle(self, br[k].ref);
+    memset(br[k].buf, 0xa5, 8);
+    free(br[k].buf);
+    br[k] = br[--*n];
+  }
+}
+
 static void rank_main(mp *self, void *ud) {
   sprog *p = ud;
-  int me = mp_rank(self), nr = p->nr, mode = p->mode[me];
+  int me = mp_rank(self), nr = p->nr, mode = p->mode[me], nbr = 0;
   uint32_t vc[SR_RANKS] = {0};
   unsigned char *buf = xmalloc(SR_BUF);
+  byref *br = xmallocarray(SR_MSGS, sizeof *br);
   rng r;
   rng_seed(&r, p->seed * 7919 + (uint64_t)me);
   int i = 0;
   for (; i < p->nm; i++) {
     const smsg *m = &p->m[i];
+    settle(self, br, &nbr, i);
     if (m->src == me && i != p->skip) {
       vc[me]++;
       memcpy(p->vc[i], vc, sizeof vc);
-      fill(buf, i, m->len);
-      if (mp_send(self, m->dst, m->tag, buf, (size_t)m->len) != MP_OK) wrong(p, me, i, "send failed");
+      if (rng_int(&r, 0, 2) == 0) {
+        unsigned char *b = xmalloc((size_t)m->len);
+        fill(b, i, m->len);
+        if (mp_send_ref(self, m->dst, m->tag, b, (size_t)m->len, &br[nbr].ref) != MP_OK)
+          wrong(p, me, i, "send_ref failed");
+        br[nbr].buf = b;
+        br[nbr++].due = i + rng_int(&r, 0, 40);
+      } else {
+        fill(buf, i, m->len);
+        if (mp_send(self, m->dst, m->tag, buf, (size_t)m->len) != MP_OK) wrong(p, me, i, "send failed");
+      }
       p->sent[i] = 1;
     }
     if (m->dst != me) continue;
@@ -229,7 +265,14 @@ static void rank_main(mp *self, void *ud) {
       }
     }
     memset(buf, 0, 8);
-    int rc = mp_recv(self, src, tag, buf, SR_BUF, &st);
+    int rc;
+    if (rng_int(&r, 0, 2) == 0) {   /* taken, then read */
+      mp_msg *h;
+      rc = mp_recv_msg(self, src, tag, &h, &st);
+      if (rc == MP_OK && mp_msg_read(self, h, buf, SR_BUF) != MP_OK) wrong(p, me, i, "msg_read failed");
+    } else {
+      rc = mp_recv(self, src, tag, buf, SR_BUF, &st);
+    }
     if (rc == MP_EDEADLOCK && p->skip >= 0) {
       p->deadlocked[me] = 1;
       p->wait_src[me] = src;
@@ -258,6 +301,8 @@ static void rank_main(mp *self, void *ud) {
     merge(vc, p->vc[k], nr);
   }
   p->finished[me] = i == p->nm;
+  settle(self, br, &nbr, -1);
+  free(br);
   free(buf);
 }
 

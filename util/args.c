@@ -11,6 +11,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "progname.h"
+
 /* ---- helpers --------------------------------------------------------- */
 
 static int dig(char c) { return c >= '0' && c <= '9'; }
@@ -19,13 +21,14 @@ static int dig(char c) { return c >= '0' && c <= '9'; }
  * control bytes and non-ASCII escaped as \xNN, cut after 60 bytes. */
 int args_usage(const char *prog, const char *usage, const char *why, const char *arg) {
   char shown[200];
-  fprintf(stderr, "%s: %s", prog, why);
+  fprintf(stderr, "%s: ", progname_as(prog));
+  progname_fputs(why, stderr);
   if (arg) {
     args_show(arg, shown, sizeof shown);
     fprintf(stderr, " (%s)", shown);
   }
   fputc('\n', stderr);
-  fputs(usage, stderr);
+  progname_fputs(usage, stderr);
   return 2;
 }
 
@@ -76,6 +79,11 @@ void args_fmt_double(double v, char *buf, size_t len) {
   }
   out[k] = 0;
   snprintf(buf, len, "%s", out);
+}
+
+char *args_g(char *buf, double v) {
+  args_fmt_double(v, buf, ARGS_G_LEN);
+  return buf;
 }
 
 /* [-]digits */

@@ -74,11 +74,21 @@ void args_show(const char *val, char *buf, size_t len);
 
 /* Bad usage, the one way every mode says it: "PROG: why" on stderr, arg (or
  * NULL) shown after it as args_show shows values, then the usage text.
- * Returns 2, the exit status of bad usage. */
+ * PROG, as a word of why and of the usage text too, is written as the name
+ * the program was run by (util/progname.h).  Returns 2, the exit status of
+ * bad usage. */
 int args_usage(const char *prog, const char *usage, const char *why, const char *arg);
 
 /* A real number in the shortest form that reads back exactly, with a short
- * exponent ("1e9", "0.000275", "2.5e-5"): how the messages print ranges. */
+ * exponent ("1e9", "0.000275", "2.5e-5"): how the messages print ranges,
+ * and every number a message or summary line shows (CSV keeps %.17g). */
 void args_fmt_double(double v, char *buf, size_t len);
+
+/* The same into buf (ARGS_G_LEN bytes), returned: ARGS_G(x) gives a buffer
+ * that lasts to the end of the enclosing block, for a printf argument:
+ *     fprintf(stderr, "at (%s %s)\n", ARGS_G(p.x), ARGS_G(p.y)); */
+enum { ARGS_G_LEN = 40 };
+char *args_g(char *buf, double v);
+#define ARGS_G(v) args_g((char[ARGS_G_LEN]){0}, (v))
 
 #endif

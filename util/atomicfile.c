@@ -145,6 +145,18 @@ int atomicfile_close(atomicfile *a, int ok, char *err, size_t errlen) {
   return bad ? -1 : 0;
 }
 
+int atomicfile_check(const char *path, char *err, size_t errlen) {
+  struct stat st;
+  if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) {
+    snprintf(err, errlen, "%s: is a folder; name a file", path);
+    return -1;
+  }
+  atomicfile a;
+  if (atomicfile_open(&a, path, "w", err, errlen) != 0) return -1;
+  atomicfile_close(&a, 0, err, errlen);
+  return 0;
+}
+
 int atomicfile_live(void) {
   int n = 0;
   for (int i = 0; i < SLOTS; i++) n += atomic_load(&slot[i].state) == LIVE && slot[i].pid == getpid();

@@ -30,6 +30,13 @@ int atomicfile_open(atomicfile *a, const char *path, const char *mode, char *err
  * !ok: close and remove the temporary file (returns -1). */
 int atomicfile_close(atomicfile *a, int ok, char *err, size_t errlen);
 
+/* Can path be written, as atomicfile_open and atomicfile_close would write
+ * it?  A temporary file is made beside it and removed at once, and a
+ * folder in its place is refused: what a program checks before its work,
+ * so that a run never ends in "cannot write" after its report.  0, or -1
+ * with "PATH: why" in err. */
+int atomicfile_check(const char *path, char *err, size_t errlen);
+
 /* How many temporary files this process has open (for tests). */
 int atomicfile_live(void);
 

@@ -4,7 +4,8 @@
  * padding, resized types, subarrays in C and Fortran order), MPI_Pack/MPI_Unpack round trips
  * at offsets, MPI_Pack_size, MPI_Get_address, decoding (envelope and contents), derived types
  * sent between ranks and received as another type of the same signature, MPI_Type_free before
- * a pending receive completes, MPI_Get_count and MPI_Get_elements, and argument errors.
+ * a pending receive completes, MPI_Get_count and MPI_Get_elements, statuses set by
+ * MPI_Status_set_elements, names, and argument errors.
  *
  * Plain MPI C: it builds with tilesim's mpi.h and with Open MPI's mpicc, and prints the same
  * "dtype_maps: P passed, F failed" line under both. */
@@ -321,6 +322,60 @@ static void test_pack_api(mtest *t) {
   MCHECK(t, rc != MPI_SUCCESS, "MPI_Unpack of 24 bytes from 8 succeeded");
 }
 
+/* A status made by MPI_Status_set_elements (as a generalized request's
+ * query function makes one). */
+static void test_status(mtest *t) {
+  MPI_Status st;
+  int n;
+  MPI_Count x;
+  MPI_Status_set_elements(&st, MPI_INT, 5);
+  MPI_Get_count(&st, MPI_INT, &n);
+  MCHECK(t, n == 5, "MPI_Get_count after MPI_Status_set_elements(5 MPI_INT): %d", n);
+  MPI_Get_count(&st, MPI_BYTE, &n);
+  MCHECK(t, n == 20, "MPI_Get_count as MPI_BYTE: %d", n);
+  /* {int, double}: 3 basic elements are one element and an int. */
+  int bl[2] = {1, 1};
+  MPI_Aint dp[2] = {0, 8};
+  MPI_Datatype ty[2] = {MPI_INT, MPI_DOUBLE}, id;
+  MPI_Type_create_struct(2, bl, dp, ty, &id);
+  MPI_Type_commit(&id);
+  MPI_Status_set_elements(&st, id, 3);
+  MPI_Get_elements(&st, id, &n);
+  MCHECK(t, n == 3, "MPI_Get_elements after setting 3 of {int, double}: %d", n);
+  MPI_Get_count(&st, id, &n);
+  MCHECK(t, n == MPI_UNDEFINED, "MPI_Get_count after setting 3 of {int, double}: %d", n);
+  MPI_Get_count(&st, MPI_BYTE, &n);
+  MCHECK(t, n == 16, "3 basic elements of {int, double} in bytes: %d", n);
+  MPI_Status_set_elements_x(&st, MPI_SHORT, 7);
+  MPI_Get_elements_x(&st, MPI_SHORT, &x);
+  MPI_Get_count(&st, MPI_CHAR, &n);
+  MCHECK(t, x == 7 && n == 14, "7 MPI_SHORT set: %lld elements, %d chars", (long long)x, n);
+  MPI_Type_free(&id);
+}
+
+/* Names: predefined ones, set on a predefined type (each rank its own, as
+ * each process its own) and on a derived one. */
+static void test_names(mtest *t) {
+  char name[MPI_MAX_OBJECT_NAME], mine[32];
+  int len;
+  MPI_Type_get_name(MPI_DOUBLE, name, &len);
+  MCHECK(t, !strcmp(name, "MPI_DOUBLE") && len == 10, "MPI_DOUBLE's name '%s' (%d)", name, len);
+  snprintf(mine, sizeof mine, "int of rank %d", t->rank);
+  MPI_Type_set_name(MPI_INT, mine);
+  MPI_Barrier(MPI_COMM_WORLD);
+  MPI_Type_get_name(MPI_INT, name, &len);
+  MCHECK(t, !strcmp(name, mine), "MPI_INT renamed '%s', reads '%s'", mine, name);
+  MPI_Type_set_name(MPI_INT, "MPI_INT");
+  MPI_Datatype c;
+  MPI_Type_contiguous(2, MPI_INT, &c);
+  MPI_Type_get_name(c, name, &len);
+  MCHECK(t, len == 0 && name[0] == 0, "a new type's name '%s'", name);
+  MPI_Type_set_name(c, "pair of ints");
+  MPI_Type_get_name(c, name, &len);
+  MCHECK(t, !strcmp(name, "pair of ints") && len == 12, "a derived type's name '%s'", name);
+  MPI_Type_free(&c);
+}
+
 static void test_errors(mtest *t) {
   MPI_Datatype v = MPI_DATATYPE_NULL, u;
   int x[4] = {0, 0, 0, 0};
@@ -348,6 +403,8 @@ int main(int argc, char **argv) {
   test_decoding(&t);
   test_pack_api(&t);
   test_errors(&t);
+  test_status(&t);
+  test_names(&t);
   test_send(&t);
   int rc = mtest_done(&t);
   MPI_Finalize();

@@ -1,0 +1,339 @@
+/* io.c -- MPI-IO's files: the rank's table, the shared object of an open, opening and closing,
+ * errors under a file's handler, and the time each access costs (io.h). */
+#include "io.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "coll.h"
+#include "coll_sched.h"
+#include "dtype.h"
+#include "err.h"
+#include "errh.h"
+#include "mp.h"
+#include "p2p.h"
+#include "state.h"
+
+/* ==== the rank's table ==================================================== */
+
+enum { CREATED = 0x09800000, SLOT_MASK = 0x7fffff };
+
+typedef struct {
+  tsmpi_file **slot;
+  int n;
+  MPI_Errhandler null_eh;  /* MPI_FILE_NULL's handler */
+} table;
+
+static void release(tsmpi_file *f);
+
+static void table_release(void *p) {
+  table *tb = p;
+  for (int i = 0; i < tb->n; i++)
+    if (tb->slot[i]) release(tb->slot[i]);   /* files left open at the rank's end */
+  tsm_errh_drop(tsm_get(), tb->null_eh);
+  free(tb->slot);
+  free(tb);
+  tsmpi_fs_leave();
+}
+
+static table *tab(int create) {
+  table *tb = tsmpi_part(TSMPI_PART_IO);
+  if (tb || !create) return tb;
+  tb = calloc(1, sizeof *tb);
+  if (!tb) return NULL;
+  tb->null_eh = MPI_ERRORS_RETURN;
+  tsmpi_part_set(TSMPI_PART_IO, tb, table_release);
+  tsmpi_fs_enter();
+  return tb;
+}
+
+void tsmpi_io_begin(void) { tab(1); }
+
+tsmpi_file *tsmpi_file_get(MPI_File fh) {
+  if (((unsigned)fh & 0xff800000u) != CREATED) return NULL;
+  table *tb = tab(0);
+  int i = fh & SLOT_MASK;
+  return tb && i < tb->n ? tb->slot[i] : NULL;
+}
+
+MPI_Errhandler tsmpi_file_null_eh(void) {
+  table *tb = tab(0);
+  return tb ? tb->null_eh : MPI_ERRORS_RETURN;
+}
+
+void tsmpi_file_set_null_eh(MPI_Errhandler eh) {
+  table *tb = tab(1);
+  if (!tb) return;
+  tsm_errh_hold(tsm_get(), eh);
+  tsm_errh_drop(tsm_get(), tb->null_eh);
+  tb->null_eh = eh;
+}
+
+/* ==== errors ============================================================== */
+
+int tsmpi_file_raise(MPI_File fh, int cls, const char *fn, const char *fmt, ...) {
+  tsmpi_file *f = tsmpi_file_get(fh);
+  MPI_Errhandler eh = f ? f->eh : tsmpi_file_null_eh();
+  char msg[512];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  return tsm_raise_on(tsm_need(fn), eh, f ? fh : MPI_FILE_NULL, cls, fn, "%s", msg);
+}
+
+int tsmpi_file_check(MPI_File fh, const char *fn, tsmpi_file **f) {
+  *f = tsmpi_file_get(fh);
+  if (*f) return MPI_SUCCESS;
+  return tsmpi_file_raise(MPI_FILE_NULL, MPI_ERR_FILE, fn, "%s",
+                          fh == MPI_FILE_NULL ? "MPI_FILE_NULL is not an open file"
+                                              : "not a file of this rank (closed?)");
+}
+
+/* ==== time ================================================================ */
+
+void tsmpi_io_until(double end) {
+  mp *self = mp_self();
+  double now = mp_time(self);
+  if (end > now && mp_sleep(self, end - now) != MP_OK) tsm_stopped(tsm_get());
+}
+
+double tsmpi_io_independent(tsmpi_file *f, double bytes) {
+  return tsmpi_fs_request(f->sh->fs, mp_time(mp_self()), bytes);
+}
+
+/* Every rank's pair of doubles (mine) to every rank of comm, under call
+ * fn's name (what a deadlock report and the trace say): MPICH's allgather
+ * for so few bytes, recursive doubling on a power of two ranks, Bruck's
+ * otherwise.  Returns the pairs by rank, scratch of the collectives
+ * (tsmpi_cg_free it). */
+static double *exchange(MPI_Comm comm, const char *fn, const double mine[2]) {
+  tsmpi_sched *s = tsmpi_coll_start(fn, comm, COLL_ALLGATHER, -1, NULL);   /* blocking: steps run as added */
+  const tsmpi_cg *g = tsmpi_sched_group(s);
+  size_t p = (size_t)g->size, *counts = tsmpi_sched_mem(s, 2 * p * sizeof *counts), *displs = counts + p;
+  double *all = tsmpi_cg_alloc(g, 2 * p * sizeof *all);
+  for (size_t r = 0; r < p; r++) counts[r] = 2 * sizeof *all, displs[r] = r * 2 * sizeof *all;
+  all[2 * g->rank] = mine[0];
+  all[2 * g->rank + 1] = mine[1];
+  if (p > 1) {
+    if (tsmpi_is_pof2(g->size)) tsmpi_allgatherv_recursive_doubling(s, all, counts, displs);
+    else tsmpi_allgatherv_brucks(s, all, counts, displs);
+  }
+  tsmpi_coll_finish(s);
+  return all;
+}
+
+double tsmpi_io_collective(tsmpi_file *f, const char *fn, double bytes, MPI_Offset *base, MPI_Offset *below,
+                           void (*first)(tsmpi_file *f, const double *counts, void *ud), void *ud) {
+  double mine[2] = {mp_time(mp_self()), bytes}, *all = exchange(f->comm, fn, mine);
+  double come = 0, sum = 0;
+  for (int r = 0; r < f->size; r++) {
+    if (all[2 * r] > come) come = all[2 * r];
+    sum += all[2 * r + 1];
+    all[r] = all[2 * r + 1];   /* the counts, in place (r <= 2 r + 1) */
+    if (below && r == 0) *below = 0;
+    if (below && r < f->rank) *below += (MPI_Offset)all[r];
+  }
+  f->cseq++;
+  tsmpi_ofile *sh = f->sh;
+  pthread_mutex_lock(&sh->lock);
+  if (sh->cseq != f->cseq) {   /* the first past the exchange */
+    if (first) first(f, all, ud);
+    sh->cend = bytes < 0 ? come : tsmpi_fs_request(sh->fs, come, sum);
+    sh->cseq = f->cseq;
+  }
+  double end = sh->cend;
+  if (base) *base = sh->cbase;
+  pthread_mutex_unlock(&sh->lock);
+  tsmpi_cg_free(all);
+  return end;
+}
+
+/* ==== open and close ====================================================== */
+
+static int amode_ok(int amode, const char **why) {
+  int rw = !!(amode & MPI_MODE_RDONLY) + !!(amode & MPI_MODE_WRONLY) + !!(amode & MPI_MODE_RDWR);
+  int known = MPI_MODE_CREATE | MPI_MODE_RDONLY | MPI_MODE_WRONLY | MPI_MODE_RDWR | MPI_MODE_DELETE_ON_CLOSE |
+              MPI_MODE_UNIQUE_OPEN | MPI_MODE_EXCL | MPI_MODE_APPEND | MPI_MODE_SEQUENTIAL;
+  *why = NULL;
+  if (amode & ~known) *why = "an unknown MPI_MODE_ bit";
+  else if (rw != 1) *why = "not exactly one of MPI_MODE_RDONLY, MPI_MODE_WRONLY and MPI_MODE_RDWR";
+  else if ((amode & MPI_MODE_RDONLY) && (amode & (MPI_MODE_CREATE | MPI_MODE_EXCL)))
+    *why = "MPI_MODE_RDONLY with MPI_MODE_CREATE or MPI_MODE_EXCL";
+  else if ((amode & MPI_MODE_RDWR) && (amode & MPI_MODE_SEQUENTIAL)) *why = "MPI_MODE_RDWR with MPI_MODE_SEQUENTIAL";
+  return *why == NULL;
+}
+
+/* errno after open(2) or unlink(2) as an MPI error class. */
+static int errno_class(int e) {
+  switch (e) {
+  case ENOENT: case ENOTDIR: return MPI_ERR_NO_SUCH_FILE;
+  case EEXIST: return MPI_ERR_FILE_EXISTS;
+  case EACCES: case EPERM: return MPI_ERR_ACCESS;
+  case EROFS: return MPI_ERR_READ_ONLY;
+  case ENOSPC: return MPI_ERR_NO_SPACE;
+  case EDQUOT: return MPI_ERR_QUOTA;
+  case ENAMETOOLONG: case EISDIR: return MPI_ERR_BAD_FILE;
+  case EBUSY: case ETXTBSY: return MPI_ERR_FILE_IN_USE;
+  default: return MPI_ERR_IO;
+  }
+}
+
+/* What rank 0 of the open tells the others. */
+typedef struct {
+  int cls;                 /* MPI_SUCCESS or the error */
+  char why[200];
+  tsmpi_ofile *sh;         /* the shared object: one process, one address */
+  double end;              /* the open's request's end */
+} opened;
+
+/* Rank 0's part: the file opened and its shared object made. */
+static void open_first(const char *path, int amode, double come, opened *o) {
+  char host[TSMPI_PATH_MAX];
+  tsmpi_fs *fs = tsmpi_fs_of(path, host, o->why, sizeof o->why);
+  if (!fs) {
+    o->cls = MPI_ERR_BAD_FILE;
+    return;
+  }
+  int flags = (amode & MPI_MODE_RDONLY ? O_RDONLY : amode & MPI_MODE_WRONLY ? O_WRONLY : O_RDWR) |
+              (amode & MPI_MODE_CREATE ? O_CREAT : 0) | (amode & MPI_MODE_EXCL ? O_EXCL : 0) | O_CLOEXEC;
+  int fd = open(host, flags, 0666);
+  if (fd < 0) {
+    int e = errno;
+    o->cls = errno_class(e);
+    if (strcmp(path, host))
+      snprintf(o->why, sizeof o->why, "%.80s (the host's %.80s): %s", path, host, strerror(e));
+    else
+      snprintf(o->why, sizeof o->why, "%.160s: %s", path, strerror(e));
+    return;
+  }
+  tsmpi_ofile *sh = calloc(1, sizeof *sh);
+  if (!sh) {
+    close(fd);
+    o->cls = MPI_ERR_NO_MEM;
+    snprintf(o->why, sizeof o->why, "out of memory");
+    return;
+  }
+  pthread_mutex_init(&sh->lock, NULL);
+  sh->fd = fd;
+  sh->fs = fs;
+  snprintf(sh->host, sizeof sh->host, "%s", host);
+  sh->delete_on_close = !!(amode & MPI_MODE_DELETE_ON_CLOSE);
+  if (amode & MPI_MODE_APPEND) {
+    struct stat stt;
+    if (fstat(fd, &stt) == 0) sh->shared = stt.st_size;
+  }
+  o->sh = sh;
+  o->cls = MPI_SUCCESS;
+  o->end = tsmpi_fs_request(fs, come, 0);
+}
+
+static void drop_shared(tsmpi_ofile *sh) {
+  pthread_mutex_lock(&sh->lock);
+  int last = --sh->refs == 0;
+  pthread_mutex_unlock(&sh->lock);
+  if (!last) return;
+  close(sh->fd);
+  if (sh->delete_on_close) unlink(sh->host);
+  pthread_mutex_destroy(&sh->lock);
+  free(sh);
+}
+
+static void release(tsmpi_file *f) {
+  tsm_errh_drop(tsm_get(), f->eh);
+  drop_shared(f->sh);
+  tsmpi_view_free(&f->view);
+  if (f->hints != MPI_INFO_NULL) PMPI_Info_free(&f->hints);
+  free(f);
+}
+
+int tsmpi_file_open(MPI_Comm comm, const char *path, int amode, MPI_Info info, MPI_File *fh) {
+  static const char fn[] = "MPI_File_open";
+  table *tb = tab(1);
+  if (!tb) return tsmpi_raise(comm, MPI_ERR_NO_MEM, fn, "out of memory");
+  const char *bad;
+  int size, rank, rc;
+  PMPI_Comm_size(comm, &size);
+  PMPI_Comm_rank(comm, &rank);
+  /* Every rank's amode and arrival, then rank 0's open. */
+  double mine[2] = {mp_time(mp_self()), amode}, *all;
+  MPI_Comm dup;
+  if ((rc = PMPI_Comm_dup(comm, &dup)) != MPI_SUCCESS) return rc;
+  all = exchange(dup, fn, mine);
+  double come = 0;
+  int same = 1;
+  for (int r = 0; r < size; r++) {
+    if (all[2 * r] > come) come = all[2 * r];
+    same &= all[2 * r + 1] == amode;
+  }
+  tsmpi_cg_free(all);
+  opened o = {0};
+  if (!same) {   /* the checks every rank makes alike */
+    o.cls = MPI_ERR_NOT_SAME;
+    snprintf(o.why, sizeof o.why, "the ranks of the communicator gave different amodes");
+  } else if (!amode_ok(amode, &bad)) {
+    o.cls = MPI_ERR_AMODE;
+    snprintf(o.why, sizeof o.why, "amode 0x%x: %s", (unsigned)amode, bad);
+  } else {
+    if (rank == 0) open_first(path, amode, come, &o);
+    PMPI_Bcast(&o, (int)sizeof o, MPI_BYTE, 0, dup);
+  }
+  if (o.cls != MPI_SUCCESS) {
+    PMPI_Comm_free(&dup);
+    return tsmpi_file_raise(MPI_FILE_NULL, o.cls, fn, "%s", o.why);
+  }
+  pthread_mutex_lock(&o.sh->lock);
+  o.sh->refs++;
+  pthread_mutex_unlock(&o.sh->lock);
+  int slot = 0;
+  while (slot < tb->n && tb->slot[slot]) slot++;
+  tsmpi_file *f = calloc(1, sizeof *f);
+  if (f && slot == tb->n && slot <= SLOT_MASK) {
+    tsmpi_file **s = realloc(tb->slot, ((size_t)tb->n + 1) * sizeof *s);
+    if (s) tb->slot = s, tb->slot[tb->n++] = NULL;
+  }
+  if (!f || slot >= tb->n) {
+    free(f);
+    drop_shared(o.sh);
+    PMPI_Comm_free(&dup);
+    return tsmpi_file_raise(MPI_FILE_NULL, MPI_ERR_NO_MEM, fn, "out of memory for a file");
+  }
+  f->sh = o.sh;
+  f->comm = dup;
+  f->rank = rank;
+  f->size = size;
+  f->amode = amode;
+  f->eh = MPI_ERRORS_RETURN;
+  f->hints = MPI_INFO_NULL;
+  f->pos = o.sh->shared;   /* 0, or the end of the file (MPI_MODE_APPEND) */
+  tsmpi_view_default(&f->view);
+  if (info != MPI_INFO_NULL) PMPI_Info_dup(info, &f->hints);
+  tb->slot[slot] = f;
+  *fh = (MPI_File)(CREATED | slot);
+  tsmpi_io_until(o.end);
+  return MPI_SUCCESS;
+}
+
+static void no_first(tsmpi_file *f, const double *counts, void *ud) {
+  (void)f, (void)counts, (void)ud;
+}
+
+int tsmpi_file_close(MPI_File *fh) {
+  tsmpi_file *f = tsmpi_file_get(*fh);
+  double end = tsmpi_io_collective(f, "MPI_File_close", 0, NULL, NULL, no_first, NULL);
+  table *tb = tab(0);
+  tb->slot[*fh & SLOT_MASK] = NULL;
+  MPI_Comm c = f->comm;
+  release(f);
+  PMPI_Comm_free(&c);
+  *fh = MPI_FILE_NULL;
+  tsmpi_io_until(end);
+  return MPI_SUCCESS;
+}
