@@ -4,7 +4,7 @@
  * against its closed form; the computing charged by mp_busy, by a runtime's hook at the next
  * MPI call (tilesim-mpirun --compute), and with a processor cost per message (taken from the
  * computing); the blocking forms' costs, unchanged; a deadlock inside MPI_Wait on one named in
- * the program's words; the threads backend's results.
+ * the program's words; MPI_Cancel of one refused; the threads backend's results.
  *
  * The harness's machine: --net ideal, m = 1/4 s a message, 1/16 s a byte, a processor per rank
  * (binary fractions: the closed forms are exact).  A 4-byte message costs 1/2 s; an empty one
@@ -232,6 +232,37 @@ static void finalized(void) {
   mpih_result_free(&res);
 }
 
+/* MPI_Cancel of a nonblocking collective's request is erroneous (MPI 3.1
+ * section 5.12): refused, and the collective goes on to its result. */
+static int cancel_prog(void *ud) {
+  int *bad = ud, me, size, sum = -1, cls = -1;
+  MPI_Init(NULL, NULL);
+  MPI_Comm_rank(MPI_COMM_WORLD, &me);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
+  MPI_Request r;
+  MPI_Iallreduce(&me, &sum, 1, MPI_INT, MPI_SUM, MPI_COMM_WORLD, &r);
+  int rc = MPI_Cancel(&r);
+  MPI_Error_class(rc, &cls);
+  int wrc = MPI_Wait(&r, MPI_STATUS_IGNORE);
+  if (cls != MPI_ERR_REQUEST || wrc != MPI_SUCCESS || r != MPI_REQUEST_NULL || sum != size * (size - 1) / 2)
+    bad[me] = 1;
+  MPI_Finalize();
+  return 0;
+}
+
+static void cancelled(void) {
+  int bad[3] = {0, 0, 0};
+  mpih_config cfg;
+  mpih_config_init(&cfg, MPIH_SIM, 3);
+  mpih_result res;
+  mpih_run_fn(&cfg, cancel_prog, bad, &res);
+  CHECK(res.rc == 0 && !bad[0] && !bad[1] && !bad[2],
+        "MPI_Cancel of an MPI_Iallreduce's request on 3 ranks: MPI_ERR_REQUEST, then the sum: rc %d (%s), bad %d %d %d",
+        res.rc, res.err, bad[0], bad[1], bad[2]);
+  mpih_result_free(&res);
+}
+
 /* On threads the results, whatever the order the messages come in. */
 static void threads(void) {
   for (int which = 0; which < NCASES; which++) {
@@ -251,6 +282,7 @@ int main(void) {
   deadlock();
   freed();
   finalized();
+  cancelled();
   threads();
   return check_done("test_mpinbc");
 }
