@@ -453,7 +453,7 @@ void eng_wait(tsm *R, tsm_req *q) {
   }
 }
 
-void eng_poll(tsm *R) {
+void eng_take(tsm *R) {
   mp_status st;
   for (;;) {
     int rc = mp_probe(R->self, MP_ANY, MP_ANY, &st);
@@ -461,6 +461,10 @@ void eng_poll(tsm *R) {
     if (rc < 0) mpok(R, rc, "mp_probe");
     dispatch(R, &st);
   }
+}
+
+void eng_poll(tsm *R) {
+  eng_take(R);
   advance_all(R);
 }
 

@@ -75,8 +75,10 @@ void eng_advance(tsm *R, tsm_req *q);
  * nonblocking collective moves on while its rank waits for anything). */
 void eng_step(tsm *R);
 
-/* Act on every message that has arrived, without blocking; then every
+/* Act on every message that has arrived, without blocking (the
+ * nonblocking collectives' progress included); eng_poll: then every
  * request of a kind of its own advances. */
+void eng_take(tsm *R);
 void eng_poll(tsm *R);
 
 /* Take q out of the posted queue (a request freed or a stopped rank). */

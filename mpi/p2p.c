@@ -145,14 +145,13 @@ void tsmpi_p2p_drop(MPI_Request *req) {
   *req = MPI_REQUEST_NULL;
 }
 
-void tsmpi_p2p_poll(void) { eng_poll(tsm_need("tsmpi_p2p_poll")); }
-
 /* mp's progress while the rank computes: at each arrival, act on what came
- * (the progress function runs from the engine). */
+ * (the progress function runs from the engine; requests of a kind of their
+ * own advance in MPI calls only, p2p.h). */
 static void computing(mp *self, void *ud) {
   (void)ud;
   tsm *R = mp_user(self);
-  eng_poll(R);
+  eng_take(R);
 }
 
 void tsmpi_set_progress(void (*fn)(void), int live) {

@@ -97,10 +97,6 @@ void tsmpi_p2p_watch(MPI_Request req);
  * MPI_REQUEST_NULL. */
 void tsmpi_p2p_drop(MPI_Request *req);
 
-/* Act on every message that has arrived, without blocking (the engine's
- * poll: receives matched, progress run). */
-void tsmpi_p2p_poll(void);
-
 /* The rank's progress function: fn() runs after the engine completed a
  * watched request, at a point where it may send and post receives (never
  * block); while live (nonzero) the rank also makes progress while it
