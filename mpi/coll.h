@@ -82,6 +82,8 @@ typedef struct {
  * longer than expected: the ranks disagree on the counts). */
 int tsmpi_cg_send(const tsmpi_cg *g, const void *buf, size_t n, int dst);
 int tsmpi_cg_recv(const tsmpi_cg *g, void *buf, size_t n, int src, size_t *got);
+int tsmpi_cg_sendrecv(const tsmpi_cg *g, const void *sbuf, size_t sn, int dst, void *rbuf, size_t rn, int src,
+                      size_t *got);
 /* Nonblocking, completed together by tsmpi_cg_waitall. */
 int tsmpi_cg_isend(const tsmpi_cg *g, const void *buf, size_t n, int dst, MPI_Request *req);
 int tsmpi_cg_irecv(const tsmpi_cg *g, void *buf, size_t n, int src, MPI_Request *req);

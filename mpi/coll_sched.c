@@ -165,6 +165,14 @@ static void xfer(tsmpi_sched *s, int kind, const void *buf, size_t n, int peer) 
 
 void tsmpi_sched_send(tsmpi_sched *s, const void *buf, size_t n, int dst) { xfer(s, OP_SEND, buf, n, dst); }
 void tsmpi_sched_recv(tsmpi_sched *s, void *buf, size_t n, int src) { xfer(s, OP_RECV, buf, n, src); }
+void tsmpi_sched_sendrecv(tsmpi_sched *s, const void *sbuf, size_t sn, int dst, void *rbuf, size_t rn, int src) {
+  if (!s->now) {
+    xfer(s, OP_SEND, sbuf, sn, dst);
+    xfer(s, OP_RECV, rbuf, rn, src);
+  } else if (!s->err) {
+    s->err = tsmpi_cg_sendrecv(&s->g, sbuf, sn, dst, rbuf, rn, src, NULL);
+  }
+}
 void tsmpi_sched_isend(tsmpi_sched *s, const void *buf, size_t n, int dst) { xfer(s, OP_ISEND, buf, n, dst); }
 void tsmpi_sched_irecv(tsmpi_sched *s, void *buf, size_t n, int src) { xfer(s, OP_IRECV, buf, n, src); }
 

@@ -55,11 +55,9 @@ void *tsmpi_sched_mem(tsmpi_sched *s, size_t n);
  * at most n bytes (a longer message is the ranks disagreeing on counts: MPI_ERR_TRUNCATE). */
 void tsmpi_sched_send(tsmpi_sched *s, const void *buf, size_t n, int dst);
 void tsmpi_sched_recv(tsmpi_sched *s, void *buf, size_t n, int src);
-static inline void tsmpi_sched_sendrecv(tsmpi_sched *s, const void *sbuf, size_t sn, int dst, void *rbuf,
-                                        size_t rn, int src) {
-  tsmpi_sched_send(s, sbuf, sn, dst);
-  tsmpi_sched_recv(s, rbuf, rn, src);
-}
+/* A send then a receive (blocking: in one call, the send's bytes by
+ * reference until the receive is done). */
+void tsmpi_sched_sendrecv(tsmpi_sched *s, const void *sbuf, size_t sn, int dst, void *rbuf, size_t rn, int src);
 void tsmpi_sched_isend(tsmpi_sched *s, const void *buf, size_t n, int dst);
 void tsmpi_sched_irecv(tsmpi_sched *s, void *buf, size_t n, int src);
 void tsmpi_sched_waitall(tsmpi_sched *s);

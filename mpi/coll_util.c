@@ -34,6 +34,19 @@ int tsmpi_cg_recv(const tsmpi_cg *g, void *buf, size_t n, int src, size_t *got) 
   return MPI_SUCCESS;
 }
 
+int tsmpi_cg_sendrecv(const tsmpi_cg *g, const void *sbuf, size_t sn, int dst, void *rbuf, size_t rn, int src,
+                      size_t *got) {
+  MPI_Status st;
+  if (sn > 0x7fffffff) return too_big(g, sn);
+  if (rn > 0x7fffffff) return too_big(g, rn);
+  int rc = tsmpi_p2p_sendrecv(sbuf, (int)sn, MPI_BYTE, dst, g->tag, rbuf, (int)rn, MPI_BYTE, src, g->tag, g->comm,
+                              &st);
+  if (rc == MPI_ERR_TRUNCATE) return truncated(g, src);
+  if (rc) return tsmpi_raise(g->comm, rc, g->fn, "a receive from rank %d failed", src);
+  if (got) *got = (size_t)st.tsmpi_count;
+  return MPI_SUCCESS;
+}
+
 int tsmpi_cg_isend(const tsmpi_cg *g, const void *buf, size_t n, int dst, MPI_Request *req) {
   if (n > 0x7fffffff) return too_big(g, n);
   return tsmpi_p2p_isend(buf, (int)n, MPI_BYTE, dst, g->tag, g->comm, req);

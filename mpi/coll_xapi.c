@@ -169,8 +169,15 @@ static int alltoall(const char *fn, const void *sendbuf, int sendcount, MPI_Data
     else if (n <= 32768) a = ALG_SCATTERED;
     else a = ALG_PAIRWISE;
   }
-  char *out = tsmpi_coll_pack(s, recvbuf, recvcount * size, recvtype), *in = out;
-  if (a != ALG_PAIRWISE_SENDRECV_REPLACE) {
+  /* Contiguous buffers, not in place: the algorithms read sendbuf and write
+   * recvbuf where they lie (no packed copies). */
+  char *rdirect = a != ALG_PAIRWISE_SENDRECV_REPLACE && !in_place
+                      ? (char *)tsmpi_type_contig(recvbuf, recvcount * size, recvtype) : NULL;
+  const char *sdirect = rdirect ? tsmpi_type_contig(sendbuf, sendcount * size, sendtype) : NULL;
+  char *out = sdirect ? rdirect : tsmpi_coll_pack(s, recvbuf, recvcount * size, recvtype), *in = out;
+  if (sdirect) {
+    in = (char *)sdirect;
+  } else if (a != ALG_PAIRWISE_SENDRECV_REPLACE) {
     if (!in_place) in = tsmpi_coll_pack(s, sendbuf, sendcount * size, sendtype);
     else out = tsmpi_sched_mem(s, n * (size_t)size);
   } else if (!in_place) {
@@ -188,7 +195,7 @@ static int alltoall(const char *fn, const void *sendbuf, int sendcount, MPI_Data
   case ALG_PAIRWISE: tsmpi_alltoall_pairwise(s, in, out, n); break;
   default: tsmpi_alltoallv_pairwise_sendrecv_replace(s, out, cd, cd + size); break;
   }
-  tsmpi_sched_unpack(s, out, n * (size_t)size, recvbuf, recvcount * size, recvtype);
+  if (!sdirect) tsmpi_sched_unpack(s, out, n * (size_t)size, recvbuf, recvcount * size, recvtype);
   return tsmpi_coll_finish(s);
 }
 
