@@ -309,7 +309,13 @@ void eng_send_data(tsm *R, int wdst, int ctx, int tag, const void *data, size_t 
   mpok(R, mp_send(R->self, wdst, env_encode(K_DATA, ctx, tag), data, len), "mp_send");
 }
 
+void eng_hold(tsm *R, tsm_req *q) {
+  R->held_ref = q->ref;
+  R->held_tmp = q->tmp;
+}
+
 void eng_settle(tsm *R, tsm_req *q) {
+  if (q->slot < 0 && q->ref && q->ref == R->held_ref) R->held_ref = NULL, R->held_tmp = NULL;
   if (q->ref) {
     mp_settle(R->self, q->ref);
     q->ref = NULL;
@@ -563,11 +569,20 @@ int eng_cancel_send(tsm *R, tsm_req *q) {
   return 1;
 }
 
+void eng_settle_all(tsm *R) {
+  for (int i = 0; i < R->nreqs; i++)
+    if (R->reqs[i]->used) eng_settle(R, R->reqs[i]);
+  if (R->held_ref) {   /* the rank ended inside a blocking call that sent by reference */
+    mp_settle(R->self, R->held_ref);
+    free(R->held_tmp);
+    R->held_ref = NULL, R->held_tmp = NULL;
+  }
+}
+
 void eng_release(tsm *R) {
   while (R->posted) eng_unpost(R, R->posted);
   R->sync = R->sync_tail = NULL;
-  for (int i = 0; i < R->nreqs; i++)
-    if (R->reqs[i]->used) eng_settle(R, R->reqs[i]);
+  eng_settle_all(R);
   for (tsm_msg *m = R->unexp, *n; m; m = n) {
     n = m->next;
     unexp_free(R, m);

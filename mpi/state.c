@@ -215,6 +215,7 @@ tsm_msg *tsm_msg_take(tsm *R, MPI_Message h) {
 
 void tsm_release(tsm *R) {
   mp_set_progress(R->self, NULL, NULL);   /* no nonblocking collective goes on past the rank's MPI */
+  eng_settle_all(R);                      /* before the parts free what sends refer to */
   for (int i = TSMPI_PARTS - 1; i >= 0; i--)
     if (R->release[i]) R->release[i](R->part[i]);
   eng_release(R);

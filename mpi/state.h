@@ -204,6 +204,8 @@ struct tsm {
   tsm_msg *unexp, *unexp_tail;     /* messages taken off mp and not matched, in order */
   long nunexp;
   tsm_req *sync, *sync_tail;       /* synchronous sends waiting for their ack */
+  mp_ref *held_ref;                /* a blocking call's send by reference, and its */
+  void *held_tmp;                  /* packed copy, until settled (eng_hold) */
   int attr[8];             /* MPI_Comm_get_attr's values, by predefined key */
   /* matched probes' messages by slot (MPI_Mprobe), and the free slots */
   tsm_msg **msgs;
