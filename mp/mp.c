@@ -161,6 +161,11 @@ const char *mp_label_text(const mp *self, char *buf, size_t len) {
   return buf;
 }
 
+void mp_set_progress(mp *self, mp_progress fn, void *ud) {
+  self->progress = fn;
+  self->progress_ud = ud;
+}
+
 void mp_call_begin(mp *self, const char *name) {
   if (self->call_depth++ == 0 && self->traced) {
     self->call_name = name;
@@ -186,6 +191,7 @@ void mp_enter(mp *self, mp_main main, void *ud) {
   self->describe = NULL;
   self->call_depth = 0;   /* a rank that left inside a call */
   self->call_name = NULL;
+  self->progress = NULL;
 }
 
 MP_NORETURN void mp_exit(mp *self) {

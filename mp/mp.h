@@ -141,6 +141,21 @@ MP_NORETURN void mp_abort(mp *self, int code, const char *why);
 void   mp_call_begin(mp *self, const char *name);
 void   mp_call_end(mp *self);
 
+/* Progress while computing (a layer's progress engine, as a network card or
+ * a progress thread would run it): while fn is set, each message that comes
+ * to this rank while it computes (mp_compute, mp_busy, a hook's
+ * self->ops->busy) makes the backend call fn(self, ud) at that message's
+ * arrival, mp_time reading it: fn acts on the messages that have arrived
+ * (mp_probe, mp_recv) and may send, but must not block.  The computing goes
+ * on meanwhile and ends when it would have without fn, later only by the
+ * processor time fn's own calls charge (LogGP's o, cpu.h's costs: taken from
+ * the computing).  Messages already there when the computing starts are
+ * acted on at its start.  On real backends, where computing is the
+ * program's own and not simulated, fn runs at each charge if a message is
+ * there.  fn NULL: none (the default). */
+typedef void (*mp_progress)(mp *self, void *ud);
+void   mp_set_progress(mp *self, mp_progress fn, void *ud);
+
 /* Hooks around every mp call of every rank, process-wide (NULL: none; set
  * before a run, not during one): enter(self) before the call, leave(self)
  * after it returns.  How a runtime charges a program's own computing
@@ -293,6 +308,8 @@ struct mp {
   int traced;                 /* the backend traces this rank's calls (ops->call) */
   int call_depth;             /* mp_call_begin's nesting, */
   const char *call_name;      /* and the outermost call's name */
+  mp_progress progress;       /* mp_set_progress */
+  void *progress_ud;
 };
 
 /* Run main(self, ud) until it returns or the rank calls mp_exit or

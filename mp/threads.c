@@ -335,6 +335,17 @@ static inline void cpu_relax(void) {
 
 static int stopped(const mpt *t) { return atomic_load_explicit(&t->stopped, memory_order_acquire); }
 
+static int mpt_probe(mp *self, int src, int tag, mp_status *st);
+
+/* Computing is the program's own here: a progress function (mp_set_progress)
+ * runs at each charge if a message is there. */
+static int progress_now(rank *r) {
+  mp_status st;
+  if (r->base.progress && mpt_probe(&r->base, MP_ANY, MP_ANY, &st) == 1)
+    r->base.progress(&r->base, r->base.progress_ud);
+  return MP_OK;
+}
+
 static int mpt_compute(mp *self, double units) {
   rank *r = (rank *)self;
   if (stopped(r->t)) return MP_ESTOPPED;
@@ -342,7 +353,7 @@ static int mpt_compute(mp *self, double units) {
     fail(r->t, "rank %d: mp_compute(%g): units must be finite and >= 0", r->base.rank, units);
     return MP_EARG;
   }
-  return MP_OK;
+  return progress_now(r);
 }
 
 /* k off its sender's list: the sender lets go of it. */
@@ -723,7 +734,7 @@ static int mpt_busy(mp *self, double seconds) {
     fail(r->t, "rank %d: mp_busy(%g): seconds must be finite and >= 0", r->base.rank, seconds);
     return MP_EARG;
   }
-  return MP_OK;
+  return progress_now(r);
 }
 
 static int mpt_sleep(mp *self, double seconds) {

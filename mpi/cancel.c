@@ -9,7 +9,8 @@
  * persistent buffered send's too: its message is a copy of its own until
  * the request ends).
  * A request of a kind of its own calls its kind's cancel (a generalized
- * request's cancel_fn).  Whether a request was cancelled is its status's
+ * request's cancel_fn); a nonblocking collective's is refused (MPI 3.1
+ * section 5.12: erroneous).  Whether a request was cancelled is its status's
  * to say, once the Wait or Test that completes it has it. */
 #include "engine.h"
 #include "err.h"
@@ -31,6 +32,9 @@ int PMPI_Cancel(MPI_Request *request) {
   case RQ_SEND:
     eng_cancel_send(R, q);
     return MPI_SUCCESS;
+  case RQ_COLL:   /* erroneous (MPI 3.1 section 5.12) */
+    return tsm_raise(R, NULL, MPI_ERR_REQUEST, fn, "the request of %s: a nonblocking collective cannot be cancelled",
+                     q->fn);
   default: {
     int err = q->ops->cancel ? q->ops->cancel(q->ext, q->state == RS_DONE) : MPI_SUCCESS;
     return err ? tsm_raise(R, NULL, err, fn, "the request of %s: its cancel callback failed (error %d)", q->fn, err)

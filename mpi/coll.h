@@ -1,9 +1,11 @@
 /* coll.h -- the collectives' inside: which algorithm runs (MPICH's choice, --coll linear, or an
  * override), and the algorithms themselves, on packed bytes over point-to-point (p2p.h).
  *
- * Not for programs.  The MPI_* functions (coll_api.c) check their arguments,
- * pack the data (dtype.h), pick an algorithm (tsmpi_coll_pick) and run it
- * here; a reduction combines packed elements with op.h.
+ * Not for programs.  The MPI_* functions (coll_api.c, coll_redapi.c, ...)
+ * check their arguments, pack the data (dtype.h), pick an algorithm (the
+ * run's setting, else MPICH's choice) and build its schedule (coll_sched.h),
+ * which runs at once (the blocking collectives) or as messages arrive (the
+ * nonblocking ones, nbc.h); a reduction combines packed elements with op.h.
  *
  * THE ALGORITHMS are MPICH's (pmodels/mpich, src/mpi/coll/<name>/), with its
  * names (its MPIR_CVAR_<COLL>_INTRA_ALGORITHM values), message for message:
@@ -32,7 +34,9 @@
 typedef enum {
   COLL_BARRIER, COLL_BCAST, COLL_REDUCE, COLL_ALLREDUCE, COLL_GATHER, COLL_GATHERV, COLL_SCATTER,
   COLL_SCATTERV, COLL_ALLGATHER, COLL_ALLGATHERV, COLL_ALLTOALL, COLL_ALLTOALLV, COLL_SCAN, COLL_EXSCAN,
-  COLL_REDUCE_SCATTER, COLL_REDUCE_SCATTER_BLOCK, COLL_N
+  COLL_REDUCE_SCATTER, COLL_REDUCE_SCATTER_BLOCK, COLL_ALLTOALLW,
+  COLL_NEIGHBOR_ALLGATHER, COLL_NEIGHBOR_ALLGATHERV, COLL_NEIGHBOR_ALLTOALL, COLL_NEIGHBOR_ALLTOALLV,
+  COLL_NEIGHBOR_ALLTOALLW, COLL_N
 } tsmpi_coll;
 
 typedef enum {
@@ -84,11 +88,12 @@ int tsmpi_cg_sendrecv(const tsmpi_cg *g, const void *sbuf, size_t sn, int dst, v
 int tsmpi_cg_isend(const tsmpi_cg *g, const void *buf, size_t n, int dst, MPI_Request *req);
 int tsmpi_cg_irecv(const tsmpi_cg *g, void *buf, size_t n, int src, MPI_Request *req);
 int tsmpi_cg_waitall(const tsmpi_cg *g, int n, MPI_Request *reqs);
+/* A request of the group's (from src, or -1) that ended with error class err: raised. */
+int tsmpi_cg_failed(const tsmpi_cg *g, int err, int src);
 
-/* Scratch memory for a collective: malloc that aborts with a message when
- * memory runs out, kept on the rank's list so that a run stopped while the
- * collective waits (it never returns) frees it at the rank's end; free it
- * with tsmpi_cg_free (NULL: nothing). */
+/* Scratch memory outside a schedule: malloc that aborts with a message when
+ * memory runs out, kept on the rank's list so that a run stopped meanwhile
+ * frees it at the rank's end; free it with tsmpi_cg_free (NULL: nothing). */
 void *tsmpi_cg_alloc(const tsmpi_cg *g, size_t n);
 void tsmpi_cg_free(void *p);
 
@@ -97,6 +102,8 @@ int tsmpi_pof2(int n);
 int tsmpi_is_pof2(int n);
 
 /* ==== the frame of every MPI collective (coll_frame.c) ==================== */
+
+typedef struct tsmpi_sched tsmpi_sched;   /* coll_sched.h */
 
 /* What a rank waits in, for the deadlock report: "MPI_Bcast(root=0,
  * MPI_COMM_WORLD)". */
@@ -107,13 +114,24 @@ typedef struct {
   int root;                /* -1: none */
 } tsmpi_label;
 
-/* Fill the group of a call on a checked communicator, the collective's tag,
- * set the rank's label (l lives until tsmpi_coll_end), and begin the call
- * for the trace (mp_call_begin: the collective is one slice of the rank's
- * track); tsmpi_coll_end ends both. */
-void tsmpi_coll_begin(tsmpi_cg *g, tsmpi_label *l, const char *fn, MPI_Comm comm, tsmpi_coll which, int root);
-/* Clear the label and end the call; returns rc. */
-int tsmpi_coll_end(int rc);
+/* The start of collective fn (which: its tag and setting; root, or -1) on a
+ * checked communicator: blocking when req is NULL (the collective's own
+ * tag; the rank's label names the call for a deadlock report, and the trace
+ * shows the call as one slice: mp_call_begin), nonblocking otherwise (a
+ * fresh tag of the communicator's sequence: tsmpi_comm_nbc_tag).  Returns the
+ * schedule its algorithm is built into (coll_sched.h), its group filled. */
+tsmpi_sched *tsmpi_coll_start(const char *fn, MPI_Comm comm, tsmpi_coll which, int root, MPI_Request *req);
+/* The end: blocking, the schedule run (tsmpi_sched_run), the label and the
+ * slice ended, its result; nonblocking, the schedule started (nbc.h), *req
+ * its request (done already if nothing was left to wait for), MPI_SUCCESS. */
+int tsmpi_coll_finish(tsmpi_sched *s);
+/* An error found after the start (rc, raised): the schedule dropped, the
+ * call ended; returns rc. */
+int tsmpi_coll_fail(tsmpi_sched *s, int rc);
+/* A nonblocking collective fn on an intercommunicator: its blocking form
+ * (coll_inter.h) has run, with result rc; *req (checked here) is a request
+ * done already (MPI_REQUEST_NULL on an error).  Returns rc. */
+int tsmpi_coll_ran(const char *fn, MPI_Comm comm, int rc, MPI_Request *req);
 
 /* Argument checks; each returns MPI_SUCCESS or raises under comm's handler. */
 int tsmpi_coll_type_ok(MPI_Comm comm, const char *fn, const char *what, MPI_Datatype dt);   /* committed */
@@ -126,16 +144,20 @@ int tsmpi_coll_data_ok(MPI_Comm comm, const char *fn, const char *what, const vo
 int tsmpi_coll_counts_ok(MPI_Comm comm, const char *fn, const char *what, const int *counts, const int *displs,
                          int n);
 int tsmpi_coll_in_place_bad(MPI_Comm comm, const char *fn, const char *which);
+/* A nonblocking call's request argument (NULL: MPI_ERR_ARG raised). */
+int tsmpi_coll_req_ok(MPI_Comm comm, const char *fn, const MPI_Request *req);
 
-/* count elements of dt at buf packed into new memory (free it), and back. */
-char *tsmpi_coll_pack(const tsmpi_cg *g, const void *buf, int count, MPI_Datatype dt);
-void tsmpi_coll_unpack(const char *p, void *buf, int count, MPI_Datatype dt);
+/* count elements of dt at buf packed into the schedule's memory, and the
+ * step that unpacks them at the end. */
+char *tsmpi_coll_pack(tsmpi_sched *s, const void *buf, int count, MPI_Datatype dt);
 /* Element i of dt at buf (i extents on). */
 void *tsmpi_coll_at(const void *buf, MPI_Aint i, MPI_Datatype dt);
 
-/* ==== the algorithms, on packed bytes =====================================
- * Buffers hold packed data (dtype.h).  A reduction's elements are `count`
- * elements of dt, each tsize bytes packed, combined with op (op.h). */
+/* ==== the algorithms: builders of schedules on packed bytes ===============
+ * Each adds the calling rank's steps to s (coll_sched.h); buffers hold packed
+ * data (dtype.h), in the schedule's memory or lasting as long.  A
+ * reduction's elements are `count` elements of the schedule's reduction
+ * (tsmpi_sched_red: its type, op, packed size tsize), combined with op.h. */
 
 /* The reductions' element description. */
 typedef struct {
@@ -145,81 +167,78 @@ typedef struct {
   int commute;     /* op is commutative */
 } tsmpi_red;
 
-int tsmpi_barrier_linear(const tsmpi_cg *g);
-int tsmpi_barrier_dissemination(const tsmpi_cg *g);
+void tsmpi_barrier_linear(tsmpi_sched *s);
+void tsmpi_barrier_dissemination(tsmpi_sched *s);
 
-int tsmpi_bcast_linear(const tsmpi_cg *g, void *buf, size_t n, int root);
-int tsmpi_bcast_binomial(const tsmpi_cg *g, void *buf, size_t n, int root);
-int tsmpi_bcast_scatter_rdb_allgather(const tsmpi_cg *g, void *buf, size_t n, int root);
-int tsmpi_bcast_scatter_ring_allgather(const tsmpi_cg *g, void *buf, size_t n, int root);
+void tsmpi_bcast_linear(tsmpi_sched *s, void *buf, size_t n, int root);
+void tsmpi_bcast_binomial(tsmpi_sched *s, void *buf, size_t n, int root);
+void tsmpi_bcast_scatter_rdb_allgather(tsmpi_sched *s, void *buf, size_t n, int root);
+void tsmpi_bcast_scatter_ring_allgather(tsmpi_sched *s, void *buf, size_t n, int root);
 
 /* Gather: sbuf's n bytes from every rank into rbuf at the root, rank r's at
  * r * n (rbuf used at the root only).  sbuf NULL at the root: its block is
- * in place.  Scatter: the root's rbuf block r to rank r's rbuf... */
-int tsmpi_gather_linear(const tsmpi_cg *g, const void *sbuf, void *rbuf, size_t n, int root);
-int tsmpi_gather_binomial(const tsmpi_cg *g, const void *sbuf, void *rbuf, size_t n, int root);
+ * in place. */
+void tsmpi_gather_linear(tsmpi_sched *s, const void *sbuf, void *rbuf, size_t n, int root);
+void tsmpi_gather_binomial(tsmpi_sched *s, const void *sbuf, void *rbuf, size_t n, int root);
 /* Scatter: block r of sbuf (the root's, n bytes each) into rank r's rbuf
  * (rbuf NULL at the root: its block stays in place). */
-int tsmpi_scatter_linear(const tsmpi_cg *g, const void *sbuf, void *rbuf, size_t n, int root);
-int tsmpi_scatter_binomial(const tsmpi_cg *g, const void *sbuf, void *rbuf, size_t n, int root);
+void tsmpi_scatter_linear(tsmpi_sched *s, const void *sbuf, void *rbuf, size_t n, int root);
+void tsmpi_scatter_binomial(tsmpi_sched *s, const void *sbuf, void *rbuf, size_t n, int root);
 /* The v forms: counts[r] bytes at displs[r] of the root's buffer. */
-int tsmpi_gatherv_linear(const tsmpi_cg *g, const void *sbuf, size_t sn, void *rbuf, const size_t *counts,
-                         const size_t *displs, int root);
-int tsmpi_scatterv_linear(const tsmpi_cg *g, const void *sbuf, const size_t *counts, const size_t *displs,
-                          void *rbuf, size_t rn, int root);
+void tsmpi_gatherv_linear(tsmpi_sched *s, const void *sbuf, size_t sn, void *rbuf, const size_t *counts,
+                          const size_t *displs, int root);
+void tsmpi_scatterv_linear(tsmpi_sched *s, const void *sbuf, const size_t *counts, const size_t *displs,
+                           void *rbuf, size_t rn, int root);
 
 /* Allgather: every rank's block (already at buf + displs[rank], counts[r]
- * bytes each) to every rank. */
-int tsmpi_allgatherv_linear(const tsmpi_cg *g, void *buf, const size_t *counts, const size_t *displs);
-int tsmpi_allgatherv_recursive_doubling(const tsmpi_cg *g, void *buf, const size_t *counts, const size_t *displs);
-int tsmpi_allgatherv_brucks(const tsmpi_cg *g, void *buf, const size_t *counts, const size_t *displs);
-int tsmpi_allgatherv_ring(const tsmpi_cg *g, void *buf, const size_t *counts, const size_t *displs);
+ * bytes each, the blocks in rank order from displs[0] = 0) to every rank
+ * (counts and displs last as long as the schedule). */
+void tsmpi_allgatherv_linear(tsmpi_sched *s, void *buf, const size_t *counts, const size_t *displs);
+void tsmpi_allgatherv_recursive_doubling(tsmpi_sched *s, void *buf, const size_t *counts, const size_t *displs);
+void tsmpi_allgatherv_brucks(tsmpi_sched *s, void *buf, const size_t *counts, const size_t *displs);
+void tsmpi_allgatherv_ring(tsmpi_sched *s, void *buf, const size_t *counts, const size_t *displs);
 /* The ring as MPICH's allgatherv runs it: pipelined when a block is longer
  * than 32 KiB of the receive type (unit packed bytes, extent bytes laid
  * out, per element). */
-int tsmpi_allgatherv_ring_pipelined(const tsmpi_cg *g, void *buf, const size_t *counts, const size_t *displs,
-                                    size_t unit, size_t extent);
+void tsmpi_allgatherv_ring_pipelined(tsmpi_sched *s, void *buf, const size_t *counts, const size_t *displs,
+                                     size_t unit, size_t extent);
 
 /* Alltoall(v): sbuf's block for rank r (counts sc[r] at sd[r]) to rank r's
- * rbuf block from us (rc[us] at rd[us]).  sbuf NULL: in place (rbuf holds
- * the blocks to send and gets the blocks received). */
-int tsmpi_alltoallv_linear(const tsmpi_cg *g, const void *sbuf, const size_t *sc, const size_t *sd, void *rbuf,
-                           const size_t *rc, const size_t *rd);
-int tsmpi_alltoallv_scattered(const tsmpi_cg *g, const void *sbuf, const size_t *sc, const size_t *sd, void *rbuf,
-                              const size_t *rc, const size_t *rd);
-int tsmpi_alltoallv_pairwise_sendrecv_replace(const tsmpi_cg *g, void *rbuf, const size_t *sc, const size_t *sd,
-                                              const size_t *rc, const size_t *rd);
-int tsmpi_alltoall_scattered(const tsmpi_cg *g, const void *sbuf, void *rbuf, size_t n);
-int tsmpi_alltoall_brucks(const tsmpi_cg *g, const void *sbuf, void *rbuf, size_t n);
-int tsmpi_alltoall_pairwise(const tsmpi_cg *g, const void *sbuf, void *rbuf, size_t n);
+ * rbuf block from us (rc[us] at rd[us]).  The pairwise sendrecv_replace one
+ * is in place (rbuf holds the blocks to send and gets the blocks
+ * received). */
+void tsmpi_alltoallv_linear(tsmpi_sched *s, const void *sbuf, const size_t *sc, const size_t *sd, void *rbuf,
+                            const size_t *rc, const size_t *rd);
+void tsmpi_alltoallv_scattered(tsmpi_sched *s, const void *sbuf, const size_t *sc, const size_t *sd, void *rbuf,
+                               const size_t *rc, const size_t *rd);
+void tsmpi_alltoallv_pairwise_sendrecv_replace(tsmpi_sched *s, void *rbuf, const size_t *rc, const size_t *rd);
+void tsmpi_alltoall_scattered(tsmpi_sched *s, const void *sbuf, void *rbuf, size_t n);
+void tsmpi_alltoall_brucks(tsmpi_sched *s, const void *sbuf, void *rbuf, size_t n);
+void tsmpi_alltoall_pairwise(tsmpi_sched *s, const void *sbuf, void *rbuf, size_t n);
 
 /* Reduce: count elements of every rank's sbuf combined into the root's
  * rbuf (sbuf NULL at the root: its operand is in rbuf). */
-int tsmpi_reduce_linear(const tsmpi_cg *g, const tsmpi_red *r, const void *sbuf, void *rbuf, int count, int root);
-int tsmpi_reduce_binomial(const tsmpi_cg *g, const tsmpi_red *r, const void *sbuf, void *rbuf, int count, int root);
-int tsmpi_reduce_scatter_gather(const tsmpi_cg *g, const tsmpi_red *r, const void *sbuf, void *rbuf, int count,
-                                int root);
+void tsmpi_reduce_linear(tsmpi_sched *s, const void *sbuf, void *rbuf, int count, int root);
+void tsmpi_reduce_binomial(tsmpi_sched *s, const void *sbuf, void *rbuf, int count, int root);
+void tsmpi_reduce_scatter_gather(tsmpi_sched *s, const void *sbuf, void *rbuf, int count, int root);
 /* Allreduce: buf holds this rank's operand and gets the result. */
-int tsmpi_allreduce_linear(const tsmpi_cg *g, const tsmpi_red *r, void *buf, int count);
-int tsmpi_allreduce_recursive_doubling(const tsmpi_cg *g, const tsmpi_red *r, void *buf, int count);
-int tsmpi_allreduce_reduce_scatter_allgather(const tsmpi_cg *g, const tsmpi_red *r, void *buf, int count);
+void tsmpi_allreduce_linear(tsmpi_sched *s, void *buf, int count);
+void tsmpi_allreduce_recursive_doubling(tsmpi_sched *s, void *buf, int count);
+void tsmpi_allreduce_reduce_scatter_allgather(tsmpi_sched *s, void *buf, int count);
 /* Reduce_scatter: buf holds this rank's whole operand (the sum of counts
  * elements); block r of the result (counts[r] elements) goes to rank r's
- * out. */
-int tsmpi_reduce_scatter_linear(const tsmpi_cg *g, const tsmpi_red *r, void *buf, void *out, const int *counts);
-int tsmpi_reduce_scatter_recursive_halving(const tsmpi_cg *g, const tsmpi_red *r, void *buf, void *out,
-                                           const int *counts);
-int tsmpi_reduce_scatter_pairwise(const tsmpi_cg *g, const tsmpi_red *r, void *buf, void *out, const int *counts);
-int tsmpi_reduce_scatter_recursive_doubling(const tsmpi_cg *g, const tsmpi_red *r, void *buf, void *out,
-                                            const int *counts);
-int tsmpi_reduce_scatter_noncommutative(const tsmpi_cg *g, const tsmpi_red *r, void *buf, void *out,
-                                        const int *counts);
+ * out (counts last as long as the schedule). */
+void tsmpi_reduce_scatter_linear(tsmpi_sched *s, void *buf, void *out, const int *counts);
+void tsmpi_reduce_scatter_recursive_halving(tsmpi_sched *s, void *buf, void *out, const int *counts);
+void tsmpi_reduce_scatter_pairwise(tsmpi_sched *s, void *buf, void *out, const int *counts);
+void tsmpi_reduce_scatter_recursive_doubling(tsmpi_sched *s, void *buf, void *out, const int *counts);
+void tsmpi_reduce_scatter_noncommutative(tsmpi_sched *s, void *buf, void *out, const int *counts);
 /* Scan (inclusive) and exscan: rank r's out gets ranks 0..r's (0..r-1's)
  * operands combined; exscan leaves rank 0's out alone. */
-int tsmpi_scan_linear(const tsmpi_cg *g, const tsmpi_red *r, const void *in, void *out, int count);
-int tsmpi_scan_recursive_doubling(const tsmpi_cg *g, const tsmpi_red *r, const void *in, void *out, int count);
-int tsmpi_exscan_linear(const tsmpi_cg *g, const tsmpi_red *r, const void *in, void *out, int count);
-int tsmpi_exscan_recursive_doubling(const tsmpi_cg *g, const tsmpi_red *r, const void *in, void *out, int count);
+void tsmpi_scan_linear(tsmpi_sched *s, const void *in, void *out, int count);
+void tsmpi_scan_recursive_doubling(tsmpi_sched *s, const void *in, void *out, int count);
+void tsmpi_exscan_linear(tsmpi_sched *s, const void *in, void *out, int count);
+void tsmpi_exscan_recursive_doubling(tsmpi_sched *s, const void *in, void *out, int count);
 
 /* left op right into right, count elements (op.h's order: in is left). */
 void tsmpi_red_apply(const tsmpi_red *r, const void *left, void *right, int count);

@@ -9,138 +9,163 @@
 #include <string.h>
 
 #include "coll.h"
+#include "coll_sched.h"
 
 /* Post every receive, then every send, in rank order; wait for all. */
-int tsmpi_alltoallv_linear(const tsmpi_cg *g, const void *sbuf, const size_t *sc, const size_t *sd, void *rbuf,
-                           const size_t *rc, const size_t *rd) {
-  int size = g->size, rank = g->rank, n = 0, err = MPI_SUCCESS;
-  MPI_Request *req = tsmpi_cg_alloc(g, 2 * (size_t)size * sizeof *req);
-  if (rc[rank]) memcpy((char *)rbuf + rd[rank], (const char *)sbuf + sd[rank], rc[rank]);
-  for (int i = 0; i < size && !err; i++)
-    if (i != rank && (err = tsmpi_cg_irecv(g, (char *)rbuf + rd[i], rc[i], i, &req[n])) == 0) n++;
-  for (int i = 0; i < size && !err; i++)
-    if (i != rank && (err = tsmpi_cg_isend(g, (const char *)sbuf + sd[i], sc[i], i, &req[n])) == 0) n++;
-  int w = tsmpi_cg_waitall(g, n, req);
-  tsmpi_cg_free(req);
-  return err ? err : w;
+void tsmpi_alltoallv_linear(tsmpi_sched *s, const void *sbuf, const size_t *sc, const size_t *sd, void *rbuf,
+                            const size_t *rc, const size_t *rd) {
+  const tsmpi_cg *g = tsmpi_sched_group(s);
+  int size = g->size, rank = g->rank;
+  tsmpi_sched_copy(s, (char *)rbuf + rd[rank], (const char *)sbuf + sd[rank], rc[rank]);
+  for (int i = 0; i < size; i++)
+    if (i != rank) tsmpi_sched_irecv(s, (char *)rbuf + rd[i], rc[i], i);
+  for (int i = 0; i < size; i++)
+    if (i != rank) tsmpi_sched_isend(s, (const char *)sbuf + sd[i], sc[i], i);
+  tsmpi_sched_waitall(s);
 }
 
 /* MPICH's "scattered": in blocks of 32 peers (MPIR_CVAR_ALLTOALL_THROTTLE),
  * post the receives from rank + i and the sends to rank - i, then wait;
  * the v form skips empty blocks.  Cost (p-1) alpha + n beta, overlapped. */
-static int scattered(const tsmpi_cg *g, const void *sbuf, const size_t *sc, const size_t *sd, void *rbuf,
-                     const size_t *rc, const size_t *rd, int skip_empty) {
-  int size = g->size, rank = g->rank, bblock = 32, err = MPI_SUCCESS;
-  MPI_Request *req = tsmpi_cg_alloc(g, 2 * (size_t)bblock * sizeof *req);
-  for (int ii = 0; ii < size && !err; ii += bblock) {
-    int ss = size - ii < bblock ? size - ii : bblock, n = 0;
-    for (int i = 0; i < ss && !err; i++) {
+static void scattered(tsmpi_sched *s, const void *sbuf, const size_t *sc, const size_t *sd, void *rbuf,
+                      const size_t *rc, const size_t *rd, int skip_empty) {
+  const tsmpi_cg *g = tsmpi_sched_group(s);
+  int size = g->size, rank = g->rank, bblock = 32;
+  for (int ii = 0; ii < size; ii += bblock) {
+    int ss = size - ii < bblock ? size - ii : bblock;
+    for (int i = 0; i < ss; i++) {
       int dst = (rank + i + ii) % size;
-      if ((!skip_empty || rc[dst]) && (err = tsmpi_cg_irecv(g, (char *)rbuf + rd[dst], rc[dst], dst, &req[n])) == 0)
-        n++;
+      if (!skip_empty || rc[dst]) tsmpi_sched_irecv(s, (char *)rbuf + rd[dst], rc[dst], dst);
     }
-    for (int i = 0; i < ss && !err; i++) {
+    for (int i = 0; i < ss; i++) {
       int dst = (rank - i - ii + 2 * size) % size;
-      if ((!skip_empty || sc[dst]) &&
-          (err = tsmpi_cg_isend(g, (const char *)sbuf + sd[dst], sc[dst], dst, &req[n])) == 0)
-        n++;
+      if (!skip_empty || sc[dst]) tsmpi_sched_isend(s, (const char *)sbuf + sd[dst], sc[dst], dst);
     }
-    int w = tsmpi_cg_waitall(g, n, req);
-    if (!err) err = w;
+    tsmpi_sched_waitall(s);
   }
-  tsmpi_cg_free(req);
-  return err;
 }
 
-int tsmpi_alltoallv_scattered(const tsmpi_cg *g, const void *sbuf, const size_t *sc, const size_t *sd, void *rbuf,
-                              const size_t *rc, const size_t *rd) {
-  return scattered(g, sbuf, sc, sd, rbuf, rc, rd, 1);
+void tsmpi_alltoallv_scattered(tsmpi_sched *s, const void *sbuf, const size_t *sc, const size_t *sd, void *rbuf,
+                               const size_t *rc, const size_t *rd) {
+  scattered(s, sbuf, sc, sd, rbuf, rc, rd, 1);
 }
 
-/* MPI_Alltoall's scattered: the same without skipping empty blocks. */
-int tsmpi_alltoall_scattered(const tsmpi_cg *g, const void *sbuf, void *rbuf, size_t n) {
-  int size = g->size;
-  size_t *cd = tsmpi_cg_alloc(g, 2 * (size_t)size * sizeof *cd);
+/* Equal blocks of n bytes: counts and displacements for the v forms. */
+static size_t *equal_blocks(tsmpi_sched *s, size_t n) {
+  int size = tsmpi_sched_group(s)->size;
+  size_t *cd = tsmpi_sched_mem(s, 2 * (size_t)size * sizeof *cd);
   for (int i = 0; i < size; i++) {
     cd[i] = n;
     cd[size + i] = (size_t)i * n;
   }
-  int rc = scattered(g, sbuf, cd, cd + size, rbuf, cd, cd + size, 0);
-  tsmpi_cg_free(cd);
-  return rc;
+  return cd;
+}
+
+/* MPI_Alltoall's scattered: the same without skipping empty blocks. */
+void tsmpi_alltoall_scattered(tsmpi_sched *s, const void *sbuf, void *rbuf, size_t n) {
+  size_t *cd = equal_blocks(s, n);
+  int size = tsmpi_sched_group(s)->size;
+  scattered(s, sbuf, cd, cd + size, rbuf, cd, cd + size, 0);
 }
 
 /* In place: for every pair (i, j), i <= j in order, the two exchange their
  * blocks for each other with a send and receive into scratch (MPICH's
  * sendrecv_replace schedule; i == j exchanges with itself). */
-int tsmpi_alltoallv_pairwise_sendrecv_replace(const tsmpi_cg *g, void *rbuf, const size_t *sc, const size_t *sd,
-                                              const size_t *rc, const size_t *rd) {
-  int size = g->size, rank = g->rank, err = MPI_SUCCESS;
-  (void)sc, (void)sd;   /* in place: the receive blocks are sent */
+void tsmpi_alltoallv_pairwise_sendrecv_replace(tsmpi_sched *s, void *rbuf, const size_t *rc, const size_t *rd) {
+  const tsmpi_cg *g = tsmpi_sched_group(s);
+  int size = g->size, rank = g->rank;
   size_t max = 0;
   for (int i = 0; i < size; i++)
     if (rc[i] > max) max = rc[i];
-  char *tmp = tsmpi_cg_alloc(g, max);
-  for (int i = 0; i < size && !err; i++)
-    for (int j = i; j < size && !err; j++) {
+  char *tmp = tsmpi_sched_mem(s, max);
+  for (int i = 0; i < size; i++)
+    for (int j = i; j < size; j++) {
       int peer = rank == i ? j : rank == j ? i : -1;
       if (peer < 0) continue;
       char *blk = (char *)rbuf + rd[peer];
-      if ((err = tsmpi_cg_sendrecv(g, blk, rc[peer], peer, tmp, rc[peer], peer, NULL)) == 0) memcpy(blk, tmp, rc[peer]);
+      tsmpi_sched_sendrecv(s, blk, rc[peer], peer, tmp, rc[peer], peer);
+      tsmpi_sched_copy(s, blk, tmp, rc[peer]);
     }
-  tsmpi_cg_free(tmp);
-  return err;
+}
+
+/* Bruck's steps, local: the blocks whose index has bit pof2 set, packed
+ * out of r into pack, or back. */
+typedef struct {
+  char *r, *pack;
+  size_t n;
+  int size, pof2, out;
+} bruck_step;
+
+static void bruck_move(void *ud) {
+  const bruck_step *b = ud;
+  size_t len = 0;
+  for (int i = 1; i < b->size; i++)
+    if (i & b->pof2) {
+      if (b->out)
+        memcpy(b->pack + len, b->r + (size_t)i * b->n, b->n);
+      else
+        memcpy(b->r + (size_t)i * b->n, b->pack + len, b->n);
+      len += b->n;
+    }
+}
+
+/* ... and the end: rotate up by rank + 1, then reverse. */
+typedef struct {
+  char *r, *tmp;
+  size_t n;
+  int size, rank;
+} bruck_end;
+
+static void bruck_finish(void *ud) {
+  const bruck_end *b = ud;
+  for (int i = 0; i < b->size; i++)
+    memcpy(b->tmp + (size_t)i * b->n, b->r + (size_t)((b->rank + 1 + i) % b->size) * b->n, b->n);
+  for (int i = 0; i < b->size; i++)
+    memcpy(b->r + (size_t)i * b->n, b->tmp + (size_t)(b->size - 1 - i) * b->n, b->n);
 }
 
 /* Bruck et al. 1997: rotate the blocks up by rank; in step k send to
  * rank + 2^k (and receive from rank - 2^k) every block whose index has bit
  * k set; rotate back and reverse.  ceil(lg p) steps of n p / 2 bytes:
  * for short blocks. */
-int tsmpi_alltoall_brucks(const tsmpi_cg *g, const void *sbuf, void *rbuf, size_t n) {
-  int size = g->size, rank = g->rank, err = MPI_SUCCESS;
-  char *r = rbuf;
-  const char *s = sbuf;
-  char *tmp = tsmpi_cg_alloc(g, (size_t)size * n), *pack = tsmpi_cg_alloc(g, (size_t)size * n);
+void tsmpi_alltoall_brucks(tsmpi_sched *s, const void *sbuf, void *rbuf, size_t n) {
+  const tsmpi_cg *g = tsmpi_sched_group(s);
+  int size = g->size, rank = g->rank;
+  char *r = rbuf, *tmp = tsmpi_sched_mem(s, (size_t)size * n), *pack = tsmpi_sched_mem(s, (size_t)size * n);
   /* Phase 1: block i of rbuf is sbuf's block rank + i. */
-  for (int i = 0; i < size; i++) memcpy(r + (size_t)i * n, s + (size_t)((rank + i) % size) * n, n);
+  size_t head = (size_t)(size - rank) * n;
+  tsmpi_sched_copy(s, r, (const char *)sbuf + (size_t)rank * n, head);
+  tsmpi_sched_copy(s, r + head, sbuf, (size_t)rank * n);
   /* Phase 2. */
-  for (int pof2 = 1; pof2 < size && !err; pof2 *= 2) {
+  for (int pof2 = 1; pof2 < size; pof2 *= 2) {
     int dst = (rank + pof2) % size, src = (rank - pof2 + size) % size;
     size_t len = 0;
     for (int b = 1; b < size; b++)
-      if (b & pof2) {
-        memcpy(pack + len, r + (size_t)b * n, n);
-        len += n;
-      }
-    if ((err = tsmpi_cg_sendrecv(g, pack, len, dst, tmp, len, src, NULL))) break;
-    len = 0;
-    for (int b = 1; b < size; b++)
-      if (b & pof2) {
-        memcpy(r + (size_t)b * n, tmp + len, n);
-        len += n;
-      }
+      if (b & pof2) len += n;
+    bruck_step *out = tsmpi_sched_mem(s, 2 * sizeof *out), *in = out + 1;
+    *out = (bruck_step){r, pack, n, size, pof2, 1};
+    *in = (bruck_step){r, tmp, n, size, pof2, 0};
+    tsmpi_sched_call(s, bruck_move, out);
+    tsmpi_sched_sendrecv(s, pack, len, dst, tmp, len, src);
+    tsmpi_sched_call(s, bruck_move, in);
   }
-  if (!err) {
-    /* Phase 3: rotate up by rank + 1, then reverse. */
-    for (int i = 0; i < size; i++) memcpy(tmp + (size_t)i * n, r + (size_t)((rank + 1 + i) % size) * n, n);
-    for (int i = 0; i < size; i++) memcpy(r + (size_t)i * n, tmp + (size_t)(size - 1 - i) * n, n);
-  }
-  tsmpi_cg_free(tmp);
-  tsmpi_cg_free(pack);
-  return err;
+  /* Phase 3. */
+  bruck_end *e = tsmpi_sched_mem(s, sizeof *e);
+  *e = (bruck_end){r, tmp, n, size, rank};
+  tsmpi_sched_call(s, bruck_finish, e);
 }
 
 /* p - 1 exchanges: with rank ^ i when p is a power of two, else sending to
  * rank + i and receiving from rank - i.  Cost (p-1) alpha + n beta: for
  * long blocks. */
-int tsmpi_alltoall_pairwise(const tsmpi_cg *g, const void *sbuf, void *rbuf, size_t n) {
-  int size = g->size, rank = g->rank, pof2 = tsmpi_is_pof2(size), err = MPI_SUCCESS;
-  const char *s = sbuf;
+void tsmpi_alltoall_pairwise(tsmpi_sched *s, const void *sbuf, void *rbuf, size_t n) {
+  const tsmpi_cg *g = tsmpi_sched_group(s);
+  int size = g->size, rank = g->rank, pof2 = tsmpi_is_pof2(size);
+  const char *sp = sbuf;
   char *r = rbuf;
-  memcpy(r + (size_t)rank * n, s + (size_t)rank * n, n);
-  for (int i = 1; i < size && !err; i++) {
+  tsmpi_sched_copy(s, r + (size_t)rank * n, sp + (size_t)rank * n, n);
+  for (int i = 1; i < size; i++) {
     int src = pof2 ? rank ^ i : (rank - i + size) % size, dst = pof2 ? rank ^ i : (rank + i) % size;
-    err = tsmpi_cg_sendrecv(g, s + (size_t)dst * n, n, dst, r + (size_t)src * n, n, src, NULL);
+    tsmpi_sched_sendrecv(s, sp + (size_t)dst * n, n, dst, r + (size_t)src * n, n, src);
   }
-  return err;
 }

@@ -1,5 +1,6 @@
-/* coll_frame.c -- what every MPI collective does around its algorithm: the rank's label for a
- * deadlock report, argument checks, packing (coll.h). */
+/* coll_frame.c -- what every MPI collective does around its algorithm: the start and the end
+ * (blocking: the rank's label for a deadlock report, the schedule run; nonblocking: the
+ * schedule started), argument checks, packing (coll.h). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -8,7 +9,9 @@
 #include "dtype.h"
 #include "mp.h"
 #include "op.h"
+#include "nbc.h"
 #include "p2p.h"
+#include "coll_sched.h"
 
 static void describe(void *ud, char *buf, size_t len) {
   const tsmpi_label *l = ud;
@@ -18,27 +21,58 @@ static void describe(void *ud, char *buf, size_t len) {
     snprintf(buf, len, "%s(%s)", l->fn, l->comm_name);
 }
 
-/* The group and the label of a call on a checked communicator. */
-void tsmpi_coll_begin(tsmpi_cg *g, tsmpi_label *l, const char *fn, MPI_Comm comm, tsmpi_coll which, int root) {
-  g->comm = comm;
-  g->rank = tsmpi_comm_rank(comm);
-  g->size = tsmpi_comm_size(comm);
-  g->tag = 1 + (int)which;
-  g->fn = fn;
-  l->fn = fn;
-  l->comm = comm;
-  l->comm_name = tsmpi_comm_name(comm);   /* now: the report is made outside the rank */
-  l->root = root;
+/* A call's frame, in its schedule's memory. */
+typedef struct {
+  tsmpi_label l;
+  MPI_Request *req;   /* nonblocking: the program's request */
+} frame;
+
+tsmpi_sched *tsmpi_coll_start(const char *fn, MPI_Comm comm, tsmpi_coll which, int root, MPI_Request *req) {
+  tsmpi_cg g = {comm, tsmpi_comm_rank(comm), tsmpi_comm_size(comm), 1 + (int)which, fn};
+  if (req) g.tag = tsmpi_comm_nbc_tag(comm);
+  tsmpi_sched *s = tsmpi_sched_new(&g, NULL, req == NULL);
+  frame *f = tsmpi_sched_mem(s, sizeof *f);
+  f->req = req;
+  f->l.fn = fn;
+  f->l.comm = comm;
+  f->l.comm_name = tsmpi_comm_name(comm);   /* now: the report is made outside the rank */
+  f->l.root = root;
+  tsmpi_sched_set_frame(s, f);
   mp *self = mp_self();
   mp_call_begin(self, fn);   /* the trace shows the call as one slice */
-  mp_label(self, describe, l);
+  if (!req) mp_label(self, describe, &f->l);
+  return s;
 }
 
-int tsmpi_coll_end(int rc) {
+static int end(int rc) {
   mp *self = mp_self();
   mp_label(self, NULL, NULL);
   mp_call_end(self);
   return rc;
+}
+
+int tsmpi_coll_finish(tsmpi_sched *s) {
+  frame *f = tsmpi_sched_frame(s);
+  if (f->req) {
+    MPI_Request *req = f->req;
+    tsmpi_nbc_start(s, f->l.fn, f->l.comm, f->l.root, req);
+    return end(MPI_SUCCESS);
+  }
+  return end(tsmpi_sched_run(s));
+}
+
+int tsmpi_coll_ran(const char *fn, MPI_Comm comm, int rc, MPI_Request *req) {
+  if (!req) return tsmpi_raise(comm, MPI_ERR_ARG, fn, "NULL request argument");
+  *req = MPI_REQUEST_NULL;
+  if (rc) return rc;
+  *req = tsmpi_req_coll(fn, comm, -1);
+  tsmpi_req_coll_complete(*req, MPI_SUCCESS);
+  return MPI_SUCCESS;
+}
+
+int tsmpi_coll_fail(tsmpi_sched *s, int rc) {
+  tsmpi_sched_free(s);
+  return end(rc);
 }
 
 /* ==== argument checks ===================================================== */
@@ -78,18 +112,17 @@ int tsmpi_coll_in_place_bad(MPI_Comm comm, const char *fn, const char *which) {
   return tsmpi_raise(comm, MPI_ERR_BUFFER, fn, "MPI_IN_PLACE is not allowed as %s here", which);
 }
 
-/* ==== packing ============================================================= */
-
-char *tsmpi_coll_pack(const tsmpi_cg *g, const void *buf, int count, MPI_Datatype dt) {
-  size_t n = tsmpi_type_size(dt) * (size_t)count;
-  char *p = tsmpi_cg_alloc(g, n);
-  if (n) tsmpi_type_pack(buf, count, dt, p);
-  return p;
+int tsmpi_coll_req_ok(MPI_Comm comm, const char *fn, const MPI_Request *req) {
+  return req ? MPI_SUCCESS : tsmpi_raise(comm, MPI_ERR_ARG, fn, "NULL request argument");
 }
 
-void tsmpi_coll_unpack(const char *p, void *buf, int count, MPI_Datatype dt) {
+/* ==== packing ============================================================= */
+
+char *tsmpi_coll_pack(tsmpi_sched *s, const void *buf, int count, MPI_Datatype dt) {
   size_t n = tsmpi_type_size(dt) * (size_t)count;
-  if (n) tsmpi_type_unpack(p, n, buf, count, dt);
+  char *p = tsmpi_sched_mem(s, n);
+  if (n) tsmpi_type_pack(buf, count, dt, p);
+  return p;
 }
 
 /* Element i of dt at buf (i * extent bytes on). */

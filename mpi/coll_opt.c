@@ -8,7 +8,8 @@
 
 static const char *const coll_names[COLL_N] = {
   "barrier", "bcast", "reduce", "allreduce", "gather", "gatherv", "scatter", "scatterv", "allgather",
-  "allgatherv", "alltoall", "alltoallv", "scan", "exscan", "reduce_scatter", "reduce_scatter_block"};
+  "allgatherv", "alltoall", "alltoallv", "scan", "exscan", "reduce_scatter", "reduce_scatter_block", "alltoallw",
+  "neighbor_allgather", "neighbor_allgatherv", "neighbor_alltoall", "neighbor_alltoallv", "neighbor_alltoallw"};
 
 /* MPICH's names (its MPIR_CVAR_<COLL>_INTRA_ALGORITHM values). */
 static const char *const alg_names[ALG_N] = {
@@ -37,6 +38,12 @@ static const tsmpi_alg coll_algs[COLL_N][8] = {
   [COLL_REDUCE_SCATTER] = ALGS(ALG_RECURSIVE_HALVING, ALG_PAIRWISE, ALG_RECURSIVE_DOUBLING, ALG_NONCOMMUTATIVE),
   [COLL_REDUCE_SCATTER_BLOCK] = ALGS(ALG_RECURSIVE_HALVING, ALG_PAIRWISE, ALG_RECURSIVE_DOUBLING,
                                      ALG_NONCOMMUTATIVE),
+  [COLL_ALLTOALLW] = ALGS(ALG_SCATTERED, ALG_PAIRWISE_SENDRECV_REPLACE),
+  [COLL_NEIGHBOR_ALLGATHER] = {ALG_AUTO, ALG_LINEAR, ALG_N},
+  [COLL_NEIGHBOR_ALLGATHERV] = {ALG_AUTO, ALG_LINEAR, ALG_N},
+  [COLL_NEIGHBOR_ALLTOALL] = {ALG_AUTO, ALG_LINEAR, ALG_N},
+  [COLL_NEIGHBOR_ALLTOALLV] = {ALG_AUTO, ALG_LINEAR, ALG_N},
+  [COLL_NEIGHBOR_ALLTOALLW] = {ALG_AUTO, ALG_LINEAR, ALG_N},
 };
 
 /* The run's setting: written before the ranks start (tsmpi_coll_option),
@@ -92,9 +99,7 @@ int tsmpi_coll_option(const char *spec, char *err, size_t errlen) {
       for (c = 0; c < COLL_N && strcmp(item, coll_names[c]); c++)
         ;
       if (c == COLL_N) {
-        snprintf(err, errlen, "--coll: no collective '%s' (barrier, bcast, reduce, allreduce, gather, gatherv, "
-                 "scatter, scatterv, allgather, allgatherv, alltoall, alltoallv, scan, exscan, reduce_scatter, "
-                 "reduce_scatter_block)", item);
+        snprintf(err, errlen, "--coll: no collective '%s' (--coll help lists them)", item);
         return -1;
       }
       for (a = 0; a < ALG_N && strcmp(eq + 1, alg_names[a]); a++)

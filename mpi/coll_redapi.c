@@ -1,9 +1,12 @@
-/* coll_redapi.c -- the MPI reductions: MPI_Reduce, MPI_Allreduce, MPI_Reduce_scatter,
- * MPI_Reduce_scatter_block, MPI_Scan, MPI_Exscan (mpi.h).  As coll_api.c: check, pack, pick
- * (the run's setting, else MPICH's rule, cited), run (coll.h), unpack.  An algorithm the
- * setting names that cannot run a call (Rabenseifner's for a user operation or fewer elements
- * than ranks, a commutative-only one for a non-commutative operation) gives way to MPICH's
- * choice, as MPICH's own checks would refuse it. */
+/* coll_redapi.c -- the MPI reductions MPI_Reduce, MPI_Allreduce, MPI_Reduce_scatter,
+ * MPI_Reduce_scatter_block, MPI_Scan, MPI_Exscan and their nonblocking forms MPI_Ireduce,
+ * MPI_Iallreduce, MPI_Ireduce_scatter, MPI_Ireduce_scatter_block, MPI_Iscan, MPI_Iexscan
+ * (mpi.h).  As coll_api.c: one body per pair; check, start, pack, pick (the run's setting,
+ * else MPICH's rule, cited), build, unpack at the end, finish.  An algorithm the setting names
+ * that cannot run a call (Rabenseifner's for a user operation or fewer elements than ranks, a
+ * commutative-only one for a non-commutative operation) gives way to MPICH's choice, as
+ * MPICH's own checks would refuse it.  A nonblocking reduction combines in the order its
+ * blocking form does (doc/mpi-support.md), so both give the same bits. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -12,6 +15,7 @@
 #include "dtype.h"
 #include "op.h"
 #include "p2p.h"
+#include "coll_sched.h"
 
 /* The reduction's description for the algorithms. */
 static tsmpi_red red_of(MPI_Datatype dt, MPI_Op op) {
@@ -29,80 +33,109 @@ static int red_ok(MPI_Comm comm, const char *fn, const void *sendbuf, int count,
   return MPI_SUCCESS;
 }
 
+/* A nonblocking form's own first checks: the communicator and the request. */
+static int nb_ok(MPI_Comm comm, const char *fn, MPI_Request *req) {
+  int rc = tsmpi_comm_check(comm, fn);
+  return rc ? rc : tsmpi_coll_req_ok(comm, fn, req);
+}
+
 /* ==== reduce and allreduce ================================================ */
 
-int PMPI_Reduce(const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op, int root,
-               MPI_Comm comm) {
-  static const char fn[] = "MPI_Reduce";
-  if (tsmpi_comm_inter(comm)) return tsmpi_inter_reduce(sendbuf, recvbuf, count, datatype, op, root, comm);
+static int reduce(const char *fn, const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op,
+                  int root, MPI_Comm comm, MPI_Request *req) {
   int rc;
-  if ((rc = tsmpi_comm_check(comm, fn)) || (rc = tsmpi_check_root(comm, fn, root))) return rc;
+  if ((rc = tsmpi_check_root(comm, fn, root))) return rc;
   int me = tsmpi_comm_rank(comm);
   if ((rc = red_ok(comm, fn, sendbuf, count, datatype, op, me == root))) return rc;
   if (me == root) {
     if ((rc = tsmpi_check_buf(comm, fn, recvbuf, count, datatype))) return rc;
     if (recvbuf == MPI_IN_PLACE) return tsmpi_coll_in_place_bad(comm, fn, "recvbuf");
   }
-  tsmpi_cg g;
-  tsmpi_label l;
-  tsmpi_coll_begin(&g, &l, fn, comm, COLL_REDUCE, root);
+  tsmpi_sched *s = tsmpi_coll_start(fn, comm, COLL_REDUCE, root, req);
   tsmpi_red r = red_of(datatype, op);
+  tsmpi_sched_set_red(s, &r);
+  int size = tsmpi_sched_group(s)->size;
   size_t n = r.tsize * (size_t)count;
-  if (n == 0) return tsmpi_coll_end(MPI_SUCCESS);
-  char *in = tsmpi_coll_pack(&g, sendbuf == MPI_IN_PLACE ? recvbuf : sendbuf, count, datatype);
-  char *out = me == root ? tsmpi_cg_alloc(&g, n) : NULL;
-  int pof2 = tsmpi_pof2(g.size), rsg_ok = tsmpi_op_is_predefined(op) && count >= pof2;
+  if (n == 0) return tsmpi_coll_finish(s);
+  char *in = tsmpi_coll_pack(s, sendbuf == MPI_IN_PLACE ? recvbuf : sendbuf, count, datatype);
+  char *out = me == root ? tsmpi_sched_mem(s, n) : NULL;
+  int pof2 = tsmpi_pof2(size), rsg_ok = tsmpi_op_is_predefined(op) && count >= pof2;
   tsmpi_alg a = tsmpi_coll_setting(COLL_REDUCE);
   /* MPICH reduce.c: Rabenseifner's above MPIR_CVAR_REDUCE_SHORT_MSG_SIZE
    * (2048) bytes for predefined operations and count >= pof2, else the
    * binomial tree. */
   if (a == ALG_AUTO || (a == ALG_REDUCE_SCATTER_GATHER && !rsg_ok))
     a = n > 2048 && rsg_ok ? ALG_REDUCE_SCATTER_GATHER : ALG_BINOMIAL;
-  if (g.size == 1) {
-    memcpy(out, in, n);
-    rc = MPI_SUCCESS;
-  } else if (a == ALG_LINEAR) {
-    rc = tsmpi_reduce_linear(&g, &r, in, out, count, root);
-  } else if (a == ALG_REDUCE_SCATTER_GATHER) {
-    rc = tsmpi_reduce_scatter_gather(&g, &r, in, out, count, root);
-  } else {
-    rc = tsmpi_reduce_binomial(&g, &r, in, out, count, root);
-  }
-  if (!rc && me == root) tsmpi_coll_unpack(out, recvbuf, count, datatype);
-  tsmpi_cg_free(in);
-  tsmpi_cg_free(out);
-  return tsmpi_coll_end(rc);
+  if (size == 1)
+    tsmpi_sched_copy(s, out, in, n);
+  else if (a == ALG_LINEAR)
+    tsmpi_reduce_linear(s, in, out, count, root);
+  else if (a == ALG_REDUCE_SCATTER_GATHER)
+    tsmpi_reduce_scatter_gather(s, in, out, count, root);
+  else
+    tsmpi_reduce_binomial(s, in, out, count, root);
+  if (me == root) tsmpi_sched_unpack(s, out, n, recvbuf, count, datatype);
+  return tsmpi_coll_finish(s);
 }
 
-int PMPI_Allreduce(const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op, MPI_Comm comm) {
-  static const char fn[] = "MPI_Allreduce";
-  if (tsmpi_comm_inter(comm)) return tsmpi_inter_allreduce(sendbuf, recvbuf, count, datatype, op, comm);
+int PMPI_Reduce(const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op, int root,
+               MPI_Comm comm) {
+  if (tsmpi_comm_inter(comm)) return tsmpi_inter_reduce(sendbuf, recvbuf, count, datatype, op, root, comm);
+  int rc = tsmpi_comm_check(comm, "MPI_Reduce");
+  return rc ? rc : reduce("MPI_Reduce", sendbuf, recvbuf, count, datatype, op, root, comm, NULL);
+}
+
+int PMPI_Ireduce(const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op, int root,
+                MPI_Comm comm, MPI_Request *request) {
+  if (tsmpi_comm_inter(comm)) return tsmpi_coll_ran("MPI_Ireduce", comm, tsmpi_inter_reduce(sendbuf, recvbuf, count, datatype, op, root, comm), request);
+  int rc = nb_ok(comm, "MPI_Ireduce", request);
+  return rc ? rc : reduce("MPI_Ireduce", sendbuf, recvbuf, count, datatype, op, root, comm, request);
+}
+
+static int allreduce(const char *fn, const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op,
+                     MPI_Comm comm, MPI_Request *req) {
   int rc;
-  if ((rc = tsmpi_comm_check(comm, fn)) || (rc = red_ok(comm, fn, sendbuf, count, datatype, op, 1)) ||
+  if ((rc = red_ok(comm, fn, sendbuf, count, datatype, op, 1)) ||
       (rc = tsmpi_check_buf(comm, fn, recvbuf, count, datatype)))
     return rc;
   if (recvbuf == MPI_IN_PLACE) return tsmpi_coll_in_place_bad(comm, fn, "recvbuf");
-  tsmpi_cg g;
-  tsmpi_label l;
-  tsmpi_coll_begin(&g, &l, fn, comm, COLL_ALLREDUCE, -1);
+  tsmpi_sched *s = tsmpi_coll_start(fn, comm, COLL_ALLREDUCE, -1, req);
   tsmpi_red r = red_of(datatype, op);
+  tsmpi_sched_set_red(s, &r);
+  int size = tsmpi_sched_group(s)->size;
   size_t n = r.tsize * (size_t)count;
-  if (n == 0) return tsmpi_coll_end(MPI_SUCCESS);
-  char *buf = tsmpi_coll_pack(&g, sendbuf == MPI_IN_PLACE ? recvbuf : sendbuf, count, datatype);
-  int pof2 = tsmpi_pof2(g.size), rsag_ok = tsmpi_op_is_predefined(op) && count >= pof2;
+  if (n == 0) return tsmpi_coll_finish(s);
+  char *buf = tsmpi_coll_pack(s, sendbuf == MPI_IN_PLACE ? recvbuf : sendbuf, count, datatype);
+  int pof2 = tsmpi_pof2(size), rsag_ok = tsmpi_op_is_predefined(op) && count >= pof2;
   tsmpi_alg a = tsmpi_coll_setting(COLL_ALLREDUCE);
   /* MPICH allreduce.c: recursive doubling up to
    * MPIR_CVAR_ALLREDUCE_SHORT_MSG_SIZE (2048) bytes, for user operations
    * and for count < pof2; else Rabenseifner's. */
   if (a == ALG_AUTO || (a == ALG_REDUCE_SCATTER_ALLGATHER && !rsag_ok))
     a = n <= 2048 || !rsag_ok ? ALG_RECURSIVE_DOUBLING : ALG_REDUCE_SCATTER_ALLGATHER;
-  if (g.size == 1) rc = MPI_SUCCESS;
-  else if (a == ALG_LINEAR) rc = tsmpi_allreduce_linear(&g, &r, buf, count);
-  else if (a == ALG_REDUCE_SCATTER_ALLGATHER) rc = tsmpi_allreduce_reduce_scatter_allgather(&g, &r, buf, count);
-  else rc = tsmpi_allreduce_recursive_doubling(&g, &r, buf, count);
-  if (!rc) tsmpi_coll_unpack(buf, recvbuf, count, datatype);
-  tsmpi_cg_free(buf);
-  return tsmpi_coll_end(rc);
+  if (size == 1)
+    ;
+  else if (a == ALG_LINEAR)
+    tsmpi_allreduce_linear(s, buf, count);
+  else if (a == ALG_REDUCE_SCATTER_ALLGATHER)
+    tsmpi_allreduce_reduce_scatter_allgather(s, buf, count);
+  else
+    tsmpi_allreduce_recursive_doubling(s, buf, count);
+  tsmpi_sched_unpack(s, buf, n, recvbuf, count, datatype);
+  return tsmpi_coll_finish(s);
+}
+
+int PMPI_Allreduce(const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op, MPI_Comm comm) {
+  if (tsmpi_comm_inter(comm)) return tsmpi_inter_allreduce(sendbuf, recvbuf, count, datatype, op, comm);
+  int rc = tsmpi_comm_check(comm, "MPI_Allreduce");
+  return rc ? rc : allreduce("MPI_Allreduce", sendbuf, recvbuf, count, datatype, op, comm, NULL);
+}
+
+int PMPI_Iallreduce(const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op, MPI_Comm comm,
+                   MPI_Request *request) {
+  if (tsmpi_comm_inter(comm)) return tsmpi_coll_ran("MPI_Iallreduce", comm, tsmpi_inter_allreduce(sendbuf, recvbuf, count, datatype, op, comm), request);
+  int rc = nb_ok(comm, "MPI_Iallreduce", request);
+  return rc ? rc : allreduce("MPI_Iallreduce", sendbuf, recvbuf, count, datatype, op, comm, request);
 }
 
 /* ==== reduce-scatter ====================================================== */
@@ -112,8 +145,9 @@ int PMPI_Allreduce(const void *sendbuf, void *recvbuf, int count, MPI_Datatype d
  * below MPIR_CVAR_REDUCE_SCATTER_COMMUTATIVE_LONG_MSG_SIZE (524288) bytes in
  * all, else pairwise; for the others, Traff's butterfly on a power of two
  * ranks and equal blocks, else recursive doubling. */
-static int redscat(const tsmpi_cg *g, tsmpi_coll c, const tsmpi_red *r, char *buf, char *out, const int *counts) {
-  int size = g->size, regular = 1;
+static void redscat_build(tsmpi_sched *s, tsmpi_coll c, char *buf, char *out, const int *counts) {
+  const tsmpi_red *r = tsmpi_sched_red(s);
+  int size = tsmpi_sched_group(s)->size, regular = 1;
   size_t total = 0;
   for (int i = 0; i < size; i++) {
     total += (size_t)counts[i];
@@ -127,110 +161,137 @@ static int redscat(const tsmpi_cg *g, tsmpi_coll c, const tsmpi_red *r, char *bu
       (a == ALG_NONCOMMUTATIVE && !(tsmpi_is_pof2(size) && regular)))
     a = mpich;
   if (size == 1) {
-    memcpy(out, buf, n);
-    return MPI_SUCCESS;
+    tsmpi_sched_copy(s, out, buf, n);
+    return;
   }
   switch (a) {
-  case ALG_LINEAR: return tsmpi_reduce_scatter_linear(g, r, buf, out, counts);
-  case ALG_RECURSIVE_HALVING: return tsmpi_reduce_scatter_recursive_halving(g, r, buf, out, counts);
-  case ALG_PAIRWISE: return tsmpi_reduce_scatter_pairwise(g, r, buf, out, counts);
-  case ALG_NONCOMMUTATIVE: return tsmpi_reduce_scatter_noncommutative(g, r, buf, out, counts);
-  default: return tsmpi_reduce_scatter_recursive_doubling(g, r, buf, out, counts);
+  case ALG_LINEAR: tsmpi_reduce_scatter_linear(s, buf, out, counts); break;
+  case ALG_RECURSIVE_HALVING: tsmpi_reduce_scatter_recursive_halving(s, buf, out, counts); break;
+  case ALG_PAIRWISE: tsmpi_reduce_scatter_pairwise(s, buf, out, counts); break;
+  case ALG_NONCOMMUTATIVE: tsmpi_reduce_scatter_noncommutative(s, buf, out, counts); break;
+  default: tsmpi_reduce_scatter_recursive_doubling(s, buf, out, counts); break;
   }
 }
 
-/* The common end of both: check, pack the whole operand, run, unpack this
- * rank's block (at the start of recvbuf, in place or not). */
-static int redscat_call(const char *fn, tsmpi_coll c, const void *sendbuf, void *recvbuf, const int *counts,
-                        MPI_Datatype datatype, MPI_Op op, MPI_Comm comm) {
+/* The common body of both: check, pack the whole operand, build, unpack
+ * this rank's block (at the start of recvbuf, in place or not).  counts:
+ * the blocks' counts (NULL: recvcount each). */
+static int redscat(const char *fn, tsmpi_coll c, const void *sendbuf, void *recvbuf, const int *counts,
+                   int recvcount, MPI_Datatype datatype, MPI_Op op, MPI_Comm comm, MPI_Request *req) {
   int me = tsmpi_comm_rank(comm), size = tsmpi_comm_size(comm), rc;
   long long total = 0;
-  for (int i = 0; i < size; i++) total += counts[i];
+  for (int i = 0; i < size; i++) total += counts ? counts[i] : recvcount;
   if (total > 0x7fffffff) return tsmpi_raise(comm, MPI_ERR_COUNT, fn, "%lld elements in all", total);
+  int mine = counts ? counts[me] : recvcount;
   if ((rc = red_ok(comm, fn, sendbuf, (int)total, datatype, op, 1)) ||
-      (rc = tsmpi_check_buf(comm, fn, recvbuf, sendbuf == MPI_IN_PLACE ? (int)total : counts[me], datatype)))
+      (rc = tsmpi_check_buf(comm, fn, recvbuf, sendbuf == MPI_IN_PLACE ? (int)total : mine, datatype)))
     return rc;
   if (recvbuf == MPI_IN_PLACE) return tsmpi_coll_in_place_bad(comm, fn, "recvbuf");
-  tsmpi_cg g;
-  tsmpi_label l;
-  tsmpi_coll_begin(&g, &l, fn, comm, c, -1);
+  tsmpi_sched *s = tsmpi_coll_start(fn, comm, c, -1, req);
   tsmpi_red r = red_of(datatype, op);
-  if (total == 0 || r.tsize == 0) return tsmpi_coll_end(MPI_SUCCESS);
-  char *buf = tsmpi_coll_pack(&g, sendbuf == MPI_IN_PLACE ? recvbuf : sendbuf, (int)total, datatype);
-  char *out = tsmpi_cg_alloc(&g, (size_t)counts[me] * r.tsize);
-  rc = redscat(&g, c, &r, buf, out, counts);
-  if (!rc) tsmpi_coll_unpack(out, recvbuf, counts[me], datatype);
-  tsmpi_cg_free(buf);
-  tsmpi_cg_free(out);
-  return tsmpi_coll_end(rc);
+  tsmpi_sched_set_red(s, &r);
+  if (total == 0 || r.tsize == 0) return tsmpi_coll_finish(s);
+  int *cnt = tsmpi_sched_mem(s, (size_t)size * sizeof *cnt);
+  for (int i = 0; i < size; i++) cnt[i] = counts ? counts[i] : recvcount;
+  char *buf = tsmpi_coll_pack(s, sendbuf == MPI_IN_PLACE ? recvbuf : sendbuf, (int)total, datatype);
+  char *out = tsmpi_sched_mem(s, (size_t)mine * r.tsize);
+  redscat_build(s, c, buf, out, cnt);
+  tsmpi_sched_unpack(s, out, (size_t)mine * r.tsize, recvbuf, mine, datatype);
+  return tsmpi_coll_finish(s);
 }
 
 int PMPI_Reduce_scatter(const void *sendbuf, void *recvbuf, const int recvcounts[], MPI_Datatype datatype, MPI_Op op,
                        MPI_Comm comm) {
-  static const char fn[] = "MPI_Reduce_scatter";
   if (tsmpi_comm_inter(comm)) return tsmpi_inter_reduce_scatter(sendbuf, recvbuf, recvcounts, datatype, op, comm);
+  static const char fn[] = "MPI_Reduce_scatter";
   int rc;
   if ((rc = tsmpi_comm_check(comm, fn)) ||
       (rc = tsmpi_coll_counts_ok(comm, fn, "recvcounts", recvcounts, NULL, tsmpi_comm_size(comm))))
     return rc;
-  return redscat_call(fn, COLL_REDUCE_SCATTER, sendbuf, recvbuf, recvcounts, datatype, op, comm);
+  return redscat(fn, COLL_REDUCE_SCATTER, sendbuf, recvbuf, recvcounts, 0, datatype, op, comm, NULL);
+}
+
+int PMPI_Ireduce_scatter(const void *sendbuf, void *recvbuf, const int recvcounts[], MPI_Datatype datatype,
+                        MPI_Op op, MPI_Comm comm, MPI_Request *request) {
+  if (tsmpi_comm_inter(comm)) return tsmpi_coll_ran("MPI_Ireduce_scatter", comm, tsmpi_inter_reduce_scatter(sendbuf, recvbuf, recvcounts, datatype, op, comm), request);
+  static const char fn[] = "MPI_Ireduce_scatter";
+  int rc;
+  if ((rc = nb_ok(comm, fn, request)) ||
+      (rc = tsmpi_coll_counts_ok(comm, fn, "recvcounts", recvcounts, NULL, tsmpi_comm_size(comm))))
+    return rc;
+  return redscat(fn, COLL_REDUCE_SCATTER, sendbuf, recvbuf, recvcounts, 0, datatype, op, comm, request);
 }
 
 int PMPI_Reduce_scatter_block(const void *sendbuf, void *recvbuf, int recvcount, MPI_Datatype datatype, MPI_Op op,
                              MPI_Comm comm) {
-  static const char fn[] = "MPI_Reduce_scatter_block";
   if (tsmpi_comm_inter(comm)) return tsmpi_inter_reduce_scatter_block(sendbuf, recvbuf, recvcount, datatype, op, comm);
+  static const char fn[] = "MPI_Reduce_scatter_block";
   int rc;
   if ((rc = tsmpi_comm_check(comm, fn)) || (rc = tsmpi_check_count(comm, fn, recvcount))) return rc;
-  int size = tsmpi_comm_size(comm);
-  tsmpi_cg g = {comm, 0, size, 0, fn};
-  int *counts = tsmpi_cg_alloc(&g, (size_t)size * sizeof *counts);
-  for (int i = 0; i < size; i++) counts[i] = recvcount;
-  rc = redscat_call(fn, COLL_REDUCE_SCATTER_BLOCK, sendbuf, recvbuf, counts, datatype, op, comm);
-  tsmpi_cg_free(counts);
-  return rc;
+  return redscat(fn, COLL_REDUCE_SCATTER_BLOCK, sendbuf, recvbuf, NULL, recvcount, datatype, op, comm, NULL);
+}
+
+int PMPI_Ireduce_scatter_block(const void *sendbuf, void *recvbuf, int recvcount, MPI_Datatype datatype, MPI_Op op,
+                              MPI_Comm comm, MPI_Request *request) {
+  if (tsmpi_comm_inter(comm)) return tsmpi_coll_ran("MPI_Ireduce_scatter_block", comm, tsmpi_inter_reduce_scatter_block(sendbuf, recvbuf, recvcount, datatype, op, comm), request);
+  static const char fn[] = "MPI_Ireduce_scatter_block";
+  int rc;
+  if ((rc = nb_ok(comm, fn, request)) || (rc = tsmpi_check_count(comm, fn, recvcount))) return rc;
+  return redscat(fn, COLL_REDUCE_SCATTER_BLOCK, sendbuf, recvbuf, NULL, recvcount, datatype, op, comm, request);
 }
 
 /* ==== scan and exscan ===================================================== */
 
-static int scan_call(const char *fn, tsmpi_coll c, const void *sendbuf, void *recvbuf, int count,
-                     MPI_Datatype datatype, MPI_Op op, MPI_Comm comm) {
-  if (tsmpi_comm_inter(comm)) return tsmpi_inter_none(comm, fn);
+static int scan(const char *fn, tsmpi_coll c, const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype,
+                MPI_Op op, MPI_Comm comm, MPI_Request *req) {
   int rc;
-  if ((rc = tsmpi_comm_check(comm, fn)) || (rc = red_ok(comm, fn, sendbuf, count, datatype, op, 1)) ||
+  if ((rc = red_ok(comm, fn, sendbuf, count, datatype, op, 1)) ||
       (rc = tsmpi_check_buf(comm, fn, recvbuf, count, datatype)))
     return rc;
   if (recvbuf == MPI_IN_PLACE) return tsmpi_coll_in_place_bad(comm, fn, "recvbuf");
-  tsmpi_cg g;
-  tsmpi_label l;
-  tsmpi_coll_begin(&g, &l, fn, comm, c, -1);
+  tsmpi_sched *s = tsmpi_coll_start(fn, comm, c, -1, req);
+  const tsmpi_cg *g = tsmpi_sched_group(s);
   tsmpi_red r = red_of(datatype, op);
+  tsmpi_sched_set_red(s, &r);
   size_t n = r.tsize * (size_t)count;
-  if (n == 0) return tsmpi_coll_end(MPI_SUCCESS);
-  char *in = tsmpi_coll_pack(&g, sendbuf == MPI_IN_PLACE ? recvbuf : sendbuf, count, datatype);
-  char *out = tsmpi_cg_alloc(&g, n);
+  if (n == 0) return tsmpi_coll_finish(s);
+  char *in = tsmpi_coll_pack(s, sendbuf == MPI_IN_PLACE ? recvbuf : sendbuf, count, datatype);
+  char *out = tsmpi_sched_mem(s, n);
   int incl = c == COLL_SCAN;
   /* MPICH scan.c and exscan.c: recursive doubling. */
-  if (g.size == 1) {
-    memcpy(out, in, n);
-    rc = MPI_SUCCESS;
-  } else if (tsmpi_coll_setting(c) == ALG_LINEAR) {
-    rc = incl ? tsmpi_scan_linear(&g, &r, in, out, count) : tsmpi_exscan_linear(&g, &r, in, out, count);
-  } else {
-    rc = incl ? tsmpi_scan_recursive_doubling(&g, &r, in, out, count)
-              : tsmpi_exscan_recursive_doubling(&g, &r, in, out, count);
-  }
+  if (g->size == 1)
+    tsmpi_sched_copy(s, out, in, n);
+  else if (tsmpi_coll_setting(c) == ALG_LINEAR)
+    (incl ? tsmpi_scan_linear : tsmpi_exscan_linear)(s, in, out, count);
+  else
+    (incl ? tsmpi_scan_recursive_doubling : tsmpi_exscan_recursive_doubling)(s, in, out, count);
   /* MPI_Exscan leaves rank 0's recvbuf alone. */
-  if (!rc && (incl || g.rank != 0)) tsmpi_coll_unpack(out, recvbuf, count, datatype);
-  tsmpi_cg_free(in);
-  tsmpi_cg_free(out);
-  return tsmpi_coll_end(rc);
+  if (incl || g->rank != 0) tsmpi_sched_unpack(s, out, n, recvbuf, count, datatype);
+  return tsmpi_coll_finish(s);
 }
 
 int PMPI_Scan(const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op, MPI_Comm comm) {
-  return scan_call("MPI_Scan", COLL_SCAN, sendbuf, recvbuf, count, datatype, op, comm);
+  if (tsmpi_comm_inter(comm)) return tsmpi_inter_none(comm, "MPI_Scan");
+  int rc = tsmpi_comm_check(comm, "MPI_Scan");
+  return rc ? rc : scan("MPI_Scan", COLL_SCAN, sendbuf, recvbuf, count, datatype, op, comm, NULL);
+}
+
+int PMPI_Iscan(const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op, MPI_Comm comm,
+              MPI_Request *request) {
+  if (tsmpi_comm_inter(comm)) return tsmpi_coll_ran("MPI_Iscan", comm, tsmpi_inter_none(comm, "MPI_Iscan"), request);
+  int rc = nb_ok(comm, "MPI_Iscan", request);
+  return rc ? rc : scan("MPI_Iscan", COLL_SCAN, sendbuf, recvbuf, count, datatype, op, comm, request);
 }
 
 int PMPI_Exscan(const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op, MPI_Comm comm) {
-  return scan_call("MPI_Exscan", COLL_EXSCAN, sendbuf, recvbuf, count, datatype, op, comm);
+  if (tsmpi_comm_inter(comm)) return tsmpi_inter_none(comm, "MPI_Exscan");
+  int rc = tsmpi_comm_check(comm, "MPI_Exscan");
+  return rc ? rc : scan("MPI_Exscan", COLL_EXSCAN, sendbuf, recvbuf, count, datatype, op, comm, NULL);
+}
+
+int PMPI_Iexscan(const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op, MPI_Comm comm,
+                MPI_Request *request) {
+  if (tsmpi_comm_inter(comm)) return tsmpi_coll_ran("MPI_Iexscan", comm, tsmpi_inter_none(comm, "MPI_Iexscan"), request);
+  int rc = nb_ok(comm, "MPI_Iexscan", request);
+  return rc ? rc : scan("MPI_Iexscan", COLL_EXSCAN, sendbuf, recvbuf, count, datatype, op, comm, request);
 }

@@ -11,42 +11,46 @@
 #include <string.h>
 
 #include "coll.h"
+#include "coll_sched.h"
 
-/* acc = left op acc, or acc = acc op right: the result lands in the right
- * operand's buffer (op.h), so these copy it back when it is not acc. */
-static void acc_after(const tsmpi_red *r, void *acc, const void *right, void *scratch, int count) {
-  memcpy(scratch, right, (size_t)count * r->tsize);
-  tsmpi_red_apply(r, acc, scratch, count);
-  memcpy(acc, scratch, (size_t)count * r->tsize);
+/* acc = acc op right: the result lands in the right operand's buffer
+ * (op.h), so it goes through scratch and back. */
+static void acc_after(tsmpi_sched *s, void *acc, const void *right, void *scratch, int count) {
+  size_t n = (size_t)count * tsmpi_sched_red(s)->tsize;
+  tsmpi_sched_copy(s, scratch, right, n);
+  tsmpi_sched_reduce(s, acc, scratch, count);
+  tsmpi_sched_copy(s, acc, scratch, n);
 }
 
 /* ==== reduce ============================================================== */
 
 /* Every rank sends to the root, which folds the operands in rank order:
  * ((a0 op a1) op a2) ... */
-int tsmpi_reduce_linear(const tsmpi_cg *g, const tsmpi_red *r, const void *sbuf, void *rbuf, int count, int root) {
-  size_t n = (size_t)count * r->tsize;
-  int rc = MPI_SUCCESS;
-  if (g->rank != root) return tsmpi_cg_send(g, sbuf, n, root);
-  char *acc = tsmpi_cg_alloc(g, n), *in = tsmpi_cg_alloc(g, n);
+void tsmpi_reduce_linear(tsmpi_sched *s, const void *sbuf, void *rbuf, int count, int root) {
+  const tsmpi_cg *g = tsmpi_sched_group(s);
+  size_t n = (size_t)count * tsmpi_sched_red(s)->tsize;
+  if (g->rank != root) {
+    tsmpi_sched_send(s, sbuf, n, root);
+    return;
+  }
+  char *acc = tsmpi_sched_mem(s, n), *in = tsmpi_sched_mem(s, n);
   const void *mine = sbuf ? sbuf : rbuf;
-  for (int i = 0; i < g->size && !rc; i++) {
+  for (int i = 0; i < g->size; i++) {
     const void *a = mine;
     if (i != root) {
-      if ((rc = tsmpi_cg_recv(g, in, n, i, NULL))) break;
+      tsmpi_sched_recv(s, in, n, i);
       a = in;
     }
-    if (i == 0)
-      memcpy(acc, a, n);
-    else if (a == in)
-      tsmpi_red_apply(r, acc, in, count), memcpy(acc, in, n);
-    else
-      acc_after(r, acc, a, in, count);
+    if (i == 0) {
+      tsmpi_sched_copy(s, acc, a, n);
+    } else if (a == in) {
+      tsmpi_sched_reduce(s, acc, in, count);
+      tsmpi_sched_copy(s, acc, in, n);
+    } else {
+      acc_after(s, acc, a, in, count);
+    }
   }
-  if (!rc) memcpy(rbuf, acc, n);
-  tsmpi_cg_free(acc);
-  tsmpi_cg_free(in);
-  return rc;
+  tsmpi_sched_copy(s, rbuf, acc, n);
 }
 
 /* Binomial tree on ranks relative to the root (to rank 0, then a message
@@ -54,38 +58,36 @@ int tsmpi_reduce_linear(const tsmpi_cg *g, const tsmpi_red *r, const void *sbuf,
  * relrank | 2^k for rising k, combining, until its bit k is set, when it
  * sends its partial result to its parent.  MPICH combines a child's result
  * on the left of the parent's when op commutes, on the right otherwise. */
-int tsmpi_reduce_binomial(const tsmpi_cg *g, const tsmpi_red *r, const void *sbuf, void *rbuf, int count, int root) {
-  int size = g->size, rank = g->rank, rc = MPI_SUCCESS;
+void tsmpi_reduce_binomial(tsmpi_sched *s, const void *sbuf, void *rbuf, int count, int root) {
+  const tsmpi_cg *g = tsmpi_sched_group(s);
+  const tsmpi_red *r = tsmpi_sched_red(s);
+  int size = g->size, rank = g->rank;
   int lroot = r->commute ? root : 0, rel = (rank - lroot + size) % size;
   size_t n = (size_t)count * r->tsize;
-  char *acc = tsmpi_cg_alloc(g, n), *tmp = tsmpi_cg_alloc(g, n);
-  memcpy(acc, sbuf ? sbuf : rbuf, n);
+  char *acc = tsmpi_sched_mem(s, n), *tmp = tsmpi_sched_mem(s, n);
+  tsmpi_sched_copy(s, acc, sbuf ? sbuf : rbuf, n);
   for (int mask = 1; mask < size; mask <<= 1) {
     if (!(mask & rel)) {
       int src = rel | mask;
       if (src < size) {
-        if ((rc = tsmpi_cg_recv(g, tmp, n, (src + lroot) % size, NULL))) goto out;
+        tsmpi_sched_recv(s, tmp, n, (src + lroot) % size);
         if (r->commute) {
-          tsmpi_red_apply(r, tmp, acc, count);   /* acc = child op acc */
+          tsmpi_sched_reduce(s, tmp, acc, count);   /* acc = child op acc */
         } else {
-          tsmpi_red_apply(r, acc, tmp, count);   /* acc = acc op child */
-          memcpy(acc, tmp, n);
+          tsmpi_sched_reduce(s, acc, tmp, count);   /* acc = acc op child */
+          tsmpi_sched_copy(s, acc, tmp, n);
         }
       }
     } else {
-      rc = tsmpi_cg_send(g, acc, n, ((rel & ~mask) + lroot) % size);
-      goto out;
+      tsmpi_sched_send(s, acc, n, ((rel & ~mask) + lroot) % size);
+      break;
     }
   }
-out:
-  if (!rc && !r->commute && root != 0) {
-    if (rank == 0) rc = tsmpi_cg_send(g, acc, n, root);
-    else if (rank == root) rc = tsmpi_cg_recv(g, acc, n, 0, NULL);
+  if (!r->commute && root != 0) {
+    if (rank == 0) tsmpi_sched_send(s, acc, n, root);
+    else if (rank == root) tsmpi_sched_recv(s, acc, n, 0);
   }
-  if (!rc && rank == root) memcpy(rbuf, acc, n);
-  tsmpi_cg_free(acc);
-  tsmpi_cg_free(tmp);
-  return rc;
+  if (rank == root) tsmpi_sched_copy(s, rbuf, acc, n);
 }
 
 /* The blocks the Rabenseifner algorithms cut count elements into among
@@ -104,11 +106,12 @@ static int sum(const int *cnts, int a, int b) {
 
 /* The reduce-scatter both Rabenseifner algorithms start with, among the
  * pof2 new ranks: recursive halving of the data with partners at distance
- * 1, 2, 4, ... (newrank ^ mask); ranks() maps a new rank to its rank.
- * work holds the operand and gets this rank's reduced block. */
-static int rsag_scatter(const tsmpi_cg *g, const tsmpi_red *r, char *work, char *tmp, int newrank, int pof2,
-                        int rem, int odd_kept, const int *cnts, const int *disps, int *send_idx, int *last_idx) {
-  int mask = 1, recv_idx = 0, rc;
+ * 1, 2, 4, ... (newrank ^ mask).  work holds the operand and gets this
+ * rank's reduced block. */
+static void rsag_scatter(tsmpi_sched *s, char *work, char *tmp, int newrank, int pof2, int rem, int odd_kept,
+                         const int *cnts, const int *disps, int *send_idx, int *last_idx) {
+  size_t ts = tsmpi_sched_red(s)->tsize;
+  int mask = 1, recv_idx = 0;
   *send_idx = 0;
   *last_idx = pof2;
   while (mask < pof2) {
@@ -122,17 +125,15 @@ static int rsag_scatter(const tsmpi_cg *g, const tsmpi_red *r, char *work, char 
       send_cnt = sum(cnts, *send_idx, recv_idx);
       recv_cnt = sum(cnts, recv_idx, *last_idx);
     }
-    if ((rc = tsmpi_cg_sendrecv(g, work + (size_t)disps[*send_idx] * r->tsize, (size_t)send_cnt * r->tsize, dst,
-                                tmp + (size_t)disps[recv_idx] * r->tsize, (size_t)recv_cnt * r->tsize, dst, NULL)))
-      return rc;
+    tsmpi_sched_sendrecv(s, work + (size_t)disps[*send_idx] * ts, (size_t)send_cnt * ts, dst,
+                         tmp + (size_t)disps[recv_idx] * ts, (size_t)recv_cnt * ts, dst);
     /* received op ours: these algorithms run for predefined (commutative)
      * operations only */
-    tsmpi_red_apply(r, tmp + (size_t)disps[recv_idx] * r->tsize, work + (size_t)disps[recv_idx] * r->tsize, recv_cnt);
+    tsmpi_sched_reduce(s, tmp + (size_t)disps[recv_idx] * ts, work + (size_t)disps[recv_idx] * ts, recv_cnt);
     *send_idx = recv_idx;
     mask <<= 1;
     if (mask < pof2) *last_idx = recv_idx + pof2 / mask;
   }
-  return MPI_SUCCESS;
 }
 
 /* Rabenseifner's reduce: beyond a power of two, the first odd ranks fold
@@ -141,39 +142,39 @@ static int rsag_scatter(const tsmpi_cg *g, const tsmpi_red *r, char *work, char 
  * blocks to the root (through new rank 0 when the root was folded away).
  * For predefined operations and count >= pof2.  Cost 2 lg p alpha +
  * 2 n (p-1)/p beta + n (p-1)/p gamma. */
-int tsmpi_reduce_scatter_gather(const tsmpi_cg *g, const tsmpi_red *r, const void *sbuf, void *rbuf, int count,
-                                int root) {
-  int size = g->size, rank = g->rank, rc = MPI_SUCCESS, pof2 = tsmpi_pof2(size), rem = size - pof2, newrank;
-  size_t n = (size_t)count * r->tsize;
-  char *work = tsmpi_cg_alloc(g, n), *tmp = tsmpi_cg_alloc(g, n);
-  int *cnts = tsmpi_cg_alloc(g, 2 * (size_t)pof2 * sizeof *cnts), *disps = cnts + pof2;
+void tsmpi_reduce_scatter_gather(tsmpi_sched *s, const void *sbuf, void *rbuf, int count, int root) {
+  const tsmpi_cg *g = tsmpi_sched_group(s);
+  size_t ts = tsmpi_sched_red(s)->tsize;
+  int size = g->size, rank = g->rank, pof2 = tsmpi_pof2(size), rem = size - pof2, newrank;
+  size_t n = (size_t)count * ts;
+  char *work = tsmpi_sched_mem(s, n), *tmp = tsmpi_sched_mem(s, n);
+  int *cnts = tsmpi_sched_mem(s, 2 * (size_t)pof2 * sizeof *cnts), *disps = cnts + pof2;
   int send_idx = 0, last_idx = 0, newroot;
-  memcpy(work, sbuf ? sbuf : rbuf, n);
+  tsmpi_sched_copy(s, work, sbuf ? sbuf : rbuf, n);
   if (rank < 2 * rem) {
     if (rank % 2) {
-      if ((rc = tsmpi_cg_send(g, work, n, rank - 1))) goto out;
+      tsmpi_sched_send(s, work, n, rank - 1);
       newrank = -1;
     } else {
-      if ((rc = tsmpi_cg_recv(g, tmp, n, rank + 1, NULL))) goto out;
-      tsmpi_red_apply(r, tmp, work, count);
+      tsmpi_sched_recv(s, tmp, n, rank + 1);
+      tsmpi_sched_reduce(s, tmp, work, count);
       newrank = rank / 2;
     }
   } else {
     newrank = rank - rem;
   }
   blocks(count, pof2, cnts, disps);
-  if (newrank != -1 && (rc = rsag_scatter(g, r, work, tmp, newrank, pof2, rem, 0, cnts, disps, &send_idx, &last_idx)))
-    goto out;
+  if (newrank != -1) rsag_scatter(s, work, tmp, newrank, pof2, rem, 0, cnts, disps, &send_idx, &last_idx);
   /* The gather to the root. */
   if (root < 2 * rem) {
     if (root % 2) {
       if (rank == root) {
-        if ((rc = tsmpi_cg_recv(g, work, (size_t)cnts[0] * r->tsize, 0, NULL))) goto out;
+        tsmpi_sched_recv(s, work, (size_t)cnts[0] * ts, 0);
         newrank = 0;
         send_idx = 0;
         last_idx = 2;
       } else if (newrank == 0) {
-        if ((rc = tsmpi_cg_send(g, work, (size_t)cnts[0] * r->tsize, root))) goto out;
+        tsmpi_sched_send(s, work, (size_t)cnts[0] * ts, root);
         newrank = -1;
       }
       newroot = 0;
@@ -206,55 +207,49 @@ int tsmpi_reduce_scatter_gather(const tsmpi_cg *g, const tsmpi_red *r, const voi
         recv_cnt = sum(cnts, recv_idx, send_idx);
       }
       if (newdst_tree_root == newroot_tree_root) {
-        rc = tsmpi_cg_send(g, work + (size_t)disps[send_idx] * r->tsize, (size_t)send_cnt * r->tsize, dst);
+        tsmpi_sched_send(s, work + (size_t)disps[send_idx] * ts, (size_t)send_cnt * ts, dst);
         break;
       }
-      if ((rc = tsmpi_cg_recv(g, work + (size_t)disps[recv_idx] * r->tsize, (size_t)recv_cnt * r->tsize, dst, NULL)))
-        break;
+      tsmpi_sched_recv(s, work + (size_t)disps[recv_idx] * ts, (size_t)recv_cnt * ts, dst);
       if (newrank > newdst) send_idx = recv_idx;
     }
   }
-  if (!rc && rank == root) memcpy(rbuf, work, n);
-out:
-  tsmpi_cg_free(work);
-  tsmpi_cg_free(tmp);
-  tsmpi_cg_free(cnts);
-  return rc;
+  if (rank == root) tsmpi_sched_copy(s, rbuf, work, n);
 }
 
 /* ==== allreduce =========================================================== */
 
 /* A linear reduce to rank 0, then a linear broadcast. */
-int tsmpi_allreduce_linear(const tsmpi_cg *g, const tsmpi_red *r, void *buf, int count) {
-  int rc = tsmpi_reduce_linear(g, r, g->rank ? buf : NULL, buf, count, 0);
-  return rc ? rc : tsmpi_bcast_linear(g, buf, (size_t)count * r->tsize, 0);
+void tsmpi_allreduce_linear(tsmpi_sched *s, void *buf, int count) {
+  const tsmpi_cg *g = tsmpi_sched_group(s);
+  tsmpi_reduce_linear(s, g->rank ? buf : NULL, buf, count, 0);
+  tsmpi_bcast_linear(s, buf, (size_t)count * tsmpi_sched_red(s)->tsize, 0);
 }
 
 /* Fold the first 2 rem ranks pairwise into the odd ones (even sends to
- * rank + 1, which combines even op odd); *newrank is -1 for the even ones. */
-static int fold_into_odd(const tsmpi_cg *g, const tsmpi_red *r, char *buf, char *tmp, int count, int rem,
-                         int *newrank) {
-  int rank = g->rank, rc;
-  size_t n = (size_t)count * r->tsize;
-  if (rank >= 2 * rem) {
-    *newrank = rank - rem;
-    return MPI_SUCCESS;
-  }
+ * rank + 1, which combines even op odd); the new rank, -1 for the even
+ * ones. */
+static int fold_into_odd(tsmpi_sched *s, char *buf, char *tmp, int count, int rem) {
+  int rank = tsmpi_sched_group(s)->rank;
+  size_t n = (size_t)count * tsmpi_sched_red(s)->tsize;
+  if (rank >= 2 * rem) return rank - rem;
   if (rank % 2 == 0) {
-    *newrank = -1;
-    return tsmpi_cg_send(g, buf, n, rank + 1);
+    tsmpi_sched_send(s, buf, n, rank + 1);
+    return -1;
   }
-  if ((rc = tsmpi_cg_recv(g, tmp, n, rank - 1, NULL))) return rc;
-  tsmpi_red_apply(r, tmp, buf, count);
-  *newrank = rank / 2;
-  return MPI_SUCCESS;
+  tsmpi_sched_recv(s, tmp, n, rank - 1);
+  tsmpi_sched_reduce(s, tmp, buf, count);
+  return rank / 2;
 }
 
 /* ... and at the end the odd ones send the result back. */
-static int unfold(const tsmpi_cg *g, char *buf, size_t n, int rem) {
-  int rank = g->rank;
-  if (rank >= 2 * rem) return MPI_SUCCESS;
-  return rank % 2 ? tsmpi_cg_send(g, buf, n, rank - 1) : tsmpi_cg_recv(g, buf, n, rank + 1, NULL);
+static void unfold(tsmpi_sched *s, char *buf, size_t n, int rem) {
+  int rank = tsmpi_sched_group(s)->rank;
+  if (rank >= 2 * rem) return;
+  if (rank % 2)
+    tsmpi_sched_send(s, buf, n, rank - 1);
+  else
+    tsmpi_sched_recv(s, buf, n, rank + 1);
 }
 
 /* Recursive doubling: beyond a power of two the first ranks fold pairwise;
@@ -262,42 +257,43 @@ static int unfold(const tsmpi_cg *g, char *buf, size_t n, int rem) {
  * result with new rank ^ 2^k and combines (received op ours when op
  * commutes or the partner is lower, else ours op received); the folded
  * ranks get the result back.  Cost lg p (alpha + n beta + n gamma). */
-int tsmpi_allreduce_recursive_doubling(const tsmpi_cg *g, const tsmpi_red *r, void *buffer, int count) {
-  int size = g->size, rank = g->rank, pof2 = tsmpi_pof2(size), rem = size - pof2, newrank, rc;
+void tsmpi_allreduce_recursive_doubling(tsmpi_sched *s, void *buffer, int count) {
+  const tsmpi_cg *g = tsmpi_sched_group(s);
+  const tsmpi_red *r = tsmpi_sched_red(s);
+  int size = g->size, rank = g->rank, pof2 = tsmpi_pof2(size), rem = size - pof2;
   size_t n = (size_t)count * r->tsize;
-  char *buf = buffer, *tmp = tsmpi_cg_alloc(g, n);
-  if ((rc = fold_into_odd(g, r, buf, tmp, count, rem, &newrank))) goto out;
+  char *buf = buffer, *tmp = tsmpi_sched_mem(s, n);
+  int newrank = fold_into_odd(s, buf, tmp, count, rem);
   if (newrank != -1) {
     for (int mask = 1; mask < pof2; mask <<= 1) {
       int newdst = newrank ^ mask, dst = newdst < rem ? newdst * 2 + 1 : newdst + rem;
-      if ((rc = tsmpi_cg_sendrecv(g, buf, n, dst, tmp, n, dst, NULL))) goto out;
+      tsmpi_sched_sendrecv(s, buf, n, dst, tmp, n, dst);
       if (r->commute || dst < rank) {
-        tsmpi_red_apply(r, tmp, buf, count);
+        tsmpi_sched_reduce(s, tmp, buf, count);
       } else {
-        tsmpi_red_apply(r, buf, tmp, count);
-        memcpy(buf, tmp, n);
+        tsmpi_sched_reduce(s, buf, tmp, count);
+        tsmpi_sched_copy(s, buf, tmp, n);
       }
     }
   }
-  rc = unfold(g, buf, n, rem);
-out:
-  tsmpi_cg_free(tmp);
-  return rc;
+  unfold(s, buf, n, rem);
 }
 
 /* Rabenseifner's allreduce: the fold, a reduce-scatter by recursive
  * halving (partners at distance 1, 2, 4, ...), an allgather by recursive
  * doubling back, the unfold.  For predefined operations and count >= pof2.
  * Cost 2 lg p alpha + 2 n (p-1)/p beta + n (p-1)/p gamma. */
-int tsmpi_allreduce_reduce_scatter_allgather(const tsmpi_cg *g, const tsmpi_red *r, void *buffer, int count) {
-  int size = g->size, pof2 = tsmpi_pof2(size), rem = size - pof2, newrank, rc;
-  size_t n = (size_t)count * r->tsize;
-  char *buf = buffer, *tmp = tsmpi_cg_alloc(g, n);
-  int *cnts = tsmpi_cg_alloc(g, 2 * (size_t)pof2 * sizeof *cnts), *disps = cnts + pof2, send_idx, last_idx;
-  if ((rc = fold_into_odd(g, r, buf, tmp, count, rem, &newrank))) goto out;
+void tsmpi_allreduce_reduce_scatter_allgather(tsmpi_sched *s, void *buffer, int count) {
+  const tsmpi_cg *g = tsmpi_sched_group(s);
+  size_t ts = tsmpi_sched_red(s)->tsize;
+  int size = g->size, pof2 = tsmpi_pof2(size), rem = size - pof2;
+  size_t n = (size_t)count * ts;
+  char *buf = buffer, *tmp = tsmpi_sched_mem(s, n);
+  int *cnts = tsmpi_sched_mem(s, 2 * (size_t)pof2 * sizeof *cnts), *disps = cnts + pof2, send_idx, last_idx;
+  int newrank = fold_into_odd(s, buf, tmp, count, rem);
   if (newrank != -1) {
     blocks(count, pof2, cnts, disps);
-    if ((rc = rsag_scatter(g, r, buf, tmp, newrank, pof2, rem, 1, cnts, disps, &send_idx, &last_idx))) goto out;
+    rsag_scatter(s, buf, tmp, newrank, pof2, rem, 1, cnts, disps, &send_idx, &last_idx);
     for (int mask = pof2 >> 1; mask > 0; mask >>= 1) {
       int newdst = newrank ^ mask, dst = newdst < rem ? newdst * 2 + 1 : newdst + rem, recv_idx, send_cnt, recv_cnt;
       if (newrank < newdst) {
@@ -310,15 +306,10 @@ int tsmpi_allreduce_reduce_scatter_allgather(const tsmpi_cg *g, const tsmpi_red 
         send_cnt = sum(cnts, send_idx, last_idx);
         recv_cnt = sum(cnts, recv_idx, send_idx);
       }
-      if ((rc = tsmpi_cg_sendrecv(g, buf + (size_t)disps[send_idx] * r->tsize, (size_t)send_cnt * r->tsize, dst,
-                                  buf + (size_t)disps[recv_idx] * r->tsize, (size_t)recv_cnt * r->tsize, dst, NULL)))
-        goto out;
+      tsmpi_sched_sendrecv(s, buf + (size_t)disps[send_idx] * ts, (size_t)send_cnt * ts, dst,
+                           buf + (size_t)disps[recv_idx] * ts, (size_t)recv_cnt * ts, dst);
       if (newrank > newdst) send_idx = recv_idx;
     }
   }
-  rc = unfold(g, buf, n, rem);
-out:
-  tsmpi_cg_free(tmp);
-  tsmpi_cg_free(cnts);
-  return rc;
+  unfold(s, buf, n, rem);
 }

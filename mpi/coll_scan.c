@@ -8,81 +8,73 @@
 #include <string.h>
 
 #include "coll.h"
+#include "coll_sched.h"
 
 /* ==== scan and exscan ===================================================== */
 
 /* Rank r receives ranks 0..r-1's result from r - 1, combines it with its
  * operand on the left, and passes the result on: ((a0 op a1) op a2) ...
  * exclusive: r passes on (prefix op a_r) and keeps the prefix. */
-static int chain(const tsmpi_cg *g, const tsmpi_red *r, const void *in, void *out, int count, int inclusive) {
-  size_t n = (size_t)count * r->tsize;
-  int rank = g->rank, rc = MPI_SUCCESS;
-  char *acc = tsmpi_cg_alloc(g, n);
-  memcpy(acc, in, n);
+static void chain(tsmpi_sched *s, const void *in, void *out, int count, int inclusive) {
+  const tsmpi_cg *g = tsmpi_sched_group(s);
+  size_t n = (size_t)count * tsmpi_sched_red(s)->tsize;
+  int rank = g->rank;
+  char *acc = tsmpi_sched_mem(s, n);
+  tsmpi_sched_copy(s, acc, in, n);
   if (rank > 0) {
-    char *prefix = tsmpi_cg_alloc(g, n);
-    if ((rc = tsmpi_cg_recv(g, prefix, n, rank - 1, NULL)) == 0) {
-      if (!inclusive) memcpy(out, prefix, n);
-      tsmpi_red_apply(r, prefix, acc, count);
-    }
-    tsmpi_cg_free(prefix);
+    char *prefix = tsmpi_sched_mem(s, n);
+    tsmpi_sched_recv(s, prefix, n, rank - 1);
+    if (!inclusive) tsmpi_sched_copy(s, out, prefix, n);
+    tsmpi_sched_reduce(s, prefix, acc, count);
   }
-  if (!rc && inclusive) memcpy(out, acc, n);
-  if (!rc && rank + 1 < g->size) rc = tsmpi_cg_send(g, acc, n, rank + 1);
-  tsmpi_cg_free(acc);
-  return rc;
+  if (inclusive) tsmpi_sched_copy(s, out, acc, n);
+  if (rank + 1 < g->size) tsmpi_sched_send(s, acc, n, rank + 1);
 }
 
-int tsmpi_scan_linear(const tsmpi_cg *g, const tsmpi_red *r, const void *in, void *out, int count) {
-  return chain(g, r, in, out, count, 1);
-}
-
-int tsmpi_exscan_linear(const tsmpi_cg *g, const tsmpi_red *r, const void *in, void *out, int count) {
-  return chain(g, r, in, out, count, 0);
-}
+void tsmpi_scan_linear(tsmpi_sched *s, const void *in, void *out, int count) { chain(s, in, out, count, 1); }
+void tsmpi_exscan_linear(tsmpi_sched *s, const void *in, void *out, int count) { chain(s, in, out, count, 0); }
 
 /* Recursive doubling: in step k rank r exchanges its partial result (ranks
  * of its aligned block of 2^k) with r ^ 2^k; a result from below is
  * combined on the left of the partial and of the prefix so far.  Cost
  * lg p (alpha + n beta + n gamma). */
-static int doubling(const tsmpi_cg *g, const tsmpi_red *r, const void *in, void *out, int count, int inclusive) {
+static void doubling(tsmpi_sched *s, const void *in, void *out, int count, int inclusive) {
+  const tsmpi_cg *g = tsmpi_sched_group(s);
+  const tsmpi_red *r = tsmpi_sched_red(s);
   size_t n = (size_t)count * r->tsize;
-  int size = g->size, rank = g->rank, rc = MPI_SUCCESS, have = inclusive;
-  char *partial = tsmpi_cg_alloc(g, n), *tmp = tsmpi_cg_alloc(g, n);
-  memcpy(partial, in, n);
-  if (inclusive) memcpy(out, in, n);
+  int size = g->size, rank = g->rank, have = inclusive;
+  char *partial = tsmpi_sched_mem(s, n), *tmp = tsmpi_sched_mem(s, n);
+  tsmpi_sched_copy(s, partial, in, n);
+  if (inclusive) tsmpi_sched_copy(s, out, in, n);
   for (int mask = 1; mask < size; mask <<= 1) {
     int dst = rank ^ mask;
     if (dst >= size) continue;
-    if ((rc = tsmpi_cg_sendrecv(g, partial, n, dst, tmp, n, dst, NULL))) break;
+    tsmpi_sched_sendrecv(s, partial, n, dst, tmp, n, dst);
     if (rank > dst) {
       /* from below: prefix = received op prefix (exscan: the first one is
        * the prefix), partial = received op partial */
       if (!have) {
-        memcpy(out, tmp, n);
+        tsmpi_sched_copy(s, out, tmp, n);
         have = 1;
       } else {
-        tsmpi_red_apply(r, tmp, out, count);
+        tsmpi_sched_reduce(s, tmp, out, count);
       }
-      tsmpi_red_apply(r, tmp, partial, count);
+      tsmpi_sched_reduce(s, tmp, partial, count);
     } else if (r->commute) {
-      tsmpi_red_apply(r, tmp, partial, count);
+      tsmpi_sched_reduce(s, tmp, partial, count);
     } else {
-      tsmpi_red_apply(r, partial, tmp, count);
-      memcpy(partial, tmp, n);
+      tsmpi_sched_reduce(s, partial, tmp, count);
+      tsmpi_sched_copy(s, partial, tmp, n);
     }
   }
-  tsmpi_cg_free(partial);
-  tsmpi_cg_free(tmp);
-  return rc;
 }
 
-int tsmpi_scan_recursive_doubling(const tsmpi_cg *g, const tsmpi_red *r, const void *in, void *out, int count) {
-  return doubling(g, r, in, out, count, 1);
+void tsmpi_scan_recursive_doubling(tsmpi_sched *s, const void *in, void *out, int count) {
+  doubling(s, in, out, count, 1);
 }
 
-int tsmpi_exscan_recursive_doubling(const tsmpi_cg *g, const tsmpi_red *r, const void *in, void *out, int count) {
-  return doubling(g, r, in, out, count, 0);
+void tsmpi_exscan_recursive_doubling(tsmpi_sched *s, const void *in, void *out, int count) {
+  doubling(s, in, out, count, 0);
 }
 
 /* ==== reduce-scatter ====================================================== */
@@ -98,20 +90,19 @@ static int displacements(const tsmpi_cg *g, const int *counts, int *disps) {
 }
 
 /* A linear reduce of the whole vector to rank 0, then a linear scatterv. */
-int tsmpi_reduce_scatter_linear(const tsmpi_cg *g, const tsmpi_red *r, void *buf, void *out, const int *counts) {
+void tsmpi_reduce_scatter_linear(tsmpi_sched *s, void *buf, void *out, const int *counts) {
+  const tsmpi_cg *g = tsmpi_sched_group(s);
+  size_t ts = tsmpi_sched_red(s)->tsize;
   int size = g->size;
-  size_t *bc = tsmpi_cg_alloc(g, 2 * (size_t)size * sizeof *bc), *bd = bc + size, total = 0;
+  size_t *bc = tsmpi_sched_mem(s, 2 * (size_t)size * sizeof *bc), *bd = bc + size, total = 0;
   for (int i = 0; i < size; i++) {
-    bc[i] = (size_t)counts[i] * r->tsize;
+    bc[i] = (size_t)counts[i] * ts;
     bd[i] = total;
     total += bc[i];
   }
-  char *res = g->rank == 0 ? tsmpi_cg_alloc(g, total) : NULL;
-  int rc = tsmpi_reduce_linear(g, r, buf, res, (int)(total / (r->tsize ? r->tsize : 1)), 0);
-  if (!rc) rc = tsmpi_scatterv_linear(g, res, bc, bd, out, bc[g->rank], 0);
-  tsmpi_cg_free(res);
-  tsmpi_cg_free(bc);
-  return rc;
+  char *res = g->rank == 0 ? tsmpi_sched_mem(s, total) : NULL;
+  tsmpi_reduce_linear(s, buf, res, (int)(total / (ts ? ts : 1)), 0);
+  tsmpi_scatterv_linear(s, res, bc, bd, out, bc[g->rank], 0);
 }
 
 /* Recursive halving (for commutative operations): beyond a power of two
@@ -120,21 +111,21 @@ int tsmpi_reduce_scatter_linear(const tsmpi_cg *g, const tsmpi_red *r, void *buf
  * blocks its partner keeps and combines the half it keeps (received op
  * ours); the folded ranks get their block at the end.  Cost lg p alpha +
  * n (p-1)/p (beta + gamma). */
-int tsmpi_reduce_scatter_recursive_halving(const tsmpi_cg *g, const tsmpi_red *r, void *buffer, void *out,
-                                           const int *counts) {
-  int size = g->size, rank = g->rank, pof2 = tsmpi_pof2(size), rem = size - pof2, newrank, rc = MPI_SUCCESS;
-  size_t ts = r->tsize;
-  int *disps = tsmpi_cg_alloc(g, (size_t)(size + 2 * pof2) * sizeof *disps), *newcnts = disps + size,
+void tsmpi_reduce_scatter_recursive_halving(tsmpi_sched *s, void *buffer, void *out, const int *counts) {
+  const tsmpi_cg *g = tsmpi_sched_group(s);
+  int size = g->size, rank = g->rank, pof2 = tsmpi_pof2(size), rem = size - pof2, newrank;
+  size_t ts = tsmpi_sched_red(s)->tsize;
+  int *disps = tsmpi_sched_mem(s, (size_t)(size + 2 * pof2) * sizeof *disps), *newcnts = disps + size,
       *newdisps = newcnts + pof2;
   int total = displacements(g, counts, disps);
-  char *res = buffer, *tmp = tsmpi_cg_alloc(g, (size_t)total * ts);
+  char *res = buffer, *tmp = tsmpi_sched_mem(s, (size_t)total * ts);
   if (rank < 2 * rem) {
     if (rank % 2 == 0) {
-      if ((rc = tsmpi_cg_send(g, res, (size_t)total * ts, rank + 1))) goto out;
+      tsmpi_sched_send(s, res, (size_t)total * ts, rank + 1);
       newrank = -1;
     } else {
-      if ((rc = tsmpi_cg_recv(g, tmp, (size_t)total * ts, rank - 1, NULL))) goto out;
-      tsmpi_red_apply(r, tmp, res, total);
+      tsmpi_sched_recv(s, tmp, (size_t)total * ts, rank - 1);
+      tsmpi_sched_reduce(s, tmp, res, total);
       newrank = rank / 2;
     }
   } else {
@@ -160,54 +151,67 @@ int tsmpi_reduce_scatter_recursive_halving(const tsmpi_cg *g, const tsmpi_red *r
         for (int i = recv_idx; i < last_idx; i++) recv_cnt += newcnts[i];
       }
       char *sp = res + (size_t)newdisps[send_idx] * ts, *rp = tmp + (size_t)newdisps[recv_idx] * ts;
-      if (send_cnt && recv_cnt)
-        rc = tsmpi_cg_sendrecv(g, sp, (size_t)send_cnt * ts, dst, rp, (size_t)recv_cnt * ts, dst, NULL);
-      else if (recv_cnt)
-        rc = tsmpi_cg_recv(g, rp, (size_t)recv_cnt * ts, dst, NULL);
-      else if (send_cnt)
-        rc = tsmpi_cg_send(g, sp, (size_t)send_cnt * ts, dst);
-      if (rc) goto out;
-      if (recv_cnt) tsmpi_red_apply(r, rp, res + (size_t)newdisps[recv_idx] * ts, recv_cnt);
+      if (send_cnt) tsmpi_sched_send(s, sp, (size_t)send_cnt * ts, dst);
+      if (recv_cnt) tsmpi_sched_recv(s, rp, (size_t)recv_cnt * ts, dst);
+      tsmpi_sched_reduce(s, rp, res + (size_t)newdisps[recv_idx] * ts, recv_cnt);
       send_idx = recv_idx;
       last_idx = recv_idx + mask;
     }
-    if (counts[rank]) memcpy(out, res + (size_t)disps[rank] * ts, (size_t)counts[rank] * ts);
+    tsmpi_sched_copy(s, out, res + (size_t)disps[rank] * ts, (size_t)counts[rank] * ts);
   }
   if (rank < 2 * rem) {
     if (rank % 2) {
       if (counts[rank - 1])
-        rc = tsmpi_cg_send(g, res + (size_t)disps[rank - 1] * ts, (size_t)counts[rank - 1] * ts, rank - 1);
+        tsmpi_sched_send(s, res + (size_t)disps[rank - 1] * ts, (size_t)counts[rank - 1] * ts, rank - 1);
     } else if (counts[rank]) {
-      rc = tsmpi_cg_recv(g, out, (size_t)counts[rank] * ts, rank + 1, NULL);
+      tsmpi_sched_recv(s, out, (size_t)counts[rank] * ts, rank + 1);
     }
   }
-out:
-  tsmpi_cg_free(disps);
-  tsmpi_cg_free(tmp);
-  return rc;
 }
 
 /* Pairwise (for commutative operations and long vectors): in step i rank
  * r sends rank r + i its block and receives its own block of rank r - i,
  * combining received op ours: a_{r-p+1} op (... op (a_{r-1} op a_r)).
  * Cost (p-1) alpha + n (p-1)/p (beta + gamma). */
-int tsmpi_reduce_scatter_pairwise(const tsmpi_cg *g, const tsmpi_red *r, void *buffer, void *out,
-                                  const int *counts) {
-  int size = g->size, rank = g->rank, rc = MPI_SUCCESS;
-  size_t ts = r->tsize;
-  int *disps = tsmpi_cg_alloc(g, (size_t)size * sizeof *disps);
+void tsmpi_reduce_scatter_pairwise(tsmpi_sched *s, void *buffer, void *out, const int *counts) {
+  const tsmpi_cg *g = tsmpi_sched_group(s);
+  int size = g->size, rank = g->rank;
+  size_t ts = tsmpi_sched_red(s)->tsize;
+  int *disps = tsmpi_sched_mem(s, (size_t)size * sizeof *disps);
   displacements(g, counts, disps);
-  char *buf = buffer, *tmp = tsmpi_cg_alloc(g, (size_t)counts[rank] * ts);
-  memcpy(out, buf + (size_t)disps[rank] * ts, (size_t)counts[rank] * ts);
-  for (int i = 1; i < size && !rc; i++) {
+  char *buf = buffer, *tmp = tsmpi_sched_mem(s, (size_t)counts[rank] * ts);
+  tsmpi_sched_copy(s, out, buf + (size_t)disps[rank] * ts, (size_t)counts[rank] * ts);
+  for (int i = 1; i < size; i++) {
     int src = (rank - i + size) % size, dst = (rank + i) % size;
-    rc = tsmpi_cg_sendrecv(g, buf + (size_t)disps[dst] * ts, (size_t)counts[dst] * ts, dst, tmp,
-                           (size_t)counts[rank] * ts, src, NULL);
-    if (!rc) tsmpi_red_apply(r, tmp, out, counts[rank]);
+    tsmpi_sched_sendrecv(s, buf + (size_t)disps[dst] * ts, (size_t)counts[dst] * ts, dst, tmp,
+                         (size_t)counts[rank] * ts, src);
+    tsmpi_sched_reduce(s, tmp, out, counts[rank]);
   }
-  tsmpi_cg_free(disps);
-  tsmpi_cg_free(tmp);
-  return rc;
+}
+
+/* Recursive doubling's exchanges, local: all but the blocks of one subtree
+ * (two runs, before and after it) out of res into a message, or back. */
+typedef struct {
+  char *res, *msg;
+  size_t b0, b1, d1;   /* bytes of the first run, of the second, where the second starts */
+  int out;
+} rd_runs;
+
+static void rd_move(void *ud) {
+  const rd_runs *m = ud;
+  if (m->out) {
+    memcpy(m->msg, m->res, m->b0);
+    memcpy(m->msg + m->b0, m->res + m->d1, m->b1);
+  } else {
+    memcpy(m->res, m->msg, m->b0);
+    memcpy(m->res + m->d1, m->msg + m->b0, m->b1);
+  }
+}
+
+static void runs(tsmpi_sched *s, char *res, char *msg, size_t b0, size_t b1, size_t d1, int out) {
+  rd_runs *m = tsmpi_sched_mem(s, sizeof *m);
+  *m = (rd_runs){res, msg, b0, b1, d1, out};
+  tsmpi_sched_call(s, rd_move, m);
 }
 
 /* Recursive doubling (non-commutative operations, any p and counts): in
@@ -215,15 +219,16 @@ int tsmpi_reduce_scatter_pairwise(const tsmpi_cg *g, const tsmpi_red *r, void *b
  * own and its partner's subtrees, combining in rank order; beyond a power
  * of two, ranks without a partner get their subtree's result from one that
  * had (MPICH).  Cost lg p alpha + n (lg p - (p-1)/p)(beta + gamma). */
-int tsmpi_reduce_scatter_recursive_doubling(const tsmpi_cg *g, const tsmpi_red *r, void *buffer, void *out,
-                                            const int *counts) {
-  int size = g->size, rank = g->rank, rc = MPI_SUCCESS;
+void tsmpi_reduce_scatter_recursive_doubling(tsmpi_sched *s, void *buffer, void *out, const int *counts) {
+  const tsmpi_cg *g = tsmpi_sched_group(s);
+  const tsmpi_red *r = tsmpi_sched_red(s);
+  int size = g->size, rank = g->rank;
   size_t ts = r->tsize;
-  int *disps = tsmpi_cg_alloc(g, (size_t)size * sizeof *disps);
+  int *disps = tsmpi_sched_mem(s, (size_t)size * sizeof *disps);
   int total = displacements(g, counts, disps);
-  char *res = buffer, *tmp = tsmpi_cg_alloc(g, (size_t)total * ts), *sp = tsmpi_cg_alloc(g, (size_t)total * ts),
-       *rp = tsmpi_cg_alloc(g, (size_t)total * ts);
-  for (int mask = 1, i = 0; mask < size && !rc; mask <<= 1, i++) {
+  char *res = buffer, *tmp = tsmpi_sched_mem(s, (size_t)total * ts), *sp = tsmpi_sched_mem(s, (size_t)total * ts),
+       *rp = tsmpi_sched_mem(s, (size_t)total * ts);
+  for (int mask = 1, i = 0; mask < size; mask <<= 1, i++) {
     int dst = rank ^ mask, dst_root = dst >> i << i, my_root = rank >> i << i, received = 0;
     /* What is sent: all but my subtree's blocks; received: all but the
      * partner subtree's (two runs each: before and after the subtree). */
@@ -237,50 +242,42 @@ int tsmpi_reduce_scatter_recursive_doubling(const tsmpi_cg *g, const tsmpi_red *
     rd1 = rb0;
     for (int j = dst_root; j < dst_root + mask && j < size; j++) rd1 += counts[j];
     size_t slen = (size_t)(sb0 + sb1) * ts, rlen = (size_t)(rb0 + rb1) * ts;
+    size_t rb0b = (size_t)rb0 * ts, rb1b = (size_t)rb1 * ts, rd1b = (size_t)rd1 * ts;
     if (dst < size) {
-      memcpy(sp, res, (size_t)sb0 * ts);
-      memcpy(sp + (size_t)sb0 * ts, res + (size_t)sd1 * ts, (size_t)sb1 * ts);
-      if ((rc = tsmpi_cg_sendrecv(g, sp, slen, dst, rp, rlen, dst, NULL))) break;
-      memcpy(tmp, rp, (size_t)rb0 * ts);
-      memcpy(tmp + (size_t)rd1 * ts, rp + (size_t)rb0 * ts, (size_t)rb1 * ts);
+      runs(s, res, sp, (size_t)sb0 * ts, (size_t)sb1 * ts, (size_t)sd1 * ts, 1);
+      tsmpi_sched_sendrecv(s, sp, slen, dst, rp, rlen, dst);
+      runs(s, tmp, rp, rb0b, rb1b, rd1b, 0);
       received = 1;
     }
     if (dst_root + mask > size) {
       int done = size - my_root - mask, k = 0;
       for (int j = mask; j; j >>= 1) k++;
       k--;
-      for (int tmask = mask >> 1; tmask && !rc; tmask >>= 1, k--) {
+      for (int tmask = mask >> 1; tmask; tmask >>= 1, k--) {
         int d = rank ^ tmask, tree_root = rank >> k << k;
         if (d > rank && rank < tree_root + done && d >= tree_root + done) {
           /* send the current result (tmp, the received type's runs) */
-          memcpy(rp, tmp, (size_t)rb0 * ts);
-          memcpy(rp + (size_t)rb0 * ts, tmp + (size_t)rd1 * ts, (size_t)rb1 * ts);
-          rc = tsmpi_cg_send(g, rp, rlen, d);
+          runs(s, tmp, rp, rb0b, rb1b, rd1b, 1);
+          tsmpi_sched_send(s, rp, rlen, d);
         } else if (d < rank && d < tree_root + done && rank >= tree_root + done) {
-          if ((rc = tsmpi_cg_recv(g, rp, rlen, d, NULL))) break;
-          memcpy(tmp, rp, (size_t)rb0 * ts);
-          memcpy(tmp + (size_t)rd1 * ts, rp + (size_t)rb0 * ts, (size_t)rb1 * ts);
+          tsmpi_sched_recv(s, rp, rlen, d);
+          runs(s, tmp, rp, rb0b, rb1b, rd1b, 0);
           received = 1;
         }
       }
     }
-    if (rc || !received) continue;
+    if (!received) continue;
     if (r->commute || dst_root < my_root) {
-      tsmpi_red_apply(r, tmp, res, rb0);
-      tsmpi_red_apply(r, tmp + (size_t)rd1 * ts, res + (size_t)rd1 * ts, rb1);
+      tsmpi_sched_reduce(s, tmp, res, rb0);
+      tsmpi_sched_reduce(s, tmp + rd1b, res + rd1b, rb1);
     } else {
-      tsmpi_red_apply(r, res, tmp, rb0);
-      tsmpi_red_apply(r, res + (size_t)rd1 * ts, tmp + (size_t)rd1 * ts, rb1);
-      memcpy(res, tmp, (size_t)rb0 * ts);
-      memcpy(res + (size_t)rd1 * ts, tmp + (size_t)rd1 * ts, (size_t)rb1 * ts);
+      tsmpi_sched_reduce(s, res, tmp, rb0);
+      tsmpi_sched_reduce(s, res + rd1b, tmp + rd1b, rb1);
+      tsmpi_sched_copy(s, res, tmp, rb0b);
+      tsmpi_sched_copy(s, res + rd1b, tmp + rd1b, rb1b);
     }
   }
-  if (!rc && counts[rank]) memcpy(out, res + (size_t)disps[rank] * ts, (size_t)counts[rank] * ts);
-  tsmpi_cg_free(disps);
-  tsmpi_cg_free(tmp);
-  tsmpi_cg_free(sp);
-  tsmpi_cg_free(rp);
-  return rc;
+  tsmpi_sched_copy(s, out, res + (size_t)disps[rank] * ts, (size_t)counts[rank] * ts);
 }
 
 /* The mirror permutation of lg-bit numbers: bits reversed. */
@@ -291,37 +288,49 @@ static int mirror(int x, int bits) {
   return y;
 }
 
+/* Traff's first step, local: the blocks permuted by bit reversal. */
+typedef struct {
+  char *to;
+  const char *from;
+  size_t block;
+  int size, lg;
+} permute;
+
+static void mirror_blocks(void *ud) {
+  const permute *m = ud;
+  for (int i = 0; i < m->size; i++)
+    memcpy(m->to + (size_t)mirror(i, m->lg) * m->block, m->from + (size_t)i * m->block, m->block);
+}
+
 /* Traff's butterfly ("An improved algorithm for (non-commutative)
  * reduce-scatter", EuroPVM/MPI 2005), for p a power of two and equal
  * blocks: the blocks permuted by bit reversal, then lg p steps that halve
  * the data, combining in rank order. */
-int tsmpi_reduce_scatter_noncommutative(const tsmpi_cg *g, const tsmpi_red *r, void *buffer, void *out,
-                                        const int *counts) {
-  int size = g->size, rank = g->rank, lg = 0, rc = MPI_SUCCESS;
+void tsmpi_reduce_scatter_noncommutative(tsmpi_sched *s, void *buffer, void *out, const int *counts) {
+  const tsmpi_cg *g = tsmpi_sched_group(s);
+  int size = g->size, rank = g->rank, lg = 0;
   while ((1 << lg) < size) lg++;
-  size_t ts = r->tsize, block = (size_t)counts[0], total = block * (size_t)size;
-  char *b0 = tsmpi_cg_alloc(g, total * ts), *b1 = tsmpi_cg_alloc(g, total * ts), *in = buffer;
-  for (int i = 0; i < size; i++) memcpy(b0 + (size_t)mirror(i, lg) * block * ts, in + (size_t)i * block * ts, block * ts);
+  size_t ts = tsmpi_sched_red(s)->tsize, block = (size_t)counts[0], total = block * (size_t)size;
+  char *b0 = tsmpi_sched_mem(s, total * ts), *b1 = tsmpi_sched_mem(s, total * ts);
+  permute *m = tsmpi_sched_mem(s, sizeof *m);
+  *m = (permute){b0, buffer, block * ts, size, lg};
+  tsmpi_sched_call(s, mirror_blocks, m);
   int buf0_inout = 1;
   size_t soff = 0, roff = 0, len = total;
-  for (int k = 0; k < lg && !rc; k++) {
+  for (int k = 0; k < lg; k++) {
     char *incoming = buf0_inout ? b1 : b0, *outgoing = buf0_inout ? b0 : b1;
     int peer = rank ^ (1 << k);
     len /= 2;
     if (rank > peer) roff += len;
     else soff += len;
-    if ((rc = tsmpi_cg_sendrecv(g, outgoing + soff * ts, len * ts, peer, incoming + roff * ts, len * ts, peer, NULL)))
-      break;
+    tsmpi_sched_sendrecv(s, outgoing + soff * ts, len * ts, peer, incoming + roff * ts, len * ts, peer);
     if (rank > peer) {
-      tsmpi_red_apply(r, incoming + roff * ts, outgoing + roff * ts, (int)len);
+      tsmpi_sched_reduce(s, incoming + roff * ts, outgoing + roff * ts, (int)len);
     } else {
-      tsmpi_red_apply(r, outgoing + roff * ts, incoming + roff * ts, (int)len);
+      tsmpi_sched_reduce(s, outgoing + roff * ts, incoming + roff * ts, (int)len);
       buf0_inout = !buf0_inout;
     }
     soff = roff;
   }
-  if (!rc && block) memcpy(out, (buf0_inout ? b0 : b1) + roff * ts, block * ts);
-  tsmpi_cg_free(b0);
-  tsmpi_cg_free(b1);
-  return rc;
+  tsmpi_sched_copy(s, out, (buf0_inout ? b0 : b1) + roff * ts, block * ts);
 }

@@ -8,6 +8,9 @@
 
 /* A message longer than the receive: the ranks disagree on the counts. */
 static int truncated(const tsmpi_cg *g, int src) {
+  if (src < 0)
+    return tsmpi_raise(g->comm, MPI_ERR_TRUNCATE, g->fn,
+                       "a message is longer than expected (do all ranks pass the same counts?)");
   return tsmpi_raise(g->comm, MPI_ERR_TRUNCATE, g->fn,
                      "a message from rank %d is longer than expected (do all ranks pass the same counts?)", src);
 }
@@ -55,9 +58,12 @@ int tsmpi_cg_irecv(const tsmpi_cg *g, void *buf, size_t n, int src, MPI_Request 
 }
 
 int tsmpi_cg_waitall(const tsmpi_cg *g, int n, MPI_Request *reqs) {
-  int rc = tsmpi_p2p_waitall(n, reqs, MPI_STATUSES_IGNORE);
-  if (rc == MPI_ERR_TRUNCATE) return truncated(g, -1);
-  return rc ? tsmpi_raise(g->comm, rc, g->fn, "a request failed") : rc;
+  return tsmpi_cg_failed(g, tsmpi_p2p_waitall(n, reqs, MPI_STATUSES_IGNORE), -1);
+}
+
+int tsmpi_cg_failed(const tsmpi_cg *g, int err, int src) {
+  if (err == MPI_ERR_TRUNCATE) return truncated(g, src);
+  return err ? tsmpi_raise(g->comm, err, g->fn, "a request failed") : err;
 }
 
 /* The rank's scratch memory in use, freed by the rank's end when a stopped

@@ -22,6 +22,7 @@
 #include "err.h"
 #include "label.h"
 #include "pt2pt.h"
+#include "topo.h"
 #include "xmem.h"
 
 /* ==== rank and size ======================================================= */
@@ -167,6 +168,7 @@ void tsm_comm_end(tsm *R, MPI_Comm *comm) {
   }
   tsm_pair_give(R, c->pair);
   tsm_ranks_drop(c->g);
+  tsmpi_topo_unref(c->topo);
   tsm_errh_drop(R, c->eh);
   R->comms[(unsigned)*comm & H_SLOT_MASK] = NULL;
   free(c);
@@ -203,6 +205,10 @@ int tsm_comm_dup(tsm *R, MPI_Comm comm, const char *fn, MPI_Comm *newcomm) {
     if (pair < 0) return tsm_no_pair(R, c, fn);
     c->g->refs++;
     *newcomm = tsm_comm_add(R, c->g, pair, c->rank, c->eh, c->hints);
+    if (c->topo) {   /* MPI 3.1 section 7.1: a duplicate keeps the topology */
+      tsmpi_topo_ref(c->topo);
+      tsm_comm_get(R, *newcomm)->topo = c->topo;
+    }
   }
   return dup_attrs(R, c, comm, fn, newcomm);
 }
@@ -419,6 +425,11 @@ static int comm_free(const char *fn, MPI_Comm *comm) {
     return tsm_raise(R, c, MPI_ERR_COMM, fn, "%s cannot be freed", c == &R->world ? "MPI_COMM_WORLD" : "MPI_COMM_SELF");
   char why[128];
   if ((rc = tsm_attr_delete_all(R, TSM_AK_COMM, *comm, why))) return tsm_raise(R, c, rc, fn, "%s", why);
+  if (c->holds) {   /* its nonblocking collectives go on; it ends with the last (p2p.h) */
+    c->freed = 1;
+    *comm = MPI_COMM_NULL;
+    return MPI_SUCCESS;
+  }
   tsm_comm_end(R, comm);
   return MPI_SUCCESS;
 }

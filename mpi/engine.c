@@ -193,8 +193,21 @@ static void complete(tsm *R, tsm_req *q, int src, int kind, int ctx, int tag, si
   if (counted) tsm_ranks_drop(q->g);
   q->g = NULL;
   q->state = RS_DONE;
+  if (q->watch) R->progress_due = 1;
   if (kind == K_SYNC) mpok(R, mp_send(R->self, src, env_encode(K_ACK, ctx, tag), NULL, 0), "mp_send");
   if (q->freed) tsm_req_free(R, q);
+}
+
+/* The nonblocking collectives' progress, after a watched request completed
+ * (never inside itself: what it starts is seen by its own loop). */
+static void progress(tsm *R) {
+  if (R->in_progress || !R->progress) return;
+  R->in_progress = 1;
+  while (R->progress_due) {
+    R->progress_due = 0;
+    R->progress();
+  }
+  R->in_progress = 0;
 }
 
 /* Take the message shown (src, mptag, len) off mp into q's buffer. */
@@ -245,8 +258,15 @@ static void unexpected(tsm *R, const mp_status *st, mp_msg *h) {
 }
 
 /* Take the message mp has shown (st) and act on it: an ack, a posted
- * receive's message, or an unexpected one. */
+ * receive's message, or an unexpected one; then the progress of the
+ * nonblocking collectives it moved. */
+static void act(tsm *R, const mp_status *st);
 static void dispatch(tsm *R, const mp_status *st) {
+  act(R, st);
+  if (R->progress_due) progress(R);
+}
+
+static void act(tsm *R, const mp_status *st) {
   int kind = env_kind(st->tag), ctx = env_ctx(st->tag), tag = env_tag(st->tag);
   if (kind == K_ACK) {
     mpok(R, mp_recv(R->self, st->source, st->tag, NULL, 0, NULL), "mp_recv");
@@ -289,7 +309,13 @@ void eng_send_data(tsm *R, int wdst, int ctx, int tag, const void *data, size_t 
   mpok(R, mp_send(R->self, wdst, env_encode(K_DATA, ctx, tag), data, len), "mp_send");
 }
 
+void eng_hold(tsm *R, tsm_req *q) {
+  R->held_ref = q->ref;
+  R->held_tmp = q->tmp;
+}
+
 void eng_settle(tsm *R, tsm_req *q) {
+  if (q->slot < 0 && q->ref && q->ref == R->held_ref) R->held_ref = NULL, R->held_tmp = NULL;
   if (q->ref) {
     mp_settle(R->self, q->ref);
     q->ref = NULL;
@@ -433,7 +459,7 @@ void eng_wait(tsm *R, tsm_req *q) {
   }
 }
 
-void eng_poll(tsm *R) {
+void eng_take(tsm *R) {
   mp_status st;
   for (;;) {
     int rc = mp_probe(R->self, MP_ANY, MP_ANY, &st);
@@ -441,6 +467,10 @@ void eng_poll(tsm *R) {
     if (rc < 0) mpok(R, rc, "mp_probe");
     dispatch(R, &st);
   }
+}
+
+void eng_poll(tsm *R) {
+  eng_take(R);
   advance_all(R);
 }
 
@@ -539,11 +569,20 @@ int eng_cancel_send(tsm *R, tsm_req *q) {
   return 1;
 }
 
+void eng_settle_all(tsm *R) {
+  for (int i = 0; i < R->nreqs; i++)
+    if (R->reqs[i]->used) eng_settle(R, R->reqs[i]);
+  if (R->held_ref) {   /* the rank ended inside a blocking call that sent by reference */
+    mp_settle(R->self, R->held_ref);
+    free(R->held_tmp);
+    R->held_ref = NULL, R->held_tmp = NULL;
+  }
+}
+
 void eng_release(tsm *R) {
   while (R->posted) eng_unpost(R, R->posted);
   R->sync = R->sync_tail = NULL;
-  for (int i = 0; i < R->nreqs; i++)
-    if (R->reqs[i]->used) eng_settle(R, R->reqs[i]);
+  eng_settle_all(R);
   for (tsm_msg *m = R->unexp, *n; m; m = n) {
     n = m->next;
     unexp_free(R, m);

@@ -38,6 +38,14 @@ void eng_send(tsm *R, tsm_req *q, const void *data, size_t len);
  * packed copy freed): when a request ends, or a blocking call that sent by
  * reference returns. */
 void eng_settle(tsm *R, tsm_req *q);
+/* q, a blocking call's request on its stack, sent by reference: until
+ * eng_settle(q), the rank's end (eng_settle_all, a run stopped inside the
+ * call) settles its message and frees its packed copy. */
+void eng_hold(tsm *R, tsm_req *q);
+/* The rank's end: every request's send and a blocking call's (eng_hold)
+ * settled, while the buffers they refer to (the program's, the
+ * collectives' scratch and schedules) are still there. */
+void eng_settle_all(tsm *R);
 
 /* The fast paths of MPI_Send and MPI_Recv (the common case of a blocking
  * exchange, with no request made):
@@ -75,8 +83,10 @@ void eng_advance(tsm *R, tsm_req *q);
  * nonblocking collective moves on while its rank waits for anything). */
 void eng_step(tsm *R);
 
-/* Act on every message that has arrived, without blocking; then every
+/* Act on every message that has arrived, without blocking (the
+ * nonblocking collectives' progress included); eng_poll: then every
  * request of a kind of its own advances. */
+void eng_take(tsm *R);
 void eng_poll(tsm *R);
 
 /* Take q out of the posted queue (a request freed or a stopped rank). */

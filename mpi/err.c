@@ -71,6 +71,7 @@ const char *tsm_comm_words(MPI_Comm comm, char *buf) {
 
 int tsm_check_comm(tsm *R, MPI_Comm comm, const char *fn, tsm_comm **out) {
   tsm_comm *c = tsm_comm_get(R, comm);
+  if (c && c->freed) c = NULL;   /* freed by the program, ending with its collectives */
   *out = c;
   if (c) return MPI_SUCCESS;
   char b[64];

@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "coll.h"
+#include "coll_sched.h"
 #include "dtype.h"
 #include "err.h"
 #include "errh.h"
@@ -114,20 +115,18 @@ double tsmpi_io_independent(tsmpi_file *f, double bytes) {
  * otherwise.  Returns the pairs by rank, scratch of the collectives
  * (tsmpi_cg_free it). */
 static double *exchange(MPI_Comm comm, const char *fn, const double mine[2]) {
-  tsmpi_cg g;
-  tsmpi_label l;
-  tsmpi_coll_begin(&g, &l, fn, comm, COLL_ALLGATHER, -1);
-  size_t p = (size_t)g.size, *counts = tsmpi_cg_alloc(&g, 2 * p * sizeof *counts), *displs = counts + p;
-  double *all = tsmpi_cg_alloc(&g, 2 * p * sizeof *all);
+  tsmpi_sched *s = tsmpi_coll_start(fn, comm, COLL_ALLGATHER, -1, NULL);   /* blocking: steps run as added */
+  const tsmpi_cg *g = tsmpi_sched_group(s);
+  size_t p = (size_t)g->size, *counts = tsmpi_sched_mem(s, 2 * p * sizeof *counts), *displs = counts + p;
+  double *all = tsmpi_cg_alloc(g, 2 * p * sizeof *all);
   for (size_t r = 0; r < p; r++) counts[r] = 2 * sizeof *all, displs[r] = r * 2 * sizeof *all;
-  all[2 * g.rank] = mine[0];
-  all[2 * g.rank + 1] = mine[1];
+  all[2 * g->rank] = mine[0];
+  all[2 * g->rank + 1] = mine[1];
   if (p > 1) {
-    if (tsmpi_is_pof2(g.size)) tsmpi_allgatherv_recursive_doubling(&g, all, counts, displs);
-    else tsmpi_allgatherv_brucks(&g, all, counts, displs);
+    if (tsmpi_is_pof2(g->size)) tsmpi_allgatherv_recursive_doubling(s, all, counts, displs);
+    else tsmpi_allgatherv_brucks(s, all, counts, displs);
   }
-  tsmpi_cg_free(counts);
-  tsmpi_coll_end(MPI_SUCCESS);
+  tsmpi_coll_finish(s);
   return all;
 }
 

@@ -70,6 +70,11 @@ void tsm_label_describe(void *ud, char *buf, size_t len) {
         continue;
       }
       add(buf, len, &at, "%s%s(", shown > 1 ? ", " : "", q->fn);
+      if (q->kind == RQ_COLL) {   /* a nonblocking collective: its root, if any, and communicator */
+        if (q->peer >= 0) add(buf, len, &at, "root=%d, ", q->peer);
+        add(buf, len, &at, "%s)", tsm_pair_name(q->pair, b));
+        continue;
+      }
       peer_words(buf, len, &at, q->kind == RQ_SEND ? "dest" : "source", q->peer);
       tag_words(buf, len, &at, "tag", q->tag);
       add(buf, len, &at, ", %s)", tsm_pair_name(q->pair, b));

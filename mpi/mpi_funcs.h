@@ -316,7 +316,7 @@ TSMPI_FN(1, COLL, int, MPI_Alltoallv, (const void *sendbuf, const int sendcounts
          MPI_Datatype sendtype, void *recvbuf, const int recvcounts[], const int rdispls[],
          MPI_Datatype recvtype, MPI_Comm comm),
          (sendbuf, sendcounts, sdispls, sendtype, recvbuf, recvcounts, rdispls, recvtype, comm))
-TSMPI_FN(0, COLL, int, MPI_Alltoallw, (const void *sendbuf, const int sendcounts[], const int sdispls[],
+TSMPI_FN(1, COLL, int, MPI_Alltoallw, (const void *sendbuf, const int sendcounts[], const int sdispls[],
          const MPI_Datatype sendtypes[], void *recvbuf, const int recvcounts[], const int rdispls[],
          const MPI_Datatype recvtypes[], MPI_Comm comm),
          (sendbuf, sendcounts, sdispls, sendtypes, recvbuf, recvcounts, rdispls, recvtypes, comm))
@@ -334,58 +334,58 @@ TSMPI_FN(1, COLL, int, MPI_Gatherv, (const void *sendbuf, int sendcount, MPI_Dat
          void *recvbuf, const int recvcounts[], const int displs[], MPI_Datatype recvtype, int root,
          MPI_Comm comm),
          (sendbuf, sendcount, sendtype, recvbuf, recvcounts, displs, recvtype, root, comm))
-TSMPI_FN(0, COLL, int, MPI_Iallgather, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
+TSMPI_FN(1, COLL, int, MPI_Iallgather, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
          void *recvbuf, int recvcount, MPI_Datatype recvtype, MPI_Comm comm, MPI_Request *request),
          (sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Iallgatherv, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
+TSMPI_FN(1, COLL, int, MPI_Iallgatherv, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
          void *recvbuf, const int recvcounts[], const int displs[], MPI_Datatype recvtype, MPI_Comm comm,
          MPI_Request *request),
          (sendbuf, sendcount, sendtype, recvbuf, recvcounts, displs, recvtype, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Iallreduce, (const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, COLL, int, MPI_Iallreduce, (const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype,
          MPI_Op op, MPI_Comm comm, MPI_Request *request),
          (sendbuf, recvbuf, count, datatype, op, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Ialltoall, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
+TSMPI_FN(1, COLL, int, MPI_Ialltoall, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
          void *recvbuf, int recvcount, MPI_Datatype recvtype, MPI_Comm comm, MPI_Request *request),
          (sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Ialltoallv, (const void *sendbuf, const int sendcounts[], const int sdispls[],
+TSMPI_FN(1, COLL, int, MPI_Ialltoallv, (const void *sendbuf, const int sendcounts[], const int sdispls[],
          MPI_Datatype sendtype, void *recvbuf, const int recvcounts[], const int rdispls[],
          MPI_Datatype recvtype, MPI_Comm comm, MPI_Request *request),
          (sendbuf, sendcounts, sdispls, sendtype, recvbuf, recvcounts, rdispls, recvtype, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Ialltoallw, (const void *sendbuf, const int sendcounts[], const int sdispls[],
+TSMPI_FN(1, COLL, int, MPI_Ialltoallw, (const void *sendbuf, const int sendcounts[], const int sdispls[],
          const MPI_Datatype sendtypes[], void *recvbuf, const int recvcounts[], const int rdispls[],
          const MPI_Datatype recvtypes[], MPI_Comm comm, MPI_Request *request),
          (sendbuf, sendcounts, sdispls, sendtypes, recvbuf, recvcounts, rdispls, recvtypes, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Ibarrier, (MPI_Comm comm, MPI_Request *request),
+TSMPI_FN(1, COLL, int, MPI_Ibarrier, (MPI_Comm comm, MPI_Request *request),
          (comm, request))
-TSMPI_FN(0, COLL, int, MPI_Ibcast, (void *buffer, int count, MPI_Datatype datatype, int root, MPI_Comm comm,
+TSMPI_FN(1, COLL, int, MPI_Ibcast, (void *buffer, int count, MPI_Datatype datatype, int root, MPI_Comm comm,
          MPI_Request *request),
          (buffer, count, datatype, root, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Iexscan, (const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, COLL, int, MPI_Iexscan, (const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype,
          MPI_Op op, MPI_Comm comm, MPI_Request *request),
          (sendbuf, recvbuf, count, datatype, op, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Igather, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
+TSMPI_FN(1, COLL, int, MPI_Igather, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
          void *recvbuf, int recvcount, MPI_Datatype recvtype, int root, MPI_Comm comm, MPI_Request *request),
          (sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, root, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Igatherv, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
+TSMPI_FN(1, COLL, int, MPI_Igatherv, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
          void *recvbuf, const int recvcounts[], const int displs[], MPI_Datatype recvtype, int root,
          MPI_Comm comm, MPI_Request *request),
          (sendbuf, sendcount, sendtype, recvbuf, recvcounts, displs, recvtype, root, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Ireduce, (const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, COLL, int, MPI_Ireduce, (const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype,
          MPI_Op op, int root, MPI_Comm comm, MPI_Request *request),
          (sendbuf, recvbuf, count, datatype, op, root, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Ireduce_scatter, (const void *sendbuf, void *recvbuf, const int recvcounts[],
+TSMPI_FN(1, COLL, int, MPI_Ireduce_scatter, (const void *sendbuf, void *recvbuf, const int recvcounts[],
          MPI_Datatype datatype, MPI_Op op, MPI_Comm comm, MPI_Request *request),
          (sendbuf, recvbuf, recvcounts, datatype, op, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Ireduce_scatter_block, (const void *sendbuf, void *recvbuf, int recvcount,
+TSMPI_FN(1, COLL, int, MPI_Ireduce_scatter_block, (const void *sendbuf, void *recvbuf, int recvcount,
          MPI_Datatype datatype, MPI_Op op, MPI_Comm comm, MPI_Request *request),
          (sendbuf, recvbuf, recvcount, datatype, op, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Iscan, (const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype,
+TSMPI_FN(1, COLL, int, MPI_Iscan, (const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype,
          MPI_Op op, MPI_Comm comm, MPI_Request *request),
          (sendbuf, recvbuf, count, datatype, op, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Iscatter, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
+TSMPI_FN(1, COLL, int, MPI_Iscatter, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
          void *recvbuf, int recvcount, MPI_Datatype recvtype, int root, MPI_Comm comm, MPI_Request *request),
          (sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, root, comm, request))
-TSMPI_FN(0, COLL, int, MPI_Iscatterv, (const void *sendbuf, const int sendcounts[], const int displs[],
+TSMPI_FN(1, COLL, int, MPI_Iscatterv, (const void *sendbuf, const int sendcounts[], const int displs[],
          MPI_Datatype sendtype, void *recvbuf, int recvcount, MPI_Datatype recvtype, int root, MPI_Comm comm,
          MPI_Request *request),
          (sendbuf, sendcounts, displs, sendtype, recvbuf, recvcount, recvtype, root, comm, request))
@@ -511,92 +511,92 @@ TSMPI_FN(1, COMM, int, MPI_Keyval_free, (int *keyval),
          (keyval))
 
 /* --- TOPO --- */
-TSMPI_FN(0, TOPO, int, MPI_Cart_coords, (MPI_Comm comm, int rank, int maxdims, int coords[]),
+TSMPI_FN(1, TOPO, int, MPI_Cart_coords, (MPI_Comm comm, int rank, int maxdims, int coords[]),
          (comm, rank, maxdims, coords))
-TSMPI_FN(0, TOPO, int, MPI_Cart_create, (MPI_Comm comm_old, int ndims, const int dims[], const int periods[],
+TSMPI_FN(1, TOPO, int, MPI_Cart_create, (MPI_Comm comm_old, int ndims, const int dims[], const int periods[],
          int reorder, MPI_Comm *comm_cart),
          (comm_old, ndims, dims, periods, reorder, comm_cart))
-TSMPI_FN(0, TOPO, int, MPI_Cart_get, (MPI_Comm comm, int maxdims, int dims[], int periods[], int coords[]),
+TSMPI_FN(1, TOPO, int, MPI_Cart_get, (MPI_Comm comm, int maxdims, int dims[], int periods[], int coords[]),
          (comm, maxdims, dims, periods, coords))
-TSMPI_FN(0, TOPO, int, MPI_Cart_map, (MPI_Comm comm, int ndims, const int dims[], const int periods[],
+TSMPI_FN(1, TOPO, int, MPI_Cart_map, (MPI_Comm comm, int ndims, const int dims[], const int periods[],
          int *newrank),
          (comm, ndims, dims, periods, newrank))
-TSMPI_FN(0, TOPO, int, MPI_Cart_rank, (MPI_Comm comm, const int coords[], int *rank),
+TSMPI_FN(1, TOPO, int, MPI_Cart_rank, (MPI_Comm comm, const int coords[], int *rank),
          (comm, coords, rank))
-TSMPI_FN(0, TOPO, int, MPI_Cart_shift, (MPI_Comm comm, int direction, int disp, int *rank_source,
+TSMPI_FN(1, TOPO, int, MPI_Cart_shift, (MPI_Comm comm, int direction, int disp, int *rank_source,
          int *rank_dest),
          (comm, direction, disp, rank_source, rank_dest))
-TSMPI_FN(0, TOPO, int, MPI_Cart_sub, (MPI_Comm comm, const int remain_dims[], MPI_Comm *newcomm),
+TSMPI_FN(1, TOPO, int, MPI_Cart_sub, (MPI_Comm comm, const int remain_dims[], MPI_Comm *newcomm),
          (comm, remain_dims, newcomm))
-TSMPI_FN(0, TOPO, int, MPI_Cartdim_get, (MPI_Comm comm, int *ndims),
+TSMPI_FN(1, TOPO, int, MPI_Cartdim_get, (MPI_Comm comm, int *ndims),
          (comm, ndims))
-TSMPI_FN(0, TOPO, int, MPI_Dims_create, (int nnodes, int ndims, int dims[]),
+TSMPI_FN(1, TOPO, int, MPI_Dims_create, (int nnodes, int ndims, int dims[]),
          (nnodes, ndims, dims))
-TSMPI_FN(0, TOPO, int, MPI_Dist_graph_create, (MPI_Comm comm_old, int n, const int sources[],
+TSMPI_FN(1, TOPO, int, MPI_Dist_graph_create, (MPI_Comm comm_old, int n, const int sources[],
          const int degrees[], const int destinations[], const int weights[], MPI_Info info, int reorder,
          MPI_Comm *comm_dist_graph),
          (comm_old, n, sources, degrees, destinations, weights, info, reorder, comm_dist_graph))
-TSMPI_FN(0, TOPO, int, MPI_Dist_graph_create_adjacent, (MPI_Comm comm_old, int indegree, const int sources[],
+TSMPI_FN(1, TOPO, int, MPI_Dist_graph_create_adjacent, (MPI_Comm comm_old, int indegree, const int sources[],
          const int sourceweights[], int outdegree, const int destinations[], const int destweights[],
          MPI_Info info, int reorder, MPI_Comm *comm_dist_graph),
          (comm_old, indegree, sources, sourceweights, outdegree, destinations, destweights, info, reorder,
          comm_dist_graph))
-TSMPI_FN(0, TOPO, int, MPI_Dist_graph_neighbors, (MPI_Comm comm, int maxindegree, int sources[],
+TSMPI_FN(1, TOPO, int, MPI_Dist_graph_neighbors, (MPI_Comm comm, int maxindegree, int sources[],
          int sourceweights[], int maxoutdegree, int destinations[], int destweights[]),
          (comm, maxindegree, sources, sourceweights, maxoutdegree, destinations, destweights))
-TSMPI_FN(0, TOPO, int, MPI_Dist_graph_neighbors_count, (MPI_Comm comm, int *indegree, int *outdegree,
+TSMPI_FN(1, TOPO, int, MPI_Dist_graph_neighbors_count, (MPI_Comm comm, int *indegree, int *outdegree,
          int *weighted),
          (comm, indegree, outdegree, weighted))
-TSMPI_FN(0, TOPO, int, MPI_Graph_create, (MPI_Comm comm_old, int nnodes, const int indx[], const int edges[],
+TSMPI_FN(1, TOPO, int, MPI_Graph_create, (MPI_Comm comm_old, int nnodes, const int indx[], const int edges[],
          int reorder, MPI_Comm *comm_graph),
          (comm_old, nnodes, indx, edges, reorder, comm_graph))
-TSMPI_FN(0, TOPO, int, MPI_Graph_get, (MPI_Comm comm, int maxindex, int maxedges, int indx[], int edges[]),
+TSMPI_FN(1, TOPO, int, MPI_Graph_get, (MPI_Comm comm, int maxindex, int maxedges, int indx[], int edges[]),
          (comm, maxindex, maxedges, indx, edges))
-TSMPI_FN(0, TOPO, int, MPI_Graph_map, (MPI_Comm comm, int nnodes, const int indx[], const int edges[],
+TSMPI_FN(1, TOPO, int, MPI_Graph_map, (MPI_Comm comm, int nnodes, const int indx[], const int edges[],
          int *newrank),
          (comm, nnodes, indx, edges, newrank))
-TSMPI_FN(0, TOPO, int, MPI_Graph_neighbors, (MPI_Comm comm, int rank, int maxneighbors, int neighbors[]),
+TSMPI_FN(1, TOPO, int, MPI_Graph_neighbors, (MPI_Comm comm, int rank, int maxneighbors, int neighbors[]),
          (comm, rank, maxneighbors, neighbors))
-TSMPI_FN(0, TOPO, int, MPI_Graph_neighbors_count, (MPI_Comm comm, int rank, int *nneighbors),
+TSMPI_FN(1, TOPO, int, MPI_Graph_neighbors_count, (MPI_Comm comm, int rank, int *nneighbors),
          (comm, rank, nneighbors))
-TSMPI_FN(0, TOPO, int, MPI_Graphdims_get, (MPI_Comm comm, int *nnodes, int *nedges),
+TSMPI_FN(1, TOPO, int, MPI_Graphdims_get, (MPI_Comm comm, int *nnodes, int *nedges),
          (comm, nnodes, nedges))
-TSMPI_FN(0, TOPO, int, MPI_Ineighbor_allgather, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
+TSMPI_FN(1, TOPO, int, MPI_Ineighbor_allgather, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
          void *recvbuf, int recvcount, MPI_Datatype recvtype, MPI_Comm comm, MPI_Request *request),
          (sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, comm, request))
-TSMPI_FN(0, TOPO, int, MPI_Ineighbor_allgatherv, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
+TSMPI_FN(1, TOPO, int, MPI_Ineighbor_allgatherv, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
          void *recvbuf, const int recvcounts[], const int displs[], MPI_Datatype recvtype, MPI_Comm comm,
          MPI_Request *request),
          (sendbuf, sendcount, sendtype, recvbuf, recvcounts, displs, recvtype, comm, request))
-TSMPI_FN(0, TOPO, int, MPI_Ineighbor_alltoall, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
+TSMPI_FN(1, TOPO, int, MPI_Ineighbor_alltoall, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
          void *recvbuf, int recvcount, MPI_Datatype recvtype, MPI_Comm comm, MPI_Request *request),
          (sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, comm, request))
-TSMPI_FN(0, TOPO, int, MPI_Ineighbor_alltoallv, (const void *sendbuf, const int sendcounts[],
+TSMPI_FN(1, TOPO, int, MPI_Ineighbor_alltoallv, (const void *sendbuf, const int sendcounts[],
          const int sdispls[], MPI_Datatype sendtype, void *recvbuf, const int recvcounts[],
          const int rdispls[], MPI_Datatype recvtype, MPI_Comm comm, MPI_Request *request),
          (sendbuf, sendcounts, sdispls, sendtype, recvbuf, recvcounts, rdispls, recvtype, comm, request))
-TSMPI_FN(0, TOPO, int, MPI_Ineighbor_alltoallw, (const void *sendbuf, const int sendcounts[],
+TSMPI_FN(1, TOPO, int, MPI_Ineighbor_alltoallw, (const void *sendbuf, const int sendcounts[],
          const MPI_Aint sdispls[], const MPI_Datatype sendtypes[], void *recvbuf, const int recvcounts[],
          const MPI_Aint rdispls[], const MPI_Datatype recvtypes[], MPI_Comm comm, MPI_Request *request),
          (sendbuf, sendcounts, sdispls, sendtypes, recvbuf, recvcounts, rdispls, recvtypes, comm, request))
-TSMPI_FN(0, TOPO, int, MPI_Neighbor_allgather, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
+TSMPI_FN(1, TOPO, int, MPI_Neighbor_allgather, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
          void *recvbuf, int recvcount, MPI_Datatype recvtype, MPI_Comm comm),
          (sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, comm))
-TSMPI_FN(0, TOPO, int, MPI_Neighbor_allgatherv, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
+TSMPI_FN(1, TOPO, int, MPI_Neighbor_allgatherv, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
          void *recvbuf, const int recvcounts[], const int displs[], MPI_Datatype recvtype, MPI_Comm comm),
          (sendbuf, sendcount, sendtype, recvbuf, recvcounts, displs, recvtype, comm))
-TSMPI_FN(0, TOPO, int, MPI_Neighbor_alltoall, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
+TSMPI_FN(1, TOPO, int, MPI_Neighbor_alltoall, (const void *sendbuf, int sendcount, MPI_Datatype sendtype,
          void *recvbuf, int recvcount, MPI_Datatype recvtype, MPI_Comm comm),
          (sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, comm))
-TSMPI_FN(0, TOPO, int, MPI_Neighbor_alltoallv, (const void *sendbuf, const int sendcounts[],
+TSMPI_FN(1, TOPO, int, MPI_Neighbor_alltoallv, (const void *sendbuf, const int sendcounts[],
          const int sdispls[], MPI_Datatype sendtype, void *recvbuf, const int recvcounts[],
          const int rdispls[], MPI_Datatype recvtype, MPI_Comm comm),
          (sendbuf, sendcounts, sdispls, sendtype, recvbuf, recvcounts, rdispls, recvtype, comm))
-TSMPI_FN(0, TOPO, int, MPI_Neighbor_alltoallw, (const void *sendbuf, const int sendcounts[],
+TSMPI_FN(1, TOPO, int, MPI_Neighbor_alltoallw, (const void *sendbuf, const int sendcounts[],
          const MPI_Aint sdispls[], const MPI_Datatype sendtypes[], void *recvbuf, const int recvcounts[],
          const MPI_Aint rdispls[], const MPI_Datatype recvtypes[], MPI_Comm comm),
          (sendbuf, sendcounts, sdispls, sendtypes, recvbuf, recvcounts, rdispls, recvtypes, comm))
-TSMPI_FN(0, TOPO, int, MPI_Topo_test, (MPI_Comm comm, int *status),
+TSMPI_FN(1, TOPO, int, MPI_Topo_test, (MPI_Comm comm, int *status),
          (comm, status))
 
 /* --- INFO --- */

@@ -208,6 +208,8 @@ typedef struct {
   MPI_User_function *fn;
   int commute;
   int used;
+  int holds;    /* tsmpi_op_hold's, not released yet */
+  int freed;    /* MPI_Op_free'd while held: gone when the last hold goes */
 } user_op;
 
 typedef struct {
@@ -247,7 +249,8 @@ int tsmpi_op_valid(MPI_Op op, char *why, size_t len) {
   const char *w = NULL;
   if (op == MPI_OP_NULL) w = "MPI_OP_NULL";
   else if ((op & 0xff000000) != 0x04000000) w = "not an operation";
-  else if (!predefined(op) && !user(op)) w = op & 0x800000 ? "not an operation of this rank (freed?)" : "not an operation";
+  else if (!predefined(op) && (!user(op) || user(op)->freed))
+    w = op & 0x800000 ? "not an operation of this rank (freed?)" : "not an operation";
   if (!w) return MPI_SUCCESS;
   if (why && len) snprintf(why, len, "%s", w);
   return MPI_ERR_OP;
@@ -389,14 +392,28 @@ int tsmpi_op_create(MPI_User_function *fn, int commute, MPI_Op *op) {
     }
     tb->n++;
   }
-  tb->slot[i] = (user_op){fn, commute != 0, 1};
+  tb->slot[i] = (user_op){fn, commute != 0, 1, 0, 0};
   *op = CREATED | i;
   return MPI_SUCCESS;
 }
 
 int tsmpi_op_free(MPI_Op op) {
   user_op *u = user(op);
-  if (!u) return MPI_ERR_OP;
-  u->used = 0;
+  if (!u || u->freed) return MPI_ERR_OP;
+  if (u->holds)
+    u->freed = 1;
+  else
+    u->used = 0;
   return MPI_SUCCESS;
+}
+
+void tsmpi_op_hold(MPI_Op op) {
+  user_op *u = user(op);
+  if (u) u->holds++;
+}
+
+void tsmpi_op_release(MPI_Op op) {
+  user_op *u = user(op);
+  if (!u || u->holds <= 0) return;
+  if (--u->holds == 0 && u->freed) u->used = u->freed = 0;
 }

@@ -56,4 +56,10 @@ void tsmpi_op_reduce(MPI_Op op, MPI_Datatype dt, const void *in, void *inout, in
 int tsmpi_op_create(MPI_User_function *fn, int commute, MPI_Op *op);
 int tsmpi_op_free(MPI_Op op);   /* MPI_ERR_OP for a predefined one */
 
+/* Keep a valid operation usable by tsmpi_op_reduce(_packed) until
+ * tsmpi_op_release, whatever MPI_Op_free does meanwhile (a nonblocking
+ * collective started with it); nothing for a predefined one. */
+void tsmpi_op_hold(MPI_Op op);
+void tsmpi_op_release(MPI_Op op);
+
 #endif

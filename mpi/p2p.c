@@ -5,9 +5,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "comm.h"
 #include "engine.h"
 #include "err.h"
 #include "pt2pt.h"
+#include "topo.h"
 
 /* The calling rank and comm, which the caller has checked: a bad one is a
  * bug of the layer. */
@@ -106,23 +108,111 @@ int tsmpi_p2p_waitall(int n, MPI_Request *reqs, MPI_Status *sts) {
   return first;
 }
 
+/* ==== the nonblocking collectives' requests and progress ================== */
+
+static tsm_req *req_of(tsm *R, MPI_Request h, const char *fn) {
+  tsm_req *q = tsm_req_get(R, h);
+  if (q) return q;
+  fprintf(stderr, "tilesim MPI: internal error: rank %d: %s of request 0x%x\n", R->wrank, fn, (unsigned)h);
+  abort();
+}
+
+void tsmpi_p2p_watch(MPI_Request req) {
+  tsm *R = tsm_need("tsmpi_p2p_watch");
+  req_of(R, req, "tsmpi_p2p_watch")->watch = 1;
+}
+
 int tsmpi_p2p_done(MPI_Request *req, MPI_Status *st) {
   if (*req == MPI_REQUEST_NULL) {
     if (st != MPI_STATUS_IGNORE) tsm_status_empty(st);
     return 1;
   }
   tsm *R = tsm_need("tsmpi_p2p_done");
-  tsm_req *q = tsm_req_get(R, *req);
-  if (!q) {
-    fprintf(stderr, "tilesim MPI: internal error: rank %d: tsmpi_p2p_done of request 0x%x\n", R->wrank,
-            (unsigned)*req);
-    abort();
-  }
+  tsm_req *q = req_of(R, *req, "tsmpi_p2p_done");
   if (q->state == RS_ACTIVE) return 0;
   tsm_status_out(st, &q->st, 1);
   tsm_req_free(R, q);
   *req = MPI_REQUEST_NULL;
   return 1;
+}
+
+void tsmpi_p2p_drop(MPI_Request *req) {
+  tsm *R = tsm_need("tsmpi_p2p_drop");
+  if (*req == MPI_REQUEST_NULL) return;
+  tsm_req *q = req_of(R, *req, "tsmpi_p2p_drop");
+  if (q->state == RS_ACTIVE && q->kind == RQ_RECV) eng_unpost(R, q);
+  tsm_req_free(R, q);
+  *req = MPI_REQUEST_NULL;
+}
+
+/* mp's progress while the rank computes: at each arrival, act on what came
+ * (the progress function runs from the engine; requests of a kind of their
+ * own advance in MPI calls only, p2p.h). */
+static void computing(mp *self, void *ud) {
+  (void)ud;
+  tsm *R = mp_user(self);
+  eng_take(R);
+}
+
+void tsmpi_set_progress(void (*fn)(void), int live) {
+  tsm *R = tsm_need("tsmpi_set_progress");
+  R->progress = fn;
+  mp_set_progress(R->self, fn && live ? computing : NULL, NULL);
+}
+
+MPI_Request tsmpi_req_coll(const char *fn, MPI_Comm comm, int root) {
+  tsm *R = tsm_need(fn);
+  tsm_comm *c = comm_of(R, comm, fn);
+  tsm_req *q = tsm_req_new(R);
+  q->kind = RQ_COLL;
+  q->state = RS_ACTIVE;
+  q->fn = fn;
+  q->comm = comm;
+  q->pair = c->pair;
+  q->peer = root;
+  q->tag = MPI_ANY_TAG;
+  tsm_status_empty(&q->st);
+  return tsm_req_handle(q);
+}
+
+void tsmpi_req_coll_complete(MPI_Request req, int err) {
+  tsm *R = tsm_need("tsmpi_req_coll_complete");
+  tsm_req *q = req_of(R, req, "tsmpi_req_coll_complete");
+  q->st.MPI_ERROR = err;
+  q->state = RS_DONE;
+  if (q->freed) tsm_req_free(R, q);
+}
+
+void tsmpi_comm_hold(MPI_Comm comm) {
+  tsm *R = tsm_need("tsmpi_comm_hold");
+  comm_of(R, comm, "tsmpi_comm_hold")->holds++;
+}
+
+void tsmpi_comm_release(MPI_Comm comm) {
+  tsm *R = tsm_need("tsmpi_comm_release");
+  tsm_comm *c = comm_of(R, comm, "tsmpi_comm_release");
+  if (--c->holds == 0 && c->freed) tsm_comm_end(R, &comm);
+}
+
+int tsmpi_comm_nbc_tag(MPI_Comm comm) {
+  tsm *R = tsm_need("tsmpi_comm_nbc_tag");
+  tsm_comm *c = comm_of(R, comm, "tsmpi_comm_nbc_tag");
+  unsigned span = TSMPI_COLL_TAG_MAX - TSMPI_NBC_TAG_MIN + 1;
+  return TSMPI_NBC_TAG_MIN + (int)(c->nbc_seq++ % span);
+}
+
+/* ==== a communicator's process topology ================================== */
+
+struct tsmpi_topo *tsmpi_comm_topo(MPI_Comm comm) {
+  tsm *R = tsm_need("tsmpi_comm_topo");
+  return comm_of(R, comm, "tsmpi_comm_topo")->topo;
+}
+
+void tsmpi_comm_set_topo(MPI_Comm comm, struct tsmpi_topo *t) {
+  tsm *R = tsm_need("tsmpi_comm_set_topo");
+  tsm_comm *c = comm_of(R, comm, "tsmpi_comm_set_topo");
+  tsmpi_topo_unref(c->topo);
+  c->topo = t;
 }
 
 /* ==== communicators ======================================================= */

@@ -84,10 +84,51 @@ int tsmpi_p2p_waitall(int n, MPI_Request *reqs, MPI_Status *sts);
  * after the engine has acted on every message that has arrived. */
 int tsmpi_p2p_done(MPI_Request *req, MPI_Status *st);
 
+/* ==== the nonblocking collectives' requests and progress ================== */
+
+/* Mark a request of tsmpi_p2p_isend/irecv as a step of a nonblocking
+ * collective: when the engine completes it (in any MPI call of the rank, or
+ * while the rank computes), the rank's progress function runs (see
+ * tsmpi_set_progress), after the message was acted on. */
+void tsmpi_p2p_watch(MPI_Request req);
+
+/* A request given up (a schedule freed before it finished): a receive still
+ * posted is taken out of the posted queue; the request is freed and *req is
+ * MPI_REQUEST_NULL. */
+void tsmpi_p2p_drop(MPI_Request *req);
+
+/* The rank's progress function: fn() runs after the engine completed a
+ * watched request, at a point where it may send and post receives (never
+ * block); while live (nonzero) the rank also makes progress while it
+ * computes (mp_set_progress: each message that arrives while the rank
+ * computes is acted on at its arrival).  fn NULL: none. */
+void tsmpi_set_progress(void (*fn)(void), int live);
+
+/* A request of the program's for nonblocking collective fn on comm (root:
+ * its root, or -1): active until tsmpi_req_coll_complete.  Its status is the
+ * empty one; a program's MPI_Request_free lets it go on until complete. */
+MPI_Request tsmpi_req_coll(const char *fn, MPI_Comm comm, int root);
+/* The collective is done, with error class err (already raised under the
+ * communicator's handler). */
+void tsmpi_req_coll_complete(MPI_Request req, int err);
+
+/* A nonblocking collective on comm keeps it alive: MPI_Comm_free while it
+ * is held takes it from the program only, and the last release ends it
+ * (MPI 3.1 section 6.4.3: freed once its pending operations complete). */
+void tsmpi_comm_hold(MPI_Comm comm);
+void tsmpi_comm_release(MPI_Comm comm);
+
+/* The tag of the next nonblocking collective on comm: the same on every
+ * rank, as every rank starts a communicator's collectives in the same
+ * order (MPI 3.1 section 5.12), and never one of the blocking ones'
+ * (TSMPI_NBC_TAG_MIN .. TSMPI_COLL_TAG_MAX, round and round). */
+enum { TSMPI_NBC_TAG_MIN = 0x100 };
+int tsmpi_comm_nbc_tag(MPI_Comm comm);
+
 /* ==== requests of a kind of their own ===================================== */
 
-/* A part of the layer (nonblocking collectives, one-sided operations,
- * MPI_Grequest_start) makes requests that the program completes with the
+/* A part of the layer (MPI_Grequest_start; the nonblocking collectives'
+ * requests are of their own, above) makes requests that the program completes with the
  * Wait and Test families, frees with MPI_Request_free and cancels with
  * MPI_Cancel like any other.  Its kind says what they do; state is the
  * part's own, passed to each callback:
@@ -145,6 +186,14 @@ int tsmpi_req_start(const tsmpi_kind *kind, void *state, MPI_Request *req);
  * request of a kind of its own.  If the program freed it already, it goes
  * now (free's error class is returned). */
 int tsmpi_req_complete(MPI_Request req);
+
+/* ==== a communicator's process topology ================================== */
+
+/* comm's topology (topo.h), or NULL; comm checked.  set: comm (just made
+ * by the caller) takes t and the caller's count of it.  MPI_Comm_dup shares
+ * it (counted), MPI_Comm_free drops its count. */
+struct tsmpi_topo *tsmpi_comm_topo(MPI_Comm comm);
+void tsmpi_comm_set_topo(MPI_Comm comm, struct tsmpi_topo *t);
 
 /* ==== communicators ======================================================= */
 
@@ -215,10 +264,11 @@ int tsmpi_type_attrs_delete(MPI_Datatype dt, const char *fn);
 
 /* One pointer per part of the MPI layer and rank (NULL after MPI_Init):
  * the datatype module's table of created types, the operations', the
- * collectives', the open files', the windows'.  release(p), if not NULL, is
+ * collectives', the collectives' schedules, the nonblocking collectives',
+ * the open files', the windows'.  release(p), if not NULL, is
  * called once at MPI_Finalize or when the rank ends without it (a stopped
  * run), parts in reverse order. */
-enum { TSMPI_PART_DTYPE, TSMPI_PART_OP, TSMPI_PART_COLL, TSMPI_PART_IO, TSMPI_PART_WIN, TSMPI_PARTS };
+enum { TSMPI_PART_DTYPE, TSMPI_PART_OP, TSMPI_PART_COLL, TSMPI_PART_SCHED, TSMPI_PART_NBC, TSMPI_PART_IO, TSMPI_PART_WIN, TSMPI_PARTS };
 void *tsmpi_part(int part);
 void tsmpi_part_set(int part, void *p, void (*release)(void *p));
 

@@ -5,7 +5,12 @@
  * track (named by the function; the outermost call only, when it took time
  * or moved a message); a program's own MPI_Send wrapper can call PMPI_Send.
  * Made from mpi_funcs.h by the preprocessor; funcs.c has the unimplemented
- * ones'; MPI_Pcontrol is here too. */
+ * ones'; MPI_Pcontrol is here too.
+ *
+ * While the rank has nonblocking collectives going on (mp_set_progress),
+ * each call first settles what the rank computed since its last call (an
+ * mp call, where tilesim-mpirun's --compute hooks charge it), so that their
+ * progress during that computing runs before the call touches the engine. */
 #include "mpi.h"
 #include "mp.h"
 
@@ -22,6 +27,7 @@ int PMPI_Pcontrol(const int level, ...) {
   ret name params {                                    \
     mp *self_ = mp_self();                             \
     int traced_ = self_ && self_->traced;              \
+    if (self_ && self_->progress) mp_time(self_);      \
     if (traced_) mp_call_begin(self_, #name);          \
     ret r_ = P##name args;                             \
     if (traced_) mp_call_end(self_);                   \

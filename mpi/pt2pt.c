@@ -96,6 +96,7 @@ int tsm_send_start(tsm *R, tsm_req *q, const tsm_comm *c) {
     else
       free(tmp);
   }
+  if (q->slot < 0 && q->ref) eng_hold(R, q);   /* a blocking call's: the rank's end settles it */
   return MPI_SUCCESS;
 }
 

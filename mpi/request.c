@@ -74,7 +74,7 @@ static int finish(tsm *R, const char *fn, MPI_Request *h, tsm_req *q, MPI_Status
   tsm_status_out(st, &q->st, with_error);
   int err = q->st.MPI_ERROR;
   if (q->persistent) eng_settle(R, q);
-  if (err && raise) {
+  if (err && raise && q->kind != RQ_COLL) {   /* a collective's error was raised when it happened */
     tsm_req copy = *q;
     if (q->persistent)
       q->state = RS_INACTIVE;
@@ -115,7 +115,7 @@ static void poll_charge(tsm *R, const char *fn) {
 /* Several statuses: the first request that failed, raised as
  * MPI_ERR_IN_STATUS on its communicator. */
 static int in_status(tsm *R, const char *fn, const tsm_req *failed, int err) {
-  if (failed->kind == RQ_KIND)
+  if (failed->kind == RQ_KIND || failed->kind == RQ_COLL)
     return tsm_raise(R, NULL, MPI_ERR_IN_STATUS, fn, "the request of %s failed (error %d in its status)",
                      failed->fn, err);
   return tsm_raise(R, tsm_comm_get(R, failed->comm), MPI_ERR_IN_STATUS, fn,

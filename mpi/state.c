@@ -12,6 +12,7 @@
 #include "env.h"
 #include "errh.h"
 #include "info.h"
+#include "topo.h"
 #include "xmem.h"
 
 /* ==== finding the rank's state ============================================ */
@@ -213,6 +214,8 @@ tsm_msg *tsm_msg_take(tsm *R, MPI_Message h) {
 /* ==== the end ============================================================= */
 
 void tsm_release(tsm *R) {
+  mp_set_progress(R->self, NULL, NULL);   /* no nonblocking collective goes on past the rank's MPI */
+  eng_settle_all(R);                      /* before the parts free what sends refer to */
   for (int i = TSMPI_PARTS - 1; i >= 0; i--)
     if (R->release[i]) R->release[i](R->part[i]);
   eng_release(R);
@@ -229,6 +232,7 @@ void tsm_release(tsm *R) {
     if (!R->comms[i]) continue;
     tsm_ranks_drop(R->comms[i]->g);
     if (R->comms[i]->inter) tsm_ranks_drop(R->comms[i]->lg);
+    tsmpi_topo_unref(R->comms[i]->topo);
     free(R->comms[i]);
   }
   free(R->comms);

@@ -101,6 +101,11 @@ typedef struct {
                           collectives' local steps (hidden from the program) */
   int hidden;          /* such a local communicator */
   unsigned hints;      /* the info hints it keeps (info.c: TSM_HINT_*) */
+  unsigned nbc_seq;    /* nonblocking collectives started on it (tsmpi_comm_nbc_tag) */
+  struct tsmpi_topo *topo;   /* its process topology (topo.h), counted, or NULL */
+  int holds;           /* nonblocking collectives on it going on (tsmpi_comm_hold) */
+  int freed;           /* MPI_Comm_free'd while held: gone for the program, and
+                          ended when the last hold goes */
 } tsm_comm;
 
 static inline int tsm_comm_lsize(const tsm_comm *c) { return c->inter ? c->lg->n : c->size; }
@@ -108,7 +113,8 @@ static inline tsm_ranks *tsm_comm_lgroup(const tsm_comm *c) { return c->inter ? 
 
 /* ==== requests ============================================================ */
 
-enum { RQ_SEND, RQ_RECV, RQ_KIND };   /* RQ_KIND: a kind of its own (q->ops, p2p.h) */
+enum { RQ_SEND, RQ_RECV, RQ_KIND, RQ_COLL };   /* RQ_KIND: a kind of its own (q->ops, p2p.h);
+                                                RQ_COLL: a nonblocking collective (tsmpi_req_coll) */
 enum { SM_STANDARD, SM_SYNC, SM_BUFFERED, SM_READY };
 enum { RS_INACTIVE, RS_ACTIVE, RS_DONE };
 
@@ -125,6 +131,8 @@ struct tsm_req {
   unsigned char freed;     /* MPI_Request_free while active: goes when done */
   unsigned char used;      /* in the table and not freed */
   unsigned char held;      /* holds dt (tsmpi_type_hold) until freed */
+  unsigned char watch;     /* a nonblocking collective's step: when done, the
+                              rank's progress function runs (tsmpi_p2p_watch) */
   /* the call's arguments */
   void *buf;
   int count;
@@ -196,6 +204,8 @@ struct tsm {
   tsm_msg *unexp, *unexp_tail;     /* messages taken off mp and not matched, in order */
   long nunexp;
   tsm_req *sync, *sync_tail;       /* synchronous sends waiting for their ack */
+  mp_ref *held_ref;                /* a blocking call's send by reference, and its */
+  void *held_tmp;                  /* packed copy, until settled (eng_hold) */
   int attr[8];             /* MPI_Comm_get_attr's values, by predefined key */
   /* matched probes' messages by slot (MPI_Mprobe), and the free slots */
   tsm_msg **msgs;
@@ -210,6 +220,10 @@ struct tsm {
   /* MPI_Buffer_attach */
   void *bbuf;
   int bsize;
+  /* the nonblocking collectives' progress (tsmpi_set_progress) */
+  void (*progress)(void);
+  int progress_due;        /* a watched request completed since it last ran */
+  int in_progress;         /* it runs */
   /* the other parts' slots (p2p.h) */
   void *part[TSMPI_PARTS];
   void (*release[TSMPI_PARTS])(void *);

@@ -52,7 +52,9 @@ enum {
   PROBE_SPINS_MAX = 1000000    /* fruitless probes at one clock before we stop */
 };
 
-enum { R_READY, R_BLOCKED, R_DONE, R_ABANDONED };
+/* R_BUSY: computing with a progress function (mp_set_progress), queued at the
+ * computing's end or at the next arrival, whichever is first. */
+enum { R_READY, R_BLOCKED, R_DONE, R_ABANDONED, R_BUSY };
 
 typedef struct rank rank;
 struct rank {
@@ -243,6 +245,49 @@ static double slow_factor(sim *s, const rank *r) {
   return 1 + s->cfg.cpu.slowdown * k + s->cfg.cpu.slowdown_spin * j;
 }
 
+/* r computes until end with a progress function: at each arrival before end
+ * (and at once for messages already there) the function runs at the
+ * arrival, the processor lent to it; the processor time it charges (x)
+ * moves the computing's end by as much.  r->now is the computing's start
+ * (before any wait for the processor). */
+static int busy_progress(sim *s, rank *r, double end) {
+  double shown = -INFINITY, at = r->now;   /* messages up to shown were offered; at: last resumed */
+  for (;;) {
+    msg *m = r->box.head;
+    while (m && m->arrival <= shown) m = m->next;
+    double next = m ? m->arrival : INFINITY;
+    if (next < r->now) next = r->now;
+    if (next > end) next = end;
+    if (next > r->now) {   /* compute until then, woken earlier by an earlier arrival (sim_send) */
+      r->state = R_BUSY;
+      r->wake = next;
+      evq_set(s->q, r->base.rank, next, s->seq++);
+      give_way(s, r);
+      r->state = R_READY;
+      if (s->stopped) {
+        r->now = end;
+        return stopped_call(s, r);
+      }
+      r->now = at = r->wake;
+    }
+    if (r->now >= end) break;
+    double t = r->now, saved = s->busy[r->proc];
+    s->busy[r->proc] = t;
+    r->base.progress(&r->base, r->base.progress_ud);
+    double x = r->now - t;
+    s->busy[r->proc] = saved + x;
+    end += x;
+    shown = t;
+    if (s->stopped) {
+      r->now = end;
+      return stopped_call(s, r);
+    }
+  }
+  r->now = end;
+  if (r->now > at) moved(s, r);
+  return MP_OK;
+}
+
 /* r computes for d seconds (units of them, for the statistics). */
 static int charge(sim *s, rank *r, double d, double units) {
   double t0 = r->now;
@@ -255,6 +300,7 @@ static int charge(sim *s, rank *r, double d, double units) {
     if (start > t0) trace_span(s->tr, "cpuwait", r->base.rank, r->proc, t0, start - t0, -1, -1);
     trace_span(s->tr, "compute", r->base.rank, r->proc, start, d, -1, -1);
   }
+  if (r->base.progress) return busy_progress(s, r, start + d);
   r->now = start + d;
   if (r->now > t0) moved(s, r);
   return MP_OK;
@@ -353,7 +399,8 @@ static inline double in_order(rank *a, int dst, double arrival) {
 
 /* m (its arrival set, placed) into d's mailbox: a receiver blocked on a
  * matching message wakes when the earliest arrives (cpu.h: later if it has
- * gone to sleep; its first waker r pays o_wake, where remote). */
+ * gone to sleep; its first waker r pays o_wake, where remote); a receiver
+ * computing with a progress function (R_BUSY) wakes at the arrival. */
 static inline void deliver(sim *s, rank *r, rank *d, msg *m, int remote) {
   const sim_config *c = &s->cfg;
   box_insert(m);
@@ -368,6 +415,9 @@ static inline void deliver(sim *s, rank *r, rank *d, msg *m, int remote) {
       d->wake = resume;
       evq_set(s->q, d->base.rank, resume, s->seq++);
     }
+  } else if (d->state == R_BUSY && m->arrival < d->wake) {   /* computing: its progress acts at the arrival */
+    d->wake = m->arrival;
+    evq_set(s->q, d->base.rank, m->arrival, s->seq++);
   }
 }
 

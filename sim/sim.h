@@ -66,6 +66,12 @@
  *   End.  A rank that returns from its main has finished at its now; the
  *   makespan is the latest finish.
  *
+ *   Progress while computing (mp_set_progress): a rank that computes with a
+ *   progress function is woken at each message that arrives before the
+ *   computing ends (and at once for messages already there); the function
+ *   runs with now = the arrival, the processor lent to it: the processor time
+ *   its calls charge (x) ends the computing x later.  now = end afterwards.
+ *
  *   Sleep.  mp_sleep(s): now += s; the processor is not held.  mp_busy(s)
  *   computes as mp_compute does, for s seconds instead of u*c.  mp_exit ends
  *   a rank at its now, as returning from its main does.

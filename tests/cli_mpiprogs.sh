@@ -1,11 +1,12 @@
 #!/bin/sh
 # cli_mpiprogs.sh -- the MPI programs of tests/mpi/ built with Open MPI's
-# mpicc and run under its mpirun: the datatype, operation, collective and
-# I/O programs (dtype_*, op_*, coll_*, io_*) on 1, 3 and 8 processes, the
-# point-to-point, communicator, attribute, error-handler, info and
-# one-sided ones (p2p_*, comm_*, attr_*, err_*, info_*, rma_*) on 2 and 5
-# (the one-sided ones with Open MPI's osc components but ucx, which fails
-# to make windows as root on this host: OMPI_MCA_osc=^ucx).  Each
+# mpicc and run under its mpirun: the datatype, operation, collective,
+# topology and I/O programs (dtype_*, op_*, coll_*, topo_*, io_*) on 1, 3
+# and 8 processes, the point-to-point, communicator, attribute,
+# error-handler, info and one-sided ones (p2p_*, comm_*, attr_*, err_*,
+# info_*, rma_*) on 2 and 5 (the one-sided ones with Open MPI's osc
+# components but ucx, which fails to make windows as root on this host:
+# OMPI_MCA_osc=^ucx).  Each
 # must pass its own checks and print the same "NAME: P passed, F failed"
 # line as on tilesim's simulator (build/chk/tests/test_mpiprogs NAME NP
 # mpich, build/chk/tests/test_mpiprogs_p2p NAME NP).  Where $MPICC cannot
@@ -60,7 +61,8 @@ group() {
     done
   done
 }
-group test_mpiprogs mpich "1 3 8" tests/mpi/dtype_*.c tests/mpi/op_*.c tests/mpi/coll_*.c tests/mpi/io_*.c
+group test_mpiprogs mpich "1 3 8" tests/mpi/dtype_*.c tests/mpi/op_*.c tests/mpi/coll_*.c tests/mpi/topo_*.c \
+  tests/mpi/io_*.c
 group test_mpiprogs_p2p "" "2 5" tests/mpi/p2p_*.c tests/mpi/comm_*.c tests/mpi/attr_*.c tests/mpi/err_*.c \
   tests/mpi/info_*.c
 export OMPI_MCA_osc=^ucx

@@ -1,8 +1,9 @@
-/* test_mpiprogs.c -- the datatype, operation and collective programs of tests/mpi/ on the
- * simulator: on 1 to 16 ranks with MPICH's choices, and on six rank counts each (powers of two
- * and others) with --coll linear and with each algorithm of each collective they use forced in
- * turn, so that every algorithm runs at the sizes the programs use, on both sides of MPICH's
- * thresholds; and on the threads backend, where messages arrive in the host's order.
+/* test_mpiprogs.c -- the datatype, operation, collective, topology and I/O programs of tests/mpi/
+ * on the simulator: on 1 to 16 ranks with MPICH's choices, and on six rank counts each (powers
+ * of two and others; the nonblocking collectives' program on 5 and 8) with --coll linear and
+ * with each algorithm of each collective they use forced in turn, so that every algorithm runs
+ * at the sizes the programs use, on both sides of MPICH's thresholds, blocking and not; and on
+ * the threads backend, where messages arrive in the host's order.
  *
  * Each program checks itself (tests/mpi/mtest.h): a run passes when every rank's main returns
  * 0 and the run ends cleanly.  The programs are linked in with their main renamed
@@ -37,26 +38,30 @@ static const struct {
 };
 enum { NPROGS = sizeof progs / sizeof progs[0] };
 
-/* The programs this driver runs: the datatype, operation, collective and
- * I/O ones (point-to-point's have their own). */
+/* The programs this driver runs: the datatype, operation, collective,
+ * topology and I/O ones (point-to-point's have their own). */
 static int mine(const char *name) {
   return !strncmp(name, "coll_", 5) || !strncmp(name, "dtype_", 6) || !strncmp(name, "op_", 3) ||
-         !strncmp(name, "io_", 3);
+         !strncmp(name, "topo_", 5) || !strncmp(name, "io_", 3);
 }
 
 /* Which collectives a program's checks depend on: the settings worth
  * forcing for it (the others run MPICH's choice and linear only). */
 static const struct {
   const char *prefix;
-  tsmpi_coll colls[6];
+  tsmpi_coll colls[COLL_N];
   int n;
+  int np[2];   /* forced on these rank counts only (0: on every one of forced_np) */
 } uses[] = {
-  {"coll_bcast", {COLL_BCAST, COLL_BARRIER}, 2},
-  {"coll_reduce", {COLL_REDUCE, COLL_ALLREDUCE}, 2},
-  {"coll_gather", {COLL_GATHER, COLL_GATHERV, COLL_SCATTER, COLL_SCATTERV, COLL_ALLGATHER, COLL_ALLGATHERV}, 6},
-  {"coll_alltoall", {COLL_ALLTOALL, COLL_ALLTOALLV}, 2},
-  {"coll_scan", {COLL_SCAN, COLL_EXSCAN, COLL_REDUCE_SCATTER, COLL_REDUCE_SCATTER_BLOCK}, 4},
-  {"coll_order", {COLL_REDUCE, COLL_ALLREDUCE, COLL_SCAN, COLL_EXSCAN}, 4},
+  {"coll_bcast", {COLL_BCAST, COLL_BARRIER}, 2, {0, 0}},
+  {"coll_reduce", {COLL_REDUCE, COLL_ALLREDUCE}, 2, {0, 0}},
+  {"coll_gather", {COLL_GATHER, COLL_GATHERV, COLL_SCATTER, COLL_SCATTERV, COLL_ALLGATHER, COLL_ALLGATHERV}, 6, {0, 0}},
+  {"coll_alltoall", {COLL_ALLTOALL, COLL_ALLTOALLV}, 2, {0, 0}},
+  {"coll_scan", {COLL_SCAN, COLL_EXSCAN, COLL_REDUCE_SCATTER, COLL_REDUCE_SCATTER_BLOCK}, 4, {0, 0}},
+  {"coll_order", {COLL_REDUCE, COLL_ALLREDUCE, COLL_SCAN, COLL_EXSCAN}, 4, {0, 0}},
+  {"coll_nbc", {COLL_BARRIER, COLL_BCAST, COLL_REDUCE, COLL_ALLREDUCE, COLL_GATHER, COLL_SCATTER, COLL_ALLGATHER,
+                COLL_ALLGATHERV, COLL_ALLTOALL, COLL_ALLTOALLV, COLL_ALLTOALLW, COLL_SCAN, COLL_EXSCAN,
+                COLL_REDUCE_SCATTER, COLL_REDUCE_SCATTER_BLOCK}, 15, {5, 8}},
 };
 
 /* Run one program on np ranks under one setting ("mpich", "linear",
@@ -100,6 +105,7 @@ static void settings(int p, int np, int all) {
   if (!all && !in(np, forced_np, 6)) return;
   for (size_t u = 0; u < sizeof uses / sizeof uses[0]; u++) {
     if (strncmp(progs[p].name, uses[u].prefix, strlen(uses[u].prefix))) continue;
+    if (!all && uses[u].np[0] && np != uses[u].np[0] && np != uses[u].np[1]) continue;
     for (int c = 0; c < uses[u].n; c++) {
       tsmpi_coll coll = uses[u].colls[c];
       for (int a = ALG_DISSEMINATION; a < ALG_N; a++) {
