@@ -314,8 +314,12 @@ void eng_hold(tsm *R, tsm_req *q) {
   R->held_tmp = q->tmp;
 }
 
-void eng_settle(tsm *R, tsm_req *q) {
+void eng_unhold(tsm *R, const tsm_req *q) {
   if (q->slot < 0 && q->ref && q->ref == R->held_ref) R->held_ref = NULL, R->held_tmp = NULL;
+}
+
+void eng_settle(tsm *R, tsm_req *q) {
+  eng_unhold(R, q);
   if (q->ref) {
     mp_settle(R->self, q->ref);
     q->ref = NULL;

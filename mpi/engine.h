@@ -42,6 +42,9 @@ void eng_settle(tsm *R, tsm_req *q);
  * eng_settle(q), the rank's end (eng_settle_all, a run stopped inside the
  * call) settles its message and frees its packed copy. */
 void eng_hold(tsm *R, tsm_req *q);
+/* q's send by reference is no longer the blocking call's (settled, or
+ * handed to a request of the program's, which settles it when it ends). */
+void eng_unhold(tsm *R, const tsm_req *q);
 /* The rank's end: every request's send and a blocking call's (eng_hold)
  * settled, while the buffers they refer to (the program's, the
  * collectives' scratch and schedules) are still there. */

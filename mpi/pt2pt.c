@@ -482,6 +482,7 @@ static int isendrecv(const char *fn, const void *sendbuf, int sendcount, MPI_Dat
   s.byref = sendbuf != recvbuf;
   tsm_send_start(R, &s, c);
   tsm_recv_fill(q, c, 0, recvbuf, recvcount, recvtype, source, recvtag, comm, fn);
+  eng_unhold(R, &s);
   q->ref = s.ref;   /* the send's, settled when the request ends */
   q->tmp = s.tmp;
   tsmpi_type_hold(recvtype);

@@ -352,5 +352,34 @@ build maps "$T/maps.c"
   && awk '$1 == 20000 && $4 == "199990000," && $5 < 65530 && $7 > 0 && $7 < 20000 { ok = 1 } END { exit !ok }' "$T/o" && ok \
   || bad "20,000 ranks: $(cat "$T/o" "$T/e" | head -3)"
 
+# MPI_Isendrecv's request ends, then MPI_Finalize with nothing between: the
+# send's reference is the request's, settled once (a rank's end settled it
+# a second time: a double free after the program's last line).  Closed form:
+# each rank gets its left neighbour's last value, rank * 10 + 3.
+cat > "$T/isr.c" << 'EOF'
+#include <mpi.h>
+#include <stdio.h>
+int main(int argc, char **argv) {
+  int r, n, out[4], in[4] = {-1, -1, -1, -1};
+  MPI_Init(&argc, &argv);
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  MPI_Comm_size(MPI_COMM_WORLD, &n);
+  for (int i = 0; i < 4; i++) out[i] = r * 10 + i;
+  MPI_Request q;
+  MPI_Isendrecv(out, 4, MPI_INT, (r + 1) % n, 0, in, 4, MPI_INT, (r + n - 1) % n, 0, MPI_COMM_WORLD, &q);
+  MPI_Wait(&q, MPI_STATUS_IGNORE);
+  printf("%d got %d\n", r, in[3]);
+  MPI_Finalize();
+  return 0;
+}
+EOF
+"$CC_" "$T/isr.c" -o "$T/isr" > "$T/build.log" 2>&1 || bad "isendrecv: $(cat "$T/build.log")"
+for np in 2 4; do
+  "$RUN" -np $np "$T/isr" > "$T/o" 2> "$T/e"; rc=$?
+  want=$(awk -v n=$np 'BEGIN { for (r = 0; r < n; r++) printf "%d got %d\n", r, ((r + n - 1) % n) * 10 + 3 }')
+  [ $rc -eq 0 ] && [ "$(sort -n "$T/o")" = "$want" ] && [ ! -s "$T/e" ] && ok \
+    || bad "isendrecv then finalize on $np ranks: exit $rc, $(cat "$T/o" "$T/e" | head -4)"
+done
+
 echo "cli_mpirun: $pass passed, $fail failed"
 [ $fail -eq 0 ]
