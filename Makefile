@@ -130,7 +130,7 @@ build/include/tilesim/mpi/%.h: mpi/%.h
 # The library every program tilesim-mpicc links is linked against: each
 # name tilesim-mpirun provides, and the word for a program run on its own
 # (mpirun/stublib.c); the predefined callbacks are mpi/callbacks.c's.
-$(STUBLIB): mpirun/stublib.c mpi/callbacks.c mpi/mpi.h mpi/mpi_funcs.h
+$(STUBLIB): mpirun/stublib.c mpi/callbacks.c mpi/mpi.h mpi/mpi_funcs.h mpi/io_sg.h
 	@mkdir -p $(dir $@)
 	$(CC) $(BASE) $(TSMPIINC) $(CFLAGS) -fPIC -shared -Wl,-soname,libtilesim_mpi.so -o $@ mpirun/stublib.c \
 	  mpi/callbacks.c

@@ -4,7 +4,8 @@
  *
  * It defines every name tilesim-mpirun gives programs (mpi.h's functions
  * and their PMPI_ names, implemented or not; the predefined attribute
- * callbacks; the compute calls; the basic-block counter of --count-blocks),
+ * callbacks; the compute calls; SimGrid's file-system calls; the
+ * basic-block counter of --count-blocks),
  * so that the linker refuses a program that calls a function tilesim has
  * never heard of, naming it, as it would with any MPI.  tilesim-mpirun never
  * loads this library: it provides the names itself.  A program run on its
@@ -13,6 +14,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "io_sg.h"
 #include "mpi.h"
 
 void __sanitizer_cov_trace_pc(void);
@@ -57,3 +59,8 @@ void smpi_execute_flops(double flops) { called(); }
 void smpi_execute(double seconds) { called(); }
 void smpi_execute_benched(double seconds) { called(); }
 void __sanitizer_cov_trace_pc(void) { called(); }
+tsmpi_sg_file *sg_file_open(const char *fullpath, void *data) { called(); }
+void sg_file_close(tsmpi_sg_file *fd) { called(); }
+void sg_file_unlink(tsmpi_sg_file *fd) { called(); }
+const char *sg_file_get_name(const tsmpi_sg_file *fd) { called(); }
+unsigned long long sg_file_get_size(const tsmpi_sg_file *fd) { called(); }

@@ -206,13 +206,38 @@ EOF
 # or fail the link of a program tilesim-mpirun could run.
 LIBDIR=$(dirname "$MCC")/../lib/tilesim
 if command -v nm > /dev/null 2>&1; then
-  nm -D --defined-only "$RUN" | awk '{ print $3 }' | grep -E '^(P?MPI_|tilesim_|smpi_|__sanitizer_cov)' | sort > "$T/exp"
-  nm -D --defined-only "$LIBDIR/libtilesim_mpi.so" | awk '{ print $3 }' | grep -E '^(P?MPI_|tilesim_|smpi_|__sanitizer_cov)' | sort > "$T/stub"
+  nm -D --defined-only "$RUN" | awk '{ print $3 }' | grep -E '^(P?MPI_|tilesim_|smpi_|sg_file_|__sanitizer_cov)' | sort > "$T/exp"
+  nm -D --defined-only "$LIBDIR/libtilesim_mpi.so" | awk '{ print $3 }' | grep -E '^(P?MPI_|tilesim_|smpi_|sg_file_|__sanitizer_cov)' | sort > "$T/stub"
   [ "$(wc -l < "$T/exp")" -gt 800 ] && cmp -s "$T/exp" "$T/stub" && ok \
     || bad "libtilesim_mpi.so and tilesim-mpirun's exports differ: $(diff "$T/exp" "$T/stub" | head -5)"
 else
   echo "cli_mpiwrap: skipped: libtilesim_mpi.so against tilesim-mpirun's exports (no nm)"
 fi
+# A program written for SMPI removes its files with SimGrid's sg_file calls
+# (MPICH's io tests as SimGrid keeps them): it links against
+# libtilesim_mpi.so and runs.  The reference: the file the program made
+# with MPI-IO is gone, and sg_file_get_name gives the path it was given.
+cat > "$T/sg.c" << 'EOF'
+#include <mpi.h>
+#include <stdio.h>
+typedef struct sg_file *sg_file_t;   /* simgrid/plugins/file_system.h's */
+sg_file_t sg_file_open(const char *fullpath, void *data);
+const char *sg_file_get_name(const struct sg_file *fd);
+void sg_file_unlink(sg_file_t fd);
+int main(int argc, char **argv) {
+  MPI_File f;
+  MPI_Init(&argc, &argv);
+  MPI_File_open(MPI_COMM_WORLD, argv[1], MPI_MODE_CREATE | MPI_MODE_WRONLY, MPI_INFO_NULL, &f);
+  MPI_File_close(&f);
+  sg_file_t s = sg_file_open(argv[1], NULL);
+  printf("%s\n", sg_file_get_name(s));
+  sg_file_unlink(s);
+  MPI_Finalize();
+  return 0;
+}
+EOF
+"$MCC" "$T/sg.c" -o "$T/sg" > "$T/o" 2>&1 && "$RUN" -np 1 "$T/sg" "$T/sgfile" > "$T/o" 2>&1 \
+  && [ "$(cat "$T/o")" = "$T/sgfile" ] && [ ! -e "$T/sgfile" ] && ok || bad "sg_file calls: $(cat "$T/o")"
 # Files not built by tilesim-mpicc: what they are, and how to build one.
 printf '#!/bin/sh\necho hi\n' > "$T/script"
 chmod +x "$T/script"
