@@ -22,9 +22,11 @@ PREFIX  ?= /usr/local
 CFLAGS  ?= -O3 -g
 WARN     = -Wall -Wextra -Wpedantic -Wshadow -Wstrict-prototypes -Wmissing-prototypes
 # -ffp-contract=off: no fused multiply-add, so every build of a tile weight
-# rounds the same way (the solver's exactness rests on it).
+# rounds the same way (the solver's exactness rests on it).  -I. alone:
+# every file names the tree's headers from the root ("sim/link.h"), so that
+# no folder of ours shadows a system header (<link.h>, <threads.h>).
 BASE     = -std=c11 -D_POSIX_C_SOURCE=200809L -ffp-contract=off -fno-math-errno \
-           -Iutil -Imp -Isim -Imachine -Ialgo -Iinput -Isurface -Irun -Iplots $(WARN)
+           -I. $(WARN)
 LDLIBS   = -lm -pthread
 SAN      = -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
 CHKFLAGS = -O1 -g -Werror $(SAN)
@@ -62,14 +64,17 @@ TESTS    = $(basename $(notdir $(wildcard tests/test_*.c)))
 PUBDIRS  = util mp sim machine
 PUBSRC   = $(filter-out %mpi.c,$(wildcard $(addsuffix /*.c,$(PUBDIRS))))
 PUBHDR   = build/include/tilesim/mp.h build/include/tilesim/tilesim.h
+# The installed headers name each other from their own folder: the tree's
+# "mp/mp.h" and "mpi/mpi_funcs.h" become "mp.h" and "mpi_funcs.h" there.
+INSTHDR  = sed -e 's|^\(.include "\)mpi*/|\1|'
 OBJCOPY ?= objcopy
 EXAMPLES = $(basename $(notdir $(wildcard examples/*.c)))
 EXFLAGS  = -std=c11 $(WARN) -Ibuild/include
 TESTLIB  = $(filter-out $(wildcard tests/test_*.c),$(wildcard tests/*.c))
 
-# The MPI layer (issue 19, mpi/): every mpi/*.c into libtsmpi.a.  mpi/ is on
-# no include path: its sources find mpi.h beside them, so that every other
-# file's <mpi.h> stays the real MPI's (make mpi).  The MPI programs of
+# The MPI layer (issue 19, mpi/): every mpi/*.c into libtsmpi.a.  Its files
+# name it "mpi/mpi.h", so that every other file's <mpi.h> stays the real
+# MPI's (make mpi).  The MPI programs of
 # tests/mpi/ (but contract.c, the MPI backend's, which only mpicc builds) are
 # built against it with -Impi and their main renamed tsmpi_main_NAME, and
 # run on the simulator by tests/test_mpiprogs.c (and under Open MPI by
@@ -86,7 +91,6 @@ TSMPIPFLAGS = -Impi -Wno-missing-prototypes
 RUNSRC     = $(filter-out mpirun/stublib.c,$(wildcard mpirun/*.c))
 MPIHDR     = build/include/tilesim/mpi/mpi.h build/include/tilesim/mpi/mpi_funcs.h
 STUBLIB    = build/lib/tilesim/libtilesim_mpi.so
-TSMPIINC   = -Impi -Impirun
 RUNLDFLAGS = -Wl,--dynamic-list=mpirun/exports.list
 RUNLIBS    = -ldl
 
@@ -119,25 +123,23 @@ $(CHK)/libtilesim.a: $(call chkobj,$(LIBSRC))
 
 build/include/tilesim/mp.h: mp/mp.h
 	@mkdir -p $(dir $@)
-	cp $< $@
+	$(INSTHDR) $< > $@
 build/include/tilesim/tilesim.h: machine/tilesim.h
 	@mkdir -p $(dir $@)
-	cp $< $@
+	$(INSTHDR) $< > $@
 # tilesim-mpicc's headers, as installed: include/tilesim/mpi/ (MPIHDR, above).
 build/include/tilesim/mpi/%.h: mpi/%.h
 	@mkdir -p $(dir $@)
-	cp $< $@
+	$(INSTHDR) $< > $@
 # The library every program tilesim-mpicc links is linked against: each
 # name tilesim-mpirun provides, and the word for a program run on its own
 # (mpirun/stublib.c); the predefined callbacks are mpi/callbacks.c's.
 $(STUBLIB): mpirun/stublib.c mpi/callbacks.c mpi/mpi.h mpi/mpi_funcs.h mpi/io_sg.h
 	@mkdir -p $(dir $@)
-	$(CC) $(BASE) $(TSMPIINC) $(CFLAGS) -fPIC -shared -Wl,-soname,libtilesim_mpi.so -o $@ mpirun/stublib.c \
+	$(CC) $(BASE) $(CFLAGS) -fPIC -shared -Wl,-soname,libtilesim_mpi.so -o $@ mpirun/stublib.c \
 	  mpi/callbacks.c
 
-# The runner's library and the MPI tools' include path.
-$(REL)/mpirun/%.o $(CHK)/mpirun/%.o: BASE += $(TSMPIINC)
-$(REL)/prog/tilesim-%.o $(CHK)/prog/tilesim-%.o: BASE += $(TSMPIINC)
+# The runner's library.
 $(REL)/libtsmpirun.a: $(call relobj,$(RUNSRC))
 	@rm -f $@
 	$(AR) rcs $@ $^
@@ -374,7 +376,7 @@ FUZZFLAGS  = -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-
 FUZZERS    = $(basename $(notdir $(wildcard tests/fuzz/fuzz_*.c)))
 $(FUZZ)/%.o: %.c
 	@mkdir -p $(dir $@)
-	$(FUZZCC) $(BASE) -Itests $(FUZZFLAGS) -fsanitize=fuzzer-no-link -MMD -MP -c $< -o $@
+	$(FUZZCC) $(BASE) $(FUZZFLAGS) -fsanitize=fuzzer-no-link -MMD -MP -c $< -o $@
 $(FUZZ)/libtilesim.a: $(patsubst %.c,$(FUZZ)/%.o,$(LIBSRC))
 	@rm -f $@
 	$(AR) rcs $@ $^
@@ -548,10 +550,12 @@ install-files:
 	cp tests/data/rtstruct/*.dcm tests/data/rtstruct/README.md $(SHARE)/rtstruct/
 	mkdir -p $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include/tilesim $(SHARE)/examples
 	cp $(ILIB) $(DESTDIR)$(PREFIX)/lib/libtilesim.a
-	cp mp/mp.h machine/tilesim.h $(DESTDIR)$(PREFIX)/include/tilesim/
+	$(INSTHDR) mp/mp.h > $(DESTDIR)$(PREFIX)/include/tilesim/mp.h
+	$(INSTHDR) machine/tilesim.h > $(DESTDIR)$(PREFIX)/include/tilesim/tilesim.h
 	mkdir -p $(DESTDIR)$(PREFIX)/include/tilesim/mpi
 	cp $(addprefix $(IBIN)/,$(MPITOOLS)) $(DESTDIR)$(PREFIX)/bin/
-	cp mpi/mpi.h mpi/mpi_funcs.h $(DESTDIR)$(PREFIX)/include/tilesim/mpi/
+	$(INSTHDR) mpi/mpi.h > $(DESTDIR)$(PREFIX)/include/tilesim/mpi/mpi.h
+	$(INSTHDR) mpi/mpi_funcs.h > $(DESTDIR)$(PREFIX)/include/tilesim/mpi/mpi_funcs.h
 	mkdir -p $(DESTDIR)$(PREFIX)/lib/tilesim
 	cp $(STUBLIB) $(DESTDIR)$(PREFIX)/lib/tilesim/
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' machine/tilesim.pc.in \

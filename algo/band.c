@@ -1,13 +1,13 @@
 /* band.c -- the dynamic program over one band, diagonal by diagonal
  * (section 4), with two diagonals of costs and one bit per node (section 7.3). */
-#include "band.h"
+#include "algo/band.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "kernel.h"
-#include "xmem.h"
+#include "algo/kernel.h"
+#include "util/xmem.h"
 
 typedef struct { int t0, t1; } run;   /* diagonals s+t0 .. s+t1 joined from U */
 

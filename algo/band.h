@@ -26,7 +26,7 @@
 
 #include <stdint.h>
 
-#include "weights.h"
+#include "algo/weights.h"
 
 typedef struct {
   int start;     /* the path runs from (start, 0) to (start+m, n) */

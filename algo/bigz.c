@@ -1,12 +1,12 @@
 /* bigz.c -- small signed big integers (bigz.h): sign and magnitude, 32-bit
  * limbs, least significant first; schoolbook multiplication; a quotient by
  * binary long division, rounded once. */
-#include "bigz.h"
+#include "algo/bigz.h"
 
 #include <math.h>
 #include <string.h>
 
-#include "xmem.h"
+#include "util/xmem.h"
 
 static void trim(bigz *r) {
   while (r->n > 0 && r->l[r->n - 1] == 0) r->n--;

@@ -1,13 +1,13 @@
 /* exact.c -- exact orientation: a floating-point filter, then an exact sum of
  * six products in a big integer. */
-#include "exact.h"
+#include "algo/exact.h"
 
 #include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <string.h>
 
-#include "xmem.h"
+#include "util/xmem.h"
 
 /* --- the exact path ------------------------------------------------------- */
 

@@ -1,12 +1,12 @@
 /* exactdist.c -- squared point-segment distances: an interval filter, then
  * big integers (exactdist.h). */
-#include "exactdist.h"
+#include "algo/exactdist.h"
 
 #include <math.h>
 #include <stdint.h>
 #include <string.h>
 
-#include "xmem.h"
+#include "util/xmem.h"
 
 /* --- big integers: sign and magnitude, 32-bit limbs, least first --------- */
 

@@ -17,7 +17,7 @@
 #ifndef EXACTDIST_H
 #define EXACTDIST_H
 
-#include "geom.h"
+#include "algo/geom.h"
 
 enum { EXACTDIST_POINT, EXACTDIST_LINE };
 

@@ -1,10 +1,10 @@
 /* gen.c -- generated contours for tests, benchmarks and the glass figure. */
-#include "gen.h"
+#include "algo/gen.h"
 
 #include <math.h>
 #include <stdlib.h>
 
-#include "xmem.h"
+#include "util/xmem.h"
 
 static const double PI = 3.14159265358979323846;
 

@@ -4,9 +4,9 @@
 #ifndef GEN_H
 #define GEN_H
 
-#include "contour.h"
-#include "geom.h"
-#include "rng.h"
+#include "input/contour.h"
+#include "algo/geom.h"
+#include "util/rng.h"
 
 /* n points, counter-clockwise, star-shaped about (cx, cy): sorted random
  * angles, radius r times a random factor in [1 - jitter, 1 + jitter]. */

@@ -1,9 +1,9 @@
 /* geom.c -- plane geometry of contours. */
-#include "geom.h"
+#include "algo/geom.h"
 
 #include <math.h>
 
-#include "exact.h"
+#include "algo/exact.h"
 
 double geom_area2_at(const vec2 *p, int n, int e) {
   if (n < 3) return 0;

@@ -1,11 +1,11 @@
 /* hull.c -- convex hull (monotone chain) and extreme points by edge angles. */
-#include "hull.h"
+#include "algo/hull.h"
 
 #include <math.h>
 #include <stdlib.h>
 
-#include "exact.h"
-#include "xmem.h"
+#include "algo/exact.h"
+#include "util/xmem.h"
 
 struct hull {
   int n;

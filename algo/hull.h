@@ -3,7 +3,7 @@
 #ifndef HULL_H
 #define HULL_H
 
-#include "geom.h"
+#include "algo/geom.h"
 
 typedef struct hull hull;
 

@@ -8,7 +8,7 @@
  * time and put the comparison mask straight into the word.  Every version
  * does the same IEEE operations in the same order (no fused multiply-add),
  * so all give bit-identical costs and bits. */
-#include "kernel.h"
+#include "algo/kernel.h"
 
 #include <string.h>
 

@@ -10,7 +10,7 @@
 
 #include <stdint.h>
 
-#include "weights.h"
+#include "algo/weights.h"
 
 /* Evaluate nodes (k-c, c) for columns c = a..b of diagonal k.
  * prev[] and cur[] are indexed by column.  prev[a-1 .. b] must be readable

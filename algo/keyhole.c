@@ -1,15 +1,15 @@
 /* keyhole.c -- the exact keyhole repair (keyhole.h; design note
  * shared/design/contours.md, step 3, after SlicerRT's FixKeyholes without
  * its tolerance). */
-#include "keyhole.h"
+#include "algo/keyhole.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "crossing.h"
-#include "exact.h"
-#include "xmem.h"
+#include "algo/crossing.h"
+#include "algo/exact.h"
+#include "util/xmem.h"
 
 /* A polygon whose points each remember an input point (src). */
 typedef struct {

@@ -1,10 +1,10 @@
 /* naive.c -- brute force and one-DP-per-start references. */
-#include "naive.h"
+#include "algo/naive.h"
 
 #include <math.h>
 #include <stdlib.h>
 
-#include "xmem.h"
+#include "util/xmem.h"
 
 typedef struct {
   const weights *w;

@@ -5,7 +5,7 @@
 #ifndef NAIVE_H
 #define NAIVE_H
 
-#include "weights.h"
+#include "algo/weights.h"
 
 /* Every acceptable path from every start row: C(m+n, m) paths per start.
  * For m, n <= 8 or so.  Returns the optimum in quanta, *start its first

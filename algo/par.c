@@ -1,10 +1,10 @@
 /* par.c -- what master and slave share: counters and message packing. */
-#include "par.h"
+#include "algo/par.h"
 
 #include <stdlib.h>
 #include <string.h>
 
-#include "xmem.h"
+#include "util/xmem.h"
 
 const char *par_kind_name(par_kind k) {
   static const char *name[PAR_KINDS] = {"boundary", "backtrack", "bounds", "control"};

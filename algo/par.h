@@ -43,9 +43,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "mp.h"
-#include "split.h"
-#include "weights.h"
+#include "mp/mp.h"
+#include "algo/split.h"
+#include "algo/weights.h"
 
 /* Tags (the simulator counts sends per tag, 0..15). */
 enum {

@@ -1,17 +1,17 @@
 /* par_block.c -- the blocked wavefront (--block k): blocks of diagonals,
  * staircase boundaries, cones of ghost nodes, one exchange per block (see
  * par_block.h; the paper's sections 5, 7.2, 8 and 9). */
-#include "par_block.h"
+#include "algo/par_block.h"
 
 #include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "kernel.h"
-#include "par_slave.h"
-#include "split.h"
-#include "xmem.h"
+#include "algo/kernel.h"
+#include "algo/par_slave.h"
+#include "algo/split.h"
+#include "util/xmem.h"
 
 enum { FAR = INT_MAX / 4 };   /* the boundary left of slave 0 and right of the last */
 

@@ -44,7 +44,7 @@
 #ifndef PAR_BLOCK_H
 #define PAR_BLOCK_H
 
-#include "band.h"
+#include "algo/band.h"
 
 typedef struct par_slave_ctx par_slave_ctx;
 typedef struct par_block par_block;   /* the blocks of the current path (opaque) */

@@ -1,13 +1,13 @@
 /* par_dynamic.c -- --schedule dynamic: bands as tasks to free slaves
  * (par_dynamic.h; the paper's sections 4, 6, 8 and 9). */
-#include "par_dynamic.h"
+#include "algo/par_dynamic.h"
 
 #include <stdlib.h>
 #include <string.h>
 
-#include "split.h"
-#include "tiling.h"
-#include "xmem.h"
+#include "algo/split.h"
+#include "algo/tiling.h"
+#include "util/xmem.h"
 
 typedef struct {
   int lo, hi;          /* the paths lo+1 .. hi-1 */

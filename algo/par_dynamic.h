@@ -29,7 +29,7 @@
 #ifndef PAR_DYNAMIC_H
 #define PAR_DYNAMIC_H
 
-#include "par_master.h"
+#include "algo/par_master.h"
 
 /* Start a pair: mu(0) with every slave its diagonals can use.  0 or -1. */
 int par_dynamic_begin(par_master_ctx *M);

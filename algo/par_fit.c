@@ -1,9 +1,9 @@
 /* par_fit.c -- --alloc fit: groups capped at what their bands can use
  * (par_fit.h; sections 6, 7.1, 7.2, 8 and 9). */
-#include "par_fit.h"
+#include "algo/par_fit.h"
 
-#include "split.h"
-#include "tiling.h"
+#include "algo/split.h"
+#include "algo/tiling.h"
 
 int par_fit_cap(par_master_ctx *M, int lo, int hi, const gpath *U, const gpath *L, int p) {
   if (lo >= 0 && hi - lo < 2) return 0;   /* no paths */

@@ -17,7 +17,7 @@
 #ifndef PAR_FIT_H
 #define PAR_FIT_H
 
-#include "par_master.h"
+#include "algo/par_master.h"
 
 /* At most p slaves for the group of the paths lo+1 .. hi-1 between U and L
  * (lo < 0: mu(0)): those the diagonals of its middle path can use.  The

@@ -1,17 +1,17 @@
 /* par_master.c -- the master: distribution, the divide and conquer over
  * groups of slaves (section 4's findallpaths), path assembly, restriction and
  * processor allocation (sections 5, 7.1). */
-#include "par_master.h"
+#include "algo/par_master.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "band.h"
-#include "par_dynamic.h"
-#include "par_fit.h"
-#include "xmem.h"
+#include "algo/band.h"
+#include "algo/par_dynamic.h"
+#include "algo/par_fit.h"
+#include "util/xmem.h"
 
 typedef par_group group;
 typedef par_master_ctx master;

@@ -5,9 +5,9 @@
 #ifndef PAR_MASTER_H
 #define PAR_MASTER_H
 
-#include "mp.h"
-#include "par.h"
-#include "tiling.h"
+#include "mp/mp.h"
+#include "algo/par.h"
+#include "algo/tiling.h"
 
 typedef struct {
   /* In: one pair of contours. */

@@ -1,18 +1,18 @@
 /* par_slave.c -- a slave: findonepath on its share of each diagonal, the
  * exchange of run-boundary costs, backtracking by message (paper, section 5),
  * and the whole band alone for a one-slave group. */
-#include "par_slave.h"
+#include "algo/par_slave.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "band.h"
-#include "kernel.h"
-#include "par_block.h"
-#include "tiling.h"
-#include "xmem.h"
+#include "algo/band.h"
+#include "algo/kernel.h"
+#include "algo/par_block.h"
+#include "algo/tiling.h"
+#include "util/xmem.h"
 
 typedef par_slave_ctx slave;
 

@@ -5,8 +5,8 @@
 #ifndef PAR_SLAVE_H
 #define PAR_SLAVE_H
 
-#include "mp.h"
-#include "par.h"
+#include "mp/mp.h"
+#include "algo/par.h"
 
 typedef struct {
   /* Filled by the slave: */
@@ -37,8 +37,8 @@ void par_slave(mp *self, void *ud);
 
 #include <stdint.h>
 
-#include "band.h"
-#include "weights.h"
+#include "algo/band.h"
+#include "algo/weights.h"
 
 enum { PAR_D_NORMAL, PAR_D_SINGLE, PAR_D_RUN };   /* how a diagonal is computed */
 

@@ -24,16 +24,16 @@
  * every comparison first compares the correctly rounded doubles (rounding to
  * nearest is monotone, so different rounded values decide) and goes to big
  * integers only when they are equal. */
-#include "polyunion.h"
+#include "algo/polyunion.h"
 
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "bigz.h"
-#include "exact.h"
-#include "xmem.h"
+#include "algo/bigz.h"
+#include "algo/exact.h"
+#include "util/xmem.h"
 
 typedef struct {
   vec2 a, b;   /* directed so that every polygon runs counter-clockwise */

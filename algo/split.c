@@ -1,5 +1,5 @@
 /* split.c -- the diagonal split and the processor allocation. */
-#include "split.h"
+#include "algo/split.h"
 
 #include <string.h>
 

@@ -8,7 +8,7 @@
 
 #include <stdint.h>
 
-#include "band.h"
+#include "algo/band.h"
 
 typedef enum { ALLOC_HALF, ALLOC_SIZE, ALLOC_FIT } split_alloc;
 

@@ -1,11 +1,11 @@
 /* tiling.c -- divide and conquer over non-crossing paths (section 3.2). */
-#include "tiling.h"
+#include "algo/tiling.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "xmem.h"
+#include "util/xmem.h"
 
 typedef struct {
   const weights *w;

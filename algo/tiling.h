@@ -14,8 +14,8 @@
 
 #include <stdint.h>
 
-#include "band.h"
-#include "weights.h"
+#include "algo/band.h"
+#include "algo/weights.h"
 
 typedef struct {
   double cost;       /* the optimum: quanta * quantum */

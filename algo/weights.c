@@ -1,13 +1,13 @@
 /* weights.c -- per-pair weight data: the quantum, per-point arrays, tables. */
-#include "weights.h"
+#include "algo/weights.h"
 
 #include <float.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "hull.h"
-#include "kernel.h"
-#include "xmem.h"
+#include "algo/hull.h"
+#include "algo/kernel.h"
+#include "util/xmem.h"
 
 const char *cost_name(cost_kind k) { return k == COST_SPAN ? "span" : "area"; }
 

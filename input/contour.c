@@ -7,7 +7,7 @@
  * both contours of a pair run the same way and the band does not twist; with
  * several contours on a slice surface/ orients them by nesting instead), and
  * z values that differ by jitter within one slice (snapped to one value). */
-#include "contour.h"
+#include "input/contour.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -16,12 +16,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "args.h"
-#include "crossing.h"
-#include "keyhole.h"
-#include "slicemerge.h"
-#include "strbuf.h"
-#include "xmem.h"
+#include "util/args.h"
+#include "algo/crossing.h"
+#include "algo/keyhole.h"
+#include "input/slicemerge.h"
+#include "util/strbuf.h"
+#include "util/xmem.h"
 
 /* A contour the reader cannot use (too few points, collinear, crossing
  * itself and no keyhole): named, then refused with the others or dropped. */

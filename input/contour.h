@@ -17,7 +17,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "geom.h"
+#include "algo/geom.h"
 
 typedef struct {
   double z;       /* the contour's plane */

@@ -1,5 +1,5 @@
 /* decimal.c -- DICOM decimal strings (decimal.h). */
-#include "decimal.h"
+#include "input/decimal.h"
 
 #include <locale.h>
 #include <math.h>
@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "xmem.h"
+#include "util/xmem.h"
 
 /* Powers of ten a double holds exactly. */
 static const double pow10_exact[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,

@@ -10,14 +10,14 @@
  *
  * Items and delimiters never carry a VR, in explicit VR too.  The reader is
  * recursive over sequences, at most DICOM_MAX_DEPTH deep. */
-#include "dicom.h"
+#include "input/dicom.h"
 
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "xmem.h"
+#include "util/xmem.h"
 
 #define UNDEFINED 0xFFFFFFFFu
 #define ITEM_END DICOM_TAG(0xFFFE, 0xE00D)

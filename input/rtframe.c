@@ -1,15 +1,15 @@
 /* rtframe.c -- least-squares normals and frames (rtframe.h). */
-#include "rtframe.h"
+#include "input/rtframe.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 
-#include "args.h"
-#include "decimal.h"
-#include "strbuf.h"
-#include "xmem.h"
+#include "util/args.h"
+#include "input/decimal.h"
+#include "util/strbuf.h"
+#include "util/xmem.h"
 
 /* Patient axis a (0 x, 1 y, 2 z) into the stack's z by the cyclic
  * permutation that keeps the axes right-handed: axial (x, y, z), sagittal

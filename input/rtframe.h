@@ -3,7 +3,7 @@
 #ifndef RTFRAME_H
 #define RTFRAME_H
 
-#include "rtstruct.h"
+#include "input/rtstruct.h"
 
 /* a . p for the point p[0..2]. */
 double rtframe_dot(const double a[3], const double *p);

@@ -14,7 +14,7 @@
  * decimal strings may carry blanks, exponents and -0, and are read whatever
  * the locale; contours come in any order and are sorted by their plane; an
  * ROI without contours, or contours naming an unknown ROI, give warnings. */
-#include "rtstruct.h"
+#include "input/rtstruct.h"
 
 #include <errno.h>
 #include <math.h>
@@ -23,11 +23,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "decimal.h"
-#include "dicom.h"
-#include "rtframe.h"
-#include "strbuf.h"
-#include "xmem.h"
+#include "input/decimal.h"
+#include "input/dicom.h"
+#include "input/rtframe.h"
+#include "util/strbuf.h"
+#include "util/xmem.h"
 
 #define MODALITY DICOM_TAG(0x0008, 0x0060)
 #define SOP_CLASS DICOM_TAG(0x0008, 0x0016)

@@ -36,7 +36,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include "contour.h"
+#include "input/contour.h"
 
 typedef enum { RTSTRUCT_AXIAL, RTSTRUCT_SAGITTAL, RTSTRUCT_CORONAL, RTSTRUCT_OBLIQUE } rtstruct_plane;
 

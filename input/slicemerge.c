@@ -1,16 +1,16 @@
 /* slicemerge.c -- duplicates dropped, overlapping contours merged
  * (slicemerge.h). */
-#include "slicemerge.h"
+#include "input/slicemerge.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "args.h"
-#include "crossing.h"
-#include "exact.h"
-#include "polyunion.h"
-#include "xmem.h"
+#include "util/args.h"
+#include "algo/crossing.h"
+#include "algo/exact.h"
+#include "algo/polyunion.h"
+#include "util/xmem.h"
 
 /* ---------------------------------------------------------------- order */
 

@@ -26,8 +26,8 @@
 
 #include <stddef.h>
 
-#include "contour.h"
-#include "strbuf.h"
+#include "input/contour.h"
+#include "util/strbuf.h"
 
 enum { SLICEMERGE_UNION = 1, SLICEMERGE_VERBOSE = 2 };
 

@@ -1,17 +1,17 @@
 /* launch.c -- an mp program on the simulator, threads or MPI (launch.h). */
-#include "launch.h"
+#include "machine/launch.h"
 
 #include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "atomicfile.h"
-#include "progress.h"
-#include "trace.h"
-#include "wallclock.h"
-#include "xmem.h"
+#include "util/atomicfile.h"
+#include "util/progress.h"
+#include "sim/trace.h"
+#include "util/wallclock.h"
+#include "util/xmem.h"
 #ifdef TILESIM_MPI
-#include "launch_mpi.h"
+#include "machine/launch_mpi.h"
 #endif
 
 sim *launch_sim_new(const machine_config *mc, int nranks, char *err, size_t errlen) {

@@ -12,8 +12,8 @@
 
 #include <stddef.h>
 
-#include "machine.h"
-#include "tilesim.h"
+#include "machine/machine.h"
+#include "machine/tilesim.h"
 
 /* The simulator of mc for nranks ranks, placed by machine_place (no trace:
  * launch_run adds mc's).  NULL and a message if it cannot be built. */

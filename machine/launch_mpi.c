@@ -1,9 +1,9 @@
 /* launch_mpi.c -- launch_run on MPI processes (launch_mpi.h). */
-#include "launch_mpi.h"
+#include "machine/launch_mpi.h"
 
 #include <mpi.h>
 
-#include "mp_mpi.h"
+#include "mp/mp_mpi.h"
 
 int launch_mpi_run(const machine_config *mc, int nranks, const mp_proc *procs, tilesim_stats *st,
                    char *err, size_t errlen) {

@@ -5,7 +5,7 @@
 
 #include <stddef.h>
 
-#include "launch.h"
+#include "machine/launch.h"
 
 /* MPI must be initialised.  nranks must be the mpirun's size; this process
  * runs procs[its rank].  Rank 0's *st is the whole run's (messages, bytes,

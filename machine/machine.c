@@ -1,14 +1,14 @@
 /* machine.c -- the machine's options, its placement and the printed map (machine.h). */
-#include "machine.h"
+#include "machine/machine.h"
 
 #include <limits.h>
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "args.h"
-#include "trace.h"
-#include "xmem.h"
+#include "util/args.h"
+#include "sim/trace.h"
+#include "util/xmem.h"
 #ifdef TILESIM_MPI
 #include <mpi.h>
 #endif

@@ -24,9 +24,9 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "place.h"
-#include "sim.h"
-#include "threads.h"
+#include "sim/place.h"
+#include "sim/sim.h"
+#include "mp/threads.h"
 
 typedef enum {
   MACHINE_SIM,       /* the simulated machine: simulated seconds */

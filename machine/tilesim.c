@@ -1,15 +1,15 @@
 /* tilesim.c -- the testbed's public face (tilesim.h): a whole program, and
  * runs one at a time, over the machine (machine.h) and launch.h. */
-#include "tilesim.h"
+#include "machine/tilesim.h"
 
 #include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "args.h"
-#include "atomicfile.h"
-#include "launch.h"
-#include "xmem.h"
+#include "util/args.h"
+#include "util/atomicfile.h"
+#include "machine/launch.h"
+#include "util/xmem.h"
 #ifdef TILESIM_MPI
 #include <mpi.h>
 #endif

@@ -47,7 +47,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "mp.h"
+#include "mp/mp.h"
 
 #ifdef __cplusplus
 extern "C" {

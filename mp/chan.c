@@ -1,10 +1,10 @@
 /* chan.c -- the threads backend's channels (chan.h). */
-#include "chan.h"
+#include "mp/chan.h"
 
 #include <stdlib.h>
 #include <string.h>
 
-#include "xmem.h"
+#include "util/xmem.h"
 
 chunk *chunk_new(void) {
   chunk *c = aligned_alloc(LINE, CHUNK);

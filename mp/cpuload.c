@@ -1,13 +1,13 @@
 /* cpuload.c -- the machine's runnable threads, sampled from /proc/loadavg. */
 #define _GNU_SOURCE 1
-#include "cpuload.h"
+#include "mp/cpuload.h"
 
 #include <fcntl.h>
 #include <sched.h>
 #include <stdlib.h>
 #include <unistd.h>
 
-#include "wallclock.h"
+#include "util/wallclock.h"
 
 int cpuload_cpus(void) {
 #if defined(__linux__) && defined(CPU_COUNT)

@@ -1,6 +1,6 @@
 /* mp.c -- the message-passing calls, dispatched to the backend behind the
  * handle; the calling rank (mp_self) and the way out of a rank (mp_exit). */
-#include "mp.h"
+#include "mp/mp.h"
 
 #include <setjmp.h>
 #include <stdio.h>

@@ -22,7 +22,7 @@
  *   <-----------------END------------                       ---------END------>
  *   --FINAL-->                        sums, errors                 <--FINAL--
  */
-#include "mp_mpi.h"
+#include "mp/mp_mpi.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -31,9 +31,9 @@
 #include <string.h>
 #include <time.h>
 
-#include "cpuload.h"
-#include "errlog.h"
-#include "xmem.h"
+#include "mp/cpuload.h"
+#include "util/errlog.h"
+#include "util/xmem.h"
 #if defined(__linux__)
 #include <sys/prctl.h>
 #endif

@@ -68,7 +68,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "mp.h"
+#include "mp/mp.h"
 
 enum { MPM_TAG_MAX = 32767 - 16 };   /* the largest mp tag (MPI guarantees 32767) */
 

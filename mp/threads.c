@@ -54,7 +54,7 @@
  * message, under the same mutex; so `sleeping == live` (under g) means every
  * live rank waits for a message nobody can send any more: a deadlock, never
  * a race. */
-#include "threads.h"
+#include "mp/threads.h"
 
 #include <math.h>
 #include <pthread.h>
@@ -67,11 +67,11 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "chan.h"
-#include "cpuload.h"
-#include "errlog.h"
-#include "wallclock.h"
-#include "xmem.h"
+#include "mp/chan.h"
+#include "mp/cpuload.h"
+#include "util/errlog.h"
+#include "util/wallclock.h"
+#include "util/xmem.h"
 
 void mpt_config_init(mpt_config *cfg) {
   cfg->spin_ns = 1000000;

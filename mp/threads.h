@@ -104,7 +104,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "mp.h"
+#include "mp/mp.h"
 
 typedef struct {
   long spin_ns;   /* how long a waiting recv watches its channels before it

@@ -4,14 +4,14 @@
  * callback that frees its keyval, gets the attribute being deleted, sets
  * another): nothing here holds a pointer into the tables across a call
  * of one, and every lookup is made again after it. */
-#include "attr.h"
+#include "mpi/attr.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "errh.h"
-#include "xmem.h"
+#include "mpi/errh.h"
+#include "util/xmem.h"
 
 enum { KV_BASE = 16 };
 

@@ -28,7 +28,7 @@
 #ifndef TSMPI_ATTR_H
 #define TSMPI_ATTR_H
 
-#include "state.h"
+#include "mpi/state.h"
 
 enum { TSM_AK_COMM = 1, TSM_AK_TYPE = 2, TSM_AK_WIN = 3 };
 

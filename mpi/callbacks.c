@@ -1,7 +1,7 @@
 /* callbacks.c -- the predefined attribute callbacks MPI 3.1 names (section 6.7.2): null copy,
  * duplicate, null delete, for communicators, types and windows, and the deprecated MPI-1 ones
  * (declared in mpi.h). */
-#include "mpi.h"
+#include "mpi/mpi.h"
 
 /* Copy nothing: the new object has no such attribute. */
 #define NULL_COPY(name, handle)                                                            \

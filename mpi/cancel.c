@@ -12,8 +12,8 @@
  * request's cancel_fn); a nonblocking collective's is refused (MPI 3.1
  * section 5.12: erroneous).  Whether a request was cancelled is its status's
  * to say, once the Wait or Test that completes it has it. */
-#include "engine.h"
-#include "err.h"
+#include "mpi/engine.h"
+#include "mpi/err.h"
 
 int PMPI_Cancel(MPI_Request *request) {
   static const char fn[] = "MPI_Cancel";

@@ -26,7 +26,7 @@
 
 #include <stddef.h>
 
-#include "mpi.h"
+#include "mpi/mpi.h"
 
 /* ==== choosing ============================================================ */
 

@@ -8,8 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "coll.h"
-#include "coll_sched.h"
+#include "mpi/coll.h"
+#include "mpi/coll_sched.h"
 
 /* Post every receive, then every send, in rank order; wait for all. */
 void tsmpi_alltoallv_linear(tsmpi_sched *s, const void *sbuf, const size_t *sc, const size_t *sd, void *rbuf,

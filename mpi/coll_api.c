@@ -15,13 +15,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "coll.h"
-#include "coll_inter.h"
-#include "dtype.h"
-#include "mp.h"
-#include "op.h"
-#include "p2p.h"
-#include "coll_sched.h"
+#include "mpi/coll.h"
+#include "mpi/coll_inter.h"
+#include "mpi/dtype.h"
+#include "mp/mp.h"
+#include "mpi/op.h"
+#include "mpi/p2p.h"
+#include "mpi/coll_sched.h"
 
 /* ==== barrier and broadcast =============================================== */
 

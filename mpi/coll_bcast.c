@@ -6,8 +6,8 @@
  * the linear ones as Open MPI's coll/basic component (ompi/mca/coll/basic). */
 #include <string.h>
 
-#include "coll.h"
-#include "coll_sched.h"
+#include "mpi/coll.h"
+#include "mpi/coll_sched.h"
 
 /* ==== barrier ============================================================= */
 

@@ -5,13 +5,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "coll.h"
-#include "dtype.h"
-#include "mp.h"
-#include "op.h"
-#include "nbc.h"
-#include "p2p.h"
-#include "coll_sched.h"
+#include "mpi/coll.h"
+#include "mpi/dtype.h"
+#include "mp/mp.h"
+#include "mpi/op.h"
+#include "mpi/nbc.h"
+#include "mpi/p2p.h"
+#include "mpi/coll_sched.h"
 
 static void describe(void *ud, char *buf, size_t len) {
   const tsmpi_label *l = ud;

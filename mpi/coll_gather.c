@@ -9,8 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "coll.h"
-#include "coll_sched.h"
+#include "mpi/coll.h"
+#include "mpi/coll_sched.h"
 
 /* ==== gather and scatter ================================================== */
 

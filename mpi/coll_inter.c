@@ -10,12 +10,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "coll.h"
-#include "coll_inter.h"
-#include "dtype.h"
-#include "err.h"
-#include "label.h"
-#include "p2p.h"
+#include "mpi/coll.h"
+#include "mpi/coll_inter.h"
+#include "mpi/dtype.h"
+#include "mpi/err.h"
+#include "mpi/label.h"
+#include "mpi/p2p.h"
 
 enum { T_BARRIER = 1, T_BCAST, T_GATHER, T_GATHERV, T_SCATTER, T_SCATTERV, T_ALLGATHER, T_ALLGATHERV, T_ALLTOALL,
        T_ALLTOALLV, T_ALLTOALLW, T_REDUCE, T_ALLREDUCE, T_REDUCE_SCATTER };

@@ -22,7 +22,7 @@
 #ifndef TSMPI_COLL_INTER_H
 #define TSMPI_COLL_INTER_H
 
-#include "mpi.h"
+#include "mpi/mpi.h"
 
 int tsmpi_inter_barrier(MPI_Comm comm);
 int tsmpi_inter_bcast(void *buffer, int count, MPI_Datatype datatype, int root, MPI_Comm comm);

@@ -13,11 +13,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "coll.h"
-#include "coll_sched.h"
-#include "dtype.h"
-#include "p2p.h"
-#include "topo.h"
+#include "mpi/coll.h"
+#include "mpi/coll_sched.h"
+#include "mpi/dtype.h"
+#include "mpi/p2p.h"
+#include "mpi/topo.h"
 
 /* The exchange: the packed block sb[l] (sn[l] bytes) to destination l, block
  * k of the sources' into rb[k] (rn[k] bytes). */

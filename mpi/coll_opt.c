@@ -3,8 +3,8 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "coll.h"
-#include "tsmpi.h"
+#include "mpi/coll.h"
+#include "mpi/tsmpi.h"
 
 static const char *const coll_names[COLL_N] = {
   "barrier", "bcast", "reduce", "allreduce", "gather", "gatherv", "scatter", "scatterv", "allgather",

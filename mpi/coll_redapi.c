@@ -10,12 +10,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "coll.h"
-#include "coll_inter.h"
-#include "dtype.h"
-#include "op.h"
-#include "p2p.h"
-#include "coll_sched.h"
+#include "mpi/coll.h"
+#include "mpi/coll_inter.h"
+#include "mpi/dtype.h"
+#include "mpi/op.h"
+#include "mpi/p2p.h"
+#include "mpi/coll_sched.h"
 
 /* The reduction's description for the algorithms. */
 static tsmpi_red red_of(MPI_Datatype dt, MPI_Op op) {

@@ -10,8 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "coll.h"
-#include "coll_sched.h"
+#include "mpi/coll.h"
+#include "mpi/coll_sched.h"
 
 /* acc = acc op right: the result lands in the right operand's buffer
  * (op.h), so it goes through scratch and back. */

@@ -7,8 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "coll.h"
-#include "coll_sched.h"
+#include "mpi/coll.h"
+#include "mpi/coll_sched.h"
 
 /* ==== scan and exscan ===================================================== */
 

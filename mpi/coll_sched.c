@@ -1,13 +1,13 @@
 /* coll_sched.c -- schedules: building, running in line, stepping as messages arrive (coll_sched.h). */
-#include "coll_sched.h"
+#include "mpi/coll_sched.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "dtype.h"
-#include "op.h"
-#include "p2p.h"
+#include "mpi/dtype.h"
+#include "mpi/op.h"
+#include "mpi/p2p.h"
 
 enum { OP_SEND, OP_RECV, OP_ISEND, OP_IRECV, OP_WAITALL, OP_REDUCE, OP_COPY, OP_UNPACK, OP_CALL };
 

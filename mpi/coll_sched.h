@@ -29,7 +29,7 @@
 
 #include <stddef.h>
 
-#include "coll.h"
+#include "mpi/coll.h"
 
 typedef struct tsmpi_sched tsmpi_sched;
 

@@ -2,9 +2,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "coll.h"
-#include "op.h"
-#include "p2p.h"
+#include "mpi/coll.h"
+#include "mpi/op.h"
+#include "mpi/p2p.h"
 
 /* A message longer than the receive: the ranks disagree on the counts. */
 static int truncated(const tsmpi_cg *g, int src) {

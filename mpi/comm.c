@@ -12,18 +12,18 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "attr.h"
-#include "coll.h"
-#include "comm.h"
-#include "engine.h"
-#include "errh.h"
-#include "group.h"
-#include "info.h"
-#include "err.h"
-#include "label.h"
-#include "pt2pt.h"
-#include "topo.h"
-#include "xmem.h"
+#include "mpi/attr.h"
+#include "mpi/coll.h"
+#include "mpi/comm.h"
+#include "mpi/engine.h"
+#include "mpi/errh.h"
+#include "mpi/group.h"
+#include "mpi/info.h"
+#include "mpi/err.h"
+#include "mpi/label.h"
+#include "mpi/pt2pt.h"
+#include "mpi/topo.h"
+#include "util/xmem.h"
 
 /* ==== rank and size ======================================================= */
 

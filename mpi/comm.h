@@ -17,7 +17,7 @@
 
 #include <stddef.h>
 
-#include "state.h"
+#include "mpi/state.h"
 
 enum { PAIR_BYTES = CTX_PAIRS / 8 };
 

@@ -5,10 +5,10 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "attr.h"
-#include "dtype.h"
-#include "err.h"
-#include "errh.h"
+#include "mpi/attr.h"
+#include "mpi/dtype.h"
+#include "mpi/err.h"
+#include "mpi/errh.h"
 
 /* ==== keyvals ============================================================= */
 

@@ -1,5 +1,5 @@
 /* dtype.c -- datatypes: the predefined table, the rank's created types, pack and unpack (dtype.h). */
-#include "dtype.h"
+#include "mpi/dtype.h"
 
 #include <complex.h>
 #include <limits.h>
@@ -9,7 +9,7 @@
 #include <string.h>
 #include <wchar.h>
 
-#include "p2p.h"
+#include "mpi/p2p.h"
 
 /* ==== the predefined types ================================================ */
 

@@ -32,7 +32,7 @@
 
 #include <stddef.h>
 
-#include "mpi.h"
+#include "mpi/mpi.h"
 
 /* ==== what point-to-point and the collectives call ======================== */
 

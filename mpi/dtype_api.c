@@ -12,9 +12,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "dtype.h"
-#include "mpi.h"
-#include "p2p.h"
+#include "mpi/dtype.h"
+#include "mpi/mpi.h"
+#include "mpi/p2p.h"
 
 /* ==== argument checks ===================================================== */
 

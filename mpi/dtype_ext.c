@@ -1,7 +1,7 @@
 /* dtype_ext.c -- the external32 representation (dtype_ext.h) and MPI_Pack_external,
  * MPI_Unpack_external, MPI_Pack_external_size (MPI 3.1 section 4.3; errors to MPI_COMM_WORLD's
  * handler, as for every call with no communicator). */
-#include "dtype_ext.h"
+#include "mpi/dtype_ext.h"
 
 #include <float.h>
 #include <math.h>
@@ -9,8 +9,8 @@
 #include <string.h>
 #include <wchar.h>
 
-#include "dtype.h"
-#include "p2p.h"
+#include "mpi/dtype.h"
+#include "mpi/p2p.h"
 
 /* ==== one basic value ===================================================== */
 

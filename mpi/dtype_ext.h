@@ -12,7 +12,7 @@
 #ifndef TSMPI_DTYPE_EXT_H
 #define TSMPI_DTYPE_EXT_H
 
-#include "mpi.h"
+#include "mpi/mpi.h"
 
 /* Bytes of one element of dt (checked) in external32. */
 MPI_Count tsmpi_ext32_size(MPI_Datatype dt);

@@ -36,13 +36,13 @@
  * is the one that receive takes); a blocking receive promises its buffer
  * while it waits; an unexpected message is held (mp_recv_msg) and read
  * into the receive that matches it. */
-#include "engine.h"
+#include "mpi/engine.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "xmem.h"
+#include "util/xmem.h"
 
 /* ==== mp calls ============================================================ */
 

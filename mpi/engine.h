@@ -22,7 +22,7 @@
 
 #include <stddef.h>
 
-#include "state.h"
+#include "mpi/state.h"
 
 /* Messages of this many bytes or more are worth a promise (shorter ones are
  * copied twice: cheaper than the bookkeeping). */

@@ -1,6 +1,6 @@
 /* env.c -- MPI's environment calls: Init, Finalize, Abort, the clock, the
  * version, the processor's name; the runner's settings and a rank's end. */
-#include "env.h"
+#include "mpi/env.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -8,13 +8,13 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "attr.h"
-#include "engine.h"
-#include "err.h"
-#include "info.h"
-#include "spin.h"
-#include "state.h"
-#include "xmem.h"
+#include "mpi/attr.h"
+#include "mpi/engine.h"
+#include "mpi/err.h"
+#include "mpi/info.h"
+#include "mpi/spin.h"
+#include "mpi/state.h"
+#include "util/xmem.h"
 
 const char tsm_marks[2];
 

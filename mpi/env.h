@@ -16,7 +16,7 @@
 #ifndef TSMPI_ENV_H
 #define TSMPI_ENV_H
 
-#include "mp.h"
+#include "mp/mp.h"
 
 /* ==== per-run settings (before the ranks start; they are read by every
  * rank and written by none) ================================================ */

@@ -1,12 +1,12 @@
 /* err.c -- error handlers, argument checks, error classes and strings. */
-#include "err.h"
+#include "mpi/err.h"
 
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
 
-#include "env.h"
-#include "errh.h"
+#include "mpi/env.h"
+#include "mpi/errh.h"
 
 /* ==== raising ============================================================= */
 

@@ -10,7 +10,7 @@
 #ifndef TSMPI_ERR_H
 #define TSMPI_ERR_H
 
-#include "state.h"
+#include "mpi/state.h"
 
 /* An error of call fn in R under c's handler (c NULL: MPI_COMM_WORLD's):
  * returns cls under MPI_ERRORS_RETURN, and after calling the program's

@@ -1,14 +1,14 @@
 /* errh.c -- error handlers (create, set, get, free, call; the removed
  * MPI-1 names), and the error classes, codes and strings a program adds
  * (errh.h). */
-#include "errh.h"
+#include "mpi/errh.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "err.h"
-#include "xmem.h"
+#include "mpi/err.h"
+#include "util/xmem.h"
 
 typedef struct {
   int kind;          /* TSM_EH_*; 0: a free slot */

@@ -19,7 +19,7 @@
 #ifndef TSMPI_ERRH_H
 #define TSMPI_ERRH_H
 
-#include "state.h"
+#include "mpi/state.h"
 
 enum { TSM_EH_COMM = 1, TSM_EH_WIN = 2, TSM_EH_FILE = 3 };
 

@@ -1,17 +1,17 @@
 /* funcs.c -- the list as data, the unimplemented-call hook, and the stubs of every function
  * tilesim does not implement, with their PMPI_ names (funcs.h).  The stubs are made from
  * mpi_funcs.h by the preprocessor: the list is the only place to edit. */
-#include "funcs.h"
+#include "mpi/funcs.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "mp.h"
-#include "mpi.h"
+#include "mp/mp.h"
+#include "mpi/mpi.h"
 
 const tsmpi_func_info tsmpi_funcs[] = {
 #define TSMPI_FN(impl, chapter, ret, name, params, args) {#name, #chapter, impl},
-#include "mpi_funcs.h"
+#include "mpi/mpi_funcs.h"
 #undef TSMPI_FN
 };
 const int tsmpi_nfuncs = (int)(sizeof tsmpi_funcs / sizeof tsmpi_funcs[0]);
@@ -36,5 +36,5 @@ void tsmpi_unimplemented(const char *name) {
   ret name params { tsmpi_unimplemented(#name); }        \
   ret P##name params { tsmpi_unimplemented(#name); }
 #define TSMPI_FN(impl, chapter, ret, name, params, args) TSMPI_STUB_##impl(ret, name, params)
-#include "mpi_funcs.h"
+#include "mpi/mpi_funcs.h"
 #undef TSMPI_FN

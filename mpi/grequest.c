@@ -15,8 +15,8 @@
  * a deadlock naming MPI_Grequest_start. */
 #include <stdlib.h>
 
-#include "err.h"
-#include "xmem.h"
+#include "mpi/err.h"
+#include "util/xmem.h"
 
 typedef struct {
   MPI_Grequest_query_function *query;

@@ -1,12 +1,12 @@
 /* group.c -- groups (MPI 3.1 section 6.3): ordered sets of ranks, named by
  * their MPI_COMM_WORLD ranks and shared, counted, with communicators. */
-#include "group.h"
+#include "mpi/group.h"
 
 #include <stdlib.h>
 #include <string.h>
 
-#include "err.h"
-#include "xmem.h"
+#include "mpi/err.h"
+#include "util/xmem.h"
 
 /* ==== handles ============================================================= */
 

@@ -3,7 +3,7 @@
 #ifndef TSMPI_GROUP_H
 #define TSMPI_GROUP_H
 
-#include "state.h"
+#include "mpi/state.h"
 
 /* The ranks a group handle of R names (MPI_GROUP_EMPTY included), or NULL
  * (MPI_GROUP_NULL, freed, not a group). */

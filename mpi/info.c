@@ -1,13 +1,13 @@
 /* info.c -- info objects, MPI_INFO_ENV, and communicators' hints (info.h). */
-#include "info.h"
+#include "mpi/info.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "comm.h"
-#include "err.h"
-#include "xmem.h"
+#include "mpi/comm.h"
+#include "mpi/err.h"
+#include "util/xmem.h"
 
 typedef struct entry entry;
 struct entry {

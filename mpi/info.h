@@ -20,7 +20,7 @@
 #ifndef TSMPI_INFO_H
 #define TSMPI_INFO_H
 
-#include "state.h"
+#include "mpi/state.h"
 
 /* A communicator's hints word from info (MPI_INFO_NULL: none): `given`
  * bits in the low byte, their values ("true") in the next; *hints keeps

@@ -18,11 +18,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "comm.h"
-#include "err.h"
-#include "group.h"
-#include "label.h"
-#include "xmem.h"
+#include "mpi/comm.h"
+#include "mpi/err.h"
+#include "mpi/group.h"
+#include "mpi/label.h"
+#include "util/xmem.h"
 
 /* ==== agreeing ============================================================ */
 

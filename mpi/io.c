@@ -1,6 +1,6 @@
 /* io.c -- MPI-IO's files: the rank's table, the shared object of an open, opening and closing,
  * errors under a file's handler, and the time each access costs (io.h). */
-#include "io.h"
+#include "mpi/io.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -12,14 +12,14 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "coll.h"
-#include "coll_sched.h"
-#include "dtype.h"
-#include "err.h"
-#include "errh.h"
-#include "mp.h"
-#include "p2p.h"
-#include "state.h"
+#include "mpi/coll.h"
+#include "mpi/coll_sched.h"
+#include "mpi/dtype.h"
+#include "mpi/err.h"
+#include "mpi/errh.h"
+#include "mp/mp.h"
+#include "mpi/p2p.h"
+#include "mpi/state.h"
 
 /* ==== the rank's table ==================================================== */
 

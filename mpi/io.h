@@ -22,9 +22,9 @@
 
 #include <pthread.h>
 
-#include "io_model.h"
-#include "io_view.h"
-#include "mpi.h"
+#include "mpi/io_model.h"
+#include "mpi/io_view.h"
+#include "mpi/mpi.h"
 
 /* What the ranks of one open share. */
 typedef struct {

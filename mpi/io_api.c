@@ -13,11 +13,11 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "dtype.h"
-#include "errh.h"
-#include "io.h"
-#include "mp.h"
-#include "p2p.h"
+#include "mpi/dtype.h"
+#include "mpi/errh.h"
+#include "mpi/io.h"
+#include "mp/mp.h"
+#include "mpi/p2p.h"
 
 /* ==== open, close, delete ================================================= */
 

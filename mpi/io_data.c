@@ -17,11 +17,11 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "dtype.h"
-#include "io.h"
-#include "p2p.h"
-#include "pt2pt.h"
-#include "state.h"
+#include "mpi/dtype.h"
+#include "mpi/io.h"
+#include "mpi/p2p.h"
+#include "mpi/pt2pt.h"
+#include "mpi/state.h"
 
 enum { RD, WR };
 enum { AT, INDIV, SHARED, ORDERED };   /* where an access is */

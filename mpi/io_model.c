@@ -1,6 +1,6 @@
 /* io_model.c -- the file systems of the run: mounts, host paths, the servers' queues
  * (io_model.h), and the runner's --fs option (tsmpi.h). */
-#include "io_model.h"
+#include "mpi/io_model.h"
 
 #include <errno.h>
 #include <pthread.h>
@@ -10,8 +10,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "args.h"
-#include "tsmpi.h"
+#include "util/args.h"
+#include "mpi/tsmpi.h"
 
 enum { MOUNTS_MAX = 16 };
 

@@ -1,5 +1,5 @@
 /* io_sg.c -- SimGrid's file-system calls on the machine's file systems (io_sg.h). */
-#include "io_sg.h"
+#include "mpi/io_sg.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -7,8 +7,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "io.h"
-#include "mp.h"
+#include "mpi/io.h"
+#include "mp/mp.h"
 
 struct tsmpi_sg_file {
   char path[TSMPI_PATH_MAX];   /* as the program named it */

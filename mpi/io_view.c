@@ -1,12 +1,12 @@
 /* io_view.c -- file views: the filetype's runs of data, and the stream's bytes to the file's
  * (io_view.h). */
-#include "io_view.h"
+#include "mpi/io_view.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "dtype.h"
+#include "mpi/dtype.h"
 
 void tsmpi_view_default(tsmpi_view *v) {
   static MPI_Aint zero = 0, one = 1;

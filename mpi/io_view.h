@@ -16,7 +16,7 @@
 
 #include <stddef.h>
 
-#include "mpi.h"
+#include "mpi/mpi.h"
 
 typedef struct {
   MPI_Offset disp;          /* bytes to the first tile */

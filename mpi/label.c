@@ -1,5 +1,5 @@
 /* label.c -- the words of a blocked MPI call (label.h). */
-#include "label.h"
+#include "mpi/label.h"
 
 #include <stdarg.h>
 #include <stdio.h>

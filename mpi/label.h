@@ -8,7 +8,7 @@
 #ifndef TSMPI_LABEL_H
 #define TSMPI_LABEL_H
 
-#include "state.h"
+#include "mpi/state.h"
 
 enum { L_SEND, L_RECV, L_PROBE, L_SENDRECV, L_REQS, L_COMM };
 

@@ -4,7 +4,7 @@
  * MPICH's do; a status is the same words (MPI_F_STATUS_SIZE of them). */
 #include <string.h>
 
-#include "mpi.h"
+#include "mpi/mpi.h"
 
 #define IDENTITY(type, c2f, f2c)                         \
   MPI_Fint P##c2f(type h) { return (MPI_Fint)h; }        \

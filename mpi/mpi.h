@@ -548,7 +548,7 @@ MPI_Delete_function MPI_NULL_DELETE_FN;           /* deprecated */
  * ------------------------------------------------------------------------ */
 
 #define TSMPI_FN(impl, chapter, ret, name, params, args) ret name params; ret P##name params;
-#include "mpi_funcs.h"
+#include "mpi/mpi_funcs.h"
 #undef TSMPI_FN
 
 /* ------------------------------------------------------------------------

@@ -1,10 +1,10 @@
 /* nbc.c -- the nonblocking collectives' requests and progress (nbc.h). */
-#include "nbc.h"
+#include "mpi/nbc.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "p2p.h"
+#include "mpi/p2p.h"
 
 /* A started collective: its schedule and the program's request. */
 typedef struct nbc {

@@ -13,7 +13,7 @@
 #ifndef TSMPI_NBC_H
 #define TSMPI_NBC_H
 
-#include "coll_sched.h"
+#include "mpi/coll_sched.h"
 
 /* Start schedule s (built for collective fn on comm, root or -1): *req becomes its request,
  * done at once if s needs no message; else it is stepped by the progress until its end, when

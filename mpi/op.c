@@ -1,5 +1,5 @@
 /* op.c -- reduction operations: the predefined kernels, user operations, applying them (op.h). */
-#include "op.h"
+#include "mpi/op.h"
 
 #include <complex.h>
 #include <stdint.h>
@@ -7,8 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "dtype.h"
-#include "p2p.h"
+#include "mpi/dtype.h"
+#include "mpi/p2p.h"
 
 /* ==== kernels =============================================================
  * kernel(in, inout, n, stride, ioff): n elements stride bytes apart;

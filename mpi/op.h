@@ -24,7 +24,7 @@
 
 #include <stddef.h>
 
-#include "mpi.h"
+#include "mpi/mpi.h"
 
 /* MPI_SUCCESS if op is an operation of this rank (predefined, or created
  * and not freed); else MPI_ERR_OP and why. */

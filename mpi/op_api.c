@@ -3,10 +3,10 @@
  * section 8.3: calls with no communicator). */
 #include <stddef.h>
 
-#include "dtype.h"
-#include "mpi.h"
-#include "op.h"
-#include "p2p.h"
+#include "mpi/dtype.h"
+#include "mpi/mpi.h"
+#include "mpi/op.h"
+#include "mpi/p2p.h"
 
 int PMPI_Op_create(MPI_User_function *user_fn, int commute, MPI_Op *op) {
   static const char fn[] = "MPI_Op_create";

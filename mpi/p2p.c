@@ -1,15 +1,15 @@
 /* p2p.c -- point-to-point on a communicator's collective context, and the
  * communicator queries, for the other parts of the MPI layer (p2p.h). */
-#include "p2p.h"
+#include "mpi/p2p.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "comm.h"
-#include "engine.h"
-#include "err.h"
-#include "pt2pt.h"
-#include "topo.h"
+#include "mpi/comm.h"
+#include "mpi/engine.h"
+#include "mpi/err.h"
+#include "mpi/pt2pt.h"
+#include "mpi/topo.h"
 
 /* The calling rank and comm, which the caller has checked: a bad one is a
  * bug of the layer. */

@@ -39,7 +39,7 @@
 
 #include <stddef.h>
 
-#include "mpi.h"
+#include "mpi/mpi.h"
 
 /* ==== point-to-point on the collective context ============================ */
 

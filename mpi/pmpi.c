@@ -11,8 +11,8 @@
  * each call first settles what the rank computed since its last call (an
  * mp call, where tilesim-mpirun's --compute hooks charge it), so that their
  * progress during that computing runs before the call touches the engine. */
-#include "mpi.h"
-#include "mp.h"
+#include "mpi/mpi.h"
+#include "mp/mp.h"
 
 /* MPI 3.1 section 14.2.4: without a profiling library, MPI_Pcontrol does nothing. */
 int PMPI_Pcontrol(const int level, ...) {
@@ -34,5 +34,5 @@ int PMPI_Pcontrol(const int level, ...) {
     return r_;                                         \
   }
 #define TSMPI_FN(impl, chapter, ret, name, params, args) TSMPI_PMPI_##impl(ret, name, params, args)
-#include "mpi_funcs.h"
+#include "mpi/mpi_funcs.h"
 #undef TSMPI_FN

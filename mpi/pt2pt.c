@@ -1,17 +1,17 @@
 /* pt2pt.c -- MPI's point-to-point calls: the four send modes, blocking and
  * nonblocking and persistent, receives, Sendrecv, probes, MPI_Get_count,
  * the attached buffer. */
-#include "pt2pt.h"
+#include "mpi/pt2pt.h"
 
 #include <stdlib.h>
 #include <string.h>
 
-#include "engine.h"
-#include "env.h"
-#include "err.h"
-#include "label.h"
-#include "spin.h"
-#include "xmem.h"
+#include "mpi/engine.h"
+#include "mpi/env.h"
+#include "mpi/err.h"
+#include "mpi/label.h"
+#include "mpi/spin.h"
+#include "util/xmem.h"
 
 /* ==== starting sends and receives ========================================= */
 

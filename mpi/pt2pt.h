@@ -6,7 +6,7 @@
 #ifndef TSMPI_PT2PT_H
 #define TSMPI_PT2PT_H
 
-#include "state.h"
+#include "mpi/state.h"
 
 /* q (zeroed, or a table request) made a send of fn: mode SM_*, to rank dst
  * of c (MPI_PROC_NULL), on c's point-to-point context (coll = 0) or its

@@ -16,12 +16,12 @@
  * kind's free ends it. */
 #include <stdio.h>
 
-#include "engine.h"
-#include "env.h"
-#include "err.h"
-#include "label.h"
-#include "pt2pt.h"
-#include "spin.h"
+#include "mpi/engine.h"
+#include "mpi/env.h"
+#include "mpi/err.h"
+#include "mpi/label.h"
+#include "mpi/pt2pt.h"
+#include "mpi/spin.h"
 
 /* ==== one request ========================================================= */
 

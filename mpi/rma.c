@@ -21,18 +21,18 @@
  * have arrived by the time it needs (rma_progress), so on the simulator
  * every operation is applied in the global order of simulated time unless
  * its origin computed past its arrival in between. */
-#include "win.h"
+#include "mpi/win.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "dtype.h"
-#include "engine.h"
-#include "op.h"
-#include "pt2pt.h"
-#include "xmem.h"
+#include "mpi/dtype.h"
+#include "mpi/engine.h"
+#include "mpi/op.h"
+#include "mpi/pt2pt.h"
+#include "util/xmem.h"
 
 struct rma_op {
   rma_op *next;

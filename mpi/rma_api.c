@@ -13,15 +13,15 @@
  * its window (a dynamic window: inside a region attached there), or the
  * call fails with MPI_ERR_RMA_RANGE; an operation outside an access epoch
  * to the target fails with MPI_ERR_RMA_SYNC. */
-#include "win.h"
+#include "mpi/win.h"
 
 #include <stdint.h>
 #include <stdlib.h>
 
-#include "dtype.h"
-#include "err.h"
-#include "op.h"
-#include "pt2pt.h"
+#include "mpi/dtype.h"
+#include "mpi/err.h"
+#include "mpi/op.h"
+#include "mpi/pt2pt.h"
 
 /* ==== checks ============================================================== */
 

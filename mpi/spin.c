@@ -1,9 +1,9 @@
 /* spin.c -- a rank that polls forever (spin.h). */
-#include "spin.h"
+#include "mpi/spin.h"
 
 #include <stdio.h>
 
-#include "env.h"
+#include "mpi/env.h"
 
 void tsm_spin(tsm *R, const char *fn) {
   double t = mp_time(R->self);

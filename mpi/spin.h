@@ -13,7 +13,7 @@
 #ifndef TSMPI_SPIN_H
 #define TSMPI_SPIN_H
 
-#include "state.h"
+#include "mpi/state.h"
 
 enum { TSM_SPIN_MAX = 100000 };
 

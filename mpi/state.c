@@ -1,19 +1,19 @@
 /* state.c -- one rank's MPI state: finding it, tables of communicators,
  * groups' ranks and requests, its release, the other parts' slots. */
-#include "state.h"
+#include "mpi/state.h"
 
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "attr.h"
-#include "engine.h"
-#include "env.h"
-#include "errh.h"
-#include "info.h"
-#include "topo.h"
-#include "xmem.h"
+#include "mpi/attr.h"
+#include "mpi/engine.h"
+#include "mpi/env.h"
+#include "mpi/errh.h"
+#include "mpi/info.h"
+#include "mpi/topo.h"
+#include "util/xmem.h"
 
 /* ==== finding the rank's state ============================================ */
 

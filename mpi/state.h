@@ -12,10 +12,10 @@
 
 #include <stddef.h>
 
-#include "dtype.h"
-#include "mp.h"
-#include "mpi.h"
-#include "p2p.h"
+#include "mpi/dtype.h"
+#include "mp/mp.h"
+#include "mpi/mpi.h"
+#include "mpi/p2p.h"
 
 /* ==== handles ============================================================= */
 

@@ -1,12 +1,12 @@
 /* topo.c -- process topologies: their objects, coordinates and neighbours, MPI_Topo_test
  * (topo.h). */
-#include "topo.h"
+#include "mpi/topo.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "p2p.h"
+#include "mpi/p2p.h"
 
 static void oom(void) {
   fprintf(stderr, "tilesim MPI: a process topology: out of memory\n");

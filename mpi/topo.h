@@ -14,7 +14,7 @@
 #ifndef TSMPI_TOPO_H
 #define TSMPI_TOPO_H
 
-#include "mpi.h"
+#include "mpi/mpi.h"
 
 typedef struct tsmpi_topo tsmpi_topo;
 struct tsmpi_topo {

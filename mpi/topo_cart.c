@@ -21,9 +21,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "coll.h"
-#include "p2p.h"
-#include "topo.h"
+#include "mpi/coll.h"
+#include "mpi/p2p.h"
+#include "mpi/topo.h"
 
 /* ==== creating ============================================================ */
 

@@ -10,21 +10,21 @@
  * one more, between the sizes and the memory).  MPI_Win_free completes the
  * rank's operations and ends with a barrier; the last rank to let go of the
  * shared object frees it. */
-#include "win.h"
+#include "mpi/win.h"
 
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "attr.h"
-#include "comm.h"
-#include "err.h"
-#include "errh.h"
-#include "group.h"
-#include "info.h"
-#include "label.h"
-#include "xmem.h"
+#include "mpi/attr.h"
+#include "mpi/comm.h"
+#include "mpi/err.h"
+#include "mpi/errh.h"
+#include "mpi/group.h"
+#include "mpi/info.h"
+#include "mpi/label.h"
+#include "util/xmem.h"
 
 enum { HK_WIN = 8 };   /* mpi.h: a window's handle is 8 << 24 | index */
 

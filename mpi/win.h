@@ -45,7 +45,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "state.h"
+#include "mpi/state.h"
 
 /* The notifications' tags on the window's point-to-point context. */
 enum { WTAG_POST = 1, WTAG_DONE = 2, WTAG_GRANT = 3, WTAG_WAKE = 4 };

@@ -19,18 +19,18 @@
  *   flush       every operation's reply back; flush_local only those that
  *               bring data (a put's or an accumulate's data were copied
  *               when it was issued) */
-#include "win.h"
+#include "mpi/win.h"
 
 #include <stdatomic.h>
 #include <stdlib.h>
 
-#include "engine.h"
-#include "env.h"
-#include "err.h"
-#include "group.h"
-#include "label.h"
-#include "pt2pt.h"
-#include "xmem.h"
+#include "mpi/engine.h"
+#include "mpi/env.h"
+#include "mpi/err.h"
+#include "mpi/group.h"
+#include "mpi/label.h"
+#include "mpi/pt2pt.h"
+#include "util/xmem.h"
 
 /* ==== polling ============================================================= */
 

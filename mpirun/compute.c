@@ -1,14 +1,14 @@
 /* compute.c -- charging an MPI program's own computing (compute.h). */
 #define _GNU_SOURCE
-#include "compute.h"
+#include "mpirun/compute.h"
 
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
-#include "args.h"
-#include "mp.h"
-#include "xmem.h"
+#include "util/args.h"
+#include "mp/mp.h"
+#include "util/xmem.h"
 
 const char *compute_mode_name(compute_mode m) {
   static const char *const name[] = {"none", "blocks", "host"};

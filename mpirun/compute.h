@@ -20,7 +20,7 @@
 
 #include <stddef.h>
 
-#include "mp.h"
+#include "mp/mp.h"
 
 typedef enum { COMPUTE_NONE, COMPUTE_BLOCKS, COMPUTE_HOST } compute_mode;
 

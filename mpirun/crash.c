@@ -1,14 +1,14 @@
 /* crash.c -- a crashing rank named on stderr (crash.h).  Only write(2) and
  * _exit(2) in the handler: it may run in the middle of malloc or stdio. */
 #define _GNU_SOURCE
-#include "crash.h"
+#include "mpirun/crash.h"
 
 #include <signal.h>
 #include <stdint.h>
 #include <string.h>
 #include <unistd.h>
 
-#include "mp.h"
+#include "mp/mp.h"
 
 static const char *name = "tilesim-mpirun";
 static char altstack[1 << 16];

@@ -1,14 +1,14 @@
 /* cxx.c -- the C++ runtime's per-rank parts (cxx.h). */
 #define _GNU_SOURCE
-#include "cxx.h"
+#include "mpirun/cxx.h"
 
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
-#include "mp.h"
-#include "xmem.h"
+#include "mp/mp.h"
+#include "util/xmem.h"
 
 /* ==== clocks and sleeps =================================================== */
 

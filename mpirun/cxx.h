@@ -14,8 +14,8 @@
 #ifndef TSMPI_CXX_H
 #define TSMPI_CXX_H
 
-#include "libc.h"
-#include "mp.h"
+#include "mpirun/libc.h"
+#include "mp/mp.h"
 
 /* What the program's reference to `name` binds to in libstdc++'s place: 1
  * and *fn, or 0 for a name that stays the library's. */

@@ -1,12 +1,12 @@
 /* elfprog.c -- a program's ELF file, read with <elf.h> (elfprog.h). */
-#include "elfprog.h"
+#include "mpirun/elfprog.h"
 
 #include <elf.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "xmem.h"
+#include "util/xmem.h"
 
 #if defined(__x86_64__)
 #define HOST_MACHINE EM_X86_64

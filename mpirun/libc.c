@@ -15,7 +15,7 @@
  * any libc.  drand48: POSIX erand48, nrand48 and jrand48 on the rank's own
  * 48 bits, glibc's defaults. */
 #define _GNU_SOURCE
-#include "libc.h"
+#include "mpirun/libc.h"
 
 #include <getopt.h>
 #include <pthread.h>
@@ -27,8 +27,8 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "mp.h"
-#include "xmem.h"
+#include "mp/mp.h"
+#include "util/xmem.h"
 
 /* ==== a rank's libc ======================================================= */
 

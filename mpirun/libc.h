@@ -26,7 +26,7 @@
 #ifndef TSMPI_LIBC_H
 #define TSMPI_LIBC_H
 
-#include "mp.h"
+#include "mp/mp.h"
 
 /* A rank called exit(status) or _exit(status) (run_handlers: exit, which
  * runs its handlers first): the runner's say before the rank ends (it may

@@ -16,7 +16,7 @@
  * c is 1 unless the ranks are so many that the mappings would crowd
  * vm.max_map_count. */
 #define _GNU_SOURCE
-#include "loader.h"
+#include "mpirun/loader.h"
 
 #include <dlfcn.h>
 #include <elf.h>
@@ -30,12 +30,12 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
-#include "atomicfile.h"
-#include "cxx.h"
-#include "elfprog.h"
-#include "libc.h"
-#include "mp.h"
-#include "xmem.h"
+#include "util/atomicfile.h"
+#include "mpirun/cxx.h"
+#include "mpirun/elfprog.h"
+#include "mpirun/libc.h"
+#include "mp/mp.h"
+#include "util/xmem.h"
 
 /* ==== relocations ========================================================= */
 

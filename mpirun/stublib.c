@@ -14,8 +14,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "io_sg.h"
-#include "mpi.h"
+#include "mpi/io_sg.h"
+#include "mpi/mpi.h"
 
 void __sanitizer_cov_trace_pc(void);
 
@@ -51,7 +51,7 @@ static _Noreturn void called(void) {
 #define TSMPI_FN(impl, chapter, ret, name, params, args) \
   ret name params { called(); }                          \
   ret P##name params { called(); }
-#include "mpi_funcs.h"
+#include "mpi/mpi_funcs.h"
 #undef TSMPI_FN
 
 void tilesim_compute(double units) { called(); }

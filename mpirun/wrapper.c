@@ -1,6 +1,6 @@
 /* wrapper.c -- tilesim-mpicc and tilesim-mpicxx (wrapper.h). */
 #define _GNU_SOURCE
-#include "wrapper.h"
+#include "mpirun/wrapper.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -12,9 +12,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "elfprog.h"
-#include "funcs.h"
-#include "xmem.h"
+#include "mpirun/elfprog.h"
+#include "mpi/funcs.h"
+#include "util/xmem.h"
 
 /* Set in the compiler's environment: a wrapper that finds it was run by the
  * compiler it runs. */

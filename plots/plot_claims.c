@@ -8,20 +8,20 @@
  * n/a (the sweep cannot show it).  A cell spans its m/c halfway (in log
  * scale) to its neighbours.  The tc2000 profile's m/c is a dashed line and
  * the cells at it are outlined; a legend below. */
-#include "plot_claims.h"
+#include "plots/plot_claims.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "args.h"
-#include "atomicfile.h"
-#include "csvtab.h"
-#include "progname.h"
-#include "sim.h"
-#include "svgchart.h"
-#include "xmem.h"
+#include "util/args.h"
+#include "util/atomicfile.h"
+#include "util/csvtab.h"
+#include "util/progname.h"
+#include "sim/sim.h"
+#include "plots/svgchart.h"
+#include "util/xmem.h"
 
 enum { W = 940, LW = 300, RM = 30, TOP = 64, RH = 22, PHEAD = 30, PFOOT = 40, LEG = 58 };
 

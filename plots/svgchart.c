@@ -1,7 +1,7 @@
 /* svgchart.c -- a small line-chart renderer: "nice" ticks (1, 2, 5 times a
  * power of ten), a colour and a marker per group of series, dash patterns,
  * a legend box; the picture sized to its texts. */
-#include "svgchart.h"
+#include "plots/svgchart.h"
 
 #include <ctype.h>
 #include <math.h>
@@ -9,8 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "args.h"
-#include "xmem.h"
+#include "util/args.h"
+#include "util/xmem.h"
 
 /* The default picture and its margins; the plot keeps at least PW x PH. */
 enum { W0 = 760, H0 = 480, ML0 = 78, MR0 = 190, MT0 = 48, MB = 62, PW = 492, PH = 370, LEG = 22 };

@@ -1,11 +1,11 @@
 /* svgsurface.c -- orthographic view, painter's algorithm, Lambert shading. */
-#include "svgsurface.h"
+#include "plots/svgsurface.h"
 
 #include <math.h>
 #include <stdlib.h>
 
-#include "svgchart.h"
-#include "xmem.h"
+#include "plots/svgchart.h"
+#include "util/xmem.h"
 
 enum { W = 900, H = 520, PANEL = 420 };
 

@@ -5,8 +5,8 @@
 
 #include <stdio.h>
 
-#include "contour.h"
-#include "mesh.h"
+#include "input/contour.h"
+#include "surface/mesh.h"
 
 /* Left: the contours as lines; right: the mesh's triangles, shaded (Lambert,
  * one light) and painted back to front.  Deterministic text. */

@@ -6,19 +6,19 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "bench_calibrate.h"
-#include "bench_claims.h"
-#include "bench_dicom.h"
-#include "bench_map.h"
-#include "bench_model.h"
-#include "bench_paper.h"
-#include "bench_ring.h"
-#include "bench_stack.h"
-#include "bench_tiler.h"
-#include "bench_union.h"
-#include "progname.h"
+#include "prog/bench_calibrate.h"
+#include "prog/bench_claims.h"
+#include "prog/bench_dicom.h"
+#include "prog/bench_map.h"
+#include "prog/bench_model.h"
+#include "prog/bench_paper.h"
+#include "prog/bench_ring.h"
+#include "prog/bench_stack.h"
+#include "prog/bench_tiler.h"
+#include "prog/bench_union.h"
+#include "util/progname.h"
 #ifdef TILESIM_MPI
-#include "run_mpi.h"
+#include "run/run_mpi.h"
 #endif
 
 typedef struct {

@@ -4,7 +4,7 @@
  * -fsanitize-coverage=trace-pc, as tilesim-mpicc --count-blocks compiles a
  * program: the loop below, cpi's (MPICH's example), counts its own blocks
  * through the counter bench_micro.c keeps. */
-#include "bench_blocks.h"
+#include "prog/bench_blocks.h"
 
 double blocks_cpi(long n) {
   double h = 1.0 / (double)n, sum = 0;

@@ -39,7 +39,7 @@
  * options that model this host for that P), for a script that runs the
  * simulator itself (tests/bench_cores.sh).  stderr says what was measured
  * and how long it all took. */
-#include "bench_calibrate.h"
+#include "prog/bench_calibrate.h"
 
 #include <limits.h>
 #include <math.h>
@@ -47,19 +47,19 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "args.h"
-#include "bench_micro.h"
-#include "bench_paper.h"
-#include "cpuload.h"
-#include "par_slave.h"
-#include "progname.h"
-#include "progress.h"
-#include "run.h"
-#include "threads.h"
-#include "tiling.h"
-#include "wallclock.h"
-#include "weights.h"
-#include "xmem.h"
+#include "util/args.h"
+#include "prog/bench_micro.h"
+#include "prog/bench_paper.h"
+#include "mp/cpuload.h"
+#include "algo/par_slave.h"
+#include "util/progname.h"
+#include "util/progress.h"
+#include "run/run.h"
+#include "mp/threads.h"
+#include "algo/tiling.h"
+#include "util/wallclock.h"
+#include "algo/weights.h"
+#include "util/xmem.h"
 
 static const char calibrate_usage[] =
     "usage: bench --calibrate [--points LIST] [--procs LIST] [--repeat R] [--seed S] [--messages K] "

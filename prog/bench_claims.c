@@ -11,16 +11,16 @@
  * those claims hold (make check asserts the ones its reduced sweep can show).
  * The criteria and their tolerances: bench_judge.h (the judge is shared
  * with --claims-map).  MIN_DIAG.csv counts at its largest points only. */
-#include "bench_claims.h"
+#include "prog/bench_claims.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "args.h"
-#include "bench_judge.h"
-#include "csvtab.h"
-#include "progname.h"
+#include "util/args.h"
+#include "prog/bench_judge.h"
+#include "util/csvtab.h"
+#include "util/progname.h"
 
 /* The d = 1 rows of a speedup sweep into s. */
 static int read_sweep(const char *path, judge_sweep *s, char *err, size_t errlen) {

@@ -1,5 +1,5 @@
 /* bench_data.c -- finding ./bench's data, in the source tree or installed. */
-#include "bench_data.h"
+#include "prog/bench_data.h"
 
 #include <stdio.h>
 #include <string.h>

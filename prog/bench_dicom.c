@@ -10,19 +10,19 @@
  * of rtstruct_roi_stack on every ROI that has contours (its .contours text
  * and the stack reader).  checksum is the sum of every coordinate read: it
  * shows a fast wrong answer. */
-#include "bench_dicom.h"
+#include "prog/bench_dicom.h"
 
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "args.h"
-#include "bench_data.h"
-#include "progname.h"
-#include "rtstruct.h"
-#include "wallclock.h"
-#include "xmem.h"
+#include "util/args.h"
+#include "prog/bench_data.h"
+#include "util/progname.h"
+#include "input/rtstruct.h"
+#include "util/wallclock.h"
+#include "util/xmem.h"
 
 static unsigned char *slurp(const char *path, size_t *len) {
   FILE *f = fopen(path, "rb");

@@ -23,21 +23,21 @@
  * them (bench_judge.h): t2_t1 and t3_t2 (the largest over the sizes that
  * count), t4_t3, t6_t5 (half) and size_t4_t3, size_t6_t5 at the largest
  * size, each allocation's best P and speedup there, and the best d. */
-#include "bench_map.h"
+#include "prog/bench_map.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "args.h"
-#include "atomicfile.h"
-#include "bench_judge.h"
-#include "bench_paper.h"
-#include "contour.h"
-#include "progname.h"
-#include "run.h"
-#include "xmem.h"
+#include "util/args.h"
+#include "util/atomicfile.h"
+#include "prog/bench_judge.h"
+#include "prog/bench_paper.h"
+#include "input/contour.h"
+#include "util/progname.h"
+#include "run/run.h"
+#include "util/xmem.h"
 
 static const char map_usage[] =
     "usage: bench --claims-map [--net LIST] [--m LIST] [--c LIST] [--seed LIST] [--input STACK --pair LIST] "

@@ -1,8 +1,8 @@
 /* bench_micro.c -- micro-benchmarks of the threads backend's messages and of
  * cores working at once (bench_micro.h). */
-#include "bench_micro.h"
+#include "prog/bench_micro.h"
 
-#include "bench_blocks.h"
+#include "prog/bench_blocks.h"
 
 #include <pthread.h>
 #include <stdatomic.h>
@@ -11,11 +11,11 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "split.h"
-#include "threads.h"
-#include "tiling.h"
-#include "wallclock.h"
-#include "xmem.h"
+#include "algo/split.h"
+#include "mp/threads.h"
+#include "algo/tiling.h"
+#include "util/wallclock.h"
+#include "util/xmem.h"
 
 static inline void relax(void) {
 #if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))

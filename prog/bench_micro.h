@@ -8,7 +8,7 @@
 
 #include <stddef.h>
 
-#include "geom.h"
+#include "algo/geom.h"
 
 /* Messages between ranks of the threads backend (default spin), in four
  * patterns of the Intel MPI Benchmarks' kind:

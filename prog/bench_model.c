@@ -10,20 +10,20 @@
  * paper's model counts a message twice, sent and received, each costing its
  * m: our bus charges one message m for both, so the model's m is ours over 2:
  * cD/p + 2 (m/2) (p-1) = cD/p + m (p-1), smallest at p = sqrt(cD/m). */
-#include "bench_model.h"
+#include "prog/bench_model.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "args.h"
-#include "atomicfile.h"
-#include "contour.h"
-#include "gen.h"
-#include "progname.h"
-#include "run.h"
-#include "xmem.h"
+#include "util/args.h"
+#include "util/atomicfile.h"
+#include "input/contour.h"
+#include "algo/gen.h"
+#include "util/progname.h"
+#include "run/run.h"
+#include "util/xmem.h"
 
 static const char model_usage[] =
     "usage: bench --model [--diag LIST] [--procs LIST] [-o FILE] [--m S] [--c S] [--net ideal|bus|loggp] "

@@ -5,10 +5,10 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "link.h"
-#include "place.h"
-#include "run.h"
-#include "topo.h"
+#include "sim/link.h"
+#include "sim/place.h"
+#include "run/run.h"
+#include "sim/topo.h"
 
 enum { BENCH_NET_MAX = 16 };
 

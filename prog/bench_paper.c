@@ -23,7 +23,7 @@
  * fastest is reported, since what else runs on the machine only ever adds
  * time, and every repetition must give the same optimum.  wall_s is then
  * the job's R runs together. */
-#include "bench_paper.h"
+#include "prog/bench_paper.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -36,17 +36,17 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "args.h"
-#include "atomicfile.h"
-#include "bench_net.h"
-#include "bench_variant.h"
-#include "contour.h"
-#include "gen.h"
-#include "progname.h"
-#include "progress.h"
-#include "run.h"
-#include "wallclock.h"
-#include "xmem.h"
+#include "util/args.h"
+#include "util/atomicfile.h"
+#include "prog/bench_net.h"
+#include "prog/bench_variant.h"
+#include "input/contour.h"
+#include "algo/gen.h"
+#include "util/progname.h"
+#include "util/progress.h"
+#include "run/run.h"
+#include "util/wallclock.h"
+#include "util/xmem.h"
 
 const char bench_paper_help[] =
     "[--procs LIST] [--points LIST] [--alloc LIST] [--min-diag LIST]\n"

@@ -3,9 +3,9 @@
 #ifndef BENCH_PAPER_H
 #define BENCH_PAPER_H
 
-#include "contour.h"
-#include "geom.h"
-#include "run.h"
+#include "input/contour.h"
+#include "algo/geom.h"
+#include "run/run.h"
 
 /* The whole command line (no mode option); returns the exit status. */
 int bench_paper(int argc, char **argv);

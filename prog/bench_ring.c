@@ -13,24 +13,24 @@
  * --tokens all: every rank starts with a token; each lap every rank sends
  * its token on and takes its neighbour's, so P messages are in flight at
  * once and share links (contention).  The tokens then sum to P*K. */
-#include "bench_ring.h"
+#include "prog/bench_ring.h"
 
 #include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "args.h"
-#include "atomicfile.h"
-#include "coro.h"
-#include "machine.h"
-#include "mp.h"
-#include "place.h"
-#include "progname.h"
-#include "sim.h"
-#include "trace.h"
-#include "wallclock.h"
-#include "xmem.h"
+#include "util/args.h"
+#include "util/atomicfile.h"
+#include "sim/coro.h"
+#include "machine/machine.h"
+#include "mp/mp.h"
+#include "sim/place.h"
+#include "util/progname.h"
+#include "sim/sim.h"
+#include "sim/trace.h"
+#include "util/wallclock.h"
+#include "util/xmem.h"
 
 static const char ring_usage[] =
     "usage: bench --ring P --laps K [--net ideal|bus|loggp] [--m S] [--c S] [--work U] "

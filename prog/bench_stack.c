@@ -16,7 +16,7 @@
  * a slow spell of the machine touches every count alike.  cost (the bands'
  * optima summed) and volume (the mesh's) are checksums: a fast wrong answer
  * shows. */
-#include "bench_stack.h"
+#include "prog/bench_stack.h"
 
 #include <errno.h>
 #include <math.h>
@@ -24,14 +24,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "args.h"
-#include "bench_data.h"
-#include "contour.h"
-#include "progname.h"
-#include "rtstruct.h"
-#include "stack.h"
-#include "wallclock.h"
-#include "xmem.h"
+#include "util/args.h"
+#include "prog/bench_data.h"
+#include "input/contour.h"
+#include "util/progname.h"
+#include "input/rtstruct.h"
+#include "surface/stack.h"
+#include "util/wallclock.h"
+#include "util/xmem.h"
 
 static const char *defaults[] = {"tests/data/rtstruct/dicompyler_rtss.dcm:BODY",
                                  "tests/data/rtstruct/dicompyler_rtss.dcm:Lt Lung",

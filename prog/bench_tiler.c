@@ -15,7 +15,7 @@
  * named without a folder are looked for as bench_data.h says: here, in
  * --data DIR, installed (PREFIX/share/tilesim) or in the source tree beside
  * the program, so that an installed bench runs anywhere. */
-#include "bench_tiler.h"
+#include "prog/bench_tiler.h"
 
 #include <limits.h>
 #include <stdio.h>
@@ -25,15 +25,15 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "args.h"
-#include "bench_data.h"
-#include "contour.h"
-#include "gen.h"
-#include "naive.h"
-#include "progname.h"
-#include "tiling.h"
-#include "wallclock.h"
-#include "xmem.h"
+#include "util/args.h"
+#include "prog/bench_data.h"
+#include "input/contour.h"
+#include "algo/gen.h"
+#include "algo/naive.h"
+#include "util/progname.h"
+#include "algo/tiling.h"
+#include "util/wallclock.h"
+#include "util/xmem.h"
 
 typedef struct {
   char name[64];

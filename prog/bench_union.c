@@ -20,20 +20,20 @@
  * numbers, the loops, the rounding and the check), us_per_point per input
  * point, and two checksums: the loops' points and twice their signed area
  * (holes negative). */
-#include "bench_union.h"
+#include "prog/bench_union.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "args.h"
-#include "gen.h"
-#include "polyunion.h"
-#include "progname.h"
-#include "rng.h"
-#include "wallclock.h"
-#include "xmem.h"
+#include "util/args.h"
+#include "algo/gen.h"
+#include "algo/polyunion.h"
+#include "util/progname.h"
+#include "util/rng.h"
+#include "util/wallclock.h"
+#include "util/xmem.h"
 
 static const char *defaults[] = {"blob:3:100", "blob:5:1000", "blob:5:10000", "blob:8:100000", "star:5:1000"};
 

@@ -1,5 +1,5 @@
 /* bench_variant.c -- variant names for ./bench (bench_variant.h). */
-#include "bench_variant.h"
+#include "prog/bench_variant.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -14,7 +14,7 @@
 
 #include <stddef.h>
 
-#include "par.h"
+#include "algo/par.h"
 
 typedef struct {
   split_alloc alloc;

@@ -18,22 +18,22 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "args.h"
-#include "atomicfile.h"
-#include "contour.h"
-#include "dicom.h"
-#include "mesh.h"
-#include "meshio.h"
-#include "pool.h"
-#include "progress.h"
-#include "report.h"
-#include "run.h"
-#include "stack.h"
-#include "tile_dicom.h"
-#include "trace.h"
-#include "xmem.h"
+#include "util/args.h"
+#include "util/atomicfile.h"
+#include "input/contour.h"
+#include "input/dicom.h"
+#include "surface/mesh.h"
+#include "surface/meshio.h"
+#include "surface/pool.h"
+#include "util/progress.h"
+#include "surface/report.h"
+#include "run/run.h"
+#include "surface/stack.h"
+#include "prog/tile_dicom.h"
+#include "sim/trace.h"
+#include "util/xmem.h"
 #ifdef TILESIM_MPI
-#include "run_mpi.h"
+#include "run/run_mpi.h"
 #endif
 
 /* The usage hint after a bad-usage message: one line. */

@@ -5,7 +5,7 @@
  * ROIs asked for, their stacks.  With --roi all, an ROI that cannot be tiled
  * (no closed contours, or a refusal) is skipped with a warning and the others
  * are tiled. */
-#include "tile_dicom.h"
+#include "prog/tile_dicom.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -13,14 +13,14 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "args.h"
-#include "atomicfile.h"
-#include "dicom.h"
-#include "meshio.h"
-#include "rtstruct.h"
-#include "stack.h"
-#include "strbuf.h"
-#include "xmem.h"
+#include "util/args.h"
+#include "util/atomicfile.h"
+#include "input/dicom.h"
+#include "surface/meshio.h"
+#include "input/rtstruct.h"
+#include "surface/stack.h"
+#include "util/strbuf.h"
+#include "util/xmem.h"
 
 int tile_dicom_is_dir(const char *path) {
   struct stat st;

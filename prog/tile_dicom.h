@@ -12,8 +12,8 @@
 
 #include <stdio.h>
 
-#include "contour.h"
-#include "mesh.h"
+#include "input/contour.h"
+#include "surface/mesh.h"
 
 enum { TILE_DICOM_MAX_ROI = 256 };   /* --roi options, at most */
 

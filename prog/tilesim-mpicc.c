@@ -4,6 +4,6 @@
  *
  * As mpicc does for an MPI library: mpirun/wrapper.h says what it adds;
  * tilesim-mpicc(1) is its manual. */
-#include "wrapper.h"
+#include "mpirun/wrapper.h"
 
 int main(int argc, char **argv) { return wrapper_main(argc, argv, WRAP_C); }

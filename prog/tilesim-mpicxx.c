@@ -5,6 +5,6 @@
  * As mpicxx does for an MPI library (the C bindings, as MPICH and Open MPI
  * ship them for C++): mpirun/wrapper.h says what it adds; tilesim-mpicxx(1)
  * is its manual. */
-#include "wrapper.h"
+#include "mpirun/wrapper.h"
 
 int main(int argc, char **argv) { return wrapper_main(argc, argv, WRAP_CXX); }

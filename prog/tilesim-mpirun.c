@@ -20,20 +20,20 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "args.h"
-#include "atomicfile.h"
-#include "compute.h"
-#include "crash.h"
-#include "cxx.h"
-#include "elfprog.h"
-#include "env.h"
-#include "launch.h"
-#include "libc.h"
-#include "loader.h"
-#include "machine.h"
-#include "mpi.h"
-#include "tsmpi.h"
-#include "xmem.h"
+#include "util/args.h"
+#include "util/atomicfile.h"
+#include "mpirun/compute.h"
+#include "mpirun/crash.h"
+#include "mpirun/cxx.h"
+#include "mpirun/elfprog.h"
+#include "mpi/env.h"
+#include "machine/launch.h"
+#include "mpirun/libc.h"
+#include "mpirun/loader.h"
+#include "machine/machine.h"
+#include "mpi/mpi.h"
+#include "mpi/tsmpi.h"
+#include "util/xmem.h"
 
 static const char prog[] = "tilesim-mpirun";
 

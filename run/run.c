@@ -1,17 +1,17 @@
 /* run.c -- the parallel algorithm on a backend: options, and the drivers
  * for the simulated machine and for threads (MPI's is run_mpi.c). */
-#include "run.h"
+#include "run/run.h"
 
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "args.h"
-#include "launch.h"
-#include "par_slave.h"
-#include "xmem.h"
+#include "util/args.h"
+#include "machine/launch.h"
+#include "algo/par_slave.h"
+#include "util/xmem.h"
 #ifdef TILESIM_MPI
-#include "run_mpi.h"
+#include "run/run_mpi.h"
 #endif
 
 void run_config_init(run_config *rc) {

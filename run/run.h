@@ -13,8 +13,8 @@
 
 #include <stdio.h>
 
-#include "machine.h"
-#include "par_master.h"
+#include "machine/machine.h"
+#include "algo/par_master.h"
 
 /* A trace's size, counted by a run that writes none (run_config.trace_size). */
 typedef struct {

@@ -1,14 +1,14 @@
 /* run_mpi.c -- the MPI build's driver: process 0 runs the program, the
  * others serve runs of the parallel algorithm as slaves (run_mpi.h). */
-#include "run_mpi.h"
+#include "run/run_mpi.h"
 
 #include <mpi.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "mp_mpi.h"
-#include "par_slave.h"
-#include "xmem.h"
+#include "mp/mp_mpi.h"
+#include "algo/par_slave.h"
+#include "util/xmem.h"
 
 enum { CMD_RUN = 1, CMD_EXIT, CMD_DONE };   /* tags on cmd: process 0's orders, slaves' answers */
 

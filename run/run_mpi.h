@@ -15,7 +15,7 @@
 
 #include <stddef.h>
 
-#include "run.h"
+#include "run/run.h"
 
 /* MPI_Init; process 0 runs program(argc, argv), the others serve runs until
  * process 0 is done; MPI_Finalize.  Returns this process's exit status:

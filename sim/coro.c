@@ -18,7 +18,7 @@
  * only when the tool is present. */
 #define _DEFAULT_SOURCE 1 /* MAP_ANONYMOUS, MAP_NORESERVE, MAP_STACK */
 
-#include "coro.h"
+#include "sim/coro.h"
 
 #include <errno.h>
 #include <stdint.h>
@@ -28,7 +28,7 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
-#include "xmem.h"
+#include "util/xmem.h"
 
 /* ---- which switch -------------------------------------------------------- */
 

@@ -1,5 +1,5 @@
 /* cpu.c -- the processor side of messages and computing (cpu.h). */
-#include "cpu.h"
+#include "sim/cpu.h"
 
 #include <math.h>
 #include <stdio.h>

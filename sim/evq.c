@@ -1,9 +1,9 @@
 /* evq.c -- an indexed binary min-heap keyed by (time, sequence number). */
-#include "evq.h"
+#include "sim/evq.h"
 
 #include <stdlib.h>
 
-#include "xmem.h"
+#include "util/xmem.h"
 
 evq *evq_new(int n) {
   XASSERT(n >= 0);

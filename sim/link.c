@@ -1,10 +1,10 @@
 /* link.c -- links as FIFO queues reserved in send order; hops, hop-bytes, the busiest link (link.h). */
-#include "link.h"
+#include "sim/link.h"
 
 #include <stdlib.h>
 
-#include "trace.h"
-#include "xmem.h"
+#include "sim/trace.h"
+#include "util/xmem.h"
 
 typedef struct {
   double free;              /* when the link is next free */

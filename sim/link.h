@@ -38,7 +38,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "topo.h"
+#include "sim/topo.h"
 
 struct trace;   /* trace.h */
 

@@ -19,13 +19,13 @@
  * message stays in the mailbox with its times and envelope, and is
  * received when and where it would have been. */
 #define _DEFAULT_SOURCE   /* madvise's MADV_HUGEPAGE, where there is one */
-#include "mailbox.h"
+#include "sim/mailbox.h"
 
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
 
-#include "xmem.h"
+#include "util/xmem.h"
 
 enum {
   POOL_MIN_CLASS = 7,              /* the smallest pooled block: 128 bytes */

@@ -1,13 +1,13 @@
 /* place.c -- placements of a run's processors on a topology (place.h). */
-#include "place.h"
+#include "sim/place.h"
 
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "rng.h"
-#include "xmem.h"
+#include "util/rng.h"
+#include "util/xmem.h"
 
 /* A whole number 0..TOPO_MAX_NODES-1 spanning all of s. */
 static int node_id(const char *s, int *out) {

@@ -27,7 +27,7 @@
 
 #include <stddef.h>
 
-#include "topo.h"
+#include "sim/topo.h"
 
 typedef enum { PLACE_LINEAR, PLACE_SNAKE, PLACE_GRAY, PLACE_RANDOM, PLACE_FILE } place_kind;
 

@@ -1,5 +1,5 @@
 /* profile.c -- the simulator's configurations (profile.h). */
-#include "profile.h"
+#include "sim/profile.h"
 
 #include <math.h>
 #include <stdio.h>

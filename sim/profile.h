@@ -8,7 +8,7 @@
 
 #include <stddef.h>
 
-#include "sim.h"
+#include "sim/sim.h"
 
 /* cfg for nranks ranks (checked for nranks >= 1 already): 0, its topology
  * made (*tp, NULL without one) and the machine's processors (*procs: cfg's,

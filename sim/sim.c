@@ -28,7 +28,7 @@
  * A blocked rank is queued only once a matching message is on its way, at
  * that message's arrival time (moved earlier if an earlier matching message
  * is sent later).  Nothing queued and ranks still alive means deadlock. */
-#include "sim.h"
+#include "sim/sim.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -36,14 +36,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "coro.h"
-#include "evq.h"
-#include "errlog.h"
-#include "mailbox.h"
-#include "profile.h"
-#include "trace.h"
-#include "wallclock.h"
-#include "xmem.h"
+#include "sim/coro.h"
+#include "sim/evq.h"
+#include "util/errlog.h"
+#include "sim/mailbox.h"
+#include "sim/profile.h"
+#include "sim/trace.h"
+#include "util/wallclock.h"
+#include "util/xmem.h"
 
 /* ==== data ================================================================ */
 

@@ -131,10 +131,10 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "cpu.h"
-#include "link.h"
-#include "mp.h"
-#include "topo.h"
+#include "sim/cpu.h"
+#include "sim/link.h"
+#include "mp/mp.h"
+#include "sim/topo.h"
 
 /* SIM_NET_TOPOLOGY is set by a topology (cfg.topo), never by name. */
 typedef enum { SIM_NET_IDEAL, SIM_NET_BUS, SIM_NET_LOGGP, SIM_NET_TOPOLOGY } sim_net;

@@ -1,11 +1,11 @@
 /* topo.c -- topologies: sizes, link numbering, deterministic routes (topo.h says which). */
-#include "topo.h"
+#include "sim/topo.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "xmem.h"
+#include "util/xmem.h"
 
 struct topo {
   topo_kind kind;

@@ -1,11 +1,11 @@
 /* trace.c -- CSV and Chrome trace-event JSON writers for the simulator's timeline. */
-#include "trace.h"
+#include "sim/trace.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "xmem.h"
+#include "util/xmem.h"
 
 struct trace {
   FILE *csv, *json;

@@ -4,13 +4,13 @@
  * each edge's inner half-plane in turn (Sutherland-Hodgman against one line),
  * O(n k) for a kernel of k sides; rounding can only shrink or grow it by a
  * hair, and the candidate point is then checked exactly. */
-#include "apex.h"
+#include "surface/apex.h"
 
 #include <math.h>
 #include <stdlib.h>
 
-#include "exact.h"
-#include "xmem.h"
+#include "algo/exact.h"
+#include "util/xmem.h"
 
 int apex_sees_all(const vec2 *p, int n, vec2 q) {
   int sign = geom_area2(p, n) > 0 ? 1 : -1;

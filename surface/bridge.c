@@ -6,17 +6,17 @@
  *   X: ... a0 a1 ...     Y: ... b0 b1 ...
  *   ->  ... a0 m1 b1 ... (all of Y) ... b0 m2 a1 ...
  */
-#include "bridge.h"
+#include "surface/bridge.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "args.h"
-#include "crossing.h"
-#include "exact.h"
-#include "xmem.h"
+#include "util/args.h"
+#include "algo/crossing.h"
+#include "algo/exact.h"
+#include "util/xmem.h"
 
 typedef struct {
   int n;

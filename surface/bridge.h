@@ -42,8 +42,8 @@
 
 #include <stddef.h>
 
-#include "mesh.h"
-#include "slices.h"
+#include "surface/mesh.h"
+#include "surface/slices.h"
 
 typedef struct {
   int n;              /* points of the composite */

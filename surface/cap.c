@@ -1,12 +1,12 @@
 /* cap.c -- ear clipping (Meisters' two-ears theorem: a simple polygon always
  * has an ear, so clipping one at a time ends after n-2 ears). */
-#include "cap.h"
+#include "surface/cap.h"
 
 #include <math.h>
 #include <stdlib.h>
 
-#include "exact.h"
-#include "xmem.h"
+#include "algo/exact.h"
+#include "util/xmem.h"
 
 static double cross(vec2 a, vec2 b, vec2 c) {
   return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);

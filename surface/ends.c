@@ -1,12 +1,12 @@
 /* ends.c -- regions without a band on one side, and their caps. */
-#include "ends.h"
+#include "surface/ends.h"
 
 #include <stdlib.h>
 #include <string.h>
 
-#include "apex.h"
-#include "flatcap.h"
-#include "xmem.h"
+#include "surface/apex.h"
+#include "surface/flatcap.h"
+#include "util/xmem.h"
 
 enum { NONE, OUTER, HOLE };
 

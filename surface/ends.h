@@ -16,8 +16,8 @@
 #ifndef ENDS_H
 #define ENDS_H
 
-#include "mesh.h"
-#include "slices.h"
+#include "surface/mesh.h"
+#include "surface/slices.h"
 
 typedef struct {
   int slice;

@@ -2,15 +2,15 @@
  *
  *   boundary ... w  ->  ... w h h+1 ... h-1 h w ...   (h on the hole)
  */
-#include "flatcap.h"
+#include "surface/flatcap.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "cap.h"
-#include "crossing.h"
-#include "xmem.h"
+#include "surface/cap.h"
+#include "algo/crossing.h"
+#include "util/xmem.h"
 
 typedef struct {
   double d;

@@ -12,7 +12,7 @@
 #ifndef FLATCAP_H
 #define FLATCAP_H
 
-#include "slices.h"
+#include "surface/slices.h"
 
 /* Triangulate the region of contour `outer` less the contours holes[0..
  * nholes-1] (its children on the slice).  Writes triangles of mesh vertex

@@ -3,12 +3,12 @@
  *   lo:  0 . 1 . . 2 3        a tile on the pair's edge 1-2 of lo, apex q,
  *        |  fan   |           becomes the fan of lo's edges between them
  *   hi:       q               (all in one plane), apex q */
-#include "follow.h"
+#include "surface/follow.h"
 
 #include <math.h>
 #include <stdlib.h>
 
-#include "xmem.h"
+#include "util/xmem.h"
 
 static void corners(const vec2 *p, int n, follow_side *s) {
   s->full = n;

@@ -34,8 +34,8 @@
 #ifndef FOLLOW_H
 #define FOLLOW_H
 
-#include "geom.h"
-#include "tiling.h"
+#include "algo/geom.h"
+#include "algo/tiling.h"
 
 typedef struct {
   int n;        /* points the tiler sees (the contour's corners) */

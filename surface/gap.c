@@ -6,7 +6,7 @@
  * vertices whose distance to the other's box exceeds r are skipped.  The
  * first vertex tried is the one nearest the other's box, so r is small
  * early. */
-#include "gap.h"
+#include "surface/gap.h"
 
 #include <math.h>
 

@@ -11,8 +11,8 @@
 #ifndef GAP_H
 #define GAP_H
 
-#include "exactdist.h"
-#include "slices.h"
+#include "algo/exactdist.h"
+#include "surface/slices.h"
 
 /* The least distance between the boundaries of A and B (their regions must
  * not overlap: contours of one slice, or of neighbouring slices that were

@@ -3,13 +3,13 @@
  *   rows:  y = ylo + r h .. ylo + (r+1) h,  h = (yhi - ylo) / R
  *   row(y) = floor((y - ylo) / h), clamped: monotone in y, so a segment
  *   whose y range holds y is listed in row(y) whatever the rounding. */
-#include "inside.h"
+#include "surface/inside.h"
 
 #include <stdlib.h>
 
-#include "crossing.h"
-#include "exact.h"
-#include "xmem.h"
+#include "algo/crossing.h"
+#include "algo/exact.h"
+#include "util/xmem.h"
 
 struct inside_index {
   const vec2 *p;

@@ -10,7 +10,7 @@
 #ifndef INSIDE_H
 #define INSIDE_H
 
-#include "geom.h"
+#include "algo/geom.h"
 
 typedef struct inside_index inside_index;
 

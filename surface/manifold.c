@@ -7,14 +7,14 @@
  * (every edge out of v comes back); each edge once when they have no
  * repeats; one fan when the link edges b -> c form a single cycle.  The
  * undirected edges at v are its distinct neighbours: E = (sum over v) / 2. */
-#include "manifold.h"
+#include "surface/manifold.h"
 
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "xmem.h"
+#include "util/xmem.h"
 
 static int find(int *up, int x) {
   while (up[x] != x) x = up[x] = up[up[x]];

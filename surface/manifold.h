@@ -9,7 +9,7 @@
 #ifndef MANIFOLD_H
 #define MANIFOLD_H
 
-#include "mesh.h"
+#include "surface/mesh.h"
 
 typedef struct {
   int nv, ne, nt;     /* vertices (used by a triangle), edges, triangles */

@@ -7,16 +7,16 @@
  * on the groups as they stand (union-find, undone when the junction it makes
  * cannot be bridged).  Parents have depth d-1, so their groups are final
  * when level d starts. */
-#include "match.h"
+#include "surface/match.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "bridge.h"
-#include "gap.h"
-#include "overlap.h"
-#include "xmem.h"
+#include "surface/bridge.h"
+#include "surface/gap.h"
+#include "surface/overlap.h"
+#include "util/xmem.h"
 
 static int find(int *up, int x) {
   while (up[x] != x) x = up[x] = up[up[x]];

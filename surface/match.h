@@ -43,8 +43,8 @@
 #ifndef MATCH_H
 #define MATCH_H
 
-#include "exactdist.h"
-#include "slices.h"
+#include "algo/exactdist.h"
+#include "surface/slices.h"
 
 typedef enum { MATCH_SINGLE = 0, MATCH_OVERLAP, MATCH_TOUCH, MATCH_NEAREST } match_rule;
 

@@ -1,11 +1,11 @@
 /* mesh.c -- triangles from tilings and caps; area and volume. */
-#include "mesh.h"
+#include "surface/mesh.h"
 
 #include <math.h>
 #include <stdlib.h>
 
-#include "cap.h"
-#include "xmem.h"
+#include "surface/cap.h"
+#include "util/xmem.h"
 
 void mesh_init(mesh *me, const contour_stack *s) {
   me->nv = 0;

@@ -6,8 +6,8 @@
 #ifndef MESH_H
 #define MESH_H
 
-#include "contour.h"
-#include "tiling.h"
+#include "input/contour.h"
+#include "algo/tiling.h"
 
 typedef struct { double x, y, z; } vec3;
 

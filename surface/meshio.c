@@ -1,5 +1,5 @@
 /* meshio.c -- OBJ, PLY and STL writers; temporary file, then rename(). */
-#include "meshio.h"
+#include "surface/meshio.h"
 
 #include <ctype.h>
 #include <math.h>
@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "atomicfile.h"
+#include "util/atomicfile.h"
 
 meshio_format meshio_format_of(const char *file) {
   const char *dot = strrchr(file, '.');

@@ -7,7 +7,7 @@
 
 #include <stddef.h>
 
-#include "mesh.h"
+#include "surface/mesh.h"
 
 typedef enum { MESHIO_NONE = -1, MESHIO_OBJ, MESHIO_PLY, MESHIO_STL } meshio_format;
 

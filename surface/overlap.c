@@ -13,13 +13,13 @@
  * the points 3 and 4 construct, which lie well inside a region when they
  * count.  The cheap tests come first; 3 and 4 run only when the boundaries
  * touch or the regions are disjoint with overlapping boxes. */
-#include "overlap.h"
+#include "surface/overlap.h"
 
 #include <stdlib.h>
 
-#include "crossing.h"
-#include "exact.h"
-#include "xmem.h"
+#include "algo/crossing.h"
+#include "algo/exact.h"
+#include "util/xmem.h"
 
 static int boxes_meet(const inside_index *a, const inside_index *b) {
   vec2 alo, ahi, blo, bhi;

@@ -8,7 +8,7 @@
 #ifndef OVERLAP_H
 #define OVERLAP_H
 
-#include "inside.h"
+#include "surface/inside.h"
 
 /* 1 if the open regions of the simple polygons P and Q (indexed by ip and
  * iq, either orientation) have a common point, else 0.  Boundaries that only

@@ -1,13 +1,13 @@
 /* pool.c -- a fixed set of POSIX threads taking job numbers from one atomic
  * counter. */
-#include "pool.h"
+#include "surface/pool.h"
 
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <unistd.h>
 
-#include "xmem.h"
+#include "util/xmem.h"
 
 typedef struct {
   void (*fn)(void *ud, int job);

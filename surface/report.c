@@ -1,5 +1,5 @@
 /* report.c -- ./tile's CSV, row by row (report.h). */
-#include "report.h"
+#include "surface/report.h"
 
 static const char par_cols[] = ",procs,sim_time,msg_boundary,msg_backtrack,msg_bounds,msg_control,bytes,backend";
 static const char par_empty[] = ",,,,,,,,";

@@ -30,8 +30,8 @@
 
 #include <stdio.h>
 
-#include "run.h"
-#include "stack.h"
+#include "run/run.h"
+#include "surface/stack.h"
 
 /* The header line, after `prefix` (for columns a caller puts first); rc as
  * for report_rows. */

@@ -10,18 +10,18 @@
  *      point of a contour is inside another exactly when all of it is;
  *      parent = the deepest of those;
  *   4. odd depth runs clockwise, even counter-clockwise. */
-#include "slices.h"
+#include "surface/slices.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "args.h"
-#include "crossing.h"
-#include "exact.h"
-#include "pool.h"
-#include "xmem.h"
+#include "util/args.h"
+#include "algo/crossing.h"
+#include "algo/exact.h"
+#include "surface/pool.h"
+#include "util/xmem.h"
 
 typedef struct {
   slices *sl;

@@ -17,8 +17,8 @@
 
 #include <stddef.h>
 
-#include "contour.h"
-#include "inside.h"
+#include "input/contour.h"
+#include "surface/inside.h"
 
 typedef struct {
   int n;             /* points */

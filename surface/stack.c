@@ -7,24 +7,24 @@
  * Every phase is a set of independent jobs on the pool (pool.h), written by
  * index; refusals are taken from the lowest job that has one, so that the
  * message, like the output, does not depend on the threads. */
-#include "stack.h"
+#include "surface/stack.h"
 
 #include <math.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "args.h"
-#include "bridge.h"
-#include "ends.h"
-#include "follow.h"
-#include "kernel.h"
-#include "match.h"
-#include "pool.h"
-#include "slices.h"
-#include "tiling.h"
-#include "unpinch.h"
-#include "xmem.h"
+#include "util/args.h"
+#include "surface/bridge.h"
+#include "surface/ends.h"
+#include "surface/follow.h"
+#include "algo/kernel.h"
+#include "surface/match.h"
+#include "surface/pool.h"
+#include "surface/slices.h"
+#include "algo/tiling.h"
+#include "surface/unpinch.h"
+#include "util/xmem.h"
 
 struct stack_surface {
   mesh me;

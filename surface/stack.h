@@ -40,11 +40,11 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "contour.h"
-#include "match.h"
-#include "mesh.h"
-#include "run.h"
-#include "manifold.h"
+#include "input/contour.h"
+#include "surface/match.h"
+#include "surface/mesh.h"
+#include "run/run.h"
+#include "surface/manifold.h"
 
 /* How a 1-1 band is tiled.  STACK_BAND_ALIGNED: on its contours' corners,
  * the upper moved and scaled onto the lower (surface/follow.h), so that the

@@ -6,13 +6,13 @@
  * At (s+m, n) the cycle closes: when the first and the last steps are of one
  * kind their runs are one, so that kind has one run fewer.  A path counts
  * when it then has at least two runs of each kind. */
-#include "unpinch.h"
+#include "surface/unpinch.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "xmem.h"
+#include "util/xmem.h"
 
 enum { V = 0, H = 1, NS = 64 };
 

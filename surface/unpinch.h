@@ -17,7 +17,7 @@
 #ifndef UNPINCH_H
 #define UNPINCH_H
 
-#include "tiling.h"
+#include "algo/tiling.h"
 
 /* How many spans the path of t uses twice: 1 when it has at most one run of
  * vertical or of horizontal steps around the cycle (the full run's two ends

@@ -1,5 +1,5 @@
 /* check.c -- the counters behind CHECK and the summary line. */
-#include "check.h"
+#include "tests/check.h"
 
 int check_passed, check_failed;
 

@@ -16,7 +16,7 @@ out=$(sh tests/layers.sh . 2>&1) && printf '%s\n' "$out" | grep -qE '^layers: [0
   && ok || bad "this tree: $out"
 
 # The table's include path is the one the Makefile gives the compiler: BASE's
-# -I folders for every file, TSMPIINC's for the MPI runner and tools.
+# -I folders for every file, TSMPIPFLAGS's for the MPI test programs.
 idirs() {
   awk -v v="$1" '$1 == v { on = 1 }
     on { for (i = 1; i <= NF; i++) if ($i ~ /^-I/) printf "%s ", substr($i, 3); if ($NF != "\\") exit }' Makefile
@@ -24,8 +24,8 @@ idirs() {
 tdirs() { sed -n "s|^search$1:||p" tests/layers.txt | tr -s ' \t' '\n\n' | grep . | tr '\n' ' '; }
 [ -n "$(idirs BASE)" ] && [ "$(idirs BASE)" = "$(tdirs '')" ] && ok \
   || bad "search: is '$(tdirs '')', the Makefile's BASE has '$(idirs BASE)'"
-[ -n "$(idirs TSMPIINC)" ] && [ "$(idirs TSMPIINC)" = "$(tdirs ' mpirun/ prog/tilesim-')" ] && ok \
-  || bad "search mpirun/ prog/tilesim-: is '$(tdirs ' mpirun/ prog/tilesim-')', TSMPIINC has '$(idirs TSMPIINC)'"
+[ -n "$(idirs TSMPIPFLAGS)" ] && [ "$(idirs TSMPIPFLAGS)" = "$(tdirs ' tests/mpi/')" ] && ok \
+  || bad "search tests/mpi/: is '$(tdirs ' tests/mpi/')', TSMPIPFLAGS has '$(idirs TSMPIPFLAGS)'"
 
 # A small tree ($T/t) and its table: put FILE LINE... writes FILE; check runs
 # the check on the tree; try FILE LINE adds LINE to FILE for one check; has
@@ -123,10 +123,10 @@ out=$(sh tests/layers.sh "$T/none" 2>&1); rc=$?
 mkdir "$T/copy"
 find . -name build -prune -o -name '.?*' -prune -o -type f \( -name '*.[ch]' -o -name layers.txt \) -print |
   tar -cf - -T - | (cd "$T/copy" && tar -xf -)
-printf '#include "sim.h"\n' >> "$T/copy/util/xmem.c"
+printf '#include "sim/sim.h"\n' >> "$T/copy/util/xmem.c"
 out=$(sh tests/layers.sh "$T/copy" 2>&1); rc=$?
 has 1 "util/xmem.c:$(($(grep -c '' util/xmem.c) + 1)): includes sim/sim.h: util may not include sim" \
-  && ok || bad "this tree with util/xmem.c including sim.h: $rc $out"
+  && ok || bad "this tree with util/xmem.c including sim/sim.h: $rc $out"
 
 echo "cli_layers: $pass passed, $fail failed"
 [ "$fail" -eq 0 ]

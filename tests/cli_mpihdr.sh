@@ -22,7 +22,7 @@ trap 'rm -rf "$T"' EXIT
 printf '#include <mpi.h>\n' > "$T/h.c"
 "$CC" -aux-info "$T/x.aux" -x c -c /dev/null -o "$T/x.o" 2>/dev/null || skip "$CC has no -aux-info (not gcc)"
 "$MPICC" -aux-info "$T/ompi.aux" -c "$T/h.c" -o "$T/o1.o" 2>"$T/err" || bad "$MPICC: $(head -2 "$T/err")"
-"$CC" -std=c11 -Impi -aux-info "$T/mine.aux" -c "$T/h.c" -o "$T/o2.o" 2>"$T/err" || bad "$CC -Impi: $(head -2 "$T/err")"
+"$CC" -std=c11 -I. -Impi -aux-info "$T/mine.aux" -c "$T/h.c" -o "$T/o2.o" 2>"$T/err" || bad "$CC -I. -Impi: $(head -2 "$T/err")"
 
 # "NAME|RET|T1,T2,..." per function, blanks and MPI_Fint normalised.
 protos() {

@@ -1,7 +1,7 @@
 /* meshcheck.c -- reading meshes and checking them (see meshcheck.h), the way
  * Triangle's checkmesh checks its own: every edge matched, every triangle
  * oriented, every vertex's fan closed. */
-#include "meshcheck.h"
+#include "tests/meshcheck.h"
 
 #include <errno.h>
 #include <math.h>
@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "xmem.h"
+#include "util/xmem.h"
 
 #define PI 3.14159265358979323846
 

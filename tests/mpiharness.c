@@ -1,13 +1,13 @@
 /* mpiharness.c -- MPI programs' mains as the ranks of a machine (mpiharness.h). */
-#include "mpiharness.h"
+#include "tests/mpiharness.h"
 
 #include <stdlib.h>
 #include <string.h>
 
-#include "../mpi/env.h"
-#include "mp.h"
-#include "threads.h"
-#include "xmem.h"
+#include "mpi/env.h"
+#include "mp/mp.h"
+#include "mp/threads.h"
+#include "util/xmem.h"
 
 void mpih_config_init(mpih_config *cfg, int backend, int ranks) {
   memset(cfg, 0, sizeof *cfg);

@@ -8,7 +8,7 @@
 
 #include <stdio.h>
 
-#include "sim.h"
+#include "sim/sim.h"
 
 typedef int (*mpih_main)(int argc, char **argv);
 

@@ -1,19 +1,19 @@
 /* pipeline.c -- ./tile's work on one input, in memory, with invariants that
  * abort: the robustness tests' and the fuzz targets' oracle. */
-#include "pipeline.h"
+#include "tests/pipeline.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "contour.h"
-#include "mesh.h"
-#include "rtstruct.h"
-#include "rtwriter.h"
-#include "stack.h"
-#include "tiling.h"
-#include "xmem.h"
+#include "input/contour.h"
+#include "surface/mesh.h"
+#include "input/rtstruct.h"
+#include "tests/rtwriter.h"
+#include "surface/stack.h"
+#include "algo/tiling.h"
+#include "util/xmem.h"
 
 #define NAME "fuzz.dcm"
 

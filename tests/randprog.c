@@ -1,6 +1,6 @@
 /* randprog.c -- random matching programs, for the simulator's and the
  * threads backend's tests. */
-#include "randprog.h"
+#include "tests/randprog.h"
 
 #include <stdio.h>
 #include <string.h>

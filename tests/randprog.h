@@ -9,8 +9,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "mp.h"
-#include "rng.h"
+#include "mp/mp.h"
+#include "util/rng.h"
 
 enum { RANDPROG_MSGS = 300, RANDPROG_RANKS = 12, RANDPROG_LEN = 120 };
 

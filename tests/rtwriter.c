@@ -3,14 +3,14 @@
  *
  * A growing byte buffer; an open sequence or item of defined length keeps
  * the position of its length field, patched when it is closed. */
-#include "rtwriter.h"
+#include "tests/rtwriter.h"
 
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "xmem.h"
+#include "util/xmem.h"
 
 typedef struct {
   unsigned char *b;

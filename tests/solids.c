@@ -3,15 +3,15 @@
  * sections are circles or the curves of a torus, areas come from Green's
  * theorem on the arcs or from quadrature of the section's width, volumes from
  * closed forms or a one-dimensional integral. */
-#include "solids.h"
+#include "tests/solids.h"
 
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "rng.h"
-#include "xmem.h"
+#include "util/rng.h"
+#include "util/xmem.h"
 
 #define PI 3.14159265358979323846
 

@@ -1,11 +1,11 @@
 /* stackgen.c -- stacks of several contours per slice for the tests (stackgen.h). */
-#include "stackgen.h"
+#include "tests/stackgen.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "check.h"
+#include "tests/check.h"
 
 #define PI 3.14159265358979323846
 

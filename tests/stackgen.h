@@ -4,9 +4,9 @@
 #ifndef STACKGEN_H
 #define STACKGEN_H
 
-#include "contour.h"
-#include "geom.h"
-#include "rng.h"
+#include "input/contour.h"
+#include "algo/geom.h"
+#include "util/rng.h"
 
 typedef struct {
   int n;

@@ -8,8 +8,8 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "args.h"
-#include "check.h"
+#include "util/args.h"
+#include "tests/check.h"
 
 static char err[400];
 

@@ -14,8 +14,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "atomicfile.h"
-#include "check.h"
+#include "util/atomicfile.h"
+#include "tests/check.h"
 
 static char dir[64];
 

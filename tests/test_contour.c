@@ -5,11 +5,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
-#include "contour.h"
-#include "gen.h"
-#include "rng.h"
-#include "xmem.h"
+#include "tests/check.h"
+#include "input/contour.h"
+#include "algo/gen.h"
+#include "util/rng.h"
+#include "util/xmem.h"
 
 /* Parse text; return the error (or "" on success) and the notes. */
 static int parse(const char *text, size_t len, contour_stack *s, char *err, char *notes,

@@ -12,8 +12,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "check.h"
-#include "coro.h"
+#include "tests/check.h"
+#include "sim/coro.h"
 
 #if defined(__has_include)
 #if __has_include(<valgrind/valgrind.h>)

@@ -20,11 +20,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
-#include "cpu.h"
-#include "randprog.h"
-#include "sim.h"
-#include "threads.h"
+#include "tests/check.h"
+#include "sim/cpu.h"
+#include "tests/randprog.h"
+#include "sim/sim.h"
+#include "mp/threads.h"
 
 static sim_config config(sim_net net, int procs) {
   sim_config cfg;

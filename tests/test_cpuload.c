@@ -3,9 +3,9 @@
  * running - mine at the sample), and the timed yield's hog flag. */
 #include <stdio.h>
 
-#include "check.h"
-#include "cpuload.h"
-#include "wallclock.h"
+#include "tests/check.h"
+#include "mp/cpuload.h"
+#include "util/wallclock.h"
 
 static void parse(void) {
   static const struct {

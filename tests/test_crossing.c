@@ -5,12 +5,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
-#include "crossing.h"
-#include "exact.h"
-#include "gen.h"
-#include "rng.h"
-#include "xmem.h"
+#include "tests/check.h"
+#include "algo/crossing.h"
+#include "algo/exact.h"
+#include "algo/gen.h"
+#include "util/rng.h"
+#include "util/xmem.h"
 
 /* --- the reference: integers, parameters as exact fractions --------------- */
 

@@ -8,8 +8,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "check.h"
-#include "csvtab.h"
+#include "tests/check.h"
+#include "util/csvtab.h"
 
 static char dir[64];
 

@@ -9,12 +9,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
-#include "dicom.h"
-#include "pipeline.h"
-#include "rng.h"
-#include "rtwriter.h"
-#include "xmem.h"
+#include "tests/check.h"
+#include "input/dicom.h"
+#include "tests/pipeline.h"
+#include "util/rng.h"
+#include "tests/rtwriter.h"
+#include "util/xmem.h"
 
 static const uint32_t seqs[] = {DICOM_TAG(0x3006, 0x0020), DICOM_TAG(0x3006, 0x0039),
                                 DICOM_TAG(0x3006, 0x0040), DICOM_TAG(0x3006, 0x0080)};

@@ -6,9 +6,9 @@
 #include <stdint.h>
 #include <stdlib.h>
 
-#include "check.h"
-#include "exact.h"
-#include "rng.h"
+#include "tests/check.h"
+#include "algo/exact.h"
+#include "util/rng.h"
 
 /* The sign of the integer determinant (b-a) x (c-a): the reference. */
 static int isign(const long long *v) {

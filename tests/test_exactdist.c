@@ -8,9 +8,9 @@
 #include <stdint.h>
 #include <stdlib.h>
 
-#include "check.h"
-#include "exactdist.h"
-#include "rng.h"
+#include "tests/check.h"
+#include "algo/exactdist.h"
+#include "util/rng.h"
 
 /* The reference: the squared distance from p to the segment ab as the exact
  * fraction num / den, in integers (|coordinates| <= 400: den < 2^21, num <

@@ -35,14 +35,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
-#include "contour.h"
-#include "meshcheck.h"
-#include "rtstruct.h"
-#include "rtwriter.h"
-#include "stack.h"
-#include "stackgen.h"
-#include "xmem.h"
+#include "tests/check.h"
+#include "input/contour.h"
+#include "tests/meshcheck.h"
+#include "input/rtstruct.h"
+#include "tests/rtwriter.h"
+#include "surface/stack.h"
+#include "tests/stackgen.h"
+#include "util/xmem.h"
 
 static const double PI = 3.14159265358979323846;
 

@@ -4,12 +4,12 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "check.h"
-#include "exact.h"
-#include "gen.h"
-#include "hull.h"
-#include "rng.h"
-#include "xmem.h"
+#include "tests/check.h"
+#include "algo/exact.h"
+#include "algo/gen.h"
+#include "algo/hull.h"
+#include "util/rng.h"
+#include "util/xmem.h"
 
 int main(void) {
   rng g;

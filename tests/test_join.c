@@ -21,20 +21,20 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
-#include "contour.h"
-#include "exact.h"
-#include "exactdist.h"
-#include "gap.h"
-#include "inside.h"
-#include "meshcheck.h"
-#include "overlap.h"
-#include "report.h"
-#include "rng.h"
-#include "slices.h"
-#include "stack.h"
-#include "stackgen.h"
-#include "xmem.h"
+#include "tests/check.h"
+#include "input/contour.h"
+#include "algo/exact.h"
+#include "algo/exactdist.h"
+#include "surface/gap.h"
+#include "surface/inside.h"
+#include "tests/meshcheck.h"
+#include "surface/overlap.h"
+#include "surface/report.h"
+#include "util/rng.h"
+#include "surface/slices.h"
+#include "surface/stack.h"
+#include "tests/stackgen.h"
+#include "util/xmem.h"
 
 /* ------------------------------------------------------ overlap_closed -- */
 

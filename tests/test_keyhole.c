@@ -18,13 +18,13 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
-#include "check.h"
-#include "contour.h"
-#include "exact.h"
-#include "keyhole.h"
-#include "mesh.h"
-#include "stack.h"
-#include "xmem.h"
+#include "tests/check.h"
+#include "input/contour.h"
+#include "algo/exact.h"
+#include "algo/keyhole.h"
+#include "surface/mesh.h"
+#include "surface/stack.h"
+#include "util/xmem.h"
 
 /* ------------------------------------------------ the keyhole generator -- */
 

@@ -12,12 +12,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
-#include "gen.h"
-#include "par_slave.h"
-#include "rng.h"
-#include "run.h"
-#include "xmem.h"
+#include "tests/check.h"
+#include "algo/gen.h"
+#include "algo/par_slave.h"
+#include "util/rng.h"
+#include "run/run.h"
+#include "util/xmem.h"
 
 enum { MAXR = 16 };
 

@@ -7,14 +7,14 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "cap.h"
-#include "check.h"
-#include "gen.h"
-#include "mesh.h"
-#include "meshio.h"
-#include "rng.h"
-#include "tiling.h"
-#include "xmem.h"
+#include "surface/cap.h"
+#include "tests/check.h"
+#include "algo/gen.h"
+#include "surface/mesh.h"
+#include "surface/meshio.h"
+#include "util/rng.h"
+#include "algo/tiling.h"
+#include "util/xmem.h"
 
 /* Edges as (a, b) directed; sort and compare. */
 typedef struct { int a, b; } edge;

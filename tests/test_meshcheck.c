@@ -9,9 +9,9 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "check.h"
-#include "meshcheck.h"
-#include "xmem.h"
+#include "tests/check.h"
+#include "tests/meshcheck.h"
+#include "util/xmem.h"
 
 #define PI 3.14159265358979323846
 

@@ -11,10 +11,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
-#include "mp.h"
-#include "sim.h"
-#include "threads.h"
+#include "tests/check.h"
+#include "mp/mp.h"
+#include "sim/sim.h"
+#include "mp/threads.h"
 
 enum { SIM, THREADS };
 static const char *const backend[] = {"sim", "threads"};

@@ -20,12 +20,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../mpi/env.h"
-#include "../mpi/mpi.h"
-#include "../mpi/p2p.h"
-#include "check.h"
-#include "mp.h"
-#include "mpiharness.h"
+#include "mpi/env.h"
+#include "mpi/mpi.h"
+#include "mpi/p2p.h"
+#include "tests/check.h"
+#include "mp/mp.h"
+#include "tests/mpiharness.h"
 
 static const char *const bname[] = {"sim", "threads"};
 

@@ -12,10 +12,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../mpi/mpi.h"
-#include "check.h"
-#include "mp.h"
-#include "mpiharness.h"
+#include "mpi/mpi.h"
+#include "tests/check.h"
+#include "mp/mp.h"
+#include "tests/mpiharness.h"
 
 static const char *const bname[] = {"sim", "threads"};
 

@@ -13,12 +13,12 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "../mpi/io_sg.h"
-#include "../mpi/mpi.h"
-#include "../mpi/tsmpi.h"
-#include "check.h"
-#include "mp.h"
-#include "mpiharness.h"
+#include "mpi/io_sg.h"
+#include "mpi/mpi.h"
+#include "mpi/tsmpi.h"
+#include "tests/check.h"
+#include "mp/mp.h"
+#include "tests/mpiharness.h"
 
 enum { MAXR = 16 };
 

@@ -35,12 +35,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../mpi/mpi.h"
-#include "check.h"
-#include "mp.h"
-#include "mpiharness.h"
-#include "rng.h"
-#include "xmem.h"
+#include "mpi/mpi.h"
+#include "tests/check.h"
+#include "mp/mp.h"
+#include "tests/mpiharness.h"
+#include "util/rng.h"
+#include "util/xmem.h"
 
 enum { MR = 4, MM = 18, MSTEP = 3 * MM, MAXLEN = 40, NTAGS = 3 };
 

@@ -10,11 +10,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../mpi/funcs.h"
-#include "../mpi/mpi.h"
-#include "atomicfile.h"
-#include "check.h"
-#include "sim.h"
+#include "mpi/funcs.h"
+#include "mpi/mpi.h"
+#include "util/atomicfile.h"
+#include "tests/check.h"
+#include "sim/sim.h"
 
 /* Every function and its PMPI_ name, by address: a missing definition, or
  * a stub beside an implementation, fails the link. */
@@ -24,7 +24,7 @@ static const struct {
   anyfn fn, pfn;
 } linked[] = {
 #define TSMPI_FN(impl, chapter, ret, name, params, args) {#name, (anyfn)name, (anyfn)P##name},
-#include "../mpi/mpi_funcs.h"
+#include "mpi/mpi_funcs.h"
 #undef TSMPI_FN
 };
 

@@ -14,10 +14,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../mpi/mpi.h"
-#include "check.h"
-#include "mp.h"
-#include "mpiharness.h"
+#include "mpi/mpi.h"
+#include "tests/check.h"
+#include "mp/mp.h"
+#include "tests/mpiharness.h"
 
 enum { BCAST, ALLREDUCE, BARRIER, BLOCKING_BCAST, NCASES };
 static const char *const cname[NCASES] = {"MPI_Ibcast", "MPI_Iallreduce", "MPI_Ibarrier", "MPI_Bcast"};

@@ -17,12 +17,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../mpi/coll.h"
-#include "../mpi/env.h"
-#include "../mpi/mpi.h"
-#include "../mpi/tsmpi.h"
-#include "check.h"
-#include "mpiharness.h"
+#include "mpi/coll.h"
+#include "mpi/env.h"
+#include "mpi/mpi.h"
+#include "mpi/tsmpi.h"
+#include "tests/check.h"
+#include "tests/mpiharness.h"
 
 #define TSMPI_PROG(name) int tsmpi_main_##name(int argc, char **argv);
 #include "progs.h"

@@ -16,8 +16,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
-#include "mpiharness.h"
+#include "tests/check.h"
+#include "tests/mpiharness.h"
 
 #define TSMPI_PROG(name) int tsmpi_main_##name(int argc, char **argv);
 #include "progs.h"

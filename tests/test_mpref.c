@@ -23,12 +23,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
-#include "mp.h"
-#include "rng.h"
-#include "sim.h"
-#include "threads.h"
-#include "xmem.h"
+#include "tests/check.h"
+#include "mp/mp.h"
+#include "util/rng.h"
+#include "sim/sim.h"
+#include "mp/threads.h"
+#include "util/xmem.h"
 
 enum { BACK_SIM, BACK_THREADS };
 

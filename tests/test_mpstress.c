@@ -47,11 +47,11 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "args.h"
-#include "check.h"
-#include "rng.h"
-#include "threads.h"
-#include "xmem.h"
+#include "util/args.h"
+#include "tests/check.h"
+#include "util/rng.h"
+#include "mp/threads.h"
+#include "util/xmem.h"
 
 enum { SR_RANKS = 24, SR_MSGS = 1200, SR_TAGS = 4, SR_BUF = 40000, SR_SHOWN = 16 };
 enum { M_EXACT, M_SRC, M_ANY, M_ANYTAG, M_MODES };   /* a rank's receives: (src, tag), (src, any),

@@ -17,14 +17,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
-#include "gen.h"
-#include "mesh.h"
-#include "rng.h"
-#include "rtstruct.h"
-#include "rtwriter.h"
-#include "stack.h"
-#include "xmem.h"
+#include "tests/check.h"
+#include "algo/gen.h"
+#include "surface/mesh.h"
+#include "util/rng.h"
+#include "input/rtstruct.h"
+#include "tests/rtwriter.h"
+#include "surface/stack.h"
+#include "util/xmem.h"
 
 enum { SLICES = 14, MAXC = 4 * SLICES, MAXP = 80 };
 

@@ -7,14 +7,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
-#include "contour.h"
-#include "gen.h"
-#include "par_slave.h"
-#include "rng.h"
-#include "run.h"
-#include "tiling.h"
-#include "xmem.h"
+#include "tests/check.h"
+#include "input/contour.h"
+#include "algo/gen.h"
+#include "algo/par_slave.h"
+#include "util/rng.h"
+#include "run/run.h"
+#include "algo/tiling.h"
+#include "util/xmem.h"
 
 static int same_tiling(const tiling *a, const tiling *b) {
   return a->quanta == b->quanta && a->start == b->start && a->m == b->m && a->n == b->n &&

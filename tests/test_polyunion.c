@@ -26,13 +26,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bigz.h"
-#include "check.h"
-#include "exact.h"
-#include "gen.h"
-#include "polyunion.h"
-#include "rng.h"
-#include "xmem.h"
+#include "algo/bigz.h"
+#include "tests/check.h"
+#include "algo/exact.h"
+#include "algo/gen.h"
+#include "algo/polyunion.h"
+#include "util/rng.h"
+#include "util/xmem.h"
 
 /* ---------------------------------------------------------------- bigz */
 

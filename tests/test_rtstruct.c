@@ -10,15 +10,15 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
-#include "contour.h"
-#include "decimal.h"
-#include "dicom.h"
-#include "gen.h"
-#include "rng.h"
-#include "rtstruct.h"
-#include "rtwriter.h"
-#include "xmem.h"
+#include "tests/check.h"
+#include "input/contour.h"
+#include "input/decimal.h"
+#include "input/dicom.h"
+#include "algo/gen.h"
+#include "util/rng.h"
+#include "input/rtstruct.h"
+#include "tests/rtwriter.h"
+#include "util/xmem.h"
 
 /* ---------------------------------------------------------------- a generated set */
 

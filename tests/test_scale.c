@@ -10,14 +10,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
-#include "gen.h"
-#include "par.h"
-#include "rng.h"
-#include "run.h"
-#include "geom.h"
-#include "tiling.h"
-#include "xmem.h"
+#include "tests/check.h"
+#include "algo/gen.h"
+#include "algo/par.h"
+#include "util/rng.h"
+#include "run/run.h"
+#include "algo/geom.h"
+#include "algo/tiling.h"
+#include "util/xmem.h"
 
 static void scaled(const vec2 *p, int n, double s, vec2 *out) {
   for (int i = 0; i < n; i++) out[i] = (vec2){p[i].x * s, p[i].y * s};

@@ -10,11 +10,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
-#include "randprog.h"
-#include "mp.h"
-#include "rng.h"
-#include "sim.h"
+#include "tests/check.h"
+#include "tests/randprog.h"
+#include "mp/mp.h"
+#include "util/rng.h"
+#include "sim/sim.h"
 
 /* ==== helpers ============================================================= */
 

@@ -19,14 +19,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
-#include "contour.h"
-#include "meshcheck.h"
-#include "rng.h"
-#include "rtwriter.h"
-#include "stack.h"
-#include "strbuf.h"
-#include "xmem.h"
+#include "tests/check.h"
+#include "input/contour.h"
+#include "tests/meshcheck.h"
+#include "util/rng.h"
+#include "tests/rtwriter.h"
+#include "surface/stack.h"
+#include "util/strbuf.h"
+#include "util/xmem.h"
 
 typedef struct {
   int n;

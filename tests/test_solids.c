@@ -29,11 +29,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "check.h"
-#include "csvtab.h"
-#include "meshcheck.h"
-#include "solids.h"
-#include "xmem.h"
+#include "tests/check.h"
+#include "util/csvtab.h"
+#include "tests/meshcheck.h"
+#include "tests/solids.h"
+#include "util/xmem.h"
 
 #define PI 3.14159265358979323846
 

@@ -6,12 +6,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
-#include "gen.h"
-#include "rng.h"
-#include "tiling.h"
-#include "unpinch.h"
-#include "xmem.h"
+#include "tests/check.h"
+#include "algo/gen.h"
+#include "util/rng.h"
+#include "algo/tiling.h"
+#include "surface/unpinch.h"
+#include "util/xmem.h"
 
 static int cmp_int2(const void *a, const void *b) {
   const int *x = a, *y = b;

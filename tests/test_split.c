@@ -2,8 +2,8 @@
  * owners, min-diag, and the processor allocation. */
 #include <stdlib.h>
 
-#include "check.h"
-#include "split.h"
+#include "tests/check.h"
+#include "algo/split.h"
 
 static void check_positions(void) {
   int bad = 0, badown = 0, badbal = 0;

@@ -33,15 +33,15 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
-#include "contour.h"
-#include "meshcheck.h"
-#include "rng.h"
-#include "run.h"
-#include "solids.h"
-#include "stack.h"
-#include "stackgen.h"
-#include "xmem.h"
+#include "tests/check.h"
+#include "input/contour.h"
+#include "tests/meshcheck.h"
+#include "util/rng.h"
+#include "run/run.h"
+#include "tests/solids.h"
+#include "surface/stack.h"
+#include "tests/stackgen.h"
+#include "util/xmem.h"
 
 /* ------------------------------------------------------------ helpers -- */
 

@@ -26,8 +26,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
-#include "svgchart.h"
+#include "tests/check.h"
+#include "plots/svgchart.h"
 
 /* ==== fonts: advance widths of characters 32..126, in 1/1000 em ========== */
 

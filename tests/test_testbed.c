@@ -8,10 +8,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
-#include "machine.h"
-#include "run.h"
-#include "tilesim.h"
+#include "tests/check.h"
+#include "machine/machine.h"
+#include "run/run.h"
+#include "machine/tilesim.h"
 
 static tilesim_machine *machine(const char *const *opts) {
   tilesim_machine *m = tilesim_machine_new();

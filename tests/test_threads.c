@@ -10,15 +10,15 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
-#include "randprog.h"
-#include "contour.h"
-#include "gen.h"
-#include "rng.h"
-#include "run.h"
-#include "threads.h"
-#include "tiling.h"
-#include "xmem.h"
+#include "tests/check.h"
+#include "tests/randprog.h"
+#include "input/contour.h"
+#include "algo/gen.h"
+#include "util/rng.h"
+#include "run/run.h"
+#include "mp/threads.h"
+#include "algo/tiling.h"
+#include "util/xmem.h"
 
 /* Run n ranks of one main with one user pointer; returns the machine (free
  * it) and mpt_run's status in *rc. */

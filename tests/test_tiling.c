@@ -5,13 +5,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
-#include "gen.h"
-#include "kernel.h"
-#include "naive.h"
-#include "rng.h"
-#include "tiling.h"
-#include "xmem.h"
+#include "tests/check.h"
+#include "algo/gen.h"
+#include "algo/kernel.h"
+#include "algo/naive.h"
+#include "util/rng.h"
+#include "algo/tiling.h"
+#include "util/xmem.h"
 
 /* Independent 3D geometry: the triangle's area by the cross product. */
 static double area3(vec2 a, double za, vec2 b, double zb, vec2 c, double zc) {

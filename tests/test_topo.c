@@ -25,18 +25,18 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "check.h"
-#include "gen.h"
-#include "link.h"
-#include "mp.h"
-#include "place.h"
-#include "randprog.h"
-#include "rng.h"
-#include "run.h"
-#include "sim.h"
-#include "tiling.h"
-#include "topo.h"
-#include "xmem.h"
+#include "tests/check.h"
+#include "algo/gen.h"
+#include "sim/link.h"
+#include "mp/mp.h"
+#include "sim/place.h"
+#include "tests/randprog.h"
+#include "util/rng.h"
+#include "run/run.h"
+#include "sim/sim.h"
+#include "algo/tiling.h"
+#include "sim/topo.h"
+#include "util/xmem.h"
 
 static const double M = 0.25, R = 0.125, BETA = 1.0 / 64, C = 0.125;
 

@@ -7,10 +7,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
-#include "randprog.h"
-#include "sim.h"
-#include "trace.h"
+#include "tests/check.h"
+#include "tests/randprog.h"
+#include "sim/sim.h"
+#include "sim/trace.h"
 
 /* One run: written (counted == 0) or counted; the two sizes. */
 static int run(const sim_config *cfg, int nranks, uint64_t seed, int counted, long *csv, long *json) {

@@ -11,14 +11,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "check.h"
-#include "contour.h"
-#include "gen.h"
-#include "rng.h"
-#include "run.h"
-#include "split.h"
-#include "tiling.h"
-#include "xmem.h"
+#include "tests/check.h"
+#include "input/contour.h"
+#include "algo/gen.h"
+#include "util/rng.h"
+#include "run/run.h"
+#include "algo/split.h"
+#include "algo/tiling.h"
+#include "util/xmem.h"
 
 static const split_alloc allocs[3] = {ALLOC_HALF, ALLOC_SIZE, ALLOC_FIT};
 static const int blocks[4] = {1, 2, 7, 64};

@@ -1,7 +1,7 @@
 /* args.c -- strict option values: the syntax checked by hand, then strtoll,
  * strtoull or strtod on a string already known to be well formed, with
  * their overflow and underflow reports honoured. */
-#include "args.h"
+#include "util/args.h"
 
 #include <errno.h>
 #include <float.h>
@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "progname.h"
+#include "util/progname.h"
 
 /* ---- helpers --------------------------------------------------------- */
 

@@ -10,7 +10,7 @@
  * signal again, so the process dies of it as it would have: unlink,
  * getpid, sigaction and raise are async-signal-safe, and a lock-free
  * atomic int is safe to read in a handler. */
-#include "atomicfile.h"
+#include "util/atomicfile.h"
 
 #include <errno.h>
 #include <pthread.h>
@@ -21,7 +21,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "xmem.h"
+#include "util/xmem.h"
 
 enum { SLOTS = 64, SLOT_PATH = 4096 + 32 };
 enum { FREE, BUSY, LIVE };

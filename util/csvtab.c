@@ -1,12 +1,12 @@
 /* csvtab.c -- reading the bench's CSV (RFC 4180 quoting, one record a line). */
-#include "csvtab.h"
+#include "util/csvtab.h"
 
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "xmem.h"
+#include "util/xmem.h"
 
 /* One line's fields: plain, or quoted as RFC 4180 writes them ("...", a
  * quote inside doubled, commas inside kept).  NULL with *why when a quote is

@@ -1,11 +1,11 @@
 /* errlog.c -- quoting a run's first errors. */
-#include "errlog.h"
+#include "util/errlog.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "xmem.h"
+#include "util/xmem.h"
 
 void errlog_add(errlog *e, const char *text, int always) {
   if (e->shown >= ERRLOG_SHOWN && !always) return;

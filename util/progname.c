@@ -1,12 +1,12 @@
 /* progname.c -- the sources' name of a program written as the name it was
  * run by. */
-#include "progname.h"
+#include "util/progname.h"
 
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "xmem.h"
+#include "util/xmem.h"
 
 static const char *src_name = "";   /* "bench" */
 static const char *run_name = "";   /* "tilesim-bench" */

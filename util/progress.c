@@ -1,6 +1,6 @@
 /* progress.c -- a self-rewriting line on a terminal, a line every few
  * seconds in a log; a ticker thread keeps them coming while no step ends. */
-#include "progress.h"
+#include "util/progress.h"
 
 #include <errno.h>
 #include <pthread.h>
@@ -10,8 +10,8 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "wallclock.h"
-#include "xmem.h"
+#include "util/wallclock.h"
+#include "util/xmem.h"
 
 struct progress {
   char prog[32], what[32];

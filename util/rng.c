@@ -1,5 +1,5 @@
 /* rng.c -- xoshiro256** seeded through splitmix64 (Blackman and Vigna). */
-#include "rng.h"
+#include "util/rng.h"
 
 static uint64_t splitmix(uint64_t *x) {
   uint64_t z = (*x += 0x9e3779b97f4a7c15ULL);

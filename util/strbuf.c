@@ -1,10 +1,10 @@
 /* strbuf.c -- a growing text buffer (strbuf.h). */
-#include "strbuf.h"
+#include "util/strbuf.h"
 
 #include <stdio.h>
 #include <string.h>
 
-#include "xmem.h"
+#include "util/xmem.h"
 
 void strbuf_grow(strbuf *b, size_t n) {
   if (b->len + n + 1 > b->cap) {

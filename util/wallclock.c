@@ -1,5 +1,5 @@
 /* wallclock.c -- CLOCK_MONOTONIC in seconds. */
-#include "wallclock.h"
+#include "util/wallclock.h"
 
 #include <time.h>
 

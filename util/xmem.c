@@ -1,5 +1,5 @@
 /* xmem.c -- allocation wrappers: out of memory prints the size and aborts. */
-#include "xmem.h"
+#include "util/xmem.h"
 
 #include <stdarg.h>
 #include <stdint.h>

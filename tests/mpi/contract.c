@@ -11,9 +11,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "mp_mpi.h"
-#include "rng.h"
-#include "xmem.h"
+#include "mp/mp_mpi.h"
+#include "util/rng.h"
+#include "util/xmem.h"
 
 static int passed, failed, me;
 static MPI_Comm data, ctl;
