@@ -47,12 +47,15 @@ MPIDIR  ?= build/mpi
 MPIFLAGS = -O2 -g -DTILESIM_MPI
 MPISRC   = $(wildcard $(addsuffix /*.c,$(LIBDIRS)))
 MPIPROGS = tile bench
-# Programs: prog/NAME.c holds main; prog/NAME_*.c are linked into NAME only.
+# Programs: prog/NAME.c holds main, prog/NAME_*.c are linked into NAME only;
+# or, for a program of many files, prog/NAME/ holds them all (progsrc).
 # The MPI tools (tilesim-mpicc, tilesim-mpirun) are built apart, below.
 MPITOOLS = tilesim-mpicc tilesim-mpicxx tilesim-mpirun
-PROGS    = $(filter-out $(MPITOOLS),$(basename $(notdir $(filter-out $(wildcard prog/*_*.c),$(wildcard prog/*.c)))))
-# The SVG plotter, plots/*.c, builds to build/plot.
-PLOTSRC  = $(wildcard plots/*.c)
+PROGS    = $(filter-out $(MPITOOLS),$(basename $(notdir $(filter-out $(wildcard prog/*_*.c),$(wildcard prog/*.c))))) \
+           $(filter-out plot,$(patsubst prog/%/,%,$(sort $(dir $(wildcard prog/*/*.c)))))
+progsrc  = $(wildcard prog/$(1).c prog/$(1)_*.c prog/$(1)/*.c)
+# The SVG plotter, prog/plot/*.c, builds to build/plot (plots/ holds what it draws).
+PLOTSRC  = $(wildcard prog/plot/*.c)
 PLOT     = $(if $(PLOTSRC),build/plot)
 TESTS    = $(basename $(notdir $(wildcard tests/test_*.c)))
 # The testbed's library for users' own programs (machine/tilesim.h, issue
@@ -165,8 +168,8 @@ endef
 $(eval $(mpitool_rules))
 # bench --calibrate's basic blocks: this loop compiled as tilesim-mpicc
 # --count-blocks compiles programs.
-$(REL)/prog/bench_blocks.o: CFLAGS += -fsanitize-coverage=trace-pc
-$(CHK)/prog/bench_blocks.o: CHKFLAGS += -fsanitize-coverage=trace-pc
+$(REL)/prog/bench/blocks.o: CFLAGS += -fsanitize-coverage=trace-pc
+$(CHK)/prog/bench/blocks.o: CHKFLAGS += -fsanitize-coverage=trace-pc
 # publib(DIR,SOURCES): DIR/lib/libtilesim.a from the sources' objects in DIR.
 define publib
 $(1)/lib/libtilesim.a: $(patsubst %.c,$(1)/%.o,$(2))
@@ -226,10 +229,10 @@ $(VG)/tests/$(1): $(VG)/tests/$(1).o $(patsubst %,$(VG)/tests/mpi/%.o,$(TSMPIPRO
 endef
 
 define prog_rules
-build/bin/$(1): $(call relobj,prog/$(1).c $(wildcard prog/$(1)_*.c)) $(REL)/libtilesim.a
+build/bin/$(1): $(call relobj,$(call progsrc,$(1))) $(REL)/libtilesim.a
 	@mkdir -p build/bin
 	$$(CC) $$(CFLAGS) -o $$@ $$^ $$(LDLIBS)
-$(CHK)/$(1): $(call chkobj,prog/$(1).c $(wildcard prog/$(1)_*.c)) $(CHK)/libtilesim.a
+$(CHK)/$(1): $(call chkobj,$(call progsrc,$(1))) $(CHK)/libtilesim.a
 	$$(CC) $$(CHKFLAGS) -o $$@ $$^ $$(LDLIBS)
 endef
 $(foreach p,$(PROGS),$(eval $(call prog_rules,$(p))))
@@ -242,7 +245,7 @@ $(CHK)/plot: $(call chkobj,$(PLOTSRC)) $(CHK)/libtilesim.a
 $(CHK)/tests/%: $(CHK)/tests/%.o $(call chkobj,$(TESTLIB)) $(CHK)/libtsmpi.a $(CHK)/libtilesim.a
 	$(CC) $(CHKFLAGS) -o $@ $^ $(LDLIBS)
 # The plotter's charts, tested apart from the plotter's main.
-$(CHK)/tests/test_svgchart: $(CHK)/tests/test_svgchart.o $(CHK)/plots/svgchart.o $(call chkobj,$(TESTLIB)) \
+$(CHK)/tests/test_svgchart: $(CHK)/tests/test_svgchart.o $(CHK)/prog/plot/svgchart.o $(call chkobj,$(TESTLIB)) \
                             $(CHK)/libtsmpi.a $(CHK)/libtilesim.a
 	$(CC) $(CHKFLAGS) -o $@ $^ $(LDLIBS)
 
@@ -289,7 +292,7 @@ $(MPIDIR)/libtilesim.a: $(patsubst %.c,$(MPIDIR)/%.o,$(MPISRC))
 	@rm -f $@
 	$(AR) rcs $@ $^
 define mpi_rules
-$(MPIDIR)/bin/$(1)-mpi: $(patsubst %.c,$(MPIDIR)/%.o,prog/$(1).c $(wildcard prog/$(1)_*.c)) $(MPIDIR)/libtilesim.a
+$(MPIDIR)/bin/$(1)-mpi: $(patsubst %.c,$(MPIDIR)/%.o,$(call progsrc,$(1))) $(MPIDIR)/libtilesim.a
 	@mkdir -p $(MPIDIR)/bin
 	$$(MPICC) $$(MPIFLAGS) -o $$@ $$^ $$(LDLIBS)
 endef
@@ -332,7 +335,7 @@ $(VG)/tests/mpi/%.o: tests/mpi/%.c
 $(foreach d,$(TSMPIDRIVERS),$(eval $(call tsmpi_driver_rules,$(d))))
 $(VG)/tests/%: $(VG)/tests/%.o $(patsubst %.c,$(VG)/%.o,$(TESTLIB)) $(VG)/libtsmpi.a $(VG)/libtilesim.a
 	$(CC) -g -o $@ $^ $(LDLIBS)
-$(VG)/tests/test_svgchart: $(VG)/tests/test_svgchart.o $(VG)/plots/svgchart.o $(patsubst %.c,$(VG)/%.o,$(TESTLIB)) \
+$(VG)/tests/test_svgchart: $(VG)/tests/test_svgchart.o $(VG)/prog/plot/svgchart.o $(patsubst %.c,$(VG)/%.o,$(TESTLIB)) \
                            $(VG)/libtsmpi.a $(VG)/libtilesim.a
 	$(CC) -g -o $@ $^ $(LDLIBS)
 valgrind: $(addprefix $(VG)/tests/,$(TESTS))

@@ -27,7 +27,7 @@
 #include <string.h>
 
 #include "tests/check.h"
-#include "plots/svgchart.h"
+#include "prog/plot/svgchart.h"
 
 /* ==== fonts: advance widths of characters 32..126, in 1/1000 em ========== */
 

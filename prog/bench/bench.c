@@ -1,21 +1,14 @@
 /* bench.c -- tilesim's benchmarks: pick a mode, it prints CSV on stdout.
  *
- * main only dispatches: each mode lives in its own prog/bench_*.c, parses
+ * main only dispatches: each mode lives in a file of its own in prog/bench/
+ * (bench.h declares them all, named for their options), parses
  * its own options and returns the exit status (0, 1 for a failed run, 2 for
  * bad usage).  To add a mode, add a row to `modes`. */
 #include <stdio.h>
 #include <string.h>
 
-#include "prog/bench_calibrate.h"
-#include "prog/bench_claims.h"
-#include "prog/bench_dicom.h"
-#include "prog/bench_map.h"
-#include "prog/bench_model.h"
-#include "prog/bench_paper.h"
-#include "prog/bench_ring.h"
-#include "prog/bench_stack.h"
-#include "prog/bench_tiler.h"
-#include "prog/bench_union.h"
+#include "prog/bench/bench.h"
+#include "prog/bench/paper.h"
 #include "util/progname.h"
 #ifdef TILESIM_MPI
 #include "run/run_mpi.h"
@@ -28,7 +21,7 @@ typedef struct {
 } mode;
 
 static const mode modes[] = {
-    {"--ring", bench_ring_main,
+    {"--ring", bench_ring,
      "P --laps K [--net ideal|bus|loggp] [--m S] [--c S] [--work U] [--profile NAME]\n"
      "      [--trace-csv FILE] [--trace-json FILE] [--trace-limit BYTES]\n"
      "      [--topology NAME] [--place NAME] [--hop-latency S] [--per-byte S]\n"
@@ -38,7 +31,7 @@ static const mode modes[] = {
      "      1000000, K up to 1e9, P x K up to 1e10; traces up to --trace-limit, 1G;\n"
      "      each rank's stack --stack, 256 KiB);\n"
      "      on a topology (tile --help lists them), --tokens all: one token a rank"},
-    {"--switch", bench_switch_main,
+    {"--switch", bench_switch,
      "N\n"
      "      two coroutines switching N times (2 to 1e10): ns per context switch"},
     {"--model", bench_model,
@@ -57,7 +50,7 @@ static const mode modes[] = {
     {"--claims", bench_claims,
      "SPEEDUP.csv [MIN_DIAG.csv] [--require LIST]\n"
      "      the paper's seven claims (sections 6, 7), checked against the sweeps"},
-    {"--claims-map", bench_map,
+    {"--claims-map", bench_claims_map,
      "[--net LIST] [--m LIST] [--c LIST] [--seed LIST] [--input STACK --pair LIST]\n"
      "      [--points LIST] [--jobs N] [-o FILE] [--machine NAME] [--per-byte S]\n"
      "      [--local S] [--L S] [--o S] [--g S] [--G S] [--master-c S] [--table-c S]\n"

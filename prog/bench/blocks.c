@@ -1,10 +1,10 @@
-/* bench_blocks.c -- what a basic block of an MPI program costs on this host
+/* blocks.c -- what a basic block of an MPI program costs on this host
  * (bench --calibrate; tilesim-mpirun --compute blocks charges --block-c
  * seconds a block).  This file alone is compiled with
  * -fsanitize-coverage=trace-pc, as tilesim-mpicc --count-blocks compiles a
  * program: the loop below, cpi's (MPICH's example), counts its own blocks
- * through the counter bench_micro.c keeps. */
-#include "prog/bench_blocks.h"
+ * through the counter micro.c keeps. */
+#include "prog/bench/blocks.h"
 
 double blocks_cpi(long n) {
   double h = 1.0 / (double)n, sum = 0;

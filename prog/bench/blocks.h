@@ -1,4 +1,4 @@
-/* bench_blocks.h -- a loop whose basic blocks are counted (bench_blocks.c is
+/* blocks.h -- a loop whose basic blocks are counted (blocks.c is
  * compiled with -fsanitize-coverage=trace-pc), for micro_block. */
 #ifndef BENCH_BLOCKS_H
 #define BENCH_BLOCKS_H

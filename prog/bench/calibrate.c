@@ -1,9 +1,9 @@
-/* bench_calibrate.c -- bench --calibrate: make the simulator model this host.
+/* calibrate.c -- bench --calibrate: make the simulator model this host.
  *
  *   bench --calibrate [--points LIST] [--procs LIST] [--repeat R] [--seed S]
  *                     [--messages K] [--options-only]
  *
- * Measured here by micro-benchmarks (bench_micro.h), never by the parallel
+ * Measured here by micro-benchmarks (micro.h), never by the parallel
  * runs they then predict, each the fastest of R runs, in rounds:
  *   c, c_table  seconds per node: the serial solver on the generated pair,
  *               weights on the fly and (where the slaves use them) from
@@ -39,7 +39,7 @@
  * options that model this host for that P), for a script that runs the
  * simulator itself (tests/bench_cores.sh).  stderr says what was measured
  * and how long it all took. */
-#include "prog/bench_calibrate.h"
+#include "prog/bench/bench.h"
 
 #include <limits.h>
 #include <math.h>
@@ -48,8 +48,8 @@
 #include <string.h>
 
 #include "util/args.h"
-#include "prog/bench_micro.h"
-#include "prog/bench_paper.h"
+#include "prog/bench/micro.h"
+#include "prog/bench/paper.h"
 #include "mp/cpuload.h"
 #include "algo/par_slave.h"
 #include "util/progname.h"

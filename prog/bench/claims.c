@@ -1,4 +1,4 @@
-/* bench_claims.c -- the paper's claims, read off the sweeps.
+/* claims.c -- the paper's claims, read off the sweeps.
  *
  *   bench --claims SPEEDUP.csv [MIN_DIAG.csv] [--require LIST]
  *
@@ -9,16 +9,16 @@
  * sweeps cannot show it (one size for claim 7, none of 200+ points for 2, no
  * d sweep for 6).  --require 1,2,3: exit 1 unless
  * those claims hold (make check asserts the ones its reduced sweep can show).
- * The criteria and their tolerances: bench_judge.h (the judge is shared
+ * The criteria and their tolerances: judge.h (the judge is shared
  * with --claims-map).  MIN_DIAG.csv counts at its largest points only. */
-#include "prog/bench_claims.h"
+#include "prog/bench/bench.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "util/args.h"
-#include "prog/bench_judge.h"
+#include "prog/bench/judge.h"
 #include "util/csvtab.h"
 #include "util/progname.h"
 

@@ -1,6 +1,6 @@
-/* bench_map.c -- where the paper's claims hold: every configuration (a
+/* claims_map.c -- where the paper's claims hold: every configuration (a
  * network, a message cost m, a node cost c, a pair) swept on the paper's
- * setup and judged by the claims' one judge (bench_judge.h).
+ * setup and judged by the claims' one judge (judge.h).
  *
  *   bench --claims-map [--net LIST] [--m LIST] [--c LIST] [--seed LIST]
  *         [--input STACK --pair LIST] [--points LIST] [machine options]
@@ -20,10 +20,10 @@
  *
  * One CSV row per configuration: the configuration, claim1..claim7 (1, 0,
  * or n/a where the sweep cannot show the claim), and the figures behind
- * them (bench_judge.h): t2_t1 and t3_t2 (the largest over the sizes that
+ * them (judge.h): t2_t1 and t3_t2 (the largest over the sizes that
  * count), t4_t3, t6_t5 (half) and size_t4_t3, size_t6_t5 at the largest
  * size, each allocation's best P and speedup there, and the best d. */
-#include "prog/bench_map.h"
+#include "prog/bench/bench.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -32,8 +32,8 @@
 
 #include "util/args.h"
 #include "util/atomicfile.h"
-#include "prog/bench_judge.h"
-#include "prog/bench_paper.h"
+#include "prog/bench/judge.h"
+#include "prog/bench/paper.h"
 #include "input/contour.h"
 #include "util/progname.h"
 #include "run/run.h"
@@ -150,7 +150,7 @@ static void field_int(FILE *f, int x) {
   else fprintf(f, ",%d", x);
 }
 
-int bench_map(int argc, char **argv) {
+int bench_claims_map(int argc, char **argv) {
   map_opts o;
   int u = parse(argc, argv, &o);
   if (u) return u;

@@ -1,5 +1,5 @@
-/* bench_data.c -- finding ./bench's data, in the source tree or installed. */
-#include "prog/bench_data.h"
+/* data.c -- finding ./bench's data, in the source tree or installed. */
+#include "prog/bench/data.h"
 
 #include <stdio.h>
 #include <string.h>

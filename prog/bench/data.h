@@ -1,4 +1,4 @@
-/* bench_data.h -- where ./bench finds the data its defaults name: the source
+/* data.h -- where ./bench finds the data its defaults name: the source
  * tree's tests/data (beside the program or here), PREFIX/share/tilesim once
  * installed (make install copies tests/data/slicerrt and tests/data/rtstruct
  * there), or a folder the user names (--data DIR). */

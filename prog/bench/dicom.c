@@ -1,4 +1,4 @@
-/* bench_dicom.c -- ./bench --dicom: how fast a DICOM RT structure set is
+/* dicom.c -- ./bench --dicom: how fast a DICOM RT structure set is
  * read, and its ROIs made into stacks.
  *
  *   bench --dicom [FILE...] [--repeat R]
@@ -10,7 +10,7 @@
  * of rtstruct_roi_stack on every ROI that has contours (its .contours text
  * and the stack reader).  checksum is the sum of every coordinate read: it
  * shows a fast wrong answer. */
-#include "prog/bench_dicom.h"
+#include "prog/bench/bench.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -18,7 +18,7 @@
 #include <string.h>
 
 #include "util/args.h"
-#include "prog/bench_data.h"
+#include "prog/bench/data.h"
 #include "util/progname.h"
 #include "input/rtstruct.h"
 #include "util/wallclock.h"

@@ -1,6 +1,6 @@
-/* bench_judge.c -- the paper's seven claims judged on a sweep held in memory
- * (bench_judge.h states the criteria; doc/paper.md, "The paper's claims"). */
-#include "prog/bench_judge.h"
+/* judge.c -- the paper's seven claims judged on a sweep held in memory
+ * (judge.h states the criteria; doc/paper.md, "The paper's claims"). */
+#include "prog/bench/judge.h"
 
 #include <math.h>
 #include <stdarg.h>

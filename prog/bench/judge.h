@@ -1,4 +1,4 @@
-/* bench_judge.h -- the judge of the paper's seven claims (sections 6 and 7):
+/* judge.h -- the judge of the paper's seven claims (sections 6 and 7):
  * one set of criteria, with their tolerances, for `bench --claims` (sweeps
  * read from CSV) and `bench --claims-map` (sweeps run in memory).
  *

@@ -1,8 +1,8 @@
-/* bench_micro.c -- micro-benchmarks of the threads backend's messages and of
- * cores working at once (bench_micro.h). */
-#include "prog/bench_micro.h"
+/* micro.c -- micro-benchmarks of the threads backend's messages and of
+ * cores working at once (micro.h). */
+#include "prog/bench/micro.h"
 
-#include "prog/bench_blocks.h"
+#include "prog/bench/blocks.h"
 
 #include <pthread.h>
 #include <stdatomic.h>
@@ -299,7 +299,7 @@ double micro_together(const vec2 *A, const vec2 *B, int n, int table, int k, int
 
 /* ==== a basic block (tilesim-mpirun --compute blocks) ===================== */
 
-/* The counter the instrumented loop (bench_blocks.c) calls at every block. */
+/* The counter the instrumented loop (blocks.c) calls at every block. */
 static unsigned long long counted;
 void __sanitizer_cov_trace_pc(void);
 void __sanitizer_cov_trace_pc(void) { counted++; }

@@ -1,4 +1,4 @@
-/* bench_micro.h -- the micro-benchmarks behind bench --calibrate: what one
+/* micro.h -- the micro-benchmarks behind bench --calibrate: what one
  * message costs the threads backend's sender, receiver and the time
  * between them, what a sleeping receiver's wake-up costs, and how much
  * cores that work at once slow each other.  None of them runs the

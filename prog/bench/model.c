@@ -1,4 +1,4 @@
-/* bench_model.c -- section 7.2's model of one diagonal, cd/p + 2m(p-1),
+/* model.c -- section 7.2's model of one diagonal, cd/p + 2m(p-1),
  * against the simulated machine; and the glass of Fig. 17.
  *
  *   bench --model [--diag LIST] [--procs LIST] [--m S] [--c S] [--net MODEL] ...
@@ -10,7 +10,7 @@
  * paper's model counts a message twice, sent and received, each costing its
  * m: our bus charges one message m for both, so the model's m is ours over 2:
  * cD/p + 2 (m/2) (p-1) = cD/p + m (p-1), smallest at p = sqrt(cD/m). */
-#include "prog/bench_model.h"
+#include "prog/bench/bench.h"
 
 #include <math.h>
 #include <stdio.h>

@@ -1,5 +1,5 @@
-/* bench_net.c -- ./bench's --topology and --place lists and the network's CSV columns (bench_net.h). */
-#include "prog/bench_net.h"
+/* net.c -- ./bench's --topology and --place lists and the network's CSV columns (net.h). */
+#include "prog/bench/net.h"
 
 #include <string.h>
 

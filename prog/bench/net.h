@@ -1,4 +1,4 @@
-/* bench_net.h -- ./bench's network axes: --topology and --place lists, and the network's CSV columns. */
+/* net.h -- ./bench's network axes: --topology and --place lists, and the network's CSV columns. */
 #ifndef BENCH_NET_H
 #define BENCH_NET_H
 

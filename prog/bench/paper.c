@@ -1,4 +1,4 @@
-/* bench_paper.c -- the paper's experiments: speedup against processors for
+/* paper.c -- the paper's experiments: speedup against processors for
  * contours of 100..500 points (Fig. 16, 18/19), time against processors for
  * d = 20..100 (Fig. 20/21), on the simulated machine or, with --backend
  * threads, measured on this one.
@@ -23,7 +23,8 @@
  * fastest is reported, since what else runs on the machine only ever adds
  * time, and every repetition must give the same optimum.  wall_s is then
  * the job's R runs together. */
-#include "prog/bench_paper.h"
+#include "prog/bench/paper.h"
+#include "prog/bench/bench.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -38,8 +39,8 @@
 
 #include "util/args.h"
 #include "util/atomicfile.h"
-#include "prog/bench_net.h"
-#include "prog/bench_variant.h"
+#include "prog/bench/net.h"
+#include "prog/bench/variant.h"
 #include "input/contour.h"
 #include "algo/gen.h"
 #include "util/progname.h"
@@ -74,7 +75,7 @@ typedef struct {
   int points, procs, alloc, d, hidden, pairid;
   double m, c;
   int topo, place;   /* indices into plan's lists (-1: no topology list) */
-  int block, sched;   /* the variant (bench_variant.h) */
+  int block, sched;   /* the variant (variant.h) */
 } job;
 
 typedef struct {   /* what a run sends back to the parent */

@@ -1,14 +1,12 @@
-/* bench_paper.h -- ./bench's main mode: the paper's experiments on the
- * simulated machine (sections 6 and 7), one CSV row per run. */
+/* paper.h -- the machinery of ./bench's main mode, the paper's sweeps
+ * (bench_paper, bench.h), that other modes use: the generated pairs and
+ * runs spread over forked workers. */
 #ifndef BENCH_PAPER_H
 #define BENCH_PAPER_H
 
 #include "input/contour.h"
 #include "algo/geom.h"
 #include "run/run.h"
-
-/* The whole command line (no mode option); returns the exit status. */
-int bench_paper(int argc, char **argv);
 
 /* The generated pair of `points` points for a seed (two random star-shaped
  * contours, section 6), the same in every mode; the caller frees both. */
@@ -37,7 +35,5 @@ typedef struct {
 int bench_sweep_runs(const bench_cfg *cfgs, const bench_run *runs, int n, int jobs, double *times,
                      char *err, size_t errlen);
 
-/* The usage text of its options. */
-extern const char bench_paper_help[];
 
 #endif

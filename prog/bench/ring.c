@@ -1,4 +1,4 @@
-/* bench_ring.c -- how fast the simulator runs: a token ring, and a bare coroutine switch.
+/* ring.c -- how fast the simulator runs: a token ring, and a bare coroutine switch.
  *
  *   rank 0 -> rank 1 -> ... -> rank P-1 -> rank 0     (K laps, P*K messages)
  *
@@ -13,7 +13,7 @@
  * --tokens all: every rank starts with a token; each lap every rank sends
  * its token on and takes its neighbour's, so P messages are in flight at
  * once and share links (contention).  The tokens then sum to P*K. */
-#include "prog/bench_ring.h"
+#include "prog/bench/bench.h"
 
 #include <limits.h>
 #include <stdio.h>
@@ -87,7 +87,7 @@ fail:
   g->failed = 1;
 }
 
-int bench_ring_main(int argc, char **argv) {
+int bench_ring(int argc, char **argv) {
   long procs = 0, laps = 0;
   double work = 1;
   int all = 0, print_place = 0, net_given = 0, topo_given = 0;
@@ -345,7 +345,7 @@ static coro *duo_b(void *ud) {
   return d->main;
 }
 
-int bench_switch_main(int argc, char **argv) {
+int bench_switch(int argc, char **argv) {
   unsigned long long un;
   char msg[300];
   if (argc < 3) return bad(switch_usage, "an option needs a value", argv[1]);

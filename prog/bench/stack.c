@@ -1,4 +1,4 @@
-/* bench_stack.c -- ./bench --stack: the stack tiler's speed (issue 9): whole
+/* stack.c -- ./bench --stack: the stack tiler's speed (issue 9): whole
  * stacks, several contours per slice, made into one closed surface
  * (surface/stack.h: slices, nesting, correspondence, bridges, every band
  * tiled exactly, caps, the mesh and its components), on 1, 2, ... threads.
@@ -16,7 +16,7 @@
  * a slow spell of the machine touches every count alike.  cost (the bands'
  * optima summed) and volume (the mesh's) are checksums: a fast wrong answer
  * shows. */
-#include "prog/bench_stack.h"
+#include "prog/bench/bench.h"
 
 #include <errno.h>
 #include <math.h>
@@ -25,7 +25,7 @@
 #include <string.h>
 
 #include "util/args.h"
-#include "prog/bench_data.h"
+#include "prog/bench/data.h"
 #include "input/contour.h"
 #include "util/progname.h"
 #include "input/rtstruct.h"

@@ -1,4 +1,4 @@
-/* bench_tiler.c -- ./bench --tiler: how fast the exact tiler is, and how much
+/* tiler.c -- ./bench --tiler: how fast the exact tiler is, and how much
  * memory it takes.
  *
  *   bench --tiler [--points N[,N...]] [--naive N] [--input STACK]... [--cost area|span]
@@ -12,10 +12,10 @@
  * pairs): a checksum that shows a fast wrong answer.
  *
  * The default stack, tests/data/slicerrt/prostate_0.contours, and a stack
- * named without a folder are looked for as bench_data.h says: here, in
+ * named without a folder are looked for as data.h says: here, in
  * --data DIR, installed (PREFIX/share/tilesim) or in the source tree beside
  * the program, so that an installed bench runs anywhere. */
-#include "prog/bench_tiler.h"
+#include "prog/bench/bench.h"
 
 #include <limits.h>
 #include <stdio.h>
@@ -26,7 +26,7 @@
 #include <unistd.h>
 
 #include "util/args.h"
-#include "prog/bench_data.h"
+#include "prog/bench/data.h"
 #include "input/contour.h"
 #include "algo/gen.h"
 #include "algo/naive.h"

@@ -1,4 +1,4 @@
-/* bench_union.c -- ./bench --union: the cost of ./tile --union's exact union
+/* union.c -- ./bench --union: the cost of ./tile --union's exact union
  * (algo/polyunion.h) on one slice of overlapping contours (issue 22).
  *
  *   bench --union [blob|star:K:N ...] [--repeat R]
@@ -20,7 +20,7 @@
  * numbers, the loops, the rounding and the check), us_per_point per input
  * point, and two checksums: the loops' points and twice their signed area
  * (holes negative). */
-#include "prog/bench_union.h"
+#include "prog/bench/bench.h"
 
 #include <math.h>
 #include <stdio.h>

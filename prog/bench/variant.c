@@ -1,5 +1,5 @@
-/* bench_variant.c -- variant names for ./bench (bench_variant.h). */
-#include "prog/bench_variant.h"
+/* variant.c -- variant names for ./bench (variant.h). */
+#include "prog/bench/variant.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -1,4 +1,4 @@
-/* bench_variant.h -- ./bench's variants of the parallel algorithm, side by
+/* variant.h -- ./bench's variants of the parallel algorithm, side by
  * side with the paper's in one sweep: --variant LIST, or the cross product
  * of the --alloc, --block and --schedule lists.
  *

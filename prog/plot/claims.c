@@ -1,4 +1,4 @@
-/* plot_claims.c -- build/plot claims: bench --claims-map's CSV as a grid.
+/* claims.c -- build/plot claims: bench --claims-map's CSV as a grid.
  *
  *   plot claims MAP.csv [--title T] -o OUT.svg
  *
@@ -8,7 +8,7 @@
  * n/a (the sweep cannot show it).  A cell spans its m/c halfway (in log
  * scale) to its neighbours.  The tc2000 profile's m/c is a dashed line and
  * the cells at it are outlined; a legend below. */
-#include "plots/plot_claims.h"
+#include "prog/plot/claims.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -20,7 +20,7 @@
 #include "util/csvtab.h"
 #include "util/progname.h"
 #include "sim/sim.h"
-#include "plots/svgchart.h"
+#include "prog/plot/svgchart.h"
 #include "util/xmem.h"
 
 enum { W = 940, LW = 300, RM = 30, TOP = 64, RH = 22, PHEAD = 30, PFOOT = 40, LEG = 58 };

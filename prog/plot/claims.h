@@ -1,4 +1,4 @@
-/* plot_claims.h -- build/plot claims: a claims map (bench --claims-map) as an
+/* claims.h -- build/plot claims: a claims map (bench --claims-map) as an
  * SVG grid of held, failed and n/a cells. */
 #ifndef PLOT_CLAIMS_H
 #define PLOT_CLAIMS_H

@@ -4,7 +4,7 @@
  *   plot lines CSV -x COL -y COL[,COL...] [--series COL[,COL...]] [--where COL=VALUE]...
  *        [--labels A,B,...] [--title T] [--xlabel T] [--ylabel T] [--yzero] -o OUT.svg
  *   plot surface STACK [--cost area|span] [--caps] [--title T] -o OUT.svg
- *   plot claims MAP.csv [--title T] -o OUT.svg   (plot_claims.c)
+ *   plot claims MAP.csv [--title T] -o OUT.svg   (claims.c)
  *
  * lines: one line per value of the --series column (in order of first
  * appearance; with several columns, per combination of their values) and
@@ -21,13 +21,13 @@
 #include "util/csvtab.h"
 #include "input/dicom.h"
 #include "surface/mesh.h"
-#include "plots/plot_claims.h"
+#include "prog/plot/claims.h"
 #include "util/progname.h"
 #include "input/rtstruct.h"
 #include "surface/pool.h"
 #include "surface/stack.h"
-#include "plots/svgchart.h"
-#include "plots/svgsurface.h"
+#include "prog/plot/svgchart.h"
+#include "prog/plot/svgsurface.h"
 #include "algo/tiling.h"
 #include "util/xmem.h"
 

@@ -1,7 +1,7 @@
 /* svgchart.c -- a small line-chart renderer: "nice" ticks (1, 2, 5 times a
  * power of ten), a colour and a marker per group of series, dash patterns,
  * a legend box; the picture sized to its texts. */
-#include "plots/svgchart.h"
+#include "prog/plot/svgchart.h"
 
 #include <ctype.h>
 #include <math.h>

@@ -1,10 +1,10 @@
 /* svgsurface.c -- orthographic view, painter's algorithm, Lambert shading. */
-#include "plots/svgsurface.h"
+#include "prog/plot/svgsurface.h"
 
 #include <math.h>
 #include <stdlib.h>
 
-#include "plots/svgchart.h"
+#include "prog/plot/svgchart.h"
 #include "util/xmem.h"
 
 enum { W = 900, H = 520, PANEL = 420 };
