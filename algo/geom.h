@@ -22,7 +22,7 @@ double geom_area2(const vec2 *p, int n);
 double geom_area2_at(const vec2 *p, int n, int e);
 
 /* The e for which m 2^-e lies in [1/2, 1) (0 for m = 0): the scale that makes
- * coordinates of magnitude at most m safe to multiply (issue 14, item 7).
+ * coordinates of magnitude at most m safe to multiply.
  * Inline, as frexp's, read from the bits where m is a positive normal double:
  * areas and volumes take it once a triangle. */
 static inline int geom_scale_exp(double m) {

@@ -1,6 +1,5 @@
-/* keyhole.c -- the exact keyhole repair (keyhole.h; design note
- * shared/design/contours.md, step 3, after SlicerRT's FixKeyholes without
- * its tolerance). */
+/* keyhole.c -- the exact keyhole repair (keyhole.h; after SlicerRT's
+ * FixKeyholes without its tolerance). */
 #include "algo/keyhole.h"
 
 #include <math.h>

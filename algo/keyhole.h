@@ -4,7 +4,7 @@
  *
  * Treatment planning systems (MIM, Eclipse) export a region with holes or
  * several pieces as one such contour; SlicerRT's FixKeyholes splits them
- * with a tolerance (design note shared/design/contours.md, step 3).  Here
+ * with a tolerance.  Here
  * everything is exact: coordinates are compared bit for bit and collinearity
  * is exact_orient's (exact.h), so a channel whose two sides are 1e-6 apart is
  * no keyhole but a valid simple polygon, tiled as the narrow channel it is.

@@ -74,7 +74,7 @@ void tiling_tiles(const tiling *t, int (*tile)[3], unsigned char *on);
 double tiling_path_cost(const tiling *t, const vec2 *P, int np, double zp, const vec2 *Q, int nq, double zq,
                         cost_kind kind);
 
-/* The spans the path uses twice (issue 14, item 8).  The paper allows it
+/* The spans the path uses twice.  The paper allows it
  * (section 3: an acceptable path may be "two vertex-simple cycles that share
  * one vertex"): when the path takes all m vertical steps at one column, one
  * point of one contour fans the whole other contour and the span at both ends

@@ -23,7 +23,7 @@ static int mod(int a, int m) {
   return r < 0 ? r + m : r;
 }
 
-/* --- the scale (issue 14, item 7) ------------------------------------------
+/* --- the scale --------------------------------------------------------------
  * Every coordinate and the height h = zc - zr are multiplied by one power of
  * two 2^-e, chosen so that the largest of them lies in [1/2, 1), before any
  * arithmetic: no difference, product or sum can then overflow, and nothing
@@ -50,7 +50,7 @@ static int scale_exponent(const vec2 *R, int m, const vec2 *C, int n, double zr,
   return h == 0 ? e : (e > eh ? e : eh);
 }
 
-/* --- the bound on a weight (issue 14, item 9) --------------------------------
+/* --- the bound on a weight --------------------------------------------------
  * The quantum must leave every path's sum below 2^52 quanta, so it is chosen
  * from a bound on the largest weight of the pair's graph (any tile, not only
  * those of the best path).  Area: the tile with edge A -> A+e on one contour

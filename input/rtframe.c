@@ -163,8 +163,8 @@ static double tolerance(double q, const double n[3]) {
   return t < RTFRAME_FLAT ? RTFRAME_FLAT : t > RTFRAME_BENT ? RTFRAME_BENT : t;
 }
 
-/* Contours in parallel planes of a common normal that is none of the axes
- * (issue 22).  Each contour must be planar by itself: within the tolerance
+/* Contours in parallel planes of a common normal that is none of the axes.
+ * Each contour must be planar by itself: within the tolerance
  * of its coordinates' precision (tolerance()) of the least-squares plane of
  * its points (the least eigenvector of their
  * scatter).  The common normal is the least-squares normal of all the ROI's

@@ -8,7 +8,7 @@
  *                                                 ContourData (3006,0050) x\y\z\x\y\z...
  *   RTROIObservationsSequence (3006,0080) item: ReferencedROINumber, RTROIInterpretedType (3006,00A4)
  *
- * The pitfalls real readers meet (shared/design/contours.md, section 3) and
+ * The pitfalls real readers meet (doc/dicom.md) and
  * what happens here: only CLOSED_PLANAR is tiled, the others are counted and
  * skipped with a warning; NumberOfContourPoints must agree with ContourData;
  * decimal strings may carry blanks, exponents and -0, and are read whatever

@@ -5,8 +5,8 @@
  * The idea is Christiansen and Sederberg's (1978) and Meyers, Skinner and
  * Sloan's (1992): a composite contour through a bridge whose middle sits
  * between the slices.  The construction here keeps the surface a closed
- * 2-manifold (design note shared/design/contours.md, section 2, step 6, with
- * one change, below).  A bridge joins edge a0->a1 of one polygon to edge
+ * 2-manifold (doc/surface.md, "Several contours per slice", with one change,
+ * below).  A bridge joins edge a0->a1 of one polygon to edge
  * b0->b1 of another, the two facing each other:
  *
  *        a1 ---- m2 ---- b0          composite: ... a0 m1 b1 ... b0 m2 a1 ...

@@ -62,7 +62,7 @@ static int is_ear_exact(const vec2 *p, const int *next, const int *prev, int ib)
  * largest coordinate into [1/2, 1): exact, and every test here is
  * homogeneous, so the ears are those of the unscaled polygon wherever its
  * products neither overflow nor underflow, and the same at 1e300 or among
- * subnormals (issue 14, item 7). */
+ * subnormals. */
 int cap_triangulate(const vec2 *p_in, int n, int (*tri)[3]) {
   double mx = 0;
   for (int i = 0; i < n; i++) mx = fmax(mx, fmax(fabs(p_in[i].x), fabs(p_in[i].y)));

@@ -70,8 +70,7 @@ int manifold_components(const mesh *me, manifold_component **out) {
   /* Area and volume about the component's first vertex (so that far-off
    * coordinates do not cancel); the volume summed at the scale 2^-e that
    * brings the component's largest coordinate into [1/2, 1), then scaled
-   * back (the same bits as unscaled; no inf - inf = NaN at 1e300: issue 14,
-   * item 7). */
+   * back (the same bits as unscaled; no inf - inf = NaN at 1e300). */
   int *sc = xmallocarray((size_t)nc + 1, sizeof *sc);
   for (int i = 0; i < nc; i++) sc[i] = geom_scale_exp(big[i]);
   for (int t = 0; t < nt; t++) {

@@ -1,6 +1,5 @@
 /* match.h -- correspondence: which contours of two neighbouring slices belong
- * to one piece of surface (design note shared/design/contours.md, section 2,
- * step 5; the joining rules: shared/design/correspondence.md, issue 22).
+ * to one piece of surface (doc/surface.md, "Joining neighbouring slices").
  *
  * A contour on slice k is linked to a contour on slice k+1 when
  *   - both have the same nesting depth (outer with outer, hole with hole),

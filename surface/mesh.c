@@ -42,7 +42,7 @@ static vec3 crs(vec3 a, vec3 b) {
 }
 static double dot(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 
-/* --- scale (issue 14, item 7) ---------------------------------------------
+/* --- scale ------------------------------------------------------------------
  * Areas and volumes are computed on coordinates multiplied by a power of two
  * 2^-e that brings the largest into [1/2, 1), summed at that scale, and
  * scaled back once.  Such scaling is exact and commutes with every rounding,

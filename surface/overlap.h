@@ -3,8 +3,8 @@
  * The correspondence between slices (surface/match.h) links two contours of
  * neighbouring slices when their regions, projected on one plane, share an
  * interior point: an exact test on the polygons themselves, not on bounding
- * boxes (SlicerRT) or on vertices alone (DICOMautomaton); see the design note
- * shared/design/contours.md, section 2, step 5. */
+ * boxes (SlicerRT) or on vertices alone (DICOMautomaton); doc/surface.md,
+ * "Several contours per slice". */
 #ifndef OVERLAP_H
 #define OVERLAP_H
 

@@ -1,8 +1,7 @@
 /* slices.h -- the stack in canonical form, with each slice's nesting forest.
  *
  * Canonical: nothing depends on the file's order of contours, their start
- * points or their winding (design note shared/design/contours.md, section 2,
- * steps 2 and 4).  Slices run in increasing z; the contours of a slice are
+ * points or their winding (doc/surface.md).  Slices run in increasing z; the contours of a slice are
  * sorted by their least point (x, then y: distinct, since contours on one
  * slice may not touch); each starts at that point; each runs by its depth in
  * the slice's containment forest -- depth 0 an outer boundary, 1 a hole, 2 an
@@ -60,7 +59,7 @@ int slices_build(const contour_stack *s, const char *name, int threads, slices *
  * value falls below 2^-1022; messages in the file's units).  With scale =
  * slices_scale_exp(s) the largest coordinate lies in [1/2, 1): every product
  * the surface forms is then safe, and a stack scaled by 2^k (exactly) gives
- * bit-identical slices (issue 14, item 7; surface/stack.h). */
+ * bit-identical slices (surface/stack.h). */
 int slices_build_at(const contour_stack *s, const char *name, int scale, int threads, slices *out,
                     char *err, size_t errlen);
 

@@ -230,7 +230,7 @@ static void mesh_job(void *ud, int i) {
     lift_bridges(w, b, other_lift[k]);
   /* Summed at the scale 2^-e that brings the band's largest coordinate into
    * [1/2, 1) and scaled back once: exact, the same bits as unscaled, and no
-   * inf - inf = NaN at 1e300 (issue 14, item 7). */
+   * inf - inf = NaN at 1e300. */
   double z0 = sl->z[b->slice], z1 = sl->z[b->slice + 1], ahi = 0, mx = fmax(fabs(z0), fabs(z1));
   for (int k = 0; k < b->ntri; k++)
     for (int c = 0; c < 3; c++) mx = vmax(band_vertex(w, b, b->tri[k][c]), mx);

@@ -1,8 +1,8 @@
 /* stack.h -- one closed, outward surface from a whole stack of contours,
  * any number per slice, with the exact tiler doing every band.
  *
- * The pipeline (design note shared/design/contours.md, section 2; each step
- * in its own file):
+ * The pipeline (doc/surface.md, "Several contours per slice"; each step in
+ * its own file):
  *   slices.c   canonical slices, nesting forests, holes by depth
  *   match.c    correspondence between neighbouring slices: junctions, by
  *              the joining rule (gap.c: how far apart contours lie)
@@ -20,7 +20,7 @@
  * band by band (the tiles in path order, then the bridges' fill), then the
  * caps.  Every triangle faces outward.
  *
- * Scale (issue 14, item 7).  The whole stack -- x, y and z -- is multiplied
+ * Scale.  The whole stack -- x, y and z -- is multiplied
  * once by the power of two 2^-e that brings its largest coordinate into
  * [1/2, 1) (slices_build_at), and every step above works there: no product
  * of coordinates (squared distances choosing bridges, areas, the apex's

@@ -6,7 +6,7 @@
  * contour (R^j D^m R^(n-j)), and the span from it to the run's row appears
  * at both ends of the run; or all n horizontal steps at one row.  The band
  * is then two cones sharing an edge of four triangles, not a tube: the mesh
- * is not a 2-manifold there (issue 14, item 8).  The exact tiler can choose
+ * is not a 2-manifold there.  The exact tiler can choose
  * such a path when one contour is small and far offset from the other (two
  * 4-point vessels in dicompyler's Lt Lung).  These are exactly the paths
  * with at most one run of vertical, or of horizontal, steps around the

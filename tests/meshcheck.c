@@ -311,7 +311,7 @@ static int lookup(const mc_mesh *m, const int *s, const double *p) {
  * on that copy and give areas and volumes back by 2^2e and 2^3e, so that a
  * mesh scaled by 2^k is judged as at unit scale, its measures exactly 2^2k
  * and 2^3k as large (where a double holds them), and nothing under- or
- * overflows on meshes near 1e-300 or 1e300 (issue 14, item 7). */
+ * overflows on meshes near 1e-300 or 1e300. */
 static double *scaled_copy(const mc_mesh *m, int *e) {
   double big = 0;
   for (int i = 0; i < 3 * m->nv; i++) big = fmax(big, fabs(m->v[i]));

@@ -115,7 +115,7 @@ static void tile(const contour_stack *s, double max_pair) {
   mesh_free(&me);
 }
 
-/* The stack read with --skip-bad, --union and -v (issue 22) and degenerate
+/* The stack read with --skip-bad, --union and -v and degenerate
  * contours dropped: refused in lines that name the input, or a stack whose
  * slices' contours meet nowhere, which writes and reads back as itself, and
  * whose surface (small stacks) is closed. */

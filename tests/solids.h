@@ -21,7 +21,7 @@ enum { SOLID_MAXCOMP = 4 };
 typedef struct {
   const char *name;     /* "sphere", "torus_across", ... */
   const char *what;     /* one line for messages */
-  int multi;            /* some slice has several contours (needs issue 9) */
+  int multi;            /* some slice has several contours (needs the stack tiler) */
   double za, zb;        /* the first and last plane solid_planes() uses */
   int ncomp;            /* connected components of the boundary surface */
   int chi[SOLID_MAXCOMP];    /* Euler characteristic of each, 2 - 2 genus */

@@ -61,7 +61,7 @@ static const bad cases[] = {
     {"C 4 0\n0 0\n1 1\n0 0\n1 1\n", 1, "collinear", NULL},
     {"C 3 0\n0 0\n1 0\n0 1\n", 1, "only one contour", NULL},
     {"C 3 2\n0 0\n1 0\n0 1\nC 3 2\n5 0\n6 0\n5 1\n", 1, "all 2 contours lie on one slice", NULL},
-    /* Self-intersecting contours (issue 14, item 10): the two segments by
+    /* Self-intersecting contours: the two segments by
      * the lines of their points, and where they meet. */
     {"C 4 0\n0 0\n1 1\n1 0\n0 1\n", 1,   /* a bowtie */
      "the contour crosses itself: the segment from line 2 to line 3 crosses the segment from line 4 to line 5", "0.5 0.5"},
@@ -349,7 +349,7 @@ static void check_fuzz(void) {
   CHECK(accepted > 50 && accepted < 3950, "fuzzing reached both outcomes (%d accepted)", accepted);
 }
 
-/* Extreme coordinates (issue 14, item 7): star contours scaled by 2^k, by
+/* Extreme coordinates: star contours scaled by 2^k, by
  * 1e300 and 1e-300, and into subnormals are read as at unit scale: accepted,
  * the same points, reversed or not alike.  (With a tolerance scaled by the
  * extent, 1e300 overflowed and 1e-300 underflowed, and 50-point stars were
@@ -413,7 +413,7 @@ static void check_extreme(void) {
         "exactly on the line: '%s'", rc ? err : "accepted");
 }
 
-/* Bad contours (issue 22): every one named in one run, a line each in file
+/* Bad contours: every one named in one run, a line each in file
  * order and a summary; in a small buffer as many whole lines as fit and a
  * summary that says so; with CONTOUR_SKIP_BAD dropped, a note each (its own
  * repair notes dropped with it) and one that counts them. */

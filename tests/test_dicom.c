@@ -300,7 +300,7 @@ static void truncations(void) {
   }
 }
 
-/* Every LF turned into CR LF (a binary file copied as text, issue 22): each
+/* Every LF turned into CR LF (a binary file copied as text): each
  * sample refused in one line that says it is corrupt, names the byte where
  * the reading went wrong (an element whose header reaches the first CR, or a
  * later one: the data is sound before it) and the first CR's byte. */

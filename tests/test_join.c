@@ -1,5 +1,5 @@
 /* test_join.c -- the joining rules (surface/match.h), their notes and counts,
- * and the slab of one slice (issue 22), against independent references:
+ * and the slab of one slice, against independent references:
  *   overlap_closed  against the separating axis theorem on convex integer
  *                   polygons (closed and open), and hand-made contacts;
  *   gap_between     against every vertex-segment pair (exactly) and the

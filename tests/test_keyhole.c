@@ -260,7 +260,7 @@ static void refused(void) {
 /* ---------------------------------------------------------------- spurs -- */
 
 /* Zero-width spurs (a spike walked out and back along itself) enclose no
- * area and are dropped like channels (issue 22): a square with spurs out,
+ * area and are dropped like channels: a square with spurs out,
  * in, along an edge's line, with extra points on the way out or back, a
  * spur off a keyhole's outer boundary and one off a channel; from every
  * start point, both ways round: the loops left are the square (and the

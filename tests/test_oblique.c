@@ -1,4 +1,4 @@
-/* test_oblique.c -- oblique stacks (issue 22): an RT structure set whose
+/* test_oblique.c -- oblique stacks: an RT structure set whose
  * contours lie in parallel planes tilted from every axis, written by the
  * tests' own writer (tests/rtwriter.c), against the same set written axial.
  *

@@ -1,5 +1,5 @@
-/* test_scale.c -- the tiler at any scale, and its quantum (issue 14, items 7
- * and 9): pairs scaled by 2^k (into subnormals and up to 2^1000) give the
+/* test_scale.c -- the tiler at any scale, and its quantum:
+ * pairs scaled by 2^k (into subnormals and up to 2^1000) give the
  * unit-scale path bit for bit and costs exactly 2^2k (area) or 2^k (span)
  * apart; scaled by 1e300 or 1e-300 the same path; every weight of the graph
  * fits the room the quantum leaves (brute force over all tiles), and the

@@ -37,7 +37,7 @@
 
 #define PI 3.14159265358979323846
 
-/* The cases of issue 9, end to end: the multi-contour solids (two spheres,
+/* Stacks with several contours a slice, end to end: the multi-contour solids (two spheres,
  * tori, cavities, an island), crossing correspondences, tinypatient_0, apex
  * caps and the second encodings.  On since ./tile takes several contours per
  * slice; 0 leaves only what a one-contour-per-slice ./tile could do
@@ -561,7 +561,7 @@ static void e2e_solid(const char *tile, int s, int uneven, int apex, double *vol
  * every part alone with ./tile as it is, turn the cavities' surfaces inside
  * out, and put the meshes and reports together.  That surface must pass
  * every check, which tests the checks' multi-component paths today; and,
- * once ./tile takes the whole stack (issue 9), whose junctions here are all
+ * once ./tile takes the whole stack, whose junctions here are all
  * one to one or ends, its mesh must have this one's volume and area. */
 static int decomposable(int s) {
   return s == solid_find("spheres_separate") || s == solid_find("hollow_sphere") || s == solid_find("island");

@@ -1,4 +1,4 @@
-/* test_spans.c -- the spans a tiling uses twice (issue 14, item 8), against
+/* test_spans.c -- the spans a tiling uses twice, against
  * the band's own triangles: an edge between the two contours in more than
  * two triangles is exactly a repeated span.  On the issue's sliver case, on
  * small contours far off big ones (fans), and on random pairs; beside

@@ -1,4 +1,4 @@
-/* stack.c -- ./bench --stack: the stack tiler's speed (issue 9): whole
+/* stack.c -- ./bench --stack: the stack tiler's speed: whole
  * stacks, several contours per slice, made into one closed surface
  * (surface/stack.h: slices, nesting, correspondence, bridges, every band
  * tiled exactly, caps, the mesh and its components), on 1, 2, ... threads.

@@ -1,5 +1,5 @@
 /* union.c -- ./bench --union: the cost of ./tile --union's exact union
- * (algo/polyunion.h) on one slice of overlapping contours (issue 22).
+ * (algo/polyunion.h) on one slice of overlapping contours.
  *
  *   bench --union [blob|star:K:N ...] [--repeat R]
  *

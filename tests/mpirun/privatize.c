@@ -1,5 +1,5 @@
 /* privatize.c -- every rank its own globals, statics and libc state
- * (tilesim-mpirun, issue 19): a static counter, a global array, getopt's
+ * (tilesim-mpirun): a static counter, a global array, getopt's
  * state, the rand, random and drand48 sequences and strtok's position, each
  * used by all ranks at once with MPI calls (where the simulator switches
  * ranks) between their steps.  Each rank prints what it saw; under Open
