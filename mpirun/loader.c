@@ -233,6 +233,18 @@ static void *lookup_in(void *h, const char *name, const char *version) {
  * then the program's libraries; the version it asks for, else any. */
 static void *lookup(const loader *l, const elf_sym *s) {
   void *a = lookup_in(RTLD_DEFAULT, s->name, s->version);
+#ifdef __GLIBC__
+  /* An interposer earlier in the search order wins, as ld.so lets an
+   * unversioned definition satisfy a versioned reference: the sanitizer's
+   * malloc and free in make check's build, a preloaded allocator.  (dlvsym
+   * alone skips them: a program's malloc was glibc's while the runner's was
+   * the sanitizer's, and glibc's arena count failed an assertion as a
+   * rank's thread ended.) */
+  void *first = a && s->version ? dlsym(RTLD_DEFAULT, s->name) : NULL;
+  Dl_info in_a, in_first;
+  if (first && first != a && dladdr(a, &in_a) && dladdr(first, &in_first) && in_a.dli_fbase != in_first.dli_fbase)
+    a = first;
+#endif
   for (int i = 0; !a && i < l->nlibs; i++) a = lookup_in(l->libs[i].h, s->name, s->version);
   if (!a && s->version) a = lookup_in(RTLD_DEFAULT, s->name, NULL);
   for (int i = 0; !a && s->version && i < l->nlibs; i++) a = lookup_in(l->libs[i].h, s->name, NULL);

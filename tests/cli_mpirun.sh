@@ -381,5 +381,29 @@ for np in 2 4; do
     || bad "isendrecv then finalize on $np ranks: exit $rc, $(cat "$T/o" "$T/e" | head -4)"
 done
 
+# A program's libc names bind as ld.so would bind them in a process of its
+# own: an interposer earlier in the search order first (make check's build
+# has the sanitizer's malloc), so the program and the runner share one
+# allocator.  The reference is the dynamic linker's own answer, dlsym.
+cat > "$T/alloc.c" << 'EOF'
+#define _GNU_SOURCE
+#include <dlfcn.h>
+#include <mpi.h>
+#include <stdio.h>
+#include <stdlib.h>
+int main(int argc, char **argv) {
+  void *(*m)(size_t) = malloc;
+  void (*f)(void *) = free;
+  MPI_Init(&argc, &argv);
+  printf("malloc %s, free %s\n", (void *)m == dlsym(RTLD_DEFAULT, "malloc") ? "the process's" : "another",
+         (void *)f == dlsym(RTLD_DEFAULT, "free") ? "the process's" : "another");
+  MPI_Finalize();
+  return 0;
+}
+EOF
+"$CC_" "$T/alloc.c" -o "$T/alloc" > "$T/build.log" 2>&1 || bad "alloc.c: $(cat "$T/build.log")"
+"$RUN" -np 1 "$T/alloc" > "$T/o" 2> "$T/e" && [ "$(cat "$T/o")" = "malloc the process's, free the process's" ] && ok \
+  || bad "a program's malloc: $(cat "$T/o" "$T/e")"
+
 echo "cli_mpirun: $pass passed, $fail failed"
 [ $fail -eq 0 ]
