@@ -621,8 +621,8 @@ int contour_parse_flags(const char *text, size_t len, const char *name, int flag
     goto done;
   }
   int nslices = group_slices(r, cs, ncs);
-  /* Exact duplicates on a slice dropped; with --union overlapping contours
-   * merged (slicemerge.h). */
+  /* Exact duplicates on a slice dropped, overlapping contours merged
+   * (slicemerge.h; --union says so as its own notes). */
   if (slicemerge(&cs, &ncs, (flags & CONTOUR_UNION ? SLICEMERGE_UNION : 0) | (flags & CONTOUR_VERBOSE ? SLICEMERGE_VERBOSE : 0),
                  name, r->prefix, &r->out, err, errlen) != 0)
     goto done;

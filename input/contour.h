@@ -80,10 +80,10 @@ int contour_parse(const char *text, size_t len, const char *name,
  *   CONTOUR_NO_KEYHOLES  such contours are bad too (not repaired);
  *   CONTOUR_SKIP_BAD     bad contours are dropped, with notes (above);
  *   CONTOUR_VERBOSE      every repair on a note of its own (above);
- *   CONTOUR_UNION        overlapping contours of a slice merged into their
- *                        union (input/slicemerge.h); without it only exact
- *                        duplicates are dropped and overlaps are refused
- *                        later, by the surface (surface/slices.h);
+ *   CONTOUR_UNION        the notes on overlapping contours of a slice, which
+ *                        are always merged into their union
+ *                        (input/slicemerge.h), are --union's: without it
+ *                        one note a slice whose pieces were merged;
  *   CONTOUR_DROP_DEGENERATE  a contour of fewer than 3 distinct points or
  *                        all collinear (no area: Pinnacle writes single
  *                        points and two-point contours among real ones) is

@@ -113,7 +113,8 @@ char *rtstruct_roi_text(const rtstruct *s, int roi, size_t *len);
 /* The ROI's stack, read from that text by contour_parse (keyhole contours
  * split into their loops unless flags has RTSTRUCT_NO_KEYHOLES; bad
  * contours dropped with RTSTRUCT_SKIP_BAD, overlapping contours of a slice
- * merged with RTSTRUCT_UNION, every note in full with RTSTRUCT_VERBOSE: the
+ * merged (noted as --union's with RTSTRUCT_UNION), every note in full with
+ * RTSTRUCT_VERBOSE: the
  * CONTOUR_ flags of contour.h; and, with RTSTRUCT_PAIRS, checked by
  * contour_stack_pairs, as ./tile checks a stack that it tiles contour by
  * contour): 0, or -1 with the refusal, rewritten to name the file, ROI,

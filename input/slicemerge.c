@@ -184,10 +184,43 @@ typedef struct {
   strbuf first;       /* the first group's note (said alone when it is the only one) */
 } tally;
 
-/* Merge the groups of one slice, cs[idx[0..m-1]] (in line order), that
- * `all` asks for (SLICEMERGE_UNION: every group; else the nested ones, a
- * hole drawn on its outer contour's boundary): their contours marked in
- * drop[], the loops appended to add.  0, or -1 and err. */
+/* What the default reading merged on one slice without --union: the
+ * overlapping pieces (groups not nested), said in one note for the slice. */
+typedef struct {
+  int *mem;           /* their contours, as indices into the slice's idx */
+  int n, loops, holes, news, pinches;
+  vec2 pinch_at;
+} pieces;
+
+static int by_int(const void *a, const void *b) {
+  int x = *(const int *)a, y = *(const int *)b;
+  return (x > y) - (x < y);
+}
+
+/* The slice's note on its overlapping pieces merged by default (one line,
+ * whatever -v says: it names every contour, as far as lines_of does). */
+static void note_pieces(strbuf *to, pieces *p, const contour *cs, const int *idx, const char *name,
+                        const char *prefix) {
+  qsort(p->mem, (size_t)p->n, sizeof *p->mem, by_int);   /* idx is in line order */
+  int nc = p->loops - p->holes;
+  note_line(to, prefix, name, cs[idx[p->mem[0]]].line);
+  strbuf_add(to, "merged %d overlapping contours on slice z=%s into their union (as --union does): the contours at ",
+             p->n, ARGS_G(cs[idx[0]].z));
+  lines_of(to, cs, idx, p->mem, p->n);
+  strbuf_add(to, ": %d contour%s", nc, nc == 1 ? "" : "s");
+  if (p->holes) strbuf_add(to, " and %d hole%s", p->holes, p->holes == 1 ? "" : "s");
+  strbuf_add(to, " (%d new vertices where they cross)", p->news);
+  if (p->pinches)
+    strbuf_add(to, "; it touches itself at (%s %s)%s, split there (each piece but one off the point by 2^-20 of "
+               "its edges)", ARGS_G(p->pinch_at.x), ARGS_G(p->pinch_at.y), p->pinches > 1 ? " and elsewhere" : "");
+  strbuf_raw(to, "\n", 1);
+}
+
+/* Merge the groups of one slice, cs[idx[0..m-1]] (in line order): every
+ * group, their contours marked in drop[], the loops appended to add.  The
+ * notes: with `all` (SLICEMERGE_UNION) as --union's; else a nested group (a
+ * hole drawn on its outer contour's boundary) counted in t as such, and the
+ * overlapping pieces said in one note for the slice.  0, or -1 and err. */
 static int union_slice(contour *cs, const int *idx, int m, int all, char *drop, clist *add, tally *t, int verbose,
                        const char *name, const char *prefix, strbuf *notes, char *err, size_t errlen) {
   crossing_poly *cp = xmallocarray((size_t)m, sizeof *cp);
@@ -196,10 +229,10 @@ static int union_slice(contour *cs, const int *idx, int m, int all, char *drop, 
   polyunion_flags(cp, m, POLYUNION_NEST | POLYUNION_SPLIT, &u);
   int slice0 = add->n, rc = 0;
   double z = cs[idx[0]].z;
+  pieces pc = {0};
   for (int g = 0; g < u.ngroups && rc == 0; g++) {
     const int *mem = u.members + u.gmember[g];
     int nm = u.gmember[g + 1] - u.gmember[g], nh = 0, lead = idx[mem[0]];
-    if (!all && !u.nested[g]) continue;   /* overlapping contours: refused by the surface */
     if (u.gstatus[g] != POLYUNION_OK) {
       strbuf b = {0};
       lines_of(&b, cs, idx, mem, nm);
@@ -225,6 +258,13 @@ static int union_slice(contour *cs, const int *idx, int m, int all, char *drop, 
       nh += u.hole[l];
     }
     int nl = u.gfirst[g + 1] - u.gfirst[g];
+    if (!all && !u.nested[g]) {   /* overlapping pieces: the slice's note */
+      pc.mem = xreallocarray(pc.mem, (size_t)(pc.n + nm), sizeof *pc.mem);
+      memcpy(pc.mem + pc.n, mem, (size_t)nm * sizeof *mem);
+      if (u.pinches[g] && !pc.pinches) pc.pinch_at = u.pinch_at[g];
+      pc.n += nm, pc.loops += nl, pc.holes += nh, pc.news += u.newpts[g], pc.pinches += u.pinches[g];
+      continue;
+    }
     if (t->groups == 0) t->first_line = cs[lead].line;
     strbuf *to = verbose ? notes : (t->groups == 0 ? &t->first : NULL);
     if (to) {
@@ -245,6 +285,8 @@ static int union_slice(contour *cs, const int *idx, int m, int all, char *drop, 
     }
     t->groups++, t->merged += nm, t->news += u.newpts[g], t->holes += nh, t->pinches += u.pinches[g];
   }
+  if (rc == 0 && pc.n && notes) note_pieces(notes, &pc, cs, idx, name, prefix);
+  free(pc.mem);
   polyunion_free(&u);
   free(cp);
   /* Rounding may have made a loop meet a contour of the slice that met
@@ -258,8 +300,7 @@ static int union_slice(contour *cs, const int *idx, int m, int all, char *drop, 
     crossing_hit h;
     int hit = crossing_find(all_, k, &h);
     free(all_);
-    /* (without --union, contours left alone that meet are the surface's to refuse) */
-    if (hit && (all || (h.poly[0] >= k - (add->n - slice0) || h.poly[1] >= k - (add->n - slice0)))) {
+    if (hit) {
       snprintf(err, errlen, "%s:%d: %son slice z=%s the merged region's new vertices, rounded to doubles, make "
                "it touch another contour near (%s %s); it cannot be tiled", name, add->c[slice0].line,
                all ? "--union: " : "", ARGS_G(z), ARGS_G(h.at.x), ARGS_G(h.at.y));
@@ -307,9 +348,8 @@ int slicemerge(contour **csp, int *ncsp, int flags, const char *name, const char
   int ndup = duplicates(cs, ncs, drop, verbose, name, prefix, notes);
   clist add = {0};
   {
-    /* Each slice whose contours meet: with --union every group merged, else
-     * the groups of a contour inside another touching its boundary (a hole
-     * drawn on it), which have one meaning. */
+    /* Each slice whose contours meet: every group merged (with --union or
+     * without, the same contours); only the notes differ. */
     int all = (flags & SLICEMERGE_UNION) != 0;
     int *idx = xmallocarray((size_t)ncs + 1, sizeof *idx), m = 0;
     for (int i = 0; i < ncs; i++)

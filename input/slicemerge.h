@@ -13,14 +13,17 @@
  * stack does not depend on the file's order -- and the others are dropped
  * with a note.
  *
- * Union (SLICEMERGE_UNION).  Contours of a slice whose boundaries meet
- * (cross, touch, overlap) are replaced by the boundary of the union of their
- * regions (algo/polyunion.h: exact; holes the union encloses included);
- * contours that meet no other keep their role by nesting (surface/slices.h),
- * so a contour inside a union's boundary is a hole of it.  A union that
- * pinches (touches itself at a point), or whose rounded new vertices would
- * make contours of the slice meet, is refused.  Without the flag such
- * contours are left for the surface to refuse. */
+ * Union (always).  Contours of a slice whose boundaries meet (cross, touch,
+ * overlap) are replaced by the boundary of the union of their regions
+ * (algo/polyunion.h: exact; holes the union encloses included, a hole drawn
+ * on its outer contour's boundary kept as a hole, a union that touches
+ * itself at a point split there); contours that meet no other keep their
+ * role by nesting (surface/slices.h), so a contour inside a union's boundary
+ * is a hole of it.  A union whose rounded new vertices would make contours of
+ * the slice meet is refused.  SLICEMERGE_UNION (--union) changes the notes
+ * only: the merges said as --union's (one line for all, -v one a group);
+ * without it one line for the holes on their outer contours' boundaries and
+ * one a slice whose overlapping pieces were merged. */
 #ifndef SLICEMERGE_H
 #define SLICEMERGE_H
 
@@ -32,10 +35,11 @@
 enum { SLICEMERGE_UNION = 1, SLICEMERGE_VERBOSE = 2 };
 
 /* The contours cs[0..*ncs-1] (points counter-clockwise, each with its
- * slice, the slices' z snapped), read from `name`: duplicates dropped and,
- * with SLICEMERGE_UNION, overlapping ones merged; cs may be reallocated and
- * reordered.  Notes ("PREFIX: NAME:LINE: ...") are appended to notes: one
- * line for all duplicates and one for all unions, or with
+ * slice, the slices' z snapped), read from `name`: duplicates dropped and
+ * overlapping ones merged; cs may be reallocated and reordered.  Notes
+ * ("PREFIX: NAME:LINE: ...") are appended to notes: one line for all
+ * duplicates and one for all unions (without SLICEMERGE_UNION: one for the
+ * nested groups, and one a slice for its overlapping pieces), or with
  * SLICEMERGE_VERBOSE one for each.  0, or -1 with "NAME:LINE: ..." in err
  * (the contours are then still the caller's to free). */
 int slicemerge(contour **cs, int *ncs, int flags, const char *name, const char *prefix, strbuf *notes,

@@ -179,12 +179,9 @@ int slices_build_at(const contour_stack *s, const char *name, int scale, int thr
     }
     rc = -1;
   }
-  if (nbad == 1)
-    snprintf(err + at, errlen - at, "; --union merges overlapping contours of a slice into their union");
-  else if (nbad > 1)
-    snprintf(err + at, errlen - at,
-             "\n%s: contours cross or touch on %d slices (%s named above); --union merges overlapping contours "
-             "of a slice into their union", name, nbad, shown == nbad ? "each" : "the first ones");
+  if (nbad > 1)
+    snprintf(err + at, errlen - at, "\n%s: contours cross or touch on %d slices (%s named above)", name, nbad,
+             shown == nbad ? "each" : "the first ones");
   for (int k = 0; k < ns; k++) free(jb.err[k]);
   free(jb.err);
   if (rc == 0) {

@@ -157,8 +157,14 @@ refused nonnumeric $F/nonnumeric.dcm "ROI 7 'Prostate', contour item 1, point 3:
 refused nonfinite $F/nonfinite.dcm "ROI 7 'Prostate', contour item 1, point 4: x is not finite (1e999)" --roi 7
 refused triplets $F/triplets.dcm "ROI 7 'Prostate', contour item 1: ContourData holds 7 values, not x y z triplets" --roi 7
 refused oblique $F/oblique.dcm "ROI 7 'Prostate', contour item 2: not planar (its points spread 0.497 mm off their best plane, more than the 0.1 mm their precision allows)" --roi 7
-refused twoperslice $F/twoperslice.dcm "byte 602: ROI 7 'Prostate', contour item 2: contour crosses the contour at contour item 1 on slice z=5 (2 10); --union merges overlapping contours of a slice into their union" --roi 7
 refused onecontour $F/onecontour.dcm "ROI 7 'Prostate', contour item 1: the only contour lies on one slice (z=5): a surface needs two slices, or --thickness T" --roi 7
+# Two overlapping contours on a slice: merged into their union (they were
+# refused), one note; --union the same bytes.
+"$TILE" $F/twoperslice.dcm --roi 7 -o "$T/tw.stl" > "$T/tw.csv" 2> "$T/err"; rc=$?
+[ $rc -eq 0 ] && grep -q '^mesh,.*,closed,' "$T/tw.csv" &&
+  [ "$(cat "$T/err")" = "tile: $F/twoperslice.dcm: byte 518: ROI 7 'Prostate', contour item 1: merged 2 overlapping contours on slice z=5 into their union (as --union does): the contours at contour item 1 and contour item 2: 1 contour (2 new vertices where they cross)" ] &&
+  "$TILE" $F/twoperslice.dcm --roi 7 --union -o "$T/tw2.stl" > "$T/tw2.csv" 2> /dev/null && cmp -s "$T/tw.stl" "$T/tw2.stl" &&
+  ok || bad "twoperslice: exit $rc: $(cat "$T/err")"
 refused unknown $D/dicompyler_rtss.dcm "no ROI named or numbered 'Lung' (the ROIs: 1 'BODY', 2 'Areola'," --roi Lung
 refused unknown2 $D/dicompyler_rtss.dcm "no ROI named or numbered '11'" --roi 11
 refused samenames $F/samenames.dcm "ROIs 3 and 4 are both named 'Same'; choose one by its number (Same)" --roi Same

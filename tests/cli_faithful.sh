@@ -4,7 +4,8 @@
 # up, --no-caps open with no volumes, --roi all writing every ROI that tiles
 # (exit status 3 when some are refused, a line counting both), oblique planes
 # at two decimals, Pinnacle-like degenerate contours, holes on their outer
-# contour's boundary, a region touching itself, branchings; --procs the same
+# contour's boundary, a region touching itself, overlapping pieces merged
+# (their union's volume in closed form), branchings; --procs the same
 # bytes as the serial tiler.  The DICOM files are written by
 # tests/test_faithful --write (the tests' own writer, tests/rtwriter.c).
 # Runs the sanitized build in $BUILD.
@@ -21,20 +22,20 @@ F=$T/faithful
 
 # ---- --roi all: every ROI that tiles written, the refused named, exit 3.
 "$TILE" ${F}_mixed.dcm --roi all -o "$T/m/" > "$T/m.csv" 2> "$T/err"; rc=$?
-[ $rc -eq 3 ] && [ "$(ls "$T/m" | tr '\n' ' ')" = "Good.stl Good_too.stl " ] &&
-  grep -qxF "tile: ${F}_mixed.dcm: 2 of 6 ROIs tiled, 3 refused (ROI 2 'Crossing', ROI 4 'Overlap', ROI 5 'Flat': each said above), 1 with nothing to tile" "$T/err" &&
+[ $rc -eq 3 ] && [ "$(ls "$T/m" | tr '\n' ' ')" = "Good.stl Good_too.stl Overlap.stl " ] &&
+  grep -qxF "tile: ${F}_mixed.dcm: 3 of 6 ROIs tiled, 2 refused (ROI 2 'Crossing', ROI 5 'Flat': each said above), 1 with nothing to tile" "$T/err" &&
   grep -q "ROI 2 'Crossing', contour item 2: the contour crosses itself.*; skipped$" "$T/err" &&
-  grep -q "ROI 4 'Overlap', contour item 2: contour crosses the contour at contour item 1 on slice z=0 (3 5)" "$T/err" &&
+  grep -q "ROI 4 'Overlap', contour item 1: merged 2 overlapping contours on slice z=0 into their union (as --union does): the contours at contour item 1 and contour item 2: 1 contour" "$T/err" &&
   grep -q "ROI 5 'Flat', contour item 1: the only contour lies on one slice" "$T/err" &&
-  [ "$(grep -c '^[0-9]*,[^,]*,mesh,' "$T/m.csv")" -eq 2 ] && [ "$(grep -c '^roi_number,name,band' "$T/m.csv")" -eq 1 ] &&
+  [ "$(grep -c '^[0-9]*,[^,]*,mesh,' "$T/m.csv")" -eq 3 ] && [ "$(grep -c '^roi_number,name,band' "$T/m.csv")" -eq 1 ] &&
   ok || bad "--roi all: exit $rc: $(cat "$T/err")"
 "$TILE" ${F}_mixed.dcm --roi all -q -o "$T/q/" > /dev/null 2> "$T/err"; rc=$?
-[ $rc -eq 3 ] && [ "$(grep -c 'skipped$' "$T/err")" -eq 2 ] && grep -q "2 of 6 ROIs tiled, 3 refused" "$T/err" &&
+[ $rc -eq 3 ] && [ "$(grep -c 'skipped$' "$T/err")" -eq 2 ] && grep -q "3 of 6 ROIs tiled, 2 refused" "$T/err" &&
   ! grep -q "nothing to tile; skipped" "$T/err" && ok || bad "--roi all -q: exit $rc: $(cat "$T/err")"
 "$TILE" ${F}_mixed.dcm --roi all --thickness 1 -o "$T/t/" > /dev/null 2> "$T/err"; rc=$?
-[ $rc -eq 3 ] && [ "$(ls "$T/t" | wc -l)" -eq 3 ] && grep -q "3 of 6 ROIs tiled, 2 refused" "$T/err" && ok ||
+[ $rc -eq 3 ] && [ "$(ls "$T/t" | wc -l)" -eq 4 ] && grep -q "4 of 6 ROIs tiled, 1 refused" "$T/err" && ok ||
   bad "--roi all --thickness: exit $rc: $(cat "$T/err")"
-"$TILE" ${F}_mixed.dcm --roi Overlap -o "$T/o.stl" > "$T/out" 2> "$T/err"; rc=$?
+"$TILE" ${F}_mixed.dcm --roi Crossing -o "$T/o.stl" > "$T/out" 2> "$T/err"; rc=$?
 [ $rc -eq 1 ] && [ ! -e "$T/o.stl" ] && [ ! -s "$T/out" ] && ok || bad "one refused ROI: exit $rc"
 
 # ---- Closed by default; the rows' volumes add up; --caps the same bytes;
@@ -77,12 +78,33 @@ for r in Notched:22200 Pinched:23250; do
     awk -F, -v v=$v '$1 == "mesh" { d = $13 - v; if (d < 0) d = -d; exit !($7 == "closed" && d < 1e-9 * v) }' "$T/h1.csv" &&
     ok || bad "$n: $(grep '^mesh' "$T/h1.csv") $(cat "$T/err")"
 done
-# ---- A region touching itself: split with --union; refused without.
-"$TILE" ${F}_corner.dcm --roi Corner --union > "$T/c.csv" 2> "$T/err" && grep -q 'touches itself, split' "$T/err" &&
+# ---- A region touching itself: split, with --union or without (one note a
+# slice without; it was refused), the same bytes.
+"$TILE" ${F}_corner.dcm --roi Corner --union -o "$T/c.stl" > "$T/c.csv" 2> "$T/err" && grep -q 'touches itself, split' "$T/err" &&
   grep -q '^mesh,.*,closed,' "$T/c.csv" && ok || bad "corner --union: $(cat "$T/err")"
-"$TILE" ${F}_corner.dcm --roi Corner > /dev/null 2> "$T/err"; rc=$?
-[ $rc -eq 1 ] && grep -q "ROI 1 'Corner', contour item 2: contour touches the contour at contour item 1 on slice z=0 (10 10)$" "$T/err" && ok ||
-  bad "corner: exit $rc: $(cat "$T/err")"
+"$TILE" ${F}_corner.dcm --roi Corner -o "$T/c0.stl" > "$T/c0.csv" 2> "$T/err"; rc=$?
+[ $rc -eq 0 ] && cmp -s "$T/c.stl" "$T/c0.stl" && cmp -s "$T/c.csv" "$T/c0.csv" && [ "$(wc -l < "$T/err")" -eq 6 ] &&
+  [ "$(grep -c "ROI 1 'Corner', contour item [0-9]*: merged 2 overlapping contours on slice z=[0-9]* into their union (as --union does): .*; it touches itself at (10 10), split there" "$T/err")" -eq 6 ] &&
+  ok || bad "corner: exit $rc: $(cat "$T/err")"
+
+# ---- Overlapping pieces: two squares of side 4 a slice, 4 slices 2 apart,
+# the second 2 right and 1 up of the first, both moving (1, 0.5) a slice:
+# merged into their union by default (it was refused), one note a slice; the
+# closed mesh's volume the trapezoid rule's on the union's area in closed
+# form (2 s^2 - (s - 2)(s - 1) each slice: a sheared prism, exact); --union
+# the same bytes.
+"$TILE" ${F}_pieces.dcm --roi Pieces -o "$T/pc.stl" > "$T/pc.csv" 2> "$T/err"; rc=$?
+[ $rc -eq 0 ] && [ "$(wc -l < "$T/err")" -eq 4 ] &&
+  ( for z in 0 2 4 6; do
+      [ "$(grep -c "ROI 1 'Pieces', contour item [0-9]*: merged 2 overlapping contours on slice z=$z into their union (as --union does): the contours at contour item [0-9]* and contour item [0-9]*: 1 contour (2 new vertices where they cross)$" "$T/err")" -eq 1 ] || exit 1
+    done ) &&
+  awk -F, 'BEGIN { s = 4; for (k = 0; k < 4; k++) { z[k] = 2 * k; a[k] = 2 * s * s - (s - 2) * (s - 1) }
+                   for (k = 0; k < 3; k++) want += (a[k] + a[k + 1]) / 2 * (z[k + 1] - z[k]) }
+           $1 == "mesh" { d = $13 - want; if (d < 0) d = -d; ok = $7 == "closed" && d <= 1e-9 * want }
+           END { exit !ok }' "$T/pc.csv" &&
+  ok || bad "pieces: exit $rc: $(grep '^mesh' "$T/pc.csv") $(cat "$T/err")"
+"$TILE" ${F}_pieces.dcm --roi Pieces --union -o "$T/pu.stl" > "$T/pu.csv" 2> /dev/null && cmp -s "$T/pc.stl" "$T/pu.stl" &&
+  cmp -s "$T/pc.csv" "$T/pu.csv" && ok || bad "pieces --union: other bytes than the default"
 
 # ---- Branchings: one contour under six; no bridge across a wall: a join
 # dropped, named, the mesh closed.  --procs: the serial bytes.

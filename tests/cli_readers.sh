@@ -1,8 +1,8 @@
 #!/bin/sh
 # cli_readers.sh -- ./tile on what planning systems really export (issue 22):
 # every bad contour named in one run and --skip-bad; a contour written three
-# times a slice; overlapping pieces and --union; notes counted and -v;
-# oblique stacks; a structure set copied as text.  Each case re-encoded
+# times a slice; overlapping pieces merged by default and with --union;
+# notes counted and -v; oblique stacks; a structure set copied as text.  Each case re-encoded
 # (contours in reverse order, start points rotated, every other one
 # reversed) gives the same bytes.  The DICOM files are written by
 # tests/test_slicemerge --write and tests/test_oblique --write (the tests'
@@ -64,14 +64,16 @@ cmp -s "$T/e.csv" "$T/e2.csv" && cmp -s "$T/e.stl" "$T/e2.stl" && ok || bad "mon
   bad "monaco External -v: $(cat "$T/err")"
 
 # ---- Overlapping pieces (Monaco's GTV: five a slice, three overlapping):
-# refused without --union, every slice named and --union suggested; with
-# it a closed surface, one note (-v: one a group); re-encoded, the same bytes.
-"$TILE" "$T/monaco.dcm" --roi GTV -o "$T/g.stl" > "$T/out" 2> "$T/err"; rc=$?
-[ $rc -eq 1 ] && [ ! -e "$T/g.stl" ] && [ "$(wc -l < "$T/err")" -eq 7 ] &&
-  [ "$(grep -c "contour crosses the contour at contour item" "$T/err")" -eq 6 ] &&
-  tail -1 "$T/err" | grep -q "contours cross or touch on 6 slices (each named above); --union merges overlapping contours of a slice into their union$" &&
+# merged into their union by default, one note a slice naming its contours
+# (it was refused, --union suggested); with --union the same bytes, one note
+# (-v: one a group); re-encoded, the same bytes.
+"$TILE" "$T/monaco.dcm" --roi GTV -o "$T/g0.stl" > "$T/g0.csv" 2> "$T/err"; rc=$?
+[ $rc -eq 0 ] && grep -q '^mesh,.*,closed,' "$T/g0.csv" && [ "$(wc -l < "$T/err")" -eq 6 ] &&
+  [ "$(grep -c "ROI 2 'GTV', contour item [0-9]*: merged 3 overlapping contours on slice z=[-0-9.]* into their union (as --union does): the contours at contour item [0-9]*, contour item [0-9]* and contour item [0-9]*: 1 contour" "$T/err")" -eq 6 ] &&
+  [ "$(sed 's/.* on slice z=\([^ ]*\) .*/\1/' "$T/err" | sort -u | wc -l)" -eq 6 ] &&
   ok || bad "monaco GTV without --union: exit $rc: $(cat "$T/err")"
 "$TILE" "$T/monaco.dcm" --roi GTV --union --caps -o "$T/g.stl" > "$T/g.csv" 2> "$T/err"; rc=$?
+cmp -s "$T/g0.stl" "$T/g.stl" && cmp -s "$T/g0.csv" "$T/g.csv" && ok || bad "monaco GTV: --union other bytes than the default"
 [ $rc -eq 0 ] && grep -q '^mesh,.*,closed,' "$T/g.csv" && [ "$(wc -l < "$T/err")" -eq 1 ] &&
   grep -q "merged 18 overlapping contours in 6 groups on 6 slices into their unions: 6 contours, 0 of them holes" "$T/err" &&
   ok || bad "monaco GTV --union: exit $rc: $(cat "$T/err")"
@@ -95,6 +97,28 @@ printf 'C 4 0\n0 0\n1 0\n1 1\n0 1\nC 4 0\n1 1\n2 1\n2 2\n1 2\nC 3 1\n0 0\n1 0\n0
 [ $rc -eq 0 ] && [ -s "$T/p.stl" ] && grep -q '^mesh,.*,closed,' "$T/out" &&
   [ "$(head -1 "$T/err")" = "tile: $T/pinch.contours:1: --union: merged the contours at line 1 and line 6 on slice z=0 into their union: 2 contours (0 new vertices where they cross); it touches itself at (1 1), split there (each piece but one off the point by 2^-20 of its edges)" ] &&
   ok || bad "pinch: exit $rc: $(cat "$T/err")"
+
+# ---- Overlapping pieces in a .contours stack: two squares of side 3 on each
+# of 5 slices 1.5 apart, the second 1 right and 2 up of the first, both moving
+# (0.25, -0.5) a slice.  With the default options: merged into their union
+# (it was refused), one note a slice, a closed mesh whose volume is the
+# trapezoid rule's on the union's area in closed form (2 s^2 - (s - 1)(s - 2):
+# a sheared prism, exact); --union the same bytes.
+awk 'BEGIN { s = 3; for (k = 0; k < 5; k++) { z = 1.5 * k; x = 0.25 * k; y = -0.5 * k
+  for (j = 0; j < 2; j++) printf "C 4 %s\n%s %s\n%s %s\n%s %s\n%s %s\n", z, x + j, y + 2 * j, x + j + s, y + 2 * j,
+                                  x + j + s, y + 2 * j + s, x + j, y + 2 * j + s } }' > "$T/pieces.contours"
+"$TILE" "$T/pieces.contours" -o "$T/pc.stl" > "$T/pc.csv" 2> "$T/err"; rc=$?
+[ $rc -eq 0 ] && [ "$(wc -l < "$T/err")" -eq 5 ] &&
+  ( for k in 0 1 2 3 4; do l=$((10 * k + 1)) z=$(awk -v k=$k 'BEGIN { print 1.5 * k }')
+      grep -qxF "tile: $T/pieces.contours:$l: merged 2 overlapping contours on slice z=$z into their union (as --union does): the contours at line $l and line $((l + 5)): 1 contour (2 new vertices where they cross)" "$T/err" || exit 1
+    done ) &&
+  awk -F, 'BEGIN { s = 3; for (k = 0; k < 5; k++) { z[k] = 1.5 * k; a[k] = 2 * s * s - (s - 1) * (s - 2) }
+                   for (k = 0; k < 4; k++) want += (a[k] + a[k + 1]) / 2 * (z[k + 1] - z[k]) }
+           $1 == "mesh" { d = $13 - want; if (d < 0) d = -d; ok = $7 == "closed" && d <= 1e-9 * want }
+           END { exit !ok }' "$T/pc.csv" &&
+  ok || bad "pieces: exit $rc: $(grep '^mesh' "$T/pc.csv") $(cat "$T/err")"
+"$TILE" "$T/pieces.contours" --union -o "$T/pu.stl" > "$T/pu.csv" 2> /dev/null && cmp -s "$T/pc.stl" "$T/pu.stl" &&
+  cmp -s "$T/pc.csv" "$T/pu.csv" && ok || bad "pieces --union: other bytes than the default"
 
 # ---- Duplicate points counted, one line a contour; -v one each.
 printf 'C 9 0\n0 0\n0 0\n1 0\n1 0\n1 0\n1 1\n1 1\n0 1\n0 0\nC 3 1\n0 0\n1 0\n0 1\n' > "$T/dup.contours"

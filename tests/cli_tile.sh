@@ -38,10 +38,17 @@ expect_error fewer2       "C 4 0\n${P3}C 3 1\n$P3"            '5: the contour at
 expect_error more         "C 3 0\n${P3}2 2\n"                 '5: more point lines than the 3 announced at line 1 (2 2)'
 expect_error degenerate   "C 3 0\n0 0\n1 0\n1 0\nC 3 1\n0 0\n1 1\n2 2\n"  ' no contours left to tile: all 2 are degenerate'
 expect_error oneleft      "C 3 0\n0 0\n1 0\n1 0\nC 3 1\n$P3"  '5: the only contour lies on one slice (z=1)'
-# Several contours on a slice may not cross or touch (the later one in the
-# file is named, with the other's line and the point where they meet).
-expect_error crossing     "C 3 1\n${P3}C 3 2\n${P3}C 3 1\n0.5 -1\n3 -1\n0.5 0.5\n"  '9: contour crosses the contour at line 1 on slice z=1 (0.5 0)'
-expect_error touching     "C 3 1\n${P3}C 3 2\n${P3}C 3 1\n1 0\n3 0\n3 1\n"       '9: contour touches the contour at line 1 on slice z=1 (1 0)'
+# Contours of a slice that cross or touch are merged into their union (they
+# were refused): a closed mesh, a note naming the slice and the contours
+# (then, for the piece split off where they touch, its own notes).
+expect_union() {
+  name=$1; printf '%b' "$2" > "$T/$name.contours"
+  "$TILE" "$T/$name.contours" -o "$T/$name.obj" > "$T/out" 2> "$T/err"; rc=$?
+  [ $rc -eq 0 ] && grep -q '^mesh,.*,closed,' "$T/out" && [ -s "$T/$name.obj" ] && ok || bad "$name: exit status $rc, expected 0"
+  [ "$(head -1 "$T/err")" = "tile: $T/$name.contours:$3" ] && ok || bad "$name: stderr '$(cat "$T/err")', expected 'tile: FILE:$3'"
+}
+expect_union crossing     "C 3 1\n${P3}C 3 2\n${P3}C 3 1\n0.5 -1\n3 -1\n0.5 0.5\n"  '1: merged 2 overlapping contours on slice z=1 into their union (as --union does): the contours at line 1 and line 9: 1 contour (1 new vertices where they cross)'
+expect_union touching     "C 3 1\n${P3}C 3 2\n${P3}C 3 1\n1 0\n3 0\n3 1\n"       '1: merged 2 overlapping contours on slice z=1 into their union (as --union does): the contours at line 1 and line 9: 2 contours (0 new vertices where they cross); it touches itself at (1 0), split there (each piece but one off the point by 2^-20 of its edges)'
 expect_error onecontour   "C 3 0\n$P3"                        '1: the only contour lies on one slice (z=0): a surface needs two slices, or --thickness T to make this one a slab T thick'
 expect_error oneslice     "C 3 0\n${P3}C 3 0\n2 2\n3 2\n2 3\n"   '1: all 2 contours lie on one slice (z=0): a surface needs two slices, or --thickness T'
 expect_error binary       "C 3 0\n\001\002\003\n"             '2: binary data, not a contour file (byte 0x01)'

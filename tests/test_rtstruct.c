@@ -330,6 +330,7 @@ static double sq2[12], sq3[12];
 /* the square at z 5 moved by (2, 2): on its slice, it crosses the square (a
  * copy of it would be dropped as a duplicate) */
 static const double sqm[] = {2, 2, 5, 12, 2, 5, 12, 12, 5, 2, 12, 5};
+static const double sqd[] = {20, 0, 5, 30, 0, 5, 30, 10, 5, 20, 10, 5};   /* apart from sq, on its slice */
 
 static unsigned char *write1(const rtw_roi *roi, int n, size_t *len) {
   rtw_opts o = {0, 1, 0, 0, NULL, NULL, 0};
@@ -419,7 +420,7 @@ static void refusals(void) {
   roi_refused("one contour", b, len, "ROI 7 'Prostate', contour item 1: only one contour; tiling needs at least 2");
   free(b);
 
-  cs[1] = (rtw_contour){NULL, 4, sqm, NULL, -1};
+  cs[1] = (rtw_contour){NULL, 4, sqd, NULL, -1};
   b = write1(&r, 1, &len);
   roi_refused("two on a slice", b, len, "contour item 2: slice z=5 already has a contour (contour item 1); this program tiles each contour with the next and needs one contour per slice");
   free(b);
