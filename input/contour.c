@@ -196,8 +196,8 @@ static int degenerate(reader *r, const raw *c, int points, int k) {
   return 1;
 }
 
-/* A contour that crosses, touches or runs back over itself (issue 14, item
- * 10): the first offending pair of segments the sweep finds (algo/crossing.h,
+/* A contour that crosses, touches or runs back over itself: the first
+ * offending pair of segments the sweep finds (algo/crossing.h,
  * exact, O(n log n)), each named by the lines of its two points. */
 static int refuse_crossing(reader *r, const raw *c, int k, int points, const crossing_hit *hp) {
   crossing_hit h = *hp;
@@ -348,7 +348,7 @@ static int by_double(const void *a, const void *b) {
  * reported.  The gaps are taken with z scaled by the power of two 2^-e that
  * brings the largest |z| into [1/2, 1) (exact: subnormal z are scaled up), so
  * the grouping is the same for a stack scaled by any 2^k and no gap, its
- * hundredth or tenth underflows or overflows (issue 14, item 7).  Returns the
+ * hundredth or tenth underflows or overflows.  Returns the
  * number of slices. */
 static int group_slices(reader *r, contour *cs, int n) {
   contour **o = xmallocarray((size_t)n, sizeof *o);

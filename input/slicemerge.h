@@ -2,7 +2,7 @@
  *
  * Planning systems export the same region several times on a slice (Monaco
  * writes the outline three times, from other start points, with extra
- * collinear points) and regions drawn in overlapping pieces (issue 22).
+ * collinear points) and regions drawn in overlapping pieces.
  *
  * Duplicates (always).  Two contours of a slice are the same region when
  * they have the same points up to start point, direction and collinear

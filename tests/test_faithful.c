@@ -1,4 +1,4 @@
-/* test_faithful.c -- surfaces people can measure (issue 27): volumes right
+/* test_faithful.c -- surfaces people can measure: volumes right
  * whatever the sampling, closed by default, real exports tiled.
  *
  *   - Analytic solids sampled sparsely and densely, tiled with the default

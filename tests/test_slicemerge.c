@@ -1,4 +1,4 @@
-/* test_slicemerge.c -- contours of a slice that repeat or overlap (issue 22),
+/* test_slicemerge.c -- contours of a slice that repeat or overlap,
  * through the reader (input/slicemerge.h) and the stack tiler:
  *   - three copies of one region on every slice, as Monaco writes an
  *     outline (other start points, extra collinear points, reversed): one

@@ -1,5 +1,5 @@
-/* test_stackscale.c -- the stack surface (surface/stack.h) at every scale
- * (issue 14, item 7, on issue 9's several-contours-per-slice surface).
+/* test_stackscale.c -- the stack surface (surface/stack.h), several
+ * contours a slice, at every scale.
  *
  * Stacks: tinypatient_0 and prostate stacks (tests/data/slicerrt), the
  * analytic solids (tests/solids.h: branching, holes, cavities, islands) and
