@@ -366,6 +366,22 @@ int eng_recv_data(tsm *R, int wsrc, int ctx, int tag, void *p, size_t cap, mp_st
   return 1;
 }
 
+/* m, an unexpected message taken out of matching, read into q, which
+ * completes with it; m freed. */
+static void take_held(tsm *R, tsm_req *q, tsm_msg *m) {
+  size_t n = m->len < q->cap ? m->len : q->cap;
+  if (q->contig || !n) {
+    mp_msg_read(R->self, m->h, n ? q->contig : NULL, n);
+  } else {
+    unsigned char *tmp = xmalloc(n);
+    mp_msg_read(R->self, m->h, tmp, n);
+    place(q, tmp, n);
+    free(tmp);
+  }
+  complete(R, q, m->src, m->kind, m->ctx, m->tag, m->len, 0);
+  free(m);
+}
+
 /* The first unexpected message q fits, taken into q; 1, or 0 if none. */
 static int from_unexp(tsm *R, tsm_req *q) {
   for (tsm_msg *m = R->unexp, *next; m; m = next) {
@@ -373,17 +389,7 @@ static int from_unexp(tsm *R, tsm_req *q) {
     if (!fits(q, m->src, m->ctx, m->tag)) continue;
     unexp_unlink(R, m);
     if (unexp_gone(R, m)) continue;
-    size_t n = m->len < q->cap ? m->len : q->cap;
-    if (q->contig || !n) {
-      mp_msg_read(R->self, m->h, n ? q->contig : NULL, n);
-    } else {
-      unsigned char *tmp = xmalloc(n);
-      mp_msg_read(R->self, m->h, tmp, n);
-      place(q, tmp, n);
-      free(tmp);
-    }
-    complete(R, q, m->src, m->kind, m->ctx, m->tag, m->len, 0);
-    free(m);
+    take_held(R, q, m);
     return 1;
   }
   return 0;
@@ -534,17 +540,7 @@ void eng_msg_read(tsm *R, tsm_req *q, tsm_msg *m) {
     q->state = RS_DONE;
     return;
   }
-  size_t n = m->len < q->cap ? m->len : q->cap;
-  if (q->contig || !n) {
-    mp_msg_read(R->self, m->h, n ? q->contig : NULL, n);
-  } else {
-    unsigned char *tmp = xmalloc(n);
-    mp_msg_read(R->self, m->h, tmp, n);
-    place(q, tmp, n);
-    free(tmp);
-  }
-  complete(R, q, m->src, m->kind, m->ctx, m->tag, m->len, 0);
-  free(m);
+  take_held(R, q, m);
 }
 
 void eng_msg_free(tsm *R, tsm_msg *m) { unexp_free(R, m); }
