@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "algo/hull.h"
+#include "geom/hull.h"
 #include "algo/kernel.h"
 #include "util/xmem.h"
 

@@ -32,7 +32,7 @@
 #include <math.h>
 #include <stdint.h>
 
-#include "algo/geom.h"
+#include "geom/geom.h"
 
 typedef enum { COST_AREA, COST_SPAN } cost_kind;
 

@@ -17,8 +17,8 @@
 #include <string.h>
 
 #include "util/args.h"
-#include "algo/crossing.h"
-#include "algo/keyhole.h"
+#include "geom/crossing.h"
+#include "geom/keyhole.h"
 #include "input/slicemerge.h"
 #include "util/strbuf.h"
 #include "util/xmem.h"
@@ -197,7 +197,7 @@ static int degenerate(reader *r, const raw *c, int points, int k) {
 }
 
 /* A contour that crosses, touches or runs back over itself: the first
- * offending pair of segments the sweep finds (algo/crossing.h,
+ * offending pair of segments the sweep finds (geom/crossing.h,
  * exact, O(n log n)), each named by the lines of its two points. */
 static int refuse_crossing(reader *r, const raw *c, int k, int points, const crossing_hit *hp) {
   crossing_hit h = *hp;
@@ -230,7 +230,7 @@ static void take(contour *out, vec2 *pt, int k, double z, int line, int *reverse
   out->line = line;
 }
 
-/* A keyhole contour (algo/keyhole.h) becomes its loops, each named by the
+/* A keyhole contour (geom/keyhole.h) becomes its loops, each named by the
  * line of its first point in the file; a note says what was dropped. */
 static void split_keyhole(reader *r, const raw *c, const keyhole_split *ks, contour **cs, int *ncs,
                           int *capcs, int *reversed) {

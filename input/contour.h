@@ -17,7 +17,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include "algo/geom.h"
+#include "geom/geom.h"
 
 typedef struct {
   double z;       /* the contour's plane */
@@ -70,7 +70,7 @@ int contour_parse(const char *text, size_t len, const char *name,
 /* Keyholes and spurs.  A contour that crosses, touches or runs back over
  * itself is bad ("the contour crosses itself: the segment from line A to
  * line B crosses|touches|overlaps the segment from line C to line D (X Y)")
- * unless it is a keyhole contour or has zero-width spurs (algo/keyhole.h:
+ * unless it is a keyhole contour or has zero-width spurs (geom/keyhole.h:
  * loops joined by channels walked out and back, spikes walked out and back
  * along themselves, exactly): then it becomes its loops, each a contour of
  * the slice whose `line` is the line of its first point in the file, and a

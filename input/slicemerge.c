@@ -7,9 +7,9 @@
 #include <string.h>
 
 #include "util/args.h"
-#include "algo/crossing.h"
-#include "algo/exact.h"
-#include "algo/polyunion.h"
+#include "geom/crossing.h"
+#include "geom/exact.h"
+#include "geom/polyunion.h"
 #include "util/xmem.h"
 
 /* ---------------------------------------------------------------- order */

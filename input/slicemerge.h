@@ -15,7 +15,7 @@
  *
  * Union (always).  Contours of a slice whose boundaries meet (cross, touch,
  * overlap) are replaced by the boundary of the union of their regions
- * (algo/polyunion.h: exact; holes the union encloses included, a hole drawn
+ * (geom/polyunion.h: exact; holes the union encloses included, a hole drawn
  * on its outer contour's boundary kept as a hole, a union that touches
  * itself at a point split there); contours that meet no other keep their
  * role by nesting (surface/slices.h), so a contour inside a union's boundary

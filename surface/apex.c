@@ -9,7 +9,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "algo/exact.h"
+#include "geom/exact.h"
 #include "util/xmem.h"
 
 int apex_sees_all(const vec2 *p, int n, vec2 q) {

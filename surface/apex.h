@@ -8,7 +8,7 @@
 #ifndef APEX_H
 #define APEX_H
 
-#include "algo/geom.h"
+#include "geom/geom.h"
 
 /* A point strictly inside the kernel of the simple polygon p[0..n-1]
  * (either orientation): the area centroid if it is one, else the centroid

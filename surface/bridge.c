@@ -14,8 +14,8 @@
 #include <string.h>
 
 #include "util/args.h"
-#include "algo/crossing.h"
-#include "algo/exact.h"
+#include "geom/crossing.h"
+#include "geom/exact.h"
 #include "util/xmem.h"
 
 typedef struct {

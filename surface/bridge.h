@@ -25,7 +25,7 @@
  * places makes that edge non-manifold (four triangles).  Two vertices cannot
  * repeat a span.
  *
- * A bridge is legal when (exactly, algo/crossing.h): its segments a0b1 and
+ * A bridge is legal when (exactly, geom/crossing.h): its segments a0b1 and
  * b0a1 cross or touch no contour of either slice and no earlier bridge (but
  * at their own ends), the corridor a0 b1 b0 a1 runs the composite's way (it
  * lies outside both polygons) and holds no other contour of the slice.

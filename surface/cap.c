@@ -5,7 +5,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "algo/exact.h"
+#include "geom/exact.h"
 #include "util/xmem.h"
 
 static double cross(vec2 a, vec2 b, vec2 c) {

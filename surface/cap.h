@@ -2,7 +2,7 @@
 #ifndef CAP_H
 #define CAP_H
 
-#include "algo/geom.h"
+#include "geom/geom.h"
 
 /* Triangulate the counter-clockwise polygon p[0..n-1] (n >= 3) by ear
  * clipping: writes n-2 triangles of indices into p, each counter-clockwise,

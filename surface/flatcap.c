@@ -9,7 +9,7 @@
 #include <string.h>
 
 #include "surface/cap.h"
-#include "algo/crossing.h"
+#include "geom/crossing.h"
 #include "util/xmem.h"
 
 typedef struct {

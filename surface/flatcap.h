@@ -3,7 +3,7 @@
  *
  * Each hole is joined to the boundary by one cut, the shortest segment from
  * a hole vertex to a boundary vertex that meets no contour of the region
- * (exact, algo/crossing.h); the cut is walked both ways, so the region
+ * (exact, geom/crossing.h); the cut is walked both ways, so the region
  * becomes one weakly simple polygon, and ear clipping (surface/cap.h)
  * triangulates it.  VTK's vtkContourTriangulator cuts each hole twice
  * (vtkCCSCutHoleyPolys); one cut is enough for ear clipping (Eberly,

@@ -34,7 +34,7 @@
 #ifndef FOLLOW_H
 #define FOLLOW_H
 
-#include "algo/geom.h"
+#include "geom/geom.h"
 #include "algo/tiling.h"
 
 typedef struct {

@@ -1,6 +1,6 @@
 /* gap.h -- how far apart two contours of neighbouring slices lie in the
  * plane: the least distance between their boundaries, exactly comparable
- * (algo/exactdist.h), for the joins of surface/match.h and their notes.
+ * (geom/exactdist.h), for the joins of surface/match.h and their notes.
  *
  * For two simple polygons whose boundaries do not cross, the least distance
  * between them is that from a vertex of one to a segment of the other, so it
@@ -11,7 +11,7 @@
 #ifndef GAP_H
 #define GAP_H
 
-#include "algo/exactdist.h"
+#include "geom/exactdist.h"
 #include "surface/slices.h"
 
 /* The least distance between the boundaries of A and B (their regions must

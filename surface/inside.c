@@ -7,8 +7,8 @@
 
 #include <stdlib.h>
 
-#include "algo/crossing.h"
-#include "algo/exact.h"
+#include "geom/crossing.h"
+#include "geom/exact.h"
 #include "util/xmem.h"
 
 struct inside_index {

@@ -4,13 +4,13 @@
  * The index cuts the polygon's y extent into rows and lists in each row the
  * segments whose y range meets it, so a query looks at the few segments of
  * one row (about O(1) for a contour of short segments, O(n) at worst).  The
- * rows only filter; every decision is an exact orientation (algo/exact.h), so
+ * rows only filter; every decision is an exact orientation (geom/exact.h), so
  * the answers hold for any finite doubles.  An index is read-only once built:
  * any number of threads may query it at once. */
 #ifndef INSIDE_H
 #define INSIDE_H
 
-#include "algo/geom.h"
+#include "geom/geom.h"
 
 typedef struct inside_index inside_index;
 
@@ -33,7 +33,7 @@ void inside_near(const inside_index *ix, vec2 a, vec2 b, void (*fn)(void *ud, in
 /* 1 if the segment ab meets the polygon's boundary anywhere but exactly at
  * the points ok1 and ok2 (a contact there is allowed: a bridge's own end on
  * its own contour; NaN for none), including a collinear run; else 0.  Exact
- * (algo/crossing.h). */
+ * (geom/crossing.h). */
 int inside_segment_meets(const inside_index *ix, vec2 a, vec2 b, vec2 ok1, vec2 ok2);
 
 /* The polygon's bounding box. */

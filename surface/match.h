@@ -42,7 +42,7 @@
 #ifndef MATCH_H
 #define MATCH_H
 
-#include "algo/exactdist.h"
+#include "geom/exactdist.h"
 #include "surface/slices.h"
 
 typedef enum { MATCH_SINGLE = 0, MATCH_OVERLAP, MATCH_TOUCH, MATCH_NEAREST } match_rule;

@@ -9,7 +9,7 @@
  *   4. otherwise R's boundary runs along a piece of a segment of one polygon
  *      inside the other, between vertices of the other lying on it: that
  *      piece's midpoint lies strictly inside the other.
- * Each test is exact (algo/exact.h, algo/crossing.h) but for the rounding of
+ * Each test is exact (geom/exact.h, geom/crossing.h) but for the rounding of
  * the points 3 and 4 construct, which lie well inside a region when they
  * count.  The cheap tests come first; 3 and 4 run only when the boundaries
  * touch or the regions are disjoint with overlapping boxes. */
@@ -17,8 +17,8 @@
 
 #include <stdlib.h>
 
-#include "algo/crossing.h"
-#include "algo/exact.h"
+#include "geom/crossing.h"
+#include "geom/exact.h"
 #include "util/xmem.h"
 
 static int boxes_meet(const inside_index *a, const inside_index *b) {

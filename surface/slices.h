@@ -10,7 +10,7 @@
  * file's winding is not trusted (holes by nesting, not by winding: winding is
  * wrong in real files, e.g. pydicom's rtstruct.dcm).
  *
- * Refused: contours of one slice that cross or touch (algo/crossing.h). */
+ * Refused: contours of one slice that cross or touch (geom/crossing.h). */
 #ifndef SLICES_H
 #define SLICES_H
 

@@ -1,5 +1,5 @@
 #!/bin/sh
-# cli_keyhole.sh -- ./tile on keyhole contours (algo/keyhole.h): the same
+# cli_keyhole.sh -- ./tile on keyhole contours (geom/keyhole.h): the same
 # bytes as the region given as separate contours; MIM's rtutils_dummy_rt
 # (ROI-2 and ROI-4 are keyholes) in both encodings, judged by the
 # independent mesh checker (tests/meshcheck.c via `test_solids --check`, which

@@ -5,7 +5,7 @@
 #define STACKGEN_H
 
 #include "input/contour.h"
-#include "algo/geom.h"
+#include "geom/geom.h"
 #include "util/rng.h"
 
 typedef struct {

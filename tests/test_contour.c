@@ -7,7 +7,7 @@
 
 #include "tests/check.h"
 #include "input/contour.h"
-#include "algo/gen.h"
+#include "input/gen.h"
 #include "util/rng.h"
 #include "util/xmem.h"
 

@@ -6,9 +6,9 @@
 #include <string.h>
 
 #include "tests/check.h"
-#include "algo/crossing.h"
-#include "algo/exact.h"
-#include "algo/gen.h"
+#include "geom/crossing.h"
+#include "geom/exact.h"
+#include "input/gen.h"
 #include "util/rng.h"
 #include "util/xmem.h"
 

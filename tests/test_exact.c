@@ -7,7 +7,7 @@
 #include <stdlib.h>
 
 #include "tests/check.h"
-#include "algo/exact.h"
+#include "geom/exact.h"
 #include "util/rng.h"
 
 /* The sign of the integer determinant (b-a) x (c-a): the reference. */

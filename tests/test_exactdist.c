@@ -1,5 +1,5 @@
 /* test_exactdist.c -- squared point-segment distances compared exactly
- * (algo/exactdist.h) against integer arithmetic: small integer points at
+ * (geom/exactdist.h) against integer arithmetic: small integer points at
  * every scale from subnormals to 1e290, shifted by large exact offsets (so
  * that the interval filter fails and the big integers decide), ties by the
  * thousand, comparisons against a length, one-ulp moves that any rounding
@@ -9,7 +9,7 @@
 #include <stdlib.h>
 
 #include "tests/check.h"
-#include "algo/exactdist.h"
+#include "geom/exactdist.h"
 #include "util/rng.h"
 
 /* The reference: the squared distance from p to the segment ab as the exact

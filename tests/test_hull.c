@@ -5,9 +5,9 @@
 #include <stdlib.h>
 
 #include "tests/check.h"
-#include "algo/exact.h"
-#include "algo/gen.h"
-#include "algo/hull.h"
+#include "geom/exact.h"
+#include "input/gen.h"
+#include "geom/hull.h"
 #include "util/rng.h"
 #include "util/xmem.h"
 

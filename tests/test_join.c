@@ -23,8 +23,8 @@
 
 #include "tests/check.h"
 #include "input/contour.h"
-#include "algo/exact.h"
-#include "algo/exactdist.h"
+#include "geom/exact.h"
+#include "geom/exactdist.h"
 #include "surface/gap.h"
 #include "surface/inside.h"
 #include "tests/meshcheck.h"

@@ -1,4 +1,4 @@
-/* test_keyhole.c -- the keyhole repair (algo/keyhole.h) against the loops a
+/* test_keyhole.c -- the keyhole repair (geom/keyhole.h) against the loops a
  * keyhole contour is built from: annuli, a rectangle with k holes joined in
  * a chain or a star, an island in a hole, two pieces joined by a channel,
  * channels with extra collinear points on one side, the other or both,
@@ -20,8 +20,8 @@
 
 #include "tests/check.h"
 #include "input/contour.h"
-#include "algo/exact.h"
-#include "algo/keyhole.h"
+#include "geom/exact.h"
+#include "geom/keyhole.h"
 #include "surface/mesh.h"
 #include "surface/stack.h"
 #include "util/xmem.h"

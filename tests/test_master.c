@@ -13,7 +13,7 @@
 #include <string.h>
 
 #include "tests/check.h"
-#include "algo/gen.h"
+#include "input/gen.h"
 #include "algo/par_slave.h"
 #include "util/rng.h"
 #include "run/run.h"

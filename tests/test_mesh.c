@@ -9,7 +9,7 @@
 
 #include "surface/cap.h"
 #include "tests/check.h"
-#include "algo/gen.h"
+#include "input/gen.h"
 #include "surface/mesh.h"
 #include "surface/meshio.h"
 #include "util/rng.h"

@@ -18,7 +18,7 @@
 #include <string.h>
 
 #include "tests/check.h"
-#include "algo/gen.h"
+#include "input/gen.h"
 #include "surface/mesh.h"
 #include "util/rng.h"
 #include "input/rtstruct.h"

@@ -9,7 +9,7 @@
 
 #include "tests/check.h"
 #include "input/contour.h"
-#include "algo/gen.h"
+#include "input/gen.h"
 #include "algo/par_slave.h"
 #include "util/rng.h"
 #include "run/run.h"

@@ -1,5 +1,5 @@
 /* test_polyunion.c -- the exact union of overlapping polygons
- * (algo/polyunion.h) and its big integers (algo/bigz.h), against references
+ * (geom/polyunion.h) and its big integers (geom/bigz.h), against references
  * of their own:
  *   - bigz: products against unsigned __int128, quotients against IEEE
  *     division (correctly rounded) where both operands are doubles, and
@@ -26,11 +26,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "algo/bigz.h"
+#include "geom/bigz.h"
 #include "tests/check.h"
-#include "algo/exact.h"
-#include "algo/gen.h"
-#include "algo/polyunion.h"
+#include "geom/exact.h"
+#include "input/gen.h"
+#include "geom/polyunion.h"
 #include "util/rng.h"
 #include "util/xmem.h"
 

@@ -14,7 +14,7 @@
 #include "input/contour.h"
 #include "input/decimal.h"
 #include "input/dicom.h"
-#include "algo/gen.h"
+#include "input/gen.h"
 #include "util/rng.h"
 #include "input/rtstruct.h"
 #include "tests/rtwriter.h"

@@ -11,11 +11,11 @@
 #include <string.h>
 
 #include "tests/check.h"
-#include "algo/gen.h"
+#include "input/gen.h"
 #include "algo/par.h"
 #include "util/rng.h"
 #include "run/run.h"
-#include "algo/geom.h"
+#include "geom/geom.h"
 #include "algo/tiling.h"
 #include "util/xmem.h"
 

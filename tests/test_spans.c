@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "tests/check.h"
-#include "algo/gen.h"
+#include "input/gen.h"
 #include "util/rng.h"
 #include "algo/tiling.h"
 #include "surface/unpinch.h"

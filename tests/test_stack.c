@@ -23,8 +23,8 @@
 
 #include "tests/check.h"
 #include "input/contour.h"
-#include "algo/exact.h"
-#include "algo/geom.h"
+#include "geom/exact.h"
+#include "geom/geom.h"
 #include "surface/inside.h"
 #include "surface/mesh.h"
 #include "tests/meshcheck.h"

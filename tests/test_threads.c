@@ -13,7 +13,7 @@
 #include "tests/check.h"
 #include "tests/randprog.h"
 #include "input/contour.h"
-#include "algo/gen.h"
+#include "input/gen.h"
 #include "util/rng.h"
 #include "run/run.h"
 #include "mp/threads.h"

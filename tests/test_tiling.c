@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "tests/check.h"
-#include "algo/gen.h"
+#include "input/gen.h"
 #include "algo/kernel.h"
 #include "algo/naive.h"
 #include "util/rng.h"

@@ -26,7 +26,7 @@
 #include <unistd.h>
 
 #include "tests/check.h"
-#include "algo/gen.h"
+#include "input/gen.h"
 #include "sim/link.h"
 #include "mp/mp.h"
 #include "sim/place.h"

@@ -8,7 +8,7 @@
 
 #include <stddef.h>
 
-#include "algo/geom.h"
+#include "geom/geom.h"
 
 /* Messages between ranks of the threads backend (default spin), in four
  * patterns of the Intel MPI Benchmarks' kind:

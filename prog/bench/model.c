@@ -20,7 +20,7 @@
 #include "util/args.h"
 #include "util/atomicfile.h"
 #include "input/contour.h"
-#include "algo/gen.h"
+#include "input/gen.h"
 #include "util/progname.h"
 #include "run/run.h"
 #include "util/xmem.h"

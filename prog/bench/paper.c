@@ -42,7 +42,7 @@
 #include "prog/bench/net.h"
 #include "prog/bench/variant.h"
 #include "input/contour.h"
-#include "algo/gen.h"
+#include "input/gen.h"
 #include "util/progname.h"
 #include "util/progress.h"
 #include "run/run.h"

@@ -5,7 +5,7 @@
 #define BENCH_PAPER_H
 
 #include "input/contour.h"
-#include "algo/geom.h"
+#include "geom/geom.h"
 #include "run/run.h"
 
 /* The generated pair of `points` points for a seed (two random star-shaped

@@ -28,7 +28,7 @@
 #include "util/args.h"
 #include "prog/bench/data.h"
 #include "input/contour.h"
-#include "algo/gen.h"
+#include "input/gen.h"
 #include "algo/naive.h"
 #include "util/progname.h"
 #include "algo/tiling.h"

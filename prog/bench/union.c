@@ -1,5 +1,5 @@
 /* union.c -- ./bench --union: the cost of ./tile --union's exact union
- * (algo/polyunion.h) on one slice of overlapping contours.
+ * (geom/polyunion.h) on one slice of overlapping contours.
  *
  *   bench --union [blob|star:K:N ...] [--repeat R]
  *
@@ -28,8 +28,8 @@
 #include <string.h>
 
 #include "util/args.h"
-#include "algo/gen.h"
-#include "algo/polyunion.h"
+#include "input/gen.h"
+#include "geom/polyunion.h"
 #include "util/progname.h"
 #include "util/rng.h"
 #include "util/wallclock.h"

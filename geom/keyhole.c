@@ -1,13 +1,13 @@
 /* keyhole.c -- the exact keyhole repair (keyhole.h; after SlicerRT's
  * FixKeyholes without its tolerance). */
-#include "algo/keyhole.h"
+#include "geom/keyhole.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "algo/crossing.h"
-#include "algo/exact.h"
+#include "geom/crossing.h"
+#include "geom/exact.h"
 #include "util/xmem.h"
 
 /* A polygon whose points each remember an input point (src). */

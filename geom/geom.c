@@ -1,9 +1,9 @@
 /* geom.c -- plane geometry of contours. */
-#include "algo/geom.h"
+#include "geom/geom.h"
 
 #include <math.h>
 
-#include "algo/exact.h"
+#include "geom/exact.h"
 
 double geom_area2_at(const vec2 *p, int n, int e) {
   if (n < 3) return 0;

@@ -24,15 +24,15 @@
  * every comparison first compares the correctly rounded doubles (rounding to
  * nearest is monotone, so different rounded values decide) and goes to big
  * integers only when they are equal. */
-#include "algo/polyunion.h"
+#include "geom/polyunion.h"
 
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "algo/bigz.h"
-#include "algo/exact.h"
+#include "geom/bigz.h"
+#include "geom/exact.h"
 #include "util/xmem.h"
 
 typedef struct {

@@ -21,7 +21,7 @@
 #ifndef EXACT_H
 #define EXACT_H
 
-#include "algo/geom.h"
+#include "geom/geom.h"
 
 /* +1, 0 or -1 (see above).  The points must be finite. */
 int exact_orient(vec2 a, vec2 b, vec2 c);

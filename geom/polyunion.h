@@ -39,8 +39,8 @@
 #ifndef POLYUNION_H
 #define POLYUNION_H
 
-#include "algo/crossing.h"
-#include "algo/geom.h"
+#include "geom/crossing.h"
+#include "geom/geom.h"
 
 typedef enum { POLYUNION_OK = 0, POLYUNION_PINCH, POLYUNION_ROUNDING } polyunion_status;
 

@@ -1,10 +1,10 @@
 /* hull.c -- convex hull (monotone chain) and extreme points by edge angles. */
-#include "algo/hull.h"
+#include "geom/hull.h"
 
 #include <math.h>
 #include <stdlib.h>
 
-#include "algo/exact.h"
+#include "geom/exact.h"
 #include "util/xmem.h"
 
 struct hull {

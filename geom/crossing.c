@@ -27,14 +27,14 @@
  * adjacent at some event before q*, where step 3 tested them.  Until q* the
  * status is ordered, so every search in it is sound.  Each event costs
  * O(log N) expected, so O(N log N) in all. */
-#include "algo/crossing.h"
+#include "geom/crossing.h"
 
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "algo/exact.h"
+#include "geom/exact.h"
 #include "util/xmem.h"
 
 const char *crossing_verb(crossing_kind k) {

@@ -17,7 +17,7 @@
 #ifndef EXACTDIST_H
 #define EXACTDIST_H
 
-#include "algo/geom.h"
+#include "geom/geom.h"
 
 enum { EXACTDIST_POINT, EXACTDIST_LINE };
 

@@ -1,6 +1,6 @@
 /* exact.c -- exact orientation: a floating-point filter, then an exact sum of
  * six products in a big integer. */
-#include "algo/exact.h"
+#include "geom/exact.h"
 
 #include <float.h>
 #include <math.h>

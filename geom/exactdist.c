@@ -1,6 +1,6 @@
 /* exactdist.c -- squared point-segment distances: an interval filter, then
  * big integers (exactdist.h). */
-#include "algo/exactdist.h"
+#include "geom/exactdist.h"
 
 #include <math.h>
 #include <stdint.h>

@@ -3,7 +3,7 @@
 #ifndef HULL_H
 #define HULL_H
 
-#include "algo/geom.h"
+#include "geom/geom.h"
 
 typedef struct hull hull;
 

@@ -5,7 +5,7 @@
 #define GEN_H
 
 #include "input/contour.h"
-#include "algo/geom.h"
+#include "geom/geom.h"
 #include "util/rng.h"
 
 /* n points, counter-clockwise, star-shaped about (cx, cy): sorted random

@@ -1,5 +1,5 @@
 /* gen.c -- generated contours for tests, benchmarks and the glass figure. */
-#include "algo/gen.h"
+#include "input/gen.h"
 
 #include <math.h>
 #include <stdlib.h>

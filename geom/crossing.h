@@ -22,7 +22,7 @@
 #ifndef CROSSING_H
 #define CROSSING_H
 
-#include "algo/geom.h"
+#include "geom/geom.h"
 
 typedef struct {
   const vec2 *pt;   /* the points (not copied, not freed) */

@@ -34,7 +34,7 @@
 #ifndef KEYHOLE_H
 #define KEYHOLE_H
 
-#include "algo/geom.h"
+#include "geom/geom.h"
 
 typedef struct {
   int nloops;      /* loops kept, >= 1 (2 or more when channels > 0) */

@@ -1,7 +1,7 @@
 /* bigz.c -- small signed big integers (bigz.h): sign and magnitude, 32-bit
  * limbs, least significant first; schoolbook multiplication; a quotient by
  * binary long division, rounded once. */
-#include "algo/bigz.h"
+#include "geom/bigz.h"
 
 #include <math.h>
 #include <string.h>
