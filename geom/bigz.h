@@ -1,12 +1,13 @@
 /* bigz.h -- small signed big integers for exact geometry: add, subtract,
  * multiply, compare, shift, and a quotient rounded correctly to a double.
  *
- * Made for the exact union of polygons (polyunion.h): every finite double
- * is an integer times a power of two, so the coordinates of a set of points
- * are integers at the scale of their least significant bit, at most about
- * 2,100 bits apart (2^-1074 to 2^1024), and the predicates the union needs
- * are polynomials of degree 5 at most in them: BIGZ_LIMBS 32-bit limbs hold
- * any such value.  A bigz is a plain value on the stack (1.4 KB); the
+ * Made for the exact union of polygons (polyunion.h) and exact distances
+ * (exactdist.h): every finite double is an integer times a power of two, so
+ * the coordinates of a set of points are integers at the scale of their
+ * least significant bit, at most about 2,100 bits apart (2^-1074 to 2^1024),
+ * and the predicates those need are polynomials of degree 6 at most in them:
+ * BIGZ_LIMBS 32-bit limbs hold any such value.  A bigz is a plain value
+ * (1.7 KB; callers keep theirs thread-local rather than on the stack); the
  * operations touch only the limbs in use, so the common case -- coordinates
  * of 60 to 110 bits, a few limbs -- is cheap.  Operations abort (xpanic) on
  * overflow of the capacity: a bug, not an input. */
@@ -15,7 +16,7 @@
 
 #include <stdint.h>
 
-enum { BIGZ_LIMBS = 344 };   /* 11,008 bits */
+enum { BIGZ_LIMBS = 420 };   /* 13,440 bits: exactdist.h's degree-6 products too */
 
 typedef struct {
   int n;      /* limbs in use: l[n-1] != 0, or n = 0 for zero */

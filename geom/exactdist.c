@@ -3,153 +3,18 @@
 #include "geom/exactdist.h"
 
 #include <math.h>
-#include <stdint.h>
 #include <string.h>
 
+#include "geom/bigz.h"
 #include "util/xmem.h"
 
-/* --- big integers: sign and magnitude, 32-bit limbs, least first --------- */
-
-/* Every coordinate is an odd integer times 2^e with e >= -1074 and a value
- * below 2^1024, so over a common 2^emin it is an integer of at most 2098
- * bits (66 limbs); a difference 67; a product of six differences 402. */
-enum { LIMBS = 420 };
-
-typedef struct {
-  int sign;          /* -1, 0, +1 */
-  int n;             /* limbs in use; l[n-1] != 0 unless n = 0 */
-  uint32_t l[LIMBS];
-} big;
-
-static void trim(big *a) {
-  while (a->n > 0 && a->l[a->n - 1] == 0) a->n--;
-  if (a->n == 0) a->sign = 0;
-}
-
-/* x = m 2^e, m an odd integer (|m| < 2^53), or m = 0. */
-static void split(double x, int64_t *m, int *e) {
-  if (x == 0) {
-    *m = 0, *e = 0;
-    return;
-  }
-  if (!isfinite(x)) xpanic("exactdist: a coordinate is not finite (%g)", x);
-  int k;
-  double f = frexp(x, &k);
-  *m = (int64_t)ldexp(f, 53);
-  *e = k - 53;
-  while ((*m & 1) == 0) *m /= 2, ++*e;
-}
-
-/* The least power of two of x (a large value for 0). */
+/* A coordinate's least power of two (bigz_lsb_exp), 1 << 20 for 0 so that
+ * zeros never lower a common exponent.  Every coordinate over a common
+ * 2^emin is an integer of at most 2098 bits (66 limbs): a difference 67, a
+ * product of six differences 402, within BIGZ_LIMBS. */
 static int low_exp(double x) {
-  int64_t m;
-  int e;
-  split(x, &m, &e);
-  return m ? e : 1 << 20;
-}
-
-/* r = x / 2^emin, an integer (emin at most x's lowest power of two). */
-static void from_double(big *r, double x, int emin) {
-  int64_t m;
-  int e;
-  split(x, &m, &e);
-  r->sign = m > 0 ? 1 : m < 0 ? -1 : 0;
-  r->n = 0;
-  if (!m) return;
-  uint64_t u = (uint64_t)(m < 0 ? -m : m), lo;
-  int s = e - emin, o = s / 32, b = s % 32;
-  XASSERT(s >= 0 && o + 3 <= LIMBS);
-  memset(r->l, 0, sizeof(uint32_t) * (size_t)o);
-  lo = u << b;   /* u < 2^53: the bits above 64 go to the third limb */
-  r->l[o] = (uint32_t)lo;
-  r->l[o + 1] = (uint32_t)(lo >> 32);
-  r->l[o + 2] = b ? (uint32_t)(u >> (64 - b)) : 0;
-  r->n = o + 3;
-  trim(r);
-}
-
-static int mag_cmp(const big *a, const big *b) {
-  if (a->n != b->n) return a->n < b->n ? -1 : 1;
-  for (int i = a->n - 1; i >= 0; i--)
-    if (a->l[i] != b->l[i]) return a->l[i] < b->l[i] ? -1 : 1;
-  return 0;
-}
-
-/* |r| = |a| + |b| (r distinct from a and b). */
-static void mag_add(big *r, const big *a, const big *b) {
-  int n = a->n > b->n ? a->n : b->n;
-  uint64_t c = 0;
-  for (int i = 0; i < n; i++) {
-    c += (uint64_t)(i < a->n ? a->l[i] : 0) + (i < b->n ? b->l[i] : 0);
-    r->l[i] = (uint32_t)c;
-    c >>= 32;
-  }
-  XASSERT(n < LIMBS);
-  r->l[n] = (uint32_t)c;
-  r->n = n + 1;
-}
-
-/* |r| = |a| - |b|, |a| >= |b| (r distinct from a and b). */
-static void mag_sub(big *r, const big *a, const big *b) {
-  int64_t c = 0;
-  for (int i = 0; i < a->n; i++) {
-    c += (int64_t)a->l[i] - (i < b->n ? b->l[i] : 0);
-    r->l[i] = (uint32_t)c;
-    c = c < 0 ? -1 : 0;
-  }
-  r->n = a->n;
-}
-
-/* r = a + sb b, sb = +1 or -1 (r distinct from a and b). */
-static void add(big *r, const big *a, const big *b, int sb) {
-  int bs = b->sign * sb;
-  if (!bs) {
-    *r = *a;
-    return;
-  }
-  if (!a->sign) {
-    *r = *b;
-    r->sign = bs;
-    return;
-  }
-  if (a->sign == bs) {
-    mag_add(r, a, b);
-    r->sign = bs;
-  } else if (mag_cmp(a, b) >= 0) {
-    mag_sub(r, a, b);
-    r->sign = a->sign;
-  } else {
-    mag_sub(r, b, a);
-    r->sign = bs;
-  }
-  trim(r);
-}
-
-/* r = a b (r distinct from a and b). */
-static void mul(big *r, const big *a, const big *b) {
-  r->n = 0;
-  r->sign = a->sign * b->sign;
-  if (!r->sign) return;
-  int n = a->n + b->n;
-  XASSERT(n <= LIMBS);
-  memset(r->l, 0, sizeof(uint32_t) * (size_t)n);
-  for (int i = 0; i < a->n; i++) {
-    uint64_t c = 0, x = a->l[i];
-    for (int j = 0; j < b->n; j++) {
-      c += x * b->l[j] + r->l[i + j];
-      r->l[i + j] = (uint32_t)c;
-      c >>= 32;
-    }
-    r->l[i + b->n] = (uint32_t)c;
-  }
-  r->n = n;
-  trim(r);
-}
-
-static int cmp(const big *a, const big *b) {
-  if (a->sign != b->sign) return a->sign < b->sign ? -1 : 1;
-  int m = mag_cmp(a, b);
-  return a->sign >= 0 ? m : -m;
+  if (!isfinite(x)) xpanic("exactdist: a coordinate is not finite (%g)", x);
+  return x == 0 ? 1 << 20 : bigz_lsb_exp(x);
 }
 
 /* --- the exact values ---------------------------------------------------- */
@@ -157,22 +22,21 @@ static int cmp(const big *a, const big *b) {
 /* An exactdist's value as num / den over a common 2^emin: POINT
  * num = |p - a|^2, den = 1; LINE num = ((b - a) x (p - a))^2, den = |b - a|^2.
  * Both homogeneous in the coordinates (degrees 2, 0 or 4, 2). */
-static void value(const exactdist *d, int emin, big *num, big *den) {
-  big px, py, ax, ay, dx, dy, t, u;
-  from_double(&px, d->p.x, emin), from_double(&py, d->p.y, emin);
-  from_double(&ax, d->a.x, emin), from_double(&ay, d->a.y, emin);
-  add(&dx, &px, &ax, -1), add(&dy, &py, &ay, -1);   /* p - a */
+static void value(const exactdist *d, int emin, bigz *num, bigz *den) {
+  static _Thread_local bigz px, py, ax, ay, dx, dy, t, u, bx, by, ux, uy, c;
+  bigz_from_double(&px, d->p.x, emin), bigz_from_double(&py, d->p.y, emin);
+  bigz_from_double(&ax, d->a.x, emin), bigz_from_double(&ay, d->a.y, emin);
+  bigz_sub(&dx, &px, &ax), bigz_sub(&dy, &py, &ay);   /* p - a */
   if (d->kind == EXACTDIST_POINT) {
-    mul(&t, &dx, &dx), mul(&u, &dy, &dy), add(num, &t, &u, 1);
-    den->sign = 1, den->n = 1, den->l[0] = 1;
+    bigz_mul(&t, &dx, &dx), bigz_mul(&u, &dy, &dy), bigz_add(num, &t, &u);
+    bigz_set_int(den, 1);
     return;
   }
-  big bx, by, ux, uy, c;
-  from_double(&bx, d->b.x, emin), from_double(&by, d->b.y, emin);
-  add(&ux, &bx, &ax, -1), add(&uy, &by, &ay, -1);   /* b - a */
-  mul(&t, &ux, &dy), mul(&u, &uy, &dx), add(&c, &t, &u, -1);
-  mul(num, &c, &c);
-  mul(&t, &ux, &ux), mul(&u, &uy, &uy), add(den, &t, &u, 1);
+  bigz_from_double(&bx, d->b.x, emin), bigz_from_double(&by, d->b.y, emin);
+  bigz_sub(&ux, &bx, &ax), bigz_sub(&uy, &by, &ay);   /* b - a */
+  bigz_mul(&t, &ux, &dy), bigz_mul(&u, &uy, &dx), bigz_sub(&c, &t, &u);
+  bigz_mul(num, &c, &c);
+  bigz_mul(&t, &ux, &ux), bigz_mul(&u, &uy, &uy), bigz_add(den, &t, &u);
 }
 
 static int min_exp(const exactdist *d, int e) {
@@ -188,12 +52,12 @@ static int min_exp(const exactdist *d, int e) {
 int exactdist_cmp_slow(const exactdist *x, const exactdist *y) {
   int emin = min_exp(y, min_exp(x, 1 << 20));
   if (emin == 1 << 20) emin = 0;   /* every coordinate 0 */
-  static _Thread_local big nx, dx, ny, dy, l, r;
+  static _Thread_local bigz nx, dx, ny, dy, l, r;
   value(x, emin, &nx, &dx);
   value(y, emin, &ny, &dy);
-  mul(&l, &nx, &dy);
-  mul(&r, &ny, &dx);
-  return cmp(&l, &r);
+  bigz_mul(&l, &nx, &dy);
+  bigz_mul(&r, &ny, &dx);
+  return bigz_cmp(&l, &r);
 }
 
 int exactdist_cmp(const exactdist *x, const exactdist *y) {
@@ -210,12 +74,12 @@ int exactdist_cmp_len(const exactdist *x, double r) {
   }
   int emin = min_exp(x, low_exp(r));
   if (emin == 1 << 20) emin = 0;
-  static _Thread_local big n, d, rr, t, l;
+  static _Thread_local bigz n, d, rr, t, l;
   value(x, emin, &n, &d);
-  from_double(&rr, r, emin);
-  mul(&t, &rr, &rr);
-  mul(&l, &t, &d);
-  return cmp(&n, &l);
+  bigz_from_double(&rr, r, emin);
+  bigz_mul(&t, &rr, &rr);
+  bigz_mul(&l, &t, &d);
+  return bigz_cmp(&n, &l);
 }
 
 /* --- the filter ---------------------------------------------------------- */
@@ -237,14 +101,14 @@ static int dot_sign(vec2 p, vec2 a, vec2 b) {
     int k = low_exp(v[i]);
     if (k < emin) emin = k;
   }
-  static _Thread_local big px, py, ax, ay, bx, by, wx, wy, ux, uy, t, u, w;
-  from_double(&px, p.x, emin), from_double(&py, p.y, emin);
-  from_double(&ax, a.x, emin), from_double(&ay, a.y, emin);
-  from_double(&bx, b.x, emin), from_double(&by, b.y, emin);
-  add(&wx, &px, &ax, -1), add(&wy, &py, &ay, -1);
-  add(&ux, &bx, &ax, -1), add(&uy, &by, &ay, -1);
-  mul(&t, &wx, &ux), mul(&u, &wy, &uy), add(&w, &t, &u, 1);
-  return w.sign;
+  static _Thread_local bigz px, py, ax, ay, bx, by, wx, wy, ux, uy, t, u, w;
+  bigz_from_double(&px, p.x, emin), bigz_from_double(&py, p.y, emin);
+  bigz_from_double(&ax, a.x, emin), bigz_from_double(&ay, a.y, emin);
+  bigz_from_double(&bx, b.x, emin), bigz_from_double(&by, b.y, emin);
+  bigz_sub(&wx, &px, &ax), bigz_sub(&wy, &py, &ay);
+  bigz_sub(&ux, &bx, &ax), bigz_sub(&uy, &by, &ay);
+  bigz_mul(&t, &wx, &ux), bigz_mul(&u, &wy, &uy), bigz_add(&w, &t, &u);
+  return bigz_sign(&w);
 }
 
 void exactdist_points(vec2 p, vec2 a, exactdist *d) {
