@@ -2,6 +2,7 @@
 #include "geom/geom.h"
 
 #include <math.h>
+#include <stdlib.h>
 
 #include "geom/exact.h"
 
@@ -71,3 +72,11 @@ void geom_reverse(vec2 *p, int n) {
     p[j] = t;
   }
 }
+
+static int span_by_lo(const void *a, const void *b) {
+  const geom_span *p = a, *q = b;
+  if (p->lo != q->lo) return p->lo < q->lo ? -1 : 1;
+  return p->i - q->i;
+}
+
+void geom_span_sort(geom_span *s, int n) { qsort(s, (size_t)n, sizeof *s, span_by_lo); }

@@ -73,6 +73,16 @@ vec2 geom_centroid(const vec2 *p, int n);
  * computed on a copy scaled by a power of two so it cannot overflow. */
 int geom_orientation(const vec2 *p, int n);
 
+/* An interval of one coordinate that item i covers, for sweeps that pair
+ * the items whose intervals overlap. */
+typedef struct {
+  double lo, hi;
+  int i;
+} geom_span;
+
+/* Sort s[0..n-1] by lo, ties by i: the same order on every machine. */
+void geom_span_sort(geom_span *s, int n);
+
 /* Reverse p[0..n-1] in place, keeping p[0] first. */
 void geom_reverse(vec2 *p, int n);
 

@@ -26,16 +26,6 @@ typedef struct {
   int dir;       /* exact_lex of the edge's ends: the order along it */
 } insertion;
 
-typedef struct {
-  double lo, hi;
-  int i;
-} span;
-
-static int by_lo(const void *a, const void *b) {
-  const span *p = a, *q = b;
-  if (p->lo != q->lo) return p->lo < q->lo ? -1 : 1;
-  return p->i - q->i;
-}
 
 static int by_edge_then_along(const void *a, const void *b) {
   const insertion *p = a, *q = b;
@@ -78,12 +68,12 @@ static int same_way_overlap(vec2 a, vec2 b, vec2 c, vec2 d) {
  * direction on its line, so a round inserts at most 2N points. */
 static int insert_round(poly *P) {
   int n = P->n;
-  span *sx = xmallocarray((size_t)n, sizeof *sx);
+  geom_span *sx = xmallocarray((size_t)n, sizeof *sx);
   for (int i = 0; i < n; i++) {
     vec2 a = P->pt[i], b = P->pt[(i + 1) % n];
-    sx[i] = (span){fmin(a.x, b.x), fmax(a.x, b.x), i};
+    sx[i] = (geom_span){fmin(a.x, b.x), fmax(a.x, b.x), i};
   }
-  qsort(sx, (size_t)n, sizeof *sx, by_lo);
+  geom_span_sort(sx, n);
   insertion *ins = NULL;
   int nins = 0, cap = 0;
   for (int u = 0; u < n; u++) {
@@ -165,14 +155,14 @@ static int find_root(int *up, int x) {
 /* No two channel pieces (the flat loops, two points each) share a point
  * but a common end: pairs whose boxes overlap, by a sweep in x. */
 static int channels_apart(const poly *P, const int *loopidx, const int *lstart, const char *flat, int nl) {
-  span *sx = xmallocarray((size_t)nl + 1, sizeof *sx);
+  geom_span *sx = xmallocarray((size_t)nl + 1, sizeof *sx);
   int np = 0, ok = 1;
   for (int l = 0; l < nl; l++)
     if (flat[l]) {
       vec2 a = P->pt[loopidx[lstart[l]]], b = P->pt[loopidx[lstart[l] + 1]];
-      sx[np++] = (span){fmin(a.x, b.x), fmax(a.x, b.x), l};
+      sx[np++] = (geom_span){fmin(a.x, b.x), fmax(a.x, b.x), l};
     }
-  qsort(sx, (size_t)np, sizeof *sx, by_lo);
+  geom_span_sort(sx, np);
   for (int u = 0; u < np && ok; u++) {
     vec2 a = P->pt[loopidx[lstart[sx[u].i]]], b = P->pt[loopidx[lstart[sx[u].i] + 1]];
     for (int w = u + 1; w < np && ok && sx[w].lo <= sx[u].hi; w++) {
@@ -188,7 +178,7 @@ static int channels_apart(const poly *P, const int *loopidx, const int *lstart, 
 }
 
 /* The first of s[0..n-1] (sorted by lo) with lo >= x (strict: lo > x). */
-static int first_from(const span *s, int n, double x, int strict) {
+static int first_from(const geom_span *s, int n, double x, int strict) {
   int a = 0, b = n;
   while (a < b) {
     int m = a + (b - a) / 2;
@@ -207,25 +197,25 @@ static int channels_off_loops(const poly *P, const int *loopidx, const int *lsta
                               const int *onloop, const int *gid, const crossing_poly *cp, int kept) {
   int ne = 0, nc = 0, ok = 1;
   for (int k = 0; k < kept; k++) ne += cp[k].n;
-  span *es = xmallocarray((size_t)ne + 1, sizeof *es), *cs = xmallocarray((size_t)nl + 1, sizeof *cs);
+  geom_span *es = xmallocarray((size_t)ne + 1, sizeof *es), *cs = xmallocarray((size_t)nl + 1, sizeof *cs);
   vec2 *ea = xmallocarray((size_t)ne + 1, sizeof *ea), *eb = xmallocarray((size_t)ne + 1, sizeof *eb);
   ne = 0;
   for (int k = 0; k < kept; k++)
     for (int j = 0; j < cp[k].n; j++, ne++) {
       ea[ne] = cp[k].pt[j], eb[ne] = cp[k].pt[(j + 1) % cp[k].n];
-      es[ne] = (span){fmin(ea[ne].x, eb[ne].x), fmax(ea[ne].x, eb[ne].x), ne};
+      es[ne] = (geom_span){fmin(ea[ne].x, eb[ne].x), fmax(ea[ne].x, eb[ne].x), ne};
     }
   for (int l = 0; l < nl; l++)
     if (flat[l]) {
       vec2 a = P->pt[loopidx[lstart[l]]], b = P->pt[loopidx[lstart[l] + 1]];
-      cs[nc++] = (span){fmin(a.x, b.x), fmax(a.x, b.x), l};
+      cs[nc++] = (geom_span){fmin(a.x, b.x), fmax(a.x, b.x), l};
     }
-  qsort(es, (size_t)ne, sizeof *es, by_lo);
-  qsort(cs, (size_t)nc, sizeof *cs, by_lo);
+  geom_span_sort(es, ne);
+  geom_span_sort(cs, nc);
   for (int side = 0; side < 2 && ok; side++) {
     /* side 0: each piece, the edges with lo in [its lo, its hi]; side 1:
      * each edge, the pieces with lo in (its lo, its hi]. */
-    const span *from = side ? es : cs, *to = side ? cs : es;
+    const geom_span *from = side ? es : cs, *to = side ? cs : es;
     int nfrom = side ? ne : nc, nto = side ? nc : ne;
     for (int u = 0; u < nfrom && ok; u++)
       for (int w = first_from(to, nto, from[u].lo, side); w < nto && ok && to[w].lo <= from[u].hi; w++) {

@@ -166,16 +166,6 @@ static int strictly_inside(vec2 a, vec2 b, vec2 q) {
   return exact_lex(a, q) == s && exact_lex(q, b) == s;
 }
 
-typedef struct {
-  double lo, hi;
-  int i;
-} span;
-
-static int by_lo(const void *a, const void *b) {
-  const span *p = a, *q = b;
-  if (p->lo != q->lo) return p->lo < q->lo ? -1 : 1;
-  return p->i - q->i;
-}
 
 /* The exponent e of the least significant bit over all coordinates. */
 static int least_exp(const crossing_poly *p, int np) {
@@ -679,9 +669,9 @@ int polyunion_flags(const crossing_poly *p, int np, int flags, polyunion_result 
   int (*con)[2] = NULL, ncon = 0, capcon = 0;
   int *up = xmallocarray((size_t)np + 1, sizeof *up);
   for (int k = 0; k < np; k++) up[k] = k;
-  span *sx = xmallocarray((size_t)N + 1, sizeof *sx);
-  for (int g = 0; g < N; g++) sx[g] = (span){fmin(S[g].a.x, S[g].b.x), fmax(S[g].a.x, S[g].b.x), g};
-  qsort(sx, (size_t)N, sizeof *sx, by_lo);
+  geom_span *sx = xmallocarray((size_t)N + 1, sizeof *sx);
+  for (int g = 0; g < N; g++) sx[g] = (geom_span){fmin(S[g].a.x, S[g].b.x), fmax(S[g].a.x, S[g].b.x), g};
+  geom_span_sort(sx, N);
   static _Thread_local bigz nx, ny, d;
   for (int u = 0; u < N; u++) {
     int i = sx[u].i;
