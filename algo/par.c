@@ -72,19 +72,22 @@ void par_put_f64s(par_buf *m, const double *v, int n) {
   m->len += 8 * (size_t)n;
 }
 
+/* Read n bytes of r into v. */
+static void take(par_rd *r, void *v, size_t n) {
+  if ((size_t)(r->end - r->p) < n) xpanic("par: message too short");
+  memcpy(v, r->p, n);
+  r->p += n;
+}
+
 int32_t par_get_i32(par_rd *r) {
   int32_t v;
-  if (r->end - r->p < 4) xpanic("par: message too short");
-  memcpy(&v, r->p, 4);
-  r->p += 4;
+  take(r, &v, 4);
   return v;
 }
 
 double par_get_f64(par_rd *r) {
   double v;
-  if (r->end - r->p < 8) xpanic("par: message too short");
-  memcpy(&v, r->p, 8);
-  r->p += 8;
+  take(r, &v, 8);
   return v;
 }
 

@@ -156,4 +156,13 @@ static inline size_t par_maxlen(int m, int n) { return 64 + 16 * ((size_t)m + n 
 /* Charge units of work; counted in c->units. */
 int par_compute(mp *self, par_counts *c, uint64_t units);
 
+/* Return fail(ctx, rc, "call") from the enclosing function when call
+ * returns rc < 0: the master's and the slaves' way out of a failed message
+ * call, naming it (par_master_fail, par_slave_fail). */
+#define PAR_TRY(fail, ctx, call)                                                \
+  do {                                                                          \
+    int rc_ = (call);                                                           \
+    if (rc_ < 0) return fail(ctx, rc_, #call);                                  \
+  } while (0)
+
 #endif

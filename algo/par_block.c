@@ -33,11 +33,7 @@ struct par_block {
   int *x, *y;          /* my columns on each diagonal of the current block */
 };
 
-#define TRY(call)                                                              \
-  do {                                                                         \
-    int rc_ = (call);                                                          \
-    if (rc_ < 0) return par_slave_fail(S, rc_, #call);                         \
-  } while (0)
+#define TRY(call) PAR_TRY(par_slave_fail, S, call)
 
 par_block *par_block_new(int m, int n) {
   par_block *B = xcalloc(1, sizeof *B);
@@ -192,12 +188,7 @@ static int exchange(par_slave_ctx *S, const blk *k, int j) {
       if (n0 < u0) n0 = u0;
       if (n1 > u1) n1 = u1;
       if (n0 > n1) continue;
-      par_buf_reset(&S->out);
-      par_put_i32(&S->out, t);
-      par_put_i32(&S->out, n0);
-      par_put_i32(&S->out, n1);
-      par_put_f64s(&S->out, S->prev + n0, n1 - n0 + 1);
-      TRY(par_send(S->mp, &S->arg->counts, PAR_BOUNDARY, S->grp[i], PAR_TAG_BOUNDARY, &S->out));
+      TRY(par_slave_send_boundary(S, i, t, n0, n1));
       sends++;
     }
   }
@@ -216,8 +207,7 @@ static int exchange(par_slave_ctx *S, const blk *k, int j) {
       recvs++;
     }
   }
-  if (S->first_path && S->arg->diag_sends && t < S->arg->diag_len) S->arg->diag_sends[t] += sends;
-  if (S->first_path && S->arg->diag_recvs && t < S->arg->diag_len) S->arg->diag_recvs[t] += recvs;
+  par_slave_count_diag(S, t, sends, recvs);
   return 0;
 }
 

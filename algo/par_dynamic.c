@@ -25,11 +25,7 @@ struct par_dyn {
   int *free;                /* scratch: the free slaves, by rank */
 };
 
-#define TRY(call)                                                              \
-  do {                                                                         \
-    int rc_ = (call);                                                          \
-    if (rc_ < 0) return par_master_fail(M, rc_, #call);                        \
-  } while (0)
+#define TRY(call) PAR_TRY(par_master_fail, M, call)
 
 /* floor(log2(paths)) + 1: the levels of the divide and conquer over them. */
 static int levels(int paths) {

@@ -16,11 +16,7 @@
 typedef par_group group;
 typedef par_master_ctx master;
 
-#define TRY(call)                                                              \
-  do {                                                                         \
-    int rc_ = (call);                                                          \
-    if (rc_ < 0) return par_master_fail(M, rc_, #call);                                   \
-  } while (0)
+#define TRY(call) PAR_TRY(par_master_fail, M, call)
 
 int par_master_fail(master *M, int rc, const char *what) {
   if (!M->arg->failed)
@@ -71,8 +67,9 @@ int par_master_send_bound(master *M, const gpath *P, int as, int to) {
   return par_send(M->mp, M->own, PAR_BOUNDS, to, PAR_TAG_BOUND, &M->out);
 }
 
-/* Start a group: PATH with two or more slaves, LOCAL with one. */
-static int dispatch(master *M, int g0, int p, int lo, int hi, const gpath *U, const gpath *L) {
+/* A new group's index: slaves g0.. (p of them), rows lo..hi between U and
+ * L, the middle path its first task. */
+static int group_new(master *M, int g0, int p, int lo, int hi, const gpath *U, const gpath *L) {
   if (M->ng == M->gcap) {
     M->gcap = M->gcap ? 2 * M->gcap : 16;
     M->g = xreallocarray(M->g, (size_t)M->gcap, sizeof *M->g);
@@ -81,6 +78,13 @@ static int dispatch(master *M, int g0, int p, int lo, int hi, const gpath *U, co
   group *G = &M->g[gi];
   memset(G, 0, sizeof *G);
   *G = (group){g0, p, lo, hi, U, L, lo < 0 ? 0 : tiling_mid(lo, hi), 1, NULL, NULL, 0, NULL, 0};
+  return gi;
+}
+
+/* Start a group: PATH with two or more slaves, LOCAL with one. */
+static int dispatch(master *M, int g0, int p, int lo, int hi, const gpath *U, const gpath *L) {
+  int gi = group_new(M, g0, p, lo, hi, U, L);
+  group *G = &M->g[gi];
   M->live++;
   for (int r = g0; r < g0 + p; r++) M->group_of[r] = gi;
   if (p == 1 && lo >= 0) return send_task(M, PAR_TASK_LOCAL, 0, 1, g0, 1, g0);
@@ -92,14 +96,8 @@ static int dispatch(master *M, int g0, int p, int lo, int hi, const gpath *U, co
 
 int par_master_group(master *M, const int *ranks, int p, int lo, int hi, const gpath *U,
                      const gpath *L, int local) {
-  if (M->ng == M->gcap) {
-    M->gcap = M->gcap ? 2 * M->gcap : 16;
-    M->g = xreallocarray(M->g, (size_t)M->gcap, sizeof *M->g);
-  }
-  int gi = M->ng++;
+  int gi = group_new(M, ranks[0], p, lo, hi, U, L);
   group *G = &M->g[gi];
-  memset(G, 0, sizeof *G);
-  *G = (group){ranks[0], p, lo, hi, U, L, lo < 0 ? 0 : tiling_mid(lo, hi), 1, NULL, NULL, 0, NULL, 0};
   G->ranks = xmallocarray((size_t)p, sizeof *G->ranks);
   memcpy(G->ranks, ranks, (size_t)p * sizeof *ranks);
   M->live++;

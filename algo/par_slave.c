@@ -16,17 +16,28 @@
 
 typedef par_slave_ctx slave;
 
-#define TRY(call)                                                              \
-  do {                                                                         \
-    int rc_ = (call);                                                          \
-    if (rc_ < 0) return par_slave_fail(S, rc_, #call);                                   \
-  } while (0)
+#define TRY(call) PAR_TRY(par_slave_fail, S, call)
 
 int par_slave_recv(slave *S, int src, int tag, mp_status *st) {
   double t0 = mp_time(S->mp);
   int rc = par_recv(S->mp, src, tag, &S->in, S->maxlen, st);
   S->arg->counts.idle += mp_time(S->mp) - t0;
   return rc;
+}
+
+void par_slave_count_diag(slave *S, int t, int sends, int recvs) {
+  if (!S->first_path || t >= S->arg->diag_len) return;
+  if (S->arg->diag_sends) S->arg->diag_sends[t] += sends;
+  if (S->arg->diag_recvs) S->arg->diag_recvs[t] += recvs;
+}
+
+int par_slave_send_boundary(slave *S, int i, int t, int n0, int n1) {
+  par_buf_reset(&S->out);
+  par_put_i32(&S->out, t);
+  par_put_i32(&S->out, n0);
+  par_put_i32(&S->out, n1);
+  par_put_f64s(&S->out, S->prev + n0, n1 - n0 + 1);
+  return par_send(S->mp, &S->arg->counts, PAR_BOUNDARY, S->grp[i], PAR_TAG_BOUNDARY, &S->out);
 }
 
 int par_slave_recv_boundary(slave *S, int o, int t, int v0, int v1, const char *what) {
@@ -165,12 +176,7 @@ static int exchange(slave *S, int t, int j) {
       n0 = n0 - 1 > u0 ? n0 - 1 : u0;
       n1 = n1 < u1 ? n1 : u1;
       if (n0 > n1) continue;
-      par_buf_reset(&S->out);
-      par_put_i32(&S->out, t);
-      par_put_i32(&S->out, n0);
-      par_put_i32(&S->out, n1);
-      par_put_f64s(&S->out, S->prev + n0, n1 - n0 + 1);
-      TRY(par_send(S->mp, &S->arg->counts, PAR_BOUNDARY, S->grp[i], PAR_TAG_BOUNDARY, &S->out));
+      TRY(par_slave_send_boundary(S, i, t, n0, n1));
       sends++;
     }
   }
@@ -195,8 +201,7 @@ static int exchange(slave *S, int t, int j) {
       }
     }
   }
-  if (S->first_path && S->arg->diag_sends && t < S->arg->diag_len) S->arg->diag_sends[t] += sends;
-  if (S->first_path && S->arg->diag_recvs && t < S->arg->diag_len) S->arg->diag_recvs[t] += recvs;
+  par_slave_count_diag(S, t, sends, recvs);
   return 0;
 }
 

@@ -80,6 +80,12 @@ typedef struct par_slave_ctx {
 int par_slave_fail(par_slave_ctx *S, int rc, const char *what);
 /* par_recv into S->in, the wait counted as idle. */
 int par_slave_recv(par_slave_ctx *S, int src, int tag, mp_status *st);
+/* The test hook (par_slave_arg.diag_sends, diag_recvs): on the first path,
+ * diagonal t's boundary messages sent and received. */
+void par_slave_count_diag(par_slave_ctx *S, int t, int sends, int recvs);
+/* Send the run-boundary costs S->prev[n0..n1] of diagonal t to group
+ * member i (what par_slave_recv_boundary takes).  The send's result. */
+int par_slave_send_boundary(par_slave_ctx *S, int i, int t, int n0, int n1);
 /* Receive the run-boundary costs of diagonal t, nodes v0..v1, from group
  * member o into S->prev[v0..v1] (section 5: the costs a slave needs from its
  * neighbour's run); a message for anything else is a bug (xpanic, naming
