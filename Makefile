@@ -565,7 +565,7 @@ install-files:
 	  > $(DESTDIR)$(PREFIX)/lib/pkgconfig/tilesim.pc
 	cp examples/*.c $(SHARE)/examples/
 	mkdir -p $(SHARE)/examples/mpi
-	cp examples/mpi/*.c $(SHARE)/examples/mpi/
+	cp examples/mpi/*.c examples/mpi/*.h $(SHARE)/examples/mpi/
 
 # make uninstall PREFIX=... (and DESTDIR, MANDIR, DOCDIR as given to make
 # install): every file make install wrote, by the same lists; then the
@@ -578,7 +578,7 @@ UNINST = $(addprefix $(DESTDIR)$(PREFIX)/bin/,$(foreach p,$(PROGS),$(call iname,
          $(addprefix $(SHARE)/slicerrt/,$(notdir $(wildcard tests/data/slicerrt/*.contours)) README.md) \
          $(addprefix $(SHARE)/rtstruct/,$(notdir $(wildcard tests/data/rtstruct/*.dcm)) README.md) \
          $(addprefix $(SHARE)/examples/,$(notdir $(wildcard examples/*.c))) \
-         $(addprefix $(SHARE)/examples/mpi/,$(notdir $(wildcard examples/mpi/*.c))) \
+         $(addprefix $(SHARE)/examples/mpi/,$(notdir $(wildcard examples/mpi/*.c examples/mpi/*.h))) \
          $(DESTDIR)$(PREFIX)/lib/libtilesim.a $(DESTDIR)$(PREFIX)/lib/pkgconfig/tilesim.pc \
          $(addprefix $(DESTDIR)$(PREFIX)/include/tilesim/,mp.h tilesim.h mpi/mpi.h mpi/mpi_funcs.h) \
          $(DESTDIR)$(PREFIX)/lib/tilesim/$(notdir $(STUBLIB))

@@ -27,23 +27,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-/* Every rank leaves at the same time on --net ideal (P >= 3): see halo_fence.c. */
-static void level(MPI_Comm comm) {
-  int p, r;
-  MPI_Comm_size(comm, &p);
-  MPI_Comm_rank(comm, &r);
-  MPI_Request *q = malloc(2 * (size_t)p * sizeof *q);
-  for (int round = 0; round < 2; round++) {
-    int n = 0;
-    for (int j = 0; j < p; j++) {
-      if (j == r) continue;
-      MPI_Irecv(NULL, 0, MPI_BYTE, j, 99, comm, &q[n++]);
-      MPI_Isend(NULL, 0, MPI_BYTE, j, 99, comm, &q[n++]);
-    }
-    MPI_Waitall(n, q, MPI_STATUSES_IGNORE);
-  }
-  free(q);
-}
+#include "level.h"
+
 
 int main(int argc, char **argv) {
   MPI_Init(&argc, &argv);
