@@ -116,18 +116,19 @@ $(CHK)/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(CC) $(BASE) $(CHKFLAGS) -MMD -MP -c $< -o $@
 
-$(REL)/libtilesim.a: $(call relobj,$(LIBSRC))
+# Every archive: rebuilt whole from its objects, the prerequisites each
+# library's line below names.
+%.a:
 	@rm -f $@
 	$(AR) rcs $@ $^
+
+$(REL)/libtilesim.a: $(call relobj,$(LIBSRC))
 
 $(CHK)/libtilesim.a: $(call chkobj,$(LIBSRC))
-	@rm -f $@
-	$(AR) rcs $@ $^
 
 build/include/tilesim/mp.h: mp/mp.h
-	@mkdir -p $(dir $@)
-	$(INSTHDR) $< > $@
 build/include/tilesim/tilesim.h: machine/tilesim.h
+build/include/tilesim/mp.h build/include/tilesim/tilesim.h:
 	@mkdir -p $(dir $@)
 	$(INSTHDR) $< > $@
 # tilesim-mpicc's headers, as installed: include/tilesim/mpi/ (MPIHDR, above).
@@ -144,11 +145,7 @@ $(STUBLIB): mpirun/stublib.c mpi/callbacks.c mpi/mpi.h mpi/mpi_funcs.h mpi/io_sg
 
 # The runner's library.
 $(REL)/libtsmpirun.a: $(call relobj,$(RUNSRC))
-	@rm -f $@
-	$(AR) rcs $@ $^
 $(CHK)/libtsmpirun.a: $(call chkobj,$(RUNSRC))
-	@rm -f $@
-	$(AR) rcs $@ $^
 # tilesim-mpirun: every object of the two MPI libraries (a program may call
 # any of them), exported; tilesim-mpicc: the list of functions and the ELF reader.
 define mpitool_rules
@@ -195,12 +192,8 @@ $(CHK)/testbed/%: tests/testbed/%.c $(CHK)/lib/libtilesim.a $(PUBHDR)
 	$(CC) $(EXFLAGS) $(CHKFLAGS) -o $@ $< $(CHK)/lib/libtilesim.a $(LDLIBS)
 
 $(REL)/libtsmpi.a: $(call relobj,$(TSMPISRC))
-	@rm -f $@
-	$(AR) rcs $@ $^
 
 $(CHK)/libtsmpi.a: $(call chkobj,$(TSMPISRC))
-	@rm -f $@
-	$(AR) rcs $@ $^
 
 # The MPI test programs: main renamed, tilesim's mpi.h; and their list for
 # the driver, rewritten only when it changes.
@@ -289,8 +282,6 @@ $(MPIDIR)/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(MPICC) $(BASE) $(MPIFLAGS) -MMD -MP -c $< -o $@
 $(MPIDIR)/libtilesim.a: $(patsubst %.c,$(MPIDIR)/%.o,$(MPISRC))
-	@rm -f $@
-	$(AR) rcs $@ $^
 define mpi_rules
 $(MPIDIR)/bin/$(1)-mpi: $(patsubst %.c,$(MPIDIR)/%.o,$(call progsrc,$(1))) $(MPIDIR)/libtilesim.a
 	@mkdir -p $(MPIDIR)/bin
@@ -324,11 +315,7 @@ $(VG)/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(CC) $(BASE) -O1 -g -MMD -MP -c $< -o $@
 $(VG)/libtilesim.a: $(patsubst %.c,$(VG)/%.o,$(LIBSRC))
-	@rm -f $@
-	$(AR) rcs $@ $^
 $(VG)/libtsmpi.a: $(patsubst %.c,$(VG)/%.o,$(TSMPISRC))
-	@rm -f $@
-	$(AR) rcs $@ $^
 $(VG)/tests/mpi/%.o: tests/mpi/%.c
 	@mkdir -p $(dir $@)
 	$(CC) $(BASE) -O1 -g $(TSMPIPFLAGS) -Dmain=tsmpi_main_$* -MMD -MP -c $< -o $@
@@ -354,11 +341,7 @@ $(TSAN)/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(TSANCC) $(BASE) $(TSANFLAGS) -Werror -MMD -MP -c $< -o $@
 $(TSAN)/libtilesim.a: $(patsubst %.c,$(TSAN)/%.o,$(LIBSRC))
-	@rm -f $@
-	$(AR) rcs $@ $^
 $(TSAN)/libtsmpi.a: $(patsubst %.c,$(TSAN)/%.o,$(TSMPISRC))
-	@rm -f $@
-	$(AR) rcs $@ $^
 $(TSAN)/tests/%: $(TSAN)/tests/%.o $(patsubst %.c,$(TSAN)/%.o,$(TESTLIB)) $(TSAN)/libtsmpi.a $(TSAN)/libtilesim.a
 	$(TSANCC) $(TSANFLAGS) -o $@ $^ $(LDLIBS)
 tsan: $(addprefix $(TSAN)/tests/,$(TSAN_TESTS))
@@ -381,8 +364,6 @@ $(FUZZ)/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(FUZZCC) $(BASE) $(FUZZFLAGS) -fsanitize=fuzzer-no-link -MMD -MP -c $< -o $@
 $(FUZZ)/libtilesim.a: $(patsubst %.c,$(FUZZ)/%.o,$(LIBSRC))
-	@rm -f $@
-	$(AR) rcs $@ $^
 $(FUZZ)/bin/%: $(FUZZ)/tests/fuzz/%.o $(FUZZ)/tests/pipeline.o $(FUZZ)/tests/rtwriter.o $(FUZZ)/libtilesim.a
 	@mkdir -p $(FUZZ)/bin
 	$(FUZZCC) $(FUZZFLAGS) -fsanitize=fuzzer -o $@ $^ $(LDLIBS)
