@@ -1,46 +1,10 @@
 /* par_block.h -- the blocked wavefront (--block k): a slave's share of one
  * path, with run-boundary costs exchanged once every k diagonals instead of
  * on every diagonal (an answer to sections 7.2, 8 and 9: fewer messages for
- * a little redundant work).
- *
- * The paper (section 5, Fig. 13) splits every anti-diagonal among the q
- * slaves of a group and trades one cost across each run boundary per
- * diagonal: on a diagonal of D nodes that is cD/q of work against p - 1
- * messages (section 7.2), every diagonal.  Here the diagonals of a path go
- * in blocks of k (cut where the band pinches to one node).  In a block:
- *
- *   - the boundary between slaves j-1 and j is a staircase that moves either
- *     not at all (a fixed column: the "pipelined strip") or one column every
- *     diagonal (a fixed row), chosen per block to follow the paper's even
- *     split at the block's end;
- *
- *        column boundary             row boundary
- *        t0-1  . . . .|o o o         t0-1  . . . .|o o o o
- *        t0    g g g .|o o o         t0    . . . . .|o o o
- *        t0+1    g g .|o o o         t0+1  . . . . x x|o o
- *        t0+2      g .|o o o         t0+2  . . . . x x x|o
- *
- *     dependencies run from column c-1 and c to c (Fig. 11), so across a
- *     column boundary only j needs j-1's costs (the g nodes: a triangle of
- *     ghost nodes it recomputes from j-1's last diagonal), and across a row
- *     boundary only j-1 needs j's (the x nodes);
- *
- *   - so one message crosses each boundary per block, at its first
- *     diagonal, carrying the k costs of the previous diagonal that the
- *     receiver's cone of dependence needs, and nothing moves inside the
- *     block: k times fewer messages than the paper's p - 1 per diagonal,
- *     for about k/2 redundant nodes per boundary and diagonal.
- *
- * Each node is still owned by exactly one slave, which keeps its in-edge bit
- * for backtracking (section 5, Fig. 14); the ghost nodes' values are
- * bit-identical to their owners' (the same IEEE operations on the same
- * inputs), so the path is the serial one bit for bit.  Where the slaves or
- * the band change abruptly (the number of active slaves under --min-diag
- * changes, a pinch), a block starts afresh from the even split and the same
- * cone rule sends whatever each slave lacks, from whoever owns it.
- *
- * k = 1 is not this code: it is the paper's own per-diagonal exchange
- * (par_slave.c), unchanged. */
+ * a little redundant work).  The path found is the serial one bit for bit;
+ * k = 1 is not this code but the paper's per-diagonal exchange
+ * (par_slave.c).  How the blocks, their staircase boundaries and the ghost
+ * nodes work: doc/algorithm.md, "The blocked wavefront". */
 #ifndef PAR_BLOCK_H
 #define PAR_BLOCK_H
 
