@@ -75,7 +75,7 @@ EXAMPLES = $(basename $(notdir $(wildcard examples/*.c)))
 EXFLAGS  = -std=c11 $(WARN) -Ibuild/include
 TESTLIB  = $(filter-out $(wildcard tests/test_*.c),$(wildcard tests/*.c))
 
-# The MPI layer (issue 19, mpi/): every mpi/*.c into libtsmpi.a.  Its files
+# The MPI layer (mpi/): every mpi/*.c into libtsmpi.a.  Its files
 # name it "mpi/mpi.h", so that every other file's <mpi.h> stays the real
 # MPI's (make mpi).  The MPI programs of
 # tests/mpi/ (but contract.c, the MPI backend's, which only mpicc builds) are
@@ -385,7 +385,7 @@ NOWALL = --no-wall
 # a mesh and a hypercube with their dilation-1 placements against a random one.
 TOPO = --points 300 --procs 1..16 --jobs $(JOBS) $(NOWALL)
 TOPONET = --hop-latency 1e-4 --switching store-and-forward
-# The variants (issue 13) beside the paper's algorithm: on the tc2000, and on
+# The variants beside the paper's algorithm: on the tc2000, and on
 # the simulator calibrated to a 16-core Xeon (bench --calibrate there: c, m,
 # per_byte of the threads backend; doc/measurements.md, "The variants on 16
 # real cores").
@@ -469,13 +469,13 @@ bench-tile: all
 	./bench --dicom
 	./bench --union
 
-# The testbed's cost (issue 18): a user's ring through tilesim.h beside
+# The testbed's cost: a user's ring through tilesim.h beside
 # ./bench --ring, the simulator driven directly (tests/bench_testbed.sh).
 bench-testbed: all
 	sh tests/bench_testbed.sh
 
-# MPI programs under tilesim-mpirun beside SimGrid's smpirun (issues 19 and
-# 26): bandwidth, alltoall, a ring, start-up and allreduce by the hundred
+# MPI programs under tilesim-mpirun beside SimGrid's smpirun:
+# bandwidth, alltoall, a ring, start-up and allreduce by the hundred
 # thousand ranks, the mp.h ring on a million; time and peak memory against
 # the message size and the ranks, into OUT (default build/bench-mpi:
 # bench-mpi.csv, .md, the SVGs).  tests/bench_mpi.sh says what and how; the
@@ -483,13 +483,13 @@ bench-testbed: all
 bench-mpi bench-mpirun: all
 	@OUT="$(if $(filter command line environment,$(origin OUT)),$(OUT),build/bench-mpi)" sh tests/bench_mpi.sh
 
-# The threads and MPI backends' waiting under outside load (issue 14, item 5):
+# The threads and MPI backends' waiting under outside load:
 # runs alone and beside two busy loops (tests/bench_load.sh says what to set).
 bench-load: all
 	sh tests/bench_load.sh
 
 # Everything that depends on the number of cores, measured on this machine in
-# one command within BUDGET seconds (issue 21): the threads backend's speedup
+# one command within BUDGET seconds: the threads backend's speedup
 # at 2000 and 4000 points (the paper's algorithm and the best variants) beside
 # the calibrated simulator's prediction, and ./tile -j N on the largest real
 # stacks; cores.csv, cores.md and cores.svg in OUT (doc/bench-cores.md).
@@ -505,7 +505,7 @@ bench-cores: all
 # tilesim-bench and tilesim-plot for ./bench and build/plot ("bench" alone is
 # a common command).  The man pages (doc/*.1, *.5, *.7, mdoc) go to
 # MANDIR/man1, man3 (the library), man5, man7, which man finds when PREFIX/bin is on the PATH;
-# doc/*.md to DOCDIR.  The testbed's library (issue 18): lib/libtilesim.a,
+# doc/*.md to DOCDIR.  The testbed's library: lib/libtilesim.a,
 # include/tilesim/{tilesim,mp}.h, lib/pkgconfig/tilesim.pc and the examples'
 # sources under share/tilesim/examples.  install-files copies from IBIN,
 # IPLOT and ILIB (tests/cli_install.sh installs the sanitized build so).

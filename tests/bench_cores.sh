@@ -1,7 +1,7 @@
 #!/bin/sh
 # bench_cores.sh -- everything in tilesim that depends on the number of cores,
 # measured on this machine in one command within a time budget (make
-# bench-cores; issue 21).  doc/bench-cores.md says how to run it and what each
+# bench-cores).  doc/bench-cores.md says how to run it and what each
 # file holds.
 #
 #   make bench-cores [BUDGET=SECONDS] [OUT=DIR]

@@ -3,8 +3,8 @@
 #
 # The same parallel run, alone and then beside BUSY busy-loop processes
 # (programs that never sleep), each REPEAT times; prints a CSV row per backend
-# and P with the medians and their ratio (issue 14, item 5: "under that load
-# the run should take at most about 3 times its unloaded time").  Waiting
+# and P with the medians and their ratio (the goal: under that load
+# the run should take at most about 3 times its unloaded time).  Waiting
 # ranks must not spin or yield against the threads that work; see
 # mp/threads.c and mp/mp_mpi.c.  A benchmark, not a test: run it on an
 # otherwise idle machine.

@@ -1,7 +1,7 @@
 #!/bin/sh
 # bench_mpi.sh -- make bench-mpi: MPI programs under tilesim-mpirun and, in
 # the same run, under SimGrid's smpirun where it is installed: the host's
-# time and peak memory against the message size and the ranks (issue 26).
+# time and peak memory against the message size and the ranks.
 #
 #   make bench-mpi [OUT=DIR]            (or OUT=.. sh tests/bench_mpi.sh)
 #

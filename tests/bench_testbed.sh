@@ -1,6 +1,6 @@
 #!/bin/sh
 # bench_testbed.sh -- make bench-testbed: the library adds nothing to the
-# simulator's cost (issue 18).  The token ring of examples/ring.c (a user's
+# simulator's cost.  The token ring of examples/ring.c (a user's
 # program through tilesim.h) and ./bench --ring (the simulator driven
 # directly) on the same machine: 16 ranks, --net ideal, one 8-byte token,
 # no compute, LAPS laps (default 250000: 4 M messages).  Each runs REPEAT

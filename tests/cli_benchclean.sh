@@ -1,6 +1,6 @@
 #!/bin/sh
-# cli_benchclean.sh -- make bench leaves a fresh clone clean (issue 14,
-# item 13): what it writes under plots/ holds no host time and is the same
+# cli_benchclean.sh -- make bench leaves a fresh clone clean:
+# what it writes under plots/ holds no host time and is the same
 # bytes on every run.  Checked here:
 #   - every ./bench sweep of make bench's recipe that writes under plots/ or
 #     build/ (make -n bench) passes --no-wall;

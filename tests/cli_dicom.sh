@@ -132,7 +132,7 @@ refused() {   # NAME FILE EXPECTED [ARGS...]
     ok || bad "$name: exit $rc, stdout $(wc -c < "$T/out") bytes, stderr '$(cat "$T/err")', expected 'tile: $file: $want'"
 }
 
-# ---- Several contours per slice (issue 9): the ROIs that have them tile
+# ---- Several contours per slice: the ROIs that have them tile
 # into closed meshes, the same bytes as their stacks; the surface's notes
 # name the ROI's contour items.
 for r in 1 4 6; do

@@ -1,5 +1,5 @@
 #!/bin/sh
-# cli_docs.sh -- the manual against the programs (issue 20), as curl's
+# cli_docs.sh -- the manual against the programs, as curl's
 # test1139 and git's t0450 hold theirs:
 #  - every option each program's --help (and each mode's: bench MODE
 #    --help) prints appears in its man page, and every option the page
@@ -249,7 +249,7 @@ fi
 
 # ---- README: short, and every file it names exists ----
 n=$(wc -l < README.md)
-[ "$n" -lt 200 ] && ok || bad "README.md has $n lines (under 200, issue 20)"
+[ "$n" -lt 200 ] && ok || bad "README.md has $n lines (under 200)"
 # Files it names: link targets, and inline code that is a path in the tree
 # (outside fenced blocks, which hold example commands and their outputs).
 awk '/^```/ { f = !f; next } !f' README.md > "$T/readme"

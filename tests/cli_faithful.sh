@@ -1,6 +1,6 @@
 #!/bin/sh
 # cli_faithful.sh -- ./tile on what planning systems export, with the default
-# options (issue 27): closed meshes whose bands', caps' and mesh's volumes add
+# options: closed meshes whose bands', caps' and mesh's volumes add
 # up, --no-caps open with no volumes, --roi all writing every ROI that tiles
 # (exit status 3 when some are refused, a line counting both), oblique planes
 # at two decimals, Pinnacle-like degenerate contours, holes on their outer

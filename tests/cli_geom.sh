@@ -1,5 +1,5 @@
 #!/bin/sh
-# cli_geom.sh -- ./tile on hard geometry (issue 14, items 7-10): contours
+# cli_geom.sh -- ./tile on hard geometry: contours
 # that cross themselves are refused with one line naming both segments' lines,
 # exit status 1, nothing on stdout and no output file; stacks scaled by 2^k
 # tile as at unit scale; the spike's cost is its area.  Runs the sanitized

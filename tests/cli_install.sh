@@ -1,5 +1,5 @@
 #!/bin/sh
-# cli_install.sh -- make install (issue 14, item 12; issue 20): the
+# cli_install.sh -- make install: the
 # programs under the names they are installed by (tile, tilesim-bench,
 # tilesim-plot), their man pages and documents, and the data bench's
 # defaults name go under PREFIX, and the installed programs work from any
@@ -64,7 +64,7 @@ mkdir "$T/elsewhere" && cd "$T/elsewhere" || exit 1
   && ok || bad "tilesim-bench --stack --help: $(head -1 out)"
 "$P/bin/tile" "$P/share/tilesim/slicerrt/tinypatient_1.contours" -q > out 2> err && ok || bad "tile, installed: $(cat err)"
 
-# The testbed's library (issue 18): a user's program built outside the tree
+# The testbed's library: a user's program built outside the tree
 # through pkg-config, from the installed example and headers (with the
 # sanitizers of the installed build); and one with globals of the names
 # tilesim uses inside (xmalloc, trace_new, sim_run, ...), which must link
@@ -108,7 +108,7 @@ else
   echo "cli_install: skipped: the library through pkg-config (pkg-config not found)"
 fi
 
-# The MPI tools (issues 19 and 25): the installed tilesim-mpicc finds the
+# The MPI tools: the installed tilesim-mpicc finds the
 # installed mpi.h and libtilesim_mpi.so beside itself, the installed
 # tilesim-mpirun runs what it built, and the program run on its own finds
 # the installed library and says how to run it.

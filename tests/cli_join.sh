@@ -1,6 +1,6 @@
 #!/bin/sh
 # cli_join.sh -- ./tile's joining rules, their notes and the report's joins
-# row, and one slice as a slab (issue 22), from the outside: stacked
+# row, and one slice as a slab, from the outside: stacked
 # disjoint squares joined by default with one note and apart under --join
 # overlap, each contour left apart named; the empty mesh said; the same
 # bytes from a file written backwards; --join and --thickness refused with

@@ -1,5 +1,5 @@
 #!/bin/sh
-# cli_mpiprobe.sh -- the MPI detection (issue 14, item 6): make mpi-probe
+# cli_mpiprobe.sh -- the MPI detection: make mpi-probe
 # compiles two lines of MPI once and says "yes" or why not; the MPI tests
 # take that answer and look for nothing themselves.  Checked with an mpicc
 # that does not exist (MPICC=no-such), a fake mpicc on the PATH that exists

@@ -1,5 +1,5 @@
 #!/bin/sh
-# cli_mpirun.sh -- unmodified MPI programs on tilesim's machines (issue 19):
+# cli_mpirun.sh -- unmodified MPI programs on tilesim's machines:
 # tilesim-mpicc and tilesim-mpirun.
 #   - MPICH's examples (Debian's mpich-doc: cpi, hellow, srtest, icpi), which
 #     no one here wrote, on 1 to 16 ranks: the lines they print are Open MPI's

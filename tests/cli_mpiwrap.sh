@@ -1,5 +1,5 @@
 #!/bin/sh
-# cli_mpiwrap.sh -- MPI programs as people write them (issue 25), built by
+# cli_mpiwrap.sh -- MPI programs as people write them, built by
 # tilesim-mpicc and tilesim-mpicxx and run by tilesim-mpirun:
 #   - a C program that uses libc's per-process names for its own purposes
 #     (tests/mpirun/names.c: a struct member optarg, locals named rand and

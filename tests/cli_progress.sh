@@ -1,6 +1,6 @@
 #!/bin/sh
-# cli_progress.sh -- progress of long runs in a form a log keeps (issue 14,
-# item 14): with stderr not a terminal, a whole line every TILESIM_PROGRESS_S
+# cli_progress.sh -- progress of long runs in a form a log keeps:
+# with stderr not a terminal, a whole line every TILESIM_PROGRESS_S
 # seconds (default 5; 0 here, a line a step) and a last line when done;
 # nothing for a run shorter than the interval, nothing with -q, and stdout
 # untouched.  ./tile serial (-j 2) and parallel, and bench's sweep.

@@ -1,5 +1,5 @@
 #!/bin/sh
-# cli_readers.sh -- ./tile on what planning systems really export (issue 22):
+# cli_readers.sh -- ./tile on what planning systems really export:
 # every bad contour named in one run and --skip-bad; a contour written three
 # times a slice; overlapping pieces merged by default and with --union;
 # notes counted and -v; oblique stacks; a structure set copied as text.  Each case re-encoded

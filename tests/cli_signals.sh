@@ -1,6 +1,5 @@
 #!/bin/sh
-# cli_signals.sh -- nothing but complete files, whatever stops a run
-# (issue 14, items 1-4):
+# cli_signals.sh -- nothing but complete files, whatever stops a run:
 #   - a program killed by SIGINT, SIGTERM, SIGHUP, SIGPIPE or SIGQUIT while
 #     its temporary file exists (the harness polls for it, then signals)
 #     removes it and dies of that same signal; a file already at the target

@@ -1,6 +1,6 @@
 #!/bin/sh
-# cli_stack.sh -- ./tile on real structures with several contours per slice
-# (issue 9), judged by the independent mesh checker (tests/meshcheck.c, as
+# cli_stack.sh -- ./tile on real structures with several contours per slice,
+# judged by the independent mesh checker (tests/meshcheck.c, as
 # `test_solids --check MESH STACK`): every ROI of dicompyler's plan (BODY up
 # to 4 contours a slice, Lt Lung up to 7 and 77 holes, ...), MIM's and
 # pydicom's, with flat and apex caps, must be closed, outward 2-manifolds

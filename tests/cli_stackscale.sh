@@ -1,6 +1,6 @@
 #!/bin/sh
-# cli_stackscale.sh -- ./tile's stack surface at every scale, end to end
-# (issue 14, item 7, on issue 9's surface): tinypatient_0 (several contours
+# cli_stackscale.sh -- ./tile's stack surface at every scale, end to end:
+# tinypatient_0 (several contours
 # a slice, holes, caps) scaled by 2^k, x, y and z, from 2^-1000 to 2^900,
 # gives the unit-scale report with every value exactly scaled -- z 2^k, cost
 # and area 2^2k, volume 2^3k, as printed by %.17g (0 and inf beyond a

@@ -1,5 +1,5 @@
 #!/bin/sh
-# cli_testbed.sh -- users' own programs on tilesim's machines (issue 18): the
+# cli_testbed.sh -- users' own programs on tilesim's machines: the
 # examples (examples/*.c, built against the installed headers and the
 # public library) against closed forms of the model, on --net ideal and on a
 # topology, with binary-fraction costs so that every simulated time is

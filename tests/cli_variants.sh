@@ -1,6 +1,6 @@
 #!/bin/sh
 # cli_variants.sh -- the variants of the parallel algorithm from the command
-# line (issue 13): ./bench --variant and the --block/--schedule/--alloc lists,
+# line: ./bench --variant and the --block/--schedule/--alloc lists,
 # ./tile with each variant giving the serial mesh, bad usage.
 # Run by make check with BUILD=build/chk (the sanitized build).
 BENCH=${BUILD:-build/chk}/bench
