@@ -33,7 +33,7 @@ CHKFLAGS = -O1 -g -Werror $(SAN)
 
 # Library sources: every .c under these folders except the MPI backend,
 # which only mpicc can build (make mpi).
-LIBDIRS  = util mp sim machine geom algo input surface run
+LIBDIRS  = util mp sim machine geom algo input surface
 LIBSRC   = $(filter-out %mpi.c,$(wildcard $(addsuffix /*.c,$(LIBDIRS))))
 # The MPI build (make mpi): every library source, the MPI backend included,
 # and tile and bench from their usual sources, by $(MPICC) with -DTILESIM_MPI

@@ -105,7 +105,7 @@ typedef struct {
   par_schedule schedule;   /* PAR_STATIC (the paper's) or PAR_DYNAMIC */
   double book;         /* the price of one unit of the master's bookkeeping, in
                           node units (mp_compute units, c each): --master-c / c,
-                          set by run_par_options (run.h); 0: free */
+                          set by par_config_prices (par_config.h); 0: free */
   double table;        /* the price of one cell of a slave's weight table (a
                           vertical and a horizontal weight, m (n+1) cells a
                           pair, built where the slaves are few: par_slave_table),

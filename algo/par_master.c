@@ -26,8 +26,8 @@ int par_master_fail(master *M, int rc, const char *what) {
 }
 
 /* The master's bookkeeping is integer passes over a path's columns, not node
- * evaluations: each unit costs opt.book node units (--master-c / c; run.h
- * says where the default comes from). */
+ * evaluations: each unit costs opt.book node units (--master-c / c;
+ * par_config.h says where the default comes from). */
 int par_master_charge(master *M, uint64_t units) {
   M->own->book += units;
   return mp_compute(M->mp, (double)units * M->arg->opt.book);

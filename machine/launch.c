@@ -48,10 +48,28 @@ static void tick(void *ud, double t, long long events) {
   progress_note(ud, text);
 }
 
-static int run_sim(const machine_config *mc, int nranks, const mp_proc *procs, tilesim_stats *st,
-                   char *err, size_t errlen) {
+void launch_period_end(void *ud, int done, int total) {
+  launch_extra *x = ud;
+  if (x->links && x->periods) links_period(x->links, &x->periods[done - 1]);
+  if (x->next) x->next(x->next_ud, done, total);
+}
+
+/* What x asks of the simulator s before its run. */
+static void sim_extra(sim *s, launch_extra *x) {
+  if (x->trace_csv || x->trace_json) sim_trace(s, x->trace_csv, x->trace_json);
+  if (x->count_csv || x->count_json) sim_trace_count(s, x->count_csv, x->count_json);
+  x->links = sim_links(s);
+  if (x->links && x->periods) memset(x->periods, 0, (size_t)x->nperiods * sizeof *x->periods);
+}
+
+static int run_sim(const machine_config *mc, int nranks, const mp_proc *procs, launch_extra *x,
+                   tilesim_stats *st, char *err, size_t errlen) {
   sim *s = launch_sim_new(mc, nranks, err, errlen);
   if (!s) return -1;
+  if (x) {
+    XASSERT(!mc->trace || !(x->trace_csv || x->trace_json));   /* one trace a run */
+    sim_extra(s, x);
+  }
   progress *pg = mc->name ? progress_new(mc->name, "run", 0) : NULL;
   if (pg) sim_progress(s, tick, pg);
   atomicfile tf = {NULL, NULL, NULL};
@@ -68,6 +86,11 @@ static int run_sim(const machine_config *mc, int nranks, const mp_proc *procs, t
   int res = sim_run(s, procs, err, errlen);
   progress_end(pg);
   const sim_stats *ss = sim_stats_get(s);
+  if (x) {
+    if (x->count_csv || x->count_json) sim_trace_size(s, &x->csv_bytes, &x->json_bytes);
+    if (x->sim) *x->sim = *ss;
+    x->links = NULL;
+  }
   st->makespan = ss->makespan;
   st->messages = ss->messages;
   st->bytes = ss->bytes;
@@ -104,7 +127,7 @@ static int run_sim(const machine_config *mc, int nranks, const mp_proc *procs, t
   return res;
 }
 
-static int run_threads(const machine_config *mc, int nranks, const mp_proc *procs,
+static int run_threads(const machine_config *mc, int nranks, const mp_proc *procs, launch_extra *x,
                        tilesim_stats *st, char *err, size_t errlen) {
   mpt_config cfg = mc->threads;
   cfg.warn = mc->sim.warn;
@@ -121,6 +144,7 @@ static int run_threads(const machine_config *mc, int nranks, const mp_proc *proc
   int res = mpt_run(t, procs, err, errlen);
   progress_end(pg);
   const mpt_stats *ts = mpt_stats_get(t);
+  if (x && x->threads) *x->threads = *ts;
   st->makespan = ts->wall_s;
   st->messages = ts->messages;
   st->bytes = ts->bytes;
@@ -136,6 +160,16 @@ static int run_threads(const machine_config *mc, int nranks, const mp_proc *proc
 
 int launch_run(const machine_config *mc, int nranks, const mp_proc *procs, tilesim_stats *st,
                char *err, size_t errlen) {
+  return launch_run_with(mc, nranks, procs, NULL, st, err, errlen);
+}
+
+int launch_job_run(void *job, int nranks, const mp_proc *procs, char *err, size_t errlen) {
+  const launch_job *j = job;
+  return launch_run_with(j->mc, nranks, procs, j->x, j->st, err, errlen);
+}
+
+int launch_run_with(const machine_config *mc, int nranks, const mp_proc *procs, launch_extra *x,
+                    tilesim_stats *st, char *err, size_t errlen) {
   tilesim_stats scratch;
   if (!st) st = &scratch;
   stats_begin(st, mc, nranks);
@@ -160,8 +194,8 @@ int launch_run(const machine_config *mc, int nranks, const mp_proc *procs, tiles
   double w0 = wallclock();
   int res;
   switch (mc->backend) {
-  case MACHINE_SIM: res = run_sim(mc, nranks, procs, st, err, errlen); break;
-  case MACHINE_THREADS: res = run_threads(mc, nranks, procs, st, err, errlen); break;
+  case MACHINE_SIM: res = run_sim(mc, nranks, procs, x, st, err, errlen); break;
+  case MACHINE_THREADS: res = run_threads(mc, nranks, procs, x, st, err, errlen); break;
   default:
 #ifdef TILESIM_MPI
     res = launch_mpi_run(mc, nranks, procs, st, err, errlen);

@@ -17,7 +17,7 @@
  *
  * (--machine sets every parameter of the simulated machine: give it before
  * the others).  Nothing here knows the paper's algorithm: its options live
- * in run/run.h, which embeds a machine_config. */
+ * in algo/par_config.h, parsed beside these by the programs. */
 #ifndef MACHINE_H
 #define MACHINE_H
 

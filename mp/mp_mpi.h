@@ -94,7 +94,7 @@ mpm *mpm_new(const mpm_config *cfg, MPI_Comm data, MPI_Comm ctl, int nranks, cha
  * completed.  0, or -1 and a message: on rank 0 for the whole run, on the
  * others for their own calls.  Once per machine.  Machines on the same
  * communicators must not overlap: a process starts the next one's mpm_run
- * only once rank 0's mpm_run of the last has returned (run_mpi.c orders
+ * only once rank 0's mpm_run of the last has returned (launch_mpi.c orders
  * runs with messages of its own; a barrier does too). */
 int mpm_run(mpm *m, mp_main main, void *ud, char *err, size_t errlen);
 

@@ -6,7 +6,8 @@
  *
  * The whole stack, any number of contours per slice, becomes one surface
  * (surface/stack.h): every band tiled exactly, on -j threads (algo/tiling.h),
- * or with --procs by the paper's parallel algorithm (run/run.h): on the
+ * or with --procs by the paper's parallel algorithm (algo/par_run.h) on a
+ * machine (machine/launch.h), given to the surface as its tiler: on the
  * simulated machine, on threads with --backend threads, or on MPI processes
  * in the MPI build (tile-mpi, `make mpi`), each band's row then also giving
  * its time and messages.  The mesh is the same either way, bit for bit.  A
@@ -27,13 +28,14 @@
 #include "surface/pool.h"
 #include "util/progress.h"
 #include "surface/report.h"
-#include "run/run.h"
+#include "algo/par_run.h"
+#include "machine/launch.h"
 #include "surface/stack.h"
 #include "prog/tile_dicom.h"
 #include "sim/trace.h"
 #include "util/xmem.h"
 #ifdef TILESIM_MPI
-#include "run/run_mpi.h"
+#include "machine/launch_mpi.h"
 #endif
 
 /* The usage hint after a bad-usage message: one line. */
@@ -119,7 +121,7 @@ static void usage(FILE *f) {
         "threads, or MPI processes (tile-mpi under mpirun; --procs defaults to all ranks):\n",
         f);
   fputs(machine_help, f);
-  fputs(run_options_help, f);
+  fputs(par_config_help, f);
   fputs("(--trace: the trace's size is counted first, by a run that writes none.)\n"
         "\n"
         "A DICOM RT structure set (recognised by its content) instead of STACK: each ROI\n"
@@ -160,11 +162,44 @@ static int bad_usage(const char *fmt, const char *arg) {
 
 static void show_progress(void *ud, int done, int total) { progress_step(ud, done, total); }
 
+/* The parallel run of a stack's bands (the surface's stack_tiler): the
+ * algorithm on the machine, with what the run adds (a trace's stream or its
+ * count, the master's progress); on a topology each band's network
+ * statistics, for the report. */
+typedef struct {
+  machine_config mc;   /* the machine; its trace is x's stream */
+  const par_config *pc;
+  launch_extra x;
+  void (*progress)(void *ud, int done, int total);
+  void *progress_ud;
+  net_stats *nets;     /* on a topology: each band's, after the run (else NULL) */
+} tile_run;
+
+static int tile_pairs(void *ud, par_pair *pairs, int npairs, char *err, size_t errlen) {
+  tile_run *t = ud;
+  free(t->nets);
+  t->nets = t->mc.sim.topo.kind != TOPO_NONE ? xcalloc((size_t)npairs + 1, sizeof *t->nets) : NULL;
+  t->x.periods = t->nets, t->x.nperiods = npairs;
+  t->x.next = t->progress, t->x.next_ud = t->progress_ud;
+  launch_job job = {&t->mc, &t->x, NULL};
+  par_run r = {t->pc, t->mc.sim.c, t->mc.procs, launch_period_end, &t->x, NULL, NULL, 0, launch_job_run, &job};
+  return par_run_pairs(&r, pairs, npairs, err, errlen);
+}
+
+/* The report's network columns (on a topology): each band's messages over
+ * the network. */
+static void net_fields(void *ud, FILE *f, int pair) {
+  const net_stats *ns = &((const tile_run *)ud)->nets[pair];
+  fprintf(f, ",%.6f,%lld,%lld,%lld,%.9f", ns->messages ? (double)ns->hops / (double)ns->messages : 0.0,
+          ns->hop_bytes, ns->max_link_msgs, ns->max_link_bytes, ns->link_wait);
+}
+
 /* What tile_stack needs from the command line. */
 typedef struct {
   int caps, apex, threads, parallel, quiet;
   stack_band band;    /* --band */
-  run_config rc;   /* the machine (rc.mc: --trace, --trace-limit) and the algorithm */
+  machine_config mc;  /* the machine (--trace, --trace-limit) */
+  par_config pc;      /* the algorithm */
   const char *held;   /* the reader's notes, printed before the surface's */
   size_t heldlen;
   match_rule join;    /* --join */
@@ -199,30 +234,37 @@ static int tile_stack(void *ud, const contour_stack *s, const char *name, const 
   size_t heldlen = 0;
   FILE *notes = o->quiet ? NULL : open_memstream(&held, &heldlen);
   atomicfile tf = {NULL, NULL, NULL};
-  stack_options so = {o->rc.kind, o->caps, o->apex, o->threads, o->parallel ? &o->rc : NULL, notes, "tile",
+  tile_run run;
+  memset(&run, 0, sizeof run);
+  run.mc = o->mc;
+  run.mc.trace = NULL;   /* written through tf's stream, below */
+  run.pc = &o->pc;
+  stack_tiler tiler = {tile_pairs, &run};
+  stack_options so = {o->pc.kind, o->caps, o->apex, o->threads, o->parallel ? &tiler : NULL, notes, "tile",
                       NULL, NULL, o->join, o->join_dist, o->thickness, o->band};
-  const char *tpath = o->rc.mc.trace;
+  const char *tpath = o->mc.trace;
   if (o->parallel && tpath) {
     /* The trace's size first, by the same run writing none (the simulator
      * is deterministic), and none above the limit (none: not measured);
      * then the trace beside its target, renamed into place when complete. */
     size_t tl = strlen(tpath);
     int json = tl >= 5 && strcmp(tpath + tl - 5, ".json") == 0;
-    run_trace_size ts = {!json, json, 0, 0};
-    int measure = o->rc.mc.trace_limit != ULLONG_MAX;
-    run_config dry = o->rc;
-    dry.trace_size = &ts;
+    int measure = o->mc.trace_limit != ULLONG_MAX;
+    tile_run dry = run;
+    dry.x.count_csv = !json, dry.x.count_json = json;
     dry.mc.sim.warn = NULL;
     dry.progress_ud = progress_new("tile", "measuring the trace: band", !measure || o->quiet || s->nslices < 3);
     dry.progress = dry.progress_ud ? show_progress : NULL;
+    stack_tiler dtiler = {tile_pairs, &dry};
     stack_options dso = so;
-    dso.rc = &dry;
+    dso.tiler = &dtiler;
     dso.notes = NULL;
     stack_surface *dss = NULL;
     int dres = measure ? stack_tile(s, name, &dso, &dss, err, sizeof err) : -1;
     progress_end(dry.progress_ud);
     stack_free(dss);
-    if (dres == 0 && trace_over_limit(ts.csv_bytes + ts.json_bytes, o->rc.mc.trace_limit, err, sizeof err) != 0) {
+    free(dry.nets);
+    if (dres == 0 && trace_over_limit(dry.x.csv_bytes + dry.x.json_bytes, o->mc.trace_limit, err, sizeof err) != 0) {
       fprintf(stderr, "tile: %s: %s\n", tpath, err);
       if (notes) fclose(notes);
       free(held);
@@ -234,13 +276,13 @@ static int tile_stack(void *ud, const contour_stack *s, const char *name, const 
       free(held);
       return -1;
     }
-    if (json) o->rc.trace_json = tf.f;
-    else o->rc.trace_csv = tf.f;
+    if (json) run.x.trace_json = tf.f;
+    else run.x.trace_csv = tf.f;
   }
   progress *pg = progress_new("tile", "band", o->quiet || s->nslices < 3);
   if (o->parallel) {
-    o->rc.progress_ud = pg;
-    o->rc.progress = pg ? show_progress : NULL;
+    run.progress_ud = pg;
+    run.progress = pg ? show_progress : NULL;
   } else {
     so.progress_ud = pg;
     so.progress = pg ? show_progress : NULL;
@@ -248,10 +290,9 @@ static int tile_stack(void *ud, const contour_stack *s, const char *name, const 
   stack_surface *ss = NULL;
   int res = stack_tile(s, name, &so, &ss, err, sizeof err);
   progress_end(pg);
-  o->rc.progress = NULL, o->rc.progress_ud = NULL;
   if (notes) fclose(notes);
   if (res == -2)
-    fprintf(stderr, "tile: the parallel run (%s) failed: %s\n", machine_backend_name(o->rc.mc.backend), err);
+    fprintf(stderr, "tile: the parallel run (%s) failed: %s\n", machine_backend_name(o->mc.backend), err);
   else if (res != 0) {
     say(map, "tile: ", err, strlen(err));
   } else {
@@ -263,16 +304,26 @@ static int tile_stack(void *ud, const contour_stack *s, const char *name, const 
     fprintf(stderr, "tile: %s\n", err);
     res = -1;
   }
-  o->rc.trace_csv = o->rc.trace_json = NULL;
-  if (res != 0) {
-    stack_free(ss);
-    return -1;
+  if (res == 0) {
+    int topology = o->mc.sim.topo.kind != TOPO_NONE;
+    report_par par = {o->mc.procs, machine_backend_name(o->mc.backend),
+                      topology ? ",hops_per_msg,hop_bytes,max_link_msgs,max_link_bytes,link_wait" : "",
+                      topology ? net_fields : NULL, &run};
+    if (header) report_header(stdout, hprefix, o->parallel ? &par : NULL);
+    report_rows(stdout, prefix, ss, o->parallel ? &par : NULL);
+    stack_take_mesh(ss, me);
   }
-  if (header) report_header(stdout, hprefix, o->parallel ? &o->rc : NULL);
-  report_rows(stdout, prefix, ss, o->parallel ? &o->rc : NULL);
-  stack_take_mesh(ss, me);
   stack_free(ss);
-  return 0;
+  free(run.nets);
+  return res == 0 ? 0 : -1;
+}
+
+/* One option of the algorithm or of the machine: 1, 0 (neither's) or -1 (a
+ * bad value), as par_config_option and machine_option say. */
+static int option(machine_config *mc, par_config *pc, const char *opt, const char *val, char *err,
+                  size_t errlen) {
+  int k = par_config_option(pc, opt, val, err, errlen);
+  return k ? k : machine_option(mc, opt, val, err, errlen);
 }
 
 static int tile_main(int argc, char **argv) {
@@ -286,8 +337,9 @@ static int tile_main(int argc, char **argv) {
   o.join = MATCH_SINGLE, o.join_dist = INFINITY;
   tile_dicom_opts dopt;
   memset(&dopt, 0, sizeof dopt);
-  run_config_init(&o.rc);
-  o.rc.mc.sim.warn = stderr;
+  machine_config_init(&o.mc);
+  par_config_init(&o.pc);
+  o.mc.sim.warn = stderr;
   char err[512];
   for (int i = 1; i < argc; i++) {
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -310,16 +362,17 @@ static int tile_main(int argc, char **argv) {
     } else if (strcmp(a, "-v") == 0 || strcmp(a, "--verbose") == 0) {
       read_flags |= CONTOUR_VERBOSE;
     } else if (machine_option_flag(a)) {   /* --print-place */
-      run_option(&o.rc, a, NULL, err, sizeof err);
+      option(&o.mc, &o.pc, a, NULL, err, sizeof err);
     } else if ((k = tile_dicom_option(&dopt, a, v, err, sizeof err)) != 0) {   /* DICOM input */
       if (k < 0) return bad_usage("%s", err);
       i += k - 1;
     } else if (a[0] == '-' && a[1] != 0) {
       if (!v) {   /* the last argument: an option that needs a value, or none we know */
-        run_config scratch = o.rc;
+        machine_config mscratch = o.mc;
+        par_config pscratch = o.pc;
         int known = strcmp(a, "-o") == 0 || strcmp(a, "--cost") == 0 || strcmp(a, "-j") == 0 ||
                     strcmp(a, "--join") == 0 || strcmp(a, "--thickness") == 0 || strcmp(a, "--band") == 0 ||
-                    strcmp(a, "--cap-style") == 0 || run_option(&scratch, a, "", err, sizeof err) != 0;
+                    strcmp(a, "--cap-style") == 0 || option(&mscratch, &pscratch, a, "", err, sizeof err) != 0;
         args_show(a, err, sizeof err);
         return bad_usage(known ? "%s needs a value" : "unknown option (%s)", err);
       }
@@ -346,11 +399,11 @@ static int tile_main(int argc, char **argv) {
         }
         out = v;
       } else if (strcmp(a, "--cost") == 0) {
-        if (cost_parse(v, &o.rc.kind) != 0) {
+        if (cost_parse(v, &o.pc.kind) != 0) {
           args_word(a, v, "area|span", err, sizeof err);
           return bad_usage("%s", err);
         }
-      } else if ((k = run_option(&o.rc, a, v, err, sizeof err)) < 0) {
+      } else if ((k = option(&o.mc, &o.pc, a, v, err, sizeof err)) < 0) {
         return bad_usage("%s", err);
       } else if (k == 0) {
         args_show(a, err, sizeof err);
@@ -368,35 +421,35 @@ static int tile_main(int argc, char **argv) {
     }
   }
   if (!in) return bad_usage("%s", "no contour stack given");
-  if (!o.parallel && o.rc.mc.backend == MACHINE_MPI && machine_backend_ranks(MACHINE_MPI) >= 2) {
+  if (!o.parallel && o.mc.backend == MACHINE_MPI && machine_backend_ranks(MACHINE_MPI) >= 2) {
     o.parallel = 1;   /* tile-mpi under mpirun -np N: the N ranks */
-    o.rc.mc.procs = machine_backend_ranks(MACHINE_MPI);
+    o.mc.procs = machine_backend_ranks(MACHINE_MPI);
   }
-  const char *tpath = o.rc.mc.trace;
-  int print_place = o.rc.mc.print_place;
-  if (o.rc.mc.trace_limit_given && !tpath) return bad_usage("%s", "--trace-limit needs --trace");
+  const char *tpath = o.mc.trace;
+  int print_place = o.mc.print_place;
+  if (o.mc.trace_limit_given && !tpath) return bad_usage("%s", "--trace-limit needs --trace");
   if (tpath && !o.parallel) return bad_usage("%s", "--trace needs --procs (it traces the simulated machine)");
-  if (tpath && o.rc.mc.backend != MACHINE_SIM) return bad_usage("%s", "--trace traces the simulated machine (--backend sim)");
+  if (tpath && o.mc.backend != MACHINE_SIM) return bad_usage("%s", "--trace traces the simulated machine (--backend sim)");
   if (backend_given && !o.parallel) return bad_usage("%s", "--backend needs --procs");
   if (caps_given && nocaps_given) return bad_usage("%s", "--caps and --no-caps: one or the other");
   if (style_given && !o.caps) return bad_usage("%s", "--cap-style is for the caps; leave out --no-caps");
-  int topology = o.rc.mc.sim.topo.kind != TOPO_NONE;
+  int topology = o.mc.sim.topo.kind != TOPO_NONE;
   if ((topology || print_place || place_given) && !o.parallel)
     return bad_usage("%s", "--topology, --place and --print-place need --procs (they describe the simulated machine)");
-  if (topology && o.rc.mc.backend != MACHINE_SIM)
+  if (topology && o.mc.backend != MACHINE_SIM)
     return bad_usage("%s", "--topology describes the simulated machine (--backend sim)");
   if (topology) {   /* the machine must fit P before the input is read */
-    int *where = xmallocarray((size_t)run_ranks(o.rc.mc.procs), sizeof *where), nodes;
-    int bad = machine_place(&o.rc.mc, run_ranks(o.rc.mc.procs), where, &nodes, err, sizeof err) != 0;
+    int *where = xmallocarray((size_t)par_ranks(o.mc.procs), sizeof *where), nodes;
+    int bad = machine_place(&o.mc, par_ranks(o.mc.procs), where, &nodes, err, sizeof err) != 0;
     free(where);
     if (bad) return bad_usage("%s", err);
   }
-  if (print_place && machine_print_place(stderr, &o.rc.mc, run_ranks(o.rc.mc.procs), err, sizeof err) != 0)
+  if (print_place && machine_print_place(stderr, &o.mc, par_ranks(o.mc.procs), err, sizeof err) != 0)
     return bad_usage("%s", err);
-  if (o.parallel && machine_backend_ranks(o.rc.mc.backend) > 0 && run_ranks(o.rc.mc.procs) > machine_backend_ranks(o.rc.mc.backend)) {
+  if (o.parallel && machine_backend_ranks(o.mc.backend) > 0 && par_ranks(o.mc.procs) > machine_backend_ranks(o.mc.backend)) {
     char msg[160];
-    snprintf(msg, sizeof msg, "--procs %d needs %d ranks; the %s run has %d", o.rc.mc.procs,
-             run_ranks(o.rc.mc.procs), machine_backend_name(o.rc.mc.backend), machine_backend_ranks(o.rc.mc.backend));
+    snprintf(msg, sizeof msg, "--procs %d needs %d ranks; the %s run has %d", o.mc.procs,
+             par_ranks(o.mc.procs), machine_backend_name(o.mc.backend), machine_backend_ranks(o.mc.backend));
     return bad_usage("%s", msg);
   }
 
@@ -465,7 +518,7 @@ static int tile_main(int argc, char **argv) {
 #ifdef TILESIM_MPI
 /* tile-mpi: rank 0 runs tile_main with the master on MPI; the others serve
  * as slaves until it is done. */
-int main(int argc, char **argv) { return run_mpi_main(argc, argv, tile_main); }
+int main(int argc, char **argv) { return launch_mpi_main(argc, argv, tile_main, par_run_serve); }
 #else
 int main(int argc, char **argv) { return tile_main(argc, argv); }
 #endif

@@ -89,7 +89,7 @@ static inline double cpu_resume(const cpu_model *m, double since, double arrival
   return cpu_asleep(m, since, arrival) ? arrival + m->wake : arrival;
 }
 
-/* The command-line options of the model, for run_option: the field for
+/* The command-line options of the model, for machine_option: the field for
  * opt ("--o-send", ...), or NULL.  Every value is seconds (slowdown: a
  * fraction), finite and >= 0. */
 double *cpu_model_field(cpu_model *m, const char *opt);

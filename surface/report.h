@@ -11,8 +11,8 @@
  * surface/follow.h), bridges, the optimum, the band's area and slab volume,
  * the tiler's node evaluations, the spans its optimum used twice (a pinched
  * band, surface/unpinch.h: the band is then the cheapest path without, and
- * cost its cost); with --procs the parallel run's columns,
- * and on a topology (--topology) the network's.
+ * cost its cost); with --procs the parallel run's columns, and after them
+ * the caller's (report_par: the network's on a topology).
  * Then with caps one row per cap (band = cap; z1 the apex's z; volume what
  * the cap adds beyond its flat region), one row `joins` (junction: the
  * joining rule; m: joins made without overlap; n: contour ends left without
@@ -30,15 +30,26 @@
 
 #include <stdio.h>
 
-#include "run/run.h"
 #include "surface/stack.h"
 
-/* The header line, after `prefix` (for columns a caller puts first); rc as
- * for report_rows. */
-void report_header(FILE *f, const char *prefix, const run_config *rc);
+/* The columns of a run by a tiler (stack_tiler: ./tile --procs). */
+typedef struct {
+  int procs;            /* the procs column */
+  const char *backend;  /* the backend column: "sim", "threads" or "mpi" */
+  const char *more;     /* the names of further columns, each after a comma
+                           (",hops_per_msg,..."), or "" */
+  void (*fields)(void *ud, FILE *f, int pair);   /* a band's further fields,
+                           each after a comma, for its run `pair`
+                           (stack_row.pair); other rows get them empty */
+  void *ud;
+} report_par;
 
-/* Every row, each after `prefix`; rc (NULL without --procs) names the
- * backend and the procs. */
-void report_rows(FILE *f, const char *prefix, const stack_surface *ss, const run_config *rc);
+/* The header line, after `prefix` (for columns a caller puts first); par as
+ * for report_rows. */
+void report_header(FILE *f, const char *prefix, const report_par *par);
+
+/* Every row, each after `prefix`; par: the run's columns (NULL: none,
+ * without --procs). */
+void report_rows(FILE *f, const char *prefix, const stack_surface *ss, const report_par *par);
 
 #endif

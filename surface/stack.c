@@ -32,7 +32,6 @@ struct stack_surface {
   stack_row *rows;
   int npairs;
   par_pair *pairs;
-  net_stats *nets;
   int ncomp;
   manifold_component *comp;
   double cost, area, volume;   /* the whole surface's (stack_totals) */
@@ -290,11 +289,10 @@ static void plan_bands(work *w) {
     }
 }
 
-/* With rc, every band's tiling by the paper's parallel algorithm, every band
- * in one run of the backend.  0, or -2 when the parallel run failed. */
+/* With a tiler, every band's tiling by it, every band in one call.  0, or -2
+ * when the tiler failed. */
 static int tile_bands(work *w, stack_surface *ss, char *err, size_t errlen) {
   const slices *sl = w->sl;
-  run_config *rc = w->o->rc;
   int nb = w->nb, res = 0;
   ss->npairs = nb;
   ss->pairs = xcalloc((size_t)nb + 1, sizeof *ss->pairs);
@@ -303,9 +301,8 @@ static int tile_bands(work *w, stack_surface *ss, char *err, size_t errlen) {
     p->P = w->b[i].P, p->np = w->b[i].np, p->zp = sl->z[w->b[i].slice];
     p->Q = w->b[i].Q, p->nq = w->b[i].nq, p->zq = sl->z[w->b[i].slice + 1];
   }
-  if (rc->mc.sim.topo.kind != TOPO_NONE) rc->pair_net = ss->nets = xcalloc((size_t)nb + 1, sizeof *ss->nets);
-  if (run_pairs(rc, ss->pairs, nb, err, errlen) != 0) res = -2;
-  rc->pair_net = NULL;
+  const stack_tiler *tl = w->o->tiler;
+  if (tl->pairs(tl->ud, ss->pairs, nb, err, errlen) != 0) res = -2;
   for (int i = 0; i < nb; i++) {
     w->b[i].t = ss->pairs[i].t;
     ss->pairs[i].t.col = NULL;
@@ -313,7 +310,7 @@ static int tile_bands(work *w, stack_surface *ss, char *err, size_t errlen) {
   return res;
 }
 
-/* Without rc, a band from start to end in one job (its bridges, its exact
+/* Without a tiler, a band from start to end in one job (its bridges, its exact
  * tiling, its triangles), and the caps as jobs of the same pool: no thread
  * waits at a barrier between the steps while another finishes a long one.
  * Jobs 0 .. nb-1 are the bands, nb .. nb+nends-1 the caps. */
@@ -541,7 +538,7 @@ static void assemble(const work *w, stack_surface *ss) {
     r->area = b->area, r->volume = b->volume;
     r->nodes = (unsigned long long)b->t.count.nodes;
     r->spans = b->pinched ? 1 : 0;
-    r->pair = w->o->rc ? i : -1;
+    r->pair = w->o->tiler ? i : -1;
   }
   for (int i = 0; i < w->nends; i++) {
     const end_region *g = &w->ends[i];
@@ -787,7 +784,7 @@ int stack_tile(const contour_stack *s, const char *name, const stack_options *o,
   int rc = 0;
   stack_surface *ss = xcalloc(1, sizeof *ss);
   rule_names(o, ss->rule, sizeof ss->rule, w.joinopt, sizeof w.joinopt);
-  if (o->rc) {
+  if (o->tiler) {
     pool_run(threads, w.nb, NULL, bridge_job, &w);
     if (rematch_unbridged(&w)) pool_run(threads, w.nb, NULL, bridge_job, &w);
     count_joins(&w, ss);
@@ -830,7 +827,6 @@ void stack_take_mesh(stack_surface *ss, mesh *me) {
 int stack_nrows(const stack_surface *ss) { return ss->nrows; }
 const stack_row *stack_rows(const stack_surface *ss) { return ss->rows; }
 const par_pair *stack_pairs(const stack_surface *ss) { return ss->pairs; }
-const net_stats *stack_nets(const stack_surface *ss) { return ss->nets; }
 int stack_ncomponents(const stack_surface *ss) { return ss->ncomp; }
 void stack_totals(const stack_surface *ss, double *cost, double *area, double *volume) {
   *cost = ss->cost, *area = ss->area, *volume = ss->volume;
@@ -845,7 +841,6 @@ void stack_free(stack_surface *ss) {
   if (ss->pairs)
     for (int i = 0; i < ss->npairs; i++) tiling_free(&ss->pairs[i].t);
   free(ss->pairs);
-  free(ss->nets);
   free(ss->comp);
   mesh_free(&ss->me);
   free(ss);

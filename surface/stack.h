@@ -8,7 +8,8 @@
  *              the joining rule (gap.c: how far apart contours lie)
  *   bridge.c   n-m junctions: composite contours joined by bridges
  *   tiling.h   every band: the exact minimum-cost tiling (Fuchs, Kedem,
- *              Uselton 1977), or the paper's parallel algorithm (run.h)
+ *              Uselton 1977), or the caller's tiler of pairs (stack_tiler:
+ *              the paper's parallel algorithm on a machine)
  *   ends.c     the ends: caps, flat (flatcap.c) or apex (apex.c)
  *   manifold.c the components of the result: closed, manifold, genus
  * The bands are independent (the paper, section 6), and so are the slices
@@ -43,7 +44,7 @@
 #include "input/contour.h"
 #include "surface/match.h"
 #include "surface/mesh.h"
-#include "run/run.h"
+#include "algo/par_master.h"
 #include "surface/manifold.h"
 
 /* How a 1-1 band is tiled.  STACK_BAND_ALIGNED: on its contours' corners,
@@ -54,12 +55,22 @@
  * bridges) are tiled as they lie either way. */
 typedef enum { STACK_BAND_ALIGNED = 0, STACK_BAND_PLAIN } stack_band;
 
+/* A tiler of bands given by the caller (the paper's parallel algorithm on
+ * its machine): tile pairs[0 .. npairs-1], every band of the stack in one
+ * call, each pair's in-fields set (P, np, zp, Q, nq, zq), its out-fields
+ * (t, time, counts) to fill.  0, or -1 and a message. */
+typedef struct {
+  int (*pairs)(void *ud, par_pair *pairs, int npairs, char *err, size_t errlen);
+  void *ud;
+} stack_tiler;
+
 typedef struct {
   cost_kind kind;
   int caps;            /* 1: close every end (watertight); 0: leave them open */
   int apex;            /* cap style: 0 flat, 1 apex */
   int threads;         /* >= 1 */
-  run_config *rc;      /* non-NULL: tile the bands with the parallel algorithm on rc's backend */
+  const stack_tiler *tiler;   /* non-NULL: the bands are tiled by it (not on the
+                                 threads); else by the exact tiler */
   FILE *notes;         /* notes (reoriented contours, flat single-slice parts), or NULL */
   const char *prefix;  /* of the notes: "tile" */
   void (*progress)(void *ud, int done, int total);   /* after each band tiled (any thread), or NULL */
@@ -103,7 +114,7 @@ typedef struct {
   int spans;           /* band: spans the tiler's optimum used twice (a pinched
                           band, unpinch.h): then the band is the cheapest path
                           that uses none (cost is its cost) unless too large */
-  int pair;            /* band: its run in stack_pairs (with rc), else -1 */
+  int pair;            /* band: its run in stack_pairs (with a tiler), else -1 */
 } stack_row;
 
 typedef struct stack_surface stack_surface;
@@ -111,8 +122,8 @@ typedef struct stack_surface stack_surface;
 /* Tile the stack s, read from the file `name` (for messages).  Returns 0
  * and *out; -1 for input it refuses, with "NAME:LINE: what (value)" in err
  * (contours crossing on a slice, a bridge that cannot be made, one slice
- * without a thickness); -2 when the parallel run failed, with its message
- * in err.  Nothing is left allocated on failure.
+ * without a thickness); -2 when the tiler failed, with its message in
+ * err.  Nothing is left allocated on failure.
  *
  * Notes (on o->notes, each one line "PREFIX: NAME:LINE: ..."): joins made
  * without overlap (a run of single joins in one line), joins dropped for
@@ -128,10 +139,9 @@ const mesh *stack_mesh(const stack_surface *ss);
 void stack_take_mesh(stack_surface *ss, mesh *me);
 int stack_nrows(const stack_surface *ss);
 const stack_row *stack_rows(const stack_surface *ss);
-/* With rc: the bands' runs (par_pair.time, counts), indexed by stack_row.pair;
- * on a topology their network statistics (else NULL). */
+/* With a tiler: the bands' runs (par_pair.time, counts), indexed by
+ * stack_row.pair (else NULL). */
 const par_pair *stack_pairs(const stack_surface *ss);
-const net_stats *stack_nets(const stack_surface *ss);
 int stack_ncomponents(const stack_surface *ss);
 /* The whole surface: the bands' costs summed, the mesh's area and volume,
  * each at the working scale, then in the file's units (see Scale above). */

@@ -16,7 +16,7 @@
 #include "input/gen.h"
 #include "algo/par_slave.h"
 #include "util/rng.h"
-#include "run/run.h"
+#include "tests/parmachine.h"
 #include "util/xmem.h"
 
 enum { MAXR = 16 };
@@ -35,18 +35,18 @@ typedef struct {
  * the slaves' counters and the simulator's per-rank statistics. */
 static int run_one(const vec2 *P, int np, const vec2 *Q, int nq, int procs, const char *const *opts,
                    outcome *o, char *err, size_t errlen) {
-  run_config rc;
-  run_config_init(&rc);
+  par_machine rc;
+  par_machine_init(&rc);
   rc.mc.backend = MACHINE_SIM;
   rc.mc.sim.warn = NULL;
   const char *base[] = {"--c", "0.0009765625", "--m", "0.001953125", NULL};
   for (int i = 0; base[i]; i += 2)
-    if (run_option(&rc, base[i], base[i + 1], err, errlen) != 1) return -1;
+    if (par_machine_option(&rc, base[i], base[i + 1], err, errlen) != 1) return -1;
   for (int i = 0; opts[i]; i += 2)
-    if (run_option(&rc, opts[i], opts[i + 1], err, errlen) != 1) return -1;
+    if (par_machine_option(&rc, opts[i], opts[i + 1], err, errlen) != 1) return -1;
   par_options opt;
-  if (run_par_options(&rc, &opt, err, errlen) != 0) return -1;
-  int nr = run_ranks(procs), place[MAXR];
+  if (par_config_prices(&rc.pc, rc.mc.sim.c, &opt, err, errlen) != 0) return -1;
+  int nr = par_ranks(procs), place[MAXR];
   for (int r = 0; r < nr; r++) place[r] = procs == 1 ? 0 : r;
   sim_config cfg = rc.mc.sim;
   cfg.procs = procs;
@@ -209,35 +209,35 @@ static void check_slave_prices(rng *g) {
 /* c = 0 cannot price a bookkeeping unit above 0 in node units: refused with
  * a message, before any run; --master-c 0 there is fine. */
 static void check_refusal(void) {
-  run_config rc;
-  run_config_init(&rc);
+  par_machine rc;
+  par_machine_init(&rc);
   rc.mc.sim.warn = NULL;
   char err[300] = "";
   par_options opt;
-  CHECK(run_option(&rc, "--c", "0", err, sizeof err) == 1 && run_option(&rc, "--master-c", "1e-6", err, sizeof err) == 1,
+  CHECK(par_machine_option(&rc, "--c", "0", err, sizeof err) == 1 && par_machine_option(&rc, "--master-c", "1e-6", err, sizeof err) == 1,
         "options: %s", err);
-  CHECK(run_par_options(&rc, &opt, err, sizeof err) == -1 && strstr(err, "--master-c") && strstr(err, "c is 0"),
+  CHECK(par_config_prices(&rc.pc, rc.mc.sim.c, &opt, err, sizeof err) == -1 && strstr(err, "--master-c") && strstr(err, "c is 0"),
         "c = 0 with --master-c 1e-6: '%s'", err);
   vec2 P[3] = {{0, 0}, {1, 0}, {0, 1}}, Q[3] = {{0, 0}, {1, 0}, {0, 1}};
   par_pair pr;
   memset(&pr, 0, sizeof pr);
   pr.P = P, pr.np = 3, pr.Q = Q, pr.nq = 3, pr.zq = 1;
   err[0] = 0;
-  CHECK(run_pairs(&rc, &pr, 1, err, sizeof err) == -1 && strstr(err, "c is 0"), "run_pairs: '%s'", err);
-  CHECK(run_option(&rc, "--master-c", "0", err, sizeof err) == 1 && run_par_options(&rc, &opt, err, sizeof err) == 0 &&
+  CHECK(par_machine_run(&rc, &pr, 1, err, sizeof err) == -1 && strstr(err, "c is 0"), "par_machine_run: '%s'", err);
+  CHECK(par_machine_option(&rc, "--master-c", "0", err, sizeof err) == 1 && par_config_prices(&rc.pc, rc.mc.sim.c, &opt, err, sizeof err) == 0 &&
             opt.book == 0,
         "c = 0 with --master-c 0: %s", err);
-  CHECK(run_option(&rc, "--master-c", "-1", err, sizeof err) == -1, "--master-c -1 accepted");
-  CHECK(run_option(&rc, "--back-c", "1e-9", err, sizeof err) == 1 && run_par_options(&rc, &opt, err, sizeof err) == -1 &&
+  CHECK(par_machine_option(&rc, "--master-c", "-1", err, sizeof err) == -1, "--master-c -1 accepted");
+  CHECK(par_machine_option(&rc, "--back-c", "1e-9", err, sizeof err) == 1 && par_config_prices(&rc.pc, rc.mc.sim.c, &opt, err, sizeof err) == -1 &&
             strstr(err, "--back-c") && strstr(err, "c is 0"),
         "c = 0 with --back-c 1e-9: '%s'", err);
-  CHECK(run_option(&rc, "--back-c", "0", err, sizeof err) == 1 && run_option(&rc, "--table-c", "2e-9", err, sizeof err) == 1 &&
-            run_par_options(&rc, &opt, err, sizeof err) == -1 && strstr(err, "--table-c"),
+  CHECK(par_machine_option(&rc, "--back-c", "0", err, sizeof err) == 1 && par_machine_option(&rc, "--table-c", "2e-9", err, sizeof err) == 1 &&
+            par_config_prices(&rc.pc, rc.mc.sim.c, &opt, err, sizeof err) == -1 && strstr(err, "--table-c"),
         "c = 0 with --table-c 2e-9: '%s'", err);
-  CHECK(run_option(&rc, "--table-c", "x", err, sizeof err) == -1, "--table-c x accepted");
-  run_config_init(&rc);
-  CHECK(run_par_options(&rc, &opt, err, sizeof err) == 0 && opt.book == RUN_MASTER_SHARE &&
-            run_master_c(&rc) == RUN_MASTER_SHARE * rc.mc.sim.c,
+  CHECK(par_machine_option(&rc, "--table-c", "x", err, sizeof err) == -1, "--table-c x accepted");
+  par_machine_init(&rc);
+  CHECK(par_config_prices(&rc.pc, rc.mc.sim.c, &opt, err, sizeof err) == 0 && opt.book == PAR_MASTER_SHARE &&
+            par_config_master_c(&rc.pc, rc.mc.sim.c) == PAR_MASTER_SHARE * rc.mc.sim.c,
         "default: book %g", opt.book);
 }
 

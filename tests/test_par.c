@@ -12,7 +12,7 @@
 #include "input/gen.h"
 #include "algo/par_slave.h"
 #include "util/rng.h"
-#include "run/run.h"
+#include "tests/parmachine.h"
 #include "algo/tiling.h"
 #include "util/xmem.h"
 
@@ -29,15 +29,15 @@ static par_pair mkpair(const vec2 *P, int np, double zp, const vec2 *Q, int nq, 
   return pr;
 }
 
-static run_config config(int P, split_alloc alloc, int d, cost_kind kind) {
-  run_config rc;
+static par_machine config(int P, split_alloc alloc, int d, cost_kind kind) {
+  par_machine rc;
   memset(&rc, 0, sizeof rc);
   rc.mc.procs = P;
   sim_config_init(&rc.mc.sim);
   rc.mc.sim.warn = NULL;
-  rc.opt.alloc = alloc;
-  rc.opt.min_diag = d;
-  rc.kind = kind;
+  rc.pc.opt.alloc = alloc;
+  rc.pc.opt.min_diag = d;
+  rc.pc.kind = kind;
   return rc;
 }
 
@@ -76,11 +76,11 @@ static void check_random(rng *g) {
     for (int i = 0; i < 6; i++) {
       int c = (pair * 6 + i) % 192;
       int procs = 1 + c % 32, alloc = (c / 32) % 2, d = ds[c / 64];
-      run_config rc = config(procs, (split_alloc)alloc, d, kind);
+      par_machine rc = config(procs, (split_alloc)alloc, d, kind);
       par_pair pr = mkpair(P, np, 0, Q, nq, 1.5);
       char err[300];
       runs++;
-      if (run_sim(&rc, &pr, 1, NULL, err, sizeof err) != 0) {
+      if (par_machine_sim(&rc, &pr, 1, NULL, err, sizeof err) != 0) {
         failed++;
         CHECK(0, "pair %d P=%d %s d=%d: %s", pair, procs, split_alloc_name((split_alloc)alloc), d, err);
         continue;
@@ -123,8 +123,8 @@ static void check_real(void) {
     par_pair *pr = xcalloc((size_t)np, sizeof *pr);
     for (int k = 0; k < np; k++)
       pr[k] = mkpair(s.c[k].pt, s.c[k].n, s.c[k].z, s.c[k + 1].pt, s.c[k + 1].n, s.c[k + 1].z);
-    run_config rc = config(cases[i].procs, cases[i].alloc, cases[i].d, COST_AREA);
-    int rcode = run_sim(&rc, pr, np, NULL, err, sizeof err);
+    par_machine rc = config(cases[i].procs, cases[i].alloc, cases[i].d, COST_AREA);
+    int rcode = par_machine_sim(&rc, pr, np, NULL, err, sizeof err);
     CHECK(rcode == 0, "%s P=%d: %s", cases[i].name, cases[i].procs, err);
     int bad = 0;
     for (int k = 0; rcode == 0 && k < np; k++) {
@@ -156,12 +156,12 @@ static void check_messages(rng *g) {
   for (size_t i = 0; i < sizeof ps / sizeof ps[0]; i++) {
     int p = ps[i];
     int *sends = xcalloc((size_t)T + 1, sizeof *sends), *recvs = xcalloc((size_t)T + 1, sizeof *recvs);
-    run_config rc = config(p + 1, ALLOC_HALF, 1, COST_AREA);
+    par_machine rc = config(p + 1, ALLOC_HALF, 1, COST_AREA);
     rc.diag_sends = sends, rc.diag_recvs = recvs, rc.diag_len = T + 1;
     par_pair pr = mkpair(P, m, 0, Q, n, 1);
     char err[300];
     sim_stats st;
-    CHECK(run_sim(&rc, &pr, 1, &st, err, sizeof err) == 0, "p=%d: %s", p, err);
+    CHECK(par_machine_sim(&rc, &pr, 1, &st, err, sizeof err) == 0, "p=%d: %s", p, err);
     /* mu(0)'s band is the (m+1) x (n+1) rectangle: diagonal t has
      * min(t, m, n, T - t) + 1 nodes. */
     int checked = 0, wrong = 0;
@@ -198,7 +198,7 @@ static void check_stats(rng *g) {
   gen_star(g, P, np, 0, 0, 10, 0.3);
   gen_star(g, Q, nq, 0, 1, 9, 0.3);
   for (int procs = 1; procs <= 12; procs += 11) {
-    int nr = run_ranks(procs);
+    int nr = par_ranks(procs);
     sim_config cfg;
     sim_config_init(&cfg);
     cfg.c = 0x1p-10, cfg.m = 0x1p-9, cfg.warn = NULL;   /* binary fractions: exact sums */

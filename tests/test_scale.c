@@ -14,7 +14,7 @@
 #include "input/gen.h"
 #include "algo/par.h"
 #include "util/rng.h"
-#include "run/run.h"
+#include "tests/parmachine.h"
 #include "geom/geom.h"
 #include "algo/tiling.h"
 #include "util/xmem.h"
@@ -186,14 +186,14 @@ static void spike(void) {
   for (int par = 0; par < 2; par++) {
     tiling t;
     if (par) {   /* the parallel algorithm gets the same quantum */
-      run_config rc;
-      run_config_init(&rc);
+      par_machine rc;
+      par_machine_init(&rc);
       rc.mc.procs = 3;
       par_pair pr;
       memset(&pr, 0, sizeof pr);
       pr.P = P, pr.np = 4, pr.zp = 0, pr.Q = Q, pr.nq = 4, pr.zq = 1;
       char err[256];
-      CHECK(run_pairs(&rc, &pr, 1, err, sizeof err) == 0, "parallel run: %s", err);
+      CHECK(par_machine_run(&rc, &pr, 1, err, sizeof err) == 0, "parallel run: %s", err);
       t = pr.t;
     } else {
       tiling_solve(P, 4, 0, Q, 4, 1, COST_AREA, -1, &t);

@@ -31,7 +31,7 @@
 #include "surface/overlap.h"
 #include "surface/pool.h"
 #include "util/rng.h"
-#include "run/run.h"
+#include "tests/parmachine.h"
 #include "surface/slices.h"
 #include "surface/stack.h"
 #include "tests/stackgen.h"
@@ -132,9 +132,10 @@ static void test_overlap(rng *g) {
 
 static stack_band band_mode = STACK_BAND_ALIGNED;   /* how tile() tiles a 1-1 band */
 
-static stack_surface *tile(const contour_stack *s, int caps, int apex, int threads, run_config *rc,
+static stack_surface *tile(const contour_stack *s, int caps, int apex, int threads, par_machine *rc,
                            char *err, size_t errlen, int *res) {
-  stack_options o = {COST_AREA, caps, apex, threads, rc, NULL, "test", NULL, NULL, MATCH_SINGLE, INFINITY, 0, band_mode};
+  stack_tiler tl = rc ? par_machine_tiler(rc) : (stack_tiler){NULL, NULL};
+  stack_options o = {COST_AREA, caps, apex, threads, rc ? &tl : NULL, NULL, "test", NULL, NULL, MATCH_SINGLE, INFINITY, 0, band_mode};
   stack_surface *ss = NULL;
   *res = stack_tile(s, "t.contours", &o, &ss, err, errlen);
   return ss;
@@ -414,8 +415,8 @@ static void test_invariance(rng *g) {
   CHECK(bad == 0, "%d of 20 shuffled, restarted, reversed stacks (on 1-4 threads) differ", bad);
   /* The paper's parallel algorithm on the simulated machine: the same mesh. */
   if (sg_make_stack(ps, np, NULL, NULL, NULL, &s) == 0) {
-    run_config rc;
-    run_config_init(&rc);
+    par_machine rc;
+    par_machine_init(&rc);
     rc.mc.procs = 3;
     stack_surface *ss = tile(&s, 1, 0, 2, &rc, err, sizeof err, &res);
     CHECK(res == 0 && same_mesh(stack_mesh(ref), stack_mesh(ss)), "--procs 3 on the simulator: %s", res ? err : "differs");

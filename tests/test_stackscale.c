@@ -37,7 +37,7 @@
 #include "input/contour.h"
 #include "tests/meshcheck.h"
 #include "util/rng.h"
-#include "run/run.h"
+#include "tests/parmachine.h"
 #include "tests/solids.h"
 #include "surface/stack.h"
 #include "tests/stackgen.h"
@@ -48,7 +48,7 @@
 typedef struct {
   int caps, apex;
   cost_kind kind;
-  run_config *rc;
+  par_machine *rc;
 } how;
 
 /* How tile() tiles a 1-1 band: aligned (the default), or plain for the
@@ -60,7 +60,8 @@ static stack_surface *tile(const contour_stack *s, how h, char *notes, size_t nl
   char *buf = NULL;
   size_t len = 0;
   FILE *f = notes ? open_memstream(&buf, &len) : NULL;
-  stack_options o = {h.kind, h.caps, h.apex, 2, h.rc, f, "test", NULL, NULL, MATCH_SINGLE, INFINITY, 0, band_mode};
+  stack_tiler tl = h.rc ? par_machine_tiler(h.rc) : (stack_tiler){NULL, NULL};
+  stack_options o = {h.kind, h.caps, h.apex, 2, h.rc ? &tl : NULL, f, "test", NULL, NULL, MATCH_SINGLE, INFINITY, 0, band_mode};
   stack_surface *ss = NULL;
   *res = stack_tile(s, "t.contours", &o, &ss, err, errlen);
   if (f) {
@@ -347,8 +348,8 @@ static void test_real(void) {
       sweep("tinypatient_0 span, open", &s, (how){0, 0, COST_SPAN, NULL}, 4);
       /* The paper's parallel algorithm on the simulator, at 2^-1000: the
        * serial unit-scale result, scaled. */
-      run_config rc3;
-      run_config_init(&rc3);
+      par_machine rc3;
+      par_machine_init(&rc3);
       rc3.mc.procs = 3;
       int res, r2;
       stack_surface *u = tile(&s, (how){1, 0, COST_AREA, NULL}, NULL, 0, err, sizeof err, &res);

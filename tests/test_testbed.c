@@ -10,7 +10,7 @@
 
 #include "tests/check.h"
 #include "machine/machine.h"
-#include "run/run.h"
+#include "tests/parmachine.h"
 #include "machine/tilesim.h"
 
 static tilesim_machine *machine(const char *const *opts) {
@@ -177,7 +177,7 @@ static void test_procs(void) {
   }
 }
 
-/* The options: the same parser, values and messages as run_option's. */
+/* The options: the same parser, values and messages as the programs' (par_machine_option). */
 static void test_options(void) {
   static const char *const cases[][2] = {
       {"--procs", "0"},      {"--procs", "4097"},     {"--net", "wormhole"},  {"--m", "-1"},
@@ -187,14 +187,14 @@ static void test_options(void) {
   };
   for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
     tilesim_machine *m = tilesim_machine_new();
-    run_config rc;
-    run_config_init(&rc);
+    par_machine rc;
+    par_machine_init(&rc);
     char e1[512] = "", e2[512] = "";
     int k1 = tilesim_machine_option(m, cases[i][0], cases[i][1], e1, sizeof e1);
-    int k2 = run_option(&rc, cases[i][0], cases[i][1], e2, sizeof e2);
+    int k2 = par_machine_option(&rc, cases[i][0], cases[i][1], e2, sizeof e2);
     int ranks = strcmp(cases[i][0], "--ranks") == 0;   /* the algorithm refuses --ranks, in its own words */
     CHECK(k1 == -1 && k2 == -1 && (ranks || strcmp(e1, e2) == 0) && strstr(e1, cases[i][0]) == e1,
-          "%s %s: %d '%s', run_option %d '%s'", cases[i][0], cases[i][1], k1, e1, k2, e2);
+          "%s %s: %d '%s', par_machine_option %d '%s'", cases[i][0], cases[i][1], k1, e1, k2, e2);
     tilesim_machine_free(m);
   }
   tilesim_machine *m = tilesim_machine_new();

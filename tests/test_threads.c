@@ -15,7 +15,7 @@
 #include "input/contour.h"
 #include "input/gen.h"
 #include "util/rng.h"
-#include "run/run.h"
+#include "tests/parmachine.h"
 #include "mp/threads.h"
 #include "algo/tiling.h"
 #include "util/xmem.h"
@@ -469,15 +469,15 @@ static int same_tiling(const tiling *a, const tiling *b) {
          memcmp(a->col, b->col, sizeof *a->col * (size_t)(a->m + a->n + 1)) == 0;
 }
 
-static run_config config(int P, split_alloc alloc, int d) {
-  run_config rc;
-  run_config_init(&rc);
+static par_machine config(int P, split_alloc alloc, int d) {
+  par_machine rc;
+  par_machine_init(&rc);
   rc.mc.backend = MACHINE_THREADS;
   rc.mc.procs = P;
   rc.mc.sim.warn = NULL;
   rc.mc.threads.warn = NULL;
-  rc.opt.alloc = alloc;
-  rc.opt.min_diag = d;
+  rc.pc.opt.alloc = alloc;
+  rc.pc.opt.min_diag = d;
   return rc;
 }
 
@@ -506,11 +506,11 @@ static void test_par_random(rng *g) {
     for (int i = 0; i < 3; i++) {
       int procs = 1 + (pair * 3 + i) % 16, alloc = (pair + i) % 2, d = pair % 4 == 3 ? 20 : 1;
       seen[procs]++;
-      run_config rc = config(procs, (split_alloc)alloc, d);
+      par_machine rc = config(procs, (split_alloc)alloc, d);
       par_pair pr = mkpair(P, np, 0, Q, nq, 2);
       char err[300];
       runs++;
-      if (run_pairs(&rc, &pr, 1, err, sizeof err) != 0) {
+      if (par_machine_run(&rc, &pr, 1, err, sizeof err) != 0) {
         if (failed++ < 3) CHECK(0, "pair %d P=%d: %s", pair, procs, err);
         continue;
       }
@@ -547,9 +547,9 @@ static void test_par_real(void) {
     par_pair *pr = xcalloc((size_t)np, sizeof *pr);
     for (int k = 0; k < np; k++)
       pr[k] = mkpair(s.c[k].pt, s.c[k].n, s.c[k].z, s.c[k + 1].pt, s.c[k + 1].n, s.c[k + 1].z);
-    run_config rc = config(procs[c], c ? ALLOC_SIZE : ALLOC_HALF, 1);
+    par_machine rc = config(procs[c], c ? ALLOC_SIZE : ALLOC_HALF, 1);
     mpt_stats st;
-    int rcode = run_threads(&rc, pr, np, &st, err, sizeof err);
+    int rcode = par_machine_threads(&rc, pr, np, &st, err, sizeof err);
     CHECK(rcode == 0, "prostate_2 P=%d: %s", procs[c], err);
     int bad = 0;
     for (int k = 0; rcode == 0 && k < np; k++) {

@@ -32,7 +32,7 @@
 #include "sim/place.h"
 #include "tests/randprog.h"
 #include "util/rng.h"
-#include "run/run.h"
+#include "tests/parmachine.h"
 #include "sim/sim.h"
 #include "algo/tiling.h"
 #include "sim/topo.h"
@@ -953,11 +953,11 @@ static void test_par_results(void) {
     tiling ser;
     tiling_solve(P, np, 0, Q, nq, 1.5, COST_AREA, -1, &ser);
     for (size_t c = 0; c < sizeof cfgs / sizeof *cfgs; c++) {
-      run_config rc;
-      run_config_init(&rc);
+      par_machine rc;
+      par_machine_init(&rc);
       rc.mc.sim.warn = NULL;
       rc.mc.procs = cfgs[c].procs;
-      rc.opt.alloc = pair % 2 ? ALLOC_SIZE : ALLOC_HALF;
+      rc.pc.opt.alloc = pair % 2 ? ALLOC_SIZE : ALLOC_HALF;
       rc.mc.sim.hop_latency = 1e-5;
       rc.mc.sim.store_forward = cfgs[c].saf;
       char err[300];
@@ -970,7 +970,7 @@ static void test_par_results(void) {
       memset(&pr, 0, sizeof pr);
       pr.P = P, pr.np = np, pr.zp = 0, pr.Q = Q, pr.nq = nq, pr.zq = 1.5;
       runs++;
-      if (run_sim(&rc, &pr, 1, NULL, err, sizeof err) != 0) {
+      if (par_machine_sim(&rc, &pr, 1, NULL, err, sizeof err) != 0) {
         CHECK(0, "pair %d on %s/%s: %s", pair, cfgs[c].topo, cfgs[c].place, err);
         bad++;
         continue;

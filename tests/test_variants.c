@@ -15,7 +15,7 @@
 #include "input/contour.h"
 #include "input/gen.h"
 #include "util/rng.h"
-#include "run/run.h"
+#include "tests/parmachine.h"
 #include "algo/split.h"
 #include "algo/tiling.h"
 #include "util/xmem.h"
@@ -36,17 +36,17 @@ static int same_tiling(const tiling *a, const tiling *b) {
          memcmp(a->col, b->col, sizeof *a->col * (size_t)(a->m + a->n + 1)) == 0;
 }
 
-static run_config config(const variant *v, machine_backend backend) {
-  run_config rc;
-  run_config_init(&rc);
+static par_machine config(const variant *v, machine_backend backend) {
+  par_machine rc;
+  par_machine_init(&rc);
   rc.mc.backend = backend;
   rc.mc.procs = v->procs;
   rc.mc.sim.warn = NULL;
   rc.mc.threads.warn = NULL;
-  rc.opt.alloc = v->alloc;
-  rc.opt.min_diag = v->d;
-  rc.opt.block = v->block;
-  rc.opt.schedule = v->sched;
+  rc.pc.opt.alloc = v->alloc;
+  rc.pc.opt.min_diag = v->d;
+  rc.pc.opt.block = v->block;
+  rc.pc.opt.schedule = v->sched;
   return rc;
 }
 
@@ -87,8 +87,8 @@ static void random_pair(rng *g, int i, vec2 *P, int *np, vec2 *Q, int *nq) {
 /* Run one pair under v on a backend and compare with the serial solver. */
 static int one(const variant *v, machine_backend backend, const vec2 *P, int np, const vec2 *Q, int nq,
                cost_kind kind, const tiling *ser, const char *what) {
-  run_config rc = config(v, backend);
-  rc.kind = kind;
+  par_machine rc = config(v, backend);
+  rc.pc.kind = kind;
   par_pair pr;
   memset(&pr, 0, sizeof pr);
   pr.P = P, pr.np = np, pr.zp = 0, pr.Q = Q, pr.nq = nq, pr.zq = 1.5;
@@ -96,7 +96,7 @@ static int one(const variant *v, machine_backend backend, const vec2 *P, int np,
   int ok = 1;
   if (backend == MACHINE_SIM) {
     sim_stats st;
-    ok = run_sim(&rc, &pr, 1, &st, err, sizeof err) == 0;
+    ok = par_machine_sim(&rc, &pr, 1, &st, err, sizeof err) == 0;
     if (ok && (st.deadlock || st.unread || st.messages != st.received)) {
       snprintf(err, sizeof err, "messages lost or deadlock");
       ok = 0;
@@ -104,7 +104,7 @@ static int one(const variant *v, machine_backend backend, const vec2 *P, int np,
     }
   } else {
     mpt_stats st;
-    ok = run_threads(&rc, &pr, 1, &st, err, sizeof err) == 0;
+    ok = par_machine_threads(&rc, &pr, 1, &st, err, sizeof err) == 0;
     if (ok && (st.deadlock || st.unread || st.messages != st.received)) {
       snprintf(err, sizeof err, "messages lost or deadlock");
       ok = 0;
@@ -225,8 +225,8 @@ static void real(void) {
       pr[k].Q = s.c[k + 1].pt, pr[k].nq = s.c[k + 1].n, pr[k].zq = s.c[k + 1].z;
     }
     const variant *v = &cases[i].v;
-    run_config rc = config(v, cases[i].backend);
-    int rcode = run_pairs(&rc, pr, np, err, sizeof err);
+    par_machine rc = config(v, cases[i].backend);
+    int rcode = par_machine_run(&rc, pr, np, err, sizeof err);
     CHECK(rcode == 0, "%s %s on %s: %s", cases[i].name, name(v), machine_backend_name(cases[i].backend), err);
     int bad = 0;
     for (int k = 0; rcode == 0 && k < np; k++) {
@@ -262,14 +262,14 @@ static void messages(rng *g) {
     gen_star(g, Q, n, 0, 0, 9, 0.3);
     int *sends = xcalloc((size_t)T + 1, sizeof *sends), *recvs = xcalloc((size_t)T + 1, sizeof *recvs);
     variant v = {p + 1, 1, k, ALLOC_HALF, PAR_STATIC};
-    run_config rc = config(&v, MACHINE_SIM);
-    rc.opt.only_mu0 = 1;
+    par_machine rc = config(&v, MACHINE_SIM);
+    rc.pc.opt.only_mu0 = 1;
     rc.diag_sends = sends, rc.diag_recvs = recvs, rc.diag_len = T + 1;
     par_pair pr;
     memset(&pr, 0, sizeof pr);
     pr.P = P, pr.np = m, pr.zp = 0, pr.Q = Q, pr.nq = n, pr.zq = 1;
     char err[300];
-    CHECK(run_sim(&rc, &pr, 1, NULL, err, sizeof err) == 0, "p=%d k=%d: %s", p, k, err);
+    CHECK(par_machine_sim(&rc, &pr, 1, NULL, err, sizeof err) == 0, "p=%d k=%d: %s", p, k, err);
     int checked = 0, wrong = 0, inside = 0;
     long long total = 0;
     for (int t = 1; t <= T; t++) {
@@ -310,31 +310,31 @@ static void paper_times(rng *g) {
   gen_star(g, Q, nq, 1, 0, 9, 0.3);
   for (int procs = 1; procs <= 13; procs += 4)
     for (int di = 0; di < 2; di++) {
-      run_config a, b;
+      par_machine a, b;
       memset(&a, 0, sizeof a);   /* the paper's, every variant field zero */
       a.mc.procs = procs;
       sim_config_init(&a.mc.sim);
       a.mc.sim.warn = NULL;
-      a.opt.alloc = ALLOC_HALF;
-      a.opt.min_diag = ds[di];
-      a.kind = COST_AREA;
-      run_config_init(&b);
+      a.pc.opt.alloc = ALLOC_HALF;
+      a.pc.opt.min_diag = ds[di];
+      a.pc.kind = COST_AREA;
+      par_machine_init(&b);
       b.mc.backend = MACHINE_SIM;
       b.mc.sim.warn = NULL;
       char err[300], num[16];
       snprintf(num, sizeof num, "%d", procs);
-      CHECK(run_option(&b, "--procs", num, err, sizeof err) == 1, "--procs: %s", err);
+      CHECK(par_machine_option(&b, "--procs", num, err, sizeof err) == 1, "--procs: %s", err);
       snprintf(num, sizeof num, "%d", ds[di]);
-      CHECK(run_option(&b, "--min-diag", num, err, sizeof err) == 1, "--min-diag: %s", err);
+      CHECK(par_machine_option(&b, "--min-diag", num, err, sizeof err) == 1, "--min-diag: %s", err);
       for (int i = 0; i < 3; i++)
-        CHECK(run_option(&b, args[i][0], args[i][1], err, sizeof err) == 1, "%s: %s", args[i][0], err);
+        CHECK(par_machine_option(&b, args[i][0], args[i][1], err, sizeof err) == 1, "%s: %s", args[i][0], err);
       par_pair x, y;
       memset(&x, 0, sizeof x);
       x.P = P, x.np = np, x.zp = 0, x.Q = Q, x.nq = nq, x.zq = 2;
       y = x;
       sim_stats sx, sy;
-      CHECK(run_sim(&a, &x, 1, &sx, err, sizeof err) == 0, "paper P=%d: %s", procs, err);
-      CHECK(run_sim(&b, &y, 1, &sy, err, sizeof err) == 0, "options P=%d: %s", procs, err);
+      CHECK(par_machine_sim(&a, &x, 1, &sx, err, sizeof err) == 0, "paper P=%d: %s", procs, err);
+      CHECK(par_machine_sim(&b, &y, 1, &sy, err, sizeof err) == 0, "options P=%d: %s", procs, err);
       int same = x.time == y.time && x.mu0_time == y.mu0_time && same_tiling(&x.t, &y.t) &&
                  memcmp(&x.counts, &y.counts, sizeof x.counts) == 0 && sx.makespan == sy.makespan &&
                  sx.events == sy.events && sx.messages == sy.messages && sx.bytes == sy.bytes;

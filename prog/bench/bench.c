@@ -11,7 +11,8 @@
 #include "prog/bench/paper.h"
 #include "util/progname.h"
 #ifdef TILESIM_MPI
-#include "run/run_mpi.h"
+#include "algo/par_run.h"
+#include "machine/launch_mpi.h"
 #endif
 
 typedef struct {
@@ -143,7 +144,7 @@ static int bench_main(int argc, char **argv) {
 #ifdef TILESIM_MPI
 /* bench-mpi: rank 0 runs bench_main with --backend mpi the default; the
  * others serve as slaves until it is done. */
-int main(int argc, char **argv) { return run_mpi_main(argc, argv, bench_main); }
+int main(int argc, char **argv) { return launch_mpi_main(argc, argv, bench_main, par_run_serve); }
 #else
 int main(int argc, char **argv) { return bench_main(argc, argv); }
 #endif

@@ -54,7 +54,6 @@
 #include "algo/par_slave.h"
 #include "util/progname.h"
 #include "util/progress.h"
-#include "run/run.h"
 #include "mp/threads.h"
 #include "algo/tiling.h"
 #include "util/wallclock.h"
@@ -75,7 +74,7 @@ typedef struct {
   mpt_stats ts;    /* threads runs: the backend's statistics */
 } result;
 
-static int one(run_config *rc, machine_backend b, int P, const vec2 *A, const vec2 *B, int n, result *out,
+static int one(bench_machine *rc, machine_backend b, int P, const vec2 *A, const vec2 *B, int n, result *out,
                char *err, size_t errlen) {
   rc->mc.backend = b;
   rc->mc.procs = P;
@@ -83,7 +82,10 @@ static int one(run_config *rc, machine_backend b, int P, const vec2 *A, const ve
   memset(&pr, 0, sizeof pr);
   pr.P = A, pr.np = n, pr.zp = 0, pr.Q = B, pr.nq = n, pr.zq = 5;
   memset(&out->ts, 0, sizeof out->ts);
-  int res = b == MACHINE_THREADS ? run_threads(rc, &pr, 1, &out->ts, err, errlen) : run_pairs(rc, &pr, 1, err, errlen);
+  launch_extra x;
+  memset(&x, 0, sizeof x);
+  x.threads = &out->ts;   /* threads runs */
+  int res = bench_run_pairs(rc, &pr, 1, &x, err, errlen);
   if (res != 0) return -1;
   out->time = pr.time;
   out->cost = pr.t.cost;
@@ -120,17 +122,17 @@ static void model_options(const micro_model *d, double spin, double slowdown, do
            d->o_wake, slowdown, slowdown_spin);
 }
 
-/* The same, set in rc->mc.sim (through run_option, as a user's would be). */
-static void set_options(run_config *rc, const char *opts, double c) {
+/* The same, set in rc->mc.sim (through bench_option, as a user's would be). */
+static void set_options(bench_machine *rc, const char *opts, double c) {
   char buf[900], err[200];
   snprintf(buf, sizeof buf, "%s --c %.4g", opts, c);
   sim_config_init(&rc->mc.sim);
   rc->mc.sim.warn = NULL;
-  rc->table_c = rc->back_c = 0;
+  rc->pc.table_c = rc->pc.back_c = 0;
   char *save = NULL;
   for (char *o = strtok_r(buf, " ", &save); o; o = strtok_r(NULL, " ", &save)) {
     char *v = strtok_r(NULL, " ", &save);
-    if (!v || run_option(rc, o, v, err, sizeof err) != 1) xpanic("calibrate: option %s: %s", o, err);
+    if (!v || bench_option(rc, o, v, err, sizeof err) != 1) xpanic("calibrate: option %s: %s", o, err);
   }
 }
 
@@ -179,8 +181,8 @@ int bench_calibrate(int argc, char **argv) {
   unsigned long long seed = 1993;
   args_list procs = {0}, sizes = {0};
   char msg[400];
-  run_config rc;
-  run_config_init(&rc);
+  bench_machine rc;
+  bench_machine_init(&rc);
   rc.mc.sim.warn = NULL;
   rc.mc.threads.warn = NULL;
   static const char *const algo_opts[] = {"--alloc", "--min-diag", "--block", "--schedule"};
@@ -204,7 +206,7 @@ int bench_calibrate(int argc, char **argv) {
     else if (strcmp(a, "--messages") == 0)
       bad = args_long(a, v, 10, 100000000, &x, msg, sizeof msg), messages = (int)x;
     else if (strcmp(a, "--seed") == 0) bad = args_u64(a, v, 0, ULLONG_MAX, &seed, msg, sizeof msg);
-    else bad = run_option(&rc, a, v, msg, sizeof msg) != 1;   /* one of algo_opts */
+    else bad = bench_option(&rc, a, v, msg, sizeof msg) != 1;   /* one of algo_opts */
     if (bad) return usage(msg, NULL);
   }
   if (procs.n == 0) args_list_parse("--procs", "1,2,3", 1, 1, 64, &procs, msg, sizeof msg);

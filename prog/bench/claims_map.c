@@ -36,7 +36,6 @@
 #include "prog/bench/paper.h"
 #include "input/contour.h"
 #include "util/progname.h"
-#include "run/run.h"
 #include "util/xmem.h"
 
 static const char map_usage[] =
@@ -54,7 +53,7 @@ typedef struct {
   const char *input;
   int jobs;
   const char *out;
-  run_config base;
+  bench_machine base;
 } map_opts;
 
 /* Options that would change what the map judges, or that it cannot record. */
@@ -69,7 +68,7 @@ static int refused(const char *a) {
 
 static int parse(int argc, char **argv, map_opts *o) {
   memset(o, 0, sizeof *o);
-  run_config_init(&o->base);
+  bench_machine_init(&o->base);
   o->base.mc.backend = MACHINE_SIM;
   o->jobs = 1;
   char err[300];
@@ -79,8 +78,8 @@ static int parse(int argc, char **argv, map_opts *o) {
     if (refused(a)) return usage("the claims map runs the paper's setup on --net's machines; it does not take", a);
     if (!v) {
       static const char *const own[] = {"--net", "--m", "--c", "--seed", "--pair", "--points", "--input", "--jobs", "-o"};
-      run_config scratch = o->base;
-      int known = run_option(&scratch, a, "", err, sizeof err) != 0;
+      bench_machine scratch = o->base;
+      int known = bench_option(&scratch, a, "", err, sizeof err) != 0;
       for (size_t k = 0; k < sizeof own / sizeof *own; k++) known |= strcmp(a, own[k]) == 0;
       return usage(known ? "an option needs a value" : "unknown option", a);
     }
@@ -114,7 +113,7 @@ static int parse(int argc, char **argv, map_opts *o) {
       bad = args_name(a, v, "a file name", 0, err, sizeof err);
       o->out = v;
     } else {
-      int k = run_option(&o->base, a, v, err, sizeof err);
+      int k = bench_option(&o->base, a, v, err, sizeof err);
       if (k == 0) return usage("unknown option", a);
       bad = k < 0;
     }
@@ -207,7 +206,7 @@ int bench_claims_map(int argc, char **argv) {
             largest[k] = stack.c[cf->pair].n;
           }
           par_options po;
-          if (run_par_options(&cf->rc, &po, err, sizeof err) != 0) {
+          if (par_config_prices(&cf->rc.pc, cf->rc.mc.sim.c, &po, err, sizeof err) != 0) {
             free(cfg), free(largest);
             contour_stack_free(&stack);
             return usage(err, NULL);
@@ -265,7 +264,7 @@ int bench_claims_map(int argc, char **argv) {
     fprintf(f, "%s,%.9g,%.9g", sim_net_name(mc->net), m, mc->c);
     if (mc->c > 0) fprintf(f, ",%.9g", m / mc->c);
     else fputs(",n/a", f);
-    fprintf(f, ",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,", mc->L, mc->o, mc->g, mc->G, mc->per_byte, run_master_c(&cfg[c].rc));
+    fprintf(f, ",%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,", mc->L, mc->o, mc->g, mc->G, mc->per_byte, par_config_master_c(&cfg[c].rc.pc, cfg[c].rc.mc.sim.c));
     if (cfg[c].input) fprintf(f, "%s,%d,n/a,%d", o.input, cfg[c].pair, v.points);
     else fprintf(f, "generated,n/a,%llu,%d", cfg[c].seed, v.points);
     for (int q = 1; q <= 7; q++) field_claim(f, v.holds[q]);

@@ -22,7 +22,7 @@
 #include "input/contour.h"
 #include "input/gen.h"
 #include "util/progname.h"
-#include "run/run.h"
+#include "prog/bench/paper.h"
 #include "util/xmem.h"
 
 static const char model_usage[] =
@@ -37,23 +37,23 @@ static int usage(const char *line, const char *why, const char *arg) { return ar
 int bench_model(int argc, char **argv) {
   args_list diags = {0}, procs = {0};
   const char *outpath = NULL;
-  run_config rc;
-  run_config_init(&rc);
+  bench_machine rc;
+  bench_machine_init(&rc);
   char err[400];
   for (int i = 2; i < argc; i += 2) {   /* every option takes a value */
     const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
     int bad = 0;
-    if (strcmp(a, "--backend") == 0)   /* run_option takes it; the model is the simulator's */
+    if (strcmp(a, "--backend") == 0)   /* bench_option takes it; the model is the simulator's */
       return usage(model_usage, "--model runs the simulated machine; it does not take", a);
-    run_config scratch = rc;
-    int theirs = strcmp(a, "--procs") != 0 && run_option(&scratch, a, "", err, sizeof err) != 0;
+    bench_machine scratch = rc;
+    int theirs = strcmp(a, "--procs") != 0 && bench_option(&scratch, a, "", err, sizeof err) != 0;
     if (strcmp(a, "--diag") != 0 && strcmp(a, "--procs") != 0 && strcmp(a, "-o") != 0 && !theirs)
       return usage(model_usage, a[0] == '-' ? "unknown option" : "unexpected argument", a);
     if (!v) return usage(model_usage, "an option needs a value", a);
     if (strcmp(a, "--diag") == 0) bad = args_list_parse(a, v, 1, 4, 5000, &diags, err, sizeof err);
     else if (strcmp(a, "--procs") == 0) bad = args_list_parse(a, v, 1, 1, MACHINE_MAX_PROCS, &procs, err, sizeof err);
     else if (strcmp(a, "-o") == 0) bad = args_name(a, v, "a file name", 0, err, sizeof err), outpath = v;
-    else bad = run_option(&rc, a, v, err, sizeof err) < 0;
+    else bad = bench_option(&rc, a, v, err, sizeof err) < 0;
     if (bad) return usage(model_usage, err, NULL);
   }
   if (diags.n == 0) args_list_parse("--diag", "100,250,500", 1, 4, 5000, &diags, err, sizeof err);
@@ -77,15 +77,16 @@ int bench_model(int argc, char **argv) {
     gen_star(&g, P, m, 0, 0, 100, 0.3);
     gen_star(&g, Q, n, 1, -1, 95, 0.3);
     for (int j = 0; j < procs.n && !status; j++) {
-      run_config r = rc;
+      bench_machine r = rc;
       r.mc.procs = (int)procs.v[j];
-      r.opt.only_mu0 = 1;
+      r.pc.opt.only_mu0 = 1;
       r.mc.sim.warn = NULL;
+      r.mc.backend = MACHINE_SIM;   /* the model's, in an MPI build too */
       int p = r.mc.procs < 2 ? 1 : r.mc.procs - 1;
       par_pair pr;
       memset(&pr, 0, sizeof pr);
       pr.P = P, pr.np = m, pr.zp = 0, pr.Q = Q, pr.nq = n, pr.zq = 5;
-      if (run_sim(&r, &pr, 1, NULL, err, sizeof err) != 0) {
+      if (bench_run_pairs(&r, &pr, 1, NULL, err, sizeof err) != 0) {
         progname_eprintf("bench: the run on %d processors failed: %s\n", r.mc.procs, err);
         status = 1;
         break;

@@ -49,7 +49,7 @@ int bench_places_parse(const char *s, bench_places *out, char *err, size_t errle
   return each(s, "--place", take_place, out, &out->n, err, errlen);
 }
 
-void bench_net_fields(FILE *f, const run_config *rc, const net_stats *ns) {
+void bench_net_fields(FILE *f, const bench_machine *rc, const net_stats *ns) {
   char tn[64], pn[PLACE_PATH_MAX + 16];
   const sim_config *c = &rc->mc.sim;
   place_spec_str(&rc->mc.place, pn, sizeof pn);

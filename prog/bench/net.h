@@ -7,7 +7,7 @@
 
 #include "sim/link.h"
 #include "sim/place.h"
-#include "run/run.h"
+#include "prog/bench/paper.h"
 #include "sim/topo.h"
 
 enum { BENCH_NET_MAX = 16 };
@@ -37,6 +37,6 @@ extern const char bench_net_header[];
 
 /* Those fields for a run under rc (the run's machine and placement), with
  * its network statistics ns (NULL: none). */
-void bench_net_fields(FILE *f, const run_config *rc, const net_stats *ns);
+void bench_net_fields(FILE *f, const bench_machine *rc, const net_stats *ns);
 
 #endif

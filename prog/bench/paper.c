@@ -45,7 +45,6 @@
 #include "input/gen.h"
 #include "util/progname.h"
 #include "util/progress.h"
-#include "run/run.h"
 #include "util/wallclock.h"
 #include "util/xmem.h"
 
@@ -90,7 +89,7 @@ typedef struct {   /* what a run sends back to the parent */
 typedef struct {
   const job *jobs;
   int njobs;
-  run_config base;
+  bench_machine base;
   unsigned long long seed;
   int repeat;          /* runs per job; the fastest is reported */
   contour_stack *input;
@@ -100,6 +99,27 @@ typedef struct {
   const bench_cfg *cfgs;   /* bench_sweep_runs: each job's machine and pair, by
                               its pairid; NULL: base, seed, input and pair */
 } plan;
+
+void bench_machine_init(bench_machine *bm) {
+  machine_config_init(&bm->mc);
+  par_config_init(&bm->pc);
+}
+
+int bench_option(bench_machine *bm, const char *opt, const char *val, char *err, size_t errlen) {
+  int k = par_config_option(&bm->pc, opt, val, err, errlen);
+  return k ? k : machine_option(&bm->mc, opt, val, err, errlen);
+}
+
+int bench_run_pairs(const bench_machine *bm, par_pair *pairs, int npairs, launch_extra *x, char *err,
+                    size_t errlen) {
+  machine_config mc = bm->mc;
+  mc.trace = NULL;
+  launch_extra none;
+  memset(&none, 0, sizeof none);
+  launch_job lj = {&mc, x ? x : &none, NULL};
+  par_run r = {&bm->pc, mc.sim.c, mc.procs, launch_period_end, lj.x, NULL, NULL, 0, launch_job_run, &lj};
+  return par_run_pairs(&r, pairs, npairs, err, errlen);
+}
 
 void bench_make_pair(unsigned long long seed, int points, vec2 **P, vec2 **Q) {
   rng g;
@@ -132,7 +152,7 @@ static int make_pair(const plan *pl, const job *jb, vec2 **P, int *np, double *z
 }
 
 /* The job's topology and placement into rc. */
-static void job_net(const plan *pl, const job *jb, run_config *rc) {
+static void job_net(const plan *pl, const job *jb, bench_machine *rc) {
   if (pl->topos->n) {
     rc->mc.sim.topo = pl->topos->v[jb->topo];
     rc->mc.sim.net = SIM_NET_TOPOLOGY;
@@ -148,29 +168,31 @@ static outcome one_run(const plan *pl, const job *jb) {
   int np, nq;
   double zp, zq;
   int real = make_pair(pl, jb, &P, &np, &zp, &Q, &nq, &zq);
-  run_config rc = pl->cfgs ? pl->cfgs[jb->pairid].rc : pl->base;
+  bench_machine rc = pl->cfgs ? pl->cfgs[jb->pairid].rc : pl->base;
   rc.mc.procs = jb->procs;
-  rc.opt.alloc = (split_alloc)jb->alloc;
-  rc.opt.min_diag = jb->d;
-  rc.opt.block = jb->block;
-  rc.opt.schedule = (par_schedule)jb->sched;
+  rc.pc.opt.alloc = (split_alloc)jb->alloc;
+  rc.pc.opt.min_diag = jb->d;
+  rc.pc.opt.block = jb->block;
+  rc.pc.opt.schedule = (par_schedule)jb->sched;
   rc.mc.sim.m = jb->m;
   rc.mc.sim.c = jb->c;
   rc.mc.sim.warn = NULL;
   job_net(pl, jb, &rc);
-  rc.pair_net = &o.net;
+  launch_extra x;
+  memset(&x, 0, sizeof x);
+  x.periods = &o.net, x.nperiods = 1;
   par_pair pr;
   memset(&pr, 0, sizeof pr);
   pr.P = P, pr.np = np, pr.zp = zp, pr.Q = Q, pr.nq = nq, pr.zq = zq;
   double t0 = wallclock();
-  o.ok = run_pairs(&rc, &pr, 1, o.err, sizeof o.err) == 0;
+  o.ok = bench_run_pairs(&rc, &pr, 1, &x, o.err, sizeof o.err) == 0;
   o.wall = wallclock() - t0;
   if (o.ok) {
     o.sim_time = pr.time;
     o.cost = pr.t.cost;
     o.nodes = pr.counts.nodes;
     for (int k = 0; k < PAR_KINDS; k++) o.msgs[k] = pr.counts.msgs[k], o.bytes += pr.counts.bytes[k];
-    o.idle = pr.counts.idle / (run_ranks(jb->procs) - 1);
+    o.idle = pr.counts.idle / (par_ranks(jb->procs) - 1);
     tiling_free(&pr.t);
   }
   if (!real) free(P), free(Q);
@@ -365,8 +387,8 @@ int bench_paper(int argc, char **argv) {
   bench_variant var[BENCH_VARIANTS_MAX];
   const char *outpath = NULL, *input = NULL;
   unsigned long long seed = 1993;
-  run_config rc;
-  run_config_init(&rc);
+  bench_machine rc;
+  bench_machine_init(&rc);
   char err[400];
   static bench_topos topos;
   static bench_places places;
@@ -386,11 +408,11 @@ int bench_paper(int argc, char **argv) {
       continue;
     }
     if (!v) {
-      run_config scratch = rc;
+      bench_machine scratch = rc;
       static const char *const own[] = {"--procs", "--points", "--min-diag", "--m", "--c", "--alloc",
                                         "--seed", "--jobs", "--repeat", "--input", "--pair", "-o",
                                         "--topology", "--place", "--block", "--schedule", "--variant"};
-      int known = run_option(&scratch, a, "", err, sizeof err) != 0;
+      int known = bench_option(&scratch, a, "", err, sizeof err) != 0;
       for (size_t k = 0; k < sizeof own / sizeof *own; k++) known |= strcmp(a, own[k]) == 0;
       return usage_arg(known ? "an option needs a value" : "unknown option", a);
     }
@@ -414,7 +436,7 @@ int bench_paper(int argc, char **argv) {
       bad = args_list_parse(a, v, 0, 0, 1e9, a[2] == 'm' ? &ms : &cs, err, sizeof err);
     } else if (strcmp(a, "--alloc") == 0) {
       char words[200];
-      run_alloc_words(words, sizeof words);
+      par_config_alloc_words(words, sizeof words);
       int idx[8], nwords = 1;
       for (const char *w = words; *w; w++) nwords += *w == '|';
       nalloc = args_word_list(a, v, words, idx, nwords < 8 ? nwords : 8, err, sizeof err);
@@ -468,7 +490,7 @@ int bench_paper(int argc, char **argv) {
       bad = args_name(a, v, "a file name", 0, err, sizeof err);
       outpath = v;
     } else {
-      int k = run_option(&rc, a, v, err, sizeof err);
+      int k = bench_option(&rc, a, v, err, sizeof err);
       if (k == 0) return usage_arg("unknown option", a);
       bad = k < 0;
       net_given |= strcmp(a, "--net") == 0;
@@ -502,10 +524,10 @@ int bench_paper(int argc, char **argv) {
   }
   if (procs.n == 0) args_list_parse("--procs", "1..16", 1, 1, MACHINE_MAX_PROCS, &procs, err, sizeof err);
   for (int i = 0; limit > 0 && i < procs.n; i++)
-    if (run_ranks((int)procs.v[i]) > limit) {
+    if (par_ranks((int)procs.v[i]) > limit) {
       char msg[160];
       snprintf(msg, sizeof msg, "--procs %d needs %d ranks; the %s run has %d", (int)procs.v[i],
-               run_ranks((int)procs.v[i]), machine_backend_name(rc.mc.backend), limit);
+               par_ranks((int)procs.v[i]), machine_backend_name(rc.mc.backend), limit);
       return usage(msg);
     }
   if (points.n == 0) args_list_parse("--points", "100,200,300,400,500", 1, 3, 100000, &points, err, sizeof err);
@@ -563,14 +585,14 @@ int bench_paper(int argc, char **argv) {
   for (int i = 0; i < njobs; i += per) {
     if (seen[jb[i].topo][jb[i].place]) continue;
     seen[jb[i].topo][jb[i].place] = 1;
-    run_config jr = rc;
+    bench_machine jr = rc;
     job_net(&pl, &jb[i], &jr);
     for (int p = 0; p < per; p++) {
-      int P = jb[i + p].procs, nodes, *where = xmallocarray((size_t)run_ranks(P), sizeof *where);
+      int P = jb[i + p].procs, nodes, *where = xmallocarray((size_t)par_ranks(P), sizeof *where);
       jr.mc.procs = P;
-      int bad = machine_place(&jr.mc, run_ranks(P), where, &nodes, err, sizeof err) != 0 ||
+      int bad = machine_place(&jr.mc, par_ranks(P), where, &nodes, err, sizeof err) != 0 ||
                 (print_place && !jb[i + p].hidden &&
-                 machine_print_place(stderr, &jr.mc, run_ranks(P), err, sizeof err) != 0);
+                 machine_print_place(stderr, &jr.mc, par_ranks(P), err, sizeof err) != 0);
       free(where);
       if (bad) {
         free(jb);
@@ -620,7 +642,7 @@ int bench_paper(int argc, char **argv) {
     double sp = t1 / o[i].sim_time;
     uint64_t msgs = 0;
     for (int q = 0; q < PAR_KINDS; q++) msgs += o[i].msgs[q];
-    run_config jr = rc;   /* the job's machine */
+    bench_machine jr = rc;   /* the job's machine */
     job_net(&pl, &jb[i], &jr);
     char machine[96] = ",,";   /* net, m, c: the simulated machine's, or empty */
     if (rc.mc.backend == MACHINE_SIM)
@@ -659,9 +681,9 @@ int bench_sweep_runs(const bench_cfg *cfgs, const bench_run *runs, int n, int jo
   static const bench_places noplace;
   job *jb = xmallocarray((size_t)(n > 0 ? n : 1), sizeof *jb);
   for (int i = 0; i < n; i++) {
-    const run_config *rc = &cfgs[runs[i].cfg].rc;
+    const bench_machine *rc = &cfgs[runs[i].cfg].rc;
     jb[i] = (job){runs[i].points, runs[i].procs, runs[i].alloc, runs[i].d, 0, runs[i].cfg, rc->mc.sim.m,
-                  rc->mc.sim.c, 0, 0, rc->opt.block, (int)rc->opt.schedule};
+                  rc->mc.sim.c, 0, 0, rc->pc.opt.block, (int)rc->pc.opt.schedule};
   }
   plan pl = {jb, n, cfgs[0].rc, 0, 1, NULL, 0, &notopo, &noplace, cfgs};
   outcome *o = xcalloc((size_t)(n > 0 ? n : 1), sizeof *o);
