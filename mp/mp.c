@@ -1,6 +1,7 @@
 /* mp.c -- the message-passing calls, dispatched to the backend behind the
  * handle; the calling rank (mp_self) and the way out of a rank (mp_exit). */
 #include "mp/mp.h"
+#include "mp/backend.h"
 
 #include <setjmp.h>
 #include <stdio.h>
@@ -44,6 +45,8 @@ int mp_wait(mp *self, int src, int tag, mp_status *st) { HOOKED(int, self, self-
 int mp_busy(mp *self, double seconds) { HOOKED(int, self, self->ops->busy(self, seconds)); }
 
 int mp_sleep(mp *self, double seconds) { HOOKED(int, self, self->ops->sleep_for(self, seconds)); }
+
+int mp_charge(mp *self, double seconds) { return self->ops->busy(self, seconds); }
 
 /* ==== messages without copies ============================================= */
 
@@ -164,6 +167,16 @@ const char *mp_label_text(const mp *self, char *buf, size_t len) {
 void mp_set_progress(mp *self, mp_progress fn, void *ud) {
   self->progress = fn;
   self->progress_ud = ud;
+}
+
+int mp_progressing(const mp *self) { return self->progress != NULL; }
+
+int mp_traced(const mp *self) { return self->traced; }
+
+void mp_stack(const mp *self, void **lo, size_t *size, void **guard) {
+  *lo = self->stack_lo;
+  *size = self->stack_size;
+  *guard = self->stack_guard;
 }
 
 void mp_call_begin(mp *self, const char *name) {

@@ -31,6 +31,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "mp/backend.h"
 #include "mp/cpuload.h"
 #include "util/errlog.h"
 #include "util/xmem.h"

@@ -67,6 +67,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "mp/backend.h"
 #include "mp/chan.h"
 #include "mp/cpuload.h"
 #include "util/errlog.h"

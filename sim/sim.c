@@ -36,6 +36,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mp/backend.h"
 #include "sim/coro.h"
 #include "sim/evq.h"
 #include "util/errlog.h"
