@@ -14,6 +14,7 @@
 
 #include "machine/machine.h"
 #include "machine/tilesim.h"
+#include "mp/stats.h"
 
 /* The simulator of mc for nranks ranks, placed by machine_place (no trace:
  * launch_run adds mc's).  NULL and a message if it cannot be built. */
@@ -28,5 +29,9 @@ sim *launch_sim_new(const machine_config *mc, int nranks, char *err, size_t errl
  * runs only its own rank; rank 0's statistics are the whole run's. */
 int launch_run(const machine_config *mc, int nranks, const mp_proc *procs, tilesim_stats *st,
                char *err, size_t errlen);
+
+/* Into *st: the figures every backend counts of a run (mp/stats.h: the
+ * messages, bytes and unread ones, a deadlock, an abort's code). */
+void launch_stats_run(tilesim_stats *st, const mp_stats *run);
 
 #endif

@@ -29,11 +29,8 @@ int launch_mpi_run(const machine_config *mc, int nranks, const mp_proc *procs, t
   if (m) {
     res = mpm_run(m, procs[me].main, procs[me].ud, err, errlen);
     const mpm_stats *ms = mpm_stats_get(m);
+    launch_stats_run(st, &ms->run);
     st->makespan = ms->wall_s;
-    st->messages = ms->messages;
-    st->bytes = ms->bytes;
-    st->unread = ms->unread;
-    st->deadlock = ms->deadlock;
     mpm_free(m);
   }
   MPI_Comm_free(&ctl);

@@ -56,6 +56,7 @@
  * a race. */
 #include "mp/threads.h"
 
+#include <limits.h>
 #include <math.h>
 #include <pthread.h>
 #include <sched.h>
@@ -70,7 +71,6 @@
 #include "mp/backend.h"
 #include "mp/chan.h"
 #include "mp/cpuload.h"
-#include "util/errlog.h"
 #include "util/wallclock.h"
 #include "util/xmem.h"
 
@@ -127,44 +127,28 @@ struct mpt {
   pthread_mutex_t g;
   int live;                    /* ranks whose main has not returned */
   int sleeping;                /* ranks sleeping in recv without a matching message */
-  errlog errs;                 /* the errors quoted in mpt_run's message */
+  mp_log log;                  /* errors (quoted in mpt_run's message) and warnings */
   int ran;
   mpt_stats st;                /* errors and warnings under g; the rest after the run */
 };
 
 /* ==== errors and warnings ================================================= */
 
-#if defined(__GNUC__)
-#define PRINTF(a, b) __attribute__((format(printf, a, b)))
-#else
-#define PRINTF(a, b)
-#endif
-
-static void add_error_locked(mpt *t, const char *text, int always) {
-  t->st.errors++;
-  errlog_add(&t->errs, text, always);
-}
-
-static PRINTF(2, 3) void fail(mpt *t, const char *fmt, ...) {
-  char buf[256];
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(buf, sizeof buf, fmt, ap);
-  va_end(ap);
+/* The run's log (backend.h) is the machine's, under g. */
+static void fail_text(mpt *t, const char *text, int always) {
   pthread_mutex_lock(&t->g);
-  add_error_locked(t, buf, 0);
+  mp_fail_text(&t->log, text, always);
   pthread_mutex_unlock(&t->g);
 }
 
-static PRINTF(2, 3) void warn(mpt *t, const char *fmt, ...) {
+static MP_PRINTF(2, 3) void warn(mpt *t, const char *fmt, ...) {
   char buf[256];
   va_list ap;
   va_start(ap, fmt);
   vsnprintf(buf, sizeof buf, fmt, ap);
   va_end(ap);
   pthread_mutex_lock(&t->g);
-  t->st.warnings++;
-  if (t->cfg.warn) fprintf(t->cfg.warn, "threads: warning: %s\n", buf);
+  mp_warn(&t->log, "%s", buf);
   pthread_mutex_unlock(&t->g);
 }
 
@@ -254,20 +238,11 @@ static int news_mark(rank *r, int src) {
 
 /* ==== waking, and the deadlock check ====================================== */
 
-static const char *peer_name(int v, char *buf, size_t len) {
-  if (v < 0) return "any";
-  snprintf(buf, len, "%d", v);
-  return buf;
-}
-
 /* Every live rank sleeps in recv (caller holds g): stop the run, mark the
  * sleepers deadlocked, say who waits for what. */
 static void declare_deadlock_locked(mpt *t) {
-  enum { SHOWN = 16 };
-  size_t cap = 64 + SHOWN * 64, len = 0;
-  char *buf = xmalloc(cap), a[16], b[16], what[160];
-  len += (size_t)snprintf(buf, cap, "deadlock after %.6f s:", wallclock() - t->t0);
-  int blocked = 0;
+  mp_deadlock d;
+  mp_deadlock_begin(&d, "deadlock after %.6f s:", wallclock() - t->t0);
   for (int i = 0; i < t->n; i++) {
     rank *r = &t->ranks[i];
     /* sleeping and wait_* are written under r->mu and g together (wait_*
@@ -275,24 +250,15 @@ static void declare_deadlock_locked(mpt *t) {
      * is read by its rank only once the run has stopped. */
     if (!atomic_load_explicit(&r->sleeping, memory_order_relaxed)) continue;
     r->deadlocked = 1;
-    if (blocked++ >= SHOWN) continue;
     /* The label is the sleeper's, set before it went to sleep (under its
      * mutex, which it took after: the store is visible here). */
-    const char *label = mp_label_text(&r->base, what, sizeof what);
-    if (cap - len < 200) buf = xrealloc(buf, cap *= 2);
-    if (label)
-      len += (size_t)snprintf(buf + len, cap - len, "%s rank %d waits in %s", blocked > 1 ? ";" : "", i,
-                              label);
-    else
-      len += (size_t)snprintf(buf + len, cap - len, "%s rank %d waits in recv(src=%s, tag=%s)",
-                              blocked > 1 ? ";" : "", i, peer_name(r->wait_src, a, sizeof a),
-                              peer_name(r->wait_tag, b, sizeof b));
+    mp_deadlock_rank(&d, &r->base, r->wait_src, r->wait_tag);
   }
-  if (blocked > SHOWN) snprintf(buf + len, cap - len, "; and %d more ranks", blocked - SHOWN);
   t->st.deadlock = 1;
   atomic_store(&t->stopped, 1);
-  add_error_locked(t, buf, 1);   /* always quoted: it is often the consequence of the others */
-  free(buf);
+  char *text = mp_deadlock_end(&d);
+  mp_fail_text(&t->log, text, 1);   /* always quoted: it is often the consequence of the others */
+  free(text);
 }
 
 /* After a stop: wake every sleeper so that it sees it (holding no lock). */
@@ -347,13 +313,11 @@ static int progress_now(rank *r) {
   return MP_OK;
 }
 
-static int mpt_compute(mp *self, double units) {
+/* mp_compute and mp_busy: nothing to charge but the progress function. */
+static int mpt_compute(mp *self, double amount) {
   rank *r = (rank *)self;
+  (void)amount;
   if (stopped(r->t)) return MP_ESTOPPED;
-  if (!(units >= 0) || isinf(units)) {
-    fail(r->t, "rank %d: mp_compute(%g): units must be finite and >= 0", r->base.rank, units);
-    return MP_EARG;
-  }
   return progress_now(r);
 }
 
@@ -379,18 +343,6 @@ static int send_msg(mp *self, int dst, int tag, const void *buf, size_t len, mp_
   rank *r = (rank *)self;
   mpt *t = r->t;
   if (stopped(t)) return MP_ESTOPPED;
-  if (dst < 0 || dst >= t->n) {
-    fail(t, "rank %d: mp_send to rank %d, which does not exist (%d ranks)", r->base.rank, dst, t->n);
-    return MP_ERANK;
-  }
-  if (tag < 0) {
-    fail(t, "rank %d: mp_send to rank %d with tag %d: tags are >= 0", r->base.rank, dst, tag);
-    return MP_EARG;
-  }
-  if (len && !buf) {
-    fail(t, "rank %d: mp_send of %zu bytes from a NULL buffer", r->base.rank, len);
-    return MP_EARG;
-  }
   rank *d = &t->ranks[dst];
   if (ref) {
     ticket *k;
@@ -426,20 +378,6 @@ static int mpt_withdraw(mp *self, mp_ref *ref) {
   if (ticket_withdraw(k)) return 1;
   relist(r, k);
   return 0;
-}
-
-/* Check recv's and probe's source and tag. */
-static int check_match_args(rank *r, const char *call, int src, int tag) {
-  mpt *t = r->t;
-  if (src < MP_ANY || src >= t->n) {
-    fail(t, "rank %d: %s from rank %d, which does not exist (%d ranks)", r->base.rank, call, src, t->n);
-    return MP_ERANK;
-  }
-  if (tag < MP_ANY) {
-    fail(t, "rank %d: %s with tag %d: tags are >= 0 or MP_ANY", r->base.rank, call, tag);
-    return MP_EARG;
-  }
-  return MP_OK;
 }
 
 /* Copy the message f out to the caller and take it. */
@@ -613,14 +551,8 @@ static int mpt_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status
   rank *r = (rank *)self;
   mpt *t = r->t;
   if (stopped(t)) return MP_ESTOPPED;
-  int rc = check_match_args(r, "mp_recv", src, tag);
-  if (rc != MP_OK) return rc;
-  if (cap && !buf) {
-    fail(t, "rank %d: mp_recv into a NULL buffer of %zu bytes", r->base.rank, cap);
-    return MP_EARG;
-  }
   found f;
-  rc = arrived(r, src, tag, &f);
+  int rc = arrived(r, src, tag, &f);
   return rc == MP_OK ? deliver(r, f, buf, cap, st) : rc;
 }
 
@@ -637,8 +569,7 @@ typedef struct {
 static int mpt_recv_msg(mp *self, int src, int tag, mp_msg **msg, mp_status *st) {
   rank *r = (rank *)self;
   if (stopped(r->t)) return MP_ESTOPPED;
-  int rc = check_match_args(r, "mp_recv_msg", src, tag);
-  if (rc != MP_OK) return rc;
+  int rc;
   found f;
   if ((rc = arrived(r, src, tag, &f)) != MP_OK) return rc;
   rec *x = f.x;
@@ -707,10 +638,8 @@ static void show(rank *r, found f, int src, int tag, mp_status *st) {
 static int mpt_wait(mp *self, int src, int tag, mp_status *st) {
   rank *r = (rank *)self;
   if (stopped(r->t)) return MP_ESTOPPED;
-  int rc = check_match_args(r, "mp_wait", src, tag);
-  if (rc != MP_OK) return rc;
   found f;
-  rc = arrived(r, src, tag, &f);
+  int rc = arrived(r, src, tag, &f);
   if (rc == MP_OK) show(r, f, src, tag, st);
   return rc;
 }
@@ -718,8 +647,6 @@ static int mpt_wait(mp *self, int src, int tag, mp_status *st) {
 static int mpt_probe(mp *self, int src, int tag, mp_status *st) {
   rank *r = (rank *)self;
   if (stopped(r->t)) return MP_ESTOPPED;
-  int rc = check_match_args(r, "mp_probe", src, tag);
-  if (rc != MP_OK) return rc;
   found f = look(r, src, tag);
   if (!f.x) return 0;
   show(r, f, src, tag, st);
@@ -728,23 +655,9 @@ static int mpt_probe(mp *self, int src, int tag, mp_status *st) {
 
 static double mpt_time(const mp *self) { return wallclock() - ((const rank *)self)->t->t0; }
 
-static int mpt_busy(mp *self, double seconds) {
-  rank *r = (rank *)self;
-  if (stopped(r->t)) return MP_ESTOPPED;
-  if (!(seconds >= 0) || isinf(seconds)) {
-    fail(r->t, "rank %d: mp_busy(%g): seconds must be finite and >= 0", r->base.rank, seconds);
-    return MP_EARG;
-  }
-  return progress_now(r);
-}
-
 static int mpt_sleep(mp *self, double seconds) {
   rank *r = (rank *)self;
   if (stopped(r->t)) return MP_ESTOPPED;
-  if (!(seconds >= 0) || seconds > 1e9) {
-    fail(r->t, "rank %d: mp_sleep(%g): seconds must be from 0 to 1e9", r->base.rank, seconds);
-    return MP_EARG;
-  }
   struct timespec ts = {(time_t)seconds, (long)((seconds - (double)(time_t)seconds) * 1e9)};
   while (nanosleep(&ts, &ts) != 0 && !stopped(r->t)) {
   }
@@ -760,18 +673,28 @@ static void mpt_stop(mp *self, int code, const char *why) {
     t->st.aborted = 1;
     t->st.abort_code = code;
   }
-  add_error_locked(t, why ? why : "aborted", 0);
+  mp_fail_text(&t->log, why ? why : "aborted", 0);
   atomic_store(&t->stopped, 1);
   pthread_mutex_unlock(&t->g);
   wake_all(t);
 }
 
+/* A call mp.c found a bad argument in. */
+static int mpt_reject(mp *self, int code, const char *why) {
+  mpt *t = ((rank *)self)->t;
+  if (stopped(t)) return MP_ESTOPPED;
+  fail_text(t, why, 0);
+  return code;
+}
+
 /* Promises: none here (the receiver takes a message when it comes, often
  * before its sender settles it; where not, the settle copies it out). */
-static const mp_ops mpt_ops = {mpt_send,     mpt_recv,   mpt_probe,    mpt_compute,  mpt_time,
-                               mpt_wait,     mpt_busy,   mpt_sleep,    mpt_stop,     NULL,
-                               mpt_send_ref, mpt_settle, mpt_withdraw, mpt_recv_msg, mpt_msg_read,
-                               mpt_msg_gone, NULL,       NULL,         NULL,         NULL};
+static const mp_ops mpt_ops = {.send = mpt_send, .recv = mpt_recv, .probe = mpt_probe, .compute = mpt_compute,
+                               .time = mpt_time, .wait = mpt_wait, .busy = mpt_compute,
+                               .sleep_for = mpt_sleep, .stop = mpt_stop, .send_ref = mpt_send_ref,
+                               .settle = mpt_settle, .withdraw = mpt_withdraw, .recv_msg = mpt_recv_msg,
+                               .msg_read = mpt_msg_read, .msg_gone = mpt_msg_gone, .reject = mpt_reject,
+                               .tag_max = INT_MAX, .sleep_bounded = 1};
 
 /* ==== the machine ========================================================= */
 
@@ -813,6 +736,7 @@ mpt *mpt_new(const mpt_config *cfg, int nranks, char *err, size_t errlen) {
   pthread_mutex_init(&t->gate_mu, NULL);
   pthread_cond_init(&t->gate_cv, NULL);
   t->st.ranks = nranks;
+  t->log = (mp_log){.name = "threads", .warn = cfg->warn, .st = &t->st.run};
   return t;
 }
 
@@ -895,9 +819,7 @@ int mpt_run(mpt *t, const mp_proc *procs, char *err, size_t errlen) {
       char buf[160];
       snprintf(buf, sizeof buf, "mpt_run: cannot start the thread of rank %d of %d (%s)", made, t->n,
                strerror(e));
-      pthread_mutex_lock(&t->g);
-      add_error_locked(t, buf, 1);
-      pthread_mutex_unlock(&t->g);
+      fail_text(t, buf, 1);
       break;
     }
   }
@@ -919,7 +841,7 @@ int mpt_run(mpt *t, const mp_proc *procs, char *err, size_t errlen) {
     t->st.wakes += rs->wakes;
     t->st.wake_s += rs->wake_s;
   }
-  return errlog_report(&t->errs, t->st.errors, err, errlen);
+  return mp_log_report(&t->log, err, errlen);
 }
 
 const mpt_rank_stats *mpt_rank(const mpt *t, int i) {
@@ -951,6 +873,6 @@ void mpt_free(mpt *t) {
   pthread_mutex_destroy(&t->gate_mu);
   pthread_cond_destroy(&t->gate_cv);
   free(t->ranks);
-  errlog_free(&t->errs);
+  mp_log_free(&t->log);
   free(t);
 }

@@ -105,6 +105,7 @@
 #include <stdio.h>
 
 #include "mp/mp.h"
+#include "mp/stats.h"
 
 typedef struct {
   long spin_ns;   /* how long a waiting recv watches its channels before it
@@ -150,19 +151,11 @@ typedef struct {
 } mpt_rank_stats;
 
 typedef struct {
-  int ranks;
-  double wall_s;              /* seconds from the start to the last return */
-  long long messages;         /* messages sent */
-  long long received;         /* messages received */
-  long long bytes;            /* bytes sent */
-  long long unread;           /* messages never received */
+  MP_STATS_GROUP;             /* ranks, messages, ..., wall_s (mp/stats.h);
+                                 wall_s: from the start to the last return */
   long long sleeps;           /* recvs that slept, all ranks */
   long long wakes;            /* sleepers woken by a message, all ranks */
   double wake_s;              /* their wake-up latencies, summed */
-  long long warnings;         /* truncations, unread messages */
-  long long errors;           /* bad arguments, deadlock, ... */
-  int deadlock;               /* 1 if the run ended in a deadlock */
-  int aborted, abort_code;    /* a rank called mp_abort: the first one's code */
 } mpt_stats;
 
 /* Statistics of one rank (0 <= rank < nranks) and of the run: valid after

@@ -30,8 +30,8 @@
  * is sent later).  Nothing queued and ranks still alive means deadlock. */
 #include "sim/sim.h"
 
+#include <limits.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -39,7 +39,6 @@
 #include "mp/backend.h"
 #include "sim/coro.h"
 #include "sim/evq.h"
-#include "util/errlog.h"
 #include "sim/mailbox.h"
 #include "sim/profile.h"
 #include "sim/trace.h"
@@ -110,53 +109,9 @@ struct sim {
   int limited;                 /* sim_trace_limit */
   unsigned long long trace_limit;
   trace *tr;
-  errlog errs;             /* the errors quoted in sim_run's message */
+  mp_log log;              /* errors (quoted in sim_run's message) and warnings */
   sim_stats st;
 };
-
-/* ==== errors and warnings ================================================= */
-
-static char *vformat(const char *fmt, va_list ap) {
-  va_list aq;
-  va_copy(aq, ap);
-  int n = vsnprintf(NULL, 0, fmt, aq);
-  va_end(aq);
-  XASSERT(n >= 0);
-  char *buf = xmalloc((size_t)n + 1);
-  vsnprintf(buf, (size_t)n + 1, fmt, ap);
-  return buf;
-}
-
-#if defined(__GNUC__)
-#define PRINTF(a, b) __attribute__((format(printf, a, b)))
-#else
-#define PRINTF(a, b)
-#endif
-
-static void add_error(sim *s, char *text, int always) {
-  s->st.errors++;
-  errlog_add(&s->errs, text, always);
-  free(text);
-}
-
-/* An error of the run: sim_run will return -1 and quote it. */
-static PRINTF(2, 3) void fail(sim *s, const char *fmt, ...) {
-  va_list ap;
-  va_start(ap, fmt);
-  add_error(s, vformat(fmt, ap), 0);
-  va_end(ap);
-}
-
-static PRINTF(2, 3) void warn(sim *s, const char *fmt, ...) {
-  s->st.warnings++;
-  if (!s->cfg.warn) return;
-  va_list ap;
-  va_start(ap, fmt);
-  fputs("sim: warning: ", s->cfg.warn);
-  vfprintf(s->cfg.warn, fmt, ap);
-  fputc('\n', s->cfg.warn);
-  va_end(ap);
-}
 
 /* ==== scheduling ========================================================== */
 
@@ -213,7 +168,7 @@ static double overhead(sim *s, rank *r, double o) {
 
 /* The rank that does not stop calling after the run stopped. */
 static void abandon(sim *s, rank *r) {
-  fail(s, "rank %d kept calling after the run stopped (%d calls); abandoned it", r->base.rank,
+  mp_fail(&s->log, "rank %d kept calling after the run stopped (%d calls); abandoned it", r->base.rank,
        STOPPED_CALLS_MAX);
   r->state = R_ABANDONED;
   s->live--;
@@ -313,10 +268,6 @@ static int sim_compute(mp *self, double units) {
   if (s->stopped) return stopped_call(s, r);
   s->st.events++;
   r->probe_spins = 0;
-  if (!(units >= 0) || isinf(units)) {
-    fail(s, "rank %d: mp_compute(%g): units must be finite and >= 0", r->base.rank, units);
-    return MP_EARG;
-  }
   return charge(s, r, units * s->cfg.c, units);
 }
 
@@ -326,10 +277,6 @@ static int sim_busy(mp *self, double seconds) {
   if (s->stopped) return stopped_call(s, r);
   s->st.events++;
   r->probe_spins = 0;
-  if (!(seconds >= 0) || isinf(seconds)) {
-    fail(s, "rank %d: mp_busy(%g): seconds must be finite and >= 0", r->base.rank, seconds);
-    return MP_EARG;
-  }
   return charge(s, r, seconds, 0);
 }
 
@@ -339,10 +286,6 @@ static int sim_sleep(mp *self, double seconds) {
   if (s->stopped) return stopped_call(s, r);
   s->st.events++;
   r->probe_spins = 0;
-  if (!(seconds >= 0) || isinf(seconds)) {
-    fail(s, "rank %d: mp_sleep(%g): seconds must be finite and >= 0", r->base.rank, seconds);
-    return MP_EARG;
-  }
   if (s->tr && seconds > 0) trace_span(s->tr, "sleep", r->base.rank, r->proc, r->now, seconds, -1, -1);
   r->st.slept += seconds;
   double t0 = r->now;
@@ -430,23 +373,6 @@ static inline void count_sent(sim *s, rank *r, int tag, size_t len) {
   s->st.bytes += (long long)len;
 }
 
-/* A send's checks: MP_OK or the error (the run's error recorded). */
-static int check_send(sim *s, rank *r, const char *call, int dst, int tag, const void *buf, size_t len) {
-  if (dst < 0 || dst >= s->n) {
-    fail(s, "rank %d: %s to rank %d, which does not exist (%d ranks)", r->base.rank, call, dst, s->n);
-    return MP_ERANK;
-  }
-  if (tag < 0) {
-    fail(s, "rank %d: %s to rank %d with tag %d: tags are >= 0", r->base.rank, call, dst, tag);
-    return MP_EARG;
-  }
-  if (len && !buf) {
-    fail(s, "rank %d: %s of %zu bytes from a NULL buffer", r->base.rank, call, len);
-    return MP_EARG;
-  }
-  return MP_OK;
-}
-
 /* mp_send, or with ref mp_send_ref (*ref: the message, by reference). */
 static int send_msg(mp *self, int dst, int tag, const void *buf, size_t len, mp_ref **ref) {
   rank *r = (rank *)self;
@@ -454,8 +380,6 @@ static int send_msg(mp *self, int dst, int tag, const void *buf, size_t len, mp_
   if (s->stopped) return stopped_call(s, r);
   s->st.events++;
   r->probe_spins = 0;
-  int rc = check_send(s, r, "mp_send", dst, tag, buf, len);
-  if (rc != MP_OK) return rc;
   rank *d = &s->ranks[dst];
   double before = r->now, t0, o;
   send_costs(s, r, d, len, &t0, &o);
@@ -489,11 +413,6 @@ static double sim_transfer(mp *self, int src, int dst, size_t len, double at) {
   }
   s->st.events++;
   r->probe_spins = 0;
-  if (src < 0 || src >= s->n || dst < 0 || dst >= s->n || !(at >= 0) || isinf(at)) {
-    fail(s, "rank %d: mp_transfer(src=%d, dst=%d, at=%g): ranks are 0..%d, times finite and >= 0",
-         r->base.rank, src, dst, at, s->n - 1);
-    return at;
-  }
   rank *a = &s->ranks[src], *d = &s->ranks[dst];
   double before = r->now, t = at;
   if (a == r && at == r->now) {
@@ -517,12 +436,6 @@ static int sim_notify(mp *self, int dst, int tag, double at) {
   if (s->stopped) return stopped_call(s, r);
   s->st.events++;
   r->probe_spins = 0;
-  int rc = check_send(s, r, "mp_notify", dst, tag, NULL, 0);
-  if (rc != MP_OK) return rc;
-  if (!(at >= 0) || isinf(at)) {
-    fail(s, "rank %d: mp_notify(dst=%d, at=%g): the time must be finite and >= 0", r->base.rank, dst, at);
-    return MP_EARG;
-  }
   rank *d = &s->ranks[dst];
   msg *m = msg_new(&s->msgs, &d->box, 0);
   m->sent = r->now;
@@ -558,20 +471,6 @@ static mp_promise *sim_promise(mp *self, int src, int tag, int mask, void *buf, 
 static int sim_promise_drop(mp *self, mp_promise *p, int keep) {
   rank *r = (rank *)self;
   return promise_drop(&r->s->msgs, &r->box, (promise *)p, keep);
-}
-
-/* Check recv's and probe's source and tag. */
-static int check_match_args(sim *s, rank *r, const char *call, int src, int tag) {
-  if (src < MP_ANY || src >= s->n) {
-    fail(s, "rank %d: %s from rank %d, which does not exist (%d ranks)", r->base.rank, call, src,
-         s->n);
-    return MP_ERANK;
-  }
-  if (tag < MP_ANY) {
-    fail(s, "rank %d: %s with tag %d: tags are >= 0 or MP_ANY", r->base.rank, call, tag);
-    return MP_EARG;
-  }
-  return MP_OK;
 }
 
 /* The message a recv of r from src with tag takes, once it has arrived:
@@ -622,13 +521,7 @@ static int recv_msg(mp *self, int src, int tag, void *buf, size_t cap, mp_status
   if (s->stopped) return stopped_call(s, r);
   s->st.events++;
   r->probe_spins = 0;
-  const char *call = hold ? "mp_recv_msg" : "mp_recv";
-  int rc = check_match_args(s, r, call, src, tag);
-  if (rc != MP_OK) return rc;
-  if (cap && !buf) {
-    fail(s, "rank %d: %s into a NULL buffer of %zu bytes", r->base.rank, call, cap);
-    return MP_EARG;
-  }
+  int rc;
   msg *m = arrived(s, r, src, tag, &rc);
   if (!m) return rc;
 
@@ -653,7 +546,7 @@ static int recv_msg(mp *self, int src, int tag, void *buf, size_t cap, mp_status
     *hold = (mp_msg *)m;
   } else {
     if (m->len > cap) {
-      warn(s, "rank %d: mp_recv truncated a %zu-byte message from rank %d (tag %d) to %zu bytes",
+      mp_warn(&s->log, "rank %d: mp_recv truncated a %zu-byte message from rank %d (tag %d) to %zu bytes",
            r->base.rank, m->len, m->src, m->tag, cap);
       rc = MP_ETRUNC;
     }
@@ -690,8 +583,6 @@ static int sim_probe(mp *self, int src, int tag, mp_status *st) {
   sim *s = r->s;
   if (s->stopped) return stopped_call(s, r);
   s->st.events++;
-  int rc = check_match_args(s, r, "mp_probe", src, tag);
-  if (rc != MP_OK) return rc;
   msg *m = box_find(&r->box, src, tag);
   if (m && m->arrival <= r->now) {
     r->probe_spins = 0;
@@ -703,7 +594,7 @@ static int sim_probe(mp *self, int src, int tag, mp_status *st) {
     r->probe_spins = 0;
   }
   if (++r->probe_spins >= PROBE_SPINS_MAX) {
-    fail(s,
+    mp_fail(&s->log,
          "rank %d called mp_probe %d times at t=%.9g without its clock moving: nothing "
          "new can arrive (compute between probes, or recv); run stopped",
          r->base.rank, PROBE_SPINS_MAX, r->now);
@@ -719,8 +610,7 @@ static int sim_wait(mp *self, int src, int tag, mp_status *st) {
   if (s->stopped) return stopped_call(s, r);
   s->st.events++;
   r->probe_spins = 0;
-  int rc = check_match_args(s, r, "mp_wait", src, tag);
-  if (rc != MP_OK) return rc;
+  int rc;
   msg *m = arrived(s, r, src, tag, &rc);
   if (!m) return rc;
   if (st) *st = (mp_status){m->src, m->tag, m->len};
@@ -737,8 +627,18 @@ static void sim_stop(mp *self, int code, const char *why) {
     s->st.aborted = 1;
     s->st.abort_code = code;
   }
-  fail(s, "%s", why ? why : "aborted");
+  mp_fail(&s->log, "%s", why ? why : "aborted");
   s->stopped = 1;
+}
+
+/* A call mp.c found a bad argument in: counted as an event, the run's error. */
+static int sim_reject(mp *self, int code, const char *why) {
+  rank *r = (rank *)self;
+  sim *s = r->s;
+  if (s->stopped) return stopped_call(s, r);
+  s->st.events++;
+  mp_fail_text(&s->log, why, 0);
+  return code;
 }
 
 /* A layer's call (mp_call_begin/end), traced as a slice when it took time
@@ -755,10 +655,14 @@ static void sim_call(mp *self, const char *name, int begin) {
   }
 }
 
-static const mp_ops sim_ops = {sim_send,     sim_recv,         sim_probe,    sim_compute,  sim_time,
-                               sim_wait,     sim_busy,         sim_sleep,    sim_stop,     sim_call,
-                               sim_send_ref, sim_settle,       sim_withdraw, sim_recv_msg, sim_msg_read,
-                               sim_msg_gone, sim_promise,      sim_promise_drop, sim_transfer, sim_notify};
+static const mp_ops sim_ops = {.send = sim_send, .recv = sim_recv, .probe = sim_probe, .compute = sim_compute,
+                               .time = sim_time, .wait = sim_wait, .busy = sim_busy, .sleep_for = sim_sleep,
+                               .stop = sim_stop, .call = sim_call, .send_ref = sim_send_ref,
+                               .settle = sim_settle, .withdraw = sim_withdraw, .recv_msg = sim_recv_msg,
+                               .msg_read = sim_msg_read, .msg_gone = sim_msg_gone, .promise = sim_promise,
+                               .promise_drop = sim_promise_drop, .transfer = sim_transfer,
+                               .notify = sim_notify, .reject = sim_reject, .tag_max = INT_MAX,
+                               .sleep_bounded = 0};
 
 /* ==== the machine ========================================================= */
 
@@ -798,6 +702,7 @@ sim *sim_new(const sim_config *cfg, int nranks, char *err, size_t errlen) {
   s->q = evq_new(nranks);
   s->st.ranks = nranks;
   s->st.procs = procs;
+  s->log = (mp_log){.name = "sim", .warn = cfg->warn, .st = &s->st.run};
   return s;
 }
 
@@ -849,41 +754,22 @@ static coro *rank_main(void *ud) {
   return s->ranks[id].co;
 }
 
-static const char *peer_name(int v, char *buf, size_t len) {
-  if (v < 0) return "any";
-  snprintf(buf, len, "%d", v);
-  return buf;
-}
-
 /* Every live rank waits in recv and nothing is on its way: say who waits for
  * what, and stop the run. */
 static void report_deadlock(sim *s) {
-  enum { SHOWN = 16 };
-  size_t cap = 64 + SHOWN * 64, len = 0;
-  char *buf = xmalloc(cap), a[16], b[16], what[160];
-  len += (size_t)snprintf(buf, cap, "deadlock at t=%.9g:", s->gtime);
-  int blocked = 0;
+  mp_deadlock d;
+  mp_deadlock_begin(&d, "deadlock at t=%.9g:", s->gtime);
   for (int i = 0; i < s->n; i++) {
     rank *r = &s->ranks[i];
     if (r->state != R_BLOCKED) continue;
     r->deadlocked = 1;
-    if (blocked++ >= SHOWN) continue;
-    const char *label = mp_label_text(&r->base, what, sizeof what);
-    if (label) {
-      if (cap - len < 200) buf = xrealloc(buf, cap *= 2);
-      len += (size_t)snprintf(buf + len, cap - len, "%s rank %d waits in %s", blocked > 1 ? ";" : "",
-                              i, label);
-    } else {
-      len += (size_t)snprintf(buf + len, cap - len, "%s rank %d waits in recv(src=%s, tag=%s)",
-                              blocked > 1 ? ";" : "", i, peer_name(r->wait_src, a, sizeof a),
-                              peer_name(r->wait_tag, b, sizeof b));
-    }
+    mp_deadlock_rank(&d, &r->base, r->wait_src, r->wait_tag);
   }
-  if (blocked > SHOWN)
-    snprintf(buf + len, cap - len, "; and %d more ranks", blocked - SHOWN);
   s->st.deadlock = 1;
   s->stopped = 1;
-  add_error(s, buf, 1); /* always quoted: it is often the consequence of the others */
+  char *text = mp_deadlock_end(&d);
+  mp_fail_text(&s->log, text, 1); /* always quoted: it is often the consequence of the others */
+  free(text);
 }
 
 /* Count and report what was sent and never received; free it. */
@@ -895,7 +781,7 @@ static void sweep_unread(sim *s) {
     for (msg *m = r->box.head; m; m = m->next) count++;
     r->st.unread = count;
     s->st.unread += count;
-    warn(s, "rank %d finished with %lld unread message%s (first from rank %d, tag %d)", i, count,
+    mp_warn(&s->log, "rank %d finished with %lld unread message%s (first from rank %d, tag %d)", i, count,
          count == 1 ? "" : "s", r->box.head->src, r->box.head->tag);
     box_clear(&r->box, &s->msgs);
   }
@@ -923,12 +809,12 @@ int sim_run(sim *s, const mp_proc *procs, char *err, size_t errlen) {
   char cerr[256];
   int made = 0;
   s->stacks = coro_stacks_new(s->n, s->cfg.stack, cerr, sizeof cerr);
-  if (!s->stacks) fail(s, "sim_run: %s", cerr);
+  if (!s->stacks) mp_fail(&s->log, "sim_run: %s", cerr);
   for (; s->stacks && made < s->n; made++) {
     rank *r = &s->ranks[made];
     r->co = coro_new_on(s->stacks, rank_main, r, cerr, sizeof cerr);
     if (!r->co) {
-      fail(s, "sim_run: rank %d: %s", made, cerr);
+      mp_fail(&s->log, "sim_run: rank %d: %s", made, cerr);
       break;
     }
     coro_stack(r->co, &r->base.stack_lo, &r->base.stack_size);
@@ -962,12 +848,12 @@ int sim_run(sim *s, const mp_proc *procs, char *err, size_t errlen) {
       XASSERT(woken > 0);
     }
     sweep_unread(s);
-    if (s->tr && trace_end(s->tr, cerr, sizeof cerr) != 0) fail(s, "sim_run: %s", cerr);
+    if (s->tr && trace_end(s->tr, cerr, sizeof cerr) != 0) mp_fail(&s->log, "sim_run: %s", cerr);
   }
   /* Ranks whose stacks share guard pages (coro.h) may have overflowed
    * where only a check sees it: the run fails naming them. */
   for (long i = coro_stacks_overflowed(s->stacks, 0); i >= 0; i = coro_stacks_overflowed(s->stacks, i + 1))
-    fail(s, "rank %ld overflowed its stack of %zu KiB (--stack sets it)", i, s->ranks[i].base.stack_size >> 10);
+    mp_fail(&s->log, "rank %ld overflowed its stack of %zu KiB (--stack sets it)", i, s->ranks[i].base.stack_size >> 10);
   for (int i = 0; i < made; i++) {
     coro_free(s->ranks[i].co);
     s->ranks[i].co = NULL;
@@ -977,7 +863,7 @@ int sim_run(sim *s, const mp_proc *procs, char *err, size_t errlen) {
   coro_free(s->main);
   s->main = NULL;
   s->st.wall_s = wallclock() - w0;
-  return errlog_report(&s->errs, s->st.errors, err, errlen);
+  return mp_log_report(&s->log, err, errlen);
 }
 
 const sim_rank_stats *sim_rank(const sim *s, int i) {
@@ -1007,6 +893,6 @@ void sim_free(sim *s) {
   links_free(s->links);
   topo_free(s->topo);
   free(s->seen);
-  errlog_free(&s->errs);
+  mp_log_free(&s->log);
   free(s);
 }
