@@ -1,10 +1,11 @@
-/* calls.c -- the simulator's side of mp.h: scheduling, and the mp calls on the timing model.
+/* calls.c -- the simulator's side of mp.h: scheduling, and the mp calls on
+ * the timing model.
  *
- * Reading order: the data (ranks, the machine; messages, mailboxes and
- * channels are mailbox.h's, the profiles profile.c's), scheduling (who
- * runs next), the mp calls (compute, send, recv, probe; messages without
- * copies), then sim_run's main loop and the deadlock report.  The timing
- * model itself is specified in sim.h.
+ * Reading order: scheduling (who runs next), then the mp calls (compute,
+ * send, recv, probe; messages without copies).  The data (ranks, the
+ * machine) are calls.h's; messages, mailboxes and channels mailbox.h's;
+ * sim_run's main loop and the deadlock report sim.c's.  The timing model
+ * itself is specified in sim.h.
  *
  * Scheduling is a conservative sequential discrete-event loop.  Every rank
  * that can act is queued in `q` under the time it will act at; the running
