@@ -1,9 +1,11 @@
-/* threads_calls.c -- mp.h on POSIX threads: a channel per pair of ranks, spin-then-
- * sleep waiting, deadlock detection.  threads.h states the semantics.
+/* threads_calls.c -- mp.h's calls on POSIX threads: a channel per pair of
+ * ranks, spin-then-sleep waiting, deadlock detection.  threads.h states the
+ * contract, doc/backends.md the semantics in full.
  *
- * Reading order: the data (ranks, the machine; the channels are chan.h's),
- * errors, a channel's making, choosing a message among the channels,
- * waking and the deadlock check, the mp calls, then mpt_run.
+ * Reading order: a channel's making, choosing a message among the
+ * channels, waking and the deadlock check, then the mp calls.  The data
+ * (ranks, the machine) are threads_calls.h's, the channels chan.h's;
+ * mpt_run is threads.c's.
  *
  * Messages.  Each ordered pair of ranks (s, d) that has ever talked has a
  * channel (chan.h): a queue with one writer (s) and one reader (d), so
