@@ -333,22 +333,55 @@ static void backoff(mpm *m, double since) {
   nanosleep(&ts, NULL);
 }
 
-static inline int matches(const msg *g, int src, int tag) {
-  return (src < 0 || g->src == src) && (tag < 0 || g->tag == tag);
+/* The mailbox's first message from src with tag (MP_ANY: any), or NULL. */
+static msg *box_find(const mpm *m, int src, int tag) {
+  for (msg *g = m->head; g; g = g->next)
+    if ((src < 0 || g->src == src) && (tag < 0 || g->tag == tag)) return g;
+  return NULL;
 }
 
-static msg *box_take(mpm *m, int src, int tag) {
+/* g out of the mailbox. */
+static void box_unlink(mpm *m, const msg *g) {
   msg *prev = NULL;
-  for (msg *g = m->head; g; prev = g, g = g->next) {
-    if (!matches(g, src, tag)) continue;
-    if (prev)
-      prev->next = g->next;
-    else
-      m->head = g->next;
-    if (m->tail == g) m->tail = prev;
-    return g;
+  for (msg *x = m->head; x != g; prev = x, x = x->next) {
   }
-  return NULL;
+  if (prev)
+    prev->next = g->next;
+  else
+    m->head = g->next;
+  if (m->tail == g) m->tail = prev;
+}
+
+/* Wait until the mailbox holds a message from src with tag: that message,
+ * left there; or NULL and *rc = MP_EDEADLOCK (rank 0 saw every rank
+ * blocked, this one among them) or MP_ESTOPPED.  A rank blocked REPORT_S
+ * tells rank 0, and again whenever messages have come since. */
+static msg *await(mpm *m, int src, int tag, int *rc) {
+  double since = -1;
+  for (;;) {
+    msg *g = box_find(m, src, tag);
+    if (g) {
+      if (m->reported == ST_BLOCKED) report(m, ST_RUNNING);
+      *rc = MP_OK;
+      return g;
+    }
+    if (m->stopped) {
+      *rc = m->reported == ST_BLOCKED ? MP_EDEADLOCK : MP_ESTOPPED;
+      return NULL;
+    }
+    if (since < 0) {
+      since = now(m);
+      m->wait_src = src;
+      m->wait_tag = tag;
+    } else {
+      double w = now(m) - since;
+      if (m->reported != ST_BLOCKED && w >= REPORT_S) report(m, ST_BLOCKED);
+      else if (m->reported == ST_BLOCKED && m->arrivals != m->reported_arrivals) report(m, ST_BLOCKED);
+      if (m->stopped) continue;   /* rank 0 may have just declared it */
+      backoff(m, since);
+    }
+    poll_once(m);
+  }
 }
 
 #endif /* !SIMGRID */
@@ -406,33 +439,15 @@ static int mpm_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status
   size_t full = e == MPI_ERR_TRUNCATE && (size_t)len <= cap ? cap + 1 : (size_t)len;
   return finish_recv(m, ms.MPI_SOURCE, ms.MPI_TAG, full, cap, st);
 #else
-  double since = -1;
-  for (;;) {
-    msg *g = box_take(m, src, tag);
-    if (g) {
-      if (m->reported == ST_BLOCKED) report(m, ST_RUNNING);
-      size_t k = g->len <= cap ? g->len : cap;
-      if (k) memcpy(buf, g->data, k);
-      int rc = finish_recv(m, g->src, g->tag, g->len, cap, st);
-      free(g);
-      return rc;
-    }
-    if (m->stopped) {   /* rank 0 saw every rank blocked: this recv among them */
-      return m->reported == ST_BLOCKED ? MP_EDEADLOCK : MP_ESTOPPED;
-    }
-    if (since < 0) {
-      since = now(m);
-      m->wait_src = src;
-      m->wait_tag = tag;
-    } else {
-      double w = now(m) - since;
-      if (m->reported != ST_BLOCKED && w >= REPORT_S) report(m, ST_BLOCKED);
-      else if (m->reported == ST_BLOCKED && m->arrivals != m->reported_arrivals) report(m, ST_BLOCKED);
-      if (m->stopped) continue;   /* rank 0 may have just declared it */
-      backoff(m, since);
-    }
-    poll_once(m);
-  }
+  int rc;
+  msg *g = await(m, src, tag, &rc);
+  if (!g) return rc;
+  box_unlink(m, g);
+  size_t k = g->len <= cap ? g->len : cap;
+  if (k) memcpy(buf, g->data, k);
+  rc = finish_recv(m, g->src, g->tag, g->len, cap, st);
+  free(g);
+  return rc;
 #endif
 }
 
@@ -451,12 +466,10 @@ static int mpm_probe(mp *self, int src, int tag, mp_status *st) {
   return flag != 0;
 #else
   poll_once(m);
-  for (msg *g = m->head; g; g = g->next) {
-    if (!matches(g, src, tag)) continue;
-    if (st) *st = (mp_status){g->src, g->tag, g->len};
-    return 1;
-  }
-  return m->stopped ? MP_ESTOPPED : 0;
+  const msg *g = box_find(m, src, tag);
+  if (!g) return m->stopped ? MP_ESTOPPED : 0;
+  if (st) *st = (mp_status){g->src, g->tag, g->len};
+  return 1;
 #endif
 }
 
@@ -475,28 +488,10 @@ static int mpm_wait(mp *self, int src, int tag, mp_status *st) {
   if (st) *st = (mp_status){ms.MPI_SOURCE, ms.MPI_TAG, (size_t)len};
   return MP_OK;
 #else
-  double since = -1;
-  for (;;) {
-    for (msg *g = m->head; g; g = g->next) {
-      if (!matches(g, src, tag)) continue;
-      if (m->reported == ST_BLOCKED) report(m, ST_RUNNING);
-      if (st) *st = (mp_status){g->src, g->tag, g->len};
-      return MP_OK;
-    }
-    if (m->stopped) return m->reported == ST_BLOCKED ? MP_EDEADLOCK : MP_ESTOPPED;
-    if (since < 0) {
-      since = now(m);
-      m->wait_src = src;
-      m->wait_tag = tag;
-    } else {
-      double w = now(m) - since;
-      if (m->reported != ST_BLOCKED && w >= REPORT_S) report(m, ST_BLOCKED);
-      else if (m->reported == ST_BLOCKED && m->arrivals != m->reported_arrivals) report(m, ST_BLOCKED);
-      if (m->stopped) continue;
-      backoff(m, since);
-    }
-    poll_once(m);
-  }
+  int rc;
+  const msg *g = await(m, src, tag, &rc);
+  if (g && st) *st = (mp_status){g->src, g->tag, g->len};
+  return rc;
 #endif
 }
 

@@ -438,16 +438,26 @@ static msg *arrived(sim *s, rank *r, int src, int tag, int *rc) {
   return m;
 }
 
+/* A receive's or mp_wait's start: the call counted, and the message it
+ * takes once it has arrived (r blocks until then); NULL and *rc if the run
+ * has stopped or stops meanwhile. */
+static inline msg *receive(sim *s, rank *r, int src, int tag, int *rc) {
+  if (s->stopped) {
+    *rc = stopped_call(s, r);
+    return NULL;
+  }
+  s->st.events++;
+  r->probe_spins = 0;
+  return arrived(s, r, src, tag, rc);
+}
+
 /* mp_recv into buf (cap bytes), or, with hold, mp_recv_msg: *hold holds
  * the message. */
 static int recv_msg(mp *self, int src, int tag, void *buf, size_t cap, mp_status *st, mp_msg **hold) {
   rank *r = (rank *)self;
   sim *s = r->s;
-  if (s->stopped) return stopped_call(s, r);
-  s->st.events++;
-  r->probe_spins = 0;
   int rc;
-  msg *m = arrived(s, r, src, tag, &rc);
+  msg *m = receive(s, r, src, tag, &rc);
   if (!m) return rc;
 
   double before = r->now, t0 = r->now, o = 0;
@@ -531,12 +541,8 @@ static int sim_probe(mp *self, int src, int tag, mp_status *st) {
 
 static int sim_wait(mp *self, int src, int tag, mp_status *st) {
   rank *r = (rank *)self;
-  sim *s = r->s;
-  if (s->stopped) return stopped_call(s, r);
-  s->st.events++;
-  r->probe_spins = 0;
   int rc;
-  msg *m = arrived(s, r, src, tag, &rc);
+  msg *m = receive(r->s, r, src, tag, &rc);
   if (!m) return rc;
   if (st) *st = (mp_status){m->src, m->tag, m->len};
   return MP_OK;
