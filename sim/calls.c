@@ -108,6 +108,15 @@ static int stopped_call(sim *s, rank *r) {
 
 /* ==== the mp calls ======================================================== */
 
+/* A call's start (but a probe's): MP_OK, the call counted and the count of
+ * fruitless probes reset; or, the run stopped, stopped_call's answer. */
+static inline int begin(sim *s, rank *r) {
+  if (s->stopped) return stopped_call(s, r);
+  s->st.events++;
+  r->probe_spins = 0;
+  return MP_OK;
+}
+
 /* cpu.h's busy neighbours: the factor 1 + slowdown * k + slowdown_spin * j
  * for r's compute, k the processors other than r's with a rank working at
  * r's clock (not blocked, not finished), j those with a rank blocked no
@@ -190,27 +199,24 @@ static int charge(sim *s, rank *r, double d, double units) {
 static int sim_compute(mp *self, double units) {
   rank *r = (rank *)self;
   sim *s = r->s;
-  if (s->stopped) return stopped_call(s, r);
-  s->st.events++;
-  r->probe_spins = 0;
+  int rc = begin(s, r);
+  if (rc != MP_OK) return rc;
   return charge(s, r, units * s->cfg.c, units);
 }
 
 static int sim_busy(mp *self, double seconds) {
   rank *r = (rank *)self;
   sim *s = r->s;
-  if (s->stopped) return stopped_call(s, r);
-  s->st.events++;
-  r->probe_spins = 0;
+  int rc = begin(s, r);
+  if (rc != MP_OK) return rc;
   return charge(s, r, seconds, 0);
 }
 
 static int sim_sleep(mp *self, double seconds) {
   rank *r = (rank *)self;
   sim *s = r->s;
-  if (s->stopped) return stopped_call(s, r);
-  s->st.events++;
-  r->probe_spins = 0;
+  int rc = begin(s, r);
+  if (rc != MP_OK) return rc;
   if (s->tr && seconds > 0) trace_span(s->tr, "sleep", r->base.rank, r->proc, r->now, seconds, -1, -1);
   r->st.slept += seconds;
   double t0 = r->now;
@@ -302,9 +308,8 @@ static inline void count_sent(sim *s, rank *r, int tag, size_t len) {
 static int send_msg(mp *self, int dst, int tag, const void *buf, size_t len, mp_ref **ref) {
   rank *r = (rank *)self;
   sim *s = r->s;
-  if (s->stopped) return stopped_call(s, r);
-  s->st.events++;
-  r->probe_spins = 0;
+  int rc = begin(s, r);
+  if (rc != MP_OK) return rc;
   rank *d = &s->ranks[dst];
   double before = r->now, t0, o;
   send_costs(s, r, d, len, &t0, &o);
@@ -332,12 +337,7 @@ static int send_msg(mp *self, int dst, int tag, const void *buf, size_t len, mp_
 static double sim_transfer(mp *self, int src, int dst, size_t len, double at) {
   rank *r = (rank *)self;
   sim *s = r->s;
-  if (s->stopped) {
-    stopped_call(s, r);
-    return at;
-  }
-  s->st.events++;
-  r->probe_spins = 0;
+  if (begin(s, r) != MP_OK) return at;
   rank *a = &s->ranks[src], *d = &s->ranks[dst];
   double before = r->now, t = at;
   if (a == r && at == r->now) {
@@ -358,9 +358,8 @@ static double sim_transfer(mp *self, int src, int dst, size_t len, double at) {
 static int sim_notify(mp *self, int dst, int tag, double at) {
   rank *r = (rank *)self;
   sim *s = r->s;
-  if (s->stopped) return stopped_call(s, r);
-  s->st.events++;
-  r->probe_spins = 0;
+  int rc = begin(s, r);
+  if (rc != MP_OK) return rc;
   rank *d = &s->ranks[dst];
   msg *m = msg_new(&s->msgs, &d->box, 0);
   m->sent = r->now;
@@ -442,12 +441,7 @@ static msg *arrived(sim *s, rank *r, int src, int tag, int *rc) {
  * takes once it has arrived (r blocks until then); NULL and *rc if the run
  * has stopped or stops meanwhile. */
 static inline msg *receive(sim *s, rank *r, int src, int tag, int *rc) {
-  if (s->stopped) {
-    *rc = stopped_call(s, r);
-    return NULL;
-  }
-  s->st.events++;
-  r->probe_spins = 0;
+  if ((*rc = begin(s, r)) != MP_OK) return NULL;
   return arrived(s, r, src, tag, rc);
 }
 
