@@ -35,6 +35,16 @@ static void stats_begin(tilesim_stats *st, const machine_config *mc, int nranks)
   st->procs = mc->backend == MACHINE_SIM ? mc->procs : nranks;
 }
 
+/* The figures every backend counts (mp/stats.h). */
+void launch_stats_run(tilesim_stats *st, const mp_stats *run) {
+  st->messages = run->messages;
+  st->bytes = run->bytes;
+  st->unread = run->unread;
+  st->deadlock = run->deadlock;
+  st->aborted = run->aborted;
+  st->abort_code = run->abort_code;
+}
+
 /* Sum and largest of one figure over the ranks. */
 static void add(double v, double *sum, double *max) {
   *sum += v;
@@ -91,13 +101,8 @@ static int run_sim(const machine_config *mc, int nranks, const mp_proc *procs, l
     if (x->sim) *x->sim = *ss;
     x->links = NULL;
   }
+  launch_stats_run(st, &ss->run);
   st->makespan = ss->makespan;
-  st->messages = ss->messages;
-  st->bytes = ss->bytes;
-  st->unread = ss->unread;
-  st->deadlock = ss->deadlock;
-  st->aborted = ss->aborted;
-  st->abort_code = ss->abort_code;
   st->measured = 2;
   for (int r = 0; r < nranks; r++) {
     const sim_rank_stats *rs = sim_rank(s, r);
@@ -145,13 +150,8 @@ static int run_threads(const machine_config *mc, int nranks, const mp_proc *proc
   progress_end(pg);
   const mpt_stats *ts = mpt_stats_get(t);
   if (x && x->threads) *x->threads = *ts;
+  launch_stats_run(st, &ts->run);
   st->makespan = ts->wall_s;
-  st->messages = ts->messages;
-  st->bytes = ts->bytes;
-  st->unread = ts->unread;
-  st->deadlock = ts->deadlock;
-  st->aborted = ts->aborted;
-  st->abort_code = ts->abort_code;
   st->measured = 1;
   for (int r = 0; r < nranks; r++) add(mpt_rank(t, r)->recv_wait, &st->wait_sum, &st->wait_max);
   mpt_free(t);

@@ -14,6 +14,7 @@
 
 #include "machine/machine.h"
 #include "machine/tilesim.h"
+#include "mp/stats.h"
 
 /* The simulator of mc for nranks ranks, placed by machine_place (no trace:
  * launch_run adds mc's).  NULL and a message if it cannot be built. */
@@ -74,5 +75,9 @@ typedef struct {
 } launch_job;
 
 int launch_job_run(void *job, int nranks, const mp_proc *procs, char *err, size_t errlen);
+
+/* Into *st: the figures every backend counts of a run (mp/stats.h: the
+ * messages, bytes and unread ones, a deadlock, an abort's code). */
+void launch_stats_run(tilesim_stats *st, const mp_stats *run);
 
 #endif

@@ -36,11 +36,8 @@ static mpm_config backend_config(double c, FILE *warn) {
 
 static void stats_of(const mpm *m, tilesim_stats *st) {
   const mpm_stats *ms = mpm_stats_get(m);
+  launch_stats_run(st, &ms->run);
   st->makespan = ms->wall_s;
-  st->messages = ms->messages;
-  st->bytes = ms->bytes;
-  st->unread = ms->unread;
-  st->deadlock = ms->deadlock;
 }
 
 /* Process 0 of the served world: the order to processes 1 .. nranks-1, the

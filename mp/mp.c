@@ -1,11 +1,17 @@
-/* mp.c -- the message-passing calls, dispatched to the backend behind the
- * handle; the calling rank (mp_self) and the way out of a rank (mp_exit). */
+/* mp.c -- the message-passing calls, their arguments checked once here for
+ * every backend, then dispatched to the backend behind the handle; the
+ * calling rank (mp_self) and the way out of a rank (mp_exit). */
 #include "mp/mp.h"
 
+#include <limits.h>
+#include <math.h>
 #include <setjmp.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "mp/backend.h"
 
 int mp_rank(const mp *self) { return self->rank; }
 int mp_size(const mp *self) { return self->size; }
@@ -25,25 +31,116 @@ void mp_set_hooks(const mp_hooks *h) { hooks = h; }
     return r_;                                                                 \
   } while (0)
 
+/* ==== the arguments ======================================================= */
+
+/* A bad argument: the backend rejects the call (backend.h), why says it. */
+static MP_PRINTF(3, 4) int bad(mp *self, int code, const char *fmt, ...) {
+  char why[256];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(why, sizeof why, fmt, ap);
+  va_end(ap);
+  return self->ops->reject(self, code, why);
+}
+
+static int bad_send(mp *self, const char *call, int dst, int tag, size_t len) {
+  int me = self->rank, max = self->ops->tag_max;
+  if (dst < 0 || dst >= self->size)
+    return bad(self, MP_ERANK, "rank %d: %s to rank %d, which does not exist (%d ranks)", me, call, dst,
+               self->size);
+  if (tag < 0 || tag > max) {
+    if (max == INT_MAX) return bad(self, MP_EARG, "rank %d: %s to rank %d with tag %d: tags are >= 0", me, call, dst, tag);
+    return bad(self, MP_EARG, "rank %d: %s to rank %d with tag %d: tags are 0..%d", me, call, dst, tag, max);
+  }
+  return bad(self, MP_EARG, "rank %d: %s of %zu bytes from a NULL buffer", me, call, len);
+}
+
+/* A send's destination, tag and buffer: MP_OK, or the call rejected. */
+static inline int send_args(mp *self, const char *call, int dst, int tag, const void *buf, size_t len) {
+  if (dst >= 0 && dst < self->size && tag >= 0 && tag <= self->ops->tag_max && (buf || !len)) return MP_OK;
+  return bad_send(self, call, dst, tag, len);
+}
+
+static int bad_match(mp *self, const char *call, int src, int tag) {
+  int me = self->rank, max = self->ops->tag_max;
+  if (src < MP_ANY || src >= self->size)
+    return bad(self, MP_ERANK, "rank %d: %s from rank %d, which does not exist (%d ranks)", me, call, src,
+               self->size);
+  if (max == INT_MAX) return bad(self, MP_EARG, "rank %d: %s with tag %d: tags are >= 0 or MP_ANY", me, call, tag);
+  return bad(self, MP_EARG, "rank %d: %s with tag %d: tags are 0..%d or MP_ANY", me, call, tag, max);
+}
+
+/* A receive's or probe's source and tag: MP_OK, or the call rejected. */
+static inline int match_args(mp *self, const char *call, int src, int tag) {
+  if (src >= MP_ANY && src < self->size && tag >= MP_ANY && tag <= self->ops->tag_max) return MP_OK;
+  return bad_match(self, call, src, tag);
+}
+
+static inline int finite_nonneg(double v) { return v >= 0 && !isinf(v); }
+
+/* ==== the calls =========================================================== */
+
+static inline int send_(mp *self, int dst, int tag, const void *buf, size_t len) {
+  int rc = send_args(self, "mp_send", dst, tag, buf, len);
+  return rc != MP_OK ? rc : self->ops->send(self, dst, tag, buf, len);
+}
+
 int mp_send(mp *self, int dst, int tag, const void *buf, size_t len) {
-  HOOKED(int, self, self->ops->send(self, dst, tag, buf, len));
+  HOOKED(int, self, send_(self, dst, tag, buf, len));
+}
+
+static inline int recv_(mp *self, int src, int tag, void *buf, size_t cap, mp_status *st) {
+  int rc = match_args(self, "mp_recv", src, tag);
+  if (rc != MP_OK) return rc;
+  if (cap && !buf) return bad(self, MP_EARG, "rank %d: mp_recv into a NULL buffer of %zu bytes", self->rank, cap);
+  return self->ops->recv(self, src, tag, buf, cap, st);
 }
 
 int mp_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status *st) {
-  HOOKED(int, self, self->ops->recv(self, src, tag, buf, cap, st));
+  HOOKED(int, self, recv_(self, src, tag, buf, cap, st));
 }
 
-int mp_probe(mp *self, int src, int tag, mp_status *st) { HOOKED(int, self, self->ops->probe(self, src, tag, st)); }
+static int probe_(mp *self, int src, int tag, mp_status *st) {
+  int rc = match_args(self, "mp_probe", src, tag);
+  return rc != MP_OK ? rc : self->ops->probe(self, src, tag, st);
+}
 
-int mp_compute(mp *self, double units) { HOOKED(int, self, self->ops->compute(self, units)); }
+int mp_probe(mp *self, int src, int tag, mp_status *st) { HOOKED(int, self, probe_(self, src, tag, st)); }
+
+static int compute_(mp *self, double units) {
+  if (!finite_nonneg(units))
+    return bad(self, MP_EARG, "rank %d: mp_compute(%g): units must be finite and >= 0", self->rank, units);
+  return self->ops->compute(self, units);
+}
+
+int mp_compute(mp *self, double units) { HOOKED(int, self, compute_(self, units)); }
 
 double mp_time(const mp *self) { HOOKED(double, (mp *)self, self->ops->time(self)); }
 
-int mp_wait(mp *self, int src, int tag, mp_status *st) { HOOKED(int, self, self->ops->wait(self, src, tag, st)); }
+static int wait_(mp *self, int src, int tag, mp_status *st) {
+  int rc = match_args(self, "mp_wait", src, tag);
+  return rc != MP_OK ? rc : self->ops->wait(self, src, tag, st);
+}
 
-int mp_busy(mp *self, double seconds) { HOOKED(int, self, self->ops->busy(self, seconds)); }
+int mp_wait(mp *self, int src, int tag, mp_status *st) { HOOKED(int, self, wait_(self, src, tag, st)); }
 
-int mp_sleep(mp *self, double seconds) { HOOKED(int, self, self->ops->sleep_for(self, seconds)); }
+int mp_charge(mp *self, double seconds) {
+  if (!finite_nonneg(seconds))
+    return bad(self, MP_EARG, "rank %d: mp_busy(%g): seconds must be finite and >= 0", self->rank, seconds);
+  return self->ops->busy(self, seconds);
+}
+
+int mp_busy(mp *self, double seconds) { HOOKED(int, self, mp_charge(self, seconds)); }
+
+static int sleep_(mp *self, double seconds) {
+  if (self->ops->sleep_bounded && !(seconds >= 0 && seconds <= 1e9))
+    return bad(self, MP_EARG, "rank %d: mp_sleep(%g): seconds must be from 0 to 1e9", self->rank, seconds);
+  if (!finite_nonneg(seconds))
+    return bad(self, MP_EARG, "rank %d: mp_sleep(%g): seconds must be finite and >= 0", self->rank, seconds);
+  return self->ops->sleep_for(self, seconds);
+}
+
+int mp_sleep(mp *self, double seconds) { HOOKED(int, self, sleep_(self, seconds)); }
 
 /* ==== messages without copies ============================================= */
 
@@ -53,10 +150,16 @@ struct mp_msg {
   unsigned char data[];
 };
 
+static int send_ref_(mp *self, int dst, int tag, const void *buf, size_t len, mp_ref **ref) {
+  int rc = send_args(self, "mp_send", dst, tag, buf, len);
+  if (rc != MP_OK) return rc;
+  if (!self->ops->send_ref) return self->ops->send(self, dst, tag, buf, len);
+  return self->ops->send_ref(self, dst, tag, buf, len, ref);
+}
+
 int mp_send_ref(mp *self, int dst, int tag, const void *buf, size_t len, mp_ref **ref) {
   *ref = NULL;
-  if (!self->ops->send_ref) HOOKED(int, self, self->ops->send(self, dst, tag, buf, len));
-  HOOKED(int, self, self->ops->send_ref(self, dst, tag, buf, len, ref));
+  HOOKED(int, self, send_ref_(self, dst, tag, buf, len, ref));
 }
 
 void mp_settle(mp *self, mp_ref *ref) {
@@ -85,10 +188,16 @@ static int recv_copy(mp *self, int src, int tag, mp_msg **msg, mp_status *st) {
   return MP_OK;
 }
 
+static int recv_msg_(mp *self, int src, int tag, mp_msg **msg, mp_status *st) {
+  int rc = match_args(self, "mp_recv_msg", src, tag);
+  if (rc != MP_OK) return rc;
+  if (!self->ops->recv_msg) return recv_copy(self, src, tag, msg, st);
+  return self->ops->recv_msg(self, src, tag, msg, st);
+}
+
 int mp_recv_msg(mp *self, int src, int tag, mp_msg **msg, mp_status *st) {
   *msg = NULL;
-  if (!self->ops->recv_msg) HOOKED(int, self, recv_copy(self, src, tag, msg, st));
-  HOOKED(int, self, self->ops->recv_msg(self, src, tag, msg, st));
+  HOOKED(int, self, recv_msg_(self, src, tag, msg, st));
 }
 
 int mp_msg_read(mp *self, mp_msg *msg, void *buf, size_t cap) {
@@ -114,14 +223,33 @@ int mp_promise_drop(mp *self, mp_promise *p, int keep) {
 
 /* ==== one-sided transfers ================================================= */
 
+static double transfer_(mp *self, int src, int dst, size_t len, double at) {
+  int n = self->size;
+  if (src < 0 || src >= n || dst < 0 || dst >= n || !finite_nonneg(at)) {
+    bad(self, MP_EARG, "rank %d: mp_transfer(src=%d, dst=%d, at=%g): ranks are 0..%d, times finite and >= 0",
+        self->rank, src, dst, at, n - 1);
+    return at;
+  }
+  return self->ops->transfer(self, src, dst, len, at);
+}
+
 double mp_transfer(mp *self, int src, int dst, size_t len, double at) {
   if (!self->ops->transfer) return at;
-  HOOKED(double, self, self->ops->transfer(self, src, dst, len, at));
+  HOOKED(double, self, transfer_(self, src, dst, len, at));
+}
+
+static int notify_(mp *self, int dst, int tag, double at) {
+  int rc = send_args(self, "mp_notify", dst, tag, NULL, 0);
+  if (rc != MP_OK) return rc;
+  if (!finite_nonneg(at))
+    return bad(self, MP_EARG, "rank %d: mp_notify(dst=%d, at=%g): the time must be finite and >= 0", self->rank,
+               dst, at);
+  return self->ops->notify(self, dst, tag, at);
 }
 
 int mp_notify(mp *self, int dst, int tag, double at) {
   if (!self->ops->notify) return mp_send(self, dst, tag, NULL, 0);
-  HOOKED(int, self, self->ops->notify(self, dst, tag, at));
+  HOOKED(int, self, notify_(self, dst, tag, at));
 }
 
 const char *mp_strerror(int code) {
@@ -154,16 +282,19 @@ void mp_label(mp *self, mp_describe describe, void *ud) {
   self->describe_ud = ud;
 }
 
-const char *mp_label_text(const mp *self, char *buf, size_t len) {
-  if (!self->describe || len == 0) return NULL;
-  buf[0] = 0;
-  self->describe(self->describe_ud, buf, len);
-  return buf;
-}
-
 void mp_set_progress(mp *self, mp_progress fn, void *ud) {
   self->progress = fn;
   self->progress_ud = ud;
+}
+
+int mp_progressing(const mp *self) { return self->progress != NULL; }
+
+int mp_traced(const mp *self) { return self->traced; }
+
+void mp_stack(const mp *self, void **lo, size_t *size, void **guard) {
+  *lo = self->stack_lo;
+  *size = self->stack_size;
+  *guard = self->stack_guard;
 }
 
 void mp_call_begin(mp *self, const char *name) {
@@ -180,19 +311,7 @@ void mp_call_end(mp *self) {
   }
 }
 
-/* ==== entering and leaving a rank ========================================= */
-
-void mp_enter(mp *self, mp_main main, void *ud) {
-  jmp_buf out;
-  self->exit_to = &out;
-  mp_set_self(self);
-  if (setjmp(out) == 0) main(self, ud);
-  self->exit_to = NULL;
-  self->describe = NULL;
-  self->call_depth = 0;   /* a rank that left inside a call */
-  self->call_name = NULL;
-  self->progress = NULL;
-}
+/* ==== leaving a rank ====================================================== */
 
 MP_NORETURN void mp_exit(mp *self) {
   if (hooks) hooks->enter(self);   /* what it computed last is charged */

@@ -144,7 +144,7 @@ void   mp_call_end(mp *self);
 /* Progress while computing (a layer's progress engine, as a network card or
  * a progress thread would run it): while fn is set, each message that comes
  * to this rank while it computes (mp_compute, mp_busy, a hook's
- * self->ops->busy) makes the backend call fn(self, ud) at that message's
+ * mp_charge) makes the backend call fn(self, ud) at that message's
  * arrival, mp_time reading it: fn acts on the messages that have arrived
  * (mp_probe, mp_recv) and may send, but must not block.  The computing goes
  * on meanwhile and ends when it would have without fn, later only by the
@@ -160,12 +160,30 @@ void   mp_set_progress(mp *self, mp_progress fn, void *ud);
  * before a run, not during one): enter(self) before the call, leave(self)
  * after it returns.  How a runtime charges a program's own computing
  * between its calls (tilesim-mpirun --compute blocks|host): enter may charge
- * it with self->ops->busy (not mp_busy, which would call the hooks again). */
+ * it with mp_charge (not mp_busy, which would call the hooks again). */
 typedef struct {
   void (*enter)(mp *self);
   void (*leave)(mp *self);
 } mp_hooks;
 void   mp_set_hooks(const mp_hooks *hooks);
+
+/* mp_busy without the hooks: for a hook's enter, which charges what the
+ * rank computed since its last call.  The same costs, checks and codes. */
+int    mp_charge(mp *self, double seconds);
+
+/* 1 if the backend traces this rank's calls (mp_call_begin and mp_call_end
+ * then show in a trace; the same for a whole run), else 0: a layer may skip
+ * them. */
+int    mp_traced(const mp *self);
+
+/* 1 while a progress function is set (mp_set_progress), else 0. */
+int    mp_progressing(const mp *self);
+
+/* The rank's own stack, where the backend knows it (the simulator's
+ * coroutines): its lowest address and size, and the start of the guard
+ * below it (a fault in [*guard, *lo) is the stack overflowing).  NULL, 0
+ * and NULL elsewhere.  Only reads: callable from a signal handler. */
+void   mp_stack(const mp *self, void **lo, size_t *size, void **guard);
 
 /* --- messages without copies (for layers above mp) -----------------------
  * mp_send copies a payload out at once and mp_recv copies it in: for large
@@ -261,65 +279,6 @@ double mp_transfer(mp *self, int src, int dst, size_t len, double at);
  * (and counted as one).  MP_OK, MP_ERANK, MP_EARG or MP_ESTOPPED as
  * mp_send.  Real backends: an mp_send of 0 bytes. */
 int    mp_notify(mp *self, int dst, int tag, double at);
-
-/* --- private part: what a backend fills in ------------------------------ */
-
-typedef struct mp_ops {
-  int (*send)(mp *, int dst, int tag, const void *buf, size_t len);
-  int (*recv)(mp *, int src, int tag, void *buf, size_t cap, mp_status *st);
-  int (*probe)(mp *, int src, int tag, mp_status *st);
-  int (*compute)(mp *, double units);
-  double (*time)(const mp *);
-  int (*wait)(mp *, int src, int tag, mp_status *st);
-  int (*busy)(mp *, double seconds);
-  int (*sleep_for)(mp *, double seconds);   /* not "sleep": SimGrid's headers define that macro */
-  void (*stop)(mp *, int code, const char *why);   /* mp_abort's effect on the run */
-  void (*call)(mp *, const char *name, int begin); /* mp_call_begin/end, where traced */
-  /* Messages without copies: NULL where the backend copies (mp.c then
-   * does what the contract allows with send, wait and recv). */
-  int (*send_ref)(mp *, int dst, int tag, const void *buf, size_t len, mp_ref **ref);
-  void (*settle)(mp *, mp_ref *ref);
-  int (*withdraw)(mp *, mp_ref *ref);
-  int (*recv_msg)(mp *, int src, int tag, mp_msg **msg, mp_status *st);
-  int (*msg_read)(mp *, mp_msg *msg, void *buf, size_t cap);
-  int (*msg_gone)(mp *, const mp_msg *msg);
-  mp_promise *(*promise)(mp *, int src, int tag, int mask, void *buf, size_t cap);
-  int (*promise_drop)(mp *, mp_promise *p, int keep);
-
-  /* One-sided transfers: NULL where time is the host's (mp.c then does
-   * what the contract says for real backends). */
-  double (*transfer)(mp *, int src, int dst, size_t len, double at);
-  int (*notify)(mp *, int dst, int tag, double at);
-} mp_ops;
-
-/* A backend's per-rank state begins with this struct.  The backend calls
- * the rank's main through mp_enter, which is where mp_exit returns to. */
-struct mp {
-  const mp_ops *ops;
-  int rank, size;
-  void *user;                 /* mp_user */
-  mp_describe describe;       /* mp_label */
-  void *describe_ud;
-  void *exit_to;              /* mp_enter's jmp_buf while main runs */
-  void *stack_lo;             /* the rank's own stack, where the backend knows it */
-  size_t stack_size;          /* (the simulator's coroutines; else 0) */
-  void *stack_guard;          /* a fault in [stack_guard, stack_lo) is its stack
-                                 overflowing (the simulator's; else NULL) */
-  int traced;                 /* the backend traces this rank's calls (ops->call) */
-  int call_depth;             /* mp_call_begin's nesting, */
-  const char *call_name;      /* and the outermost call's name */
-  mp_progress progress;       /* mp_set_progress */
-  void *progress_ud;
-};
-
-/* Run main(self, ud) until it returns or the rank calls mp_exit or
- * mp_abort; the backend sets the calling thread's mp_self first (and, on
- * a simulator, again at every switch, with mp_set_self). */
-void mp_enter(mp *self, mp_main main, void *ud);
-void mp_set_self(mp *self);
-
-/* The label's words for a deadlock report: describe's, or NULL. */
-const char *mp_label_text(const mp *self, char *buf, size_t len);
 
 #ifdef __cplusplus
 }

@@ -25,14 +25,14 @@
 #include "mp/mp_mpi.h"
 
 #include <math.h>
-#include <stdarg.h>
+
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
+#include "mp/backend.h"
 #include "mp/cpuload.h"
-#include "util/errlog.h"
 #include "util/xmem.h"
 #if defined(__linux__)
 #include <sys/prctl.h>
@@ -105,8 +105,8 @@ struct mpm {
   int reported;                /* the state last reported: ST_* */
   long long reported_arrivals; /* arrivals at that report */
   int wait_src, wait_tag;      /* what a blocked recv waits for */
-  /* Errors of this rank (rank 0: of the run). */
-  errlog errs;
+  /* Errors and warnings of this rank (rank 0: of the run). */
+  mp_log log;
   mpm_stats st;                /* this rank's; rank 0's becomes the run's */
   /* Rank 0: the coordinator's view. */
   int *cstate, *cwsrc, *cwtag; /* [n] each rank's last reported state, wait */
@@ -114,39 +114,6 @@ struct mpm {
                                   A[j*n+i] arrived at j from i as j reported */
   long long unbalanced;        /* pairs with S[i][j] != A[j][i] */
 };
-
-/* ==== errors and warnings ================================================= */
-
-#if defined(__GNUC__)
-#define PRINTF(a, b) __attribute__((format(printf, a, b)))
-#else
-#define PRINTF(a, b)
-#endif
-
-static void add_error(mpm *m, const char *text, int always) {
-  m->st.errors++;
-  errlog_add(&m->errs, text, always);
-}
-
-static PRINTF(2, 3) void fail(mpm *m, const char *fmt, ...) {
-  char buf[256];
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(buf, sizeof buf, fmt, ap);
-  va_end(ap);
-  add_error(m, buf, 0);
-}
-
-static PRINTF(2, 3) void warn(mpm *m, const char *fmt, ...) {
-  m->st.warnings++;
-  if (!m->cfg.warn) return;
-  va_list ap;
-  va_start(ap, fmt);
-  fputs("mpi: warning: ", m->cfg.warn);
-  vfprintf(m->cfg.warn, fmt, ap);
-  fputc('\n', m->cfg.warn);
-  va_end(ap);
-}
 
 static double now(const mpm *m) { return MPI_Wtime() - m->t0; }
 
@@ -195,13 +162,6 @@ static void drain_pool(mpm *m) {
 /* ==== the coordinator (rank 0) and the control messages =================== */
 
 #if !SIMGRID   /* under SimGrid: blocking receives, no coordinator */
-
-
-static const char *peer_name(int v, char *buf, size_t len) {
-  if (v < 0) return "any";
-  snprintf(buf, len, "%d", v);
-  return buf;
-}
 
 /* Take rank i's report into rank 0's view, and see whether the run is over
  * or deadlocked. */
@@ -252,10 +212,10 @@ static void coord_check(mpm *m) {
       break;
     }
     len += (size_t)snprintf(buf + len, sizeof buf - len, "%s rank %d waits in recv(src=%s, tag=%s)",
-                            shown > 1 ? ";" : "", i, peer_name(m->cwsrc[i], a, sizeof a),
-                            peer_name(m->cwtag[i], b, sizeof b));
+                            shown > 1 ? ";" : "", i, mp_peer_name(m->cwsrc[i], a, sizeof a),
+                            mp_peer_name(m->cwtag[i], b, sizeof b));
   }
-  add_error(m, buf, 1);
+  mp_fail_text(&m->log, buf, 1);
   m->st.deadlock = 1;
   m->stopped = 1;
   for (int i = 1; i < m->n; i++) isend(m, m->ctl, i, CT_STOP, NULL, 0);
@@ -373,125 +333,41 @@ static void backoff(mpm *m, double since) {
   nanosleep(&ts, NULL);
 }
 
-static inline int matches(const msg *g, int src, int tag) {
-  return (src < 0 || g->src == src) && (tag < 0 || g->tag == tag);
-}
-
-static msg *box_take(mpm *m, int src, int tag) {
-  msg *prev = NULL;
-  for (msg *g = m->head; g; prev = g, g = g->next) {
-    if (!matches(g, src, tag)) continue;
-    if (prev)
-      prev->next = g->next;
-    else
-      m->head = g->next;
-    if (m->tail == g) m->tail = prev;
-    return g;
-  }
+/* The mailbox's first message from src with tag (MP_ANY: any), or NULL. */
+static msg *box_find(const mpm *m, int src, int tag) {
+  for (msg *g = m->head; g; g = g->next)
+    if ((src < 0 || g->src == src) && (tag < 0 || g->tag == tag)) return g;
   return NULL;
 }
 
-#endif /* !SIMGRID */
-
-/* ==== the mp calls ======================================================== */
-
-static int mpm_compute(mp *self, double units) {
-  mpm *m = (mpm *)self;
-  if (m->stopped) return MP_ESTOPPED;
-  if (!(units >= 0) || isinf(units)) {
-    fail(m, "rank %d: mp_compute(%g): units must be finite and >= 0", m->me, units);
-    return MP_EARG;
+/* g out of the mailbox. */
+static void box_unlink(mpm *m, const msg *g) {
+  msg *prev = NULL;
+  for (msg *x = m->head; x != g; prev = x, x = x->next) {
   }
-#if SIMGRID
-  if (units > 0 && m->cfg.c > 0) smpi_execute_benched(units * m->cfg.c);
-#endif
-  return MP_OK;
+  if (prev)
+    prev->next = g->next;
+  else
+    m->head = g->next;
+  if (m->tail == g) m->tail = prev;
 }
 
-static int mpm_send(mp *self, int dst, int tag, const void *buf, size_t len) {
-  mpm *m = (mpm *)self;
-  if (m->stopped) return MP_ESTOPPED;
-  if (dst < 0 || dst >= m->n) {
-    fail(m, "rank %d: mp_send to rank %d, which does not exist (%d ranks)", m->me, dst, m->n);
-    return MP_ERANK;
-  }
-  if (tag < 0 || tag > MPM_TAG_MAX) {
-    fail(m, "rank %d: mp_send to rank %d with tag %d: tags are 0..%d", m->me, dst, tag, MPM_TAG_MAX);
-    return MP_EARG;
-  }
-  if (len && !buf) {
-    fail(m, "rank %d: mp_send of %zu bytes from a NULL buffer", m->me, len);
-    return MP_EARG;
-  }
-  if (len > (size_t)INT32_MAX) {
-    fail(m, "rank %d: mp_send of %zu bytes: MPI counts stop at %d", m->me, len, (int)INT32_MAX);
-    return MP_EARG;
-  }
-  isend(m, m->data, dst, tag, buf, len);
-  m->sent_to[dst]++;
-  m->st.messages++;
-  m->st.bytes += (long long)len;
-  return MP_OK;
-}
-
-static int check_match_args(mpm *m, const char *call, int src, int tag) {
-  if (src < MP_ANY || src >= m->n) {
-    fail(m, "rank %d: %s from rank %d, which does not exist (%d ranks)", m->me, call, src, m->n);
-    return MP_ERANK;
-  }
-  if (tag < MP_ANY || tag > MPM_TAG_MAX) {
-    fail(m, "rank %d: %s with tag %d: tags are 0..%d or MP_ANY", m->me, call, tag, MPM_TAG_MAX);
-    return MP_EARG;
-  }
-  return MP_OK;
-}
-
-static int finish_recv(mpm *m, int src, int tag, size_t len, size_t cap, mp_status *st) {
-  if (st) *st = (mp_status){src, tag, len};
-  m->st.received++;
-  if (len > cap) {
-    warn(m, "rank %d: mp_recv truncated a %zu-byte message from rank %d (tag %d) to %zu bytes", m->me,
-         len, src, tag, cap);
-    return MP_ETRUNC;
-  }
-  return MP_OK;
-}
-
-static int mpm_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status *st) {
-  mpm *m = (mpm *)self;
-  if (m->stopped) return MP_ESTOPPED;
-  int rc = check_match_args(m, "mp_recv", src, tag);
-  if (rc != MP_OK) return rc;
-  if (cap && !buf) {
-    fail(m, "rank %d: mp_recv into a NULL buffer of %zu bytes", m->me, cap);
-    return MP_EARG;
-  }
-#if SIMGRID
-  /* One blocking receive: the simulated clock moves with the message. */
-  MPI_Status ms;
-  int icap = cap > (size_t)INT32_MAX ? INT32_MAX : (int)cap;
-  int e = MPI_Recv(buf, icap, MPI_BYTE, src < 0 ? MPI_ANY_SOURCE : src, tag < 0 ? MPI_ANY_TAG : tag,
-                   m->data, &ms);
-  int len = 0;
-  MPI_Get_count(&ms, MPI_BYTE, &len);
-  if (e != MPI_SUCCESS && e != MPI_ERR_TRUNCATE) xpanic("mpi: rank %d: MPI_Recv failed (%d)", m->me, e);
-  m->got_from[ms.MPI_SOURCE]++;
-  size_t full = e == MPI_ERR_TRUNCATE && (size_t)len <= cap ? cap + 1 : (size_t)len;
-  return finish_recv(m, ms.MPI_SOURCE, ms.MPI_TAG, full, cap, st);
-#else
+/* Wait until the mailbox holds a message from src with tag: that message,
+ * left there; or NULL and *rc = MP_EDEADLOCK (rank 0 saw every rank
+ * blocked, this one among them) or MP_ESTOPPED.  A rank blocked REPORT_S
+ * tells rank 0, and again whenever messages have come since. */
+static msg *await(mpm *m, int src, int tag, int *rc) {
   double since = -1;
   for (;;) {
-    msg *g = box_take(m, src, tag);
+    msg *g = box_find(m, src, tag);
     if (g) {
       if (m->reported == ST_BLOCKED) report(m, ST_RUNNING);
-      size_t k = g->len <= cap ? g->len : cap;
-      if (k) memcpy(buf, g->data, k);
-      rc = finish_recv(m, g->src, g->tag, g->len, cap, st);
-      free(g);
-      return rc;
+      *rc = MP_OK;
+      return g;
     }
-    if (m->stopped) {   /* rank 0 saw every rank blocked: this recv among them */
-      return m->reported == ST_BLOCKED ? MP_EDEADLOCK : MP_ESTOPPED;
+    if (m->stopped) {
+      *rc = m->reported == ST_BLOCKED ? MP_EDEADLOCK : MP_ESTOPPED;
+      return NULL;
     }
     if (since < 0) {
       since = now(m);
@@ -506,14 +382,78 @@ static int mpm_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status
     }
     poll_once(m);
   }
+}
+
+#endif /* !SIMGRID */
+
+/* ==== the mp calls ======================================================== */
+
+static int mpm_compute(mp *self, double units) {
+  mpm *m = (mpm *)self;
+  (void)units;
+  if (m->stopped) return MP_ESTOPPED;
+#if SIMGRID
+  if (units > 0 && m->cfg.c > 0) smpi_execute_benched(units * m->cfg.c);
+#endif
+  return MP_OK;
+}
+
+static int mpm_send(mp *self, int dst, int tag, const void *buf, size_t len) {
+  mpm *m = (mpm *)self;
+  if (m->stopped) return MP_ESTOPPED;
+  if (len > (size_t)INT32_MAX) {
+    mp_fail(&m->log, "rank %d: mp_send of %zu bytes: MPI counts stop at %d", m->me, len, (int)INT32_MAX);
+    return MP_EARG;
+  }
+  isend(m, m->data, dst, tag, buf, len);
+  m->sent_to[dst]++;
+  m->st.messages++;
+  m->st.bytes += (long long)len;
+  return MP_OK;
+}
+
+static int finish_recv(mpm *m, int src, int tag, size_t len, size_t cap, mp_status *st) {
+  if (st) *st = (mp_status){src, tag, len};
+  m->st.received++;
+  if (len > cap) {
+    mp_warn(&m->log, "rank %d: mp_recv truncated a %zu-byte message from rank %d (tag %d) to %zu bytes", m->me,
+         len, src, tag, cap);
+    return MP_ETRUNC;
+  }
+  return MP_OK;
+}
+
+static int mpm_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status *st) {
+  mpm *m = (mpm *)self;
+  if (m->stopped) return MP_ESTOPPED;
+#if SIMGRID
+  /* One blocking receive: the simulated clock moves with the message. */
+  MPI_Status ms;
+  int icap = cap > (size_t)INT32_MAX ? INT32_MAX : (int)cap;
+  int e = MPI_Recv(buf, icap, MPI_BYTE, src < 0 ? MPI_ANY_SOURCE : src, tag < 0 ? MPI_ANY_TAG : tag,
+                   m->data, &ms);
+  int len = 0;
+  MPI_Get_count(&ms, MPI_BYTE, &len);
+  if (e != MPI_SUCCESS && e != MPI_ERR_TRUNCATE) xpanic("mpi: rank %d: MPI_Recv failed (%d)", m->me, e);
+  m->got_from[ms.MPI_SOURCE]++;
+  size_t full = e == MPI_ERR_TRUNCATE && (size_t)len <= cap ? cap + 1 : (size_t)len;
+  return finish_recv(m, ms.MPI_SOURCE, ms.MPI_TAG, full, cap, st);
+#else
+  int rc;
+  msg *g = await(m, src, tag, &rc);
+  if (!g) return rc;
+  box_unlink(m, g);
+  size_t k = g->len <= cap ? g->len : cap;
+  if (k) memcpy(buf, g->data, k);
+  rc = finish_recv(m, g->src, g->tag, g->len, cap, st);
+  free(g);
+  return rc;
 #endif
 }
 
 static int mpm_probe(mp *self, int src, int tag, mp_status *st) {
   mpm *m = (mpm *)self;
   if (m->stopped) return MP_ESTOPPED;
-  int rc = check_match_args(m, "mp_probe", src, tag);
-  if (rc != MP_OK) return rc;
 #if SIMGRID
   int flag = 0;
   MPI_Status ms;
@@ -526,12 +466,10 @@ static int mpm_probe(mp *self, int src, int tag, mp_status *st) {
   return flag != 0;
 #else
   poll_once(m);
-  for (msg *g = m->head; g; g = g->next) {
-    if (!matches(g, src, tag)) continue;
-    if (st) *st = (mp_status){g->src, g->tag, g->len};
-    return 1;
-  }
-  return m->stopped ? MP_ESTOPPED : 0;
+  const msg *g = box_find(m, src, tag);
+  if (!g) return m->stopped ? MP_ESTOPPED : 0;
+  if (st) *st = (mp_status){g->src, g->tag, g->len};
+  return 1;
 #endif
 }
 
@@ -542,8 +480,6 @@ static double mpm_time(const mp *self) { return now((const mpm *)self); }
 static int mpm_wait(mp *self, int src, int tag, mp_status *st) {
   mpm *m = (mpm *)self;
   if (m->stopped) return MP_ESTOPPED;
-  int rc = check_match_args(m, "mp_wait", src, tag);
-  if (rc != MP_OK) return rc;
 #if SIMGRID
   MPI_Status ms;
   MPI_Probe(src < 0 ? MPI_ANY_SOURCE : src, tag < 0 ? MPI_ANY_TAG : tag, m->data, &ms);
@@ -552,38 +488,17 @@ static int mpm_wait(mp *self, int src, int tag, mp_status *st) {
   if (st) *st = (mp_status){ms.MPI_SOURCE, ms.MPI_TAG, (size_t)len};
   return MP_OK;
 #else
-  double since = -1;
-  for (;;) {
-    for (msg *g = m->head; g; g = g->next) {
-      if (!matches(g, src, tag)) continue;
-      if (m->reported == ST_BLOCKED) report(m, ST_RUNNING);
-      if (st) *st = (mp_status){g->src, g->tag, g->len};
-      return MP_OK;
-    }
-    if (m->stopped) return m->reported == ST_BLOCKED ? MP_EDEADLOCK : MP_ESTOPPED;
-    if (since < 0) {
-      since = now(m);
-      m->wait_src = src;
-      m->wait_tag = tag;
-    } else {
-      double w = now(m) - since;
-      if (m->reported != ST_BLOCKED && w >= REPORT_S) report(m, ST_BLOCKED);
-      else if (m->reported == ST_BLOCKED && m->arrivals != m->reported_arrivals) report(m, ST_BLOCKED);
-      if (m->stopped) continue;
-      backoff(m, since);
-    }
-    poll_once(m);
-  }
+  int rc;
+  const msg *g = await(m, src, tag, &rc);
+  if (g && st) *st = (mp_status){g->src, g->tag, g->len};
+  return rc;
 #endif
 }
 
 static int mpm_busy(mp *self, double seconds) {
   mpm *m = (mpm *)self;
+  (void)seconds;
   if (m->stopped) return MP_ESTOPPED;
-  if (!(seconds >= 0) || isinf(seconds)) {
-    fail(m, "rank %d: mp_busy(%g): seconds must be finite and >= 0", m->me, seconds);
-    return MP_EARG;
-  }
 #if SIMGRID
   if (seconds > 0) smpi_execute_benched(seconds);
 #endif
@@ -593,10 +508,6 @@ static int mpm_busy(mp *self, double seconds) {
 static int mpm_sleep(mp *self, double seconds) {
   mpm *m = (mpm *)self;
   if (m->stopped) return MP_ESTOPPED;
-  if (!(seconds >= 0) || seconds > 1e9) {
-    fail(m, "rank %d: mp_sleep(%g): seconds must be from 0 to 1e9", m->me, seconds);
-    return MP_EARG;
-  }
   struct timespec ts = {(time_t)seconds, (long)((seconds - (double)(time_t)seconds) * 1e9)};
   while (nanosleep(&ts, &ts) != 0) {
   }
@@ -612,12 +523,20 @@ static void mpm_stop(mp *self, int code, const char *why) {
   MPI_Abort(MPI_COMM_WORLD, code);
 }
 
+/* A call mp.c found a bad argument in. */
+static int mpm_reject(mp *self, int code, const char *why) {
+  mpm *m = (mpm *)self;
+  if (m->stopped) return MP_ESTOPPED;
+  mp_fail_text(&m->log, why, 0);
+  return code;
+}
+
 /* Messages without copies: none here (mp.c copies: mp_send_ref is mp_send,
  * mp_recv_msg is mp_recv into memory of its own, no promises). */
-static const mp_ops mpm_ops = {mpm_send, mpm_recv, mpm_probe, mpm_compute, mpm_time,
-                               mpm_wait, mpm_busy, mpm_sleep, mpm_stop,    NULL,
-                               NULL,     NULL,     NULL,      NULL,        NULL,
-                               NULL,     NULL,     NULL,     NULL,     NULL};
+static const mp_ops mpm_ops = {.send = mpm_send, .recv = mpm_recv, .probe = mpm_probe, .compute = mpm_compute,
+                               .time = mpm_time, .wait = mpm_wait, .busy = mpm_busy, .sleep_for = mpm_sleep,
+                               .stop = mpm_stop, .reject = mpm_reject, .tag_max = MPM_TAG_MAX,
+                               .sleep_bounded = 1};
 
 /* ==== the machine ========================================================= */
 
@@ -654,6 +573,7 @@ mpm *mpm_new(const mpm_config *cfg, MPI_Comm data, MPI_Comm ctl, int nranks, cha
   m->got_from = xcalloc((size_t)nranks, sizeof *m->got_from);
   m->wait_src = m->wait_tag = MP_ANY;
   m->st.ranks = nranks;
+  m->log = (mp_log){.name = "mpi", .warn = cfg->warn, .st = &m->st.run};
   if (me == 0) {
     m->cstate = xcalloc((size_t)nranks, sizeof *m->cstate);
     m->cwsrc = xcalloc((size_t)nranks, sizeof *m->cwsrc);
@@ -672,7 +592,7 @@ static void count_unread(mpm *m) {
   if (!m->head) return;
   long long count = 0;
   for (msg *g = m->head; g; g = g->next) count++;
-  warn(m, "rank %d finished with %lld unread message%s (first from rank %d, tag %d)", m->me, count,
+  mp_warn(&m->log, "rank %d finished with %lld unread message%s (first from rank %d, tag %d)", m->me, count,
        count == 1 ? "" : "s", m->head->src, m->head->tag);
   m->st.unread += count;
   while (m->head) {
@@ -714,7 +634,7 @@ static void drain_unread(mpm *m, const long long *expect) {
     }
   }
   if (count)
-    warn(m, "rank %d finished with %lld unread message%s (first from rank %d, tag %d)", m->me, count,
+    mp_warn(&m->log, "rank %d finished with %lld unread message%s (first from rank %d, tag %d)", m->me, count,
          count == 1 ? "" : "s", first_src, first_tag);
   m->st.unread += count;
 }
@@ -726,7 +646,7 @@ static void pack_final(const mpm *m, unsigned char *b) {
   f.sent = m->st.messages, f.received = m->st.received, f.bytes = m->st.bytes;
   f.unread = m->st.unread, f.warnings = m->st.warnings, f.errors = m->st.errors;
   f.deadlock = m->st.deadlock;
-  snprintf(f.errs, sizeof f.errs, "%s", m->errs.text ? m->errs.text : "");
+  snprintf(f.errs, sizeof f.errs, "%s", m->log.errs.text ? m->log.errs.text : "");
   memcpy(b, &f, sizeof f);
   memcpy(b + sizeof f, m->sent_to, 8 * (size_t)m->n);
   memcpy(b + sizeof f + 8 * (size_t)m->n, m->got_from, 8 * (size_t)m->n);
@@ -777,7 +697,7 @@ static void finish(mpm *m) {
     tot.messages += f.sent, tot.received += f.received, tot.bytes += f.bytes;
     tot.unread += f.unread, tot.warnings += f.warnings, tot.errors += f.errors;
     tot.deadlock |= f.deadlock;
-    if (f.errs[0]) errlog_add(&m->errs, f.errs, 0);   /* the first few; the count says the rest */
+    if (f.errs[0]) errlog_add(&m->log.errs, f.errs, 0);   /* the first few; the count says the rest */
     got++;
   }
 #if SIMGRID
@@ -812,7 +732,7 @@ int mpm_run(mpm *m, mp_main main, void *ud, char *err, size_t errlen) {
   finish(m);
   drain_pool(m);
   m->st.wall_s = now(m);
-  return errlog_report(&m->errs, m->st.errors, err, errlen);
+  return mp_log_report(&m->log, err, errlen);
 }
 
 const mpm_stats *mpm_stats_get(const mpm *m) { return &m->st; }
@@ -828,6 +748,6 @@ void mpm_free(mpm *m) {
   free(m->req), free(m->pbuf), free(m->idx);
   free(m->sent_to), free(m->got_from);
   free(m->cstate), free(m->cwsrc), free(m->cwtag), free(m->S), free(m->A);
-  errlog_free(&m->errs);
+  mp_log_free(&m->log);
   free(m);
 }

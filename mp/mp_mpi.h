@@ -69,6 +69,7 @@
 #include <stdio.h>
 
 #include "mp/mp.h"
+#include "mp/stats.h"
 
 enum { MPM_TAG_MAX = 32767 - 16 };   /* the largest mp tag (MPI guarantees 32767) */
 
@@ -98,16 +99,11 @@ mpm *mpm_new(const mpm_config *cfg, MPI_Comm data, MPI_Comm ctl, int nranks, cha
  * runs with messages of its own; a barrier does too). */
 int mpm_run(mpm *m, mp_main main, void *ud, char *err, size_t errlen);
 
+/* The figures of mp/stats.h: this rank's, and on rank 0 the run's (by all
+ * ranks); wall_s: this rank's seconds in mpm_run; aborted and abort_code
+ * stay 0 (mp_abort is MPI_Abort: the run ends). */
 typedef struct {
-  int ranks;
-  double wall_s;              /* this rank's seconds in mpm_run */
-  long long messages;         /* messages sent (rank 0: by all ranks) */
-  long long received;         /* messages received */
-  long long bytes;            /* bytes sent */
-  long long unread;           /* messages never received */
-  long long warnings;         /* truncations, unread messages */
-  long long errors;           /* bad arguments, deadlock, ... */
-  int deadlock;               /* 1 if the run ended in a deadlock */
+  MP_STATS_GROUP;
 } mpm_stats;
 
 /* After mpm_run: on rank 0 the whole run's figures, on others their own. */

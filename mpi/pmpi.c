@@ -26,8 +26,8 @@ int PMPI_Pcontrol(const int level, ...) {
 #define TSMPI_PMPI_1(ret, name, params, args)         \
   ret name params {                                    \
     mp *self_ = mp_self();                             \
-    int traced_ = self_ && self_->traced;              \
-    if (self_ && self_->progress) mp_time(self_);      \
+    int traced_ = self_ && mp_traced(self_);           \
+    if (self_ && mp_progressing(self_)) mp_time(self_); \
     if (traced_) mp_call_begin(self_, #name);          \
     ret r_ = P##name args;                             \
     if (traced_) mp_call_end(self_);                   \

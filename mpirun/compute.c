@@ -58,7 +58,7 @@ static double thread_cpu(void) {
 }
 
 /* The hooks: before every mp call, charge what the rank computed since its
- * last one (self->ops->busy: mp_busy would call the hooks again). */
+ * last one (mp_charge: mp_busy would call the hooks again). */
 static void enter(mp *self) {
   double s = 0;
   if (cfg.mode == COMPUTE_BLOCKS) {
@@ -69,7 +69,7 @@ static void enter(mp *self) {
     if (*l >= 0 && t > *l) s = t - *l;
     *l = -1;   /* until this call ends: the layer's time is not the program's */
   }
-  if (s > 0) self->ops->busy(self, s);
+  if (s > 0) mp_charge(self, s);
 }
 
 static void leave(mp *self) {

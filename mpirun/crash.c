@@ -50,18 +50,20 @@ static void on_crash(int sig, siginfo_t *si, void *uc) {
   put(&l, ": ");
   if (self) {
     put(&l, "rank ");
-    put_num(&l, (unsigned long long)self->rank);
+    put_num(&l, (unsigned long long)mp_rank(self));
     put(&l, " crashed: ");
   } else {
     put(&l, "crashed outside any rank: ");
   }
   put(&l, sname);
   put(&l, " (");
-  uintptr_t a = (uintptr_t)si->si_addr, lo = self ? (uintptr_t)self->stack_lo : 0;
-  uintptr_t guard = self ? (uintptr_t)self->stack_guard : 0;   /* its group's guard page (coro.h) */
+  void *slo = NULL, *sguard = NULL;   /* its stack, and its group's guard page (coro.h) */
+  size_t ssize = 0;
+  if (self) mp_stack(self, &slo, &ssize, &sguard);
+  uintptr_t a = (uintptr_t)si->si_addr, lo = (uintptr_t)slo, guard = (uintptr_t)sguard;
   if ((sig == SIGSEGV || sig == SIGBUS) && lo && a < lo && (a + (1u << 20) >= lo || (guard && a >= guard))) {
     put(&l, "a stack overflow: its stack is ");
-    put_num(&l, self->stack_size >> 10);
+    put_num(&l, ssize >> 10);
     put(&l, " KiB; --stack sets it");
   } else {
     put(&l, what);

@@ -8,7 +8,7 @@
  *     tilesim-mpirun: rank 3 crashed: SIGSEGV (segmentation fault)
  * naming a stack overflow when the faulting address is just below the
  * rank's stack or on the guard page it shares with others (mp.h's
- * stack_guard: "its stack is 1 MiB; --stack sets it"), and ends the
+ * mp_stack: "its stack is 1 MiB; --stack sets it"), and ends the
  * process with status 128 + the signal's number.  On the threads backend
  * the handler runs only where the signal stack is (the main thread's), so a
  * rank thread's stack overflow ends the process with the signal. */

@@ -1,763 +1,16 @@
-/* sim.c -- the discrete-event simulator: ranks as coroutines, the timing model, errors.
- *
- * Reading order: the data (ranks, the machine; messages, mailboxes and
- * channels are mailbox.h's, the profiles profile.c's), scheduling (who
- * runs next), the mp calls (compute, send, recv, probe; messages without
- * copies), then sim_run's main loop and the deadlock report.  The timing
- * model itself is specified in sim.h.
- *
- * Scheduling is a conservative sequential discrete-event loop.  Every rank
- * that can act is queued in `q` under the time it will act at; the running
- * rank is always the earliest.  When its clock moves past the next queued
- * time, or it blocks in recv, it switches directly to the earliest queued
- * rank (no trip through a scheduler); only when the queue is empty does
- * control return to sim_run, which then has either finished or found a
- * deadlock.  A rank whose clock moves but stays strictly earliest goes on
- * without a switch: exactly what queueing it and popping it would do.
- *
- *   A token ring on the bus model, messages costing m:
- *
- *   time -->  0            m            2m           3m
- *   rank 0    send--.  recv (blocked, not queued)    .->recv
- *   rank 1    recv  '---->recv send--.               |
- *   rank 2    recv                   '---->recv send-'
- *
- *   Each send queues the blocked receiver at the arrival time; each recv
- *   that finds nothing there switches to the earliest queued rank.
- *
- * A blocked rank is queued only once a matching message is on its way, at
- * that message's arrival time (moved earlier if an earlier matching message
- * is sent later).  Nothing queued and ranks still alive means deadlock. */
+/* sim.c -- the discrete-event simulator: the machine, its run (sim_run's
+ * main loop, the deadlock report), its statistics.  Its ranks' calls are
+ * calls.c's. */
 #include "sim/sim.h"
 
 #include <math.h>
-#include <stdarg.h>
-#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "sim/coro.h"
-#include "sim/evq.h"
-#include "util/errlog.h"
-#include "sim/mailbox.h"
+#include "sim/calls.h"
 #include "sim/profile.h"
-#include "sim/trace.h"
 #include "util/wallclock.h"
 #include "util/xmem.h"
-
-/* ==== data ================================================================ */
-
-enum {
-  STOPPED_CALLS_MAX = 1000000, /* calls after a stop before a rank is abandoned */
-  PROBE_SPINS_MAX = 1000000    /* fruitless probes at one clock before we stop */
-};
-
-/* R_BUSY: computing with a progress function (mp_set_progress), queued at the
- * computing's end or at the next arrival, whichever is first. */
-enum { R_READY, R_BLOCKED, R_DONE, R_ABANDONED, R_BUSY };
-
-typedef struct rank rank;
-struct rank {
-  struct mp base;          /* first: an mp * is a rank * */
-  sim *s;
-  coro *co;
-  int proc;
-  int state;               /* R_* */
-  double now;              /* the rank's clock */
-  /* blocked in recv: */
-  int wait_src, wait_tag;  /* what it waits for (MP_ANY = -1) */
-  double wake;             /* the time it is queued to wake at, INFINITY if none */
-  double since;            /* when it blocked */
-  int deadlocked;          /* woken by the deadlock report */
-  mbox box;                /* messages sent to it, sent or arrived */
-  chanset chans;           /* the latest arrival per destination */
-  long stopped_calls;      /* mp calls since the run stopped */
-  double call_t0;          /* mp_call_begin: when the outermost call began, */
-  long long call_msgs;     /* and the messages sent and received by then */
-  long probe_spins;        /* fruitless probes in a row at probe_at */
-  double probe_at;
-  sim_rank_stats st;
-};
-
-struct sim {
-  sim_config cfg;
-  int n;                   /* ranks */
-  int *place;
-  rank *ranks;
-  double *busy;            /* per processor: busy_until */
-  double *nic;             /* per processor: LogGP NIC free time */
-  double bus_free;         /* SIM_NET_BUS */
-  topo *topo;              /* SIM_NET_TOPOLOGY: the interconnect and its links */
-  links *links;
-  evq *q;                  /* ranks that can act, by (time, seq) */
-  uint64_t seq;            /* the next sequence number (events and messages) */
-  double gtime;            /* the time of the latest event started: never decreases */
-  coro *main;              /* sim_run's own context */
-  coro_stacks *stacks;     /* the ranks' stacks, one set */
-  const mp_proc *procs;
-  int live;                /* ranks neither done nor abandoned */
-  int stopped;             /* deadlock or error: every mp call fails at once */
-  int cpu;                 /* the processor-side model (cpu.h) is on */
-  unsigned char *seen;     /* per processor, for slow_factor */
-  int ran;
-  mstore msgs;             /* spent messages */
-  FILE *tcsv, *tjson;
-  int count_csv, count_json;   /* sim_trace_count */
-  void (*tick)(void *, double, long long);   /* sim_progress */
-  void *tick_ud;
-  unsigned ticks;
-  int limited;                 /* sim_trace_limit */
-  unsigned long long trace_limit;
-  trace *tr;
-  errlog errs;             /* the errors quoted in sim_run's message */
-  sim_stats st;
-};
-
-/* ==== errors and warnings ================================================= */
-
-static char *vformat(const char *fmt, va_list ap) {
-  va_list aq;
-  va_copy(aq, ap);
-  int n = vsnprintf(NULL, 0, fmt, aq);
-  va_end(aq);
-  XASSERT(n >= 0);
-  char *buf = xmalloc((size_t)n + 1);
-  vsnprintf(buf, (size_t)n + 1, fmt, ap);
-  return buf;
-}
-
-#if defined(__GNUC__)
-#define PRINTF(a, b) __attribute__((format(printf, a, b)))
-#else
-#define PRINTF(a, b)
-#endif
-
-static void add_error(sim *s, char *text, int always) {
-  s->st.errors++;
-  errlog_add(&s->errs, text, always);
-  free(text);
-}
-
-/* An error of the run: sim_run will return -1 and quote it. */
-static PRINTF(2, 3) void fail(sim *s, const char *fmt, ...) {
-  va_list ap;
-  va_start(ap, fmt);
-  add_error(s, vformat(fmt, ap), 0);
-  va_end(ap);
-}
-
-static PRINTF(2, 3) void warn(sim *s, const char *fmt, ...) {
-  s->st.warnings++;
-  if (!s->cfg.warn) return;
-  va_list ap;
-  va_start(ap, fmt);
-  fputs("sim: warning: ", s->cfg.warn);
-  vfprintf(s->cfg.warn, fmt, ap);
-  fputc('\n', s->cfg.warn);
-  va_end(ap);
-}
-
-/* ==== scheduling ========================================================== */
-
-/* The running rank r gives way to the earliest queued rank (or to sim_run
- * when none is queued); returns when r is resumed. */
-static void give_way(sim *s, rank *r) {
-  double t;
-  int id = evq_pop(s->q, &t);
-  if (id == r->base.rank) {
-    s->gtime = t;
-    return;
-  }
-  s->st.switches++;
-  if (s->tick && (++s->ticks & 0xffff) == 0) s->tick(s->tick_ud, s->gtime, s->st.events);
-  if (id < 0) {
-    coro_switch(r->co, s->main);
-  } else {
-    XASSERT(t >= s->gtime);
-    s->gtime = t;
-    coro_switch(r->co, s->ranks[id].co);
-  }
-  mp_set_self(&r->base);   /* resumed */
-}
-
-/* r's clock has moved on.  Go on if it is still strictly the earliest (what
- * queueing and popping it would give), else queue it and give way. */
-static inline void moved(sim *s, rank *r) {
-  if (r->now < evq_min(s->q)) {
-    s->gtime = r->now;
-    return;
-  }
-  evq_set(s->q, r->base.rank, r->now, s->seq++);
-  give_way(s, r);
-}
-
-/* Reserve r's processor for dur seconds from r's clock on; the start. */
-static inline double reserve(sim *s, rank *r, double dur) {
-  double start = r->now, *busy = &s->busy[r->proc];
-  if (*busy > start) start = *busy;
-  *busy = start + dur;
-  return start;
-}
-
-/* LogGP's overhead: r's processor is busy o from r's clock on (after any
- * wait for it); r's clock moves to its end.  Returns when it began. */
-static double overhead(sim *s, rank *r, double o) {
-  double t0 = r->now, start = reserve(s, r, o);
-  r->st.cpu_wait += start - t0;
-  r->st.overhead += o;
-  if (s->tr && start > t0) trace_span(s->tr, "cpuwait", r->base.rank, r->proc, t0, start - t0, -1, -1);
-  r->now = start + o;
-  return start;
-}
-
-/* The rank that does not stop calling after the run stopped. */
-static void abandon(sim *s, rank *r) {
-  fail(s, "rank %d kept calling after the run stopped (%d calls); abandoned it", r->base.rank,
-       STOPPED_CALLS_MAX);
-  r->state = R_ABANDONED;
-  s->live--;
-  give_way(s, r);
-  xpanic("an abandoned rank was resumed");
-}
-
-static int stopped_call(sim *s, rank *r) {
-  if (++r->stopped_calls >= STOPPED_CALLS_MAX) abandon(s, r);
-  return MP_ESTOPPED;
-}
-
-/* ==== the mp calls ======================================================== */
-
-/* cpu.h's busy neighbours: the factor 1 + slowdown * k + slowdown_spin * j
- * for r's compute, k the processors other than r's with a rank working at
- * r's clock (not blocked, not finished), j those with a rank blocked no
- * longer than cpu.spin (spinning) and none working; each processor once. */
-static double slow_factor(sim *s, const rank *r) {
-  unsigned char *seen = s->seen;   /* per processor: 0 idle, 1 spinning, 2 working */
-  memset(seen, 0, (size_t)s->cfg.procs);
-  for (int i = 0; i < s->n; i++) {
-    const rank *o = &s->ranks[i];
-    if (o->proc == r->proc || o->state == R_DONE || o->state == R_ABANDONED) continue;
-    unsigned char v = o->state != R_BLOCKED ? 2 : r->now - o->since <= s->cfg.cpu.spin ? 1 : 0;
-    if (v > seen[o->proc]) seen[o->proc] = v;
-  }
-  int k = 0, j = 0;
-  for (int p = 0; p < s->cfg.procs; p++) k += seen[p] == 2, j += seen[p] == 1;
-  return 1 + s->cfg.cpu.slowdown * k + s->cfg.cpu.slowdown_spin * j;
-}
-
-/* r computes until end with a progress function: at each arrival before end
- * (and at once for messages already there) the function runs at the
- * arrival, the processor lent to it; the processor time it charges (x)
- * moves the computing's end by as much.  r->now is the computing's start
- * (before any wait for the processor). */
-static int busy_progress(sim *s, rank *r, double end) {
-  double shown = -INFINITY, at = r->now;   /* messages up to shown were offered; at: last resumed */
-  for (;;) {
-    msg *m = r->box.head;
-    while (m && m->arrival <= shown) m = m->next;
-    double next = m ? m->arrival : INFINITY;
-    if (next < r->now) next = r->now;
-    if (next > end) next = end;
-    if (next > r->now) {   /* compute until then, woken earlier by an earlier arrival (sim_send) */
-      r->state = R_BUSY;
-      r->wake = next;
-      evq_set(s->q, r->base.rank, next, s->seq++);
-      give_way(s, r);
-      r->state = R_READY;
-      if (s->stopped) {
-        r->now = end;
-        return stopped_call(s, r);
-      }
-      r->now = at = r->wake;
-    }
-    if (r->now >= end) break;
-    double t = r->now, saved = s->busy[r->proc];
-    s->busy[r->proc] = t;
-    r->base.progress(&r->base, r->base.progress_ud);
-    double x = r->now - t;
-    s->busy[r->proc] = saved + x;
-    end += x;
-    shown = t;
-    if (s->stopped) {
-      r->now = end;
-      return stopped_call(s, r);
-    }
-  }
-  r->now = end;
-  if (r->now > at) moved(s, r);
-  return MP_OK;
-}
-
-/* r computes for d seconds (units of them, for the statistics). */
-static int charge(sim *s, rank *r, double d, double units) {
-  double t0 = r->now;
-  if (s->cpu && (s->cfg.cpu.slowdown > 0 || s->cfg.cpu.slowdown_spin > 0)) d *= slow_factor(s, r);
-  double start = reserve(s, r, d);
-  r->st.units += units;
-  r->st.compute += d;
-  r->st.cpu_wait += start - t0;
-  if (s->tr) {
-    if (start > t0) trace_span(s->tr, "cpuwait", r->base.rank, r->proc, t0, start - t0, -1, -1);
-    trace_span(s->tr, "compute", r->base.rank, r->proc, start, d, -1, -1);
-  }
-  if (r->base.progress) return busy_progress(s, r, start + d);
-  r->now = start + d;
-  if (r->now > t0) moved(s, r);
-  return MP_OK;
-}
-
-static int sim_compute(mp *self, double units) {
-  rank *r = (rank *)self;
-  sim *s = r->s;
-  if (s->stopped) return stopped_call(s, r);
-  s->st.events++;
-  r->probe_spins = 0;
-  if (!(units >= 0) || isinf(units)) {
-    fail(s, "rank %d: mp_compute(%g): units must be finite and >= 0", r->base.rank, units);
-    return MP_EARG;
-  }
-  return charge(s, r, units * s->cfg.c, units);
-}
-
-static int sim_busy(mp *self, double seconds) {
-  rank *r = (rank *)self;
-  sim *s = r->s;
-  if (s->stopped) return stopped_call(s, r);
-  s->st.events++;
-  r->probe_spins = 0;
-  if (!(seconds >= 0) || isinf(seconds)) {
-    fail(s, "rank %d: mp_busy(%g): seconds must be finite and >= 0", r->base.rank, seconds);
-    return MP_EARG;
-  }
-  return charge(s, r, seconds, 0);
-}
-
-static int sim_sleep(mp *self, double seconds) {
-  rank *r = (rank *)self;
-  sim *s = r->s;
-  if (s->stopped) return stopped_call(s, r);
-  s->st.events++;
-  r->probe_spins = 0;
-  if (!(seconds >= 0) || isinf(seconds)) {
-    fail(s, "rank %d: mp_sleep(%g): seconds must be finite and >= 0", r->base.rank, seconds);
-    return MP_EARG;
-  }
-  if (s->tr && seconds > 0) trace_span(s->tr, "sleep", r->base.rank, r->proc, r->now, seconds, -1, -1);
-  r->st.slept += seconds;
-  double t0 = r->now;
-  r->now += seconds;
-  if (r->now > t0) moved(s, r);
-  return MP_OK;
-}
-
-/* When len bytes that leave processor a->proc for d's at t arrive, and the
- * network's state charged for them: the machine's model (sim.h) but for
- * the sender's processor costs (the caller's) and the channel's order. */
-static inline double wire(sim *s, const rank *a, const rank *d, double t, size_t len, int tag, uint64_t id) {
-  const sim_config *c = &s->cfg;
-  if (d->proc == a->proc) return t + c->local;
-  if (c->net == SIM_NET_BUS) {
-    double start = t > s->bus_free ? t : s->bus_free;
-    s->bus_free = start + c->m + (double)len * c->per_byte;
-    return s->bus_free;
-  }
-  if (c->net == SIM_NET_IDEAL) return t + c->m + (double)len * c->per_byte;
-  if (c->net == SIM_NET_TOPOLOGY)   /* link.h; id names the message in a trace */
-    return links_send(s->links, a->proc, d->proc, t, len, s->tr, a->base.rank, d->base.rank, tag, id);
-  double *nic = &s->nic[a->proc], inject = t > *nic ? t : *nic;
-  *nic = inject + c->g;
-  return inject + (len > 1 ? (double)(len - 1) * c->G : 0) + c->L;
-}
-
-/* r sends len bytes to d: its processor's costs (cpu.h's send cost, LogGP's
- * o), which move its clock; their total in *o and the start of the first
- * in *t0 (r's clock if none). */
-static inline void send_costs(sim *s, rank *r, const rank *d, size_t len, double *t0, double *o) {
-  const sim_config *c = &s->cfg;
-  *t0 = r->now;
-  *o = 0;
-  if (d->proc == r->proc) return;
-  if (s->cpu && cpu_send_cost(&c->cpu, len) > 0) {   /* cpu.h: the send's processor time */
-    *o = cpu_send_cost(&c->cpu, len);
-    *t0 = overhead(s, r, *o);
-  }
-  if (c->net == SIM_NET_LOGGP) {
-    double t1 = overhead(s, r, c->o);
-    if (*o == 0) *t0 = t1;
-    *o += c->o;
-  }
-}
-
-/* The latest arrival on the channel a -> d so far, moved to arrival if
- * that is later (non-overtaking); the arrival in send order. */
-static inline double in_order(rank *a, int dst, double arrival) {
-  double *last = chan_last(&a->chans, dst);
-  if (arrival < *last) arrival = *last;
-  *last = arrival;
-  return arrival;
-}
-
-/* m (its arrival set, placed) into d's mailbox: a receiver blocked on a
- * matching message wakes when the earliest arrives (cpu.h: later if it has
- * gone to sleep; its first waker r pays o_wake, where remote); a receiver
- * computing with a progress function (R_BUSY) wakes at the arrival. */
-static inline void deliver(sim *s, rank *r, rank *d, msg *m, int remote) {
-  const sim_config *c = &s->cfg;
-  box_insert(m);
-  if (d->state == R_BLOCKED && msg_matches(m, d->wait_src, d->wait_tag)) {
-    double resume = m->arrival;
-    if (s->cpu && remote) {
-      resume = cpu_resume(&c->cpu, d->since, m->arrival);
-      if (d->wake == INFINITY && cpu_asleep(&c->cpu, d->since, m->arrival) && c->cpu.o_wake > 0)
-        overhead(s, r, c->cpu.o_wake);
-    }
-    if (resume < d->wake) {
-      d->wake = resume;
-      evq_set(s->q, d->base.rank, resume, s->seq++);
-    }
-  } else if (d->state == R_BUSY && m->arrival < d->wake) {   /* computing: its progress acts at the arrival */
-    d->wake = m->arrival;
-    evq_set(s->q, d->base.rank, m->arrival, s->seq++);
-  }
-}
-
-static inline void count_sent(sim *s, rank *r, int tag, size_t len) {
-  r->st.sent++;
-  r->st.bytes_sent += (long long)len;
-  if (tag >= 0 && tag < SIM_TAGS) r->st.sent_tag[tag]++;
-  s->st.messages++;
-  s->st.bytes += (long long)len;
-}
-
-/* A send's checks: MP_OK or the error (the run's error recorded). */
-static int check_send(sim *s, rank *r, const char *call, int dst, int tag, const void *buf, size_t len) {
-  if (dst < 0 || dst >= s->n) {
-    fail(s, "rank %d: %s to rank %d, which does not exist (%d ranks)", r->base.rank, call, dst, s->n);
-    return MP_ERANK;
-  }
-  if (tag < 0) {
-    fail(s, "rank %d: %s to rank %d with tag %d: tags are >= 0", r->base.rank, call, dst, tag);
-    return MP_EARG;
-  }
-  if (len && !buf) {
-    fail(s, "rank %d: %s of %zu bytes from a NULL buffer", r->base.rank, call, len);
-    return MP_EARG;
-  }
-  return MP_OK;
-}
-
-/* mp_send, or with ref mp_send_ref (*ref: the message, by reference). */
-static int send_msg(mp *self, int dst, int tag, const void *buf, size_t len, mp_ref **ref) {
-  rank *r = (rank *)self;
-  sim *s = r->s;
-  if (s->stopped) return stopped_call(s, r);
-  s->st.events++;
-  r->probe_spins = 0;
-  int rc = check_send(s, r, "mp_send", dst, tag, buf, len);
-  if (rc != MP_OK) return rc;
-  rank *d = &s->ranks[dst];
-  double before = r->now, t0, o;
-  send_costs(s, r, d, len, &t0, &o);
-  double arrival = in_order(r, dst, wire(s, r, d, r->now, len, tag, s->seq));
-
-  msg *m = ref ? msg_new_ref(&s->msgs, &d->box, buf, len) : msg_new(&s->msgs, &d->box, len);
-  m->sent = t0;
-  m->arrival = arrival;
-  m->seq = s->seq++;
-  m->src = r->base.rank;
-  m->tag = tag;
-  if (ref)
-    *ref = (mp_ref *)m;
-  else
-    box_place(&s->msgs, m, buf);
-  count_sent(s, r, tag, len);
-  if (s->tr) trace_send(s->tr, r->base.rank, r->proc, t0, o, dst, tag, len, m->seq, arrival);
-  deliver(s, r, d, m, d->proc != r->proc);
-  if (r->now > before) moved(s, r);
-  return MP_OK;
-}
-
-/* mp_transfer: wire's charge without a message.  The transfer counts as a
- * message sent by src and received by dst in the statistics. */
-static double sim_transfer(mp *self, int src, int dst, size_t len, double at) {
-  rank *r = (rank *)self;
-  sim *s = r->s;
-  if (s->stopped) {
-    stopped_call(s, r);
-    return at;
-  }
-  s->st.events++;
-  r->probe_spins = 0;
-  if (src < 0 || src >= s->n || dst < 0 || dst >= s->n || !(at >= 0) || isinf(at)) {
-    fail(s, "rank %d: mp_transfer(src=%d, dst=%d, at=%g): ranks are 0..%d, times finite and >= 0",
-         r->base.rank, src, dst, at, s->n - 1);
-    return at;
-  }
-  rank *a = &s->ranks[src], *d = &s->ranks[dst];
-  double before = r->now, t = at;
-  if (a == r && at == r->now) {
-    double t0, o;
-    send_costs(s, r, d, len, &t0, &o);
-    t = r->now;
-  }
-  double arrival = in_order(a, dst, wire(s, a, d, t, len, 0, s->seq++));
-  count_sent(s, a, -1, len);
-  d->st.received++;
-  d->st.bytes_received += (long long)len;
-  s->st.received++;
-  if (r->now > before) moved(s, r);
-  return arrival;
-}
-
-/* mp_notify: a 0-byte message whose arrival the caller chose. */
-static int sim_notify(mp *self, int dst, int tag, double at) {
-  rank *r = (rank *)self;
-  sim *s = r->s;
-  if (s->stopped) return stopped_call(s, r);
-  s->st.events++;
-  r->probe_spins = 0;
-  int rc = check_send(s, r, "mp_notify", dst, tag, NULL, 0);
-  if (rc != MP_OK) return rc;
-  if (!(at >= 0) || isinf(at)) {
-    fail(s, "rank %d: mp_notify(dst=%d, at=%g): the time must be finite and >= 0", r->base.rank, dst, at);
-    return MP_EARG;
-  }
-  rank *d = &s->ranks[dst];
-  msg *m = msg_new(&s->msgs, &d->box, 0);
-  m->sent = r->now;
-  m->arrival = at > r->now ? at : r->now;
-  m->seq = s->seq++;
-  m->src = r->base.rank;
-  m->tag = tag;
-  box_place(&s->msgs, m, "");   /* no bytes */
-  count_sent(s, r, tag, 0);
-  deliver(s, r, d, m, 0);
-  return MP_OK;
-}
-
-static int sim_send(mp *self, int dst, int tag, const void *buf, size_t len) {
-  return send_msg(self, dst, tag, buf, len, NULL);
-}
-
-static int sim_send_ref(mp *self, int dst, int tag, const void *buf, size_t len, mp_ref **ref) {
-  return send_msg(self, dst, tag, buf, len, ref);
-}
-
-static void sim_settle(mp *self, mp_ref *ref) { msg_settle(&((rank *)self)->s->msgs, (msg *)ref, !((rank *)self)->s->stopped); }
-
-static int sim_withdraw(mp *self, mp_ref *ref) { return msg_withdraw(&((rank *)self)->s->msgs, (msg *)ref); }
-
-/* Promises (mailbox.h): only of a message from a rank, into a buffer. */
-static mp_promise *sim_promise(mp *self, int src, int tag, int mask, void *buf, size_t cap) {
-  rank *r = (rank *)self;
-  if (src < 0 || src >= r->s->n || !buf || !cap) return NULL;
-  return (mp_promise *)promise_add(&r->s->msgs, &r->box, src, tag, mask, buf, cap);
-}
-
-static int sim_promise_drop(mp *self, mp_promise *p, int keep) {
-  rank *r = (rank *)self;
-  return promise_drop(&r->s->msgs, &r->box, (promise *)p, keep);
-}
-
-/* Check recv's and probe's source and tag. */
-static int check_match_args(sim *s, rank *r, const char *call, int src, int tag) {
-  if (src < MP_ANY || src >= s->n) {
-    fail(s, "rank %d: %s from rank %d, which does not exist (%d ranks)", r->base.rank, call, src,
-         s->n);
-    return MP_ERANK;
-  }
-  if (tag < MP_ANY) {
-    fail(s, "rank %d: %s with tag %d: tags are >= 0 or MP_ANY", r->base.rank, call, tag);
-    return MP_EARG;
-  }
-  return MP_OK;
-}
-
-/* The message a recv of r from src with tag takes, once it has arrived:
- * r blocks until then.  NULL and *rc = MP_EDEADLOCK or MP_ESTOPPED if the
- * run stopped meanwhile. */
-static msg *arrived(sim *s, rank *r, int src, int tag, int *rc) {
-  msg *m = box_find(&r->box, src, tag);
-  if (!m || m->arrival > r->now) {
-    /* Block: queued at the first matching arrival if one is on its way,
-     * else not queued until a matching send queues it.  Woken for a
-     * message its sender has withdrawn since (mp_withdraw), it blocks on. */
-    double since = r->now;
-    r->state = R_BLOCKED;
-    r->wait_src = src;
-    r->wait_tag = tag;
-    r->since = since;
-    for (;;) {
-      r->wake = INFINITY;
-      if (m) {
-        r->wake = s->cpu && s->ranks[m->src].proc != r->proc ? cpu_resume(&s->cfg.cpu, since, m->arrival)
-                                                              : m->arrival;
-        evq_set(s->q, r->base.rank, r->wake, s->seq++);
-      }
-      give_way(s, r);
-      if (s->stopped) break;
-      XASSERT(r->wake == s->gtime);
-      m = box_find(&r->box, src, tag);
-      if (m && m->arrival <= s->gtime) break;
-    }
-    r->state = R_READY;
-    double t = s->stopped ? (s->gtime > since ? s->gtime : since) : r->wake;
-    r->now = t;
-    r->st.recv_wait += t - since;
-    if (s->tr && t > since) trace_span(s->tr, "wait", r->base.rank, r->proc, since, t - since, src, tag);
-    if (s->stopped) {
-      *rc = r->deadlocked ? MP_EDEADLOCK : MP_ESTOPPED;
-      return NULL;
-    }
-  }
-  return m;
-}
-
-/* mp_recv into buf (cap bytes), or, with hold, mp_recv_msg: *hold holds
- * the message. */
-static int recv_msg(mp *self, int src, int tag, void *buf, size_t cap, mp_status *st, mp_msg **hold) {
-  rank *r = (rank *)self;
-  sim *s = r->s;
-  if (s->stopped) return stopped_call(s, r);
-  s->st.events++;
-  r->probe_spins = 0;
-  const char *call = hold ? "mp_recv_msg" : "mp_recv";
-  int rc = check_match_args(s, r, call, src, tag);
-  if (rc != MP_OK) return rc;
-  if (cap && !buf) {
-    fail(s, "rank %d: %s into a NULL buffer of %zu bytes", r->base.rank, call, cap);
-    return MP_EARG;
-  }
-  msg *m = arrived(s, r, src, tag, &rc);
-  if (!m) return rc;
-
-  double before = r->now, t0 = r->now, o = 0;
-  if (s->cfg.net == SIM_NET_LOGGP && s->ranks[m->src].proc != r->proc) {
-    o = s->cfg.o;
-    t0 = overhead(s, r, o);
-  }
-  if (s->cpu && s->ranks[m->src].proc != r->proc && cpu_recv_cost(&s->cfg.cpu, m->len) > 0) {
-    double orc = cpu_recv_cost(&s->cfg.cpu, m->len), t1 = overhead(s, r, orc);   /* cpu.h */
-    if (o == 0) t0 = t1;
-    o += orc;
-  }
-  if (st) *st = (mp_status){m->src, m->tag, m->len};
-  r->st.received++;
-  r->st.bytes_received += (long long)m->len;
-  s->st.received++;
-  if (s->tr) trace_recv(s->tr, r->base.rank, r->proc, t0, o, m->src, m->tag, m->len, m->seq);
-  rc = MP_OK;
-  if (hold) {
-    msg_hold(&s->msgs, m);
-    *hold = (mp_msg *)m;
-  } else {
-    if (m->len > cap) {
-      warn(s, "rank %d: mp_recv truncated a %zu-byte message from rank %d (tag %d) to %zu bytes",
-           r->base.rank, m->len, m->src, m->tag, cap);
-      rc = MP_ETRUNC;
-    }
-    msg_read(&s->msgs, m, buf, m->len <= cap ? m->len : cap);
-  }
-  if (r->now > before) moved(s, r);
-  return rc;
-}
-
-static int sim_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status *st) {
-  return recv_msg(self, src, tag, buf, cap, st, NULL);
-}
-
-static int sim_recv_msg(mp *self, int src, int tag, mp_msg **hold, mp_status *st) {
-  return recv_msg(self, src, tag, NULL, 0, st, hold);
-}
-
-static int sim_msg_read(mp *self, mp_msg *hold, void *buf, size_t cap) {
-  sim *s = ((rank *)self)->s;
-  msg *m = (msg *)hold;
-  if (m->state == M_GONE) {
-    msg_take(&s->msgs, m, NULL, 0);
-    return MP_EGONE;
-  }
-  int rc = m->len > cap && buf ? MP_ETRUNC : MP_OK;
-  msg_take(&s->msgs, m, buf, m->len <= cap ? m->len : cap);
-  return rc;
-}
-
-static int sim_msg_gone(mp *self, const mp_msg *hold) { return (void)self, ((const msg *)hold)->state == M_GONE; }
-
-static int sim_probe(mp *self, int src, int tag, mp_status *st) {
-  rank *r = (rank *)self;
-  sim *s = r->s;
-  if (s->stopped) return stopped_call(s, r);
-  s->st.events++;
-  int rc = check_match_args(s, r, "mp_probe", src, tag);
-  if (rc != MP_OK) return rc;
-  msg *m = box_find(&r->box, src, tag);
-  if (m && m->arrival <= r->now) {
-    r->probe_spins = 0;
-    if (st) *st = (mp_status){m->src, m->tag, m->len};
-    return 1;
-  }
-  if (r->probe_at != r->now) {
-    r->probe_at = r->now;
-    r->probe_spins = 0;
-  }
-  if (++r->probe_spins >= PROBE_SPINS_MAX) {
-    fail(s,
-         "rank %d called mp_probe %d times at t=%.9g without its clock moving: nothing "
-         "new can arrive (compute between probes, or recv); run stopped",
-         r->base.rank, PROBE_SPINS_MAX, r->now);
-    s->stopped = 1;
-    return MP_ESTOPPED;
-  }
-  return 0;
-}
-
-static int sim_wait(mp *self, int src, int tag, mp_status *st) {
-  rank *r = (rank *)self;
-  sim *s = r->s;
-  if (s->stopped) return stopped_call(s, r);
-  s->st.events++;
-  r->probe_spins = 0;
-  int rc = check_match_args(s, r, "mp_wait", src, tag);
-  if (rc != MP_OK) return rc;
-  msg *m = arrived(s, r, src, tag, &rc);
-  if (!m) return rc;
-  if (st) *st = (mp_status){m->src, m->tag, m->len};
-  return MP_OK;
-}
-
-static double sim_time(const mp *self) { return ((const rank *)self)->now; }
-
-/* mp_abort: the first abort in simulated time gives the run's exit code. */
-static void sim_stop(mp *self, int code, const char *why) {
-  rank *r = (rank *)self;
-  sim *s = r->s;
-  if (!s->st.aborted) {
-    s->st.aborted = 1;
-    s->st.abort_code = code;
-  }
-  fail(s, "%s", why ? why : "aborted");
-  s->stopped = 1;
-}
-
-/* A layer's call (mp_call_begin/end), traced as a slice when it took time
- * or moved messages. */
-static void sim_call(mp *self, const char *name, int begin) {
-  rank *r = (rank *)self;
-  sim *s = r->s;
-  long long msgs = r->st.sent + r->st.received;
-  if (begin) {
-    r->call_t0 = r->now;
-    r->call_msgs = msgs;
-  } else if (s->tr && (r->now > r->call_t0 || msgs != r->call_msgs)) {
-    trace_span(s->tr, name, r->base.rank, r->proc, r->call_t0, r->now - r->call_t0, -1, -1);
-  }
-}
-
-static const mp_ops sim_ops = {sim_send,     sim_recv,         sim_probe,    sim_compute,  sim_time,
-                               sim_wait,     sim_busy,         sim_sleep,    sim_stop,     sim_call,
-                               sim_send_ref, sim_settle,       sim_withdraw, sim_recv_msg, sim_msg_read,
-                               sim_msg_gone, sim_promise,      sim_promise_drop, sim_transfer, sim_notify};
 
 /* ==== the machine ========================================================= */
 
@@ -797,6 +50,7 @@ sim *sim_new(const sim_config *cfg, int nranks, char *err, size_t errlen) {
   s->q = evq_new(nranks);
   s->st.ranks = nranks;
   s->st.procs = procs;
+  s->log = (mp_log){.name = "sim", .warn = cfg->warn, .st = &s->st.run};
   return s;
 }
 
@@ -848,41 +102,22 @@ static coro *rank_main(void *ud) {
   return s->ranks[id].co;
 }
 
-static const char *peer_name(int v, char *buf, size_t len) {
-  if (v < 0) return "any";
-  snprintf(buf, len, "%d", v);
-  return buf;
-}
-
 /* Every live rank waits in recv and nothing is on its way: say who waits for
  * what, and stop the run. */
 static void report_deadlock(sim *s) {
-  enum { SHOWN = 16 };
-  size_t cap = 64 + SHOWN * 64, len = 0;
-  char *buf = xmalloc(cap), a[16], b[16], what[160];
-  len += (size_t)snprintf(buf, cap, "deadlock at t=%.9g:", s->gtime);
-  int blocked = 0;
+  mp_deadlock d;
+  mp_deadlock_begin(&d, "deadlock at t=%.9g:", s->gtime);
   for (int i = 0; i < s->n; i++) {
     rank *r = &s->ranks[i];
     if (r->state != R_BLOCKED) continue;
     r->deadlocked = 1;
-    if (blocked++ >= SHOWN) continue;
-    const char *label = mp_label_text(&r->base, what, sizeof what);
-    if (label) {
-      if (cap - len < 200) buf = xrealloc(buf, cap *= 2);
-      len += (size_t)snprintf(buf + len, cap - len, "%s rank %d waits in %s", blocked > 1 ? ";" : "",
-                              i, label);
-    } else {
-      len += (size_t)snprintf(buf + len, cap - len, "%s rank %d waits in recv(src=%s, tag=%s)",
-                              blocked > 1 ? ";" : "", i, peer_name(r->wait_src, a, sizeof a),
-                              peer_name(r->wait_tag, b, sizeof b));
-    }
+    mp_deadlock_rank(&d, &r->base, r->wait_src, r->wait_tag);
   }
-  if (blocked > SHOWN)
-    snprintf(buf + len, cap - len, "; and %d more ranks", blocked - SHOWN);
   s->st.deadlock = 1;
   s->stopped = 1;
-  add_error(s, buf, 1); /* always quoted: it is often the consequence of the others */
+  char *text = mp_deadlock_end(&d);
+  mp_fail_text(&s->log, text, 1); /* always quoted: it is often the consequence of the others */
+  free(text);
 }
 
 /* Count and report what was sent and never received; free it. */
@@ -894,7 +129,7 @@ static void sweep_unread(sim *s) {
     for (msg *m = r->box.head; m; m = m->next) count++;
     r->st.unread = count;
     s->st.unread += count;
-    warn(s, "rank %d finished with %lld unread message%s (first from rank %d, tag %d)", i, count,
+    mp_warn(&s->log, "rank %d finished with %lld unread message%s (first from rank %d, tag %d)", i, count,
          count == 1 ? "" : "s", r->box.head->src, r->box.head->tag);
     box_clear(&r->box, &s->msgs);
   }
@@ -922,12 +157,12 @@ int sim_run(sim *s, const mp_proc *procs, char *err, size_t errlen) {
   char cerr[256];
   int made = 0;
   s->stacks = coro_stacks_new(s->n, s->cfg.stack, cerr, sizeof cerr);
-  if (!s->stacks) fail(s, "sim_run: %s", cerr);
+  if (!s->stacks) mp_fail(&s->log, "sim_run: %s", cerr);
   for (; s->stacks && made < s->n; made++) {
     rank *r = &s->ranks[made];
     r->co = coro_new_on(s->stacks, rank_main, r, cerr, sizeof cerr);
     if (!r->co) {
-      fail(s, "sim_run: rank %d: %s", made, cerr);
+      mp_fail(&s->log, "sim_run: rank %d: %s", made, cerr);
       break;
     }
     coro_stack(r->co, &r->base.stack_lo, &r->base.stack_size);
@@ -961,12 +196,12 @@ int sim_run(sim *s, const mp_proc *procs, char *err, size_t errlen) {
       XASSERT(woken > 0);
     }
     sweep_unread(s);
-    if (s->tr && trace_end(s->tr, cerr, sizeof cerr) != 0) fail(s, "sim_run: %s", cerr);
+    if (s->tr && trace_end(s->tr, cerr, sizeof cerr) != 0) mp_fail(&s->log, "sim_run: %s", cerr);
   }
   /* Ranks whose stacks share guard pages (coro.h) may have overflowed
    * where only a check sees it: the run fails naming them. */
   for (long i = coro_stacks_overflowed(s->stacks, 0); i >= 0; i = coro_stacks_overflowed(s->stacks, i + 1))
-    fail(s, "rank %ld overflowed its stack of %zu KiB (--stack sets it)", i, s->ranks[i].base.stack_size >> 10);
+    mp_fail(&s->log, "rank %ld overflowed its stack of %zu KiB (--stack sets it)", i, s->ranks[i].base.stack_size >> 10);
   for (int i = 0; i < made; i++) {
     coro_free(s->ranks[i].co);
     s->ranks[i].co = NULL;
@@ -976,7 +211,7 @@ int sim_run(sim *s, const mp_proc *procs, char *err, size_t errlen) {
   coro_free(s->main);
   s->main = NULL;
   s->st.wall_s = wallclock() - w0;
-  return errlog_report(&s->errs, s->st.errors, err, errlen);
+  return mp_log_report(&s->log, err, errlen);
 }
 
 const sim_rank_stats *sim_rank(const sim *s, int i) {
@@ -1006,6 +241,6 @@ void sim_free(sim *s) {
   links_free(s->links);
   topo_free(s->topo);
   free(s->seen);
-  errlog_free(&s->errs);
+  mp_log_free(&s->log);
   free(s);
 }

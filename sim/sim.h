@@ -134,6 +134,7 @@
 #include "sim/cpu.h"
 #include "sim/link.h"
 #include "mp/mp.h"
+#include "mp/stats.h"
 #include "sim/topo.h"
 
 /* SIM_NET_TOPOLOGY is set by a topology (cfg.topo), never by name. */
@@ -234,19 +235,12 @@ typedef struct {
 } sim_rank_stats;
 
 typedef struct {
-  int ranks, procs;
+  MP_STATS_GROUP;           /* ranks, messages, ..., wall_s (mp/stats.h);
+                               wall_s: host seconds sim_run took */
+  int procs;
   double makespan;          /* the latest finish, simulated seconds */
   long long events;         /* mp calls simulated (send, recv, probe, compute) */
   long long switches;       /* context switches between coroutines */
-  long long messages;       /* messages sent */
-  long long received;       /* messages received */
-  long long bytes;          /* bytes sent */
-  long long unread;         /* messages never received */
-  long long warnings;       /* warnings (truncations, unread messages) */
-  long long errors;         /* errors (bad arguments, deadlock, ...) */
-  int deadlock;             /* 1 if the run ended in a deadlock */
-  int aborted, abort_code;  /* a rank called mp_abort: the first one's code */
-  double wall_s;            /* host seconds sim_run took (reporting only) */
 } sim_stats;
 
 /* Statistics of one rank (0 <= rank < nranks) and of the run.  Valid until

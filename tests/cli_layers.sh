@@ -37,12 +37,13 @@ has() { [ "$rc" -eq "$1" ] && printf '%s\n' "$out" | grep -qxE "$2"; }
 tab=$T/t/tests/layers.txt
 mkdir -p "$T/t/tests"
 printf '%s\n' '# a test table' 'search: . lib' 'util:' 'mp:     util' 'sim:    mp util' 'geo:    util' \
-  'mpi:    mp/mp.h util' 'app:    *' 'lib:    util' > "$T/table"
+  'mpi:    mp/mp.h util' 'app:    *' 'lib:    util' 'private mp/backend.h: sim' > "$T/table"
 cp "$T/table" "$tab"
 put util/xmem.h '#include <stdio.h>' '#include <string.h>'
 put util/xmem.c '#include "xmem.h"'
 put mp/mp.h '#include "util/xmem.h"'
 put mp/backend.h '#include "mp.h"'
+put mp/chan.h '#include "mp.h"'
 put sim/sim.c '#include "mp/mp.h"' '#include "mp/backend.h"' '#  include "../util/xmem.h"'
 put geo/geom.c '#include "util/xmem.h"'
 put mpi/state.c '#include "mp/mp.h"' '#include "state.h"'
@@ -51,7 +52,7 @@ put app/bench/main.c '#include "bench.h"' '#include "sim/sim.c"' '#include "geo/
 put app/bench/bench.h '#include "../plot/plot.h"'
 put app/plot/plot.h '#include "mp/mp.h"'
 put build/gen.h '#include "util/xmem.c"' '#include "app/bench/bench.h"'
-good='layers: 11 files, [0-9]+ includes, [0-9]+ across folders, 0 exceptions'
+good='layers: 12 files, [0-9]+ includes, [0-9]+ across folders, 0 exceptions'
 check
 has 0 "$good" && ok || bad "a tree within the rules: $rc $out"
 
@@ -69,14 +70,16 @@ faults <<EOF
 util/xmem.c|#include "mp/mp.h"|1|util/xmem.c:2: includes mp/mp.h: util may not include mp|up a layer
 mp/mp.h|#include "../sim/sim.c"|1|mp/mp.h:2: includes sim/sim.c: mp may not include sim|up, relative
 geo/geom.c|#include "mp/mp.h"|1|geo/geom.c:2: includes mp/mp.h: geo may not include mp|sideways
-mpi/state.c|#include "mp/backend.h"|1|mpi/state.c:3: includes mp/backend.h: mpi may not include mp|a file kept from mpi
+mpi/state.c|#include "mp/chan.h"|1|mpi/state.c:3: includes mp/chan.h: mpi may not include mp|a file kept from mpi
+mpi/state.c|#include "mp/backend.h"|1|mpi/state.c:3: includes mp/backend.h: mp/backend.h is private to mp sim|a private file
+app/plot/plot.h|#include "mp/backend.h"|1|app/plot/plot.h:2: includes mp/backend.h: mp/backend.h is private to mp sim|a private file, to a folder that may include all
 util/xmem.c|#include <geo/geom.c>|1|util/xmem.c:2: includes geo/geom.c: util may not include geo|angled, on the path
 util/xmem.c|#include <backend.h>|0|$good|an angled name not on the path is the system's
 util/xmem.c|#include "geom.c"|0|$good|a quoted name found nowhere is none of the tree's
 EOF
 printf '%s\n' 'search util/: mp' >> "$tab"
 faults <<EOF
-util/xmem.c|#include <backend.h>|1|util/xmem.c:2: includes mp/backend.h: util may not include mp|a path of util's
+util/xmem.c|#include <chan.h>|1|util/xmem.c:2: includes mp/chan.h: util may not include mp|a path of util's
 geo/geom.c|#include <backend.h>|0|$good|a path of util's is not geo's
 EOF
 cp "$T/table" "$tab"
@@ -108,13 +111,13 @@ rm -r "$T/t/p" "$T/t/q"
 # An exception allows its include; once the include is gone it fails.
 cp "$T/table" "$tab"; printf '%s\n' 'except geo/geom.c -> mp/mp.h' >> "$tab"
 try geo/geom.c '#include "mp/mp.h"'
-has 0 'layers: 11 files, .*, 1 exceptions' && ok || bad "an exception allows: $rc $out"
+has 0 'layers: 12 files, .*, 1 exceptions' && ok || bad "an exception allows: $rc $out"
 check
-has 1 '.*/layers.txt:10: except geo/geom.c -> mp/mp.h: no longer occurs \(remove the line\)' \
+has 1 '.*/layers.txt:11: except geo/geom.c -> mp/mp.h: no longer occurs \(remove the line\)' \
   && ok || bad "a stale exception: $rc $out"
 cp "$T/table" "$tab"; printf '%s\n' 'sim mp' >> "$tab"
 check
-has 1 '.*/layers.txt:10: not FOLDER: NAME\.\.\.' && ok || bad "a bad line: $rc $out"
+has 1 '.*/layers.txt:11: not FOLDER: NAME\.\.\.' && ok || bad "a bad line: $rc $out"
 out=$(sh tests/layers.sh "$T/none" 2>&1); rc=$?
 [ $rc -eq 2 ] && ok || bad "no such folder: $rc $out"
 

@@ -8,6 +8,7 @@
 #   FILE: in no layer (FOLDER has no line in TABLE)
 #   cycle: FILE -> ... -> FILE            (files of different folders)
 #   cycle: FOLDER -> ... -> FOLDER        (folders, through allowed includes)
+#   FILE:LINE: includes HEADER: HEADER is private to FOLDER FOLDER...
 #   TABLE:LINE: ...                       (a stale exception, a bad line)
 # and on success one line: "layers: N files, N includes, N across folders,
 # N exceptions".  Exit 2 for bad usage.
@@ -89,6 +90,13 @@ BEGIN {
       exc[w[2] " " w[4]] = tl; nexc++
       continue
     }
+    if (line ~ /^private[ \t]/) {
+      if (index(line, ":") == 0) { err(table ":" tl ": private FILE: FOLDER..."); continue }
+      pf = substr(line, 9, index(line, ":") - 9); gsub(/[ \t]/, "", pf)
+      pv = " " substr(line, index(line, ":") + 1) " "; gsub(/[ \t]+/, " ", pv)
+      priv[pf] = pv   # " FOLDER ... "
+      continue
+    }
     if (line ~ /^search[ \t:]/) {
       if (index(line, ":") == 0) { err(table ":" tl ": search PREFIX...: DIR..."); continue }
       pre = substr(line, 7, index(line, ":") - 7); dirs = substr(line, index(line, ":") + 1)
@@ -122,6 +130,10 @@ FILENAME == ARGV[1] { isfile[$0] = 1; nfiles++; next }
   if (dir(f) != dir(h)) cross[f " " h] = 1
   if (a == b) next
   ncross++
+  if ((h in priv) && index(priv[h], " " a " ") == 0) {
+    if ((f " " h) in exc) { used[f " " h] = 1; next }
+    err(f ":" ln ": includes " h ": " h " is private to " b substr(priv[h], 1, length(priv[h]) - 1)); next
+  }
   if (may(a, b, h)) { fedge[a " " b] = 1; next }
   if ((f " " h) in exc) { used[f " " h] = 1; next }
   err(f ":" ln ": includes " h ": " a " may not include " b)

@@ -36,7 +36,7 @@ static double pending[64];
 static void hook_enter(mp *self) {
   double s = pending[mp_rank(self)];
   pending[mp_rank(self)] = 0;
-  if (s > 0) self->ops->busy(self, s);
+  if (s > 0) mp_charge(self, s);
 }
 static void hook_leave(mp *self) { (void)self; }
 static const mp_hooks hooks = {hook_enter, hook_leave};
