@@ -210,15 +210,7 @@ static void test_resized_subarray(mtest *t) {
 
 /* MPI_Type_get_contents is checked under tilesim only, and counts only
  * when it fails: Open MPI 4.1.4's crashes on these types. */
-#ifdef TSMPI_MPI_H
-#define CONTENTS 1
-#else
-#define CONTENTS 0
-#endif
-#define SCHECK(t, cond, ...)                 \
-  do {                                       \
-    if (!(cond)) MCHECK(t, 0, __VA_ARGS__);  \
-  } while (0)
+#define CONTENTS TILESIM
 
 static void test_decoding(mtest *t) {
   MPI_Datatype v, d, got[2];
@@ -392,21 +384,6 @@ static void test_errors(mtest *t) {
 }
 
 int main(int argc, char **argv) {
-  mtest t;
-  MPI_Init(&argc, &argv);
-  mtest_init(&t, "dtype_maps");
-  MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
-  test_contiguous_vector(&t);
-  test_indexed(&t);
-  test_struct(&t);
-  test_resized_subarray(&t);
-  test_decoding(&t);
-  test_pack_api(&t);
-  test_errors(&t);
-  test_status(&t);
-  test_names(&t);
-  test_send(&t);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const mtest_fn checks[] = {test_contiguous_vector, test_indexed, test_struct, test_resized_subarray, test_decoding, test_pack_api, test_errors, test_status, test_names, test_send, NULL};
+  return mtest_main(&argc, &argv, "dtype_maps", 1, MTEST_ERRORS_RETURN, checks);
 }

@@ -244,15 +244,6 @@ static void test_send(mtest *t) {
 }
 
 int main(int argc, char **argv) {
-  mtest t;
-  MPI_Init(&argc, &argv);
-  mtest_init(&t, "dtype_markers");
-  MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
-  test_predefined(&t);
-  test_struct_markers(&t);
-  test_sticky(&t);
-  test_send(&t);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const mtest_fn checks[] = {test_predefined, test_struct_markers, test_sticky, test_send, NULL};
+  return mtest_main(&argc, &argv, "dtype_markers", 1, MTEST_ERRORS_RETURN, checks);
 }

@@ -315,23 +315,7 @@ static void test_handlers(mtest *t, const iotest *io) {
 }
 
 int main(int argc, char **argv) {
-  mtest t;
-  iotest io;
-  MPI_Init(&argc, &argv);
-  mtest_init(&t, "io_files");
-  if (iotest_init(&io, "io_files") != 0) {
-    MCHECK(&t, 0, "no directory for the files under $TMPDIR");
-  } else {
-    test_open_errors(&t, &io);
-    test_records(&t, &io);
-    test_pointers(&t, &io);
-    test_sizes(&t, &io);
-    test_nonblocking(&t, &io);
-    test_handlers(&t, &io);
-    static const char *const names[] = {"a", "b", "c", "h", NULL};
-    iotest_done(&io, names);
-  }
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const iotest_fn checks[] = {test_open_errors, test_records, test_pointers, test_sizes, test_nonblocking, test_handlers, NULL};
+  static const char *const files[] = {"a", "b", "c", "h", NULL};
+  return iotest_main(&argc, &argv, "io_files", checks, files);
 }

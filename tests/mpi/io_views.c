@@ -18,15 +18,6 @@
 #include "iotest.h"
 #include "mtest.h"
 
-#ifdef TSMPI_MPI_H
-#define TILESIM 1
-#else
-#define TILESIM 0
-#endif
-#define SCHECK(t, cond, ...)                 \
-  do {                                       \
-    if (!(cond)) MCHECK(t, 0, __VA_ARGS__);  \
-  } while (0)
 
 static MPI_File open_rw(mtest *t, const iotest *io, const char *name) {
   char p[640];
@@ -230,22 +221,7 @@ static void test_refused(mtest *t, const iotest *io) {
 }
 
 int main(int argc, char **argv) {
-  mtest t;
-  iotest io;
-  MPI_Init(&argc, &argv);
-  mtest_init(&t, "io_views");
-  if (iotest_init(&io, "io_views") != 0) {
-    MCHECK(&t, 0, "no directory for the files under $TMPDIR");
-  } else {
-    test_interleaved(&t, &io);
-    test_subarray(&t, &io);
-    test_darray(&t, &io);
-    test_etypes(&t, &io);
-    test_refused(&t, &io);
-    static const char *const names[] = {"inter", "matrix", "cyclic", "pairs", NULL};
-    iotest_done(&io, names);
-  }
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const iotest_fn checks[] = {test_interleaved, test_subarray, test_darray, test_etypes, test_refused, NULL};
+  static const char *const files[] = {"inter", "matrix", "cyclic", "pairs", NULL};
+  return iotest_main(&argc, &argv, "io_views", checks, files);
 }

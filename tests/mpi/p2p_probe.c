@@ -107,19 +107,6 @@ static void probe_null(mtest *t) {
 }
 
 int main(int argc, char **argv) {
-  MPI_Init(&argc, &argv);
-  mtest t;
-  mtest_init(&t, "p2p_probe");
-  if (t.size < 2) {
-    if (t.rank == 0) printf("p2p_probe: needs 2 ranks or more\n");
-    MPI_Finalize();
-    return 1;
-  }
-  probe_sizes(&t);
-  probe_poll(&t);
-  probe_posted(&t);
-  probe_null(&t);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const mtest_fn checks[] = {probe_sizes, probe_poll, probe_posted, probe_null, NULL};
+  return mtest_main(&argc, &argv, "p2p_probe", 2, 0, checks);
 }

@@ -291,16 +291,6 @@ static void errors(mtest *t) {
 }
 
 int main(int argc, char **argv) {
-  MPI_Init(&argc, &argv);
-  mtest t;
-  mtest_init(&t, "rma_win");
-  flavors(&t);
-  names_info(&t);
-  handlers_keyvals(&t);
-  shared(&t);
-  dynamic(&t);
-  errors(&t);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const mtest_fn checks[] = {flavors, names_info, handlers_keyvals, shared, dynamic, errors, NULL};
+  return mtest_main(&argc, &argv, "rma_win", 1, 0, checks);
 }
