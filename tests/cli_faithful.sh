@@ -11,11 +11,7 @@
 # Runs the sanitized build in $BUILD.
 B=${BUILD:-build/chk}
 TILE=$B/tile
-T=$(mktemp -d /tmp/tilesim-faithful.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_faithful: $*"; }
+. tests/clilib.sh
 
 "$B/tests/test_faithful" --write "$T" || bad "the fixtures were not written"
 F=$T/faithful
@@ -119,5 +115,4 @@ grep -q "ROI 3 'Walled', contour item 2: not joined to the contour at contour it
   cut -d, -f1-17 "$T/p.csv" | tail -n +2 | cmp -s - "$(tail -n +2 "$T/s.csv" > "$T/s2"; echo "$T/s2")" && ok ||
   bad "--procs 3: not the serial mesh and report"
 
-echo "cli_faithful: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

@@ -9,11 +9,7 @@
 # own writer, tests/rtwriter.c).  Runs the sanitized build in $BUILD.
 B=${BUILD:-build/chk}
 TILE=$B/tile
-T=$(mktemp -d /tmp/tilesim-readers.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_readers: $*"; }
+. tests/clilib.sh
 
 "$B/tests/test_slicemerge" --write "$T" && "$B/tests/test_oblique" --write "$T" || bad "the fixtures were not written"
 
@@ -157,5 +153,4 @@ if [ -x "$B/plot" ]; then
   for o in --skip-bad --union "-v, --verbose"; do grep -q -- "^  $o " "$T/help" && ok || bad "plot --help lacks $o"; done
 fi
 
-echo "cli_readers: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary
