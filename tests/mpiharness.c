@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "mpi/env.h"
+#include "mpi/mpi.h"
 #include "mp/mp.h"
 #include "mp/threads.h"
 #include "util/xmem.h"
@@ -53,6 +54,19 @@ int mpih_run(const mpih_config *cfg, mpih_main main_fn, int argc, char **argv, m
 int mpih_run_fn(const mpih_config *cfg, mpih_fn fn, void *ud, mpih_result *res) {
   job j = {NULL, 0, NULL, fn, ud, res};
   return run(cfg, &j, res);
+}
+
+mpih_result mpih_result_of(const mpih_config *cfg, mpih_fn fn, void *ud) {
+  mpih_result res;
+  mpih_run_fn(cfg, fn, ud, &res);
+  return res;
+}
+
+int mpih_init(void) {
+  int r = -1;
+  MPI_Init(NULL, NULL);
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  return r;
 }
 
 static int run(const mpih_config *cfg, job *j, mpih_result *res) {

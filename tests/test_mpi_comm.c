@@ -24,9 +24,7 @@ static const char *const bname[] = {"sim", "threads"};
 static mpih_result run(int b, int n, mpih_fn fn, void *ud) {
   mpih_config cfg;
   mpih_config_init(&cfg, b, n);
-  mpih_result res;
-  mpih_run_fn(&cfg, fn, ud, &res);
-  return res;
+  return mpih_result_of(&cfg, fn, ud);
 }
 
 static int has(const char *s, const char *part) { return strstr(s, part) != NULL; }
@@ -45,9 +43,7 @@ typedef struct {
  * 128 + 4 bytes (high) the same way: 8.75 + 1/4 + 132/16 = 17.25. */
 static int inter_time(void *ud) {
   facts *F = ud;
-  MPI_Init(NULL, NULL);
-  int r;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init();
   MPI_Comm ic, m;
   MPI_Intercomm_create(MPI_COMM_SELF, 0, MPI_COMM_WORLD, 1 - r, 5, &ic);
   F->t[r][0] = MPI_Wtime();
@@ -66,9 +62,7 @@ static int inter_time(void *ud) {
  * request done at once. */
 static int shared_node(void *ud) {
   facts *F = ud;
-  MPI_Init(NULL, NULL);
-  int r;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init();
   MPI_Comm node, d;
   MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
   MPI_Comm_size(node, &F->n[r]);
@@ -113,9 +107,7 @@ static void closed_forms(void) {
  * 2 each; then all freed and one more made. */
 static int contexts(void *ud) {
   facts *F = ud;
-  MPI_Init(NULL, NULL);
-  int r;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init();
   MPI_Comm_set_errhandler(MPI_COMM_SELF, MPI_ERRORS_RETURN);
   MPI_Comm *ic = malloc(600 * sizeof *ic);
   int n = 0, rc = MPI_SUCCESS;
@@ -168,9 +160,7 @@ static int added_code(void *ud) {
 /* A rank of the remote group that is not there. */
 static int inter_bad_rank(void *ud) {
   (void)ud;
-  MPI_Init(NULL, NULL);
-  int r, v = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init(), v = 0;
   MPI_Comm ic;
   MPI_Intercomm_create(MPI_COMM_SELF, 0, MPI_COMM_WORLD, 1 - r, 3, &ic);
   if (r == 0) MPI_Send(&v, 1, MPI_INT, 3, 0, ic);
@@ -182,9 +172,7 @@ static int inter_bad_rank(void *ud) {
 /* Rank 1 makes an intercommunicator; rank 0 waits for a message. */
 static int inter_stuck(void *ud) {
   (void)ud;
-  MPI_Init(NULL, NULL);
-  int r, v;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init(), v;
   MPI_Comm ic;
   if (r == 1)
     MPI_Intercomm_create(MPI_COMM_SELF, 0, MPI_COMM_WORLD, 0, 3, &ic);

@@ -36,9 +36,7 @@ static mpih_result run(int b, int n, mpih_fn fn, void *ud) {
   mpih_config_init(&cfg, b, n);
   cfg.sim.m = 0;
   cfg.sim.per_byte = 0;
-  mpih_result res;
-  mpih_run_fn(&cfg, fn, ud, &res);
-  return res;
+  return mpih_result_of(&cfg, fn, ud);
 }
 
 /* /fsa and /fsb: latency 1/2 s, 16 bytes a second. */
@@ -54,9 +52,7 @@ static void mounts(const job *j) {
 /* Open, an independent write each, a collective write, close. */
 static int steps(void *ud) {
   job *j = ud;
-  MPI_Init(NULL, NULL);
-  int r, size;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init(), size;
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   MPI_File fh;
   char buf[256];
@@ -132,9 +128,7 @@ static void closed_forms(const char *dir) {
 /* Rank 0 writes to /fsa, rank 1 to /fsb, at once: no contention. */
 static int two_fs(void *ud) {
   job *j = ud;
-  MPI_Init(NULL, NULL);
-  int r;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init();
   MPI_File fh;
   char buf[64] = {0};
   int ok = MPI_File_open(MPI_COMM_SELF, r ? "/fsb/g" : "/fsa/g", MPI_MODE_CREATE | MPI_MODE_WRONLY, MPI_INFO_NULL,
@@ -224,9 +218,7 @@ static void fatal(const char *dir) {
  * deadlock report names the file call. */
 static int stuck(void *ud) {
   (void)ud;
-  MPI_Init(NULL, NULL);
-  int r, v = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init(), v = 0;
   MPI_File fh;
   MPI_File_open(MPI_COMM_WORLD, "/fsa/stuck", MPI_MODE_CREATE | MPI_MODE_WRONLY | MPI_MODE_DELETE_ON_CLOSE,
                 MPI_INFO_NULL, &fh);

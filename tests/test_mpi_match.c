@@ -392,9 +392,7 @@ static void note(prog *p, int d, const char *what, int k) {
 static int rank_prog(void *ud) {
   job *j = ud;
   prog *p = j->p;
-  MPI_Init(NULL, NULL);
-  int d;
-  MPI_Comm_rank(MPI_COMM_WORLD, &d);
+  int d = mpih_init();
   MPI_Comm comm[2] = {MPI_COMM_WORLD, MPI_COMM_NULL};
   MPI_Comm_dup(MPI_COMM_WORLD, &comm[1]);
   rng r;

@@ -30,9 +30,7 @@ static mpih_result run(int be, int n, double poll, mpih_fn fn, void *ud) {
   mpih_config_init(&cfg, be, n);
   cfg.poll_cost = poll;
   cfg.sim.local = 0;
-  mpih_result res;
-  mpih_run_fn(&cfg, fn, ud, &res);
-  return res;
+  return mpih_result_of(&cfg, fn, ud);
 }
 
 static int has(const char *s, const char *part) { return strstr(s, part) != NULL; }
@@ -67,9 +65,7 @@ static void level(void) {
  * target's; the unlock's request follows the operations on the channel. */
 static int passive_times(void *ud) {
   facts *F = ud;
-  MPI_Init(NULL, NULL);
-  int r;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init();
   long *mem, buf[16] = {0}, one = 1, old = 0, cmp = 0;
   MPI_Win win;
   MPI_Win_allocate(16 * sizeof(long), sizeof(long), MPI_INFO_NULL, MPI_COMM_WORLD, &mem, &win);
@@ -146,9 +142,7 @@ static void one_pair(void) {
  * exclusive lock. */
 static int three(void *ud) {
   facts *F = ud;
-  MPI_Init(NULL, NULL);
-  int r, p;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init(), p;
   MPI_Comm_size(MPI_COMM_WORLD, &p);
   long *mem, buf[8] = {1, 2, 3, 4, 5, 6, 7, 8}, one = 1, got = -1;
   MPI_Win win;
@@ -251,9 +245,7 @@ static int model_info(void *ud) {
  * rank 1 waits for the lock. */
 static int stuck(void *ud) {
   (void)ud;
-  MPI_Init(NULL, NULL);
-  int r, mem = 0, v;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init(), mem = 0, v;
   MPI_Win win;
   MPI_Win_create(&mem, sizeof mem, sizeof(int), MPI_INFO_NULL, MPI_COMM_WORLD, &win);
   if (r == 0) {
@@ -283,9 +275,7 @@ static int fatal(void *ud) {
  * for nothing) until rank 0 has put a flag there. */
 static int polling(void *ud) {
   facts *F = ud;
-  MPI_Init(NULL, NULL);
-  int r, one = 1;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init(), one = 1;
   int *flag;
   MPI_Win win;
   MPI_Win_allocate(sizeof(int), sizeof(int), MPI_INFO_NULL, MPI_COMM_WORLD, &flag, &win);
