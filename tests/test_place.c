@@ -87,7 +87,7 @@ static void test_place_maps(void) {
     for (int v = 1; v < P; v++) p.expect[v] = 1;
     p.bad = 0;
     int rc;
-    sim *s = tm_run(&cfg, P, tm_perm_main, &p, &rc, err, sizeof err);
+    sim *s = simrun(&cfg, P, tm_perm_main, &p, &rc, err, sizeof err);
     net_stats ns;
     links_total(sim_links(s), &ns);
     CHECK(rc == 0 && ns.hop_bytes == 40LL * dil[i].sum, "dilation case %zu: hop-bytes %lld, expected %d",

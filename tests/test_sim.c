@@ -12,6 +12,7 @@
 
 #include "tests/check.h"
 #include "tests/randprog.h"
+#include "tests/simrun.h"
 #include "mp/mp.h"
 #include "util/rng.h"
 #include "sim/sim.h"
@@ -19,39 +20,6 @@
 /* ==== helpers ============================================================= */
 
 static const sim_net nets[] = {SIM_NET_IDEAL, SIM_NET_BUS, SIM_NET_LOGGP};
-
-/* A quiet configuration with exact binary-fraction costs. */
-static sim_config config(sim_net net, int procs) {
-  sim_config cfg;
-  sim_config_init(&cfg);
-  cfg.procs = procs;
-  cfg.net = net;
-  cfg.c = 0.125;
-  cfg.m = 0.25;
-  cfg.per_byte = 0.0625;
-  cfg.local = 0;
-  cfg.L = 0.5;
-  cfg.o = 0.125;
-  cfg.g = 0.0625;
-  cfg.G = 0.03125;
-  cfg.warn = NULL;
-  return cfg;
-}
-
-/* Run n ranks of one main with one shared ud; the sim is returned for its
- * statistics (the caller frees it), sim_run's status in *rc. */
-static sim *run(const sim_config *cfg, int n, mp_main fn, void *ud, int *rc, char *err,
-                size_t errlen) {
-  sim *s = sim_new(cfg, n, err, errlen);
-  CHECK(s != NULL, "sim_new: %s", err);
-  if (!s) abort();
-  mp_proc *pr = malloc((size_t)n * sizeof *pr);
-  for (int i = 0; i < n; i++) pr[i] = (mp_proc){fn, ud};
-  err[0] = 0;
-  *rc = sim_run(s, pr, err, errlen);
-  free(pr);
-  return s;
-}
 
 /* The one-way time of a len-byte message between processors, and what the
  * receiver's clock gains on top of the sender's send call: the model. */
@@ -93,10 +61,10 @@ static void test_pingpong(void) {
   char err[512];
   for (int ni = 0; ni < 3; ni++) {
     for (size_t len = 1; len <= 9; len += 8) {
-      sim_config cfg = config(nets[ni], 2);
+      sim_config cfg = simrun_config(nets[ni], 2);
       pingpong p = {7, 3, 5, len, 0};
       int rc;
-      sim *s = run(&cfg, 2, pingpong_main, &p, &rc, err, sizeof err);
+      sim *s = simrun(&cfg, 2, pingpong_main, &p, &rc, err, sizeof err);
       double h = hop(&cfg, len);
       double round = (p.work0 + p.work1) * cfg.c + 2 * h;
       double want0 = p.rounds * round;
@@ -144,10 +112,10 @@ static void ring_main(mp *self, void *ud) {
 static void test_ring(void) {
   char err[512];
   for (int ni = 0; ni < 3; ni++) {
-    sim_config cfg = config(nets[ni], 5);
+    sim_config cfg = simrun_config(nets[ni], 5);
     ring g = {4, 2, 9, 0, 0};
     int rc;
-    sim *s = run(&cfg, 5, ring_main, &g, &rc, err, sizeof err);
+    sim *s = simrun(&cfg, 5, ring_main, &g, &rc, err, sizeof err);
     double want = 5 * g.laps * (g.work * cfg.c + hop(&cfg, g.len));
     const char *nn = sim_net_name(cfg.net);
     CHECK(rc == 0 && !g.bad, "%s ring failed: %s", nn, err);
@@ -191,10 +159,10 @@ static void test_bus_spacing(void) {
   char err[512];
   enum { K = 6 };
   for (int ni = 0; ni < 3; ni++) {
-    sim_config cfg = config(nets[ni], K + 1);
+    sim_config cfg = simrun_config(nets[ni], K + 1);
     fanin f = {0};
     int rc;
-    sim *s = run(&cfg, K + 1, fanin_main, &f, &rc, err, sizeof err);
+    sim *s = simrun(&cfg, K + 1, fanin_main, &f, &rc, err, sizeof err);
     const char *nn = sim_net_name(cfg.net);
     CHECK(rc == 0 && f.n == K, "%s fan-in: %d received: %s", nn, f.n, err);
     for (int j = 0; j < f.n; j++) {
@@ -217,10 +185,10 @@ static void colocated_main(mp *self, void *ud) {
 static void test_colocated(void) {
   char err[512];
   /* Three ranks on one processor: their computes run one after the other. */
-  sim_config cfg = config(SIM_NET_BUS, 1);
+  sim_config cfg = simrun_config(SIM_NET_BUS, 1);
   fanin f = {.work = 3};
   int rc;
-  sim *s = run(&cfg, 3, colocated_main, &f, &rc, err, sizeof err);
+  sim *s = simrun(&cfg, 3, colocated_main, &f, &rc, err, sizeof err);
   for (int r = 0; r < 3; r++) {
     double want = (r + 1) * f.work * cfg.c;
     CHECK(sim_rank(s, r)->finish == want, "co-located rank %d finished at %.17g, expected %.17g",
@@ -231,8 +199,8 @@ static void test_colocated(void) {
   sim_free(s);
 
   /* Four ranks on two processors (r % 2): pairs serialise, not all four. */
-  cfg = config(SIM_NET_IDEAL, 2);
-  s = run(&cfg, 4, colocated_main, &f, &rc, err, sizeof err);
+  cfg = simrun_config(SIM_NET_IDEAL, 2);
+  s = simrun(&cfg, 4, colocated_main, &f, &rc, err, sizeof err);
   for (int r = 0; r < 4; r++) {
     double want = (r / 2 + 1) * f.work * cfg.c;
     CHECK(sim_rank(s, r)->finish == want, "2 procs: rank %d finished at %.17g, expected %.17g", r,
@@ -242,10 +210,10 @@ static void test_colocated(void) {
 
   /* Messages on one processor cost `local`, whatever the network. */
   for (int ni = 0; ni < 3; ni++) {
-    cfg = config(nets[ni], 1);
+    cfg = simrun_config(nets[ni], 1);
     cfg.local = 0.0625;
     pingpong p = {5, 1, 2, 9, 0};
-    s = run(&cfg, 2, pingpong_main, &p, &rc, err, sizeof err);
+    s = simrun(&cfg, 2, pingpong_main, &p, &rc, err, sizeof err);
     double want = p.rounds * ((p.work0 + p.work1) * cfg.c + 2 * cfg.local);
     CHECK(rc == 0 && sim_stats_get(s)->makespan == want,
           "%s on one processor: makespan %.17g, expected %.17g (%s)", sim_net_name(cfg.net),
@@ -276,11 +244,11 @@ static void waitfree_main(mp *self, void *ud) {
 static void test_recv_frees_cpu(void) {
   char err[512];
   int place[3] = {0, 0, 1};
-  sim_config cfg = config(SIM_NET_BUS, 2);
+  sim_config cfg = simrun_config(SIM_NET_BUS, 2);
   cfg.place = place;
   waitfree w = {0};
   int rc;
-  sim *s = run(&cfg, 3, waitfree_main, &w, &rc, err, sizeof err);
+  sim *s = simrun(&cfg, 3, waitfree_main, &w, &rc, err, sizeof err);
   CHECK(w.t1 == 2 * cfg.c, "rank 1 computed until %.17g, expected %.17g", w.t1, 2 * cfg.c);
   CHECK(sim_rank(s, 0)->finish == 8 * cfg.c + cfg.m, "rank 0 finished at %.17g",
         sim_rank(s, 0)->finish);
@@ -311,7 +279,7 @@ static void burst_main(mp *self, void *ud) {
 
 static void test_loggp(void) {
   char err[512];
-  sim_config cfg = config(SIM_NET_LOGGP, 2);
+  sim_config cfg = simrun_config(SIM_NET_LOGGP, 2);
   cfg.o = 0.125;
   cfg.g = 0.5;   /* > o: the gap, not the overhead, spaces the injections */
   cfg.L = 1;
@@ -319,7 +287,7 @@ static void test_loggp(void) {
   for (size_t len = 0; len <= 9; len += 9) {
     burst b = {.len = len};
     int rc;
-    sim *s = run(&cfg, 2, burst_main, &b, &rc, err, sizeof err);
+    sim *s = simrun(&cfg, 2, burst_main, &b, &rc, err, sizeof err);
     double gbytes = len > 1 ? (double)(len - 1) * cfg.G : 0;
     CHECK(rc == 0 && b.n == 4, "loggp burst: %s", err);
     for (int j = 0; j < b.n; j++) {
@@ -392,10 +360,10 @@ static void probe_main(mp *self, void *ud) {
 
 static void test_order(void) {
   char err[512];
-  sim_config cfg = config(SIM_NET_IDEAL, 3);
+  sim_config cfg = simrun_config(SIM_NET_IDEAL, 3);
   order o = {0};
   int rc;
-  sim *s = run(&cfg, 3, order_main, &o, &rc, err, sizeof err);
+  sim *s = simrun(&cfg, 3, order_main, &o, &rc, err, sizeof err);
   double big = cfg.m + 1000 * cfg.per_byte;
   CHECK(rc == 0 && o.n == 3, "ordering run: %s", err);
   CHECK(o.src[0] == 1 && o.len[0] == 2 && o.t[0] == cfg.m + 2 * cfg.per_byte,
@@ -411,7 +379,7 @@ static void test_order(void) {
   order p = {0};
   cfg.m = 0.25; /* = 2c */
   cfg.per_byte = 0;
-  s = run(&cfg, 2, probe_main, &p, &rc, err, sizeof err);
+  s = simrun(&cfg, 2, probe_main, &p, &rc, err, sizeof err);
   CHECK(p.probes[0] == 0 && p.probes[1] == 0, "probe saw the message early: %d %d", p.probes[0],
         p.probes[1]);
   CHECK(p.probes[2] == 1 && p.src[0] == 0 && p.len[0] == 2, "probe at arrival: %d, src %d, len %zu",
@@ -455,7 +423,7 @@ static void anysrc_run(sim_net net, int procs, anysrc *a, char **csv, char **jso
   char err[512];
   size_t lc, lj;
   FILE *fc = open_memstream(csv, &lc), *fj = open_memstream(json, &lj);
-  sim_config cfg = config(net, procs);
+  sim_config cfg = simrun_config(net, procs);
   sim *s = sim_new(&cfg, 6, err, sizeof err);
   sim_trace(s, fc, fj);
   mp_proc pr[6];
@@ -610,11 +578,11 @@ static void deadlock_main(mp *self, void *ud) {
 
 static void test_deadlock(void) {
   char err[512];
-  sim_config cfg = config(SIM_NET_BUS, 3);
+  sim_config cfg = simrun_config(SIM_NET_BUS, 3);
   dl d;
   memset(&d, 0x55, sizeof d);
   int rc;
-  sim *s = run(&cfg, 3, deadlock_main, &d, &rc, err, sizeof err);
+  sim *s = simrun(&cfg, 3, deadlock_main, &d, &rc, err, sizeof err);
   CHECK(rc == -1, "a deadlock must fail the run");
   CHECK(strstr(err, "deadlock at t=0.125:") != NULL, "deadlock message: %s", err);
   CHECK(strstr(err, "rank 0 waits in recv(src=any, tag=3)") != NULL, "rank 0 not named: %s", err);
@@ -643,9 +611,9 @@ static void stubborn_main(mp *self, void *ud) {
 
 static void test_abandon(void) {
   char err[512];
-  sim_config cfg = config(SIM_NET_BUS, 2);
+  sim_config cfg = simrun_config(SIM_NET_BUS, 2);
   int rc;
-  sim *s = run(&cfg, 2, stubborn_main, NULL, &rc, err, sizeof err);
+  sim *s = simrun(&cfg, 2, stubborn_main, NULL, &rc, err, sizeof err);
   CHECK(rc == -1 && strstr(err, "rank 0 kept calling") && strstr(err, "deadlock at"),
         "abandon: %s", err);
   CHECK(!sim_rank(s, 0)->done && sim_rank(s, 1)->done, "rank 0 should be abandoned, rank 1 done");
@@ -657,10 +625,10 @@ static void test_abandon(void) {
 static void test_many_ranks(void) {
   char err[512];
   enum { N = 10000 };
-  sim_config cfg = config(SIM_NET_BUS, N);
+  sim_config cfg = simrun_config(SIM_NET_BUS, N);
   ring g = {1, 1, 8, 0, 0};
   int rc;
-  sim *s = run(&cfg, N, ring_main, &g, &rc, err, sizeof err);
+  sim *s = simrun(&cfg, N, ring_main, &g, &rc, err, sizeof err);
   CHECK(rc == 0 && !g.bad, "10,000 ranks: %s", err);
   CHECK(g.token == N, "10,000 ranks: token %lld", g.token);
   double want = N * (g.work * cfg.c + cfg.m + 8 * cfg.per_byte);
@@ -669,10 +637,10 @@ static void test_many_ranks(void) {
   sim_free(s);
 
   /* Many ranks on few processors, with small stacks. */
-  cfg = config(SIM_NET_LOGGP, 7);
+  cfg = simrun_config(SIM_NET_LOGGP, 7);
   cfg.stack = 32 * 1024;
   g = (ring){2, 1, 8, 0, 0};
-  s = run(&cfg, 3000, ring_main, &g, &rc, err, sizeof err);
+  s = simrun(&cfg, 3000, ring_main, &g, &rc, err, sizeof err);
   CHECK(rc == 0 && !g.bad && g.token == 6000, "3,000 ranks on 7 processors: %s", err);
   sim_free(s);
 }
@@ -690,7 +658,7 @@ static void test_random(void) {
     int nranks = rng_int(&r, 2, RANDPROG_RANKS);
     static randprog p;
     randprog_make(&p, seed, nranks);
-    sim_config cfg = config(nets[seed % 3], rng_int(&r, 1, nranks));
+    sim_config cfg = simrun_config(nets[seed % 3], rng_int(&r, 1, nranks));
     int place[RANDPROG_RANKS];
     for (int k = 0; k < nranks; k++) place[k] = rng_int(&r, 0, cfg.procs - 1);
     cfg.place = place;
@@ -698,7 +666,7 @@ static void test_random(void) {
     cfg.local = fraction(&r) / 4, cfg.L = fraction(&r), cfg.o = fraction(&r) / 2;
     cfg.g = fraction(&r), cfg.G = fraction(&r) / 64;
     int rc;
-    sim *s = run(&cfg, nranks, randprog_main, &p, &rc, err, sizeof err);
+    sim *s = simrun(&cfg, nranks, randprog_main, &p, &rc, err, sizeof err);
     runs++;
     const char *why;
     int failures = randprog_failures(&p, &why);
@@ -791,11 +759,11 @@ static void spin_main(mp *self, void *ud) {
 static void test_errors(void) {
   char err[512];
   int rc;
-  sim_config cfg = config(SIM_NET_BUS, 2);
+  sim_config cfg = simrun_config(SIM_NET_BUS, 2);
 
   errs e;
   memset(&e, 0, sizeof e);
-  sim *s = run(&cfg, 2, badrank_main, &e, &rc, err, sizeof err);
+  sim *s = simrun(&cfg, 2, badrank_main, &e, &rc, err, sizeof err);
   CHECK(e.rc[0] == MP_ERANK && e.rc[1] == MP_ERANK, "send to a bad rank: %d %d", e.rc[0], e.rc[1]);
   CHECK(e.rc[2] == MP_EARG, "send with tag -2: %d", e.rc[2]);
   CHECK(e.rc[3] == MP_ERANK && e.rc[4] == MP_EARG, "recv/probe bad args: %d %d", e.rc[3], e.rc[4]);
@@ -807,7 +775,7 @@ static void test_errors(void) {
   sim_free(s);
 
   memset(&e, 0, sizeof e);
-  s = run(&cfg, 2, negcompute_main, &e, &rc, err, sizeof err);
+  s = simrun(&cfg, 2, negcompute_main, &e, &rc, err, sizeof err);
   CHECK(e.rc[0] == MP_EARG && e.rc[1] == MP_EARG, "negative/NaN compute: %d %d", e.rc[0], e.rc[1]);
   CHECK(e.rc[2] == MP_OK && e.rc[3] == MP_OK, "compute afterwards: %d %d", e.rc[2], e.rc[3]);
   CHECK(rc == -1 && strstr(err, "rank 0: mp_compute(-1)"), "negative compute: %s", err);
@@ -819,9 +787,9 @@ static void test_errors(void) {
   char *wtext;
   size_t wlen;
   FILE *w = open_memstream(&wtext, &wlen);
-  cfg = config(SIM_NET_BUS, 4);
+  cfg = simrun_config(SIM_NET_BUS, 4);
   cfg.warn = w;
-  s = run(&cfg, 4, unread_main, NULL, &rc, err, sizeof err);
+  s = simrun(&cfg, 4, unread_main, NULL, &rc, err, sizeof err);
   fclose(w);
   CHECK(rc == 0, "unread messages are not an error: %s", err);
   CHECK(strcmp(wtext, "sim: warning: rank 3 finished with 2 unread messages (first from rank 1, "
@@ -836,14 +804,14 @@ static void test_errors(void) {
 
   /* The same, quiet: counted, not printed. */
   cfg.warn = NULL;
-  s = run(&cfg, 4, unread_main, NULL, &rc, err, sizeof err);
+  s = simrun(&cfg, 4, unread_main, NULL, &rc, err, sizeof err);
   CHECK(rc == 0 && sim_stats_get(s)->warnings == 1, "quiet unread warning not counted");
   sim_free(s);
 
   /* Truncation: MP_ETRUNC, the first cap bytes, the full length, a warning. */
-  cfg = config(SIM_NET_IDEAL, 2);
+  cfg = simrun_config(SIM_NET_IDEAL, 2);
   memset(&e, 0, sizeof e);
-  s = run(&cfg, 2, trunc_main, &e, &rc, err, sizeof err);
+  s = simrun(&cfg, 2, trunc_main, &e, &rc, err, sizeof err);
   CHECK(e.rc[0] == MP_ETRUNC, "truncating recv returned %d", e.rc[0]);
   CHECK(e.st.len == 100 && e.st.source == 0 && e.st.tag == 9, "truncated status: %zu %d %d",
         e.st.len, e.st.source, e.st.tag);
@@ -854,9 +822,9 @@ static void test_errors(void) {
   sim_free(s);
 
   /* Polling probe without ever moving the clock: stopped, not hung. */
-  cfg = config(SIM_NET_BUS, 2);
+  cfg = simrun_config(SIM_NET_BUS, 2);
   memset(&e, 0, sizeof e);
-  s = run(&cfg, 2, spin_main, &e, &rc, err, sizeof err);
+  s = simrun(&cfg, 2, spin_main, &e, &rc, err, sizeof err);
   CHECK(e.rc[0] == MP_ESTOPPED && rc == -1 && strstr(err, "without its clock moving"),
         "probe spin: %d, %s", e.rc[0], err);
   sim_free(s);
@@ -864,22 +832,22 @@ static void test_errors(void) {
 
 static void test_config(void) {
   char err[512];
-  sim_config cfg = config(SIM_NET_BUS, 2);
+  sim_config cfg = simrun_config(SIM_NET_BUS, 2);
   sim *s;
   cfg.procs = 0;
   CHECK(!(s = sim_new(&cfg, 2, err, sizeof err)) && strstr(err, "0 processors"), "procs 0: %s",
         err);
   sim_free(s);
-  cfg = config(SIM_NET_BUS, 2);
+  cfg = simrun_config(SIM_NET_BUS, 2);
   cfg.m = -1;
   CHECK(!(s = sim_new(&cfg, 2, err, sizeof err)) && strstr(err, "cost m = -1"), "m < 0: %s", err);
   sim_free(s);
-  cfg = config(SIM_NET_BUS, 2);
+  cfg = simrun_config(SIM_NET_BUS, 2);
   int place[2] = {0, 2};
   cfg.place = place;
   CHECK(!(s = sim_new(&cfg, 2, err, sizeof err)) && strstr(err, "place[1] = 2"), "place: %s", err);
   sim_free(s);
-  cfg = config(SIM_NET_BUS, 2);
+  cfg = simrun_config(SIM_NET_BUS, 2);
   CHECK(!(s = sim_new(&cfg, 0, err, sizeof err)), "0 ranks accepted");
   sim_free(s);
 
@@ -894,9 +862,9 @@ static void test_config(void) {
   CHECK(sim_profile("nope", &cfg) == -1, "unknown profile accepted");
 
   /* Once per sim. */
-  cfg = config(SIM_NET_BUS, 1);
+  cfg = simrun_config(SIM_NET_BUS, 1);
   int rc;
-  s = run(&cfg, 1, colocated_main, &(fanin){.work = 1}, &rc, err, sizeof err);
+  s = simrun(&cfg, 1, colocated_main, &(fanin){.work = 1}, &rc, err, sizeof err);
   mp_proc pr = {colocated_main, NULL};
   CHECK(rc == 0 && sim_run(s, &pr, err, sizeof err) == -1 && strstr(err, "run already"),
         "second run: %s", err);

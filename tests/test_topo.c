@@ -188,7 +188,7 @@ static void test_one_message(void) {
           int place[2] = {s, d}, rc;
           cfg.place = place;
           single one = {24, -1, 0};
-          sim *sm = tm_run(&cfg, 2, single_main, &one, &rc, err, sizeof err);
+          sim *sm = simrun(&cfg, 2, single_main, &one, &rc, err, sizeof err);
           int h = tm_hops(mc, &x, s, d);
           double want = tm_alone(mc, saf, h, one.len);
           net_stats ns;
@@ -259,7 +259,7 @@ static void test_rings(void) {
     topo_free(t);
     cfg.place = place;
     ring g = {3, 2, 8, 0, 0};
-    sim *s = tm_run(&cfg, P, ring_main, &g, &rc, err, sizeof err);
+    sim *s = simrun(&cfg, P, ring_main, &g, &rc, err, sizeof err);
     double lb = (double)g.len * BETA;
     double lap = P * (g.work * C + M) +
                  (cases[i].saf ? cases[i].links * (R + lb) : cases[i].links * R + P * lb);
@@ -443,7 +443,7 @@ static void test_random_programs(void) {
     cfg.m = fraction(&r), cfg.hop_latency = fraction(&r), cfg.per_byte = fraction(&r) / 64;
     cfg.c = fraction(&r), cfg.local = fraction(&r) / 4;
     int rc;
-    sim *s = tm_run(&cfg, nranks, randprog_main, &p, &rc, err, sizeof err);
+    sim *s = simrun(&cfg, nranks, randprog_main, &p, &rc, err, sizeof err);
     runs++;
     const char *why;
     int failures = randprog_failures(&p, &why);
@@ -488,8 +488,8 @@ static int same_run(const sim_config *a, const sim_config *b, uint64_t seed, int
   randprog_make(&p1, seed, nranks);
   randprog_make(&p2, seed, nranks);
   int rc1, rc2;
-  sim *s1 = tm_run(a, nranks, randprog_main, &p1, &rc1, err, sizeof err);
-  sim *s2 = tm_run(b, nranks, randprog_main, &p2, &rc2, err, sizeof err);
+  sim *s1 = simrun(a, nranks, randprog_main, &p1, &rc1, err, sizeof err);
+  sim *s2 = simrun(b, nranks, randprog_main, &p2, &rc2, err, sizeof err);
   int same = rc1 == 0 && rc2 == 0;
   for (int k = 0; same && k < nranks; k++) {
     const sim_rank_stats *x = sim_rank(s1, k), *y = sim_rank(s2, k);

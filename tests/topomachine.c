@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "tests/check.h"
+#include "tests/simrun.h"
 #include "util/xmem.h"
 
 const machine machines[] = {
@@ -100,19 +101,6 @@ double tm_alone(const machine *mc, int saf, int h, size_t len) {
   return saf ? M + h * (R + lb) : M + h * R + lb;
 }
 
-sim *tm_run(const sim_config *cfg, int n, mp_main fn, void *ud, int *rc, char *err,
-                size_t errlen) {
-  sim *s = sim_new(cfg, n, err, errlen);
-  CHECK(s != NULL, "sim_new: %s", err);
-  if (!s) abort();
-  mp_proc *pr = xmallocarray((size_t)n, sizeof *pr);
-  for (int i = 0; i < n; i++) pr[i] = (mp_proc){fn, ud};
-  err[0] = 0;
-  *rc = sim_run(s, pr, err, errlen);
-  free(pr);
-  return s;
-}
-
 void tm_perm_main(mp *self, void *ud) {
   perm *p = ud;
   int me = mp_rank(self);
@@ -135,7 +123,7 @@ sim *tm_run_perm(const machine *mc, int saf, perm *p, int n, char *err, size_t e
   }
   p->bad = 0;
   int rc;
-  sim *s = tm_run(&cfg, n, tm_perm_main, p, &rc, err, errlen);
+  sim *s = simrun(&cfg, n, tm_perm_main, p, &rc, err, errlen);
   CHECK(rc == 0 && !p->bad, "permutation run: %s", err);
   return s;
 }

@@ -11,6 +11,7 @@
 #include "mp/mp.h"
 #include "sim/sim.h"
 #include "sim/topo.h"
+#include "tests/simrun.h"
 
 /* m, r, beta (s per byte) and c of every machine here. */
 static const double M = 0.25, R = 0.125, BETA = 1.0 / 64, C = 0.125;
@@ -39,11 +40,6 @@ sim_config tm_netcfg(const machine *mc, int saf);
 
 /* One message on an idle machine, over h links. */
 double tm_alone(const machine *mc, int saf, int h, size_t len);
-
-/* fn(ud) as each of n ranks on cfg's machine: the simulator after the run
- * (sim_free it), *rc sim_run's answer; a machine sim_new refuses fails a
- * check and aborts. */
-sim *tm_run(const sim_config *cfg, int n, mp_main fn, void *ud, int *rc, char *err, size_t errlen);
 
 /* The number of bits set in v. */
 int tm_popcount(unsigned v);
