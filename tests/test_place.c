@@ -22,8 +22,7 @@ static void test_place_maps(void) {
   for (int i = 0; i < NMACHINES; i++) {
     const machine *mc = &machines[i];
     dims x = tm_dims(mc);
-    topo_spec sp = {mc->kind, mc->a, mc->b};
-    topo *t = topo_new(&sp, mc->procs, err, sizeof err);
+    topo *t = tm_topo(mc, err, sizeof err);
     for (size_t j = 0; j < sizeof names / sizeof *names; j++) {
       place_spec ps;
       place_parse(names[j], &ps, err, sizeof err);
@@ -70,8 +69,7 @@ static void test_place_maps(void) {
     int P = mc->procs, map[64], sum = 0;
     place_spec ps;
     place_parse(dil[i].place, &ps, err, sizeof err);
-    topo_spec sp = {mc->kind, mc->a, mc->b};
-    topo *t = topo_new(&sp, P, err, sizeof err);
+    topo *t = tm_topo(mc, err, sizeof err);
     place_map(&ps, t, P, map, err, sizeof err);
     topo_free(t);
     for (int v = 0; v + 1 < P; v++) sum += tm_hops(mc, &x, map[v], map[v + 1]);

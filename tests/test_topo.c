@@ -48,8 +48,7 @@ static void test_routes(void) {
   for (int i = 0; i < NMACHINES; i++) {
     const machine *mc = &machines[i];
     dims x = tm_dims(mc);
-    topo_spec sp = {mc->kind, mc->a, mc->b};
-    topo *t = topo_new(&sp, mc->procs, err, sizeof err);
+    topo *t = tm_topo(mc, err, sizeof err);
     CHECK(t != NULL, "machine %d: %s", i, err);
     if (!t) continue;
     CHECK(topo_nodes(t) == x.N, "machine %d: %d processors, expected %d", i, topo_nodes(t), x.N);
@@ -253,8 +252,7 @@ static void test_rings(void) {
     int P = mc->procs, place[16], rc;
     place_spec ps;
     CHECK(place_parse(cases[i].place, &ps, err, sizeof err) == 0, "%s", err);
-    topo_spec sp = {mc->kind, mc->a, mc->b};
-    topo *t = topo_new(&sp, P, err, sizeof err);
+    topo *t = tm_topo(mc, err, sizeof err);
     CHECK(place_map(&ps, t, P, place, err, sizeof err) == 0, "%s", err);
     topo_free(t);
     cfg.place = place;

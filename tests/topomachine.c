@@ -53,6 +53,11 @@ static int dist1(int n, int a, int b, int wrap) {
   return wrap && n - d < d ? n - d : d;
 }
 
+topo *tm_topo(const machine *mc, char *err, size_t errlen) {
+  topo_spec sp = {mc->kind, mc->a, mc->b};
+  return topo_new(&sp, mc->procs, err, errlen);
+}
+
 int tm_popcount(unsigned v) {
   int c = 0;
   for (; v; v &= v - 1) c++;

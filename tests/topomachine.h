@@ -32,6 +32,10 @@ typedef struct {
 
 dims tm_dims(const machine *mc);
 
+/* mc's topology for its run of mc->procs ranks (topo_free it), or NULL
+ * with err. */
+topo *tm_topo(const machine *mc, char *err, size_t errlen);
+
 /* h(s, d): the table of topo.h. */
 int tm_hops(const machine *mc, const dims *x, int s, int d);
 
