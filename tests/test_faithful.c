@@ -38,6 +38,7 @@
 #include "tests/check.h"
 #include "input/contour.h"
 #include "tests/meshcheck.h"
+#include "tests/reference.h"
 #include "input/rtstruct.h"
 #include "tests/rtwriter.h"
 #include "surface/stack.h"
@@ -68,10 +69,8 @@ static stack_surface *tile(const contour_stack *s, int caps, stack_band band, ch
  * and components. */
 static int judge(const stack_surface *ss, double *vol, int *ncomp, char *why, size_t whylen) {
   const mesh *me = stack_mesh(ss);
-  double *v = xmallocarray(3 * (size_t)me->nv + 1, sizeof *v);
-  for (int i = 0; i < me->nv; i++) v[3 * i] = me->v[i].x, v[3 * i + 1] = me->v[i].y, v[3 * i + 2] = me->v[i].z;
   mc_mesh m;
-  mc_make(&m, v, me->nv, me->nt ? &me->t[0][0] : NULL, me->nt);
+  ref_mc_mesh(&m, me);
   mc_report r;
   mc_check(&m, &r);
   int ok = r.manifold && r.outward && me->nt > 0;
@@ -79,7 +78,6 @@ static int judge(const stack_surface *ss, double *vol, int *ncomp, char *why, si
   snprintf(why, whylen, "%s", r.first);
   mc_report_free(&r);
   mc_free(&m);
-  free(v);
   return ok;
 }
 

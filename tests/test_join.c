@@ -28,6 +28,7 @@
 #include "surface/gap.h"
 #include "surface/inside.h"
 #include "tests/meshcheck.h"
+#include "tests/reference.h"
 #include "surface/overlap.h"
 #include "surface/report.h"
 #include "util/rng.h"
@@ -37,27 +38,6 @@
 #include "util/xmem.h"
 
 /* ------------------------------------------------------ overlap_closed -- */
-
-/* Convex polygons: apart (closed: no common point; open: no common interior
- * point) exactly when an edge's line has the other strictly (closed) or
- * weakly (open) on its outer side. */
-static int sat_apart(const vec2 *p, int np, const vec2 *q, int nq, int closed) {
-  for (int pass = 0; pass < 2; pass++) {
-    const vec2 *a = pass ? q : p, *b = pass ? p : q;
-    int na = pass ? nq : np, nb = pass ? np : nq;
-    double s = geom_area2(a, na) > 0 ? 1 : -1;
-    for (int i = 0; i < na; i++) {
-      vec2 u = a[i], v = a[(i + 1) % na];
-      int out = 1;
-      for (int j = 0; j < nb && out; j++) {
-        double c = s * ((v.x - u.x) * (b[j].y - u.y) - (v.y - u.y) * (b[j].x - u.x));
-        if (closed ? c >= 0 : c > 0) out = 0;
-      }
-      if (out) return 1;
-    }
-  }
-  return 0;
-}
 
 static int rand_convex(rng *g, vec2 *out, int cx, int cy) {
   vec2 p[12];
@@ -111,7 +91,7 @@ static void test_closed(rng *g) {
     vec2 p[12], q[12];
     int np = rand_convex(g, p, 0, 0), nq = rand_convex(g, q, rng_int(g, -8, 8), rng_int(g, -8, 8));
     if (np < 3 || nq < 3) continue;
-    int want = sat_apart(p, np, q, nq, 1) ? OVERLAP_APART : sat_apart(p, np, q, nq, 0) ? OVERLAP_TOUCH : OVERLAP_INTERIOR;
+    int want = ref_convex_apart(p, np, q, nq, 1) ? OVERLAP_APART : ref_convex_apart(p, np, q, nq, 0) ? OVERLAP_TOUCH : OVERLAP_INTERIOR;
     touch += want == OVERLAP_TOUCH;
     bad += closed_of(p, np, q, nq) != want;
   }
@@ -141,7 +121,7 @@ static void test_gap(rng *g) {
     int np, nq;
     if (trial % 2) {
       np = rand_convex(g, p, 0, 0), nq = rand_convex(g, q, rng_int(g, -14, 14), rng_int(g, -14, 14));
-      if (np < 3 || nq < 3 || !sat_apart(p, np, q, nq, 0)) continue;
+      if (np < 3 || nq < 3 || !ref_convex_apart(p, np, q, nq, 0)) continue;
     } else {
       np = rng_int(g, 3, 40), nq = rng_int(g, 3, 40);
       double r = 1 + 2 * rng_uniform(g), a = 6.3 * rng_uniform(g), d = 2 * r + 3 * rng_uniform(g);
@@ -260,10 +240,8 @@ static double judge(const char *what, const outcome *o, const sg_poly *ps, int n
     return NAN;
   }
   const mesh *me = stack_mesh(o->ss);
-  double *v = xmallocarray(3 * (size_t)me->nv + 1, sizeof *v);
-  for (int i = 0; i < me->nv; i++) v[3 * i] = me->v[i].x, v[3 * i + 1] = me->v[i].y, v[3 * i + 2] = me->v[i].z;
   mc_mesh m;
-  mc_make(&m, v, me->nv, me->nt ? &me->t[0][0] : NULL, me->nt);
+  ref_mc_mesh(&m, me);
   mc_report r;
   mc_check(&m, &r);
   CHECK(r.manifold && r.outward, "%s: not a closed outward manifold: %s", what, r.first);
@@ -284,7 +262,7 @@ static double judge(const char *what, const outcome *o, const sg_poly *ps, int n
   mc_fidelity_free(&fd);
   mc_report_free(&r);
   mc_free(&m);
-  free(xy), free(cp), free(v);
+  free(xy), free(cp);
   return vol;
 }
 

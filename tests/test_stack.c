@@ -28,6 +28,7 @@
 #include "surface/inside.h"
 #include "surface/mesh.h"
 #include "tests/meshcheck.h"
+#include "tests/reference.h"
 #include "surface/overlap.h"
 #include "surface/pool.h"
 #include "util/rng.h"
@@ -48,27 +49,6 @@ static int ov(const vec2 *p, int np, const vec2 *q, int nq) {
   inside_free(a);
   inside_free(b);
   return r;
-}
-
-/* Convex polygons with integer points: the interiors are disjoint exactly
- * when an edge's line of one has the other on its outer side, closed (the
- * separating axis theorem), in exact integer arithmetic. */
-static int sat_disjoint(const vec2 *p, int np, const vec2 *q, int nq) {
-  for (int pass = 0; pass < 2; pass++) {
-    const vec2 *a = pass ? q : p, *b = pass ? p : q;
-    int na = pass ? nq : np, nb = pass ? np : nq;
-    double s = geom_area2(a, na) > 0 ? 1 : -1;
-    for (int i = 0; i < na; i++) {
-      vec2 u = a[i], v = a[(i + 1) % na];
-      int all_out = 1;
-      for (int j = 0; j < nb && all_out; j++) {
-        double c = s * ((v.x - u.x) * (b[j].y - u.y) - (v.y - u.y) * (b[j].x - u.x));
-        if (c > 0) all_out = 0;
-      }
-      if (all_out) return 1;
-    }
-  }
-  return 0;
 }
 
 /* A random convex polygon with integer points: the hull of a few points. */
@@ -123,7 +103,7 @@ static void test_overlap(rng *g) {
     vec2 p[12], q[12];
     int np = rand_convex(g, p, 0, 0), nq = rand_convex(g, q, rng_int(g, -8, 8), rng_int(g, -8, 8));
     if (np < 3 || nq < 3) continue;
-    if (ov(p, np, q, nq) != !sat_disjoint(p, np, q, nq)) bad++;
+    if (ov(p, np, q, nq) != !ref_convex_apart(p, np, q, nq, 0)) bad++;
   }
   CHECK(bad == 0, "%d of 3000 random convex pairs disagree with the separating axis test", bad);
 }
@@ -199,10 +179,8 @@ static double section_volume(const mesh *me) {
 static void check_surface(const char *what, const stack_surface *ss, const sg_poly *ps, int np, int comps,
                           const int *chi) {
   const mesh *me = stack_mesh(ss);
-  double *v = xmallocarray(3 * (size_t)me->nv + 1, sizeof *v);
-  for (int i = 0; i < me->nv; i++) v[3 * i] = me->v[i].x, v[3 * i + 1] = me->v[i].y, v[3 * i + 2] = me->v[i].z;
   mc_mesh m;
-  mc_make(&m, v, me->nv, &me->t[0][0], me->nt);
+  ref_mc_mesh(&m, me);
   mc_report r;
   mc_check(&m, &r);
   CHECK(r.manifold && r.outward, "%s: not a closed outward manifold: %s", what, r.first);
@@ -232,7 +210,6 @@ static void check_surface(const char *what, const stack_surface *ss, const sg_po
   mc_fidelity_free(&fd);
   mc_report_free(&r);
   mc_free(&m);
-  free(v);
 }
 
 static int same_mesh(const mesh *a, const mesh *b) {

@@ -36,6 +36,7 @@
 #include "tests/check.h"
 #include "input/contour.h"
 #include "tests/meshcheck.h"
+#include "tests/reference.h"
 #include "util/rng.h"
 #include "run/run.h"
 #include "tests/solids.h"
@@ -206,10 +207,8 @@ static int compare(const char *what, const stack_surface *u, const stack_surface
 static void judge(const char *what, const stack_surface *s, const contour_stack *st, int closed, double *vol,
                   int *ncomp, int *chi) {
   const mesh *me = stack_mesh(s);
-  double *v = xmallocarray(3 * (size_t)me->nv + 1, sizeof *v);
-  for (int i = 0; i < me->nv; i++) v[3 * i] = me->v[i].x, v[3 * i + 1] = me->v[i].y, v[3 * i + 2] = me->v[i].z;
   mc_mesh m;
-  mc_make(&m, v, me->nv, &me->t[0][0], me->nt);
+  ref_mc_mesh(&m, me);
   mc_report r;
   mc_check(&m, &r);
   CHECK(!closed || (r.manifold && r.outward), "%s: the checker: not a closed outward manifold: %s", what, r.first);
@@ -232,7 +231,6 @@ static void judge(const char *what, const stack_surface *s, const contour_stack 
   mc_fidelity_free(&fd);
   mc_report_free(&r);
   mc_free(&m);
-  free(v);
 }
 
 /* Every vertex of s is exactly 2^k times u's (so the checker sees the same

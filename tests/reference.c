@@ -1,0 +1,58 @@
+/* reference.c -- independent references several tests share (reference.h). */
+#include "tests/reference.h"
+
+#include <stdlib.h>
+
+#include "util/xmem.h"
+
+static void sort(double *x, int n) {
+  for (int i = 1; i < n; i++)
+    for (int j = i; j > 0 && x[j - 1] > x[j]; j--) {
+      double t = x[j];
+      x[j] = x[j - 1], x[j - 1] = t;
+    }
+}
+
+double ref_rects_area(const double (*r)[4], int n) {
+  double xs[64], ys[64];
+  int nx = 0, ny = 0;
+  for (int i = 0; i < n; i++) xs[nx++] = r[i][0], xs[nx++] = r[i][2], ys[ny++] = r[i][1], ys[ny++] = r[i][3];
+  sort(xs, nx);
+  sort(ys, ny);
+  double a = 0;
+  for (int i = 0; i + 1 < nx; i++)
+    for (int j = 0; j + 1 < ny; j++) {
+      double cx = (xs[i] + xs[i + 1]) / 2, cy = (ys[j] + ys[j + 1]) / 2;
+      for (int k = 0; k < n; k++)
+        if (r[k][0] < cx && cx < r[k][2] && r[k][1] < cy && cy < r[k][3]) {
+          a += (xs[i + 1] - xs[i]) * (ys[j + 1] - ys[j]);
+          break;
+        }
+    }
+  return a;
+}
+
+int ref_convex_apart(const vec2 *p, int np, const vec2 *q, int nq, int closed) {
+  for (int pass = 0; pass < 2; pass++) {
+    const vec2 *a = pass ? q : p, *b = pass ? p : q;
+    int na = pass ? nq : np, nb = pass ? np : nq;
+    double s = geom_area2(a, na) > 0 ? 1 : -1;
+    for (int i = 0; i < na; i++) {
+      vec2 u = a[i], v = a[(i + 1) % na];
+      int out = 1;
+      for (int j = 0; j < nb && out; j++) {
+        double c = s * ((v.x - u.x) * (b[j].y - u.y) - (v.y - u.y) * (b[j].x - u.x));
+        if (closed ? c >= 0 : c > 0) out = 0;
+      }
+      if (out) return 1;
+    }
+  }
+  return 0;
+}
+
+void ref_mc_mesh(mc_mesh *m, const mesh *me) {
+  double *v = xmallocarray(3 * (size_t)me->nv + 1, sizeof *v);
+  for (int i = 0; i < me->nv; i++) v[3 * i] = me->v[i].x, v[3 * i + 1] = me->v[i].y, v[3 * i + 2] = me->v[i].z;
+  mc_make(m, v, me->nv, me->nt ? &me->t[0][0] : NULL, me->nt);
+  free(v);
+}

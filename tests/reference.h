@@ -1,0 +1,24 @@
+/* reference.h -- independent references several tests share: brute-force
+ * answers to compare the code's with, written without its algorithms. */
+#ifndef REFERENCE_H
+#define REFERENCE_H
+
+#include "geom/geom.h"
+#include "surface/mesh.h"
+#include "tests/meshcheck.h"
+
+/* The area of the union of n axis-aligned rectangles r[i] = {x0, y0, x1,
+ * y1} (n <= 32), by brute force over the grid of their coordinates: each
+ * cell whose centre some rectangle holds counts whole. */
+double ref_rects_area(const double (*r)[4], int n);
+
+/* Convex polygons: apart (closed: no common point; open: no common interior
+ * point) exactly when an edge's line has the other strictly (closed) or
+ * weakly (open) on its outer side (the separating axis theorem); exact for
+ * integer points. */
+int ref_convex_apart(const vec2 *p, int np, const vec2 *q, int nq, int closed);
+
+/* The mesh checker's copy of a mesh under test (mc_free it). */
+void ref_mc_mesh(mc_mesh *m, const mesh *me);
+
+#endif
