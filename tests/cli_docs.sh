@@ -109,7 +109,7 @@ probe() {
 }
 
 for p in "$TILE" "$BENCH" "$PLOT"; do
-  [ -x "$p" ] || { bad "$p is missing (make check builds it)"; echo "cli_docs: $pass passed, $fail failed"; exit 1; }
+  need "$p" "make check builds it"
 done
 
 # ---- rendering and lint ----------------------------------------------------

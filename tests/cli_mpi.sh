@@ -19,20 +19,8 @@ if [ "${MPI_STATUS:-}" != yes ]; then
   echo "cli_mpi: 0 passed, 0 failed"
   exit 0
 fi
-for p in tile-mpi bench-mpi contract-mpi; do
-  if [ ! -x "$MPIDIR/bin/$p" ]; then
-    bad "$MPIDIR/bin/$p is missing (make mpi)"
-    echo "cli_mpi: $pass passed, $fail failed"
-    exit 1
-  fi
-done
-# Open MPI: as root it wants both variables; two cores want --oversubscribe.
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-# Containers often forbid the cross-process copies of Open MPI's shared memory
-# transport (ptrace rules); plain copies work everywhere.
-export OMPI_MCA_btl_vader_single_copy_mechanism=none
-OVER=""
-"$MPIRUN" --version 2>/dev/null | grep -q "Open MPI" && OVER="--oversubscribe"
+for p in tile-mpi bench-mpi contract-mpi; do need "$MPIDIR/bin/$p" "make mpi"; done
+open_mpi
 run() { np=$1; shift; "$MPIRUN" $OVER -np "$np" "$@"; }
 
 # The backend's contract, on 4 processes: its own summary line counts here.

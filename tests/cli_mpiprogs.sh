@@ -22,18 +22,8 @@ if [ "${MPI_STATUS:-}" != yes ]; then
 fi
 MPICC=${MPICC:-mpicc}
 MPIRUN=${MPIRUN:-mpirun}
-for d in test_mpiprogs test_mpiprogs_p2p; do
-  if [ ! -x "$BUILD/tests/$d" ]; then
-    bad "$BUILD/tests/$d is missing (make check builds it)"
-    echo "cli_mpiprogs: $pass passed, $fail failed"
-    exit 1
-  fi
-done
-# Open MPI as root, on 2 cores (as tests/cli_mpi.sh runs it).
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-export OMPI_MCA_btl_vader_single_copy_mechanism=none
-OVER=""
-"$MPIRUN" --version 2>/dev/null | grep -q "Open MPI" && OVER="--oversubscribe"
+for d in test_mpiprogs test_mpiprogs_p2p; do need "$BUILD/tests/$d" "make check builds it"; done
+open_mpi
 
 # group DRIVER "DRIVER'S EXTRA ARGUMENTS" "PROCESS COUNTS" SOURCES...
 group() {

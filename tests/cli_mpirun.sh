@@ -23,8 +23,7 @@ BUILD=${BUILD:-build/chk}
 RUN=$BUILD/tilesim-mpirun
 CC_=$BUILD/tilesim-mpicc
 . tests/clilib.sh
-export TMPDIR=$T/tmp
-mkdir -p "$TMPDIR"
+own_tmpdir
 notemp() { [ -z "$(ls "$TMPDIR")" ] && ok || bad "$1: left in \$TMPDIR: $(ls "$TMPDIR")"; }
 
 build() {   # build NAME SOURCE [FLAGS]: tilesim-mpicc SOURCE -o $T/NAME

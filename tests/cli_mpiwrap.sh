@@ -25,8 +25,7 @@ RUN=$BUILD/tilesim-mpirun
 MCC=$BUILD/tilesim-mpicc
 MCXX=$BUILD/tilesim-mpicxx
 . tests/clilib.sh
-export TMPDIR=$T/tmp
-mkdir -p "$TMPDIR"
+own_tmpdir
 unset CC CXX TILESIM_CC TILESIM_CXX
 
 OMPI=""

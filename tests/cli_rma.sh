@@ -13,8 +13,7 @@ BUILD=${BUILD:-build/chk}
 RUN=$BUILD/tilesim-mpirun
 CC_=$BUILD/tilesim-mpicc
 . tests/clilib.sh
-export TMPDIR=$T/tmp
-mkdir -p "$TMPDIR"
+own_tmpdir
 
 for p in halo_fence lock_counter; do
   "$CC_" examples/mpi/$p.c -o "$T/$p" > "$T/build.log" 2>&1 && ok || bad "tilesim-mpicc $p.c: $(cat "$T/build.log")"
