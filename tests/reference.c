@@ -3,6 +3,7 @@
 
 #include <stdlib.h>
 
+#include "tests/check.h"
 #include "util/xmem.h"
 
 static void sort(double *x, int n) {
@@ -48,6 +49,16 @@ int ref_convex_apart(const vec2 *p, int np, const vec2 *q, int nq, int closed) {
     }
   }
   return 0;
+}
+
+int ref_symmetric(int (*f)(const inside_index *, const inside_index *), const char *what, const vec2 *p, int np,
+                  const vec2 *q, int nq) {
+  inside_index *a = inside_new(p, np), *b = inside_new(q, nq);
+  int r = f(a, b), r2 = f(b, a);
+  CHECK(r == r2, "%s is not symmetric (%d, %d)", what, r, r2);
+  inside_free(a);
+  inside_free(b);
+  return r;
 }
 
 void ref_mc_mesh(mc_mesh *m, const mesh *me) {

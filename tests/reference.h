@@ -4,6 +4,7 @@
 #define REFERENCE_H
 
 #include "geom/geom.h"
+#include "surface/inside.h"
 #include "surface/mesh.h"
 #include "tests/meshcheck.h"
 
@@ -17,6 +18,11 @@ double ref_rects_area(const double (*r)[4], int n);
  * weakly (open) on its outer side (the separating axis theorem); exact for
  * integer points. */
 int ref_convex_apart(const vec2 *p, int np, const vec2 *q, int nq, int closed);
+
+/* f (an overlap test) on p and q, checked to give the same answer on q and
+ * p (a failed check names what). */
+int ref_symmetric(int (*f)(const inside_index *, const inside_index *), const char *what, const vec2 *p, int np,
+                  const vec2 *q, int nq);
 
 /* The mesh checker's copy of a mesh under test (mc_free it). */
 void ref_mc_mesh(mc_mesh *m, const mesh *me);

@@ -61,12 +61,7 @@ static int rand_convex(rng *g, vec2 *out, int cx, int cy) {
 }
 
 static int closed_of(const vec2 *p, int np, const vec2 *q, int nq) {
-  inside_index *a = inside_new(p, np), *b = inside_new(q, nq);
-  int r = overlap_closed(a, b), r2 = overlap_closed(b, a);
-  CHECK(r == r2, "overlap_closed is not symmetric (%d, %d)", r, r2);
-  inside_free(a);
-  inside_free(b);
-  return r;
+  return ref_symmetric(overlap_closed, "overlap_closed", p, np, q, nq);
 }
 
 static void test_closed(rng *g) {

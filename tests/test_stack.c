@@ -43,12 +43,7 @@
 /* ------------------------------------------------------------- overlap -- */
 
 static int ov(const vec2 *p, int np, const vec2 *q, int nq) {
-  inside_index *a = inside_new(p, np), *b = inside_new(q, nq);
-  int r = overlap_regions(a, b), r2 = overlap_regions(b, a);
-  CHECK(r == r2, "overlap is not symmetric (%d, %d)", r, r2);
-  inside_free(a);
-  inside_free(b);
-  return r;
+  return ref_symmetric(overlap_regions, "overlap", p, np, q, nq);
 }
 
 /* A random convex polygon with integer points: the hull of a few points. */
