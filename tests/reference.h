@@ -7,6 +7,7 @@
 #include "surface/inside.h"
 #include "surface/mesh.h"
 #include "tests/meshcheck.h"
+#include "tests/stackgen.h"
 
 /* The area of the union of n axis-aligned rectangles r[i] = {x0, y0, x1,
  * y1} (n <= 32), by brute force over the grid of their coordinates: each
@@ -26,5 +27,12 @@ int ref_symmetric(int (*f)(const inside_index *, const inside_index *), const ch
 
 /* The mesh checker's copy of a mesh under test (mc_free it). */
 void ref_mc_mesh(mc_mesh *m, const mesh *me);
+
+/* A mesh under test judged by the checker against the polygons it was tiled
+ * from: a closed outward 2-manifold of comps components (-1: any), of
+ * Euler characteristics chi[0..comps) where chi is not NULL, through every
+ * input point and segment with no other vertex on the input planes and no
+ * triangle across one; each a check naming what.  The checker's volume. */
+double ref_judge_mesh(const char *what, const mesh *me, const sg_poly *ps, int np, int comps, const int *chi);
 
 #endif

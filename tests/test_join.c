@@ -234,31 +234,7 @@ static double judge(const char *what, const outcome *o, const sg_poly *ps, int n
     CHECK(0, "%s: refused: %s", what, o->err);
     return NAN;
   }
-  const mesh *me = stack_mesh(o->ss);
-  mc_mesh m;
-  ref_mc_mesh(&m, me);
-  mc_report r;
-  mc_check(&m, &r);
-  CHECK(r.manifold && r.outward, "%s: not a closed outward manifold: %s", what, r.first);
-  CHECK(comps < 0 || r.ncomp == comps, "%s: %d components, want %d", what, r.ncomp, comps);
-  mc_poly *cp = xmallocarray((size_t)np, sizeof *cp);
-  double *xy = xmallocarray(2 * (size_t)np * SG_N + 1, sizeof *xy);
-  double *x = xy, *y = xy + (size_t)np * SG_N;
-  for (int i = 0; i < np; i++) {
-    for (int k = 0; k < ps[i].n; k++) x[i * SG_N + k] = ps[i].p[k].x, y[i * SG_N + k] = ps[i].p[k].y;
-    cp[i] = (mc_poly){ps[i].n, ps[i].z, x + i * SG_N, y + i * SG_N};
-  }
-  mc_fidelity fd;
-  mc_check_input(&m, cp, np, &fd);
-  CHECK(fd.missing == 0 && fd.absent == 0 && fd.strays == 0 && fd.crossing == 0,
-        "%s: %d segments missing, %d points absent, %d strays, %d crossing", what, fd.missing, fd.absent,
-        fd.strays, fd.crossing);
-  double vol = r.volume;
-  mc_fidelity_free(&fd);
-  mc_report_free(&r);
-  mc_free(&m);
-  free(xy), free(cp);
-  return vol;
+  return ref_judge_mesh(what, stack_mesh(o->ss), ps, np, comps, NULL);
 }
 
 /* The notes with their line numbers ("t.contours:N:", "line N") masked, and
