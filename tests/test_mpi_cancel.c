@@ -328,8 +328,7 @@ static int kinds(void *ud) {
 
 static void kind_requests(void) {
   for (int w = 0; w < 2; w++) {
-    kindrun K;
-    memset(&K, 0, sizeof K);
+    kindrun K = {0};
     K.wait = w;
     mpih_result res = run(MPIH_SIM, 4, kinds, &K, 0.0625);
     int bad = 0;
@@ -344,8 +343,7 @@ static void kind_requests(void) {
     mpih_result_free(&res);
   }
   for (int b = 0; b < 2; b++) {
-    kindrun K;
-    memset(&K, 0, sizeof K);
+    kindrun K = {0};
     K.wait = K.never = 1;
     mpih_result res = run(b, 2, kinds, &K, 0.0625);
     CHECK(res.rc != 0 && res.deadlock && has(res.err, "rank 1 waits in MPI_Wait(MPI_Ixchg)"),

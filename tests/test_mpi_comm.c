@@ -79,8 +79,7 @@ static int shared_node(void *ud) {
 }
 
 static void closed_forms(void) {
-  facts F;
-  memset(&F, 0, sizeof F);
+  facts F = {0};
   mpih_result res = run(MPIH_SIM, 2, inter_time, &F);
   double create = 0.25 + 136 * 0.0625, merge = create + 0.25 + 132 * 0.0625;
   CHECK(res.rc == 0 && F.t[0][0] == create && F.t[1][0] == create, "intercomm_create: %.17g %.17g (%.17g due)",
@@ -125,8 +124,7 @@ static int contexts(void *ud) {
 
 static void context_limit(void) {
   for (int b = 0; b < 2; b++) {
-    facts F;
-    memset(&F, 0, sizeof F);
+    facts F = {0};
     mpih_result res = run(b, 2, contexts, &F);
     CHECK(res.rc == 0 && F.n[0] == 511 && F.n[1] == 511 && F.n[2] == MPI_ERR_OTHER && F.n[3] == MPI_ERR_OTHER,
           "%s: %d and %d intercommunicators at once (511 due), then %d %d", bname[b], F.n[0], F.n[1], F.n[2],
@@ -184,8 +182,7 @@ static int inter_stuck(void *ud) {
 
 static void errors(void) {
   for (int b = 0; b < 2; b++) {
-    facts F;
-    memset(&F, 0, sizeof F);
+    facts F = {0};
     mpih_result res = run(b, 1, added_code, &F);
     CHECK(F.n[0] == MPI_ERR_LASTCODE && F.n[2] == MPI_ERR_LASTCODE + 1 && F.n[3] == MPI_ERR_LASTCODE + 2 &&
               F.n[1] == F.n[3],

@@ -86,8 +86,7 @@ static int cmp(const void *a, const void *b) {
 
 static void closed_forms(const char *dir) {
   for (int p = 1; p <= 8; p *= 2) {
-    job j;
-    memset(&j, 0, sizeof j);
+    job j = {0};
     snprintf(j.dir, sizeof j.dir, "%s", dir);
     j.n = 32;   /* 2 s of bandwidth */
     mounts(&j);
@@ -144,8 +143,7 @@ static int two_fs(void *ud) {
 }
 
 static void separate(const char *dir) {
-  job j;
-  memset(&j, 0, sizeof j);
+  job j = {0};
   snprintf(j.dir, sizeof j.dir, "%s", dir);
   mounts(&j);
   char b[300], g[320];
@@ -169,8 +167,7 @@ static void separate(const char *dir) {
 
 /* The same steps on threads: the data, not the times. */
 static void threads(const char *dir) {
-  job j;
-  memset(&j, 0, sizeof j);
+  job j = {0};
   snprintf(j.dir, sizeof j.dir, "%s", dir);
   j.n = 8;
   mounts(&j);
@@ -204,8 +201,7 @@ static int fatal_open(void *ud) {
 }
 
 static void fatal(const char *dir) {
-  job j;
-  memset(&j, 0, sizeof j);
+  job j = {0};
   snprintf(j.dir, sizeof j.dir, "%s", dir);
   mounts(&j);
   mpih_result res = run(MPIH_SIM, 2, fatal_open, &j);
@@ -230,8 +226,7 @@ static int stuck(void *ud) {
 }
 
 static void deadlock(const char *dir) {
-  job j;
-  memset(&j, 0, sizeof j);
+  job j = {0};
   snprintf(j.dir, sizeof j.dir, "%s", dir);
   mounts(&j);
   mpih_result res = run(MPIH_SIM, 2, stuck, &j);

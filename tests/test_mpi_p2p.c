@@ -153,8 +153,7 @@ static int returned(void *ud) {
 
 static void errors_returned(void) {
   for (int b = 0; b < 2; b++) {
-    codes c;
-    memset(&c, 0, sizeof c);
+    codes c = {0};
     mpih_result res = run(b, 2, returned, &c);
     CHECK(res.rc == 0, "%s: errors returned: %s", bname[b], res.err);
     CHECK(c.rc[0] == MPI_ERR_BUFFER && c.rc[1] == MPI_ERR_BUFFER && c.rc[2] == MPI_SUCCESS && c.rc[3] == MPI_SUCCESS,
@@ -339,8 +338,7 @@ static int ends(void *ud) {
 
 static void rank_ends(void) {
   for (int b = 0; b < 2; b++) {
-    seen s;
-    memset(&s, 0, sizeof s);
+    seen s = {0};
     mpih_result res = run(b, 3, ends, &s);
     CHECK(res.rc == 0 && res.end[0] == TSMPI_NEVER && res.end[1] == TSMPI_UNFINALIZED &&
               res.end[2] == TSMPI_FINALIZED,

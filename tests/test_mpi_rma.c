@@ -119,8 +119,7 @@ static int passive_times(void *ud) {
 }
 
 static void one_pair(void) {
-  facts F;
-  memset(&F, 0, sizeof F);
+  facts F = {0};
   mpih_result res = run(MPIH_SIM, 2, 0, passive_times, &F);
   double *t = F.t[0];
   double due[11] = {2 * m, 0, 0, 2 * m + 128 * b, 2 * m + 32 * b, 2 * m + 16 * b, 2 * m + 24 * b, 2 * m + 64 * b,
@@ -186,8 +185,7 @@ static int three(void *ud) {
 }
 
 static void three_ranks(void) {
-  facts F;
-  memset(&F, 0, sizeof F);
+  facts F = {0};
   mpih_result res = run(MPIH_SIM, 3, 0, three, &F);
   CHECK(res.rc == 0, "three: %s", res.err);
   for (int r = 0; r < 3; r++) {
@@ -303,8 +301,7 @@ static int polling(void *ud) {
 
 static void tilesim_words(void) {
   for (int be = 0; be < 2; be++) {
-    facts F;
-    memset(&F, 0, sizeof F);
+    facts F = {0};
     mpih_result res = run(be, 2, 1e-6, model_info, &F);
     CHECK(res.rc == 0 && F.v[0][0] == MPI_WIN_UNIFIED, "%s: MPI_WIN_MODEL %ld", bname[be], F.v[0][0]);
     CHECK(F.v[0][1] == 1 && F.v[0][2] == 1, "%s: the hints MPI_Win_set_info gave are not kept", bname[be]);
