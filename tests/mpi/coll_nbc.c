@@ -16,7 +16,6 @@
 #include "colldata.h"
 #include "mtest.h"
 
-
 typedef struct {
   mtest *t;
   MPI_Comm other;   /* a duplicate of MPI_COMM_WORLD for the collectives started behind */

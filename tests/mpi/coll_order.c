@@ -17,7 +17,6 @@
 
 #include "mtest.h"
 
-
 /* Rank r's element i: mixed signs and exponents, so that the order of the
  * additions shows in the result. */
 static double x(int r, int i) {

@@ -11,7 +11,6 @@
 #include "colldata.h"
 #include "mtest.h"
 
-
 /* The matrix operation on elements with gaps: element k is 8 ints, the
  * matrix in ints 0, 2, 4, 6. */
 static void matmul_gap_fn(void *in, void *inout, int *len, MPI_Datatype *dt) {

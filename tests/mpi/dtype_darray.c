@@ -19,7 +19,6 @@
 
 #include "mtest.h"
 
-
 enum { MAXD = 3, MAXN = 4096 };
 
 typedef struct {

@@ -22,7 +22,6 @@
 
 #include "mtest.h"
 
-
 static const char X32[] = "external32";
 
 /* Pack count elements of dt from buf; compare with want[n]; unpack into

@@ -33,13 +33,9 @@ static void settle(MPI_File fh) {
 }
 
 static MPI_File open_new(mtest *t, const iotest *io, const char *name) {
-  char p[640];
-  MPI_File fh = MPI_FILE_NULL;
-  int rc = MPI_File_open(MPI_COMM_WORLD, iotest_path(io, name, p, sizeof p), MPI_MODE_CREATE | MPI_MODE_RDWR,
-                         MPI_INFO_NULL, &fh);
-  MCHECK(t, rc == MPI_SUCCESS, "open %s: rc %d", name, rc);
-  if (rc == MPI_SUCCESS) MPI_File_set_size(fh, 0);
-  return rc == MPI_SUCCESS ? fh : MPI_FILE_NULL;
+  MPI_File fh = iotest_open(t, io, name);
+  if (fh != MPI_FILE_NULL) MPI_File_set_size(fh, 0);
+  return fh;
 }
 
 /* Rank r's record: 4 ints r, r, r, r (the order they land in is the

@@ -70,6 +70,17 @@ static inline void iotest_done(iotest *io, const char *const *names) {
   rmdir(io->dir);
 }
 
+/* File `name` of the directory opened by every rank, created if need be,
+ * read and write (a failed check if not): the handle, or MPI_FILE_NULL. */
+static inline MPI_File iotest_open(mtest *t, const iotest *io, const char *name) {
+  char p[640];
+  MPI_File fh = MPI_FILE_NULL;
+  int rc = MPI_File_open(MPI_COMM_WORLD, iotest_path(io, name, p, sizeof p), MPI_MODE_CREATE | MPI_MODE_RDWR,
+                         MPI_INFO_NULL, &fh);
+  MCHECK(t, rc == MPI_SUCCESS, "open %s: rc %d", name, rc);
+  return rc == MPI_SUCCESS ? fh : MPI_FILE_NULL;
+}
+
 /* One part of an I/O program's checks, on the program's directory. */
 typedef void (*iotest_fn)(mtest *t, const iotest *io);
 

@@ -81,6 +81,17 @@ static inline int mtest_done(mtest *t) {
   return counts[1] > 0;
 }
 
+/* A check that group g (freed here) is MPI_COMM_WORLD's. */
+static inline void mtest_world_group(mtest *t, MPI_Group g, const char *what) {
+  MPI_Group w;
+  int same = -1;
+  MPI_Comm_group(MPI_COMM_WORLD, &w);
+  MPI_Group_compare(g, w, &same);
+  MCHECK(t, same == MPI_IDENT, "%s against MPI_COMM_WORLD's: %d", what, same);
+  MPI_Group_free(&g);
+  MPI_Group_free(&w);
+}
+
 /* One part of a program's checks, run by mtest_main. */
 typedef void (*mtest_fn)(mtest *t);
 

@@ -18,8 +18,6 @@
 
 #include "mtest.h"
 
-
-
 enum { N = 9 };   /* elements per reduction */
 
 /* The operations by index, and which classes they apply to. */
@@ -30,6 +28,16 @@ static MPI_Op op_of(int o) {
   return ops[o];
 }
 static const char *const op_name[NOPS] = {"MAX", "MIN", "SUM", "PROD", "LAND", "BAND", "LOR", "BOR", "LXOR", "BXOR"};
+
+/* The check of MPI_Reduce_local's answer rc for operation o on name: where
+ * the operation applies, success with the expected elements (same); where
+ * not, MPI_ERR_OP. */
+static void verdict(mtest *t, int o, const char *name, int rc, int applies, int same) {
+  if (applies)
+    MCHECK(t, same, "%s on %s: rc %d or a wrong element", op_name[o], name, rc);
+  else
+    MCHECK(t, rc == MPI_ERR_OP, "%s on %s: rc %d, want MPI_ERR_OP", op_name[o], name, rc);
+}
 
 /* Classes of MPI 3.1 section 5.9.2 and the operations the standard allows
  * on each (bit o: operation o). */
@@ -150,13 +158,9 @@ INT_TEST(uint64_t, uint64_t, 64, 1)
                 : (T)ref_int(o, a[i] != 0, b[i] != 0, 1, 8);                                    \
       }                                                                                         \
       int rc = MPI_Reduce_local(a, b, N, dt, op_of(o));                                         \
-      if (o <= PROD || (logical && TILESIM)) {                                                  \
-        int bad = rc != MPI_SUCCESS;                                                            \
-        for (int i = 0; i < N && !bad; i++) bad = b[i] != want[i];                              \
-        MCHECK(t, !bad, "%s on %s: rc %d or a wrong element", op_name[o], name, rc);            \
-      } else {                                                                                  \
-        MCHECK(t, rc == MPI_ERR_OP, "%s on %s: rc %d, want MPI_ERR_OP", op_name[o], name, rc);  \
-      }                                                                                         \
+      int same = rc == MPI_SUCCESS;                                                             \
+      for (int i = 0; i < N && same; i++) same = b[i] == want[i];                               \
+      verdict(t, o, name, rc, o <= PROD || (logical && TILESIM), same);                         \
     }                                                                                           \
   }
 typedef long double ldouble;
@@ -174,13 +178,9 @@ FLOAT_TEST(ldouble)
         want[i] = o == SUM ? a[i] + b[i] : a[i] * b[i];                                         \
       }                                                                                         \
       int rc = MPI_Reduce_local(a, b, N, dt, op_of(o));                                         \
-      if (o == SUM || o == PROD) {                                                              \
-        int bad = rc != MPI_SUCCESS;                                                            \
-        for (int i = 0; i < N && !bad; i++) bad = b[i] != want[i];                              \
-        MCHECK(t, !bad, "%s on %s: rc %d or a wrong element", op_name[o], name, rc);            \
-      } else {                                                                                  \
-        MCHECK(t, rc == MPI_ERR_OP, "%s on %s: rc %d, want MPI_ERR_OP", op_name[o], name, rc);  \
-      }                                                                                         \
+      int same = rc == MPI_SUCCESS;                                                             \
+      for (int i = 0; i < N && same; i++) same = b[i] == want[i];                               \
+      verdict(t, o, name, rc, o == SUM || o == PROD, same);                                     \
     }                                                                                           \
   }
 COMPLEX_TEST(float _Complex, float)
@@ -199,13 +199,9 @@ COMPLEX_TEST(long double _Complex, ldouble)
         want[i] = (T)ref_int(o < LAND ? LAND : o, a[i], b[i], 1, 8);                            \
       }                                                                                         \
       int rc = MPI_Reduce_local(a, b, 4, dt, op_of(o));                                         \
-      if (o == LAND || o == LOR || o == LXOR) {                                                 \
-        int bad = rc != MPI_SUCCESS;                                                            \
-        for (int i = 0; i < 4 && !bad; i++) bad = b[i] != want[i];                              \
-        MCHECK(t, !bad, "%s on %s: rc %d or a wrong element", op_name[o], name, rc);            \
-      } else {                                                                                  \
-        MCHECK(t, rc == MPI_ERR_OP, "%s on %s: rc %d, want MPI_ERR_OP", op_name[o], name, rc);  \
-      }                                                                                         \
+      int same = rc == MPI_SUCCESS;                                                             \
+      for (int i = 0; i < 4 && same; i++) same = b[i] == want[i];                               \
+      verdict(t, o, name, rc, o == LAND || o == LOR || o == LXOR, same);                        \
     }                                                                                           \
   }
 typedef _Bool cbool;

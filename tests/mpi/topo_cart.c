@@ -13,7 +13,6 @@
 
 #include "mtest.h"
 
-
 /* ==== MPI_Dims_create ===================================================== */
 
 /* The most balanced non-increasing factorization of n into k factors, each

@@ -13,7 +13,6 @@
 
 #include "mtest.h"
 
-
 static int cmp_int(const void *a, const void *b) {
   int x = *(const int *)a, y = *(const int *)b;
   return (x > y) - (x < y);
