@@ -8,6 +8,8 @@
 #            and the script's exit status (0 when nothing failed);
 #   need FILE WHY  a program the script needs: when FILE is not there to run,
 #            a failed check naming it and WHY, the summary, exit 1;
+#   mesh_volume_is CSV WANT  the report CSV's mesh row says closed, and a
+#            volume (column 13) WANT to 1e-9 of it;
 #   own_tmpdir  TMPDIR=$T/tmp, made, for the programs run: what they leave
 #            there shows;
 #   open_mpi    the settings $MPIRUN needs here when it is Open MPI's: root
@@ -30,6 +32,10 @@ need() {
   bad "$1 is missing ($2)"
   summary
   exit 1
+}
+mesh_volume_is() {
+  awk -F, -v want="$2" '$1 == "mesh" { d = $13 - want; if (d < 0) d = -d; ok = $7 == "closed" && d <= 1e-9 * want }
+                        END { exit !ok }' "$1"
 }
 own_tmpdir() {
   export TMPDIR="$T/tmp"

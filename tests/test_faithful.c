@@ -51,18 +51,8 @@ static const double PI = 3.14159265358979323846;
 
 static stack_surface *tile(const contour_stack *s, int caps, stack_band band, char *notes, size_t nlen, char *err,
                            size_t errlen, int *res) {
-  char *buf = NULL;
-  size_t len = 0;
-  FILE *f = notes ? open_memstream(&buf, &len) : NULL;
-  stack_options o = {COST_AREA, caps, 0, 2, NULL, f, "test", NULL, NULL, MATCH_SINGLE, INFINITY, 0, band};
-  stack_surface *ss = NULL;
-  *res = stack_tile(s, "t.contours", &o, &ss, err, errlen);
-  if (f) {
-    fclose(f);
-    snprintf(notes, nlen, "%s", buf ? buf : "");
-    free(buf);
-  }
-  return ss;
+  stack_options o = {COST_AREA, caps, 0, 2, NULL, NULL, "test", NULL, NULL, MATCH_SINGLE, INFINITY, 0, band};
+  return sg_tile(s, o, notes, nlen, err, errlen, res);
 }
 
 /* The checker's verdict on the mesh: 1 when closed and outward; its volume

@@ -39,9 +39,12 @@ static mpih_result run(int b, int n, mpih_fn fn, void *ud) {
   return mpih_result_of(&cfg, fn, ud);
 }
 
-/* /fsa and /fsb: latency 1/2 s, 16 bytes a second. */
-static void mounts(const job *j) {
+/* The job's directory dir and n bytes a rank; /fsa (dir) and /fsb (dir/b)
+ * mounted: latency 1/2 s, 16 bytes a second. */
+static void mounts(job *j, const char *dir, int n) {
   char spec[512], err[256];
+  snprintf(j->dir, sizeof j->dir, "%s", dir);
+  j->n = n;
   tsmpi_fs_reset();
   snprintf(spec, sizeof spec, "/fsa,dir=%s,latency=0.5,bandwidth=16", j->dir);
   CHECK(tsmpi_fs_option(spec, err, sizeof err) == 0, "--fs %s: %s", spec, err);
@@ -87,9 +90,7 @@ static int cmp(const void *a, const void *b) {
 static void closed_forms(const char *dir) {
   for (int p = 1; p <= 8; p *= 2) {
     job j = {0};
-    snprintf(j.dir, sizeof j.dir, "%s", dir);
-    j.n = 32;   /* 2 s of bandwidth */
-    mounts(&j);
+    mounts(&j, dir, 32);   /* 2 s of bandwidth */
     mpih_result res = run(MPIH_SIM, p, steps, &j);
     CHECK(res.rc == 0, "%d ranks: %s", p, res.err);
     /* open: one request, 1/2 s, from 0 */
@@ -144,8 +145,7 @@ static int two_fs(void *ud) {
 
 static void separate(const char *dir) {
   job j = {0};
-  snprintf(j.dir, sizeof j.dir, "%s", dir);
-  mounts(&j);
+  mounts(&j, dir, 0);
   char b[300], g[320];
   snprintf(b, sizeof b, "%s/b", dir);
   mkdir(b, 0700);
@@ -168,9 +168,7 @@ static void separate(const char *dir) {
 /* The same steps on threads: the data, not the times. */
 static void threads(const char *dir) {
   job j = {0};
-  snprintf(j.dir, sizeof j.dir, "%s", dir);
-  j.n = 8;
-  mounts(&j);
+  mounts(&j, dir, 8);
   tsmpi_fs_option("/fsa,latency=0,bandwidth=1e15", (char[64]){0}, 64);
   char f[300], data[64];
   snprintf(f, sizeof f, "%s/f", dir);
@@ -202,8 +200,7 @@ static int fatal_open(void *ud) {
 
 static void fatal(const char *dir) {
   job j = {0};
-  snprintf(j.dir, sizeof j.dir, "%s", dir);
-  mounts(&j);
+  mounts(&j, dir, 0);
   mpih_result res = run(MPIH_SIM, 2, fatal_open, &j);
   CHECK(res.rc != 0 && res.aborted && strstr(res.err, "MPI_File_open") && strstr(res.err, "/fsa/missing"),
         "a fatal open of a missing file: rc %d, \"%s\"", res.rc, res.err);
@@ -227,8 +224,7 @@ static int stuck(void *ud) {
 
 static void deadlock(const char *dir) {
   job j = {0};
-  snprintf(j.dir, sizeof j.dir, "%s", dir);
-  mounts(&j);
+  mounts(&j, dir, 0);
   mpih_result res = run(MPIH_SIM, 2, stuck, &j);
   CHECK(res.rc != 0 && res.deadlock && strstr(res.err, "MPI_File_write_all") && strstr(res.err, "MPI_Recv"),
         "a deadlock in a collective write: rc %d, \"%s\"", res.rc, res.err);

@@ -58,18 +58,8 @@ static stack_band band_mode = STACK_BAND_ALIGNED;
 
 static stack_surface *tile(const contour_stack *s, how h, char *notes, size_t nlen, char *err, size_t errlen,
                            int *res) {
-  char *buf = NULL;
-  size_t len = 0;
-  FILE *f = notes ? open_memstream(&buf, &len) : NULL;
-  stack_options o = {h.kind, h.caps, h.apex, 2, h.rc, f, "test", NULL, NULL, MATCH_SINGLE, INFINITY, 0, band_mode};
-  stack_surface *ss = NULL;
-  *res = stack_tile(s, "t.contours", &o, &ss, err, errlen);
-  if (f) {
-    fclose(f);
-    snprintf(notes, nlen, "%s", buf ? buf : "");
-    free(buf);
-  }
-  return ss;
+  stack_options o = {h.kind, h.caps, h.apex, 2, h.rc, NULL, "test", NULL, NULL, MATCH_SINGLE, INFINITY, 0, band_mode};
+  return sg_tile(s, o, notes, nlen, err, errlen, res);
 }
 
 /* The stack s times f (= 2^k when pow2), through the writer and the reader.

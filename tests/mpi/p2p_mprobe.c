@@ -11,19 +11,14 @@
 #include <string.h>
 
 #include "mtest.h"
+#include "probetest.h"
 
 /* Every other rank sends rank 0 rank * 3 ints (each its rank), tag = rank;
  * rank 0 takes each with MPI_Mprobe from any source, checks that the
  * message is out of matching (an MPI_Iprobe by its source and tag finds
  * nothing), sizes its buffer by the count and receives it with MPI_Mrecv. */
 static void mprobe_any_on(mtest *t, MPI_Comm comm) {
-  if (t->rank != 0) {
-    int n = 3 * t->rank, *v = malloc((size_t)n * sizeof *v);
-    for (int i = 0; i < n; i++) v[i] = t->rank;
-    MPI_Send(v, n, MPI_INT, 0, t->rank, comm);
-    free(v);
-    return;
-  }
+  if (!probetest_send(t, comm)) return;
   int bad = 0;
   for (int k = 1; k < t->size; k++) {
     MPI_Message msg = MPI_MESSAGE_NULL;
