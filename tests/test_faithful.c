@@ -693,10 +693,7 @@ static int write_files(const char *dir) {
     const set_def *d = k < NSETS ? &sets[k] : k == NSETS ? &mixed : &pieces;
     size_t len;
     unsigned char *b = write_set(d, &len);
-    char path[512];
-    snprintf(path, sizeof path, "%s/%s", dir, d->file);
-    FILE *fp = fopen(path, "wb");
-    if (!fp || fwrite(b, 1, len, fp) != len || fclose(fp) != 0) bad = 1;
+    bad |= rtw_save(dir, d->file, b, len);
     free(b);
   }
   return bad;

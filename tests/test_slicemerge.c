@@ -377,10 +377,7 @@ static int write_file(const char *dir, const char *name, rtw_roi *roi, int nroi)
   rtw_opts o = {0, 0, 0, 0, NULL, NULL, 0};
   size_t len;
   unsigned char *b = rtw_write(&o, roi, nroi, &len);
-  char path[512];
-  snprintf(path, sizeof path, "%s/%s", dir, name);
-  FILE *f = fopen(path, "wb");
-  int bad = !f || fwrite(b, 1, len, f) != len || fclose(f) != 0;
+  int bad = rtw_save(dir, name, b, len);
   free(b);
   return bad;
 }
