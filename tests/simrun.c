@@ -2,6 +2,7 @@
 #include "tests/simrun.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 #include "tests/check.h"
 #include "util/xmem.h"
@@ -33,4 +34,22 @@ sim *simrun(const sim_config *cfg, int n, mp_main fn, void *ud, int *rc, char *e
   *rc = sim_run(s, pr, err, errlen);
   free(pr);
   return s;
+}
+
+void simrun_ring_main(mp *self, void *ud) {
+  simrun_ring *g = ud;
+  int me = mp_rank(self), p = mp_size(self);
+  unsigned char buf[64] = {0};
+  long long tok = 0;
+  for (int k = 0; k < g->laps; k++) {
+    if (me != 0) g->bad |= mp_recv(self, (me + p - 1) % p, 0, buf, sizeof buf, NULL) != MP_OK;
+    memcpy(&tok, buf, sizeof tok);
+    tok++;
+    memcpy(buf, &tok, sizeof tok);
+    g->bad |= mp_compute(self, g->work) != MP_OK;
+    g->bad |= mp_send(self, (me + 1) % p, 0, buf, g->len) != MP_OK;
+    if (me == 0) g->bad |= mp_recv(self, p - 1, 0, buf, sizeof buf, NULL) != MP_OK;
+  }
+  memcpy(&tok, buf, sizeof tok);
+  if (me == 0) g->token = tok;
 }

@@ -19,4 +19,18 @@ sim_config simrun_config(sim_net net, int procs);
  * configuration sim_new refuses fails a check and aborts. */
 sim *simrun(const sim_config *cfg, int n, mp_main fn, void *ud, int *rc, char *err, size_t errlen);
 
+/* A token around the ring of ranks, laps times: each rank takes it from the
+ * one before (rank 0 starts it), adds one, computes work units and passes it
+ * on in a len-byte message (8 <= len <= 64).  bad is set by a failed call;
+ * token is rank 0's count at the end (ranks x laps). */
+typedef struct {
+  int laps;
+  double work;
+  size_t len;
+  long long token;
+  int bad;
+} simrun_ring;
+
+void simrun_ring_main(mp *self, void *ud);
+
 #endif

@@ -84,39 +84,13 @@ static void test_pingpong(void) {
   }
 }
 
-typedef struct {
-  int laps;
-  double work;
-  size_t len;
-  long long token;
-  int bad;
-} ring;
-
-static void ring_main(mp *self, void *ud) {
-  ring *g = ud;
-  int me = mp_rank(self), p = mp_size(self);
-  unsigned char buf[64] = {0};
-  long long tok = 0;
-  for (int k = 0; k < g->laps; k++) {
-    if (me != 0) g->bad |= mp_recv(self, (me + p - 1) % p, 0, buf, sizeof buf, NULL) != MP_OK;
-    memcpy(&tok, buf, sizeof tok);
-    tok++;
-    memcpy(buf, &tok, sizeof tok);
-    g->bad |= mp_compute(self, g->work) != MP_OK;
-    g->bad |= mp_send(self, (me + 1) % p, 0, buf, g->len) != MP_OK;
-    if (me == 0) g->bad |= mp_recv(self, p - 1, 0, buf, sizeof buf, NULL) != MP_OK;
-  }
-  memcpy(&tok, buf, sizeof tok);
-  if (me == 0) g->token = tok;
-}
-
 static void test_ring(void) {
   char err[512];
   for (int ni = 0; ni < 3; ni++) {
     sim_config cfg = simrun_config(nets[ni], 5);
-    ring g = {4, 2, 9, 0, 0};
+    simrun_ring g = {4, 2, 9, 0, 0};
     int rc;
-    sim *s = simrun(&cfg, 5, ring_main, &g, &rc, err, sizeof err);
+    sim *s = simrun(&cfg, 5, simrun_ring_main, &g, &rc, err, sizeof err);
     double want = 5 * g.laps * (g.work * cfg.c + hop(&cfg, g.len));
     const char *nn = sim_net_name(cfg.net);
     CHECK(rc == 0 && !g.bad, "%s ring failed: %s", nn, err);
@@ -627,9 +601,9 @@ static void test_many_ranks(void) {
   char err[512];
   enum { N = 10000 };
   sim_config cfg = simrun_config(SIM_NET_BUS, N);
-  ring g = {1, 1, 8, 0, 0};
+  simrun_ring g = {1, 1, 8, 0, 0};
   int rc;
-  sim *s = simrun(&cfg, N, ring_main, &g, &rc, err, sizeof err);
+  sim *s = simrun(&cfg, N, simrun_ring_main, &g, &rc, err, sizeof err);
   CHECK(rc == 0 && !g.bad, "10,000 ranks: %s", err);
   CHECK(g.token == N, "10,000 ranks: token %lld", g.token);
   double want = N * (g.work * cfg.c + cfg.m + 8 * cfg.per_byte);
@@ -640,15 +614,13 @@ static void test_many_ranks(void) {
   /* Many ranks on few processors, with small stacks. */
   cfg = simrun_config(SIM_NET_LOGGP, 7);
   cfg.stack = 32 * 1024;
-  g = (ring){2, 1, 8, 0, 0};
-  s = simrun(&cfg, 3000, ring_main, &g, &rc, err, sizeof err);
+  g = (simrun_ring){2, 1, 8, 0, 0};
+  s = simrun(&cfg, 3000, simrun_ring_main, &g, &rc, err, sizeof err);
   CHECK(rc == 0 && !g.bad && g.token == 6000, "3,000 ranks on 7 processors: %s", err);
   sim_free(s);
 }
 
 /* ==== random matching programs (tests/randprog.c) ======================== */
-
-static double fraction(rng *r) { return rng_int(r, 0, 8) * 0.125; }
 
 static void test_random(void) {
   char err[512];
@@ -656,16 +628,15 @@ static void test_random(void) {
   for (uint64_t seed = 1; seed <= 240; seed++) {
     rng r;
     rng_seed(&r, seed);
-    int nranks = rng_int(&r, 2, RANDPROG_RANKS);
     static randprog p;
-    randprog_make(&p, seed, nranks);
+    int nranks = randprog_draw(&p, seed, &r);
     sim_config cfg = simrun_config(nets[seed % 3], rng_int(&r, 1, nranks));
     int place[RANDPROG_RANKS];
     for (int k = 0; k < nranks; k++) place[k] = rng_int(&r, 0, cfg.procs - 1);
     cfg.place = place;
-    cfg.c = fraction(&r), cfg.m = fraction(&r), cfg.per_byte = fraction(&r) / 64;
-    cfg.local = fraction(&r) / 4, cfg.L = fraction(&r), cfg.o = fraction(&r) / 2;
-    cfg.g = fraction(&r), cfg.G = fraction(&r) / 64;
+    cfg.c = randprog_cost(&r), cfg.m = randprog_cost(&r), cfg.per_byte = randprog_cost(&r) / 64;
+    cfg.local = randprog_cost(&r) / 4, cfg.L = randprog_cost(&r), cfg.o = randprog_cost(&r) / 2;
+    cfg.g = randprog_cost(&r), cfg.G = randprog_cost(&r) / 64;
     int rc;
     sim *s = simrun(&cfg, nranks, randprog_main, &p, &rc, err, sizeof err);
     runs++;

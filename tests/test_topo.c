@@ -207,28 +207,6 @@ static void test_one_message(void) {
 
 /* ==== token rings, per lap ================================================ */
 
-typedef struct {
-  int laps;
-  double work;
-  size_t len;
-  long long token;
-  int bad;
-} ring;
-
-static void ring_main(mp *self, void *ud) {
-  ring *g = ud;
-  int me = mp_rank(self), p = mp_size(self);
-  long long tok = 0;
-  for (int k = 0; k < g->laps; k++) {
-    if (me != 0) g->bad |= mp_recv(self, (me + p - 1) % p, 0, &tok, sizeof tok, NULL) != MP_OK;
-    tok++;
-    g->bad |= mp_compute(self, g->work) != MP_OK;
-    g->bad |= mp_send(self, (me + 1) % p, 0, &tok, g->len) != MP_OK;
-    if (me == 0) g->bad |= mp_recv(self, p - 1, 0, &tok, sizeof tok, NULL) != MP_OK;
-  }
-  if (me == 0) g->token = tok;
-}
-
 static void test_rings(void) {
   char err[256];
   /* name, machine, placement, P, store-and-forward, the lap's links crossed */
@@ -256,8 +234,8 @@ static void test_rings(void) {
     CHECK(place_map(&ps, t, P, place, err, sizeof err) == 0, "%s", err);
     topo_free(t);
     cfg.place = place;
-    ring g = {3, 2, 8, 0, 0};
-    sim *s = simrun(&cfg, P, ring_main, &g, &rc, err, sizeof err);
+    simrun_ring g = {3, 2, 8, 0, 0};
+    sim *s = simrun(&cfg, P, simrun_ring_main, &g, &rc, err, sizeof err);
     double lb = (double)g.len * BETA;
     double lap = P * (g.work * C + M) +
                  (cases[i].saf ? cases[i].links * (R + lb) : cases[i].links * R + P * lb);
@@ -420,17 +398,14 @@ static void test_butterfly(void) {
 
 /* ==== conservation, and the old models bit for bit ======================== */
 
-static double fraction(rng *r) { return rng_int(r, 0, 8) * 0.125; }
-
 static void test_random_programs(void) {
   char err[512];
   int failed = 0, runs = 0;
   for (uint64_t seed = 1; seed <= 120; seed++) {
     rng r;
     rng_seed(&r, seed * 7 + 3);
-    int nranks = rng_int(&r, 2, RANDPROG_RANKS);
     static randprog p;
-    randprog_make(&p, seed, nranks);
+    int nranks = randprog_draw(&p, seed, &r);
     machine mc = machines[seed % NMACHINES];
     dims x = tm_dims(&mc);
     int saf = rng_int(&r, 0, 1);
@@ -438,8 +413,8 @@ static void test_random_programs(void) {
     int place[RANDPROG_RANKS];
     for (int k = 0; k < nranks; k++) place[k] = rng_int(&r, 0, x.N - 1);   /* some share */
     cfg.place = place;
-    cfg.m = fraction(&r), cfg.hop_latency = fraction(&r), cfg.per_byte = fraction(&r) / 64;
-    cfg.c = fraction(&r), cfg.local = fraction(&r) / 4;
+    cfg.m = randprog_cost(&r), cfg.hop_latency = randprog_cost(&r), cfg.per_byte = randprog_cost(&r) / 64;
+    cfg.c = randprog_cost(&r), cfg.local = randprog_cost(&r) / 4;
     int rc;
     sim *s = simrun(&cfg, nranks, randprog_main, &p, &rc, err, sizeof err);
     runs++;
@@ -559,9 +534,9 @@ static void test_trace(void) {
     sim_config cfg = tm_netcfg(&mc, 0);
     sim *s = sim_new(&cfg, 6, err, sizeof err);
     sim_trace(s, fc, fj);
-    ring g = {2, 1, 8, 0, 0};
+    simrun_ring g = {2, 1, 8, 0, 0};
     mp_proc pr[6];
-    for (int i = 0; i < 6; i++) pr[i] = (mp_proc){ring_main, &g};
+    for (int i = 0; i < 6; i++) pr[i] = (mp_proc){simrun_ring_main, &g};
     CHECK(sim_run(s, pr, err, sizeof err) == 0, "traced ring: %s", err);
     fclose(fc);
     fclose(fj);
