@@ -29,7 +29,7 @@
 
 typedef struct {
   const char *name;
-  const char *arg;   /* the program's first argument, or NULL (set by mtest_main) */
+  const char *arg;   /* the program's first argument, or NULL (set by mtest_begin) */
   int rank, size;
   int passed, failed;
   MPI_Comm comm;   /* the counts' own communicator */
