@@ -24,4 +24,7 @@ extern int check_passed, check_failed;
 /* Prints the summary line and returns 0 if nothing failed, 1 otherwise. */
 int check_done(const char *name);
 
+/* Removes a test's temporary directory and all below it (rm -rf): 0, or -1. */
+int check_rmtree(const char *dir);
+
 #endif

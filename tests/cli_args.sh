@@ -9,14 +9,10 @@
 BUILD=${BUILD:-build/chk}
 case $BUILD in /*) ;; *) BUILD=$PWD/$BUILD ;; esac
 DATA=$PWD/tests/data/slicerrt
-T=$(mktemp -d /tmp/tilesim-args.XXXXXX)
-trap 'rm -rf "$T"' EXIT
+. tests/clilib.sh
 mkdir "$T/run"
 cd "$T/run" || exit 1   # every run here: the files a bad run would write would show
 printf 'points,procs,alloc,min_diag,sim_time\n' > "$T/sweep.csv"
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_args: $*"; }
 
 # refused PROG WANT ARG;ARG;...  -- run PROG with the ';'-separated
 # arguments (@E is the empty string) in the empty folder $T/run; WANT is what the
@@ -231,5 +227,4 @@ for p in tile bench plot; do
   [ $rc -eq 0 ] && [ ! -s "$T/err" ] && grep -q "^usage: $p" "$T/out" && ok || bad "$p --help: exit $rc, stderr $(cat "$T/err")"
 done
 
-echo "cli_args: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

@@ -14,11 +14,7 @@
 BUILD=${BUILD:-build/chk}
 case $BUILD in /*) ;; *) BUILD=$PWD/$BUILD ;; esac
 DATA=$PWD/tests/data/slicerrt
-T=$(mktemp -d /tmp/tilesim-benchclean.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_benchclean: $*"; }
+. tests/clilib.sh
 
 # The recipe: every paper-mode sweep with -o passes --no-wall.
 env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make --no-print-directory -n bench 2>/dev/null |
@@ -62,5 +58,4 @@ cmp -s one/speedup.csv one/speedup1.csv && ok || bad "--jobs 2 and --jobs 1 diff
 awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "wall_s") c = i; next } $c != "" { bad = 1 } END { exit !c || bad }' \
   one/speedup.csv && ok || bad "--no-wall left host times in wall_s"
 
-echo "cli_benchclean: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

@@ -8,11 +8,7 @@
 # solver's), and nothing else; a short budget stops it at the budget with
 # what it had and no process left; bad settings are refused with one line.
 BUILD=${BUILD:-build/chk}
-T=$(mktemp -d /tmp/tilesim-benchcores.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_benchcores: $*"; }
+. tests/clilib.sh
 run() { env BIN="$BUILD" PLOT="$BUILD/plot" CORES=2 CAL_REPEAT=1 "$@" sh tests/bench_cores.sh; }
 HEADER=what,variant,input,procs,runs,measured_s,measured_speedup,predicted_s,predicted_speedup,error,median_s,checksum
 SMALL="tests/data/slicerrt/tinypatient_0.contours|tests/data/slicerrt/prostate_3.contours"
@@ -174,5 +170,4 @@ env BIN="$BUILD" OUT="$T/r" sh tests/bench_cores.sh 60 > "$T/r.out" 2> "$T/r.err
 [ $rc -eq 2 ] && [ "$(head -n 1 "$T/r.err")" = "bench-cores: the settings go in the environment, not as arguments (60)" ] && [ ! -e "$T/r" ] \
   && ok || bad "an argument: exit $rc: $(cat "$T/r.err")"
 
-echo "cli_benchcores: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

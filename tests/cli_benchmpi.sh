@@ -8,11 +8,7 @@
 # that says so and the benchmark goes on; bad settings are refused with one
 # line and nothing written.
 BUILD=${BUILD:-build/chk}
-T=$(mktemp -d /tmp/tilesim-benchmpi.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_benchmpi: $*"; }
+. tests/clilib.sh
 if [ "${SMPI_STATUS:-}" = yes ]; then SMPI=auto; else SMPI=no; echo "cli_benchmpi: skipped: the runs beside smpirun (${SMPI_STATUS:-make check sets SMPI_STATUS})"; fi
 run() {
   env BIN="$BUILD" PLOT="$BUILD/plot" EXAMPLES="$BUILD/examples" SMPI=$SMPI BW_SIZES=64,4096 WINDOW=4 BW_ITERS=2 \
@@ -86,5 +82,4 @@ env OUT="$T/r" sh tests/bench_mpi.sh now > "$T/r.out" 2> "$T/r.err"; rc=$?
 [ $rc -eq 2 ] && [ "$(head -n 1 "$T/r.err")" = "bench-mpi: the settings go in the environment, not as arguments (now)" ] \
   && [ ! -e "$T/r" ] && ok || bad "an argument: exit $rc: $(cat "$T/r.err")"
 
-echo "cli_benchmpi: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+summary

@@ -7,11 +7,7 @@
 # Also: --jobs 2 gives exactly the rows of --jobs 1, speedup is T(1)/T(P),
 # and `cost` is one optimum per pair.
 BENCH=${BUILD:-build/chk}/bench
-T=$(mktemp -d /tmp/tilesim-claims.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_claims: $*"; }
+. tests/clilib.sh
 
 "$BENCH" --points 200,500 --alloc half,size --jobs 2 -o "$T/sp.csv" 2> "$T/err" && ok || bad "sweep: $(cat "$T/err")"
 "$BENCH" --points 300 --procs 1..4 --alloc size --jobs 1 > "$T/j1.csv" && "$BENCH" --points 300 --procs 1..4 --alloc size --jobs 2 > "$T/j2.csv" && ok || bad "jobs runs"
@@ -32,5 +28,4 @@ grep -q '^"6 [^"]*",n/a,"no min-diag sweep given"$' "$T/claims.csv" && ok || bad
 # A claim that does not hold makes --require fail.
 "$BENCH" --claims "$T/sp.csv" --require 6 > /dev/null 2>&1; [ $? -eq 1 ] && ok || bad "--require 6 without a d sweep should fail"
 "$BENCH" --claims /nonexistent.csv > /dev/null 2> "$T/err"; [ $? -eq 1 ] && grep -q 'cannot open' "$T/err" && ok || bad "missing CSV"
-echo "cli_claims: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

@@ -6,11 +6,7 @@
 # --jobs 1; the CSV's form; bad usage; build/plot claims draws the grid.
 BENCH=${BUILD:-build/chk}/bench
 PLOT=${BUILD:-build/chk}/plot
-T=$(mktemp -d /tmp/tilesim-claimsmap.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_claimsmap: $*"; }
+. tests/clilib.sh
 REAL=tests/data/slicerrt/tinypatient_1.contours
 
 "$BENCH" --claims-map --points 100,200 --net bus,ideal --m 2.75e-4,2.6e-3 --jobs 2 -o "$T/map.csv" 2> "$T/err" && ok ||
@@ -96,5 +92,4 @@ drawn=$(printf '%d %d %d' "$(grep -c 'height="22" fill="#2ca02c"' "$T/map.svg")"
 "$PLOT" claims "$T/both.csv" --title "a <map>" -o "$T/map2.svg" && cmp -s "$T/map.svg" "$T/map2.svg" && ok || bad "not deterministic"
 "$PLOT" claims "$T/sp.csv" -o "$T/no.svg" > /dev/null 2> "$T/err"; [ $? -eq 1 ] && [ ! -e "$T/no.svg" ] &&
   grep -q 'not a claims map' "$T/err" && ok || bad "a sweep is not a map: $(cat "$T/err")"
-echo "cli_claimsmap: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

@@ -11,11 +11,7 @@
 #  - --cost span: the band's cost against the least over every acceptable
 #    path of the pair, by brute force.
 BUILD=${BUILD:-build/chk}
-T=$(mktemp -d /tmp/tilesim-cost.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_cost: $*"; }
+. tests/clilib.sh
 
 prism() {   # prism L H: the two triangles, H apart
   printf 'C 3 0\n0 0\n%s 0\n0 %s\nC 3 %s\n0 0\n%s 0\n0 %s\n' "$1" "$1" "$2" "$1" "$1" > "$T/p.contours"
@@ -64,5 +60,4 @@ for L in 1 1e15 1e20 1e300; do
     && ok || bad "--cost span, L $L: $(cat "$T/why" "$T/err")"
 done
 
-echo "cli_cost: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

@@ -9,11 +9,7 @@
 B=${BUILD:-build/chk}
 TILE=$B/tile
 D=tests/data/rtstruct
-T=$(mktemp -d /tmp/tilesim-dicom.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_dicom: $*"; }
+. tests/clilib.sh
 
 mkdir "$T/f"
 "$B/tests/test_rtstruct" --write "$T/f" || bad "test_rtstruct --write failed"
@@ -229,5 +225,4 @@ usage $D/rtutils_rt.dcm --roi
 usage $D/rtutils_rt.dcm --roi all --procs 2 --trace "$T/t.csv"
 [ ! -e "$T/x.stl" ] && [ ! -e "$T/x.contours" ] && ok || bad "usage errors wrote files"
 
-echo "cli_dicom: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

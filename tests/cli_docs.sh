@@ -27,11 +27,7 @@ TILE=$BUILD/tile
 BENCH=$BUILD/bench
 PLOT=$BUILD/plot
 MPIDIR=${MPIDIR:-build/mpi}
-T=$(mktemp -d /tmp/tilesim-docs.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_docs: $*"; }
+. tests/clilib.sh
 
 # Names a page or a help text gives that are not options of that program
 # or mode: "WHERE OPTION  why".  WHERE is tile, bench (the whole page),
@@ -113,7 +109,7 @@ probe() {
 }
 
 for p in "$TILE" "$BENCH" "$PLOT"; do
-  [ -x "$p" ] || { bad "$p is missing (make check builds it)"; echo "cli_docs: $pass passed, $fail failed"; exit 1; }
+  need "$p" "make check builds it"
 done
 
 # ---- rendering and lint ----------------------------------------------------
@@ -309,5 +305,4 @@ if [ -f "$map" ]; then
     || bad "doc/paper.md's claims map differs from $map: $(diff "$T/qmap" "$T/cmap" | tr '\n' ' ')"
 else bad "doc/paper.md: no '<!-- claims-map: MAP.csv -->' table, or its CSV is missing"; fi
 
-echo "cli_docs: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

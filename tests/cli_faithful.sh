@@ -11,11 +11,7 @@
 # Runs the sanitized build in $BUILD.
 B=${BUILD:-build/chk}
 TILE=$B/tile
-T=$(mktemp -d /tmp/tilesim-faithful.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_faithful: $*"; }
+. tests/clilib.sh
 
 "$B/tests/test_faithful" --write "$T" || bad "the fixtures were not written"
 F=$T/faithful
@@ -98,10 +94,9 @@ done
   ( for z in 0 2 4 6; do
       [ "$(grep -c "ROI 1 'Pieces', contour item [0-9]*: merged 2 overlapping contours on slice z=$z into their union (as --union does): the contours at contour item [0-9]* and contour item [0-9]*: 1 contour (2 new vertices where they cross)$" "$T/err")" -eq 1 ] || exit 1
     done ) &&
-  awk -F, 'BEGIN { s = 4; for (k = 0; k < 4; k++) { z[k] = 2 * k; a[k] = 2 * s * s - (s - 2) * (s - 1) }
-                   for (k = 0; k < 3; k++) want += (a[k] + a[k + 1]) / 2 * (z[k + 1] - z[k]) }
-           $1 == "mesh" { d = $13 - want; if (d < 0) d = -d; ok = $7 == "closed" && d <= 1e-9 * want }
-           END { exit !ok }' "$T/pc.csv" &&
+  mesh_volume_is "$T/pc.csv" "$(awk 'BEGIN { s = 4; for (k = 0; k < 4; k++) { z[k] = 2 * k; a[k] = 2 * s * s - (s - 2) * (s - 1) }
+                                       for (k = 0; k < 3; k++) want += (a[k] + a[k + 1]) / 2 * (z[k + 1] - z[k])
+                                       printf "%.17g", want }')" &&
   ok || bad "pieces: exit $rc: $(grep '^mesh' "$T/pc.csv") $(cat "$T/err")"
 "$TILE" ${F}_pieces.dcm --roi Pieces --union -o "$T/pu.stl" > "$T/pu.csv" 2> /dev/null && cmp -s "$T/pc.stl" "$T/pu.stl" &&
   cmp -s "$T/pc.csv" "$T/pu.csv" && ok || bad "pieces --union: other bytes than the default"
@@ -119,5 +114,4 @@ grep -q "ROI 3 'Walled', contour item 2: not joined to the contour at contour it
   cut -d, -f1-17 "$T/p.csv" | tail -n +2 | cmp -s - "$(tail -n +2 "$T/s.csv" > "$T/s2"; echo "$T/s2")" && ok ||
   bad "--procs 3: not the serial mesh and report"
 
-echo "cli_faithful: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

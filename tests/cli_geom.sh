@@ -5,11 +5,7 @@
 # tile as at unit scale; the spike's cost is its area.  Runs the sanitized
 # build in $BUILD.
 TILE=${BUILD:-build/chk}/tile
-T=$(mktemp -d /tmp/tilesim-geom.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_geom: $*"; }
+. tests/clilib.sh
 
 # refused NAME CONTENT EXPECTED-MESSAGE (after "tile: FILE:")
 refused() {
@@ -130,5 +126,4 @@ grep -q "^tile: $T/sliver.contours:1: the band from this contour (slice z=0) to 
 awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next } $1 == "0" { s = $c["spans"] } $1 == "mesh" { j = $c["junction"] }
          END { exit !(s == 1 && j == "closed") }' "$T/slq.csv" && ok || bad "sliver: spans or junction: $(cat "$T/slq.csv")"
 
-echo "cli_geom: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

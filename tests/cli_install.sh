@@ -11,11 +11,7 @@
 # IBIN=... DESTDIR=...), and runs it from another; then make uninstall
 # removes every file it wrote, and nothing else.
 BUILD=${BUILD:-build/chk}
-T=$(mktemp -d /tmp/tilesim-install.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_install: $*"; }
+. tests/clilib.sh
 mk() { env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make --no-print-directory -s "$@"; }
 
 mk install-files DESTDIR="$T/root" PREFIX=/opt/ts IBIN="$BUILD" IPLOT="$BUILD/plot" ILIB="$BUILD/lib/libtilesim.a" > "$T/log" 2>&1 \
@@ -167,5 +163,4 @@ rm -r "$P/share/doc/tilesim/notes" "$P/bin/mytool"
 mk uninstall DESTDIR="$T/root" PREFIX=/opt/ts > "$T/log" 2>&1 && [ ! -e "$P/share/doc/tilesim" ] && ok \
   || bad "make uninstall twice: $(cat "$T/log")"
 
-echo "cli_install: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

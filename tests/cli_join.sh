@@ -16,11 +16,7 @@ CHECK=${BUILD:-build/chk}/tests/test_solids
 PLOT=${BUILD:-build/chk}/plot
 BENCH=${BUILD:-build/chk}/bench
 D=tests/data/rtstruct
-T=$(mktemp -d /tmp/tilesim-join.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_join: $*"; }
+. tests/clilib.sh
 
 judge() {   # MESH STACK WHAT
   out=$("$CHECK" --check "$1" "$2" 2>&1)
@@ -143,5 +139,4 @@ judge "$T/bn.obj" "$T/c/BODY.contours" "BODY, --join nearest"
 
 "$TILE" --help > "$T/h" && grep -q -- '--join RULE' "$T/h" && grep -q -- '--thickness T' "$T/h" && grep -q "a row 'joins'" "$T/h" \
   && ok || bad "--help lacks --join, --thickness or the joins row"
-echo "cli_join: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

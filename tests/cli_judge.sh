@@ -6,11 +6,7 @@
 # The sweeps are written here from speedup tables, T(P) = T(1)/S(P); none
 # comes from the simulator.
 BENCH=${BUILD:-build/chk}/bench
-T=$(mktemp -d /tmp/tilesim-judge.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_judge: $*"; }
+. tests/clilib.sh
 
 # sweep FILE SIZES [OVERRIDES]: a speedup sweep, P = 1..16, half and size, d = 1.
 # T(1) = points^2/1000 s.  At 500 points half's speedups are H[P] (plateaus at
@@ -151,5 +147,4 @@ sweep "$T/s.csv" $ALL; grep -v '^500,16,size,' "$T/s.csv" > "$T/short.csv"
   bad "a sweep without size's P = 16: $(cat "$T/err")"
 grep -v ',size,' "$T/s.csv" > "$T/short.csv"
 "$BENCH" --claims "$T/short.csv" > /dev/null 2> "$T/err"; [ $? -eq 1 ] && ok || bad "a sweep of half alone"
-echo "cli_judge: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

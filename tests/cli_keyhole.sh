@@ -8,11 +8,7 @@
 TILE=${BUILD:-build/chk}/tile
 CHECK=${BUILD:-build/chk}/tests/test_solids
 D=tests/data/rtstruct
-T=$(mktemp -d /tmp/tilesim-keyhole.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_keyhole: $*"; }
+. tests/clilib.sh
 
 # ---- A square with a square hole on three slices: one keyhole contour per
 # slice (the channel from a different corner on each, with an extra point on
@@ -172,4 +168,4 @@ rm -f "$T/n.stl"
   grep -q "ROI 4 'ROI-4': 3 of 3 contours cannot be tiled (1015 of 1015 points), each named above; --skip-bad drops them and tiles the rest; skipped$" "$T/err" &&
   [ "$(grep -c "ROI 4 'ROI-4', contour item [123]: the contour crosses itself" "$T/err")" -eq 3 ] &&
   ! grep -q keyhole "$T/err" && ok || bad "--no-keyholes --roi all: exit $rc: $(cat "$T/err")"
-echo "cli_keyhole: $pass passed, $fail failed"
+summary

@@ -5,11 +5,7 @@
 # an include up a layer, sideways, angled, into a folder with no line, a
 # cycle of files and one of folders, a stale exception; and on a copy of this
 # tree with one include that runs up a layer.
-T=$(mktemp -d /tmp/tilesim-layers-test.XXXXXX) || exit 1
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_layers: $*"; }
+. tests/clilib.sh
 
 # The tree as it stands.
 out=$(sh tests/layers.sh . 2>&1) && printf '%s\n' "$out" | grep -qE '^layers: [0-9]+ files, ' \
@@ -131,5 +127,4 @@ out=$(sh tests/layers.sh "$T/copy" 2>&1); rc=$?
 has 1 "util/xmem.c:$(($(grep -c '' util/xmem.c) + 1)): includes sim/sim.h: util may not include sim" \
   && ok || bad "this tree with util/xmem.c including sim/sim.h: $rc $out"
 
-echo "cli_layers: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+summary

@@ -9,11 +9,7 @@
 #    counts its processors in good English; tilesim-mpirun's --help gives
 #    the --procs default it uses (one processor per rank).
 BUILD=${BUILD:-build/chk}
-T=$(mktemp -d /tmp/tilesim-messages.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_messages: $*"; }
+. tests/clilib.sh
 
 # ---- the name a program was run by ----
 ln -s "$(pwd)/$BUILD/bench" "$T/tilesim-bench"
@@ -129,5 +125,4 @@ grep -q '^ring: 0.4 s a lap' "$T/out" && ok || bad "ring's lap: $(cat "$T/out")"
 grep -q '^pingpong: 0 bytes: round trip 2e-5 s, one way 1e-5 s' "$T/out" && [ -z "$(shortest "$T/out")" ] && ok \
   || bad "pingpong's times: $(cat "$T/out")"
 
-echo "cli_messages: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

@@ -8,9 +8,7 @@
 MPIDIR=${MPIDIR:-build/mpi}
 TILE=${BUILD:-build/chk}/tile
 DATA=tests/data/slicerrt
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_mpi: $*"; }
+. tests/clilib.sh
 
 # make check probes $MPICC once (make mpi-probe) and says here whether it
 # builds an MPI program: MPI_STATUS is "yes" or why not.  Nothing is looked
@@ -21,24 +19,9 @@ if [ "${MPI_STATUS:-}" != yes ]; then
   echo "cli_mpi: 0 passed, 0 failed"
   exit 0
 fi
-for p in tile-mpi bench-mpi contract-mpi; do
-  if [ ! -x "$MPIDIR/bin/$p" ]; then
-    bad "$MPIDIR/bin/$p is missing (make mpi)"
-    echo "cli_mpi: $pass passed, $fail failed"
-    exit 1
-  fi
-done
-# Open MPI: as root it wants both variables; two cores want --oversubscribe.
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-# Containers often forbid the cross-process copies of Open MPI's shared memory
-# transport (ptrace rules); plain copies work everywhere.
-export OMPI_MCA_btl_vader_single_copy_mechanism=none
-OVER=""
-"$MPIRUN" --version 2>/dev/null | grep -q "Open MPI" && OVER="--oversubscribe"
+for p in tile-mpi bench-mpi contract-mpi; do need "$MPIDIR/bin/$p" "make mpi"; done
+open_mpi
 run() { np=$1; shift; "$MPIRUN" $OVER -np "$np" "$@"; }
-
-T=$(mktemp -d /tmp/tilesim-mpi.XXXXXX)
-trap 'rm -rf "$T"' EXIT
 
 # The backend's contract, on 4 processes: its own summary line counts here.
 run 4 "$MPIDIR/bin/contract-mpi" > "$T/contract" 2>&1; rc=$?
@@ -86,5 +69,4 @@ sim=$("$BUILD/bench" --points 80 --procs 3 2>/dev/null | tail -1 | cut -d, -f15)
   awk -F, -v c="$sim" 'NR>1 && ($15 != c || $23 != "mpi" || $9 <= 0) {bad=1} END{exit bad}' "$T/b.csv" \
   && ok || bad "bench-mpi rows: $(cat "$T/b.csv")"
 
-echo "cli_mpi: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

@@ -8,17 +8,13 @@
 # MPI_Isendrecv_replace, each with its PMPI_ name.  Where
 # $MPICC cannot build an MPI program (MPI_STATUS) or the compiler is not
 # gcc, it says so and counts nothing.
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_mpihdr: $*"; }
+. tests/clilib.sh
 skip() { echo "cli_mpihdr: skipped: $*"; echo "cli_mpihdr: 0 passed, 0 failed"; exit 0; }
 
 [ "${MPI_STATUS:-}" = yes ] || skip "${MPI_STATUS:-MPI_STATUS is not set (make check probes the MPI compiler)}; mpi/mpi.h was not compared with Open MPI's"
 MPICC=${MPICC:-mpicc}
 CC=${CC:-cc}
 "$MPICC" --showme:version 2>/dev/null | grep -q "Open MPI" || skip "$MPICC is not Open MPI's"
-T=$(mktemp -d /tmp/tilesim-mpihdr.XXXXXX)
-trap 'rm -rf "$T"' EXIT
 printf '#include <mpi.h>\n' > "$T/h.c"
 "$CC" -aux-info "$T/x.aux" -x c -c /dev/null -o "$T/x.o" 2>/dev/null || skip "$CC has no -aux-info (not gcc)"
 "$MPICC" -aux-info "$T/ompi.aux" -c "$T/h.c" -o "$T/o1.o" 2>"$T/err" || bad "$MPICC: $(head -2 "$T/err")"
@@ -45,5 +41,4 @@ differ=$(comm -23 "$T/ompi.f" "$T/mine" | cut -d'|' -f1 | tr '\n' ' ')
 extra=$(comm -13 "$T/ompi.names" "$T/mine.names" | sed 's/^P//' | sort -u | tr '\n' ' ')
 want="MPI_Address MPI_Aint_add MPI_Aint_diff MPI_Errhandler_create MPI_Errhandler_get MPI_Errhandler_set MPI_Isendrecv MPI_Isendrecv_replace MPI_Type_extent MPI_Type_hindexed MPI_Type_hvector MPI_Type_lb MPI_Type_struct MPI_Type_ub "
 [ "$extra" = "$want" ] && ok || bad "tilesim alone declares: $extra"
-echo "cli_mpihdr: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

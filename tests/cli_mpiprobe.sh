@@ -6,11 +6,7 @@
 # but cannot compile (Debian's openmpi-bin without libopenmpi-dev), one
 # that compiles but has no mpirun beside it, and what tests/cli_mpi.sh and
 # tests/simgrid.sh then say.  Runs make in a folder of its own.
-T=$(mktemp -d /tmp/tilesim-probe.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_mpiprobe: $*"; }
+. tests/clilib.sh
 # make as a user runs it, not as part of make check's own make.
 mk() { env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make --no-print-directory -s PROBE="$T/probe" "$@"; }
 
@@ -58,5 +54,4 @@ out=$(MPI_STATUS="no-such not found" sh tests/run.sh build/chk tests/cli_mpi.sh 
 printf '%s\n' "$out" | tail -n 3 | head -n 2 | grep -qx '  cli_mpi: skipped: no-such not found; the MPI tests were not run (apt-get install openmpi-bin libopenmpi-dev)' &&
   printf '%s\n' "$out" | tail -n 1 | grep -qx '0 passed, 0 failed' && ok || bad "run.sh's summary: $out"
 
-echo "cli_mpiprobe: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

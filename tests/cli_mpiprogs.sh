@@ -13,9 +13,7 @@
 # build an MPI program (MPI_STATUS, from make check's probe) it says so and
 # counts nothing.
 BUILD=${BUILD:-build/chk}
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_mpiprogs: $*"; }
+. tests/clilib.sh
 
 if [ "${MPI_STATUS:-}" != yes ]; then
   echo "cli_mpiprogs: skipped: ${MPI_STATUS:-MPI_STATUS is not set (make check probes the MPI compiler)}; the MPI programs were not run under Open MPI (apt-get install openmpi-bin libopenmpi-dev)"
@@ -24,21 +22,8 @@ if [ "${MPI_STATUS:-}" != yes ]; then
 fi
 MPICC=${MPICC:-mpicc}
 MPIRUN=${MPIRUN:-mpirun}
-for d in test_mpiprogs test_mpiprogs_p2p; do
-  if [ ! -x "$BUILD/tests/$d" ]; then
-    bad "$BUILD/tests/$d is missing (make check builds it)"
-    echo "cli_mpiprogs: $pass passed, $fail failed"
-    exit 1
-  fi
-done
-# Open MPI as root, on 2 cores (as tests/cli_mpi.sh runs it).
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-export OMPI_MCA_btl_vader_single_copy_mechanism=none
-OVER=""
-"$MPIRUN" --version 2>/dev/null | grep -q "Open MPI" && OVER="--oversubscribe"
-
-T=$(mktemp -d /tmp/tilesim-mpiprogs.XXXXXX)
-trap 'rm -rf "$T"' EXIT
+for d in test_mpiprogs test_mpiprogs_p2p; do need "$BUILD/tests/$d" "make check builds it"; done
+open_mpi
 
 # group DRIVER "DRIVER'S EXTRA ARGUMENTS" "PROCESS COUNTS" SOURCES...
 group() {
@@ -68,5 +53,4 @@ group test_mpiprogs_p2p "" "2 5" tests/mpi/p2p_*.c tests/mpi/comm_*.c tests/mpi/
 export OMPI_MCA_osc=^ucx
 group test_mpiprogs_p2p "" "2 5" tests/mpi/rma_*.c
 
-echo "cli_mpiprogs: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

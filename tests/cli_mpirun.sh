@@ -22,13 +22,8 @@
 BUILD=${BUILD:-build/chk}
 RUN=$BUILD/tilesim-mpirun
 CC_=$BUILD/tilesim-mpicc
-T=$(mktemp -d /tmp/tilesim-mpirun.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-export TMPDIR=$T/tmp
-mkdir -p "$TMPDIR"
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_mpirun: $*"; }
+. tests/clilib.sh
+own_tmpdir
 notemp() { [ -z "$(ls "$TMPDIR")" ] && ok || bad "$1: left in \$TMPDIR: $(ls "$TMPDIR")"; }
 
 build() {   # build NAME SOURCE [FLAGS]: tilesim-mpicc SOURCE -o $T/NAME
@@ -405,5 +400,4 @@ EOF
 "$RUN" -np 1 "$T/alloc" > "$T/o" 2> "$T/e" && [ "$(cat "$T/o")" = "malloc the process's, free the process's" ] && ok \
   || bad "a program's malloc: $(cat "$T/o" "$T/e")"
 
-echo "cli_mpirun: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

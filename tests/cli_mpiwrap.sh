@@ -24,14 +24,9 @@ BUILD=${BUILD:-build/chk}
 RUN=$BUILD/tilesim-mpirun
 MCC=$BUILD/tilesim-mpicc
 MCXX=$BUILD/tilesim-mpicxx
-T=$(mktemp -d /tmp/tilesim-mpiwrap.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-export TMPDIR=$T/tmp
-mkdir -p "$TMPDIR"
+. tests/clilib.sh
+own_tmpdir
 unset CC CXX TILESIM_CC TILESIM_CXX
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_mpiwrap: $*"; }
 
 OMPI=""
 if [ "${MPI_STATUS:-}" = yes ]; then
@@ -279,5 +274,4 @@ TILESIM_CXX="g++ -g" "$MCXX" -show y.cc > "$T/o" 2>&1 && grep -q '^g++ -g -I[^ ]
 [ $rc -eq 2 ] && [ -s "$T/e" ] && ok || bad "tilesim-mpicxx without arguments: exit $rc"
 
 [ -z "$(ls "$TMPDIR")" ] && ok || bad "left in \$TMPDIR: $(ls "$TMPDIR")"
-echo "cli_mpiwrap: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

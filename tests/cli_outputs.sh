@@ -8,11 +8,7 @@
 # report, the program's own lines and summary), no progress line, and no
 # complaint about an input that comes later (a missing stack).
 BUILD=${BUILD:-build/chk}
-T=$(mktemp -d /tmp/tilesim-outputs.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_outputs: $*"; }
+. tests/clilib.sh
 export TILESIM_PROGRESS_S=0   # a progress line at every step: work shows
 
 NO=$T/no/such/folder
@@ -71,5 +67,4 @@ fi
 left=$(find "$T" -name '*.tmp*' | head -3)
 [ -z "$left" ] && ok || bad "temporary files left: $left"
 
-echo "cli_outputs: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

@@ -12,11 +12,7 @@
 #    contour: n points).
 BUILD=${BUILD:-build/chk}
 TILE=$BUILD/tile
-T=$(mktemp -d /tmp/tilesim-pages.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_pages: $*"; }
+. tests/clilib.sh
 
 PAGES=$(ls doc/*.[1-9])
 [ -n "$PAGES" ] && ok || bad "no man pages in doc/"
@@ -89,5 +85,4 @@ for ex in "$T"/ex*; do
 done
 [ $seen -ge 1 ] && ok || bad "tilesim-contours.5 has no example saying which contour lies above which"
 
-echo "cli_pages: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

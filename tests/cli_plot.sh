@@ -3,11 +3,7 @@
 # well-formed SVG with what was asked for; bad usage and bad input fail
 # cleanly; the same input gives the same bytes.
 PLOT=${BUILD:-build/chk}/plot
-T=$(mktemp -d /tmp/tilesim-plot.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_plot: $*"; }
+. tests/clilib.sh
 
 cat > "$T/a.csv" <<'CSV'
 points,procs,alloc,speedup,model
@@ -82,5 +78,4 @@ for m in "lines $T/a.csv -x procs -y speedup" "surface $tp" "claims plots/claims
   done
 done
 "$PLOT" lines "$T/a.csv" -x procs -y speedup -o "$T/up.SVG" 2> "$T/err" && grep -q '^<svg ' "$T/up.SVG" && ok || bad "-o up.SVG: $(cat "$T/err")"
-echo "cli_plot: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

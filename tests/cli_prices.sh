@@ -7,11 +7,7 @@
 # bad values refused.  (tests/test_master.c holds the closed forms.)
 # Run by make check with BUILD=build/chk (the sanitized build).
 BENCH=${BUILD:-build/chk}/bench
-T=$(mktemp -d /tmp/tilesim-prices.XXXXXX)
-trap 'rm -rf "$T"' EXIT INT TERM
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_prices: $*"; }
+. tests/clilib.sh
 
 # every column but wall_s (16)
 cols() { cut -d, -f1-15,17- "$1"; }
@@ -48,5 +44,4 @@ for v in -1 x '' 1e10; do
     || { grep -q -- '--back-c' "$T/err" && ok || bad "--back-c '$v': $(cat "$T/err")"; }
 done
 
-echo "cli_prices: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+summary

@@ -6,13 +6,9 @@
 # untouched.  ./tile serial (-j 2) and parallel, and bench's sweep.
 BUILD=${BUILD:-build/chk}
 DATA=tests/data/slicerrt
-T=$(mktemp -d /tmp/tilesim-progress.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
+. tests/clilib.sh
 now() { date +%s.%N; }
 longer() { awk -v a="$1" -v b="$2" -v s="$3" 'BEGIN { exit !(b - a > s) }'; }
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_progress: $*"; }
 
 "$BUILD/tile" $DATA/prostate_3.contours -q > "$T/ref.csv" 2>&1
 for args in "-j 2" "--procs 3"; do
@@ -64,5 +60,4 @@ for k in 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20; do
 done
 [ $hung -eq 0 ] && ok || bad "$hung of 20 sweeps on two workers hung or failed"
 
-echo "cli_progress: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

@@ -9,11 +9,7 @@
 # 4096).  Correctness only: no timings.
 BUILD=${BUILD:-build/chk}
 EX=$BUILD/examples
-T=$(mktemp -d /tmp/tilesim-ranks.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_ranks: $*"; }
+. tests/clilib.sh
 
 # Costs that are binary fractions, so that every sum is exact: m = 2^-20 s,
 # 2^-30 s a byte.  N ranks on 4096 processors, rank r on r mod 4096, so no
@@ -78,5 +74,4 @@ R=16400
 [ $rc -eq 2 ] && grep -q '^ring: --stack takes bytes from 16k to 1G, like 256k or 1M (8k)$' "$T/e" && ok \
   || bad "--stack 8k: exit $rc, $(head -1 "$T/e")"
 
-echo "cli_ranks: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+summary

@@ -9,11 +9,7 @@
 # own writer, tests/rtwriter.c).  Runs the sanitized build in $BUILD.
 B=${BUILD:-build/chk}
 TILE=$B/tile
-T=$(mktemp -d /tmp/tilesim-readers.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_readers: $*"; }
+. tests/clilib.sh
 
 "$B/tests/test_slicemerge" --write "$T" && "$B/tests/test_oblique" --write "$T" || bad "the fixtures were not written"
 
@@ -112,10 +108,9 @@ awk 'BEGIN { s = 3; for (k = 0; k < 5; k++) { z = 1.5 * k; x = 0.25 * k; y = -0.
   ( for k in 0 1 2 3 4; do l=$((10 * k + 1)) z=$(awk -v k=$k 'BEGIN { print 1.5 * k }')
       grep -qxF "tile: $T/pieces.contours:$l: merged 2 overlapping contours on slice z=$z into their union (as --union does): the contours at line $l and line $((l + 5)): 1 contour (2 new vertices where they cross)" "$T/err" || exit 1
     done ) &&
-  awk -F, 'BEGIN { s = 3; for (k = 0; k < 5; k++) { z[k] = 1.5 * k; a[k] = 2 * s * s - (s - 1) * (s - 2) }
-                   for (k = 0; k < 4; k++) want += (a[k] + a[k + 1]) / 2 * (z[k + 1] - z[k]) }
-           $1 == "mesh" { d = $13 - want; if (d < 0) d = -d; ok = $7 == "closed" && d <= 1e-9 * want }
-           END { exit !ok }' "$T/pc.csv" &&
+  mesh_volume_is "$T/pc.csv" "$(awk 'BEGIN { s = 3; for (k = 0; k < 5; k++) { z[k] = 1.5 * k; a[k] = 2 * s * s - (s - 1) * (s - 2) }
+                                       for (k = 0; k < 4; k++) want += (a[k] + a[k + 1]) / 2 * (z[k + 1] - z[k])
+                                       printf "%.17g", want }')" &&
   ok || bad "pieces: exit $rc: $(grep '^mesh' "$T/pc.csv") $(cat "$T/err")"
 "$TILE" "$T/pieces.contours" --union -o "$T/pu.stl" > "$T/pu.csv" 2> /dev/null && cmp -s "$T/pc.stl" "$T/pu.stl" &&
   cmp -s "$T/pc.csv" "$T/pu.csv" && ok || bad "pieces --union: other bytes than the default"
@@ -157,5 +152,4 @@ if [ -x "$B/plot" ]; then
   for o in --skip-bad --union "-v, --verbose"; do grep -q -- "^  $o " "$T/help" && ok || bad "plot --help lacks $o"; done
 fi
 
-echo "cli_readers: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

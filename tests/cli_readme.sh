@@ -11,11 +11,7 @@
 # says they need (PKG_CONFIG_PATH=P/lib/pkgconfig).
 BUILD=${BUILD:-build/chk}
 ROOT=$(pwd)
-T=$(mktemp -d /tmp/tilesim-readme.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_readme: $*"; }
+. tests/clilib.sh
 mk() { env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make --no-print-directory -s -C "$ROOT" "$@"; }
 
 S=$T/clone
@@ -69,5 +65,4 @@ else
   echo "cli_readme: skipped: README's Installing commands (pkg-config not found: apt-get install pkgconf)"
 fi
 
-echo "cli_readme: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

@@ -12,13 +12,8 @@
 BUILD=${BUILD:-build/chk}
 RUN=$BUILD/tilesim-mpirun
 CC_=$BUILD/tilesim-mpicc
-T=$(mktemp -d /tmp/tilesim-rma.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-export TMPDIR=$T/tmp
-mkdir -p "$TMPDIR"
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_rma: $*"; }
+. tests/clilib.sh
+own_tmpdir
 
 for p in halo_fence lock_counter; do
   "$CC_" examples/mpi/$p.c -o "$T/$p" > "$T/build.log" 2>&1 && ok || bad "tilesim-mpicc $p.c: $(cat "$T/build.log")"
@@ -82,5 +77,4 @@ else
   echo "cli_rma: skipped: the examples under Open MPI (${MPI_STATUS:-make check sets MPI_STATUS})"
 fi
 
-echo "cli_rma: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

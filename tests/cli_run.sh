@@ -5,11 +5,7 @@
 # memory said before the last line (where GNU time is there), after the
 # skipped lines' place is kept just before the last line.
 BUILD=${BUILD:-build/chk}
-T=$(mktemp -d /tmp/tilesim-run.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_run: $*"; }
+. tests/clilib.sh
 
 # A test that says what it was given, and one that holds 40 MB for a moment.
 cat > "$T/cli_probe.sh" <<'EOF2'
@@ -29,5 +25,4 @@ else
   echo "cli_run: skipped: the largest memory (GNU time is not installed: apt-get install time)"
 fi
 
-echo "cli_run: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

@@ -15,11 +15,7 @@
 BUILD=${BUILD:-build/chk}
 case $BUILD in /*) ;; *) BUILD=$PWD/$BUILD ;; esac
 DATA=$PWD/tests/data/slicerrt
-T=$(mktemp -d /tmp/tilesim-signals.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_signals: $*"; }
+. tests/clilib.sh
 cd "$T" || exit 1
 
 # A background job of a shell without job control ignores SIGINT and SIGQUIT
@@ -124,5 +120,4 @@ done
   grep -q '^bench: r.csv and r.json: the trace would take .* bytes), more than the limit of 1.0 kB' err &&
   ok || bad "ring --trace-limit 1000: exit $rc, $(cat err)"
 
-echo "cli_signals: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

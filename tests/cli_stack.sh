@@ -8,11 +8,7 @@
 TILE=${BUILD:-build/chk}/tile
 CHECK=${BUILD:-build/chk}/tests/test_solids
 D=tests/data/rtstruct
-T=$(mktemp -d /tmp/tilesim-stack.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_stack: $*"; }
+. tests/clilib.sh
 
 judge() {   # MESH STACK WHAT
   out=$("$CHECK" --check "$1" "$2" 2>&1)
@@ -37,5 +33,4 @@ for r in ROI-1 ROI-3; do
 done
 "$TILE" $D/pydicom_rtstruct.dcm --roi patient -q --caps -o "$T/p.obj" --contours "$T/p.contours" > /dev/null 2> "$T/err" \
   && judge "$T/p.obj" "$T/p.contours" "pydicom patient" || bad "pydicom: $(cat "$T/err")"
-echo "cli_stack: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

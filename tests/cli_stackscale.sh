@@ -10,11 +10,7 @@
 # Runs the sanitized build in $BUILD.  (tests/test_stackscale.c holds the library to
 # the same on more stacks; this is the program's report and files.)
 TILE=${BUILD:-build/chk}/tile
-T=$(mktemp -d /tmp/tilesim-stackscale.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_stackscale: $*"; }
+. tests/clilib.sh
 
 scale() {   # scale FILE K: every number but the point counts times 2^K; comments kept (lines as in FILE)
   awk -v k="$2" 'BEGIN { f = 2 ^ k } /^#/ || NF == 0 { print; next }
@@ -86,5 +82,4 @@ for k in -1060 -1000 1000; do
   [ $rc -eq 0 ] && [ -s "$T/x.obj" ] && grep -q '^mesh,.*,closed,' "$T/out" && ok || bad "crossing at 2^$k: exit status $rc, or output"
   same_words "$T/u.err" "$T/s.err" $k && ok || bad "crossing at 2^$k: $(cat "$T/s.err")"
 done
-echo "cli_stackscale: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

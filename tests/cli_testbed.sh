@@ -8,11 +8,7 @@
 # the same messages as ./tile; the errors (tests/testbed/misbehave.c).
 BUILD=${BUILD:-build/chk}
 EX=$BUILD/examples
-T=$(mktemp -d /tmp/tilesim-testbed.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_testbed: $*"; }
+. tests/clilib.sh
 
 M=0.25; C=0.125; B=0.0625; R=0.5   # m, c, per_byte, hop latency: binary fractions
 IDEAL="--net ideal --m $M --c $C --per-byte $B"
@@ -246,5 +242,4 @@ awk -F'|' '/^\| [0-9]+ \| [0-9.]+ \| [0-9.]+ \|$/ { gsub(/ /, ""); print "bus," 
 [ -s "$T/tab" ] && [ -z "$(sort "$T/tab" | comm -23 - "$(sort "$T/sp" > "$T/sps"; echo "$T/sps")")" ] && ok \
   || bad "doc/testbed.md: the speedup table is not plots/testbed_jacobi.csv's: $(sort "$T/tab" | comm -23 - "$T/sps")"
 
-echo "cli_testbed: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

@@ -5,11 +5,7 @@
 # byte-identical from run to run.  Runs the sanitized build in $BUILD.
 TILE=${BUILD:-build/chk}/tile
 DATA=tests/data/slicerrt
-T=$(mktemp -d /tmp/tilesim-cli.XXXXXX)
-trap 'rm -rf "$T"' EXIT
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_tile: $*"; }
+. tests/clilib.sh
 
 # expect_error NAME CONTENT EXPECTED-MESSAGE-SUBSTRING
 expect_error() {
@@ -178,5 +174,4 @@ usage $DATA/tinypatient_1.contours --procs 2 --backend cluster
 usage $DATA/tinypatient_1.contours --procs 2 --backend threads --trace "$T/x.json"
 usage $DATA/tinypatient_1.contours --procs 2 --backend threads --spin -1
 [ ! -e "$T/x.json" ] && ok || bad "a trace written after bad usage"
-echo "cli_tile: $pass passed, $fail failed"
-[ $fail -eq 0 ]
+summary

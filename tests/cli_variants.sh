@@ -6,11 +6,7 @@
 BENCH=${BUILD:-build/chk}/bench
 TILE=${BUILD:-build/chk}/tile
 DATA=tests/data/slicerrt
-T=$(mktemp -d /tmp/tilesim-variants.XXXXXX)
-trap 'rm -rf "$T"' EXIT INT TERM
-pass=0; fail=0
-ok()  { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "cli_variants: $*"; }
+. tests/clilib.sh
 
 # One sweep, the paper beside five variants: 6 x 3 rows, the variant, block,
 # schedule and idle columns, one optimum on every row.
@@ -64,5 +60,4 @@ for args in "--block 0" "--schedule sometimes" "--alloc third"; do
   [ $rc -eq 2 ] && [ ! -s "$T/out" ] && ok || bad "tile $args: exit $rc, $(cat "$T/err")"
 done
 
-echo "cli_variants: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+summary

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "mpi/env.h"
+#include "mpi/mpi.h"
 #include "mp/mp.h"
 #include "mp/threads.h"
 #include "util/xmem.h"
@@ -55,6 +56,24 @@ int mpih_run_fn(const mpih_config *cfg, mpih_fn fn, void *ud, mpih_result *res) 
   return run(cfg, &j, res);
 }
 
+mpih_result mpih_result_of(const mpih_config *cfg, mpih_fn fn, void *ud) {
+  mpih_result res;
+  mpih_run_fn(cfg, fn, ud, &res);
+  return res;
+}
+
+int mpih_init(void) {
+  int r = -1;
+  MPI_Init(NULL, NULL);
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  return r;
+}
+
+/* What both backends' statistics count, from st into res. */
+#define TAKE_COUNTS(res, st)                                                                     \
+  ((res)->messages = (st)->messages, (res)->bytes = (st)->bytes, (res)->unread = (st)->unread, \
+   (res)->deadlock = (st)->deadlock, (res)->aborted = (st)->aborted, (res)->abort_code = (st)->abort_code)
+
 static int run(const mpih_config *cfg, job *j, mpih_result *res) {
   int n = cfg->ranks;
   memset(res, 0, sizeof *res);
@@ -76,12 +95,7 @@ static int run(const mpih_config *cfg, job *j, mpih_result *res) {
     res->rc = sim_run(s, pr, res->err, sizeof res->err);
     const sim_stats *st = sim_stats_get(s);
     res->makespan = st->makespan;
-    res->messages = st->messages;
-    res->bytes = st->bytes;
-    res->unread = st->unread;
-    res->deadlock = st->deadlock;
-    res->aborted = st->aborted;
-    res->abort_code = st->abort_code;
+    TAKE_COUNTS(res, st);
     for (int i = 0; i < n; i++) res->finish[i] = sim_rank(s, i)->finish;
     sim_free(s);
   } else {
@@ -94,13 +108,7 @@ static int run(const mpih_config *cfg, job *j, mpih_result *res) {
       return -1;
     }
     res->rc = mpt_run(t, pr, res->err, sizeof res->err);
-    const mpt_stats *st = mpt_stats_get(t);
-    res->messages = st->messages;
-    res->bytes = st->bytes;
-    res->unread = st->unread;
-    res->deadlock = st->deadlock;
-    res->aborted = st->aborted;
-    res->abort_code = st->abort_code;
+    TAKE_COUNTS(res, mpt_stats_get(t));
     mpt_free(t);
   }
   free(pr);

@@ -50,4 +50,11 @@ typedef int (*mpih_fn)(void *ud);
 int mpih_run_fn(const mpih_config *cfg, mpih_fn fn, void *ud, mpih_result *res);
 void mpih_result_free(mpih_result *res);
 
+/* mpih_run_fn's result, returned (mpih_run_fn's answer is res.rc). */
+mpih_result mpih_result_of(const mpih_config *cfg, mpih_fn fn, void *ud);
+
+/* For a test's own program: MPI_Init(NULL, NULL), then this rank's number
+ * in MPI_COMM_WORLD. */
+int mpih_init(void);
+
 #endif

@@ -34,6 +34,14 @@ static void fill(unsigned char *buf, int i, double sent, size_t len) {
   for (size_t j = 16; j < len; j++) buf[j] = (unsigned char)(i * 31 + (int)j);
 }
 
+int randprog_draw(randprog *p, uint64_t seed, rng *r) {
+  int nranks = rng_int(r, 2, RANDPROG_RANKS);
+  randprog_make(p, seed, nranks);
+  return nranks;
+}
+
+double randprog_cost(rng *r) { return rng_int(r, 0, 8) * 0.125; }
+
 void randprog_main(mp *self, void *ud) {
   randprog *p = ud;
   int me = mp_rank(self);

@@ -36,6 +36,13 @@ typedef struct {
  * own statement, so every compiler makes the same program from the seed. */
 void randprog_make(randprog *p, uint64_t seed, int nranks);
 
+/* randprog_make for a number of ranks drawn from r (2 .. RANDPROG_RANKS):
+ * that number. */
+int randprog_draw(randprog *p, uint64_t seed, rng *r);
+
+/* A cost drawn from r: a multiple of 1/8 from 0 to 1 (exact in binary). */
+double randprog_cost(rng *r);
+
 /* The ranks' main (ud: the randprog).  Each rank now and then charges a
  * random compute (0 .. 3 units in quarters). */
 void randprog_main(mp *self, void *ud);

@@ -267,3 +267,14 @@ unsigned char *rtw_write(const rtw_opts *op, const rtw_roi *roi, int nroi, size_
   *len = o.len;
   return o.b;
 }
+
+int rtw_save(const char *dir, const char *name, const unsigned char *b, size_t len) {
+  char path[512];
+  snprintf(path, sizeof path, "%s/%s", dir, name);
+  FILE *f = fopen(path, "wb");
+  if (!f || fwrite(b, 1, len, f) != len || fclose(f) != 0) {
+    fprintf(stderr, "cannot write %s\n", path);
+    return 1;
+  }
+  return 0;
+}

@@ -43,4 +43,8 @@ typedef struct {
 /* The file's bytes (malloc'd, *len set). */
 unsigned char *rtw_write(const rtw_opts *o, const rtw_roi *roi, int nroi, size_t *len);
 
+/* The len bytes of b written to the file dir/name (a test's fixture): 0, or
+ * 1 after a line on stderr naming the file. */
+int rtw_save(const char *dir, const char *name, const unsigned char *b, size_t len);
+
 #endif

@@ -69,3 +69,18 @@ int sg_random(rng *g, vec2 (*buf)[SG_N], sg_poly *ps) {
   }
   return np;
 }
+
+stack_surface *sg_tile(const contour_stack *s, stack_options o, char *notes, size_t nlen, char *err, size_t errlen,
+                       int *res) {
+  char *buf = NULL;
+  size_t len = 0;
+  if (notes) o.notes = open_memstream(&buf, &len);
+  stack_surface *ss = NULL;
+  *res = stack_tile(s, "t.contours", &o, &ss, err, errlen);
+  if (notes) {
+    fclose(o.notes);
+    snprintf(notes, nlen, "%s", buf ? buf : "");
+    free(buf);
+  }
+  return ss;
+}

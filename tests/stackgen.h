@@ -6,6 +6,7 @@
 
 #include "input/contour.h"
 #include "geom/geom.h"
+#include "surface/stack.h"
 #include "util/rng.h"
 
 typedef struct {
@@ -32,5 +33,11 @@ enum { SG_MAXP = 48, SG_N = 40 };
  * ends), some with a hole and some holes with an island; 8 to SG_N points
  * each.  The polygons' points go to buf; returns the number of polygons. */
 int sg_random(rng *g, vec2 (*buf)[SG_N], sg_poly *ps);
+
+/* stack_tile of s (named "t.contours") with o; where notes is not NULL, the
+ * notes go there (nlen bytes at most) rather than to o.notes.  The surface
+ * (stack_free it), stack_tile's answer in *res, its message in err. */
+stack_surface *sg_tile(const contour_stack *s, stack_options o, char *notes, size_t nlen, char *err, size_t errlen,
+                       int *res);
 
 #endif

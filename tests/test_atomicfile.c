@@ -187,8 +187,6 @@ int main(void) {
   for (size_t i = 0; i < sizeof sigs / sizeof *sigs; i++) killed(sigs[i]);
   ignored();
   threads();
-  char cmd[128];
-  snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-  if (system(cmd) != 0) return 1;
+  if (check_rmtree(dir) != 0) return 1;
   return check_done("test_atomicfile");
 }

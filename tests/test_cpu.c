@@ -23,36 +23,24 @@
 #include "tests/check.h"
 #include "sim/cpu.h"
 #include "tests/randprog.h"
+#include "tests/simrun.h"
 #include "sim/sim.h"
 #include "mp/threads.h"
 
+/* simrun's machine with no per-byte cost and no LogGP overhead or gap. */
 static sim_config config(sim_net net, int procs) {
-  sim_config cfg;
-  sim_config_init(&cfg);
-  cfg.procs = procs;
-  cfg.net = net;
-  cfg.c = 0.125;
-  cfg.m = 0.25;
+  sim_config cfg = simrun_config(net, procs);
   cfg.per_byte = 0;
-  cfg.local = 0;
-  cfg.L = 0.5;
   cfg.o = 0;
   cfg.g = 0;
-  cfg.G = 0.03125;
-  cfg.warn = NULL;
   return cfg;
 }
 
+/* simrun, whose run must succeed. */
 static sim *run(const sim_config *cfg, int n, mp_main fn, void *ud, int *rc) {
   char err[300];
-  sim *s = sim_new(cfg, n, err, sizeof err);
-  CHECK(s != NULL, "sim_new: %s", err);
-  if (!s) abort();
-  mp_proc *pr = malloc((size_t)n * sizeof *pr);
-  for (int i = 0; i < n; i++) pr[i] = (mp_proc){fn, ud};
-  *rc = sim_run(s, pr, err, sizeof err);
+  sim *s = simrun(cfg, n, fn, ud, rc, err, sizeof err);
   CHECK(*rc == 0, "sim_run: %s", err);
-  free(pr);
   return s;
 }
 

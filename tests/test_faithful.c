@@ -38,6 +38,7 @@
 #include "tests/check.h"
 #include "input/contour.h"
 #include "tests/meshcheck.h"
+#include "tests/reference.h"
 #include "input/rtstruct.h"
 #include "tests/rtwriter.h"
 #include "surface/stack.h"
@@ -50,28 +51,16 @@ static const double PI = 3.14159265358979323846;
 
 static stack_surface *tile(const contour_stack *s, int caps, stack_band band, char *notes, size_t nlen, char *err,
                            size_t errlen, int *res) {
-  char *buf = NULL;
-  size_t len = 0;
-  FILE *f = notes ? open_memstream(&buf, &len) : NULL;
-  stack_options o = {COST_AREA, caps, 0, 2, NULL, f, "test", NULL, NULL, MATCH_SINGLE, INFINITY, 0, band};
-  stack_surface *ss = NULL;
-  *res = stack_tile(s, "t.contours", &o, &ss, err, errlen);
-  if (f) {
-    fclose(f);
-    snprintf(notes, nlen, "%s", buf ? buf : "");
-    free(buf);
-  }
-  return ss;
+  stack_options o = {COST_AREA, caps, 0, 2, NULL, NULL, "test", NULL, NULL, MATCH_SINGLE, INFINITY, 0, band};
+  return sg_tile(s, o, notes, nlen, err, errlen, res);
 }
 
 /* The checker's verdict on the mesh: 1 when closed and outward; its volume
  * and components. */
 static int judge(const stack_surface *ss, double *vol, int *ncomp, char *why, size_t whylen) {
   const mesh *me = stack_mesh(ss);
-  double *v = xmallocarray(3 * (size_t)me->nv + 1, sizeof *v);
-  for (int i = 0; i < me->nv; i++) v[3 * i] = me->v[i].x, v[3 * i + 1] = me->v[i].y, v[3 * i + 2] = me->v[i].z;
   mc_mesh m;
-  mc_make(&m, v, me->nv, me->nt ? &me->t[0][0] : NULL, me->nt);
+  ref_mc_mesh(&m, me);
   mc_report r;
   mc_check(&m, &r);
   int ok = r.manifold && r.outward && me->nt > 0;
@@ -79,7 +68,6 @@ static int judge(const stack_surface *ss, double *vol, int *ncomp, char *why, si
   snprintf(why, whylen, "%s", r.first);
   mc_report_free(&r);
   mc_free(&m);
-  free(v);
   return ok;
 }
 
@@ -705,10 +693,7 @@ static int write_files(const char *dir) {
     const set_def *d = k < NSETS ? &sets[k] : k == NSETS ? &mixed : &pieces;
     size_t len;
     unsigned char *b = write_set(d, &len);
-    char path[512];
-    snprintf(path, sizeof path, "%s/%s", dir, d->file);
-    FILE *fp = fopen(path, "wb");
-    if (!fp || fwrite(b, 1, len, fp) != len || fclose(fp) != 0) bad = 1;
+    bad |= rtw_save(dir, d->file, b, len);
     free(b);
   }
   return bad;

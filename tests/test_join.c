@@ -28,6 +28,7 @@
 #include "surface/gap.h"
 #include "surface/inside.h"
 #include "tests/meshcheck.h"
+#include "tests/reference.h"
 #include "surface/overlap.h"
 #include "surface/report.h"
 #include "util/rng.h"
@@ -37,27 +38,6 @@
 #include "util/xmem.h"
 
 /* ------------------------------------------------------ overlap_closed -- */
-
-/* Convex polygons: apart (closed: no common point; open: no common interior
- * point) exactly when an edge's line has the other strictly (closed) or
- * weakly (open) on its outer side. */
-static int sat_apart(const vec2 *p, int np, const vec2 *q, int nq, int closed) {
-  for (int pass = 0; pass < 2; pass++) {
-    const vec2 *a = pass ? q : p, *b = pass ? p : q;
-    int na = pass ? nq : np, nb = pass ? np : nq;
-    double s = geom_area2(a, na) > 0 ? 1 : -1;
-    for (int i = 0; i < na; i++) {
-      vec2 u = a[i], v = a[(i + 1) % na];
-      int out = 1;
-      for (int j = 0; j < nb && out; j++) {
-        double c = s * ((v.x - u.x) * (b[j].y - u.y) - (v.y - u.y) * (b[j].x - u.x));
-        if (closed ? c >= 0 : c > 0) out = 0;
-      }
-      if (out) return 1;
-    }
-  }
-  return 0;
-}
 
 static int rand_convex(rng *g, vec2 *out, int cx, int cy) {
   vec2 p[12];
@@ -81,12 +61,7 @@ static int rand_convex(rng *g, vec2 *out, int cx, int cy) {
 }
 
 static int closed_of(const vec2 *p, int np, const vec2 *q, int nq) {
-  inside_index *a = inside_new(p, np), *b = inside_new(q, nq);
-  int r = overlap_closed(a, b), r2 = overlap_closed(b, a);
-  CHECK(r == r2, "overlap_closed is not symmetric (%d, %d)", r, r2);
-  inside_free(a);
-  inside_free(b);
-  return r;
+  return ref_symmetric(overlap_closed, "overlap_closed", p, np, q, nq);
 }
 
 static void test_closed(rng *g) {
@@ -111,7 +86,7 @@ static void test_closed(rng *g) {
     vec2 p[12], q[12];
     int np = rand_convex(g, p, 0, 0), nq = rand_convex(g, q, rng_int(g, -8, 8), rng_int(g, -8, 8));
     if (np < 3 || nq < 3) continue;
-    int want = sat_apart(p, np, q, nq, 1) ? OVERLAP_APART : sat_apart(p, np, q, nq, 0) ? OVERLAP_TOUCH : OVERLAP_INTERIOR;
+    int want = ref_convex_apart(p, np, q, nq, 1) ? OVERLAP_APART : ref_convex_apart(p, np, q, nq, 0) ? OVERLAP_TOUCH : OVERLAP_INTERIOR;
     touch += want == OVERLAP_TOUCH;
     bad += closed_of(p, np, q, nq) != want;
   }
@@ -141,7 +116,7 @@ static void test_gap(rng *g) {
     int np, nq;
     if (trial % 2) {
       np = rand_convex(g, p, 0, 0), nq = rand_convex(g, q, rng_int(g, -14, 14), rng_int(g, -14, 14));
-      if (np < 3 || nq < 3 || !sat_apart(p, np, q, nq, 0)) continue;
+      if (np < 3 || nq < 3 || !ref_convex_apart(p, np, q, nq, 0)) continue;
     } else {
       np = rng_int(g, 3, 40), nq = rng_int(g, 3, 40);
       double r = 1 + 2 * rng_uniform(g), a = 6.3 * rng_uniform(g), d = 2 * r + 3 * rng_uniform(g);
@@ -259,33 +234,7 @@ static double judge(const char *what, const outcome *o, const sg_poly *ps, int n
     CHECK(0, "%s: refused: %s", what, o->err);
     return NAN;
   }
-  const mesh *me = stack_mesh(o->ss);
-  double *v = xmallocarray(3 * (size_t)me->nv + 1, sizeof *v);
-  for (int i = 0; i < me->nv; i++) v[3 * i] = me->v[i].x, v[3 * i + 1] = me->v[i].y, v[3 * i + 2] = me->v[i].z;
-  mc_mesh m;
-  mc_make(&m, v, me->nv, me->nt ? &me->t[0][0] : NULL, me->nt);
-  mc_report r;
-  mc_check(&m, &r);
-  CHECK(r.manifold && r.outward, "%s: not a closed outward manifold: %s", what, r.first);
-  CHECK(comps < 0 || r.ncomp == comps, "%s: %d components, want %d", what, r.ncomp, comps);
-  mc_poly *cp = xmallocarray((size_t)np, sizeof *cp);
-  double *xy = xmallocarray(2 * (size_t)np * SG_N + 1, sizeof *xy);
-  double *x = xy, *y = xy + (size_t)np * SG_N;
-  for (int i = 0; i < np; i++) {
-    for (int k = 0; k < ps[i].n; k++) x[i * SG_N + k] = ps[i].p[k].x, y[i * SG_N + k] = ps[i].p[k].y;
-    cp[i] = (mc_poly){ps[i].n, ps[i].z, x + i * SG_N, y + i * SG_N};
-  }
-  mc_fidelity fd;
-  mc_check_input(&m, cp, np, &fd);
-  CHECK(fd.missing == 0 && fd.absent == 0 && fd.strays == 0 && fd.crossing == 0,
-        "%s: %d segments missing, %d points absent, %d strays, %d crossing", what, fd.missing, fd.absent,
-        fd.strays, fd.crossing);
-  double vol = r.volume;
-  mc_fidelity_free(&fd);
-  mc_report_free(&r);
-  mc_free(&m);
-  free(xy), free(cp), free(v);
-  return vol;
+  return ref_judge_mesh(what, stack_mesh(o->ss), ps, np, comps, NULL);
 }
 
 /* The notes with their line numbers ("t.contours:N:", "line N") masked, and

@@ -15,6 +15,7 @@
 #include "mp/mp.h"
 #include "sim/sim.h"
 #include "mp/threads.h"
+#include "tests/simrun.h"
 
 enum { SIM, THREADS };
 static const char *const backend[] = {"sim", "threads"};
@@ -28,16 +29,10 @@ typedef struct {
   int done[8];
 } result;
 
+/* simrun's machine, ideal, with local messages costing 1/2. */
 static sim_config config(int procs) {
-  sim_config cfg;
-  sim_config_init(&cfg);
-  cfg.procs = procs;
-  cfg.net = SIM_NET_IDEAL;
-  cfg.c = 0.125;
-  cfg.m = 0.25;
-  cfg.per_byte = 0.0625;
+  sim_config cfg = simrun_config(SIM_NET_IDEAL, procs);
   cfg.local = 0.5;
-  cfg.warn = NULL;
   return cfg;
 }
 

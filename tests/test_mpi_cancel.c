@@ -33,9 +33,7 @@ static mpih_result run(int b, int n, mpih_fn fn, void *ud, double poll_cost) {
   mpih_config cfg;
   mpih_config_init(&cfg, b, n);
   cfg.poll_cost = poll_cost;
-  mpih_result res;
-  mpih_run_fn(&cfg, fn, ud, &res);
-  return res;
+  return mpih_result_of(&cfg, fn, ud);
 }
 
 static int has(const char *s, const char *part) { return strstr(s, part) != NULL; }
@@ -59,9 +57,7 @@ typedef struct {
  * message never overtakes one sent before it). */
 static int cancel_unreceived(void *ud) {
   sc *S = ud;
-  MPI_Init(NULL, NULL);
-  int r;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init();
   if (r == 0) {
     char *b = calloc((size_t)S->len + 4, 1);
     MPI_Request q;
@@ -96,9 +92,7 @@ static int cancel_unreceived(void *ud) {
  * cancels it: rank 1 received tag 6 (sent after it) first. */
 static int cancel_unexpected(void *ud) {
   sc *S = ud;
-  MPI_Init(NULL, NULL);
-  int r, v = 1, w = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init(), v = 1, w = 0;
   if (r == 0) {
     MPI_Request q;
     MPI_Status st;
@@ -122,9 +116,7 @@ static int cancel_unexpected(void *ud) {
  * receive posted. */
 static int cancel_receive(void *ud) {
   sc *S = ud;
-  MPI_Init(NULL, NULL);
-  int r, v = 9, w = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init(), v = 9, w = 0;
   if (r == 0) {
     mp_compute(mp_self(), 8);
     MPI_Send(&v, 1, MPI_INT, 1, 5, MPI_COMM_WORLD);
@@ -218,9 +210,7 @@ typedef struct {
  * barrier. */
 static int polls(void *ud) {
   spin *S = ud;
-  MPI_Init(NULL, NULL);
-  int r, v, flag = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init(), v, flag = 0;
   if (r == 1) {
     MPI_Request q;
     MPI_Message m;
@@ -314,9 +304,7 @@ typedef struct {
 
 static int kinds(void *ud) {
   kindrun *K = ud;
-  MPI_Init(NULL, NULL);
-  int r, n;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init(), n;
   MPI_Comm_size(MPI_COMM_WORLD, &n);
   xchg *x = &K->x[r];
   x->v = 100 + r;
@@ -340,8 +328,7 @@ static int kinds(void *ud) {
 
 static void kind_requests(void) {
   for (int w = 0; w < 2; w++) {
-    kindrun K;
-    memset(&K, 0, sizeof K);
+    kindrun K = {0};
     K.wait = w;
     mpih_result res = run(MPIH_SIM, 4, kinds, &K, 0.0625);
     int bad = 0;
@@ -356,8 +343,7 @@ static void kind_requests(void) {
     mpih_result_free(&res);
   }
   for (int b = 0; b < 2; b++) {
-    kindrun K;
-    memset(&K, 0, sizeof K);
+    kindrun K = {0};
     K.wait = K.never = 1;
     mpih_result res = run(b, 2, kinds, &K, 0.0625);
     CHECK(res.rc != 0 && res.deadlock && has(res.err, "rank 1 waits in MPI_Wait(MPI_Ixchg)"),
@@ -397,9 +383,7 @@ typedef struct {
 
 static int relays(void *ud) {
   relayrun *K = ud;
-  MPI_Init(NULL, NULL);
-  int r, v = 5;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init(), v = 5;
   if (r == 0) {
     relay x = {.stage = 0};
     MPI_Request a, b;

@@ -24,9 +24,7 @@ static const char *const bname[] = {"sim", "threads"};
 static mpih_result run(int b, int n, mpih_fn fn, void *ud) {
   mpih_config cfg;
   mpih_config_init(&cfg, b, n);
-  mpih_result res;
-  mpih_run_fn(&cfg, fn, ud, &res);
-  return res;
+  return mpih_result_of(&cfg, fn, ud);
 }
 
 static int has(const char *s, const char *part) { return strstr(s, part) != NULL; }
@@ -45,9 +43,7 @@ typedef struct {
  * 128 + 4 bytes (high) the same way: 8.75 + 1/4 + 132/16 = 17.25. */
 static int inter_time(void *ud) {
   facts *F = ud;
-  MPI_Init(NULL, NULL);
-  int r;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init();
   MPI_Comm ic, m;
   MPI_Intercomm_create(MPI_COMM_SELF, 0, MPI_COMM_WORLD, 1 - r, 5, &ic);
   F->t[r][0] = MPI_Wtime();
@@ -66,9 +62,7 @@ static int inter_time(void *ud) {
  * request done at once. */
 static int shared_node(void *ud) {
   facts *F = ud;
-  MPI_Init(NULL, NULL);
-  int r;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init();
   MPI_Comm node, d;
   MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node);
   MPI_Comm_size(node, &F->n[r]);
@@ -85,8 +79,7 @@ static int shared_node(void *ud) {
 }
 
 static void closed_forms(void) {
-  facts F;
-  memset(&F, 0, sizeof F);
+  facts F = {0};
   mpih_result res = run(MPIH_SIM, 2, inter_time, &F);
   double create = 0.25 + 136 * 0.0625, merge = create + 0.25 + 132 * 0.0625;
   CHECK(res.rc == 0 && F.t[0][0] == create && F.t[1][0] == create, "intercomm_create: %.17g %.17g (%.17g due)",
@@ -113,9 +106,7 @@ static void closed_forms(void) {
  * 2 each; then all freed and one more made. */
 static int contexts(void *ud) {
   facts *F = ud;
-  MPI_Init(NULL, NULL);
-  int r;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init();
   MPI_Comm_set_errhandler(MPI_COMM_SELF, MPI_ERRORS_RETURN);
   MPI_Comm *ic = malloc(600 * sizeof *ic);
   int n = 0, rc = MPI_SUCCESS;
@@ -133,8 +124,7 @@ static int contexts(void *ud) {
 
 static void context_limit(void) {
   for (int b = 0; b < 2; b++) {
-    facts F;
-    memset(&F, 0, sizeof F);
+    facts F = {0};
     mpih_result res = run(b, 2, contexts, &F);
     CHECK(res.rc == 0 && F.n[0] == 511 && F.n[1] == 511 && F.n[2] == MPI_ERR_OTHER && F.n[3] == MPI_ERR_OTHER,
           "%s: %d and %d intercommunicators at once (511 due), then %d %d", bname[b], F.n[0], F.n[1], F.n[2],
@@ -168,9 +158,7 @@ static int added_code(void *ud) {
 /* A rank of the remote group that is not there. */
 static int inter_bad_rank(void *ud) {
   (void)ud;
-  MPI_Init(NULL, NULL);
-  int r, v = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init(), v = 0;
   MPI_Comm ic;
   MPI_Intercomm_create(MPI_COMM_SELF, 0, MPI_COMM_WORLD, 1 - r, 3, &ic);
   if (r == 0) MPI_Send(&v, 1, MPI_INT, 3, 0, ic);
@@ -182,9 +170,7 @@ static int inter_bad_rank(void *ud) {
 /* Rank 1 makes an intercommunicator; rank 0 waits for a message. */
 static int inter_stuck(void *ud) {
   (void)ud;
-  MPI_Init(NULL, NULL);
-  int r, v;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init(), v;
   MPI_Comm ic;
   if (r == 1)
     MPI_Intercomm_create(MPI_COMM_SELF, 0, MPI_COMM_WORLD, 0, 3, &ic);
@@ -196,8 +182,7 @@ static int inter_stuck(void *ud) {
 
 static void errors(void) {
   for (int b = 0; b < 2; b++) {
-    facts F;
-    memset(&F, 0, sizeof F);
+    facts F = {0};
     mpih_result res = run(b, 1, added_code, &F);
     CHECK(F.n[0] == MPI_ERR_LASTCODE && F.n[2] == MPI_ERR_LASTCODE + 1 && F.n[3] == MPI_ERR_LASTCODE + 2 &&
               F.n[1] == F.n[3],

@@ -36,14 +36,15 @@ static mpih_result run(int b, int n, mpih_fn fn, void *ud) {
   mpih_config_init(&cfg, b, n);
   cfg.sim.m = 0;
   cfg.sim.per_byte = 0;
-  mpih_result res;
-  mpih_run_fn(&cfg, fn, ud, &res);
-  return res;
+  return mpih_result_of(&cfg, fn, ud);
 }
 
-/* /fsa and /fsb: latency 1/2 s, 16 bytes a second. */
-static void mounts(const job *j) {
+/* The job's directory dir and n bytes a rank; /fsa (dir) and /fsb (dir/b)
+ * mounted: latency 1/2 s, 16 bytes a second. */
+static void mounts(job *j, const char *dir, int n) {
   char spec[512], err[256];
+  snprintf(j->dir, sizeof j->dir, "%s", dir);
+  j->n = n;
   tsmpi_fs_reset();
   snprintf(spec, sizeof spec, "/fsa,dir=%s,latency=0.5,bandwidth=16", j->dir);
   CHECK(tsmpi_fs_option(spec, err, sizeof err) == 0, "--fs %s: %s", spec, err);
@@ -54,9 +55,7 @@ static void mounts(const job *j) {
 /* Open, an independent write each, a collective write, close. */
 static int steps(void *ud) {
   job *j = ud;
-  MPI_Init(NULL, NULL);
-  int r, size;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init(), size;
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   MPI_File fh;
   char buf[256];
@@ -90,11 +89,8 @@ static int cmp(const void *a, const void *b) {
 
 static void closed_forms(const char *dir) {
   for (int p = 1; p <= 8; p *= 2) {
-    job j;
-    memset(&j, 0, sizeof j);
-    snprintf(j.dir, sizeof j.dir, "%s", dir);
-    j.n = 32;   /* 2 s of bandwidth */
-    mounts(&j);
+    job j = {0};
+    mounts(&j, dir, 32);   /* 2 s of bandwidth */
     mpih_result res = run(MPIH_SIM, p, steps, &j);
     CHECK(res.rc == 0, "%d ranks: %s", p, res.err);
     /* open: one request, 1/2 s, from 0 */
@@ -132,9 +128,7 @@ static void closed_forms(const char *dir) {
 /* Rank 0 writes to /fsa, rank 1 to /fsb, at once: no contention. */
 static int two_fs(void *ud) {
   job *j = ud;
-  MPI_Init(NULL, NULL);
-  int r;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init();
   MPI_File fh;
   char buf[64] = {0};
   int ok = MPI_File_open(MPI_COMM_SELF, r ? "/fsb/g" : "/fsa/g", MPI_MODE_CREATE | MPI_MODE_WRONLY, MPI_INFO_NULL,
@@ -150,10 +144,8 @@ static int two_fs(void *ud) {
 }
 
 static void separate(const char *dir) {
-  job j;
-  memset(&j, 0, sizeof j);
-  snprintf(j.dir, sizeof j.dir, "%s", dir);
-  mounts(&j);
+  job j = {0};
+  mounts(&j, dir, 0);
   char b[300], g[320];
   snprintf(b, sizeof b, "%s/b", dir);
   mkdir(b, 0700);
@@ -175,11 +167,8 @@ static void separate(const char *dir) {
 
 /* The same steps on threads: the data, not the times. */
 static void threads(const char *dir) {
-  job j;
-  memset(&j, 0, sizeof j);
-  snprintf(j.dir, sizeof j.dir, "%s", dir);
-  j.n = 8;
-  mounts(&j);
+  job j = {0};
+  mounts(&j, dir, 8);
   tsmpi_fs_option("/fsa,latency=0,bandwidth=1e15", (char[64]){0}, 64);
   char f[300], data[64];
   snprintf(f, sizeof f, "%s/f", dir);
@@ -210,10 +199,8 @@ static int fatal_open(void *ud) {
 }
 
 static void fatal(const char *dir) {
-  job j;
-  memset(&j, 0, sizeof j);
-  snprintf(j.dir, sizeof j.dir, "%s", dir);
-  mounts(&j);
+  job j = {0};
+  mounts(&j, dir, 0);
   mpih_result res = run(MPIH_SIM, 2, fatal_open, &j);
   CHECK(res.rc != 0 && res.aborted && strstr(res.err, "MPI_File_open") && strstr(res.err, "/fsa/missing"),
         "a fatal open of a missing file: rc %d, \"%s\"", res.rc, res.err);
@@ -224,9 +211,7 @@ static void fatal(const char *dir) {
  * deadlock report names the file call. */
 static int stuck(void *ud) {
   (void)ud;
-  MPI_Init(NULL, NULL);
-  int r, v = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init(), v = 0;
   MPI_File fh;
   MPI_File_open(MPI_COMM_WORLD, "/fsa/stuck", MPI_MODE_CREATE | MPI_MODE_WRONLY | MPI_MODE_DELETE_ON_CLOSE,
                 MPI_INFO_NULL, &fh);
@@ -238,10 +223,8 @@ static int stuck(void *ud) {
 }
 
 static void deadlock(const char *dir) {
-  job j;
-  memset(&j, 0, sizeof j);
-  snprintf(j.dir, sizeof j.dir, "%s", dir);
-  mounts(&j);
+  job j = {0};
+  mounts(&j, dir, 0);
   mpih_result res = run(MPIH_SIM, 2, stuck, &j);
   CHECK(res.rc != 0 && res.deadlock && strstr(res.err, "MPI_File_write_all") && strstr(res.err, "MPI_Recv"),
         "a deadlock in a collective write: rc %d, \"%s\"", res.rc, res.err);

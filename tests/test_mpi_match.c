@@ -392,9 +392,7 @@ static void note(prog *p, int d, const char *what, int k) {
 static int rank_prog(void *ud) {
   job *j = ud;
   prog *p = j->p;
-  MPI_Init(NULL, NULL);
-  int d;
-  MPI_Comm_rank(MPI_COMM_WORLD, &d);
+  int d = mpih_init();
   MPI_Comm comm[2] = {MPI_COMM_WORLD, MPI_COMM_NULL};
   MPI_Comm_dup(MPI_COMM_WORLD, &comm[1]);
   rng r;
@@ -526,8 +524,7 @@ static int run_one(prog *p, int backend) {
 /* Hand-made receivers whose answers are known: the oracle must accept the
  * right outcome and refuse the wrong ones (else it could pass anything). */
 static void oracle_selftest(void) {
-  prog p;
-  memset(&p, 0, sizeof p);
+  prog p = {0};
   p.nr = 2;
   p.nm = 2;
   /* Rank 0 sends m0 (tag 7) then m1 (tag 5) to rank 1 on one communicator. */

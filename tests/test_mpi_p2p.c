@@ -26,9 +26,7 @@ static mpih_result run(int b, int n, mpih_fn fn, void *ud) {
   mpih_config cfg;
   mpih_config_init(&cfg, b, n);
   cfg.poll_cost = 0.0625;
-  mpih_result res;
-  mpih_run_fn(&cfg, fn, ud, &res);
-  return res;
+  return mpih_result_of(&cfg, fn, ud);
 }
 
 static int has(const char *s, const char *part) { return strstr(s, part) != NULL; }
@@ -39,9 +37,7 @@ static int has(const char *s, const char *part) { return strstr(s, part) != NULL
  * for messages that never come. */
 static int bad_rank(void *ud) {
   (void)ud;
-  MPI_Init(NULL, NULL);
-  int r, v = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init(), v = 0;
   if (r == 1)
     MPI_Send(&v, 1, MPI_INT, 7, 0, MPI_COMM_WORLD);
   else
@@ -52,9 +48,7 @@ static int bad_rank(void *ud) {
 
 static int aborts(void *ud) {
   (void)ud;
-  MPI_Init(NULL, NULL);
-  int r, v = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init(), v = 0;
   if (r == 2) MPI_Abort(MPI_COMM_WORLD, 3);
   MPI_Recv(&v, 1, MPI_INT, MPI_ANY_SOURCE, 0, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
   MPI_Finalize();
@@ -64,9 +58,7 @@ static int aborts(void *ud) {
 /* A message longer than the receive, under the default handler. */
 static int truncates(void *ud) {
   (void)ud;
-  MPI_Init(NULL, NULL);
-  int r, v[4] = {1, 2, 3, 4};
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init(), v[4] = {1, 2, 3, 4};
   if (r == 0)
     MPI_Send(v, 4, MPI_INT, 1, 5, MPI_COMM_WORLD);
   else
@@ -133,9 +125,7 @@ typedef struct {
 
 static int returned(void *ud) {
   codes *c = ud;
-  MPI_Init(NULL, NULL);
-  int r, v[100] = {0};
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init(), v[100] = {0};
   MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
   if (r == 0) {
     c->rc[0] = MPI_Bsend(v, 10, MPI_INT, 0, 1, MPI_COMM_WORLD);   /* no buffer */
@@ -163,8 +153,7 @@ static int returned(void *ud) {
 
 static void errors_returned(void) {
   for (int b = 0; b < 2; b++) {
-    codes c;
-    memset(&c, 0, sizeof c);
+    codes c = {0};
     mpih_result res = run(b, 2, returned, &c);
     CHECK(res.rc == 0, "%s: errors returned: %s", bname[b], res.err);
     CHECK(c.rc[0] == MPI_ERR_BUFFER && c.rc[1] == MPI_ERR_BUFFER && c.rc[2] == MPI_SUCCESS && c.rc[3] == MPI_SUCCESS,
@@ -179,9 +168,7 @@ static void errors_returned(void) {
 
 static int stuck(void *ud) {
   (void)ud;
-  MPI_Init(NULL, NULL);
-  int r, v = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init(), v = 0;
   MPI_Request q[2];
   MPI_Comm dup;
   if (r == 0) {
@@ -227,9 +214,7 @@ typedef struct {
 /* Ping-pong of len bytes, twice: MPI_Wtime around the second. */
 static int pingpong(void *ud) {
   timing *T = ud;
-  MPI_Init(NULL, NULL);
-  int r;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init();
   char *buf = calloc((size_t)T->len + 1, 1);
   for (int i = 0; i < 2; i++) {
     double t0 = MPI_Wtime();
@@ -250,9 +235,7 @@ static int pingpong(void *ud) {
 /* Rank 0's Ssend at 0; rank 1 computes 16 units (2 s), then receives. */
 static int ssend_time(void *ud) {
   timing *T = ud;
-  MPI_Init(NULL, NULL);
-  int r, v[4] = {0};
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init(), v[4] = {0};
   if (r == 0) {
     MPI_Ssend(v, 4, MPI_INT, 1, 0, MPI_COMM_WORLD);   /* 16 bytes: arrives at 1/4 + 1 */
     T->t[0] = MPI_Wtime();
@@ -273,9 +256,7 @@ static int ssend_time(void *ud) {
  * up, rank 0 sends the 4-byte choice down. */
 static int dup_time(void *ud) {
   timing *T = ud;
-  MPI_Init(NULL, NULL);
-  int r;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init();
   MPI_Comm dup;
   MPI_Comm_dup(MPI_COMM_WORLD, &dup);
   T->t[r] = MPI_Wtime();
@@ -288,9 +269,7 @@ static int dup_time(void *ud) {
  * failed test costs the poll cost, 1/16 s. */
 static int poll_time(void *ud) {
   timing *T = ud;
-  MPI_Init(NULL, NULL);
-  int r, v = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init(), v = 0;
   if (r == 0) {
     mp_compute(mp_self(), 8);
     MPI_Send(&v, 1, MPI_INT, 1, 0, MPI_COMM_WORLD);   /* 4 bytes: arrives at 1 + 1/4 + 1/4 */
@@ -359,8 +338,7 @@ static int ends(void *ud) {
 
 static void rank_ends(void) {
   for (int b = 0; b < 2; b++) {
-    seen s;
-    memset(&s, 0, sizeof s);
+    seen s = {0};
     mpih_result res = run(b, 3, ends, &s);
     CHECK(res.rc == 0 && res.end[0] == TSMPI_NEVER && res.end[1] == TSMPI_UNFINALIZED &&
               res.end[2] == TSMPI_FINALIZED,

@@ -30,9 +30,7 @@ static mpih_result run(int be, int n, double poll, mpih_fn fn, void *ud) {
   mpih_config_init(&cfg, be, n);
   cfg.poll_cost = poll;
   cfg.sim.local = 0;
-  mpih_result res;
-  mpih_run_fn(&cfg, fn, ud, &res);
-  return res;
+  return mpih_result_of(&cfg, fn, ud);
 }
 
 static int has(const char *s, const char *part) { return strstr(s, part) != NULL; }
@@ -67,9 +65,7 @@ static void level(void) {
  * target's; the unlock's request follows the operations on the channel. */
 static int passive_times(void *ud) {
   facts *F = ud;
-  MPI_Init(NULL, NULL);
-  int r;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init();
   long *mem, buf[16] = {0}, one = 1, old = 0, cmp = 0;
   MPI_Win win;
   MPI_Win_allocate(16 * sizeof(long), sizeof(long), MPI_INFO_NULL, MPI_COMM_WORLD, &mem, &win);
@@ -123,8 +119,7 @@ static int passive_times(void *ud) {
 }
 
 static void one_pair(void) {
-  facts F;
-  memset(&F, 0, sizeof F);
+  facts F = {0};
   mpih_result res = run(MPIH_SIM, 2, 0, passive_times, &F);
   double *t = F.t[0];
   double due[11] = {2 * m, 0, 0, 2 * m + 128 * b, 2 * m + 32 * b, 2 * m + 16 * b, 2 * m + 24 * b, 2 * m + 64 * b,
@@ -146,9 +141,7 @@ static void one_pair(void) {
  * exclusive lock. */
 static int three(void *ud) {
   facts *F = ud;
-  MPI_Init(NULL, NULL);
-  int r, p;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init(), p;
   MPI_Comm_size(MPI_COMM_WORLD, &p);
   long *mem, buf[8] = {1, 2, 3, 4, 5, 6, 7, 8}, one = 1, got = -1;
   MPI_Win win;
@@ -192,8 +185,7 @@ static int three(void *ud) {
 }
 
 static void three_ranks(void) {
-  facts F;
-  memset(&F, 0, sizeof F);
+  facts F = {0};
   mpih_result res = run(MPIH_SIM, 3, 0, three, &F);
   CHECK(res.rc == 0, "three: %s", res.err);
   for (int r = 0; r < 3; r++) {
@@ -251,9 +243,7 @@ static int model_info(void *ud) {
  * rank 1 waits for the lock. */
 static int stuck(void *ud) {
   (void)ud;
-  MPI_Init(NULL, NULL);
-  int r, mem = 0, v;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init(), mem = 0, v;
   MPI_Win win;
   MPI_Win_create(&mem, sizeof mem, sizeof(int), MPI_INFO_NULL, MPI_COMM_WORLD, &win);
   if (r == 0) {
@@ -283,9 +273,7 @@ static int fatal(void *ud) {
  * for nothing) until rank 0 has put a flag there. */
 static int polling(void *ud) {
   facts *F = ud;
-  MPI_Init(NULL, NULL);
-  int r, one = 1;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  int r = mpih_init(), one = 1;
   int *flag;
   MPI_Win win;
   MPI_Win_allocate(sizeof(int), sizeof(int), MPI_INFO_NULL, MPI_COMM_WORLD, &flag, &win);
@@ -313,8 +301,7 @@ static int polling(void *ud) {
 
 static void tilesim_words(void) {
   for (int be = 0; be < 2; be++) {
-    facts F;
-    memset(&F, 0, sizeof F);
+    facts F = {0};
     mpih_result res = run(be, 2, 1e-6, model_info, &F);
     CHECK(res.rc == 0 && F.v[0][0] == MPI_WIN_UNIFIED, "%s: MPI_WIN_MODEL %ld", bname[be], F.v[0][0]);
     CHECK(F.v[0][1] == 1 && F.v[0][2] == 1, "%s: the hints MPI_Win_set_info gave are not kept", bname[be]);

@@ -50,8 +50,7 @@ static void compute(const job *j, double s) {
 static int prog(void *ud) {
   job *j = ud;
   int me, size, x, sum = -1;
-  MPI_Init(NULL, NULL);
-  MPI_Comm_rank(MPI_COMM_WORLD, &me);
+  me = mpih_init();
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   x = me == 0 ? 1234 : me;
   MPI_Request r = MPI_REQUEST_NULL;
@@ -149,8 +148,7 @@ static void overhead(void) {
 static int stuck(void *ud) {
   (void)ud;
   int me, x = 0;
-  MPI_Init(NULL, NULL);
-  MPI_Comm_rank(MPI_COMM_WORLD, &me);
+  me = mpih_init();
   if (me == 1) {
     MPI_Request r;
     MPI_Ibcast(&x, 1, MPI_INT, 0, MPI_COMM_WORLD, &r);
@@ -176,8 +174,7 @@ static void deadlock(void) {
  * it once the collective is done (Open MPI 4.1 crashes on this). */
 static int freed_early(void *ud) {
   int *bad = ud, me, size, sum = -1, status;
-  MPI_Init(NULL, NULL);
-  MPI_Comm_rank(MPI_COMM_WORLD, &me);
+  me = mpih_init();
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   MPI_Comm d;
   MPI_Request r;
@@ -209,8 +206,7 @@ static void freed(void) {
  * may run then. */
 static int late(void *ud) {
   int *bad = ud, me, x = 5;
-  MPI_Init(NULL, NULL);
-  MPI_Comm_rank(MPI_COMM_WORLD, &me);
+  me = mpih_init();
   MPI_Request r;
   MPI_Ibcast(&x, 1, MPI_INT, 1, MPI_COMM_WORLD, &r);
   if (me == 0) MPI_Request_free(&r);
@@ -236,8 +232,7 @@ static void finalized(void) {
  * section 5.12): refused, and the collective goes on to its result. */
 static int cancel_prog(void *ud) {
   int *bad = ud, me, size, sum = -1, cls = -1;
-  MPI_Init(NULL, NULL);
-  MPI_Comm_rank(MPI_COMM_WORLD, &me);
+  me = mpih_init();
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
   MPI_Request r;

@@ -23,20 +23,7 @@
 #include "mpi/tsmpi.h"
 #include "tests/check.h"
 #include "tests/mpiharness.h"
-
-#define TSMPI_PROG(name) int tsmpi_main_##name(int argc, char **argv);
-#include "progs.h"
-#undef TSMPI_PROG
-
-static const struct {
-  const char *name;
-  mpih_main fn;
-} progs[] = {
-#define TSMPI_PROG(name) {#name, tsmpi_main_##name},
-#include "progs.h"
-#undef TSMPI_PROG
-};
-enum { NPROGS = sizeof progs / sizeof progs[0] };
+#include "tests/mpiprogs.h"
 
 /* The programs this driver runs: the datatype, operation, collective,
  * topology and I/O ones (point-to-point's have their own). */

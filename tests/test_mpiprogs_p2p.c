@@ -18,20 +18,7 @@
 
 #include "tests/check.h"
 #include "tests/mpiharness.h"
-
-#define TSMPI_PROG(name) int tsmpi_main_##name(int argc, char **argv);
-#include "progs.h"
-#undef TSMPI_PROG
-
-static const struct {
-  const char *name;
-  mpih_main fn;
-} progs[] = {
-#define TSMPI_PROG(name) {#name, tsmpi_main_##name},
-#include "progs.h"
-#undef TSMPI_PROG
-};
-enum { NPROGS = sizeof progs / sizeof progs[0] };
+#include "tests/mpiprogs.h"
 
 static int mine(const char *name) {
   return !strncmp(name, "p2p_", 4) || !strncmp(name, "comm_", 5) || !strncmp(name, "attr_", 5) ||

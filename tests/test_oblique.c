@@ -319,10 +319,7 @@ static int write_fixtures(const char *dir) {
     else plain(&a, &e);
     size_t len;
     unsigned char *b = write_set(&a, axial, k ? R : I, &e, &len);
-    char path[512];
-    snprintf(path, sizeof path, "%s/%s", dir, k == 0 ? "axial.dcm" : k == 1 ? "oblique.dcm" : "oblique_reenc.dcm");
-    FILE *f = fopen(path, "wb");
-    if (!f || fwrite(b, 1, len, f) != len || fclose(f) != 0) bad = 1;
+    bad |= rtw_save(dir, k == 0 ? "axial.dcm" : k == 1 ? "oblique.dcm" : "oblique_reenc.dcm", b, len);
     free(b);
   }
   return bad;

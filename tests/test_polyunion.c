@@ -31,6 +31,7 @@
 #include "geom/exact.h"
 #include "input/gen.h"
 #include "geom/polyunion.h"
+#include "tests/reference.h"
 #include "util/rng.h"
 #include "util/xmem.h"
 
@@ -126,28 +127,6 @@ static int in_loops(const polyunion_result *u, int g, vec2 q) {
 
 /* ---------------------------------------------------------------- rectangles */
 
-/* Union area of rectangles by coordinate compression: exact on a grid. */
-static double rects_area(const double (*r)[4], int n) {
-  double xs[64], ys[64];
-  int nx = 0, ny = 0;
-  for (int i = 0; i < n; i++) xs[nx++] = r[i][0], xs[nx++] = r[i][2], ys[ny++] = r[i][1], ys[ny++] = r[i][3];
-  for (int i = 1; i < nx; i++)
-    for (int j = i; j > 0 && xs[j - 1] > xs[j]; j--) { double t = xs[j]; xs[j] = xs[j - 1], xs[j - 1] = t; }
-  for (int i = 1; i < ny; i++)
-    for (int j = i; j > 0 && ys[j - 1] > ys[j]; j--) { double t = ys[j]; ys[j] = ys[j - 1], ys[j - 1] = t; }
-  double a = 0;
-  for (int i = 0; i + 1 < nx; i++)
-    for (int j = 0; j + 1 < ny; j++) {
-      double cx = (xs[i] + xs[i + 1]) / 2, cy = (ys[j] + ys[j + 1]) / 2;
-      for (int k = 0; k < n; k++)
-        if (r[k][0] < cx && cx < r[k][2] && r[k][1] < cy && cy < r[k][3]) {
-          a += (xs[i + 1] - xs[i]) * (ys[j + 1] - ys[j]);
-          break;
-        }
-    }
-  return a;
-}
-
 static void rect_poly(const double r[4], vec2 *p) {
   p[0] = (vec2){r[0], r[1]}, p[1] = (vec2){r[2], r[1]}, p[2] = (vec2){r[2], r[3]}, p[3] = (vec2){r[0], r[3]};
 }
@@ -186,7 +165,7 @@ static void test_rectangles(void) {
       double rr[8][4];
       int m = 0;
       for (int k = u.gmember[gi]; k < u.gmember[gi + 1]; k++) memcpy(rr[m++], r[u.members[k]], sizeof rr[0]);
-      double want = rects_area((const double (*)[4])rr, m), got = loops_area2(&u, gi) / 2;
+      double want = ref_rects_area((const double (*)[4])rr, m), got = loops_area2(&u, gi) / 2;
       if (fabs(got - want) > 1e-12 * want) bad_area++;
       for (int k = u.gfirst[gi]; k < u.gfirst[gi + 1]; k++) holes += u.hole[k];
       /* cell centres on a grid of unit/2 offset by unit/4: never on an edge */

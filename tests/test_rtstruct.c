@@ -316,8 +316,7 @@ static void decimal_strings(void) {
     printf("test_rtstruct: no comma-decimal locale here (localedef failed): the locale check was skipped\n");
   }
   if (built) {
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    if (system(cmd) != 0) {}
+    check_rmtree(dir);
   }
   setlocale(LC_NUMERIC, "C");
   unsetenv("LOCPATH");
@@ -604,16 +603,6 @@ static void planes(void) {
 
 /* ---------------------------------------------------------------- fixtures */
 
-static int put(const char *dir, const char *name, const unsigned char *b, size_t len) {
-  char path[512];
-  snprintf(path, sizeof path, "%s/%s", dir, name);
-  FILE *f = fopen(path, "wb");
-  if (!f || fwrite(b, 1, len, f) != len || fclose(f) != 0) {
-    fprintf(stderr, "test_rtstruct: cannot write %s\n", path);
-    return 1;
-  }
-  return 0;
-}
 
 /* The files tests/cli_dicom.sh runs ./tile on. */
 static int write_fixtures(const char *dir) {
@@ -630,7 +619,7 @@ static int write_fixtures(const char *dir) {
   };
   for (size_t i = 0; i < sizeof enc / sizeof *enc; i++) {
     b = rtw_write(&enc[i].o, g.roi, GEN_ROIS, &len);
-    bad |= put(dir, enc[i].name, b, len);
+    bad |= rtw_save(dir, enc[i].name, b, len);
     free(b);
   }
   /* The generator's stacks as .contours, for comparison. */
@@ -653,7 +642,7 @@ static int write_fixtures(const char *dir) {
     char name[32];
     snprintf(name, sizeof name, "seed_%d.dcm", k);
     b = rtw_write(&o, &ok, 1, &len);
-    bad |= put(dir, name, b, len);
+    bad |= rtw_save(dir, name, b, len);
     free(b);
   }
   static const struct { const char *name; const char *ts, *modality; int deep; } opts[] = {
@@ -666,7 +655,7 @@ static int write_fixtures(const char *dir) {
   for (size_t i = 0; i < sizeof opts / sizeof *opts; i++) {
     rtw_opts o = {0, 1, 0, 0, opts[i].ts, opts[i].modality, opts[i].deep};
     b = rtw_write(&o, &ok, 1, &len);
-    bad |= put(dir, opts[i].name, b, len);
+    bad |= rtw_save(dir, opts[i].name, b, len);
     free(b);
   }
   /* A length running past its parent: the first ROI item two bytes longer. */
@@ -680,7 +669,7 @@ static int write_fixtures(const char *dir) {
     b[at] = (unsigned char)(b[at] + 2);
     dicom_free(d);
   }
-  bad |= put(dir, "pastparent.dcm", b, len);
+  bad |= rtw_save(dir, "pastparent.dcm", b, len);
   free(b);
 
   rtw_contour cs[3] = {sl[0], sl[1], sl[2]};
@@ -696,13 +685,13 @@ static int write_fixtures(const char *dir) {
   for (size_t i = 0; i < sizeof bad_roi / sizeof *bad_roi; i++) {
     cs[bad_roi[i].at] = bad_roi[i].c;
     b = write1(&r, 1, &len);
-    bad |= put(dir, bad_roi[i].name, b, len);
+    bad |= rtw_save(dir, bad_roi[i].name, b, len);
     free(b);
     cs[0] = sl[0], cs[1] = sl[1];
   }
   rtw_roi one = {7, "Prostate", "PTV", 1, sl, 0, 0};
   b = write1(&one, 1, &len);
-  bad |= put(dir, "onecontour.dcm", b, len);
+  bad |= rtw_save(dir, "onecontour.dcm", b, len);
   free(b);
   /* Warnings: skipped POINT and OPEN contours, an empty ROI, an unknown
    * reference, clockwise contours; and names to sanitise. */
@@ -712,11 +701,11 @@ static int write_fixtures(const char *dir) {
                   {3, "Orphan", NULL, 3, sl, 99, 0},       {4, "Lt Lung/left", NULL, 3, sl, 0, 0},
                   {5, "lt lung_left", NULL, 3, sl, 0, 0},  {6, "..", NULL, 3, sl, 0, 0}};
   b = write1(w, 6, &len);
-  bad |= put(dir, "warnings.dcm", b, len);
+  bad |= rtw_save(dir, "warnings.dcm", b, len);
   free(b);
   rtw_roi same2[2] = {{3, "Same", NULL, 3, sl, 0, 0}, {4, "Same", NULL, 3, sl, 0, 0}};
   b = write1(same2, 2, &len);
-  bad |= put(dir, "samenames.dcm", b, len);
+  bad |= rtw_save(dir, "samenames.dcm", b, len);
   free(b);
   /* One ROI in three planes (the square stack: axial, sagittal, coronal). */
   static double p[3][3][12];
@@ -736,7 +725,7 @@ static int write_fixtures(const char *dir) {
     rtw_roi pr = {1, "Plane", NULL, 3, pc[pl], 0, 0};
     static const char *names[] = {"axial.dcm", "sagittal.dcm", "coronal.dcm"};
     b = write1(&pr, 1, &len);
-    bad |= put(dir, names[pl], b, len);
+    bad |= rtw_save(dir, names[pl], b, len);
     free(b);
   }
   return bad;

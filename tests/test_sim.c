@@ -1,4 +1,5 @@
-/* test_sim.c -- the simulator against closed-form times, random programs and its error reports.
+/* test_sim.c -- the simulator against closed-form times and random programs
+ * (its error reports: test_simerrors.c).
  *
  * Costs are exact binary fractions (m = 0.25, c = 0.125, ...) so that every
  * simulated time is exact and expected values can be compared with ==.  The
@@ -12,6 +13,7 @@
 
 #include "tests/check.h"
 #include "tests/randprog.h"
+#include "tests/simrun.h"
 #include "mp/mp.h"
 #include "util/rng.h"
 #include "sim/sim.h"
@@ -19,39 +21,6 @@
 /* ==== helpers ============================================================= */
 
 static const sim_net nets[] = {SIM_NET_IDEAL, SIM_NET_BUS, SIM_NET_LOGGP};
-
-/* A quiet configuration with exact binary-fraction costs. */
-static sim_config config(sim_net net, int procs) {
-  sim_config cfg;
-  sim_config_init(&cfg);
-  cfg.procs = procs;
-  cfg.net = net;
-  cfg.c = 0.125;
-  cfg.m = 0.25;
-  cfg.per_byte = 0.0625;
-  cfg.local = 0;
-  cfg.L = 0.5;
-  cfg.o = 0.125;
-  cfg.g = 0.0625;
-  cfg.G = 0.03125;
-  cfg.warn = NULL;
-  return cfg;
-}
-
-/* Run n ranks of one main with one shared ud; the sim is returned for its
- * statistics (the caller frees it), sim_run's status in *rc. */
-static sim *run(const sim_config *cfg, int n, mp_main fn, void *ud, int *rc, char *err,
-                size_t errlen) {
-  sim *s = sim_new(cfg, n, err, errlen);
-  CHECK(s != NULL, "sim_new: %s", err);
-  if (!s) abort();
-  mp_proc *pr = malloc((size_t)n * sizeof *pr);
-  for (int i = 0; i < n; i++) pr[i] = (mp_proc){fn, ud};
-  err[0] = 0;
-  *rc = sim_run(s, pr, err, errlen);
-  free(pr);
-  return s;
-}
 
 /* The one-way time of a len-byte message between processors, and what the
  * receiver's clock gains on top of the sender's send call: the model. */
@@ -93,10 +62,10 @@ static void test_pingpong(void) {
   char err[512];
   for (int ni = 0; ni < 3; ni++) {
     for (size_t len = 1; len <= 9; len += 8) {
-      sim_config cfg = config(nets[ni], 2);
+      sim_config cfg = simrun_config(nets[ni], 2);
       pingpong p = {7, 3, 5, len, 0};
       int rc;
-      sim *s = run(&cfg, 2, pingpong_main, &p, &rc, err, sizeof err);
+      sim *s = simrun(&cfg, 2, pingpong_main, &p, &rc, err, sizeof err);
       double h = hop(&cfg, len);
       double round = (p.work0 + p.work1) * cfg.c + 2 * h;
       double want0 = p.rounds * round;
@@ -115,39 +84,13 @@ static void test_pingpong(void) {
   }
 }
 
-typedef struct {
-  int laps;
-  double work;
-  size_t len;
-  long long token;
-  int bad;
-} ring;
-
-static void ring_main(mp *self, void *ud) {
-  ring *g = ud;
-  int me = mp_rank(self), p = mp_size(self);
-  unsigned char buf[64] = {0};
-  long long tok = 0;
-  for (int k = 0; k < g->laps; k++) {
-    if (me != 0) g->bad |= mp_recv(self, (me + p - 1) % p, 0, buf, sizeof buf, NULL) != MP_OK;
-    memcpy(&tok, buf, sizeof tok);
-    tok++;
-    memcpy(buf, &tok, sizeof tok);
-    g->bad |= mp_compute(self, g->work) != MP_OK;
-    g->bad |= mp_send(self, (me + 1) % p, 0, buf, g->len) != MP_OK;
-    if (me == 0) g->bad |= mp_recv(self, p - 1, 0, buf, sizeof buf, NULL) != MP_OK;
-  }
-  memcpy(&tok, buf, sizeof tok);
-  if (me == 0) g->token = tok;
-}
-
 static void test_ring(void) {
   char err[512];
   for (int ni = 0; ni < 3; ni++) {
-    sim_config cfg = config(nets[ni], 5);
-    ring g = {4, 2, 9, 0, 0};
+    sim_config cfg = simrun_config(nets[ni], 5);
+    simrun_ring g = {4, 2, 9, 0, 0};
     int rc;
-    sim *s = run(&cfg, 5, ring_main, &g, &rc, err, sizeof err);
+    sim *s = simrun(&cfg, 5, simrun_ring_main, &g, &rc, err, sizeof err);
     double want = 5 * g.laps * (g.work * cfg.c + hop(&cfg, g.len));
     const char *nn = sim_net_name(cfg.net);
     CHECK(rc == 0 && !g.bad, "%s ring failed: %s", nn, err);
@@ -191,10 +134,10 @@ static void test_bus_spacing(void) {
   char err[512];
   enum { K = 6 };
   for (int ni = 0; ni < 3; ni++) {
-    sim_config cfg = config(nets[ni], K + 1);
+    sim_config cfg = simrun_config(nets[ni], K + 1);
     fanin f = {0};
     int rc;
-    sim *s = run(&cfg, K + 1, fanin_main, &f, &rc, err, sizeof err);
+    sim *s = simrun(&cfg, K + 1, fanin_main, &f, &rc, err, sizeof err);
     const char *nn = sim_net_name(cfg.net);
     CHECK(rc == 0 && f.n == K, "%s fan-in: %d received: %s", nn, f.n, err);
     for (int j = 0; j < f.n; j++) {
@@ -217,10 +160,10 @@ static void colocated_main(mp *self, void *ud) {
 static void test_colocated(void) {
   char err[512];
   /* Three ranks on one processor: their computes run one after the other. */
-  sim_config cfg = config(SIM_NET_BUS, 1);
+  sim_config cfg = simrun_config(SIM_NET_BUS, 1);
   fanin f = {.work = 3};
   int rc;
-  sim *s = run(&cfg, 3, colocated_main, &f, &rc, err, sizeof err);
+  sim *s = simrun(&cfg, 3, colocated_main, &f, &rc, err, sizeof err);
   for (int r = 0; r < 3; r++) {
     double want = (r + 1) * f.work * cfg.c;
     CHECK(sim_rank(s, r)->finish == want, "co-located rank %d finished at %.17g, expected %.17g",
@@ -231,8 +174,8 @@ static void test_colocated(void) {
   sim_free(s);
 
   /* Four ranks on two processors (r % 2): pairs serialise, not all four. */
-  cfg = config(SIM_NET_IDEAL, 2);
-  s = run(&cfg, 4, colocated_main, &f, &rc, err, sizeof err);
+  cfg = simrun_config(SIM_NET_IDEAL, 2);
+  s = simrun(&cfg, 4, colocated_main, &f, &rc, err, sizeof err);
   for (int r = 0; r < 4; r++) {
     double want = (r / 2 + 1) * f.work * cfg.c;
     CHECK(sim_rank(s, r)->finish == want, "2 procs: rank %d finished at %.17g, expected %.17g", r,
@@ -242,10 +185,10 @@ static void test_colocated(void) {
 
   /* Messages on one processor cost `local`, whatever the network. */
   for (int ni = 0; ni < 3; ni++) {
-    cfg = config(nets[ni], 1);
+    cfg = simrun_config(nets[ni], 1);
     cfg.local = 0.0625;
     pingpong p = {5, 1, 2, 9, 0};
-    s = run(&cfg, 2, pingpong_main, &p, &rc, err, sizeof err);
+    s = simrun(&cfg, 2, pingpong_main, &p, &rc, err, sizeof err);
     double want = p.rounds * ((p.work0 + p.work1) * cfg.c + 2 * cfg.local);
     CHECK(rc == 0 && sim_stats_get(s)->makespan == want,
           "%s on one processor: makespan %.17g, expected %.17g (%s)", sim_net_name(cfg.net),
@@ -276,11 +219,11 @@ static void waitfree_main(mp *self, void *ud) {
 static void test_recv_frees_cpu(void) {
   char err[512];
   int place[3] = {0, 0, 1};
-  sim_config cfg = config(SIM_NET_BUS, 2);
+  sim_config cfg = simrun_config(SIM_NET_BUS, 2);
   cfg.place = place;
   waitfree w = {0};
   int rc;
-  sim *s = run(&cfg, 3, waitfree_main, &w, &rc, err, sizeof err);
+  sim *s = simrun(&cfg, 3, waitfree_main, &w, &rc, err, sizeof err);
   CHECK(w.t1 == 2 * cfg.c, "rank 1 computed until %.17g, expected %.17g", w.t1, 2 * cfg.c);
   CHECK(sim_rank(s, 0)->finish == 8 * cfg.c + cfg.m, "rank 0 finished at %.17g",
         sim_rank(s, 0)->finish);
@@ -311,7 +254,7 @@ static void burst_main(mp *self, void *ud) {
 
 static void test_loggp(void) {
   char err[512];
-  sim_config cfg = config(SIM_NET_LOGGP, 2);
+  sim_config cfg = simrun_config(SIM_NET_LOGGP, 2);
   cfg.o = 0.125;
   cfg.g = 0.5;   /* > o: the gap, not the overhead, spaces the injections */
   cfg.L = 1;
@@ -319,7 +262,7 @@ static void test_loggp(void) {
   for (size_t len = 0; len <= 9; len += 9) {
     burst b = {.len = len};
     int rc;
-    sim *s = run(&cfg, 2, burst_main, &b, &rc, err, sizeof err);
+    sim *s = simrun(&cfg, 2, burst_main, &b, &rc, err, sizeof err);
     double gbytes = len > 1 ? (double)(len - 1) * cfg.G : 0;
     CHECK(rc == 0 && b.n == 4, "loggp burst: %s", err);
     for (int j = 0; j < b.n; j++) {
@@ -392,10 +335,10 @@ static void probe_main(mp *self, void *ud) {
 
 static void test_order(void) {
   char err[512];
-  sim_config cfg = config(SIM_NET_IDEAL, 3);
+  sim_config cfg = simrun_config(SIM_NET_IDEAL, 3);
   order o = {0};
   int rc;
-  sim *s = run(&cfg, 3, order_main, &o, &rc, err, sizeof err);
+  sim *s = simrun(&cfg, 3, order_main, &o, &rc, err, sizeof err);
   double big = cfg.m + 1000 * cfg.per_byte;
   CHECK(rc == 0 && o.n == 3, "ordering run: %s", err);
   CHECK(o.src[0] == 1 && o.len[0] == 2 && o.t[0] == cfg.m + 2 * cfg.per_byte,
@@ -411,7 +354,7 @@ static void test_order(void) {
   order p = {0};
   cfg.m = 0.25; /* = 2c */
   cfg.per_byte = 0;
-  s = run(&cfg, 2, probe_main, &p, &rc, err, sizeof err);
+  s = simrun(&cfg, 2, probe_main, &p, &rc, err, sizeof err);
   CHECK(p.probes[0] == 0 && p.probes[1] == 0, "probe saw the message early: %d %d", p.probes[0],
         p.probes[1]);
   CHECK(p.probes[2] == 1 && p.src[0] == 0 && p.len[0] == 2, "probe at arrival: %d, src %d, len %zu",
@@ -455,7 +398,7 @@ static void anysrc_run(sim_net net, int procs, anysrc *a, char **csv, char **jso
   char err[512];
   size_t lc, lj;
   FILE *fc = open_memstream(csv, &lc), *fj = open_memstream(json, &lj);
-  sim_config cfg = config(net, procs);
+  sim_config cfg = simrun_config(net, procs);
   sim *s = sim_new(&cfg, 6, err, sizeof err);
   sim_trace(s, fc, fj);
   mp_proc pr[6];
@@ -610,11 +553,11 @@ static void deadlock_main(mp *self, void *ud) {
 
 static void test_deadlock(void) {
   char err[512];
-  sim_config cfg = config(SIM_NET_BUS, 3);
+  sim_config cfg = simrun_config(SIM_NET_BUS, 3);
   dl d;
   memset(&d, 0x55, sizeof d);
   int rc;
-  sim *s = run(&cfg, 3, deadlock_main, &d, &rc, err, sizeof err);
+  sim *s = simrun(&cfg, 3, deadlock_main, &d, &rc, err, sizeof err);
   CHECK(rc == -1, "a deadlock must fail the run");
   CHECK(strstr(err, "deadlock at t=0.125:") != NULL, "deadlock message: %s", err);
   CHECK(strstr(err, "rank 0 waits in recv(src=any, tag=3)") != NULL, "rank 0 not named: %s", err);
@@ -643,9 +586,9 @@ static void stubborn_main(mp *self, void *ud) {
 
 static void test_abandon(void) {
   char err[512];
-  sim_config cfg = config(SIM_NET_BUS, 2);
+  sim_config cfg = simrun_config(SIM_NET_BUS, 2);
   int rc;
-  sim *s = run(&cfg, 2, stubborn_main, NULL, &rc, err, sizeof err);
+  sim *s = simrun(&cfg, 2, stubborn_main, NULL, &rc, err, sizeof err);
   CHECK(rc == -1 && strstr(err, "rank 0 kept calling") && strstr(err, "deadlock at"),
         "abandon: %s", err);
   CHECK(!sim_rank(s, 0)->done && sim_rank(s, 1)->done, "rank 0 should be abandoned, rank 1 done");
@@ -657,10 +600,10 @@ static void test_abandon(void) {
 static void test_many_ranks(void) {
   char err[512];
   enum { N = 10000 };
-  sim_config cfg = config(SIM_NET_BUS, N);
-  ring g = {1, 1, 8, 0, 0};
+  sim_config cfg = simrun_config(SIM_NET_BUS, N);
+  simrun_ring g = {1, 1, 8, 0, 0};
   int rc;
-  sim *s = run(&cfg, N, ring_main, &g, &rc, err, sizeof err);
+  sim *s = simrun(&cfg, N, simrun_ring_main, &g, &rc, err, sizeof err);
   CHECK(rc == 0 && !g.bad, "10,000 ranks: %s", err);
   CHECK(g.token == N, "10,000 ranks: token %lld", g.token);
   double want = N * (g.work * cfg.c + cfg.m + 8 * cfg.per_byte);
@@ -669,17 +612,15 @@ static void test_many_ranks(void) {
   sim_free(s);
 
   /* Many ranks on few processors, with small stacks. */
-  cfg = config(SIM_NET_LOGGP, 7);
+  cfg = simrun_config(SIM_NET_LOGGP, 7);
   cfg.stack = 32 * 1024;
-  g = (ring){2, 1, 8, 0, 0};
-  s = run(&cfg, 3000, ring_main, &g, &rc, err, sizeof err);
+  g = (simrun_ring){2, 1, 8, 0, 0};
+  s = simrun(&cfg, 3000, simrun_ring_main, &g, &rc, err, sizeof err);
   CHECK(rc == 0 && !g.bad && g.token == 6000, "3,000 ranks on 7 processors: %s", err);
   sim_free(s);
 }
 
 /* ==== random matching programs (tests/randprog.c) ======================== */
-
-static double fraction(rng *r) { return rng_int(r, 0, 8) * 0.125; }
 
 static void test_random(void) {
   char err[512];
@@ -687,18 +628,17 @@ static void test_random(void) {
   for (uint64_t seed = 1; seed <= 240; seed++) {
     rng r;
     rng_seed(&r, seed);
-    int nranks = rng_int(&r, 2, RANDPROG_RANKS);
     static randprog p;
-    randprog_make(&p, seed, nranks);
-    sim_config cfg = config(nets[seed % 3], rng_int(&r, 1, nranks));
+    int nranks = randprog_draw(&p, seed, &r);
+    sim_config cfg = simrun_config(nets[seed % 3], rng_int(&r, 1, nranks));
     int place[RANDPROG_RANKS];
     for (int k = 0; k < nranks; k++) place[k] = rng_int(&r, 0, cfg.procs - 1);
     cfg.place = place;
-    cfg.c = fraction(&r), cfg.m = fraction(&r), cfg.per_byte = fraction(&r) / 64;
-    cfg.local = fraction(&r) / 4, cfg.L = fraction(&r), cfg.o = fraction(&r) / 2;
-    cfg.g = fraction(&r), cfg.G = fraction(&r) / 64;
+    cfg.c = randprog_cost(&r), cfg.m = randprog_cost(&r), cfg.per_byte = randprog_cost(&r) / 64;
+    cfg.local = randprog_cost(&r) / 4, cfg.L = randprog_cost(&r), cfg.o = randprog_cost(&r) / 2;
+    cfg.g = randprog_cost(&r), cfg.G = randprog_cost(&r) / 64;
     int rc;
-    sim *s = run(&cfg, nranks, randprog_main, &p, &rc, err, sizeof err);
+    sim *s = simrun(&cfg, nranks, randprog_main, &p, &rc, err, sizeof err);
     runs++;
     const char *why;
     int failures = randprog_failures(&p, &why);
@@ -727,159 +667,24 @@ static void test_random(void) {
   CHECK(failed_runs == 0, "%d of %d random programs failed", failed_runs, runs);
 }
 
-/* ==== errors and warnings ================================================= */
-
-typedef struct {
-  int rc[8];
-  unsigned char buf[16];
-  mp_status st;
-} errs;
-
-static void badrank_main(mp *self, void *ud) {
-  errs *e = ud;
-  if (mp_rank(self) != 0) return;
-  e->rc[0] = mp_send(self, 5, 0, "x", 1);
-  e->rc[1] = mp_send(self, -1, 0, "x", 1);
-  e->rc[2] = mp_send(self, 1, -2, "x", 1);
-  e->rc[3] = mp_recv(self, 7, 0, NULL, 0, NULL);
-  e->rc[4] = mp_probe(self, 0, -5, NULL);
-  e->rc[5] = mp_compute(self, 1); /* still fine afterwards */
-}
-
-static void negcompute_main(mp *self, void *ud) {
-  errs *e = ud;
-  e->rc[mp_rank(self)] = mp_compute(self, mp_rank(self) == 0 ? -1 : NAN);
-  e->rc[2 + mp_rank(self)] = mp_compute(self, 2);
-}
-
-static void unread_main(mp *self, void *ud) {
-  (void)ud;
-  int me = mp_rank(self);
-  if (me == 1) {
-    mp_send(self, 3, 4, "a", 1);
-    mp_send(self, 3, 4, "b", 1);
-    mp_send(self, 2, 1, "c", 1);
-  }
-  char c;
-  if (me == 2) mp_recv(self, 1, 1, &c, 1, NULL);
-}
-
-static void trunc_main(mp *self, void *ud) {
-  errs *e = ud;
-  if (mp_rank(self) == 0) {
-    unsigned char big[100];
-    for (int i = 0; i < 100; i++) big[i] = (unsigned char)i;
-    mp_send(self, 1, 9, big, sizeof big);
-  } else {
-    memset(e->buf, 0xee, sizeof e->buf);
-    e->rc[0] = mp_recv(self, 0, 9, e->buf, 10, &e->st);
-  }
-}
-
-static void spin_main(mp *self, void *ud) {
-  errs *e = ud;
-  if (mp_rank(self) == 1) {
-    mp_recv(self, 0, 0, NULL, 0, NULL);
-    return;
-  }
-  int rc;
-  while ((rc = mp_probe(self, 1, 0, NULL)) == 0) {
-  }
-  e->rc[0] = rc;
-}
-
-static void test_errors(void) {
-  char err[512];
-  int rc;
-  sim_config cfg = config(SIM_NET_BUS, 2);
-
-  errs e;
-  memset(&e, 0, sizeof e);
-  sim *s = run(&cfg, 2, badrank_main, &e, &rc, err, sizeof err);
-  CHECK(e.rc[0] == MP_ERANK && e.rc[1] == MP_ERANK, "send to a bad rank: %d %d", e.rc[0], e.rc[1]);
-  CHECK(e.rc[2] == MP_EARG, "send with tag -2: %d", e.rc[2]);
-  CHECK(e.rc[3] == MP_ERANK && e.rc[4] == MP_EARG, "recv/probe bad args: %d %d", e.rc[3], e.rc[4]);
-  CHECK(e.rc[5] == MP_OK, "compute after the errors: %d", e.rc[5]);
-  CHECK(rc == -1 && strstr(err, "rank 0: mp_send to rank 5, which does not exist (2 ranks)") &&
-            strstr(err, "(5 errors in all)"),
-        "bad rank: %s", err);
-  CHECK(sim_stats_get(s)->errors == 5, "%lld errors counted", sim_stats_get(s)->errors);
-  sim_free(s);
-
-  memset(&e, 0, sizeof e);
-  s = run(&cfg, 2, negcompute_main, &e, &rc, err, sizeof err);
-  CHECK(e.rc[0] == MP_EARG && e.rc[1] == MP_EARG, "negative/NaN compute: %d %d", e.rc[0], e.rc[1]);
-  CHECK(e.rc[2] == MP_OK && e.rc[3] == MP_OK, "compute afterwards: %d %d", e.rc[2], e.rc[3]);
-  CHECK(rc == -1 && strstr(err, "rank 0: mp_compute(-1)"), "negative compute: %s", err);
-  CHECK(sim_rank(s, 0)->finish == 2 * cfg.c, "the bad compute was charged: %.17g",
-        sim_rank(s, 0)->finish);
-  sim_free(s);
-
-  /* Unread messages: a warning on cfg.warn, counted, and the run succeeds. */
-  char *wtext;
-  size_t wlen;
-  FILE *w = open_memstream(&wtext, &wlen);
-  cfg = config(SIM_NET_BUS, 4);
-  cfg.warn = w;
-  s = run(&cfg, 4, unread_main, NULL, &rc, err, sizeof err);
-  fclose(w);
-  CHECK(rc == 0, "unread messages are not an error: %s", err);
-  CHECK(strcmp(wtext, "sim: warning: rank 3 finished with 2 unread messages (first from rank 1, "
-                      "tag 4)\n") == 0,
-        "unread warning: '%s'", wtext);
-  CHECK(sim_stats_get(s)->warnings == 1 && sim_stats_get(s)->unread == 2 &&
-            sim_rank(s, 3)->unread == 2,
-        "unread counts: %lld warnings, %lld unread", sim_stats_get(s)->warnings,
-        sim_stats_get(s)->unread);
-  free(wtext);
-  sim_free(s);
-
-  /* The same, quiet: counted, not printed. */
-  cfg.warn = NULL;
-  s = run(&cfg, 4, unread_main, NULL, &rc, err, sizeof err);
-  CHECK(rc == 0 && sim_stats_get(s)->warnings == 1, "quiet unread warning not counted");
-  sim_free(s);
-
-  /* Truncation: MP_ETRUNC, the first cap bytes, the full length, a warning. */
-  cfg = config(SIM_NET_IDEAL, 2);
-  memset(&e, 0, sizeof e);
-  s = run(&cfg, 2, trunc_main, &e, &rc, err, sizeof err);
-  CHECK(e.rc[0] == MP_ETRUNC, "truncating recv returned %d", e.rc[0]);
-  CHECK(e.st.len == 100 && e.st.source == 0 && e.st.tag == 9, "truncated status: %zu %d %d",
-        e.st.len, e.st.source, e.st.tag);
-  CHECK(e.buf[0] == 0 && e.buf[9] == 9 && e.buf[10] == 0xee, "truncated copy: %d %d %d", e.buf[0],
-        e.buf[9], e.buf[10]);
-  CHECK(rc == 0 && sim_stats_get(s)->warnings == 1 && sim_stats_get(s)->unread == 0,
-        "truncation: rc %d, %lld warnings", rc, sim_stats_get(s)->warnings);
-  sim_free(s);
-
-  /* Polling probe without ever moving the clock: stopped, not hung. */
-  cfg = config(SIM_NET_BUS, 2);
-  memset(&e, 0, sizeof e);
-  s = run(&cfg, 2, spin_main, &e, &rc, err, sizeof err);
-  CHECK(e.rc[0] == MP_ESTOPPED && rc == -1 && strstr(err, "without its clock moving"),
-        "probe spin: %d, %s", e.rc[0], err);
-  sim_free(s);
-}
-
 static void test_config(void) {
   char err[512];
-  sim_config cfg = config(SIM_NET_BUS, 2);
+  sim_config cfg = simrun_config(SIM_NET_BUS, 2);
   sim *s;
   cfg.procs = 0;
   CHECK(!(s = sim_new(&cfg, 2, err, sizeof err)) && strstr(err, "0 processors"), "procs 0: %s",
         err);
   sim_free(s);
-  cfg = config(SIM_NET_BUS, 2);
+  cfg = simrun_config(SIM_NET_BUS, 2);
   cfg.m = -1;
   CHECK(!(s = sim_new(&cfg, 2, err, sizeof err)) && strstr(err, "cost m = -1"), "m < 0: %s", err);
   sim_free(s);
-  cfg = config(SIM_NET_BUS, 2);
+  cfg = simrun_config(SIM_NET_BUS, 2);
   int place[2] = {0, 2};
   cfg.place = place;
   CHECK(!(s = sim_new(&cfg, 2, err, sizeof err)) && strstr(err, "place[1] = 2"), "place: %s", err);
   sim_free(s);
-  cfg = config(SIM_NET_BUS, 2);
+  cfg = simrun_config(SIM_NET_BUS, 2);
   CHECK(!(s = sim_new(&cfg, 0, err, sizeof err)), "0 ranks accepted");
   sim_free(s);
 
@@ -894,9 +699,9 @@ static void test_config(void) {
   CHECK(sim_profile("nope", &cfg) == -1, "unknown profile accepted");
 
   /* Once per sim. */
-  cfg = config(SIM_NET_BUS, 1);
+  cfg = simrun_config(SIM_NET_BUS, 1);
   int rc;
-  s = run(&cfg, 1, colocated_main, &(fanin){.work = 1}, &rc, err, sizeof err);
+  s = simrun(&cfg, 1, colocated_main, &(fanin){.work = 1}, &rc, err, sizeof err);
   mp_proc pr = {colocated_main, NULL};
   CHECK(rc == 0 && sim_run(s, &pr, err, sizeof err) == -1 && strstr(err, "run already"),
         "second run: %s", err);
@@ -917,7 +722,6 @@ int main(void) {
   test_abandon();
   test_many_ranks();
   test_random();
-  test_errors();
   test_config();
   return check_done("test_sim");
 }

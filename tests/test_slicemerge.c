@@ -23,6 +23,7 @@
 #include "tests/check.h"
 #include "input/contour.h"
 #include "tests/meshcheck.h"
+#include "tests/reference.h"
 #include "util/rng.h"
 #include "tests/rtwriter.h"
 #include "surface/stack.h"
@@ -104,17 +105,15 @@ static int lines(const char *s) {
 
 /* A closed, outward 2-manifold by the independent checker. */
 static int closed(const result *r, char *why, size_t cap) {
-  double *v = xmallocarray(3 * (size_t)r->nv + 1, sizeof *v);
-  for (int i = 0; i < r->nv; i++) v[3 * i] = r->v[i].x, v[3 * i + 1] = r->v[i].y, v[3 * i + 2] = r->v[i].z;
+  mesh me = {.nv = r->nv, .nt = r->nt, .v = r->v, .t = r->t};
   mc_mesh m;
-  mc_make(&m, v, r->nv, &r->t[0][0], r->nt);
+  ref_mc_mesh(&m, &me);
   mc_report rep;
   mc_check(&m, &rep);
   int ok = rep.manifold && rep.outward;
   snprintf(why, cap, "%s", rep.first);
   mc_report_free(&rep);
   mc_free(&m);
-  free(v);
   return ok;
 }
 
@@ -179,28 +178,6 @@ static void copies(void) {
 
 /* ---------------------------------------------------------------- union */
 
-/* Union area of axis-parallel rectangles: coordinate compression. */
-static double rects_area(const double (*r)[4], int n) {
-  double xs[32], ys[32];
-  int m = 0;
-  for (int i = 0; i < n; i++) xs[m] = r[i][0], ys[m++] = r[i][1], xs[m] = r[i][2], ys[m++] = r[i][3];
-  for (int i = 1; i < m; i++)
-    for (int j = i; j > 0 && xs[j - 1] > xs[j]; j--) { double t = xs[j]; xs[j] = xs[j - 1], xs[j - 1] = t; }
-  for (int i = 1; i < m; i++)
-    for (int j = i; j > 0 && ys[j - 1] > ys[j]; j--) { double t = ys[j]; ys[j] = ys[j - 1], ys[j - 1] = t; }
-  double a = 0;
-  for (int i = 0; i + 1 < m; i++)
-    for (int j = 0; j + 1 < m; j++) {
-      double cx = (xs[i] + xs[i + 1]) / 2, cy = (ys[j] + ys[j + 1]) / 2;
-      for (int k = 0; k < n; k++)
-        if (r[k][0] < cx && cx < r[k][2] && r[k][1] < cy && cy < r[k][3]) {
-          a += (xs[i + 1] - xs[i]) * (ys[j + 1] - ys[j]);
-          break;
-        }
-    }
-  return a;
-}
-
 static double area(const vec2 *p, int n) {
   double a = 0;
   for (int i = 0; i < n; i++) a += (p[i].x - p[0].x) * (p[(i + 1) % n].y - p[0].y) - (p[(i + 1) % n].x - p[0].x) * (p[i].y - p[0].y);
@@ -260,7 +237,7 @@ static void rectangles(void) {
   if (r.rc == 0) {
     int bad = 0;
     for (int k = 0; k < 6; k++) {
-      double want = rects_area((const double (*)[4])rr[k], 4) + (rr[k][4][2] - rr[k][4][0]) * (rr[k][4][3] - rr[k][4][1]);
+      double want = ref_rects_area((const double (*)[4])rr[k], 4) + (rr[k][4][2] - rr[k][4][0]) * (rr[k][4][3] - rr[k][4][1]);
       double got = slice_area(&r.s, k);
       if (k == 1) want += 4;   /* the island */
       if (fabs(got - want) > 1e-12 * want) {
@@ -400,10 +377,7 @@ static int write_file(const char *dir, const char *name, rtw_roi *roi, int nroi)
   rtw_opts o = {0, 0, 0, 0, NULL, NULL, 0};
   size_t len;
   unsigned char *b = rtw_write(&o, roi, nroi, &len);
-  char path[512];
-  snprintf(path, sizeof path, "%s/%s", dir, name);
-  FILE *f = fopen(path, "wb");
-  int bad = !f || fwrite(b, 1, len, f) != len || fclose(f) != 0;
+  int bad = rtw_save(dir, name, b, len);
   free(b);
   return bad;
 }

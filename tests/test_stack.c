@@ -28,6 +28,7 @@
 #include "surface/inside.h"
 #include "surface/mesh.h"
 #include "tests/meshcheck.h"
+#include "tests/reference.h"
 #include "surface/overlap.h"
 #include "surface/pool.h"
 #include "util/rng.h"
@@ -42,33 +43,7 @@
 /* ------------------------------------------------------------- overlap -- */
 
 static int ov(const vec2 *p, int np, const vec2 *q, int nq) {
-  inside_index *a = inside_new(p, np), *b = inside_new(q, nq);
-  int r = overlap_regions(a, b), r2 = overlap_regions(b, a);
-  CHECK(r == r2, "overlap is not symmetric (%d, %d)", r, r2);
-  inside_free(a);
-  inside_free(b);
-  return r;
-}
-
-/* Convex polygons with integer points: the interiors are disjoint exactly
- * when an edge's line of one has the other on its outer side, closed (the
- * separating axis theorem), in exact integer arithmetic. */
-static int sat_disjoint(const vec2 *p, int np, const vec2 *q, int nq) {
-  for (int pass = 0; pass < 2; pass++) {
-    const vec2 *a = pass ? q : p, *b = pass ? p : q;
-    int na = pass ? nq : np, nb = pass ? np : nq;
-    double s = geom_area2(a, na) > 0 ? 1 : -1;
-    for (int i = 0; i < na; i++) {
-      vec2 u = a[i], v = a[(i + 1) % na];
-      int all_out = 1;
-      for (int j = 0; j < nb && all_out; j++) {
-        double c = s * ((v.x - u.x) * (b[j].y - u.y) - (v.y - u.y) * (b[j].x - u.x));
-        if (c > 0) all_out = 0;
-      }
-      if (all_out) return 1;
-    }
-  }
-  return 0;
+  return ref_symmetric(overlap_regions, "overlap", p, np, q, nq);
 }
 
 /* A random convex polygon with integer points: the hull of a few points. */
@@ -123,7 +98,7 @@ static void test_overlap(rng *g) {
     vec2 p[12], q[12];
     int np = rand_convex(g, p, 0, 0), nq = rand_convex(g, q, rng_int(g, -8, 8), rng_int(g, -8, 8));
     if (np < 3 || nq < 3) continue;
-    if (ov(p, np, q, nq) != !sat_disjoint(p, np, q, nq)) bad++;
+    if (ov(p, np, q, nq) != !ref_convex_apart(p, np, q, nq, 0)) bad++;
   }
   CHECK(bad == 0, "%d of 3000 random convex pairs disagree with the separating axis test", bad);
 }
@@ -200,40 +175,13 @@ static double section_volume(const mesh *me) {
 static void check_surface(const char *what, const stack_surface *ss, const sg_poly *ps, int np, int comps,
                           const int *chi) {
   const mesh *me = stack_mesh(ss);
-  double *v = xmallocarray(3 * (size_t)me->nv + 1, sizeof *v);
-  for (int i = 0; i < me->nv; i++) v[3 * i] = me->v[i].x, v[3 * i + 1] = me->v[i].y, v[3 * i + 2] = me->v[i].z;
-  mc_mesh m;
-  mc_make(&m, v, me->nv, &me->t[0][0], me->nt);
-  mc_report r;
-  mc_check(&m, &r);
-  CHECK(r.manifold && r.outward, "%s: not a closed outward manifold: %s", what, r.first);
-  CHECK(comps < 0 || r.ncomp == comps, "%s: %d components, want %d", what, r.ncomp, comps);
-  for (int c = 0; c < r.ncomp && c < comps && chi; c++)
-    CHECK(r.chi[c] == chi[c], "%s: component %d: Euler characteristic %d, want %d", what, c, r.chi[c], chi[c]);
-  mc_poly *cp = xmallocarray((size_t)np, sizeof *cp);
-  double **xs = xmallocarray((size_t)np, sizeof *xs), **ys = xmallocarray((size_t)np, sizeof *ys);
-  for (int i = 0; i < np; i++) {
-    xs[i] = xmallocarray((size_t)ps[i].n, sizeof **xs), ys[i] = xmallocarray((size_t)ps[i].n, sizeof **ys);
-    for (int k = 0; k < ps[i].n; k++) xs[i][k] = ps[i].p[k].x, ys[i][k] = ps[i].p[k].y;
-    cp[i] = (mc_poly){ps[i].n, ps[i].z, xs[i], ys[i]};
-  }
-  mc_fidelity fd;
-  mc_check_input(&m, cp, np, &fd);
-  CHECK(fd.missing == 0 && fd.absent == 0 && fd.strays == 0 && fd.crossing == 0,
-        "%s: %d segments missing, %d points absent, %d strays, %d crossing", what, fd.missing, fd.absent,
-        fd.strays, fd.crossing);
+  double cv = ref_judge_mesh(what, me, ps, np, comps, chi);
   double rows = 0;
   for (int i = 0; i < stack_nrows(ss); i++) rows += stack_rows(ss)[i].volume;
   double vol = mesh_volume(me), sv = section_volume(me);
   CHECK(fabs(rows - vol) <= 1e-9 * fabs(vol), "%s: rows' volumes sum to %.17g, the mesh's %.17g", what, rows, vol);
   CHECK(fabs(sv - vol) <= 1e-9 * fabs(vol), "%s: sections integrate to %.17g, the mesh's volume %.17g", what, sv, vol);
-  CHECK(fabs(r.volume - vol) <= 1e-9 * fabs(vol), "%s: the checker's volume %.17g, the mesh's %.17g", what, r.volume, vol);
-  for (int i = 0; i < np; i++) free(xs[i]), free(ys[i]);
-  free(xs), free(ys), free(cp);
-  mc_fidelity_free(&fd);
-  mc_report_free(&r);
-  mc_free(&m);
-  free(v);
+  CHECK(fabs(cv - vol) <= 1e-9 * fabs(vol), "%s: the checker's volume %.17g, the mesh's %.17g", what, cv, vol);
 }
 
 static int same_mesh(const mesh *a, const mesh *b) {

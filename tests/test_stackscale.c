@@ -36,6 +36,7 @@
 #include "tests/check.h"
 #include "input/contour.h"
 #include "tests/meshcheck.h"
+#include "tests/reference.h"
 #include "util/rng.h"
 #include "tests/parmachine.h"
 #include "tests/solids.h"
@@ -57,19 +58,9 @@ static stack_band band_mode = STACK_BAND_ALIGNED;
 
 static stack_surface *tile(const contour_stack *s, how h, char *notes, size_t nlen, char *err, size_t errlen,
                            int *res) {
-  char *buf = NULL;
-  size_t len = 0;
-  FILE *f = notes ? open_memstream(&buf, &len) : NULL;
   stack_tiler tl = h.rc ? par_machine_tiler(h.rc) : (stack_tiler){NULL, NULL};
-  stack_options o = {h.kind, h.caps, h.apex, 2, h.rc ? &tl : NULL, f, "test", NULL, NULL, MATCH_SINGLE, INFINITY, 0, band_mode};
-  stack_surface *ss = NULL;
-  *res = stack_tile(s, "t.contours", &o, &ss, err, errlen);
-  if (f) {
-    fclose(f);
-    snprintf(notes, nlen, "%s", buf ? buf : "");
-    free(buf);
-  }
-  return ss;
+  stack_options o = {h.kind, h.caps, h.apex, 2, h.rc ? &tl : NULL, NULL, "test", NULL, NULL, MATCH_SINGLE, INFINITY, 0, band_mode};
+  return sg_tile(s, o, notes, nlen, err, errlen, res);
 }
 
 /* The stack s times f (= 2^k when pow2), through the writer and the reader.
@@ -207,10 +198,8 @@ static int compare(const char *what, const stack_surface *u, const stack_surface
 static void judge(const char *what, const stack_surface *s, const contour_stack *st, int closed, double *vol,
                   int *ncomp, int *chi) {
   const mesh *me = stack_mesh(s);
-  double *v = xmallocarray(3 * (size_t)me->nv + 1, sizeof *v);
-  for (int i = 0; i < me->nv; i++) v[3 * i] = me->v[i].x, v[3 * i + 1] = me->v[i].y, v[3 * i + 2] = me->v[i].z;
   mc_mesh m;
-  mc_make(&m, v, me->nv, &me->t[0][0], me->nt);
+  ref_mc_mesh(&m, me);
   mc_report r;
   mc_check(&m, &r);
   CHECK(!closed || (r.manifold && r.outward), "%s: the checker: not a closed outward manifold: %s", what, r.first);
@@ -233,7 +222,6 @@ static void judge(const char *what, const stack_surface *s, const contour_stack 
   mc_fidelity_free(&fd);
   mc_report_free(&r);
   mc_free(&m);
-  free(v);
 }
 
 /* Every vertex of s is exactly 2^k times u's (so the checker sees the same

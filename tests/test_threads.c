@@ -440,9 +440,8 @@ static void test_random(void) {
   for (uint64_t seed = 1; seed <= 60; seed++) {
     rng r;
     rng_seed(&r, seed);
-    int n = rng_int(&r, 2, RANDPROG_RANKS);
     static randprog p;
-    randprog_make(&p, seed, n);
+    int n = randprog_draw(&p, seed, &r);
     int rc;
     mpt *t = run(n, seed % 3 == 0 ? 0 : 50000, randprog_main, &p, &rc, err, sizeof err);
     const mpt_stats *st = mpt_stats_get(t);

@@ -16,14 +16,14 @@
  *   conservation: bytes over links = hop-bytes, hops = the sum of distances;
  *   the bus topology = the bus model, full with no network cost = ideal,
  *     bit for bit, on random programs;
- *   placement maps, and the parallel algorithm's result unchanged by any
- *     topology or placement. */
+ *   the parallel algorithm's result unchanged by any topology or placement.
+ * The machines and their closed forms are topomachine.h's; the placement
+ * maps are test_place.c's. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "tests/check.h"
 #include "input/gen.h"
@@ -38,124 +38,7 @@
 #include "sim/topo.h"
 #include "util/xmem.h"
 
-static const double M = 0.25, R = 0.125, BETA = 1.0 / 64, C = 0.125;
-
-/* ==== the machines, and their closed forms ================================ */
-
-typedef struct {
-  topo_kind kind;
-  int a, b;    /* the spec's size (0: sized to procs) */
-  int procs;   /* the run it is sized for */
-} machine;
-
-static const machine machines[] = {
-    {TOPO_BUS, 0, 0, 5},       {TOPO_FULL, 0, 0, 5},      {TOPO_LINE, 0, 0, 7},
-    {TOPO_RING, 0, 0, 7},      {TOPO_RING, 0, 0, 8},      {TOPO_MESH, 4, 3, 12},
-    {TOPO_TORUS, 4, 3, 12},    {TOPO_TORUS, 5, 4, 20},    {TOPO_HYPERCUBE, 3, 0, 8},
-    {TOPO_BUTTERFLY, 2, 0, 8}, {TOPO_BUTTERFLY, 3, 0, 9}, {TOPO_MESH, 0, 0, 7},
-    {TOPO_LINE, 9, 0, 4},      {TOPO_HYPERCUBE, 0, 0, 5}, {TOPO_TORUS, 2, 2, 4},
-    {TOPO_BUTTERFLY, 4, 0, 13},
-};
-enum { NMACHINES = sizeof machines / sizeof *machines };
-
-/* The documented sizes (topo.h), worked out here. */
-typedef struct {
-  int N, w, h, d, k, n;
-} dims;
-
-static dims dims_of(const machine *mc) {
-  dims x = {0, 0, 1, 0, 0, 0};
-  int P = mc->procs;
-  switch (mc->kind) {
-  case TOPO_MESH:
-  case TOPO_TORUS:
-    if (mc->a) {
-      x.w = mc->a, x.h = mc->b;
-    } else {
-      x.w = (int)ceil(sqrt((double)P));
-      x.h = (P + x.w - 1) / x.w;
-    }
-    x.N = x.w * x.h;
-    break;
-  case TOPO_HYPERCUBE:
-    x.d = mc->a ? mc->a : (int)ceil(log2((double)P));
-    x.N = 1 << x.d;
-    break;
-  case TOPO_BUTTERFLY:
-    x.k = mc->a ? mc->a : 2;
-    for (x.N = 1; x.N < P; x.N *= x.k) x.n++;
-    break;
-  default:
-    x.N = x.w = mc->a ? mc->a : P;
-  }
-  return x;
-}
-
-static int dist1(int n, int a, int b, int wrap) {
-  int d = abs(a - b);
-  return wrap && n - d < d ? n - d : d;
-}
-
-static int popcount(unsigned v) {
-  int c = 0;
-  for (; v; v &= v - 1) c++;
-  return c;
-}
-
-/* h(s, d): the table of topo.h. */
-static int hops(const machine *mc, const dims *x, int s, int d) {
-  if (s == d) return 0;
-  switch (mc->kind) {
-  case TOPO_BUS: return 1;
-  case TOPO_FULL: return 2;
-  case TOPO_LINE: return abs(s - d);
-  case TOPO_RING: return dist1(x->N, s, d, 1);
-  case TOPO_MESH:
-  case TOPO_TORUS: {
-    int wrap = mc->kind == TOPO_TORUS;
-    return dist1(x->w, s % x->w, d % x->w, wrap) + dist1(x->h, s / x->w, d / x->w, wrap);
-  }
-  case TOPO_HYPERCUBE: return popcount((unsigned)(s ^ d));
-  case TOPO_BUTTERFLY: return x->n + 1;
-  default: return -1;
-  }
-}
-
-static sim_config netcfg(const machine *mc, int saf) {
-  sim_config cfg;
-  sim_config_init(&cfg);
-  cfg.procs = mc->procs;
-  cfg.topo = (topo_spec){mc->kind, mc->a, mc->b};
-  cfg.m = M;
-  cfg.hop_latency = R;
-  cfg.per_byte = BETA;
-  cfg.c = C;
-  cfg.local = 0;
-  cfg.store_forward = saf;
-  cfg.stack = 64 * 1024;
-  cfg.warn = NULL;
-  return cfg;
-}
-
-/* One message on an idle machine, over h links. */
-static double alone(const machine *mc, int saf, int h, size_t len) {
-  double lb = (double)len * BETA;
-  if (mc->kind == TOPO_BUS) return M + R + lb;
-  return saf ? M + h * (R + lb) : M + h * R + lb;
-}
-
-static sim *run(const sim_config *cfg, int n, mp_main fn, void *ud, int *rc, char *err,
-                size_t errlen) {
-  sim *s = sim_new(cfg, n, err, errlen);
-  CHECK(s != NULL, "sim_new: %s", err);
-  if (!s) abort();
-  mp_proc *pr = xmallocarray((size_t)n, sizeof *pr);
-  for (int i = 0; i < n; i++) pr[i] = (mp_proc){fn, ud};
-  err[0] = 0;
-  *rc = sim_run(s, pr, err, errlen);
-  free(pr);
-  return s;
-}
+#include "tests/topomachine.h"
 
 /* ==== routes ============================================================== */
 
@@ -164,9 +47,8 @@ static void test_routes(void) {
   int bad = 0;
   for (int i = 0; i < NMACHINES; i++) {
     const machine *mc = &machines[i];
-    dims x = dims_of(mc);
-    topo_spec sp = {mc->kind, mc->a, mc->b};
-    topo *t = topo_new(&sp, mc->procs, err, sizeof err);
+    dims x = tm_dims(mc);
+    topo *t = tm_topo(mc, err, sizeof err);
     CHECK(t != NULL, "machine %d: %s", i, err);
     if (!t) continue;
     CHECK(topo_nodes(t) == x.N, "machine %d: %d processors, expected %d", i, topo_nodes(t), x.N);
@@ -174,7 +56,7 @@ static void test_routes(void) {
     for (int s = 0; s < x.N; s++)
       for (int d = 0; d < x.N; d++) {
         if (s == d) continue;
-        int h = topo_route(t, s, d, route), want = hops(mc, &x, s, d);
+        int h = topo_route(t, s, d, route), want = tm_hops(mc, &x, s, d);
         if (h > maxh) maxh = h;
         if (h != want) {
           if (bad++ < 5) CHECK(0, "machine %d: %d -> %d: %d links, expected %d", i, s, d, h, want);
@@ -202,7 +84,7 @@ static void test_routes(void) {
             else ok &= sscanf(name, "L%d w%d", &lv, &w) == 2 && lv == j && w == wire;
           } else {
             /* A processor-to-processor link: it starts where the last ended. */
-            ok &= sscanf(name, "%d>%d", &a, &b) == 2 && a == at && hops(mc, &x, a, b) == 1;
+            ok &= sscanf(name, "%d>%d", &a, &b) == 2 && a == at && tm_hops(mc, &x, a, b) == 1;
             at = b;
           }
         }
@@ -296,18 +178,18 @@ static void test_one_message(void) {
   int bad = 0, runs = 0;
   for (int i = 0; i < NMACHINES; i++) {
     const machine *mc = &machines[i];
-    dims x = dims_of(mc);
+    dims x = tm_dims(mc);
     for (int saf = 0; saf <= 1; saf++)
       for (int s = 0; s < x.N; s++)
         for (int d = 0; d < x.N; d++) {
           if (s == d || (x.N > 12 && (s + 3 * d) % 5 != 0)) continue;   /* a sample of the big ones */
-          sim_config cfg = netcfg(mc, saf);
+          sim_config cfg = tm_netcfg(mc, saf);
           int place[2] = {s, d}, rc;
           cfg.place = place;
           single one = {24, -1, 0};
-          sim *sm = run(&cfg, 2, single_main, &one, &rc, err, sizeof err);
-          int h = hops(mc, &x, s, d);
-          double want = alone(mc, saf, h, one.len);
+          sim *sm = simrun(&cfg, 2, single_main, &one, &rc, err, sizeof err);
+          int h = tm_hops(mc, &x, s, d);
+          double want = tm_alone(mc, saf, h, one.len);
           net_stats ns;
           links_total(sim_links(sm), &ns);
           runs++;
@@ -324,28 +206,6 @@ static void test_one_message(void) {
 }
 
 /* ==== token rings, per lap ================================================ */
-
-typedef struct {
-  int laps;
-  double work;
-  size_t len;
-  long long token;
-  int bad;
-} ring;
-
-static void ring_main(mp *self, void *ud) {
-  ring *g = ud;
-  int me = mp_rank(self), p = mp_size(self);
-  long long tok = 0;
-  for (int k = 0; k < g->laps; k++) {
-    if (me != 0) g->bad |= mp_recv(self, (me + p - 1) % p, 0, &tok, sizeof tok, NULL) != MP_OK;
-    tok++;
-    g->bad |= mp_compute(self, g->work) != MP_OK;
-    g->bad |= mp_send(self, (me + 1) % p, 0, &tok, g->len) != MP_OK;
-    if (me == 0) g->bad |= mp_recv(self, p - 1, 0, &tok, sizeof tok, NULL) != MP_OK;
-  }
-  if (me == 0) g->token = tok;
-}
 
 static void test_rings(void) {
   char err[256];
@@ -366,17 +226,16 @@ static void test_rings(void) {
   };
   for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
     const machine *mc = &cases[i].mc;
-    sim_config cfg = netcfg(mc, cases[i].saf);
+    sim_config cfg = tm_netcfg(mc, cases[i].saf);
     int P = mc->procs, place[16], rc;
     place_spec ps;
     CHECK(place_parse(cases[i].place, &ps, err, sizeof err) == 0, "%s", err);
-    topo_spec sp = {mc->kind, mc->a, mc->b};
-    topo *t = topo_new(&sp, P, err, sizeof err);
+    topo *t = tm_topo(mc, err, sizeof err);
     CHECK(place_map(&ps, t, P, place, err, sizeof err) == 0, "%s", err);
     topo_free(t);
     cfg.place = place;
-    ring g = {3, 2, 8, 0, 0};
-    sim *s = run(&cfg, P, ring_main, &g, &rc, err, sizeof err);
+    simrun_ring g = {3, 2, 8, 0, 0};
+    sim *s = simrun(&cfg, P, simrun_ring_main, &g, &rc, err, sizeof err);
     double lb = (double)g.len * BETA;
     double lap = P * (g.work * C + M) +
                  (cases[i].saf ? cases[i].links * (R + lb) : cases[i].links * R + P * lb);
@@ -394,44 +253,6 @@ static void test_rings(void) {
 
 /* ==== permutations sent at t = 0 ========================================== */
 
-enum { PMAX = 64 };
-
-typedef struct {
-  int dst[PMAX];      /* each rank's destination, -1: none */
-  int expect[PMAX];   /* messages each rank receives */
-  double at[PMAX];    /* when the message from rank i was received */
-  size_t len;
-  int bad;
-} perm;
-
-static void perm_main(mp *self, void *ud) {
-  perm *p = ud;
-  int me = mp_rank(self);
-  char buf[64] = {0};
-  if (p->dst[me] >= 0) p->bad |= mp_send(self, p->dst[me], 0, buf, p->len) != MP_OK;
-  for (int k = 0; k < p->expect[me]; k++) {
-    mp_status st;
-    p->bad |= mp_recv(self, MP_ANY, 0, buf, sizeof buf, &st) != MP_OK;
-    p->at[st.source] = mp_time(self);
-  }
-}
-
-/* Run the permutation dst[0..n-1] (identity placement) on mc. */
-static sim *run_perm(const machine *mc, int saf, perm *p, int n, char *err, size_t errlen) {
-  sim_config cfg = netcfg(mc, saf);
-  memset(p->expect, 0, sizeof p->expect);
-  for (int i = 0; i < n; i++) {
-    if (p->dst[i] == i) p->dst[i] = -1;
-    if (p->dst[i] >= 0) p->expect[p->dst[i]]++;
-    p->at[i] = -1;
-  }
-  p->bad = 0;
-  int rc;
-  sim *s = run(&cfg, n, perm_main, p, &rc, err, errlen);
-  CHECK(rc == 0 && !p->bad, "permutation run: %s", err);
-  return s;
-}
-
 static void test_line(void) {
   char err[256];
   perm p;
@@ -442,7 +263,7 @@ static void test_line(void) {
     /* The bisection: i -> i + P/2; every message crosses the middle link. */
     for (int saf = 0; saf <= 1; saf++) {
       for (int i = 0; i < P; i++) p.dst[i] = i < P / 2 ? i + P / 2 : -1;
-      sim *s = run_perm(&mc, saf, &p, P, err, sizeof err);
+      sim *s = tm_run_perm(&mc, saf, &p, P, err, sizeof err);
       for (int k = 0; k < P / 2; k++) {
         double want = saf ? M + (P / 2) * (R + lb) + k * (R + 2 * lb)
                           : M + (k + P / 2) * R + (k + 1) * lb;
@@ -463,7 +284,7 @@ static void test_line(void) {
      * the neighbour shift is contention-free. */
     for (int sh = 1; sh < P; sh++) {
       for (int i = 0; i < P; i++) p.dst[i] = i + sh < P ? i + sh : -1;
-      sim *s = run_perm(&mc, 0, &p, P, err, sizeof err);
+      sim *s = tm_run_perm(&mc, 0, &p, P, err, sizeof err);
       net_stats ns;
       links_total(sim_links(s), &ns);
       int want = sh < P - sh ? sh : P - sh;
@@ -476,7 +297,7 @@ static void test_line(void) {
     }
     /* Reversal i -> P-1-i: floor(P/2) on the busiest link. */
     for (int i = 0; i < P; i++) p.dst[i] = P - 1 - i;
-    sim *s = run_perm(&mc, 0, &p, P, err, sizeof err);
+    sim *s = tm_run_perm(&mc, 0, &p, P, err, sizeof err);
     net_stats ns;
     links_total(sim_links(s), &ns);
     CHECK(ns.max_link_msgs == P / 2, "line:%d reversal: busiest link %lld", P, ns.max_link_msgs);
@@ -515,12 +336,12 @@ static void test_butterfly(void) {
                                   {TOPO_BUTTERFLY, 8, 0, 64}, {TOPO_BUTTERFLY, 4, 0, 64}};
   for (size_t f = 0; f < sizeof flies / sizeof *flies; f++) {
     const machine *mc = &flies[f];
-    dims x = dims_of(mc);
+    dims x = tm_dims(mc);
     int N = x.N, bad = 0;
     /* Every cyclic shift: conflict-free, each message as on an idle machine. */
     for (int c = 1; c < N; c++) {
       for (int i = 0; i < N; i++) p.dst[i] = (i + c) % N;
-      sim *s = run_perm(mc, 0, &p, N, err, sizeof err);
+      sim *s = tm_run_perm(mc, 0, &p, N, err, sizeof err);
       net_stats ns;
       links_total(sim_links(s), &ns);
       bad += ns.max_link_msgs != 1 || ns.link_wait != 0;
@@ -530,7 +351,7 @@ static void test_butterfly(void) {
     CHECK(bad == 0, "butterfly k=%d N=%d: %d conflicts in cyclic shifts", x.k, N, bad);
     /* All to one: N-1 messages down the ejection link; k^l at level l. */
     for (int i = 0; i < N; i++) p.dst[i] = 0;
-    sim *s = run_perm(mc, 0, &p, N, err, sizeof err);
+    sim *s = tm_run_perm(mc, 0, &p, N, err, sizeof err);
     links *n = sim_links(s);
     net_stats ns;
     links_total(n, &ns);
@@ -561,7 +382,7 @@ static void test_butterfly(void) {
       for (int b = 0; b < nn; b++) r |= (i >> b & 1) << (nn - 1 - b);
       p.dst[i] = r;
     }
-    sim *s = run_perm(&mc, 0, &p, N, err, sizeof err);
+    sim *s = tm_run_perm(&mc, 0, &p, N, err, sizeof err);
     links *n = sim_links(s);
     net_stats ns;
     links_total(n, &ns);
@@ -575,165 +396,7 @@ static void test_butterfly(void) {
   }
 }
 
-/* ==== placements ========================================================== */
-
-static void test_place_maps(void) {
-  char err[256];
-  static const char *const names[] = {"linear", "snake", "gray", "random:1", "random:2"};
-  int bad = 0;
-  for (int i = 0; i < NMACHINES; i++) {
-    const machine *mc = &machines[i];
-    dims x = dims_of(mc);
-    topo_spec sp = {mc->kind, mc->a, mc->b};
-    topo *t = topo_new(&sp, mc->procs, err, sizeof err);
-    for (size_t j = 0; j < sizeof names / sizeof *names; j++) {
-      place_spec ps;
-      place_parse(names[j], &ps, err, sizeof err);
-      int map[64], again[64];
-      for (int n = 1; n <= x.N; n++) {
-        if (place_map(&ps, t, n, map, err, sizeof err) != 0) {
-          bad++;
-          continue;
-        }
-        char used[64] = {0};
-        for (int v = 0; v < n; v++) {
-          bad += map[v] < 0 || map[v] >= x.N || used[map[v]];
-          if (map[v] >= 0 && map[v] < x.N) used[map[v]] = 1;
-        }
-        place_map(&ps, t, n, again, err, sizeof err);
-        bad += memcmp(map, again, (size_t)n * sizeof *map) != 0;
-      }
-      CHECK(place_map(&ps, t, x.N + 1, map, err, sizeof err) != 0, "%s on machine %d: N+1 placed",
-            names[j], i);
-    }
-    topo_free(t);
-  }
-  CHECK(bad == 0, "%d placements not a deterministic injection into the machine", bad);
-
-  /* Dilation: the algorithm's line of processors, v -> v+1 (the design
-   * note's sums of links over the P-1 pairs). */
-  static const struct {
-    machine mc;
-    const char *place;
-    int sum;
-  } dil[] = {
-      {{TOPO_LINE, 0, 0, 9}, "linear", 8},
-      {{TOPO_MESH, 5, 3, 15}, "linear", 3 * 4 + 2 * 5},   /* H(W-1) + (H-1)W */
-      {{TOPO_MESH, 5, 3, 15}, "snake", 14},
-      {{TOPO_TORUS, 4, 4, 16}, "snake", 15},
-      {{TOPO_HYPERCUBE, 3, 0, 8}, "linear", 16 - 3 - 2},  /* 2^(d+1) - d - 2 */
-      {{TOPO_HYPERCUBE, 5, 0, 32}, "linear", 64 - 5 - 2},
-      {{TOPO_HYPERCUBE, 5, 0, 32}, "gray", 31},
-      {{TOPO_HYPERCUBE, 4, 0, 11}, "gray", 10},
-  };
-  for (size_t i = 0; i < sizeof dil / sizeof *dil; i++) {
-    const machine *mc = &dil[i].mc;
-    dims x = dims_of(mc);
-    int P = mc->procs, map[64], sum = 0;
-    place_spec ps;
-    place_parse(dil[i].place, &ps, err, sizeof err);
-    topo_spec sp = {mc->kind, mc->a, mc->b};
-    topo *t = topo_new(&sp, P, err, sizeof err);
-    place_map(&ps, t, P, map, err, sizeof err);
-    topo_free(t);
-    for (int v = 0; v + 1 < P; v++) sum += hops(mc, &x, map[v], map[v + 1]);
-    CHECK(sum == dil[i].sum, "dilation case %zu (%s): %d links, expected %d", i, dil[i].place, sum,
-          dil[i].sum);
-    /* The simulator agrees: L-byte messages v -> v+1 make L times that in hop-bytes. */
-    perm p;
-    p.len = 40;
-    for (int v = 0; v < P; v++) p.dst[v] = v + 1 < P ? v + 1 : -1;
-    sim_config cfg = netcfg(mc, 0);
-    cfg.place = map;
-    memset(p.expect, 0, sizeof p.expect);
-    for (int v = 1; v < P; v++) p.expect[v] = 1;
-    p.bad = 0;
-    int rc;
-    sim *s = run(&cfg, P, perm_main, &p, &rc, err, sizeof err);
-    net_stats ns;
-    links_total(sim_links(s), &ns);
-    CHECK(rc == 0 && ns.hop_bytes == 40LL * dil[i].sum, "dilation case %zu: hop-bytes %lld, expected %d",
-          i, ns.hop_bytes, 40 * dil[i].sum);
-    sim_free(s);
-  }
-  /* Gray on a hypercube: consecutive processors are neighbours, ring closed. */
-  place_spec gray;
-  place_parse("gray", &gray, err, sizeof err);
-  topo_spec cube = {TOPO_HYPERCUBE, 6, 0};
-  topo *t = topo_new(&cube, 64, err, sizeof err);
-  int map[64];
-  place_map(&gray, t, 64, map, err, sizeof err);
-  int off = 0;
-  for (int v = 0; v < 64; v++) off += popcount((unsigned)(map[v] ^ map[(v + 1) % 64])) != 1;
-  CHECK(off == 0, "gray on hypercube:6: %d of 64 ring neighbours are not cube neighbours", off);
-  /* Two seeds, two permutations. */
-  place_spec r1, r2;
-  place_parse("random:1", &r1, err, sizeof err);
-  place_parse("random:2", &r2, err, sizeof err);
-  int m1[64], m2[64];
-  place_map(&r1, t, 64, m1, err, sizeof err);
-  place_map(&r2, t, 64, m2, err, sizeof err);
-  CHECK(memcmp(m1, m2, sizeof m1) != 0, "random:1 and random:2 give the same placement");
-  topo_free(t);
-}
-
-static const char *write_tmp(const char *name, const char *text) {
-  static char path[4][256];
-  static int k;
-  char *p = path[k++ % 4];
-  snprintf(p, 256, "%s/test_topo_%d_%s", getenv("TMPDIR") ? getenv("TMPDIR") : "/tmp", (int)getpid(),
-           name);
-  FILE *f = fopen(p, "w");
-  fputs(text, f);
-  fclose(f);
-  return p;
-}
-
-static void test_place_file(void) {
-  char err[512], arg[400];
-  topo_spec sp = {TOPO_MESH, 3, 3};
-  topo *t = topo_new(&sp, 9, err, sizeof err);
-  const char *good = write_tmp("good", "# rank 0 in the middle\n4\n\n0\r\n8\n2\n");
-  snprintf(arg, sizeof arg, "file:%s", good);
-  place_spec ps;
-  CHECK(place_parse(arg, &ps, err, sizeof err) == 0, "good file: %s", err);
-  int map[9];
-  CHECK(place_map(&ps, t, 4, map, err, sizeof err) == 0 && map[0] == 4 && map[1] == 0 &&
-            map[2] == 8 && map[3] == 2,
-        "file placement: %s", err);
-  CHECK(place_map(&ps, t, 5, map, err, sizeof err) != 0 && strstr(err, "4 processors listed"),
-        "a file too short: %s", err);
-  remove(good);
-  static const struct {
-    const char *text, *want;
-  } bad[] = {{"0\n1\nx2\n", ":3: 'x2' is not a processor number"},
-             {"0\n1\n0\n", ":3: processor 0 is placed twice (line 1 too)"},
-             {"0\n-1\n", ":2: '-1' is not"},
-             {"0 \n", ":1: '0 ' is not"},
-             {"# nothing\n\n", "no processors listed"}};
-  for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
-    const char *path = write_tmp("bad", bad[i].text);
-    snprintf(arg, sizeof arg, "file:%s", path);
-    err[0] = 0;
-    CHECK(place_parse(arg, &ps, err, sizeof err) != 0 && strstr(err, path) && strstr(err, bad[i].want),
-          "bad file %zu: '%s'", i, err);
-    remove(path);
-  }
-  const char *far = write_tmp("far", "0\n1\n9\n");
-  snprintf(arg, sizeof arg, "file:%s", far);
-  CHECK(place_parse(arg, &ps, err, sizeof err) == 0, "%s", err);
-  CHECK(place_map(&ps, t, 3, map, err, sizeof err) != 0 && strstr(err, ":3: processor 9: the machine has 9"),
-        "a processor outside the machine: %s", err);
-  remove(far);
-  CHECK(place_parse("file:/nonexistent/place.txt", &ps, err, sizeof err) != 0 &&
-            strstr(err, "/nonexistent/place.txt"),
-        "a missing file: %s", err);
-  topo_free(t);
-}
-
 /* ==== conservation, and the old models bit for bit ======================== */
-
-static double fraction(rng *r) { return rng_int(r, 0, 8) * 0.125; }
 
 static void test_random_programs(void) {
   char err[512];
@@ -741,20 +404,19 @@ static void test_random_programs(void) {
   for (uint64_t seed = 1; seed <= 120; seed++) {
     rng r;
     rng_seed(&r, seed * 7 + 3);
-    int nranks = rng_int(&r, 2, RANDPROG_RANKS);
     static randprog p;
-    randprog_make(&p, seed, nranks);
+    int nranks = randprog_draw(&p, seed, &r);
     machine mc = machines[seed % NMACHINES];
-    dims x = dims_of(&mc);
+    dims x = tm_dims(&mc);
     int saf = rng_int(&r, 0, 1);
-    sim_config cfg = netcfg(&mc, saf);
+    sim_config cfg = tm_netcfg(&mc, saf);
     int place[RANDPROG_RANKS];
     for (int k = 0; k < nranks; k++) place[k] = rng_int(&r, 0, x.N - 1);   /* some share */
     cfg.place = place;
-    cfg.m = fraction(&r), cfg.hop_latency = fraction(&r), cfg.per_byte = fraction(&r) / 64;
-    cfg.c = fraction(&r), cfg.local = fraction(&r) / 4;
+    cfg.m = randprog_cost(&r), cfg.hop_latency = randprog_cost(&r), cfg.per_byte = randprog_cost(&r) / 64;
+    cfg.c = randprog_cost(&r), cfg.local = randprog_cost(&r) / 4;
     int rc;
-    sim *s = run(&cfg, nranks, randprog_main, &p, &rc, err, sizeof err);
+    sim *s = simrun(&cfg, nranks, randprog_main, &p, &rc, err, sizeof err);
     runs++;
     const char *why;
     int failures = randprog_failures(&p, &why);
@@ -767,7 +429,7 @@ static void test_random_programs(void) {
     for (int i = 0; i < p.nmsg; i++) {
       int a = place[p.msgs[i].src], b = place[p.msgs[i].dst];
       if (a == b) continue;
-      int h = hops(&mc, &x, a, b);
+      int h = tm_hops(&mc, &x, a, b);
       want_msgs++;
       want_hops += h;
       want_hb += h * (long long)p.msgs[i].len;
@@ -799,8 +461,8 @@ static int same_run(const sim_config *a, const sim_config *b, uint64_t seed, int
   randprog_make(&p1, seed, nranks);
   randprog_make(&p2, seed, nranks);
   int rc1, rc2;
-  sim *s1 = run(a, nranks, randprog_main, &p1, &rc1, err, sizeof err);
-  sim *s2 = run(b, nranks, randprog_main, &p2, &rc2, err, sizeof err);
+  sim *s1 = simrun(a, nranks, randprog_main, &p1, &rc1, err, sizeof err);
+  sim *s2 = simrun(b, nranks, randprog_main, &p2, &rc2, err, sizeof err);
   int same = rc1 == 0 && rc2 == 0;
   for (int k = 0; same && k < nranks; k++) {
     const sim_rank_stats *x = sim_rank(s1, k), *y = sim_rank(s2, k);
@@ -853,7 +515,7 @@ static void test_full_fanin(void) {
   perm p;
   p.len = 32;
   for (int i = 0; i < 7; i++) p.dst[i] = i ? 0 : -1;
-  sim *s = run_perm(&mc, 0, &p, 7, err, sizeof err);
+  sim *s = tm_run_perm(&mc, 0, &p, 7, err, sizeof err);
   double lb = p.len * BETA;
   for (int i = 1; i < 7; i++)
     CHECK(p.at[i] == M + 2 * R + i * lb, "full fan-in: rank %d arrived %.17g, expected %.17g", i,
@@ -869,12 +531,12 @@ static void test_trace(void) {
   for (int k = 0; k < 2; k++) {
     FILE *fc = open_memstream(&csv[k], &clen), *fj = open_memstream(&json[k], &jlen);
     machine mc = {TOPO_MESH, 3, 2, 6};
-    sim_config cfg = netcfg(&mc, 0);
+    sim_config cfg = tm_netcfg(&mc, 0);
     sim *s = sim_new(&cfg, 6, err, sizeof err);
     sim_trace(s, fc, fj);
-    ring g = {2, 1, 8, 0, 0};
+    simrun_ring g = {2, 1, 8, 0, 0};
     mp_proc pr[6];
-    for (int i = 0; i < 6; i++) pr[i] = (mp_proc){ring_main, &g};
+    for (int i = 0; i < 6; i++) pr[i] = (mp_proc){simrun_ring_main, &g};
     CHECK(sim_run(s, pr, err, sizeof err) == 0, "traced ring: %s", err);
     fclose(fc);
     fclose(fj);
@@ -902,7 +564,7 @@ static void test_trace(void) {
 static void test_sim_errors(void) {
   char err[256];
   machine mc = {TOPO_MESH, 2, 2, 4};
-  sim_config cfg = netcfg(&mc, 0);
+  sim_config cfg = tm_netcfg(&mc, 0);
   int place[2] = {0, 4};
   cfg.place = place;
   CHECK(sim_new(&cfg, 2, err, sizeof err) == NULL && strstr(err, "place[1] = 4"),
@@ -996,8 +658,6 @@ int main(void) {
   test_line();
   test_butterfly();
   test_full_fanin();
-  test_place_maps();
-  test_place_file();
   test_random_programs();
   test_old_models();
   test_trace();

@@ -67,20 +67,18 @@ static void alltoallv(mtest *t, int scale) {
   free(r);
 }
 
-int main(int argc, char **argv) {
-  mtest t;
-  MPI_Init(&argc, &argv);
-  mtest_init(&t, "coll_alltoall");
+/* Alltoall and alltoallv at sizes around the thresholds, then alltoallv in place. */
+static void alltoalls(mtest *t) {
   static const int counts[] = {0, 1, 64, 65, 8192, 8193};
-  for (size_t c = 0; c < sizeof counts / sizeof counts[0]; c++) alltoall(&t, counts[c], 0, 0);
-  alltoall(&t, 64, 1, 0);
-  alltoall(&t, 3, 0, 1);
-  alltoall(&t, 8193, 0, 1);
-  alltoallv(&t, 1);
-  alltoallv(&t, 900);
+  for (size_t c = 0; c < sizeof counts / sizeof counts[0]; c++) alltoall(t, counts[c], 0, 0);
+  alltoall(t, 64, 1, 0);
+  alltoall(t, 3, 0, 1);
+  alltoall(t, 8193, 0, 1);
+  alltoallv(t, 1);
+  alltoallv(t, 900);
   /* In place, each block goes back where the other's came from: counts
    * symmetric in the pair ((me + f) % 3 + 1). */
-  int me = t.rank, size = t.size, tot = 0;
+  int me = t->rank, size = t->size, tot = 0;
   int *c = xmalloc_or_abort(2 * (size_t)size * sizeof(int)), *d = c + size;
   for (int f = 0; f < size; f++) c[f] = 1 + (me + f) % 3, d[f] = tot, tot += c[f];
   int *buf = xmalloc_or_abort((size_t)tot * sizeof(int));
@@ -89,10 +87,12 @@ int main(int argc, char **argv) {
   int rc = MPI_Alltoallv(MPI_IN_PLACE, c, d, MPI_INT, buf, c, d, MPI_INT, MPI_COMM_WORLD), bad = rc != MPI_SUCCESS;
   for (int f = 0; f < size && !bad; f++)
     for (int i = 0; i < c[f] && !bad; i++) bad = buf[d[f] + i] != blk(f, me, i);
-  MCHECK(&t, !bad, "alltoallv in place (symmetric counts) on %d ranks: rc %d or a wrong element", size, rc);
+  MCHECK(t, !bad, "alltoallv in place (symmetric counts) on %d ranks: rc %d or a wrong element", size, rc);
   free(c);
   free(buf);
-  rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+}
+
+int main(int argc, char **argv) {
+  static const mtest_fn checks[] = {alltoalls, NULL};
+  return mtest_main(&argc, &argv, "coll_alltoall", 1, 0, checks);
 }

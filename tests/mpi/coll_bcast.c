@@ -35,11 +35,9 @@ static void one(mtest *t, MPI_Datatype dt, const char *name, int isize, int coun
   free(buf);
 }
 
-int main(int argc, char **argv) {
-  mtest t;
-  MPI_Init(&argc, &argv);
-  mtest_init(&t, "coll_bcast");
-  int size = t.size, roots[3] = {0, size - 1, size / 2};
+/* Broadcasts of small sizes from three roots; the long-message ones from one. */
+static void bcasts(mtest *t) {
+  int size = t->size, roots[3] = {0, size - 1, size / 2};
   MPI_Datatype evens;   /* an int, then a gap of one int */
   MPI_Type_create_resized(MPI_INT, 0, 2 * (MPI_Aint)sizeof(int), &evens);
   MPI_Type_commit(&evens);
@@ -48,19 +46,21 @@ int main(int argc, char **argv) {
   for (int k = 0; k < 3; k++) {
     int root = roots[k];
     if (k > 0 && (root == roots[0] || (k == 2 && root == roots[1]))) continue;
-    for (size_t i = 0; i < sizeof ints / sizeof ints[0]; i++) one(&t, MPI_INT, "MPI_INT", 4, ints[i], 1, root);
-    one(&t, MPI_BYTE, "MPI_BYTE", 1, 12287, 1, root);
-    one(&t, MPI_BYTE, "MPI_BYTE", 1, 12288, 1, root);
-    one(&t, MPI_DOUBLE, "MPI_DOUBLE", 8, 1537, 1, root);
-    one(&t, evens, "evens", 4, 3, 2, root);
-    one(&t, evens, "evens", 4, 3072, 2, root);
-    MCHECK(&t, MPI_Barrier(MPI_COMM_WORLD) == MPI_SUCCESS, "MPI_Barrier failed");
+    for (size_t i = 0; i < sizeof ints / sizeof ints[0]; i++) one(t, MPI_INT, "MPI_INT", 4, ints[i], 1, root);
+    one(t, MPI_BYTE, "MPI_BYTE", 1, 12287, 1, root);
+    one(t, MPI_BYTE, "MPI_BYTE", 1, 12288, 1, root);
+    one(t, MPI_DOUBLE, "MPI_DOUBLE", 8, 1537, 1, root);
+    one(t, evens, "evens", 4, 3, 2, root);
+    one(t, evens, "evens", 4, 3072, 2, root);
+    MCHECK(t, MPI_Barrier(MPI_COMM_WORLD) == MPI_SUCCESS, "MPI_Barrier failed");
   }
-  one(&t, MPI_INT, "MPI_INT", 4, 131071, 1, size - 1);
-  one(&t, MPI_INT, "MPI_INT", 4, 131072, 1, size - 1);
-  one(&t, evens, "evens", 4, 70000, 2, size / 2);
+  one(t, MPI_INT, "MPI_INT", 4, 131071, 1, size - 1);
+  one(t, MPI_INT, "MPI_INT", 4, 131072, 1, size - 1);
+  one(t, evens, "evens", 4, 70000, 2, size / 2);
   MPI_Type_free(&evens);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+}
+
+int main(int argc, char **argv) {
+  static const mtest_fn checks[] = {bcasts, NULL};
+  return mtest_main(&argc, &argv, "coll_bcast", 1, 0, checks);
 }

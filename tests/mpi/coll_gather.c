@@ -131,33 +131,33 @@ static void allgatherv(mtest *t, int scale, int big, int in_place) {
   free(mine);
 }
 
-int main(int argc, char **argv) {
-  mtest t;
-  MPI_Init(&argc, &argv);
-  mtest_init(&t, "coll_gather");
-  int size = t.size, roots[3] = {0, size - 1, size / 2};
+/* Gathers and scatters from three roots; allgathers around 81920 and 524288 bytes. */
+static void gathers(mtest *t) {
+  int size = t->size, roots[3] = {0, size - 1, size / 2};
   for (int k = 0; k < 3; k++) {
     if (k > 0 && (roots[k] == roots[0] || (k == 2 && roots[2] == roots[1]))) continue;
-    gather_scatter(&t, 0, roots[k], 0, 0);
-    gather_scatter(&t, 1, roots[k], 0, 0);
-    gather_scatter(&t, 700, roots[k], 1, 0);
-    gather_scatter(&t, 33, roots[k], 0, 1);
-    gatherv_scatterv(&t, roots[k], 0, 1);
-    gatherv_scatterv(&t, roots[k], 1, 40);
+    gather_scatter(t, 0, roots[k], 0, 0);
+    gather_scatter(t, 1, roots[k], 0, 0);
+    gather_scatter(t, 700, roots[k], 1, 0);
+    gather_scatter(t, 33, roots[k], 0, 1);
+    gatherv_scatterv(t, roots[k], 0, 1);
+    gatherv_scatterv(t, roots[k], 1, 40);
   }
   /* Totals just below and at 81920 and 524288 bytes. */
   int c81 = 81920 / (4 * size), c524 = 524288 / (4 * size);
-  allgather(&t, 1, 0, 0);
-  allgather(&t, 3, 0, 1);
-  allgather(&t, c81 * 4 * size == 81920 ? c81 - 1 : c81, 0, 0);
-  allgather(&t, c81 + 1, 1, 0);
-  allgather(&t, c524 * 4 * size == 524288 ? c524 - 1 : c524, 0, 0);
-  allgather(&t, c524 + 1, 0, 1);
-  allgatherv(&t, 1, 0, 0);
-  allgatherv(&t, 700, 0, 1);
-  allgatherv(&t, 3, 9000, 0);   /* rank 0's block: 36000 bytes, past the 32 KiB pipeline size */
-  allgatherv(&t, 0, 0, 0);      /* nothing at all but rank 0's empty block */
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  allgather(t, 1, 0, 0);
+  allgather(t, 3, 0, 1);
+  allgather(t, c81 * 4 * size == 81920 ? c81 - 1 : c81, 0, 0);
+  allgather(t, c81 + 1, 1, 0);
+  allgather(t, c524 * 4 * size == 524288 ? c524 - 1 : c524, 0, 0);
+  allgather(t, c524 + 1, 0, 1);
+  allgatherv(t, 1, 0, 0);
+  allgatherv(t, 700, 0, 1);
+  allgatherv(t, 3, 9000, 0);   /* rank 0's block: 36000 bytes, past the 32 KiB pipeline size */
+  allgatherv(t, 0, 0, 0);      /* nothing at all but rank 0's empty block */
+}
+
+int main(int argc, char **argv) {
+  static const mtest_fn checks[] = {gathers, NULL};
+  return mtest_main(&argc, &argv, "coll_gather", 1, 0, checks);
 }

@@ -16,12 +16,6 @@
 #include "colldata.h"
 #include "mtest.h"
 
-#ifdef TSMPI_MPI_H
-#define TILESIM 1
-#else
-#define TILESIM 0
-#endif
-
 typedef struct {
   mtest *t;
   MPI_Comm other;   /* a duplicate of MPI_COMM_WORLD for the collectives started behind */
@@ -362,13 +356,11 @@ static void overlapped(ctx *c) {
   MCHECK(c->t, x == 7 && sum == size * (size - 1) / 2 && sum2 == sum, "overlapped: x %d sum %d sum2 %d", x, sum, sum2);
 }
 
-int main(int argc, char **argv) {
-  mtest t;
-  MPI_Init(&argc, &argv);
-  mtest_init(&t, "coll_nbc");
-  ctx c = {&t, MPI_COMM_NULL, 0};
+/* Every nonblocking collective, at sizes that pick each algorithm. */
+static void nonblocking(mtest *t) {
+  ctx c = {t, MPI_COMM_NULL, 0};
   MPI_Comm_dup(MPI_COMM_WORLD, &c.other);
-  int size = t.size, roots[2] = {0, size - 1};
+  int size = t->size, roots[2] = {0, size - 1};
   MPI_Datatype evens, m4;
   MPI_Type_create_resized(MPI_INT, 0, 2 * (MPI_Aint)sizeof(int), &evens);
   MPI_Type_commit(&evens);
@@ -417,7 +409,9 @@ int main(int argc, char **argv) {
   MPI_Type_free(&m4);
   MPI_Type_free(&evens);
   MPI_Comm_free(&c.other);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+}
+
+int main(int argc, char **argv) {
+  static const mtest_fn checks[] = {nonblocking, NULL};
+  return mtest_main(&argc, &argv, "coll_nbc", 1, 0, checks);
 }

@@ -17,12 +17,6 @@
 
 #include "mtest.h"
 
-#ifdef TSMPI_MPI_H
-#define TILESIM 1
-#else
-#define TILESIM 0
-#endif
-
 /* Rank r's element i: mixed signs and exponents, so that the order of the
  * additions shows in the result. */
 static double x(int r, int i) {
@@ -185,22 +179,22 @@ static void check(mtest *t, kind k, const char *name, const char *setting, int c
   free(out);
 }
 
+/* The reductions' order of operands under the --coll setting given (argv[1]). */
+static void orders(mtest *t) {
+  const char *setting = t->arg;
+  int size = t->size;
+  check(t, REDUCE, "reduce", setting, 100, 0);
+  check(t, REDUCE, "reduce", setting, 100, size - 1);
+  check(t, REDUCE, "reduce", setting, 1000, size / 2);
+  check(t, ALLREDUCE, "allreduce", setting, 100, 0);
+  check(t, ALLREDUCE, "allreduce", setting, 1000, 0);
+  check(t, SCAN, "scan", setting, 50, 0);
+  check(t, EXSCAN, "exscan", setting, 50, 0);
+  check(t, REDSCAT, "reduce_scatter_block", setting, 20, 0);
+  check(t, REDSCAT, "reduce_scatter_block", setting, 524288 / 8 / size + 1, 0);
+}
+
 int main(int argc, char **argv) {
-  mtest t;
-  MPI_Init(&argc, &argv);
-  mtest_init(&t, "coll_order");
-  const char *setting = argc > 1 ? argv[1] : NULL;
-  int size = t.size;
-  check(&t, REDUCE, "reduce", setting, 100, 0);
-  check(&t, REDUCE, "reduce", setting, 100, size - 1);
-  check(&t, REDUCE, "reduce", setting, 1000, size / 2);
-  check(&t, ALLREDUCE, "allreduce", setting, 100, 0);
-  check(&t, ALLREDUCE, "allreduce", setting, 1000, 0);
-  check(&t, SCAN, "scan", setting, 50, 0);
-  check(&t, EXSCAN, "exscan", setting, 50, 0);
-  check(&t, REDSCAT, "reduce_scatter_block", setting, 20, 0);
-  check(&t, REDSCAT, "reduce_scatter_block", setting, 524288 / 8 / size + 1, 0);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const mtest_fn checks[] = {orders, NULL};
+  return mtest_main(&argc, &argv, "coll_order", 1, 0, checks);
 }

@@ -11,12 +11,6 @@
 #include "colldata.h"
 #include "mtest.h"
 
-#ifdef TSMPI_MPI_H
-#define TILESIM 1
-#else
-#define TILESIM 0
-#endif
-
 /* The matrix operation on elements with gaps: element k is 8 ints, the
  * matrix in ints 0, 2, 4, 6. */
 static void matmul_gap_fn(void *in, void *inout, int *len, MPI_Datatype *dt) {
@@ -124,11 +118,9 @@ static void matrices(mtest *t, int count, MPI_Op op, MPI_Datatype dt, int gaps, 
   free(out);
 }
 
-int main(int argc, char **argv) {
-  mtest t;
-  MPI_Init(&argc, &argv);
-  mtest_init(&t, "coll_reduce");
-  int size = t.size, roots[3] = {0, size - 1, size / 2};
+/* Reductions of each kind, from three roots and all-reduced. */
+static void reductions(mtest *t) {
+  int size = t->size, roots[3] = {0, size - 1, size / 2};
   MPI_Op isum, mprod, gprod;
   MPI_Op_create(isum_fn, 1, &isum);
   MPI_Op_create(matmul_fn, 0, &mprod);
@@ -141,39 +133,39 @@ int main(int argc, char **argv) {
   MPI_Type_commit(&gap8);
   int commute = -1;
   MPI_Op_commutative(mprod, &commute);
-  MCHECK(&t, commute == 0, "MPI_Op_commutative of a non-commutative operation: %d", commute);
+  MCHECK(t, commute == 0, "MPI_Op_commutative of a non-commutative operation: %d", commute);
   static const int counts[] = {0, 1, 3, 511, 512, 513, 2000};
   for (size_t c = 0; c < sizeof counts / sizeof counts[0]; c++) {
-    ints(&t, counts[c], MPI_SUM, "MPI_SUM", 0, 1, 0);
+    ints(t, counts[c], MPI_SUM, "MPI_SUM", 0, 1, 0);
     for (int k = 0; k < 3; k++)
-      if (k == 0 || roots[k] != roots[0]) ints(&t, counts[c], MPI_SUM, "MPI_SUM", roots[k], 0, 0);
+      if (k == 0 || roots[k] != roots[0]) ints(t, counts[c], MPI_SUM, "MPI_SUM", roots[k], 0, 0);
   }
-  ints(&t, 700, MPI_SUM, "MPI_SUM", 0, 1, 1);
-  ints(&t, 700, MPI_SUM, "MPI_SUM", size - 1, 0, 1);
-  ints(&t, 5, MPI_SUM, "MPI_SUM", size / 2, 0, 1);
-  ints(&t, 600, isum, "a commutative user operation", size / 2, 0, 0);
-  ints(&t, 600, isum, "a commutative user operation", 0, 1, 0);
-  doubles(&t, 700, MPI_SUM, "MPI_SUM", size / 2, 0);
-  doubles(&t, 700, MPI_SUM, "MPI_SUM", 0, 1);
-  doubles(&t, 257, MPI_MAX, "MPI_MAX", size - 1, 0);
-  doubles(&t, 257, MPI_MAX, "MPI_MAX", 0, 1);
-  minloc(&t, 300, 0);
-  minloc(&t, 300, 1);
-  minloc(&t, 7, 1);
+  ints(t, 700, MPI_SUM, "MPI_SUM", 0, 1, 1);
+  ints(t, 700, MPI_SUM, "MPI_SUM", size - 1, 0, 1);
+  ints(t, 5, MPI_SUM, "MPI_SUM", size / 2, 0, 1);
+  ints(t, 600, isum, "a commutative user operation", size / 2, 0, 0);
+  ints(t, 600, isum, "a commutative user operation", 0, 1, 0);
+  doubles(t, 700, MPI_SUM, "MPI_SUM", size / 2, 0);
+  doubles(t, 700, MPI_SUM, "MPI_SUM", 0, 1);
+  doubles(t, 257, MPI_MAX, "MPI_MAX", size - 1, 0);
+  doubles(t, 257, MPI_MAX, "MPI_MAX", 0, 1);
+  minloc(t, 300, 0);
+  minloc(t, 300, 1);
+  minloc(t, 7, 1);
   for (int k = 0; k < 3; k++) {
     if (k > 0 && roots[k] == roots[0]) continue;
-    matrices(&t, 5, mprod, m4, 0, roots[k], 0);
-    matrices(&t, 130, mprod, m4, 0, roots[k], 0);
-    matrices(&t, 9, gprod, gap8, 1, roots[k], 0);
+    matrices(t, 5, mprod, m4, 0, roots[k], 0);
+    matrices(t, 130, mprod, m4, 0, roots[k], 0);
+    matrices(t, 9, gprod, gap8, 1, roots[k], 0);
   }
-  matrices(&t, 5, mprod, m4, 0, 0, 1);
-  matrices(&t, 130, mprod, m4, 0, 0, 1);
-  matrices(&t, 9, gprod, gap8, 1, 0, 1);
+  matrices(t, 5, mprod, m4, 0, 0, 1);
+  matrices(t, 130, mprod, m4, 0, 0, 1);
+  matrices(t, 9, gprod, gap8, 1, 0, 1);
   if (TILESIM) {
     /* A predefined operation on a derived type of one basic type: MPICH and
      * tilesim take it, Open MPI does not (so it counts only on failure). */
     int a[6], b[6];
-    for (int i = 0; i < 6; i++) a[i] = val(t.rank, i);
+    for (int i = 0; i < 6; i++) a[i] = val(t->rank, i);
     MPI_Datatype three;
     MPI_Type_contiguous(3, MPI_INT, &three);
     MPI_Type_commit(&three);
@@ -183,17 +175,19 @@ int main(int argc, char **argv) {
       for (int r = 0; r < size; r++) s += (unsigned)val(r, i);
       bad = b[i] != (int)s;
     }
-    if (bad) MCHECK(&t, 0, "MPI_SUM on contiguous(3, MPI_INT): rc %d or a wrong element", rc);
+    if (bad) MCHECK(t, 0, "MPI_SUM on contiguous(3, MPI_INT): rc %d or a wrong element", rc);
     MPI_Type_free(&three);
   }
   MPI_Op_free(&isum);
   MPI_Op_free(&mprod);
   MPI_Op_free(&gprod);
-  MCHECK(&t, isum == MPI_OP_NULL, "MPI_Op_free left the handle");
+  MCHECK(t, isum == MPI_OP_NULL, "MPI_Op_free left the handle");
   MPI_Type_free(&m4);
   MPI_Type_free(&gap);
   MPI_Type_free(&gap8);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+}
+
+int main(int argc, char **argv) {
+  static const mtest_fn checks[] = {reductions, NULL};
+  return mtest_main(&argc, &argv, "coll_reduce", 1, 0, checks);
 }

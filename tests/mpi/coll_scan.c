@@ -99,10 +99,8 @@ static void mat_redscat(mtest *t, int scale, int block, MPI_Op op, MPI_Datatype 
   free(out);
 }
 
-int main(int argc, char **argv) {
-  mtest t;
-  MPI_Init(&argc, &argv);
-  mtest_init(&t, "coll_scan");
+/* The scans and reduce-scatters, at sizes on both sides of MPICH's thresholds. */
+static void scans_and_reduce_scatters(mtest *t) {
   MPI_Op mprod;
   MPI_Op_create(matmul_fn, 0, &mprod);
   MPI_Datatype m4;
@@ -110,25 +108,27 @@ int main(int argc, char **argv) {
   MPI_Type_commit(&m4);
   static const int counts[] = {0, 1, 300};
   for (size_t c = 0; c < sizeof counts / sizeof counts[0]; c++)
-    for (int ex = 0; ex < 2; ex++) scans(&t, counts[c], ex, 0);
-  scans(&t, 17, 0, 1);
-  scans(&t, 17, 1, 1);
-  mat_scans(&t, 7, mprod, m4, 0);
-  mat_scans(&t, 7, mprod, m4, 1);
+    for (int ex = 0; ex < 2; ex++) scans(t, counts[c], ex, 0);
+  scans(t, 17, 0, 1);
+  scans(t, 17, 1, 1);
+  mat_scans(t, 7, mprod, m4, 0);
+  mat_scans(t, 7, mprod, m4, 1);
   /* Totals just below and at 524288 bytes (131072 ints). */
-  int s = t.size;
-  redscat(&t, 1, 0, 0, 0);
-  redscat(&t, 50, 3, 0, 1);
-  redscat(&t, 0, 5, 0, 0);   /* only rank 0 gets a block */
-  redscat(&t, 131072 / s, 0, 1, 0);
-  redscat(&t, 131072 / s - (131072 % s == 0), 0, 1, 1);
-  redscat(&t, 131071 / (3 * s) + 1, 0, 0, 0);
-  redscat(&t, 3, 0, 1, 0);
-  mat_redscat(&t, 2, 1, mprod, m4);
-  mat_redscat(&t, 3, 0, mprod, m4);
+  int s = t->size;
+  redscat(t, 1, 0, 0, 0);
+  redscat(t, 50, 3, 0, 1);
+  redscat(t, 0, 5, 0, 0);   /* only rank 0 gets a block */
+  redscat(t, 131072 / s, 0, 1, 0);
+  redscat(t, 131072 / s - (131072 % s == 0), 0, 1, 1);
+  redscat(t, 131071 / (3 * s) + 1, 0, 0, 0);
+  redscat(t, 3, 0, 1, 0);
+  mat_redscat(t, 2, 1, mprod, m4);
+  mat_redscat(t, 3, 0, mprod, m4);
   MPI_Op_free(&mprod);
   MPI_Type_free(&m4);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+}
+
+int main(int argc, char **argv) {
+  static const mtest_fn checks[] = {scans_and_reduce_scatters, NULL};
+  return mtest_main(&argc, &argv, "coll_scan", 1, 0, checks);
 }

@@ -236,20 +236,6 @@ static void cg_names(mtest *t) {
 }
 
 int main(int argc, char **argv) {
-  MPI_Init(&argc, &argv);
-  mtest t;
-  mtest_init(&t, "comm_groups");
-  if (t.size < 2) {
-    if (t.rank == 0) printf("comm_groups: needs 2 ranks or more\n");
-    MPI_Finalize();
-    return 1;
-  }
-  cg_dup(&t);
-  cg_split(&t);
-  cg_groups(&t);
-  cg_many(&t);
-  cg_names(&t);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const mtest_fn checks[] = {cg_dup, cg_split, cg_groups, cg_many, cg_names, NULL};
+  return mtest_main(&argc, &argv, "comm_groups", 2, 0, checks);
 }

@@ -403,33 +403,28 @@ static void ic_many(mtest *t, const cut *c) {
   MCHECK(t, bad == 0, "%d of 300 intercommunicators carried a wrong message", bad);
 }
 
-int main(int argc, char **argv) {
-  MPI_Init(&argc, &argv);
-  mtest t;
-  mtest_init(&t, "comm_inter");
-  if (t.size < 2) {
-    if (t.rank == 0) printf("comm_inter: needs 2 ranks or more\n");
-    MPI_Finalize();
-    return 1;
-  }
+/* Every check, on each of the two cuts. */
+static void both_cuts(mtest *t) {
   for (int how = 0; how < 2; how++) {
     cut c;
-    cut_make(&c, &t, how);
-    MPI_Comm ic = ic_make(&c, &t, 10 + how);
-    ic_queries(&t, &c, ic);
-    ic_p2p(&t, &c, ic, 3);
-    ic_merge(&t, &c, ic);
-    ic_dup(&t, &c, ic);
-    ic_split(&t, &c, ic);
-    ic_create(&t, &c, ic);
-    ic_rooted(&t, &c, ic, 0);
-    ic_rooted(&t, &c, ic, 1);
-    ic_all(&t, &c, ic);
-    if (how == 1) ic_many(&t, &c);
+    cut_make(&c, t, how);
+    MPI_Comm ic = ic_make(&c, t, 10 + how);
+    ic_queries(t, &c, ic);
+    ic_p2p(t, &c, ic, 3);
+    ic_merge(t, &c, ic);
+    ic_dup(t, &c, ic);
+    ic_split(t, &c, ic);
+    ic_create(t, &c, ic);
+    ic_rooted(t, &c, ic, 0);
+    ic_rooted(t, &c, ic, 1);
+    ic_all(t, &c, ic);
+    if (how == 1) ic_many(t, &c);
     MPI_Comm_free(&ic);
     cut_free(&c);
   }
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+}
+
+int main(int argc, char **argv) {
+  static const mtest_fn checks[] = {both_cuts, NULL};
+  return mtest_main(&argc, &argv, "comm_inter", 2, 0, checks);
 }

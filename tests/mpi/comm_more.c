@@ -152,21 +152,6 @@ static void cm_c2f(mtest *t) {
 }
 
 int main(int argc, char **argv) {
-  MPI_Init(&argc, &argv);
-  mtest t;
-  mtest_init(&t, "comm_more");
-  if (t.size < 2) {
-    if (t.rank == 0) printf("comm_more: needs 2 ranks or more\n");
-    MPI_Finalize();
-    return 1;
-  }
-  cm_split_type(&t);
-  cm_parent(&t);
-  cm_idup(&t);
-  cm_disconnect(&t);
-  cm_alloc_mem(&t);
-  cm_c2f(&t);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const mtest_fn checks[] = {cm_split_type, cm_parent, cm_idup, cm_disconnect, cm_alloc_mem, cm_c2f, NULL};
+  return mtest_main(&argc, &argv, "comm_more", 2, 0, checks);
 }

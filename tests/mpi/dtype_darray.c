@@ -19,17 +19,6 @@
 
 #include "mtest.h"
 
-#ifdef TSMPI_MPI_H
-#define TILESIM 1
-#else
-#define TILESIM 0
-#endif
-/* A check that counts only when it fails: for what only tilesim does. */
-#define SCHECK(t, cond, ...)                 \
-  do {                                       \
-    if (!(cond)) MCHECK(t, 0, __VA_ARGS__);  \
-  } while (0)
-
 enum { MAXD = 3, MAXN = 4096 };
 
 typedef struct {
@@ -234,19 +223,13 @@ static void test_errors(mtest *t) {
   }
 }
 
+/* Every distribution of the table. */
+static void test_layouts(mtest *t) {
+  for (size_t i = 0; i < sizeof layouts / sizeof layouts[0]; i++) check_layout(t, &layouts[i]);
+}
+
 int main(int argc, char **argv) {
-  mtest t;
-  MPI_Init(&argc, &argv);
-  mtest_init(&t, "dtype_darray");
-  MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
-  if (t.rank == 0) {
-    for (size_t i = 0; i < sizeof layouts / sizeof layouts[0]; i++) check_layout(&t, &layouts[i]);
-    test_gapped_oldtype(&t);
-    test_decoding(&t);
-    test_errors(&t);
-  }
-  test_gather(&t);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const mtest_fn checks[] = {mtest_rank0,  test_layouts, test_gapped_oldtype, test_decoding, test_errors,
+                                    mtest_every_rank, test_gather, NULL};
+  return mtest_main(&argc, &argv, "dtype_darray", 1, MTEST_ERRORS_RETURN, checks);
 }

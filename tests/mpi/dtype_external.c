@@ -22,16 +22,6 @@
 
 #include "mtest.h"
 
-#ifdef TSMPI_MPI_H
-#define TILESIM 1
-#else
-#define TILESIM 0
-#endif
-#define SCHECK(t, cond, ...)                 \
-  do {                                       \
-    if (!(cond)) MCHECK(t, 0, __VA_ARGS__);  \
-  } while (0)
-
 static const char X32[] = "external32";
 
 /* Pack count elements of dt from buf; compare with want[n]; unpack into
@@ -248,18 +238,7 @@ static void test_send(mtest *t) {
 }
 
 int main(int argc, char **argv) {
-  mtest t;
-  MPI_Init(&argc, &argv);
-  mtest_init(&t, "dtype_external");
-  MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
-  if (t.rank == 0) {
-    test_integers(&t);
-    test_floats(&t);
-    test_pairs_and_derived(&t);
-    test_errors(&t);
-  }
-  test_send(&t);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const mtest_fn checks[] = {mtest_rank0,  test_integers,    test_floats, test_pairs_and_derived,
+                                    test_errors,  mtest_every_rank, test_send,   NULL};
+  return mtest_main(&argc, &argv, "dtype_external", 1, MTEST_ERRORS_RETURN, checks);
 }

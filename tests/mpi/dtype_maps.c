@@ -14,20 +14,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "dtypetest.h"
 #include "mtest.h"
-
-/* size, lb, extent, true lb, true extent of dt against the expected. */
-static void shape(mtest *t, const char *what, MPI_Datatype dt, int size, MPI_Aint lb, MPI_Aint extent,
-                  MPI_Aint tlb, MPI_Aint textent) {
-  int s;
-  MPI_Aint l, e, tl, te;
-  MPI_Type_size(dt, &s);
-  MPI_Type_get_extent(dt, &l, &e);
-  MPI_Type_get_true_extent(dt, &tl, &te);
-  MCHECK(t, s == size && l == lb && e == extent && tl == tlb && te == textent,
-         "%s: size %d lb %ld extent %ld true %ld %ld; want %d %ld %ld %ld %ld", what, s, (long)l, (long)e, (long)tl,
-         (long)te, size, (long)lb, (long)extent, (long)tlb, (long)textent);
-}
 
 /* Pack count elements of dt at buf and compare with the ints want[n]. */
 static void packs_ints(mtest *t, const char *what, const void *buf, int count, MPI_Datatype dt, const int *want,
@@ -210,15 +198,7 @@ static void test_resized_subarray(mtest *t) {
 
 /* MPI_Type_get_contents is checked under tilesim only, and counts only
  * when it fails: Open MPI 4.1.4's crashes on these types. */
-#ifdef TSMPI_MPI_H
-#define CONTENTS 1
-#else
-#define CONTENTS 0
-#endif
-#define SCHECK(t, cond, ...)                 \
-  do {                                       \
-    if (!(cond)) MCHECK(t, 0, __VA_ARGS__);  \
-  } while (0)
+#define CONTENTS TILESIM
 
 static void test_decoding(mtest *t) {
   MPI_Datatype v, d, got[2];
@@ -392,21 +372,6 @@ static void test_errors(mtest *t) {
 }
 
 int main(int argc, char **argv) {
-  mtest t;
-  MPI_Init(&argc, &argv);
-  mtest_init(&t, "dtype_maps");
-  MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
-  test_contiguous_vector(&t);
-  test_indexed(&t);
-  test_struct(&t);
-  test_resized_subarray(&t);
-  test_decoding(&t);
-  test_pack_api(&t);
-  test_errors(&t);
-  test_status(&t);
-  test_names(&t);
-  test_send(&t);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const mtest_fn checks[] = {test_contiguous_vector, test_indexed, test_struct, test_resized_subarray, test_decoding, test_pack_api, test_errors, test_status, test_names, test_send, NULL};
+  return mtest_main(&argc, &argv, "dtype_maps", 1, MTEST_ERRORS_RETURN, checks);
 }

@@ -15,6 +15,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "dtypetest.h"
 #include "mtest.h"
 
 #if defined(OPEN_MPI) && !OMPI_ENABLE_MPI1_COMPAT
@@ -24,19 +25,6 @@ extern struct ompi_predefined_datatype_t ompi_mpi_lb, ompi_mpi_ub;
 #define MPI_LB ((MPI_Datatype)(void *)&ompi_mpi_lb)
 #define MPI_UB ((MPI_Datatype)(void *)&ompi_mpi_ub)
 #endif
-
-/* size, lb, extent, true lb, true extent of dt against the expected. */
-static void shape(mtest *t, const char *what, MPI_Datatype dt, int size, MPI_Aint lb, MPI_Aint extent,
-                  MPI_Aint tlb, MPI_Aint textent) {
-  int s;
-  MPI_Aint l, e, tl, te;
-  MPI_Type_size(dt, &s);
-  MPI_Type_get_extent(dt, &l, &e);
-  MPI_Type_get_true_extent(dt, &tl, &te);
-  MCHECK(t, s == size && l == lb && e == extent && tl == tlb && te == textent,
-         "%s: size %d lb %ld extent %ld true %ld %ld; want %d %ld %ld %ld %ld", what, s, (long)l, (long)e, (long)tl,
-         (long)te, size, (long)lb, (long)extent, (long)tlb, (long)textent);
-}
 
 /* A struct of n blocks of one element each. */
 static MPI_Datatype make_struct(int n, const MPI_Aint *disp, const MPI_Datatype *types) {
@@ -244,15 +232,6 @@ static void test_send(mtest *t) {
 }
 
 int main(int argc, char **argv) {
-  mtest t;
-  MPI_Init(&argc, &argv);
-  mtest_init(&t, "dtype_markers");
-  MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
-  test_predefined(&t);
-  test_struct_markers(&t);
-  test_sticky(&t);
-  test_send(&t);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const mtest_fn checks[] = {test_predefined, test_struct_markers, test_sticky, test_send, NULL};
+  return mtest_main(&argc, &argv, "dtype_markers", 1, MTEST_ERRORS_RETURN, checks);
 }

@@ -189,15 +189,6 @@ static void eh_other_kinds(mtest *t) {
 }
 
 int main(int argc, char **argv) {
-  MPI_Init(&argc, &argv);
-  mtest t;
-  mtest_init(&t, "err_handlers");
-  eh_user(&t);
-  eh_mpi1(&t);
-  eh_predefined(&t);
-  eh_codes(&t);
-  eh_other_kinds(&t);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const mtest_fn checks[] = {eh_user, eh_mpi1, eh_predefined, eh_codes, eh_other_kinds, NULL};
+  return mtest_main(&argc, &argv, "err_handlers", 1, 0, checks);
 }

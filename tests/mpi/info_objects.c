@@ -178,15 +178,6 @@ static void io_comm(mtest *t) {
 }
 
 int main(int argc, char **argv) {
-  MPI_Init(&argc, &argv);
-  mtest t;
-  mtest_init(&t, "info_objects");
-  io_basic(&t);
-  io_errors(&t);
-  io_env(&t);
-  io_many(&t);
-  io_comm(&t);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const mtest_fn checks[] = {io_basic, io_errors, io_env, io_many, io_comm, NULL};
+  return mtest_main(&argc, &argv, "info_objects", 1, 0, checks);
 }

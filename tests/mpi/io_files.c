@@ -70,14 +70,9 @@ static void test_records(mtest *t, const iotest *io) {
   int amode;
   MPI_File_get_amode(fh, &amode);
   MCHECK(t, amode == (MPI_MODE_CREATE | MPI_MODE_EXCL | MPI_MODE_WRONLY), "amode %d", amode);
-  MPI_Group g, w;
-  int same;
+  MPI_Group g;
   MPI_File_get_group(fh, &g);
-  MPI_Comm_group(MPI_COMM_WORLD, &w);
-  MPI_Group_compare(g, w, &same);
-  MCHECK(t, same == MPI_IDENT, "the file's group against MPI_COMM_WORLD's: %d", same);
-  MPI_Group_free(&g);
-  MPI_Group_free(&w);
+  mtest_world_group(t, g, "the file's group");
   rc = MPI_File_close(&fh);
   MCHECK(t, rc == MPI_SUCCESS && fh == MPI_FILE_NULL, "close: rc %d", rc);
   MPI_Barrier(MPI_COMM_WORLD);
@@ -315,23 +310,7 @@ static void test_handlers(mtest *t, const iotest *io) {
 }
 
 int main(int argc, char **argv) {
-  mtest t;
-  iotest io;
-  MPI_Init(&argc, &argv);
-  mtest_init(&t, "io_files");
-  if (iotest_init(&io, "io_files") != 0) {
-    MCHECK(&t, 0, "no directory for the files under $TMPDIR");
-  } else {
-    test_open_errors(&t, &io);
-    test_records(&t, &io);
-    test_pointers(&t, &io);
-    test_sizes(&t, &io);
-    test_nonblocking(&t, &io);
-    test_handlers(&t, &io);
-    static const char *const names[] = {"a", "b", "c", "h", NULL};
-    iotest_done(&io, names);
-  }
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const iotest_fn checks[] = {test_open_errors, test_records, test_pointers, test_sizes, test_nonblocking, test_handlers, NULL};
+  static const char *const files[] = {"a", "b", "c", "h", NULL};
+  return iotest_main(&argc, &argv, "io_files", checks, files);
 }

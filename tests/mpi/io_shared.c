@@ -22,15 +22,7 @@
 /* MPI_File_get_position_shared is checked under tilesim only, and counts
  * only when it fails: Open MPI 4.1's (ROMIO and OMPIO) gives 0 on some
  * ranks after the others moved the pointer. */
-#ifdef TSMPI_MPI_H
-#define TILESIM 1
-#else
-#define TILESIM 0
-#endif
-#define SCHECK(t, cond, ...)                  \
-  do {                                        \
-    if (TILESIM && !(cond)) MCHECK(t, 0, __VA_ARGS__); \
-  } while (0)
+#define TSCHECK(t, cond, ...) SCHECK(t, !TILESIM || (cond), __VA_ARGS__)
 
 /* What other ranks wrote becomes visible: MPI 3.1 section 13.6.1's
  * sync-barrier-sync. */
@@ -41,13 +33,9 @@ static void settle(MPI_File fh) {
 }
 
 static MPI_File open_new(mtest *t, const iotest *io, const char *name) {
-  char p[640];
-  MPI_File fh = MPI_FILE_NULL;
-  int rc = MPI_File_open(MPI_COMM_WORLD, iotest_path(io, name, p, sizeof p), MPI_MODE_CREATE | MPI_MODE_RDWR,
-                         MPI_INFO_NULL, &fh);
-  MCHECK(t, rc == MPI_SUCCESS, "open %s: rc %d", name, rc);
-  if (rc == MPI_SUCCESS) MPI_File_set_size(fh, 0);
-  return rc == MPI_SUCCESS ? fh : MPI_FILE_NULL;
+  MPI_File fh = iotest_open(t, io, name);
+  if (fh != MPI_FILE_NULL) MPI_File_set_size(fh, 0);
+  return fh;
 }
 
 /* Rank r's record: 4 ints r, r, r, r (the order they land in is the
@@ -63,7 +51,7 @@ static void test_shared(mtest *t, const iotest *io) {
   settle(fh);
   MPI_Offset pos = -1;
   MPI_File_get_position_shared(fh, &pos);
-  SCHECK(t, pos == 4L * size, "the shared pointer after every rank's record: %lld", (long long)pos);
+  TSCHECK(t, pos == 4L * size, "the shared pointer after every rank's record: %lld", (long long)pos);
   int *all = malloc(sizeof(int) * 4 * (size_t)size + 16), *seen = calloc((size_t)size, sizeof *seen);
   long n = iotest_read(io, "shared", all, sizeof(int) * 4 * (size_t)size + 16);
   int bad = n != 16L * size;
@@ -77,7 +65,7 @@ static void test_shared(mtest *t, const iotest *io) {
   MPI_File_get_position_shared(fh, &pos);
   MPI_Barrier(MPI_COMM_WORLD);   /* no rank reads before every rank looked */
   MCHECK(t, rc == MPI_SUCCESS, "seek_shared 0: rc %d", rc);
-  SCHECK(t, pos == 0, "the shared pointer after seek_shared 0: %lld", (long long)pos);
+  TSCHECK(t, pos == 0, "the shared pointer after seek_shared 0: %lld", (long long)pos);
   rc = MPI_File_read_shared(fh, got, 4, MPI_INT, MPI_STATUS_IGNORE);
   MCHECK(t, rc == MPI_SUCCESS && got[0] == got[3] && got[0] >= 0 && got[0] < size, "read_shared: %d", got[0]);
   MPI_Gather(&got[0], 1, MPI_INT, all, 1, MPI_INT, 0, MPI_COMM_WORLD);
@@ -105,7 +93,7 @@ static void test_ordered(mtest *t, const iotest *io) {
   MCHECK(t, rc == MPI_SUCCESS && n == rank + 1, "write_ordered: rc %d, count %d", rc, n);
   MPI_Offset pos = -1, total = (MPI_Offset)size * (size + 1) / 2;
   MPI_File_get_position_shared(fh, &pos);
-  SCHECK(t, pos == total, "the shared pointer after write_ordered: %lld (want %lld)", (long long)pos, (long long)total);
+  TSCHECK(t, pos == total, "the shared pointer after write_ordered: %lld (want %lld)", (long long)pos, (long long)total);
   MPI_File_seek_shared(fh, 0, MPI_SEEK_SET);
   rc = MPI_File_read_ordered(fh, back, rank + 1, MPI_INT, &st);
   MCHECK(t, rc == MPI_SUCCESS && !memcmp(back, mine, sizeof(int) * (size_t)(rank + 1)), "read_ordered: %d .. %d",
@@ -168,7 +156,7 @@ static void test_split_nonblocking(mtest *t, const iotest *io) {
   MPI_Offset pos = -1;
   MPI_File_get_position_shared(fh, &pos);
   MCHECK(t, rc == MPI_SUCCESS, "iwrite_shared: rc %d", rc);
-  SCHECK(t, pos == end + 4L * size + 4L * size, "iwrite_shared: shared pointer %lld", (long long)pos);
+  TSCHECK(t, pos == end + 4L * size + 4L * size, "iwrite_shared: shared pointer %lld", (long long)pos);
   MPI_File_seek_shared(fh, end + 4L * size, MPI_SEEK_SET);
   rx = -1;
   rc = MPI_File_iread_shared(fh, &rx, 1, MPI_INT, &q[1]);
@@ -192,20 +180,7 @@ static void test_split_nonblocking(mtest *t, const iotest *io) {
 }
 
 int main(int argc, char **argv) {
-  mtest t;
-  iotest io;
-  MPI_Init(&argc, &argv);
-  mtest_init(&t, "io_shared");
-  if (iotest_init(&io, "io_shared") != 0) {
-    MCHECK(&t, 0, "no directory for the files under $TMPDIR");
-  } else {
-    test_shared(&t, &io);
-    test_ordered(&t, &io);
-    test_split_nonblocking(&t, &io);
-    static const char *const names[] = {"shared", "ordered", "split", NULL};
-    iotest_done(&io, names);
-  }
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const iotest_fn checks[] = {test_shared, test_ordered, test_split_nonblocking, NULL};
+  static const char *const files[] = {"shared", "ordered", "split", NULL};
+  return iotest_main(&argc, &argv, "io_shared", checks, files);
 }

@@ -18,29 +18,10 @@
 #include "iotest.h"
 #include "mtest.h"
 
-#ifdef TSMPI_MPI_H
-#define TILESIM 1
-#else
-#define TILESIM 0
-#endif
-#define SCHECK(t, cond, ...)                 \
-  do {                                       \
-    if (!(cond)) MCHECK(t, 0, __VA_ARGS__);  \
-  } while (0)
-
-static MPI_File open_rw(mtest *t, const iotest *io, const char *name) {
-  char p[640];
-  MPI_File fh = MPI_FILE_NULL;
-  int rc = MPI_File_open(MPI_COMM_WORLD, iotest_path(io, name, p, sizeof p), MPI_MODE_CREATE | MPI_MODE_RDWR,
-                         MPI_INFO_NULL, &fh);
-  MCHECK(t, rc == MPI_SUCCESS, "open %s: rc %d", name, rc);
-  return rc == MPI_SUCCESS ? fh : MPI_FILE_NULL;
-}
-
 /* A 16-byte header, then blocks of 2 ints, rank by rank, 3 rounds. */
 static void test_interleaved(mtest *t, const iotest *io) {
   int size = t->size, rank = t->rank;
-  MPI_File fh = open_rw(t, io, "inter");
+  MPI_File fh = iotest_open(t, io, "inter");
   if (fh == MPI_FILE_NULL) return;
   if (rank == 0) MPI_File_write_at(fh, 0, "tilesim-header!!", 16, MPI_CHAR, MPI_STATUS_IGNORE);
   MPI_Datatype pair, ftype;
@@ -110,7 +91,7 @@ static void test_interleaved(mtest *t, const iotest *io) {
 /* A 4 x 3 size matrix of ints in C order; rank r owns columns 3r .. 3r+2. */
 static void test_subarray(mtest *t, const iotest *io) {
   int size = t->size, rank = t->rank, cols = 3 * size;
-  MPI_File fh = open_rw(t, io, "matrix");
+  MPI_File fh = iotest_open(t, io, "matrix");
   if (fh == MPI_FILE_NULL) return;
   int sizes[2] = {4, cols}, subs[2] = {4, 3}, starts[2] = {0, 3 * rank}, local[12];
   MPI_Datatype ft;
@@ -137,7 +118,7 @@ static void test_subarray(mtest *t, const iotest *io) {
  * mod size. */
 static void test_darray(mtest *t, const iotest *io) {
   int size = t->size, rank = t->rank, n = 4 * size;
-  MPI_File fh = open_rw(t, io, "cyclic");
+  MPI_File fh = iotest_open(t, io, "cyclic");
   if (fh == MPI_FILE_NULL) return;
   int g[1] = {n}, dist[1] = {MPI_DISTRIBUTE_CYCLIC}, darg[1] = {2}, ps[1] = {size}, mine[4], k = 0;
   MPI_Datatype ft;
@@ -166,7 +147,7 @@ static void test_darray(mtest *t, const iotest *io) {
  * past the end. */
 static void test_etypes(mtest *t, const iotest *io) {
   int rank = t->rank;
-  MPI_File fh = open_rw(t, io, "pairs");
+  MPI_File fh = iotest_open(t, io, "pairs");
   if (fh == MPI_FILE_NULL) return;
   MPI_Datatype pair, holes;
   MPI_Type_contiguous(2, MPI_INT, &pair);
@@ -210,7 +191,7 @@ static void test_etypes(mtest *t, const iotest *io) {
 }
 
 static void test_refused(mtest *t, const iotest *io) {
-  MPI_File fh = open_rw(t, io, "pairs");
+  MPI_File fh = iotest_open(t, io, "pairs");
   if (fh == MPI_FILE_NULL) return;
   MPI_Datatype three;
   MPI_Type_contiguous(3, MPI_CHAR, &three);
@@ -230,22 +211,7 @@ static void test_refused(mtest *t, const iotest *io) {
 }
 
 int main(int argc, char **argv) {
-  mtest t;
-  iotest io;
-  MPI_Init(&argc, &argv);
-  mtest_init(&t, "io_views");
-  if (iotest_init(&io, "io_views") != 0) {
-    MCHECK(&t, 0, "no directory for the files under $TMPDIR");
-  } else {
-    test_interleaved(&t, &io);
-    test_subarray(&t, &io);
-    test_darray(&t, &io);
-    test_etypes(&t, &io);
-    test_refused(&t, &io);
-    static const char *const names[] = {"inter", "matrix", "cyclic", "pairs", NULL};
-    iotest_done(&io, names);
-  }
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const iotest_fn checks[] = {test_interleaved, test_subarray, test_darray, test_etypes, test_refused, NULL};
+  static const char *const files[] = {"inter", "matrix", "cyclic", "pairs", NULL};
+  return iotest_main(&argc, &argv, "io_views", checks, files);
 }

@@ -18,18 +18,6 @@
 
 #include "mtest.h"
 
-#ifdef TSMPI_MPI_H
-#define TILESIM 1
-#else
-#define TILESIM 0
-#endif
-
-/* A check that counts only when it fails: for what only tilesim does. */
-#define SCHECK(t, cond, ...)                 \
-  do {                                       \
-    if (!(cond)) MCHECK(t, 0, __VA_ARGS__);  \
-  } while (0)
-
 enum { N = 9 };   /* elements per reduction */
 
 /* The operations by index, and which classes they apply to. */
@@ -40,6 +28,16 @@ static MPI_Op op_of(int o) {
   return ops[o];
 }
 static const char *const op_name[NOPS] = {"MAX", "MIN", "SUM", "PROD", "LAND", "BAND", "LOR", "BOR", "LXOR", "BXOR"};
+
+/* The check of MPI_Reduce_local's answer rc for operation o on name: where
+ * the operation applies, success with the expected elements (same); where
+ * not, MPI_ERR_OP. */
+static void verdict(mtest *t, int o, const char *name, int rc, int applies, int same) {
+  if (applies)
+    MCHECK(t, same, "%s on %s: rc %d or a wrong element", op_name[o], name, rc);
+  else
+    MCHECK(t, rc == MPI_ERR_OP, "%s on %s: rc %d, want MPI_ERR_OP", op_name[o], name, rc);
+}
 
 /* Classes of MPI 3.1 section 5.9.2 and the operations the standard allows
  * on each (bit o: operation o). */
@@ -160,13 +158,9 @@ INT_TEST(uint64_t, uint64_t, 64, 1)
                 : (T)ref_int(o, a[i] != 0, b[i] != 0, 1, 8);                                    \
       }                                                                                         \
       int rc = MPI_Reduce_local(a, b, N, dt, op_of(o));                                         \
-      if (o <= PROD || (logical && TILESIM)) {                                                  \
-        int bad = rc != MPI_SUCCESS;                                                            \
-        for (int i = 0; i < N && !bad; i++) bad = b[i] != want[i];                              \
-        MCHECK(t, !bad, "%s on %s: rc %d or a wrong element", op_name[o], name, rc);            \
-      } else {                                                                                  \
-        MCHECK(t, rc == MPI_ERR_OP, "%s on %s: rc %d, want MPI_ERR_OP", op_name[o], name, rc);  \
-      }                                                                                         \
+      int same = rc == MPI_SUCCESS;                                                             \
+      for (int i = 0; i < N && same; i++) same = b[i] == want[i];                               \
+      verdict(t, o, name, rc, o <= PROD || (logical && TILESIM), same);                         \
     }                                                                                           \
   }
 typedef long double ldouble;
@@ -184,13 +178,9 @@ FLOAT_TEST(ldouble)
         want[i] = o == SUM ? a[i] + b[i] : a[i] * b[i];                                         \
       }                                                                                         \
       int rc = MPI_Reduce_local(a, b, N, dt, op_of(o));                                         \
-      if (o == SUM || o == PROD) {                                                              \
-        int bad = rc != MPI_SUCCESS;                                                            \
-        for (int i = 0; i < N && !bad; i++) bad = b[i] != want[i];                              \
-        MCHECK(t, !bad, "%s on %s: rc %d or a wrong element", op_name[o], name, rc);            \
-      } else {                                                                                  \
-        MCHECK(t, rc == MPI_ERR_OP, "%s on %s: rc %d, want MPI_ERR_OP", op_name[o], name, rc);  \
-      }                                                                                         \
+      int same = rc == MPI_SUCCESS;                                                             \
+      for (int i = 0; i < N && same; i++) same = b[i] == want[i];                               \
+      verdict(t, o, name, rc, o == SUM || o == PROD, same);                                     \
     }                                                                                           \
   }
 COMPLEX_TEST(float _Complex, float)
@@ -209,13 +199,9 @@ COMPLEX_TEST(long double _Complex, ldouble)
         want[i] = (T)ref_int(o < LAND ? LAND : o, a[i], b[i], 1, 8);                            \
       }                                                                                         \
       int rc = MPI_Reduce_local(a, b, 4, dt, op_of(o));                                         \
-      if (o == LAND || o == LOR || o == LXOR) {                                                 \
-        int bad = rc != MPI_SUCCESS;                                                            \
-        for (int i = 0; i < 4 && !bad; i++) bad = b[i] != want[i];                              \
-        MCHECK(t, !bad, "%s on %s: rc %d or a wrong element", op_name[o], name, rc);            \
-      } else {                                                                                  \
-        MCHECK(t, rc == MPI_ERR_OP, "%s on %s: rc %d, want MPI_ERR_OP", op_name[o], name, rc);  \
-      }                                                                                         \
+      int same = rc == MPI_SUCCESS;                                                             \
+      for (int i = 0; i < 4 && same; i++) same = b[i] == want[i];                               \
+      verdict(t, o, name, rc, o == LAND || o == LOR || o == LXOR, same);                        \
     }                                                                                           \
   }
 typedef _Bool cbool;
@@ -345,75 +331,70 @@ static void test_collective(mtest *t) {
   MCHECK(t, q.v == 0 && q.i == 0, "MINLOC of rank %% 3: (%g, %d)", q.v, q.i);
 }
 
+/* Every predefined type with each operation that applies to it. */
+static void test_types(mtest *t) {
+  test_char(t, MPI_CHAR, "MPI_CHAR", CINT);
+  test_schar(t, MPI_SIGNED_CHAR, "MPI_SIGNED_CHAR", CINT);
+  test_uchar(t, MPI_UNSIGNED_CHAR, "MPI_UNSIGNED_CHAR", CINT);
+  test_uchar(t, MPI_BYTE, "MPI_BYTE", BYTE);
+  test_short(t, MPI_SHORT, "MPI_SHORT", CINT);
+  test_ushort(t, MPI_UNSIGNED_SHORT, "MPI_UNSIGNED_SHORT", CINT);
+  test_int(t, MPI_INT, "MPI_INT", CINT);
+  test_unsigned(t, MPI_UNSIGNED, "MPI_UNSIGNED", CINT);
+  test_long(t, MPI_LONG, "MPI_LONG", CINT);
+  test_ulong(t, MPI_UNSIGNED_LONG, "MPI_UNSIGNED_LONG", CINT);
+  test_llong(t, MPI_LONG_LONG_INT, "MPI_LONG_LONG_INT", CINT);
+  test_llong(t, MPI_LONG_LONG, "MPI_LONG_LONG", CINT);
+  test_ullong(t, MPI_UNSIGNED_LONG_LONG, "MPI_UNSIGNED_LONG_LONG", CINT);
+  test_int8_t(t, MPI_INT8_T, "MPI_INT8_T", CINT);
+  test_int16_t(t, MPI_INT16_T, "MPI_INT16_T", CINT);
+  test_int32_t(t, MPI_INT32_T, "MPI_INT32_T", CINT);
+  test_int64_t(t, MPI_INT64_T, "MPI_INT64_T", CINT);
+  test_uint8_t(t, MPI_UINT8_T, "MPI_UINT8_T", CINT);
+  test_uint16_t(t, MPI_UINT16_T, "MPI_UINT16_T", CINT);
+  test_uint32_t(t, MPI_UINT32_T, "MPI_UINT32_T", CINT);
+  test_uint64_t(t, MPI_UINT64_T, "MPI_UINT64_T", CINT);
+  test_int32_t(t, MPI_INTEGER, "MPI_INTEGER", FINT);
+  test_int8_t(t, MPI_INTEGER1, "MPI_INTEGER1", FINT);
+  test_int16_t(t, MPI_INTEGER2, "MPI_INTEGER2", FINT);
+  test_int32_t(t, MPI_INTEGER4, "MPI_INTEGER4", FINT);
+  test_int64_t(t, MPI_INTEGER8, "MPI_INTEGER8", FINT);
+  if (sizeof(MPI_Aint) == 8) test_int64_t(t, MPI_AINT, "MPI_AINT", MULTI);
+  if (sizeof(MPI_Offset) == 8) test_int64_t(t, MPI_OFFSET, "MPI_OFFSET", MULTI);
+  if (sizeof(MPI_Count) == 8) test_int64_t(t, MPI_COUNT, "MPI_COUNT", MULTI);
+  test_float(t, MPI_FLOAT, "MPI_FLOAT");
+  test_double(t, MPI_DOUBLE, "MPI_DOUBLE");
+  test_ldouble(t, MPI_LONG_DOUBLE, "MPI_LONG_DOUBLE");
+  test_float(t, MPI_REAL, "MPI_REAL");
+  test_double(t, MPI_DOUBLE_PRECISION, "MPI_DOUBLE_PRECISION");
+  test_float(t, MPI_REAL4, "MPI_REAL4");
+  test_double(t, MPI_REAL8, "MPI_REAL8");
+  test_float_complex(t, MPI_C_FLOAT_COMPLEX, "MPI_C_FLOAT_COMPLEX");
+  test_float_complex(t, MPI_C_COMPLEX, "MPI_C_COMPLEX");
+  test_double_complex(t, MPI_C_DOUBLE_COMPLEX, "MPI_C_DOUBLE_COMPLEX");
+  test_ldouble_complex(t, MPI_C_LONG_DOUBLE_COMPLEX, "MPI_C_LONG_DOUBLE_COMPLEX");
+  test_float_complex(t, MPI_CXX_FLOAT_COMPLEX, "MPI_CXX_FLOAT_COMPLEX");
+  test_double_complex(t, MPI_CXX_DOUBLE_COMPLEX, "MPI_CXX_DOUBLE_COMPLEX");
+  test_ldouble_complex(t, MPI_CXX_LONG_DOUBLE_COMPLEX, "MPI_CXX_LONG_DOUBLE_COMPLEX");
+  test_float_complex(t, MPI_COMPLEX, "MPI_COMPLEX");
+  test_double_complex(t, MPI_DOUBLE_COMPLEX, "MPI_DOUBLE_COMPLEX");
+  test_float_complex(t, MPI_COMPLEX8, "MPI_COMPLEX8");
+  test_double_complex(t, MPI_COMPLEX16, "MPI_COMPLEX16");
+  test_logical_cbool(t, MPI_C_BOOL, "MPI_C_BOOL");
+  test_logical_cbool(t, MPI_CXX_BOOL, "MPI_CXX_BOOL");
+  test_logical_int32_t(t, MPI_LOGICAL, "MPI_LOGICAL");
+  test_pair_float_int(t, MPI_FLOAT_INT, "MPI_FLOAT_INT");
+  test_pair_double_int(t, MPI_DOUBLE_INT, "MPI_DOUBLE_INT");
+  test_pair_long_int(t, MPI_LONG_INT, "MPI_LONG_INT");
+  test_pair_2int(t, MPI_2INT, "MPI_2INT");
+  test_pair_short_int(t, MPI_SHORT_INT, "MPI_SHORT_INT");
+  test_pair_long_double_int(t, MPI_LONG_DOUBLE_INT, "MPI_LONG_DOUBLE_INT");
+  test_pair_2real(t, MPI_2REAL, "MPI_2REAL");
+  test_pair_2double(t, MPI_2DOUBLE_PRECISION, "MPI_2DOUBLE_PRECISION");
+  test_pair_2integer(t, MPI_2INTEGER, "MPI_2INTEGER");
+}
+
 int main(int argc, char **argv) {
-  mtest t;
-  MPI_Init(&argc, &argv);
-  mtest_init(&t, "op_types");
-  MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
-  if (t.rank == 0) {
-    test_char(&t, MPI_CHAR, "MPI_CHAR", CINT);
-    test_schar(&t, MPI_SIGNED_CHAR, "MPI_SIGNED_CHAR", CINT);
-    test_uchar(&t, MPI_UNSIGNED_CHAR, "MPI_UNSIGNED_CHAR", CINT);
-    test_uchar(&t, MPI_BYTE, "MPI_BYTE", BYTE);
-    test_short(&t, MPI_SHORT, "MPI_SHORT", CINT);
-    test_ushort(&t, MPI_UNSIGNED_SHORT, "MPI_UNSIGNED_SHORT", CINT);
-    test_int(&t, MPI_INT, "MPI_INT", CINT);
-    test_unsigned(&t, MPI_UNSIGNED, "MPI_UNSIGNED", CINT);
-    test_long(&t, MPI_LONG, "MPI_LONG", CINT);
-    test_ulong(&t, MPI_UNSIGNED_LONG, "MPI_UNSIGNED_LONG", CINT);
-    test_llong(&t, MPI_LONG_LONG_INT, "MPI_LONG_LONG_INT", CINT);
-    test_llong(&t, MPI_LONG_LONG, "MPI_LONG_LONG", CINT);
-    test_ullong(&t, MPI_UNSIGNED_LONG_LONG, "MPI_UNSIGNED_LONG_LONG", CINT);
-    test_int8_t(&t, MPI_INT8_T, "MPI_INT8_T", CINT);
-    test_int16_t(&t, MPI_INT16_T, "MPI_INT16_T", CINT);
-    test_int32_t(&t, MPI_INT32_T, "MPI_INT32_T", CINT);
-    test_int64_t(&t, MPI_INT64_T, "MPI_INT64_T", CINT);
-    test_uint8_t(&t, MPI_UINT8_T, "MPI_UINT8_T", CINT);
-    test_uint16_t(&t, MPI_UINT16_T, "MPI_UINT16_T", CINT);
-    test_uint32_t(&t, MPI_UINT32_T, "MPI_UINT32_T", CINT);
-    test_uint64_t(&t, MPI_UINT64_T, "MPI_UINT64_T", CINT);
-    test_int32_t(&t, MPI_INTEGER, "MPI_INTEGER", FINT);
-    test_int8_t(&t, MPI_INTEGER1, "MPI_INTEGER1", FINT);
-    test_int16_t(&t, MPI_INTEGER2, "MPI_INTEGER2", FINT);
-    test_int32_t(&t, MPI_INTEGER4, "MPI_INTEGER4", FINT);
-    test_int64_t(&t, MPI_INTEGER8, "MPI_INTEGER8", FINT);
-    if (sizeof(MPI_Aint) == 8) test_int64_t(&t, MPI_AINT, "MPI_AINT", MULTI);
-    if (sizeof(MPI_Offset) == 8) test_int64_t(&t, MPI_OFFSET, "MPI_OFFSET", MULTI);
-    if (sizeof(MPI_Count) == 8) test_int64_t(&t, MPI_COUNT, "MPI_COUNT", MULTI);
-    test_float(&t, MPI_FLOAT, "MPI_FLOAT");
-    test_double(&t, MPI_DOUBLE, "MPI_DOUBLE");
-    test_ldouble(&t, MPI_LONG_DOUBLE, "MPI_LONG_DOUBLE");
-    test_float(&t, MPI_REAL, "MPI_REAL");
-    test_double(&t, MPI_DOUBLE_PRECISION, "MPI_DOUBLE_PRECISION");
-    test_float(&t, MPI_REAL4, "MPI_REAL4");
-    test_double(&t, MPI_REAL8, "MPI_REAL8");
-    test_float_complex(&t, MPI_C_FLOAT_COMPLEX, "MPI_C_FLOAT_COMPLEX");
-    test_float_complex(&t, MPI_C_COMPLEX, "MPI_C_COMPLEX");
-    test_double_complex(&t, MPI_C_DOUBLE_COMPLEX, "MPI_C_DOUBLE_COMPLEX");
-    test_ldouble_complex(&t, MPI_C_LONG_DOUBLE_COMPLEX, "MPI_C_LONG_DOUBLE_COMPLEX");
-    test_float_complex(&t, MPI_CXX_FLOAT_COMPLEX, "MPI_CXX_FLOAT_COMPLEX");
-    test_double_complex(&t, MPI_CXX_DOUBLE_COMPLEX, "MPI_CXX_DOUBLE_COMPLEX");
-    test_ldouble_complex(&t, MPI_CXX_LONG_DOUBLE_COMPLEX, "MPI_CXX_LONG_DOUBLE_COMPLEX");
-    test_float_complex(&t, MPI_COMPLEX, "MPI_COMPLEX");
-    test_double_complex(&t, MPI_DOUBLE_COMPLEX, "MPI_DOUBLE_COMPLEX");
-    test_float_complex(&t, MPI_COMPLEX8, "MPI_COMPLEX8");
-    test_double_complex(&t, MPI_COMPLEX16, "MPI_COMPLEX16");
-    test_logical_cbool(&t, MPI_C_BOOL, "MPI_C_BOOL");
-    test_logical_cbool(&t, MPI_CXX_BOOL, "MPI_CXX_BOOL");
-    test_logical_int32_t(&t, MPI_LOGICAL, "MPI_LOGICAL");
-    test_pair_float_int(&t, MPI_FLOAT_INT, "MPI_FLOAT_INT");
-    test_pair_double_int(&t, MPI_DOUBLE_INT, "MPI_DOUBLE_INT");
-    test_pair_long_int(&t, MPI_LONG_INT, "MPI_LONG_INT");
-    test_pair_2int(&t, MPI_2INT, "MPI_2INT");
-    test_pair_short_int(&t, MPI_SHORT_INT, "MPI_SHORT_INT");
-    test_pair_long_double_int(&t, MPI_LONG_DOUBLE_INT, "MPI_LONG_DOUBLE_INT");
-    test_pair_2real(&t, MPI_2REAL, "MPI_2REAL");
-    test_pair_2double(&t, MPI_2DOUBLE_PRECISION, "MPI_2DOUBLE_PRECISION");
-    test_pair_2integer(&t, MPI_2INTEGER, "MPI_2INTEGER");
-    test_refusals(&t);
-  }
-  test_collective(&t);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const mtest_fn checks[] = {mtest_rank0, test_types, test_refusals, mtest_every_rank, test_collective, NULL};
+  return mtest_main(&argc, &argv, "op_types", 1, MTEST_ERRORS_RETURN, checks);
 }

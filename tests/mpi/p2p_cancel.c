@@ -172,19 +172,18 @@ static void cancel_received(mtest *t) {
   MCHECK(t, was == 0, "a received send was cancelled");
 }
 
-int main(int argc, char **argv) {
-  MPI_Init(&argc, &argv);
-  mtest t;
-  mtest_init(&t, "p2p_cancel");
-  cancel_posted(&t);
-  cancel_tested(&t);
-  cancel_matched(&t);
+/* Cancels of posted, tested and matched receives, of sends of each mode, of a received message. */
+static void cancels(mtest *t) {
+  cancel_posted(t);
+  cancel_tested(t);
+  cancel_matched(t);
   static const int sizes[2] = {8, 1000};
   for (int k = 0; k < 3; k++)
-    for (int i = 0; i < 2; i++) cancel_send(&t, k, sizes[i], 100 + 10 * k + 2 * i);
-  cancel_received(&t);
-  MPI_Barrier(MPI_COMM_WORLD);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+    for (int i = 0; i < 2; i++) cancel_send(t, k, sizes[i], 100 + 10 * k + 2 * i);
+  cancel_received(t);
+}
+
+int main(int argc, char **argv) {
+  static const mtest_fn checks[] = {cancels, NULL};
+  return mtest_main(&argc, &argv, "p2p_cancel", 1, MTEST_BARRIER, checks);
 }

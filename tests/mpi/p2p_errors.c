@@ -103,19 +103,6 @@ static void err_strings(mtest *t) {
 }
 
 int main(int argc, char **argv) {
-  MPI_Init(&argc, &argv);
-  mtest t;
-  mtest_init(&t, "p2p_errors");
-  if (t.size < 2) {
-    if (t.rank == 0) printf("p2p_errors: needs 2 ranks or more\n");
-    MPI_Finalize();
-    return 1;
-  }
-  MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
-  err_args(&t);
-  err_truncate(&t);
-  err_strings(&t);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const mtest_fn checks[] = {err_args, err_truncate, err_strings, NULL};
+  return mtest_main(&argc, &argv, "p2p_errors", 2, MTEST_ERRORS_RETURN, checks);
 }

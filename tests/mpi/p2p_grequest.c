@@ -173,17 +173,6 @@ static void grequest_error(mtest *t) {
 }
 
 int main(int argc, char **argv) {
-  MPI_Init(&argc, &argv);
-  mtest t;
-  mtest_init(&t, "p2p_grequest");
-  grequest_basic(&t);
-  grequest_get_status(&t);
-  grequest_freed(&t);
-  grequest_cancel(&t);
-  grequest_mixed(&t);
-  grequest_error(&t);
-  MPI_Barrier(MPI_COMM_WORLD);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const mtest_fn checks[] = {grequest_basic, grequest_get_status, grequest_freed, grequest_cancel, grequest_mixed, grequest_error, NULL};
+  return mtest_main(&argc, &argv, "p2p_grequest", 1, MTEST_BARRIER, checks);
 }

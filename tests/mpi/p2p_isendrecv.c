@@ -165,18 +165,17 @@ static void vector_and_many(mtest *t) {
   MCHECK(t, bad == 0, "four at once: %d wrong", bad);
 }
 
+/* Rings, lines and vectors by MPI_Isendrecv and MPI_Isendrecv_replace. */
+static void isendrecvs(mtest *t) {
+  ring(t, 1);
+  ring(t, 3000);
+  ring_replace(t, 5);
+  ring_replace(t, 5000);
+  line(t);
+  vector_and_many(t);
+}
+
 int main(int argc, char **argv) {
-  MPI_Init(&argc, &argv);
-  mtest t;
-  mtest_init(&t, "p2p_isendrecv");
-  ring(&t, 1);
-  ring(&t, 3000);
-  ring_replace(&t, 5);
-  ring_replace(&t, 5000);
-  line(&t);
-  vector_and_many(&t);
-  MPI_Barrier(MPI_COMM_WORLD);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const mtest_fn checks[] = {isendrecvs, NULL};
+  return mtest_main(&argc, &argv, "p2p_isendrecv", 1, MTEST_BARRIER, checks);
 }

@@ -138,19 +138,6 @@ static void mode_persistent(mtest *t) {
 }
 
 int main(int argc, char **argv) {
-  MPI_Init(&argc, &argv);
-  mtest t;
-  mtest_init(&t, "p2p_modes");
-  if (t.size < 2) {
-    if (t.rank == 0) printf("p2p_modes: needs 2 ranks or more\n");
-    MPI_Finalize();
-    return 1;
-  }
-  mode_sync(&t);
-  mode_buffered(&t);
-  mode_ready(&t);
-  mode_persistent(&t);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const mtest_fn checks[] = {mode_sync, mode_buffered, mode_ready, mode_persistent, NULL};
+  return mtest_main(&argc, &argv, "p2p_modes", 2, 0, checks);
 }

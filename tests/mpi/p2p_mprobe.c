@@ -11,19 +11,14 @@
 #include <string.h>
 
 #include "mtest.h"
+#include "probetest.h"
 
 /* Every other rank sends rank 0 rank * 3 ints (each its rank), tag = rank;
  * rank 0 takes each with MPI_Mprobe from any source, checks that the
  * message is out of matching (an MPI_Iprobe by its source and tag finds
  * nothing), sizes its buffer by the count and receives it with MPI_Mrecv. */
-static void mprobe_any(mtest *t, MPI_Comm comm) {
-  if (t->rank != 0) {
-    int n = 3 * t->rank, *v = malloc((size_t)n * sizeof *v);
-    for (int i = 0; i < n; i++) v[i] = t->rank;
-    MPI_Send(v, n, MPI_INT, 0, t->rank, comm);
-    free(v);
-    return;
-  }
+static void mprobe_any_on(mtest *t, MPI_Comm comm) {
+  if (!probetest_send(t, comm)) return;
   int bad = 0;
   for (int k = 1; k < t->size; k++) {
     MPI_Message msg = MPI_MESSAGE_NULL;
@@ -44,6 +39,14 @@ static void mprobe_any(mtest *t, MPI_Comm comm) {
     free(v);
   }
   MCHECK(t, bad == 0, "matched probes from any source: %d wrong", bad);
+}
+
+/* mprobe_any on a duplicate of MPI_COMM_WORLD. */
+static void mprobe_any(mtest *t) {
+  MPI_Comm comm;
+  MPI_Comm_dup(MPI_COMM_WORLD, &comm);
+  mprobe_any_on(t, comm);
+  MPI_Comm_free(&comm);
 }
 
 /* Rank 1 sends rank 0 three messages, tag 7, values 1, 2, 3, then one of
@@ -148,19 +151,6 @@ static void mprobe_truncate_vector(mtest *t) {
 }
 
 int main(int argc, char **argv) {
-  MPI_Init(&argc, &argv);
-  mtest t;
-  mtest_init(&t, "p2p_mprobe");
-  MPI_Comm comm;
-  MPI_Comm_dup(MPI_COMM_WORLD, &comm);
-  mprobe_any(&t, comm);
-  MPI_Comm_free(&comm);
-  mprobe_order(&t);
-  mprobe_posted(&t);
-  mprobe_null(&t);
-  mprobe_truncate_vector(&t);
-  MPI_Barrier(MPI_COMM_WORLD);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const mtest_fn checks[] = {mprobe_any, mprobe_order, mprobe_posted, mprobe_null, mprobe_truncate_vector, NULL};
+  return mtest_main(&argc, &argv, "p2p_mprobe", 1, MTEST_BARRIER, checks);
 }

@@ -223,22 +223,6 @@ static void to_self(mtest *t) {
 }
 
 int main(int argc, char **argv) {
-  MPI_Init(&argc, &argv);
-  mtest t;
-  mtest_init(&t, "p2p_order");
-  if (t.size < 2) {
-    if (t.rank == 0) printf("p2p_order: needs 2 ranks or more\n");
-    MPI_Finalize();
-    return 1;
-  }
-  ring(&t);
-  overtaking(&t);
-  posted_order(&t);
-  any_source(&t);
-  proc_null(&t);
-  lengths(&t);
-  to_self(&t);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const mtest_fn checks[] = {ring, overtaking, posted_order, any_source, proc_null, lengths, to_self, NULL};
+  return mtest_main(&argc, &argv, "p2p_order", 2, 0, checks);
 }

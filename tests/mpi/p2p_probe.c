@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "mtest.h"
+#include "probetest.h"
 
 /* Every other rank sends rank 0 a message of rank * 3 ints, each int its
  * rank, with tag = rank; rank 0 probes from any source, sizes the buffer by
@@ -24,13 +25,7 @@ static void probe_sizes(mtest *t) {
 }
 
 static void probe_sizes_on(mtest *t, MPI_Comm comm) {
-  if (t->rank != 0) {
-    int n = 3 * t->rank, *v = malloc((size_t)n * sizeof *v);
-    for (int i = 0; i < n; i++) v[i] = t->rank;
-    MPI_Send(v, n, MPI_INT, 0, t->rank, comm);
-    free(v);
-    return;
-  }
+  if (!probetest_send(t, comm)) return;
   int *seen = calloc((size_t)t->size, sizeof *seen);
   for (int k = 1; k < t->size; k++) {
     MPI_Status st, st2, st3;
@@ -107,19 +102,6 @@ static void probe_null(mtest *t) {
 }
 
 int main(int argc, char **argv) {
-  MPI_Init(&argc, &argv);
-  mtest t;
-  mtest_init(&t, "p2p_probe");
-  if (t.size < 2) {
-    if (t.rank == 0) printf("p2p_probe: needs 2 ranks or more\n");
-    MPI_Finalize();
-    return 1;
-  }
-  probe_sizes(&t);
-  probe_poll(&t);
-  probe_posted(&t);
-  probe_null(&t);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const mtest_fn checks[] = {probe_sizes, probe_poll, probe_posted, probe_null, NULL};
+  return mtest_main(&argc, &argv, "p2p_probe", 2, 0, checks);
 }

@@ -230,21 +230,6 @@ static void req_posted_first(mtest *t) {
 }
 
 int main(int argc, char **argv) {
-  MPI_Init(&argc, &argv);
-  mtest t;
-  mtest_init(&t, "p2p_requests");
-  if (t.size < 2) {
-    if (t.rank == 0) printf("p2p_requests: needs 2 ranks or more\n");
-    MPI_Finalize();
-    return 1;
-  }
-  req_ring(&t);
-  req_any_some(&t);
-  req_tests(&t);
-  req_null_free(&t);
-  req_persistent(&t);
-  req_posted_first(&t);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const mtest_fn checks[] = {req_ring, req_any_some, req_tests, req_null_free, req_persistent, req_posted_first, NULL};
+  return mtest_main(&argc, &argv, "p2p_requests", 2, 0, checks);
 }

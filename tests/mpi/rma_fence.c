@@ -218,15 +218,6 @@ static void nothing(mtest *t) {
 }
 
 int main(int argc, char **argv) {
-  MPI_Init(&argc, &argv);
-  mtest t;
-  mtest_init(&t, "rma_fence");
-  ring(&t);
-  structs(&t);
-  accumulates(&t);
-  fetching(&t);
-  nothing(&t);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const mtest_fn checks[] = {ring, structs, accumulates, fetching, nothing, NULL};
+  return mtest_main(&argc, &argv, "rma_fence", 1, 0, checks);
 }

@@ -192,15 +192,6 @@ static void polled(mtest *t) {
 }
 
 int main(int argc, char **argv) {
-  MPI_Init(&argc, &argv);
-  mtest t;
-  mtest_init(&t, "rma_passive");
-  counter(&t);
-  mutex(&t);
-  flushes(&t);
-  requests(&t);
-  polled(&t);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const mtest_fn checks[] = {counter, mutex, flushes, requests, polled, NULL};
+  return mtest_main(&argc, &argv, "rma_passive", 1, 0, checks);
 }

@@ -120,14 +120,6 @@ static void empty(mtest *t) {
 }
 
 int main(int argc, char **argv) {
-  MPI_Init(&argc, &argv);
-  mtest t;
-  mtest_init(&t, "rma_pscw");
-  ring(&t);
-  ordering(&t);
-  gather_test(&t);
-  empty(&t);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const mtest_fn checks[] = {ring, ordering, gather_test, empty, NULL};
+  return mtest_main(&argc, &argv, "rma_pscw", 1, 0, checks);
 }

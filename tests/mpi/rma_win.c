@@ -86,14 +86,9 @@ static void flavors(mtest *t) {
   MPI_Win win;
   MPI_Win_create(mem, sizeof mem, sizeof(int), MPI_INFO_NULL, MPI_COMM_WORLD, &win);
   attributes(t, win, mem, sizeof mem, sizeof(int), MPI_WIN_FLAVOR_CREATE);
-  MPI_Group wg, cg;
-  int same;
+  MPI_Group wg;
   MPI_Win_get_group(win, &wg);
-  MPI_Comm_group(MPI_COMM_WORLD, &cg);
-  MPI_Group_compare(wg, cg, &same);
-  MCHECK(t, same == MPI_IDENT, "MPI_Win_get_group is not MPI_COMM_WORLD's group (%d)", same);
-  MPI_Group_free(&wg);
-  MPI_Group_free(&cg);
+  mtest_world_group(t, wg, "MPI_Win_get_group");
   MPI_Win_free(&win);
   MCHECK(t, win == MPI_WIN_NULL, "MPI_Win_free left the handle");
 
@@ -291,16 +286,6 @@ static void errors(mtest *t) {
 }
 
 int main(int argc, char **argv) {
-  MPI_Init(&argc, &argv);
-  mtest t;
-  mtest_init(&t, "rma_win");
-  flavors(&t);
-  names_info(&t);
-  handlers_keyvals(&t);
-  shared(&t);
-  dynamic(&t);
-  errors(&t);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const mtest_fn checks[] = {flavors, names_info, handlers_keyvals, shared, dynamic, errors, NULL};
+  return mtest_main(&argc, &argv, "rma_win", 1, 0, checks);
 }

@@ -13,12 +13,6 @@
 
 #include "mtest.h"
 
-#ifdef TSMPI_MPI_H
-#define TILESIM 1
-#else
-#define TILESIM 0
-#endif
-
 /* ==== MPI_Dims_create ===================================================== */
 
 /* The most balanced non-increasing factorization of n into k factors, each
@@ -238,21 +232,21 @@ static void errors(mtest *t) {
   MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_ARE_FATAL);
 }
 
-int main(int argc, char **argv) {
-  mtest t;
-  MPI_Init(&argc, &argv);
-  mtest_init(&t, "topo_cart");
-  dims(&t);
+/* Dims_create, then grids of one to three dimensions, open, periodic and mixed. */
+static void cartesian(mtest *t) {
+  dims(t);
   static const int periodic[3] = {1, 1, 1}, open[3] = {0, 0, 0}, mixed[3] = {1, 0, 1};
   for (int nd = 1; nd <= 3; nd++) {
-    grid(&t, nd, t.size, open);
-    grid(&t, nd, t.size, periodic);
-    grid(&t, nd, t.size, mixed);
-    if (t.size > 1) grid(&t, nd, t.size - 1, mixed);
+    grid(t, nd, t->size, open);
+    grid(t, nd, t->size, periodic);
+    grid(t, nd, t->size, mixed);
+    if (t->size > 1) grid(t, nd, t->size - 1, mixed);
   }
-  zero(&t);
-  errors(&t);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  zero(t);
+  errors(t);
+}
+
+int main(int argc, char **argv) {
+  static const mtest_fn checks[] = {cartesian, NULL};
+  return mtest_main(&argc, &argv, "topo_cart", 1, 0, checks);
 }

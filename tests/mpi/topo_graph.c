@@ -13,12 +13,6 @@
 
 #include "mtest.h"
 
-#ifdef TSMPI_MPI_H
-#define TILESIM 1
-#else
-#define TILESIM 0
-#endif
-
 static int cmp_int(const void *a, const void *b) {
   int x = *(const int *)a, y = *(const int *)b;
   return (x > y) - (x < y);
@@ -164,20 +158,20 @@ static void errors(mtest *t) {
   MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_ARE_FATAL);
 }
 
+/* Graph topologies, adjacent and general distributed graphs. */
+static void graphs(mtest *t) {
+  graph(t, t->size);
+  if (t->size > 1) graph(t, t->size - 1);
+  adjacent(t, 0);
+  adjacent(t, 1);
+  general(t, 0, 0);
+  general(t, 1, 0);
+  general(t, 0, 1);
+  general(t, 2, 1);
+  errors(t);
+}
+
 int main(int argc, char **argv) {
-  mtest t;
-  MPI_Init(&argc, &argv);
-  mtest_init(&t, "topo_graph");
-  graph(&t, t.size);
-  if (t.size > 1) graph(&t, t.size - 1);
-  adjacent(&t, 0);
-  adjacent(&t, 1);
-  general(&t, 0, 0);
-  general(&t, 1, 0);
-  general(&t, 0, 1);
-  general(&t, 2, 1);
-  errors(&t);
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+  static const mtest_fn checks[] = {graphs, NULL};
+  return mtest_main(&argc, &argv, "topo_graph", 1, 0, checks);
 }

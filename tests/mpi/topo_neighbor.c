@@ -191,25 +191,25 @@ static void alltoalls(mtest *t, const topo *tp, int count, int kind) {
   free(snd), free(a), free(b);
 }
 
-int main(int argc, char **argv) {
-  mtest t;
-  MPI_Init(&argc, &argv);
-  mtest_init(&t, "topo_neighbor");
+/* The neighbourhood collectives on each kind of topology, at three counts. */
+static void each_topology(mtest *t) {
   void (*make[3])(mtest *, topo *) = {cart, graph, dist};
   for (int m = 0; m < 3; m++) {
     topo tp;
     memset(&tp, 0, sizeof tp);
-    make[m](&t, &tp);
-    neighbours_are(&t, &tp);
+    make[m](t, &tp);
+    neighbours_are(t, &tp);
     for (int c = 0; c < 3; c++) {
       int count = c == 0 ? 1 : c == 1 ? 7 : 3000;
-      allgathers(&t, &tp, count, 0);
-      allgathers(&t, &tp, count, 1);
-      for (int kind = 0; kind < 3; kind++) alltoalls(&t, &tp, count, kind);
+      allgathers(t, &tp, count, 0);
+      allgathers(t, &tp, count, 1);
+      for (int kind = 0; kind < 3; kind++) alltoalls(t, &tp, count, kind);
     }
     MPI_Comm_free(&tp.comm);
   }
-  int rc = mtest_done(&t);
-  MPI_Finalize();
-  return rc;
+}
+
+int main(int argc, char **argv) {
+  static const mtest_fn checks[] = {each_topology, NULL};
+  return mtest_main(&argc, &argv, "topo_neighbor", 1, 0, checks);
 }

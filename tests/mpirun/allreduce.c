@@ -11,17 +11,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "mpibench.h"
+
 int main(int argc, char **argv) {
-  int r, p;
-  MPI_Init(&argc, &argv);
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  MPI_Comm_size(MPI_COMM_WORLD, &p);
-  long count = argc > 1 ? atol(argv[1]) : 1;
-  long iters = argc > 2 ? atol(argv[2]) : 1;
-  if (count < 1 || iters < 1) {
-    if (r == 0) fprintf(stderr, "allreduce: COUNT and ITERS >= 1\n");
-    MPI_Abort(MPI_COMM_WORLD, 2);
-  }
+  mpibench b;
+  mpibench_init(&b, &argc, &argv);
+  int r = b.r, p = b.p;
+  long count = mpibench_arg(&b, 1, 1), iters = mpibench_arg(&b, 2, 1);
+  mpibench_refuse(&b, count < 1 || iters < 1, "allreduce", "COUNT and ITERS >= 1");
   int64_t *in = malloc((size_t)count * sizeof *in), *out = malloc((size_t)count * sizeof *out);
   uint64_t sum = 0;
   int64_t bad = 0, pp = p;

@@ -9,6 +9,8 @@
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+
+#include "mpibench.h"
 #include <string.h>
 
 static uint64_t mark(int s, int d, long it, int end) {
@@ -16,16 +18,11 @@ static uint64_t mark(int s, int d, long it, int end) {
 }
 
 int main(int argc, char **argv) {
-  int r, p;
-  MPI_Init(&argc, &argv);
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  MPI_Comm_size(MPI_COMM_WORLD, &p);
-  long size = argc > 1 ? atol(argv[1]) : 262144;
-  long iters = argc > 2 ? atol(argv[2]) : 10;
-  if (size < 16 || iters < 1) {
-    if (r == 0) fprintf(stderr, "alltoall: SIZE >= 16 and ITERS >= 1\n");
-    MPI_Abort(MPI_COMM_WORLD, 2);
-  }
+  mpibench b;
+  mpibench_init(&b, &argc, &argv);
+  int r = b.r, p = b.p;
+  long size = mpibench_arg(&b, 1, 262144), iters = mpibench_arg(&b, 2, 10);
+  mpibench_refuse(&b, size < 16 || iters < 1, "alltoall", "SIZE >= 16 and ITERS >= 1");
   char *out = malloc((size_t)p * (size_t)size), *in = malloc((size_t)p * (size_t)size);
   memset(out, 'a' + r % 26, (size_t)p * (size_t)size);
   memset(in, 0, (size_t)p * (size_t)size);

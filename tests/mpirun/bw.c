@@ -11,23 +11,20 @@
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+
+#include "mpibench.h"
 #include <string.h>
 
 /* What rank 0 writes at both ends of buffer w in iteration it. */
 static uint64_t mark(long it, int w, int end) { return (uint64_t)(it + 1) * 1000003u + (uint64_t)w * 7919u + (uint64_t)end; }
 
 int main(int argc, char **argv) {
-  int r, p;
-  MPI_Init(&argc, &argv);
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  MPI_Comm_size(MPI_COMM_WORLD, &p);
-  long size = argc > 1 ? atol(argv[1]) : 4194304;
-  int window = argc > 2 ? atoi(argv[2]) : 64;
-  long iters = argc > 3 ? atol(argv[3]) : 10;
-  if (p < 2 || size < 16 || window < 1 || iters < 1) {
-    if (r == 0) fprintf(stderr, "bw: 2 ranks or more, SIZE >= 16, WINDOW and ITERS >= 1\n");
-    MPI_Abort(MPI_COMM_WORLD, 2);
-  }
+  mpibench b;
+  mpibench_init(&b, &argc, &argv);
+  int r = b.r, p = b.p;
+  long size = mpibench_arg(&b, 1, 4194304), iters = mpibench_arg(&b, 3, 10);
+  int window = (int)mpibench_arg(&b, 2, 64);
+  mpibench_refuse(&b, p < 2 || size < 16 || window < 1 || iters < 1, "bw", "2 ranks or more, SIZE >= 16, WINDOW and ITERS >= 1");
   char **buf = malloc((size_t)window * sizeof *buf);
   MPI_Request *req = malloc((size_t)window * sizeof *req);
   for (int w = 0; w < window; w++) {

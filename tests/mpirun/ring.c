@@ -5,15 +5,16 @@
 #include <mpi.h>
 #include <stdio.h>
 #include <stdlib.h>
+
+#include "mpibench.h"
 #include <string.h>
 
 int main(int argc, char **argv) {
-  int r, p;
-  MPI_Init(&argc, &argv);
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  MPI_Comm_size(MPI_COMM_WORLD, &p);
-  long laps = argc > 1 ? atol(argv[1]) : 62500;
-  int bytes = argc > 2 ? atoi(argv[2]) : 8;
+  mpibench b;
+  mpibench_init(&b, &argc, &argv);
+  int r = b.r, p = b.p;
+  long laps = mpibench_arg(&b, 1, 62500);
+  int bytes = (int)mpibench_arg(&b, 2, 8);
   char *buf = calloc((size_t)bytes + 8, 1);
   long long token = 0;
   double t0 = MPI_Wtime();
