@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "util/words.h"
 #include "util/xmem.h"
 
 const char *par_kind_name(par_kind k) {
@@ -11,13 +12,13 @@ const char *par_kind_name(par_kind k) {
   return k < PAR_KINDS ? name[k] : "?";
 }
 
-const char *par_schedule_name(par_schedule s) { return s == PAR_DYNAMIC ? "dynamic" : "static"; }
+static const char *const schedule_names[] = {"static", "dynamic"};
+
+const char *par_schedule_name(par_schedule s) { return schedule_names[s == PAR_DYNAMIC]; }
 
 int par_schedule_parse(const char *s, par_schedule *out) {
-  if (strcmp(s, "static") == 0) *out = PAR_STATIC;
-  else if (strcmp(s, "dynamic") == 0) *out = PAR_DYNAMIC;
-  else return -1;
-  return 0;
+  int i = words_find(schedule_names, 2, s);
+  return i < 0 ? -1 : (*out = (par_schedule)i, 0);
 }
 
 void par_counts_add(par_counts *into, const par_counts *c) {

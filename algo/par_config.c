@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "util/args.h"
+#include "util/words.h"
 
 void par_config_init(par_config *pc) {
   memset(pc, 0, sizeof *pc);
@@ -46,14 +47,7 @@ static int integer(const char *opt, const char *val, int lo, int hi, int *out, c
 /* The names the allocation parser takes (so the messages list whatever
  * split.c knows). */
 void par_config_alloc_words(char *buf, size_t len) {
-  size_t k = 0;
-  buf[0] = 0;
-  for (int i = 0; i < 16; i++) {
-    const char *n = split_alloc_name((split_alloc)i);
-    split_alloc back;
-    if (split_alloc_parse(n, &back) != 0 || (int)back != i) continue;
-    k += (size_t)snprintf(buf + k, k < len ? len - k : 0, "%s%s", k ? "|" : "", n);
-  }
+  words_join(split_alloc_names, SPLIT_ALLOCS, buf, len);
 }
 
 int par_config_option(par_config *pc, const char *opt, const char *val, char *err, size_t errlen) {

@@ -3,6 +3,8 @@
 
 #include <string.h>
 
+#include "util/words.h"
+
 int split_active(int len, int p, int d) {
   int q = len / (d > 0 ? d : 1);
   if (q > p) q = p;
@@ -64,14 +66,13 @@ int split_usable(int m, int n, int s, const gpath *U, const gpath *L, int d) {
   return most;
 }
 
+const char *const split_alloc_names[SPLIT_ALLOCS] = {"half", "size", "fit"};
+
 const char *split_alloc_name(split_alloc a) {
-  return a == ALLOC_SIZE ? "size" : a == ALLOC_FIT ? "fit" : "half";
+  return (unsigned)a < SPLIT_ALLOCS ? split_alloc_names[a] : "half";
 }
 
 int split_alloc_parse(const char *s, split_alloc *a) {
-  if (strcmp(s, "half") == 0) *a = ALLOC_HALF;
-  else if (strcmp(s, "size") == 0) *a = ALLOC_SIZE;
-  else if (strcmp(s, "fit") == 0) *a = ALLOC_FIT;
-  else return -1;
-  return 0;
+  int i = words_find(split_alloc_names, SPLIT_ALLOCS, s);
+  return i < 0 ? -1 : (*a = (split_alloc)i, 0);
 }

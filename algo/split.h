@@ -11,6 +11,10 @@
 #include "algo/band.h"
 
 typedef enum { ALLOC_HALF, ALLOC_SIZE, ALLOC_FIT } split_alloc;
+enum { SPLIT_ALLOCS = 3 };
+
+/* The allocations' names, in the enumeration's order. */
+extern const char *const split_alloc_names[SPLIT_ALLOCS];
 
 /* The slaves active on a diagonal of `len` nodes in a group of p slaves, when
  * each must be given at least d nodes (d = 1: everyone while there are nodes

@@ -7,15 +7,16 @@
 
 #include "geom/hull.h"
 #include "algo/kernel.h"
+#include "util/words.h"
 #include "util/xmem.h"
 
-const char *cost_name(cost_kind k) { return k == COST_SPAN ? "span" : "area"; }
+static const char *const cost_names[] = {"area", "span"};
+
+const char *cost_name(cost_kind k) { return cost_names[k == COST_SPAN]; }
 
 int cost_parse(const char *s, cost_kind *k) {
-  if (strcmp(s, "area") == 0) *k = COST_AREA;
-  else if (strcmp(s, "span") == 0) *k = COST_SPAN;
-  else return -1;
-  return 0;
+  int i = words_find(cost_names, 2, s);
+  return i < 0 ? -1 : (*k = (cost_kind)i, 0);
 }
 
 static int mod(int a, int m) {

@@ -98,18 +98,6 @@ static int integer(const char *opt, const char *val, int lo, int hi, int *out, c
   return 1;
 }
 
-/* The names the network parser takes, '|'-separated (so the messages list
- * whatever sim.c knows). */
-static void net_words(char *buf, size_t len) {
-  size_t k = 0;
-  buf[0] = 0;
-  for (int i = 0; i < 16; i++) {
-    const char *n = sim_net_name((sim_net)i);
-    sim_net back;
-    if (sim_net_parse(n, &back) != 0 || (int)back != i) continue;
-    k += (size_t)snprintf(buf + k, k < len ? len - k : 0, "%s%s", k ? "|" : "", n);
-  }
-}
 
 /* "--topology: " before the parser's message, so that it names the option. */
 static int prefix(const char *opt, char *err, size_t errlen) {
@@ -178,7 +166,7 @@ int machine_option(machine_config *mc, const char *opt, const char *val, char *e
   if (strcmp(opt, "--net") == 0) {
     c->topo.kind = TOPO_NONE;   /* --net and --topology: the last one given */
     if (sim_net_parse(val, &c->net) == 0) return 1;
-    net_words(words, sizeof words);
+    sim_net_words(words, sizeof words);
     args_word(opt, val, words, err, errlen);
     return -1;
   }

@@ -5,6 +5,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "util/words.h"
+
 /* "tc2000": the BBN TC2000 of Johnson, Livadas & Talele (1993), calibrated
  * so that the paper's experiments (sections 6 and 7) show what it reports
  * (doc/model.md, "Calibration: the tc2000 profile").
@@ -64,14 +66,11 @@ const char *sim_net_name(sim_net net) {
 }
 
 int sim_net_parse(const char *name, sim_net *net) {
-  for (unsigned i = 0; i < SIM_NET_TOPOLOGY; i++) {
-    if (strcmp(name, net_names[i]) == 0) {
-      *net = (sim_net)i;
-      return 0;
-    }
-  }
-  return -1;
+  int i = words_find(net_names, SIM_NET_TOPOLOGY, name);
+  return i < 0 ? -1 : (*net = (sim_net)i, 0);
 }
+
+void sim_net_words(char *buf, size_t len) { words_join(net_names, SIM_NET_TOPOLOGY, buf, len); }
 
 int sim_config_check(const sim_config *cfg, int nranks, topo **tp, int *procs, char *err, size_t errlen) {
   if (cfg->procs < 1) {

@@ -173,6 +173,8 @@ int sim_profile(const char *name, sim_config *cfg);
  * another name ("topology" included: a topology is set by cfg.topo). */
 const char *sim_net_name(sim_net net);
 int sim_net_parse(const char *name, sim_net *net);
+/* The names sim_net_parse takes, '|'-separated ("ideal|bus|loggp"). */
+void sim_net_words(char *buf, size_t len);
 
 typedef struct sim sim;
 
