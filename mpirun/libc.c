@@ -264,20 +264,14 @@ static time_t r_time(time_t *t) {
 static int r_gettimeofday(struct timeval *restrict tv, void *restrict tz) {
   double s;
   if (!now(&s)) return gettimeofday(tv, tz);
-  if (tv) {
-    tv->tv_sec = (time_t)s;
-    tv->tv_usec = (suseconds_t)((s - (double)tv->tv_sec) * 1e6);
-  }
+  if (tv) *tv = (struct timeval){.tv_sec = (time_t)s, .tv_usec = (suseconds_t)((s - (double)(time_t)s) * 1e6)};
   return 0;
 }
 
 static int r_clock_gettime(clockid_t id, struct timespec *tp) {
   double s;
   if (!now(&s)) return clock_gettime(id, tp);
-  if (tp) {
-    tp->tv_sec = (time_t)s;
-    tp->tv_nsec = (long)((s - (double)tp->tv_sec) * 1e9);
-  }
+  if (tp) *tp = (struct timespec){.tv_sec = (time_t)s, .tv_nsec = (long)((s - (double)(time_t)s) * 1e9)};
   return 0;
 }
 

@@ -27,7 +27,7 @@ void mesh_free(mesh *me) {
   me->v = NULL, me->t = NULL, me->base = NULL;
 }
 
-static void add(mesh *me, int a, int b, int c) {
+void mesh_add_tri(mesh *me, int a, int b, int c) {
   if (me->nt == me->cap) {
     me->cap = me->cap ? 2 * me->cap : 1024;
     me->t = xreallocarray(me->t, (size_t)me->cap, sizeof *me->t);
@@ -87,8 +87,8 @@ void mesh_add_band(mesh *me, const contour_stack *s, int i, const tiling *t, dou
     const contour *X = on[k] ? Q : P, *Y = on[k] ? P : Q;
     int bx = me->base[on[k] ? i + 1 : i], by = me->base[on[k] ? i : i + 1];
     int xa = bx + tile[k][0], xb = bx + tile[k][1], y = by + tile[k][2];
-    if (Y->z > X->z) add(me, xa, xb, y);
-    else add(me, xb, xa, y);
+    if (Y->z > X->z) mesh_add_tri(me, xa, xb, y);
+    else mesh_add_tri(me, xb, xa, y);
   }
   free(tile);
   free(on);
@@ -119,8 +119,8 @@ double mesh_add_caps(mesh *me, const contour_stack *s) {
     /* Counter-clockwise triangles face +z: right for the top, reversed for the bottom. */
     int top = c->z > s->c[other].z, b = me->base[i];
     for (int k = 0; k < nt; k++) {
-      if (top) add(me, b + tri[k][0], b + tri[k][1], b + tri[k][2]);
-      else add(me, b + tri[k][0], b + tri[k][2], b + tri[k][1]);
+      if (top) mesh_add_tri(me, b + tri[k][0], b + tri[k][1], b + tri[k][2]);
+      else mesh_add_tri(me, b + tri[k][0], b + tri[k][2], b + tri[k][1]);
       ar += mesh_tri_area(me, me->nt - 1);
     }
     free(tri);

@@ -22,6 +22,9 @@ typedef struct {
 /* The vertices of the stack, no triangles yet. */
 void mesh_init(mesh *me, const contour_stack *s);
 void mesh_free(mesh *me);
+/* Append the triangle of vertices a, b, c (indices into me->v), in that
+ * order (its orientation). */
+void mesh_add_tri(mesh *me, int a, int b, int c);
 
 /* Add the band between contours i and i+1 from their tiling t.  Returns, in
  * *area, the sum of the band's triangle areas and, in *volume, the volume of

@@ -253,15 +253,6 @@ static void cap_job(void *ud, int i) {
   ends_cap(w->sl, &w->ends[i], w->o->apex, w->half, &w->caps[i]);
 }
 
-static void add_tri(mesh *me, int a, int b, int c) {
-  if (me->nt == me->cap) {
-    me->cap = me->cap ? 2 * me->cap : 1024;
-    me->t = xreallocarray(me->t, (size_t)me->cap, sizeof *me->t);
-  }
-  me->t[me->nt][0] = a, me->t[me->nt][1] = b, me->t[me->nt][2] = c;
-  me->nt++;
-}
-
 static int *positions(const slices *sl, const int *cs, int n) {
   int *p = xmallocarray((size_t)n + 1, sizeof *p);
   for (int i = 0; i < n; i++) p[i] = sl->c[cs[i]].pos;
@@ -523,7 +514,7 @@ static void assemble(const work *w, stack_surface *ss) {
     for (int k = 0; k < b->ntri; k++) {
       int v[3];
       for (int e = 0; e < 3; e++) v[e] = b->tri[k][e] >= 0 ? b->tri[k][e] : first - 1 - b->tri[k][e];
-      add_tri(me, v[0], v[1], v[2]);
+      mesh_add_tri(me, v[0], v[1], v[2]);
     }
     stack_row *r = &ss->rows[ss->nrows++];
     r->kind = STACK_BAND;
@@ -565,7 +556,7 @@ static void assemble(const work *w, stack_surface *ss) {
     for (int k = 0; k < c->ntri; k++) {
       int v[3];
       for (int e = 0; e < 3; e++) v[e] = c->tri[k][e] >= 0 ? c->tri[k][e] : first - 1 - c->tri[k][e];
-      add_tri(me, v[0], v[1], v[2]);
+      mesh_add_tri(me, v[0], v[1], v[2]);
       for (int e = 0; e < 3; e++) mx = vmax(me->v[v[e]], mx);
     }
     /* At one safe scale, as the bands (mesh_job). */
