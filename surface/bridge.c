@@ -121,7 +121,9 @@ static int legal(const ctx *c, int x, int i, int y, int j, int strict) {
   return 1;
 }
 
-/* Candidate bridges between contours cs[x] and cs[y]. */
+/* A cost and two indices, sorted by cost, then i, then j: a candidate
+ * bridge between point i of contour cs[x] and point j of cs[y], or (in
+ * bridge_join's spanning tree) the pair of contours i and j. */
 typedef struct {
   double cost;
   int i, j;
@@ -224,18 +226,6 @@ static int find_root(int *up, int x) {
   return x;
 }
 
-typedef struct {
-  double cost;
-  int x, y;
-} pair;
-
-static int by_pair(const void *p, const void *q) {
-  const pair *a = p, *b = q;
-  if (a->cost != b->cost) return a->cost < b->cost ? -1 : 1;
-  if (a->x != b->x) return a->x - b->x;
-  return a->y - b->y;
-}
-
 int bridge_join(const slices *sl, const int *cs, int count, int other, double lift,
                 const char *name, composite *out, char *err, size_t errlen) {
   memset(out, 0, sizeof *out);
@@ -257,7 +247,7 @@ int bridge_join(const slices *sl, const int *cs, int count, int other, double li
 
   /* Kruskal over the pairs, by the length of each pair's closest points. */
   int np = count * (count - 1) / 2, joins = 0, rc = 0;
-  pair *pr = xmallocarray((size_t)np + 1, sizeof *pr);
+  cand *pr = xmallocarray((size_t)np + 1, sizeof *pr);
   np = 0;
   for (int x = 0; x < count; x++)
     for (int y = x + 1; y < count; y++) {
@@ -265,9 +255,9 @@ int bridge_join(const slices *sl, const int *cs, int count, int other, double li
       double best = HUGE_VAL;
       for (int i = 0; i < X->n; i++)
         for (int j = 0; j < Y->n; j++) best = fmin(best, d2(X->pt[i], Y->pt[j]));
-      pr[np++] = (pair){best, x, y};
+      pr[np++] = (cand){best, x, y};
     }
-  qsort(pr, (size_t)np, sizeof *pr, by_pair);
+  qsort(pr, (size_t)np, sizeof *pr, by_cost);
   /* Strict bridges first: crossing no contour of either slice.  Real data
    * needs more: a blob just outside the body whose slice above bulges over
    * it (dicompyler BODY), two vessels merging into a kinked one (Lt Lung):
@@ -277,7 +267,7 @@ int bridge_join(const slices *sl, const int *cs, int count, int other, double li
    * which would make the composite cross itself.  A note says where. */
   for (int strict = 1; strict >= 0 && joins < count - 1; strict--) {
     for (int k = 0; k < np && joins < count - 1; k++) {
-      int x = pr[k].x, y = pr[k].y, i, j;
+      int x = pr[k].i, y = pr[k].j, i, j;
       int rx = find_root(up, x), ry = find_root(up, y);
       if (rx == ry || !find_bridge(&c, x, y, strict, &i, &j)) continue;
       if (!strict && out->relaxed++ == 0) {
