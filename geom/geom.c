@@ -80,3 +80,12 @@ static int span_by_lo(const void *a, const void *b) {
 }
 
 void geom_span_sort(geom_span *s, int n) { qsort(s, (size_t)n, sizeof *s, span_by_lo); }
+
+static int pick_order(const void *p, const void *q) {
+  const geom_pick *x = p, *y = q;
+  if (x->w != y->w) return x->w < y->w ? -1 : 1;
+  if (x->a != y->a) return x->a - y->a;
+  return x->b - y->b;
+}
+
+void geom_pick_sort(geom_pick *p, size_t n) { qsort(p, n, sizeof *p, pick_order); }

@@ -83,6 +83,16 @@ typedef struct {
 /* Sort s[0..n-1] by lo, ties by i: the same order on every machine. */
 void geom_span_sort(geom_span *s, int n);
 
+/* A weight and two indices, for choices taken cheapest first (bridges,
+ * cuts): geom_pick_sort orders them by w, then a, then b, the same on
+ * every machine. */
+typedef struct {
+  double w;
+  int a, b;
+} geom_pick;
+
+void geom_pick_sort(geom_pick *p, size_t n);
+
 /* Reverse p[0..n-1] in place, keeping p[0] first. */
 void geom_reverse(vec2 *p, int n);
 

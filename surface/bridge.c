@@ -121,46 +121,31 @@ static int legal(const ctx *c, int x, int i, int y, int j, int strict) {
   return 1;
 }
 
-/* A cost and two indices, sorted by cost, then i, then j: a candidate
- * bridge between point i of contour cs[x] and point j of cs[y], or (in
- * bridge_join's spanning tree) the pair of contours i and j. */
-typedef struct {
-  double cost;
-  int i, j;
-} cand;
-
-static int by_cost(const void *p, const void *q) {
-  const cand *a = p, *b = q;
-  if (a->cost != b->cost) return a->cost < b->cost ? -1 : 1;
-  if (a->i != b->i) return a->i - b->i;
-  return a->j - b->j;
-}
-
 static double cost(const slice_contour *X, int i, const slice_contour *Y, int j) {
   return d2(X->pt[i], Y->pt[(j + 1) % Y->n]) + d2(X->pt[(i + 1) % X->n], Y->pt[j]);
 }
 
 /* For each edge i of X, the best edge j of Y; sorted by cost.  Returns the count. */
-static int best_per_edge(const slice_contour *X, const slice_contour *Y, cand *out) {
+static int best_per_edge(const slice_contour *X, const slice_contour *Y, geom_pick *out) {
   for (int i = 0; i < X->n; i++) {
-    cand b = {HUGE_VAL, i, 0};
+    geom_pick b = {HUGE_VAL, i, 0};
     for (int j = 0; j < Y->n; j++) {
       double v = cost(X, i, Y, j);
-      if (v < b.cost) b.cost = v, b.j = j;
+      if (v < b.w) b.w = v, b.b = j;
     }
     out[i] = b;
   }
-  qsort(out, (size_t)X->n, sizeof *out, by_cost);
+  geom_pick_sort(out, (size_t)X->n);
   return X->n;
 }
 
 /* The shortest legal bridge between cs[x] and cs[y]: 1 and *i, *j, or 0. */
 static int find_bridge(const ctx *c, int x, int y, int strict, int *bi, int *bj) {
   const slice_contour *X = &c->sl->c[c->cs[x]], *Y = &c->sl->c[c->cs[y]];
-  cand *cd = xmallocarray((size_t)X->n, sizeof *cd);
+  geom_pick *cd = xmallocarray((size_t)X->n, sizeof *cd);
   int n = best_per_edge(X, Y, cd), found = 0;
   for (int k = 0; k < n && !found; k++)
-    if (legal(c, x, cd[k].i, y, cd[k].j, strict)) *bi = cd[k].i, *bj = cd[k].j, found = 1;
+    if (legal(c, x, cd[k].a, y, cd[k].b, strict)) *bi = cd[k].a, *bj = cd[k].b, found = 1;
   free(cd);
   if (found) return 1;
   /* Every edge's nearest partner is illegal: try all pairs, shortest first
@@ -171,11 +156,11 @@ static int find_bridge(const ctx *c, int x, int y, int strict, int *bi, int *bj)
   cd = xmallocarray(all, sizeof *cd);
   size_t m = 0;
   for (int i = 0; i < X->n; i++)
-    for (int j = 0; j < Y->n; j++) cd[m++] = (cand){cost(X, i, Y, j), i, j};
-  qsort(cd, m, sizeof *cd, by_cost);
+    for (int j = 0; j < Y->n; j++) cd[m++] = (geom_pick){cost(X, i, Y, j), i, j};
+  geom_pick_sort(cd, m);
   if (strict && m > 4096) m = 4096;
   for (size_t k = 0; k < m && !found; k++)
-    if (legal(c, x, cd[k].i, y, cd[k].j, strict)) *bi = cd[k].i, *bj = cd[k].j, found = 1;
+    if (legal(c, x, cd[k].a, y, cd[k].b, strict)) *bi = cd[k].a, *bj = cd[k].b, found = 1;
   free(cd);
   return found;
 }
@@ -247,7 +232,7 @@ int bridge_join(const slices *sl, const int *cs, int count, int other, double li
 
   /* Kruskal over the pairs, by the length of each pair's closest points. */
   int np = count * (count - 1) / 2, joins = 0, rc = 0;
-  cand *pr = xmallocarray((size_t)np + 1, sizeof *pr);
+  geom_pick *pr = xmallocarray((size_t)np + 1, sizeof *pr);
   np = 0;
   for (int x = 0; x < count; x++)
     for (int y = x + 1; y < count; y++) {
@@ -255,9 +240,9 @@ int bridge_join(const slices *sl, const int *cs, int count, int other, double li
       double best = HUGE_VAL;
       for (int i = 0; i < X->n; i++)
         for (int j = 0; j < Y->n; j++) best = fmin(best, d2(X->pt[i], Y->pt[j]));
-      pr[np++] = (cand){best, x, y};
+      pr[np++] = (geom_pick){best, x, y};
     }
-  qsort(pr, (size_t)np, sizeof *pr, by_cost);
+  geom_pick_sort(pr, (size_t)np);
   /* Strict bridges first: crossing no contour of either slice.  Real data
    * needs more: a blob just outside the body whose slice above bulges over
    * it (dicompyler BODY), two vessels merging into a kinked one (Lt Lung):
@@ -267,7 +252,7 @@ int bridge_join(const slices *sl, const int *cs, int count, int other, double li
    * which would make the composite cross itself.  A note says where. */
   for (int strict = 1; strict >= 0 && joins < count - 1; strict--) {
     for (int k = 0; k < np && joins < count - 1; k++) {
-      int x = pr[k].i, y = pr[k].j, i, j;
+      int x = pr[k].a, y = pr[k].b, i, j;
       int rx = find_root(up, x), ry = find_root(up, y);
       if (rx == ry || !find_bridge(&c, x, y, strict, &i, &j)) continue;
       if (!strict && out->relaxed++ == 0) {

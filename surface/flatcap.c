@@ -12,18 +12,6 @@
 #include "geom/crossing.h"
 #include "util/xmem.h"
 
-typedef struct {
-  double d;
-  int h, w;   /* hole point, woven position */
-} cut;
-
-static int by_d(const void *p, const void *q) {
-  const cut *a = p, *b = q;
-  if (a->d != b->d) return a->d < b->d ? -1 : 1;
-  if (a->h != b->h) return a->h - b->h;
-  return a->w - b->w;
-}
-
 int flatcap_region(const slices *sl, int outer, const int *holes, int nholes, int (**tri)[3]) {
   const slice_contour *O = &sl->c[outer];
   int total = O->n;
@@ -44,17 +32,18 @@ int flatcap_region(const slices *sl, int outer, const int *holes, int nholes, in
         if (q != p && id[q] == id[p]) once[p] = 0;
     }
     size_t m = 0;
-    cut *cd = xmallocarray((size_t)H->n * (size_t)n, sizeof *cd);
+    /* (squared distance, hole point, woven position) of every pair. */
+    geom_pick *cd = xmallocarray((size_t)H->n * (size_t)n, sizeof *cd);
     for (int i = 0; i < H->n; i++)
       for (int p = 0; p < n; p++)
         if (once[p]) {
           double dx = H->pt[i].x - pt[p].x, dy = H->pt[i].y - pt[p].y;
-          cd[m++] = (cut){dx * dx + dy * dy, i, p};
+          cd[m++] = (geom_pick){dx * dx + dy * dy, i, p};
         }
-    qsort(cd, m, sizeof *cd, by_d);
+    geom_pick_sort(cd, m);
     int found = -1;
     for (size_t k = 0; k < m && found < 0; k++) {
-      vec2 a = H->pt[cd[k].h], b = pt[cd[k].w];
+      vec2 a = H->pt[cd[k].a], b = pt[cd[k].b];
       int bad = inside_segment_meets(O->ix, a, b, none, b);
       for (int g = 0; g < nholes && !bad; g++)
         bad = inside_segment_meets(sl->c[holes[g]].ix, a, b, g == h ? a : none, b);
@@ -65,7 +54,7 @@ int flatcap_region(const slices *sl, int outer, const int *holes, int nholes, in
     /* Every hole has a legal cut (the region is connected: a nearest pair of
      * a hole and the rest is always visible); none means a broken invariant. */
     XASSERT(found >= 0);
-    int hi = cd[found].h, w = cd[found].w;
+    int hi = cd[found].a, w = cd[found].b;
     cuts[h][0] = H->pt[hi], cuts[h][1] = pt[w];
     free(cd);
     free(once);
