@@ -456,16 +456,10 @@ coro_stacks *coro_stacks_new(long count, size_t stack, char *err, size_t errlen)
       return NULL;
     }
   }
-  coro_stacks *set = xcalloc(1, sizeof *set);
-  set->map = map;
-  set->maplen = maplen;
-  set->page = page;
-  set->size = size;
-  set->soft = soft;
-  set->slot = slot;
-  set->group = group;
-  set->count = count;
-  set->cos = xcalloc((size_t)count, sizeof *set->cos);
+  coro_stacks *set = xmalloc(sizeof *set);
+  *set = (coro_stacks){.map = map, .maplen = maplen, .page = page, .size = size, .soft = soft,
+                       .slot = slot, .group = group, .count = count,
+                       .cos = xcalloc((size_t)count, sizeof *set->cos)};
   return set;
 }
 
