@@ -246,13 +246,25 @@ void trace_send(trace *tr, int rank, int proc, double t, double dur, int dst, in
   }
 }
 
+/* The CSV row "T,A,B,KIND,C,TAG,LEN,DUR,MSG," of a receive or a link's
+ * message: written, or its bytes counted. */
+static void csv_msg(trace *tr, const char *kind, double t, int a, int b, int c, int tag, size_t len,
+                    double dur, uint64_t msg) {
+  if (tr->count) {
+    if (tr->ccsv)
+      tr->ncsv += len_f(t, 9) + len_i(a) + len_i(b) + strlen(kind) + len_i(c) + len_i(tag) + len_u(len) +
+                  len_f(dur, 9) + len_u(msg) + strlen(",,,,,,,,,\n");
+  } else if (tr->csv) {
+    fprintf(tr->csv, "%.9f,%d,%d,%s,%d,%d,%zu,%.9f,%llu,\n", t, a, b, kind, c, tag, len, dur,
+            (unsigned long long)msg);
+  }
+}
+
 void trace_recv(trace *tr, int rank, int proc, double t, double dur, int src, int tag,
                 size_t len, uint64_t msg) {
   SHADOW(trace_recv(tr, rank, proc, t, dur, src, tag, len, msg));
+  csv_msg(tr, "recv", t, rank, proc, src, tag, len, dur, msg);
   if (tr->count) {
-    if (tr->ccsv)   /* %.9f,%d,%d,recv,%d,%d,%zu,%.9f,%llu,\n */
-      tr->ncsv += len_f(t, 9) + len_i(rank) + len_i(proc) + len_i(src) + len_i(tag) + len_u(len) +
-                  len_f(dur, 9) + len_u(msg) + strlen(",,,recv,,,,,,\n");
     if (tr->cjson)
       tr->njson += len_jhead(tr, "X", "recv", "msg", proc, rank, t) +
                    strlen(",\"dur\":,\"args\":{\"src\":,\"tag\":,\"bytes\":,\"msg\":}}") + len_f(dur * 1e6, 3) +
@@ -260,9 +272,6 @@ void trace_recv(trace *tr, int rank, int proc, double t, double dur, int src, in
                    len_jhead(tr, "f", "msg", "msg", proc, rank, t) + strlen(",\"bp\":\"e\",\"id\":}") + len_u(msg);
     return;
   }
-  if (tr->csv)
-    fprintf(tr->csv, "%.9f,%d,%d,recv,%d,%d,%zu,%.9f,%llu,\n", t, rank, proc, src, tag, len, dur,
-            (unsigned long long)msg);
   if (tr->json) {
     jhead(tr, "X", "recv", "msg", proc, rank, t);
     fprintf(tr->json, ",\"dur\":%.3f,\"args\":{\"src\":%d,\"tag\":%d,\"bytes\":%zu,\"msg\":%llu}}",
@@ -320,19 +329,14 @@ void trace_link_track(trace *tr, int link, const char *name) {
 void trace_link(trace *tr, int link, int rank, int dst, int tag, size_t len, uint64_t msg,
                 double start, double dur) {
   SHADOW(trace_link(tr, link, rank, dst, tag, len, msg, start, dur));
+  csv_msg(tr, "link", start, rank, link, dst, tag, len, dur, msg);
   if (tr->count) {
-    if (tr->ccsv)   /* %.9f,%d,%d,link,%d,%d,%zu,%.9f,%llu,\n */
-      tr->ncsv += len_f(start, 9) + len_i(rank) + len_i(link) + len_i(dst) + len_i(tag) + len_u(len) +
-                  len_f(dur, 9) + len_u(msg) + strlen(",,,link,,,,,,\n");
     if (tr->cjson)
       tr->njson += len_jhead(tr, "X", "msg", "link", tr->netpid, link, start) +
                    strlen(",\"dur\":,\"args\":{\"src\":,\"dst\":,\"tag\":,\"bytes\":,\"msg\":}}") +
                    len_f(dur * 1e6, 3) + len_i(rank) + len_i(dst) + len_i(tag) + len_u(len) + len_u(msg);
     return;
   }
-  if (tr->csv)
-    fprintf(tr->csv, "%.9f,%d,%d,link,%d,%d,%zu,%.9f,%llu,\n", start, rank, link, dst, tag, len,
-            dur, (unsigned long long)msg);
   if (tr->json) {
     jhead(tr, "X", "msg", "link", tr->netpid, link, start);
     fprintf(tr->json, ",\"dur\":%.3f,\"args\":{\"src\":%d,\"dst\":%d,\"tag\":%d,\"bytes\":%zu,\"msg\":%llu}}",
