@@ -66,6 +66,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "util/dlist.h"
 #include "util/wallclock.h"
 #include "util/xmem.h"
 
@@ -238,11 +239,7 @@ static int mpt_compute(mp *self, double amount) {
 
 /* k off its sender's list: the sender lets go of it. */
 static void unlist(rank *r, ticket *k) {
-  if (k->prev)
-    k->prev->next = k->next;
-  else
-    r->refs = k->next;
-  if (k->next) k->next->prev = k->prev;
+  DLIST_UNLINK_HEAD(r->refs, k);
 }
 
 /* k back on its sender's list. */

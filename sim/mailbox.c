@@ -128,11 +128,7 @@ static void live_add(mstore *st, msg *m) {
 }
 
 static void live_remove(mstore *st, msg *m) {
-  if (m->prev)
-    m->prev->next = m->next;
-  else
-    st->live = m->next;
-  if (m->next) m->next->prev = m->prev;
+  DLIST_UNLINK_HEAD(st->live, m);
 }
 
 /* Both sides are done with m: its memory goes back. */
@@ -248,14 +244,7 @@ int promise_drop(mstore *st, mbox *b, promise *p, int keep) {
     if (keep) return 1;
     evict(st, p->held);
   }
-  if (p->prev)
-    p->prev->next = p->next;
-  else
-    b->phead = p->next;
-  if (p->next)
-    p->next->prev = p->prev;
-  else
-    b->ptail = p->prev;
+  DLIST_UNLINK(b->phead, b->ptail, p);
   p->next = st->pfree;
   st->pfree = p;
   return 0;

@@ -34,6 +34,8 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "util/dlist.h"
+
 enum { MSG_INLINE = 64 };   /* payloads up to this many bytes live in the message */
 
 enum { P_INLINE, P_POOL, P_SENDER, P_PROMISE };   /* where a payload lives */
@@ -145,15 +147,7 @@ static inline void box_insert(msg *m) {
 }
 
 static inline void box_unlink(msg *m) {
-  mbox *b = m->box;
-  if (m->prev)
-    m->prev->next = m->next;
-  else
-    b->head = m->next;
-  if (m->next)
-    m->next->prev = m->prev;
-  else
-    b->tail = m->prev;
+  DLIST_UNLINK(m->box->head, m->box->tail, m);
 }
 
 /* m's envelope fits a receive from src with tag (MP_ANY = -1: any). */
