@@ -1,5 +1,5 @@
 /* rtstruct.c -- DICOM RT structure sets: the ROIs, their closed planar
- * contours, and each ROI as a .contours stack.
+ * contours, and each ROI as a contour stack and as .contours text.
  *
  *   StructureSetROISequence (3006,0020)   item: ROINumber (3006,0022), ROIName (3006,0026)
  *   ROIContourSequence (3006,0039)        item: ReferencedROINumber (3006,0084),
@@ -686,8 +686,19 @@ char *rtstruct_roi_text(const rtstruct *s, int ri, size_t *len) {
   return b.buf ? b.buf : xstrdup("");
 }
 
-/* The name the reader is given: found again in its messages and rewritten. */
-static const char sentinel[] = "\x01rtstruct\x01";
+/* The contour of the ROI whose header (*j = 0) or point *j is line `line`
+ * of its text: its index, or -1 (a comment line, or past the end). */
+static int contour_of_line(const rtstruct_roi *roi, long line, long *j) {
+  long at = HEADER_LINES + 1;
+  for (int i = 0; i < roi->nc; i++) {
+    if (line >= at && line <= at + roi->c[i].n) {
+      *j = line - at;
+      return i;
+    }
+    at += roi->c[i].n + 1;
+  }
+  return -1;
+}
 
 /* Where line `line` of the ROI's text came from: "FILE: byte N: ROI r 'name',
  * contour item k[, point j]" (with_byte), else "contour item k[, point j]",
@@ -697,23 +708,46 @@ static const char sentinel[] = "\x01rtstruct\x01";
  * point: that names a loop of a keyhole contour, and the message's other
  * lines name contours in full). */
 static int locate(const rtstruct_roi *roi, long line, strbuf *b, int with_byte, int cur, const char *file) {
-  long at = HEADER_LINES + 1;
-  for (int i = 0; i < roi->nc; i++) {
+  long j;
+  int i = contour_of_line(roi, line, &j);
+  if (i >= 0) {
     const rtstruct_contour *c = &roi->c[i];
-    if (line >= at && line <= at + c->n) {
-      long j = line - at;
-      if (with_byte) strbuf_add(b, "%s: byte %zu: ROI %d '%s', ", file, j ? c->poff[j - 1] : c->offset,
-                            roi->number, roi->name);
-      if (j && i == cur) strbuf_add(b, "point %ld", j);
-      else if (j) strbuf_add(b, "contour item %d, point %ld", c->item, j);
-      else strbuf_add(b, "contour item %d", c->item);
-      return j ? -1 : i;   /* a point names a loop of a keyhole contour, not the contour */
-    }
-    at += c->n + 1;
+    if (with_byte) strbuf_add(b, "%s: byte %zu: ROI %d '%s', ", file, j ? c->poff[j - 1] : c->offset,
+                              roi->number, roi->name);
+    if (j && i == cur) strbuf_add(b, "point %ld", j);
+    else if (j) strbuf_add(b, "contour item %d, point %ld", c->item, j);
+    else strbuf_add(b, "contour item %d", c->item);
+    return j ? -1 : i;   /* a point names a loop of a keyhole contour, not the contour */
   }
   if (with_byte) strbuf_add(b, "%s: ROI %d '%s', ", file, roi->number, roi->name);
   strbuf_add(b, "line %ld of its stack", line);
   return -1;
+}
+
+/* ---------------------------------------------------------------- places */
+
+/* The places of an ROI's stack (contour.h): each contour and point is
+ * named by the line the ROI's text gives it, and said as the file's byte,
+ * the ROI and the contour item. */
+typedef struct {
+  const rtstruct *s;
+  const rtstruct_roi *roi;
+} roi_places;
+
+static void roi_head(void *ud, strbuf *b, int line) {
+  const roi_places *p = ud;
+  if (line > 0) locate(p->roi, line, b, 1, -1, p->s->name);
+  else strbuf_add(b, "%s: ROI %d '%s'", p->s->name, p->roi->number, p->roi->name);
+}
+
+static void roi_ref(void *ud, char *buf, size_t cap, int line, int head) {
+  const roi_places *p = ud;
+  long j = 0;
+  int cur = head > 0 ? contour_of_line(p->roi, head, &j) : -1;
+  strbuf b = {0};
+  locate(p->roi, line, &b, 0, j == 0 ? cur : -1, p->s->name);
+  snprintf(buf, cap, "%s", b.buf);
+  free(b.buf);
 }
 
 static int digit(char c) { return c >= '0' && c <= '9'; }
@@ -803,38 +837,60 @@ static void fit_lines(const char *msg, char *err, size_t cap) {
   }
 }
 
+/* A computed value v of the ROI's stack at `line` that is not finite: -1
+ * with "PLACE: C is not finite (V)" in err, as the .contours reader says it
+ * of the text; else 0. */
+static int not_finite(const contour_places *pl, int line, char c, double v, char *err, size_t errlen) {
+  if (isfinite(v)) return 0;
+  strbuf b = {0};
+  pl->head(pl->ud, &b, line);
+  strbuf_add(&b, ": %c is not finite (%.17g)", c, v);
+  snprintf(err, errlen, "%s", b.buf);
+  free(b.buf);
+  return -1;
+}
+
 int rtstruct_roi_stack(const rtstruct *s, int ri, int flags, contour_stack *out, FILE *notes,
                        const char *prefix, char *err, size_t errlen) {
   const rtstruct_roi *roi = &s->roi[ri];
   memset(out, 0, sizeof *out);
   if (rtstruct_roi_check(s, ri, err, errlen) != 0) return -1;
-  size_t len;
-  char *text_ = rtstruct_roi_text(s, ri, &len);
-  char *held = NULL;
-  size_t heldlen = 0, e2len = errlen > 1024 ? errlen : 1024;
-  char *e2 = xmalloc(e2len);
-  FILE *hold = notes ? open_memstream(&held, &heldlen) : NULL;
   int cflags = (flags & RTSTRUCT_NO_KEYHOLES ? CONTOUR_NO_KEYHOLES : 0) |
                (flags & RTSTRUCT_SKIP_BAD ? CONTOUR_SKIP_BAD : 0) | (flags & RTSTRUCT_UNION ? CONTOUR_UNION : 0) |
                (flags & RTSTRUCT_VERBOSE ? CONTOUR_VERBOSE : 0) | (flags & RTSTRUCT_ONE_SLICE ? CONTOUR_ONE_SLICE : 0) |
-               (flags & RTSTRUCT_DROP_DEGENERATE ? CONTOUR_DROP_DEGENERATE : 0);
-  int rc = contour_parse_flags(text_, len, sentinel, cflags, out, hold, prefix, e2, e2len);
-  if (rc == 0 && (flags & RTSTRUCT_PAIRS) && contour_stack_pairs(out, sentinel, e2, e2len) != 0) {
-    contour_stack_free(out);
-    rc = -1;
+               (flags & RTSTRUCT_DROP_DEGENERATE ? CONTOUR_DROP_DEGENERATE : 0) |
+               (flags & RTSTRUCT_PAIRS ? CONTOUR_PAIRS : 0);
+  roi_places rp = {s, roi};
+  contour_places pl = {roi_head, roi_ref, &rp};
+  contour_build *b = contour_build_open(&pl, cflags, prefix);
+  size_t e2len = errlen > 1024 ? errlen : 1024;
+  char *e2 = xmalloc(e2len);
+  /* The contours in their order, each named by the line the ROI's text
+   * gives it; the values those of the text (oblique: computed, and refused
+   * as the text is when one is not finite). */
+  int iu = roi->plane == RTSTRUCT_AXIAL ? 0 : roi->plane == RTSTRUCT_SAGITTAL ? 1 : 2, iv = (iu + 1) % 3;
+  const rtstruct_frame *f = &roi->frame;
+  int line = HEADER_LINES + 1, rc = 0;
+  for (int i = 0; i < roi->nc && rc == 0; i++) {
+    const rtstruct_contour *c = &roi->c[i];
+    rc = not_finite(&pl, line, 'z', c->h, e2, e2len);
+    contour_build_begin(b, c->h, line);
+    for (int j = 0; j < c->n && rc == 0; j++) {
+      const double *p = c->p + 3 * j;
+      vec2 q = roi->plane == RTSTRUCT_OBLIQUE ? (vec2){rtframe_dot(f->u, p), rtframe_dot(f->v, p)}
+                                              : (vec2){p[iu], p[iv]};
+      if ((rc = not_finite(&pl, line + 1 + j, 'x', q.x, e2, e2len)) == 0 &&
+          (rc = not_finite(&pl, line + 1 + j, 'y', q.y, e2, e2len)) == 0)
+        contour_build_point(b, q, line + 1 + j);
+    }
+    if (rc == 0) contour_build_end(b);
+    line += c->n + 1;
   }
-  free(text_);
-  if (hold) fclose(hold);
-  if (rc != 0) {
-    char *m = rewrite(s, roi, sentinel, e2);
-    fit_lines(m, err, errlen);
-    free(m);
-  } else if (held && heldlen) {
-    char *m = rewrite(s, roi, sentinel, held);
-    fputs(m, notes);
-    free(m);
-  }
-  free(held);
+  /* A refusal that lists bad contours is fitted to err whole lines at a
+   * time, its summary kept. */
+  if (rc == 0) rc = contour_build_close(b, out, notes, e2, e2len);
+  else contour_build_free(b);
+  if (rc != 0) fit_lines(e2, err, errlen);
   free(e2);
   return rc;
 }

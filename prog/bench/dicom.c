@@ -7,8 +7,8 @@
  * MB, 10 ROIs).  The file is read into memory once; read_ms is the best of R
  * runs of rtstruct_parse on it (the DICOM tree, every ROI's contours parsed
  * from their decimal strings, planes, sorting), stacks_ms the best of R runs
- * of rtstruct_roi_stack on every ROI that has contours (its .contours text
- * and the stack reader).  checksum is the sum of every coordinate read: it
+ * of rtstruct_roi_stack on every ROI that has contours (the contour
+ * builder: repairs, checks, slices).  checksum is the sum of every coordinate read: it
  * shows a fast wrong answer. */
 #include "prog/bench/bench.h"
 
