@@ -855,14 +855,9 @@ int rtstruct_roi_stack(const rtstruct *s, int ri, int flags, contour_stack *out,
   const rtstruct_roi *roi = &s->roi[ri];
   memset(out, 0, sizeof *out);
   if (rtstruct_roi_check(s, ri, err, errlen) != 0) return -1;
-  int cflags = (flags & RTSTRUCT_NO_KEYHOLES ? CONTOUR_NO_KEYHOLES : 0) |
-               (flags & RTSTRUCT_SKIP_BAD ? CONTOUR_SKIP_BAD : 0) | (flags & RTSTRUCT_UNION ? CONTOUR_UNION : 0) |
-               (flags & RTSTRUCT_VERBOSE ? CONTOUR_VERBOSE : 0) | (flags & RTSTRUCT_ONE_SLICE ? CONTOUR_ONE_SLICE : 0) |
-               (flags & RTSTRUCT_DROP_DEGENERATE ? CONTOUR_DROP_DEGENERATE : 0) |
-               (flags & RTSTRUCT_PAIRS ? CONTOUR_PAIRS : 0);
   roi_places rp = {s, roi};
   contour_places pl = {roi_head, roi_ref, &rp};
-  contour_build *b = contour_build_open(&pl, cflags, prefix);
+  contour_build *b = contour_build_open(&pl, flags, prefix);
   size_t e2len = errlen > 1024 ? errlen : 1024;
   char *e2 = xmalloc(e2len);
   /* The contours in their order, each named by the line the ROI's text

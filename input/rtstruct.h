@@ -111,23 +111,19 @@ int rtstruct_roi_check(const rtstruct *s, int roi, char *err, size_t errlen);
  * the caller frees.  The ROI must have no error. */
 char *rtstruct_roi_text(const rtstruct *s, int roi, size_t *len);
 
-/* The ROI's stack, made by the contour builder as contour_read makes a
- * file's (keyhole contours split into their loops unless flags has
- * RTSTRUCT_NO_KEYHOLES; bad contours dropped with RTSTRUCT_SKIP_BAD,
+/* The ROI's stack, made by the contour builder as contour_read_flags makes
+ * a file's, with its flags (keyhole contours split into their loops unless
+ * CONTOUR_NO_KEYHOLES; bad contours dropped with CONTOUR_SKIP_BAD,
  * overlapping contours of a slice merged (noted as --union's with
- * RTSTRUCT_UNION), every note in full with RTSTRUCT_VERBOSE: the CONTOUR_
- * flags of contour.h; and, with RTSTRUCT_PAIRS, checked by
- * contour_stack_pairs, as ./tile checks a stack that it tiles contour by
- * contour): 0, or -1 with the refusal naming the file, ROI, contour item
- * and byte (one line per bad contour, as contour.h says, as many whole
+ * CONTOUR_UNION), every note in full with CONTOUR_VERBOSE; and, with
+ * CONTOUR_PAIRS, checked by contour_stack_pairs, as ./tile checks a stack
+ * that it tiles contour by contour; CONTOUR_ONE_SLICE accepts an ROI of one
+ * slice, CONTOUR_DROP_DEGENERATE drops contours without area with a
+ * counted note): 0, or -1 with the refusal naming the file, ROI, contour
+ * item and byte (one line per bad contour, as contour.h says, as many whole
  * lines as errlen holds, the last line kept).  Notes go to `notes` as
  * contour_read's do, named alike ("contour item K, point J" for a line),
- * and only when the stack is accepted.  RTSTRUCT_ONE_SLICE
- * accepts an ROI of one slice (contour.h's CONTOUR_ONE_SLICE);
- * RTSTRUCT_DROP_DEGENERATE drops contours without area with a counted note
- * (CONTOUR_DROP_DEGENERATE). */
-enum { RTSTRUCT_PAIRS = 1, RTSTRUCT_NO_KEYHOLES = 2, RTSTRUCT_SKIP_BAD = 4, RTSTRUCT_UNION = 8, RTSTRUCT_VERBOSE = 16,
-       RTSTRUCT_ONE_SLICE = 32, RTSTRUCT_DROP_DEGENERATE = 64 };
+ * and only when the stack is accepted. */
 int rtstruct_roi_stack(const rtstruct *s, int roi, int flags, contour_stack *out, FILE *notes,
                        const char *prefix, char *err, size_t errlen);
 

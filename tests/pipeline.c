@@ -253,15 +253,15 @@ int pipeline_dicom(const unsigned char *buf, size_t len, double max_pair) {
   reencode(&s);
   for (int i = 0; i < s.nroi; i++) {
     contour_stack st;
-    int rc = rtstruct_roi_stack(&s, i, RTSTRUCT_SKIP_BAD | RTSTRUCT_UNION | RTSTRUCT_DROP_DEGENERATE | RTSTRUCT_ONE_SLICE,
-                                &st, NULL, "fuzz", err, sizeof err);
-    as_text(&s, i, CONTOUR_SKIP_BAD | CONTOUR_UNION | CONTOUR_DROP_DEGENERATE | CONTOUR_ONE_SLICE, rc, &st);
+    int flags = CONTOUR_SKIP_BAD | CONTOUR_UNION | CONTOUR_DROP_DEGENERATE | CONTOUR_ONE_SLICE;
+    int rc = rtstruct_roi_stack(&s, i, flags, &st, NULL, "fuzz", err, sizeof err);
+    as_text(&s, i, flags, rc, &st);
     if (rc == 0) {
       surface(&st, max_pair);
       contour_stack_free(&st);
     } else
       one_line(err, NAME);
-    rc = rtstruct_roi_stack(&s, i, RTSTRUCT_PAIRS, &st, NULL, "fuzz", err, sizeof err);
+    rc = rtstruct_roi_stack(&s, i, CONTOUR_PAIRS, &st, NULL, "fuzz", err, sizeof err);
     as_text(&s, i, CONTOUR_PAIRS, rc, &st);
     if (rc != 0) {
       one_line(err, NAME);

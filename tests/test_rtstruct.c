@@ -146,7 +146,7 @@ static void round_trip(void) {
               (unsigned long long)seed, k, r);
         /* The ROI's stack equals the generator's stack read as .contours. */
         contour_stack st, rs;
-        int a = rtstruct_roi_stack(&s, r, 1, &st, NULL, "t", err, sizeof err);
+        int a = rtstruct_roi_stack(&s, r, CONTOUR_PAIRS, &st, NULL, "t", err, sizeof err);
         int bref = reference(ref, &rs);
         CHECK(a == 0 && bref == 0 && same_stack(&st, &rs), "seed %llu variant %d ROI %d: stack differs (%s)",
               (unsigned long long)seed, k, r, a ? err : "");
@@ -355,7 +355,7 @@ static void roi_refused(const char *what, const unsigned char *b, size_t len, co
     return;
   }
   contour_stack st;
-  int rc = rtstruct_roi_stack(&s, 0, 1, &st, NULL, "t", err, sizeof err);
+  int rc = rtstruct_roi_stack(&s, 0, CONTOUR_PAIRS, &st, NULL, "t", err, sizeof err);
   CHECK(rc == -1 && strncmp(err, "set.dcm: ", 9) == 0 && strstr(err, words) && !strchr(err, '\n'),
         "%s: expected '%s', got %d '%s'", what, words, rc, err);
   if (rc == 0) contour_stack_free(&st);
@@ -502,7 +502,7 @@ static void warnings(void) {
   size_t nl = 0;
   FILE *f = open_memstream(&notes, &nl);
   contour_stack st;
-  int rc = rtstruct_roi_stack(&s, 0, 1, &st, f, "tile", err, sizeof err);
+  int rc = rtstruct_roi_stack(&s, 0, CONTOUR_PAIRS, &st, f, "tile", err, sizeof err);
   fclose(f);
   CHECK(rc == 0, "Body: %s", err);
   if (rc == 0) contour_stack_free(&st);
@@ -579,7 +579,7 @@ static void planes(void) {
       continue;
     }
     CHECK((int)s.roi[0].plane == pl, "plane %d read as %s", pl, rtstruct_plane_name(s.roi[0].plane));
-    CHECK(rtstruct_roi_stack(&s, 0, 1, &st[pl], NULL, "t", err, sizeof err) == 0, "plane %d: %s", pl, err);
+    CHECK(rtstruct_roi_stack(&s, 0, CONTOUR_PAIRS, &st[pl], NULL, "t", err, sizeof err) == 0, "plane %d: %s", pl, err);
     int back = 1;
     for (int i = 0; i < s.roi[0].nc; i++)
       for (int j = 0; j < s.roi[0].c[i].n; j++) {
