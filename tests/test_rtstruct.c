@@ -468,6 +468,29 @@ static void refusals(void) {
   free(b);
 }
 
+/* Three squares in parallel planes tilted 30 degrees about x, at 1e300 mm:
+ * the frame's sums overflow, so the stack's computed values are not finite
+ * and the ROI is refused as the .contours reader refuses such a text. */
+static void oblique_overflow(void) {
+  static double xyz[3][12];
+  rtw_contour c[3];
+  double t = 0.5235987755982988, corner[4][2] = {{0, 0}, {10, 0}, {10, 10}, {0, 10}};
+  for (int k = 0; k < 3; k++) {
+    for (int j = 0; j < 4; j++) {
+      double u = corner[j][0], v = corner[j][1], h = 5.0 * k;
+      xyz[k][3 * j] = 1e300 * u;
+      xyz[k][3 * j + 1] = 1e300 * (v * cos(t) - h * sin(t));
+      xyz[k][3 * j + 2] = 1e300 * (v * sin(t) + h * cos(t));
+    }
+    c[k] = (rtw_contour){NULL, 4, xyz[k], NULL, -1};
+  }
+  rtw_roi roi = {1, "Far", NULL, 3, c, 0, 0};
+  size_t len;
+  unsigned char *b = write1(&roi, 1, &len);
+  roi_refused("an oblique ROI at 1e300 mm", b, len, "ROI 1 'Far', contour item 3: z is not finite (nan)");
+  free(b);
+}
+
 /* ---------------------------------------------------------------- warnings */
 
 static void warnings(void) {
@@ -778,6 +801,7 @@ int main(int argc, char **argv) {
   samples();
   decimal_strings();
   refusals();
+  oblique_overflow();
   warnings();
   many();
   planes();
