@@ -11,7 +11,6 @@
  * z values that differ by jitter within one slice (snapped to one value). */
 #include "input/contour.h"
 
-#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -22,6 +21,8 @@
 #include "geom/crossing.h"
 #include "geom/keyhole.h"
 #include "input/slicemerge.h"
+#include "util/readfile.h"
+#include "util/shown.h"
 #include "util/strbuf.h"
 #include "util/xmem.h"
 
@@ -117,23 +118,6 @@ static void file_ref(void *ud, char *buf, size_t cap, int line, int head) {
 
 contour_places contour_places_file(const char *name) {
   return (contour_places){file_head, file_ref, (void *)name};
-}
-
-/* A token as it may be shown in a message: printable, at most 40 bytes. */
-static const char *shown(const char *s, size_t len, char *buf, size_t cap) {
-  size_t j = 0;
-  for (size_t i = 0; i < len && j + 5 < cap; i++) {
-    unsigned char ch = (unsigned char)s[i];
-    if (i == 40) {
-      memcpy(buf + j, "...", 3);
-      j += 3;
-      break;
-    }
-    if (isprint(ch)) buf[j++] = (char)ch;
-    else j += (size_t)snprintf(buf + j, cap - j, "\\x%02x", ch);
-  }
-  buf[j] = 0;
-  return buf;
 }
 
 /* Split a line into whitespace-separated tokens (at most max). */
@@ -672,38 +656,38 @@ int contour_parse_flags(const char *text, size_t len, const char *name, int flag
     int is_header = t[0].len == 1 && t[0].s[0] == 'C';
     if (open && is_header) {
       text_fail(&pl, err, errlen, line, "the contour at line %d announced %d points but has %d (next header: %s)",
-                cur_line, want, have, shown(s, sl, vb, sizeof vb));
+                cur_line, want, have, shown_bytes(s, sl, vb, sizeof vb));
       goto fail;
     }
     if (!open && !is_header) {
       if (nread > 0)
         text_fail(&pl, err, errlen, line, "more point lines than the %d announced at line %d (%s)", last_want,
-                  last_line, shown(s, sl, vb, sizeof vb));
+                  last_line, shown_bytes(s, sl, vb, sizeof vb));
       else
-        text_fail(&pl, err, errlen, line, "expected a header 'C <points> <z>' (%s)", shown(s, sl, vb, sizeof vb));
+        text_fail(&pl, err, errlen, line, "expected a header 'C <points> <z>' (%s)", shown_bytes(s, sl, vb, sizeof vb));
       goto fail;
     }
     if (is_header) {
       double nv, z;
       if (nt != 3) {
         text_fail(&pl, err, errlen, line, "garbled header, expected 'C <points> <z>' (%s)",
-                  shown(s, sl, vb, sizeof vb));
+                  shown_bytes(s, sl, vb, sizeof vb));
         goto fail;
       }
       if (number(t[1], &nv) != 0 || nv != floor(nv) || nv < 1) {
         text_fail(&pl, err, errlen, line, "bad point count in header, expected a positive integer (%s)",
-                  shown(t[1].s, t[1].len, vb, sizeof vb));
+                  shown_bytes(t[1].s, t[1].len, vb, sizeof vb));
         goto fail;
       }
       if (nv > CONTOUR_MAX_POINTS) {
         text_fail(&pl, err, errlen, line, "point count too large, at most %d (%s)", CONTOUR_MAX_POINTS,
-                  shown(t[1].s, t[1].len, vb, sizeof vb));
+                  shown_bytes(t[1].s, t[1].len, vb, sizeof vb));
         goto fail;
       }
       int k = number(t[2], &z);
       if (k != 0) {
         text_fail(&pl, err, errlen, line, k > 0 ? "z is not finite (%s)" : "z is not a number (%s)",
-                  shown(t[2].s, t[2].len, vb, sizeof vb));
+                  shown_bytes(t[2].s, t[2].len, vb, sizeof vb));
         goto fail;
       }
       contour_build_begin(b, z, line);
@@ -715,7 +699,7 @@ int contour_parse_flags(const char *text, size_t len, const char *name, int flag
     }
     /* A point line. */
     if (nt != 2) {
-      text_fail(&pl, err, errlen, line, "expected a point 'x y' (%s)", shown(s, sl, vb, sizeof vb));
+      text_fail(&pl, err, errlen, line, "expected a point 'x y' (%s)", shown_bytes(s, sl, vb, sizeof vb));
       goto fail;
     }
     vec2 p;
@@ -724,7 +708,7 @@ int contour_parse_flags(const char *text, size_t len, const char *name, int flag
       int k = number(t[i], &v);
       if (k != 0) {
         text_fail(&pl, err, errlen, line, k > 0 ? "%c is not finite (%s)" : "%c is not a number (%s)",
-                  i ? 'y' : 'x', shown(t[i].s, t[i].len, vb, sizeof vb));
+                  i ? 'y' : 'x', shown_bytes(t[i].s, t[i].len, vb, sizeof vb));
         goto fail;
       }
       if (i) p.y = v;
@@ -761,30 +745,11 @@ int contour_read(const char *path, contour_stack *out, FILE *notes,
 
 int contour_read_flags(const char *path, int flags, contour_stack *out, FILE *notes,
                        const char *prefix, char *err, size_t errlen) {
-  int stdin_ = strcmp(path, "-") == 0;
-  FILE *f = stdin_ ? stdin : fopen(path, "rb");
+  size_t len;
+  char *buf = readfile(path, &len, err, errlen);
   memset(out, 0, sizeof *out);
-  if (!f) {
-    snprintf(err, errlen, "%s: cannot open (%s)", path, strerror(errno));
-    return -1;
-  }
-  size_t len = 0, cap = 1 << 16;
-  char *buf = xmalloc(cap);
-  for (;;) {
-    size_t got = fread(buf + len, 1, cap - len, f);
-    len += got;
-    if (got == 0) break;
-    if (len == cap) buf = xrealloc(buf, cap *= 2);
-  }
-  int bad = ferror(f);
-  int e = errno;
-  if (!stdin_) fclose(f);
-  if (bad) {
-    snprintf(err, errlen, "%s: cannot read (%s)", path, strerror(e));
-    free(buf);
-    return -1;
-  }
-  int rc = contour_parse_flags(buf, len, stdin_ ? "<stdin>" : path, flags, out, notes, prefix, err, errlen);
+  if (!buf) return -1;
+  int rc = contour_parse_flags(buf, len, readfile_name(path), flags, out, notes, prefix, err, errlen);
   free(buf);
   return rc;
 }

@@ -26,6 +26,8 @@
 #include "input/decimal.h"
 #include "input/dicom.h"
 #include "input/rtframe.h"
+#include "util/readfile.h"
+#include "util/shown.h"
 #include "util/strbuf.h"
 #include "util/xmem.h"
 
@@ -45,25 +47,6 @@
 #define RTSTRUCT_SOP_CLASS "1.2.840.10008.5.1.4.1.1.481.3"
 
 static const uint32_t sequences[] = {SS_ROI_SEQ, ROI_CONTOUR_SEQ, CONTOUR_SEQ, OBSERVATIONS_SEQ};
-
-/* ---------------------------------------------------------------- messages */
-
-/* Up to 40 bytes of a value as it may be shown in a message. */
-static const char *shown(const char *s, size_t len, char *buf, size_t cap) {
-  size_t j = 0;
-  for (size_t i = 0; i < len && j + 5 < cap; i++) {
-    unsigned char ch = (unsigned char)s[i];
-    if (i == 40) {
-      memcpy(buf + j, "...", 3);
-      j += 3;
-      break;
-    }
-    if (ch >= 32 && ch < 127) buf[j++] = (char)ch;
-    else j += (size_t)snprintf(buf + j, cap - j, "\\x%02x", ch);
-  }
-  buf[j] = 0;
-  return buf;
-}
 
 /* ---------------------------------------------------------------- parsing */
 
@@ -137,7 +120,7 @@ static int integer(const dicom *d, int node, int *out) {
 static const char *value_shown(const dicom *d, int node, char *buf, size_t cap) {
   size_t len = 0;
   const unsigned char *v = dicom_value(d, node, &len);
-  return shown((const char *)v, len, buf, cap);
+  return shown_bytes((const char *)v, len, buf, cap);
 }
 
 static int sequence(reader *r, int node) {
@@ -231,7 +214,7 @@ static int read_contour(reader *r, rtstruct_roi *roi, int item, int k, rtstruct_
     if (rc != 0) {
       roi->error = roi_error(r, roi, base + at, "contour item %d, point %zu: %c %s (%s)", k, i / 3 + 1,
                              "xyz"[i % 3], rc > 0 ? "is not finite" : "is not a number",
-                             shown(v + at, e - at, vb, sizeof vb));
+                             shown_bytes(v + at, e - at, vb, sizeof vb));
       return -1;
     }
     c->p[i] = x;
@@ -367,7 +350,7 @@ static void read_contours(reader *r, rtstruct_roi *roi, int cseq) {
     for (int j = 0; j < kinds; j++) {
       char sh[80];
       strbuf_add(&b, "%s%d %s", j == 0 ? "" : j + 1 == kinds ? " and " : ", ", nkind[j],
-             shown(kind[j], strlen(kind[j]), sh, sizeof sh));
+             shown_bytes(kind[j], strlen(kind[j]), sh, sizeof sh));
     }
     roi_warn(r, roi, "skipped %s contour%s; only CLOSED_PLANAR contours are tiled", b.buf,
              roi->skipped == 1 ? "" : "s");
@@ -517,29 +500,11 @@ int rtstruct_parse(const unsigned char *buf, size_t len, const char *name, rtstr
 }
 
 int rtstruct_read(const char *path, rtstruct *out, char *err, size_t errlen) {
-  int stdin_ = strcmp(path, "-") == 0;
-  FILE *f = stdin_ ? stdin : fopen(path, "rb");
+  size_t len;
+  char *buf = readfile(path, &len, err, errlen);
   memset(out, 0, sizeof *out);
-  if (!f) {
-    snprintf(err, errlen, "%s: cannot open (%s)", path, strerror(errno));
-    return -1;
-  }
-  size_t len = 0, cap = 1 << 16;
-  unsigned char *buf = xmalloc(cap);
-  for (;;) {
-    size_t got = fread(buf + len, 1, cap - len, f);
-    len += got;
-    if (got == 0) break;
-    if (len == cap) buf = xrealloc(buf, cap *= 2);
-  }
-  int bad = ferror(f), e = errno;
-  if (!stdin_) fclose(f);
-  if (bad) {
-    snprintf(err, errlen, "%s: cannot read (%s)", path, strerror(e));
-    free(buf);
-    return -1;
-  }
-  int rc = rtstruct_parse(buf, len, stdin_ ? "<stdin>" : path, out, err, errlen);
+  if (!buf) return -1;
+  int rc = rtstruct_parse((const unsigned char *)buf, len, readfile_name(path), out, err, errlen);
   free(buf);
   return rc;
 }
@@ -571,7 +536,7 @@ int rtstruct_find(const rtstruct *s, const char *key, char *err, size_t errlen) 
       if (found >= 0) {
         snprintf(err, errlen, "%s: ROIs %d and %d are both named '%s'; choose one by its number (%s)",
                  s->name, s->roi[found].number, s->roi[i].number, s->roi[i].name,
-                 shown(key, strlen(key), vb, sizeof vb));
+                 shown_bytes(key, strlen(key), vb, sizeof vb));
         return -1;
       }
       found = i;
@@ -588,7 +553,7 @@ int rtstruct_find(const rtstruct *s, const char *key, char *err, size_t errlen) 
     strbuf_add(&b, "%s%d '%s'", i ? ", " : "", s->roi[i].number, s->roi[i].name);
   if (b.len >= 300) strbuf_add(&b, ", ...");
   snprintf(err, errlen, "%s: no ROI named or numbered '%s' (the ROIs: %s)", s->name,
-           shown(key, strlen(key), vb, sizeof vb), b.buf ? b.buf : "none");
+           shown_bytes(key, strlen(key), vb, sizeof vb), b.buf ? b.buf : "none");
   free(b.buf);
   return -1;
 }
