@@ -25,8 +25,9 @@ typedef struct {
   double z;       /* the contour's plane */
   int n;          /* points, after repair (>= 3, not all collinear) */
   vec2 *pt;       /* counter-clockwise seen from +z; closing point not repeated */
-  int line;       /* line of its "C" header in the file (a keyhole's loop:
-                     of its first point) */
+  int line;       /* its place: the line of its "C" header in the file (a
+                     keyhole's loop: of its first point; an ROI's contour:
+                     the line its .contours text gives it) */
   int slice;      /* its slice, 0 .. nslices-1 in increasing z */
   int cw;         /* 1 if the file gave it clockwise (it was reversed) */
 } contour;
