@@ -1,4 +1,6 @@
-/* contour.c -- reading and checking contour stacks; grouping them into slices.
+/* contour.c -- the contour builder (checking and repairing contours,
+ * grouping them into slices), the .contours reader that fills it, and the
+ * writer.
  *
  * Everything is validated before any work: each error names the file, the
  * line and the offending value.  What users expect to be repaired is repaired
@@ -9,7 +11,6 @@
  * z values that differ by jitter within one slice (snapped to one value). */
 #include "input/contour.h"
 
-#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -20,6 +21,8 @@
 #include "geom/crossing.h"
 #include "geom/keyhole.h"
 #include "input/slicemerge.h"
+#include "util/readfile.h"
+#include "util/shown.h"
 #include "util/strbuf.h"
 #include "util/xmem.h"
 
@@ -30,8 +33,17 @@ typedef struct {
   char *why;         /* "the contour crosses itself: ..." */
 } bad_contour;
 
+/* A contour as read, before repair. */
 typedef struct {
-  const char *name;
+  double z;
+  int line, have;         /* its place, points read */
+  vec2 *pt;
+  int *ptline;            /* place of each point, for notes */
+  int cap;
+} raw;
+
+struct contour_build {
+  const contour_places *pl;
   char *err;
   size_t errlen;
   const char *prefix;
@@ -44,46 +56,68 @@ typedef struct {
   int ndegen, degen_line;   /* CONTOUR_DROP_DEGENERATE: contours dropped, the first's line */
   long degen_points;
   char *degen_why;          /* the first's reason */
-} reader;
+  contour *cs;              /* the contours accepted (a keyhole contour: its loops) */
+  int ncs, capcs;
+  raw c;                    /* the contour being read */
+  int nread;                /* contours ended */
+  long points;              /* their points */
+};
+
+typedef contour_build reader;   /* the builder, as its helpers below call it */
+
+/* "HEAD: what" in err[0..errlen-1]. */
+static int vfail(const contour_places *pl, char *err, size_t errlen, int line, const char *fmt, va_list ap) {
+  strbuf b = {0};
+  pl->head(pl->ud, &b, line);
+  strbuf_raw(&b, ": ", 2);
+  strbuf_vadd(&b, fmt, ap);
+  snprintf(err, errlen, "%s", b.buf);
+  free(b.buf);
+  return -1;
+}
 
 static int fail(reader *r, int line, const char *fmt, ...) {
   va_list ap;
-  int k = line > 0 ? snprintf(r->err, r->errlen, "%s:%d: ", r->name, line)
-                   : snprintf(r->err, r->errlen, "%s: ", r->name);
-  if (k < 0) k = 0;
-  if ((size_t)k < r->errlen) {
-    va_start(ap, fmt);
-    vsnprintf(r->err + k, r->errlen - (size_t)k, fmt, ap);
-    va_end(ap);
-  }
+  va_start(ap, fmt);
+  vfail(r->pl, r->err, r->errlen, line, fmt, ap);
+  va_end(ap);
   return -1;
 }
 
 static void note(reader *r, int line, const char *fmt, ...) {
   va_list ap;
-  if (line > 0) strbuf_add(r->to, "%s: %s:%d: ", r->prefix, r->name, line);
-  else strbuf_add(r->to, "%s: %s: ", r->prefix, r->name);
+  strbuf_add(r->to, "%s: ", r->prefix);
+  r->pl->head(r->pl->ud, r->to, line);
+  strbuf_raw(r->to, ": ", 2);
   va_start(ap, fmt);
   strbuf_vadd(r->to, fmt, ap);
   va_end(ap);
   strbuf_raw(r->to, "\n", 1);
 }
 
-/* A token as it may be shown in a message: printable, at most 40 bytes. */
-static const char *shown(const char *s, size_t len, char *buf, size_t cap) {
-  size_t j = 0;
-  for (size_t i = 0; i < len && j + 5 < cap; i++) {
-    unsigned char ch = (unsigned char)s[i];
-    if (i == 40) {
-      memcpy(buf + j, "...", 3);
-      j += 3;
-      break;
-    }
-    if (isprint(ch)) buf[j++] = (char)ch;
-    else j += (size_t)snprintf(buf + j, cap - j, "\\x%02x", ch);
-  }
-  buf[j] = 0;
-  return buf;
+const char *contour_place_at(const contour_places *pl, int line, int head, contour_place *p) {
+  pl->ref(pl->ud, p->s, sizeof p->s, line, head);
+  return p->s;
+}
+
+static const char *at(const reader *r, int line, int head, contour_place *p) {
+  return contour_place_at(r->pl, line, head, p);
+}
+
+/* ---------------------------------------------------------------- files */
+
+static void file_head(void *ud, strbuf *b, int line) {
+  if (line > 0) strbuf_add(b, "%s:%d", (const char *)ud, line);
+  else strbuf_add(b, "%s", (const char *)ud);
+}
+
+static void file_ref(void *ud, char *buf, size_t cap, int line, int head) {
+  (void)ud, (void)head;
+  snprintf(buf, cap, "line %d", line);
+}
+
+contour_places contour_places_file(const char *name) {
+  return (contour_places){file_head, file_ref, (void *)name};
 }
 
 /* Split a line into whitespace-separated tokens (at most max). */
@@ -117,15 +151,6 @@ static int number(token t, double *v) {
   if (!isfinite(*v)) return 1;
   return 0;
 }
-
-/* A contour as read, before repair. */
-typedef struct {
-  double z;
-  int line, want, have;   /* header line, announced and read point counts */
-  vec2 *pt;
-  int *ptline;            /* line of each point, for notes */
-  int cap;
-} raw;
 
 static void raw_push(raw *c, vec2 p, int line) {
   if (c->have == c->cap) {
@@ -202,27 +227,24 @@ static int degenerate(reader *r, const raw *c, int points, int k) {
 static int refuse_crossing(reader *r, const raw *c, int k, int points, const crossing_hit *hp) {
   crossing_hit h = *hp;
   int a = h.seg[0], b = h.seg[1];
+  contour_place p[4];
   return bad(r, c, points,
-             "the contour crosses itself: the segment from line %d to line %d %s the segment "
-             "from line %d to line %d (%s %s)",
-             c->ptline[a], c->ptline[(a + 1) % k], crossing_verb(h.kind), c->ptline[b],
-             c->ptline[(b + 1) % k], ARGS_G(h.at.x), ARGS_G(h.at.y));
+             "the contour crosses itself: the segment from %s to %s %s the segment "
+             "from %s to %s (%s %s)",
+             at(r, c->ptline[a], c->line, &p[0]), at(r, c->ptline[(a + 1) % k], c->line, &p[1]),
+             crossing_verb(h.kind), at(r, c->ptline[b], c->line, &p[2]),
+             at(r, c->ptline[(b + 1) % k], c->line, &p[3]), ARGS_G(h.at.x), ARGS_G(h.at.y));
 }
 
-static contour *grow(contour **cs, int *ncs, int *capcs) {
-  if (*ncs == *capcs) {
-    *capcs = *capcs ? 2 * *capcs : 16;
-    *cs = xreallocarray(*cs, (size_t)*capcs, sizeof **cs);
+/* pt[0..k-1] (owned from here on) as a contour of the stack. */
+static void take(reader *r, vec2 *pt, int k, double z, int line) {
+  if (r->ncs == r->capcs) {
+    r->capcs = r->capcs ? 2 * r->capcs : 16;
+    r->cs = xreallocarray(r->cs, (size_t)r->capcs, sizeof *r->cs);
   }
-  return &(*cs)[(*ncs)++];
-}
-
-static void take(contour *out, vec2 *pt, int k, double z, int line, int *reversed) {
+  contour *out = &r->cs[r->ncs++];
   out->cw = geom_orientation(pt, k) < 0;
-  if (out->cw) {
-    geom_reverse(pt, k);
-    (*reversed)++;
-  }
+  if (out->cw) geom_reverse(pt, k);
   out->slice = 0;
   out->z = z;
   out->n = k;
@@ -232,15 +254,14 @@ static void take(contour *out, vec2 *pt, int k, double z, int line, int *reverse
 
 /* A keyhole contour (geom/keyhole.h) becomes its loops, each named by the
  * line of its first point in the file; a note says what was dropped. */
-static void split_keyhole(reader *r, const raw *c, const keyhole_split *ks, contour **cs, int *ncs,
-                          int *capcs, int *reversed) {
+static void split_keyhole(reader *r, const raw *c, const keyhole_split *ks) {
   for (int l = 0; l < ks->nloops; l++) {
     int f = ks->first[l], m = ks->first[l + 1] - f, line = c->ptline[ks->src[f]];
     for (int j = 1; j < m; j++)
       if (c->ptline[ks->src[f + j]] < line) line = c->ptline[ks->src[f + j]];
     vec2 *pt = xmallocarray((size_t)m, sizeof *pt);
     memcpy(pt, ks->pt + f, (size_t)m * sizeof *pt);
-    take(grow(cs, ncs, capcs), pt, m, c->z, line, reversed);
+    take(r, pt, m, c->z, line);
   }
   if (ks->channels == 1)
     note(r, c->line, "keyhole: the contour split into %d loops at (%s %s), a channel of length %s dropped",
@@ -270,15 +291,16 @@ static void tally_add(reader *r, tally *t, int line, vec2 p, const char *one) {
 }
 
 static void tally_note(reader *r, const tally *t, int header, const char *one, const char *many) {
+  contour_place p;
   if (t->count == 0 || (r->flags & CONTOUR_VERBOSE)) return;
   if (t->count == 1) note(r, t->line, one, ARGS_G(t->p.x), ARGS_G(t->p.y));
-  else note(r, header, many, t->count, t->line, ARGS_G(t->p.x), ARGS_G(t->p.y));
+  else note(r, header, many, t->count, at(r, t->line, header, &p), ARGS_G(t->p.x), ARGS_G(t->p.y));
 }
 
 /* Repair and check one contour; on success append it (or, a keyhole
  * contour, its loops) to *cs.  A contour that cannot be used is kept in
  * r->bad (returns 1) and the reading goes on. */
-static int finish(reader *r, raw *c, contour **cs, int *ncs, int *capcs, int *reversed) {
+static int finish(reader *r, raw *c) {
   int n = c->have, k = 0, rc = 0;
   tally dup = {0}, closing = {0};
   static const char dup_one[] = "dropped a duplicate of the point before (%s %s)";
@@ -294,13 +316,13 @@ static int finish(reader *r, raw *c, contour **cs, int *ncs, int *capcs, int *re
     c->pt[k] = c->pt[i];
     c->ptline[k++] = c->ptline[i];
   }
-  tally_note(r, &dup, c->line, dup_one, "dropped %d duplicates of the point before (the first at line %d: %s %s)");
+  tally_note(r, &dup, c->line, dup_one, "dropped %d duplicates of the point before (the first at %s: %s %s)");
   while (k > 1 && c->pt[k - 1].x == c->pt[0].x && c->pt[k - 1].y == c->pt[0].y) {
     tally_add(r, &closing, c->ptline[k - 1], c->pt[k - 1], close_one);
     k--;
   }
   tally_note(r, &closing, c->line, close_one,
-             "dropped %d repeated closing points (the last at line %d: %s %s)");
+             "dropped %d repeated closing points (the last at %s: %s %s)");
   crossing_hit h;
   keyhole_split ks;
   int simple = -1;   /* not yet known */
@@ -313,12 +335,12 @@ static int finish(reader *r, raw *c, contour **cs, int *ncs, int *capcs, int *re
   else if (geom_collinear(c->pt, k))
     rc = bad(r, c, n, "all %d points of the contour are collinear (z=%s)", k, ARGS_G(c->z));
   else if (simple == 1 || (simple < 0 && !crossing_find(&(crossing_poly){c->pt, k}, 1, &h))) {
-    take(grow(cs, ncs, capcs), xreallocarray(c->pt, (size_t)k, sizeof *c->pt), k, c->z, c->line, reversed);
+    take(r, xreallocarray(c->pt, (size_t)k, sizeof *c->pt), k, c->z, c->line);
     c->pt = NULL;
   } else if ((r->flags & CONTOUR_NO_KEYHOLES) || !keyhole_repair(c->pt, k, &ks)) {
     rc = refuse_crossing(r, c, k, n, &h);
   } else {
-    split_keyhole(r, c, &ks, cs, ncs, capcs, reversed);
+    split_keyhole(r, c, &ks);
     keyhole_free(&ks);
   }
   r->to = &r->out;
@@ -411,15 +433,17 @@ static int bad_contours(reader *r, int nread, long points) {
   if (r->nbad == 1)
     return fail(r, r->bad[0].line, "%s; --skip-bad drops such a contour and tiles the rest", r->bad[0].why);
   char sum[300];
-  strbuf b = {0};
+  strbuf b = {0}, whole = {0};
+  r->pl->head(r->pl->ud, &whole, 0);
   int shown_ = 0;
   for (; shown_ < r->nbad; shown_++) {
-    size_t at = b.len;
-    strbuf_add(&b, "%s:%d: %s\n", r->name, r->bad[shown_].line, r->bad[shown_].why);
+    size_t mark = b.len;
+    r->pl->head(r->pl->ud, &b, r->bad[shown_].line);
+    strbuf_add(&b, ": %s\n", r->bad[shown_].why);
     snprintf(sum, sizeof sum, "%d of %d contours cannot be tiled (%ld of %ld points)%s", r->nbad, nread,
              badpts, points, shown_ + 1 < r->nbad ? ", the first 1000000000 named above" : "");
-    if (b.len + strlen(r->name) + strlen(sum) + 80 >= r->errlen) {
-      b.len = at;
+    if (b.len + whole.len + strlen(sum) + 80 >= r->errlen) {
+      b.len = mark;
       break;
     }
   }
@@ -429,16 +453,23 @@ static int bad_contours(reader *r, int nread, long points) {
   else
     snprintf(sum, sizeof sum, "%d of %d contours cannot be tiled (%ld of %ld points), the first %d named above",
              r->nbad, nread, badpts, points, shown_);
-  strbuf_add(&b, "%s: %s; --skip-bad drops them and tiles the rest", r->name, sum);
+  strbuf_add(&b, "%s: %s; --skip-bad drops them and tiles the rest", whole.buf, sum);
   snprintf(r->err, r->errlen, "%s", b.buf);
   free(b.buf);
+  free(whole.buf);
   return -1;
 }
 
 int contour_stack_pairs(const contour_stack *s, const char *name, char *err, size_t errlen) {
+  contour_places pl = contour_places_file(name);
+  return contour_stack_pairs_at(s, &pl, err, errlen);
+}
+
+int contour_stack_pairs_at(const contour_stack *s, const contour_places *pl, char *err, size_t errlen) {
   reader rd;
   memset(&rd, 0, sizeof rd);
-  rd.name = name, rd.err = err, rd.errlen = errlen;
+  rd.pl = pl, rd.err = err, rd.errlen = errlen;
+  contour_place p;
   const contour *cs = s->c, *bad = NULL;
   int n = s->n;
   /* Two contours on one slice: report the later one in file order, naming
@@ -450,9 +481,9 @@ int contour_stack_pairs(const contour_stack *s, const char *name, char *err, siz
     int first = 0;
     while (cs[first].slice != bad->slice) first++;
     return fail(&rd, bad->line,
-                "slice z=%s already has a contour (line %d); this program tiles each "
+                "slice z=%s already has a contour (%s); this program tiles each "
                 "contour with the next and needs one contour per slice (%s)",
-                ARGS_G(bad->z), cs[first].line, ARGS_G(bad->z));
+                ARGS_G(bad->z), at(&rd, cs[first].line, bad->line, &p), ARGS_G(bad->z));
   }
   for (int i = 2; i < n; i++)
     if ((cs[i].z > cs[i - 1].z) != (cs[1].z > cs[0].z))
@@ -467,33 +498,135 @@ static void free_contours(contour *cs, int n) {
   free(cs);
 }
 
+/* ---------------------------------------------------------------- the builder */
+
+contour_build *contour_build_open(const contour_places *pl, int flags, const char *prefix) {
+  reader *r = xcalloc(1, sizeof *r);
+  r->pl = pl, r->prefix = prefix ? prefix : "tilesim", r->flags = flags;
+  r->to = &r->out;
+  return r;
+}
+
+void contour_build_begin(contour_build *r, double z, int line) {
+  r->c.z = z;
+  r->c.line = line;
+  r->c.have = 0;
+}
+
+void contour_build_point(contour_build *r, vec2 p, int line) { raw_push(&r->c, p, line); }
+
+void contour_build_end(contour_build *r) {
+  r->nread++;
+  r->points += r->c.have;
+  finish(r, &r->c);
+}
+
+void contour_build_free(contour_build *r) {
+  free(r->c.pt);
+  free(r->c.ptline);
+  free_contours(r->cs, r->ncs);
+  free(r->out.buf);
+  free(r->cur.buf);
+  for (int i = 0; i < r->nbad; i++) free(r->bad[i].why);
+  free(r->bad);
+  free(r->degen_why);
+  free(r);
+}
+
+/* Notes are held back and shown only if the stack is accepted: a rejected
+ * stack gets its error and nothing else. */
+int contour_build_close(contour_build *r, contour_stack *out, FILE *notes, char *err, size_t errlen) {
+  int rc = -1, flags = r->flags, nread = r->nread;
+  r->err = err, r->errlen = errlen;
+  memset(out, 0, sizeof *out);
+  if (r->nbad && bad_contours(r, nread, r->points) != 0) goto done;
+  if (r->ndegen == 1 && !(flags & CONTOUR_VERBOSE))
+    note(r, r->degen_line, "dropped a degenerate contour: %s", r->degen_why);
+  else if (r->ndegen > 1 && !(flags & CONTOUR_VERBOSE))
+    note(r, r->degen_line, "dropped %d degenerate contours of %d (%ld points: single points, two points or all "
+         "collinear, no area), this one the first: %s; -v names each", r->ndegen, nread, r->degen_points,
+         r->degen_why);
+  if (r->ncs == 0 && nread > 0 && r->nbad == 0) {
+    fail(r, 0, "no contours left to tile: all %d are degenerate (a point, two points or all collinear: no area)",
+         nread);
+    goto done;
+  }
+  if (r->ncs == 0 && nread > 0) {
+    fail(r, 0, "no contours left to tile: all %d are bad%s and --skip-bad dropped them", nread,
+         r->ndegen ? " or degenerate" : "");
+    goto done;
+  }
+  if (r->ncs == 0) {
+    fail(r, 0, "no contours");
+    goto done;
+  }
+  if (r->ncs < 2 && !(flags & CONTOUR_ONE_SLICE)) {
+    fail(r, r->cs[0].line, "only one contour; tiling needs at least 2 (z=%s)", ARGS_G(r->cs[0].z));
+    goto done;
+  }
+  int nslices = group_slices(r, r->cs, r->ncs);
+  /* Exact duplicates on a slice dropped, overlapping contours merged
+   * (slicemerge.h; --union says so as its own notes). */
+  if (slicemerge(&r->cs, &r->ncs,
+                 (flags & CONTOUR_UNION ? SLICEMERGE_UNION : 0) | (flags & CONTOUR_VERBOSE ? SLICEMERGE_VERBOSE : 0),
+                 r->pl, r->prefix, &r->out, err, errlen) != 0)
+    goto done;
+  if (nslices < 2 && !(flags & CONTOUR_ONE_SLICE)) {
+    fail(r, r->cs[0].line, "all %d contours lie on one slice; tiling needs at least 2 (z=%s)",
+         r->ncs, ARGS_G(r->cs[0].z));
+    goto done;
+  }
+  /* With several contours on a slice, surface/ orients them by nesting and
+   * reports what it changed. */
+  int reversed = 0;   /* of the contours kept */
+  for (int i = 0; i < r->ncs; i++) reversed += r->cs[i].cw;
+  if (reversed && nslices == r->ncs)
+    note(r, 0, "%d of %d contours ran clockwise; reversed to counter-clockwise", reversed, r->ncs);
+  out->n = r->ncs;
+  out->c = r->cs;
+  out->nslices = nslices;
+  r->cs = NULL, r->ncs = 0;
+  if ((flags & CONTOUR_PAIRS) && contour_stack_pairs_at(out, r->pl, err, errlen) != 0) {
+    contour_stack_free(out);
+    goto done;
+  }
+  rc = 0;
+done:
+  if (rc == 0 && notes && r->out.len) fwrite(r->out.buf, 1, r->out.len, notes);
+  contour_build_free(r);
+  return rc;
+}
+
+/* ---------------------------------------------------------------- the text */
+
 int contour_parse(const char *text, size_t len, const char *name,
                   contour_stack *out, FILE *notes, const char *prefix,
                   char *err, size_t errlen) {
   return contour_parse_flags(text, len, name, 0, out, notes, prefix, err, errlen);
 }
 
+/* A refusal of the text itself: "NAME:LINE: what". */
+static int text_fail(const contour_places *pl, char *err, size_t errlen, int line, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  vfail(pl, err, errlen, line, fmt, ap);
+  va_end(ap);
+  return -1;
+}
+
 int contour_parse_flags(const char *text, size_t len, const char *name, int flags,
                         contour_stack *out, FILE *notes, const char *prefix,
                         char *err, size_t errlen) {
-  /* Notes are held back and shown only if the file is accepted: a rejected
-   * file gets its error and nothing else. */
-  reader rd;
-  memset(&rd, 0, sizeof rd);
-  rd.name = name, rd.err = err, rd.errlen = errlen, rd.prefix = prefix ? prefix : "tilesim", rd.flags = flags;
-  rd.to = &rd.out;
-  reader *r = &rd;
-  contour *cs = NULL;
-  int ncs = 0, capcs = 0, line = 0, reversed = 0, rc = -1, last_want = 0, last_line = 0, nread = 0;
-  long points = 0;
-  raw cur = {0};
-  int open = 0;   /* reading the points of `cur` */
+  contour_places pl = contour_places_file(name);
+  contour_build *b = contour_build_open(&pl, flags, prefix);
+  int line = 0, last_want = 0, last_line = 0, nread = 0;
+  int open = 0, cur_line = 0, want = 0, have = 0;   /* reading the points of the contour at cur_line */
   char vb[200];
 
   memset(out, 0, sizeof *out);
   if (len == 0) {
-    fail(r, 1, "empty file, no contours");
-    goto done;
+    text_fail(&pl, err, errlen, 1, "empty file, no contours");
+    goto fail;
   }
   size_t pos = 0;
   while (pos < len) {
@@ -502,15 +635,15 @@ int contour_parse_flags(const char *text, size_t len, const char *name, int flag
     size_t ll = end;
     line++;
     if (ll - pos > CONTOUR_MAX_LINE) {
-      fail(r, line, "line longer than %d bytes (%zu bytes)", CONTOUR_MAX_LINE, ll - pos);
-      goto done;
+      text_fail(&pl, err, errlen, line, "line longer than %d bytes (%zu bytes)", CONTOUR_MAX_LINE, ll - pos);
+      goto fail;
     }
     if (ll > pos && text[ll - 1] == '\r') ll--;
     for (size_t i = pos; i < ll; i++) {
       unsigned char ch = (unsigned char)text[i];
       if ((ch < 32 && ch != '\t') || ch == 127) {
-        fail(r, line, "binary data, not a contour file (byte 0x%02x)", ch);
-        goto done;
+        text_fail(&pl, err, errlen, line, "binary data, not a contour file (byte 0x%02x)", ch);
+        goto fail;
       }
     }
     const char *s = text + pos;
@@ -522,137 +655,87 @@ int contour_parse_flags(const char *text, size_t len, const char *name, int flag
 
     int is_header = t[0].len == 1 && t[0].s[0] == 'C';
     if (open && is_header) {
-      fail(r, line, "the contour at line %d announced %d points but has %d (next header: %s)",
-           cur.line, cur.want, cur.have, shown(s, sl, vb, sizeof vb));
-      goto done;
+      text_fail(&pl, err, errlen, line, "the contour at line %d announced %d points but has %d (next header: %s)",
+                cur_line, want, have, shown_bytes(s, sl, vb, sizeof vb));
+      goto fail;
     }
     if (!open && !is_header) {
       if (nread > 0)
-        fail(r, line, "more point lines than the %d announced at line %d (%s)",
-             last_want, last_line, shown(s, sl, vb, sizeof vb));
+        text_fail(&pl, err, errlen, line, "more point lines than the %d announced at line %d (%s)", last_want,
+                  last_line, shown_bytes(s, sl, vb, sizeof vb));
       else
-        fail(r, line, "expected a header 'C <points> <z>' (%s)", shown(s, sl, vb, sizeof vb));
-      goto done;
+        text_fail(&pl, err, errlen, line, "expected a header 'C <points> <z>' (%s)", shown_bytes(s, sl, vb, sizeof vb));
+      goto fail;
     }
     if (is_header) {
       double nv, z;
       if (nt != 3) {
-        fail(r, line, "garbled header, expected 'C <points> <z>' (%s)", shown(s, sl, vb, sizeof vb));
-        goto done;
+        text_fail(&pl, err, errlen, line, "garbled header, expected 'C <points> <z>' (%s)",
+                  shown_bytes(s, sl, vb, sizeof vb));
+        goto fail;
       }
       if (number(t[1], &nv) != 0 || nv != floor(nv) || nv < 1) {
-        fail(r, line, "bad point count in header, expected a positive integer (%s)",
-             shown(t[1].s, t[1].len, vb, sizeof vb));
-        goto done;
+        text_fail(&pl, err, errlen, line, "bad point count in header, expected a positive integer (%s)",
+                  shown_bytes(t[1].s, t[1].len, vb, sizeof vb));
+        goto fail;
       }
       if (nv > CONTOUR_MAX_POINTS) {
-        fail(r, line, "point count too large, at most %d (%s)", CONTOUR_MAX_POINTS,
-             shown(t[1].s, t[1].len, vb, sizeof vb));
-        goto done;
+        text_fail(&pl, err, errlen, line, "point count too large, at most %d (%s)", CONTOUR_MAX_POINTS,
+                  shown_bytes(t[1].s, t[1].len, vb, sizeof vb));
+        goto fail;
       }
       int k = number(t[2], &z);
       if (k != 0) {
-        fail(r, line, k > 0 ? "z is not finite (%s)" : "z is not a number (%s)",
-             shown(t[2].s, t[2].len, vb, sizeof vb));
-        goto done;
+        text_fail(&pl, err, errlen, line, k > 0 ? "z is not finite (%s)" : "z is not a number (%s)",
+                  shown_bytes(t[2].s, t[2].len, vb, sizeof vb));
+        goto fail;
       }
-      cur.z = z;
-      cur.line = line;
-      cur.want = (int)nv;
-      cur.have = 0;
+      contour_build_begin(b, z, line);
+      cur_line = line;
+      want = (int)nv;
+      have = 0;
       open = 1;
       continue;
     }
     /* A point line. */
     if (nt != 2) {
-      fail(r, line, "expected a point 'x y' (%s)", shown(s, sl, vb, sizeof vb));
-      goto done;
+      text_fail(&pl, err, errlen, line, "expected a point 'x y' (%s)", shown_bytes(s, sl, vb, sizeof vb));
+      goto fail;
     }
     vec2 p;
     for (int i = 0; i < 2; i++) {
       double v;
       int k = number(t[i], &v);
       if (k != 0) {
-        fail(r, line, k > 0 ? "%c is not finite (%s)" : "%c is not a number (%s)",
-             i ? 'y' : 'x', shown(t[i].s, t[i].len, vb, sizeof vb));
-        goto done;
+        text_fail(&pl, err, errlen, line, k > 0 ? "%c is not finite (%s)" : "%c is not a number (%s)",
+                  i ? 'y' : 'x', shown_bytes(t[i].s, t[i].len, vb, sizeof vb));
+        goto fail;
       }
       if (i) p.y = v;
       else p.x = v;
     }
-    raw_push(&cur, p, line);
-    if (cur.have == cur.want) {
-      last_want = cur.want;
-      last_line = cur.line;
+    contour_build_point(b, p, line);
+    if (++have == want) {
+      last_want = want;
+      last_line = cur_line;
       nread++;
-      points += cur.have;
-      finish(r, &cur, &cs, &ncs, &capcs, &reversed);
+      contour_build_end(b);
       open = 0;
     }
   }
   if (open) {
-    fail(r, line, "the contour at line %d announced %d points but has %d (end of file)",
-         cur.line, cur.want, cur.have);
-    goto done;
+    text_fail(&pl, err, errlen, line, "the contour at line %d announced %d points but has %d (end of file)",
+              cur_line, want, have);
+    goto fail;
   }
-  if (r->nbad && bad_contours(r, nread, points) != 0) goto done;
-  if (r->ndegen == 1 && !(flags & CONTOUR_VERBOSE))
-    note(r, r->degen_line, "dropped a degenerate contour: %s", r->degen_why);
-  else if (r->ndegen > 1 && !(flags & CONTOUR_VERBOSE))
-    note(r, r->degen_line, "dropped %d degenerate contours of %d (%ld points: single points, two points or all "
-         "collinear, no area), this one the first: %s; -v names each", r->ndegen, nread, r->degen_points,
-         r->degen_why);
-  if (ncs == 0 && nread > 0 && r->nbad == 0) {
-    fail(r, 0, "no contours left to tile: all %d are degenerate (a point, two points or all collinear: no area)",
-         nread);
-    goto done;
+  if (nread == 0) {
+    text_fail(&pl, err, errlen, line, "no contours in the file (only comments or blank lines)");
+    goto fail;
   }
-  if (ncs == 0 && nread > 0) {
-    fail(r, 0, "no contours left to tile: all %d are bad%s and --skip-bad dropped them", nread,
-         r->ndegen ? " or degenerate" : "");
-    goto done;
-  }
-  if (ncs == 0) {
-    fail(r, line, "no contours in the file (only comments or blank lines)");
-    goto done;
-  }
-  if (ncs < 2 && !(flags & CONTOUR_ONE_SLICE)) {
-    fail(r, cs[0].line, "only one contour; tiling needs at least 2 (z=%s)", ARGS_G(cs[0].z));
-    goto done;
-  }
-  int nslices = group_slices(r, cs, ncs);
-  /* Exact duplicates on a slice dropped, overlapping contours merged
-   * (slicemerge.h; --union says so as its own notes). */
-  if (slicemerge(&cs, &ncs, (flags & CONTOUR_UNION ? SLICEMERGE_UNION : 0) | (flags & CONTOUR_VERBOSE ? SLICEMERGE_VERBOSE : 0),
-                 name, r->prefix, &r->out, err, errlen) != 0)
-    goto done;
-  if (nslices < 2 && !(flags & CONTOUR_ONE_SLICE)) {
-    fail(r, cs[0].line, "all %d contours lie on one slice; tiling needs at least 2 (z=%s)",
-         ncs, ARGS_G(cs[0].z));
-    goto done;
-  }
-  /* With several contours on a slice, surface/ orients them by nesting and
-   * reports what it changed. */
-  reversed = 0;   /* of the contours kept */
-  for (int i = 0; i < ncs; i++) reversed += cs[i].cw;
-  if (reversed && nslices == ncs)
-    note(r, 0, "%d of %d contours ran clockwise; reversed to counter-clockwise", reversed, ncs);
-  out->n = ncs;
-  out->c = cs;
-  out->nslices = nslices;
-  cs = NULL;
-  rc = 0;
-done:
-  free(cur.pt);
-  free(cur.ptline);
-  if (rc != 0) free_contours(cs, ncs);
-  if (rc == 0 && notes && r->out.len) fwrite(r->out.buf, 1, r->out.len, notes);
-  free(r->out.buf);
-  free(r->cur.buf);
-  for (int i = 0; i < r->nbad; i++) free(r->bad[i].why);
-  free(r->bad);
-  free(r->degen_why);
-  return rc;
+  return contour_build_close(b, out, notes, err, errlen);
+fail:
+  contour_build_free(b);
+  return -1;
 }
 
 int contour_read(const char *path, contour_stack *out, FILE *notes,
@@ -662,30 +745,11 @@ int contour_read(const char *path, contour_stack *out, FILE *notes,
 
 int contour_read_flags(const char *path, int flags, contour_stack *out, FILE *notes,
                        const char *prefix, char *err, size_t errlen) {
-  int stdin_ = strcmp(path, "-") == 0;
-  FILE *f = stdin_ ? stdin : fopen(path, "rb");
+  size_t len;
+  char *buf = readfile(path, &len, err, errlen);
   memset(out, 0, sizeof *out);
-  if (!f) {
-    snprintf(err, errlen, "%s: cannot open (%s)", path, strerror(errno));
-    return -1;
-  }
-  size_t len = 0, cap = 1 << 16;
-  char *buf = xmalloc(cap);
-  for (;;) {
-    size_t got = fread(buf + len, 1, cap - len, f);
-    len += got;
-    if (got == 0) break;
-    if (len == cap) buf = xrealloc(buf, cap *= 2);
-  }
-  int bad = ferror(f);
-  int e = errno;
-  if (!stdin_) fclose(f);
-  if (bad) {
-    snprintf(err, errlen, "%s: cannot read (%s)", path, strerror(e));
-    free(buf);
-    return -1;
-  }
-  int rc = contour_parse_flags(buf, len, stdin_ ? "<stdin>" : path, flags, out, notes, prefix, err, errlen);
+  if (!buf) return -1;
+  int rc = contour_parse_flags(buf, len, readfile_name(path), flags, out, notes, prefix, err, errlen);
   free(buf);
   return rc;
 }

@@ -1,4 +1,5 @@
-/* contour.h -- contour stacks: reading, checking and repairing .contours files.
+/* contour.h -- contour stacks: the builder that checks and repairs them,
+ * whoever reads them, and the .contours files.
  *
  * Format (doc/tilesim-contours.5): a line "C <n> <z>" opens a contour of n
  * points in the plane z; the next n lines are its points "x y".  Lines
@@ -18,13 +19,15 @@
 #include <stdio.h>
 
 #include "geom/geom.h"
+#include "util/strbuf.h"
 
 typedef struct {
   double z;       /* the contour's plane */
   int n;          /* points, after repair (>= 3, not all collinear) */
   vec2 *pt;       /* counter-clockwise seen from +z; closing point not repeated */
-  int line;       /* line of its "C" header in the file (a keyhole's loop:
-                     of its first point) */
+  int line;       /* its place: the line of its "C" header in the file (a
+                     keyhole's loop: of its first point; an ROI's contour:
+                     the line its .contours text gives it) */
   int slice;      /* its slice, 0 .. nslices-1 in increasing z */
   int cw;         /* 1 if the file gave it clockwise (it was reversed) */
 } contour;
@@ -93,7 +96,9 @@ int contour_parse(const char *text, size_t len, const char *name,
  *   CONTOUR_ONE_SLICE    a stack of one slice (one contour or more) is
  *                        accepted: for ./tile, which makes it a slab of a
  *                        given thickness (surface/stack.h) or refuses it
- *                        itself, naming the option; without it it is refused.
+ *                        itself, naming the option; without it it is refused;
+ *   CONTOUR_PAIRS        the stack is checked by contour_stack_pairs too,
+ *                        before any note is said.
  * The others take none. */
 enum {
   CONTOUR_NO_KEYHOLES = 1,
@@ -101,13 +106,58 @@ enum {
   CONTOUR_VERBOSE = 4,
   CONTOUR_UNION = 8,
   CONTOUR_ONE_SLICE = 16,
-  CONTOUR_DROP_DEGENERATE = 32
+  CONTOUR_DROP_DEGENERATE = 32,
+  CONTOUR_PAIRS = 64
 };
 int contour_read_flags(const char *path, int flags, contour_stack *out, FILE *notes,
                        const char *prefix, char *err, size_t errlen);
 int contour_parse_flags(const char *text, size_t len, const char *name, int flags,
                         contour_stack *out, FILE *notes, const char *prefix,
                         char *err, size_t errlen);
+
+/* Places in messages.  Every message about a stack names its contours and
+ * points by the `line` the reader gave each; a stack's places say how a line
+ * is written: for a .contours file "NAME:LINE" at the head of a message and
+ * "line N" within it (contour_places_file); the DICOM reader names the
+ * file, the byte, the ROI and the contour item instead (input/rtstruct.h). */
+typedef struct {
+  /* The head of a message about `line` (0: about the stack as a whole);
+   * the message goes on with ": what". */
+  void (*head)(void *ud, strbuf *b, int line);
+  /* `line` named within a message whose head is about line `head` (at most
+   * CONTOUR_PLACE_MAX - 1 bytes). */
+  void (*ref)(void *ud, char *buf, size_t cap, int line, int head);
+  void *ud;
+} contour_places;
+
+enum { CONTOUR_PLACE_MAX = 64 };
+
+/* The places of the file `name` (kept, not copied). */
+contour_places contour_places_file(const char *name);
+
+/* `line` as pl names it in a message about `head`: in p, returned. */
+typedef struct {
+  char s[CONTOUR_PLACE_MAX];
+} contour_place;
+const char *contour_place_at(const contour_places *pl, int line, int head, contour_place *p);
+
+/* The builder the readers fill: a contour at a time, its points in order,
+ * each with its place; the repairs, checks, slices and notes are those of
+ * contour_read above, whoever reads.  contour_build_open takes the flags of
+ * contour_read_flags; pl is kept, not copied; prefix NULL is "tilesim". */
+typedef struct contour_build contour_build;
+contour_build *contour_build_open(const contour_places *pl, int flags, const char *prefix);
+/* A contour in the plane z, named by `line`; then its points, then its end
+ * (repaired and checked there: a bad contour is kept to be named at the
+ * close, as contour_read says).  At most CONTOUR_MAX_POINTS points. */
+void contour_build_begin(contour_build *b, double z, int line);
+void contour_build_point(contour_build *b, vec2 p, int line);
+void contour_build_end(contour_build *b);
+/* The stack: 0, with the notes said on `notes` (NULL: silent); or -1 with
+ * the refusal in err, as contour_read says.  Frees b. */
+int contour_build_close(contour_build *b, contour_stack *out, FILE *notes, char *err, size_t errlen);
+/* Frees b, with what it holds (a reader that failed on its own). */
+void contour_build_free(contour_build *b);
 
 /* Write a stack in the same format (%.17g: reading it back is exact).
  * Returns 0 or -1 on a write error. */
@@ -117,6 +167,8 @@ int contour_write(FILE *f, const contour_stack *s);
  * if every slice has one contour and z runs monotone through the file; else
  * -1 and "NAME:LINE: what (value)" in err. */
 int contour_stack_pairs(const contour_stack *s, const char *name, char *err, size_t errlen);
+/* The same, naming places by pl. */
+int contour_stack_pairs_at(const contour_stack *s, const contour_places *pl, char *err, size_t errlen);
 
 void contour_stack_free(contour_stack *s);
 

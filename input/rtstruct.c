@@ -1,5 +1,5 @@
 /* rtstruct.c -- DICOM RT structure sets: the ROIs, their closed planar
- * contours, and each ROI as a .contours stack.
+ * contours, and each ROI as a contour stack and as .contours text.
  *
  *   StructureSetROISequence (3006,0020)   item: ROINumber (3006,0022), ROIName (3006,0026)
  *   ROIContourSequence (3006,0039)        item: ReferencedROINumber (3006,0084),
@@ -26,6 +26,8 @@
 #include "input/decimal.h"
 #include "input/dicom.h"
 #include "input/rtframe.h"
+#include "util/readfile.h"
+#include "util/shown.h"
 #include "util/strbuf.h"
 #include "util/xmem.h"
 
@@ -45,25 +47,6 @@
 #define RTSTRUCT_SOP_CLASS "1.2.840.10008.5.1.4.1.1.481.3"
 
 static const uint32_t sequences[] = {SS_ROI_SEQ, ROI_CONTOUR_SEQ, CONTOUR_SEQ, OBSERVATIONS_SEQ};
-
-/* ---------------------------------------------------------------- messages */
-
-/* Up to 40 bytes of a value as it may be shown in a message. */
-static const char *shown(const char *s, size_t len, char *buf, size_t cap) {
-  size_t j = 0;
-  for (size_t i = 0; i < len && j + 5 < cap; i++) {
-    unsigned char ch = (unsigned char)s[i];
-    if (i == 40) {
-      memcpy(buf + j, "...", 3);
-      j += 3;
-      break;
-    }
-    if (ch >= 32 && ch < 127) buf[j++] = (char)ch;
-    else j += (size_t)snprintf(buf + j, cap - j, "\\x%02x", ch);
-  }
-  buf[j] = 0;
-  return buf;
-}
 
 /* ---------------------------------------------------------------- parsing */
 
@@ -137,7 +120,7 @@ static int integer(const dicom *d, int node, int *out) {
 static const char *value_shown(const dicom *d, int node, char *buf, size_t cap) {
   size_t len = 0;
   const unsigned char *v = dicom_value(d, node, &len);
-  return shown((const char *)v, len, buf, cap);
+  return shown_bytes((const char *)v, len, buf, cap);
 }
 
 static int sequence(reader *r, int node) {
@@ -231,7 +214,7 @@ static int read_contour(reader *r, rtstruct_roi *roi, int item, int k, rtstruct_
     if (rc != 0) {
       roi->error = roi_error(r, roi, base + at, "contour item %d, point %zu: %c %s (%s)", k, i / 3 + 1,
                              "xyz"[i % 3], rc > 0 ? "is not finite" : "is not a number",
-                             shown(v + at, e - at, vb, sizeof vb));
+                             shown_bytes(v + at, e - at, vb, sizeof vb));
       return -1;
     }
     c->p[i] = x;
@@ -367,7 +350,7 @@ static void read_contours(reader *r, rtstruct_roi *roi, int cseq) {
     for (int j = 0; j < kinds; j++) {
       char sh[80];
       strbuf_add(&b, "%s%d %s", j == 0 ? "" : j + 1 == kinds ? " and " : ", ", nkind[j],
-             shown(kind[j], strlen(kind[j]), sh, sizeof sh));
+             shown_bytes(kind[j], strlen(kind[j]), sh, sizeof sh));
     }
     roi_warn(r, roi, "skipped %s contour%s; only CLOSED_PLANAR contours are tiled", b.buf,
              roi->skipped == 1 ? "" : "s");
@@ -517,29 +500,11 @@ int rtstruct_parse(const unsigned char *buf, size_t len, const char *name, rtstr
 }
 
 int rtstruct_read(const char *path, rtstruct *out, char *err, size_t errlen) {
-  int stdin_ = strcmp(path, "-") == 0;
-  FILE *f = stdin_ ? stdin : fopen(path, "rb");
+  size_t len;
+  char *buf = readfile(path, &len, err, errlen);
   memset(out, 0, sizeof *out);
-  if (!f) {
-    snprintf(err, errlen, "%s: cannot open (%s)", path, strerror(errno));
-    return -1;
-  }
-  size_t len = 0, cap = 1 << 16;
-  unsigned char *buf = xmalloc(cap);
-  for (;;) {
-    size_t got = fread(buf + len, 1, cap - len, f);
-    len += got;
-    if (got == 0) break;
-    if (len == cap) buf = xrealloc(buf, cap *= 2);
-  }
-  int bad = ferror(f), e = errno;
-  if (!stdin_) fclose(f);
-  if (bad) {
-    snprintf(err, errlen, "%s: cannot read (%s)", path, strerror(e));
-    free(buf);
-    return -1;
-  }
-  int rc = rtstruct_parse(buf, len, stdin_ ? "<stdin>" : path, out, err, errlen);
+  if (!buf) return -1;
+  int rc = rtstruct_parse((const unsigned char *)buf, len, readfile_name(path), out, err, errlen);
   free(buf);
   return rc;
 }
@@ -571,7 +536,7 @@ int rtstruct_find(const rtstruct *s, const char *key, char *err, size_t errlen) 
       if (found >= 0) {
         snprintf(err, errlen, "%s: ROIs %d and %d are both named '%s'; choose one by its number (%s)",
                  s->name, s->roi[found].number, s->roi[i].number, s->roi[i].name,
-                 shown(key, strlen(key), vb, sizeof vb));
+                 shown_bytes(key, strlen(key), vb, sizeof vb));
         return -1;
       }
       found = i;
@@ -588,7 +553,7 @@ int rtstruct_find(const rtstruct *s, const char *key, char *err, size_t errlen) 
     strbuf_add(&b, "%s%d '%s'", i ? ", " : "", s->roi[i].number, s->roi[i].name);
   if (b.len >= 300) strbuf_add(&b, ", ...");
   snprintf(err, errlen, "%s: no ROI named or numbered '%s' (the ROIs: %s)", s->name,
-           shown(key, strlen(key), vb, sizeof vb), b.buf ? b.buf : "none");
+           shown_bytes(key, strlen(key), vb, sizeof vb), b.buf ? b.buf : "none");
   free(b.buf);
   return -1;
 }
@@ -686,8 +651,19 @@ char *rtstruct_roi_text(const rtstruct *s, int ri, size_t *len) {
   return b.buf ? b.buf : xstrdup("");
 }
 
-/* The name the reader is given: found again in its messages and rewritten. */
-static const char sentinel[] = "\x01rtstruct\x01";
+/* The contour of the ROI whose header (*j = 0) or point *j is line `line`
+ * of its text: its index, or -1 (a comment line, or past the end). */
+static int contour_of_line(const rtstruct_roi *roi, long line, long *j) {
+  long at = HEADER_LINES + 1;
+  for (int i = 0; i < roi->nc; i++) {
+    if (line >= at && line <= at + roi->c[i].n) {
+      *j = line - at;
+      return i;
+    }
+    at += roi->c[i].n + 1;
+  }
+  return -1;
+}
 
 /* Where line `line` of the ROI's text came from: "FILE: byte N: ROI r 'name',
  * contour item k[, point j]" (with_byte), else "contour item k[, point j]",
@@ -697,23 +673,46 @@ static const char sentinel[] = "\x01rtstruct\x01";
  * point: that names a loop of a keyhole contour, and the message's other
  * lines name contours in full). */
 static int locate(const rtstruct_roi *roi, long line, strbuf *b, int with_byte, int cur, const char *file) {
-  long at = HEADER_LINES + 1;
-  for (int i = 0; i < roi->nc; i++) {
+  long j;
+  int i = contour_of_line(roi, line, &j);
+  if (i >= 0) {
     const rtstruct_contour *c = &roi->c[i];
-    if (line >= at && line <= at + c->n) {
-      long j = line - at;
-      if (with_byte) strbuf_add(b, "%s: byte %zu: ROI %d '%s', ", file, j ? c->poff[j - 1] : c->offset,
-                            roi->number, roi->name);
-      if (j && i == cur) strbuf_add(b, "point %ld", j);
-      else if (j) strbuf_add(b, "contour item %d, point %ld", c->item, j);
-      else strbuf_add(b, "contour item %d", c->item);
-      return j ? -1 : i;   /* a point names a loop of a keyhole contour, not the contour */
-    }
-    at += c->n + 1;
+    if (with_byte) strbuf_add(b, "%s: byte %zu: ROI %d '%s', ", file, j ? c->poff[j - 1] : c->offset,
+                              roi->number, roi->name);
+    if (j && i == cur) strbuf_add(b, "point %ld", j);
+    else if (j) strbuf_add(b, "contour item %d, point %ld", c->item, j);
+    else strbuf_add(b, "contour item %d", c->item);
+    return j ? -1 : i;   /* a point names a loop of a keyhole contour, not the contour */
   }
   if (with_byte) strbuf_add(b, "%s: ROI %d '%s', ", file, roi->number, roi->name);
   strbuf_add(b, "line %ld of its stack", line);
   return -1;
+}
+
+/* ---------------------------------------------------------------- places */
+
+/* The places of an ROI's stack (contour.h): each contour and point is
+ * named by the line the ROI's text gives it, and said as the file's byte,
+ * the ROI and the contour item. */
+typedef struct {
+  const rtstruct *s;
+  const rtstruct_roi *roi;
+} roi_places;
+
+static void roi_head(void *ud, strbuf *b, int line) {
+  const roi_places *p = ud;
+  if (line > 0) locate(p->roi, line, b, 1, -1, p->s->name);
+  else strbuf_add(b, "%s: ROI %d '%s'", p->s->name, p->roi->number, p->roi->name);
+}
+
+static void roi_ref(void *ud, char *buf, size_t cap, int line, int head) {
+  const roi_places *p = ud;
+  long j = 0;
+  int cur = head > 0 ? contour_of_line(p->roi, head, &j) : -1;
+  strbuf b = {0};
+  locate(p->roi, line, &b, 0, j == 0 ? cur : -1, p->s->name);
+  snprintf(buf, cap, "%s", b.buf);
+  free(b.buf);
 }
 
 static int digit(char c) { return c >= '0' && c <= '9'; }
@@ -803,38 +802,55 @@ static void fit_lines(const char *msg, char *err, size_t cap) {
   }
 }
 
+/* A computed value v of the ROI's stack at `line` that is not finite: -1
+ * with "PLACE: C is not finite (V)" in err, as the .contours reader says it
+ * of the text; else 0. */
+static int not_finite(const contour_places *pl, int line, char c, double v, char *err, size_t errlen) {
+  if (isfinite(v)) return 0;
+  strbuf b = {0};
+  pl->head(pl->ud, &b, line);
+  strbuf_add(&b, ": %c is not finite (%.17g)", c, v);
+  snprintf(err, errlen, "%s", b.buf);
+  free(b.buf);
+  return -1;
+}
+
 int rtstruct_roi_stack(const rtstruct *s, int ri, int flags, contour_stack *out, FILE *notes,
                        const char *prefix, char *err, size_t errlen) {
   const rtstruct_roi *roi = &s->roi[ri];
   memset(out, 0, sizeof *out);
   if (rtstruct_roi_check(s, ri, err, errlen) != 0) return -1;
-  size_t len;
-  char *text_ = rtstruct_roi_text(s, ri, &len);
-  char *held = NULL;
-  size_t heldlen = 0, e2len = errlen > 1024 ? errlen : 1024;
+  roi_places rp = {s, roi};
+  contour_places pl = {roi_head, roi_ref, &rp};
+  contour_build *b = contour_build_open(&pl, flags, prefix);
+  size_t e2len = errlen > 1024 ? errlen : 1024;
   char *e2 = xmalloc(e2len);
-  FILE *hold = notes ? open_memstream(&held, &heldlen) : NULL;
-  int cflags = (flags & RTSTRUCT_NO_KEYHOLES ? CONTOUR_NO_KEYHOLES : 0) |
-               (flags & RTSTRUCT_SKIP_BAD ? CONTOUR_SKIP_BAD : 0) | (flags & RTSTRUCT_UNION ? CONTOUR_UNION : 0) |
-               (flags & RTSTRUCT_VERBOSE ? CONTOUR_VERBOSE : 0) | (flags & RTSTRUCT_ONE_SLICE ? CONTOUR_ONE_SLICE : 0) |
-               (flags & RTSTRUCT_DROP_DEGENERATE ? CONTOUR_DROP_DEGENERATE : 0);
-  int rc = contour_parse_flags(text_, len, sentinel, cflags, out, hold, prefix, e2, e2len);
-  if (rc == 0 && (flags & RTSTRUCT_PAIRS) && contour_stack_pairs(out, sentinel, e2, e2len) != 0) {
-    contour_stack_free(out);
-    rc = -1;
+  /* The contours in their order, each named by the line the ROI's text
+   * gives it; the values those of the text (oblique: computed, and refused
+   * as the text is when one is not finite). */
+  int iu = roi->plane == RTSTRUCT_AXIAL ? 0 : roi->plane == RTSTRUCT_SAGITTAL ? 1 : 2, iv = (iu + 1) % 3;
+  const rtstruct_frame *f = &roi->frame;
+  int line = HEADER_LINES + 1, rc = 0;
+  for (int i = 0; i < roi->nc && rc == 0; i++) {
+    const rtstruct_contour *c = &roi->c[i];
+    rc = not_finite(&pl, line, 'z', c->h, e2, e2len);
+    contour_build_begin(b, c->h, line);
+    for (int j = 0; j < c->n && rc == 0; j++) {
+      const double *p = c->p + 3 * j;
+      vec2 q = roi->plane == RTSTRUCT_OBLIQUE ? (vec2){rtframe_dot(f->u, p), rtframe_dot(f->v, p)}
+                                              : (vec2){p[iu], p[iv]};
+      if ((rc = not_finite(&pl, line + 1 + j, 'x', q.x, e2, e2len)) == 0 &&
+          (rc = not_finite(&pl, line + 1 + j, 'y', q.y, e2, e2len)) == 0)
+        contour_build_point(b, q, line + 1 + j);
+    }
+    if (rc == 0) contour_build_end(b);
+    line += c->n + 1;
   }
-  free(text_);
-  if (hold) fclose(hold);
-  if (rc != 0) {
-    char *m = rewrite(s, roi, sentinel, e2);
-    fit_lines(m, err, errlen);
-    free(m);
-  } else if (held && heldlen) {
-    char *m = rewrite(s, roi, sentinel, held);
-    fputs(m, notes);
-    free(m);
-  }
-  free(held);
+  /* A refusal that lists bad contours is fitted to err whole lines at a
+   * time, its summary kept. */
+  if (rc == 0) rc = contour_build_close(b, out, notes, e2, e2len);
+  else contour_build_free(b);
+  if (rc != 0) fit_lines(e2, err, errlen);
   free(e2);
   return rc;
 }

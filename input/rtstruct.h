@@ -22,13 +22,14 @@
  * off a plane of that normal -- not planar, or planar but not parallel to the
  * others -- are refused, naming the contour.
  *
- * An ROI becomes a .contours stack (input/contour.h) in the text that
- * rtstruct_roi_text writes: its closed contours sorted by their plane
- * (stably), the numbers as the file wrote them (oblique: computed, %.17g).
- * rtstruct_roi_stack reads that text with the
- * .contours reader, so a DICOM ROI and its converted stack give the same
- * tiling, mesh and report; the reader's refusals and notes are rewritten to
- * name the DICOM file, the byte, the ROI and the contour item. */
+ * An ROI's stack: its closed contours sorted by their plane (stably), in
+ * the stack's frame, given to the contour builder (input/contour.h) that
+ * the .contours reader fills too, so a DICOM ROI and its converted stack
+ * (rtstruct_roi_text: the numbers as the file wrote them, oblique ones
+ * computed, %.17g, the same doubles) give the same tiling, mesh and report.
+ * Each contour and point is named by the line that text gives it; the
+ * builder's places name the DICOM file, the byte, the ROI and the contour
+ * item instead. */
 #ifndef RTSTRUCT_H
 #define RTSTRUCT_H
 
@@ -110,30 +111,27 @@ int rtstruct_roi_check(const rtstruct *s, int roi, char *err, size_t errlen);
  * the caller frees.  The ROI must have no error. */
 char *rtstruct_roi_text(const rtstruct *s, int roi, size_t *len);
 
-/* The ROI's stack, read from that text by contour_parse (keyhole contours
- * split into their loops unless flags has RTSTRUCT_NO_KEYHOLES; bad
- * contours dropped with RTSTRUCT_SKIP_BAD, overlapping contours of a slice
- * merged (noted as --union's with RTSTRUCT_UNION), every note in full with
- * RTSTRUCT_VERBOSE: the
- * CONTOUR_ flags of contour.h; and, with RTSTRUCT_PAIRS, checked by
- * contour_stack_pairs, as ./tile checks a stack that it tiles contour by
- * contour): 0, or -1 with the refusal, rewritten to name the file, ROI,
- * contour item and byte (one line per bad contour, as contour.h says, as
- * many whole lines as errlen holds, the last line kept).  Notes go to
- * `notes` as contour_read's do, rewritten alike ("contour item K, point J"
- * for a line), and only when the stack is accepted.  RTSTRUCT_ONE_SLICE
- * accepts an ROI of one slice (contour.h's CONTOUR_ONE_SLICE);
- * RTSTRUCT_DROP_DEGENERATE drops contours without area with a counted note
- * (CONTOUR_DROP_DEGENERATE). */
-enum { RTSTRUCT_PAIRS = 1, RTSTRUCT_NO_KEYHOLES = 2, RTSTRUCT_SKIP_BAD = 4, RTSTRUCT_UNION = 8, RTSTRUCT_VERBOSE = 16,
-       RTSTRUCT_ONE_SLICE = 32, RTSTRUCT_DROP_DEGENERATE = 64 };
+/* The ROI's stack, made by the contour builder as contour_read_flags makes
+ * a file's, with its flags (keyhole contours split into their loops unless
+ * CONTOUR_NO_KEYHOLES; bad contours dropped with CONTOUR_SKIP_BAD,
+ * overlapping contours of a slice merged (noted as --union's with
+ * CONTOUR_UNION), every note in full with CONTOUR_VERBOSE; and, with
+ * CONTOUR_PAIRS, checked by contour_stack_pairs, as ./tile checks a stack
+ * that it tiles contour by contour; CONTOUR_ONE_SLICE accepts an ROI of one
+ * slice, CONTOUR_DROP_DEGENERATE drops contours without area with a
+ * counted note): 0, or -1 with the refusal naming the file, ROI, contour
+ * item and byte (one line per bad contour, as contour.h says, as many whole
+ * lines as errlen holds, the last line kept).  Notes go to `notes` as
+ * contour_read's do, named alike ("contour item K, point J" for a line),
+ * and only when the stack is accepted. */
 int rtstruct_roi_stack(const rtstruct *s, int roi, int flags, contour_stack *out, FILE *notes,
                        const char *prefix, char *err, size_t errlen);
 
-/* A message about the ROI's stack text, which names it `name` ("NAME:LINE:
- * ..." and "line N" within), rewritten as rtstruct_roi_stack rewrites the
- * reader's: naming the file, the byte, the ROI, the contour item and point.
- * Several lines are rewritten each.  malloc'd; the caller frees. */
+/* A message about the ROI's stack (from surface/, which names it `name`
+ * and its contours by their lines: "NAME:LINE: ..." and "line N" within),
+ * rewritten to name places as rtstruct_roi_stack's messages do: the file,
+ * the byte, the ROI, the contour item and point.  Several lines are
+ * rewritten each.  malloc'd; the caller frees. */
 char *rtstruct_rewrite(const rtstruct *s, int roi, const char *name, const char *msg);
 
 /* A point of the ROI's stack frame (x, y, z = height) back to patient x,

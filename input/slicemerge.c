@@ -80,13 +80,18 @@ static int keep_order(const contour *c, const contour *d) {
 
 /* ---------------------------------------------------------------- duplicates */
 
-static void note_line(strbuf *notes, const char *prefix, const char *name, int line) {
-  strbuf_add(notes, "%s: %s:%d: ", prefix, name, line);
+static void note_line(strbuf *notes, const char *prefix, const contour_places *pl, int line) {
+  strbuf_add(notes, "%s: ", prefix);
+  pl->head(pl->ud, notes, line);
+  strbuf_raw(notes, ": ", 2);
 }
 
+
+
 /* Mark in drop[] every contour that repeats another of its slice. */
-static int duplicates(contour *cs, int ncs, char *drop, int verbose, const char *name, const char *prefix,
+static int duplicates(contour *cs, int ncs, char *drop, int verbose, const contour_places *pl, const char *prefix,
                       strbuf *notes) {
+  contour_place p;
   boxed *bx = xmallocarray((size_t)ncs + 1, sizeof *bx);
   for (int i = 0; i < ncs; i++) {
     vec2 lo = cs[i].pt[0], hi = cs[i].pt[0];
@@ -128,22 +133,24 @@ static int duplicates(contour *cs, int ncs, char *drop, int verbose, const char 
         drop[i] = 1;
         if (dropped++ == 0 || cs[i].line < cs[first].line) first = i, first_of = keep;
         if (verbose && notes) {
-          note_line(notes, prefix, name, cs[i].line);
-          strbuf_add(notes, "dropped the contour: it repeats the contour at line %d on slice z=%s exactly (the same "
-                     "region: another start point, direction or collinear points)\n", cs[keep].line, ARGS_G(cs[i].z));
+          note_line(notes, prefix, pl, cs[i].line);
+          strbuf_add(notes, "dropped the contour: it repeats the contour at %s on slice z=%s exactly (the same "
+                     "region: another start point, direction or collinear points)\n",
+                     contour_place_at(pl, cs[keep].line, cs[i].line, &p), ARGS_G(cs[i].z));
         }
       }
     }
   }
   if (dropped && !verbose && notes) {
-    note_line(notes, prefix, name, cs[first].line);
+    note_line(notes, prefix, pl, cs[first].line);
+    const char *of = contour_place_at(pl, cs[first_of].line, cs[first].line, &p);
     if (dropped == 1)
-      strbuf_add(notes, "dropped the contour: it repeats the contour at line %d on slice z=%s exactly (the same "
-                 "region: another start point, direction or collinear points)\n", cs[first_of].line, ARGS_G(cs[first].z));
+      strbuf_add(notes, "dropped the contour: it repeats the contour at %s on slice z=%s exactly (the same "
+                 "region: another start point, direction or collinear points)\n", of, ARGS_G(cs[first].z));
     else
       strbuf_add(notes, "dropped %d contours that repeat another of their slice exactly (the same region: another "
-                 "start point, direction or collinear points), this one a copy of line %d on slice z=%s; -v "
-                 "names each\n", dropped, cs[first_of].line, ARGS_G(cs[first].z));
+                 "start point, direction or collinear points), this one a copy of %s on slice z=%s; -v "
+                 "names each\n", dropped, of, ARGS_G(cs[first].z));
   }
   for (int k = 0; k < ncs; k++) free(red[k]);
   free(red), free(nred), free(bx);
@@ -153,14 +160,16 @@ static int duplicates(contour *cs, int ncs, char *drop, int verbose, const char 
 /* ---------------------------------------------------------------- union */
 
 /* "line A, line B and line C" for the members of a group (at most 8, then
- * "and N more"; each "line N" as the DICOM reader's messages rewrite it). */
-static void lines_of(strbuf *b, const contour *cs, const int *idx, const int *mem, int nm) {
+ * "and N more"; each as pl names it in a message about `head`). */
+static void lines_of(strbuf *b, const contour *cs, const int *idx, const int *mem, int nm, const contour_places *pl,
+                     int head) {
+  contour_place p;
   for (int k = 0; k < nm; k++) {
     if (k == 8) {
       strbuf_add(b, " and %d more", nm - 8);
       break;
     }
-    strbuf_add(b, "%sline %d", k == 0 ? "" : k + 1 == nm ? " and " : ", ", cs[idx[mem[k]]].line);
+    strbuf_add(b, "%s%s", k == 0 ? "" : k + 1 == nm ? " and " : ", ", contour_place_at(pl, cs[idx[mem[k]]].line, head, &p));
   }
 }
 
@@ -199,14 +208,15 @@ static int by_int(const void *a, const void *b) {
 
 /* The slice's note on its overlapping pieces merged by default (one line,
  * whatever -v says: it names every contour, as far as lines_of does). */
-static void note_pieces(strbuf *to, pieces *p, const contour *cs, const int *idx, const char *name,
+static void note_pieces(strbuf *to, pieces *p, const contour *cs, const int *idx, const contour_places *pl,
                         const char *prefix) {
   qsort(p->mem, (size_t)p->n, sizeof *p->mem, by_int);   /* idx is in line order */
   int nc = p->loops - p->holes;
-  note_line(to, prefix, name, cs[idx[p->mem[0]]].line);
+  int head = cs[idx[p->mem[0]]].line;
+  note_line(to, prefix, pl, head);
   strbuf_add(to, "merged %d overlapping contours on slice z=%s into their union (as --union does): the contours at ",
              p->n, ARGS_G(cs[idx[0]].z));
-  lines_of(to, cs, idx, p->mem, p->n);
+  lines_of(to, cs, idx, p->mem, p->n, pl, head);
   strbuf_add(to, ": %d contour%s", nc, nc == 1 ? "" : "s");
   if (p->holes) strbuf_add(to, " and %d hole%s", p->holes, p->holes == 1 ? "" : "s");
   strbuf_add(to, " (%d new vertices where they cross)", p->news);
@@ -222,7 +232,7 @@ static void note_pieces(strbuf *to, pieces *p, const contour *cs, const int *idx
  * hole drawn on its outer contour's boundary) counted in t as such, and the
  * overlapping pieces said in one note for the slice.  0, or -1 and err. */
 static int union_slice(contour *cs, const int *idx, int m, int all, char *drop, clist *add, tally *t, int verbose,
-                       const char *name, const char *prefix, strbuf *notes, char *err, size_t errlen) {
+                       const contour_places *pl, const char *prefix, strbuf *notes, char *err, size_t errlen) {
   crossing_poly *cp = xmallocarray((size_t)m, sizeof *cp);
   for (int k = 0; k < m; k++) cp[k] = (crossing_poly){cs[idx[k]].pt, cs[idx[k]].n};
   polyunion_result u;
@@ -235,10 +245,12 @@ static int union_slice(contour *cs, const int *idx, int m, int all, char *drop, 
     int nm = u.gmember[g + 1] - u.gmember[g], nh = 0, lead = idx[mem[0]];
     if (u.gstatus[g] != POLYUNION_OK) {
       strbuf b = {0};
-      lines_of(&b, cs, idx, mem, nm);
-      snprintf(err, errlen, "%s:%d: %sthe region of the contours at %s on slice z=%s: its new vertices, rounded "
-               "to doubles, make its boundary touch itself near (%s %s); it cannot be tiled", name,
-               cs[lead].line, all ? "--union: " : "", b.buf, ARGS_G(z), ARGS_G(u.gat[g].x), ARGS_G(u.gat[g].y));
+      pl->head(pl->ud, &b, cs[lead].line);
+      strbuf_add(&b, ": %sthe region of the contours at ", all ? "--union: " : "");
+      lines_of(&b, cs, idx, mem, nm, pl, cs[lead].line);
+      strbuf_add(&b, " on slice z=%s: its new vertices, rounded to doubles, make its boundary touch itself near "
+                 "(%s %s); it cannot be tiled", ARGS_G(z), ARGS_G(u.gat[g].x), ARGS_G(u.gat[g].y));
+      snprintf(err, errlen, "%s", b.buf);
       free(b.buf);
       rc = -1;
       break;
@@ -268,10 +280,10 @@ static int union_slice(contour *cs, const int *idx, int m, int all, char *drop, 
     if (t->groups == 0) t->first_line = cs[lead].line;
     strbuf *to = verbose ? notes : (t->groups == 0 ? &t->first : NULL);
     if (to) {
-      note_line(to, prefix, name, cs[lead].line);
+      note_line(to, prefix, pl, cs[lead].line);
       if (all) strbuf_add(to, "--union: merged the contours at ");
       else strbuf_add(to, "a hole on its outer contour's boundary: the contours at ");
-      lines_of(to, cs, idx, mem, nm);
+      lines_of(to, cs, idx, mem, nm, pl, cs[lead].line);
       if (all) strbuf_add(to, " on slice z=%s into their union", ARGS_G(z));
       else strbuf_add(to, " on slice z=%s, one inside another and meeting its boundary, made one region", ARGS_G(z));
       strbuf_add(to, ": %d contour%s", nl - nh, nl - nh == 1 ? "" : "s");
@@ -285,7 +297,7 @@ static int union_slice(contour *cs, const int *idx, int m, int all, char *drop, 
     }
     t->groups++, t->merged += nm, t->news += u.newpts[g], t->holes += nh, t->pinches += u.pinches[g];
   }
-  if (rc == 0 && pc.n && notes) note_pieces(notes, &pc, cs, idx, name, prefix);
+  if (rc == 0 && pc.n && notes) note_pieces(notes, &pc, cs, idx, pl, prefix);
   free(pc.mem);
   polyunion_free(&u);
   free(cp);
@@ -301,9 +313,13 @@ static int union_slice(contour *cs, const int *idx, int m, int all, char *drop, 
     int hit = crossing_find(all_, k, &h);
     free(all_);
     if (hit) {
-      snprintf(err, errlen, "%s:%d: %son slice z=%s the merged region's new vertices, rounded to doubles, make "
-               "it touch another contour near (%s %s); it cannot be tiled", name, add->c[slice0].line,
-               all ? "--union: " : "", ARGS_G(z), ARGS_G(h.at.x), ARGS_G(h.at.y));
+      strbuf b = {0};
+      pl->head(pl->ud, &b, add->c[slice0].line);
+      strbuf_add(&b, ": %son slice z=%s the merged region's new vertices, rounded to doubles, make it touch another "
+                 "contour near (%s %s); it cannot be tiled", all ? "--union: " : "", ARGS_G(z), ARGS_G(h.at.x),
+                 ARGS_G(h.at.y));
+      snprintf(err, errlen, "%s", b.buf);
+      free(b.buf);
       rc = -1;
     }
   }
@@ -340,12 +356,12 @@ static int meet(const contour *cs, const int *idx, int m) {
 
 /* ---------------------------------------------------------------- the whole */
 
-int slicemerge(contour **csp, int *ncsp, int flags, const char *name, const char *prefix, strbuf *notes,
+int slicemerge(contour **csp, int *ncsp, int flags, const contour_places *pl, const char *prefix, strbuf *notes,
                char *err, size_t errlen) {
   contour *cs = *csp;
   int ncs = *ncsp, verbose = (flags & SLICEMERGE_VERBOSE) != 0, rc = 0;
   char *drop = xcalloc((size_t)ncs + 1, 1);
-  int ndup = duplicates(cs, ncs, drop, verbose, name, prefix, notes);
+  int ndup = duplicates(cs, ncs, drop, verbose, pl, prefix, notes);
   clist add = {0};
   {
     /* Each slice whose contours meet: every group merged (with --union or
@@ -361,12 +377,12 @@ int slicemerge(contour **csp, int *ncsp, int flags, const char *name, const char
       for (b = a + 1; b < m && cs[idx[b]].slice == cs[idx[a]].slice; b++) {}
       int before = t.groups;
       if (b - a >= 2 && meet(cs, idx + a, b - a))
-        rc = union_slice(cs, idx + a, b - a, all, drop, &add, &t, verbose, name, prefix, notes, err, errlen);
+        rc = union_slice(cs, idx + a, b - a, all, drop, &add, &t, verbose, pl, prefix, notes, err, errlen);
       t.slices += t.groups > before;
     }
     if (rc == 0 && !verbose && notes && t.groups == 1) strbuf_raw(notes, t.first.buf, t.first.len);
     else if (rc == 0 && !verbose && notes && t.groups > 1) {
-      note_line(notes, prefix, name, t.first_line);
+      note_line(notes, prefix, pl, t.first_line);
       if (all)
         strbuf_add(notes, "--union: merged %d overlapping contours in %d groups on %d slices into their unions: %d "
                    "contours, %d of them holes (%d new vertices where they cross", t.merged, t.groups, t.slices, add.n,

@@ -35,14 +35,15 @@
 enum { SLICEMERGE_UNION = 1, SLICEMERGE_VERBOSE = 2 };
 
 /* The contours cs[0..*ncs-1] (points counter-clockwise, each with its
- * slice, the slices' z snapped), read from `name`: duplicates dropped and
- * overlapping ones merged; cs may be reallocated and reordered.  Notes
- * ("PREFIX: NAME:LINE: ...") are appended to notes: one line for all
+ * slice, the slices' z snapped), their places named by pl: duplicates
+ * dropped and overlapping ones merged; cs may be reallocated and
+ * reordered.  Notes ("PREFIX: NAME:LINE: ...", as pl names places) are
+ * appended to notes: one line for all
  * duplicates and one for all unions (without SLICEMERGE_UNION: one for the
  * nested groups, and one a slice for its overlapping pieces), or with
  * SLICEMERGE_VERBOSE one for each.  0, or -1 with "NAME:LINE: ..." in err
  * (the contours are then still the caller's to free). */
-int slicemerge(contour **cs, int *ncs, int flags, const char *name, const char *prefix, strbuf *notes,
+int slicemerge(contour **cs, int *ncs, int flags, const contour_places *pl, const char *prefix, strbuf *notes,
                char *err, size_t errlen);
 
 #endif

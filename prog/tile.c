@@ -22,7 +22,7 @@
 #include "util/args.h"
 #include "util/atomicfile.h"
 #include "input/contour.h"
-#include "input/dicom.h"
+#include "input/stackfile.h"
 #include "surface/mesh.h"
 #include "surface/meshio.h"
 #include "surface/pool.h"
@@ -463,7 +463,7 @@ static int tile_main(int argc, char **argv) {
     }
 
   /* A DICOM RT structure set (by its content): tile_dicom.c. */
-  if (dicom_sniff_file(in)) {
+  if (stackfile_is_dicom(in)) {
     tile_dicom_env env = {tile_stack, &o, bad_usage, out, o.quiet, tpath != NULL, 0 /* as below */, no_keyholes,
                           o.thickness, read_flags};
     return tile_dicom_main(&dopt, in, &env);
@@ -476,7 +476,6 @@ static int tile_main(int argc, char **argv) {
   if (out && meshio_format_of(out) == MESHIO_NONE)
     return bad_usage("unknown mesh format, use .obj, .ply or .stl (%s)", out);
 
-  contour_stack s;
   /* (tile_dicom.c reads each ROI's stack as this one is: env.pairs = 0,
    * any number of contours per slice.)  Notes on repaired input are held
    * back until the input is accepted: a refused file gets its one-line
@@ -484,11 +483,11 @@ static int tile_main(int argc, char **argv) {
   char *held = NULL;
   size_t heldlen = 0;
   FILE *notes = o.quiet ? NULL : open_memstream(&held, &heldlen);
-  const char *name = strcmp(in, "-") == 0 ? "<stdin>" : in;
   /* One slice is read, and refused by stack_tile without --thickness. */
   char *rerr = xmalloc(TILE_ERR_MAX);   /* every bad contour, a line each */
-  int bad = contour_read_flags(in, read_flags | (no_keyholes ? CONTOUR_NO_KEYHOLES : 0) | CONTOUR_ONE_SLICE, &s, notes,
-                               "tile", rerr, TILE_ERR_MAX) != 0;
+  stackfile *sf;
+  int bad = stackfile_open(in, NULL, read_flags | (no_keyholes ? CONTOUR_NO_KEYHOLES : 0) | CONTOUR_ONE_SLICE, notes,
+                           "tile", &sf, rerr, TILE_ERR_MAX) != 0;
   if (notes) fclose(notes);
   if (bad) {
     tile_say_lines(stderr, rerr);
@@ -500,7 +499,7 @@ static int tile_main(int argc, char **argv) {
   /* The reader's notes go out with the surface's, if it can be made. */
   mesh me;
   o.held = held, o.heldlen = heldlen;
-  int rcode = tile_stack(&o, &s, name, NULL, "", "", 1, &me) != 0;
+  int rcode = tile_stack(&o, stackfile_stack(sf), stackfile_name(sf), NULL, "", "", 1, &me) != 0;
   free(held);
   if (rcode == 0 && fflush(stdout) != 0) {
     fprintf(stderr, "tile: cannot write the report (%s)\n", strerror(errno));
@@ -511,7 +510,7 @@ static int tile_main(int argc, char **argv) {
     rcode = 1;
   }
   mesh_free(&me);
-  contour_stack_free(&s);
+  stackfile_close(sf);
   return rcode;
 }
 

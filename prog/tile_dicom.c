@@ -302,11 +302,8 @@ int tile_dicom_main(const tile_dicom_opts *o, const char *in, const tile_dicom_e
   }
   /* Their stacks: refused ones end the run, or with all are skipped. */
   int tile = env->out || !o->contours, kept = 0;
-  int flags = (env->pairs ? RTSTRUCT_PAIRS : 0) | (env->no_keyholes ? RTSTRUCT_NO_KEYHOLES : 0) |
-              (env->read_flags & CONTOUR_SKIP_BAD ? RTSTRUCT_SKIP_BAD : 0) |
-              (env->read_flags & CONTOUR_UNION ? RTSTRUCT_UNION : 0) |
-              (env->read_flags & CONTOUR_VERBOSE ? RTSTRUCT_VERBOSE : 0) |
-              (env->read_flags & CONTOUR_DROP_DEGENERATE ? RTSTRUCT_DROP_DEGENERATE : 0);
+  int flags = (env->pairs ? CONTOUR_PAIRS : 0) | (env->no_keyholes ? CONTOUR_NO_KEYHOLES : 0) |
+              (env->read_flags & (CONTOUR_SKIP_BAD | CONTOUR_UNION | CONTOUR_VERBOSE | CONTOUR_DROP_DEGENERATE));
   rerr = xmalloc(TILE_ERR_MAX);
   refused = xmallocarray((size_t)s.nroi + 1, sizeof *refused);
   for (int i = 0; i < npick; i++) {
@@ -314,7 +311,7 @@ int tile_dicom_main(const tile_dicom_opts *o, const char *in, const tile_dicom_e
     int bad = rtstruct_roi_check(&s, pick[i], rerr, TILE_ERR_MAX);
     int empty = bad && !r->error;   /* no closed planar contours: nothing to tile, not a refusal */
     if (!bad && tile)
-      bad = rtstruct_roi_stack(&s, pick[i], flags | RTSTRUCT_ONE_SLICE, &st[kept], notes, "tile", rerr, TILE_ERR_MAX);
+      bad = rtstruct_roi_stack(&s, pick[i], flags | CONTOUR_ONE_SLICE, &st[kept], notes, "tile", rerr, TILE_ERR_MAX);
     if (!bad && tile) {   /* one slice: only with --thickness, said as the reader says its refusals */
       char sname[700], e2[1024];
       snprintf(sname, sizeof sname, "%s: ROI %d '%s' as a stack", s.name, r->number, r->name);

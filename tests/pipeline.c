@@ -223,6 +223,25 @@ static void reencode(const rtstruct *s) {
   free(roi);
 }
 
+/* The ROI's stack (rc, st) is its .contours text (rtstruct_roi_text) read
+ * as a file with the same flags: refused alike, or the same stack bit for
+ * bit, each contour named by the same line. */
+static void as_text(const rtstruct *s, int roi, int cflags, int rc, const contour_stack *st) {
+  static char terr[1 << 14];
+  size_t tl;
+  if (rtstruct_roi_check(s, roi, terr, sizeof terr) != 0) return;
+  char *text = rtstruct_roi_text(s, roi, &tl);
+  contour_stack t;
+  int trc = contour_parse_flags(text, tl, NAME, cflags, &t, NULL, "fuzz", terr, sizeof terr);
+  free(text);
+  INVARIANT(trc == rc, "ROI %d: its stack %s, its text %s (%s)", s->roi[roi].number, rc ? "refused" : "made",
+            trc ? "refused" : "read", trc ? terr : "");
+  if (trc != 0) return;
+  same_stacks(st, &t);
+  for (int i = 0; i < t.n; i++) INVARIANT(st->c[i].line == t.c[i].line, "contour %d: another line", i);
+  contour_stack_free(&t);
+}
+
 int pipeline_dicom(const unsigned char *buf, size_t len, double max_pair) {
   rtstruct s;
   static char err[1 << 14];
@@ -234,13 +253,17 @@ int pipeline_dicom(const unsigned char *buf, size_t len, double max_pair) {
   reencode(&s);
   for (int i = 0; i < s.nroi; i++) {
     contour_stack st;
-    if (rtstruct_roi_stack(&s, i, RTSTRUCT_SKIP_BAD | RTSTRUCT_UNION | RTSTRUCT_DROP_DEGENERATE | RTSTRUCT_ONE_SLICE, &st,
-                           NULL, "fuzz", err, sizeof err) == 0) {
+    int flags = CONTOUR_SKIP_BAD | CONTOUR_UNION | CONTOUR_DROP_DEGENERATE | CONTOUR_ONE_SLICE;
+    int rc = rtstruct_roi_stack(&s, i, flags, &st, NULL, "fuzz", err, sizeof err);
+    as_text(&s, i, flags, rc, &st);
+    if (rc == 0) {
       surface(&st, max_pair);
       contour_stack_free(&st);
     } else
       one_line(err, NAME);
-    if (rtstruct_roi_stack(&s, i, 1, &st, NULL, "fuzz", err, sizeof err) != 0) {
+    rc = rtstruct_roi_stack(&s, i, CONTOUR_PAIRS, &st, NULL, "fuzz", err, sizeof err);
+    as_text(&s, i, CONTOUR_PAIRS, rc, &st);
+    if (rc != 0) {
       one_line(err, NAME);
       continue;
     }

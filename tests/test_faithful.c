@@ -284,7 +284,7 @@ static void real(void) {
       if (r.roi[i].nc == 0) continue;
       contour_stack s;
       snprintf(what, sizeof what, "%s ROI %d '%s'", dcm[f], r.roi[i].number, r.roi[i].name);
-      if (rtstruct_roi_stack(&r, i, RTSTRUCT_DROP_DEGENERATE | RTSTRUCT_ONE_SLICE, &s, NULL, "t", err, sizeof err) != 0) {
+      if (rtstruct_roi_stack(&r, i, CONTOUR_DROP_DEGENERATE | CONTOUR_ONE_SLICE, &s, NULL, "t", err, sizeof err) != 0) {
         CHECK(0, "%s: %s", what, err);
         continue;
       }
@@ -511,7 +511,7 @@ static stack_surface *roi_tile(const rtstruct *r, int roi, int flags, char *note
   size_t len = 0;
   FILE *f = open_memstream(&buf, &len);
   contour_stack s;
-  *res = rtstruct_roi_stack(r, roi, RTSTRUCT_DROP_DEGENERATE | RTSTRUCT_ONE_SLICE | flags, &s, f, "t", err, errlen);
+  *res = rtstruct_roi_stack(r, roi, CONTOUR_DROP_DEGENERATE | CONTOUR_ONE_SLICE | flags, &s, f, "t", err, errlen);
   fclose(f);
   stack_surface *ss = NULL;
   char more[4096] = "";
@@ -579,7 +579,7 @@ static void exports(void) {
     const double want[2] = {(1600 - 120) * 15.0, (1600 - 50) * 15.0};
     for (int q = 0; q < 2; q++)
       for (int un = 0; un < 2; un++) {
-        stack_surface *ss = roi_tile(&r, q, un ? RTSTRUCT_UNION : 0, notes, sizeof notes, err, sizeof err, &res);
+        stack_surface *ss = roi_tile(&r, q, un ? CONTOUR_UNION : 0, notes, sizeof notes, err, sizeof err, &res);
         CHECK(res == 0, "%s%s: %s", sets[3].r[q].name, un ? " --union" : "", err);
         if (res == 0) {
           stack_totals(ss, &cost, &ar, &vol);
@@ -595,7 +595,7 @@ static void exports(void) {
   }
   /* Two squares touching at a corner: split where they touch, with --union or without. */
   if (parse(&sets[4], &r) == 0) {
-    stack_surface *ss = roi_tile(&r, 0, RTSTRUCT_UNION, notes, sizeof notes, err, sizeof err, &res);
+    stack_surface *ss = roi_tile(&r, 0, CONTOUR_UNION, notes, sizeof notes, err, sizeof err, &res);
     CHECK(res == 0 && strstr(notes, "6 points where a region touches itself, split"), "corner --union: %d '%s' '%s'",
           res, err, notes);
     if (res == 0) {
@@ -643,7 +643,7 @@ static void names(void) {
   char notes[8192], err[4096];
   int res;
   if (parse(&sets[6], &r) != 0) return;
-  stack_surface *ss = roi_tile(&r, 0, RTSTRUCT_UNION, notes, sizeof notes, err, sizeof err, &res);
+  stack_surface *ss = roi_tile(&r, 0, CONTOUR_UNION, notes, sizeof notes, err, sizeof err, &res);
   CHECK(res == 0 && strstr(notes, "--union: merged the contours at contour item 1, point 1 and contour item 2 on slice z=0") &&
             !strstr(notes, "contours at point"),
         "names: %d '%s' '%s'", res, err, notes);

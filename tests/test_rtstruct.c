@@ -146,7 +146,7 @@ static void round_trip(void) {
               (unsigned long long)seed, k, r);
         /* The ROI's stack equals the generator's stack read as .contours. */
         contour_stack st, rs;
-        int a = rtstruct_roi_stack(&s, r, 1, &st, NULL, "t", err, sizeof err);
+        int a = rtstruct_roi_stack(&s, r, CONTOUR_PAIRS, &st, NULL, "t", err, sizeof err);
         int bref = reference(ref, &rs);
         CHECK(a == 0 && bref == 0 && same_stack(&st, &rs), "seed %llu variant %d ROI %d: stack differs (%s)",
               (unsigned long long)seed, k, r, a ? err : "");
@@ -355,7 +355,7 @@ static void roi_refused(const char *what, const unsigned char *b, size_t len, co
     return;
   }
   contour_stack st;
-  int rc = rtstruct_roi_stack(&s, 0, 1, &st, NULL, "t", err, sizeof err);
+  int rc = rtstruct_roi_stack(&s, 0, CONTOUR_PAIRS, &st, NULL, "t", err, sizeof err);
   CHECK(rc == -1 && strncmp(err, "set.dcm: ", 9) == 0 && strstr(err, words) && !strchr(err, '\n'),
         "%s: expected '%s', got %d '%s'", what, words, rc, err);
   if (rc == 0) contour_stack_free(&st);
@@ -468,6 +468,29 @@ static void refusals(void) {
   free(b);
 }
 
+/* Three squares in parallel planes tilted 30 degrees about x, at 1e300 mm:
+ * the frame's sums overflow, so the stack's computed values are not finite
+ * and the ROI is refused as the .contours reader refuses such a text. */
+static void oblique_overflow(void) {
+  static double xyz[3][12];
+  rtw_contour c[3];
+  double t = 0.5235987755982988, corner[4][2] = {{0, 0}, {10, 0}, {10, 10}, {0, 10}};
+  for (int k = 0; k < 3; k++) {
+    for (int j = 0; j < 4; j++) {
+      double u = corner[j][0], v = corner[j][1], h = 5.0 * k;
+      xyz[k][3 * j] = 1e300 * u;
+      xyz[k][3 * j + 1] = 1e300 * (v * cos(t) - h * sin(t));
+      xyz[k][3 * j + 2] = 1e300 * (v * sin(t) + h * cos(t));
+    }
+    c[k] = (rtw_contour){NULL, 4, xyz[k], NULL, -1};
+  }
+  rtw_roi roi = {1, "Far", NULL, 3, c, 0, 0};
+  size_t len;
+  unsigned char *b = write1(&roi, 1, &len);
+  roi_refused("an oblique ROI at 1e300 mm", b, len, "ROI 1 'Far', contour item 3: z is not finite (nan)");
+  free(b);
+}
+
 /* ---------------------------------------------------------------- warnings */
 
 static void warnings(void) {
@@ -502,7 +525,7 @@ static void warnings(void) {
   size_t nl = 0;
   FILE *f = open_memstream(&notes, &nl);
   contour_stack st;
-  int rc = rtstruct_roi_stack(&s, 0, 1, &st, f, "tile", err, sizeof err);
+  int rc = rtstruct_roi_stack(&s, 0, CONTOUR_PAIRS, &st, f, "tile", err, sizeof err);
   fclose(f);
   CHECK(rc == 0, "Body: %s", err);
   if (rc == 0) contour_stack_free(&st);
@@ -579,7 +602,7 @@ static void planes(void) {
       continue;
     }
     CHECK((int)s.roi[0].plane == pl, "plane %d read as %s", pl, rtstruct_plane_name(s.roi[0].plane));
-    CHECK(rtstruct_roi_stack(&s, 0, 1, &st[pl], NULL, "t", err, sizeof err) == 0, "plane %d: %s", pl, err);
+    CHECK(rtstruct_roi_stack(&s, 0, CONTOUR_PAIRS, &st[pl], NULL, "t", err, sizeof err) == 0, "plane %d: %s", pl, err);
     int back = 1;
     for (int i = 0; i < s.roi[0].nc; i++)
       for (int j = 0; j < s.roi[0].c[i].n; j++) {
@@ -778,6 +801,7 @@ int main(int argc, char **argv) {
   samples();
   decimal_strings();
   refusals();
+  oblique_overflow();
   warnings();
   many();
   planes();

@@ -7,12 +7,11 @@
  * MB, 10 ROIs).  The file is read into memory once; read_ms is the best of R
  * runs of rtstruct_parse on it (the DICOM tree, every ROI's contours parsed
  * from their decimal strings, planes, sorting), stacks_ms the best of R runs
- * of rtstruct_roi_stack on every ROI that has contours (its .contours text
- * and the stack reader).  checksum is the sum of every coordinate read: it
+ * of rtstruct_roi_stack on every ROI that has contours (the contour
+ * builder: repairs, checks, slices).  checksum is the sum of every coordinate read: it
  * shows a fast wrong answer. */
 #include "prog/bench/bench.h"
 
-#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,30 +19,19 @@
 #include "util/args.h"
 #include "prog/bench/data.h"
 #include "util/progname.h"
+#include "util/readfile.h"
 #include "input/rtstruct.h"
 #include "util/wallclock.h"
 #include "util/xmem.h"
 
-static unsigned char *slurp(const char *path, size_t *len) {
-  FILE *f = fopen(path, "rb");
-  if (!f) {
-    progname_eprintf("bench: %s: cannot open (%s)\n", path, strerror(errno));
-    return NULL;
-  }
-  size_t cap = 1 << 20, n = 0;
-  unsigned char *b = xmalloc(cap);
-  for (size_t got; (got = fread(b + n, 1, cap - n, f)) > 0;)
-    if ((n += got) == cap) b = xrealloc(b, cap *= 2);
-  fclose(f);
-  *len = n;
-  return b;
-}
-
 static int one(const char *path, int repeat) {
   size_t len;
-  unsigned char *buf = slurp(path, &len);
-  if (!buf) return 1;
   char err[1024];
+  unsigned char *buf = (unsigned char *)readfile(path, &len, err, sizeof err);
+  if (!buf) {
+    progname_eprintf("bench: %s\n", err);
+    return 1;
+  }
   double best = 1e300, best_stacks = 1e300, sum = 0;
   int rois = 0, contours = 0, stacks = 0;
   long points = 0;

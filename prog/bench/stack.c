@@ -9,8 +9,8 @@
  * name or number); by default dicompyler's BODY (141 contours on 98 slices,
  * up to 4 a slice) and Lt Lung (165 on 80, up to 7 a slice, 77 holes), the
  * issue's speed target, and prostate_0 (92 slices of one contour).  One CSV
- * row per input and thread count: read_ms is making the stack (from the
- * file in memory), tile_ms the best of R runs of stack_tile (caps on),
+ * row per input and thread count: read_ms is reading the file and making
+ * its stack, tile_ms the best of R runs of stack_tile (caps on),
  * band_ms tile_ms per band, speedup the first thread count's tile_ms over
  * this one's.  Runs go in rounds (every thread count once, then again), so
  * a slow spell of the machine touches every count alike.  cost (the bands'
@@ -28,7 +28,7 @@
 #include "prog/bench/data.h"
 #include "input/contour.h"
 #include "util/progname.h"
-#include "input/rtstruct.h"
+#include "input/stackfile.h"
 #include "surface/stack.h"
 #include "util/wallclock.h"
 #include "util/xmem.h"
@@ -37,38 +37,22 @@ static const char *defaults[] = {"tests/data/rtstruct/dicompyler_rtss.dcm:BODY",
                                  "tests/data/rtstruct/dicompyler_rtss.dcm:Lt Lung",
                                  "tests/data/slicerrt/prostate_0.contours"};
 
-/* The stack of one input; its reading time in *ms. */
-static int load(const char *input, contour_stack *s, double *ms) {
+/* The stack of one input (NULL after a message); the time to read the
+ * file and make its stack in *ms. */
+static stackfile *load(const char *input, double *ms) {
   char err[1024], path[1024], found[3000];
   const char *colon = strstr(input, ".dcm:");
-  double t0 = wallclock();
-  if (!colon) {
-    if (bench_data_find(input, NULL, found, sizeof found) != 0) {   /* installed, or the source tree */
-      progname_eprintf("bench: %s\n", found);
-      return -1;
-    }
-    int rc = contour_read(found, s, NULL, progname_as("bench"), err, sizeof err);
-    *ms = (wallclock() - t0) * 1e3;
-    if (rc != 0) progname_eprintf("bench: %s\n", err);
-    return rc;
-  }
-  snprintf(path, sizeof path, "%.*s", (int)(colon + 4 - input), input);
-  if (bench_data_find(path, NULL, found, sizeof found) != 0) {
+  if (colon) snprintf(path, sizeof path, "%.*s", (int)(colon + 4 - input), input);
+  if (bench_data_find(colon ? path : input, NULL, found, sizeof found) != 0) {   /* installed, or the source tree */
     progname_eprintf("bench: %s\n", found);
-    return -1;
+    return NULL;
   }
-  rtstruct r;
-  if (rtstruct_read(found, &r, err, sizeof err) != 0) {
-    progname_eprintf("bench: %s\n", err);
-    return -1;
-  }
-  int k = rtstruct_find(&r, colon + 5, err, sizeof err);
-  t0 = wallclock();
-  int rc = k < 0 ? -1 : rtstruct_roi_stack(&r, k, 0, s, NULL, progname_as("bench"), err, sizeof err);
+  stackfile *sf;
+  double t0 = wallclock();
+  int rc = stackfile_open(found, colon ? colon + 5 : NULL, 0, NULL, progname_as("bench"), &sf, err, sizeof err);
   *ms = (wallclock() - t0) * 1e3;
   if (rc != 0) progname_eprintf("bench: %s\n", err);
-  rtstruct_free(&r);
-  return rc;
+  return sf;
 }
 
 static const char stack_usage[] =
@@ -128,14 +112,15 @@ int bench_stack(int argc, char **argv) {
   printf("input,slices,contours,points,bands,bridges,caps,threads,runs,read_ms,tile_ms,band_ms,speedup,cost,volume\n");
   int rc = 0;
   for (int f = 0; f < nin && rc == 0; f++) {
-    contour_stack s;
     double read_ms;
-    if (load(in[f], &s, &read_ms) != 0) {
+    stackfile *sf = load(in[f], &read_ms);
+    if (!sf) {
       rc = 1;
       break;
     }
+    const contour_stack *s = stackfile_stack(sf);
     long points = 0;
-    for (int i = 0; i < s.n; i++) points += s.c[i].n;
+    for (int i = 0; i < s->n; i++) points += s->c[i].n;
     double *best = xmallocarray((size_t)nj, sizeof *best), cost = 0, volume = 0;
     int bands = 0, bridges = 0, caps = 0;
     for (int j = 0; j < nj; j++) best[j] = 1e300;
@@ -146,7 +131,7 @@ int bench_stack(int argc, char **argv) {
         stack_surface *ss;
         double t0 = wallclock();
         char why[1024];
-        int res = stack_tile(&s, in[f], &o, &ss, why, sizeof why);
+        int res = stack_tile(s, in[f], &o, &ss, why, sizeof why);
         double t = wallclock() - t0;
         if (res != 0) {
           progname_eprintf("bench: %s\n", why);
@@ -170,12 +155,12 @@ int bench_stack(int argc, char **argv) {
         stack_free(ss);
       }
     for (int j = 0; j < nj && rc == 0; j++)
-      printf("%s,%d,%d,%ld,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.3f,%.17g,%.17g\n", in[f], s.nslices, s.n, points, bands,
+      printf("%s,%d,%d,%ld,%d,%d,%d,%d,%d,%.3f,%.3f,%.4f,%.3f,%.17g,%.17g\n", in[f], s->nslices, s->n, points, bands,
              bridges, caps, js[j], repeat, read_ms, best[j] * 1e3, bands ? best[j] * 1e3 / bands : 0,
              best[0] / best[j], cost, volume);
     fflush(stdout);
     free(best);
-    contour_stack_free(&s);
+    stackfile_close(sf);
   }
   free(in);
   return rc;

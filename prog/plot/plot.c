@@ -19,11 +19,10 @@
 #include "util/atomicfile.h"
 #include "input/contour.h"
 #include "util/csvtab.h"
-#include "input/dicom.h"
 #include "surface/mesh.h"
 #include "prog/plot/claims.h"
 #include "util/progname.h"
-#include "input/rtstruct.h"
+#include "input/stackfile.h"
 #include "surface/pool.h"
 #include "surface/stack.h"
 #include "prog/plot/svgchart.h"
@@ -371,75 +370,55 @@ static int surface(int argc, char **argv) {
   }
   if (!out) return usage(surface_usage, "surface needs -o", NULL);
   if (cannot_write(out)) return 1;
-  contour_stack s;
-  char name[600], title_roi[600];
-  rtstruct rs;
-  int roi = -1;
-  if (dicom_sniff_file(in)) {
-    if (!roikey) {
-      progname_eprintf("plot: %s: a DICOM RT structure set: name the ROI to draw with --roi (tile %s --list "
-              "lists them)\n", in, in);
-      return 1;
-    }
-    if (rtstruct_read(in, &rs, err, sizeof err) != 0) {
-      progname_eprintf("plot: %s\n", err);
-      return 1;
-    }
-    if ((roi = rtstruct_find(&rs, roikey, err, sizeof err)) < 0 || rtstruct_roi_check(&rs, roi, err, sizeof err) != 0 ||
-        rtstruct_roi_stack(&rs, roi,
-                           (flags & CONTOUR_SKIP_BAD ? RTSTRUCT_SKIP_BAD : 0) | (flags & CONTOUR_UNION ? RTSTRUCT_UNION : 0) |
-                               (flags & CONTOUR_VERBOSE ? RTSTRUCT_VERBOSE : 0) | RTSTRUCT_ONE_SLICE |
-                               RTSTRUCT_DROP_DEGENERATE,
-                           &s, stderr, progname_as("plot"), err, sizeof err) != 0) {
-      say_lines(err);
-      rtstruct_free(&rs);
-      return 1;
-    }
-    /* Named as ./tile names an ROI's stack, so that its messages are
-     * rewritten alike (the file, the byte, the ROI, the contour item). */
-    snprintf(name, sizeof name, "%s: ROI %d '%s' as a stack", rs.name, rs.roi[roi].number, rs.roi[roi].name);
-    snprintf(title_roi, sizeof title_roi, "%s: ROI %d '%s'", in, rs.roi[roi].number, rs.roi[roi].name);
-  } else if (roikey) {
-    return usage(surface_usage, "--roi is for a DICOM RT structure set", in);
-  } else if (contour_read_flags(in, flags | CONTOUR_ONE_SLICE, &s, NULL, progname_as("plot"), err, sizeof err) != 0) {
+  int dicom = stackfile_is_dicom(in);
+  if (dicom && !roikey) {
+    progname_eprintf("plot: %s: a DICOM RT structure set: name the ROI to draw with --roi (tile %s --list "
+            "lists them)\n", in, in);
+    return 1;
+  }
+  if (!dicom && roikey) return usage(surface_usage, "--roi is for a DICOM RT structure set", in);
+  /* An ROI's notes are said (and its contours without area dropped); a
+   * file's repairs are made silently. */
+  stackfile *sf;
+  if (stackfile_open(in, roikey, flags | CONTOUR_ONE_SLICE | (dicom ? CONTOUR_DROP_DEGENERATE : 0),
+                     dicom ? stderr : NULL, progname_as("plot"), &sf, err, sizeof err) != 0) {
     say_lines(err);
     return 1;
-  } else
-    snprintf(name, sizeof name, "%s", in);
-  if (!title) title = roi >= 0 ? title_roi : "Fig. 17: contours and surface";
+  }
+  contour_stack *s = stackfile_stack(sf);
+  if (!title) title = dicom ? stackfile_title(sf) : "Fig. 17: contours and surface";
   /* The surface ./tile makes: any number of contours a slice, holes,
    * branching (surface/stack.h), on the machine's cores.  Its notes are
-   * held until it is made, then said (an ROI's rewritten). */
+   * held until it is made, then said (an ROI's with its places named as
+   * the reader names them). */
   char *held = NULL;
   size_t heldlen = 0;
   FILE *notes = open_memstream(&held, &heldlen);
   stack_options so = {kind, caps, 0, pool_cores(), NULL, notes ? notes : stderr, progname_as("plot"), NULL, NULL,
                       join, join_dist, thickness, band};
   stack_surface *ss;
-  int bad = stack_tile(&s, name, &so, &ss, err, sizeof err) != 0;
+  int bad = stack_tile(s, stackfile_name(sf), &so, &ss, err, sizeof err) != 0;
   if (notes) fclose(notes);
   const char *said[2] = {held, bad ? err : NULL};
   for (int k = 0; k < 2; k++) {
     if (!said[k] || !said[k][0]) continue;
-    char *m = roi >= 0 ? rtstruct_rewrite(&rs, roi, name, said[k]) : NULL;
-    const char *t = m ? m : said[k];
-    if (k) say_lines(t);
-    else fputs(t, stderr);
+    char *m = stackfile_say(sf, said[k]);
+    if (k) say_lines(m);
+    else fputs(m, stderr);
     free(m);
   }
   free(held);
-  if (roi >= 0) rtstruct_free(&rs);
   if (bad) {
-    contour_stack_free(&s);
+    stackfile_close(sf);
     return 1;
   }
   mesh me;
   stack_take_mesh(ss, &me);
   stack_free(ss);
-  picture p = {title, &s, &me};
+  picture p = {title, s, &me};
   int rc = write_svg(out, draw_surface, &p);
   mesh_free(&me);
-  contour_stack_free(&s);
+  stackfile_close(sf);
   return rc;
 }
 
