@@ -25,8 +25,12 @@ hull *hull_new(const vec2 *p, int n) {
   int k = 0;
   for (int i = 0; i < n; i++)
     if (k == 0 || exact_lex(s[i], s[k - 1]) != 0) s[k++] = s[i];
-  hull *h = xcalloc(1, sizeof *h);
-  h->v = xmallocarray((size_t)2 * k + 1, sizeof *h->v);
+  /* One block: the hull, its vertices (at most 2k + 1 while the chains are
+   * built) and its edges' angles. */
+  size_t cap = (size_t)2 * k + 1;
+  hull *h = xmalloc(sizeof *h + cap * sizeof *h->v + (cap + 1) * sizeof *h->ang);
+  h->v = (vec2 *)(h + 1);
+  h->ang = (double *)(h->v + cap);
   int m = 0;
   if (k < 3) {
     for (int i = 0; i < k; i++) h->v[m++] = s[i];
@@ -43,7 +47,6 @@ hull *hull_new(const vec2 *p, int n) {
   }
   free(s);
   h->n = m;
-  h->ang = xmallocarray((size_t)m + 1, sizeof *h->ang);
   for (int i = 0; i < m; i++) {
     vec2 a = h->v[i], b = h->v[(i + 1) % m];
     /* Differences of huge coordinates may overflow; halve them first. */
@@ -55,12 +58,7 @@ hull *hull_new(const vec2 *p, int n) {
   return h;
 }
 
-void hull_free(hull *h) {
-  if (!h) return;
-  free(h->v);
-  free(h->ang);
-  free(h);
-}
+void hull_free(hull *h) { free(h); }
 
 int hull_size(const hull *h) { return h->n; }
 vec2 hull_vertex(const hull *h, int i) { return h->v[i]; }

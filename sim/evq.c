@@ -7,20 +7,16 @@
 
 evq *evq_new(int n) {
   XASSERT(n >= 0);
-  evq *q = xcalloc(1, sizeof *q);
-  q->heap = xmallocarray(n ? (size_t)n : 1, sizeof *q->heap);
-  q->pos = xmallocarray(n ? (size_t)n : 1, sizeof *q->pos);
+  size_t m = n ? (size_t)n : 1;
+  /* One block: the queue, its heap, its positions. */
+  evq *q = xmalloc(sizeof *q + m * (sizeof *q->heap + sizeof *q->pos));
+  *q = (evq){.heap = (evq_entry *)(q + 1), .n = n};
+  q->pos = (int *)(q->heap + m);
   for (int i = 0; i < n; i++) q->pos[i] = -1;
-  q->n = n;
   return q;
 }
 
-void evq_free(evq *q) {
-  if (!q) return;
-  free(q->heap);
-  free(q->pos);
-  free(q);
-}
+void evq_free(evq *q) { free(q); }
 
 static inline int less(const evq_entry *a, const evq_entry *b) {
   return a->t < b->t || (a->t == b->t && a->seq < b->seq);
