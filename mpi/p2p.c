@@ -1,5 +1,5 @@
-/* p2p.c -- point-to-point on a communicator's collective context, and the
- * communicator queries, for the other parts of the MPI layer (p2p.h). */
+/* p2p.c -- point-to-point on a communicator's collective context, for the
+ * collectives and the other parts of the MPI layer (p2p.h). */
 #include "mpi/p2p.h"
 
 #include <stdio.h>
@@ -9,21 +9,10 @@
 #include "mpi/engine.h"
 #include "mpi/err.h"
 #include "mpi/pt2pt.h"
-#include "mpi/topo.h"
-
-/* The calling rank and comm, which the caller has checked: a bad one is a
- * bug of the layer. */
-static tsm_comm *comm_of(tsm *R, MPI_Comm comm, const char *fn) {
-  tsm_comm *c = tsm_comm_get(R, comm);
-  if (c) return c;
-  fprintf(stderr, "tilesim MPI: internal error: rank %d: %s on an unchecked communicator 0x%x\n", R->wrank,
-          fn, (unsigned)comm);
-  abort();
-}
 
 int tsmpi_p2p_send(const void *buf, int count, MPI_Datatype dt, int dst, int tag, MPI_Comm comm) {
   tsm *R = tsm_need("tsmpi_p2p_send");
-  tsm_comm *c = comm_of(R, comm, "tsmpi_p2p_send");
+  tsm_comm *c = tsm_comm_must(R, comm, "tsmpi_p2p_send");
   if (dst == MPI_PROC_NULL) return MPI_SUCCESS;
   tsm_req q;
   tsm_req_stack(&q);
@@ -34,7 +23,7 @@ int tsmpi_p2p_send(const void *buf, int count, MPI_Datatype dt, int dst, int tag
 int tsmpi_p2p_recv(void *buf, int count, MPI_Datatype dt, int src, int tag, MPI_Comm comm,
                    MPI_Status *st) {
   tsm *R = tsm_need("tsmpi_p2p_recv");
-  tsm_comm *c = comm_of(R, comm, "tsmpi_p2p_recv");
+  tsm_comm *c = tsm_comm_must(R, comm, "tsmpi_p2p_recv");
   tsm_req q;
   tsm_req_stack(&q);
   tsm_recv_fill(&q, c, 1, buf, count, dt, src, tag, comm, "tsmpi_p2p_recv");
@@ -47,7 +36,7 @@ int tsmpi_p2p_sendrecv(const void *sbuf, int scount, MPI_Datatype sdt, int dst, 
                        void *rbuf, int rcount, MPI_Datatype rdt, int src, int rtag, MPI_Comm comm,
                        MPI_Status *st) {
   tsm *R = tsm_need("tsmpi_p2p_sendrecv");
-  tsm_comm *c = comm_of(R, comm, "tsmpi_p2p_sendrecv");
+  tsm_comm *c = tsm_comm_must(R, comm, "tsmpi_p2p_sendrecv");
   tsm_req s;
   tsm_req_stack(&s);
   tsm_send_fill(&s, c, 1, SM_STANDARD, sbuf, scount, sdt, dst, stag, comm, "tsmpi_p2p_sendrecv");
@@ -62,7 +51,7 @@ int tsmpi_p2p_sendrecv(const void *sbuf, int scount, MPI_Datatype sdt, int dst, 
 int tsmpi_p2p_isend(const void *buf, int count, MPI_Datatype dt, int dst, int tag, MPI_Comm comm,
                     MPI_Request *req) {
   tsm *R = tsm_need("tsmpi_p2p_isend");
-  tsm_comm *c = comm_of(R, comm, "tsmpi_p2p_isend");
+  tsm_comm *c = tsm_comm_must(R, comm, "tsmpi_p2p_isend");
   tsm_req *q = tsm_req_new(R);
   tsm_send_fill(q, c, 1, SM_STANDARD, buf, count, dt, dst, tag, comm, "tsmpi_p2p_isend");
   tsm_send_start(R, q, c);
@@ -73,7 +62,7 @@ int tsmpi_p2p_isend(const void *buf, int count, MPI_Datatype dt, int dst, int ta
 int tsmpi_p2p_irecv(void *buf, int count, MPI_Datatype dt, int src, int tag, MPI_Comm comm,
                     MPI_Request *req) {
   tsm *R = tsm_need("tsmpi_p2p_irecv");
-  tsm_comm *c = comm_of(R, comm, "tsmpi_p2p_irecv");
+  tsm_comm *c = tsm_comm_must(R, comm, "tsmpi_p2p_irecv");
   tsm_req *q = tsm_req_new(R);
   tsm_recv_fill(q, c, 1, buf, count, dt, src, tag, comm, "tsmpi_p2p_irecv");
   tsmpi_type_hold(dt);
@@ -162,7 +151,7 @@ void tsmpi_set_progress(void (*fn)(void), int live) {
 
 MPI_Request tsmpi_req_coll(const char *fn, MPI_Comm comm, int root) {
   tsm *R = tsm_need(fn);
-  tsm_comm *c = comm_of(R, comm, fn);
+  tsm_comm *c = tsm_comm_must(R, comm, fn);
   tsm_req *q = tsm_req_new(R);
   q->kind = RQ_COLL;
   q->state = RS_ACTIVE;
@@ -181,82 +170,4 @@ void tsmpi_req_coll_complete(MPI_Request req, int err) {
   q->st.MPI_ERROR = err;
   q->state = RS_DONE;
   if (q->freed) tsm_req_free(R, q);
-}
-
-void tsmpi_comm_hold(MPI_Comm comm) {
-  tsm *R = tsm_need("tsmpi_comm_hold");
-  comm_of(R, comm, "tsmpi_comm_hold")->holds++;
-}
-
-void tsmpi_comm_release(MPI_Comm comm) {
-  tsm *R = tsm_need("tsmpi_comm_release");
-  tsm_comm *c = comm_of(R, comm, "tsmpi_comm_release");
-  if (--c->holds == 0 && c->freed) tsm_comm_end(R, &comm);
-}
-
-int tsmpi_comm_nbc_tag(MPI_Comm comm) {
-  tsm *R = tsm_need("tsmpi_comm_nbc_tag");
-  tsm_comm *c = comm_of(R, comm, "tsmpi_comm_nbc_tag");
-  unsigned span = TSMPI_COLL_TAG_MAX - TSMPI_NBC_TAG_MIN + 1;
-  return TSMPI_NBC_TAG_MIN + (int)(c->nbc_seq++ % span);
-}
-
-/* ==== a communicator's process topology ================================== */
-
-struct tsmpi_topo *tsmpi_comm_topo(MPI_Comm comm) {
-  tsm *R = tsm_need("tsmpi_comm_topo");
-  return comm_of(R, comm, "tsmpi_comm_topo")->topo;
-}
-
-void tsmpi_comm_set_topo(MPI_Comm comm, struct tsmpi_topo *t) {
-  tsm *R = tsm_need("tsmpi_comm_set_topo");
-  tsm_comm *c = comm_of(R, comm, "tsmpi_comm_set_topo");
-  tsmpi_topo_unref(c->topo);
-  c->topo = t;
-}
-
-/* ==== communicators ======================================================= */
-
-int tsmpi_comm_check(MPI_Comm comm, const char *fn) {
-  tsm *R = tsm_need(fn);
-  tsm_comm *c;
-  return tsm_check_comm(R, comm, fn, &c);
-}
-
-int tsmpi_comm_rank(MPI_Comm comm) {
-  tsm *R = tsm_need("tsmpi_comm_rank");
-  return comm_of(R, comm, "tsmpi_comm_rank")->rank;
-}
-
-int tsmpi_comm_size(MPI_Comm comm) {
-  tsm *R = tsm_need("tsmpi_comm_size");
-  return tsm_comm_lsize(comm_of(R, comm, "tsmpi_comm_size"));
-}
-
-int tsmpi_comm_inter(MPI_Comm comm) {
-  tsm *R = tsm_need("tsmpi_comm_inter");
-  if (comm == MPI_COMM_WORLD) return 0;
-  tsm_comm *c = tsm_comm_get(R, comm);
-  return c && c->inter;
-}
-
-int tsmpi_comm_remote_size(MPI_Comm comm) {
-  tsm *R = tsm_need("tsmpi_comm_remote_size");
-  return comm_of(R, comm, "tsmpi_comm_remote_size")->size;
-}
-
-int tsmpi_comm_world_rank(MPI_Comm comm, int r) {
-  tsm *R = tsm_need("tsmpi_comm_world_rank");
-  return tsm_world_of(comm_of(R, comm, "tsmpi_comm_world_rank"), r);
-}
-
-const char *tsmpi_comm_name(MPI_Comm comm) {
-  tsm *R = tsm_need("tsmpi_comm_name");
-  if (comm == MPI_COMM_NULL) return "MPI_COMM_NULL";
-  tsm_comm *c = tsm_comm_get(R, comm);
-  if (!c) return "an invalid communicator";
-  if (c->pair < 2) return c->pair ? "MPI_COMM_SELF" : "MPI_COMM_WORLD";
-  /* The words live in the communicator (its name field holds the user's). */
-  snprintf(c->words, sizeof c->words, "communicator %d", c->pair);
-  return c->words;
 }

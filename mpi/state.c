@@ -126,6 +126,14 @@ tsm_comm *tsm_comm_get(tsm *R, MPI_Comm comm) {
   return NULL;
 }
 
+tsm_comm *tsm_comm_must(tsm *R, MPI_Comm comm, const char *fn) {
+  tsm_comm *c = tsm_comm_get(R, comm);
+  if (c) return c;
+  fprintf(stderr, "tilesim MPI: internal error: rank %d: %s on an unchecked communicator 0x%x\n", R->wrank,
+          fn, (unsigned)comm);
+  abort();
+}
+
 int tsm_comm_rank_of(const tsm_comm *c, int w) { return tsm_ranks_find(c->g, w); }
 
 const char *tsm_pair_name(int pair, char *buf) {

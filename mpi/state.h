@@ -254,6 +254,10 @@ void tsm_release(tsm *R);
 /* Communicator comm of R, or NULL (freed, null, not a communicator). */
 tsm_comm *tsm_comm_get(tsm *R, MPI_Comm comm);
 
+/* The same for call fn on a communicator its caller has checked: a bad one
+ * is a bug of the layer (the run ends). */
+tsm_comm *tsm_comm_must(tsm *R, MPI_Comm comm, const char *fn);
+
 /* The rank in c of world rank w, or -1 if w is not in c. */
 int tsm_comm_rank_of(const tsm_comm *c, int w);
 
