@@ -1,5 +1,5 @@
 /* coll.h -- the collectives' inside: which algorithm runs (MPICH's choice, --coll linear, or an
- * override), and the algorithms themselves, on packed bytes over point-to-point (p2p.h).
+ * override), and the algorithms themselves, on packed bytes over point-to-point (core.h).
  *
  * Not for programs.  The MPI_* functions (coll_api.c, coll_redapi.c, ...)
  * check their arguments, pack the data (dtype.h), pick an algorithm (the
@@ -76,7 +76,7 @@ typedef struct {
   const char *fn;   /* "MPI_Bcast", for errors */
 } tsmpi_cg;
 
-/* Bytes to and from ranks of the group (p2p.h's calls with MPI_BYTE).
+/* Bytes to and from ranks of the group (core.h's calls with MPI_BYTE).
  * recv: *got, if not NULL, gets the bytes that came.  MPI_SUCCESS, or an
  * error class already raised under the communicator's handler (a message
  * longer than expected: the ranks disagree on the counts). */

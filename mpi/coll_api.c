@@ -20,7 +20,7 @@
 #include "mpi/dtype.h"
 #include "mp/mp.h"
 #include "mpi/op.h"
-#include "mpi/p2p.h"
+#include "mpi/core.h"
 #include "mpi/coll_sched.h"
 
 /* ==== barrier and broadcast =============================================== */

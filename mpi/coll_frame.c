@@ -10,7 +10,7 @@
 #include "mp/mp.h"
 #include "mpi/op.h"
 #include "mpi/nbc.h"
-#include "mpi/p2p.h"
+#include "mpi/core.h"
 #include "mpi/coll_sched.h"
 
 static void describe(void *ud, char *buf, size_t len) {

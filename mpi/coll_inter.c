@@ -1,7 +1,7 @@
 /* coll_inter.c -- the collectives on an intercommunicator (coll_inter.h).
  *
  * Messages between the groups are point-to-point on the
- * intercommunicator's collective context (p2p.h: ranks name the remote
+ * intercommunicator's collective context (core.h: ranks name the remote
  * group), one tag per collective; a group's own steps are the MPI
  * collectives on its hidden local intracommunicator.  While a rank waits
  * in a step of its own, its label names the call and the
@@ -15,7 +15,7 @@
 #include "mpi/dtype.h"
 #include "mpi/err.h"
 #include "mpi/label.h"
-#include "mpi/p2p.h"
+#include "mpi/core.h"
 
 enum { T_BARRIER = 1, T_BCAST, T_GATHER, T_GATHERV, T_SCATTER, T_SCATTERV, T_ALLGATHER, T_ALLGATHERV, T_ALLTOALL,
        T_ALLTOALLV, T_ALLTOALLW, T_REDUCE, T_ALLREDUCE, T_REDUCE_SCATTER };

@@ -1,6 +1,6 @@
 /* coll_inter.h -- the collectives on an intercommunicator (MPI 3.1 section
  * 5.2.2), which each MPI collective hands its call to when its
- * communicator is one (p2p.h: tsmpi_comm_inter), before any check of its
+ * communicator is one (core.h: tsmpi_comm_inter), before any check of its
  * own.  Same arguments as the MPI functions.
  *
  * ROOTS.  In the rooted ones (bcast, gather(v), scatter(v), reduce) the

@@ -16,7 +16,7 @@
 #include "mpi/coll.h"
 #include "mpi/coll_sched.h"
 #include "mpi/dtype.h"
-#include "mpi/p2p.h"
+#include "mpi/core.h"
 #include "mpi/topo.h"
 
 /* The exchange: the packed block sb[l] (sn[l] bytes) to destination l, block

@@ -1,10 +1,10 @@
 /* coll_opt.c -- the run's choice of collective algorithms: names, --coll, the setting
- * (tsmpi.h, coll.h). */
+ * (settings.h, coll.h). */
 #include <stdio.h>
 #include <string.h>
 
 #include "mpi/coll.h"
-#include "mpi/tsmpi.h"
+#include "mpi/settings.h"
 
 static const char *const coll_names[COLL_N] = {
   "barrier", "bcast", "reduce", "allreduce", "gather", "gatherv", "scatter", "scatterv", "allgather",

@@ -14,7 +14,7 @@
 #include "mpi/coll_inter.h"
 #include "mpi/dtype.h"
 #include "mpi/op.h"
-#include "mpi/p2p.h"
+#include "mpi/core.h"
 #include "mpi/coll_sched.h"
 
 /* The reduction's description for the algorithms. */

@@ -7,7 +7,7 @@
 
 #include "mpi/dtype.h"
 #include "mpi/op.h"
-#include "mpi/p2p.h"
+#include "mpi/core.h"
 
 enum { OP_SEND, OP_RECV, OP_ISEND, OP_IRECV, OP_WAITALL, OP_REDUCE, OP_COPY, OP_UNPACK, OP_CALL };
 

@@ -77,7 +77,7 @@ int tsmpi_sched_run(tsmpi_sched *s);
 
 /* Nonblocking: run the steps from where s stands until one must wait (a receive or a waitall
  * whose requests are not all done) or the end: 1 at the end (then tsmpi_sched_error says how
- * it went), else 0.  Receives and sends go through p2p.h's requests, watched (tsmpi_p2p_watch),
+ * it went), else 0.  Receives and sends go through core.h's requests, watched (tsmpi_p2p_watch),
  * so that the engine calls the progress function when one completes. */
 int tsmpi_sched_step(tsmpi_sched *s);
 int tsmpi_sched_error(const tsmpi_sched *s);

@@ -4,7 +4,7 @@
 
 #include "mpi/coll.h"
 #include "mpi/op.h"
-#include "mpi/p2p.h"
+#include "mpi/core.h"
 
 /* A message longer than the receive: the ranks disagree on the counts. */
 static int truncated(const tsmpi_cg *g, int src) {

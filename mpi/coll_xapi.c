@@ -9,7 +9,7 @@
 #include "mpi/coll.h"
 #include "mpi/coll_inter.h"
 #include "mpi/dtype.h"
-#include "mpi/p2p.h"
+#include "mpi/core.h"
 #include "mpi/coll_sched.h"
 
 /* ==== allgather =========================================================== */

@@ -425,7 +425,7 @@ static int comm_free(const char *fn, MPI_Comm *comm) {
     return tsm_raise(R, c, MPI_ERR_COMM, fn, "%s cannot be freed", c == &R->world ? "MPI_COMM_WORLD" : "MPI_COMM_SELF");
   char why[128];
   if ((rc = tsm_attr_delete_all(R, TSM_AK_COMM, *comm, why))) return tsm_raise(R, c, rc, fn, "%s", why);
-  if (c->holds) {   /* its nonblocking collectives go on; it ends with the last (p2p.h) */
+  if (c->holds) {   /* its nonblocking collectives go on; it ends with the last (core.h) */
     c->freed = 1;
     *comm = MPI_COMM_NULL;
     return MPI_SUCCESS;

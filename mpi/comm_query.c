@@ -1,7 +1,7 @@
 /* comm_query.c -- what the other parts of the MPI layer ask of a communicator
- * (p2p.h): its rank, size and name, its topology, the holds of nonblocking
+ * (core.h): its rank, size and name, its topology, the holds of nonblocking
  * collectives and their tags. */
-#include "mpi/p2p.h"
+#include "mpi/core.h"
 
 #include <stdio.h>
 

@@ -9,7 +9,7 @@
 #include <string.h>
 #include <wchar.h>
 
-#include "mpi/p2p.h"
+#include "mpi/core.h"
 
 /* ==== the predefined types ================================================ */
 

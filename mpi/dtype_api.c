@@ -14,7 +14,7 @@
 
 #include "mpi/dtype.h"
 #include "mpi/mpi.h"
-#include "mpi/p2p.h"
+#include "mpi/core.h"
 
 /* ==== argument checks ===================================================== */
 

@@ -10,7 +10,7 @@
 #include <wchar.h>
 
 #include "mpi/dtype.h"
-#include "mpi/p2p.h"
+#include "mpi/core.h"
 
 /* ==== one basic value ===================================================== */
 

@@ -73,7 +73,7 @@ void eng_recv_start(tsm *R, tsm_req *q);
 void eng_recv(tsm *R, tsm_req *q);
 
 /* Block until q (active) is done (a request of a kind of its own: its
- * progress between the messages that come, p2p.h). */
+ * progress between the messages that come, core.h). */
 void eng_wait(tsm *R, tsm_req *q);
 
 /* A request of a kind of its own, active: its progress, once (done: it

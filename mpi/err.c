@@ -5,7 +5,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "mpi/env.h"
+#include "mpi/init.h"
 #include "mpi/errh.h"
 
 /* ==== raising ============================================================= */

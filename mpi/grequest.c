@@ -3,7 +3,7 @@
  * call (MPI_Status_set_cancelled, MPI_Status_set_elements,
  * MPI_Status_set_elements_x).
  *
- * A generalized request is a request of a kind of its own (p2p.h) without
+ * A generalized request is a request of a kind of its own (core.h) without
  * progress: MPI_Grequest_complete makes it done.  Its status is query_fn's
  * (called by the Wait or Test that completes it and by
  * MPI_Request_get_status), its end free_fn's (after query_fn; or at the

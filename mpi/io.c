@@ -18,7 +18,7 @@
 #include "mpi/err.h"
 #include "mpi/errh.h"
 #include "mp/mp.h"
-#include "mpi/p2p.h"
+#include "mpi/core.h"
 #include "mpi/state.h"
 
 /* ==== the rank's table ==================================================== */

@@ -17,7 +17,7 @@
 #include "mpi/errh.h"
 #include "mpi/io.h"
 #include "mp/mp.h"
-#include "mpi/p2p.h"
+#include "mpi/core.h"
 
 /* ==== open, close, delete ================================================= */
 

@@ -19,7 +19,7 @@
 
 #include "mpi/dtype.h"
 #include "mpi/io.h"
-#include "mpi/p2p.h"
+#include "mpi/core.h"
 #include "mpi/pt2pt.h"
 #include "mpi/state.h"
 

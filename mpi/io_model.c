@@ -1,5 +1,5 @@
 /* io_model.c -- the file systems of the run: mounts, host paths, the servers' queues
- * (io_model.h), and the runner's --fs option (tsmpi.h). */
+ * (io_model.h), and the runner's --fs option (settings.h). */
 #include "mpi/io_model.h"
 
 #include <errno.h>
@@ -11,7 +11,7 @@
 #include <unistd.h>
 
 #include "util/args.h"
-#include "mpi/tsmpi.h"
+#include "mpi/settings.h"
 
 enum { MOUNTS_MAX = 16 };
 

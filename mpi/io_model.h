@@ -1,7 +1,7 @@
 /* io_model.h -- the simulated machine's file systems: where a program's files are on the host,
  * and what reaching them costs in simulated time (the storage model of MPI-IO).
  *
- * Not for programs (mpi.h is theirs); the runner's options are in tsmpi.h.
+ * Not for programs (mpi.h is theirs); the runner's options are in settings.h.
  *
  * FILE SYSTEMS.  The machine has file systems mounted at absolute paths: "/", the host's own
  * (a program's path is the host's path), and "/scratch", the scratch file system clusters

@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "mpi/p2p.h"
+#include "mpi/core.h"
 
 /* A started collective: its schedule and the program's request. */
 typedef struct nbc {

@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "mpi/dtype.h"
-#include "mpi/p2p.h"
+#include "mpi/core.h"
 
 /* ==== kernels =============================================================
  * kernel(in, inout, n, stride, ioff): n elements stride bytes apart;

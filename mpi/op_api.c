@@ -6,7 +6,7 @@
 #include "mpi/dtype.h"
 #include "mpi/mpi.h"
 #include "mpi/op.h"
-#include "mpi/p2p.h"
+#include "mpi/core.h"
 
 int PMPI_Op_create(MPI_User_function *user_fn, int commute, MPI_Op *op) {
   static const char fn[] = "MPI_Op_create";

@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "mpi/engine.h"
-#include "mpi/env.h"
+#include "mpi/init.h"
 #include "mpi/err.h"
 #include "mpi/label.h"
 #include "mpi/spin.h"

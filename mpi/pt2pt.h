@@ -1,6 +1,6 @@
 /* pt2pt.h -- starting sends and receives of count elements of a datatype:
  * what MPI's point-to-point calls (pt2pt.c), persistent requests
- * (request.c), the collectives' point-to-point (p2p.c) and the
+ * (request.c), the collectives' point-to-point (coll_transport.c) and the
  * communicator constructors (comm.c) share.  The arguments are checked by
  * the caller. */
 #ifndef TSMPI_PT2PT_H

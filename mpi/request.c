@@ -1,6 +1,6 @@
 /* request.c -- completing requests: the Wait and Test families,
  * MPI_Request_free, MPI_Request_get_status, starting persistent requests
- * (MPI_Start, MPI_Startall), and requests of a kind of their own (p2p.h:
+ * (MPI_Start, MPI_Startall), and requests of a kind of their own (core.h:
  * tsmpi_req_start, tsmpi_req_complete).
  *
  * A request is active from its start until it is done (a send: at once,
@@ -9,7 +9,7 @@
  * persistent one inactive for its next MPI_Start.  Waiting runs the
  * matching engine until the request is done (eng_wait, eng_step); testing
  * first acts on every message that has arrived (eng_poll), and a test that
- * finds nothing done charges the per-run poll cost (env.h) and counts
+ * finds nothing done charges the per-run poll cost (init.h) and counts
  * toward a rank that polls forever (spin.h).  A request of a kind of its
  * own advances by its kind's progress after the engine has acted on the
  * messages, its status comes from its kind when it completes, and its
@@ -17,7 +17,7 @@
 #include <stdio.h>
 
 #include "mpi/engine.h"
-#include "mpi/env.h"
+#include "mpi/init.h"
 #include "mpi/err.h"
 #include "mpi/label.h"
 #include "mpi/pt2pt.h"
@@ -461,7 +461,7 @@ int PMPI_Startall(int count, MPI_Request array_of_requests[]) {
   return MPI_SUCCESS;
 }
 
-/* ==== requests of a kind of their own (p2p.h) ============================= */
+/* ==== requests of a kind of their own (core.h) ============================= */
 
 int tsmpi_req_start(const tsmpi_kind *kind, void *state, MPI_Request *req) {
   tsm *R = tsm_need(kind->name);

@@ -3,7 +3,7 @@
 
 #include <stdio.h>
 
-#include "mpi/env.h"
+#include "mpi/init.h"
 
 void tsm_spin(tsm *R, const char *fn) {
   double t = mp_time(R->self);

@@ -9,7 +9,7 @@
 
 #include "mpi/attr.h"
 #include "mpi/engine.h"
-#include "mpi/env.h"
+#include "mpi/init.h"
 #include "mpi/errh.h"
 #include "mpi/info.h"
 #include "mpi/topo.h"

@@ -1,7 +1,7 @@
 /* state.h -- one rank's MPI state: communicators, groups, requests, the
  * matching engine's queues (private to the point-to-point part of the MPI
- * layer: mpi/state.c, engine.c, err.c, env.c, pt2pt.c, request.c, comm.c,
- * group.c, p2p.c).
+ * layer: mpi/state.c, engine.c, err.c, init.c, pt2pt.c, request.c, comm.c,
+ * group.c, coll_transport.c).
  *
  * A rank's state hangs on its mp handle (mp_user) from MPI_Init to
  * MPI_Finalize: nothing of it is global, so ranks that run as coroutines
@@ -15,7 +15,7 @@
 #include "mpi/dtype.h"
 #include "mp/mp.h"
 #include "mpi/mpi.h"
-#include "mpi/p2p.h"
+#include "mpi/core.h"
 
 /* ==== handles ============================================================= */
 
@@ -61,7 +61,7 @@ static inline int env_ctx(int mptag) { return (mptag >> ENV_TAG_BITS) & ((1 << E
 static inline int env_tag(int mptag) { return mptag & TSM_TAG_UB; }
 
 /* Tags the communicator constructors use on the parent's collective
- * context, above the collectives' own (p2p.h: TSMPI_COLL_TAG_MAX). */
+ * context, above the collectives' own (core.h: TSMPI_COLL_TAG_MAX). */
 enum { TAG_CTXID = TSMPI_COLL_TAG_MAX + 1, TAG_CTXID_BCAST, TAG_SPLIT, TAG_SPLIT_BCAST, TAG_INTER, TAG_INTER_BCAST };
 /* MPI_Comm_create_group's, by the program's tag (tag % TAG_GROUP_N): a pair
  * each, so that groups made at once with different tags keep apart. */
@@ -113,7 +113,7 @@ static inline tsm_ranks *tsm_comm_lgroup(const tsm_comm *c) { return c->inter ? 
 
 /* ==== requests ============================================================ */
 
-enum { RQ_SEND, RQ_RECV, RQ_KIND, RQ_COLL };   /* RQ_KIND: a kind of its own (q->ops, p2p.h);
+enum { RQ_SEND, RQ_RECV, RQ_KIND, RQ_COLL };   /* RQ_KIND: a kind of its own (q->ops, core.h);
                                                 RQ_COLL: a nonblocking collective (tsmpi_req_coll) */
 enum { SM_STANDARD, SM_SYNC, SM_BUFFERED, SM_READY };
 enum { RS_INACTIVE, RS_ACTIVE, RS_DONE };
@@ -151,7 +151,7 @@ struct tsm_req {
                               contiguous there, else NULL (unpacked) */
   tsm_ranks *g;            /* active receives: comm's ranks (counted), to name
                               the source in the status */
-  /* RQ_KIND: its kind and its state (p2p.h: tsmpi_req_start) */
+  /* RQ_KIND: its kind and its state (core.h: tsmpi_req_start) */
   const tsmpi_kind *ops;
   void *ext;
   /* the message path (engine.h: what is copied when) */
@@ -224,7 +224,7 @@ struct tsm {
   void (*progress)(void);
   int progress_due;        /* a watched request completed since it last ran */
   int in_progress;         /* it runs */
-  /* the other parts' slots (p2p.h) */
+  /* the other parts' slots (core.h) */
   void *part[TSMPI_PARTS];
   void (*release[TSMPI_PARTS])(void *);
   /* attribute keys and attributes (attr.c), error handlers and the

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "mpi/p2p.h"
+#include "mpi/core.h"
 
 static void oom(void) {
   fprintf(stderr, "tilesim MPI: a process topology: out of memory\n");

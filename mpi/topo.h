@@ -3,7 +3,7 @@
  *
  * Not for programs.  A topology is made by MPI_Cart_create, MPI_Cart_sub, MPI_Graph_create,
  * MPI_Dist_graph_create(_adjacent) (topo_cart.c, topo_graph.c), hangs on its communicator
- * (p2p.h: tsmpi_comm_topo), never changes, and is shared, counted, by the communicator's
+ * (core.h: tsmpi_comm_topo), never changes, and is shared, counted, by the communicator's
  * duplicates (MPI_Comm_dup keeps it, MPI 3.1 section 7.1); it goes with the last of them.
  *
  * NEIGHBOURS (MPI 3.1 section 7.6).  Cartesian: for each dimension in turn, the rank one step

@@ -14,7 +14,7 @@
 #include <string.h>
 
 #include "mpi/coll.h"
-#include "mpi/p2p.h"
+#include "mpi/core.h"
 #include "mpi/topo.h"
 
 /* ==== graphs ============================================================== */

@@ -25,7 +25,7 @@
 #include <stdlib.h>
 
 #include "mpi/engine.h"
-#include "mpi/env.h"
+#include "mpi/init.h"
 #include "mpi/err.h"
 #include "mpi/group.h"
 #include "mpi/label.h"

@@ -26,13 +26,13 @@
 #include "mpirun/crash.h"
 #include "mpirun/cxx.h"
 #include "mpirun/elfprog.h"
-#include "mpi/env.h"
+#include "mpi/init.h"
 #include "machine/launch.h"
 #include "mpirun/libc.h"
 #include "mpirun/loader.h"
 #include "machine/machine.h"
 #include "mpi/mpi.h"
-#include "mpi/tsmpi.h"
+#include "mpi/settings.h"
 #include "util/xmem.h"
 
 static const char prog[] = "tilesim-mpirun";

@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "mpi/env.h"
+#include "mpi/init.h"
 #include "mpi/mpi.h"
 #include "mp/mp.h"
 #include "mp/threads.h"

@@ -10,7 +10,7 @@
  * MPI_Iprobe, MPI_Improbe, MPI_Testany, MPI_Wtime) without its clock
  * moving is stopped with one line naming it, the call and the time, while
  * the same loop with a poll cost ends.  And a request of a kind of its own
- * (p2p.h: a ring exchange on the collective context, as a nonblocking
+ * (core.h: a ring exchange on the collective context, as a nonblocking
  * collective would make one): its progress driven by MPI_Test and
  * MPI_Wait, its status and free called once, its closed-form time, its
  * name in a deadlock report; one advancing while its rank waits for
@@ -20,9 +20,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "mpi/env.h"
+#include "mpi/init.h"
 #include "mpi/mpi.h"
-#include "mpi/p2p.h"
+#include "mpi/core.h"
 #include "tests/check.h"
 #include "mp/mp.h"
 #include "tests/mpiharness.h"

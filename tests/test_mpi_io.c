@@ -15,7 +15,7 @@
 
 #include "mpi/io_sg.h"
 #include "mpi/mpi.h"
-#include "mpi/tsmpi.h"
+#include "mpi/settings.h"
 #include "tests/check.h"
 #include "mp/mp.h"
 #include "tests/mpiharness.h"

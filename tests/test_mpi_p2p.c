@@ -12,7 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "mpi/env.h"
+#include "mpi/init.h"
 #include "mpi/mpi.h"
 #include "tests/check.h"
 #include "mp/mp.h"

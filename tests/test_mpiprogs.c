@@ -18,9 +18,9 @@
 #include <string.h>
 
 #include "mpi/coll.h"
-#include "mpi/env.h"
+#include "mpi/init.h"
 #include "mpi/mpi.h"
-#include "mpi/tsmpi.h"
+#include "mpi/settings.h"
 #include "tests/check.h"
 #include "tests/mpiharness.h"
 #include "tests/mpiprogs.h"

@@ -1,4 +1,4 @@
-/* p2p.h -- the MPI layer's inside: one rank's state, errors, communicators,
+/* core.h -- the MPI layer's inside: one rank's state, errors, communicators,
  * and point-to-point on a communicator's collective context, for the other
  * parts of the layer (datatypes, operations, collectives).
  *

@@ -1,6 +1,6 @@
-/* p2p.c -- point-to-point on a communicator's collective context, for the
- * collectives and the other parts of the MPI layer (p2p.h). */
-#include "mpi/p2p.h"
+/* coll_transport.c -- point-to-point on a communicator's collective context, for the
+ * collectives and the other parts of the MPI layer (core.h). */
+#include "mpi/core.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -136,7 +136,7 @@ void tsmpi_p2p_drop(MPI_Request *req) {
 
 /* mp's progress while the rank computes: at each arrival, act on what came
  * (the progress function runs from the engine; requests of a kind of their
- * own advance in MPI calls only, p2p.h). */
+ * own advance in MPI calls only, core.h). */
 static void computing(mp *self, void *ud) {
   (void)ud;
   tsm *R = mp_user(self);

@@ -1,6 +1,6 @@
-/* env.c -- MPI's environment calls: Init, Finalize, Abort, the clock, the
+/* init.c -- MPI's environment calls: Init, Finalize, Abort, the clock, the
  * version, the processor's name; the runner's settings and a rank's end. */
-#include "mpi/env.h"
+#include "mpi/init.h"
 
 #include <math.h>
 #include <stdio.h>

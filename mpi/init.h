@@ -1,4 +1,4 @@
-/* env.h -- what the runner (tilesim-mpirun, a test driver) does with the MPI
+/* init.h -- what the runner (tilesim-mpirun, a test driver) does with the MPI
  * layer's point-to-point part: per-run settings before the ranks start, and
  * each rank's end.
  *

@@ -1,4 +1,4 @@
-/* tsmpi.h -- what the runner (tilesim-mpirun) sets in the MPI layer before a run: the
+/* settings.h -- what the runner (tilesim-mpirun) sets in the MPI layer before a run: the
  * collectives' algorithms, the file systems.  Not for programs (mpi.h is theirs).
  *
  * The setting is per run, not per rank: set it before the ranks start, and
