@@ -16,11 +16,11 @@
 enum { KV_BASE = 16 };
 
 typedef struct {
-  int kind;               /* TSM_AK_* */
+  int kind;               /* ATTR_* */
   int refs;               /* the program's handle (until freed) and each attribute */
   int freed;              /* the program freed it */
-  tsm_copy_fn *copy;      /* NULL: copy nothing */
-  tsm_delete_fn *del;     /* NULL: nothing to do */
+  attr_copy_fn *copy;      /* NULL: copy nothing */
+  attr_delete_fn *del;     /* NULL: nothing to do */
   void *extra;
 } keyval;
 
@@ -36,20 +36,20 @@ typedef struct {
   attr *first;            /* in the order first set */
 } object;
 
-struct tsm_attrs {
+struct attr_table {
   keyval **kv;            /* by keyval - KV_BASE; NULL once gone */
   int nkv;
   object *obj;            /* objects with attributes */
   int nobj;
 };
 
-static struct tsm_attrs *attrs_of(tsm *R) {
+static struct attr_table *attrs_of(st_rank *R) {
   if (!R->attrs) R->attrs = xcalloc(1, sizeof *R->attrs);
   return R->attrs;
 }
 
-void tsm_attrs_release(tsm *R) {
-  struct tsm_attrs *A = R->attrs;
+void attr_release_all(st_rank *R) {
+  struct attr_table *A = R->attrs;
   if (!A) return;
   for (int i = 0; i < A->nobj; i++)
     for (attr *a = A->obj[i].first, *next; a; a = next) {
@@ -65,13 +65,13 @@ void tsm_attrs_release(tsm *R) {
 
 /* ==== keyvals ============================================================= */
 
-static keyval *kv_get(tsm *R, int k) {
-  struct tsm_attrs *A = R->attrs;
+static keyval *kv_get(st_rank *R, int k) {
+  struct attr_table *A = R->attrs;
   if (!A || k < KV_BASE || k - KV_BASE >= A->nkv) return NULL;
   return A->kv[k - KV_BASE];
 }
 
-static void kv_drop(tsm *R, int k) {
+static void kv_drop(st_rank *R, int k) {
   keyval *v = kv_get(R, k);
   if (v && --v->refs == 0) {
     free(v);
@@ -84,7 +84,7 @@ static const char *const kind_name[] = {"", "communicators", "datatypes", "windo
 /* The keyval k of kind, or NULL with why.  One the program freed is still
  * usable while attributes keep it alive (as MPICH: a copy of its handle
  * may delete them). */
-static keyval *kv_check(tsm *R, int kind, int k, char *why) {
+static keyval *kv_check(st_rank *R, int kind, int k, char *why) {
   keyval *v = kv_get(R, k);
   if (k == MPI_KEYVAL_INVALID)
     snprintf(why, 128, "MPI_KEYVAL_INVALID");
@@ -99,13 +99,13 @@ static keyval *kv_check(tsm *R, int kind, int k, char *why) {
   return NULL;
 }
 
-int tsm_keyval_is(tsm *R, int kind, int k) {
+int attr_keyval_is(st_rank *R, int kind, int k) {
   keyval *v = kv_get(R, k);
   return v && !v->freed && v->kind == kind;
 }
 
-int tsm_keyval_create(tsm *R, int kind, tsm_copy_fn *copy, tsm_delete_fn *del, void *extra_state, int *k) {
-  struct tsm_attrs *A = attrs_of(R);
+int attr_keyval_create(st_rank *R, int kind, attr_copy_fn *copy, attr_delete_fn *del, void *extra_state, int *k) {
+  struct attr_table *A = attrs_of(R);
   keyval *v = xcalloc(1, sizeof *v);
   *v = (keyval){kind, 1, 0, copy, del, extra_state};
   A->kv = xreallocarray(A->kv, (size_t)A->nkv + 1, sizeof *A->kv);
@@ -114,7 +114,7 @@ int tsm_keyval_create(tsm *R, int kind, tsm_copy_fn *copy, tsm_delete_fn *del, v
   return MPI_SUCCESS;
 }
 
-int tsm_keyval_free(tsm *R, int kind, int *k, char *why) {
+int attr_keyval_free(st_rank *R, int kind, int *k, char *why) {
   keyval *v = kv_get(R, *k);
   if (v && v->freed && v->kind == kind) {   /* alive through its attributes: freed again */
     *k = MPI_KEYVAL_INVALID;
@@ -129,14 +129,14 @@ int tsm_keyval_free(tsm *R, int kind, int *k, char *why) {
 
 /* ==== objects and their attributes ======================================== */
 
-static object *obj_get(tsm *R, int kind, int h) {
-  struct tsm_attrs *A = R->attrs;
+static object *obj_get(st_rank *R, int kind, int h) {
+  struct attr_table *A = R->attrs;
   for (int i = 0; A && i < A->nobj; i++)
     if (A->obj[i].kind == kind && A->obj[i].h == h) return &A->obj[i];
   return NULL;
 }
 
-static attr *attr_get(tsm *R, int kind, int h, int k) {
+static attr *attr_find(st_rank *R, int kind, int h, int k) {
   object *o = obj_get(R, kind, h);
   for (attr *a = o ? o->first : NULL; a; a = a->next)
     if (a->keyval == k) return a;
@@ -144,8 +144,8 @@ static attr *attr_get(tsm *R, int kind, int h, int k) {
 }
 
 /* A new attribute at the end of the object's list (k counted). */
-static void attr_add(tsm *R, int kind, int h, int k, void *value) {
-  struct tsm_attrs *A = attrs_of(R);
+static void attr_add(st_rank *R, int kind, int h, int k, void *value) {
+  struct attr_table *A = attrs_of(R);
   object *o = obj_get(R, kind, h);
   if (!o) {
     A->obj = xreallocarray(A->obj, (size_t)A->nobj + 1, sizeof *A->obj);
@@ -160,7 +160,7 @@ static void attr_add(tsm *R, int kind, int h, int k, void *value) {
 }
 
 /* The attribute of k leaves the object (if it is still there). */
-static void attr_remove(tsm *R, int kind, int h, int k) {
+static void attr_remove(st_rank *R, int kind, int h, int k) {
   object *o = obj_get(R, kind, h);
   if (!o) return;
   for (attr **at = &o->first; *at; at = &(*at)->next) {
@@ -172,32 +172,32 @@ static void attr_remove(tsm *R, int kind, int h, int k) {
     break;
   }
   if (!o->first) {
-    struct tsm_attrs *A = R->attrs;
+    struct attr_table *A = R->attrs;
     *o = A->obj[--A->nobj];
   }
 }
 
 /* A callback's answer as an error class. */
-static int failed(tsm *R, int rc, const char *what, int k, char *why) {
+static int failed(st_rank *R, int rc, const char *what, int k, char *why) {
   snprintf(why, 128, "the %s callback of keyval %d returned %d", what, k, rc);
-  return tsm_err_class(R, rc) > 0 ? rc : MPI_ERR_OTHER;
+  return errh_class(R, rc) > 0 ? rc : MPI_ERR_OTHER;
 }
 
 /* Call the delete callback of k for value on object h. */
-static int call_delete(tsm *R, int h, int k, void *value, char *why) {
+static int call_delete(st_rank *R, int h, int k, void *value, char *why) {
   keyval *v = kv_get(R, k);
   if (!v->del) return MPI_SUCCESS;
   int rc = v->del(h, k, value, v->extra);
   return rc == MPI_SUCCESS ? rc : failed(R, rc, "delete", k, why);
 }
 
-int tsm_attr_set(tsm *R, int kind, int h, int k, void *value, char *why) {
+int attr_set(st_rank *R, int kind, int h, int k, void *value, char *why) {
   if (!kv_check(R, kind, k, why)) return MPI_ERR_KEYVAL;
-  attr *a = attr_get(R, kind, h, k);
+  attr *a = attr_find(R, kind, h, k);
   if (a) {
     int rc = call_delete(R, h, k, a->value, why);
     if (rc) return rc;
-    if ((a = attr_get(R, kind, h, k))) {
+    if ((a = attr_find(R, kind, h, k))) {
       a->value = value;
       return MPI_SUCCESS;
     }
@@ -206,17 +206,17 @@ int tsm_attr_set(tsm *R, int kind, int h, int k, void *value, char *why) {
   return MPI_SUCCESS;
 }
 
-int tsm_attr_get(tsm *R, int kind, int h, int k, void **value, int *flag, char *why) {
+int attr_get(st_rank *R, int kind, int h, int k, void **value, int *flag, char *why) {
   if (!kv_check(R, kind, k, why)) return MPI_ERR_KEYVAL;
-  attr *a = attr_get(R, kind, h, k);
+  attr *a = attr_find(R, kind, h, k);
   *flag = a != NULL;
   if (a) *value = a->value;
   return MPI_SUCCESS;
 }
 
-int tsm_attr_delete(tsm *R, int kind, int h, int k, char *why) {
+int attr_delete(st_rank *R, int kind, int h, int k, char *why) {
   if (!kv_check(R, kind, k, why)) return MPI_ERR_KEYVAL;
-  attr *a = attr_get(R, kind, h, k);
+  attr *a = attr_find(R, kind, h, k);
   if (!a) return MPI_SUCCESS;
   keyval *v = kv_get(R, k);
   v->refs++;   /* alive through the callback, whatever it frees */
@@ -226,7 +226,7 @@ int tsm_attr_delete(tsm *R, int kind, int h, int k, char *why) {
   return rc;
 }
 
-int tsm_attr_delete_all(tsm *R, int kind, int h, char *why) {
+int attr_delete_all(st_rank *R, int kind, int h, char *why) {
   object *o;
   while ((o = obj_get(R, kind, h))) {
     attr *last = o->first;
@@ -241,7 +241,7 @@ int tsm_attr_delete_all(tsm *R, int kind, int h, char *why) {
   return MPI_SUCCESS;
 }
 
-int tsm_attr_copy(tsm *R, int kind, int old, int h, char *why) {
+int attr_copy(st_rank *R, int kind, int old, int h, char *why) {
   object *o = obj_get(R, kind, old);
   if (!o) return MPI_SUCCESS;
   /* A snapshot: the keyvals held while their callbacks run. */
@@ -268,7 +268,7 @@ int tsm_attr_copy(tsm *R, int kind, int old, int h, char *why) {
   free(snap);
   if (rc) {
     char ignored[128];
-    while (tsm_attr_delete_all(R, kind, h, ignored)) {
+    while (attr_delete_all(R, kind, h, ignored)) {
       /* a delete that fails: its attribute goes without it */
       object *p = obj_get(R, kind, h);
       attr *last = p->first;

@@ -1,12 +1,12 @@
 /* attr.h -- attribute keys (keyvals) and the attributes set on objects
  * (MPI 3.1 section 6.7), for every kind of object that has them:
- * communicators (comm.c), datatypes (dtype_api.c calls tsm_attr_copy and
- * tsm_attr_delete_all from MPI_Type_dup and MPI_Type_free) and windows
+ * communicators (comm.c), datatypes (dtype_api.c calls attr_copy and
+ * attr_delete_all from MPI_Type_dup and MPI_Type_free) and windows
  * (whose part calls the same when a window is made and freed, and
- * tsm_attr_set/get/delete for MPI_Win_set_attr, ...).
+ * attr_set/get/delete for MPI_Win_set_attr, ...).
  *
  * KEYVALS.  A keyval is made for one kind of object, with a copy callback
- * (called by tsm_attr_copy: MPI_Comm_dup, MPI_Type_dup) and a delete
+ * (called by attr_copy: MPI_Comm_dup, MPI_Type_dup) and a delete
  * callback (called when an attribute is replaced or deleted, and for each
  * attribute of an object that is freed); NULL stands for the null copy
  * and the null delete.  A keyval the program frees stays alive while
@@ -17,7 +17,7 @@
  * are below, and the part that owns an object answers for them.
  *
  * ATTRIBUTES.  An object's attributes are kept in the order they were first
- * set; tsm_attr_delete_all deletes them last first (MPI 3.1 section 8.7.1
+ * set; attr_delete_all deletes them last first (MPI 3.1 section 8.7.1
  * asks that order of MPI_COMM_SELF's at MPI_Finalize).
  *
  * ERRORS.  These calls return an MPI error class and never raise: the
@@ -30,39 +30,39 @@
 
 #include "mpi/state.h"
 
-enum { TSM_AK_COMM = 1, TSM_AK_TYPE = 2, TSM_AK_WIN = 3 };
+enum { ATTR_COMM = 1, ATTR_TYPE = 2, ATTR_WIN = 3 };
 
 /* The callbacks of every kind, handles being ints (MPI_Comm_copy_attr_function, ...). */
-typedef int tsm_copy_fn(int old, int keyval, void *extra_state, void *in, void *out, int *flag);
-typedef int tsm_delete_fn(int obj, int keyval, void *value, void *extra_state);
+typedef int attr_copy_fn(int old, int keyval, void *extra_state, void *in, void *out, int *flag);
+typedef int attr_delete_fn(int obj, int keyval, void *value, void *extra_state);
 
 /* A new keyval of kind for the program (*keyval). */
-int tsm_keyval_create(tsm *R, int kind, tsm_copy_fn *copy, tsm_delete_fn *del, void *extra_state,
-                      int *keyval);
+int attr_keyval_create(st_rank *R, int kind, attr_copy_fn *copy, attr_delete_fn *del, void *extra_state,
+                       int *keyval);
 
 /* The program frees *keyval (MPI_KEYVAL_INVALID after). */
-int tsm_keyval_free(tsm *R, int kind, int *keyval, char *why);
+int attr_keyval_free(st_rank *R, int kind, int *keyval, char *why);
 
 /* Set, get, delete the attribute of keyval on object obj of kind.  get:
  * *flag 0 and nothing stored if it has none. */
-int tsm_attr_set(tsm *R, int kind, int obj, int keyval, void *value, char *why);
-int tsm_attr_get(tsm *R, int kind, int obj, int keyval, void **value, int *flag, char *why);
-int tsm_attr_delete(tsm *R, int kind, int obj, int keyval, char *why);
+int attr_set(st_rank *R, int kind, int obj, int keyval, void *value, char *why);
+int attr_get(st_rank *R, int kind, int obj, int keyval, void **value, int *flag, char *why);
+int attr_delete(st_rank *R, int kind, int obj, int keyval, char *why);
 
 /* The object `old` was duplicated as `obj`: each attribute of old whose
  * copy callback says so is set on obj.  On a callback's failure, what was
  * copied to obj is deleted again (errors ignored) and the failure
  * returned. */
-int tsm_attr_copy(tsm *R, int kind, int old, int obj, char *why);
+int attr_copy(st_rank *R, int kind, int old, int obj, char *why);
 
 /* Object obj is freed: its attributes deleted, last set first.  A delete
  * callback's failure stops there (the rest stay) and is returned. */
-int tsm_attr_delete_all(tsm *R, int kind, int obj, char *why);
+int attr_delete_all(st_rank *R, int kind, int obj, char *why);
 
 /* Is keyval a live keyval of kind?  (Predefined keys are not.) */
-int tsm_keyval_is(tsm *R, int kind, int keyval);
+int attr_keyval_is(st_rank *R, int kind, int keyval);
 
 /* Free every keyval and attribute of the rank, calling nothing (its end). */
-void tsm_attrs_release(tsm *R);
+void attr_release_all(st_rank *R);
 
 #endif

@@ -17,12 +17,12 @@
 
 int PMPI_Cancel(MPI_Request *request) {
   static const char fn[] = "MPI_Cancel";
-  tsm *R = tsm_need(fn);
+  st_rank *R = st_need(fn);
   if (!request || *request == MPI_REQUEST_NULL)
-    return tsm_raise(R, NULL, MPI_ERR_REQUEST, fn, "%s", request ? "MPI_REQUEST_NULL" : "NULL request argument");
-  tsm_req *q = tsm_req_get(R, *request);
+    return err_raise(R, NULL, MPI_ERR_REQUEST, fn, "%s", request ? "MPI_REQUEST_NULL" : "NULL request argument");
+  st_req *q = st_req_get(R, *request);
   if (!q)
-    return tsm_raise(R, NULL, MPI_ERR_REQUEST, fn, "invalid request handle 0x%x (%s)", (unsigned)*request,
+    return err_raise(R, NULL, MPI_ERR_REQUEST, fn, "invalid request handle 0x%x (%s)", (unsigned)*request,
                      H_KIND(*request) == HK_REQ ? "freed, or not this rank's" : "not a request");
   if (q->state == RS_INACTIVE) return MPI_SUCCESS;   /* an inactive persistent request: nothing to do */
   switch (q->kind) {
@@ -33,11 +33,11 @@ int PMPI_Cancel(MPI_Request *request) {
     eng_cancel_send(R, q);
     return MPI_SUCCESS;
   case RQ_COLL:   /* erroneous (MPI 3.1 section 5.12) */
-    return tsm_raise(R, NULL, MPI_ERR_REQUEST, fn, "the request of %s: a nonblocking collective cannot be cancelled",
+    return err_raise(R, NULL, MPI_ERR_REQUEST, fn, "the request of %s: a nonblocking collective cannot be cancelled",
                      q->fn);
   default: {
     int err = q->ops->cancel ? q->ops->cancel(q->ext, q->state == RS_DONE) : MPI_SUCCESS;
-    return err ? tsm_raise(R, NULL, err, fn, "the request of %s: its cancel callback failed (error %d)", q->fn, err)
+    return err ? err_raise(R, NULL, err, fn, "the request of %s: its cancel callback failed (error %d)", q->fn, err)
                : MPI_SUCCESS;
   }
   }
@@ -45,9 +45,9 @@ int PMPI_Cancel(MPI_Request *request) {
 
 int PMPI_Test_cancelled(const MPI_Status *status, int *flag) {
   static const char fn[] = "MPI_Test_cancelled";
-  tsm *R = tsm_need(fn);
+  st_rank *R = st_need(fn);
   if (!status || status == MPI_STATUS_IGNORE || !flag)
-    return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL status or flag argument");
+    return err_raise(R, NULL, MPI_ERR_ARG, fn, "NULL status or flag argument");
   *flag = status->tsmpi_cancelled != 0;
   return MPI_SUCCESS;
 }

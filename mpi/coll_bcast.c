@@ -12,55 +12,55 @@
 /* ==== barrier ============================================================= */
 
 /* Everyone tells rank 0, which then answers everyone, in rank order. */
-void tsmpi_barrier_linear(tsmpi_sched *s) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
+void coll_barrier_linear(coll_sched *s) {
+  const coll_cg *g = coll_sched_group(s);
   if (g->rank != 0) {
-    tsmpi_sched_send(s, NULL, 0, 0);
-    tsmpi_sched_recv(s, NULL, 0, 0);
+    coll_sched_send(s, NULL, 0, 0);
+    coll_sched_recv(s, NULL, 0, 0);
     return;
   }
-  for (int i = 1; i < g->size; i++) tsmpi_sched_recv(s, NULL, 0, i);
-  for (int i = 1; i < g->size; i++) tsmpi_sched_send(s, NULL, 0, i);
+  for (int i = 1; i < g->size; i++) coll_sched_recv(s, NULL, 0, i);
+  for (int i = 1; i < g->size; i++) coll_sched_send(s, NULL, 0, i);
 }
 
 /* Dissemination (Hensgen, Finkel, Manber 1988): ceil(lg p) rounds; in round
  * k each rank signals rank + 2^k and waits for rank - 2^k. */
-void tsmpi_barrier_dissemination(tsmpi_sched *s) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
+void coll_barrier_dissemination(coll_sched *s) {
+  const coll_cg *g = coll_sched_group(s);
   for (int mask = 1; mask < g->size; mask <<= 1) {
     int dst = (g->rank + mask) % g->size, src = (g->rank - mask + g->size) % g->size;
-    tsmpi_sched_sendrecv(s, NULL, 0, dst, NULL, 0, src);
+    coll_sched_sendrecv(s, NULL, 0, dst, NULL, 0, src);
   }
 }
 
 /* ==== broadcast =========================================================== */
 
 /* The root sends to every other rank in rank order. */
-void tsmpi_bcast_linear(tsmpi_sched *s, void *buf, size_t n, int root) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
+void coll_bcast_linear(coll_sched *s, void *buf, size_t n, int root) {
+  const coll_cg *g = coll_sched_group(s);
   if (g->rank != root) {
-    tsmpi_sched_recv(s, buf, n, root);
+    coll_sched_recv(s, buf, n, root);
     return;
   }
   for (int i = 0; i < g->size; i++)
-    if (i != root) tsmpi_sched_send(s, buf, n, i);
+    if (i != root) coll_sched_send(s, buf, n, i);
 }
 
 /* Binomial tree on ranks relative to the root: receive from the parent
  * (relative rank minus its lowest set bit), then send to the children,
  * farthest first.  Cost lg p (alpha + n beta). */
-void tsmpi_bcast_binomial(tsmpi_sched *s, void *buf, size_t n, int root) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
+void coll_bcast_binomial(coll_sched *s, void *buf, size_t n, int root) {
+  const coll_cg *g = coll_sched_group(s);
   int size = g->size, rank = g->rank, rel = (rank - root + size) % size, mask = 1;
   while (mask < size) {
     if (rel & mask) {
-      tsmpi_sched_recv(s, buf, n, (rank - mask + size) % size);
+      coll_sched_recv(s, buf, n, (rank - mask + size) % size);
       break;
     }
     mask <<= 1;
   }
   for (mask >>= 1; mask > 0; mask >>= 1)
-    if (rel + mask < size) tsmpi_sched_send(s, buf, n, (rank + mask) % size);
+    if (rel + mask < size) coll_sched_send(s, buf, n, (rank + mask) % size);
 }
 
 /* Bytes [a, b) of n, clamped: their count. */
@@ -75,15 +75,15 @@ static size_t clamp_span(size_t a, size_t b, size_t n) {
  * rank receives its subtree's bytes, [r ss, (r + 2^k) ss) of n with 2^k
  * its relative rank's lowest bit, and passes on each child's; it ends with
  * its own block. */
-static void scatter_for_bcast(tsmpi_sched *s, char *buf, size_t n, int root, size_t ss) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
+static void scatter_for_bcast(coll_sched *s, char *buf, size_t n, int root, size_t ss) {
+  const coll_cg *g = coll_sched_group(s);
   int size = g->size, rank = g->rank, rel = (rank - root + size) % size, mask = 1;
   size_t cur = rank == root ? n : 0;
   while (mask < size) {
     if (rel & mask) {
       size_t off = (size_t)rel * ss;
       cur = clamp_span(off, (size_t)(rel + mask) * ss, n);
-      if (cur) tsmpi_sched_recv(s, buf + off, n - off, (rank - mask + size) % size);
+      if (cur) coll_sched_recv(s, buf + off, n - off, (rank - mask + size) % size);
       break;
     }
     mask <<= 1;
@@ -92,7 +92,7 @@ static void scatter_for_bcast(tsmpi_sched *s, char *buf, size_t n, int root, siz
     if (rel + mask < size) {
       size_t sub = ss * (size_t)mask;
       if (cur > sub) {
-        tsmpi_sched_send(s, buf + (size_t)(rel + mask) * ss, cur - sub, (rank + mask) % size);
+        coll_sched_send(s, buf + (size_t)(rel + mask) * ss, cur - sub, (rank + mask) % size);
         cur = sub;
       }
     }
@@ -105,8 +105,8 @@ static void scatter_for_bcast(tsmpi_sched *s, char *buf, size_t n, int root, siz
  * the partner subtree's blocks (MPICH's schedule computes it so:
  * ibcast_intra_sched_scatter_recursive_doubling_allgather.c).  Cost
  * 2 lg p alpha + 2 n (p-1)/p beta (p a power of two). */
-void tsmpi_bcast_scatter_rdb_allgather(tsmpi_sched *s, void *buffer, size_t n, int root) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
+void coll_bcast_scatter_rdb_allgather(coll_sched *s, void *buffer, size_t n, int root) {
+  const coll_cg *g = coll_sched_group(s);
   int size = g->size, rank = g->rank, rel = (rank - root + size) % size;
   char *buf = buffer;
   size_t ss = (n + (size_t)size - 1) / (size_t)size, got = 0;
@@ -119,7 +119,7 @@ void tsmpi_bcast_scatter_rdb_allgather(tsmpi_sched *s, void *buffer, size_t n, i
     if (rdst < size) {
       size_t room = roff < n ? n - roff : 0;
       got = clamp_span(roff, roff + (size_t)mask * ss, n);
-      tsmpi_sched_sendrecv(s, buf + (soff < n ? soff : n), cur, dst, buf + (roff < n ? roff : n), room, dst);
+      coll_sched_sendrecv(s, buf + (soff < n ? soff : n), cur, dst, buf + (roff < n ? roff : n), room, dst);
       cur += got;
     }
     /* Ranks of this subtree whose partner was beyond p get the missing
@@ -132,10 +132,10 @@ void tsmpi_bcast_scatter_rdb_allgather(tsmpi_sched *s, void *buffer, size_t n, i
       for (int tmask = mask >> 1; tmask; tmask >>= 1, k--) {
         int rd = rel ^ tmask, d = (rd + root) % size, tree_root = rel >> k << k;
         if (rd > rel && rel < tree_root + done && rd >= tree_root + done) {
-          tsmpi_sched_send(s, buf + (off < n ? off : n), got, d);
+          coll_sched_send(s, buf + (off < n ? off : n), got, d);
         } else if (rd < rel && rd < tree_root + done && rel >= tree_root + done) {
           got = clamp_span(off, off + (size_t)mask * ss, n);
-          tsmpi_sched_recv(s, buf + (off < n ? off : n), off < n ? n - off : 0, d);
+          coll_sched_recv(s, buf + (off < n ? off : n), off < n ? n - off : 0, d);
           cur += got;
         }
       }
@@ -146,8 +146,8 @@ void tsmpi_bcast_scatter_rdb_allgather(tsmpi_sched *s, void *buffer, size_t n, i
 /* Scatter, then a ring allgather of the blocks: p - 1 steps, each rank
  * passing on to rank + 1 the block it got from rank - 1.  Cost
  * (lg p + p - 1) alpha + 2 n (p-1)/p beta. */
-void tsmpi_bcast_scatter_ring_allgather(tsmpi_sched *s, void *buffer, size_t n, int root) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
+void coll_bcast_scatter_ring_allgather(coll_sched *s, void *buffer, size_t n, int root) {
+  const coll_cg *g = coll_sched_group(s);
   int size = g->size, rank = g->rank;
   char *buf = buffer;
   size_t ss = (n + (size_t)size - 1) / (size_t)size;
@@ -157,7 +157,7 @@ void tsmpi_bcast_scatter_ring_allgather(tsmpi_sched *s, void *buffer, size_t n, 
     int lb = (jnext - root + size) % size, rb = (j - root + size) % size;
     size_t loff = (size_t)lb * ss, roff = (size_t)rb * ss;
     size_t lcnt = clamp_span(loff, loff + ss, n), rcnt = clamp_span(roff, roff + ss, n);
-    tsmpi_sched_sendrecv(s, buf + (roff < n ? roff : n), rcnt, right, buf + (loff < n ? loff : n), lcnt, left);
+    coll_sched_sendrecv(s, buf + (roff < n ? roff : n), rcnt, right, buf + (loff < n ? loff : n), lcnt, left);
     j = jnext;
     jnext = (size + jnext - 1) % size;
   }

@@ -15,58 +15,58 @@
 /* ==== gather and scatter ================================================== */
 
 /* The root receives every rank's block in rank order. */
-void tsmpi_gather_linear(tsmpi_sched *s, const void *sbuf, void *rbuf, size_t n, int root) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
+void coll_gather_linear(coll_sched *s, const void *sbuf, void *rbuf, size_t n, int root) {
+  const coll_cg *g = coll_sched_group(s);
   if (g->rank != root) {
-    tsmpi_sched_send(s, sbuf, n, root);
+    coll_sched_send(s, sbuf, n, root);
     return;
   }
   for (int i = 0; i < g->size; i++) {
     char *dst = (char *)rbuf + (size_t)i * n;
     if (i != root)
-      tsmpi_sched_recv(s, dst, n, i);
+      coll_sched_recv(s, dst, n, i);
     else if (sbuf)
-      tsmpi_sched_copy(s, dst, sbuf, n);
+      coll_sched_copy(s, dst, sbuf, n);
   }
 }
 
 /* Blocks in relative order (from the root's on) at from, into rank order at
  * to, or back (unrotate): two copies. */
-static void rotate(tsmpi_sched *s, char *to, const char *from, size_t n, int root, int unrotate) {
-  int size = tsmpi_sched_group(s)->size;
+static void rotate(coll_sched *s, char *to, const char *from, size_t n, int root, int unrotate) {
+  int size = coll_sched_group(s)->size;
   size_t head = (size_t)(size - root) * n, tail = (size_t)root * n;
   if (unrotate) {   /* rank order at from, relative order at to */
-    tsmpi_sched_copy(s, to, from + tail, head);
-    tsmpi_sched_copy(s, to + head, from, tail);
+    coll_sched_copy(s, to, from + tail, head);
+    coll_sched_copy(s, to + head, from, tail);
   } else {
-    tsmpi_sched_copy(s, to + tail, from, head);
-    tsmpi_sched_copy(s, to, from + head, tail);
+    coll_sched_copy(s, to + tail, from, head);
+    coll_sched_copy(s, to, from + head, tail);
   }
 }
 
 /* Binomial tree on ranks relative to the root: a rank gathers its subtree's
  * blocks (relative ranks rel .. rel + 2^k - 1), then sends them to its
  * parent in one message.  Cost lg p alpha + n (p-1)/p beta. */
-void tsmpi_gather_binomial(tsmpi_sched *s, const void *sbuf, void *rbuf, size_t n, int root) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
+void coll_gather_binomial(coll_sched *s, const void *sbuf, void *rbuf, size_t n, int root) {
+  const coll_cg *g = coll_sched_group(s);
   int size = g->size, rank = g->rank, rel = (rank - root + size) % size;
   /* tmp holds the subtree's blocks in relative order, ours first. */
   int sub = 1;
   while (sub < size && !(rel & sub)) sub <<= 1;
   if (rel + sub > size) sub = size - rel;
-  char *tmp = tsmpi_sched_mem(s, (size_t)sub * n);
-  tsmpi_sched_copy(s, tmp, sbuf ? sbuf : (const char *)rbuf + (size_t)rank * n, n);
+  char *tmp = coll_sched_mem(s, (size_t)sub * n);
+  coll_sched_copy(s, tmp, sbuf ? sbuf : (const char *)rbuf + (size_t)rank * n, n);
   size_t have = n;
   for (int mask = 1; mask < size; mask <<= 1) {
     if (!(rel & mask)) {
       int src = rel | mask;
       if (src < size) {
         size_t want = (size_t)(src + mask < size ? mask : size - src) * n;
-        tsmpi_sched_recv(s, tmp + have, want, (src + root) % size);
+        coll_sched_recv(s, tmp + have, want, (src + root) % size);
         have += want;
       }
     } else {
-      tsmpi_sched_send(s, tmp, have, ((rel ^ mask) + root) % size);
+      coll_sched_send(s, tmp, have, ((rel ^ mask) + root) % size);
       break;
     }
   }
@@ -74,42 +74,42 @@ void tsmpi_gather_binomial(tsmpi_sched *s, const void *sbuf, void *rbuf, size_t 
 }
 
 /* The root sends every rank its block in rank order. */
-void tsmpi_scatter_linear(tsmpi_sched *s, const void *sbuf, void *rbuf, size_t n, int root) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
+void coll_scatter_linear(coll_sched *s, const void *sbuf, void *rbuf, size_t n, int root) {
+  const coll_cg *g = coll_sched_group(s);
   if (g->rank != root) {
-    tsmpi_sched_recv(s, rbuf, n, root);
+    coll_sched_recv(s, rbuf, n, root);
     return;
   }
   for (int i = 0; i < g->size; i++) {
     const char *src = (const char *)sbuf + (size_t)i * n;
     if (i != root)
-      tsmpi_sched_send(s, src, n, i);
+      coll_sched_send(s, src, n, i);
     else if (rbuf)
-      tsmpi_sched_copy(s, rbuf, src, n);
+      coll_sched_copy(s, rbuf, src, n);
   }
 }
 
 /* Binomial tree on relative ranks: a rank receives its subtree's blocks
  * from its parent, keeps its own and passes on each child's subtree,
  * farthest child first.  Cost lg p alpha + n (p-1)/p beta. */
-void tsmpi_scatter_binomial(tsmpi_sched *s, const void *sbuf, void *rbuf, size_t n, int root) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
+void coll_scatter_binomial(coll_sched *s, const void *sbuf, void *rbuf, size_t n, int root) {
+  const coll_cg *g = coll_sched_group(s);
   int size = g->size, rank = g->rank, rel = (rank - root + size) % size, mask = 1;
   char *tmp;
   size_t cur = 0;
   if (rank == root) {   /* rank order to relative order */
-    tmp = tsmpi_sched_mem(s, (size_t)size * n);
+    tmp = coll_sched_mem(s, (size_t)size * n);
     rotate(s, tmp, sbuf, n, root, 1);
     cur = (size_t)size * n;
   } else {
     int sub = 1;
     while (sub < size && !(rel & sub)) sub <<= 1;
-    tmp = tsmpi_sched_mem(s, (size_t)(rel + sub > size ? size - rel : sub) * n);
+    tmp = coll_sched_mem(s, (size_t)(rel + sub > size ? size - rel : sub) * n);
   }
   while (mask < size) {
     if (rel & mask) {
       cur = (size_t)(rel + mask > size ? size - rel : mask) * n;
-      tsmpi_sched_recv(s, tmp, cur, (rank - mask + size) % size);
+      coll_sched_recv(s, tmp, cur, (rank - mask + size) % size);
       break;
     }
     mask <<= 1;
@@ -117,61 +117,61 @@ void tsmpi_scatter_binomial(tsmpi_sched *s, const void *sbuf, void *rbuf, size_t
   for (mask >>= 1; mask > 0; mask >>= 1) {
     if (rel + mask < size) {
       size_t part = cur - n * (size_t)mask;
-      tsmpi_sched_send(s, tmp + n * (size_t)mask, part, (rank + mask) % size);
+      coll_sched_send(s, tmp + n * (size_t)mask, part, (rank + mask) % size);
       cur -= part;
     }
   }
-  if (rbuf) tsmpi_sched_copy(s, rbuf, tmp, n);
+  if (rbuf) coll_sched_copy(s, rbuf, tmp, n);
 }
 
-void tsmpi_gatherv_linear(tsmpi_sched *s, const void *sbuf, size_t sn, void *rbuf, const size_t *counts,
-                          const size_t *displs, int root) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
+void coll_gatherv_linear(coll_sched *s, const void *sbuf, size_t sn, void *rbuf, const size_t *counts,
+                         const size_t *displs, int root) {
+  const coll_cg *g = coll_sched_group(s);
   if (g->rank != root) {
-    if (sn) tsmpi_sched_send(s, sbuf, sn, root);
+    if (sn) coll_sched_send(s, sbuf, sn, root);
     return;
   }
   for (int i = 0; i < g->size; i++) {
     if (!counts[i]) continue;
     if (i != root)
-      tsmpi_sched_irecv(s, (char *)rbuf + displs[i], counts[i], i);
+      coll_sched_irecv(s, (char *)rbuf + displs[i], counts[i], i);
     else if (sbuf)
-      tsmpi_sched_copy(s, (char *)rbuf + displs[i], sbuf, counts[i]);
+      coll_sched_copy(s, (char *)rbuf + displs[i], sbuf, counts[i]);
   }
-  tsmpi_sched_waitall(s);
+  coll_sched_waitall(s);
 }
 
-void tsmpi_scatterv_linear(tsmpi_sched *s, const void *sbuf, const size_t *counts, const size_t *displs,
-                           void *rbuf, size_t rn, int root) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
+void coll_scatterv_linear(coll_sched *s, const void *sbuf, const size_t *counts, const size_t *displs,
+                          void *rbuf, size_t rn, int root) {
+  const coll_cg *g = coll_sched_group(s);
   if (g->rank != root) {
-    if (rn) tsmpi_sched_recv(s, rbuf, rn, root);
+    if (rn) coll_sched_recv(s, rbuf, rn, root);
     return;
   }
   for (int i = 0; i < g->size; i++) {
     if (!counts[i]) continue;
     if (i != root)
-      tsmpi_sched_isend(s, (const char *)sbuf + displs[i], counts[i], i);
+      coll_sched_isend(s, (const char *)sbuf + displs[i], counts[i], i);
     else if (rbuf)
-      tsmpi_sched_copy(s, rbuf, (const char *)sbuf + displs[i], counts[i]);
+      coll_sched_copy(s, rbuf, (const char *)sbuf + displs[i], counts[i]);
   }
-  tsmpi_sched_waitall(s);
+  coll_sched_waitall(s);
 }
 
 /* ==== allgather =========================================================== */
 
 /* A gather to rank 0, then a broadcast, both linear (Open MPI's basic). */
-void tsmpi_allgatherv_linear(tsmpi_sched *s, void *buf, const size_t *counts, const size_t *displs) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
+void coll_allgatherv_linear(coll_sched *s, void *buf, const size_t *counts, const size_t *displs) {
+  const coll_cg *g = coll_sched_group(s);
   size_t total = 0;
   for (int i = 0; i < g->size; i++) total += counts[i];
-  tsmpi_gatherv_linear(s, g->rank ? (char *)buf + displs[g->rank] : NULL, counts[g->rank], buf, counts, displs, 0);
-  tsmpi_bcast_linear(s, buf, total, 0);
+  coll_gatherv_linear(s, g->rank ? (char *)buf + displs[g->rank] : NULL, counts[g->rank], buf, counts, displs, 0);
+  coll_bcast_linear(s, buf, total, 0);
 }
 
 /* Bytes of ranks [a, b) (b may exceed p: wraps around) in the packed
  * buffer, whose blocks lie in rank order from displs[0] = 0. */
-static size_t span(const tsmpi_cg *g, const size_t *counts, int a, int b) {
+static size_t span(const coll_cg *g, const size_t *counts, int a, int b) {
   size_t s = 0;
   for (int i = a; i < b; i++) s += counts[i % g->size];
   return s;
@@ -181,8 +181,8 @@ static size_t span(const tsmpi_cg *g, const size_t *counts, int a, int b) {
  * beyond a power of two, the ranks that had no partner get the missing
  * blocks from their subtree (MPICH).  What a step brings is the partner
  * subtree's blocks.  Cost lg p alpha + n (p-1)/p beta. */
-void tsmpi_allgatherv_recursive_doubling(tsmpi_sched *s, void *buffer, const size_t *counts, const size_t *displs) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
+void coll_allgatherv_recursive_doubling(coll_sched *s, void *buffer, const size_t *counts, const size_t *displs) {
+  const coll_cg *g = coll_sched_group(s);
   int size = g->size, rank = g->rank;
   char *buf = buffer;
   (void)displs;   /* the packed blocks lie in rank order */
@@ -192,7 +192,7 @@ void tsmpi_allgatherv_recursive_doubling(tsmpi_sched *s, void *buffer, const siz
     if (dst < size) {
       size_t soff = span(g, counts, 0, my_root), roff = span(g, counts, 0, dst_root);
       got = span(g, counts, dst_root, dst_root + mask < size ? dst_root + mask : size);
-      tsmpi_sched_sendrecv(s, buf + soff, cur, dst, buf + roff, total - roff, dst);
+      coll_sched_sendrecv(s, buf + soff, cur, dst, buf + roff, total - roff, dst);
       cur += got;
     }
     if (dst_root + mask > size) {
@@ -204,10 +204,10 @@ void tsmpi_allgatherv_recursive_doubling(tsmpi_sched *s, void *buffer, const siz
       for (int tmask = mask >> 1; tmask; tmask >>= 1, k--) {
         int d = rank ^ tmask, tree_root = rank >> k << k;
         if (d > rank && rank < tree_root + done && d >= tree_root + done) {
-          tsmpi_sched_send(s, buf + off, got, d);
+          coll_sched_send(s, buf + off, got, d);
         } else if (d < rank && d < tree_root + done && rank >= tree_root + done) {
           got = span(g, counts, from, my_root + 2 * mask < size ? my_root + 2 * mask : size);
-          tsmpi_sched_recv(s, buf + off, total - off, d);
+          coll_sched_recv(s, buf + off, total - off, d);
           cur += got;
         }
       }
@@ -219,31 +219,31 @@ void tsmpi_allgatherv_recursive_doubling(tsmpi_sched *s, void *buffer, const siz
  * rank r sends all it has (the blocks of r .. r + 2^k - 1) to r - 2^k and
  * receives as much from r + 2^k; then the blocks are rotated into place.
  * Cost ceil(lg p) alpha + n (p-1)/p beta. */
-void tsmpi_allgatherv_brucks(tsmpi_sched *s, void *buffer, const size_t *counts, const size_t *displs) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
+void coll_allgatherv_brucks(coll_sched *s, void *buffer, const size_t *counts, const size_t *displs) {
+  const coll_cg *g = coll_sched_group(s);
   int size = g->size, rank = g->rank;
   char *buf = buffer;
   size_t total = span(g, counts, 0, size), cur = counts[rank];
-  char *tmp = tsmpi_sched_mem(s, total);
-  tsmpi_sched_copy(s, tmp, buf + displs[rank], cur);
+  char *tmp = coll_sched_mem(s, total);
+  coll_sched_copy(s, tmp, buf + displs[rank], cur);
   int pof2 = 1;
   for (; pof2 <= size / 2; pof2 *= 2) {
     int src = (rank + pof2) % size, dst = (rank - pof2 + size) % size;
     size_t in = span(g, counts, src, src + pof2);
-    tsmpi_sched_sendrecv(s, tmp, cur, dst, tmp + cur, in, src);
+    coll_sched_sendrecv(s, tmp, cur, dst, tmp + cur, in, src);
     cur += in;
   }
   int rem = size - pof2;
   if (rem) {
     int src = (rank + pof2) % size, dst = (rank - pof2 + size) % size;
     size_t out = span(g, counts, rank, rank + rem), in = span(g, counts, src, src + rem);
-    tsmpi_sched_sendrecv(s, tmp, out, dst, tmp + cur, in, src);
+    coll_sched_sendrecv(s, tmp, out, dst, tmp + cur, in, src);
   }
   /* tmp holds the blocks of ranks rank, rank + 1, ... in turn: rank's
    * onwards go to displs[rank], the rest to the start. */
   size_t head = span(g, counts, rank, size);
-  tsmpi_sched_copy(s, buf + displs[rank], tmp, head);
-  tsmpi_sched_copy(s, buf, tmp + head, total - head);
+  coll_sched_copy(s, buf + displs[rank], tmp, head);
+  coll_sched_copy(s, buf, tmp + head, total - head);
 }
 
 /* The ring: p - 1 steps, each rank passing to rank + 1 the block it got
@@ -251,8 +251,8 @@ void tsmpi_allgatherv_brucks(tsmpi_sched *s, void *buffer, const size_t *counts,
  * when chunk > 0 (MPICH's allgatherv cuts blocks longer than 32 KiB,
  * MPIR_CVAR_ALLGATHERV_PIPELINE_MSG_SIZE).  Cost (p-1) alpha +
  * n (p-1)/p beta, unpipelined. */
-static void ring(tsmpi_sched *s, char *buf, const size_t *counts, const size_t *displs, size_t chunk) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
+static void ring(coll_sched *s, char *buf, const size_t *counts, const size_t *displs, size_t chunk) {
+  const coll_cg *g = coll_sched_group(s);
   int size = g->size, rank = g->rank;
   int left = (size + rank - 1) % size, right = (rank + 1) % size;
   size_t total = span(g, counts, 0, size), torecv = total - counts[rank], tosend = total - counts[right];
@@ -268,8 +268,8 @@ static void ring(tsmpi_sched *s, char *buf, const size_t *counts, const size_t *
     char *sp = buf + displs[sidx] + soff, *rp = buf + displs[ridx] + roff;
     if (!tosend) sendnow = 0;
     if (!torecv) recvnow = 0;
-    if (sendnow) tsmpi_sched_send(s, sp, sendnow, right);
-    if (recvnow) tsmpi_sched_recv(s, rp, recvnow, left);
+    if (sendnow) coll_sched_send(s, sp, sendnow, right);
+    if (recvnow) coll_sched_recv(s, rp, recvnow, left);
     tosend -= sendnow;
     torecv -= recvnow;
     soff += sendnow;
@@ -285,16 +285,16 @@ static void ring(tsmpi_sched *s, char *buf, const size_t *counts, const size_t *
   }
 }
 
-void tsmpi_allgatherv_ring(tsmpi_sched *s, void *buf, const size_t *counts, const size_t *displs) {
+void coll_allgatherv_ring(coll_sched *s, void *buf, const size_t *counts, const size_t *displs) {
   ring(s, buf, counts, displs, 0);
 }
 
 /* MPICH's allgatherv ring, pipelined in chunks of 32 KiB of the receive
  * type's extent (a whole number of elements, at least one). */
-void tsmpi_allgatherv_ring_pipelined(tsmpi_sched *s, void *buf, const size_t *counts, const size_t *displs,
-                                     size_t unit, size_t extent) {
+void coll_allgatherv_ring_pipelined(coll_sched *s, void *buf, const size_t *counts, const size_t *displs,
+                                    size_t unit, size_t extent) {
   size_t chunk = 0, max = 0;
-  for (int i = 0; i < tsmpi_sched_group(s)->size; i++)
+  for (int i = 0; i < coll_sched_group(s)->size; i++)
     if (counts[i] > max) max = counts[i];
   if (unit && extent && max / unit * extent > 32768) {
     chunk = 32768 / extent;

@@ -21,37 +21,37 @@ enum { T_BARRIER = 1, T_BCAST, T_GATHER, T_GATHERV, T_SCATTER, T_SCATTERV, T_ALL
        T_ALLTOALLV, T_ALLTOALLW, T_REDUCE, T_ALLREDUCE, T_REDUCE_SCATTER };
 
 /* Scratch memory, freed at the rank's end if the run stops while a call
- * waits (coll.h's tsmpi_cg_alloc); drop frees it. */
+ * waits (coll.h's coll_cg_alloc); drop frees it. */
 static void *grab(size_t n) {
-  tsmpi_cg g = {.fn = "an MPI collective on an intercommunicator"};
-  return tsmpi_cg_alloc(&g, n);
+  coll_cg g = {.fn = "an MPI collective on an intercommunicator"};
+  return coll_cg_alloc(&g, n);
 }
 
-static void drop(void *p) { tsmpi_cg_free(p); }
+static void drop(void *p) { coll_cg_free(p); }
 
 /* One call: the rank, the intercommunicator, its local one, the label. */
 typedef struct {
-  tsm *R;
-  tsm_comm *c;
+  st_rank *R;
+  st_comm *c;
   MPI_Comm comm, local;
   const char *fn;
-  tsm_label l;
+  label_rec l;
 } ic;
 
 static void begin(ic *x, const char *fn, MPI_Comm comm) {
-  x->R = tsm_need(fn);
-  x->c = tsm_comm_get(x->R, comm);
+  x->R = st_need(fn);
+  x->c = st_comm_get(x->R, comm);
   x->comm = comm;
   x->local = x->c->local;
   x->fn = fn;
-  x->l = (tsm_label){.fn = fn, .what = L_COMM, .pair = x->c->pair};
+  x->l = (label_rec){.fn = fn, .what = L_COMM, .pair = x->c->pair};
 }
 
 /* The label again (a local step clears it). */
-static void label(ic *x) { tsm_label_set(x->R, &x->l); }
+static void label(ic *x) { label_set(x->R, &x->l); }
 
 static int end(ic *x, int rc) {
-  tsm_unlabel(x->R);
+  label_clear(x->R);
   return rc;
 }
 
@@ -59,85 +59,85 @@ static int end(ic *x, int rc) {
  * buffer: the groups disagree on the counts), raised. */
 static int crossed(ic *x, int rc) {
   if (!rc) return rc;
-  return tsmpi_raise(x->comm, rc, x->fn, "a message from the remote group is longer than the receive buffer "
+  return err_comm_raise(x->comm, rc, x->fn, "a message from the remote group is longer than the receive buffer "
                                          "(the groups disagree on the counts or types)");
 }
 
 static int recv(ic *x, void *buf, int count, MPI_Datatype dt, int src, int tag) {
   label(x);
-  return crossed(x, tsmpi_p2p_recv(buf, count, dt, src, tag, x->comm, MPI_STATUS_IGNORE));
+  return crossed(x, coll_p2p_recv(buf, count, dt, src, tag, x->comm, MPI_STATUS_IGNORE));
 }
 
 static int waitall(ic *x, int n, MPI_Request *reqs) {
   label(x);
-  return crossed(x, tsmpi_p2p_waitall(n, reqs, MPI_STATUSES_IGNORE));
+  return crossed(x, coll_p2p_waitall(n, reqs, MPI_STATUSES_IGNORE));
 }
 
 /* root: MPI_ROOT, MPI_PROC_NULL, or a rank of the remote group. */
 static int root_ok(ic *x, int root) {
   if (root == MPI_ROOT || root == MPI_PROC_NULL || (root >= 0 && root < x->c->size)) return MPI_SUCCESS;
-  return tsmpi_raise(x->comm, MPI_ERR_ROOT, x->fn,
-                     "invalid root %d (MPI_ROOT, MPI_PROC_NULL, or a rank of the remote group, which has %d)", root,
-                     x->c->size);
+  return err_comm_raise(x->comm, MPI_ERR_ROOT, x->fn,
+                        "invalid root %d (MPI_ROOT, MPI_PROC_NULL, or a rank of the remote group, which has %d)", root,
+                        x->c->size);
 }
 
 /* count elements of dt at buf (MPI_IN_PLACE refused). */
 static int data_ok(ic *x, const char *what, const void *buf, int count, MPI_Datatype dt) {
-  if (buf == MPI_IN_PLACE) return tsmpi_coll_in_place_bad(x->comm, x->fn, "a buffer on an intercommunicator");
-  return tsmpi_coll_data_ok(x->comm, x->fn, what, buf, count, dt);
+  if (buf == MPI_IN_PLACE) return coll_in_place_bad(x->comm, x->fn, "a buffer on an intercommunicator");
+  return coll_data_ok(x->comm, x->fn, what, buf, count, dt);
 }
 
 static int counts_ok(ic *x, const char *what, const int *counts, const int *displs, const void *buf, MPI_Datatype dt) {
-  if (buf == MPI_IN_PLACE) return tsmpi_coll_in_place_bad(x->comm, x->fn, "a buffer on an intercommunicator");
-  int rc = tsmpi_coll_counts_ok(x->comm, x->fn, what, counts, displs, x->c->size);
-  return rc ? rc : tsmpi_coll_type_ok(x->comm, x->fn, what[0] == 's' ? "sendtype" : "recvtype", dt);
+  if (buf == MPI_IN_PLACE) return coll_in_place_bad(x->comm, x->fn, "a buffer on an intercommunicator");
+  int rc = coll_counts_ok(x->comm, x->fn, what, counts, displs, x->c->size);
+  return rc ? rc : coll_type_ok(x->comm, x->fn, what[0] == 's' ? "sendtype" : "recvtype", dt);
 }
 
 /* count elements of dt packed into new memory. */
 static char *packed(const void *buf, int count, MPI_Datatype dt) {
-  size_t n = tsmpi_type_size(dt) * (size_t)count;
+  size_t n = dtype_size(dt) * (size_t)count;
   char *p = grab(n ? n : 1);
-  if (n) tsmpi_type_pack(buf, count, dt, p);
+  if (n) dtype_pack(buf, count, dt, p);
   return p;
 }
 
 /* Room for count elements of dt as the type lays them out: the buffer to
  * pass, and *base to free. */
 static void *room(int count, MPI_Datatype dt, void **base) {
-  MPI_Aint ext = tsmpi_type_extent(dt), text = tsmpi_type_true_extent(dt);
+  MPI_Aint ext = dtype_extent(dt), text = dtype_true_extent(dt);
   size_t span = (size_t)(ext > text ? ext : text);
   *base = grab(count > 0 && span ? (size_t)count * span : 1);
-  return (char *)*base - tsmpi_type_true_lb(dt);
+  return (char *)*base - dtype_true_lb(dt);
 }
 
 /* ==== barrier and broadcast =============================================== */
 
-int tsmpi_inter_barrier(MPI_Comm comm) {
+int coll_inter_barrier(MPI_Comm comm) {
   ic x;
   begin(&x, "MPI_Barrier", comm);
   unsigned char b = 0;
   int rc = PMPI_Barrier(x.local);
   if (!rc && x.c->rank == 0) {
-    if (!(rc = tsmpi_p2p_send(&b, 1, MPI_BYTE, 0, T_BARRIER, comm))) rc = recv(&x, &b, 1, MPI_BYTE, 0, T_BARRIER);
+    if (!(rc = coll_p2p_send(&b, 1, MPI_BYTE, 0, T_BARRIER, comm))) rc = recv(&x, &b, 1, MPI_BYTE, 0, T_BARRIER);
   }
   if (!rc) rc = PMPI_Bcast(&b, 1, MPI_BYTE, 0, x.local);
   return end(&x, rc);
 }
 
-int tsmpi_inter_bcast(void *buffer, int count, MPI_Datatype datatype, int root, MPI_Comm comm) {
+int coll_inter_bcast(void *buffer, int count, MPI_Datatype datatype, int root, MPI_Comm comm) {
   ic x;
   begin(&x, "MPI_Bcast", comm);
   int rc = root_ok(&x, root);
   if (rc || root == MPI_PROC_NULL || (rc = data_ok(&x, "datatype", buffer, count, datatype))) return end(&x, rc);
-  if (root == MPI_ROOT) return end(&x, tsmpi_p2p_send(buffer, count, datatype, 0, T_BCAST, comm));
+  if (root == MPI_ROOT) return end(&x, coll_p2p_send(buffer, count, datatype, 0, T_BCAST, comm));
   if (x.c->rank == 0 && (rc = recv(&x, buffer, count, datatype, root, T_BCAST))) return end(&x, rc);
   return end(&x, PMPI_Bcast(buffer, count, datatype, 0, x.local));
 }
 
 /* ==== gather and scatter ================================================== */
 
-int tsmpi_inter_gather(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf, int recvcount,
-                       MPI_Datatype recvtype, int root, MPI_Comm comm) {
+int coll_inter_gather(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf, int recvcount,
+                      MPI_Datatype recvtype, int root, MPI_Comm comm) {
   ic x;
   begin(&x, "MPI_Gather", comm);
   int rc = root_ok(&x, root);
@@ -148,59 +148,59 @@ int tsmpi_inter_gather(const void *sendbuf, int sendcount, MPI_Datatype sendtype
   }
   if ((rc = data_ok(&x, "sendtype", sendbuf, sendcount, sendtype))) return end(&x, rc);
   /* The group's blocks meet at its rank 0, which sends them on. */
-  int n = (int)(tsmpi_type_size(sendtype) * (size_t)sendcount), ln = tsm_comm_lsize(x.c);
+  int n = (int)(dtype_size(sendtype) * (size_t)sendcount), ln = st_comm_lsize(x.c);
   char *mine = packed(sendbuf, sendcount, sendtype), *all = x.c->rank == 0 ? grab((size_t)n * (size_t)ln + 1) : NULL;
   rc = PMPI_Gather(mine, n, MPI_BYTE, all, n, MPI_BYTE, 0, x.local);
-  if (!rc && all) rc = tsmpi_p2p_send(all, n * ln, MPI_BYTE, root, T_GATHER, comm);
+  if (!rc && all) rc = coll_p2p_send(all, n * ln, MPI_BYTE, root, T_GATHER, comm);
   drop(mine);
   drop(all);
   return end(&x, rc);
 }
 
-int tsmpi_inter_gatherv(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf,
-                        const int recvcounts[], const int displs[], MPI_Datatype recvtype, int root, MPI_Comm comm) {
+int coll_inter_gatherv(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf,
+                       const int recvcounts[], const int displs[], MPI_Datatype recvtype, int root, MPI_Comm comm) {
   ic x;
   begin(&x, "MPI_Gatherv", comm);
   int rc = root_ok(&x, root);
   if (rc || root == MPI_PROC_NULL) return end(&x, rc);
   if (root != MPI_ROOT) {
     if ((rc = data_ok(&x, "sendtype", sendbuf, sendcount, sendtype))) return end(&x, rc);
-    return end(&x, tsmpi_p2p_send(sendbuf, sendcount, sendtype, root, T_GATHERV, comm));
+    return end(&x, coll_p2p_send(sendbuf, sendcount, sendtype, root, T_GATHERV, comm));
   }
   if ((rc = counts_ok(&x, "recvcounts", recvcounts, displs, recvbuf, recvtype))) return end(&x, rc);
   int n = x.c->size;
   MPI_Request *reqs = grab(((size_t)n) * sizeof *reqs);
   for (int i = 0; i < n; i++)
-    tsmpi_p2p_irecv(tsmpi_coll_at(recvbuf, displs[i], recvtype), recvcounts[i], recvtype, i, T_GATHERV, comm, &reqs[i]);
+    coll_p2p_irecv(coll_at(recvbuf, displs[i], recvtype), recvcounts[i], recvtype, i, T_GATHERV, comm, &reqs[i]);
   rc = waitall(&x, n, reqs);
   drop(reqs);
   return end(&x, rc);
 }
 
-int tsmpi_inter_scatter(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf, int recvcount,
-                        MPI_Datatype recvtype, int root, MPI_Comm comm) {
+int coll_inter_scatter(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf, int recvcount,
+                       MPI_Datatype recvtype, int root, MPI_Comm comm) {
   ic x;
   begin(&x, "MPI_Scatter", comm);
   int rc = root_ok(&x, root);
   if (rc || root == MPI_PROC_NULL) return end(&x, rc);
   if (root == MPI_ROOT) {
     if ((rc = data_ok(&x, "sendtype", sendbuf, sendcount * x.c->size, sendtype))) return end(&x, rc);
-    return end(&x, tsmpi_p2p_send(sendbuf, sendcount * x.c->size, sendtype, 0, T_SCATTER, comm));
+    return end(&x, coll_p2p_send(sendbuf, sendcount * x.c->size, sendtype, 0, T_SCATTER, comm));
   }
   if ((rc = data_ok(&x, "recvtype", recvbuf, recvcount, recvtype))) return end(&x, rc);
   /* Rank 0 takes the group's blocks and scatters them. */
-  int n = (int)(tsmpi_type_size(recvtype) * (size_t)recvcount), ln = tsm_comm_lsize(x.c);
+  int n = (int)(dtype_size(recvtype) * (size_t)recvcount), ln = st_comm_lsize(x.c);
   char *all = x.c->rank == 0 ? grab((size_t)n * (size_t)ln + 1) : NULL, *mine = grab((size_t)n + 1);
   if (all) rc = recv(&x, all, n * ln, MPI_BYTE, root, T_SCATTER);
   if (!rc) rc = PMPI_Scatter(all, n, MPI_BYTE, mine, n, MPI_BYTE, 0, x.local);
-  if (!rc && n) tsmpi_type_unpack(mine, (size_t)n, recvbuf, recvcount, recvtype);
+  if (!rc && n) dtype_unpack(mine, (size_t)n, recvbuf, recvcount, recvtype);
   drop(mine);
   drop(all);
   return end(&x, rc);
 }
 
-int tsmpi_inter_scatterv(const void *sendbuf, const int sendcounts[], const int displs[], MPI_Datatype sendtype,
-                         void *recvbuf, int recvcount, MPI_Datatype recvtype, int root, MPI_Comm comm) {
+int coll_inter_scatterv(const void *sendbuf, const int sendcounts[], const int displs[], MPI_Datatype sendtype,
+                        void *recvbuf, int recvcount, MPI_Datatype recvtype, int root, MPI_Comm comm) {
   ic x;
   begin(&x, "MPI_Scatterv", comm);
   int rc = root_ok(&x, root);
@@ -211,7 +211,7 @@ int tsmpi_inter_scatterv(const void *sendbuf, const int sendcounts[], const int 
   }
   if ((rc = counts_ok(&x, "sendcounts", sendcounts, displs, sendbuf, sendtype))) return end(&x, rc);
   for (int i = 0; i < x.c->size && !rc; i++)
-    rc = tsmpi_p2p_send(tsmpi_coll_at(sendbuf, displs[i], sendtype), sendcounts[i], sendtype, i, T_SCATTERV, comm);
+    rc = coll_p2p_send(coll_at(sendbuf, displs[i], sendtype), sendcounts[i], sendtype, i, T_SCATTERV, comm);
   return end(&x, rc);
 }
 
@@ -222,7 +222,7 @@ int tsmpi_inter_scatterv(const void *sendbuf, const int sendcounts[], const int 
  * rank 0 for the remote group's (rn bytes), spread to the group in *out
  * (malloc'd). */
 static int swap_all(ic *x, const char *mine, int n, int rn, int tag, char **out) {
-  int ln = tsm_comm_lsize(x->c), rc, *sizes = NULL, *displs = NULL, total = 0;
+  int ln = st_comm_lsize(x->c), rc, *sizes = NULL, *displs = NULL, total = 0;
   char *all = NULL;
   *out = grab((size_t)rn + 1);
   if (x->c->rank == 0) {
@@ -235,7 +235,7 @@ static int swap_all(ic *x, const char *mine, int n, int rn, int tag, char **out)
     all = grab((size_t)total + 1);
   }
   if (!rc) rc = PMPI_Gatherv(mine, n, MPI_BYTE, all, sizes, displs, MPI_BYTE, 0, x->local);
-  if (!rc && all && !(rc = tsmpi_p2p_send(all, total, MPI_BYTE, 0, tag, x->comm)))
+  if (!rc && all && !(rc = coll_p2p_send(all, total, MPI_BYTE, 0, tag, x->comm)))
     rc = recv(x, *out, rn, MPI_BYTE, 0, tag);
   if (!rc) rc = PMPI_Bcast(*out, rn, MPI_BYTE, 0, x->local);
   drop(all);
@@ -243,8 +243,8 @@ static int swap_all(ic *x, const char *mine, int n, int rn, int tag, char **out)
   return rc;
 }
 
-int tsmpi_inter_allgather(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf, int recvcount,
-                          MPI_Datatype recvtype, MPI_Comm comm) {
+int coll_inter_allgather(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf, int recvcount,
+                         MPI_Datatype recvtype, MPI_Comm comm) {
   ic x;
   begin(&x, "MPI_Allgather", comm);
   int rc, rn = x.c->size;
@@ -252,30 +252,30 @@ int tsmpi_inter_allgather(const void *sendbuf, int sendcount, MPI_Datatype sendt
       (rc = data_ok(&x, "recvtype", recvbuf, recvcount * rn, recvtype)))
     return end(&x, rc);
   char *mine = packed(sendbuf, sendcount, sendtype), *theirs;
-  int bytes = (int)(tsmpi_type_size(recvtype) * (size_t)recvcount * (size_t)rn);
-  rc = swap_all(&x, mine, (int)(tsmpi_type_size(sendtype) * (size_t)sendcount), bytes, T_ALLGATHER, &theirs);
-  if (!rc && bytes) tsmpi_type_unpack(theirs, (size_t)bytes, recvbuf, recvcount * rn, recvtype);
+  int bytes = (int)(dtype_size(recvtype) * (size_t)recvcount * (size_t)rn);
+  rc = swap_all(&x, mine, (int)(dtype_size(sendtype) * (size_t)sendcount), bytes, T_ALLGATHER, &theirs);
+  if (!rc && bytes) dtype_unpack(theirs, (size_t)bytes, recvbuf, recvcount * rn, recvtype);
   drop(mine);
   drop(theirs);
   return end(&x, rc);
 }
 
-int tsmpi_inter_allgatherv(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf,
-                           const int recvcounts[], const int displs[], MPI_Datatype recvtype, MPI_Comm comm) {
+int coll_inter_allgatherv(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf,
+                          const int recvcounts[], const int displs[], MPI_Datatype recvtype, MPI_Comm comm) {
   ic x;
   begin(&x, "MPI_Allgatherv", comm);
   int rc;
   if ((rc = data_ok(&x, "sendtype", sendbuf, sendcount, sendtype)) ||
       (rc = counts_ok(&x, "recvcounts", recvcounts, displs, recvbuf, recvtype)))
     return end(&x, rc);
-  size_t ts = tsmpi_type_size(recvtype), bytes = 0;
+  size_t ts = dtype_size(recvtype), bytes = 0;
   for (int i = 0; i < x.c->size; i++) bytes += (size_t)recvcounts[i] * ts;
   char *mine = packed(sendbuf, sendcount, sendtype), *theirs;
-  rc = swap_all(&x, mine, (int)(tsmpi_type_size(sendtype) * (size_t)sendcount), (int)bytes, T_ALLGATHERV, &theirs);
+  rc = swap_all(&x, mine, (int)(dtype_size(sendtype) * (size_t)sendcount), (int)bytes, T_ALLGATHERV, &theirs);
   for (int i = 0, off = 0; !rc && i < x.c->size; off += recvcounts[i] * (int)ts, i++)
     if (recvcounts[i])
-      tsmpi_type_unpack(theirs + off, (size_t)recvcounts[i] * ts, tsmpi_coll_at(recvbuf, displs[i], recvtype),
-                        recvcounts[i], recvtype);
+      dtype_unpack(theirs + off, (size_t)recvcounts[i] * ts, coll_at(recvbuf, displs[i], recvtype),
+                   recvcounts[i], recvtype);
   drop(mine);
   drop(theirs);
   return end(&x, rc);
@@ -291,8 +291,8 @@ static int exchange(ic *x, const void *sbuf, const int *sc, const MPI_Aint *sd, 
   int n = x->c->size;
   MPI_Request *reqs = grab((2 * (size_t)n) * sizeof *reqs);
   for (int i = 0; i < n; i++) {
-    tsmpi_p2p_irecv((char *)rbuf + rd[i], rcnt[i], rt[i], i, tag, x->comm, &reqs[i]);
-    tsmpi_p2p_isend((const char *)sbuf + sd[i], sc[i], st[i], i, tag, x->comm, &reqs[n + i]);
+    coll_p2p_irecv((char *)rbuf + rd[i], rcnt[i], rt[i], i, tag, x->comm, &reqs[i]);
+    coll_p2p_isend((const char *)sbuf + sd[i], sc[i], st[i], i, tag, x->comm, &reqs[n + i]);
   }
   int rc = waitall(x, 2 * n, reqs);
   drop(reqs);
@@ -305,7 +305,7 @@ static int exchange_v(ic *x, const void *sbuf, int scount, const int *sc, const 
                       void *rbuf, int rcount, const int *rcnt, const int *rdis, MPI_Datatype rtype, int tag) {
   int n = x->c->size;
   int *c = grab((2 * (size_t)n + 1) * sizeof *c);
-  MPI_Aint *d = grab((2 * (size_t)n + 1) * sizeof *d), se = tsmpi_type_extent(stype), re = tsmpi_type_extent(rtype);
+  MPI_Aint *d = grab((2 * (size_t)n + 1) * sizeof *d), se = dtype_extent(stype), re = dtype_extent(rtype);
   MPI_Datatype *t = grab((2 * (size_t)n + 1) * sizeof *t);
   for (int i = 0; i < n; i++) {
     c[i] = sc ? sc[i] : scount;
@@ -322,8 +322,8 @@ static int exchange_v(ic *x, const void *sbuf, int scount, const int *sc, const 
   return rc;
 }
 
-int tsmpi_inter_alltoall(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf, int recvcount,
-                         MPI_Datatype recvtype, MPI_Comm comm) {
+int coll_inter_alltoall(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf, int recvcount,
+                        MPI_Datatype recvtype, MPI_Comm comm) {
   ic x;
   begin(&x, "MPI_Alltoall", comm);
   int rc, rn = x.c->size;
@@ -334,9 +334,9 @@ int tsmpi_inter_alltoall(const void *sendbuf, int sendcount, MPI_Datatype sendty
                             T_ALLTOALL));
 }
 
-int tsmpi_inter_alltoallv(const void *sendbuf, const int sendcounts[], const int sdispls[], MPI_Datatype sendtype,
-                          void *recvbuf, const int recvcounts[], const int rdispls[], MPI_Datatype recvtype,
-                          MPI_Comm comm) {
+int coll_inter_alltoallv(const void *sendbuf, const int sendcounts[], const int sdispls[], MPI_Datatype sendtype,
+                         void *recvbuf, const int recvcounts[], const int rdispls[], MPI_Datatype recvtype,
+                         MPI_Comm comm) {
   ic x;
   begin(&x, "MPI_Alltoallv", comm);
   int rc;
@@ -347,21 +347,21 @@ int tsmpi_inter_alltoallv(const void *sendbuf, const int sendcounts[], const int
                             T_ALLTOALLV));
 }
 
-int tsmpi_inter_alltoallw(const void *sendbuf, const int sendcounts[], const int sdispls[],
-                          const MPI_Datatype sendtypes[], void *recvbuf, const int recvcounts[], const int rdispls[],
-                          const MPI_Datatype recvtypes[], MPI_Comm comm) {
+int coll_inter_alltoallw(const void *sendbuf, const int sendcounts[], const int sdispls[],
+                         const MPI_Datatype sendtypes[], void *recvbuf, const int recvcounts[], const int rdispls[],
+                         const MPI_Datatype recvtypes[], MPI_Comm comm) {
   ic x;
   begin(&x, "MPI_Alltoallw", comm);
   int rc = MPI_SUCCESS, n = x.c->size;
   if (sendbuf == MPI_IN_PLACE || recvbuf == MPI_IN_PLACE)
-    return end(&x, tsmpi_coll_in_place_bad(comm, x.fn, "a buffer on an intercommunicator"));
-  if (!sendtypes || !recvtypes) return end(&x, tsmpi_raise(comm, MPI_ERR_ARG, x.fn, "NULL array of types"));
-  if ((rc = tsmpi_coll_counts_ok(comm, x.fn, "sendcounts", sendcounts, sdispls, n)) ||
-      (rc = tsmpi_coll_counts_ok(comm, x.fn, "recvcounts", recvcounts, rdispls, n)))
+    return end(&x, coll_in_place_bad(comm, x.fn, "a buffer on an intercommunicator"));
+  if (!sendtypes || !recvtypes) return end(&x, err_comm_raise(comm, MPI_ERR_ARG, x.fn, "NULL array of types"));
+  if ((rc = coll_counts_ok(comm, x.fn, "sendcounts", sendcounts, sdispls, n)) ||
+      (rc = coll_counts_ok(comm, x.fn, "recvcounts", recvcounts, rdispls, n)))
     return end(&x, rc);
   for (int i = 0; i < n && !rc; i++)
-    if (!(rc = tsmpi_coll_type_ok(comm, x.fn, "sendtypes[i]", sendtypes[i])))
-      rc = tsmpi_coll_type_ok(comm, x.fn, "recvtypes[i]", recvtypes[i]);
+    if (!(rc = coll_type_ok(comm, x.fn, "sendtypes[i]", sendtypes[i])))
+      rc = coll_type_ok(comm, x.fn, "recvtypes[i]", recvtypes[i]);
   if (rc) return end(&x, rc);
   MPI_Aint *d = grab((2 * (size_t)n + 1) * sizeof *d);
   for (int i = 0; i < n; i++) d[i] = sdispls[i], d[n + i] = rdispls[i];
@@ -374,7 +374,7 @@ int tsmpi_inter_alltoallw(const void *sendbuf, const int sendcounts[], const int
 
 static int red_ok(ic *x, const void *sendbuf, int count, MPI_Datatype dt, MPI_Op op) {
   int rc = data_ok(x, "datatype", sendbuf, count, dt);
-  return rc ? rc : tsmpi_coll_op_ok(x->comm, x->fn, op, dt);
+  return rc ? rc : coll_op_ok(x->comm, x->fn, op, dt);
 }
 
 /* The group's operands reduced at its rank 0 (into *base's room there). */
@@ -384,29 +384,29 @@ static int reduce_local(ic *x, const void *sendbuf, int count, MPI_Datatype dt, 
   return PMPI_Reduce(sendbuf, *res, count, dt, op, 0, x->local);
 }
 
-int tsmpi_inter_reduce(const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op, int root,
-                       MPI_Comm comm) {
+int coll_inter_reduce(const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op, int root,
+                      MPI_Comm comm) {
   ic x;
   begin(&x, "MPI_Reduce", comm);
   int rc = root_ok(&x, root);
   if (rc || root == MPI_PROC_NULL) return end(&x, rc);
   if (root == MPI_ROOT) {
-    if ((rc = data_ok(&x, "datatype", recvbuf, count, datatype)) || (rc = tsmpi_coll_op_ok(comm, x.fn, op, datatype)))
+    if ((rc = data_ok(&x, "datatype", recvbuf, count, datatype)) || (rc = coll_op_ok(comm, x.fn, op, datatype)))
       return end(&x, rc);
     return end(&x, recv(&x, recvbuf, count, datatype, 0, T_REDUCE));
   }
   if ((rc = red_ok(&x, sendbuf, count, datatype, op))) return end(&x, rc);
   void *res, *base;
   rc = reduce_local(&x, sendbuf, count, datatype, op, &res, &base);
-  if (!rc && res) rc = tsmpi_p2p_send(res, count, datatype, root, T_REDUCE, comm);
+  if (!rc && res) rc = coll_p2p_send(res, count, datatype, root, T_REDUCE, comm);
   drop(base);
   return end(&x, rc);
 }
 
 /* Each group's operands reduced at its rank 0; the two swap, and each
  * spreads the other's in its group. */
-int tsmpi_inter_allreduce(const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op,
-                          MPI_Comm comm) {
+int coll_inter_allreduce(const void *sendbuf, void *recvbuf, int count, MPI_Datatype datatype, MPI_Op op,
+                         MPI_Comm comm) {
   ic x;
   begin(&x, "MPI_Allreduce", comm);
   int rc;
@@ -414,7 +414,7 @@ int tsmpi_inter_allreduce(const void *sendbuf, void *recvbuf, int count, MPI_Dat
     return end(&x, rc);
   void *res, *base;
   rc = reduce_local(&x, sendbuf, count, datatype, op, &res, &base);
-  if (!rc && res && !(rc = tsmpi_p2p_send(res, count, datatype, 0, T_ALLREDUCE, comm)))
+  if (!rc && res && !(rc = coll_p2p_send(res, count, datatype, 0, T_ALLREDUCE, comm)))
     rc = recv(&x, recvbuf, count, datatype, 0, T_ALLREDUCE);
   if (!rc) rc = PMPI_Bcast(recvbuf, count, datatype, 0, x.local);
   drop(base);
@@ -423,7 +423,7 @@ int tsmpi_inter_allreduce(const void *sendbuf, void *recvbuf, int count, MPI_Dat
 
 /* The same over the whole vector (the sum of counts), then scattered. */
 static int redscat(ic *x, const void *sendbuf, void *recvbuf, const int *counts, MPI_Datatype dt, MPI_Op op) {
-  int ln = tsm_comm_lsize(x->c), total = 0, *displs = grab(((size_t)ln + 1) * sizeof *displs), rc;
+  int ln = st_comm_lsize(x->c), total = 0, *displs = grab(((size_t)ln + 1) * sizeof *displs), rc;
   for (int i = 0; i < ln; i++) displs[i] = total, total += counts[i];
   if ((rc = red_ok(x, sendbuf, total, dt, op)) || (rc = data_ok(x, "datatype", recvbuf, counts[x->c->rank], dt))) {
     drop(displs);
@@ -433,7 +433,7 @@ static int redscat(ic *x, const void *sendbuf, void *recvbuf, const int *counts,
   rc = reduce_local(x, sendbuf, total, dt, op, &res, &base);
   if (!rc && res) {
     theirs = room(total, dt, &tbase);
-    if (!(rc = tsmpi_p2p_send(res, total, dt, 0, T_REDUCE_SCATTER, x->comm)))
+    if (!(rc = coll_p2p_send(res, total, dt, 0, T_REDUCE_SCATTER, x->comm)))
       rc = recv(x, theirs, total, dt, 0, T_REDUCE_SCATTER);
   }
   if (!rc) rc = PMPI_Scatterv(theirs, counts, displs, dt, recvbuf, counts[x->c->rank], dt, 0, x->local);
@@ -443,19 +443,19 @@ static int redscat(ic *x, const void *sendbuf, void *recvbuf, const int *counts,
   return rc;
 }
 
-int tsmpi_inter_reduce_scatter(const void *sendbuf, void *recvbuf, const int recvcounts[], MPI_Datatype datatype,
-                               MPI_Op op, MPI_Comm comm) {
+int coll_inter_reduce_scatter(const void *sendbuf, void *recvbuf, const int recvcounts[], MPI_Datatype datatype,
+                              MPI_Op op, MPI_Comm comm) {
   ic x;
   begin(&x, "MPI_Reduce_scatter", comm);
-  int rc = tsmpi_coll_counts_ok(comm, x.fn, "recvcounts", recvcounts, NULL, tsm_comm_lsize(x.c));
+  int rc = coll_counts_ok(comm, x.fn, "recvcounts", recvcounts, NULL, st_comm_lsize(x.c));
   return end(&x, rc ? rc : redscat(&x, sendbuf, recvbuf, recvcounts, datatype, op));
 }
 
-int tsmpi_inter_reduce_scatter_block(const void *sendbuf, void *recvbuf, int recvcount, MPI_Datatype datatype,
-                                     MPI_Op op, MPI_Comm comm) {
+int coll_inter_reduce_scatter_block(const void *sendbuf, void *recvbuf, int recvcount, MPI_Datatype datatype,
+                                    MPI_Op op, MPI_Comm comm) {
   ic x;
   begin(&x, "MPI_Reduce_scatter_block", comm);
-  int ln = tsm_comm_lsize(x.c), rc = tsmpi_check_count(comm, x.fn, recvcount);
+  int ln = st_comm_lsize(x.c), rc = err_comm_check_count(comm, x.fn, recvcount);
   if (rc) return end(&x, rc);
   int *counts = grab(((size_t)ln) * sizeof *counts);
   for (int i = 0; i < ln; i++) counts[i] = recvcount;
@@ -464,6 +464,6 @@ int tsmpi_inter_reduce_scatter_block(const void *sendbuf, void *recvbuf, int rec
   return end(&x, rc);
 }
 
-int tsmpi_inter_none(MPI_Comm comm, const char *fn) {
-  return tsmpi_raise(comm, MPI_ERR_COMM, fn, "an intercommunicator (%s is for intracommunicators only)", fn);
+int coll_inter_none(MPI_Comm comm, const char *fn) {
+  return err_comm_raise(comm, MPI_ERR_COMM, fn, "an intercommunicator (%s is for intracommunicators only)", fn);
 }

@@ -21,13 +21,13 @@
 
 /* The exchange: the packed block sb[l] (sn[l] bytes) to destination l, block
  * k of the sources' into rb[k] (rn[k] bytes). */
-static void exchange(tsmpi_sched *s, const tsmpi_topo *t, char *const *sb, const size_t *sn, char *const *rb,
+static void exchange(coll_sched *s, const ptopo *t, char *const *sb, const size_t *sn, char *const *rb,
                      const size_t *rn) {
   for (int k = 0; k < t->indeg; k++)
-    if (t->sources[k] != MPI_PROC_NULL) tsmpi_sched_irecv(s, rb[k], rn[k], t->sources[k]);
+    if (t->sources[k] != MPI_PROC_NULL) coll_sched_irecv(s, rb[k], rn[k], t->sources[k]);
   for (int l = 0; l < t->outdeg; l++)
-    if (t->dests[l] != MPI_PROC_NULL) tsmpi_sched_isend(s, sb[l], sn[l], t->dests[l]);
-  tsmpi_sched_waitall(s);
+    if (t->dests[l] != MPI_PROC_NULL) coll_sched_isend(s, sb[l], sn[l], t->dests[l]);
+  coll_sched_waitall(s);
 }
 
 /* One side of an exchange: per neighbour, count elements of a type at a
@@ -50,42 +50,42 @@ static void *at(const side *d, int i) {
   if (d->same) return (void *)d->buf;
   if (d->bdispls) return (char *)d->buf + d->bdispls[i];
   MPI_Aint off = d->displs ? d->displs[i] : (MPI_Aint)i * d->count;
-  return tsmpi_coll_at(d->buf, off, type_of(d, i));
+  return coll_at(d->buf, off, type_of(d, i));
 }
 
 /* n neighbours' blocks of a side: counts >= 0, types committed, arrays there. */
 static int side_ok(MPI_Comm comm, const char *fn, const char *what, const side *d, int n) {
   int rc;
-  if (d->buf == MPI_IN_PLACE) return tsmpi_coll_in_place_bad(comm, fn, what);
+  if (d->buf == MPI_IN_PLACE) return coll_in_place_bad(comm, fn, what);
   if (d->arrays) {
     if (n > 0 && (!d->counts || (!d->displs && !d->bdispls)))
-      return tsmpi_raise(comm, MPI_ERR_ARG, fn, "NULL counts or displacements of %s", what);
+      return err_comm_raise(comm, MPI_ERR_ARG, fn, "NULL counts or displacements of %s", what);
     for (int i = 0; i < n; i++)
-      if (d->counts[i] < 0) return tsmpi_raise(comm, MPI_ERR_COUNT, fn, "%s's count [%d] = %d < 0", what, i, d->counts[i]);
-  } else if ((rc = tsmpi_check_count(comm, fn, d->count))) {
+      if (d->counts[i] < 0) return err_comm_raise(comm, MPI_ERR_COUNT, fn, "%s's count [%d] = %d < 0", what, i, d->counts[i]);
+  } else if ((rc = err_comm_check_count(comm, fn, d->count))) {
     return rc;
   }
-  if (d->arrays == 2 && n > 0 && !d->types) return tsmpi_raise(comm, MPI_ERR_ARG, fn, "NULL types of %s", what);
+  if (d->arrays == 2 && n > 0 && !d->types) return err_comm_raise(comm, MPI_ERR_ARG, fn, "NULL types of %s", what);
   for (int i = 0; i < (d->types ? n : 1); i++) {
     char w[48];
     snprintf(w, sizeof w, d->types ? "%s's type [%d]" : "%s's type", what, i);
-    if ((rc = tsmpi_coll_type_ok(comm, fn, w, d->types ? d->types[i] : d->type))) return rc;
+    if ((rc = coll_type_ok(comm, fn, w, d->types ? d->types[i] : d->type))) return rc;
   }
   return MPI_SUCCESS;
 }
 
 /* The body of them all. */
-static int neighbor(const char *fn, tsmpi_coll c, side snd, side rcv, MPI_Comm comm, MPI_Request *req) {
-  int rc = tsmpi_comm_check(comm, fn);
-  if (rc || (req && (rc = tsmpi_coll_req_ok(comm, fn, req)))) return rc;
-  tsmpi_topo *t = tsmpi_topo_of(comm, fn, 0, &rc);
+static int neighbor(const char *fn, coll_id c, side snd, side rcv, MPI_Comm comm, MPI_Request *req) {
+  int rc = comm_check(comm, fn);
+  if (rc || (req && (rc = coll_req_ok(comm, fn, req)))) return rc;
+  ptopo *t = ptopo_of(comm, fn, 0, &rc);
   if (!t) return rc;
   if ((rc = side_ok(comm, fn, "sendbuf", &snd, t->outdeg)) || (rc = side_ok(comm, fn, "recvbuf", &rcv, t->indeg)))
     return rc;
-  tsmpi_sched *s = tsmpi_coll_start(fn, comm, c, -1, req);
+  coll_sched *s = coll_start(fn, comm, c, -1, req);
   int nb = t->indeg + t->outdeg;
-  char **blk = tsmpi_sched_mem(s, ((size_t)nb + 1) * sizeof *blk);
-  size_t *len = tsmpi_sched_mem(s, ((size_t)nb + 1) * sizeof *len);
+  char **blk = coll_sched_mem(s, ((size_t)nb + 1) * sizeof *blk);
+  size_t *len = coll_sched_mem(s, ((size_t)nb + 1) * sizeof *len);
   char **sb = blk, **rb = blk + t->outdeg;
   size_t *sn = len, *rn = len + t->outdeg;
   for (int l = 0; l < t->outdeg; l++) {
@@ -94,18 +94,18 @@ static int neighbor(const char *fn, tsmpi_coll c, side snd, side rcv, MPI_Comm c
       sn[l] = sn[0];
       continue;
     }
-    sb[l] = tsmpi_coll_pack(s, at(&snd, l), count_of(&snd, l), type_of(&snd, l));
-    sn[l] = (size_t)count_of(&snd, l) * tsmpi_type_size(type_of(&snd, l));
+    sb[l] = coll_pack(s, at(&snd, l), count_of(&snd, l), type_of(&snd, l));
+    sn[l] = (size_t)count_of(&snd, l) * dtype_size(type_of(&snd, l));
   }
   for (int k = 0; k < t->indeg; k++) {
-    rn[k] = (size_t)count_of(&rcv, k) * tsmpi_type_size(type_of(&rcv, k));
-    rb[k] = tsmpi_sched_mem(s, rn[k]);
+    rn[k] = (size_t)count_of(&rcv, k) * dtype_size(type_of(&rcv, k));
+    rb[k] = coll_sched_mem(s, rn[k]);
   }
   exchange(s, t, sb, sn, rb, rn);
   for (int k = 0; k < t->indeg; k++)
     if (t->sources[k] != MPI_PROC_NULL)
-      tsmpi_sched_unpack(s, rb[k], rn[k], at(&rcv, k), count_of(&rcv, k), type_of(&rcv, k));
-  return tsmpi_coll_finish(s);
+      coll_sched_unpack(s, rb[k], rn[k], at(&rcv, k), count_of(&rcv, k), type_of(&rcv, k));
+  return coll_finish(s);
 }
 
 /* ==== the calls =========================================================== */
@@ -114,7 +114,7 @@ static int allgather(const char *fn, const void *sendbuf, int sendcount, MPI_Dat
                      int recvcount, MPI_Datatype recvtype, MPI_Comm comm, MPI_Request *req) {
   side snd = {sendbuf, NULL, sendcount, NULL, NULL, NULL, sendtype, 1, 0};
   side rcv = {recvbuf, NULL, recvcount, NULL, NULL, NULL, recvtype, 0, 0};
-  if (sendcount < 0) return tsmpi_check_count(comm, fn, sendcount);
+  if (sendcount < 0) return err_comm_check_count(comm, fn, sendcount);
   return neighbor(fn, COLL_NEIGHBOR_ALLGATHER, snd, rcv, comm, req);
 }
 
@@ -126,8 +126,8 @@ int PMPI_Neighbor_allgather(const void *sendbuf, int sendcount, MPI_Datatype sen
 int PMPI_Ineighbor_allgather(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf,
                             int recvcount, MPI_Datatype recvtype, MPI_Comm comm, MPI_Request *request) {
   static const char fn[] = "MPI_Ineighbor_allgather";
-  int rc = tsmpi_comm_check(comm, fn);
-  if (rc || (rc = tsmpi_coll_req_ok(comm, fn, request))) return rc;
+  int rc = comm_check(comm, fn);
+  if (rc || (rc = coll_req_ok(comm, fn, request))) return rc;
   return allgather(fn, sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, comm, request);
 }
 
@@ -136,7 +136,7 @@ static int allgatherv(const char *fn, const void *sendbuf, int sendcount, MPI_Da
                       MPI_Request *req) {
   side snd = {sendbuf, NULL, sendcount, NULL, NULL, NULL, sendtype, 1, 0};
   side rcv = {recvbuf, recvcounts, 0, displs, NULL, NULL, recvtype, 0, 1};
-  if (sendcount < 0) return tsmpi_check_count(comm, fn, sendcount);
+  if (sendcount < 0) return err_comm_check_count(comm, fn, sendcount);
   return neighbor(fn, COLL_NEIGHBOR_ALLGATHERV, snd, rcv, comm, req);
 }
 
@@ -150,8 +150,8 @@ int PMPI_Ineighbor_allgatherv(const void *sendbuf, int sendcount, MPI_Datatype s
                              const int recvcounts[], const int displs[], MPI_Datatype recvtype, MPI_Comm comm,
                              MPI_Request *request) {
   static const char fn[] = "MPI_Ineighbor_allgatherv";
-  int rc = tsmpi_comm_check(comm, fn);
-  if (rc || (rc = tsmpi_coll_req_ok(comm, fn, request))) return rc;
+  int rc = comm_check(comm, fn);
+  if (rc || (rc = coll_req_ok(comm, fn, request))) return rc;
   return allgatherv(fn, sendbuf, sendcount, sendtype, recvbuf, recvcounts, displs, recvtype, comm, request);
 }
 
@@ -167,8 +167,8 @@ int PMPI_Ineighbor_alltoall(const void *sendbuf, int sendcount, MPI_Datatype sen
   static const char fn[] = "MPI_Ineighbor_alltoall";
   side snd = {sendbuf, NULL, sendcount, NULL, NULL, NULL, sendtype, 0, 0};
   side rcv = {recvbuf, NULL, recvcount, NULL, NULL, NULL, recvtype, 0, 0};
-  int rc = tsmpi_comm_check(comm, fn);
-  if (rc || (rc = tsmpi_coll_req_ok(comm, fn, request))) return rc;
+  int rc = comm_check(comm, fn);
+  if (rc || (rc = coll_req_ok(comm, fn, request))) return rc;
   return neighbor(fn, COLL_NEIGHBOR_ALLTOALL, snd, rcv, comm, request);
 }
 
@@ -186,8 +186,8 @@ int PMPI_Ineighbor_alltoallv(const void *sendbuf, const int sendcounts[], const 
   static const char fn[] = "MPI_Ineighbor_alltoallv";
   side snd = {sendbuf, sendcounts, 0, sdispls, NULL, NULL, sendtype, 0, 1};
   side rcv = {recvbuf, recvcounts, 0, rdispls, NULL, NULL, recvtype, 0, 1};
-  int rc = tsmpi_comm_check(comm, fn);
-  if (rc || (rc = tsmpi_coll_req_ok(comm, fn, request))) return rc;
+  int rc = comm_check(comm, fn);
+  if (rc || (rc = coll_req_ok(comm, fn, request))) return rc;
   return neighbor(fn, COLL_NEIGHBOR_ALLTOALLV, snd, rcv, comm, request);
 }
 
@@ -206,7 +206,7 @@ int PMPI_Ineighbor_alltoallw(const void *sendbuf, const int sendcounts[], const 
   static const char fn[] = "MPI_Ineighbor_alltoallw";
   side snd = {sendbuf, sendcounts, 0, NULL, sdispls, sendtypes, MPI_DATATYPE_NULL, 0, 2};
   side rcv = {recvbuf, recvcounts, 0, NULL, rdispls, recvtypes, MPI_DATATYPE_NULL, 0, 2};
-  int rc = tsmpi_comm_check(comm, fn);
-  if (rc || (rc = tsmpi_coll_req_ok(comm, fn, request))) return rc;
+  int rc = comm_check(comm, fn);
+  if (rc || (rc = coll_req_ok(comm, fn, request))) return rc;
   return neighbor(fn, COLL_NEIGHBOR_ALLTOALLW, snd, rcv, comm, request);
 }

@@ -20,7 +20,7 @@ static const char *const alg_names[ALG_N] = {
 
 /* Each collective's algorithms, ALG_N-terminated (auto and linear first). */
 #define ALGS(...) {ALG_AUTO, ALG_LINEAR, __VA_ARGS__, ALG_N}
-static const tsmpi_alg coll_algs[COLL_N][8] = {
+static const coll_alg coll_algs[COLL_N][8] = {
   [COLL_BARRIER] = ALGS(ALG_DISSEMINATION),
   [COLL_BCAST] = ALGS(ALG_BINOMIAL, ALG_SCATTER_RECURSIVE_DOUBLING_ALLGATHER, ALG_SCATTER_RING_ALLGATHER),
   [COLL_REDUCE] = ALGS(ALG_BINOMIAL, ALG_REDUCE_SCATTER_GATHER),
@@ -46,34 +46,34 @@ static const tsmpi_alg coll_algs[COLL_N][8] = {
   [COLL_NEIGHBOR_ALLTOALLW] = {ALG_AUTO, ALG_LINEAR, ALG_N},
 };
 
-/* The run's setting: written before the ranks start (tsmpi_coll_option),
+/* The run's setting: written before the ranks start (coll_option),
  * only read while they run, so ranks that are threads share it safely. */
-static tsmpi_alg setting[COLL_N];
+static coll_alg setting[COLL_N];
 
-const char *tsmpi_coll_name(tsmpi_coll c) { return coll_names[c]; }
-const char *tsmpi_alg_name(tsmpi_alg a) { return alg_names[a]; }
-tsmpi_alg tsmpi_coll_setting(tsmpi_coll c) { return setting[c]; }
+const char *coll_name(coll_id c) { return coll_names[c]; }
+const char *coll_alg_name(coll_alg a) { return alg_names[a]; }
+coll_alg coll_setting(coll_id c) { return setting[c]; }
 
-void tsmpi_coll_reset(void) {
+void coll_reset(void) {
   for (int c = 0; c < COLL_N; c++) setting[c] = ALG_AUTO;
 }
 
-static int has(tsmpi_coll c, tsmpi_alg a) {
+static int has(coll_id c, coll_alg a) {
   for (int i = 0; coll_algs[c][i] != ALG_N; i++)
     if (coll_algs[c][i] == a) return 1;
   return 0;
 }
 
 /* The collective's algorithms as "linear, binomial, ..." into buf. */
-static void list(tsmpi_coll c, char *buf, size_t len, const char *sep) {
+static void list(coll_id c, char *buf, size_t len, const char *sep) {
   size_t n = 0;
   buf[0] = '\0';
   for (int i = 0; coll_algs[c][i] != ALG_N && n < len; i++)
     n += (size_t)snprintf(buf + n, len - n, "%s%s", i ? sep : "", alg_names[coll_algs[c][i]]);
 }
 
-int tsmpi_coll_option(const char *spec, char *err, size_t errlen) {
-  tsmpi_alg next[COLL_N];
+int coll_option(const char *spec, char *err, size_t errlen) {
+  coll_alg next[COLL_N];
   memcpy(next, setting, sizeof next);
   const char *p = spec;
   for (;;) {
@@ -104,13 +104,13 @@ int tsmpi_coll_option(const char *spec, char *err, size_t errlen) {
       }
       for (a = 0; a < ALG_N && strcmp(eq + 1, alg_names[a]); a++)
         ;
-      if (a == ALG_N || !has((tsmpi_coll)c, (tsmpi_alg)a)) {
+      if (a == ALG_N || !has((coll_id)c, (coll_alg)a)) {
         char algs[256];
-        list((tsmpi_coll)c, algs, sizeof algs, ", ");
+        list((coll_id)c, algs, sizeof algs, ", ");
         snprintf(err, errlen, "--coll: %s has no algorithm '%s' (%s)", item, eq + 1, algs);
         return -1;
       }
-      next[c] = (tsmpi_alg)a;
+      next[c] = (coll_alg)a;
     }
     if (!end) break;
     p = end + 1;
@@ -119,10 +119,10 @@ int tsmpi_coll_option(const char *spec, char *err, size_t errlen) {
   return 0;
 }
 
-void tsmpi_coll_usage(FILE *out) {
+void coll_usage(FILE *out) {
   for (int c = 0; c < COLL_N; c++) {
     char algs[256];
-    list((tsmpi_coll)c, algs, sizeof algs, " ");
+    list((coll_id)c, algs, sizeof algs, " ");
     fprintf(out, "%s: %s\n", coll_names[c], algs);
   }
 }

@@ -15,42 +15,42 @@
 
 /* acc = acc op right: the result lands in the right operand's buffer
  * (op.h), so it goes through scratch and back. */
-static void acc_after(tsmpi_sched *s, void *acc, const void *right, void *scratch, int count) {
-  size_t n = (size_t)count * tsmpi_sched_red(s)->tsize;
-  tsmpi_sched_copy(s, scratch, right, n);
-  tsmpi_sched_reduce(s, acc, scratch, count);
-  tsmpi_sched_copy(s, acc, scratch, n);
+static void acc_after(coll_sched *s, void *acc, const void *right, void *scratch, int count) {
+  size_t n = (size_t)count * coll_sched_red(s)->tsize;
+  coll_sched_copy(s, scratch, right, n);
+  coll_sched_reduce(s, acc, scratch, count);
+  coll_sched_copy(s, acc, scratch, n);
 }
 
 /* ==== reduce ============================================================== */
 
 /* Every rank sends to the root, which folds the operands in rank order:
  * ((a0 op a1) op a2) ... */
-void tsmpi_reduce_linear(tsmpi_sched *s, const void *sbuf, void *rbuf, int count, int root) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
-  size_t n = (size_t)count * tsmpi_sched_red(s)->tsize;
+void coll_reduce_linear(coll_sched *s, const void *sbuf, void *rbuf, int count, int root) {
+  const coll_cg *g = coll_sched_group(s);
+  size_t n = (size_t)count * coll_sched_red(s)->tsize;
   if (g->rank != root) {
-    tsmpi_sched_send(s, sbuf, n, root);
+    coll_sched_send(s, sbuf, n, root);
     return;
   }
-  char *acc = tsmpi_sched_mem(s, n), *in = tsmpi_sched_mem(s, n);
+  char *acc = coll_sched_mem(s, n), *in = coll_sched_mem(s, n);
   const void *mine = sbuf ? sbuf : rbuf;
   for (int i = 0; i < g->size; i++) {
     const void *a = mine;
     if (i != root) {
-      tsmpi_sched_recv(s, in, n, i);
+      coll_sched_recv(s, in, n, i);
       a = in;
     }
     if (i == 0) {
-      tsmpi_sched_copy(s, acc, a, n);
+      coll_sched_copy(s, acc, a, n);
     } else if (a == in) {
-      tsmpi_sched_reduce(s, acc, in, count);
-      tsmpi_sched_copy(s, acc, in, n);
+      coll_sched_reduce(s, acc, in, count);
+      coll_sched_copy(s, acc, in, n);
     } else {
       acc_after(s, acc, a, in, count);
     }
   }
-  tsmpi_sched_copy(s, rbuf, acc, n);
+  coll_sched_copy(s, rbuf, acc, n);
 }
 
 /* Binomial tree on ranks relative to the root (to rank 0, then a message
@@ -58,36 +58,36 @@ void tsmpi_reduce_linear(tsmpi_sched *s, const void *sbuf, void *rbuf, int count
  * relrank | 2^k for rising k, combining, until its bit k is set, when it
  * sends its partial result to its parent.  MPICH combines a child's result
  * on the left of the parent's when op commutes, on the right otherwise. */
-void tsmpi_reduce_binomial(tsmpi_sched *s, const void *sbuf, void *rbuf, int count, int root) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
-  const tsmpi_red *r = tsmpi_sched_red(s);
+void coll_reduce_binomial(coll_sched *s, const void *sbuf, void *rbuf, int count, int root) {
+  const coll_cg *g = coll_sched_group(s);
+  const coll_red *r = coll_sched_red(s);
   int size = g->size, rank = g->rank;
   int lroot = r->commute ? root : 0, rel = (rank - lroot + size) % size;
   size_t n = (size_t)count * r->tsize;
-  char *acc = tsmpi_sched_mem(s, n), *tmp = tsmpi_sched_mem(s, n);
-  tsmpi_sched_copy(s, acc, sbuf ? sbuf : rbuf, n);
+  char *acc = coll_sched_mem(s, n), *tmp = coll_sched_mem(s, n);
+  coll_sched_copy(s, acc, sbuf ? sbuf : rbuf, n);
   for (int mask = 1; mask < size; mask <<= 1) {
     if (!(mask & rel)) {
       int src = rel | mask;
       if (src < size) {
-        tsmpi_sched_recv(s, tmp, n, (src + lroot) % size);
+        coll_sched_recv(s, tmp, n, (src + lroot) % size);
         if (r->commute) {
-          tsmpi_sched_reduce(s, tmp, acc, count);   /* acc = child op acc */
+          coll_sched_reduce(s, tmp, acc, count);   /* acc = child op acc */
         } else {
-          tsmpi_sched_reduce(s, acc, tmp, count);   /* acc = acc op child */
-          tsmpi_sched_copy(s, acc, tmp, n);
+          coll_sched_reduce(s, acc, tmp, count);   /* acc = acc op child */
+          coll_sched_copy(s, acc, tmp, n);
         }
       }
     } else {
-      tsmpi_sched_send(s, acc, n, ((rel & ~mask) + lroot) % size);
+      coll_sched_send(s, acc, n, ((rel & ~mask) + lroot) % size);
       break;
     }
   }
   if (!r->commute && root != 0) {
-    if (rank == 0) tsmpi_sched_send(s, acc, n, root);
-    else if (rank == root) tsmpi_sched_recv(s, acc, n, 0);
+    if (rank == 0) coll_sched_send(s, acc, n, root);
+    else if (rank == root) coll_sched_recv(s, acc, n, 0);
   }
-  if (rank == root) tsmpi_sched_copy(s, rbuf, acc, n);
+  if (rank == root) coll_sched_copy(s, rbuf, acc, n);
 }
 
 /* The blocks the Rabenseifner algorithms cut count elements into among
@@ -108,9 +108,9 @@ static int sum(const int *cnts, int a, int b) {
  * pof2 new ranks: recursive halving of the data with partners at distance
  * 1, 2, 4, ... (newrank ^ mask).  work holds the operand and gets this
  * rank's reduced block. */
-static void rsag_scatter(tsmpi_sched *s, char *work, char *tmp, int newrank, int pof2, int rem, int odd_kept,
+static void rsag_scatter(coll_sched *s, char *work, char *tmp, int newrank, int pof2, int rem, int odd_kept,
                          const int *cnts, const int *disps, int *send_idx, int *last_idx) {
-  size_t ts = tsmpi_sched_red(s)->tsize;
+  size_t ts = coll_sched_red(s)->tsize;
   int mask = 1, recv_idx = 0;
   *send_idx = 0;
   *last_idx = pof2;
@@ -125,11 +125,11 @@ static void rsag_scatter(tsmpi_sched *s, char *work, char *tmp, int newrank, int
       send_cnt = sum(cnts, *send_idx, recv_idx);
       recv_cnt = sum(cnts, recv_idx, *last_idx);
     }
-    tsmpi_sched_sendrecv(s, work + (size_t)disps[*send_idx] * ts, (size_t)send_cnt * ts, dst,
-                         tmp + (size_t)disps[recv_idx] * ts, (size_t)recv_cnt * ts, dst);
+    coll_sched_sendrecv(s, work + (size_t)disps[*send_idx] * ts, (size_t)send_cnt * ts, dst,
+                        tmp + (size_t)disps[recv_idx] * ts, (size_t)recv_cnt * ts, dst);
     /* received op ours: these algorithms run for predefined (commutative)
      * operations only */
-    tsmpi_sched_reduce(s, tmp + (size_t)disps[recv_idx] * ts, work + (size_t)disps[recv_idx] * ts, recv_cnt);
+    coll_sched_reduce(s, tmp + (size_t)disps[recv_idx] * ts, work + (size_t)disps[recv_idx] * ts, recv_cnt);
     *send_idx = recv_idx;
     mask <<= 1;
     if (mask < pof2) *last_idx = recv_idx + pof2 / mask;
@@ -142,22 +142,22 @@ static void rsag_scatter(tsmpi_sched *s, char *work, char *tmp, int newrank, int
  * blocks to the root (through new rank 0 when the root was folded away).
  * For predefined operations and count >= pof2.  Cost 2 lg p alpha +
  * 2 n (p-1)/p beta + n (p-1)/p gamma. */
-void tsmpi_reduce_scatter_gather(tsmpi_sched *s, const void *sbuf, void *rbuf, int count, int root) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
-  size_t ts = tsmpi_sched_red(s)->tsize;
-  int size = g->size, rank = g->rank, pof2 = tsmpi_pof2(size), rem = size - pof2, newrank;
+void coll_reduce_scatter_gather(coll_sched *s, const void *sbuf, void *rbuf, int count, int root) {
+  const coll_cg *g = coll_sched_group(s);
+  size_t ts = coll_sched_red(s)->tsize;
+  int size = g->size, rank = g->rank, pof2 = coll_pof2(size), rem = size - pof2, newrank;
   size_t n = (size_t)count * ts;
-  char *work = tsmpi_sched_mem(s, n), *tmp = tsmpi_sched_mem(s, n);
-  int *cnts = tsmpi_sched_mem(s, 2 * (size_t)pof2 * sizeof *cnts), *disps = cnts + pof2;
+  char *work = coll_sched_mem(s, n), *tmp = coll_sched_mem(s, n);
+  int *cnts = coll_sched_mem(s, 2 * (size_t)pof2 * sizeof *cnts), *disps = cnts + pof2;
   int send_idx = 0, last_idx = 0, newroot;
-  tsmpi_sched_copy(s, work, sbuf ? sbuf : rbuf, n);
+  coll_sched_copy(s, work, sbuf ? sbuf : rbuf, n);
   if (rank < 2 * rem) {
     if (rank % 2) {
-      tsmpi_sched_send(s, work, n, rank - 1);
+      coll_sched_send(s, work, n, rank - 1);
       newrank = -1;
     } else {
-      tsmpi_sched_recv(s, tmp, n, rank + 1);
-      tsmpi_sched_reduce(s, tmp, work, count);
+      coll_sched_recv(s, tmp, n, rank + 1);
+      coll_sched_reduce(s, tmp, work, count);
       newrank = rank / 2;
     }
   } else {
@@ -169,12 +169,12 @@ void tsmpi_reduce_scatter_gather(tsmpi_sched *s, const void *sbuf, void *rbuf, i
   if (root < 2 * rem) {
     if (root % 2) {
       if (rank == root) {
-        tsmpi_sched_recv(s, work, (size_t)cnts[0] * ts, 0);
+        coll_sched_recv(s, work, (size_t)cnts[0] * ts, 0);
         newrank = 0;
         send_idx = 0;
         last_idx = 2;
       } else if (newrank == 0) {
-        tsmpi_sched_send(s, work, (size_t)cnts[0] * ts, root);
+        coll_sched_send(s, work, (size_t)cnts[0] * ts, root);
         newrank = -1;
       }
       newroot = 0;
@@ -207,49 +207,49 @@ void tsmpi_reduce_scatter_gather(tsmpi_sched *s, const void *sbuf, void *rbuf, i
         recv_cnt = sum(cnts, recv_idx, send_idx);
       }
       if (newdst_tree_root == newroot_tree_root) {
-        tsmpi_sched_send(s, work + (size_t)disps[send_idx] * ts, (size_t)send_cnt * ts, dst);
+        coll_sched_send(s, work + (size_t)disps[send_idx] * ts, (size_t)send_cnt * ts, dst);
         break;
       }
-      tsmpi_sched_recv(s, work + (size_t)disps[recv_idx] * ts, (size_t)recv_cnt * ts, dst);
+      coll_sched_recv(s, work + (size_t)disps[recv_idx] * ts, (size_t)recv_cnt * ts, dst);
       if (newrank > newdst) send_idx = recv_idx;
     }
   }
-  if (rank == root) tsmpi_sched_copy(s, rbuf, work, n);
+  if (rank == root) coll_sched_copy(s, rbuf, work, n);
 }
 
 /* ==== allreduce =========================================================== */
 
 /* A linear reduce to rank 0, then a linear broadcast. */
-void tsmpi_allreduce_linear(tsmpi_sched *s, void *buf, int count) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
-  tsmpi_reduce_linear(s, g->rank ? buf : NULL, buf, count, 0);
-  tsmpi_bcast_linear(s, buf, (size_t)count * tsmpi_sched_red(s)->tsize, 0);
+void coll_allreduce_linear(coll_sched *s, void *buf, int count) {
+  const coll_cg *g = coll_sched_group(s);
+  coll_reduce_linear(s, g->rank ? buf : NULL, buf, count, 0);
+  coll_bcast_linear(s, buf, (size_t)count * coll_sched_red(s)->tsize, 0);
 }
 
 /* Fold the first 2 rem ranks pairwise into the odd ones (even sends to
  * rank + 1, which combines even op odd); the new rank, -1 for the even
  * ones. */
-static int fold_into_odd(tsmpi_sched *s, char *buf, char *tmp, int count, int rem) {
-  int rank = tsmpi_sched_group(s)->rank;
-  size_t n = (size_t)count * tsmpi_sched_red(s)->tsize;
+static int fold_into_odd(coll_sched *s, char *buf, char *tmp, int count, int rem) {
+  int rank = coll_sched_group(s)->rank;
+  size_t n = (size_t)count * coll_sched_red(s)->tsize;
   if (rank >= 2 * rem) return rank - rem;
   if (rank % 2 == 0) {
-    tsmpi_sched_send(s, buf, n, rank + 1);
+    coll_sched_send(s, buf, n, rank + 1);
     return -1;
   }
-  tsmpi_sched_recv(s, tmp, n, rank - 1);
-  tsmpi_sched_reduce(s, tmp, buf, count);
+  coll_sched_recv(s, tmp, n, rank - 1);
+  coll_sched_reduce(s, tmp, buf, count);
   return rank / 2;
 }
 
 /* ... and at the end the odd ones send the result back. */
-static void unfold(tsmpi_sched *s, char *buf, size_t n, int rem) {
-  int rank = tsmpi_sched_group(s)->rank;
+static void unfold(coll_sched *s, char *buf, size_t n, int rem) {
+  int rank = coll_sched_group(s)->rank;
   if (rank >= 2 * rem) return;
   if (rank % 2)
-    tsmpi_sched_send(s, buf, n, rank - 1);
+    coll_sched_send(s, buf, n, rank - 1);
   else
-    tsmpi_sched_recv(s, buf, n, rank + 1);
+    coll_sched_recv(s, buf, n, rank + 1);
 }
 
 /* Recursive doubling: beyond a power of two the first ranks fold pairwise;
@@ -257,22 +257,22 @@ static void unfold(tsmpi_sched *s, char *buf, size_t n, int rem) {
  * result with new rank ^ 2^k and combines (received op ours when op
  * commutes or the partner is lower, else ours op received); the folded
  * ranks get the result back.  Cost lg p (alpha + n beta + n gamma). */
-void tsmpi_allreduce_recursive_doubling(tsmpi_sched *s, void *buffer, int count) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
-  const tsmpi_red *r = tsmpi_sched_red(s);
-  int size = g->size, rank = g->rank, pof2 = tsmpi_pof2(size), rem = size - pof2;
+void coll_allreduce_recursive_doubling(coll_sched *s, void *buffer, int count) {
+  const coll_cg *g = coll_sched_group(s);
+  const coll_red *r = coll_sched_red(s);
+  int size = g->size, rank = g->rank, pof2 = coll_pof2(size), rem = size - pof2;
   size_t n = (size_t)count * r->tsize;
-  char *buf = buffer, *tmp = tsmpi_sched_mem(s, n);
+  char *buf = buffer, *tmp = coll_sched_mem(s, n);
   int newrank = fold_into_odd(s, buf, tmp, count, rem);
   if (newrank != -1) {
     for (int mask = 1; mask < pof2; mask <<= 1) {
       int newdst = newrank ^ mask, dst = newdst < rem ? newdst * 2 + 1 : newdst + rem;
-      tsmpi_sched_sendrecv(s, buf, n, dst, tmp, n, dst);
+      coll_sched_sendrecv(s, buf, n, dst, tmp, n, dst);
       if (r->commute || dst < rank) {
-        tsmpi_sched_reduce(s, tmp, buf, count);
+        coll_sched_reduce(s, tmp, buf, count);
       } else {
-        tsmpi_sched_reduce(s, buf, tmp, count);
-        tsmpi_sched_copy(s, buf, tmp, n);
+        coll_sched_reduce(s, buf, tmp, count);
+        coll_sched_copy(s, buf, tmp, n);
       }
     }
   }
@@ -283,13 +283,13 @@ void tsmpi_allreduce_recursive_doubling(tsmpi_sched *s, void *buffer, int count)
  * halving (partners at distance 1, 2, 4, ...), an allgather by recursive
  * doubling back, the unfold.  For predefined operations and count >= pof2.
  * Cost 2 lg p alpha + 2 n (p-1)/p beta + n (p-1)/p gamma. */
-void tsmpi_allreduce_reduce_scatter_allgather(tsmpi_sched *s, void *buffer, int count) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
-  size_t ts = tsmpi_sched_red(s)->tsize;
-  int size = g->size, pof2 = tsmpi_pof2(size), rem = size - pof2;
+void coll_allreduce_reduce_scatter_allgather(coll_sched *s, void *buffer, int count) {
+  const coll_cg *g = coll_sched_group(s);
+  size_t ts = coll_sched_red(s)->tsize;
+  int size = g->size, pof2 = coll_pof2(size), rem = size - pof2;
   size_t n = (size_t)count * ts;
-  char *buf = buffer, *tmp = tsmpi_sched_mem(s, n);
-  int *cnts = tsmpi_sched_mem(s, 2 * (size_t)pof2 * sizeof *cnts), *disps = cnts + pof2, send_idx, last_idx;
+  char *buf = buffer, *tmp = coll_sched_mem(s, n);
+  int *cnts = coll_sched_mem(s, 2 * (size_t)pof2 * sizeof *cnts), *disps = cnts + pof2, send_idx, last_idx;
   int newrank = fold_into_odd(s, buf, tmp, count, rem);
   if (newrank != -1) {
     blocks(count, pof2, cnts, disps);
@@ -306,8 +306,8 @@ void tsmpi_allreduce_reduce_scatter_allgather(tsmpi_sched *s, void *buffer, int 
         send_cnt = sum(cnts, send_idx, last_idx);
         recv_cnt = sum(cnts, recv_idx, send_idx);
       }
-      tsmpi_sched_sendrecv(s, buf + (size_t)disps[send_idx] * ts, (size_t)send_cnt * ts, dst,
-                           buf + (size_t)disps[recv_idx] * ts, (size_t)recv_cnt * ts, dst);
+      coll_sched_sendrecv(s, buf + (size_t)disps[send_idx] * ts, (size_t)send_cnt * ts, dst,
+                          buf + (size_t)disps[recv_idx] * ts, (size_t)recv_cnt * ts, dst);
       if (newrank > newdst) send_idx = recv_idx;
     }
   }

@@ -15,72 +15,72 @@
 /* Rank r receives ranks 0..r-1's result from r - 1, combines it with its
  * operand on the left, and passes the result on: ((a0 op a1) op a2) ...
  * exclusive: r passes on (prefix op a_r) and keeps the prefix. */
-static void chain(tsmpi_sched *s, const void *in, void *out, int count, int inclusive) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
-  size_t n = (size_t)count * tsmpi_sched_red(s)->tsize;
+static void chain(coll_sched *s, const void *in, void *out, int count, int inclusive) {
+  const coll_cg *g = coll_sched_group(s);
+  size_t n = (size_t)count * coll_sched_red(s)->tsize;
   int rank = g->rank;
-  char *acc = tsmpi_sched_mem(s, n);
-  tsmpi_sched_copy(s, acc, in, n);
+  char *acc = coll_sched_mem(s, n);
+  coll_sched_copy(s, acc, in, n);
   if (rank > 0) {
-    char *prefix = tsmpi_sched_mem(s, n);
-    tsmpi_sched_recv(s, prefix, n, rank - 1);
-    if (!inclusive) tsmpi_sched_copy(s, out, prefix, n);
-    tsmpi_sched_reduce(s, prefix, acc, count);
+    char *prefix = coll_sched_mem(s, n);
+    coll_sched_recv(s, prefix, n, rank - 1);
+    if (!inclusive) coll_sched_copy(s, out, prefix, n);
+    coll_sched_reduce(s, prefix, acc, count);
   }
-  if (inclusive) tsmpi_sched_copy(s, out, acc, n);
-  if (rank + 1 < g->size) tsmpi_sched_send(s, acc, n, rank + 1);
+  if (inclusive) coll_sched_copy(s, out, acc, n);
+  if (rank + 1 < g->size) coll_sched_send(s, acc, n, rank + 1);
 }
 
-void tsmpi_scan_linear(tsmpi_sched *s, const void *in, void *out, int count) { chain(s, in, out, count, 1); }
-void tsmpi_exscan_linear(tsmpi_sched *s, const void *in, void *out, int count) { chain(s, in, out, count, 0); }
+void coll_scan_linear(coll_sched *s, const void *in, void *out, int count) { chain(s, in, out, count, 1); }
+void coll_exscan_linear(coll_sched *s, const void *in, void *out, int count) { chain(s, in, out, count, 0); }
 
 /* Recursive doubling: in step k rank r exchanges its partial result (ranks
  * of its aligned block of 2^k) with r ^ 2^k; a result from below is
  * combined on the left of the partial and of the prefix so far.  Cost
  * lg p (alpha + n beta + n gamma). */
-static void doubling(tsmpi_sched *s, const void *in, void *out, int count, int inclusive) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
-  const tsmpi_red *r = tsmpi_sched_red(s);
+static void doubling(coll_sched *s, const void *in, void *out, int count, int inclusive) {
+  const coll_cg *g = coll_sched_group(s);
+  const coll_red *r = coll_sched_red(s);
   size_t n = (size_t)count * r->tsize;
   int size = g->size, rank = g->rank, have = inclusive;
-  char *partial = tsmpi_sched_mem(s, n), *tmp = tsmpi_sched_mem(s, n);
-  tsmpi_sched_copy(s, partial, in, n);
-  if (inclusive) tsmpi_sched_copy(s, out, in, n);
+  char *partial = coll_sched_mem(s, n), *tmp = coll_sched_mem(s, n);
+  coll_sched_copy(s, partial, in, n);
+  if (inclusive) coll_sched_copy(s, out, in, n);
   for (int mask = 1; mask < size; mask <<= 1) {
     int dst = rank ^ mask;
     if (dst >= size) continue;
-    tsmpi_sched_sendrecv(s, partial, n, dst, tmp, n, dst);
+    coll_sched_sendrecv(s, partial, n, dst, tmp, n, dst);
     if (rank > dst) {
       /* from below: prefix = received op prefix (exscan: the first one is
        * the prefix), partial = received op partial */
       if (!have) {
-        tsmpi_sched_copy(s, out, tmp, n);
+        coll_sched_copy(s, out, tmp, n);
         have = 1;
       } else {
-        tsmpi_sched_reduce(s, tmp, out, count);
+        coll_sched_reduce(s, tmp, out, count);
       }
-      tsmpi_sched_reduce(s, tmp, partial, count);
+      coll_sched_reduce(s, tmp, partial, count);
     } else if (r->commute) {
-      tsmpi_sched_reduce(s, tmp, partial, count);
+      coll_sched_reduce(s, tmp, partial, count);
     } else {
-      tsmpi_sched_reduce(s, partial, tmp, count);
-      tsmpi_sched_copy(s, partial, tmp, n);
+      coll_sched_reduce(s, partial, tmp, count);
+      coll_sched_copy(s, partial, tmp, n);
     }
   }
 }
 
-void tsmpi_scan_recursive_doubling(tsmpi_sched *s, const void *in, void *out, int count) {
+void coll_scan_recursive_doubling(coll_sched *s, const void *in, void *out, int count) {
   doubling(s, in, out, count, 1);
 }
 
-void tsmpi_exscan_recursive_doubling(tsmpi_sched *s, const void *in, void *out, int count) {
+void coll_exscan_recursive_doubling(coll_sched *s, const void *in, void *out, int count) {
   doubling(s, in, out, count, 0);
 }
 
 /* ==== reduce-scatter ====================================================== */
 
 /* The displacements of the blocks in elements, and their total. */
-static int displacements(const tsmpi_cg *g, const int *counts, int *disps) {
+static int displacements(const coll_cg *g, const int *counts, int *disps) {
   int total = 0;
   for (int i = 0; i < g->size; i++) {
     disps[i] = total;
@@ -90,19 +90,19 @@ static int displacements(const tsmpi_cg *g, const int *counts, int *disps) {
 }
 
 /* A linear reduce of the whole vector to rank 0, then a linear scatterv. */
-void tsmpi_reduce_scatter_linear(tsmpi_sched *s, void *buf, void *out, const int *counts) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
-  size_t ts = tsmpi_sched_red(s)->tsize;
+void coll_reduce_scatter_linear(coll_sched *s, void *buf, void *out, const int *counts) {
+  const coll_cg *g = coll_sched_group(s);
+  size_t ts = coll_sched_red(s)->tsize;
   int size = g->size;
-  size_t *bc = tsmpi_sched_mem(s, 2 * (size_t)size * sizeof *bc), *bd = bc + size, total = 0;
+  size_t *bc = coll_sched_mem(s, 2 * (size_t)size * sizeof *bc), *bd = bc + size, total = 0;
   for (int i = 0; i < size; i++) {
     bc[i] = (size_t)counts[i] * ts;
     bd[i] = total;
     total += bc[i];
   }
-  char *res = g->rank == 0 ? tsmpi_sched_mem(s, total) : NULL;
-  tsmpi_reduce_linear(s, buf, res, (int)(total / (ts ? ts : 1)), 0);
-  tsmpi_scatterv_linear(s, res, bc, bd, out, bc[g->rank], 0);
+  char *res = g->rank == 0 ? coll_sched_mem(s, total) : NULL;
+  coll_reduce_linear(s, buf, res, (int)(total / (ts ? ts : 1)), 0);
+  coll_scatterv_linear(s, res, bc, bd, out, bc[g->rank], 0);
 }
 
 /* Recursive halving (for commutative operations): beyond a power of two
@@ -111,21 +111,21 @@ void tsmpi_reduce_scatter_linear(tsmpi_sched *s, void *buf, void *out, const int
  * blocks its partner keeps and combines the half it keeps (received op
  * ours); the folded ranks get their block at the end.  Cost lg p alpha +
  * n (p-1)/p (beta + gamma). */
-void tsmpi_reduce_scatter_recursive_halving(tsmpi_sched *s, void *buffer, void *out, const int *counts) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
-  int size = g->size, rank = g->rank, pof2 = tsmpi_pof2(size), rem = size - pof2, newrank;
-  size_t ts = tsmpi_sched_red(s)->tsize;
-  int *disps = tsmpi_sched_mem(s, (size_t)(size + 2 * pof2) * sizeof *disps), *newcnts = disps + size,
+void coll_reduce_scatter_recursive_halving(coll_sched *s, void *buffer, void *out, const int *counts) {
+  const coll_cg *g = coll_sched_group(s);
+  int size = g->size, rank = g->rank, pof2 = coll_pof2(size), rem = size - pof2, newrank;
+  size_t ts = coll_sched_red(s)->tsize;
+  int *disps = coll_sched_mem(s, (size_t)(size + 2 * pof2) * sizeof *disps), *newcnts = disps + size,
       *newdisps = newcnts + pof2;
   int total = displacements(g, counts, disps);
-  char *res = buffer, *tmp = tsmpi_sched_mem(s, (size_t)total * ts);
+  char *res = buffer, *tmp = coll_sched_mem(s, (size_t)total * ts);
   if (rank < 2 * rem) {
     if (rank % 2 == 0) {
-      tsmpi_sched_send(s, res, (size_t)total * ts, rank + 1);
+      coll_sched_send(s, res, (size_t)total * ts, rank + 1);
       newrank = -1;
     } else {
-      tsmpi_sched_recv(s, tmp, (size_t)total * ts, rank - 1);
-      tsmpi_sched_reduce(s, tmp, res, total);
+      coll_sched_recv(s, tmp, (size_t)total * ts, rank - 1);
+      coll_sched_reduce(s, tmp, res, total);
       newrank = rank / 2;
     }
   } else {
@@ -151,20 +151,20 @@ void tsmpi_reduce_scatter_recursive_halving(tsmpi_sched *s, void *buffer, void *
         for (int i = recv_idx; i < last_idx; i++) recv_cnt += newcnts[i];
       }
       char *sp = res + (size_t)newdisps[send_idx] * ts, *rp = tmp + (size_t)newdisps[recv_idx] * ts;
-      if (send_cnt) tsmpi_sched_send(s, sp, (size_t)send_cnt * ts, dst);
-      if (recv_cnt) tsmpi_sched_recv(s, rp, (size_t)recv_cnt * ts, dst);
-      tsmpi_sched_reduce(s, rp, res + (size_t)newdisps[recv_idx] * ts, recv_cnt);
+      if (send_cnt) coll_sched_send(s, sp, (size_t)send_cnt * ts, dst);
+      if (recv_cnt) coll_sched_recv(s, rp, (size_t)recv_cnt * ts, dst);
+      coll_sched_reduce(s, rp, res + (size_t)newdisps[recv_idx] * ts, recv_cnt);
       send_idx = recv_idx;
       last_idx = recv_idx + mask;
     }
-    tsmpi_sched_copy(s, out, res + (size_t)disps[rank] * ts, (size_t)counts[rank] * ts);
+    coll_sched_copy(s, out, res + (size_t)disps[rank] * ts, (size_t)counts[rank] * ts);
   }
   if (rank < 2 * rem) {
     if (rank % 2) {
       if (counts[rank - 1])
-        tsmpi_sched_send(s, res + (size_t)disps[rank - 1] * ts, (size_t)counts[rank - 1] * ts, rank - 1);
+        coll_sched_send(s, res + (size_t)disps[rank - 1] * ts, (size_t)counts[rank - 1] * ts, rank - 1);
     } else if (counts[rank]) {
-      tsmpi_sched_recv(s, out, (size_t)counts[rank] * ts, rank + 1);
+      coll_sched_recv(s, out, (size_t)counts[rank] * ts, rank + 1);
     }
   }
 }
@@ -173,19 +173,19 @@ void tsmpi_reduce_scatter_recursive_halving(tsmpi_sched *s, void *buffer, void *
  * r sends rank r + i its block and receives its own block of rank r - i,
  * combining received op ours: a_{r-p+1} op (... op (a_{r-1} op a_r)).
  * Cost (p-1) alpha + n (p-1)/p (beta + gamma). */
-void tsmpi_reduce_scatter_pairwise(tsmpi_sched *s, void *buffer, void *out, const int *counts) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
+void coll_reduce_scatter_pairwise(coll_sched *s, void *buffer, void *out, const int *counts) {
+  const coll_cg *g = coll_sched_group(s);
   int size = g->size, rank = g->rank;
-  size_t ts = tsmpi_sched_red(s)->tsize;
-  int *disps = tsmpi_sched_mem(s, (size_t)size * sizeof *disps);
+  size_t ts = coll_sched_red(s)->tsize;
+  int *disps = coll_sched_mem(s, (size_t)size * sizeof *disps);
   displacements(g, counts, disps);
-  char *buf = buffer, *tmp = tsmpi_sched_mem(s, (size_t)counts[rank] * ts);
-  tsmpi_sched_copy(s, out, buf + (size_t)disps[rank] * ts, (size_t)counts[rank] * ts);
+  char *buf = buffer, *tmp = coll_sched_mem(s, (size_t)counts[rank] * ts);
+  coll_sched_copy(s, out, buf + (size_t)disps[rank] * ts, (size_t)counts[rank] * ts);
   for (int i = 1; i < size; i++) {
     int src = (rank - i + size) % size, dst = (rank + i) % size;
-    tsmpi_sched_sendrecv(s, buf + (size_t)disps[dst] * ts, (size_t)counts[dst] * ts, dst, tmp,
-                         (size_t)counts[rank] * ts, src);
-    tsmpi_sched_reduce(s, tmp, out, counts[rank]);
+    coll_sched_sendrecv(s, buf + (size_t)disps[dst] * ts, (size_t)counts[dst] * ts, dst, tmp,
+                        (size_t)counts[rank] * ts, src);
+    coll_sched_reduce(s, tmp, out, counts[rank]);
   }
 }
 
@@ -208,10 +208,10 @@ static void rd_move(void *ud) {
   }
 }
 
-static void runs(tsmpi_sched *s, char *res, char *msg, size_t b0, size_t b1, size_t d1, int out) {
-  rd_runs *m = tsmpi_sched_mem(s, sizeof *m);
+static void runs(coll_sched *s, char *res, char *msg, size_t b0, size_t b1, size_t d1, int out) {
+  rd_runs *m = coll_sched_mem(s, sizeof *m);
   *m = (rd_runs){res, msg, b0, b1, d1, out};
-  tsmpi_sched_call(s, rd_move, m);
+  coll_sched_call(s, rd_move, m);
 }
 
 /* Recursive doubling (non-commutative operations, any p and counts): in
@@ -219,15 +219,15 @@ static void runs(tsmpi_sched *s, char *res, char *msg, size_t b0, size_t b1, siz
  * own and its partner's subtrees, combining in rank order; beyond a power
  * of two, ranks without a partner get their subtree's result from one that
  * had (MPICH).  Cost lg p alpha + n (lg p - (p-1)/p)(beta + gamma). */
-void tsmpi_reduce_scatter_recursive_doubling(tsmpi_sched *s, void *buffer, void *out, const int *counts) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
-  const tsmpi_red *r = tsmpi_sched_red(s);
+void coll_reduce_scatter_recursive_doubling(coll_sched *s, void *buffer, void *out, const int *counts) {
+  const coll_cg *g = coll_sched_group(s);
+  const coll_red *r = coll_sched_red(s);
   int size = g->size, rank = g->rank;
   size_t ts = r->tsize;
-  int *disps = tsmpi_sched_mem(s, (size_t)size * sizeof *disps);
+  int *disps = coll_sched_mem(s, (size_t)size * sizeof *disps);
   int total = displacements(g, counts, disps);
-  char *res = buffer, *tmp = tsmpi_sched_mem(s, (size_t)total * ts), *sp = tsmpi_sched_mem(s, (size_t)total * ts),
-       *rp = tsmpi_sched_mem(s, (size_t)total * ts);
+  char *res = buffer, *tmp = coll_sched_mem(s, (size_t)total * ts), *sp = coll_sched_mem(s, (size_t)total * ts),
+       *rp = coll_sched_mem(s, (size_t)total * ts);
   for (int mask = 1, i = 0; mask < size; mask <<= 1, i++) {
     int dst = rank ^ mask, dst_root = dst >> i << i, my_root = rank >> i << i, received = 0;
     /* What is sent: all but my subtree's blocks; received: all but the
@@ -245,7 +245,7 @@ void tsmpi_reduce_scatter_recursive_doubling(tsmpi_sched *s, void *buffer, void 
     size_t rb0b = (size_t)rb0 * ts, rb1b = (size_t)rb1 * ts, rd1b = (size_t)rd1 * ts;
     if (dst < size) {
       runs(s, res, sp, (size_t)sb0 * ts, (size_t)sb1 * ts, (size_t)sd1 * ts, 1);
-      tsmpi_sched_sendrecv(s, sp, slen, dst, rp, rlen, dst);
+      coll_sched_sendrecv(s, sp, slen, dst, rp, rlen, dst);
       runs(s, tmp, rp, rb0b, rb1b, rd1b, 0);
       received = 1;
     }
@@ -258,9 +258,9 @@ void tsmpi_reduce_scatter_recursive_doubling(tsmpi_sched *s, void *buffer, void 
         if (d > rank && rank < tree_root + done && d >= tree_root + done) {
           /* send the current result (tmp, the received type's runs) */
           runs(s, tmp, rp, rb0b, rb1b, rd1b, 1);
-          tsmpi_sched_send(s, rp, rlen, d);
+          coll_sched_send(s, rp, rlen, d);
         } else if (d < rank && d < tree_root + done && rank >= tree_root + done) {
-          tsmpi_sched_recv(s, rp, rlen, d);
+          coll_sched_recv(s, rp, rlen, d);
           runs(s, tmp, rp, rb0b, rb1b, rd1b, 0);
           received = 1;
         }
@@ -268,16 +268,16 @@ void tsmpi_reduce_scatter_recursive_doubling(tsmpi_sched *s, void *buffer, void 
     }
     if (!received) continue;
     if (r->commute || dst_root < my_root) {
-      tsmpi_sched_reduce(s, tmp, res, rb0);
-      tsmpi_sched_reduce(s, tmp + rd1b, res + rd1b, rb1);
+      coll_sched_reduce(s, tmp, res, rb0);
+      coll_sched_reduce(s, tmp + rd1b, res + rd1b, rb1);
     } else {
-      tsmpi_sched_reduce(s, res, tmp, rb0);
-      tsmpi_sched_reduce(s, res + rd1b, tmp + rd1b, rb1);
-      tsmpi_sched_copy(s, res, tmp, rb0b);
-      tsmpi_sched_copy(s, res + rd1b, tmp + rd1b, rb1b);
+      coll_sched_reduce(s, res, tmp, rb0);
+      coll_sched_reduce(s, res + rd1b, tmp + rd1b, rb1);
+      coll_sched_copy(s, res, tmp, rb0b);
+      coll_sched_copy(s, res + rd1b, tmp + rd1b, rb1b);
     }
   }
-  tsmpi_sched_copy(s, out, res + (size_t)disps[rank] * ts, (size_t)counts[rank] * ts);
+  coll_sched_copy(s, out, res + (size_t)disps[rank] * ts, (size_t)counts[rank] * ts);
 }
 
 /* The mirror permutation of lg-bit numbers: bits reversed. */
@@ -306,15 +306,15 @@ static void mirror_blocks(void *ud) {
  * reduce-scatter", EuroPVM/MPI 2005), for p a power of two and equal
  * blocks: the blocks permuted by bit reversal, then lg p steps that halve
  * the data, combining in rank order. */
-void tsmpi_reduce_scatter_noncommutative(tsmpi_sched *s, void *buffer, void *out, const int *counts) {
-  const tsmpi_cg *g = tsmpi_sched_group(s);
+void coll_reduce_scatter_noncommutative(coll_sched *s, void *buffer, void *out, const int *counts) {
+  const coll_cg *g = coll_sched_group(s);
   int size = g->size, rank = g->rank, lg = 0;
   while ((1 << lg) < size) lg++;
-  size_t ts = tsmpi_sched_red(s)->tsize, block = (size_t)counts[0], total = block * (size_t)size;
-  char *b0 = tsmpi_sched_mem(s, total * ts), *b1 = tsmpi_sched_mem(s, total * ts);
-  permute *m = tsmpi_sched_mem(s, sizeof *m);
+  size_t ts = coll_sched_red(s)->tsize, block = (size_t)counts[0], total = block * (size_t)size;
+  char *b0 = coll_sched_mem(s, total * ts), *b1 = coll_sched_mem(s, total * ts);
+  permute *m = coll_sched_mem(s, sizeof *m);
   *m = (permute){b0, buffer, block * ts, size, lg};
-  tsmpi_sched_call(s, mirror_blocks, m);
+  coll_sched_call(s, mirror_blocks, m);
   int buf0_inout = 1;
   size_t soff = 0, roff = 0, len = total;
   for (int k = 0; k < lg; k++) {
@@ -323,14 +323,14 @@ void tsmpi_reduce_scatter_noncommutative(tsmpi_sched *s, void *buffer, void *out
     len /= 2;
     if (rank > peer) roff += len;
     else soff += len;
-    tsmpi_sched_sendrecv(s, outgoing + soff * ts, len * ts, peer, incoming + roff * ts, len * ts, peer);
+    coll_sched_sendrecv(s, outgoing + soff * ts, len * ts, peer, incoming + roff * ts, len * ts, peer);
     if (rank > peer) {
-      tsmpi_sched_reduce(s, incoming + roff * ts, outgoing + roff * ts, (int)len);
+      coll_sched_reduce(s, incoming + roff * ts, outgoing + roff * ts, (int)len);
     } else {
-      tsmpi_sched_reduce(s, outgoing + roff * ts, incoming + roff * ts, (int)len);
+      coll_sched_reduce(s, outgoing + roff * ts, incoming + roff * ts, (int)len);
       buf0_inout = !buf0_inout;
     }
     soff = roff;
   }
-  tsmpi_sched_copy(s, out, (buf0_inout ? b0 : b1) + roff * ts, block * ts);
+  coll_sched_copy(s, out, (buf0_inout ? b0 : b1) + roff * ts, block * ts);
 }

@@ -29,10 +29,10 @@ typedef struct block {
   max_align_t data[];
 } block;
 
-struct tsmpi_sched {
-  tsmpi_sched *next, *prev;   /* the rank's live schedules */
-  tsmpi_cg g;
-  tsmpi_red red;
+struct coll_sched {
+  coll_sched *next, *prev;   /* the rank's live schedules */
+  coll_cg g;
+  coll_red red;
   op *ops;
   int nops, cap;
   int at;                     /* the next step */
@@ -44,7 +44,7 @@ struct tsmpi_sched {
   block *mem;
   MPI_Datatype *held;         /* types the unpack steps hold */
   int nheld, capheld;
-  void *frame;                /* tsmpi_sched_frame */
+  void *frame;                /* coll_sched_frame */
   int red_held;               /* red's type and operation are held */
   int now;                    /* blocking: each step runs as it is added */
 };
@@ -54,18 +54,18 @@ struct tsmpi_sched {
 /* Released at the rank's end (a stopped run, or MPI_Finalize with some
  * still live): every schedule's memory; its requests go with the rank's. */
 typedef struct {
-  tsmpi_sched *head;
+  coll_sched *head;
 } live;
 
 static void live_release(void *ud) {
   live *l = ud;
   while (l->head) {
-    tsmpi_sched *s = l->head;
+    coll_sched *s = l->head;
     l->head = s->next;
     s->nreqs = 0;
     s->posted = 0;   /* the rank's requests are freed with it */
     s->next = s->prev = NULL;
-    tsmpi_sched_free(s);
+    coll_sched_free(s);
   }
   free(l);
 }
@@ -82,23 +82,23 @@ static void *xalloc(size_t n) {
 }
 
 static live *rank_live(void) {
-  live *l = tsmpi_part(TSMPI_PART_SCHED);
+  live *l = st_part(ST_PART_SCHED);
   if (!l) {
     l = xalloc(sizeof *l);
     l->head = NULL;
-    tsmpi_part_set(TSMPI_PART_SCHED, l, live_release);
+    st_part_set(ST_PART_SCHED, l, live_release);
   }
   return l;
 }
 
 /* ==== building ============================================================ */
 
-tsmpi_sched *tsmpi_sched_new(const tsmpi_cg *g, const tsmpi_red *r, int blocking) {
-  tsmpi_sched *s = xalloc(sizeof *s);
+coll_sched *coll_sched_new(const coll_cg *g, const coll_red *r, int blocking) {
+  coll_sched *s = xalloc(sizeof *s);
   memset(s, 0, sizeof *s);
   s->g = *g;
   s->now = blocking;
-  if (r) tsmpi_sched_set_red(s, r);
+  if (r) coll_sched_set_red(s, r);
   s->cur = MPI_REQUEST_NULL;
   live *l = rank_live();
   s->next = l->head;
@@ -107,29 +107,29 @@ tsmpi_sched *tsmpi_sched_new(const tsmpi_cg *g, const tsmpi_red *r, int blocking
   return s;
 }
 
-const tsmpi_cg *tsmpi_sched_group(const tsmpi_sched *s) { return &s->g; }
-const tsmpi_red *tsmpi_sched_red(const tsmpi_sched *s) { return &s->red; }
+const coll_cg *coll_sched_group(const coll_sched *s) { return &s->g; }
+const coll_red *coll_sched_red(const coll_sched *s) { return &s->red; }
 /* The reduction's type and operation are held as long as the schedule: the
  * program may free them before a nonblocking collective completes. */
-static void red_release(tsmpi_sched *s) {
+static void red_release(coll_sched *s) {
   if (!s->red_held) return;
-  tsmpi_type_release(s->red.dt);
-  tsmpi_op_release(s->red.op);
+  dtype_release(s->red.dt);
+  op_release(s->red.op);
   s->red_held = 0;
 }
 
-void tsmpi_sched_set_red(tsmpi_sched *s, const tsmpi_red *r) {
+void coll_sched_set_red(coll_sched *s, const coll_red *r) {
   red_release(s);
   s->red = *r;
   if (s->now) return;   /* used before the call returns */
-  tsmpi_type_hold(r->dt);
-  tsmpi_op_hold(r->op);
+  dtype_hold(r->dt);
+  op_hold(r->op);
   s->red_held = 1;
 }
-void *tsmpi_sched_frame(const tsmpi_sched *s) { return s->frame; }
-void tsmpi_sched_set_frame(tsmpi_sched *s, void *frame) { s->frame = frame; }
+void *coll_sched_frame(const coll_sched *s) { return s->frame; }
+void coll_sched_set_frame(coll_sched *s, void *frame) { s->frame = frame; }
 
-void *tsmpi_sched_mem(tsmpi_sched *s, size_t n) {
+void *coll_sched_mem(coll_sched *s, size_t n) {
   if (n > (size_t)-1 - sizeof(block)) oom(n);
   block *b = xalloc(sizeof *b + n);
   b->next = s->mem;
@@ -138,8 +138,8 @@ void *tsmpi_sched_mem(tsmpi_sched *s, size_t n) {
 }
 
 /* A step: run now (a blocking schedule; nothing after an error) or kept. */
-static void run_now(tsmpi_sched *s, const op *o);
-static void emit(tsmpi_sched *s, const op *o) {
+static void run_now(coll_sched *s, const op *o);
+static void emit(coll_sched *s, const op *o) {
   if (s->now) {
     if (!s->err) run_now(s, o);
     return;
@@ -154,7 +154,7 @@ static void emit(tsmpi_sched *s, const op *o) {
   s->ops[s->nops++] = *o;
 }
 
-static void xfer(tsmpi_sched *s, int kind, const void *buf, size_t n, int peer) {
+static void xfer(coll_sched *s, int kind, const void *buf, size_t n, int peer) {
   op o = {.kind = (unsigned char)kind, .peer = peer, .n = n};
   if (kind == OP_SEND || kind == OP_ISEND)
     o.b = buf;
@@ -163,37 +163,37 @@ static void xfer(tsmpi_sched *s, int kind, const void *buf, size_t n, int peer) 
   emit(s, &o);
 }
 
-void tsmpi_sched_send(tsmpi_sched *s, const void *buf, size_t n, int dst) { xfer(s, OP_SEND, buf, n, dst); }
-void tsmpi_sched_recv(tsmpi_sched *s, void *buf, size_t n, int src) { xfer(s, OP_RECV, buf, n, src); }
-void tsmpi_sched_sendrecv(tsmpi_sched *s, const void *sbuf, size_t sn, int dst, void *rbuf, size_t rn, int src) {
+void coll_sched_send(coll_sched *s, const void *buf, size_t n, int dst) { xfer(s, OP_SEND, buf, n, dst); }
+void coll_sched_recv(coll_sched *s, void *buf, size_t n, int src) { xfer(s, OP_RECV, buf, n, src); }
+void coll_sched_sendrecv(coll_sched *s, const void *sbuf, size_t sn, int dst, void *rbuf, size_t rn, int src) {
   if (!s->now) {
     xfer(s, OP_SEND, sbuf, sn, dst);
     xfer(s, OP_RECV, rbuf, rn, src);
   } else if (!s->err) {
-    s->err = tsmpi_cg_sendrecv(&s->g, sbuf, sn, dst, rbuf, rn, src, NULL);
+    s->err = coll_cg_sendrecv(&s->g, sbuf, sn, dst, rbuf, rn, src, NULL);
   }
 }
-void tsmpi_sched_isend(tsmpi_sched *s, const void *buf, size_t n, int dst) { xfer(s, OP_ISEND, buf, n, dst); }
-void tsmpi_sched_irecv(tsmpi_sched *s, void *buf, size_t n, int src) { xfer(s, OP_IRECV, buf, n, src); }
+void coll_sched_isend(coll_sched *s, const void *buf, size_t n, int dst) { xfer(s, OP_ISEND, buf, n, dst); }
+void coll_sched_irecv(coll_sched *s, void *buf, size_t n, int src) { xfer(s, OP_IRECV, buf, n, src); }
 
-void tsmpi_sched_waitall(tsmpi_sched *s) {
+void coll_sched_waitall(coll_sched *s) {
   op o = {.kind = OP_WAITALL};
   emit(s, &o);
 }
 
-void tsmpi_sched_reduce(tsmpi_sched *s, const void *left, void *right, int count) {
+void coll_sched_reduce(coll_sched *s, const void *left, void *right, int count) {
   if (count <= 0) return;
   op o = {.kind = OP_REDUCE, .peer = count, .a.p = right, .b = left};
   emit(s, &o);
 }
 
-void tsmpi_sched_copy(tsmpi_sched *s, void *dst, const void *src, size_t n) {
+void coll_sched_copy(coll_sched *s, void *dst, const void *src, size_t n) {
   if (n == 0 || dst == src) return;
   op o = {.kind = OP_COPY, .n = n, .a.p = dst, .b = src};
   emit(s, &o);
 }
 
-void tsmpi_sched_unpack(tsmpi_sched *s, const void *p, size_t n, void *buf, int count, MPI_Datatype dt) {
+void coll_sched_unpack(coll_sched *s, const void *p, size_t n, void *buf, int count, MPI_Datatype dt) {
   if (n == 0) return;
   op o = {.kind = OP_UNPACK, .peer = count, .dt = dt, .n = n, .a.p = buf, .b = p};
   emit(s, &o);
@@ -205,11 +205,11 @@ void tsmpi_sched_unpack(tsmpi_sched *s, const void *p, size_t n, void *buf, int 
     s->held = h;
     s->capheld = cap;
   }
-  tsmpi_type_hold(dt);
+  dtype_hold(dt);
   s->held[s->nheld++] = dt;
 }
 
-void tsmpi_sched_call(tsmpi_sched *s, void (*fn)(void *ud), void *ud) {
+void coll_sched_call(coll_sched *s, void (*fn)(void *ud), void *ud) {
   op o = {.kind = OP_CALL, .a.fn = fn, .b = ud};
   emit(s, &o);
 }
@@ -217,17 +217,17 @@ void tsmpi_sched_call(tsmpi_sched *s, void (*fn)(void *ud), void *ud) {
 /* ==== running ============================================================= */
 
 /* A local step. */
-static void local(tsmpi_sched *s, const op *o) {
+static void local(coll_sched *s, const op *o) {
   switch (o->kind) {
-  case OP_REDUCE: tsmpi_red_apply(&s->red, o->b, o->a.p, o->peer); break;
+  case OP_REDUCE: coll_red_apply(&s->red, o->b, o->a.p, o->peer); break;
   case OP_COPY: memmove(o->a.p, o->b, o->n); break;
-  case OP_UNPACK: tsmpi_type_unpack(o->b, o->n, o->a.p, o->peer, o->dt); break;
+  case OP_UNPACK: dtype_unpack(o->b, o->n, o->a.p, o->peer, o->dt); break;
   case OP_CALL: o->a.fn((void *)o->b); break;
   default: break;
   }
 }
 
-static void req_add(tsmpi_sched *s, MPI_Request r) {
+static void req_add(coll_sched *s, MPI_Request r) {
   if (s->nreqs == s->capreqs) {
     int cap = s->capreqs ? 2 * s->capreqs : 8;
     MPI_Request *q = realloc(s->reqs, (size_t)cap * sizeof *q);
@@ -239,21 +239,21 @@ static void req_add(tsmpi_sched *s, MPI_Request r) {
 }
 
 /* A blocking schedule's step, at once: the algorithm's own call in line. */
-static void run_now(tsmpi_sched *s, const op *o) {
-  const tsmpi_cg *g = &s->g;
+static void run_now(coll_sched *s, const op *o) {
+  const coll_cg *g = &s->g;
   MPI_Request r;
   int rc = MPI_SUCCESS;
   switch (o->kind) {
-  case OP_SEND: rc = tsmpi_cg_send(g, o->b, o->n, o->peer); break;
-  case OP_RECV: rc = tsmpi_cg_recv(g, o->a.p, o->n, o->peer, NULL); break;
+  case OP_SEND: rc = coll_cg_send(g, o->b, o->n, o->peer); break;
+  case OP_RECV: rc = coll_cg_recv(g, o->a.p, o->n, o->peer, NULL); break;
   case OP_ISEND:
-    if ((rc = tsmpi_cg_isend(g, o->b, o->n, o->peer, &r)) == 0) req_add(s, r);
+    if ((rc = coll_cg_isend(g, o->b, o->n, o->peer, &r)) == 0) req_add(s, r);
     break;
   case OP_IRECV:
-    if ((rc = tsmpi_cg_irecv(g, o->a.p, o->n, o->peer, &r)) == 0) req_add(s, r);
+    if ((rc = coll_cg_irecv(g, o->a.p, o->n, o->peer, &r)) == 0) req_add(s, r);
     break;
   case OP_WAITALL:
-    rc = tsmpi_cg_waitall(g, s->nreqs, s->reqs);
+    rc = coll_cg_waitall(g, s->nreqs, s->reqs);
     s->nreqs = 0;
     break;
   default: local(s, o); break;
@@ -261,47 +261,47 @@ static void run_now(tsmpi_sched *s, const op *o) {
   s->err = rc;
 }
 
-int tsmpi_sched_run(tsmpi_sched *s) {
+int coll_sched_run(coll_sched *s) {
   int rc = s->err;
-  if (rc && s->nreqs) tsmpi_cg_waitall(&s->g, s->nreqs, s->reqs);   /* as the algorithms did: theirs finish */
+  if (rc && s->nreqs) coll_cg_waitall(&s->g, s->nreqs, s->reqs);   /* as the algorithms did: theirs finish */
   s->nreqs = 0;
-  tsmpi_sched_free(s);
+  coll_sched_free(s);
   return rc;
 }
 
 /* A request of ours (from src, or -1) that may be done: 1 (and freed) if it
  * is; an error is raised and kept. */
-static int req_done(tsmpi_sched *s, MPI_Request *r, int src) {
+static int req_done(coll_sched *s, MPI_Request *r, int src) {
   MPI_Status st;
-  if (!tsmpi_p2p_done(r, &st)) return 0;
+  if (!coll_p2p_done(r, &st)) return 0;
   int err = st.MPI_ERROR;
-  if (err && !s->err) s->err = tsmpi_cg_failed(&s->g, err, src);
+  if (err && !s->err) s->err = coll_cg_failed(&s->g, err, src);
   return 1;
 }
 
-int tsmpi_sched_step(tsmpi_sched *s) {
-  const tsmpi_cg *g = &s->g;
+int coll_sched_step(coll_sched *s) {
+  const coll_cg *g = &s->g;
   while (s->at < s->nops && !s->err) {
     const op *o = &s->ops[s->at];
     MPI_Request r;
     int rc = MPI_SUCCESS;
     switch (o->kind) {
-    case OP_SEND: rc = tsmpi_cg_send(g, o->b, o->n, o->peer); break;
+    case OP_SEND: rc = coll_cg_send(g, o->b, o->n, o->peer); break;
     case OP_RECV:
       if (!s->posted) {
-        if ((rc = tsmpi_cg_irecv(g, o->a.p, o->n, o->peer, &s->cur))) break;
-        tsmpi_p2p_watch(s->cur);
+        if ((rc = coll_cg_irecv(g, o->a.p, o->n, o->peer, &s->cur))) break;
+        coll_p2p_watch(s->cur);
         s->posted = 1;
       }
       if (!req_done(s, &s->cur, o->peer)) return 0;
       s->posted = 0;
       break;
     case OP_ISEND:
-      if ((rc = tsmpi_cg_isend(g, o->b, o->n, o->peer, &r)) == 0) req_add(s, r);
+      if ((rc = coll_cg_isend(g, o->b, o->n, o->peer, &r)) == 0) req_add(s, r);
       break;
     case OP_IRECV:
-      if ((rc = tsmpi_cg_irecv(g, o->a.p, o->n, o->peer, &r)) == 0) {
-        tsmpi_p2p_watch(r);
+      if ((rc = coll_cg_irecv(g, o->a.p, o->n, o->peer, &r)) == 0) {
+        coll_p2p_watch(r);
         req_add(s, r);
       }
       break;
@@ -319,13 +319,13 @@ int tsmpi_sched_step(tsmpi_sched *s) {
   return 1;
 }
 
-int tsmpi_sched_error(const tsmpi_sched *s) { return s->err; }
+int coll_sched_error(const coll_sched *s) { return s->err; }
 
-void tsmpi_sched_free(tsmpi_sched *s) {
+void coll_sched_free(coll_sched *s) {
   if (!s) return;
-  if (s->posted) tsmpi_p2p_drop(&s->cur);
-  for (int i = 0; i < s->nreqs; i++) tsmpi_p2p_drop(&s->reqs[i]);
-  live *l = tsmpi_part(TSMPI_PART_SCHED);
+  if (s->posted) coll_p2p_drop(&s->cur);
+  for (int i = 0; i < s->nreqs; i++) coll_p2p_drop(&s->reqs[i]);
+  live *l = st_part(ST_PART_SCHED);
   if (s->prev)
     s->prev->next = s->next;
   else if (l && l->head == s)
@@ -335,7 +335,7 @@ void tsmpi_sched_free(tsmpi_sched *s) {
     n = b->next;
     free(b);
   }
-  for (int i = 0; i < s->nheld; i++) tsmpi_type_release(s->held[i]);
+  for (int i = 0; i < s->nheld; i++) dtype_release(s->held[i]);
   red_release(s);
   free(s->held);
   free(s->ops);

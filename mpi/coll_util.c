@@ -7,63 +7,63 @@
 #include "mpi/core.h"
 
 /* A message longer than the receive: the ranks disagree on the counts. */
-static int truncated(const tsmpi_cg *g, int src) {
+static int truncated(const coll_cg *g, int src) {
   if (src < 0)
-    return tsmpi_raise(g->comm, MPI_ERR_TRUNCATE, g->fn,
-                       "a message is longer than expected (do all ranks pass the same counts?)");
-  return tsmpi_raise(g->comm, MPI_ERR_TRUNCATE, g->fn,
-                     "a message from rank %d is longer than expected (do all ranks pass the same counts?)", src);
+    return err_comm_raise(g->comm, MPI_ERR_TRUNCATE, g->fn,
+                          "a message is longer than expected (do all ranks pass the same counts?)");
+  return err_comm_raise(g->comm, MPI_ERR_TRUNCATE, g->fn,
+                        "a message from rank %d is longer than expected (do all ranks pass the same counts?)", src);
 }
 
-static int too_big(const tsmpi_cg *g, size_t n) {
-  return tsmpi_raise(g->comm, MPI_ERR_COUNT, g->fn, "a message of %zu bytes (more than INT_MAX)", n);
+static int too_big(const coll_cg *g, size_t n) {
+  return err_comm_raise(g->comm, MPI_ERR_COUNT, g->fn, "a message of %zu bytes (more than INT_MAX)", n);
 }
 
-int tsmpi_cg_send(const tsmpi_cg *g, const void *buf, size_t n, int dst) {
+int coll_cg_send(const coll_cg *g, const void *buf, size_t n, int dst) {
   if (n > 0x7fffffff) return too_big(g, n);
-  return tsmpi_p2p_send(buf, (int)n, MPI_BYTE, dst, g->tag, g->comm);
+  return coll_p2p_send(buf, (int)n, MPI_BYTE, dst, g->tag, g->comm);
 }
 
-int tsmpi_cg_recv(const tsmpi_cg *g, void *buf, size_t n, int src, size_t *got) {
+int coll_cg_recv(const coll_cg *g, void *buf, size_t n, int src, size_t *got) {
   MPI_Status st;
   if (n > 0x7fffffff) return too_big(g, n);
-  int rc = tsmpi_p2p_recv(buf, (int)n, MPI_BYTE, src, g->tag, g->comm, &st);
+  int rc = coll_p2p_recv(buf, (int)n, MPI_BYTE, src, g->tag, g->comm, &st);
   if (rc == MPI_ERR_TRUNCATE) return truncated(g, src);
-  if (rc) return tsmpi_raise(g->comm, rc, g->fn, "a receive from rank %d failed", src);
+  if (rc) return err_comm_raise(g->comm, rc, g->fn, "a receive from rank %d failed", src);
   if (got) *got = (size_t)st.tsmpi_count;
   return MPI_SUCCESS;
 }
 
-int tsmpi_cg_sendrecv(const tsmpi_cg *g, const void *sbuf, size_t sn, int dst, void *rbuf, size_t rn, int src,
-                      size_t *got) {
+int coll_cg_sendrecv(const coll_cg *g, const void *sbuf, size_t sn, int dst, void *rbuf, size_t rn, int src,
+                     size_t *got) {
   MPI_Status st;
   if (sn > 0x7fffffff) return too_big(g, sn);
   if (rn > 0x7fffffff) return too_big(g, rn);
-  int rc = tsmpi_p2p_sendrecv(sbuf, (int)sn, MPI_BYTE, dst, g->tag, rbuf, (int)rn, MPI_BYTE, src, g->tag, g->comm,
-                              &st);
+  int rc = coll_p2p_sendrecv(sbuf, (int)sn, MPI_BYTE, dst, g->tag, rbuf, (int)rn, MPI_BYTE, src, g->tag, g->comm,
+                             &st);
   if (rc == MPI_ERR_TRUNCATE) return truncated(g, src);
-  if (rc) return tsmpi_raise(g->comm, rc, g->fn, "a receive from rank %d failed", src);
+  if (rc) return err_comm_raise(g->comm, rc, g->fn, "a receive from rank %d failed", src);
   if (got) *got = (size_t)st.tsmpi_count;
   return MPI_SUCCESS;
 }
 
-int tsmpi_cg_isend(const tsmpi_cg *g, const void *buf, size_t n, int dst, MPI_Request *req) {
+int coll_cg_isend(const coll_cg *g, const void *buf, size_t n, int dst, MPI_Request *req) {
   if (n > 0x7fffffff) return too_big(g, n);
-  return tsmpi_p2p_isend(buf, (int)n, MPI_BYTE, dst, g->tag, g->comm, req);
+  return coll_p2p_isend(buf, (int)n, MPI_BYTE, dst, g->tag, g->comm, req);
 }
 
-int tsmpi_cg_irecv(const tsmpi_cg *g, void *buf, size_t n, int src, MPI_Request *req) {
+int coll_cg_irecv(const coll_cg *g, void *buf, size_t n, int src, MPI_Request *req) {
   if (n > 0x7fffffff) return too_big(g, n);
-  return tsmpi_p2p_irecv(buf, (int)n, MPI_BYTE, src, g->tag, g->comm, req);
+  return coll_p2p_irecv(buf, (int)n, MPI_BYTE, src, g->tag, g->comm, req);
 }
 
-int tsmpi_cg_waitall(const tsmpi_cg *g, int n, MPI_Request *reqs) {
-  return tsmpi_cg_failed(g, tsmpi_p2p_waitall(n, reqs, MPI_STATUSES_IGNORE), -1);
+int coll_cg_waitall(const coll_cg *g, int n, MPI_Request *reqs) {
+  return coll_cg_failed(g, coll_p2p_waitall(n, reqs, MPI_STATUSES_IGNORE), -1);
 }
 
-int tsmpi_cg_failed(const tsmpi_cg *g, int err, int src) {
+int coll_cg_failed(const coll_cg *g, int err, int src) {
   if (err == MPI_ERR_TRUNCATE) return truncated(g, src);
-  return err ? tsmpi_raise(g->comm, err, g->fn, "a request failed") : err;
+  return err ? err_comm_raise(g->comm, err, g->fn, "a request failed") : err;
 }
 
 /* The rank's scratch memory in use, freed by the rank's end when a stopped
@@ -86,11 +86,11 @@ static void oom(const char *fn, size_t n) {
   abort();
 }
 
-void *tsmpi_cg_alloc(const tsmpi_cg *g, size_t n) {
-  scratch *s = tsmpi_part(TSMPI_PART_COLL);
+void *coll_cg_alloc(const coll_cg *g, size_t n) {
+  scratch *s = st_part(ST_PART_COLL);
   if (!s) {
     if (!(s = calloc(1, sizeof *s))) oom(g->fn, sizeof *s);
-    tsmpi_part_set(TSMPI_PART_COLL, s, scratch_release);
+    st_part_set(ST_PART_COLL, s, scratch_release);
   }
   if (s->n == s->cap) {
     size_t cap = s->cap ? 2 * s->cap : 16;
@@ -105,8 +105,8 @@ void *tsmpi_cg_alloc(const tsmpi_cg *g, size_t n) {
   return p;
 }
 
-void tsmpi_cg_free(void *p) {
-  scratch *s = tsmpi_part(TSMPI_PART_COLL);
+void coll_cg_free(void *p) {
+  scratch *s = st_part(ST_PART_COLL);
   if (!p) return;
   for (size_t i = s ? s->n : 0; i-- > 0;)
     if (s->p[i] == p) {
@@ -116,14 +116,14 @@ void tsmpi_cg_free(void *p) {
   free(p);
 }
 
-int tsmpi_pof2(int n) {
+int coll_pof2(int n) {
   int p = 1;
   while (p <= n / 2) p <<= 1;
   return p;
 }
 
-int tsmpi_is_pof2(int n) { return n > 0 && (n & (n - 1)) == 0; }
+int coll_is_pof2(int n) { return n > 0 && (n & (n - 1)) == 0; }
 
-void tsmpi_red_apply(const tsmpi_red *r, const void *left, void *right, int count) {
-  if (count > 0) tsmpi_op_reduce_packed(r->op, r->dt, left, right, count);
+void coll_red_apply(const coll_red *r, const void *left, void *right, int count) {
+  if (count > 0) op_reduce_packed(r->op, r->dt, left, right, count);
 }

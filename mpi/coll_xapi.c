@@ -18,73 +18,73 @@
  * and allgatherv.c: recursive doubling below MPIR_CVAR_ALLGATHER_LONG_MSG_SIZE
  * (524288) bytes on a power of two ranks, else Bruck below
  * MPIR_CVAR_ALLGATHER_SHORT_MSG_SIZE (81920), else the ring. */
-static tsmpi_alg allgather_alg(tsmpi_coll c, int size, size_t tot) {
-  tsmpi_alg a = tsmpi_coll_setting(c);
+static coll_alg allgather_alg(coll_id c, int size, size_t tot) {
+  coll_alg a = coll_setting(c);
   if (a != ALG_AUTO) return a;
-  if (tot < 524288 && tsmpi_is_pof2(size)) return ALG_RECURSIVE_DOUBLING;
+  if (tot < 524288 && coll_is_pof2(size)) return ALG_RECURSIVE_DOUBLING;
   return tot < 81920 ? ALG_BRUCKS : ALG_RING;
 }
 
 /* Every rank's block (at bd[r], bc[r] bytes of the packed buf) to every
  * rank; unit and extent: the receive type's, for the pipelined ring. */
-static void allgather_build(tsmpi_sched *s, tsmpi_alg a, char *buf, const size_t *bc, const size_t *bd, int v,
+static void allgather_build(coll_sched *s, coll_alg a, char *buf, const size_t *bc, const size_t *bd, int v,
                             size_t unit, size_t extent) {
   switch (a) {
-  case ALG_LINEAR: tsmpi_allgatherv_linear(s, buf, bc, bd); break;
-  case ALG_RECURSIVE_DOUBLING: tsmpi_allgatherv_recursive_doubling(s, buf, bc, bd); break;
-  case ALG_BRUCKS: tsmpi_allgatherv_brucks(s, buf, bc, bd); break;
+  case ALG_LINEAR: coll_allgatherv_linear(s, buf, bc, bd); break;
+  case ALG_RECURSIVE_DOUBLING: coll_allgatherv_recursive_doubling(s, buf, bc, bd); break;
+  case ALG_BRUCKS: coll_allgatherv_brucks(s, buf, bc, bd); break;
   default:
     if (v)
-      tsmpi_allgatherv_ring_pipelined(s, buf, bc, bd, unit, extent);
+      coll_allgatherv_ring_pipelined(s, buf, bc, bd, unit, extent);
     else
-      tsmpi_allgatherv_ring(s, buf, bc, bd);
+      coll_allgatherv_ring(s, buf, bc, bd);
   }
 }
 
 static int allgather(const char *fn, const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf,
                      int recvcount, MPI_Datatype recvtype, MPI_Comm comm, MPI_Request *req) {
   int rc, in_place = sendbuf == MPI_IN_PLACE;
-  if ((rc = tsmpi_coll_data_ok(comm, fn, "recvtype", recvbuf, recvcount, recvtype))) return rc;
-  if (recvbuf == MPI_IN_PLACE) return tsmpi_coll_in_place_bad(comm, fn, "recvbuf");
-  if (!in_place && (rc = tsmpi_coll_data_ok(comm, fn, "sendtype", sendbuf, sendcount, sendtype))) return rc;
-  size_t n = tsmpi_type_size(recvtype) * (size_t)recvcount;
-  if (!in_place && tsmpi_type_size(sendtype) * (size_t)sendcount != n)
-    return tsmpi_raise(comm, MPI_ERR_TRUNCATE, fn, "this rank sends %zu bytes and receives %zu from each rank",
-                       tsmpi_type_size(sendtype) * (size_t)sendcount, n);
-  tsmpi_sched *s = tsmpi_coll_start(fn, comm, COLL_ALLGATHER, -1, req);
-  const tsmpi_cg *g = tsmpi_sched_group(s);
+  if ((rc = coll_data_ok(comm, fn, "recvtype", recvbuf, recvcount, recvtype))) return rc;
+  if (recvbuf == MPI_IN_PLACE) return coll_in_place_bad(comm, fn, "recvbuf");
+  if (!in_place && (rc = coll_data_ok(comm, fn, "sendtype", sendbuf, sendcount, sendtype))) return rc;
+  size_t n = dtype_size(recvtype) * (size_t)recvcount;
+  if (!in_place && dtype_size(sendtype) * (size_t)sendcount != n)
+    return err_comm_raise(comm, MPI_ERR_TRUNCATE, fn, "this rank sends %zu bytes and receives %zu from each rank",
+                          dtype_size(sendtype) * (size_t)sendcount, n);
+  coll_sched *s = coll_start(fn, comm, COLL_ALLGATHER, -1, req);
+  const coll_cg *g = coll_sched_group(s);
   /* MPICH: nothing to do when nothing is sent or received. */
-  if ((!in_place && sendcount == 0) || recvcount == 0) return tsmpi_coll_finish(s);
+  if ((!in_place && sendcount == 0) || recvcount == 0) return coll_finish(s);
   int size = g->size;
-  size_t *bc = tsmpi_sched_mem(s, 2 * (size_t)size * sizeof *bc), *bd = bc + size;
+  size_t *bc = coll_sched_mem(s, 2 * (size_t)size * sizeof *bc), *bd = bc + size;
   for (int i = 0; i < size; i++) {
     bc[i] = n;
     bd[i] = (size_t)i * n;
   }
-  char *all = tsmpi_sched_mem(s, n * (size_t)size);
+  char *all = coll_sched_mem(s, n * (size_t)size);
   if (in_place)
-    tsmpi_type_pack(tsmpi_coll_at(recvbuf, (MPI_Aint)g->rank * recvcount, recvtype), recvcount, recvtype,
-                    all + bd[g->rank]);
+    dtype_pack(coll_at(recvbuf, (MPI_Aint)g->rank * recvcount, recvtype), recvcount, recvtype,
+               all + bd[g->rank]);
   else
-    tsmpi_type_pack(sendbuf, sendcount, sendtype, all + bd[g->rank]);
+    dtype_pack(sendbuf, sendcount, sendtype, all + bd[g->rank]);
   if (size > 1) allgather_build(s, allgather_alg(COLL_ALLGATHER, size, n * (size_t)size), all, bc, bd, 0, 0, 0);
-  tsmpi_sched_unpack(s, all, n * (size_t)size, recvbuf, recvcount * size, recvtype);
-  return tsmpi_coll_finish(s);
+  coll_sched_unpack(s, all, n * (size_t)size, recvbuf, recvcount * size, recvtype);
+  return coll_finish(s);
 }
 
 int PMPI_Allgather(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf, int recvcount,
                   MPI_Datatype recvtype, MPI_Comm comm) {
-  if (tsmpi_comm_inter(comm)) return tsmpi_inter_allgather(sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, comm);
-  int rc = tsmpi_comm_check(comm, "MPI_Allgather");
+  if (comm_inter(comm)) return coll_inter_allgather(sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, comm);
+  int rc = comm_check(comm, "MPI_Allgather");
   return rc ? rc : allgather("MPI_Allgather", sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, comm, NULL);
 }
 
 int PMPI_Iallgather(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf, int recvcount,
                    MPI_Datatype recvtype, MPI_Comm comm, MPI_Request *request) {
-  if (tsmpi_comm_inter(comm)) return tsmpi_coll_ran("MPI_Iallgather", comm, tsmpi_inter_allgather(sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, comm), request);
+  if (comm_inter(comm)) return coll_ran("MPI_Iallgather", comm, coll_inter_allgather(sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, comm), request);
   static const char fn[] = "MPI_Iallgather";
   int rc;
-  if ((rc = tsmpi_comm_check(comm, fn)) || (rc = tsmpi_coll_req_ok(comm, fn, request))) return rc;
+  if ((rc = comm_check(comm, fn)) || (rc = coll_req_ok(comm, fn, request))) return rc;
   return allgather(fn, sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, comm, request);
 }
 
@@ -92,41 +92,41 @@ static int allgatherv(const char *fn, const void *sendbuf, int sendcount, MPI_Da
                       const int recvcounts[], const int displs[], MPI_Datatype recvtype, MPI_Comm comm,
                       MPI_Request *req) {
   int rc, in_place = sendbuf == MPI_IN_PLACE;
-  int me = tsmpi_comm_rank(comm), size = tsmpi_comm_size(comm);
-  if ((rc = tsmpi_coll_counts_ok(comm, fn, "recvcounts", recvcounts, displs, size)) ||
-      (rc = tsmpi_coll_type_ok(comm, fn, "recvtype", recvtype)))
+  int me = comm_rank(comm), size = comm_size(comm);
+  if ((rc = coll_counts_ok(comm, fn, "recvcounts", recvcounts, displs, size)) ||
+      (rc = coll_type_ok(comm, fn, "recvtype", recvtype)))
     return rc;
-  if (recvbuf == MPI_IN_PLACE) return tsmpi_coll_in_place_bad(comm, fn, "recvbuf");
-  if (!in_place && (rc = tsmpi_coll_data_ok(comm, fn, "sendtype", sendbuf, sendcount, sendtype))) return rc;
-  size_t rs = tsmpi_type_size(recvtype);
-  if (!in_place && tsmpi_type_size(sendtype) * (size_t)sendcount != (size_t)recvcounts[me] * rs)
-    return tsmpi_raise(comm, MPI_ERR_TRUNCATE, fn, "this rank sends %zu bytes and receives %zu from itself",
-                       tsmpi_type_size(sendtype) * (size_t)sendcount, (size_t)recvcounts[me] * rs);
-  tsmpi_sched *s = tsmpi_coll_start(fn, comm, COLL_ALLGATHERV, -1, req);
-  size_t *bc = tsmpi_sched_mem(s, 2 * (size_t)size * sizeof *bc), *bd = bc + size, total = 0;
+  if (recvbuf == MPI_IN_PLACE) return coll_in_place_bad(comm, fn, "recvbuf");
+  if (!in_place && (rc = coll_data_ok(comm, fn, "sendtype", sendbuf, sendcount, sendtype))) return rc;
+  size_t rs = dtype_size(recvtype);
+  if (!in_place && dtype_size(sendtype) * (size_t)sendcount != (size_t)recvcounts[me] * rs)
+    return err_comm_raise(comm, MPI_ERR_TRUNCATE, fn, "this rank sends %zu bytes and receives %zu from itself",
+                          dtype_size(sendtype) * (size_t)sendcount, (size_t)recvcounts[me] * rs);
+  coll_sched *s = coll_start(fn, comm, COLL_ALLGATHERV, -1, req);
+  size_t *bc = coll_sched_mem(s, 2 * (size_t)size * sizeof *bc), *bd = bc + size, total = 0;
   for (int i = 0; i < size; i++) {
     bc[i] = (size_t)recvcounts[i] * rs;
     bd[i] = total;
     total += bc[i];
   }
   /* MPICH: nothing to do when the total is 0. */
-  if (total == 0) return tsmpi_coll_finish(s);
-  char *all = tsmpi_sched_mem(s, total);
+  if (total == 0) return coll_finish(s);
+  char *all = coll_sched_mem(s, total);
   if (bc[me])
-    tsmpi_type_pack(in_place ? tsmpi_coll_at(recvbuf, displs[me], recvtype) : sendbuf,
-                    in_place ? recvcounts[me] : sendcount, in_place ? recvtype : sendtype, all + bd[me]);
+    dtype_pack(in_place ? coll_at(recvbuf, displs[me], recvtype) : sendbuf,
+               in_place ? recvcounts[me] : sendcount, in_place ? recvtype : sendtype, all + bd[me]);
   if (size > 1)
     allgather_build(s, allgather_alg(COLL_ALLGATHERV, size, total), all, bc, bd, 1, rs,
-                    (size_t)tsmpi_type_extent(recvtype));
+                    (size_t)dtype_extent(recvtype));
   for (int r = 0; r < size; r++)
-    tsmpi_sched_unpack(s, all + bd[r], bc[r], tsmpi_coll_at(recvbuf, displs[r], recvtype), recvcounts[r], recvtype);
-  return tsmpi_coll_finish(s);
+    coll_sched_unpack(s, all + bd[r], bc[r], coll_at(recvbuf, displs[r], recvtype), recvcounts[r], recvtype);
+  return coll_finish(s);
 }
 
 int PMPI_Allgatherv(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf, const int recvcounts[],
                    const int displs[], MPI_Datatype recvtype, MPI_Comm comm) {
-  if (tsmpi_comm_inter(comm)) return tsmpi_inter_allgatherv(sendbuf, sendcount, sendtype, recvbuf, recvcounts, displs, recvtype, comm);
-  int rc = tsmpi_comm_check(comm, "MPI_Allgatherv");
+  if (comm_inter(comm)) return coll_inter_allgatherv(sendbuf, sendcount, sendtype, recvbuf, recvcounts, displs, recvtype, comm);
+  int rc = comm_check(comm, "MPI_Allgatherv");
   return rc ? rc
             : allgatherv("MPI_Allgatherv", sendbuf, sendcount, sendtype, recvbuf, recvcounts, displs, recvtype, comm,
                          NULL);
@@ -135,10 +135,10 @@ int PMPI_Allgatherv(const void *sendbuf, int sendcount, MPI_Datatype sendtype, v
 int PMPI_Iallgatherv(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf,
                     const int recvcounts[], const int displs[], MPI_Datatype recvtype, MPI_Comm comm,
                     MPI_Request *request) {
-  if (tsmpi_comm_inter(comm)) return tsmpi_coll_ran("MPI_Iallgatherv", comm, tsmpi_inter_allgatherv(sendbuf, sendcount, sendtype, recvbuf, recvcounts, displs, recvtype, comm), request);
+  if (comm_inter(comm)) return coll_ran("MPI_Iallgatherv", comm, coll_inter_allgatherv(sendbuf, sendcount, sendtype, recvbuf, recvcounts, displs, recvtype, comm), request);
   static const char fn[] = "MPI_Iallgatherv";
   int rc;
-  if ((rc = tsmpi_comm_check(comm, fn)) || (rc = tsmpi_coll_req_ok(comm, fn, request))) return rc;
+  if ((rc = comm_check(comm, fn)) || (rc = coll_req_ok(comm, fn, request))) return rc;
   return allgatherv(fn, sendbuf, sendcount, sendtype, recvbuf, recvcounts, displs, recvtype, comm, request);
 }
 
@@ -147,22 +147,22 @@ int PMPI_Iallgatherv(const void *sendbuf, int sendcount, MPI_Datatype sendtype, 
 static int alltoall(const char *fn, const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf,
                     int recvcount, MPI_Datatype recvtype, MPI_Comm comm, MPI_Request *req) {
   int rc, in_place = sendbuf == MPI_IN_PLACE;
-  if ((rc = tsmpi_coll_data_ok(comm, fn, "recvtype", recvbuf, recvcount, recvtype))) return rc;
-  if (recvbuf == MPI_IN_PLACE) return tsmpi_coll_in_place_bad(comm, fn, "recvbuf");
-  if (!in_place && (rc = tsmpi_coll_data_ok(comm, fn, "sendtype", sendbuf, sendcount, sendtype))) return rc;
-  size_t n = tsmpi_type_size(recvtype) * (size_t)recvcount;
-  size_t sn = in_place ? n : tsmpi_type_size(sendtype) * (size_t)sendcount;
+  if ((rc = coll_data_ok(comm, fn, "recvtype", recvbuf, recvcount, recvtype))) return rc;
+  if (recvbuf == MPI_IN_PLACE) return coll_in_place_bad(comm, fn, "recvbuf");
+  if (!in_place && (rc = coll_data_ok(comm, fn, "sendtype", sendbuf, sendcount, sendtype))) return rc;
+  size_t n = dtype_size(recvtype) * (size_t)recvcount;
+  size_t sn = in_place ? n : dtype_size(sendtype) * (size_t)sendcount;
   if (sn != n)
-    return tsmpi_raise(comm, MPI_ERR_TRUNCATE, fn, "this rank sends %zu bytes to each rank and receives %zu", sn, n);
-  tsmpi_sched *s = tsmpi_coll_start(fn, comm, COLL_ALLTOALL, -1, req);
-  int size = tsmpi_sched_group(s)->size;
+    return err_comm_raise(comm, MPI_ERR_TRUNCATE, fn, "this rank sends %zu bytes to each rank and receives %zu", sn, n);
+  coll_sched *s = coll_start(fn, comm, COLL_ALLTOALL, -1, req);
+  int size = coll_sched_group(s)->size;
   /* MPICH alltoall.c: nothing to do for recvcount 0; in place, the pairwise
    * sendrecv_replace schedule; else Bruck for blocks of at most
    * MPIR_CVAR_ALLTOALL_SHORT_MSG_SIZE (256) bytes on
    * MPIR_CVAR_ALLTOALL_MIN_PROCS (8) ranks or more, "scattered" for blocks
    * of at most MPIR_CVAR_ALLTOALL_MEDIUM_MSG_SIZE (32768), else pairwise. */
-  if (recvcount == 0) return tsmpi_coll_finish(s);
-  tsmpi_alg a = tsmpi_coll_setting(COLL_ALLTOALL);
+  if (recvcount == 0) return coll_finish(s);
+  coll_alg a = coll_setting(COLL_ALLTOALL);
   if (a == ALG_AUTO) {
     if (in_place) a = ALG_PAIRWISE_SENDRECV_REPLACE;
     else if (n <= 256 && size >= 8) a = ALG_BRUCKS;
@@ -172,46 +172,46 @@ static int alltoall(const char *fn, const void *sendbuf, int sendcount, MPI_Data
   /* Contiguous buffers, not in place: the algorithms read sendbuf and write
    * recvbuf where they lie (no packed copies). */
   char *rdirect = a != ALG_PAIRWISE_SENDRECV_REPLACE && !in_place
-                      ? (char *)tsmpi_type_contig(recvbuf, recvcount * size, recvtype) : NULL;
-  const char *sdirect = rdirect ? tsmpi_type_contig(sendbuf, sendcount * size, sendtype) : NULL;
-  char *out = sdirect ? rdirect : tsmpi_coll_pack(s, recvbuf, recvcount * size, recvtype), *in = out;
+                      ? (char *)dtype_contig(recvbuf, recvcount * size, recvtype) : NULL;
+  const char *sdirect = rdirect ? dtype_contig(sendbuf, sendcount * size, sendtype) : NULL;
+  char *out = sdirect ? rdirect : coll_pack(s, recvbuf, recvcount * size, recvtype), *in = out;
   if (sdirect) {
     in = (char *)sdirect;
   } else if (a != ALG_PAIRWISE_SENDRECV_REPLACE) {
-    if (!in_place) in = tsmpi_coll_pack(s, sendbuf, sendcount * size, sendtype);
-    else out = tsmpi_sched_mem(s, n * (size_t)size);
+    if (!in_place) in = coll_pack(s, sendbuf, sendcount * size, sendtype);
+    else out = coll_sched_mem(s, n * (size_t)size);
   } else if (!in_place) {
-    tsmpi_type_pack(sendbuf, sendcount * size, sendtype, out);
+    dtype_pack(sendbuf, sendcount * size, sendtype, out);
   }
-  size_t *cd = tsmpi_sched_mem(s, 2 * (size_t)size * sizeof *cd);
+  size_t *cd = coll_sched_mem(s, 2 * (size_t)size * sizeof *cd);
   for (int i = 0; i < size; i++) {
     cd[i] = n;
     cd[size + i] = (size_t)i * n;
   }
   switch (a) {
-  case ALG_LINEAR: tsmpi_alltoallv_linear(s, in, cd, cd + size, out, cd, cd + size); break;
-  case ALG_BRUCKS: tsmpi_alltoall_brucks(s, in, out, n); break;
-  case ALG_SCATTERED: tsmpi_alltoall_scattered(s, in, out, n); break;
-  case ALG_PAIRWISE: tsmpi_alltoall_pairwise(s, in, out, n); break;
-  default: tsmpi_alltoallv_pairwise_sendrecv_replace(s, out, cd, cd + size); break;
+  case ALG_LINEAR: coll_alltoallv_linear(s, in, cd, cd + size, out, cd, cd + size); break;
+  case ALG_BRUCKS: coll_alltoall_brucks(s, in, out, n); break;
+  case ALG_SCATTERED: coll_alltoall_scattered(s, in, out, n); break;
+  case ALG_PAIRWISE: coll_alltoall_pairwise(s, in, out, n); break;
+  default: coll_alltoallv_pairwise_sendrecv_replace(s, out, cd, cd + size); break;
   }
-  if (!sdirect) tsmpi_sched_unpack(s, out, n * (size_t)size, recvbuf, recvcount * size, recvtype);
-  return tsmpi_coll_finish(s);
+  if (!sdirect) coll_sched_unpack(s, out, n * (size_t)size, recvbuf, recvcount * size, recvtype);
+  return coll_finish(s);
 }
 
 int PMPI_Alltoall(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf, int recvcount,
                  MPI_Datatype recvtype, MPI_Comm comm) {
-  if (tsmpi_comm_inter(comm)) return tsmpi_inter_alltoall(sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, comm);
-  int rc = tsmpi_comm_check(comm, "MPI_Alltoall");
+  if (comm_inter(comm)) return coll_inter_alltoall(sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, comm);
+  int rc = comm_check(comm, "MPI_Alltoall");
   return rc ? rc : alltoall("MPI_Alltoall", sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, comm, NULL);
 }
 
 int PMPI_Ialltoall(const void *sendbuf, int sendcount, MPI_Datatype sendtype, void *recvbuf, int recvcount,
                   MPI_Datatype recvtype, MPI_Comm comm, MPI_Request *request) {
-  if (tsmpi_comm_inter(comm)) return tsmpi_coll_ran("MPI_Ialltoall", comm, tsmpi_inter_alltoall(sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, comm), request);
+  if (comm_inter(comm)) return coll_ran("MPI_Ialltoall", comm, coll_inter_alltoall(sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, comm), request);
   static const char fn[] = "MPI_Ialltoall";
   int rc;
-  if ((rc = tsmpi_comm_check(comm, fn)) || (rc = tsmpi_coll_req_ok(comm, fn, request))) return rc;
+  if ((rc = comm_check(comm, fn)) || (rc = coll_req_ok(comm, fn, request))) return rc;
   return alltoall(fn, sendbuf, sendcount, sendtype, recvbuf, recvcount, recvtype, comm, request);
 }
 
@@ -229,76 +229,76 @@ static MPI_Datatype type_at(const side *d, int i) { return d->types ? d->types[i
 
 static void *block_at(const side *d, int i) {
   if (d->types) return (char *)d->buf + d->displs[i];
-  return tsmpi_coll_at(d->buf, d->displs[i], d->type);
+  return coll_at(d->buf, d->displs[i], d->type);
 }
 
 /* Checks of one side's arrays and types. */
 static int side_ok(MPI_Comm comm, const char *fn, const char *what, const char *twhat, const side *d, int size) {
   int rc;
-  if ((rc = tsmpi_coll_counts_ok(comm, fn, what, d->counts, d->displs, size))) return rc;
-  if (!d->types) return tsmpi_coll_type_ok(comm, fn, twhat, d->type);
+  if ((rc = coll_counts_ok(comm, fn, what, d->counts, d->displs, size))) return rc;
+  if (!d->types) return coll_type_ok(comm, fn, twhat, d->type);
   for (int i = 0; i < size; i++) {
     char w[48];
     snprintf(w, sizeof w, "%s[%d]", twhat, i);
-    if ((rc = tsmpi_coll_type_ok(comm, fn, w, d->types[i]))) return rc;
+    if ((rc = coll_type_ok(comm, fn, w, d->types[i]))) return rc;
   }
   return MPI_SUCCESS;
 }
 
 /* The body of MPI_Alltoallv and MPI_Alltoallw (and their nonblocking forms). */
-static int alltoallvw(const char *fn, tsmpi_coll c, side snd, side rcv, MPI_Comm comm, MPI_Request *req) {
+static int alltoallvw(const char *fn, coll_id c, side snd, side rcv, MPI_Comm comm, MPI_Request *req) {
   int rc, in_place = snd.buf == MPI_IN_PLACE;
-  int size = tsmpi_comm_size(comm), me = tsmpi_comm_rank(comm);
+  int size = comm_size(comm), me = comm_rank(comm);
   const char *tw = c == COLL_ALLTOALLW ? "recvtypes" : "recvtype";
   if ((rc = side_ok(comm, fn, "recvcounts", tw, &rcv, size))) return rc;
-  if (rcv.buf == MPI_IN_PLACE) return tsmpi_coll_in_place_bad(comm, fn, "recvbuf");
+  if (rcv.buf == MPI_IN_PLACE) return coll_in_place_bad(comm, fn, "recvbuf");
   if (in_place)
     snd = rcv;   /* MPI 3.1 section 5.8: the receive side's counts, displacements and types */
   else if ((rc = side_ok(comm, fn, "sendcounts", c == COLL_ALLTOALLW ? "sendtypes" : "sendtype", &snd, size)))
     return rc;
-  size_t s0 = (size_t)snd.counts[me] * tsmpi_type_size(type_at(&snd, me));
-  size_t r0 = (size_t)rcv.counts[me] * tsmpi_type_size(type_at(&rcv, me));
+  size_t s0 = (size_t)snd.counts[me] * dtype_size(type_at(&snd, me));
+  size_t r0 = (size_t)rcv.counts[me] * dtype_size(type_at(&rcv, me));
   if (s0 != r0)
-    return tsmpi_raise(comm, MPI_ERR_TRUNCATE, fn, "this rank sends %zu bytes to itself and receives %zu", s0, r0);
-  tsmpi_sched *s = tsmpi_coll_start(fn, comm, c, -1, req);
-  size_t *v = tsmpi_sched_mem(s, 4 * (size_t)size * sizeof *v), *sc = v, *sd = v + size, *rcn = v + 2 * size,
+    return err_comm_raise(comm, MPI_ERR_TRUNCATE, fn, "this rank sends %zu bytes to itself and receives %zu", s0, r0);
+  coll_sched *s = coll_start(fn, comm, c, -1, req);
+  size_t *v = coll_sched_mem(s, 4 * (size_t)size * sizeof *v), *sc = v, *sd = v + size, *rcn = v + 2 * size,
          *rd = v + 3 * size, stot = 0, rtot = 0;
   for (int i = 0; i < size; i++) {
-    sc[i] = (size_t)snd.counts[i] * tsmpi_type_size(type_at(&snd, i));
+    sc[i] = (size_t)snd.counts[i] * dtype_size(type_at(&snd, i));
     sd[i] = stot;
     stot += sc[i];
-    rcn[i] = (size_t)rcv.counts[i] * tsmpi_type_size(type_at(&rcv, i));
+    rcn[i] = (size_t)rcv.counts[i] * dtype_size(type_at(&rcv, i));
     rd[i] = rtot;
     rtot += rcn[i];
   }
   /* MPICH alltoallv.c and alltoallw.c: in place, the pairwise
    * sendrecv_replace schedule; else "scattered". */
-  tsmpi_alg a = tsmpi_coll_setting(c);
+  coll_alg a = coll_setting(c);
   if (a == ALG_AUTO) a = in_place ? ALG_PAIRWISE_SENDRECV_REPLACE : ALG_SCATTERED;
-  char *out = tsmpi_sched_mem(s, rtot), *in = tsmpi_sched_mem(s, stot);
+  char *out = coll_sched_mem(s, rtot), *in = coll_sched_mem(s, stot);
   for (int i = 0; i < size; i++)
-    if (sc[i]) tsmpi_type_pack(block_at(&snd, i), snd.counts[i], type_at(&snd, i), in + sd[i]);
+    if (sc[i]) dtype_pack(block_at(&snd, i), snd.counts[i], type_at(&snd, i), in + sd[i]);
   if (a == ALG_PAIRWISE_SENDRECV_REPLACE && stot == rtot && !memcmp(sc, rcn, (size_t)size * sizeof *sc)) {
     /* Each block goes out from and comes back into one place (in place,
      * the counts of both directions are the receive counts, as MPI says;
      * forced, when they are the same). */
-    tsmpi_sched_copy(s, out, in, rtot);
-    tsmpi_alltoallv_pairwise_sendrecv_replace(s, out, rcn, rd);
+    coll_sched_copy(s, out, in, rtot);
+    coll_alltoallv_pairwise_sendrecv_replace(s, out, rcn, rd);
   } else if (a == ALG_LINEAR) {
-    tsmpi_alltoallv_linear(s, in, sc, sd, out, rcn, rd);
+    coll_alltoallv_linear(s, in, sc, sd, out, rcn, rd);
   } else {
-    tsmpi_alltoallv_scattered(s, in, sc, sd, out, rcn, rd);
+    coll_alltoallv_scattered(s, in, sc, sd, out, rcn, rd);
   }
   for (int i = 0; i < size; i++)
-    tsmpi_sched_unpack(s, out + rd[i], rcn[i], block_at(&rcv, i), rcv.counts[i], type_at(&rcv, i));
-  return tsmpi_coll_finish(s);
+    coll_sched_unpack(s, out + rd[i], rcn[i], block_at(&rcv, i), rcv.counts[i], type_at(&rcv, i));
+  return coll_finish(s);
 }
 
 int PMPI_Alltoallv(const void *sendbuf, const int sendcounts[], const int sdispls[], MPI_Datatype sendtype,
                   void *recvbuf, const int recvcounts[], const int rdispls[], MPI_Datatype recvtype, MPI_Comm comm) {
-  if (tsmpi_comm_inter(comm)) return tsmpi_inter_alltoallv(sendbuf, sendcounts, sdispls, sendtype, recvbuf, recvcounts, rdispls, recvtype, comm);
+  if (comm_inter(comm)) return coll_inter_alltoallv(sendbuf, sendcounts, sdispls, sendtype, recvbuf, recvcounts, rdispls, recvtype, comm);
   static const char fn[] = "MPI_Alltoallv";
-  int rc = tsmpi_comm_check(comm, fn);
+  int rc = comm_check(comm, fn);
   side snd = {sendcounts, sdispls, NULL, sendtype, sendbuf}, rcv = {recvcounts, rdispls, NULL, recvtype, recvbuf};
   return rc ? rc : alltoallvw(fn, COLL_ALLTOALLV, snd, rcv, comm, NULL);
 }
@@ -306,10 +306,10 @@ int PMPI_Alltoallv(const void *sendbuf, const int sendcounts[], const int sdispl
 int PMPI_Ialltoallv(const void *sendbuf, const int sendcounts[], const int sdispls[], MPI_Datatype sendtype,
                    void *recvbuf, const int recvcounts[], const int rdispls[], MPI_Datatype recvtype, MPI_Comm comm,
                    MPI_Request *request) {
-  if (tsmpi_comm_inter(comm)) return tsmpi_coll_ran("MPI_Ialltoallv", comm, tsmpi_inter_alltoallv(sendbuf, sendcounts, sdispls, sendtype, recvbuf, recvcounts, rdispls, recvtype, comm), request);
+  if (comm_inter(comm)) return coll_ran("MPI_Ialltoallv", comm, coll_inter_alltoallv(sendbuf, sendcounts, sdispls, sendtype, recvbuf, recvcounts, rdispls, recvtype, comm), request);
   static const char fn[] = "MPI_Ialltoallv";
   int rc;
-  if ((rc = tsmpi_comm_check(comm, fn)) || (rc = tsmpi_coll_req_ok(comm, fn, request))) return rc;
+  if ((rc = comm_check(comm, fn)) || (rc = coll_req_ok(comm, fn, request))) return rc;
   side snd = {sendcounts, sdispls, NULL, sendtype, sendbuf}, rcv = {recvcounts, rdispls, NULL, recvtype, recvbuf};
   return alltoallvw(fn, COLL_ALLTOALLV, snd, rcv, comm, request);
 }
@@ -317,12 +317,12 @@ int PMPI_Ialltoallv(const void *sendbuf, const int sendcounts[], const int sdisp
 int PMPI_Alltoallw(const void *sendbuf, const int sendcounts[], const int sdispls[], const MPI_Datatype sendtypes[],
                   void *recvbuf, const int recvcounts[], const int rdispls[], const MPI_Datatype recvtypes[],
                   MPI_Comm comm) {
-  if (tsmpi_comm_inter(comm)) return tsmpi_inter_alltoallw(sendbuf, sendcounts, sdispls, sendtypes, recvbuf, recvcounts, rdispls, recvtypes, comm);
+  if (comm_inter(comm)) return coll_inter_alltoallw(sendbuf, sendcounts, sdispls, sendtypes, recvbuf, recvcounts, rdispls, recvtypes, comm);
   static const char fn[] = "MPI_Alltoallw";
-  int rc = tsmpi_comm_check(comm, fn);
+  int rc = comm_check(comm, fn);
   if (rc) return rc;
   if ((sendbuf != MPI_IN_PLACE && !sendtypes) || !recvtypes)
-    return tsmpi_raise(comm, MPI_ERR_ARG, fn, "a NULL array of types");
+    return err_comm_raise(comm, MPI_ERR_ARG, fn, "a NULL array of types");
   side snd = {sendcounts, sdispls, sendtypes, MPI_DATATYPE_NULL, sendbuf};
   side rcv = {recvcounts, rdispls, recvtypes, MPI_DATATYPE_NULL, recvbuf};
   return alltoallvw(fn, COLL_ALLTOALLW, snd, rcv, comm, NULL);
@@ -331,12 +331,12 @@ int PMPI_Alltoallw(const void *sendbuf, const int sendcounts[], const int sdispl
 int PMPI_Ialltoallw(const void *sendbuf, const int sendcounts[], const int sdispls[],
                    const MPI_Datatype sendtypes[], void *recvbuf, const int recvcounts[], const int rdispls[],
                    const MPI_Datatype recvtypes[], MPI_Comm comm, MPI_Request *request) {
-  if (tsmpi_comm_inter(comm)) return tsmpi_coll_ran("MPI_Ialltoallw", comm, tsmpi_inter_alltoallw(sendbuf, sendcounts, sdispls, sendtypes, recvbuf, recvcounts, rdispls, recvtypes, comm), request);
+  if (comm_inter(comm)) return coll_ran("MPI_Ialltoallw", comm, coll_inter_alltoallw(sendbuf, sendcounts, sdispls, sendtypes, recvbuf, recvcounts, rdispls, recvtypes, comm), request);
   static const char fn[] = "MPI_Ialltoallw";
   int rc;
-  if ((rc = tsmpi_comm_check(comm, fn)) || (rc = tsmpi_coll_req_ok(comm, fn, request))) return rc;
+  if ((rc = comm_check(comm, fn)) || (rc = coll_req_ok(comm, fn, request))) return rc;
   if ((sendbuf != MPI_IN_PLACE && !sendtypes) || !recvtypes)
-    return tsmpi_raise(comm, MPI_ERR_ARG, fn, "a NULL array of types");
+    return err_comm_raise(comm, MPI_ERR_ARG, fn, "a NULL array of types");
   side snd = {sendcounts, sdispls, sendtypes, MPI_DATATYPE_NULL, sendbuf};
   side rcv = {recvcounts, rdispls, recvtypes, MPI_DATATYPE_NULL, recvbuf};
   return alltoallvw(fn, COLL_ALLTOALLW, snd, rcv, comm, request);

@@ -9,77 +9,77 @@
 #include "mpi/err.h"
 #include "mpi/topo.h"
 
-void tsmpi_comm_hold(MPI_Comm comm) {
-  tsm *R = tsm_need("tsmpi_comm_hold");
-  tsm_comm_must(R, comm, "tsmpi_comm_hold")->holds++;
+void comm_hold(MPI_Comm comm) {
+  st_rank *R = st_need("comm_hold");
+  st_comm_must(R, comm, "comm_hold")->holds++;
 }
 
-void tsmpi_comm_release(MPI_Comm comm) {
-  tsm *R = tsm_need("tsmpi_comm_release");
-  tsm_comm *c = tsm_comm_must(R, comm, "tsmpi_comm_release");
-  if (--c->holds == 0 && c->freed) tsm_comm_end(R, &comm);
+void comm_release(MPI_Comm comm) {
+  st_rank *R = st_need("comm_release");
+  st_comm *c = st_comm_must(R, comm, "comm_release");
+  if (--c->holds == 0 && c->freed) comm_end(R, &comm);
 }
 
-int tsmpi_comm_nbc_tag(MPI_Comm comm) {
-  tsm *R = tsm_need("tsmpi_comm_nbc_tag");
-  tsm_comm *c = tsm_comm_must(R, comm, "tsmpi_comm_nbc_tag");
-  unsigned span = TSMPI_COLL_TAG_MAX - TSMPI_NBC_TAG_MIN + 1;
-  return TSMPI_NBC_TAG_MIN + (int)(c->nbc_seq++ % span);
+int comm_nbc_tag(MPI_Comm comm) {
+  st_rank *R = st_need("comm_nbc_tag");
+  st_comm *c = st_comm_must(R, comm, "comm_nbc_tag");
+  unsigned span = COLL_TAG_MAX - NBC_TAG_MIN + 1;
+  return NBC_TAG_MIN + (int)(c->nbc_seq++ % span);
 }
 
 /* ==== a communicator's process topology ================================== */
 
-struct tsmpi_topo *tsmpi_comm_topo(MPI_Comm comm) {
-  tsm *R = tsm_need("tsmpi_comm_topo");
-  return tsm_comm_must(R, comm, "tsmpi_comm_topo")->topo;
+struct ptopo *comm_topo(MPI_Comm comm) {
+  st_rank *R = st_need("comm_topo");
+  return st_comm_must(R, comm, "comm_topo")->topo;
 }
 
-void tsmpi_comm_set_topo(MPI_Comm comm, struct tsmpi_topo *t) {
-  tsm *R = tsm_need("tsmpi_comm_set_topo");
-  tsm_comm *c = tsm_comm_must(R, comm, "tsmpi_comm_set_topo");
-  tsmpi_topo_unref(c->topo);
+void comm_set_topo(MPI_Comm comm, struct ptopo *t) {
+  st_rank *R = st_need("comm_set_topo");
+  st_comm *c = st_comm_must(R, comm, "comm_set_topo");
+  ptopo_unref(c->topo);
   c->topo = t;
 }
 
 /* ==== communicators ======================================================= */
 
-int tsmpi_comm_check(MPI_Comm comm, const char *fn) {
-  tsm *R = tsm_need(fn);
-  tsm_comm *c;
-  return tsm_check_comm(R, comm, fn, &c);
+int comm_check(MPI_Comm comm, const char *fn) {
+  st_rank *R = st_need(fn);
+  st_comm *c;
+  return err_check_comm(R, comm, fn, &c);
 }
 
-int tsmpi_comm_rank(MPI_Comm comm) {
-  tsm *R = tsm_need("tsmpi_comm_rank");
-  return tsm_comm_must(R, comm, "tsmpi_comm_rank")->rank;
+int comm_rank(MPI_Comm comm) {
+  st_rank *R = st_need("comm_rank");
+  return st_comm_must(R, comm, "comm_rank")->rank;
 }
 
-int tsmpi_comm_size(MPI_Comm comm) {
-  tsm *R = tsm_need("tsmpi_comm_size");
-  return tsm_comm_lsize(tsm_comm_must(R, comm, "tsmpi_comm_size"));
+int comm_size(MPI_Comm comm) {
+  st_rank *R = st_need("comm_size");
+  return st_comm_lsize(st_comm_must(R, comm, "comm_size"));
 }
 
-int tsmpi_comm_inter(MPI_Comm comm) {
-  tsm *R = tsm_need("tsmpi_comm_inter");
+int comm_inter(MPI_Comm comm) {
+  st_rank *R = st_need("comm_inter");
   if (comm == MPI_COMM_WORLD) return 0;
-  tsm_comm *c = tsm_comm_get(R, comm);
+  st_comm *c = st_comm_get(R, comm);
   return c && c->inter;
 }
 
-int tsmpi_comm_remote_size(MPI_Comm comm) {
-  tsm *R = tsm_need("tsmpi_comm_remote_size");
-  return tsm_comm_must(R, comm, "tsmpi_comm_remote_size")->size;
+int comm_remote_size(MPI_Comm comm) {
+  st_rank *R = st_need("comm_remote_size");
+  return st_comm_must(R, comm, "comm_remote_size")->size;
 }
 
-int tsmpi_comm_world_rank(MPI_Comm comm, int r) {
-  tsm *R = tsm_need("tsmpi_comm_world_rank");
-  return tsm_world_of(tsm_comm_must(R, comm, "tsmpi_comm_world_rank"), r);
+int comm_world_rank(MPI_Comm comm, int r) {
+  st_rank *R = st_need("comm_world_rank");
+  return st_world_of(st_comm_must(R, comm, "comm_world_rank"), r);
 }
 
-const char *tsmpi_comm_name(MPI_Comm comm) {
-  tsm *R = tsm_need("tsmpi_comm_name");
+const char *comm_get_name(MPI_Comm comm) {
+  st_rank *R = st_need("comm_get_name");
   if (comm == MPI_COMM_NULL) return "MPI_COMM_NULL";
-  tsm_comm *c = tsm_comm_get(R, comm);
+  st_comm *c = st_comm_get(R, comm);
   if (!c) return "an invalid communicator";
   if (c->pair < 2) return c->pair ? "MPI_COMM_SELF" : "MPI_COMM_WORLD";
   /* The words live in the communicator (its name field holds the user's). */

@@ -13,7 +13,7 @@
  * a collective, and a collective never takes a program's.  The matching
  * rules are MPI's (doc/mpi-semantics.md): non-overtaking per source and tag,
  * receives matched in the order they were posted.  Peers are ranks in `comm`
- * (or MPI_PROC_NULL); tags are 0 .. TSMPI_COLL_TAG_MAX, chosen by the
+ * (or MPI_PROC_NULL); tags are 0 .. COLL_TAG_MAX, chosen by the
  * collectives (MPI_ANY_SOURCE and MPI_ANY_TAG are allowed in receives).
  *
  * TIME.  A message of count elements is one mp message of exactly
@@ -25,7 +25,7 @@
  * only shows at run time (a message longer than the receive: MPI_ERR_TRUNCATE
  * in the status and the result) and return an MPI error class; they never
  * call an error handler.  The collectives check their arguments with the
- * checks below and report through tsmpi_raise, which applies the
+ * checks below and report through err_comm_raise, which applies the
  * communicator's handler.  A run stopped by another rank (MPI_Abort, a
  * deadlock) ends the calling rank inside these calls (mp_exit): they never
  * return then.
@@ -34,8 +34,8 @@
  * deadlock report prints for the rank, e.g. "MPI_Bcast(root=0,
  * MPI_COMM_WORLD)") before its first blocking call and clears it after;
  * the calls here leave the label alone. */
-#ifndef TSMPI_P2P_H
-#define TSMPI_P2P_H
+#ifndef TSMPI_CORE_H
+#define TSMPI_CORE_H
 
 #include <stddef.h>
 
@@ -43,87 +43,87 @@
 
 /* ==== point-to-point on the collective context ============================ */
 
-enum { TSMPI_COLL_TAG_MAX = 0x3feff };   /* the collectives' tags: 0 .. this */
+enum { COLL_TAG_MAX = 0x3feff };   /* the collectives' tags: 0 .. this */
 
 /* Send count elements of dt from buf to rank dst of comm (MPI_PROC_NULL:
  * nothing).  Returns at once (eager); buf may be reused. */
-int tsmpi_p2p_send(const void *buf, int count, MPI_Datatype dt, int dst, int tag, MPI_Comm comm);
+int coll_p2p_send(const void *buf, int count, MPI_Datatype dt, int dst, int tag, MPI_Comm comm);
 
 /* Receive into buf (at most count elements of dt) from rank src of comm
  * (MPI_ANY_SOURCE, MPI_PROC_NULL) with tag (MPI_ANY_TAG); st may be
  * MPI_STATUS_IGNORE.  MPI_SUCCESS or MPI_ERR_TRUNCATE (the first count
  * elements were stored). */
-int tsmpi_p2p_recv(void *buf, int count, MPI_Datatype dt, int src, int tag, MPI_Comm comm,
-                   MPI_Status *st);
+int coll_p2p_recv(void *buf, int count, MPI_Datatype dt, int src, int tag, MPI_Comm comm,
+                  MPI_Status *st);
 
 /* Send, then receive (the send is eager, so this never deadlocks on a pair
  * that exchanges).  The bytes received must not overlap those sent: the
  * send's payload may stay in sbuf until the call returns (one copy, when
  * the receiver takes it first or has promised its buffer). */
-int tsmpi_p2p_sendrecv(const void *sbuf, int scount, MPI_Datatype sdt, int dst, int stag,
-                       void *rbuf, int rcount, MPI_Datatype rdt, int src, int rtag, MPI_Comm comm,
-                       MPI_Status *st);
+int coll_p2p_sendrecv(const void *sbuf, int scount, MPI_Datatype sdt, int dst, int stag,
+                      void *rbuf, int rcount, MPI_Datatype rdt, int src, int rtag, MPI_Comm comm,
+                      MPI_Status *st);
 
 /* Nonblocking: *req is a request of the calling rank, completed and freed by
- * tsmpi_p2p_waitall (or MPI_Wait*, MPI_Test*). */
-int tsmpi_p2p_isend(const void *buf, int count, MPI_Datatype dt, int dst, int tag, MPI_Comm comm,
-                    MPI_Request *req);
-int tsmpi_p2p_irecv(void *buf, int count, MPI_Datatype dt, int src, int tag, MPI_Comm comm,
-                    MPI_Request *req);
+ * coll_p2p_waitall (or MPI_Wait*, MPI_Test*). */
+int coll_p2p_isend(const void *buf, int count, MPI_Datatype dt, int dst, int tag, MPI_Comm comm,
+                   MPI_Request *req);
+int coll_p2p_irecv(void *buf, int count, MPI_Datatype dt, int src, int tag, MPI_Comm comm,
+                   MPI_Request *req);
 
 /* Complete n requests (MPI_REQUEST_NULL ones are skipped) and set each to
  * MPI_REQUEST_NULL; sts may be MPI_STATUSES_IGNORE.  MPI_SUCCESS, or
  * MPI_ERR_IN_STATUS with each status's MPI_ERROR set (with sts), or the
  * first error class (without). */
-int tsmpi_p2p_waitall(int n, MPI_Request *reqs, MPI_Status *sts);
+int coll_p2p_waitall(int n, MPI_Request *reqs, MPI_Status *sts);
 
-/* Whether *req (of tsmpi_p2p_isend or _irecv; MPI_REQUEST_NULL: done) is
+/* Whether *req (of coll_p2p_isend or _irecv; MPI_REQUEST_NULL: done) is
  * done, without taking any message and without the poll cost of MPI_Test:
  * 1 and it completed (its status in *st, which may be MPI_STATUS_IGNORE;
  * *req MPI_REQUEST_NULL), or 0.  For a kind's progress (below), which runs
  * after the engine has acted on every message that has arrived. */
-int tsmpi_p2p_done(MPI_Request *req, MPI_Status *st);
+int coll_p2p_done(MPI_Request *req, MPI_Status *st);
 
 /* ==== the nonblocking collectives' requests and progress ================== */
 
-/* Mark a request of tsmpi_p2p_isend/irecv as a step of a nonblocking
+/* Mark a request of coll_p2p_isend/irecv as a step of a nonblocking
  * collective: when the engine completes it (in any MPI call of the rank, or
  * while the rank computes), the rank's progress function runs (see
- * tsmpi_set_progress), after the message was acted on. */
-void tsmpi_p2p_watch(MPI_Request req);
+ * coll_set_progress), after the message was acted on. */
+void coll_p2p_watch(MPI_Request req);
 
 /* A request given up (a schedule freed before it finished): a receive still
  * posted is taken out of the posted queue; the request is freed and *req is
  * MPI_REQUEST_NULL. */
-void tsmpi_p2p_drop(MPI_Request *req);
+void coll_p2p_drop(MPI_Request *req);
 
 /* The rank's progress function: fn() runs after the engine completed a
  * watched request, at a point where it may send and post receives (never
  * block); while live (nonzero) the rank also makes progress while it
  * computes (mp_set_progress: each message that arrives while the rank
  * computes is acted on at its arrival).  fn NULL: none. */
-void tsmpi_set_progress(void (*fn)(void), int live);
+void coll_set_progress(void (*fn)(void), int live);
 
 /* A request of the program's for nonblocking collective fn on comm (root:
- * its root, or -1): active until tsmpi_req_coll_complete.  Its status is the
+ * its root, or -1): active until coll_req_complete.  Its status is the
  * empty one; a program's MPI_Request_free lets it go on until complete. */
-MPI_Request tsmpi_req_coll(const char *fn, MPI_Comm comm, int root);
+MPI_Request coll_req(const char *fn, MPI_Comm comm, int root);
 /* The collective is done, with error class err (already raised under the
  * communicator's handler). */
-void tsmpi_req_coll_complete(MPI_Request req, int err);
+void coll_req_complete(MPI_Request req, int err);
 
 /* A nonblocking collective on comm keeps it alive: MPI_Comm_free while it
  * is held takes it from the program only, and the last release ends it
  * (MPI 3.1 section 6.4.3: freed once its pending operations complete). */
-void tsmpi_comm_hold(MPI_Comm comm);
-void tsmpi_comm_release(MPI_Comm comm);
+void comm_hold(MPI_Comm comm);
+void comm_release(MPI_Comm comm);
 
 /* The tag of the next nonblocking collective on comm: the same on every
  * rank, as every rank starts a communicator's collectives in the same
  * order (MPI 3.1 section 5.12), and never one of the blocking ones'
- * (TSMPI_NBC_TAG_MIN .. TSMPI_COLL_TAG_MAX, round and round). */
-enum { TSMPI_NBC_TAG_MIN = 0x100 };
-int tsmpi_comm_nbc_tag(MPI_Comm comm);
+ * (NBC_TAG_MIN .. COLL_TAG_MAX, round and round). */
+enum { NBC_TAG_MIN = 0x100 };
+int comm_nbc_tag(MPI_Comm comm);
 
 /* ==== requests of a kind of their own ===================================== */
 
@@ -142,9 +142,9 @@ int tsmpi_comm_nbc_tag(MPI_Comm comm);
  *                    then, whichever the call waits for, as MPI's progress
  *                    rule asks (not while the rank computes between calls):
  *                    1 once the request is done, 0 if not yet.  It may start and test
- *                    point-to-point requests of its own (tsmpi_p2p_isend,
+ *                    point-to-point requests of its own (coll_p2p_isend,
  *                    MPI_Test on them).  NULL: the request is done only by
- *                    tsmpi_req_complete.  A Wait on a request that nothing
+ *                    req_complete.  A Wait on a request that nothing
  *                    can complete waits for messages, and the simulator
  *                    reports a deadlock naming the kind when no rank can
  *                    go on.
@@ -175,54 +175,54 @@ typedef struct {
   int (*status)(void *state, MPI_Status *st);
   int (*free)(void *state);
   void (*drop)(void *state);
-} tsmpi_kind;
+} req_kind;
 
 /* A new active request of kind (which must outlive it) with state; its
  * handle in *req.  MPI_SUCCESS. */
-int tsmpi_req_start(const tsmpi_kind *kind, void *state, MPI_Request *req);
+int req_start(const req_kind *kind, void *state, MPI_Request *req);
 
 /* Request req (of a kind without progress, or whose part completes it from
  * outside) is done: MPI_SUCCESS, or MPI_ERR_REQUEST if req is no active
  * request of a kind of its own.  If the program freed it already, it goes
  * now (free's error class is returned). */
-int tsmpi_req_complete(MPI_Request req);
+int req_complete(MPI_Request req);
 
 /* ==== a communicator's process topology ================================== */
 
 /* comm's topology (topo.h), or NULL; comm checked.  set: comm (just made
  * by the caller) takes t and the caller's count of it.  MPI_Comm_dup shares
  * it (counted), MPI_Comm_free drops its count. */
-struct tsmpi_topo *tsmpi_comm_topo(MPI_Comm comm);
-void tsmpi_comm_set_topo(MPI_Comm comm, struct tsmpi_topo *t);
+struct ptopo *comm_topo(MPI_Comm comm);
+void comm_set_topo(MPI_Comm comm, struct ptopo *t);
 
 /* ==== communicators ======================================================= */
 
 /* MPI_SUCCESS if comm is a communicator of the calling rank (not freed, not
- * MPI_COMM_NULL); else raises MPI_ERR_COMM for fn (see tsmpi_raise). */
-int tsmpi_comm_check(MPI_Comm comm, const char *fn);
+ * MPI_COMM_NULL); else raises MPI_ERR_COMM for fn (see err_comm_raise). */
+int comm_check(MPI_Comm comm, const char *fn);
 
 /* The calling rank's rank in comm and comm's size (comm checked; an
  * intercommunicator's local group's). */
-int tsmpi_comm_rank(MPI_Comm comm);
-int tsmpi_comm_size(MPI_Comm comm);
+int comm_rank(MPI_Comm comm);
+int comm_size(MPI_Comm comm);
 
 /* 1 if comm is a valid intercommunicator of the calling rank, else 0 (an
  * intracommunicator, or not a communicator: the caller's checks say so).
  * On an intercommunicator, the point-to-point calls above name ranks of
- * the remote group (tsmpi_comm_remote_size of them); each collective
+ * the remote group (comm_remote_size of them); each collective
  * hands an intercommunicator to coll_inter.h's before anything else. */
-int tsmpi_comm_inter(MPI_Comm comm);
-int tsmpi_comm_remote_size(MPI_Comm comm);
+int comm_inter(MPI_Comm comm);
+int comm_remote_size(MPI_Comm comm);
 
 /* comm's name for messages: "MPI_COMM_WORLD", "MPI_COMM_SELF", or
  * "communicator N", N the same on every rank of it (valid until the
  * communicator is freed; "MPI_COMM_NULL" and "an invalid communicator" for
  * those). */
-const char *tsmpi_comm_name(MPI_Comm comm);
+const char *comm_get_name(MPI_Comm comm);
 
 /* The mp rank (MPI_COMM_WORLD rank) of rank r of comm (comm checked,
  * 0 <= r < size; the remote group's rank r on an intercommunicator). */
-int tsmpi_comm_world_rank(MPI_Comm comm, int r);
+int comm_world_rank(MPI_Comm comm, int r);
 
 /* ==== errors ============================================================== */
 
@@ -235,20 +235,20 @@ int tsmpi_comm_world_rank(MPI_Comm comm, int r);
 #if defined(__GNUC__)
 __attribute__((format(printf, 4, 5)))
 #endif
-int tsmpi_raise(MPI_Comm comm, int cls, const char *fn, const char *fmt, ...);
+int err_comm_raise(MPI_Comm comm, int cls, const char *fn, const char *fmt, ...);
 
 /* Argument checks every call makes, in MPI's words; each returns
- * MPI_SUCCESS or raises (tsmpi_raise) for fn on comm:
- *   tsmpi_check_count   count >= 0                          MPI_ERR_COUNT
- *   tsmpi_check_buf     buf != NULL, unless count elements of dt can go
- *                       with MPI_BOTTOM (tsmpi_type_bottom_ok)     MPI_ERR_BUFFER
- *   tsmpi_check_rank    0 <= r < size of comm (MPI_PROC_NULL allowed;
+ * MPI_SUCCESS or raises (err_comm_raise) for fn on comm:
+ *   err_comm_check_count   count >= 0                          MPI_ERR_COUNT
+ *   err_comm_check_buf     buf != NULL, unless count elements of dt can go
+ *                       with MPI_BOTTOM (dtype_bottom_ok)     MPI_ERR_BUFFER
+ *   err_comm_check_rank    0 <= r < size of comm (MPI_PROC_NULL allowed;
  *                       MPI_ANY_SOURCE when any_ok)         MPI_ERR_RANK
- *   tsmpi_check_root    0 <= root < size of comm            MPI_ERR_ROOT */
-int tsmpi_check_count(MPI_Comm comm, const char *fn, int count);
-int tsmpi_check_buf(MPI_Comm comm, const char *fn, const void *buf, int count, MPI_Datatype dt);
-int tsmpi_check_rank(MPI_Comm comm, const char *fn, int r, int any_ok);
-int tsmpi_check_root(MPI_Comm comm, const char *fn, int root);
+ *   err_comm_check_root    0 <= root < size of comm            MPI_ERR_ROOT */
+int err_comm_check_count(MPI_Comm comm, const char *fn, int count);
+int err_comm_check_buf(MPI_Comm comm, const char *fn, const void *buf, int count, MPI_Datatype dt);
+int err_comm_check_rank(MPI_Comm comm, const char *fn, int r, int any_ok);
+int err_comm_check_root(MPI_Comm comm, const char *fn, int root);
 
 /* ==== attributes of datatypes ============================================= */
 
@@ -257,8 +257,8 @@ int tsmpi_check_root(MPI_Comm comm, const char *fn, int root);
  * first.  MPI_SUCCESS, or a callback's error raised for fn on
  * MPI_COMM_WORLD's handler (dup then has none of old's; dt keeps those
  * not deleted). */
-int tsmpi_type_attrs_copy(MPI_Datatype old, MPI_Datatype dup, const char *fn);
-int tsmpi_type_attrs_delete(MPI_Datatype dt, const char *fn);
+int attr_type_copy(MPI_Datatype old, MPI_Datatype dup, const char *fn);
+int attr_type_delete(MPI_Datatype dt, const char *fn);
 
 /* ==== the rank's state for the other parts of the layer =================== */
 
@@ -268,8 +268,8 @@ int tsmpi_type_attrs_delete(MPI_Datatype dt, const char *fn);
  * the open files', the windows'.  release(p), if not NULL, is
  * called once at MPI_Finalize or when the rank ends without it (a stopped
  * run), parts in reverse order. */
-enum { TSMPI_PART_DTYPE, TSMPI_PART_OP, TSMPI_PART_COLL, TSMPI_PART_SCHED, TSMPI_PART_NBC, TSMPI_PART_IO, TSMPI_PART_WIN, TSMPI_PARTS };
-void *tsmpi_part(int part);
-void tsmpi_part_set(int part, void *p, void (*release)(void *p));
+enum { ST_PART_DTYPE, ST_PART_OP, ST_PART_COLL, ST_PART_SCHED, ST_PART_NBC, ST_PART_IO, ST_PART_WIN, ST_PARTS };
+void *st_part(int part);
+void st_part_set(int part, void *p, void (*release)(void *p));
 
 #endif

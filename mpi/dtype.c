@@ -27,7 +27,7 @@ typedef struct { int32_t v, i; } pair_2integer;
 
 #define IDX(h) ((h) & 0xffff)
 /* A char's representation: signed on most machines, unsigned on some. */
-#define CHAR_REP (CHAR_MIN < 0 ? TSMPI_REP_INT : TSMPI_REP_UINT)
+#define CHAR_REP (CHAR_MIN < 0 ? DTYPE_REP_INT : DTYPE_REP_UINT)
 
 /* Every predefined type: B(handle, C type, class, representation) (the
  * handle as written is the type's name: MPI_LONG_LONG, which MPI_LONG_LONG_INT
@@ -35,66 +35,66 @@ typedef struct { int32_t v, i; } pair_2integer;
  * P(handle, pair struct, value's handle, index's handle) and M(handle,
  * sticky lb, sticky ub) for the markers MPI_LB and MPI_UB. */
 #define PREDEF_LIST(B, P, M)                                                                  \
-  B(MPI_CHAR, char, TSMPI_CLASS_CINT, CHAR_REP)                                              \
-  B(MPI_SIGNED_CHAR, signed char, TSMPI_CLASS_CINT, TSMPI_REP_INT)                           \
-  B(MPI_UNSIGNED_CHAR, unsigned char, TSMPI_CLASS_CINT, TSMPI_REP_UINT)                      \
-  B(MPI_BYTE, unsigned char, TSMPI_CLASS_BYTE, TSMPI_REP_UINT)                               \
-  B(MPI_WCHAR, wchar_t, TSMPI_CLASS_NONE, TSMPI_REP_NONE)                                    \
-  B(MPI_SHORT, short, TSMPI_CLASS_CINT, TSMPI_REP_INT)                                       \
-  B(MPI_UNSIGNED_SHORT, unsigned short, TSMPI_CLASS_CINT, TSMPI_REP_UINT)                    \
-  B(MPI_INT, int, TSMPI_CLASS_CINT, TSMPI_REP_INT)                                           \
-  B(MPI_UNSIGNED, unsigned, TSMPI_CLASS_CINT, TSMPI_REP_UINT)                                \
-  B(MPI_LONG, long, TSMPI_CLASS_CINT, TSMPI_REP_INT)                                         \
-  B(MPI_UNSIGNED_LONG, unsigned long, TSMPI_CLASS_CINT, TSMPI_REP_UINT)                      \
-  B(MPI_LONG_LONG, long long, TSMPI_CLASS_CINT, TSMPI_REP_INT)                               \
-  B(MPI_UNSIGNED_LONG_LONG, unsigned long long, TSMPI_CLASS_CINT, TSMPI_REP_UINT)            \
-  B(MPI_FLOAT, float, TSMPI_CLASS_FLOAT, TSMPI_REP_FLOAT)                                    \
-  B(MPI_DOUBLE, double, TSMPI_CLASS_FLOAT, TSMPI_REP_FLOAT)                                  \
-  B(MPI_LONG_DOUBLE, long double, TSMPI_CLASS_FLOAT, TSMPI_REP_FLOAT)                        \
-  B(MPI_C_BOOL, _Bool, TSMPI_CLASS_LOGICAL, TSMPI_REP_BOOL)                                  \
-  B(MPI_INT8_T, int8_t, TSMPI_CLASS_CINT, TSMPI_REP_INT)                                     \
-  B(MPI_INT16_T, int16_t, TSMPI_CLASS_CINT, TSMPI_REP_INT)                                   \
-  B(MPI_INT32_T, int32_t, TSMPI_CLASS_CINT, TSMPI_REP_INT)                                   \
-  B(MPI_INT64_T, int64_t, TSMPI_CLASS_CINT, TSMPI_REP_INT)                                   \
-  B(MPI_UINT8_T, uint8_t, TSMPI_CLASS_CINT, TSMPI_REP_UINT)                                  \
-  B(MPI_UINT16_T, uint16_t, TSMPI_CLASS_CINT, TSMPI_REP_UINT)                                \
-  B(MPI_UINT32_T, uint32_t, TSMPI_CLASS_CINT, TSMPI_REP_UINT)                                \
-  B(MPI_UINT64_T, uint64_t, TSMPI_CLASS_CINT, TSMPI_REP_UINT)                                \
-  B(MPI_AINT, MPI_Aint, TSMPI_CLASS_MULTI, TSMPI_REP_INT)                                    \
-  B(MPI_COUNT, MPI_Count, TSMPI_CLASS_MULTI, TSMPI_REP_INT)                                  \
-  B(MPI_OFFSET, MPI_Offset, TSMPI_CLASS_MULTI, TSMPI_REP_INT)                                \
-  B(MPI_C_FLOAT_COMPLEX, float _Complex, TSMPI_CLASS_COMPLEX, TSMPI_REP_COMPLEX)             \
-  B(MPI_C_DOUBLE_COMPLEX, double _Complex, TSMPI_CLASS_COMPLEX, TSMPI_REP_COMPLEX)           \
-  B(MPI_C_LONG_DOUBLE_COMPLEX, long double _Complex, TSMPI_CLASS_COMPLEX, TSMPI_REP_COMPLEX) \
-  B(MPI_PACKED, unsigned char, TSMPI_CLASS_NONE, TSMPI_REP_NONE)                             \
+  B(MPI_CHAR, char, DTYPE_CLASS_CINT, CHAR_REP)                                              \
+  B(MPI_SIGNED_CHAR, signed char, DTYPE_CLASS_CINT, DTYPE_REP_INT)                           \
+  B(MPI_UNSIGNED_CHAR, unsigned char, DTYPE_CLASS_CINT, DTYPE_REP_UINT)                      \
+  B(MPI_BYTE, unsigned char, DTYPE_CLASS_BYTE, DTYPE_REP_UINT)                               \
+  B(MPI_WCHAR, wchar_t, DTYPE_CLASS_NONE, DTYPE_REP_NONE)                                    \
+  B(MPI_SHORT, short, DTYPE_CLASS_CINT, DTYPE_REP_INT)                                       \
+  B(MPI_UNSIGNED_SHORT, unsigned short, DTYPE_CLASS_CINT, DTYPE_REP_UINT)                    \
+  B(MPI_INT, int, DTYPE_CLASS_CINT, DTYPE_REP_INT)                                           \
+  B(MPI_UNSIGNED, unsigned, DTYPE_CLASS_CINT, DTYPE_REP_UINT)                                \
+  B(MPI_LONG, long, DTYPE_CLASS_CINT, DTYPE_REP_INT)                                         \
+  B(MPI_UNSIGNED_LONG, unsigned long, DTYPE_CLASS_CINT, DTYPE_REP_UINT)                      \
+  B(MPI_LONG_LONG, long long, DTYPE_CLASS_CINT, DTYPE_REP_INT)                               \
+  B(MPI_UNSIGNED_LONG_LONG, unsigned long long, DTYPE_CLASS_CINT, DTYPE_REP_UINT)            \
+  B(MPI_FLOAT, float, DTYPE_CLASS_FLOAT, DTYPE_REP_FLOAT)                                    \
+  B(MPI_DOUBLE, double, DTYPE_CLASS_FLOAT, DTYPE_REP_FLOAT)                                  \
+  B(MPI_LONG_DOUBLE, long double, DTYPE_CLASS_FLOAT, DTYPE_REP_FLOAT)                        \
+  B(MPI_C_BOOL, _Bool, DTYPE_CLASS_LOGICAL, DTYPE_REP_BOOL)                                  \
+  B(MPI_INT8_T, int8_t, DTYPE_CLASS_CINT, DTYPE_REP_INT)                                     \
+  B(MPI_INT16_T, int16_t, DTYPE_CLASS_CINT, DTYPE_REP_INT)                                   \
+  B(MPI_INT32_T, int32_t, DTYPE_CLASS_CINT, DTYPE_REP_INT)                                   \
+  B(MPI_INT64_T, int64_t, DTYPE_CLASS_CINT, DTYPE_REP_INT)                                   \
+  B(MPI_UINT8_T, uint8_t, DTYPE_CLASS_CINT, DTYPE_REP_UINT)                                  \
+  B(MPI_UINT16_T, uint16_t, DTYPE_CLASS_CINT, DTYPE_REP_UINT)                                \
+  B(MPI_UINT32_T, uint32_t, DTYPE_CLASS_CINT, DTYPE_REP_UINT)                                \
+  B(MPI_UINT64_T, uint64_t, DTYPE_CLASS_CINT, DTYPE_REP_UINT)                                \
+  B(MPI_AINT, MPI_Aint, DTYPE_CLASS_MULTI, DTYPE_REP_INT)                                    \
+  B(MPI_COUNT, MPI_Count, DTYPE_CLASS_MULTI, DTYPE_REP_INT)                                  \
+  B(MPI_OFFSET, MPI_Offset, DTYPE_CLASS_MULTI, DTYPE_REP_INT)                                \
+  B(MPI_C_FLOAT_COMPLEX, float _Complex, DTYPE_CLASS_COMPLEX, DTYPE_REP_COMPLEX)             \
+  B(MPI_C_DOUBLE_COMPLEX, double _Complex, DTYPE_CLASS_COMPLEX, DTYPE_REP_COMPLEX)           \
+  B(MPI_C_LONG_DOUBLE_COMPLEX, long double _Complex, DTYPE_CLASS_COMPLEX, DTYPE_REP_COMPLEX) \
+  B(MPI_PACKED, unsigned char, DTYPE_CLASS_NONE, DTYPE_REP_NONE)                             \
   P(MPI_FLOAT_INT, pair_float_int, MPI_FLOAT, MPI_INT)                                       \
   P(MPI_DOUBLE_INT, pair_double_int, MPI_DOUBLE, MPI_INT)                                    \
   P(MPI_LONG_INT, pair_long_int, MPI_LONG, MPI_INT)                                          \
   P(MPI_2INT, pair_2int, MPI_INT, MPI_INT)                                                   \
   P(MPI_SHORT_INT, pair_short_int, MPI_SHORT, MPI_INT)                                       \
   P(MPI_LONG_DOUBLE_INT, pair_long_double_int, MPI_LONG_DOUBLE, MPI_INT)                     \
-  B(MPI_CXX_BOOL, _Bool, TSMPI_CLASS_LOGICAL, TSMPI_REP_BOOL)                                \
-  B(MPI_CXX_FLOAT_COMPLEX, float _Complex, TSMPI_CLASS_COMPLEX, TSMPI_REP_COMPLEX)           \
-  B(MPI_CXX_DOUBLE_COMPLEX, double _Complex, TSMPI_CLASS_COMPLEX, TSMPI_REP_COMPLEX)         \
-  B(MPI_CXX_LONG_DOUBLE_COMPLEX, long double _Complex, TSMPI_CLASS_COMPLEX, TSMPI_REP_COMPLEX) \
-  B(MPI_CHARACTER, char, TSMPI_CLASS_NONE, TSMPI_REP_NONE)                                   \
-  B(MPI_LOGICAL, int32_t, TSMPI_CLASS_LOGICAL, TSMPI_REP_BOOL)                               \
-  B(MPI_INTEGER, int32_t, TSMPI_CLASS_FINT, TSMPI_REP_INT)                                   \
-  B(MPI_REAL, float, TSMPI_CLASS_FLOAT, TSMPI_REP_FLOAT)                                     \
-  B(MPI_DOUBLE_PRECISION, double, TSMPI_CLASS_FLOAT, TSMPI_REP_FLOAT)                        \
-  B(MPI_COMPLEX, float _Complex, TSMPI_CLASS_COMPLEX, TSMPI_REP_COMPLEX)                     \
-  B(MPI_DOUBLE_COMPLEX, double _Complex, TSMPI_CLASS_COMPLEX, TSMPI_REP_COMPLEX)             \
+  B(MPI_CXX_BOOL, _Bool, DTYPE_CLASS_LOGICAL, DTYPE_REP_BOOL)                                \
+  B(MPI_CXX_FLOAT_COMPLEX, float _Complex, DTYPE_CLASS_COMPLEX, DTYPE_REP_COMPLEX)           \
+  B(MPI_CXX_DOUBLE_COMPLEX, double _Complex, DTYPE_CLASS_COMPLEX, DTYPE_REP_COMPLEX)         \
+  B(MPI_CXX_LONG_DOUBLE_COMPLEX, long double _Complex, DTYPE_CLASS_COMPLEX, DTYPE_REP_COMPLEX) \
+  B(MPI_CHARACTER, char, DTYPE_CLASS_NONE, DTYPE_REP_NONE)                                   \
+  B(MPI_LOGICAL, int32_t, DTYPE_CLASS_LOGICAL, DTYPE_REP_BOOL)                               \
+  B(MPI_INTEGER, int32_t, DTYPE_CLASS_FINT, DTYPE_REP_INT)                                   \
+  B(MPI_REAL, float, DTYPE_CLASS_FLOAT, DTYPE_REP_FLOAT)                                     \
+  B(MPI_DOUBLE_PRECISION, double, DTYPE_CLASS_FLOAT, DTYPE_REP_FLOAT)                        \
+  B(MPI_COMPLEX, float _Complex, DTYPE_CLASS_COMPLEX, DTYPE_REP_COMPLEX)                     \
+  B(MPI_DOUBLE_COMPLEX, double _Complex, DTYPE_CLASS_COMPLEX, DTYPE_REP_COMPLEX)             \
   P(MPI_2REAL, pair_2real, MPI_REAL, MPI_REAL)                                               \
   P(MPI_2DOUBLE_PRECISION, pair_2double, MPI_DOUBLE_PRECISION, MPI_DOUBLE_PRECISION)         \
   P(MPI_2INTEGER, pair_2integer, MPI_INTEGER, MPI_INTEGER)                                   \
-  B(MPI_INTEGER1, int8_t, TSMPI_CLASS_FINT, TSMPI_REP_INT)                                   \
-  B(MPI_INTEGER2, int16_t, TSMPI_CLASS_FINT, TSMPI_REP_INT)                                  \
-  B(MPI_INTEGER4, int32_t, TSMPI_CLASS_FINT, TSMPI_REP_INT)                                  \
-  B(MPI_INTEGER8, int64_t, TSMPI_CLASS_FINT, TSMPI_REP_INT)                                  \
-  B(MPI_REAL4, float, TSMPI_CLASS_FLOAT, TSMPI_REP_FLOAT)                                    \
-  B(MPI_REAL8, double, TSMPI_CLASS_FLOAT, TSMPI_REP_FLOAT)                                   \
-  B(MPI_COMPLEX8, float _Complex, TSMPI_CLASS_COMPLEX, TSMPI_REP_COMPLEX)                    \
-  B(MPI_COMPLEX16, double _Complex, TSMPI_CLASS_COMPLEX, TSMPI_REP_COMPLEX)                 \
+  B(MPI_INTEGER1, int8_t, DTYPE_CLASS_FINT, DTYPE_REP_INT)                                   \
+  B(MPI_INTEGER2, int16_t, DTYPE_CLASS_FINT, DTYPE_REP_INT)                                  \
+  B(MPI_INTEGER4, int32_t, DTYPE_CLASS_FINT, DTYPE_REP_INT)                                  \
+  B(MPI_INTEGER8, int64_t, DTYPE_CLASS_FINT, DTYPE_REP_INT)                                  \
+  B(MPI_REAL4, float, DTYPE_CLASS_FLOAT, DTYPE_REP_FLOAT)                                    \
+  B(MPI_REAL8, double, DTYPE_CLASS_FLOAT, DTYPE_REP_FLOAT)                                   \
+  B(MPI_COMPLEX8, float _Complex, DTYPE_CLASS_COMPLEX, DTYPE_REP_COMPLEX)                    \
+  B(MPI_COMPLEX16, double _Complex, DTYPE_CLASS_COMPLEX, DTYPE_REP_COMPLEX)                 \
   M(MPI_LB, 1, 0)                                                                            \
   M(MPI_UB, 0, 1)
 
@@ -108,13 +108,13 @@ typedef struct { int32_t v, i; } pair_2integer;
 #define DESC_B(h, ctype, cls, rep) \
   [IDX(h)] = {#h, (int)sizeof(ctype), (int)sizeof(ctype), (int)_Alignof(ctype), cls, rep, 0, 0, 0},
 #define DESC_P(h, st, vh, ih)                                                                  \
-  [IDX(h)] = {#h, VSIZE(st) + ISIZE(st), (int)sizeof(st), (int)_Alignof(st), TSMPI_CLASS_PAIR, \
-              TSMPI_REP_PAIR, IDX(vh), IDX(ih), IOFF(st)},
-#define DESC_M(h, l, u) [IDX(h)] = {#h, 0, 0, 1, TSMPI_CLASS_NONE, TSMPI_REP_NONE, 0, 0, 0},
-static const tsmpi_predef predef[TSMPI_PREDEF_N] = {PREDEF_LIST(DESC_B, DESC_P, DESC_M)};
+  [IDX(h)] = {#h, VSIZE(st) + ISIZE(st), (int)sizeof(st), (int)_Alignof(st), DTYPE_CLASS_PAIR, \
+              DTYPE_REP_PAIR, IDX(vh), IDX(ih), IOFF(st)},
+#define DESC_M(h, l, u) [IDX(h)] = {#h, 0, 0, 1, DTYPE_CLASS_NONE, DTYPE_REP_NONE, 0, 0, 0},
+static const dtype_predef predef[DTYPE_PREDEF_N] = {PREDEF_LIST(DESC_B, DESC_P, DESC_M)};
 
-const tsmpi_predef *tsmpi_predef_get(int i) {
-  return i > 0 && i < TSMPI_PREDEF_N && predef[i].name ? &predef[i] : NULL;
+const dtype_predef *dtype_predef_get(int i) {
+  return i > 0 && i < DTYPE_PREDEF_N && predef[i].name ? &predef[i] : NULL;
 }
 
 /* ==== type objects ======================================================== */
@@ -156,12 +156,12 @@ typedef struct dt {
 #define RUN_B(h, ctype, cls, rep) [IDX(h)] = {0, 1, IDX(h)},
 #define RUN_P(h, st, vh, ih) [IDX(h)] = {0, 1, IDX(h)},
 #define NONE_M(h, l, u)
-static const run pre_run[TSMPI_PREDEF_N] = {PREDEF_LIST(RUN_B, RUN_P, NONE_M)};
+static const run pre_run[DTYPE_PREDEF_N] = {PREDEF_LIST(RUN_B, RUN_P, NONE_M)};
 
 #define SEG_B(h, ctype, cls, rep) [IDX(h)] = {{0, (MPI_Aint)sizeof(ctype)}, {0, 0}},
 #define SEG_P(h, st, vh, ih) \
   [IDX(h)] = {{0, PACKED_LIKE(st) ? VSIZE(st) + ISIZE(st) : VSIZE(st)}, {IOFF(st), ISIZE(st)}},
-static const seg pre_seg[TSMPI_PREDEF_N][2] = {PREDEF_LIST(SEG_B, SEG_P, NONE_M)};
+static const seg pre_seg[DTYPE_PREDEF_N][2] = {PREDEF_LIST(SEG_B, SEG_P, NONE_M)};
 
 #define OBJ_B(h, ctype, cls, rep)                                                          \
   [IDX(h)] = {.committed = 1, .predef = IDX(h), .align = (int)_Alignof(ctype), .contig = 1, \
@@ -180,7 +180,7 @@ static const seg pre_seg[TSMPI_PREDEF_N][2] = {PREDEF_LIST(SEG_B, SEG_P, NONE_M)
 #define OBJ_M(h, l, u)                                                                     \
   [IDX(h)] = {.committed = 1, .predef = IDX(h), .slb = l, .sub = u, .align = 1, .contig = 1, \
               .combiner = MPI_COMBINER_NAMED},
-static const dt pre_obj[TSMPI_PREDEF_N] = {PREDEF_LIST(OBJ_B, OBJ_P, OBJ_M)};
+static const dt pre_obj[DTYPE_PREDEF_N] = {PREDEF_LIST(OBJ_B, OBJ_P, OBJ_M)};
 
 /* ==== the rank's table ==================================================== */
 
@@ -191,7 +191,7 @@ typedef struct {
   int n, cap;
   int *spare;   /* freed slots, reused last in first out */
   int nspare;
-  char *pname[TSMPI_PREDEF_N];   /* names this rank gave predefined types */
+  char *pname[DTYPE_PREDEF_N];   /* names this rank gave predefined types */
 } table;
 
 static void table_release(void *p) {
@@ -207,18 +207,18 @@ static void table_release(void *p) {
     free(t->name);
     free(t);
   }
-  for (int i = 0; i < TSMPI_PREDEF_N; i++) free(tb->pname[i]);
+  for (int i = 0; i < DTYPE_PREDEF_N; i++) free(tb->pname[i]);
   free(tb->slot);
   free(tb->spare);
   free(tb);
 }
 
 static table *tab(int create) {
-  table *tb = tsmpi_part(TSMPI_PART_DTYPE);
+  table *tb = st_part(ST_PART_DTYPE);
   if (tb || !create) return tb;
   tb = calloc(1, sizeof *tb);
   if (!tb) return NULL;
-  tsmpi_part_set(TSMPI_PART_DTYPE, tb, table_release);
+  st_part_set(ST_PART_DTYPE, tb, table_release);
   return tb;
 }
 
@@ -227,7 +227,7 @@ static dt *obj(MPI_Datatype h) {
   if ((h & 0xff000000) != 0x03000000) return NULL;
   if (!(h & 0x800000)) {
     int i = h & 0xffff;
-    return (h & 0x7f0000) == 0 && i > 0 && i < TSMPI_PREDEF_N && predef[i].name ? (dt *)&pre_obj[i] : NULL;
+    return (h & 0x7f0000) == 0 && i > 0 && i < DTYPE_PREDEF_N && predef[i].name ? (dt *)&pre_obj[i] : NULL;
   }
   table *tb = tab(0);
   int i = h & SLOT_MASK;
@@ -290,7 +290,7 @@ static MPI_Datatype enter(dt *t) {
 
 /* ==== checks and queries ================================================== */
 
-int tsmpi_type_valid(MPI_Datatype h, char *why, size_t len) {
+int dtype_valid(MPI_Datatype h, char *why, size_t len) {
   const char *w = NULL;
   if (h == MPI_DATATYPE_NULL) w = "MPI_DATATYPE_NULL";
   else if ((h & 0xff000000) != 0x03000000) w = "not a datatype";
@@ -300,8 +300,8 @@ int tsmpi_type_valid(MPI_Datatype h, char *why, size_t len) {
   return MPI_ERR_TYPE;
 }
 
-int tsmpi_type_check(MPI_Datatype h, char *why, size_t len) {
-  int rc = tsmpi_type_valid(h, why, len);
+int dtype_check(MPI_Datatype h, char *why, size_t len) {
+  int rc = dtype_valid(h, why, len);
   if (rc != MPI_SUCCESS) return rc;
   if (!obj(h)->committed) {
     if (why && len) snprintf(why, len, "not committed");
@@ -310,12 +310,12 @@ int tsmpi_type_check(MPI_Datatype h, char *why, size_t len) {
   return MPI_SUCCESS;
 }
 
-size_t tsmpi_type_size(MPI_Datatype h) { return (size_t)obj(h)->size; }
-MPI_Aint tsmpi_type_extent(MPI_Datatype h) { const dt *t = obj(h); return t->ub - t->lb; }
-MPI_Aint tsmpi_type_true_lb(MPI_Datatype h) { return obj(h)->tlb; }
-MPI_Aint tsmpi_type_true_extent(MPI_Datatype h) { const dt *t = obj(h); return t->tub - t->tlb; }
+size_t dtype_size(MPI_Datatype h) { return (size_t)obj(h)->size; }
+MPI_Aint dtype_extent(MPI_Datatype h) { const dt *t = obj(h); return t->ub - t->lb; }
+MPI_Aint dtype_true_lb(MPI_Datatype h) { return obj(h)->tlb; }
+MPI_Aint dtype_true_extent(MPI_Datatype h) { const dt *t = obj(h); return t->tub - t->tlb; }
 
-void tsmpi_type_bounds(MPI_Datatype h, MPI_Aint *lb, MPI_Aint *ub, MPI_Aint *tlb, MPI_Aint *tub) {
+void dtype_bounds(MPI_Datatype h, MPI_Aint *lb, MPI_Aint *ub, MPI_Aint *tlb, MPI_Aint *tub) {
   const dt *t = obj(h);
   if (lb) *lb = t->lb;
   if (ub) *ub = t->ub;
@@ -329,21 +329,21 @@ static char *at(const void *p, MPI_Aint disp) {
   return (char *)((uintptr_t)p + (uintptr_t)disp);
 }
 
-int tsmpi_type_contiguous(MPI_Datatype h, int count) {
+int dtype_contiguous(MPI_Datatype h, int count) {
   const dt *t = obj(h);
   return count == 0 || t->size == 0 || t->contig || (count == 1 && t->nseg == 1);
 }
 
-const void *tsmpi_type_contig(const void *buf, int count, MPI_Datatype h) {
+const void *dtype_contig(const void *buf, int count, MPI_Datatype h) {
   const dt *t = obj(h);
-  if (!tsmpi_type_contiguous(h, count)) return NULL;
+  if (!dtype_contiguous(h, count)) return NULL;
   return count == 0 || t->size == 0 ? buf : at(buf, t->segs[0].disp);
 }
 
-void tsmpi_type_pack(const void *buf, int count, MPI_Datatype h, void *out) {
+void dtype_pack(const void *buf, int count, MPI_Datatype h, void *out) {
   const dt *t = obj(h);
-  if (tsmpi_type_contiguous(h, count)) {
-    if (t->size && count) memcpy(out, tsmpi_type_contig(buf, count, h), (size_t)(t->size * count));
+  if (dtype_contiguous(h, count)) {
+    if (t->size && count) memcpy(out, dtype_contig(buf, count, h), (size_t)(t->size * count));
     return;
   }
   char *o = out;
@@ -357,12 +357,12 @@ void tsmpi_type_pack(const void *buf, int count, MPI_Datatype h, void *out) {
   }
 }
 
-void tsmpi_type_unpack(const void *in, size_t bytes, void *buf, int count, MPI_Datatype h) {
+void dtype_unpack(const void *in, size_t bytes, void *buf, int count, MPI_Datatype h) {
   const dt *t = obj(h);
   size_t all = (size_t)(t->size * count);
   if (bytes > all) bytes = all;
-  if (tsmpi_type_contiguous(h, count)) {
-    if (bytes) memcpy((void *)tsmpi_type_contig(buf, count, h), in, bytes);
+  if (dtype_contiguous(h, count)) {
+    if (bytes) memcpy((void *)dtype_contig(buf, count, h), in, bytes);
     return;
   }
   const char *p = in;
@@ -378,17 +378,17 @@ void tsmpi_type_unpack(const void *in, size_t bytes, void *buf, int count, MPI_D
   }
 }
 
-void tsmpi_type_hold(MPI_Datatype h) { ref(h); }
-void tsmpi_type_release(MPI_Datatype h) { unref(h); }
+void dtype_hold(MPI_Datatype h) { ref(h); }
+void dtype_release(MPI_Datatype h) { unref(h); }
 
-MPI_Count tsmpi_type_elements(MPI_Datatype h, MPI_Count bytes) {
+MPI_Count dtype_elements(MPI_Datatype h, MPI_Count bytes) {
   const dt *t = obj(h);
   if (t->size == 0) return 0;
   MPI_Count n = bytes / t->size * t->nbasic, rest = bytes % t->size;
   for (size_t k = 0; k < t->nrun && rest > 0; k++) {
-    const tsmpi_predef *p = &predef[t->runs[k].type];
+    const dtype_predef *p = &predef[t->runs[k].type];
     for (MPI_Count j = 0; j < t->runs[k].n && rest > 0; j++) {
-      if (p->rep == TSMPI_REP_PAIR) {
+      if (p->rep == DTYPE_REP_PAIR) {
         int vs = predef[p->pair_value].size;
         if (rest < vs) return MPI_UNDEFINED;
         rest -= vs;
@@ -407,13 +407,13 @@ MPI_Count tsmpi_type_elements(MPI_Datatype h, MPI_Count bytes) {
   return n;
 }
 
-MPI_Count tsmpi_type_elements_bytes(MPI_Datatype h, MPI_Count n) {
+MPI_Count dtype_elements_bytes(MPI_Datatype h, MPI_Count n) {
   const dt *t = obj(h);
   if (t->nbasic == 0) return n > 0 ? -1 : 0;
   MPI_Count bytes = n / t->nbasic * t->size, rest = n % t->nbasic;
   for (size_t k = 0; k < t->nrun && rest > 0; k++) {
-    const tsmpi_predef *p = &predef[t->runs[k].type];
-    int two = p->rep == TSMPI_REP_PAIR;
+    const dtype_predef *p = &predef[t->runs[k].type];
+    int two = p->rep == DTYPE_REP_PAIR;
     MPI_Count whole = rest / (two ? 2 : 1) < t->runs[k].n ? rest / (two ? 2 : 1) : t->runs[k].n;
     bytes += whole * p->size;
     rest -= whole * (two ? 2 : 1);
@@ -425,28 +425,28 @@ MPI_Count tsmpi_type_elements_bytes(MPI_Datatype h, MPI_Count n) {
   return bytes;
 }
 
-int tsmpi_type_bottom_ok(MPI_Datatype h, int count) {
+int dtype_bottom_ok(MPI_Datatype h, int count) {
   const dt *t = obj(h);
   return count == 0 || t->size == 0 || t->tlb != 0;
 }
 
-int tsmpi_type_elem(MPI_Datatype h, MPI_Count *per_elem) {
+int dtype_elem(MPI_Datatype h, MPI_Count *per_elem) {
   const dt *t = obj(h);
   if (per_elem) *per_elem = t->per_elem;
   return t->elem;
 }
 
-void tsmpi_type_runs(MPI_Datatype h, void (*f)(void *ud, MPI_Aint disp, MPI_Count n), void *ud) {
+void dtype_runs(MPI_Datatype h, void (*f)(void *ud, MPI_Aint disp, MPI_Count n), void *ud) {
   const dt *t = obj(h);
   for (size_t k = 0; k < t->nrun; k++) f(ud, t->runs[k].disp, t->runs[k].n);
 }
 
-void tsmpi_type_walk(MPI_Datatype h, void (*f)(void *ud, MPI_Aint disp, MPI_Count n, int type), void *ud) {
+void dtype_walk(MPI_Datatype h, void (*f)(void *ud, MPI_Aint disp, MPI_Count n, int type), void *ud) {
   const dt *t = obj(h);
   for (size_t k = 0; k < t->nrun; k++) f(ud, t->runs[k].disp, t->runs[k].n, t->runs[k].type);
 }
 
-size_t tsmpi_type_segments(MPI_Datatype h, void (*f)(void *ud, MPI_Aint disp, MPI_Aint len), void *ud) {
+size_t dtype_segments(MPI_Datatype h, void (*f)(void *ud, MPI_Aint disp, MPI_Aint len), void *ud) {
   const dt *t = obj(h);
   for (size_t k = 0; k < t->nseg && f; k++) f(ud, t->segs[k].disp, t->segs[k].len);
   return t->nseg;
@@ -524,7 +524,7 @@ static void add_type(builder *b, const dt *t, MPI_Aint disp, MPI_Count reps) {
 static MPI_Aint amin(MPI_Aint a, MPI_Aint b) { return a < b ? a : b; }
 static MPI_Aint amax(MPI_Aint a, MPI_Aint b) { return a > b ? a : b; }
 
-static int copy_decoding(dt *t, const tsmpi_type_decoding *dec) {
+static int copy_decoding(dt *t, const dtype_decoding *dec) {
   int *ints = dec->ni ? malloc((size_t)dec->ni * sizeof *ints) : NULL;
   MPI_Aint *aints = dec->na ? malloc((size_t)dec->na * sizeof *aints) : NULL;
   MPI_Datatype *types = dec->nd ? malloc((size_t)dec->nd * sizeof *types) : NULL;
@@ -565,9 +565,9 @@ static void finish(dt *t) {
   t->elem = t->nrun ? t->runs[0].type : 0;
   t->per_elem = 0;
   for (size_t k = 0; k < t->nrun; k++) {
-    const tsmpi_predef *p = &predef[t->runs[k].type];
+    const dtype_predef *p = &predef[t->runs[k].type];
     t->size += t->runs[k].n * p->size;
-    t->nbasic += t->runs[k].n * (p->rep == TSMPI_REP_PAIR ? 2 : 1);
+    t->nbasic += t->runs[k].n * (p->rep == DTYPE_REP_PAIR ? 2 : 1);
     if (t->runs[k].type != t->elem) t->elem = 0;
     t->per_elem += t->runs[k].n;
   }
@@ -575,9 +575,9 @@ static void finish(dt *t) {
   t->contig = t->size == 0 || (t->nseg == 1 && t->size == t->ub - t->lb);
 }
 
-int tsmpi_type_build(int count, const int *blen, const MPI_Aint *disp, const MPI_Datatype *types,
-                     MPI_Datatype type, int struct_pad, const tsmpi_type_decoding *dec,
-                     MPI_Datatype *newtype, char *why, size_t len) {
+int dtype_build(int count, const int *blen, const MPI_Aint *disp, const MPI_Datatype *types,
+                MPI_Datatype type, int struct_pad, const dtype_decoding *dec,
+                MPI_Datatype *newtype, char *why, size_t len) {
   builder b = {0};
   dt *t = calloc(1, sizeof *t);
   if (!t) goto oom;
@@ -688,12 +688,12 @@ static int entered(dt *t, MPI_Datatype *newtype, char *why, size_t len) {
   return MPI_ERR_NO_MEM;
 }
 
-int tsmpi_type_resized(MPI_Datatype h, MPI_Aint lb, MPI_Aint extent, MPI_Datatype *newtype,
-                       char *why, size_t len) {
+int dtype_resized(MPI_Datatype h, MPI_Aint lb, MPI_Aint extent, MPI_Datatype *newtype,
+                  char *why, size_t len) {
   const dt *c = obj(h);
   dt *t = clone(c);
   MPI_Aint aints[2] = {lb, extent};
-  tsmpi_type_decoding dec = {MPI_COMBINER_RESIZED, 0, 2, 1, NULL, aints, &h};
+  dtype_decoding dec = {MPI_COMBINER_RESIZED, 0, 2, 1, NULL, aints, &h};
   if (!t || !copy_decoding(t, &dec)) {
     if (t) drop(t);
     if (why && len) snprintf(why, len, "out of memory");
@@ -707,10 +707,10 @@ int tsmpi_type_resized(MPI_Datatype h, MPI_Aint lb, MPI_Aint extent, MPI_Datatyp
   return entered(t, newtype, why, len);
 }
 
-int tsmpi_type_dup(MPI_Datatype h, MPI_Datatype *newtype, char *why, size_t len) {
+int dtype_dup(MPI_Datatype h, MPI_Datatype *newtype, char *why, size_t len) {
   const dt *c = obj(h);
   dt *t = clone(c);
-  tsmpi_type_decoding dec = {MPI_COMBINER_DUP, 0, 0, 1, NULL, NULL, &h};
+  dtype_decoding dec = {MPI_COMBINER_DUP, 0, 0, 1, NULL, NULL, &h};
   if (!t || !copy_decoding(t, &dec)) {
     if (t) drop(t);
     if (why && len) snprintf(why, len, "out of memory");
@@ -720,13 +720,13 @@ int tsmpi_type_dup(MPI_Datatype h, MPI_Datatype *newtype, char *why, size_t len)
   return entered(t, newtype, why, len);
 }
 
-int tsmpi_type_commit(MPI_Datatype h) {
+int dtype_commit(MPI_Datatype h) {
   dt *t = obj(h);
   if (!t->predef) t->committed = 1;
   return MPI_SUCCESS;
 }
 
-int tsmpi_type_free(MPI_Datatype h) {
+int dtype_free(MPI_Datatype h) {
   dt *t = obj(h);
   if (!t || t->predef) return MPI_ERR_TYPE;
   unref(h);
@@ -735,7 +735,7 @@ int tsmpi_type_free(MPI_Datatype h) {
 
 /* ==== names and decoding ================================================== */
 
-int tsmpi_type_redecode(MPI_Datatype h, const tsmpi_type_decoding *dec) {
+int dtype_redecode(MPI_Datatype h, const dtype_decoding *dec) {
   dt *t = obj(h);
   for (int k = 0; k < t->nd; k++) unref(t->types[k]);
   free(t->ints);
@@ -748,7 +748,7 @@ int tsmpi_type_redecode(MPI_Datatype h, const tsmpi_type_decoding *dec) {
   return copy_decoding(t, dec) ? MPI_SUCCESS : MPI_ERR_NO_MEM;
 }
 
-const char *tsmpi_type_name(MPI_Datatype h) {
+const char *dtype_name(MPI_Datatype h) {
   const dt *t = obj(h);
   const table *tb = t->predef ? tab(0) : NULL;
   if (tb && tb->pname[t->predef]) return tb->pname[t->predef];
@@ -756,7 +756,7 @@ const char *tsmpi_type_name(MPI_Datatype h) {
   return t->predef ? predef[t->predef].name : "";
 }
 
-int tsmpi_type_set_name(MPI_Datatype h, const char *name) {
+int dtype_set_name(MPI_Datatype h, const char *name) {
   dt *t = obj(h);
   table *tb = t->predef ? tab(1) : NULL;
   if (t->predef && !tb) return MPI_ERR_NO_MEM;
@@ -772,7 +772,7 @@ int tsmpi_type_set_name(MPI_Datatype h, const char *name) {
   return MPI_SUCCESS;
 }
 
-void tsmpi_type_envelope(MPI_Datatype h, int *ni, int *na, int *nd, int *combiner) {
+void dtype_envelope(MPI_Datatype h, int *ni, int *na, int *nd, int *combiner) {
   const dt *t = obj(h);
   *ni = t->ni;
   *na = t->na;
@@ -780,8 +780,8 @@ void tsmpi_type_envelope(MPI_Datatype h, int *ni, int *na, int *nd, int *combine
   *combiner = t->combiner;
 }
 
-int tsmpi_type_contents(MPI_Datatype h, int ni, int na, int nd, int *ints, MPI_Aint *aints,
-                        MPI_Datatype *types) {
+int dtype_contents(MPI_Datatype h, int ni, int na, int nd, int *ints, MPI_Aint *aints,
+                   MPI_Datatype *types) {
   const dt *t = obj(h);
   if (t->predef || ni < t->ni || na < t->na || nd < t->nd) return MPI_ERR_ARG;
   if (t->ni) memcpy(ints, t->ints, (size_t)t->ni * sizeof *ints);

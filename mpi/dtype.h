@@ -21,7 +21,7 @@
  * HANDLES.  A datatype handle is valid in communication when it is
  * predefined, or created by this rank, committed and not freed.  A created
  * type lives while any handle, any type built from it that can still be
- * decoded (MPI_Type_get_contents), or any holder (tsmpi_type_hold) refers to
+ * decoded (MPI_Type_get_contents), or any holder (dtype_hold) refers to
  * it: point-to-point holds the type of a pending receive, so that
  * MPI_Type_free may come before the receive completes, as MPI allows.
  *
@@ -41,80 +41,80 @@
  * else MPI_ERR_TYPE, and why (len bytes) says which: "MPI_DATATYPE_NULL",
  * "not committed", "not a datatype of this rank (freed?)", "not a
  * datatype", "MPI_INTEGER16 is not supported". */
-int tsmpi_type_check(MPI_Datatype dt, char *why, size_t len);
+int dtype_check(MPI_Datatype dt, char *why, size_t len);
 
 /* Bytes of data in one element of dt (MPI_Type_size): dt must have passed
- * tsmpi_type_check (or be a created type not yet committed). */
-size_t tsmpi_type_size(MPI_Datatype dt);
+ * dtype_check (or be a created type not yet committed). */
+size_t dtype_size(MPI_Datatype dt);
 
 /* The extent and the true lower bound and extent of dt (checked). */
-MPI_Aint tsmpi_type_extent(MPI_Datatype dt);
-MPI_Aint tsmpi_type_true_lb(MPI_Datatype dt);
-MPI_Aint tsmpi_type_true_extent(MPI_Datatype dt);
+MPI_Aint dtype_extent(MPI_Datatype dt);
+MPI_Aint dtype_true_lb(MPI_Datatype dt);
+MPI_Aint dtype_true_extent(MPI_Datatype dt);
 
 /* 1 if count elements of dt lie as one run of count * size bytes. */
-int tsmpi_type_contiguous(MPI_Datatype dt, int count);
+int dtype_contiguous(MPI_Datatype dt, int count);
 
 /* Where count elements of dt at buf lie as one run of count * size bytes
  * (buf + the type's true lower bound), or NULL if they do not (gaps, or an
  * extent other than the size with count > 1).  count = 0 or a size of 0:
  * buf itself. */
-const void *tsmpi_type_contig(const void *buf, int count, MPI_Datatype dt);
+const void *dtype_contig(const void *buf, int count, MPI_Datatype dt);
 
 /* count elements of dt at buf into out: count * size bytes, in type-map
  * order.  out must not overlap the elements. */
-void tsmpi_type_pack(const void *buf, int count, MPI_Datatype dt, void *out);
+void dtype_pack(const void *buf, int count, MPI_Datatype dt, void *out);
 
 /* The first `bytes` bytes of a packed run (at most count * size: a short
  * message fills the first elements, and the last one partly) into count
  * elements of dt at buf, in type-map order. */
-void tsmpi_type_unpack(const void *in, size_t bytes, void *buf, int count, MPI_Datatype dt);
+void dtype_unpack(const void *in, size_t bytes, void *buf, int count, MPI_Datatype dt);
 
-/* Keep a checked type alive until tsmpi_type_release, whatever MPI_Type_free
+/* Keep a checked type alive until dtype_release, whatever MPI_Type_free
  * does to its handle meanwhile (predefined types: nothing happens). */
-void tsmpi_type_hold(MPI_Datatype dt);
-void tsmpi_type_release(MPI_Datatype dt);
+void dtype_hold(MPI_Datatype dt);
+void dtype_release(MPI_Datatype dt);
 
 /* Basic elements in the first `bytes` bytes of packed elements of dt
  * (MPI_Get_elements: a pair type counts 2); MPI_UNDEFINED if `bytes` ends
  * inside a basic element. */
-MPI_Count tsmpi_type_elements(MPI_Datatype dt, MPI_Count bytes);
+MPI_Count dtype_elements(MPI_Datatype dt, MPI_Count bytes);
 
 /* The bytes that hold the first n basic elements of packed elements of dt
- * (the inverse of tsmpi_type_elements, for MPI_Status_set_elements); -1 if
+ * (the inverse of dtype_elements, for MPI_Status_set_elements); -1 if
  * dt has no basic elements and n > 0. */
-MPI_Count tsmpi_type_elements_bytes(MPI_Datatype dt, MPI_Count n);
+MPI_Count dtype_elements_bytes(MPI_Datatype dt, MPI_Count n);
 
 /* 1 if a NULL (MPI_BOTTOM) buffer can carry count elements of dt: count is
  * 0, the type has no data, or its data lie at non-zero addresses (a type
  * built from absolute addresses, MPI_Get_address). */
-int tsmpi_type_bottom_ok(MPI_Datatype dt, int count);
+int dtype_bottom_ok(MPI_Datatype dt, int count);
 
 /* ==== for the operations (op.c) =========================================== */
 
 /* The classes of predefined types MPI 3.1 section 5.9.2 names, which say
  * the operations that apply. */
 enum {
-  TSMPI_CLASS_NONE,     /* no operation applies: MPI_WCHAR, MPI_PACKED, ... */
-  TSMPI_CLASS_CINT,     /* C integer (MPI_CHAR too, as MPICH and Open MPI) */
-  TSMPI_CLASS_FINT,     /* Fortran integer */
-  TSMPI_CLASS_FLOAT,    /* floating point */
-  TSMPI_CLASS_LOGICAL,  /* MPI_C_BOOL, MPI_CXX_BOOL, MPI_LOGICAL */
-  TSMPI_CLASS_COMPLEX,  /* complex */
-  TSMPI_CLASS_BYTE,     /* MPI_BYTE */
-  TSMPI_CLASS_MULTI,    /* MPI_AINT, MPI_OFFSET, MPI_COUNT */
-  TSMPI_CLASS_PAIR      /* the MINLOC/MAXLOC pairs */
+  DTYPE_CLASS_NONE,     /* no operation applies: MPI_WCHAR, MPI_PACKED, ... */
+  DTYPE_CLASS_CINT,     /* C integer (MPI_CHAR too, as MPICH and Open MPI) */
+  DTYPE_CLASS_FINT,     /* Fortran integer */
+  DTYPE_CLASS_FLOAT,    /* floating point */
+  DTYPE_CLASS_LOGICAL,  /* MPI_C_BOOL, MPI_CXX_BOOL, MPI_LOGICAL */
+  DTYPE_CLASS_COMPLEX,  /* complex */
+  DTYPE_CLASS_BYTE,     /* MPI_BYTE */
+  DTYPE_CLASS_MULTI,    /* MPI_AINT, MPI_OFFSET, MPI_COUNT */
+  DTYPE_CLASS_PAIR      /* the MINLOC/MAXLOC pairs */
 };
 
 /* How a value of a predefined type is stored, for the operations' kernels. */
 enum {
-  TSMPI_REP_NONE,
-  TSMPI_REP_INT,     /* two's complement integer of `size` bytes */
-  TSMPI_REP_UINT,    /* unsigned integer of `size` bytes */
-  TSMPI_REP_FLOAT,   /* float, double or long double, by size */
-  TSMPI_REP_COMPLEX, /* float/double/long double _Complex, by size */
-  TSMPI_REP_BOOL,    /* a truth value of `size` bytes (0 false, else true) */
-  TSMPI_REP_PAIR     /* value then index: see the pair fields */
+  DTYPE_REP_NONE,
+  DTYPE_REP_INT,     /* two's complement integer of `size` bytes */
+  DTYPE_REP_UINT,    /* unsigned integer of `size` bytes */
+  DTYPE_REP_FLOAT,   /* float, double or long double, by size */
+  DTYPE_REP_COMPLEX, /* float/double/long double _Complex, by size */
+  DTYPE_REP_BOOL,    /* a truth value of `size` bytes (0 false, else true) */
+  DTYPE_REP_PAIR     /* value then index: see the pair fields */
 };
 
 typedef struct {
@@ -122,38 +122,38 @@ typedef struct {
   int size;             /* bytes of data (packed) */
   int extent;           /* its extent (size but for some pairs) */
   int align;            /* its C alignment */
-  int cls;              /* TSMPI_CLASS_* */
-  int rep;              /* TSMPI_REP_* */
+  int cls;              /* DTYPE_CLASS_* */
+  int rep;              /* DTYPE_REP_* */
   int pair_value;       /* pairs: the value's predefined index */
   int pair_index;       /* pairs: the index's predefined index */
   int pair_off;         /* pairs: the index's offset in the laid-out pair */
-} tsmpi_predef;
+} dtype_predef;
 
-enum { TSMPI_PREDEF_N = 0x3f };   /* predefined indices are 1 .. TSMPI_PREDEF_N - 1 */
+enum { DTYPE_PREDEF_N = 0x3f };   /* predefined indices are 1 .. DTYPE_PREDEF_N - 1 */
 
-/* The predefined type of index i (1 .. TSMPI_PREDEF_N - 1), or NULL. */
-const tsmpi_predef *tsmpi_predef_get(int i);
+/* The predefined type of index i (1 .. DTYPE_PREDEF_N - 1), or NULL. */
+const dtype_predef *dtype_predef_get(int i);
 
 /* The index of the one predefined type all of dt's basic entries are (a
  * pair type counts as one), or 0 if they are of several types or dt has
  * none; dt checked.  *per_elem: how many of them one element of dt holds. */
-int tsmpi_type_elem(MPI_Datatype dt, MPI_Count *per_elem);
+int dtype_elem(MPI_Datatype dt, MPI_Count *per_elem);
 
 /* Calls f(ud, disp, n) for each run of n basic entries of dt's element type
- * (tsmpi_type_elem) at byte displacement disp from an element's start, in
+ * (dtype_elem) at byte displacement disp from an element's start, in
  * type-map order; entries of a run are one element-type extent apart. */
-void tsmpi_type_runs(MPI_Datatype dt, void (*f)(void *ud, MPI_Aint disp, MPI_Count n), void *ud);
+void dtype_runs(MPI_Datatype dt, void (*f)(void *ud, MPI_Aint disp, MPI_Count n), void *ud);
 
 /* Calls f(ud, disp, n, type) for every run of dt's type map, whatever its
  * types: n basic entries of the predefined type of index `type` (a pair
  * counting as one), the first at byte displacement disp from an element's
  * start, one predefined extent apart; in type-map order. */
-void tsmpi_type_walk(MPI_Datatype dt, void (*f)(void *ud, MPI_Aint disp, MPI_Count n, int type), void *ud);
+void dtype_walk(MPI_Datatype dt, void (*f)(void *ud, MPI_Aint disp, MPI_Count n, int type), void *ud);
 
 /* Calls f(ud, disp, len) for every run of bytes of dt's data (what packing
  * copies, adjacent runs merged), in type-map order: len bytes at byte
  * displacement disp from an element's start.  Returns how many. */
-size_t tsmpi_type_segments(MPI_Datatype dt, void (*f)(void *ud, MPI_Aint disp, MPI_Aint len), void *ud);
+size_t dtype_segments(MPI_Datatype dt, void (*f)(void *ud, MPI_Aint disp, MPI_Aint len), void *ud);
 
 /* ==== the rank's table (for the MPI functions in dtype_api.c) ============= */
 
@@ -169,44 +169,44 @@ typedef struct {
   const int *ints;
   const MPI_Aint *aints;
   const MPI_Datatype *types;
-} tsmpi_type_decoding;
-int tsmpi_type_build(int count, const int *blen, const MPI_Aint *disp, const MPI_Datatype *types,
-                     MPI_Datatype type, int struct_pad, const tsmpi_type_decoding *dec,
-                     MPI_Datatype *newtype, char *why, size_t len);
+} dtype_decoding;
+int dtype_build(int count, const int *blen, const MPI_Aint *disp, const MPI_Datatype *types,
+                MPI_Datatype type, int struct_pad, const dtype_decoding *dec,
+                MPI_Datatype *newtype, char *why, size_t len);
 
 /* A copy of dt with lower bound lb and extent extent (MPI_Type_create_resized). */
-int tsmpi_type_resized(MPI_Datatype dt, MPI_Aint lb, MPI_Aint extent, MPI_Datatype *newtype,
-                       char *why, size_t len);
+int dtype_resized(MPI_Datatype dt, MPI_Aint lb, MPI_Aint extent, MPI_Datatype *newtype,
+                  char *why, size_t len);
 
 /* Replace a created type's decoding (MPI_Type_create_subarray's, built as
  * blocks then resized). */
-int tsmpi_type_redecode(MPI_Datatype dt, const tsmpi_type_decoding *dec);
+int dtype_redecode(MPI_Datatype dt, const dtype_decoding *dec);
 
 /* A duplicate of dt (MPI_Type_dup): same type map, committed if dt is. */
-int tsmpi_type_dup(MPI_Datatype dt, MPI_Datatype *newtype, char *why, size_t len);
+int dtype_dup(MPI_Datatype dt, MPI_Datatype *newtype, char *why, size_t len);
 
 /* Is h a datatype handle at all (predefined or this rank's), committed or
  * not?  MPI_SUCCESS, or MPI_ERR_TYPE with why. */
-int tsmpi_type_valid(MPI_Datatype h, char *why, size_t len);
+int dtype_valid(MPI_Datatype h, char *why, size_t len);
 
-int tsmpi_type_commit(MPI_Datatype dt);   /* dt valid */
-int tsmpi_type_free(MPI_Datatype dt);     /* dt valid and created: MPI_SUCCESS; else MPI_ERR_TYPE */
+int dtype_commit(MPI_Datatype dt);   /* dt valid */
+int dtype_free(MPI_Datatype dt);     /* dt valid and created: MPI_SUCCESS; else MPI_ERR_TYPE */
 
 /* lb and ub as MPI_Type_get_extent says them (ub - lb: the extent). */
-void tsmpi_type_bounds(MPI_Datatype dt, MPI_Aint *lb, MPI_Aint *ub, MPI_Aint *true_lb,
-                       MPI_Aint *true_ub);
+void dtype_bounds(MPI_Datatype dt, MPI_Aint *lb, MPI_Aint *ub, MPI_Aint *true_lb,
+                  MPI_Aint *true_ub);
 
 /* The type's name (MPI_Type_get_name): the one this rank set, or a
  * predefined type's MPI name, or "".  A predefined type's name set is the
  * rank's own. */
-const char *tsmpi_type_name(MPI_Datatype dt);
-int tsmpi_type_set_name(MPI_Datatype dt, const char *name);
+const char *dtype_name(MPI_Datatype dt);
+int dtype_set_name(MPI_Datatype dt, const char *name);
 
 /* Its decoding: the combiner, the numbers of integers, addresses and types
  * (MPI_Type_get_envelope), and the arrays (get_contents: the types returned
  * as new handles to the same types, which the caller frees). */
-void tsmpi_type_envelope(MPI_Datatype dt, int *ni, int *na, int *nd, int *combiner);
-int tsmpi_type_contents(MPI_Datatype dt, int ni, int na, int nd, int *ints, MPI_Aint *aints,
-                        MPI_Datatype *types);
+void dtype_envelope(MPI_Datatype dt, int *ni, int *na, int *nd, int *combiner);
+int dtype_contents(MPI_Datatype dt, int ni, int na, int nd, int *ints, MPI_Aint *aints,
+                   MPI_Datatype *types);
 
 #endif

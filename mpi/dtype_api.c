@@ -27,13 +27,13 @@ static int fail(MPI_Comm comm, int cls, const char *fn, const char *fmt, ...) {
   va_start(ap, fmt);
   vsnprintf(msg, sizeof msg, fmt, ap);
   va_end(ap);
-  return tsmpi_raise(comm, cls, fn, "%s", msg);
+  return err_comm_raise(comm, cls, fn, "%s", msg);
 }
 
 /* A datatype argument that need not be committed (constructors, queries). */
 static int type_ok(const char *fn, const char *what, MPI_Datatype dt) {
   char why[96];
-  if (tsmpi_type_valid(dt, why, sizeof why) == MPI_SUCCESS) return MPI_SUCCESS;
+  if (dtype_valid(dt, why, sizeof why) == MPI_SUCCESS) return MPI_SUCCESS;
   return fail(MPI_COMM_WORLD, MPI_ERR_TYPE, fn, "invalid %s: %s", what, why);
 }
 
@@ -57,9 +57,9 @@ static int blens_ok(const char *fn, int n, const int *blen) {
 /* The common end of every constructor: build, and say why it failed. */
 static int build(const char *fn, int count, const int *blen, const MPI_Aint *disp,
                  const MPI_Datatype *types, MPI_Datatype type, int struct_pad,
-                 const tsmpi_type_decoding *dec, MPI_Datatype *newtype) {
+                 const dtype_decoding *dec, MPI_Datatype *newtype) {
   char why[96];
-  int rc = tsmpi_type_build(count, blen, disp, types, type, struct_pad, dec, newtype, why, sizeof why);
+  int rc = dtype_build(count, blen, disp, types, type, struct_pad, dec, newtype, why, sizeof why);
   if (rc == MPI_SUCCESS) return rc;
   return fail(MPI_COMM_WORLD, rc, fn, "%s", why);
 }
@@ -86,13 +86,13 @@ int PMPI_Type_contiguous(int count, MPI_Datatype oldtype, MPI_Datatype *newtype)
       (rc = ptr_ok(fn, "newtype", newtype)))
     return rc;
   MPI_Aint zero = 0;
-  tsmpi_type_decoding dec = {MPI_COMBINER_CONTIGUOUS, 1, 0, 1, &count, NULL, &oldtype};
+  dtype_decoding dec = {MPI_COMBINER_CONTIGUOUS, 1, 0, 1, &count, NULL, &oldtype};
   return build(fn, 1, &count, &zero, NULL, oldtype, 0, &dec, newtype);
 }
 
 /* count blocks of blocklength, stride bytes apart. */
 static int hvector(const char *fn, int count, int blocklength, MPI_Aint stride, MPI_Datatype oldtype,
-                   const tsmpi_type_decoding *dec, MPI_Datatype *newtype) {
+                   const dtype_decoding *dec, MPI_Datatype *newtype) {
   int rc, *blen, *ints;
   MPI_Aint *disp;
   if ((rc = count_ok(fn, "count", count)) || (rc = blens_ok(fn, 1, &blocklength)) ||
@@ -115,22 +115,22 @@ int PMPI_Type_vector(int count, int blocklength, int stride, MPI_Datatype oldtyp
   int rc = type_ok(fn, "oldtype", oldtype);
   if (rc) return rc;
   int ints[3] = {count, blocklength, stride};
-  tsmpi_type_decoding dec = {MPI_COMBINER_VECTOR, 3, 0, 1, ints, NULL, &oldtype};
-  return hvector(fn, count, blocklength, (MPI_Aint)stride * tsmpi_type_extent(oldtype), oldtype, &dec,
+  dtype_decoding dec = {MPI_COMBINER_VECTOR, 3, 0, 1, ints, NULL, &oldtype};
+  return hvector(fn, count, blocklength, (MPI_Aint)stride * dtype_extent(oldtype), oldtype, &dec,
                  newtype);
 }
 
 int PMPI_Type_create_hvector(int count, int blocklength, MPI_Aint stride, MPI_Datatype oldtype,
                             MPI_Datatype *newtype) {
   int ints[2] = {count, blocklength};
-  tsmpi_type_decoding dec = {MPI_COMBINER_HVECTOR, 2, 1, 1, ints, &stride, &oldtype};
+  dtype_decoding dec = {MPI_COMBINER_HVECTOR, 2, 1, 1, ints, &stride, &oldtype};
   return hvector("MPI_Type_create_hvector", count, blocklength, stride, oldtype, &dec, newtype);
 }
 
 int PMPI_Type_hvector(int count, int blocklength, MPI_Aint stride, MPI_Datatype oldtype,
                      MPI_Datatype *newtype) {
   int ints[2] = {count, blocklength};
-  tsmpi_type_decoding dec = {MPI_COMBINER_HVECTOR, 2, 1, 1, ints, &stride, &oldtype};
+  dtype_decoding dec = {MPI_COMBINER_HVECTOR, 2, 1, 1, ints, &stride, &oldtype};
   return hvector("MPI_Type_hvector", count, blocklength, stride, oldtype, &dec, newtype);
 }
 
@@ -149,7 +149,7 @@ static int indexed(const char *fn, int combiner, int count, const int *blockleng
   if ((rc = blocklengths ? blens_ok(fn, count, blocklengths) : blens_ok(fn, 1, &blocklength)) ||
       (rc = arrays(fn, count, &blen, &disp, &ints)))
     return rc;
-  MPI_Aint ext = tsmpi_type_extent(oldtype);
+  MPI_Aint ext = dtype_extent(oldtype);
   int ni = 0;
   ints[ni++] = count;
   if (!blocklengths) ints[ni++] = blocklength;
@@ -161,7 +161,7 @@ static int indexed(const char *fn, int combiner, int count, const int *blockleng
   if (blocklengths) ni += count;
   if (edisp)
     for (int i = 0; i < count; i++) ints[ni++] = edisp[i];
-  tsmpi_type_decoding dec = {combiner, ni, edisp ? 0 : count, 1, ints, edisp ? NULL : bdisp, &oldtype};
+  dtype_decoding dec = {combiner, ni, edisp ? 0 : count, 1, ints, edisp ? NULL : bdisp, &oldtype};
   rc = build(fn, count, blen, disp, NULL, oldtype, 0, &dec, newtype);
   free(blen);
   free(disp);
@@ -215,7 +215,7 @@ static int create_struct(const char *fn, int count, const int *blens, const MPI_
   if ((rc = blens_ok(fn, count, blens)) || (rc = arrays(fn, count, &blen, &disp, &ints))) return rc;
   ints[0] = count;
   for (int i = 0; i < count; i++) ints[1 + i] = blens[i];
-  tsmpi_type_decoding dec = {MPI_COMBINER_STRUCT, count + 1, count, count, ints, disps, types};
+  dtype_decoding dec = {MPI_COMBINER_STRUCT, count + 1, count, count, ints, disps, types};
   rc = build(fn, count, blens, disps, types, MPI_DATATYPE_NULL, 1, &dec, newtype);
   free(blen);
   free(disp);
@@ -241,7 +241,7 @@ int PMPI_Type_create_resized(MPI_Datatype oldtype, MPI_Aint lb, MPI_Aint extent,
   int rc;
   char why[96];
   if ((rc = type_ok(fn, "oldtype", oldtype)) || (rc = ptr_ok(fn, "newtype", newtype))) return rc;
-  rc = tsmpi_type_resized(oldtype, lb, extent, newtype, why, sizeof why);
+  rc = dtype_resized(oldtype, lb, extent, newtype, why, sizeof why);
   return rc ? fail(MPI_COMM_WORLD, rc, fn, "%s", why) : rc;
 }
 
@@ -250,10 +250,10 @@ int PMPI_Type_dup(MPI_Datatype oldtype, MPI_Datatype *newtype) {
   int rc;
   char why[96];
   if ((rc = type_ok(fn, "oldtype", oldtype)) || (rc = ptr_ok(fn, "newtype", newtype))) return rc;
-  rc = tsmpi_type_dup(oldtype, newtype, why, sizeof why);
+  rc = dtype_dup(oldtype, newtype, why, sizeof why);
   if (rc) return fail(MPI_COMM_WORLD, rc, fn, "%s", why);
-  if ((rc = tsmpi_type_attrs_copy(oldtype, *newtype, fn))) {
-    tsmpi_type_free(*newtype);
+  if ((rc = attr_type_copy(oldtype, *newtype, fn))) {
+    dtype_free(*newtype);
     *newtype = MPI_DATATYPE_NULL;
   }
   return rc;
@@ -268,7 +268,7 @@ int PMPI_Type_dup(MPI_Datatype oldtype, MPI_Datatype *newtype) {
  * sections 4.1.3 and 4.1.4).  Rows of the innermost dimension are cut
  * into blocks of consecutive indices.  Decoded as dec. */
 static int array_part(const char *fn, int ndims, const int *sz, int *const *idx, const int *n,
-                      MPI_Datatype oldtype, const tsmpi_type_decoding *dec, MPI_Datatype *newtype) {
+                      MPI_Datatype oldtype, const dtype_decoding *dec, MPI_Datatype *newtype) {
   int in = ndims - 1, runs = 0;
   MPI_Count rows = 1, whole = 1, blocks;
   for (int d = 0; d < ndims; d++) whole *= sz[d];
@@ -277,7 +277,7 @@ static int array_part(const char *fn, int ndims, const int *sz, int *const *idx,
   blocks = rows * runs;
   if (blocks > INT_MAX)
     return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "too many blocks (%lld)", (long long)blocks);
-  MPI_Aint ext = tsmpi_type_extent(oldtype);
+  MPI_Aint ext = dtype_extent(oldtype);
   int *blen = malloc((size_t)(blocks ? blocks : 1) * sizeof *blen), *at = calloc((size_t)ndims, sizeof *at);
   MPI_Aint *disp = malloc((size_t)(blocks ? blocks : 1) * sizeof *disp);
   if (!blen || !disp || !at) {
@@ -302,13 +302,13 @@ static int array_part(const char *fn, int ndims, const int *sz, int *const *idx,
   }
   /* The blocks, then their bounds: 0 and the whole array. */
   MPI_Datatype part;
-  tsmpi_type_decoding none = {MPI_COMBINER_HINDEXED, 0, 0, 0, NULL, NULL, NULL};
+  dtype_decoding none = {MPI_COMBINER_HINDEXED, 0, 0, 0, NULL, NULL, NULL};
   int rc = build(fn, (int)blocks, blen, disp, NULL, oldtype, 0, &none, &part);
   if (rc == MPI_SUCCESS) {
     char why[96];
-    rc = tsmpi_type_resized(part, 0, (MPI_Aint)whole * ext, newtype, why, sizeof why);
-    tsmpi_type_free(part);
-    if (rc == MPI_SUCCESS) rc = tsmpi_type_redecode(*newtype, dec);
+    rc = dtype_resized(part, 0, (MPI_Aint)whole * ext, newtype, why, sizeof why);
+    dtype_free(part);
+    if (rc == MPI_SUCCESS) rc = dtype_redecode(*newtype, dec);
     if (rc) rc = fail(MPI_COMM_WORLD, rc, fn, "out of memory");
   }
   free(blen), free(disp), free(at);
@@ -380,7 +380,7 @@ int PMPI_Type_create_subarray(int ndims, const int array_of_sizes[], const int a
     ints[1 + 2 * ndims + d] = array_of_starts[d];
   }
   ints[1 + 3 * ndims] = order;
-  tsmpi_type_decoding dec = {MPI_COMBINER_SUBARRAY, 3 * ndims + 2, 0, 1, ints, NULL, &oldtype};
+  dtype_decoding dec = {MPI_COMBINER_SUBARRAY, 3 * ndims + 2, 0, 1, ints, NULL, &oldtype};
   rc = array_part(fn, ndims, sz, idx, n, oldtype, &dec, newtype);
   free(idx);
   free(ints);
@@ -468,7 +468,7 @@ int PMPI_Type_create_darray(int size, int rank, int ndims, const int array_of_gs
     ints[3 + 3 * ndims + d] = array_of_psizes[d];
   }
   ints[3 + 4 * ndims] = order;
-  tsmpi_type_decoding dec = {MPI_COMBINER_DARRAY, 4 * ndims + 4, 0, 1, ints, NULL, &oldtype};
+  dtype_decoding dec = {MPI_COMBINER_DARRAY, 4 * ndims + 4, 0, 1, ints, NULL, &oldtype};
   rc = array_part(fn, ndims, sz, idx, n, oldtype, &dec, newtype);
   free(idx);
   free(ints), free(coord);
@@ -481,17 +481,17 @@ int PMPI_Type_commit(MPI_Datatype *datatype) {
   static const char fn[] = "MPI_Type_commit";
   int rc;
   if ((rc = ptr_ok(fn, "datatype", datatype)) || (rc = type_ok(fn, "datatype", *datatype))) return rc;
-  return tsmpi_type_commit(*datatype);
+  return dtype_commit(*datatype);
 }
 
 int PMPI_Type_free(MPI_Datatype *datatype) {
   static const char fn[] = "MPI_Type_free";
   int rc;
   if ((rc = ptr_ok(fn, "datatype", datatype)) || (rc = type_ok(fn, "datatype", *datatype))) return rc;
-  if (((unsigned)*datatype & 0x800000u) && (rc = tsmpi_type_attrs_delete(*datatype, fn))) return rc;
-  if (tsmpi_type_free(*datatype) != MPI_SUCCESS)
+  if (((unsigned)*datatype & 0x800000u) && (rc = attr_type_delete(*datatype, fn))) return rc;
+  if (dtype_free(*datatype) != MPI_SUCCESS)
     return fail(MPI_COMM_WORLD, MPI_ERR_TYPE, fn, "%s is predefined and cannot be freed",
-                tsmpi_type_name(*datatype));
+                dtype_name(*datatype));
   *datatype = MPI_DATATYPE_NULL;
   return MPI_SUCCESS;
 }
@@ -502,7 +502,7 @@ int PMPI_Type_get_name(MPI_Datatype datatype, char *type_name, int *resultlen) {
   if ((rc = type_ok(fn, "datatype", datatype)) || (rc = ptr_ok(fn, "type_name", type_name)) ||
       (rc = ptr_ok(fn, "resultlen", resultlen)))
     return rc;
-  const char *s = tsmpi_type_name(datatype);
+  const char *s = dtype_name(datatype);
   snprintf(type_name, MPI_MAX_OBJECT_NAME, "%s", s);
   *resultlen = (int)strlen(type_name);
   return MPI_SUCCESS;
@@ -512,7 +512,7 @@ int PMPI_Type_set_name(MPI_Datatype datatype, const char *type_name) {
   static const char fn[] = "MPI_Type_set_name";
   int rc;
   if ((rc = type_ok(fn, "datatype", datatype)) || (rc = ptr_ok(fn, "type_name", type_name))) return rc;
-  rc = tsmpi_type_set_name(datatype, type_name);
+  rc = dtype_set_name(datatype, type_name);
   return rc ? fail(MPI_COMM_WORLD, rc, fn, "out of memory") : rc;
 }
 
@@ -522,7 +522,7 @@ int PMPI_Type_size_x(MPI_Datatype datatype, MPI_Count *size) {
   static const char fn[] = "MPI_Type_size_x";
   int rc;
   if ((rc = type_ok(fn, "datatype", datatype)) || (rc = ptr_ok(fn, "size", size))) return rc;
-  *size = (MPI_Count)tsmpi_type_size(datatype);
+  *size = (MPI_Count)dtype_size(datatype);
   return MPI_SUCCESS;
 }
 
@@ -530,7 +530,7 @@ int PMPI_Type_size(MPI_Datatype datatype, int *size) {
   static const char fn[] = "MPI_Type_size";
   int rc;
   if ((rc = type_ok(fn, "datatype", datatype)) || (rc = ptr_ok(fn, "size", size))) return rc;
-  size_t s = tsmpi_type_size(datatype);
+  size_t s = dtype_size(datatype);
   *size = s > INT_MAX ? MPI_UNDEFINED : (int)s;
   return MPI_SUCCESS;
 }
@@ -541,7 +541,7 @@ static int extent_of(const char *fn, MPI_Datatype dt, int truly, MPI_Aint *lb, M
   if ((rc = type_ok(fn, "datatype", dt))) return rc;
   if (!lb || !extent) return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "an output argument is NULL");
   MPI_Aint l, u, tl, tu;
-  tsmpi_type_bounds(dt, &l, &u, &tl, &tu);
+  dtype_bounds(dt, &l, &u, &tl, &tu);
   *lb = truly ? tl : l;
   *extent = truly ? tu - tl : u - l;
   return MPI_SUCCESS;
@@ -598,7 +598,7 @@ int PMPI_Type_get_envelope(MPI_Datatype datatype, int *num_integers, int *num_ad
   if ((rc = type_ok(fn, "datatype", datatype))) return rc;
   if (!num_integers || !num_addresses || !num_datatypes || !combiner)
     return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "an output argument is NULL");
-  tsmpi_type_envelope(datatype, num_integers, num_addresses, num_datatypes, combiner);
+  dtype_envelope(datatype, num_integers, num_addresses, num_datatypes, combiner);
   return MPI_SUCCESS;
 }
 
@@ -609,16 +609,16 @@ int PMPI_Type_get_contents(MPI_Datatype datatype, int max_integers, int max_addr
   int rc = type_ok(fn, "datatype", datatype);
   if (rc) return rc;
   int ni, na, nd, comb;
-  tsmpi_type_envelope(datatype, &ni, &na, &nd, &comb);
+  dtype_envelope(datatype, &ni, &na, &nd, &comb);
   if (comb == MPI_COMBINER_NAMED)
-    return fail(MPI_COMM_WORLD, MPI_ERR_TYPE, fn, "%s is predefined (MPI_COMBINER_NAMED)", tsmpi_type_name(datatype));
+    return fail(MPI_COMM_WORLD, MPI_ERR_TYPE, fn, "%s is predefined (MPI_COMBINER_NAMED)", dtype_name(datatype));
   if (max_integers < ni || max_addresses < na || max_datatypes < nd)
     return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "the arrays hold %d, %d and %d; the type needs %d, %d and %d",
                 max_integers, max_addresses, max_datatypes, ni, na, nd);
   if ((ni && !array_of_integers) || (na && !array_of_addresses) || (nd && !array_of_datatypes))
     return fail(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "an array argument is NULL");
-  return tsmpi_type_contents(datatype, max_integers, max_addresses, max_datatypes, array_of_integers,
-                             array_of_addresses, array_of_datatypes);
+  return dtype_contents(datatype, max_integers, max_addresses, max_datatypes, array_of_integers,
+                        array_of_addresses, array_of_datatypes);
 }
 
 /* MPI 3.1 section 17.2.5: the Fortran types of a class and size. */
@@ -668,7 +668,7 @@ MPI_Aint PMPI_Aint_diff(MPI_Aint addr1, MPI_Aint addr2) {
 /* A committed type for a data-moving call on comm. */
 static int commtype_ok(MPI_Comm comm, const char *fn, MPI_Datatype dt) {
   char why[96];
-  if (tsmpi_type_check(dt, why, sizeof why) == MPI_SUCCESS) return MPI_SUCCESS;
+  if (dtype_check(dt, why, sizeof why) == MPI_SUCCESS) return MPI_SUCCESS;
   return fail(comm, MPI_ERR_TYPE, fn, "invalid datatype: %s", why);
 }
 
@@ -676,16 +676,16 @@ int PMPI_Pack(const void *inbuf, int incount, MPI_Datatype datatype, void *outbu
              MPI_Comm comm) {
   static const char fn[] = "MPI_Pack";
   int rc;
-  if ((rc = tsmpi_comm_check(comm, fn)) || (rc = tsmpi_check_count(comm, fn, incount)) ||
-      (rc = commtype_ok(comm, fn, datatype)) || (rc = tsmpi_check_buf(comm, fn, inbuf, incount, datatype)))
+  if ((rc = comm_check(comm, fn)) || (rc = err_comm_check_count(comm, fn, incount)) ||
+      (rc = commtype_ok(comm, fn, datatype)) || (rc = err_comm_check_buf(comm, fn, inbuf, incount, datatype)))
     return rc;
   if (!position) return fail(comm, MPI_ERR_ARG, fn, "position is NULL");
-  MPI_Count n = (MPI_Count)tsmpi_type_size(datatype) * incount;
+  MPI_Count n = (MPI_Count)dtype_size(datatype) * incount;
   if (*position < 0 || outsize < 0 || *position > outsize || n > outsize - *position)
     return fail(comm, MPI_ERR_TRUNCATE, fn, "%lld bytes do not fit at position %d of a %d-byte buffer",
                 (long long)n, *position, outsize);
   if (n > 0 && !outbuf) return fail(comm, MPI_ERR_BUFFER, fn, "outbuf is NULL");
-  if (n > 0) tsmpi_type_pack(inbuf, incount, datatype, (char *)outbuf + *position);
+  if (n > 0) dtype_pack(inbuf, incount, datatype, (char *)outbuf + *position);
   *position += (int)n;
   return MPI_SUCCESS;
 }
@@ -694,16 +694,16 @@ int PMPI_Unpack(const void *inbuf, int insize, int *position, void *outbuf, int 
                MPI_Comm comm) {
   static const char fn[] = "MPI_Unpack";
   int rc;
-  if ((rc = tsmpi_comm_check(comm, fn)) || (rc = tsmpi_check_count(comm, fn, outcount)) ||
-      (rc = commtype_ok(comm, fn, datatype)) || (rc = tsmpi_check_buf(comm, fn, outbuf, outcount, datatype)))
+  if ((rc = comm_check(comm, fn)) || (rc = err_comm_check_count(comm, fn, outcount)) ||
+      (rc = commtype_ok(comm, fn, datatype)) || (rc = err_comm_check_buf(comm, fn, outbuf, outcount, datatype)))
     return rc;
   if (!position) return fail(comm, MPI_ERR_ARG, fn, "position is NULL");
-  MPI_Count n = (MPI_Count)tsmpi_type_size(datatype) * outcount;
+  MPI_Count n = (MPI_Count)dtype_size(datatype) * outcount;
   if (*position < 0 || insize < 0 || *position > insize || n > insize - *position)
     return fail(comm, MPI_ERR_TRUNCATE, fn, "%lld bytes are not there at position %d of a %d-byte buffer",
                 (long long)n, *position, insize);
   if (n > 0 && !inbuf) return fail(comm, MPI_ERR_BUFFER, fn, "inbuf is NULL");
-  if (n > 0) tsmpi_type_unpack((const char *)inbuf + *position, (size_t)n, outbuf, outcount, datatype);
+  if (n > 0) dtype_unpack((const char *)inbuf + *position, (size_t)n, outbuf, outcount, datatype);
   *position += (int)n;
   return MPI_SUCCESS;
 }
@@ -711,11 +711,11 @@ int PMPI_Unpack(const void *inbuf, int insize, int *position, void *outbuf, int 
 int PMPI_Pack_size(int incount, MPI_Datatype datatype, MPI_Comm comm, int *size) {
   static const char fn[] = "MPI_Pack_size";
   int rc;
-  if ((rc = tsmpi_comm_check(comm, fn)) || (rc = tsmpi_check_count(comm, fn, incount)) ||
+  if ((rc = comm_check(comm, fn)) || (rc = err_comm_check_count(comm, fn, incount)) ||
       (rc = commtype_ok(comm, fn, datatype)))
     return rc;
   if (!size) return fail(comm, MPI_ERR_ARG, fn, "size is NULL");
-  MPI_Count n = (MPI_Count)tsmpi_type_size(datatype) * incount;
+  MPI_Count n = (MPI_Count)dtype_size(datatype) * incount;
   if (n > INT_MAX) return fail(comm, MPI_ERR_SIZE, fn, "%lld bytes do not fit an int", (long long)n);
   *size = (int)n;
   return MPI_SUCCESS;
@@ -727,7 +727,7 @@ int PMPI_Get_elements_x(const MPI_Status *status, MPI_Datatype datatype, MPI_Cou
   if ((rc = ptr_ok(fn, "status", status)) || (rc = ptr_ok(fn, "count", count)) ||
       (rc = commtype_ok(MPI_COMM_WORLD, fn, datatype)))
     return rc;
-  *count = tsmpi_type_elements(datatype, status->tsmpi_count);
+  *count = dtype_elements(datatype, status->tsmpi_count);
   return MPI_SUCCESS;
 }
 
@@ -748,10 +748,10 @@ int PMPI_Status_set_elements_x(MPI_Status *status, MPI_Datatype datatype, MPI_Co
   static const char fn[] = "MPI_Status_set_elements_x";
   int rc;
   if ((rc = ptr_ok(fn, "status", status)) || (rc = commtype_ok(MPI_COMM_WORLD, fn, datatype))) return rc;
-  MPI_Count bytes = count < 0 ? -1 : tsmpi_type_elements_bytes(datatype, count);
+  MPI_Count bytes = count < 0 ? -1 : dtype_elements_bytes(datatype, count);
   if (bytes < 0)
     return fail(MPI_COMM_WORLD, MPI_ERR_COUNT, fn, "count %lld of %s, which has %s", (long long)count,
-                *tsmpi_type_name(datatype) ? tsmpi_type_name(datatype) : "a derived type",
+                *dtype_name(datatype) ? dtype_name(datatype) : "a derived type",
                 count < 0 ? "no negative counts" : "no basic elements");
   status->tsmpi_count = bytes;
   return MPI_SUCCESS;

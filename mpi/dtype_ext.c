@@ -23,24 +23,24 @@ typedef struct {
 /* The scalars of predefined type i (one, or two: complex parts, a pair's
  * value and index) and their offsets in the native value. */
 static int parts(int i, scalar s[2], int off[2]) {
-  const tsmpi_predef *p = tsmpi_predef_get(i);
+  const dtype_predef *p = dtype_predef_get(i);
   off[0] = 0;
   switch (p->rep) {
-  case TSMPI_REP_INT:
+  case DTYPE_REP_INT:
     s[0] = (scalar){SINT, p->size, i == (MPI_LONG & 0xffff) ? 4 : p->size};
     return 1;
-  case TSMPI_REP_UINT:
-  case TSMPI_REP_BOOL:
+  case DTYPE_REP_UINT:
+  case DTYPE_REP_BOOL:
     s[0] = (scalar){UINT, p->size, i == (MPI_UNSIGNED_LONG & 0xffff) ? 4 : p->size};
     return 1;
-  case TSMPI_REP_FLOAT:
+  case DTYPE_REP_FLOAT:
     s[0] = (scalar){FLT, p->size, p->size};
     return 1;
-  case TSMPI_REP_COMPLEX:
+  case DTYPE_REP_COMPLEX:
     s[0] = s[1] = (scalar){FLT, p->size / 2, p->size / 2};
     off[1] = p->size / 2;
     return 2;
-  case TSMPI_REP_PAIR: {
+  case DTYPE_REP_PAIR: {
     scalar v[2], x[2];
     int o[2];
     parts(p->pair_value, v, o);
@@ -193,7 +193,7 @@ typedef struct {
   char *buf;                   /* the element's start */
   unsigned char *ext;          /* the external bytes, moving on */
   int unpack;
-  MPI_Count size;              /* tsmpi_ext32_size's sum */
+  MPI_Count size;              /* dtype_ext32_size's sum */
 } walk;
 
 static void size_run(void *ud, MPI_Aint disp, MPI_Count n, int type) {
@@ -205,7 +205,7 @@ static void move_run(void *ud, MPI_Aint disp, MPI_Count n, int type) {
   walk *w = ud;
   scalar s[2];
   int off[2], np = parts(type, s, off);
-  MPI_Aint pext = tsmpi_predef_get(type)->extent;
+  MPI_Aint pext = dtype_predef_get(type)->extent;
   for (MPI_Count j = 0; j < n; j++) {
     char *p = (char *)((uintptr_t)w->buf + (uintptr_t)(disp + j * pext));
     for (int k = 0; k < np; k++) {
@@ -216,26 +216,26 @@ static void move_run(void *ud, MPI_Aint disp, MPI_Count n, int type) {
   }
 }
 
-MPI_Count tsmpi_ext32_size(MPI_Datatype dt) {
+MPI_Count dtype_ext32_size(MPI_Datatype dt) {
   walk w = {0};
-  tsmpi_type_walk(dt, size_run, &w);
+  dtype_walk(dt, size_run, &w);
   return w.size;
 }
 
 static void move(const void *buf, MPI_Count count, MPI_Datatype dt, void *ext, int unpack) {
   walk w = {NULL, ext, unpack, 0};
-  MPI_Aint extent = tsmpi_type_extent(dt);
+  MPI_Aint extent = dtype_extent(dt);
   for (MPI_Count i = 0; i < count; i++) {
     w.buf = (char *)((uintptr_t)buf + (uintptr_t)(i * extent));
-    tsmpi_type_walk(dt, move_run, &w);
+    dtype_walk(dt, move_run, &w);
   }
 }
 
-void tsmpi_ext32_pack(const void *buf, MPI_Count count, MPI_Datatype dt, void *out) {
+void dtype_ext32_pack(const void *buf, MPI_Count count, MPI_Datatype dt, void *out) {
   move(buf, count, dt, out, 0);
 }
 
-void tsmpi_ext32_unpack(const void *in, void *buf, MPI_Count count, MPI_Datatype dt) {
+void dtype_ext32_unpack(const void *in, void *buf, MPI_Count count, MPI_Datatype dt) {
   move(buf, count, dt, (void *)in, 1);
 }
 
@@ -246,12 +246,12 @@ static int ext_args(const char *fn, const char *datarep, int count, MPI_Datatype
   MPI_Comm w = MPI_COMM_WORLD;
   char why[96];
   int rc;
-  if (!datarep) return tsmpi_raise(w, MPI_ERR_ARG, fn, "datarep is NULL");
+  if (!datarep) return err_comm_raise(w, MPI_ERR_ARG, fn, "datarep is NULL");
   if (strcmp(datarep, "external32"))
-    return tsmpi_raise(w, MPI_ERR_ARG, fn, "datarep \"%.40s\": only \"external32\" is defined", datarep);
-  if ((rc = tsmpi_check_count(w, fn, count))) return rc;
-  if (tsmpi_type_check(dt, why, sizeof why) != MPI_SUCCESS)
-    return tsmpi_raise(w, MPI_ERR_TYPE, fn, "invalid datatype: %s", why);
+    return err_comm_raise(w, MPI_ERR_ARG, fn, "datarep \"%.40s\": only \"external32\" is defined", datarep);
+  if ((rc = err_comm_check_count(w, fn, count))) return rc;
+  if (dtype_check(dt, why, sizeof why) != MPI_SUCCESS)
+    return err_comm_raise(w, MPI_ERR_TYPE, fn, "invalid datatype: %s", why);
   return MPI_SUCCESS;
 }
 
@@ -259,8 +259,8 @@ int PMPI_Pack_external_size(const char *datarep, int incount, MPI_Datatype datat
   static const char fn[] = "MPI_Pack_external_size";
   int rc = ext_args(fn, datarep, incount, datatype);
   if (rc) return rc;
-  if (!size) return tsmpi_raise(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "size is NULL");
-  *size = (MPI_Aint)(tsmpi_ext32_size(datatype) * incount);
+  if (!size) return err_comm_raise(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "size is NULL");
+  *size = (MPI_Aint)(dtype_ext32_size(datatype) * incount);
   return MPI_SUCCESS;
 }
 
@@ -269,14 +269,14 @@ int PMPI_Pack_external(const char datarep[], const void *inbuf, int incount, MPI
   static const char fn[] = "MPI_Pack_external";
   MPI_Comm w = MPI_COMM_WORLD;
   int rc = ext_args(fn, datarep, incount, datatype);
-  if (rc || (rc = tsmpi_check_buf(w, fn, inbuf, incount, datatype))) return rc;
-  if (!position) return tsmpi_raise(w, MPI_ERR_ARG, fn, "position is NULL");
-  MPI_Count n = tsmpi_ext32_size(datatype) * incount;
+  if (rc || (rc = err_comm_check_buf(w, fn, inbuf, incount, datatype))) return rc;
+  if (!position) return err_comm_raise(w, MPI_ERR_ARG, fn, "position is NULL");
+  MPI_Count n = dtype_ext32_size(datatype) * incount;
   if (*position < 0 || outsize < 0 || *position > outsize || n > outsize - *position)
-    return tsmpi_raise(w, MPI_ERR_TRUNCATE, fn, "%lld bytes do not fit at position %ld of a %ld-byte buffer",
-                       (long long)n, (long)*position, (long)outsize);
-  if (n > 0 && !outbuf) return tsmpi_raise(w, MPI_ERR_BUFFER, fn, "outbuf is NULL");
-  if (n > 0) tsmpi_ext32_pack(inbuf, incount, datatype, (char *)outbuf + *position);
+    return err_comm_raise(w, MPI_ERR_TRUNCATE, fn, "%lld bytes do not fit at position %ld of a %ld-byte buffer",
+                          (long long)n, (long)*position, (long)outsize);
+  if (n > 0 && !outbuf) return err_comm_raise(w, MPI_ERR_BUFFER, fn, "outbuf is NULL");
+  if (n > 0) dtype_ext32_pack(inbuf, incount, datatype, (char *)outbuf + *position);
   *position += (MPI_Aint)n;
   return MPI_SUCCESS;
 }
@@ -286,14 +286,14 @@ int PMPI_Unpack_external(const char datarep[], const void *inbuf, MPI_Aint insiz
   static const char fn[] = "MPI_Unpack_external";
   MPI_Comm w = MPI_COMM_WORLD;
   int rc = ext_args(fn, datarep, outcount, datatype);
-  if (rc || (rc = tsmpi_check_buf(w, fn, outbuf, outcount, datatype))) return rc;
-  if (!position) return tsmpi_raise(w, MPI_ERR_ARG, fn, "position is NULL");
-  MPI_Count n = tsmpi_ext32_size(datatype) * outcount;
+  if (rc || (rc = err_comm_check_buf(w, fn, outbuf, outcount, datatype))) return rc;
+  if (!position) return err_comm_raise(w, MPI_ERR_ARG, fn, "position is NULL");
+  MPI_Count n = dtype_ext32_size(datatype) * outcount;
   if (*position < 0 || insize < 0 || *position > insize || n > insize - *position)
-    return tsmpi_raise(w, MPI_ERR_TRUNCATE, fn, "%lld bytes are not there at position %ld of a %ld-byte buffer",
-                       (long long)n, (long)*position, (long)insize);
-  if (n > 0 && !inbuf) return tsmpi_raise(w, MPI_ERR_BUFFER, fn, "inbuf is NULL");
-  if (n > 0) tsmpi_ext32_unpack((const char *)inbuf + *position, outbuf, outcount, datatype);
+    return err_comm_raise(w, MPI_ERR_TRUNCATE, fn, "%lld bytes are not there at position %ld of a %ld-byte buffer",
+                          (long long)n, (long)*position, (long)insize);
+  if (n > 0 && !inbuf) return err_comm_raise(w, MPI_ERR_BUFFER, fn, "inbuf is NULL");
+  if (n > 0) dtype_ext32_unpack((const char *)inbuf + *position, outbuf, outcount, datatype);
   *position += (MPI_Aint)n;
   return MPI_SUCCESS;
 }

@@ -15,13 +15,13 @@
 #include "mpi/mpi.h"
 
 /* Bytes of one element of dt (checked) in external32. */
-MPI_Count tsmpi_ext32_size(MPI_Datatype dt);
+MPI_Count dtype_ext32_size(MPI_Datatype dt);
 
 /* count elements of dt at buf into out, external32: count *
- * tsmpi_ext32_size(dt) bytes.  out must not overlap the elements. */
-void tsmpi_ext32_pack(const void *buf, MPI_Count count, MPI_Datatype dt, void *out);
+ * dtype_ext32_size(dt) bytes.  out must not overlap the elements. */
+void dtype_ext32_pack(const void *buf, MPI_Count count, MPI_Datatype dt, void *out);
 
 /* count elements of dt in external32 at in into their places at buf. */
-void tsmpi_ext32_unpack(const void *in, void *buf, MPI_Count count, MPI_Datatype dt);
+void dtype_ext32_unpack(const void *in, void *buf, MPI_Count count, MPI_Datatype dt);
 
 #endif

@@ -29,7 +29,7 @@
  *
  * Copies (mp.h, "Messages without copies").  A request's send goes by
  * reference (mp_send_ref) and is settled when the request ends; a posted
- * receive of TSM_REF_MIN bytes or more into a contiguous buffer from a
+ * receive of ENG_REF_MIN bytes or more into a contiguous buffer from a
  * named source promises its buffer (mp_promise_make) when every receive
  * posted before it has done so too (then the receives the promises name
  * are exactly the ones MPI's order gives, and a message delivered into one
@@ -48,9 +48,9 @@
 
 /* An mp call's result: a stopped run ends the rank; anything else but MP_OK
  * is a bug of this layer (the arguments are ours). */
-static void mpok(tsm *R, int rc, const char *call) {
+static void mpok(st_rank *R, int rc, const char *call) {
   if (rc == MP_OK) return;
-  if (rc == MP_ESTOPPED || rc == MP_EDEADLOCK) tsm_stopped(R);
+  if (rc == MP_ESTOPPED || rc == MP_EDEADLOCK) st_stopped(R);
   fprintf(stderr, "tilesim MPI: internal error: rank %d: %s: %s\n", R->wrank, call, mp_strerror(rc));
   abort();
 }
@@ -61,15 +61,15 @@ static void mpok(tsm *R, int rc, const char *call) {
  * MPI_ANY_TAG, and K_ACK's bit (a message of kind K_DATA or K_SYNC fits,
  * an ack never). */
 static inline int prom_mask(int tag) {
-  return 1 << (ENV_KIND_SHIFT + 1) | ((1 << ENV_CTX_BITS) - 1) << ENV_TAG_BITS | (tag >= 0 ? TSM_TAG_UB : 0);
+  return 1 << (ENV_KIND_SHIFT + 1) | ((1 << ENV_CTX_BITS) - 1) << ENV_TAG_BITS | (tag >= 0 ? ST_TAG_UB : 0);
 }
 
-static inline mp_promise *promise_of(tsm *R, int wsrc, int ctx, int tag, void *buf, size_t cap) {
-  if (cap < TSM_REF_MIN || wsrc < 0 || !buf || R->posted_plain) return NULL;
-  return mp_promise_make(R->self, wsrc, env_encode(K_DATA, ctx, tag >= 0 ? tag : 0), prom_mask(tag), buf, cap);
+static inline mp_promise *promise_of(st_rank *R, int wsrc, int ctx, int tag, void *buf, size_t cap) {
+  if (cap < ENG_REF_MIN || wsrc < 0 || !buf || R->posted_plain) return NULL;
+  return mp_promise_make(R->self, wsrc, st_env_encode(K_DATA, ctx, tag >= 0 ? tag : 0), prom_mask(tag), buf, cap);
 }
 
-static void unpromise(tsm *R, tsm_req *q) {
+static void unpromise(st_rank *R, st_req *q) {
   if (!q->prom) return;
   mp_promise_drop(R->self, q->prom, 0);
   q->prom = NULL;
@@ -78,7 +78,7 @@ static void unpromise(tsm *R, tsm_req *q) {
 /* ==== queues ============================================================== */
 
 /* q goes to the end of the posted queue, with a promise if it may. */
-static void post(tsm *R, tsm_req *q) {
+static void post(st_rank *R, st_req *q) {
   q->prom = promise_of(R, q->wpeer, q->ctx, q->tag, q->contig, q->cap);
   if (!q->prom) R->posted_plain++;
   q->next = NULL;
@@ -92,7 +92,7 @@ static void post(tsm *R, tsm_req *q) {
   q->g->refs++;
 }
 
-static void unlink_posted(tsm *R, tsm_req *q) {
+static void unlink_posted(st_rank *R, st_req *q) {
   if (!q->prom) R->posted_plain--;
   if (q->prev)
     q->prev->next = q->next;
@@ -105,14 +105,14 @@ static void unlink_posted(tsm *R, tsm_req *q) {
   q->next = q->prev = NULL;
 }
 
-void eng_unpost(tsm *R, tsm_req *q) {
+void eng_unpost(st_rank *R, st_req *q) {
   unlink_posted(R, q);
   unpromise(R, q);
-  tsm_ranks_drop(q->g);
+  st_ranks_drop(q->g);
   q->g = NULL;
 }
 
-static void sync_add(tsm *R, tsm_req *q) {
+static void sync_add(st_rank *R, st_req *q) {
   q->next = NULL;
   q->prev = R->sync_tail;
   if (R->sync_tail)
@@ -122,7 +122,7 @@ static void sync_add(tsm *R, tsm_req *q) {
   R->sync_tail = q;
 }
 
-static void sync_unlink(tsm *R, tsm_req *q) {
+static void sync_unlink(st_rank *R, st_req *q) {
   if (q->prev)
     q->prev->next = q->next;
   else
@@ -134,7 +134,7 @@ static void sync_unlink(tsm *R, tsm_req *q) {
   q->next = q->prev = NULL;
 }
 
-static void unexp_unlink(tsm *R, tsm_msg *m) {
+static void unexp_unlink(st_rank *R, st_msg *m) {
   if (m->prev)
     m->prev->next = m->next;
   else
@@ -147,24 +147,24 @@ static void unexp_unlink(tsm *R, tsm_msg *m) {
 }
 
 /* An unexpected message's end (its mp message released). */
-static void unexp_free(tsm *R, tsm_msg *m) {
+static void unexp_free(st_rank *R, st_msg *m) {
   mp_msg_read(R->self, m->h, NULL, 0);
   free(m);
 }
 
 /* m (unlinked) is gone if its sender withdrew it (MPI_Cancel): then freed. */
-static int unexp_gone(tsm *R, tsm_msg *m) {
+static int unexp_gone(st_rank *R, st_msg *m) {
   if (!mp_msg_gone(R->self, m->h)) return 0;
   unexp_free(R, m);
   return 1;
 }
 
-static inline int fits(const tsm_req *q, int src, int ctx, int tag) {
+static inline int fits(const st_req *q, int src, int ctx, int tag) {
   return q->ctx == ctx && (q->wpeer < 0 || q->wpeer == src) && (q->tag < 0 || q->tag == tag);
 }
 
-static tsm_req *posted_fit(tsm *R, int src, int ctx, int tag) {
-  for (tsm_req *q = R->posted; q; q = q->next)
+static st_req *posted_fit(st_rank *R, int src, int ctx, int tag) {
+  for (st_req *q = R->posted; q; q = q->next)
     if (fits(q, src, ctx, tag)) return q;
   return NULL;
 }
@@ -172,35 +172,35 @@ static tsm_req *posted_fit(tsm *R, int src, int ctx, int tag) {
 /* ==== completing ========================================================== */
 
 /* n received bytes at data into q's buffer. */
-static void place(tsm_req *q, const void *data, size_t n) {
+static void place(st_req *q, const void *data, size_t n) {
   if (n == 0) return;
   if (q->contig)
     memcpy(q->contig, data, n);
   else
-    tsmpi_type_unpack(data, n, q->buf, q->count, q->dt);
+    dtype_unpack(data, n, q->buf, q->count, q->dt);
 }
 
 /* q has taken a len-byte message from world rank src with the envelope
  * (kind, ctx, tag): its status, the ack a synchronous send waits for, and
  * a freed request's end.  counted: q was posted (holds a count on q->g). */
-static void complete(tsm *R, tsm_req *q, int src, int kind, int ctx, int tag, size_t len, int counted) {
-  q->st.MPI_SOURCE = q->g->world ? tsm_ranks_find(q->g, src) : src;
+static void complete(st_rank *R, st_req *q, int src, int kind, int ctx, int tag, size_t len, int counted) {
+  q->st.MPI_SOURCE = q->g->world ? st_ranks_find(q->g, src) : src;
   q->st.MPI_TAG = tag;
   q->st.MPI_ERROR = len > q->cap ? MPI_ERR_TRUNCATE : MPI_SUCCESS;
   q->st.tsmpi_cancelled = 0;
   q->st.tsmpi_count = (MPI_Count)(len < q->cap ? len : q->cap);
   q->msglen = len;
-  if (counted) tsm_ranks_drop(q->g);
+  if (counted) st_ranks_drop(q->g);
   q->g = NULL;
   q->state = RS_DONE;
   if (q->watch) R->progress_due = 1;
-  if (kind == K_SYNC) mpok(R, mp_send(R->self, src, env_encode(K_ACK, ctx, tag), NULL, 0), "mp_send");
-  if (q->freed) tsm_req_free(R, q);
+  if (kind == K_SYNC) mpok(R, mp_send(R->self, src, st_env_encode(K_ACK, ctx, tag), NULL, 0), "mp_send");
+  if (q->freed) st_req_free(R, q);
 }
 
 /* The nonblocking collectives' progress, after a watched request completed
  * (never inside itself: what it starts is seen by its own loop). */
-static void progress(tsm *R) {
+static void progress(st_rank *R) {
   if (R->in_progress || !R->progress) return;
   R->in_progress = 1;
   while (R->progress_due) {
@@ -211,7 +211,7 @@ static void progress(tsm *R) {
 }
 
 /* Take the message shown (src, mptag, len) off mp into q's buffer. */
-static void take_into(tsm *R, tsm_req *q, int src, int mptag, size_t len) {
+static void take_into(st_rank *R, st_req *q, int src, int mptag, size_t len) {
   if (len <= q->cap && q->contig) {
     mpok(R, mp_recv(R->self, src, mptag, len ? q->contig : NULL, len, NULL), "mp_recv");
     return;
@@ -223,12 +223,12 @@ static void take_into(tsm *R, tsm_req *q, int src, int mptag, size_t len) {
 }
 
 /* An ack from src for the oldest synchronous send to it with (ctx, tag). */
-static void acked(tsm *R, int src, int ctx, int tag) {
-  for (tsm_req *q = R->sync; q; q = q->next) {
+static void acked(st_rank *R, int src, int ctx, int tag) {
+  for (st_req *q = R->sync; q; q = q->next) {
     if (q->wpeer == src && q->ctx == ctx && q->tag == tag) {
       sync_unlink(R, q);
       q->state = RS_DONE;
-      if (q->freed) tsm_req_free(R, q);
+      if (q->freed) st_req_free(R, q);
       return;
     }
   }
@@ -239,12 +239,12 @@ static void acked(tsm *R, int src, int ctx, int tag) {
 
 /* The message h (held; envelope st) goes to the end of the unexpected
  * queue. */
-static void unexpected(tsm *R, const mp_status *st, mp_msg *h) {
-  tsm_msg *m = xmalloc(sizeof *m);
+static void unexpected(st_rank *R, const mp_status *st, mp_msg *h) {
+  st_msg *m = xmalloc(sizeof *m);
   m->src = st->source;
-  m->kind = env_kind(st->tag);
-  m->ctx = env_ctx(st->tag);
-  m->tag = env_tag(st->tag);
+  m->kind = st_env_kind(st->tag);
+  m->ctx = st_env_ctx(st->tag);
+  m->tag = st_env_tag(st->tag);
   m->len = st->len;
   m->h = h;
   m->next = NULL;
@@ -260,20 +260,20 @@ static void unexpected(tsm *R, const mp_status *st, mp_msg *h) {
 /* Take the message mp has shown (st) and act on it: an ack, a posted
  * receive's message, or an unexpected one; then the progress of the
  * nonblocking collectives it moved. */
-static void act(tsm *R, const mp_status *st);
-static void dispatch(tsm *R, const mp_status *st) {
+static void act(st_rank *R, const mp_status *st);
+static void dispatch(st_rank *R, const mp_status *st) {
   act(R, st);
   if (R->progress_due) progress(R);
 }
 
-static void act(tsm *R, const mp_status *st) {
-  int kind = env_kind(st->tag), ctx = env_ctx(st->tag), tag = env_tag(st->tag);
+static void act(st_rank *R, const mp_status *st) {
+  int kind = st_env_kind(st->tag), ctx = st_env_ctx(st->tag), tag = st_env_tag(st->tag);
   if (kind == K_ACK) {
     mpok(R, mp_recv(R->self, st->source, st->tag, NULL, 0, NULL), "mp_recv");
     acked(R, st->source, ctx, tag);
     return;
   }
-  tsm_req *q = R->posted ? posted_fit(R, st->source, ctx, tag) : NULL;
+  st_req *q = R->posted ? posted_fit(R, st->source, ctx, tag) : NULL;
   if (q) {
     unlink_posted(R, q);
     take_into(R, q, st->source, st->tag, st->len);
@@ -288,10 +288,10 @@ static void act(tsm *R, const mp_status *st) {
 
 /* ==== the calls =========================================================== */
 
-static void advance_all(tsm *R);
+static void advance_all(st_rank *R);
 
-void eng_send(tsm *R, tsm_req *q, const void *data, size_t len) {
-  int kind = q->mode == SM_SYNC ? K_SYNC : K_DATA, mptag = env_encode(kind, q->ctx, q->tag);
+void eng_send(st_rank *R, st_req *q, const void *data, size_t len) {
+  int kind = q->mode == SM_SYNC ? K_SYNC : K_DATA, mptag = st_env_encode(kind, q->ctx, q->tag);
   if (q->byref)
     mpok(R, mp_send_ref(R->self, q->wpeer, mptag, data, len, &q->ref), "mp_send_ref");
   else
@@ -305,20 +305,20 @@ void eng_send(tsm *R, tsm_req *q, const void *data, size_t len) {
   }
 }
 
-void eng_send_data(tsm *R, int wdst, int ctx, int tag, const void *data, size_t len) {
-  mpok(R, mp_send(R->self, wdst, env_encode(K_DATA, ctx, tag), data, len), "mp_send");
+void eng_send_data(st_rank *R, int wdst, int ctx, int tag, const void *data, size_t len) {
+  mpok(R, mp_send(R->self, wdst, st_env_encode(K_DATA, ctx, tag), data, len), "mp_send");
 }
 
-void eng_hold(tsm *R, tsm_req *q) {
+void eng_hold(st_rank *R, st_req *q) {
   R->held_ref = q->ref;
   R->held_tmp = q->tmp;
 }
 
-void eng_unhold(tsm *R, const tsm_req *q) {
+void eng_unhold(st_rank *R, const st_req *q) {
   if (q->slot < 0 && q->ref && q->ref == R->held_ref) R->held_ref = NULL, R->held_tmp = NULL;
 }
 
-void eng_settle(tsm *R, tsm_req *q) {
+void eng_settle(st_rank *R, st_req *q) {
   eng_unhold(R, q);
   if (q->ref) {
     mp_settle(R->self, q->ref);
@@ -330,22 +330,22 @@ void eng_settle(tsm *R, tsm_req *q) {
   }
 }
 
-int eng_recv_data(tsm *R, int wsrc, int ctx, int tag, void *p, size_t cap, mp_status *got) {
+int eng_recv_data(st_rank *R, int wsrc, int ctx, int tag, void *p, size_t cap, mp_status *got) {
   mp_status st;
-  if (cap < TSM_REF_MIN) {
+  if (cap < ENG_REF_MIN) {
     /* The source's next message, taken; read into p if it is the one, else
      * acted on as a message taken off mp (no posted receive wants it). */
     mp_msg *h;
     mpok(R, mp_recv_msg(R->self, wsrc, MP_ANY, &h, &st), "mp_recv_msg");
-    int kind = env_kind(st.tag);
-    if (kind == K_DATA && env_ctx(st.tag) == ctx && (tag < 0 || env_tag(st.tag) == tag) && st.len <= cap) {
+    int kind = st_env_kind(st.tag);
+    if (kind == K_DATA && st_env_ctx(st.tag) == ctx && (tag < 0 || st_env_tag(st.tag) == tag) && st.len <= cap) {
       mp_msg_read(R->self, h, p, st.len);
-      *got = (mp_status){st.source, env_tag(st.tag), st.len};
+      *got = (mp_status){st.source, st_env_tag(st.tag), st.len};
       return 1;
     }
     if (kind == K_ACK) {
       mp_msg_read(R->self, h, NULL, 0);
-      acked(R, st.source, env_ctx(st.tag), env_tag(st.tag));
+      acked(R, st.source, st_env_ctx(st.tag), st_env_tag(st.tag));
     } else {
       unexpected(R, &st, h);
     }
@@ -355,20 +355,20 @@ int eng_recv_data(tsm *R, int wsrc, int ctx, int tag, void *p, size_t cap, mp_st
    * sender may have copied it already. */
   mp_promise *pr = promise_of(R, wsrc, ctx, tag, p, cap);
   mpok(R, mp_wait(R->self, wsrc, MP_ANY, &st), "mp_wait");
-  if (env_kind(st.tag) != K_DATA || env_ctx(st.tag) != ctx || (tag >= 0 && env_tag(st.tag) != tag) ||
+  if (st_env_kind(st.tag) != K_DATA || st_env_ctx(st.tag) != ctx || (tag >= 0 && st_env_tag(st.tag) != tag) ||
       st.len > cap) {
     if (pr) mp_promise_drop(R->self, pr, 0);
     return 0;
   }
   mpok(R, mp_recv(R->self, st.source, st.tag, st.len ? p : NULL, st.len, NULL), "mp_recv");
   if (pr) mp_promise_drop(R->self, pr, 0);
-  *got = (mp_status){st.source, env_tag(st.tag), st.len};
+  *got = (mp_status){st.source, st_env_tag(st.tag), st.len};
   return 1;
 }
 
 /* m, an unexpected message taken out of matching, read into q, which
  * completes with it; m freed. */
-static void take_held(tsm *R, tsm_req *q, tsm_msg *m) {
+static void take_held(st_rank *R, st_req *q, st_msg *m) {
   size_t n = m->len < q->cap ? m->len : q->cap;
   if (q->contig || !n) {
     mp_msg_read(R->self, m->h, n ? q->contig : NULL, n);
@@ -383,8 +383,8 @@ static void take_held(tsm *R, tsm_req *q, tsm_msg *m) {
 }
 
 /* The first unexpected message q fits, taken into q; 1, or 0 if none. */
-static int from_unexp(tsm *R, tsm_req *q) {
-  for (tsm_msg *m = R->unexp, *next; m; m = next) {
+static int from_unexp(st_rank *R, st_req *q) {
+  for (st_msg *m = R->unexp, *next; m; m = next) {
     next = m->next;
     if (!fits(q, m->src, m->ctx, m->tag)) continue;
     unexp_unlink(R, m);
@@ -395,12 +395,12 @@ static int from_unexp(tsm *R, tsm_req *q) {
   return 0;
 }
 
-void eng_recv_start(tsm *R, tsm_req *q) {
+void eng_recv_start(st_rank *R, st_req *q) {
   if (R->nunexp && from_unexp(R, q)) return;
   post(R, q);
 }
 
-void eng_recv(tsm *R, tsm_req *q) {
+void eng_recv(st_rank *R, st_req *q) {
   if (R->nunexp && from_unexp(R, q)) return;
   if (R->posted) {   /* others are posted: in line behind them */
     post(R, q);
@@ -411,7 +411,7 @@ void eng_recv(tsm *R, tsm_req *q) {
   for (;;) {   /* the fast path: the source's (or anyone's) next message */
     mp_status st;
     mpok(R, mp_wait(R->self, q->wpeer, MP_ANY, &st), "mp_wait");
-    int kind = env_kind(st.tag), ctx = env_ctx(st.tag), tag = env_tag(st.tag);
+    int kind = st_env_kind(st.tag), ctx = st_env_ctx(st.tag), tag = st_env_tag(st.tag);
     if (kind != K_ACK && fits(q, st.source, ctx, tag)) {
       take_into(R, q, st.source, st.tag, st.len);
       unpromise(R, q);
@@ -422,32 +422,32 @@ void eng_recv(tsm *R, tsm_req *q) {
   }
 }
 
-void eng_step(tsm *R) {
+void eng_step(st_rank *R) {
   mp_status st;
   mpok(R, mp_wait(R->self, MP_ANY, MP_ANY, &st), "mp_wait");
   dispatch(R, &st);
   advance_all(R);
 }
 
-void eng_advance(tsm *R, tsm_req *q) {
+void eng_advance(st_rank *R, st_req *q) {
   if (q->kind != RQ_KIND || q->state != RS_ACTIVE || !q->ops->progress || !q->ops->progress(q->ext)) return;
   q->state = RS_DONE;
-  if (q->freed) tsm_req_free(R, q);
+  if (q->freed) st_req_free(R, q);
 }
 
 /* Every active request of a kind of its own advances (once each; not from
  * within a kind's own progress). */
-static void advance_all(tsm *R) {
+static void advance_all(st_rank *R) {
   if (!R->nkinds || R->advancing) return;
   R->advancing = 1;
   for (int i = 0; i < R->nreqs; i++) {
-    tsm_req *q = R->reqs[i];
+    st_req *q = R->reqs[i];
     if (q->used && q->kind == RQ_KIND) eng_advance(R, q);
   }
   R->advancing = 0;
 }
 
-void eng_wait(tsm *R, tsm_req *q) {
+void eng_wait(st_rank *R, st_req *q) {
   while (q->state == RS_ACTIVE) {
     if (q->kind == RQ_KIND) {   /* its progress, between the messages that come */
       eng_advance(R, q);
@@ -456,7 +456,7 @@ void eng_wait(tsm *R, tsm_req *q) {
       /* Nothing posted to progress: the ack itself (acks of one key come
        * in the order of the sends, acked() gives each to its send). */
       int wpeer = q->wpeer, ctx = q->ctx, tag = q->tag;
-      mpok(R, mp_recv(R->self, wpeer, env_encode(K_ACK, ctx, tag), NULL, 0, NULL), "mp_recv");
+      mpok(R, mp_recv(R->self, wpeer, st_env_encode(K_ACK, ctx, tag), NULL, 0, NULL), "mp_recv");
       acked(R, wpeer, ctx, tag);
     } else if (q->kind == RQ_RECV && R->posted == q && !q->next && q->wpeer >= 0) {
       /* The only receive posted, from one source: that source's messages. */
@@ -469,7 +469,7 @@ void eng_wait(tsm *R, tsm_req *q) {
   }
 }
 
-void eng_take(tsm *R) {
+void eng_take(st_rank *R) {
   mp_status st;
   for (;;) {
     int rc = mp_probe(R->self, MP_ANY, MP_ANY, &st);
@@ -479,13 +479,13 @@ void eng_take(tsm *R) {
   }
 }
 
-void eng_poll(tsm *R) {
+void eng_poll(st_rank *R) {
   eng_take(R);
   advance_all(R);
 }
 
-int eng_probe(tsm *R, int wsrc, int ctx, int tag, int block, int *src, int *mtag, size_t *len, tsm_msg **take) {
-  for (tsm_msg *m = R->unexp, *next; m; m = next) {
+int eng_probe(st_rank *R, int wsrc, int ctx, int tag, int block, int *src, int *mtag, size_t *len, st_msg **take) {
+  for (st_msg *m = R->unexp, *next; m; m = next) {
     next = m->next;
     if (m->ctx == ctx && (wsrc < 0 || m->src == wsrc) && (tag < 0 || m->tag == tag)) {
       if (mp_msg_gone(R->self, m->h)) {
@@ -515,15 +515,15 @@ int eng_probe(tsm *R, int wsrc, int ctx, int tag, int block, int *src, int *mtag
       if (rc == 0) return 0;
       if (rc < 0) mpok(R, rc, "mp_probe");
     }
-    int k = env_kind(st.tag), c = env_ctx(st.tag), t = env_tag(st.tag);
+    int k = st_env_kind(st.tag), c = st_env_ctx(st.tag), t = st_env_tag(st.tag);
     if (k != K_ACK && c == ctx && (wsrc < 0 || st.source == wsrc) && (tag < 0 || t == tag) &&
         !(R->posted && posted_fit(R, st.source, c, t))) {
       *src = st.source;
       *mtag = t;
       *len = st.len;
       if (take) {   /* taken off mp: no receive will match it but the program's own */
-        tsm_msg *m = xmalloc(sizeof *m);
-        *m = (tsm_msg){.src = st.source, .kind = k, .ctx = c, .tag = t, .len = st.len};
+        st_msg *m = xmalloc(sizeof *m);
+        *m = (st_msg){.src = st.source, .kind = k, .ctx = c, .tag = t, .len = st.len};
         mpok(R, mp_recv_msg(R->self, st.source, st.tag, &m->h, NULL), "mp_recv_msg");
         *take = m;
       }
@@ -533,7 +533,7 @@ int eng_probe(tsm *R, int wsrc, int ctx, int tag, int block, int *src, int *mtag
   }
 }
 
-void eng_msg_read(tsm *R, tsm_req *q, tsm_msg *m) {
+void eng_msg_read(st_rank *R, st_req *q, st_msg *m) {
   if (unexp_gone(R, m)) {   /* withdrawn since the probe: nothing came */
     q->st = (MPI_Status){.MPI_SOURCE = MPI_ANY_SOURCE, .MPI_TAG = MPI_ANY_TAG, .MPI_ERROR = MPI_SUCCESS};
     q->msglen = 0;
@@ -543,14 +543,14 @@ void eng_msg_read(tsm *R, tsm_req *q, tsm_msg *m) {
   take_held(R, q, m);
 }
 
-void eng_msg_free(tsm *R, tsm_msg *m) { unexp_free(R, m); }
+void eng_msg_free(st_rank *R, st_msg *m) { unexp_free(R, m); }
 
-int eng_cancel_recv(tsm *R, tsm_req *q) {
+int eng_cancel_recv(st_rank *R, st_req *q) {
   /* A promise that holds its message already: the receive has it. */
   if (q->prom && mp_promise_drop(R->self, q->prom, 1)) return 0;
   unlink_posted(R, q);   /* (counts q by its promise, gone now) */
   q->prom = NULL;
-  tsm_ranks_drop(q->g);
+  st_ranks_drop(q->g);
   q->g = NULL;
   q->st = (MPI_Status){.MPI_SOURCE = MPI_ANY_SOURCE, .MPI_TAG = MPI_ANY_TAG, .MPI_ERROR = MPI_SUCCESS,
                        .tsmpi_cancelled = 1};
@@ -559,7 +559,7 @@ int eng_cancel_recv(tsm *R, tsm_req *q) {
   return 1;
 }
 
-int eng_cancel_send(tsm *R, tsm_req *q) {
+int eng_cancel_send(st_rank *R, st_req *q) {
   if (!q->ref || !mp_withdraw(R->self, q->ref)) return 0;
   q->ref = NULL;   /* spent */
   if (q->state == RS_ACTIVE) sync_unlink(R, q);   /* a synchronous send's ack will not come */
@@ -569,7 +569,7 @@ int eng_cancel_send(tsm *R, tsm_req *q) {
   return 1;
 }
 
-void eng_settle_all(tsm *R) {
+void eng_settle_all(st_rank *R) {
   for (int i = 0; i < R->nreqs; i++)
     if (R->reqs[i]->used) eng_settle(R, R->reqs[i]);
   if (R->held_ref) {   /* the rank ended inside a blocking call that sent by reference */
@@ -579,11 +579,11 @@ void eng_settle_all(tsm *R) {
   }
 }
 
-void eng_release(tsm *R) {
+void eng_release(st_rank *R) {
   while (R->posted) eng_unpost(R, R->posted);
   R->sync = R->sync_tail = NULL;
   eng_settle_all(R);
-  for (tsm_msg *m = R->unexp, *n; m; m = n) {
+  for (st_msg *m = R->unexp, *n; m; m = n) {
     n = m->next;
     unexp_free(R, m);
   }

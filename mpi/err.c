@@ -11,9 +11,9 @@
 /* ==== raising ============================================================= */
 
 /* Apply handler eh of object `handle` to error cls of call fn. */
-static int vapply(tsm *R, MPI_Errhandler eh, int handle, int cls, const char *fn, const char *fmt, va_list ap) {
+static int vapply(st_rank *R, MPI_Errhandler eh, int handle, int cls, const char *fn, const char *fmt, va_list ap) {
   if (eh == MPI_ERRORS_RETURN) return cls;
-  tsm_errh_fn *f = tsm_errh_function(R, eh);
+  errh_fn *f = errh_function(R, eh);
   if (f) {
     int h = handle, code = cls;
     f(&h, &code);
@@ -23,17 +23,17 @@ static int vapply(tsm *R, MPI_Errhandler eh, int handle, int cls, const char *fn
   int n = snprintf(why, sizeof why, "rank %d: %s: ", R->wrank, fn);
   if (n > 0 && (size_t)n < sizeof why) vsnprintf(why + n, sizeof why - (size_t)n, fmt, ap);
   mp *self = R->self;
-  tsm_release(R);
-  mp_set_user(self, TSM_MARK_STOPPED);
+  st_release(R);
+  mp_set_user(self, INIT_MARK_STOPPED);
   mp_abort(self, 1, why);
 }
 
-static int vraise(tsm *R, const tsm_comm *c, int cls, const char *fn, const char *fmt, va_list ap) {
+static int vraise(st_rank *R, const st_comm *c, int cls, const char *fn, const char *fmt, va_list ap) {
   if (!c) c = &R->world;
   return vapply(R, c->eh, c->h, cls, fn, fmt, ap);
 }
 
-int tsm_raise_on(tsm *R, MPI_Errhandler eh, int handle, int cls, const char *fn, const char *fmt, ...) {
+int err_raise_on(st_rank *R, MPI_Errhandler eh, int handle, int cls, const char *fn, const char *fmt, ...) {
   va_list ap;
   va_start(ap, fmt);
   int rc = vapply(R, eh, handle, cls, fn, fmt, ap);
@@ -41,7 +41,7 @@ int tsm_raise_on(tsm *R, MPI_Errhandler eh, int handle, int cls, const char *fn,
   return rc;
 }
 
-int tsm_raise(tsm *R, const tsm_comm *c, int cls, const char *fn, const char *fmt, ...) {
+int err_raise(st_rank *R, const st_comm *c, int cls, const char *fn, const char *fmt, ...) {
   va_list ap;
   va_start(ap, fmt);
   int rc = vraise(R, c, cls, fn, fmt, ap);
@@ -49,18 +49,18 @@ int tsm_raise(tsm *R, const tsm_comm *c, int cls, const char *fn, const char *fm
   return rc;
 }
 
-int tsmpi_raise(MPI_Comm comm, int cls, const char *fn, const char *fmt, ...) {
-  tsm *R = tsm_need(fn);
+int err_comm_raise(MPI_Comm comm, int cls, const char *fn, const char *fmt, ...) {
+  st_rank *R = st_need(fn);
   va_list ap;
   va_start(ap, fmt);
-  int rc = vraise(R, tsm_comm_get(R, comm), cls, fn, fmt, ap);
+  int rc = vraise(R, st_comm_get(R, comm), cls, fn, fmt, ap);
   va_end(ap);
   return rc;
 }
 
 /* ==== checks ============================================================== */
 
-const char *tsm_comm_words(MPI_Comm comm, char *buf) {
+const char *err_comm_words(MPI_Comm comm, char *buf) {
   if (comm == MPI_COMM_NULL) return "MPI_COMM_NULL";
   if (H_KIND(comm) != HK_COMM)
     snprintf(buf, 64, "handle 0x%x (not a communicator)", (unsigned)comm);
@@ -69,75 +69,75 @@ const char *tsm_comm_words(MPI_Comm comm, char *buf) {
   return buf;
 }
 
-int tsm_check_comm(tsm *R, MPI_Comm comm, const char *fn, tsm_comm **out) {
-  tsm_comm *c = tsm_comm_get(R, comm);
+int err_check_comm(st_rank *R, MPI_Comm comm, const char *fn, st_comm **out) {
+  st_comm *c = st_comm_get(R, comm);
   if (c && c->freed) c = NULL;   /* freed by the program, ending with its collectives */
   *out = c;
   if (c) return MPI_SUCCESS;
   char b[64];
-  return tsm_raise(R, NULL, MPI_ERR_COMM, fn, "invalid communicator: %s", tsm_comm_words(comm, b));
+  return err_raise(R, NULL, MPI_ERR_COMM, fn, "invalid communicator: %s", err_comm_words(comm, b));
 }
 
-int tsm_check_count(tsm *R, const tsm_comm *c, const char *fn, int count) {
+int err_check_count(st_rank *R, const st_comm *c, const char *fn, int count) {
   if (count >= 0) return MPI_SUCCESS;
-  return tsm_raise(R, c, MPI_ERR_COUNT, fn, "invalid count %d (must be >= 0)", count);
+  return err_raise(R, c, MPI_ERR_COUNT, fn, "invalid count %d (must be >= 0)", count);
 }
 
-int tsm_check_type(tsm *R, const tsm_comm *c, const char *fn, MPI_Datatype dt) {
+int err_check_type(st_rank *R, const st_comm *c, const char *fn, MPI_Datatype dt) {
   char why[128] = "";
-  if (tsmpi_type_check(dt, why, sizeof why) == MPI_SUCCESS) return MPI_SUCCESS;
-  return tsm_raise(R, c, MPI_ERR_TYPE, fn, "invalid datatype: %s", why);
+  if (dtype_check(dt, why, sizeof why) == MPI_SUCCESS) return MPI_SUCCESS;
+  return err_raise(R, c, MPI_ERR_TYPE, fn, "invalid datatype: %s", why);
 }
 
-int tsm_check_tag(tsm *R, const tsm_comm *c, const char *fn, int tag, int any_ok) {
-  if ((tag >= 0 && tag <= TSM_TAG_UB) || (any_ok && tag == MPI_ANY_TAG)) return MPI_SUCCESS;
-  return tsm_raise(R, c, MPI_ERR_TAG, fn, "invalid tag %d (tags are 0 .. MPI_TAG_UB = %d%s)", tag,
-                   TSM_TAG_UB, any_ok ? ", or MPI_ANY_TAG" : "");
+int err_check_tag(st_rank *R, const st_comm *c, const char *fn, int tag, int any_ok) {
+  if ((tag >= 0 && tag <= ST_TAG_UB) || (any_ok && tag == MPI_ANY_TAG)) return MPI_SUCCESS;
+  return err_raise(R, c, MPI_ERR_TAG, fn, "invalid tag %d (tags are 0 .. MPI_TAG_UB = %d%s)", tag,
+                   ST_TAG_UB, any_ok ? ", or MPI_ANY_TAG" : "");
 }
 
-int tsm_check_peer(tsm *R, const tsm_comm *c, const char *fn, int r, int any_ok) {
+int err_check_peer(st_rank *R, const st_comm *c, const char *fn, int r, int any_ok) {
   if ((r >= 0 && r < c->size) || r == MPI_PROC_NULL || (any_ok && r == MPI_ANY_SOURCE))
     return MPI_SUCCESS;
   char b[32];
-  return tsm_raise(R, c, MPI_ERR_RANK, fn, "invalid rank %d (%s%s has %d rank%s)", r,
-                   c->inter ? "the remote group of " : "", tsm_pair_name(c->pair, b), c->size,
+  return err_raise(R, c, MPI_ERR_RANK, fn, "invalid rank %d (%s%s has %d rank%s)", r,
+                   c->inter ? "the remote group of " : "", st_pair_name(c->pair, b), c->size,
                    c->size == 1 ? "" : "s");
 }
 
-int tsm_check_buf(tsm *R, const tsm_comm *c, const char *fn, const void *buf, int count,
+int err_check_buf(st_rank *R, const st_comm *c, const char *fn, const void *buf, int count,
                   MPI_Datatype dt) {
   /* MPI_BOTTOM is NULL: a type of absolute addresses may go with it. */
-  if (buf || tsmpi_type_bottom_ok(dt, count)) return MPI_SUCCESS;
-  return tsm_raise(R, c, MPI_ERR_BUFFER, fn, "NULL buffer for %d element%s", count,
+  if (buf || dtype_bottom_ok(dt, count)) return MPI_SUCCESS;
+  return err_raise(R, c, MPI_ERR_BUFFER, fn, "NULL buffer for %d element%s", count,
                    count == 1 ? "" : "s");
 }
 
-int tsmpi_check_count(MPI_Comm comm, const char *fn, int count) {
-  tsm *R = tsm_need(fn);
-  return tsm_check_count(R, tsm_comm_get(R, comm), fn, count);
+int err_comm_check_count(MPI_Comm comm, const char *fn, int count) {
+  st_rank *R = st_need(fn);
+  return err_check_count(R, st_comm_get(R, comm), fn, count);
 }
 
-int tsmpi_check_buf(MPI_Comm comm, const char *fn, const void *buf, int count, MPI_Datatype dt) {
-  tsm *R = tsm_need(fn);
-  return tsm_check_buf(R, tsm_comm_get(R, comm), fn, buf, count, dt);
+int err_comm_check_buf(MPI_Comm comm, const char *fn, const void *buf, int count, MPI_Datatype dt) {
+  st_rank *R = st_need(fn);
+  return err_check_buf(R, st_comm_get(R, comm), fn, buf, count, dt);
 }
 
-int tsmpi_check_rank(MPI_Comm comm, const char *fn, int r, int any_ok) {
-  tsm *R = tsm_need(fn);
-  tsm_comm *c;
-  int rc = tsm_check_comm(R, comm, fn, &c);
-  return rc ? rc : tsm_check_peer(R, c, fn, r, any_ok);
+int err_comm_check_rank(MPI_Comm comm, const char *fn, int r, int any_ok) {
+  st_rank *R = st_need(fn);
+  st_comm *c;
+  int rc = err_check_comm(R, comm, fn, &c);
+  return rc ? rc : err_check_peer(R, c, fn, r, any_ok);
 }
 
-int tsmpi_check_root(MPI_Comm comm, const char *fn, int root) {
-  tsm *R = tsm_need(fn);
-  tsm_comm *c;
-  int rc = tsm_check_comm(R, comm, fn, &c);
+int err_comm_check_root(MPI_Comm comm, const char *fn, int root) {
+  st_rank *R = st_need(fn);
+  st_comm *c;
+  int rc = err_check_comm(R, comm, fn, &c);
   if (rc) return rc;
   if (root >= 0 && root < c->size) return MPI_SUCCESS;
   char b[32];
-  return tsm_raise(R, c, MPI_ERR_ROOT, fn, "invalid root %d (%s has %d rank%s)", root,
-                   tsm_pair_name(c->pair, b), c->size, c->size == 1 ? "" : "s");
+  return err_raise(R, c, MPI_ERR_ROOT, fn, "invalid root %d (%s has %d rank%s)", root,
+                   st_pair_name(c->pair, b), c->size, c->size == 1 ? "" : "s");
 }
 
 /* ==== classes and strings ================================================= */
@@ -220,27 +220,27 @@ static const char *const class_text[MPI_ERR_LASTCODE + 1] = {
   [MPI_ERR_LASTCODE] = "MPI_ERR_LASTCODE: last error code",
 };
 
-const char *tsm_class_text(int cls) { return class_text[cls]; }
+const char *err_class_text(int cls) { return class_text[cls]; }
 
 /* Both are allowed before MPI_Init and after MPI_Finalize (the predefined
  * codes only, then). */
 int PMPI_Error_class(int errorcode, int *errorclass) {
   static const char fn[] = "MPI_Error_class";
-  tsm *R = tsm_get();
-  int cls = R ? tsm_err_class(R, errorcode) : errorcode >= 0 && errorcode <= MPI_ERR_LASTCODE ? errorcode : -1;
+  st_rank *R = st_get();
+  int cls = R ? errh_class(R, errorcode) : errorcode >= 0 && errorcode <= MPI_ERR_LASTCODE ? errorcode : -1;
   if (cls < 0 || !errorclass)
-    return R ? tsm_raise(R, NULL, MPI_ERR_ARG, fn, "invalid error code %d", errorcode) : MPI_ERR_ARG;
+    return R ? err_raise(R, NULL, MPI_ERR_ARG, fn, "invalid error code %d", errorcode) : MPI_ERR_ARG;
   *errorclass = cls;
   return MPI_SUCCESS;
 }
 
 int PMPI_Error_string(int errorcode, char *string, int *resultlen) {
   static const char fn[] = "MPI_Error_string";
-  tsm *R = tsm_get();
-  int cls = R ? tsm_err_class(R, errorcode) : errorcode >= 0 && errorcode <= MPI_ERR_LASTCODE ? errorcode : -1;
+  st_rank *R = st_get();
+  int cls = R ? errh_class(R, errorcode) : errorcode >= 0 && errorcode <= MPI_ERR_LASTCODE ? errorcode : -1;
   if (cls < 0 || !string || !resultlen)
-    return R ? tsm_raise(R, NULL, MPI_ERR_ARG, fn, "invalid error code %d", errorcode) : MPI_ERR_ARG;
-  const char *s = R ? tsm_err_string(R, errorcode) : class_text[errorcode];
+    return R ? err_raise(R, NULL, MPI_ERR_ARG, fn, "invalid error code %d", errorcode) : MPI_ERR_ARG;
+  const char *s = R ? errh_string(R, errorcode) : class_text[errorcode];
   size_t n = strlen(s);
   if (n > MPI_MAX_ERROR_STRING - 1) n = MPI_MAX_ERROR_STRING - 1;
   memcpy(string, s, n);

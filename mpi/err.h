@@ -19,7 +19,7 @@
 #if defined(__GNUC__)
 __attribute__((format(printf, 5, 6)))
 #endif
-int tsm_raise(tsm *R, const tsm_comm *c, int cls, const char *fn, const char *fmt, ...);
+int err_raise(st_rank *R, const st_comm *c, int cls, const char *fn, const char *fmt, ...);
 
 /* The same under handler eh of the object whose handle is `handle` (a
  * window's, a file's: the program's handler function gets the handle and
@@ -28,32 +28,32 @@ int tsm_raise(tsm *R, const tsm_comm *c, int cls, const char *fn, const char *fm
 #if defined(__GNUC__)
 __attribute__((format(printf, 6, 7)))
 #endif
-int tsm_raise_on(tsm *R, MPI_Errhandler eh, int handle, int cls, const char *fn, const char *fmt, ...);
+int err_raise_on(st_rank *R, MPI_Errhandler eh, int handle, int cls, const char *fn, const char *fmt, ...);
 
 /* The predefined class cls's text (0 <= cls <= MPI_ERR_LASTCODE):
  * "MPI_ERR_COMM: invalid communicator". */
-const char *tsm_class_text(int cls);
+const char *err_class_text(int cls);
 
-/* The checks, each MPI_SUCCESS or tsm_raise's result:
- *   tsm_check_comm   comm is R's (*out: it)                 MPI_ERR_COMM
- *   tsm_check_count  count >= 0                             MPI_ERR_COUNT
- *   tsm_check_type   dt usable (committed, not freed)       MPI_ERR_TYPE
- *   tsm_check_tag    0 <= tag <= MPI_TAG_UB, or MPI_ANY_TAG
+/* The checks, each MPI_SUCCESS or err_raise's result:
+ *   err_check_comm   comm is R's (*out: it)                 MPI_ERR_COMM
+ *   err_check_count  count >= 0                             MPI_ERR_COUNT
+ *   err_check_type   dt usable (committed, not freed)       MPI_ERR_TYPE
+ *   err_check_tag    0 <= tag <= MPI_TAG_UB, or MPI_ANY_TAG
  *                    with any_ok                            MPI_ERR_TAG
- *   tsm_check_peer   0 <= r < size, MPI_PROC_NULL, or
+ *   err_check_peer   0 <= r < size, MPI_PROC_NULL, or
  *                    MPI_ANY_SOURCE with any_ok             MPI_ERR_RANK
- *   tsm_check_buf    buf not NULL when count elements of dt
+ *   err_check_buf    buf not NULL when count elements of dt
  *                    have bytes                             MPI_ERR_BUFFER */
-int tsm_check_comm(tsm *R, MPI_Comm comm, const char *fn, tsm_comm **out);
-int tsm_check_count(tsm *R, const tsm_comm *c, const char *fn, int count);
-int tsm_check_type(tsm *R, const tsm_comm *c, const char *fn, MPI_Datatype dt);
-int tsm_check_tag(tsm *R, const tsm_comm *c, const char *fn, int tag, int any_ok);
-int tsm_check_peer(tsm *R, const tsm_comm *c, const char *fn, int r, int any_ok);
-int tsm_check_buf(tsm *R, const tsm_comm *c, const char *fn, const void *buf, int count,
+int err_check_comm(st_rank *R, MPI_Comm comm, const char *fn, st_comm **out);
+int err_check_count(st_rank *R, const st_comm *c, const char *fn, int count);
+int err_check_type(st_rank *R, const st_comm *c, const char *fn, MPI_Datatype dt);
+int err_check_tag(st_rank *R, const st_comm *c, const char *fn, int tag, int any_ok);
+int err_check_peer(st_rank *R, const st_comm *c, const char *fn, int r, int any_ok);
+int err_check_buf(st_rank *R, const st_comm *c, const char *fn, const void *buf, int count,
                   MPI_Datatype dt);
 
 /* A communicator handle in words for a message: "MPI_COMM_NULL",
  * "communicator handle 0x1800005 (not one of this rank's)" (buf: 64 bytes). */
-const char *tsm_comm_words(MPI_Comm comm, char *buf);
+const char *err_comm_words(MPI_Comm comm, char *buf);
 
 #endif

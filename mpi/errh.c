@@ -11,9 +11,9 @@
 #include "util/xmem.h"
 
 typedef struct {
-  int kind;          /* TSM_EH_*; 0: a free slot */
+  int kind;          /* ERRH_*; 0: a free slot */
   int refs;          /* the program's handles and the objects that use it */
-  tsm_errh_fn *fn;
+  errh_fn *fn;
 } handler;
 
 typedef struct {
@@ -21,20 +21,20 @@ typedef struct {
   char *str;         /* MPI_Add_error_string's, or NULL */
 } code;
 
-struct tsm_errs {
+struct errh_table {
   handler *h;
   int nh;
   code *c;
   int nc;
 };
 
-static struct tsm_errs *errs_of(tsm *R) {
+static struct errh_table *errs_of(st_rank *R) {
   if (!R->errs) R->errs = xcalloc(1, sizeof *R->errs);
   return R->errs;
 }
 
-void tsm_errs_release(tsm *R) {
-  struct tsm_errs *E = R->errs;
+void errh_release_all(st_rank *R) {
+  struct errh_table *E = R->errs;
   if (!E) return;
   for (int i = 0; i < E->nc; i++) free(E->c[i].str);
   free(E->c);
@@ -48,16 +48,16 @@ void tsm_errs_release(tsm *R) {
 static const char *const kind_name[] = {"", "communicators", "windows", "files"};
 
 /* The created handler eh names, or NULL. */
-static handler *created(tsm *R, MPI_Errhandler eh) {
+static handler *created(st_rank *R, MPI_Errhandler eh) {
   unsigned slot = (unsigned)eh - (unsigned)(HK_ERRH << H_KIND_SHIFT | H_CREATED);
-  struct tsm_errs *E = R->errs;
+  struct errh_table *E = R->errs;
   if (!E || slot >= (unsigned)E->nh || !E->h[slot].kind) return NULL;
   return &E->h[slot];
 }
 
 static int predefined(MPI_Errhandler eh) { return eh == MPI_ERRORS_ARE_FATAL || eh == MPI_ERRORS_RETURN; }
 
-int tsm_errh_check(tsm *R, MPI_Errhandler eh, int kind, char *why) {
+int errh_check(st_rank *R, MPI_Errhandler eh, int kind, char *why) {
   if (predefined(eh)) return 0;
   handler *h = created(R, eh);
   if (h && h->kind == kind) return 0;
@@ -71,25 +71,25 @@ int tsm_errh_check(tsm *R, MPI_Errhandler eh, int kind, char *why) {
   return -1;
 }
 
-void tsm_errh_hold(tsm *R, MPI_Errhandler eh) {
+void errh_hold(st_rank *R, MPI_Errhandler eh) {
   handler *h = created(R, eh);
   if (h) h->refs++;
 }
 
-void tsm_errh_drop(tsm *R, MPI_Errhandler eh) {
+void errh_drop(st_rank *R, MPI_Errhandler eh) {
   handler *h = created(R, eh);
   if (h && --h->refs == 0) h->kind = 0;
 }
 
-tsm_errh_fn *tsm_errh_function(tsm *R, MPI_Errhandler eh) {
+errh_fn *errh_function(st_rank *R, MPI_Errhandler eh) {
   handler *h = created(R, eh);
   return h ? h->fn : NULL;
 }
 
-static int create(const char *fn, int kind, tsm_errh_fn *f, MPI_Errhandler *errhandler) {
-  tsm *R = tsm_need(fn);
-  if (!f || !errhandler) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL %s argument", f ? "errhandler" : "function");
-  struct tsm_errs *E = errs_of(R);
+static int create(const char *fn, int kind, errh_fn *f, MPI_Errhandler *errhandler) {
+  st_rank *R = st_need(fn);
+  if (!f || !errhandler) return err_raise(R, NULL, MPI_ERR_ARG, fn, "NULL %s argument", f ? "errhandler" : "function");
+  struct errh_table *E = errs_of(R);
   int slot = 0;
   while (slot < E->nh && E->h[slot].kind) slot++;
   if (slot == E->nh) E->h = xreallocarray(E->h, (size_t)++E->nh, sizeof *E->h);
@@ -99,30 +99,30 @@ static int create(const char *fn, int kind, tsm_errh_fn *f, MPI_Errhandler *errh
 }
 
 int PMPI_Comm_create_errhandler(MPI_Comm_errhandler_function *comm_errhandler_fn, MPI_Errhandler *errhandler) {
-  return create("MPI_Comm_create_errhandler", TSM_EH_COMM, (tsm_errh_fn *)comm_errhandler_fn, errhandler);
+  return create("MPI_Comm_create_errhandler", ERRH_COMM, (errh_fn *)comm_errhandler_fn, errhandler);
 }
 
 int PMPI_Errhandler_create(MPI_Handler_function *function, MPI_Errhandler *errhandler) {
-  return create("MPI_Errhandler_create", TSM_EH_COMM, (tsm_errh_fn *)function, errhandler);
+  return create("MPI_Errhandler_create", ERRH_COMM, (errh_fn *)function, errhandler);
 }
 
 int PMPI_Win_create_errhandler(MPI_Win_errhandler_function *win_errhandler_fn, MPI_Errhandler *errhandler) {
-  return create("MPI_Win_create_errhandler", TSM_EH_WIN, (tsm_errh_fn *)win_errhandler_fn, errhandler);
+  return create("MPI_Win_create_errhandler", ERRH_WIN, (errh_fn *)win_errhandler_fn, errhandler);
 }
 
 int PMPI_File_create_errhandler(MPI_File_errhandler_function *file_errhandler_fn, MPI_Errhandler *errhandler) {
-  return create("MPI_File_create_errhandler", TSM_EH_FILE, (tsm_errh_fn *)file_errhandler_fn, errhandler);
+  return create("MPI_File_create_errhandler", ERRH_FILE, (errh_fn *)file_errhandler_fn, errhandler);
 }
 
 static int set(const char *fn, MPI_Comm comm, MPI_Errhandler errhandler) {
-  tsm *R = tsm_need(fn);
-  tsm_comm *c;
-  int rc = tsm_check_comm(R, comm, fn, &c);
+  st_rank *R = st_need(fn);
+  st_comm *c;
+  int rc = err_check_comm(R, comm, fn, &c);
   if (rc) return rc;
   char why[96];
-  if (tsm_errh_check(R, errhandler, TSM_EH_COMM, why)) return tsm_raise(R, c, MPI_ERR_ARG, fn, "%s", why);
-  tsm_errh_hold(R, errhandler);
-  tsm_errh_drop(R, c->eh);
+  if (errh_check(R, errhandler, ERRH_COMM, why)) return err_raise(R, c, MPI_ERR_ARG, fn, "%s", why);
+  errh_hold(R, errhandler);
+  errh_drop(R, c->eh);
   c->eh = errhandler;
   return MPI_SUCCESS;
 }
@@ -137,12 +137,12 @@ int PMPI_Errhandler_set(MPI_Comm comm, MPI_Errhandler errhandler) {
 
 /* The handler is the program's to free (MPI 3.1 section 8.3.1). */
 static int get(const char *fn, MPI_Comm comm, MPI_Errhandler *errhandler) {
-  tsm *R = tsm_need(fn);
-  tsm_comm *c;
-  int rc = tsm_check_comm(R, comm, fn, &c);
+  st_rank *R = st_need(fn);
+  st_comm *c;
+  int rc = err_check_comm(R, comm, fn, &c);
   if (rc) return rc;
-  if (!errhandler) return tsm_raise(R, c, MPI_ERR_ARG, fn, "NULL errhandler argument");
-  tsm_errh_hold(R, c->eh);
+  if (!errhandler) return err_raise(R, c, MPI_ERR_ARG, fn, "NULL errhandler argument");
+  errh_hold(R, c->eh);
   *errhandler = c->eh;
   return MPI_SUCCESS;
 }
@@ -157,13 +157,13 @@ int PMPI_Errhandler_get(MPI_Comm comm, MPI_Errhandler *errhandler) {
 
 int PMPI_Errhandler_free(MPI_Errhandler *errhandler) {
   static const char fn[] = "MPI_Errhandler_free";
-  tsm *R = tsm_need(fn);
-  if (!errhandler) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL errhandler argument");
+  st_rank *R = st_need(fn);
+  if (!errhandler) return err_raise(R, NULL, MPI_ERR_ARG, fn, "NULL errhandler argument");
   if (!predefined(*errhandler)) {
     if (!created(R, *errhandler))
-      return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "invalid error handler 0x%x (freed, or not an error handler)",
+      return err_raise(R, NULL, MPI_ERR_ARG, fn, "invalid error handler 0x%x (freed, or not an error handler)",
                        (unsigned)*errhandler);
-    tsm_errh_drop(R, *errhandler);
+    errh_drop(R, *errhandler);
   }
   *errhandler = MPI_ERRHANDLER_NULL;   /* the predefined ones stay */
   return MPI_SUCCESS;
@@ -171,38 +171,38 @@ int PMPI_Errhandler_free(MPI_Errhandler *errhandler) {
 
 int PMPI_Comm_call_errhandler(MPI_Comm comm, int errorcode) {
   static const char fn[] = "MPI_Comm_call_errhandler";
-  tsm *R = tsm_need(fn);
-  tsm_comm *c;
-  int rc = tsm_check_comm(R, comm, fn, &c);
+  st_rank *R = st_need(fn);
+  st_comm *c;
+  int rc = err_check_comm(R, comm, fn, &c);
   if (rc) return rc;
-  int cls = tsm_err_class(R, errorcode);
-  const char *s = cls < 0 ? "" : tsm_err_string(R, errorcode);
-  tsm_raise(R, c, errorcode, fn, "error code %d%s%s", errorcode, *s ? ": " : "", s);
+  int cls = errh_class(R, errorcode);
+  const char *s = cls < 0 ? "" : errh_string(R, errorcode);
+  err_raise(R, c, errorcode, fn, "error code %d%s%s", errorcode, *s ? ": " : "", s);
   /* MPI 3.1 section 8.3.1: MPI_SUCCESS once the handler has returned. */
   return MPI_SUCCESS;
 }
 
 /* ==== classes, codes, strings ============================================= */
 
-int tsm_err_lastused(tsm *R) { return MPI_ERR_LASTCODE + (R->errs ? R->errs->nc : 0); }
+int errh_lastused(st_rank *R) { return MPI_ERR_LASTCODE + (R->errs ? R->errs->nc : 0); }
 
-int tsm_err_class(tsm *R, int c) {
+int errh_class(st_rank *R, int c) {
   if (c >= 0 && c <= MPI_ERR_LASTCODE) return c;
-  if (c > MPI_ERR_LASTCODE && c <= tsm_err_lastused(R)) return R->errs->c[c - MPI_ERR_LASTCODE - 1].cls;
+  if (c > MPI_ERR_LASTCODE && c <= errh_lastused(R)) return R->errs->c[c - MPI_ERR_LASTCODE - 1].cls;
   return -1;
 }
 
 /* The added code c's entry (c > MPI_ERR_LASTCODE, in use). */
-static code *added(tsm *R, int c) { return &R->errs->c[c - MPI_ERR_LASTCODE - 1]; }
+static code *added(st_rank *R, int c) { return &R->errs->c[c - MPI_ERR_LASTCODE - 1]; }
 
-const char *tsm_err_string(tsm *R, int c) {
-  if (c <= MPI_ERR_LASTCODE) return tsm_class_text(c);
+const char *errh_string(st_rank *R, int c) {
+  if (c <= MPI_ERR_LASTCODE) return err_class_text(c);
   const char *s = added(R, c)->str;
   return s ? s : "";
 }
 
-static int add_code(tsm *R, int cls) {
-  struct tsm_errs *E = errs_of(R);
+static int add_code(st_rank *R, int cls) {
+  struct errh_table *E = errs_of(R);
   E->c = xreallocarray(E->c, (size_t)E->nc + 1, sizeof *E->c);
   int c = MPI_ERR_LASTCODE + 1 + E->nc;
   E->c[E->nc++] = (code){cls < 0 ? c : cls, NULL};
@@ -211,31 +211,31 @@ static int add_code(tsm *R, int cls) {
 
 int PMPI_Add_error_class(int *errorclass) {
   static const char fn[] = "MPI_Add_error_class";
-  tsm *R = tsm_need(fn);
-  if (!errorclass) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL errorclass argument");
+  st_rank *R = st_need(fn);
+  if (!errorclass) return err_raise(R, NULL, MPI_ERR_ARG, fn, "NULL errorclass argument");
   *errorclass = add_code(R, -1);
   return MPI_SUCCESS;
 }
 
 int PMPI_Add_error_code(int errorclass, int *errorcode) {
   static const char fn[] = "MPI_Add_error_code";
-  tsm *R = tsm_need(fn);
-  if (!errorcode) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL errorcode argument");
-  if (tsm_err_class(R, errorclass) != errorclass)
-    return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "%d is not an error class", errorclass);
+  st_rank *R = st_need(fn);
+  if (!errorcode) return err_raise(R, NULL, MPI_ERR_ARG, fn, "NULL errorcode argument");
+  if (errh_class(R, errorclass) != errorclass)
+    return err_raise(R, NULL, MPI_ERR_ARG, fn, "%d is not an error class", errorclass);
   *errorcode = add_code(R, errorclass);
   return MPI_SUCCESS;
 }
 
 int PMPI_Add_error_string(int errorcode, const char *string) {
   static const char fn[] = "MPI_Add_error_string";
-  tsm *R = tsm_need(fn);
-  if (!string) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL string argument");
-  if (errorcode <= MPI_ERR_LASTCODE || tsm_err_class(R, errorcode) < 0)
-    return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "%d is not an error code or class the program added", errorcode);
+  st_rank *R = st_need(fn);
+  if (!string) return err_raise(R, NULL, MPI_ERR_ARG, fn, "NULL string argument");
+  if (errorcode <= MPI_ERR_LASTCODE || errh_class(R, errorcode) < 0)
+    return err_raise(R, NULL, MPI_ERR_ARG, fn, "%d is not an error code or class the program added", errorcode);
   size_t n = strlen(string);
   if (n > MPI_MAX_ERROR_STRING - 1)
-    return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "a string of %zu characters (at most MPI_MAX_ERROR_STRING - 1 = %d)",
+    return err_raise(R, NULL, MPI_ERR_ARG, fn, "a string of %zu characters (at most MPI_MAX_ERROR_STRING - 1 = %d)",
                      n, MPI_MAX_ERROR_STRING - 1);
   code *e = added(R, errorcode);
   free(e->str);

@@ -8,9 +8,9 @@
  * kind, holds the program's function, and lives while the program holds its
  * handle or any object uses it: MPI_Errhandler_free drops the program's
  * handle, an object keeps the handler it was given.  The parts that own
- * windows and files use tsm_errh_check to accept a handler for them,
- * tsm_errh_hold and tsm_errh_drop while an object uses it, and err.h's
- * tsm_raise_on to apply it.
+ * windows and files use errh_check to accept a handler for them,
+ * errh_hold and errh_drop while an object uses it, and err.h's
+ * err_raise_on to apply it.
  *
  * CODES.  The predefined error codes are the classes, 0 .. MPI_ERR_LASTCODE
  * (74); the classes and codes a program adds are numbered on from 75 in the
@@ -21,33 +21,33 @@
 
 #include "mpi/state.h"
 
-enum { TSM_EH_COMM = 1, TSM_EH_WIN = 2, TSM_EH_FILE = 3 };
+enum { ERRH_COMM = 1, ERRH_WIN = 2, ERRH_FILE = 3 };
 
 /* A handler's function: the object's handle and the error code, as MPI's
  * MPI_Comm_errhandler_function, MPI_Win_..., MPI_File_... (all handles are
  * ints here). */
-typedef void tsm_errh_fn(int *handle, int *code, ...);
+typedef void errh_fn(int *handle, int *code, ...);
 
 /* 0 if eh can be set on an object of kind (a predefined handler, or a live
  * one made for that kind); else -1 and why (96 bytes). */
-int tsm_errh_check(tsm *R, MPI_Errhandler eh, int kind, char *why);
+int errh_check(st_rank *R, MPI_Errhandler eh, int kind, char *why);
 
 /* An object starts or stops using eh (predefined ones: nothing). */
-void tsm_errh_hold(tsm *R, MPI_Errhandler eh);
-void tsm_errh_drop(tsm *R, MPI_Errhandler eh);
+void errh_hold(st_rank *R, MPI_Errhandler eh);
+void errh_drop(st_rank *R, MPI_Errhandler eh);
 
 /* The program's function of a created handler (NULL for the predefined). */
-tsm_errh_fn *tsm_errh_function(tsm *R, MPI_Errhandler eh);
+errh_fn *errh_function(st_rank *R, MPI_Errhandler eh);
 
 /* The class of error code `code`, or -1 if it is none (predefined or
  * added); its string ("" for an added one without one). */
-int tsm_err_class(tsm *R, int code);
-const char *tsm_err_string(tsm *R, int code);
+int errh_class(st_rank *R, int code);
+const char *errh_string(st_rank *R, int code);
 
 /* The last code or class in use: MPI_ERR_LASTCODE, or the last added. */
-int tsm_err_lastused(tsm *R);
+int errh_lastused(st_rank *R);
 
 /* Free the rank's handlers and codes (its end). */
-void tsm_errs_release(tsm *R);
+void errh_release_all(st_rank *R);
 
 #endif

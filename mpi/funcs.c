@@ -9,14 +9,14 @@
 #include "mp/mp.h"
 #include "mpi/mpi.h"
 
-const tsmpi_func_info tsmpi_funcs[] = {
+const funcs_info funcs_table[] = {
 #define TSMPI_FN(impl, chapter, ret, name, params, args) {#name, #chapter, impl},
 #include "mpi/mpi_funcs.h"
 #undef TSMPI_FN
 };
-const int tsmpi_nfuncs = (int)(sizeof tsmpi_funcs / sizeof tsmpi_funcs[0]);
+const int funcs_n = (int)(sizeof funcs_table / sizeof funcs_table[0]);
 
-void tsmpi_unimplemented(const char *name) {
+void funcs_unimplemented(const char *name) {
   char why[200];
   mp *self = mp_self();
   if (self) {
@@ -33,8 +33,8 @@ void tsmpi_unimplemented(const char *name) {
 #endif
 #define TSMPI_STUB_1(ret, name, params)
 #define TSMPI_STUB_0(ret, name, params)                  \
-  ret name params { tsmpi_unimplemented(#name); }        \
-  ret P##name params { tsmpi_unimplemented(#name); }
+  ret name params { funcs_unimplemented(#name); }        \
+  ret P##name params { funcs_unimplemented(#name); }
 #define TSMPI_FN(impl, chapter, ret, name, params, args) TSMPI_STUB_##impl(ret, name, params)
 #include "mpi/mpi_funcs.h"
 #undef TSMPI_FN

@@ -42,31 +42,31 @@ static int greq_free(void *state) {
   return err;
 }
 
-static const tsmpi_kind greq_kind = {"MPI_Grequest_start", NULL, greq_cancel, greq_status, greq_free, free};
+static const req_kind greq_kind = {"MPI_Grequest_start", NULL, greq_cancel, greq_status, greq_free, free};
 
 int PMPI_Grequest_start(MPI_Grequest_query_function *query_fn, MPI_Grequest_free_function *free_fn,
                         MPI_Grequest_cancel_function *cancel_fn, void *extra_state, MPI_Request *request) {
   static const char fn[] = "MPI_Grequest_start";
-  tsm *R = tsm_need(fn);
+  st_rank *R = st_need(fn);
   if (!query_fn || !free_fn || !cancel_fn || !request)
-    return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL %s argument",
+    return err_raise(R, NULL, MPI_ERR_ARG, fn, "NULL %s argument",
                      !request ? "request" : !query_fn ? "query_fn" : !free_fn ? "free_fn" : "cancel_fn");
   greq *g = xmalloc(sizeof *g);
   *g = (greq){query_fn, free_fn, cancel_fn, extra_state};
-  return tsmpi_req_start(&greq_kind, g, request);
+  return req_start(&greq_kind, g, request);
 }
 
 int PMPI_Grequest_complete(MPI_Request request) {
   static const char fn[] = "MPI_Grequest_complete";
-  tsm *R = tsm_need(fn);
-  tsm_req *q = tsm_req_get(R, request);
+  st_rank *R = st_need(fn);
+  st_req *q = st_req_get(R, request);
   if (!q || q->kind != RQ_KIND || q->ops != &greq_kind || q->state != RS_ACTIVE)
-    return tsm_raise(R, NULL, MPI_ERR_REQUEST, fn, "request 0x%x is %s", (unsigned)request,
+    return err_raise(R, NULL, MPI_ERR_REQUEST, fn, "request 0x%x is %s", (unsigned)request,
                      !q ? "not a request of this rank's"
                         : q->ops != &greq_kind || q->kind != RQ_KIND ? "not a generalized request"
                                                                       : "complete already");
-  int err = tsmpi_req_complete(request);
-  return err ? tsm_raise(R, NULL, err, fn, "its free_fn failed (error %d)", err) : MPI_SUCCESS;
+  int err = req_complete(request);
+  return err ? err_raise(R, NULL, err, fn, "its free_fn failed (error %d)", err) : MPI_SUCCESS;
 }
 
 /* ==== the status setters ================================================== */
@@ -75,8 +75,8 @@ int PMPI_Grequest_complete(MPI_Request request) {
 
 int PMPI_Status_set_cancelled(MPI_Status *status, int flag) {
   static const char fn[] = "MPI_Status_set_cancelled";
-  tsm *R = tsm_need(fn);
-  if (!status || status == MPI_STATUS_IGNORE) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL status argument");
+  st_rank *R = st_need(fn);
+  if (!status || status == MPI_STATUS_IGNORE) return err_raise(R, NULL, MPI_ERR_ARG, fn, "NULL status argument");
   status->tsmpi_cancelled = flag != 0;
   return MPI_SUCCESS;
 }

@@ -1,4 +1,4 @@
-/* group.h -- groups: handles for sets of ranks (state.h's tsm_ranks), and
+/* group.h -- groups: handles for sets of ranks (state.h's st_ranks), and
  * the MPI_Group_* calls. */
 #ifndef TSMPI_GROUP_H
 #define TSMPI_GROUP_H
@@ -7,13 +7,13 @@
 
 /* The ranks a group handle of R names (MPI_GROUP_EMPTY included), or NULL
  * (MPI_GROUP_NULL, freed, not a group). */
-tsm_ranks *tsm_group_get(tsm *R, MPI_Group group);
+st_ranks *group_get(st_rank *R, MPI_Group group);
 
 /* A new group handle of R for g, whose count it takes over. */
-MPI_Group tsm_group_add(tsm *R, tsm_ranks *g);
+MPI_Group group_add(st_rank *R, st_ranks *g);
 
 /* Same ranks in the same order: 2; the same ranks in another order: 1;
  * else 0. */
-int tsm_ranks_same(const tsm_ranks *a, const tsm_ranks *b);
+int group_ranks_same(const st_ranks *a, const st_ranks *b);
 
 #endif

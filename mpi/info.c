@@ -21,7 +21,7 @@ typedef struct {
   entry *first;
 } info;
 
-struct tsm_infos {
+struct info_table {
   info env;      /* MPI_INFO_ENV */
   info **t;      /* created ones by slot */
   int nt;
@@ -29,7 +29,7 @@ struct tsm_infos {
 
 enum { ENV_SLOT = 1 };   /* MPI_INFO_ENV's index */
 
-static struct tsm_infos *infos_of(tsm *R) {
+static struct info_table *infos_of(st_rank *R) {
   if (!R->infos) R->infos = xcalloc(1, sizeof *R->infos);
   return R->infos;
 }
@@ -45,8 +45,8 @@ static void clear(info *o) {
   o->n = 0;
 }
 
-void tsm_infos_release(tsm *R) {
-  struct tsm_infos *I = R->infos;
+void info_release_all(st_rank *R) {
+  struct info_table *I = R->infos;
   if (!I) return;
   clear(&I->env);
   for (int i = 0; i < I->nt; i++)
@@ -90,7 +90,7 @@ static void put(info *o, const char *key, const char *value) {
 
 /* ==== MPI_INFO_ENV ======================================================== */
 
-static void env_make(tsm *R, info *env) {
+static void env_make(st_rank *R, info *env) {
   char b[64];
   if (R->argc > 0 && R->argv[0]) {
     put(env, "command", R->argv[0]);
@@ -114,8 +114,8 @@ static void env_make(tsm *R, info *env) {
 
 /* ==== handles ============================================================= */
 
-static info *info_get(tsm *R, MPI_Info h) {
-  struct tsm_infos *I = infos_of(R);
+static info *info_get(st_rank *R, MPI_Info h) {
+  struct info_table *I = infos_of(R);
   if (h == MPI_INFO_ENV) {
     if (!I->env.live) env_make(R, &I->env);
     return &I->env;
@@ -126,19 +126,19 @@ static info *info_get(tsm *R, MPI_Info h) {
 
 /* The info object h names for call fn (MPI_INFO_ENV only where env_ok),
  * or NULL with MPI_ERR_INFO raised in *rc. */
-static info *check(tsm *R, const char *fn, MPI_Info h, int env_ok, int *rc) {
+static info *check(st_rank *R, const char *fn, MPI_Info h, int env_ok, int *rc) {
   info *o = info_get(R, h);
   *rc = MPI_SUCCESS;
   if (o && (env_ok || h != MPI_INFO_ENV)) return o;
-  *rc = tsm_raise(R, NULL, MPI_ERR_INFO, fn, "%s",
+  *rc = err_raise(R, NULL, MPI_ERR_INFO, fn, "%s",
                   h == MPI_INFO_NULL  ? "MPI_INFO_NULL"
                   : h == MPI_INFO_ENV ? "MPI_INFO_ENV cannot be changed or freed"
                                       : "invalid info object (freed, or not an info object)");
   return NULL;
 }
 
-static MPI_Info add(tsm *R, info *o) {
-  struct tsm_infos *I = infos_of(R);
+static MPI_Info add(st_rank *R, info *o) {
+  struct info_table *I = infos_of(R);
   int slot = 0;
   while (slot < I->nt && I->t[slot]) slot++;
   if (slot == I->nt) I->t = xreallocarray(I->t, (size_t)++I->nt, sizeof *I->t);
@@ -147,19 +147,19 @@ static MPI_Info add(tsm *R, info *o) {
   return (MPI_Info)(HK_INFO << H_KIND_SHIFT | H_CREATED | slot);
 }
 
-static MPI_Info copy(tsm *R, const info *from) {
+static MPI_Info copy(st_rank *R, const info *from) {
   info *o = xcalloc(1, sizeof *o);
   for (entry *e = from->first; e; e = e->next) put(o, e->key, e->value);
   return add(R, o);
 }
 
 /* A key's checks: MPI_SUCCESS or MPI_ERR_INFO_KEY raised. */
-static int key_ok(tsm *R, const char *fn, const char *key) {
-  if (!key) return tsm_raise(R, NULL, MPI_ERR_INFO_KEY, fn, "NULL key");
+static int key_ok(st_rank *R, const char *fn, const char *key) {
+  if (!key) return err_raise(R, NULL, MPI_ERR_INFO_KEY, fn, "NULL key");
   size_t n = strlen(key);
-  if (n == 0) return tsm_raise(R, NULL, MPI_ERR_INFO_KEY, fn, "empty key");
+  if (n == 0) return err_raise(R, NULL, MPI_ERR_INFO_KEY, fn, "empty key");
   if (n > MPI_MAX_INFO_KEY)
-    return tsm_raise(R, NULL, MPI_ERR_INFO_KEY, fn, "a key of %zu characters (at most MPI_MAX_INFO_KEY = %d)", n,
+    return err_raise(R, NULL, MPI_ERR_INFO_KEY, fn, "a key of %zu characters (at most MPI_MAX_INFO_KEY = %d)", n,
                      MPI_MAX_INFO_KEY);
   return MPI_SUCCESS;
 }
@@ -168,27 +168,27 @@ static int key_ok(tsm *R, const char *fn, const char *key) {
 
 int PMPI_Info_create(MPI_Info *h) {
   static const char fn[] = "MPI_Info_create";
-  tsm *R = tsm_need(fn);
-  if (!h) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL info argument");
+  st_rank *R = st_need(fn);
+  if (!h) return err_raise(R, NULL, MPI_ERR_ARG, fn, "NULL info argument");
   *h = add(R, xcalloc(1, sizeof(info)));
   return MPI_SUCCESS;
 }
 
 int PMPI_Info_dup(MPI_Info h, MPI_Info *newinfo) {
   static const char fn[] = "MPI_Info_dup";
-  tsm *R = tsm_need(fn);
+  st_rank *R = st_need(fn);
   int rc;
   info *o = check(R, fn, h, 1, &rc);
   if (!o) return rc;
-  if (!newinfo) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL newinfo argument");
+  if (!newinfo) return err_raise(R, NULL, MPI_ERR_ARG, fn, "NULL newinfo argument");
   *newinfo = copy(R, o);
   return MPI_SUCCESS;
 }
 
 int PMPI_Info_free(MPI_Info *h) {
   static const char fn[] = "MPI_Info_free";
-  tsm *R = tsm_need(fn);
-  if (!h) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL info argument");
+  st_rank *R = st_need(fn);
+  if (!h) return err_raise(R, NULL, MPI_ERR_ARG, fn, "NULL info argument");
   int rc;
   info *o = check(R, fn, *h, 0, &rc);
   if (!o) return rc;
@@ -201,15 +201,15 @@ int PMPI_Info_free(MPI_Info *h) {
 
 int PMPI_Info_set(MPI_Info h, const char *key, const char *value) {
   static const char fn[] = "MPI_Info_set";
-  tsm *R = tsm_need(fn);
+  st_rank *R = st_need(fn);
   int rc;
   info *o = check(R, fn, h, 0, &rc);
   if (!o || (rc = key_ok(R, fn, key))) return rc;
-  if (!value) return tsm_raise(R, NULL, MPI_ERR_INFO_VALUE, fn, "NULL value");
+  if (!value) return err_raise(R, NULL, MPI_ERR_INFO_VALUE, fn, "NULL value");
   size_t n = strlen(value);
-  if (n == 0) return tsm_raise(R, NULL, MPI_ERR_INFO_VALUE, fn, "empty value");
+  if (n == 0) return err_raise(R, NULL, MPI_ERR_INFO_VALUE, fn, "empty value");
   if (n > MPI_MAX_INFO_VAL)
-    return tsm_raise(R, NULL, MPI_ERR_INFO_VALUE, fn, "a value of %zu characters (at most MPI_MAX_INFO_VAL = %d)",
+    return err_raise(R, NULL, MPI_ERR_INFO_VALUE, fn, "a value of %zu characters (at most MPI_MAX_INFO_VAL = %d)",
                      n, MPI_MAX_INFO_VAL);
   put(o, key, value);
   return MPI_SUCCESS;
@@ -217,7 +217,7 @@ int PMPI_Info_set(MPI_Info h, const char *key, const char *value) {
 
 int PMPI_Info_delete(MPI_Info h, const char *key) {
   static const char fn[] = "MPI_Info_delete";
-  tsm *R = tsm_need(fn);
+  st_rank *R = st_need(fn);
   int rc;
   info *o = check(R, fn, h, 0, &rc);
   if (!o || (rc = key_ok(R, fn, key))) return rc;
@@ -231,18 +231,18 @@ int PMPI_Info_delete(MPI_Info h, const char *key) {
     o->n--;
     return MPI_SUCCESS;
   }
-  return tsm_raise(R, NULL, MPI_ERR_INFO_NOKEY, fn, "no key \"%s\"", key);
+  return err_raise(R, NULL, MPI_ERR_INFO_NOKEY, fn, "no key \"%s\"", key);
 }
 
 /* MPI 3.1 section 9: value gets at most valuelen characters and a NUL. */
 int PMPI_Info_get(MPI_Info h, const char *key, int valuelen, char *value, int *flag) {
   static const char fn[] = "MPI_Info_get";
-  tsm *R = tsm_need(fn);
+  st_rank *R = st_need(fn);
   int rc;
   info *o = check(R, fn, h, 1, &rc);
   if (!o || (rc = key_ok(R, fn, key))) return rc;
-  if (valuelen < 0) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "invalid valuelen %d", valuelen);
-  if (!value || !flag) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL %s argument", flag ? "value" : "flag");
+  if (valuelen < 0) return err_raise(R, NULL, MPI_ERR_ARG, fn, "invalid valuelen %d", valuelen);
+  if (!value || !flag) return err_raise(R, NULL, MPI_ERR_ARG, fn, "NULL %s argument", flag ? "value" : "flag");
   entry *e = find(o, key);
   *flag = e != NULL;
   if (e) {
@@ -256,11 +256,11 @@ int PMPI_Info_get(MPI_Info h, const char *key, int valuelen, char *value, int *f
 
 int PMPI_Info_get_valuelen(MPI_Info h, const char *key, int *valuelen, int *flag) {
   static const char fn[] = "MPI_Info_get_valuelen";
-  tsm *R = tsm_need(fn);
+  st_rank *R = st_need(fn);
   int rc;
   info *o = check(R, fn, h, 1, &rc);
   if (!o || (rc = key_ok(R, fn, key))) return rc;
-  if (!valuelen || !flag) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL argument");
+  if (!valuelen || !flag) return err_raise(R, NULL, MPI_ERR_ARG, fn, "NULL argument");
   entry *e = find(o, key);
   *flag = e != NULL;
   if (e) *valuelen = (int)strlen(e->value);
@@ -269,25 +269,25 @@ int PMPI_Info_get_valuelen(MPI_Info h, const char *key, int *valuelen, int *flag
 
 int PMPI_Info_get_nkeys(MPI_Info h, int *nkeys) {
   static const char fn[] = "MPI_Info_get_nkeys";
-  tsm *R = tsm_need(fn);
+  st_rank *R = st_need(fn);
   int rc;
   info *o = check(R, fn, h, 1, &rc);
   if (!o) return rc;
-  if (!nkeys) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL nkeys argument");
+  if (!nkeys) return err_raise(R, NULL, MPI_ERR_ARG, fn, "NULL nkeys argument");
   *nkeys = o->n;
   return MPI_SUCCESS;
 }
 
 int PMPI_Info_get_nthkey(MPI_Info h, int n, char *key) {
   static const char fn[] = "MPI_Info_get_nthkey";
-  tsm *R = tsm_need(fn);
+  st_rank *R = st_need(fn);
   int rc;
   info *o = check(R, fn, h, 1, &rc);
   if (!o) return rc;
   if (n < 0 || n >= o->n)
-    return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "invalid n %d (the info object has %d key%s)", n, o->n,
+    return err_raise(R, NULL, MPI_ERR_ARG, fn, "invalid n %d (the info object has %d key%s)", n, o->n,
                      o->n == 1 ? "" : "s");
-  if (!key) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL key argument");
+  if (!key) return err_raise(R, NULL, MPI_ERR_ARG, fn, "NULL key argument");
   entry *e = o->first;
   while (n--) e = e->next;
   memcpy(key, e->key, strlen(e->key) + 1);
@@ -300,10 +300,10 @@ static const char *const hint_key[] = {"mpi_assert_no_any_tag", "mpi_assert_no_a
                                        "mpi_assert_exact_length", "mpi_assert_allow_overtaking"};
 enum { NHINTS = sizeof hint_key / sizeof hint_key[0] };
 
-int tsm_info_hints(tsm *R, const tsm_comm *c, const char *fn, MPI_Info h, unsigned *hints) {
+int info_hints(st_rank *R, const st_comm *c, const char *fn, MPI_Info h, unsigned *hints) {
   if (h == MPI_INFO_NULL) return MPI_SUCCESS;
   info *o = info_get(R, h);
-  if (!o) return tsm_raise(R, c, MPI_ERR_INFO, fn, "invalid info object (freed, or not an info object)");
+  if (!o) return err_raise(R, c, MPI_ERR_INFO, fn, "invalid info object (freed, or not an info object)");
   for (int i = 0; i < NHINTS; i++) {
     entry *e = find(o, hint_key[i]);
     if (!e || (strcmp(e->value, "true") && strcmp(e->value, "false"))) continue;
@@ -316,7 +316,7 @@ int tsm_info_hints(tsm *R, const tsm_comm *c, const char *fn, MPI_Info h, unsign
   return MPI_SUCCESS;
 }
 
-int tsm_info_value(tsm *R, MPI_Info h, const char *key, char *value, size_t len) {
+int info_value(st_rank *R, MPI_Info h, const char *key, char *value, size_t len) {
   if (h == MPI_INFO_NULL) return 0;
   info *o = info_get(R, h);
   if (!o) return -1;
@@ -328,21 +328,21 @@ int tsm_info_value(tsm *R, MPI_Info h, const char *key, char *value, size_t len)
 
 int PMPI_Comm_set_info(MPI_Comm comm, MPI_Info h) {
   static const char fn[] = "MPI_Comm_set_info";
-  tsm *R = tsm_need(fn);
-  tsm_comm *c;
-  int rc = tsm_check_comm(R, comm, fn, &c);
+  st_rank *R = st_need(fn);
+  st_comm *c;
+  int rc = err_check_comm(R, comm, fn, &c);
   if (rc) return rc;
-  if (h == MPI_INFO_NULL) return tsm_raise(R, c, MPI_ERR_INFO, fn, "MPI_INFO_NULL");
-  return tsm_info_hints(R, c, fn, h, &c->hints);
+  if (h == MPI_INFO_NULL) return err_raise(R, c, MPI_ERR_INFO, fn, "MPI_INFO_NULL");
+  return info_hints(R, c, fn, h, &c->hints);
 }
 
 int PMPI_Comm_get_info(MPI_Comm comm, MPI_Info *info_used) {
   static const char fn[] = "MPI_Comm_get_info";
-  tsm *R = tsm_need(fn);
-  tsm_comm *c;
-  int rc = tsm_check_comm(R, comm, fn, &c);
+  st_rank *R = st_need(fn);
+  st_comm *c;
+  int rc = err_check_comm(R, comm, fn, &c);
   if (rc) return rc;
-  if (!info_used) return tsm_raise(R, c, MPI_ERR_ARG, fn, "NULL info_used argument");
+  if (!info_used) return err_raise(R, c, MPI_ERR_ARG, fn, "NULL info_used argument");
   info *o = xcalloc(1, sizeof *o);
   for (int i = 0; i < NHINTS; i++)
     if (c->hints >> i & 1) put(o, hint_key[i], c->hints >> (8 + i) & 1 ? "true" : "false");
@@ -353,13 +353,13 @@ int PMPI_Comm_get_info(MPI_Comm comm, MPI_Info *info_used) {
 /* MPI_Comm_dup, then the hints of info in place of comm's. */
 int PMPI_Comm_dup_with_info(MPI_Comm comm, MPI_Info h, MPI_Comm *newcomm) {
   static const char fn[] = "MPI_Comm_dup_with_info";
-  tsm *R = tsm_need(fn);
-  tsm_comm *c;
-  int rc = tsm_check_comm(R, comm, fn, &c);
+  st_rank *R = st_need(fn);
+  st_comm *c;
+  int rc = err_check_comm(R, comm, fn, &c);
   if (rc) return rc;
   unsigned hints = 0;
-  if ((rc = tsm_info_hints(R, c, fn, h, &hints))) return rc;
-  if ((rc = tsm_comm_dup(R, comm, fn, newcomm))) return rc;
-  tsm_comm_get(R, *newcomm)->hints = hints;
+  if ((rc = info_hints(R, c, fn, h, &hints))) return rc;
+  if ((rc = comm_dup(R, comm, fn, newcomm))) return rc;
+  st_comm_get(R, *newcomm)->hints = hints;
   return MPI_SUCCESS;
 }

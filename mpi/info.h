@@ -26,14 +26,14 @@
  * bits in the low byte, their values ("true") in the next; *hints keeps
  * its other bits (a merge).  MPI_SUCCESS, or MPI_ERR_INFO raised on c for
  * fn (an invalid info handle). */
-int tsm_info_hints(tsm *R, const tsm_comm *c, const char *fn, MPI_Info info, unsigned *hints);
+int info_hints(st_rank *R, const st_comm *c, const char *fn, MPI_Info info, unsigned *hints);
 
 /* The value of key in info object h (a window's hints): 1 and up to len
  * bytes of it in value (NUL-terminated), 0 if h has no such key, -1 if h
  * is not a valid info object (MPI_INFO_NULL: 0). */
-int tsm_info_value(tsm *R, MPI_Info h, const char *key, char *value, size_t len);
+int info_value(st_rank *R, MPI_Info h, const char *key, char *value, size_t len);
 
 /* Free every info object of the rank (its end). */
-void tsm_infos_release(tsm *R);
+void info_release_all(st_rank *R);
 
 #endif

@@ -16,7 +16,7 @@
 #include "mpi/state.h"
 #include "util/xmem.h"
 
-const char tsm_marks[2];
+const char init_marks[2];
 
 /* ==== per-run settings ==================================================== */
 
@@ -24,15 +24,15 @@ const char tsm_marks[2];
 static double poll_cost = 1e-6;
 static double wtime_cost = 0;
 
-int tsmpi_set_poll_cost(double seconds) {
+int init_set_poll_cost(double seconds) {
   if (!(seconds >= 0) || isinf(seconds)) return -1;
   poll_cost = seconds;
   return 0;
 }
 
-double tsmpi_poll_cost(void) { return poll_cost; }
+double init_poll_cost(void) { return poll_cost; }
 
-int tsmpi_set_wtime_cost(double seconds) {
+int init_set_wtime_cost(double seconds) {
   if (!(seconds >= 0) || isinf(seconds)) return -1;
   wtime_cost = seconds;
   return 0;
@@ -40,7 +40,7 @@ int tsmpi_set_wtime_cost(double seconds) {
 
 /* ==== Init and Finalize =================================================== */
 
-static void comm_init(tsm_comm *c, MPI_Comm h, int pair, int rank, tsm_ranks *g, const char *name) {
+static void comm_init(st_comm *c, MPI_Comm h, int pair, int rank, st_ranks *g, const char *name) {
   c->live = 1;
   c->h = h;
   c->local = MPI_COMM_NULL;
@@ -62,16 +62,16 @@ static int init(const char *fn, int *argc, char ***argv, int required, int *prov
   if (u) {
     char why[160];
     snprintf(why, sizeof why, "rank %d: %s: MPI is %s", mp_rank(self), fn,
-             u == TSM_MARK_FINALIZED ? "finalized already (MPI_Init after MPI_Finalize)"
+             u == INIT_MARK_FINALIZED ? "finalized already (MPI_Init after MPI_Finalize)"
                                      : "initialized already (MPI_Init called twice)");
-    if (u != TSM_MARK_FINALIZED && u != TSM_MARK_STOPPED) {
-      tsm_release(u);
-      mp_set_user(self, TSM_MARK_STOPPED);
+    if (u != INIT_MARK_FINALIZED && u != INIT_MARK_STOPPED) {
+      st_release(u);
+      mp_set_user(self, INIT_MARK_STOPPED);
     }
     mp_abort(self, 1, why);
   }
-  tsm *R = xcalloc(1, sizeof *R);
-  R->state = TSM_LIVE;
+  st_rank *R = xcalloc(1, sizeof *R);
+  R->state = ST_LIVE;
   R->self = self;
   R->wrank = mp_rank(self);
   R->wsize = mp_size(self);
@@ -80,10 +80,10 @@ static int init(const char *fn, int *argc, char ***argv, int required, int *prov
   R->thread_level = required < MPI_THREAD_FUNNELED ? (required < MPI_THREAD_SINGLE ? MPI_THREAD_SINGLE : required)
                                                    : MPI_THREAD_FUNNELED;
   if (provided) *provided = R->thread_level;
-  comm_init(&R->world, MPI_COMM_WORLD, 0, R->wrank, tsm_ranks_new(R->wsize, NULL), "MPI_COMM_WORLD");
+  comm_init(&R->world, MPI_COMM_WORLD, 0, R->wrank, st_ranks_new(R->wsize, NULL), "MPI_COMM_WORLD");
   int me = R->wrank;
-  comm_init(&R->selfc, MPI_COMM_SELF, 1, 0, tsm_ranks_new(1, &me), "MPI_COMM_SELF");
-  R->empty = tsm_ranks_new(0, NULL);
+  comm_init(&R->selfc, MPI_COMM_SELF, 1, 0, st_ranks_new(1, &me), "MPI_COMM_SELF");
+  R->empty = st_ranks_new(0, NULL);
   R->pairs[0] = 3;   /* pairs 0 and 1: MPI_COMM_WORLD, MPI_COMM_SELF */
   if (argc && argv && *argv) R->argc = *argc, R->argv = *argv;
   mp_set_user(self, R);
@@ -98,24 +98,24 @@ int PMPI_Init_thread(int *argc, char ***argv, int required, int *provided) {
 
 int PMPI_Initialized(int *flag) {
   mp *self = mp_self();
-  *flag = self && mp_user(self) && mp_user(self) != TSM_MARK_STOPPED;
+  *flag = self && mp_user(self) && mp_user(self) != INIT_MARK_STOPPED;
   return MPI_SUCCESS;
 }
 
 int PMPI_Finalized(int *flag) {
   mp *self = mp_self();
-  *flag = self && mp_user(self) == TSM_MARK_FINALIZED;
+  *flag = self && mp_user(self) == INIT_MARK_FINALIZED;
   return MPI_SUCCESS;
 }
 
 int PMPI_Query_thread(int *provided) {
-  tsm *R = tsm_need("MPI_Query_thread");
+  st_rank *R = st_need("MPI_Query_thread");
   *provided = R->thread_level;
   return MPI_SUCCESS;
 }
 
 int PMPI_Is_thread_main(int *flag) {
-  tsm_need("MPI_Is_thread_main");
+  st_need("MPI_Is_thread_main");
   *flag = 1;   /* only the rank's own thread reaches its state (mp_self) */
   return MPI_SUCCESS;
 }
@@ -123,14 +123,14 @@ int PMPI_Is_thread_main(int *flag) {
 /* What a rank leaves behind at MPI_Finalize: messages it never received
  * and requests never completed are the program's bugs, said on stderr
  * (as the simulator says of unread messages). */
-static void leftovers(tsm *R) {
+static void leftovers(st_rank *R) {
   if (R->nunexp) {
     char b[32];
-    tsm_msg *m = R->unexp;
+    st_msg *m = R->unexp;
     fprintf(stderr,
             "tilesim MPI: warning: rank %d: MPI_Finalize with %ld message%s never received "
             "(the first from rank %d, tag %d, on %s%s)\n",
-            R->wrank, R->nunexp, R->nunexp == 1 ? "" : "s", m->src, m->tag, tsm_pair_name(m->ctx / 2, b),
+            R->wrank, R->nunexp, R->nunexp == 1 ? "" : "s", m->src, m->tag, st_pair_name(m->ctx / 2, b),
             m->ctx % 2 ? ", a collective's" : "");
   }
   long active = 0;
@@ -146,36 +146,36 @@ static void leftovers(tsm *R) {
  * follow (as MPICH).  The callbacks may call MPI (MPI_Finalized says 0). */
 int PMPI_Finalize(void) {
   static const char fn[] = "MPI_Finalize";
-  tsm *R = tsm_need(fn);
+  st_rank *R = st_need(fn);
   char why[128];
-  int rc = tsm_attr_delete_all(R, TSM_AK_COMM, MPI_COMM_SELF, why);
-  if (!rc) rc = tsm_attr_delete_all(R, TSM_AK_COMM, MPI_COMM_WORLD, why);
-  if (rc) return tsm_raise(R, NULL, rc, fn, "%s", why);
+  int rc = attr_delete_all(R, ATTR_COMM, MPI_COMM_SELF, why);
+  if (!rc) rc = attr_delete_all(R, ATTR_COMM, MPI_COMM_WORLD, why);
+  if (rc) return err_raise(R, NULL, rc, fn, "%s", why);
   leftovers(R);
   mp *self = R->self;
-  tsm_release(R);
-  mp_set_user(self, TSM_MARK_FINALIZED);
+  st_release(R);
+  mp_set_user(self, INIT_MARK_FINALIZED);
   return MPI_SUCCESS;
 }
 
-int tsmpi_rank_end(mp *self) {
+int init_rank_end(mp *self) {
   void *u = mp_user(self);
   mp_set_user(self, NULL);
-  if (!u) return TSMPI_NEVER;
-  if (u == TSM_MARK_FINALIZED) return TSMPI_FINALIZED;
-  if (u != TSM_MARK_STOPPED) tsm_release(u);
-  return TSMPI_UNFINALIZED;
+  if (!u) return INIT_NEVER;
+  if (u == INIT_MARK_FINALIZED) return INIT_FINALIZED;
+  if (u != INIT_MARK_STOPPED) st_release(u);
+  return INIT_UNFINALIZED;
 }
 
 int PMPI_Abort(MPI_Comm comm, int errorcode) {
-  tsm *R = tsm_need("MPI_Abort");
+  st_rank *R = st_need("MPI_Abort");
   char b[32], why[200];
-  tsm_comm *c = tsm_comm_get(R, comm);
+  st_comm *c = st_comm_get(R, comm);
   snprintf(why, sizeof why, "rank %d called MPI_Abort(%s, %d)", R->wrank,
-           c ? tsm_pair_name(c->pair, b) : "an invalid communicator", errorcode);
+           c ? st_pair_name(c->pair, b) : "an invalid communicator", errorcode);
   mp *self = R->self;
-  tsm_release(R);
-  mp_set_user(self, TSM_MARK_STOPPED);
+  st_release(R);
+  mp_set_user(self, INIT_MARK_STOPPED);
   mp_abort(self, errorcode, why);
 }
 
@@ -186,18 +186,18 @@ double PMPI_Wtime(void) {
   if (!self) return 0;
   double t = mp_time(self);
   if (wtime_cost > 0 && mp_busy(self, wtime_cost) != MP_OK) {
-    tsm *R = tsm_get();
-    if (R) tsm_stopped(R);
+    st_rank *R = st_get();
+    if (R) st_stopped(R);
   }
-  tsm *R = tsm_get();
-  if (R) tsm_spin(R, "MPI_Wtime");   /* a loop that waits for a clock that cannot move */
+  st_rank *R = st_get();
+  if (R) spin_count(R, "MPI_Wtime");   /* a loop that waits for a clock that cannot move */
   return t;
 }
 
 double PMPI_Wtick(void) { return 1e-9; }
 
 int PMPI_Get_processor_name(char *name, int *resultlen) {
-  tsm_need("MPI_Get_processor_name");
+  st_need("MPI_Get_processor_name");
   /* The host's name, as an MPI library on this machine gives it (the ranks
    * share it, as processes on one node do). */
   char host[MPI_MAX_PROCESSOR_NAME];
@@ -229,20 +229,20 @@ int PMPI_Get_library_version(char *version, int *resultlen) {
  * same, which MPI_Free_mem takes. */
 int PMPI_Alloc_mem(MPI_Aint size, MPI_Info info, void *baseptr) {
   static const char fn[] = "MPI_Alloc_mem";
-  tsm *R = tsm_need(fn);
-  if (size < 0) return tsm_raise(R, NULL, MPI_ERR_SIZE, fn, "invalid size %td", size);
-  if (!baseptr) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL baseptr argument");
+  st_rank *R = st_need(fn);
+  if (size < 0) return err_raise(R, NULL, MPI_ERR_SIZE, fn, "invalid size %td", size);
+  if (!baseptr) return err_raise(R, NULL, MPI_ERR_ARG, fn, "NULL baseptr argument");
   unsigned hints = 0;
-  int rc = tsm_info_hints(R, NULL, fn, info, &hints);
+  int rc = info_hints(R, NULL, fn, info, &hints);
   if (rc) return rc;
   void *p = malloc(size ? (size_t)size : 1);
-  if (!p) return tsm_raise(R, NULL, MPI_ERR_NO_MEM, fn, "no memory for %td bytes", size);
+  if (!p) return err_raise(R, NULL, MPI_ERR_NO_MEM, fn, "no memory for %td bytes", size);
   memcpy(baseptr, &p, sizeof p);
   return MPI_SUCCESS;
 }
 
 int PMPI_Free_mem(void *base) {
-  tsm_need("MPI_Free_mem");
+  st_need("MPI_Free_mem");
   free(base);
   return MPI_SUCCESS;
 }

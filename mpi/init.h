@@ -6,15 +6,15 @@
  * mpt_run), so that mp_self() names it.  The layer keeps the rank's whole
  * state in mp_user(self), which must be NULL when main starts: MPI_Init
  * sets it, MPI_Finalize leaves a mark there (MPI_Finalized), and
- * tsmpi_rank_end clears it.  Nothing else may use that slot.
+ * init_rank_end clears it.  Nothing else may use that slot.
  *
  * A run stopped by one rank (MPI_Abort, an error under
  * MPI_ERRORS_ARE_FATAL: mp_abort with exit status 1, or the code given to
  * MPI_Abort) or by the simulator (a deadlock) ends every other rank inside
  * its next MPI call: its state is released and mp_exit never returns to
  * the program. */
-#ifndef TSMPI_ENV_H
-#define TSMPI_ENV_H
+#ifndef TSMPI_INIT_H
+#define TSMPI_INIT_H
 
 #include "mp/mp.h"
 
@@ -27,21 +27,21 @@
  * meanwhile (without it the simulator stops a rank that polls a million
  * times at one clock).  Default 1e-6 s; 0: none.  Returns -1 (and changes
  * nothing) for a negative or non-finite value. */
-int tsmpi_set_poll_cost(double seconds);
-double tsmpi_poll_cost(void);
+int init_set_poll_cost(double seconds);
+double init_poll_cost(void);
 
 /* Seconds charged by each MPI_Wtime (mp_busy), so that a loop that waits
  * for the clock ends.  Default 0 (MPI_Wtime reads the clock and costs
  * nothing, so closed forms over timed sections hold exactly).  -1 for a
  * negative or non-finite value. */
-int tsmpi_set_wtime_cost(double seconds);
+int init_set_wtime_cost(double seconds);
 
 /* ==== a rank's end ======================================================== */
 
 enum {
-  TSMPI_NEVER = 0,        /* it never called MPI_Init */
-  TSMPI_FINALIZED = 1,    /* it called MPI_Init and MPI_Finalize */
-  TSMPI_UNFINALIZED = 2   /* it called MPI_Init, not MPI_Finalize (or was stopped
+  INIT_NEVER = 0,        /* it never called MPI_Init */
+  INIT_FINALIZED = 1,    /* it called MPI_Init and MPI_Finalize */
+  INIT_UNFINALIZED = 2   /* it called MPI_Init, not MPI_Finalize (or was stopped
                              inside an MPI call, its state already released) */
 };
 
@@ -49,14 +49,14 @@ enum {
  * what it did with MPI, and every byte of its MPI state released
  * (mp_user(self) is NULL after).  A program that returns from main
  * without MPI_Finalize is erroneous: the runner reports it. */
-int tsmpi_rank_end(mp *self);
+int init_rank_end(mp *self);
 
 /* --- private part: for the layer's own files ------------------------------ */
 
 /* What mp_user holds after MPI_Finalize, and after the rank was stopped
  * inside an MPI call (its state released): marks, not states. */
-extern const char tsm_marks[2];
-#define TSM_MARK_FINALIZED ((void *)&tsm_marks[0])
-#define TSM_MARK_STOPPED ((void *)&tsm_marks[1])
+extern const char init_marks[2];
+#define INIT_MARK_FINALIZED ((void *)&init_marks[0])
+#define INIT_MARK_STOPPED ((void *)&init_marks[1])
 
 #endif

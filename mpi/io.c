@@ -26,112 +26,112 @@
 enum { CREATED = 0x09800000, SLOT_MASK = 0x7fffff };
 
 typedef struct {
-  tsmpi_file **slot;
+  io_file **slot;
   int n;
   MPI_Errhandler null_eh;  /* MPI_FILE_NULL's handler */
 } table;
 
-static void release(tsmpi_file *f);
+static void release(io_file *f);
 
 static void table_release(void *p) {
   table *tb = p;
   for (int i = 0; i < tb->n; i++)
     if (tb->slot[i]) release(tb->slot[i]);   /* files left open at the rank's end */
-  tsm_errh_drop(tsm_get(), tb->null_eh);
+  errh_drop(st_get(), tb->null_eh);
   free(tb->slot);
   free(tb);
-  tsmpi_fs_leave();
+  io_fs_leave();
 }
 
 static table *tab(int create) {
-  table *tb = tsmpi_part(TSMPI_PART_IO);
+  table *tb = st_part(ST_PART_IO);
   if (tb || !create) return tb;
   tb = calloc(1, sizeof *tb);
   if (!tb) return NULL;
   tb->null_eh = MPI_ERRORS_RETURN;
-  tsmpi_part_set(TSMPI_PART_IO, tb, table_release);
-  tsmpi_fs_enter();
+  st_part_set(ST_PART_IO, tb, table_release);
+  io_fs_enter();
   return tb;
 }
 
-void tsmpi_io_begin(void) { tab(1); }
+void io_begin(void) { tab(1); }
 
-tsmpi_file *tsmpi_file_get(MPI_File fh) {
+io_file *io_file_get(MPI_File fh) {
   if (((unsigned)fh & 0xff800000u) != CREATED) return NULL;
   table *tb = tab(0);
   int i = fh & SLOT_MASK;
   return tb && i < tb->n ? tb->slot[i] : NULL;
 }
 
-MPI_Errhandler tsmpi_file_null_eh(void) {
+MPI_Errhandler io_file_null_eh(void) {
   table *tb = tab(0);
   return tb ? tb->null_eh : MPI_ERRORS_RETURN;
 }
 
-void tsmpi_file_set_null_eh(MPI_Errhandler eh) {
+void io_file_set_null_eh(MPI_Errhandler eh) {
   table *tb = tab(1);
   if (!tb) return;
-  tsm_errh_hold(tsm_get(), eh);
-  tsm_errh_drop(tsm_get(), tb->null_eh);
+  errh_hold(st_get(), eh);
+  errh_drop(st_get(), tb->null_eh);
   tb->null_eh = eh;
 }
 
 /* ==== errors ============================================================== */
 
-int tsmpi_file_raise(MPI_File fh, int cls, const char *fn, const char *fmt, ...) {
-  tsmpi_file *f = tsmpi_file_get(fh);
-  MPI_Errhandler eh = f ? f->eh : tsmpi_file_null_eh();
+int io_file_raise(MPI_File fh, int cls, const char *fn, const char *fmt, ...) {
+  io_file *f = io_file_get(fh);
+  MPI_Errhandler eh = f ? f->eh : io_file_null_eh();
   char msg[512];
   va_list ap;
   va_start(ap, fmt);
   vsnprintf(msg, sizeof msg, fmt, ap);
   va_end(ap);
-  return tsm_raise_on(tsm_need(fn), eh, f ? fh : MPI_FILE_NULL, cls, fn, "%s", msg);
+  return err_raise_on(st_need(fn), eh, f ? fh : MPI_FILE_NULL, cls, fn, "%s", msg);
 }
 
-int tsmpi_file_check(MPI_File fh, const char *fn, tsmpi_file **f) {
-  *f = tsmpi_file_get(fh);
+int io_file_check(MPI_File fh, const char *fn, io_file **f) {
+  *f = io_file_get(fh);
   if (*f) return MPI_SUCCESS;
-  return tsmpi_file_raise(MPI_FILE_NULL, MPI_ERR_FILE, fn, "%s",
-                          fh == MPI_FILE_NULL ? "MPI_FILE_NULL is not an open file"
+  return io_file_raise(MPI_FILE_NULL, MPI_ERR_FILE, fn, "%s",
+                       fh == MPI_FILE_NULL ? "MPI_FILE_NULL is not an open file"
                                               : "not a file of this rank (closed?)");
 }
 
 /* ==== time ================================================================ */
 
-void tsmpi_io_until(double end) {
+void io_until(double end) {
   mp *self = mp_self();
   double now = mp_time(self);
-  if (end > now && mp_sleep(self, end - now) != MP_OK) tsm_stopped(tsm_get());
+  if (end > now && mp_sleep(self, end - now) != MP_OK) st_stopped(st_get());
 }
 
-double tsmpi_io_independent(tsmpi_file *f, double bytes) {
-  return tsmpi_fs_request(f->sh->fs, mp_time(mp_self()), bytes);
+double io_independent(io_file *f, double bytes) {
+  return io_fs_request(f->sh->fs, mp_time(mp_self()), bytes);
 }
 
 /* Every rank's pair of doubles (mine) to every rank of comm, under call
  * fn's name (what a deadlock report and the trace say): MPICH's allgather
  * for so few bytes, recursive doubling on a power of two ranks, Bruck's
  * otherwise.  Returns the pairs by rank, scratch of the collectives
- * (tsmpi_cg_free it). */
+ * (coll_cg_free it). */
 static double *exchange(MPI_Comm comm, const char *fn, const double mine[2]) {
-  tsmpi_sched *s = tsmpi_coll_start(fn, comm, COLL_ALLGATHER, -1, NULL);   /* blocking: steps run as added */
-  const tsmpi_cg *g = tsmpi_sched_group(s);
-  size_t p = (size_t)g->size, *counts = tsmpi_sched_mem(s, 2 * p * sizeof *counts), *displs = counts + p;
-  double *all = tsmpi_cg_alloc(g, 2 * p * sizeof *all);
+  coll_sched *s = coll_start(fn, comm, COLL_ALLGATHER, -1, NULL);   /* blocking: steps run as added */
+  const coll_cg *g = coll_sched_group(s);
+  size_t p = (size_t)g->size, *counts = coll_sched_mem(s, 2 * p * sizeof *counts), *displs = counts + p;
+  double *all = coll_cg_alloc(g, 2 * p * sizeof *all);
   for (size_t r = 0; r < p; r++) counts[r] = 2 * sizeof *all, displs[r] = r * 2 * sizeof *all;
   all[2 * g->rank] = mine[0];
   all[2 * g->rank + 1] = mine[1];
   if (p > 1) {
-    if (tsmpi_is_pof2(g->size)) tsmpi_allgatherv_recursive_doubling(s, all, counts, displs);
-    else tsmpi_allgatherv_brucks(s, all, counts, displs);
+    if (coll_is_pof2(g->size)) coll_allgatherv_recursive_doubling(s, all, counts, displs);
+    else coll_allgatherv_brucks(s, all, counts, displs);
   }
-  tsmpi_coll_finish(s);
+  coll_finish(s);
   return all;
 }
 
-double tsmpi_io_collective(tsmpi_file *f, const char *fn, double bytes, MPI_Offset *base, MPI_Offset *below,
-                           void (*first)(tsmpi_file *f, const double *counts, void *ud), void *ud) {
+double io_collective(io_file *f, const char *fn, double bytes, MPI_Offset *base, MPI_Offset *below,
+                     void (*first)(io_file *f, const double *counts, void *ud), void *ud) {
   double mine[2] = {mp_time(mp_self()), bytes}, *all = exchange(f->comm, fn, mine);
   double come = 0, sum = 0;
   for (int r = 0; r < f->size; r++) {
@@ -142,17 +142,17 @@ double tsmpi_io_collective(tsmpi_file *f, const char *fn, double bytes, MPI_Offs
     if (below && r < f->rank) *below += (MPI_Offset)all[r];
   }
   f->cseq++;
-  tsmpi_ofile *sh = f->sh;
+  io_ofile *sh = f->sh;
   pthread_mutex_lock(&sh->lock);
   if (sh->cseq != f->cseq) {   /* the first past the exchange */
     if (first) first(f, all, ud);
-    sh->cend = bytes < 0 ? come : tsmpi_fs_request(sh->fs, come, sum);
+    sh->cend = bytes < 0 ? come : io_fs_request(sh->fs, come, sum);
     sh->cseq = f->cseq;
   }
   double end = sh->cend;
   if (base) *base = sh->cbase;
   pthread_mutex_unlock(&sh->lock);
-  tsmpi_cg_free(all);
+  coll_cg_free(all);
   return end;
 }
 
@@ -190,14 +190,14 @@ static int errno_class(int e) {
 typedef struct {
   int cls;                 /* MPI_SUCCESS or the error */
   char why[200];
-  tsmpi_ofile *sh;         /* the shared object: one process, one address */
+  io_ofile *sh;         /* the shared object: one process, one address */
   double end;              /* the open's request's end */
 } opened;
 
 /* Rank 0's part: the file opened and its shared object made. */
 static void open_first(const char *path, int amode, double come, opened *o) {
-  char host[TSMPI_PATH_MAX];
-  tsmpi_fs *fs = tsmpi_fs_of(path, host, o->why, sizeof o->why);
+  char host[IO_PATH_MAX];
+  io_fs *fs = io_fs_of(path, host, o->why, sizeof o->why);
   if (!fs) {
     o->cls = MPI_ERR_BAD_FILE;
     return;
@@ -214,7 +214,7 @@ static void open_first(const char *path, int amode, double come, opened *o) {
       snprintf(o->why, sizeof o->why, "%.160s: %s", path, strerror(e));
     return;
   }
-  tsmpi_ofile *sh = calloc(1, sizeof *sh);
+  io_ofile *sh = calloc(1, sizeof *sh);
   if (!sh) {
     close(fd);
     o->cls = MPI_ERR_NO_MEM;
@@ -232,10 +232,10 @@ static void open_first(const char *path, int amode, double come, opened *o) {
   }
   o->sh = sh;
   o->cls = MPI_SUCCESS;
-  o->end = tsmpi_fs_request(fs, come, 0);
+  o->end = io_fs_request(fs, come, 0);
 }
 
-static void drop_shared(tsmpi_ofile *sh) {
+static void drop_shared(io_ofile *sh) {
   pthread_mutex_lock(&sh->lock);
   int last = --sh->refs == 0;
   pthread_mutex_unlock(&sh->lock);
@@ -246,18 +246,18 @@ static void drop_shared(tsmpi_ofile *sh) {
   free(sh);
 }
 
-static void release(tsmpi_file *f) {
-  tsm_errh_drop(tsm_get(), f->eh);
+static void release(io_file *f) {
+  errh_drop(st_get(), f->eh);
   drop_shared(f->sh);
-  tsmpi_view_free(&f->view);
+  io_view_free(&f->view);
   if (f->hints != MPI_INFO_NULL) PMPI_Info_free(&f->hints);
   free(f);
 }
 
-int tsmpi_file_open(MPI_Comm comm, const char *path, int amode, MPI_Info info, MPI_File *fh) {
+int io_file_open(MPI_Comm comm, const char *path, int amode, MPI_Info info, MPI_File *fh) {
   static const char fn[] = "MPI_File_open";
   table *tb = tab(1);
-  if (!tb) return tsmpi_raise(comm, MPI_ERR_NO_MEM, fn, "out of memory");
+  if (!tb) return err_comm_raise(comm, MPI_ERR_NO_MEM, fn, "out of memory");
   const char *bad;
   int size, rank, rc;
   PMPI_Comm_size(comm, &size);
@@ -273,7 +273,7 @@ int tsmpi_file_open(MPI_Comm comm, const char *path, int amode, MPI_Info info, M
     if (all[2 * r] > come) come = all[2 * r];
     same &= all[2 * r + 1] == amode;
   }
-  tsmpi_cg_free(all);
+  coll_cg_free(all);
   opened o = {0};
   if (!same) {   /* the checks every rank makes alike */
     o.cls = MPI_ERR_NOT_SAME;
@@ -287,23 +287,23 @@ int tsmpi_file_open(MPI_Comm comm, const char *path, int amode, MPI_Info info, M
   }
   if (o.cls != MPI_SUCCESS) {
     PMPI_Comm_free(&dup);
-    return tsmpi_file_raise(MPI_FILE_NULL, o.cls, fn, "%s", o.why);
+    return io_file_raise(MPI_FILE_NULL, o.cls, fn, "%s", o.why);
   }
   pthread_mutex_lock(&o.sh->lock);
   o.sh->refs++;
   pthread_mutex_unlock(&o.sh->lock);
   int slot = 0;
   while (slot < tb->n && tb->slot[slot]) slot++;
-  tsmpi_file *f = calloc(1, sizeof *f);
+  io_file *f = calloc(1, sizeof *f);
   if (f && slot == tb->n && slot <= SLOT_MASK) {
-    tsmpi_file **s = realloc(tb->slot, ((size_t)tb->n + 1) * sizeof *s);
+    io_file **s = realloc(tb->slot, ((size_t)tb->n + 1) * sizeof *s);
     if (s) tb->slot = s, tb->slot[tb->n++] = NULL;
   }
   if (!f || slot >= tb->n) {
     free(f);
     drop_shared(o.sh);
     PMPI_Comm_free(&dup);
-    return tsmpi_file_raise(MPI_FILE_NULL, MPI_ERR_NO_MEM, fn, "out of memory for a file");
+    return io_file_raise(MPI_FILE_NULL, MPI_ERR_NO_MEM, fn, "out of memory for a file");
   }
   f->sh = o.sh;
   f->comm = dup;
@@ -313,27 +313,27 @@ int tsmpi_file_open(MPI_Comm comm, const char *path, int amode, MPI_Info info, M
   f->eh = MPI_ERRORS_RETURN;
   f->hints = MPI_INFO_NULL;
   f->pos = o.sh->shared;   /* 0, or the end of the file (MPI_MODE_APPEND) */
-  tsmpi_view_default(&f->view);
+  io_view_default(&f->view);
   if (info != MPI_INFO_NULL) PMPI_Info_dup(info, &f->hints);
   tb->slot[slot] = f;
   *fh = (MPI_File)(CREATED | slot);
-  tsmpi_io_until(o.end);
+  io_until(o.end);
   return MPI_SUCCESS;
 }
 
-static void no_first(tsmpi_file *f, const double *counts, void *ud) {
+static void no_first(io_file *f, const double *counts, void *ud) {
   (void)f, (void)counts, (void)ud;
 }
 
-int tsmpi_file_close(MPI_File *fh) {
-  tsmpi_file *f = tsmpi_file_get(*fh);
-  double end = tsmpi_io_collective(f, "MPI_File_close", 0, NULL, NULL, no_first, NULL);
+int io_file_close(MPI_File *fh) {
+  io_file *f = io_file_get(*fh);
+  double end = io_collective(f, "MPI_File_close", 0, NULL, NULL, no_first, NULL);
   table *tb = tab(0);
   tb->slot[*fh & SLOT_MASK] = NULL;
   MPI_Comm c = f->comm;
   release(f);
   PMPI_Comm_free(&c);
   *fh = MPI_FILE_NULL;
-  tsmpi_io_until(end);
+  io_until(end);
   return MPI_SUCCESS;
 }

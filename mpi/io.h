@@ -31,23 +31,23 @@ typedef struct {
   pthread_mutex_t lock;    /* every data move and every field below */
   int refs;                /* ranks that have it open */
   int fd;
-  tsmpi_fs *fs;
-  char host[TSMPI_PATH_MAX];
+  io_fs *fs;
+  char host[IO_PATH_MAX];
   int delete_on_close;
   int atomic;              /* MPI_File_set_atomicity's mode (the same on every rank) */
   MPI_Offset shared;       /* the shared file pointer, in etypes */
-  unsigned long cseq;      /* the last collective call settled (tsmpi_io_collective) */
+  unsigned long cseq;      /* the last collective call settled (io_collective) */
   double cend;             /* its end */
   MPI_Offset cbase;        /* its shared file pointer (ordered calls) */
-} tsmpi_ofile;
+} io_ofile;
 
 /* A rank's open file. */
 typedef struct {
-  tsmpi_ofile *sh;
+  io_ofile *sh;
   MPI_Comm comm;           /* the file's own duplicate of the communicator */
   int rank, size;          /* in it */
   int amode;
-  tsmpi_view view;
+  io_view view;
   MPI_Offset pos;          /* the individual file pointer, in etypes */
   MPI_Errhandler eh;
   MPI_Info hints;          /* the hints given (a copy), or MPI_INFO_NULL */
@@ -55,40 +55,40 @@ typedef struct {
   int split;               /* a split collective begun: its kind (io_data.c), else 0 */
   int split_rc;            /* its result and status */
   MPI_Status split_st;
-} tsmpi_file;
+} io_file;
 
 /* The rank's file of handle fh, or NULL (MPI_FILE_NULL, closed, not a file). */
-tsmpi_file *tsmpi_file_get(MPI_File fh);
+io_file *io_file_get(MPI_File fh);
 
 /* An error of call fn under fh's handler (MPI_FILE_NULL: the handler of
  * calls with no file): the class returned, or the run ended (fatal). */
 #if defined(__GNUC__)
 __attribute__((format(printf, 4, 5)))
 #endif
-int tsmpi_file_raise(MPI_File fh, int cls, const char *fn, const char *fmt, ...);
+int io_file_raise(MPI_File fh, int cls, const char *fn, const char *fmt, ...);
 
 /* fh valid for fn: its file in *f, or the error raised (MPI_ERR_FILE under
  * MPI_FILE_NULL's handler). */
-int tsmpi_file_check(MPI_File fh, const char *fn, tsmpi_file **f);
+int io_file_check(MPI_File fh, const char *fn, io_file **f);
 
 /* Open and close (MPI_File_open, MPI_File_close: collective). */
-int tsmpi_file_open(MPI_Comm comm, const char *path, int amode, MPI_Info info, MPI_File *fh);
-int tsmpi_file_close(MPI_File *fh);
+int io_file_open(MPI_Comm comm, const char *path, int amode, MPI_Info info, MPI_File *fh);
+int io_file_close(MPI_File *fh);
 
 /* The rank uses MPI-IO from now on (its table made, the file systems'
  * users counted: io_model.h); every call that reaches a file system does
  * it first. */
-void tsmpi_io_begin(void);
+void io_begin(void);
 
 /* The handler of MPI_FILE_NULL (MPI_File_set/get_errhandler on it). */
-MPI_Errhandler tsmpi_file_null_eh(void);
-void tsmpi_file_set_null_eh(MPI_Errhandler eh);
+MPI_Errhandler io_file_null_eh(void);
+void io_file_set_null_eh(MPI_Errhandler eh);
 
 /* ==== time ================================================================ */
 
 /* An independent request of `bytes` bytes on f's file system coming now:
  * its end. */
-double tsmpi_io_independent(tsmpi_file *f, double bytes);
+double io_independent(io_file *f, double bytes);
 
 /* A collective call's exchange (call fn, for a deadlock report): every rank
  * of the file gives its bytes and the time it came; the call is one request of their sum coming when the
@@ -99,11 +99,11 @@ double tsmpi_io_independent(tsmpi_file *f, double bytes);
  * not NULL) gets the shared object's cbase as first left it, *below (if not
  * NULL) the bytes of the ranks below this one.  bytes < 0 on every rank: no
  * request (a call that only agrees on something: its end is the exchange's). */
-double tsmpi_io_collective(tsmpi_file *f, const char *fn, double bytes, MPI_Offset *base, MPI_Offset *below,
-                           void (*first)(tsmpi_file *f, const double *counts, void *ud), void *ud);
+double io_collective(io_file *f, const char *fn, double bytes, MPI_Offset *base, MPI_Offset *below,
+                     void (*first)(io_file *f, const double *counts, void *ud), void *ud);
 
 /* The rank's clock moves on to `end` if it is before (mp_sleep: the
  * processor is free meanwhile). */
-void tsmpi_io_until(double end);
+void io_until(double end);
 
 #endif

@@ -58,23 +58,23 @@ static int piece(void *ud, MPI_Offset off, MPI_Offset n, MPI_Offset at) {
 /* count elements of dt at buf to (wr) or from view stream byte pos of f,
  * under the shared lock: the bytes moved (a read stops at the end of the
  * file); *err the errno of a failure, else 0. */
-static MPI_Offset move(tsmpi_file *f, int wr, MPI_Offset pos, void *buf, int count, MPI_Datatype dt, int *err) {
-  MPI_Offset n = (MPI_Offset)tsmpi_type_size(dt) * count;
+static MPI_Offset move(io_file *f, int wr, MPI_Offset pos, void *buf, int count, MPI_Datatype dt, int *err) {
+  MPI_Offset n = (MPI_Offset)dtype_size(dt) * count;
   *err = 0;
   if (n == 0) return 0;
-  char *mem = (char *)tsmpi_type_contig(buf, count, dt), *tmp = NULL;
+  char *mem = (char *)dtype_contig(buf, count, dt), *tmp = NULL;
   if (!mem) {
     tmp = mem = malloc((size_t)n);
     if (!tmp) {
       *err = ENOMEM;
       return 0;
     }
-    if (wr) tsmpi_type_pack(buf, count, dt, tmp);
+    if (wr) dtype_pack(buf, count, dt, tmp);
   }
   mover m = {f->sh->fd, wr, mem, 0, 0};
-  tsmpi_view_map(&f->view, pos, n, piece, &m);
+  io_view_map(&f->view, pos, n, piece, &m);
   if (tmp) {
-    if (!wr) tsmpi_type_unpack(tmp, (size_t)m.done, buf, count, dt);
+    if (!wr) dtype_unpack(tmp, (size_t)m.done, buf, count, dt);
     free(tmp);
   }
   *err = m.err;
@@ -83,7 +83,7 @@ static MPI_Offset move(tsmpi_file *f, int wr, MPI_Offset pos, void *buf, int cou
 
 static void status_of(MPI_Status *st, MPI_Offset bytes) {
   if (st == MPI_STATUS_IGNORE) return;
-  tsm_status_empty(st);
+  pt2pt_status_empty(st);
   st->tsmpi_count = bytes;
 }
 
@@ -97,7 +97,7 @@ typedef struct {
 
 /* An ordered call's one-time part: the shared pointer moves on by every
  * rank's bytes, from where it was (cbase). */
-static void ordered_first(tsmpi_file *f, const double *counts, void *ud) {
+static void ordered_first(io_file *f, const double *counts, void *ud) {
   ordered_ud *o = ud;
   MPI_Offset sum = 0;
   for (int r = 0; r < f->size; r++) sum += (MPI_Offset)counts[r];
@@ -108,30 +108,30 @@ static void ordered_first(tsmpi_file *f, const double *counts, void *ud) {
 static const char *op_word(int wr) { return wr ? "write" : "read"; }
 
 /* The checks of every data call; MPI_SUCCESS or the error raised. */
-static int args(MPI_File fh, const char *fn, tsmpi_file **fp, int wr, int where, MPI_Offset offset, const void *buf,
+static int args(MPI_File fh, const char *fn, io_file **fp, int wr, int where, MPI_Offset offset, const void *buf,
                 int count, MPI_Datatype dt) {
-  tsmpi_file *f;
+  io_file *f;
   char why[96];
-  int rc = tsmpi_file_check(fh, fn, &f);
+  int rc = io_file_check(fh, fn, &f);
   if (rc) return rc;
   *fp = f;
-  if (count < 0) return tsmpi_file_raise(fh, MPI_ERR_COUNT, fn, "invalid count %d (must be >= 0)", count);
-  if (tsmpi_type_check(dt, why, sizeof why) != MPI_SUCCESS)
-    return tsmpi_file_raise(fh, MPI_ERR_TYPE, fn, "invalid datatype: %s", why);
-  if (!buf && count && tsmpi_type_size(dt) && !tsmpi_type_bottom_ok(dt, count))
-    return tsmpi_file_raise(fh, MPI_ERR_BUFFER, fn, "buf is NULL");
-  if (where == AT && offset < 0) return tsmpi_file_raise(fh, MPI_ERR_ARG, fn, "offset %lld < 0", (long long)offset);
+  if (count < 0) return io_file_raise(fh, MPI_ERR_COUNT, fn, "invalid count %d (must be >= 0)", count);
+  if (dtype_check(dt, why, sizeof why) != MPI_SUCCESS)
+    return io_file_raise(fh, MPI_ERR_TYPE, fn, "invalid datatype: %s", why);
+  if (!buf && count && dtype_size(dt) && !dtype_bottom_ok(dt, count))
+    return io_file_raise(fh, MPI_ERR_BUFFER, fn, "buf is NULL");
+  if (where == AT && offset < 0) return io_file_raise(fh, MPI_ERR_ARG, fn, "offset %lld < 0", (long long)offset);
   if (wr && (f->amode & MPI_MODE_RDONLY))
-    return tsmpi_file_raise(fh, MPI_ERR_READ_ONLY, fn, "the file is open MPI_MODE_RDONLY: no writes");
+    return io_file_raise(fh, MPI_ERR_READ_ONLY, fn, "the file is open MPI_MODE_RDONLY: no writes");
   if (!wr && (f->amode & MPI_MODE_WRONLY))
-    return tsmpi_file_raise(fh, MPI_ERR_ACCESS, fn, "the file is open MPI_MODE_WRONLY: no reads");
+    return io_file_raise(fh, MPI_ERR_ACCESS, fn, "the file is open MPI_MODE_WRONLY: no reads");
   if ((f->amode & MPI_MODE_SEQUENTIAL) && (where == AT || where == INDIV))
-    return tsmpi_file_raise(fh, MPI_ERR_UNSUPPORTED_OPERATION, fn,
-                            "the file is open MPI_MODE_SEQUENTIAL: only the shared file pointer");
-  MPI_Offset n = (MPI_Offset)tsmpi_type_size(dt) * count;
+    return io_file_raise(fh, MPI_ERR_UNSUPPORTED_OPERATION, fn,
+                         "the file is open MPI_MODE_SEQUENTIAL: only the shared file pointer");
+  MPI_Offset n = (MPI_Offset)dtype_size(dt) * count;
   if (n % f->view.esize)
-    return tsmpi_file_raise(fh, MPI_ERR_IO, fn, "%lld bytes are not a whole number of etypes (%ld bytes each)",
-                            (long long)n, (long)f->view.esize);
+    return io_file_raise(fh, MPI_ERR_IO, fn, "%lld bytes are not a whole number of etypes (%ld bytes each)",
+                         (long long)n, (long)f->view.esize);
   return MPI_SUCCESS;
 }
 
@@ -140,17 +140,17 @@ static int args(MPI_File fh, const char *fn, tsmpi_file **fp, int wr, int where,
  * collective. */
 static int data_access(MPI_File fh, const char *fn, int wr, int where, int coll, MPI_Offset offset, void *buf,
                   int count, MPI_Datatype dt, MPI_Status *st) {
-  tsmpi_file *f = NULL;
+  io_file *f = NULL;
   int rc = args(fh, fn, &f, wr, where, offset, buf, count, dt);
   if (rc) return rc;
-  tsmpi_ofile *sh = f->sh;
-  MPI_Offset es = f->view.esize, n = (MPI_Offset)tsmpi_type_size(dt) * count, pos = 0, got;
+  io_ofile *sh = f->sh;
+  MPI_Offset es = f->view.esize, n = (MPI_Offset)dtype_size(dt) * count, pos = 0, got;
   double end = 0;
   int err;
   if (coll == COLL) {
     ordered_ud o = {wr, where, n, es};
     MPI_Offset base = 0, below = 0;
-    end = tsmpi_io_collective(f, fn, (double)n, &base, &below, where == ORDERED ? ordered_first : NULL, &o);
+    end = io_collective(f, fn, (double)n, &base, &below, where == ORDERED ? ordered_first : NULL, &o);
     if (where == ORDERED) pos = base * es + below;
   }
   pthread_mutex_lock(&sh->lock);
@@ -160,13 +160,13 @@ static int data_access(MPI_File fh, const char *fn, int wr, int where, int coll,
   got = move(f, wr, pos, buf, count, dt, &err);
   pthread_mutex_unlock(&sh->lock);
   if (where == INDIV) f->pos += got / es;
-  if (coll == INDEP) end = tsmpi_io_independent(f, (double)n);
-  tsmpi_io_until(end);
+  if (coll == INDEP) end = io_independent(f, (double)n);
+  io_until(end);
   status_of(st, got);
   if (err)
-    return tsmpi_file_raise(fh, err == ENOSPC ? MPI_ERR_NO_SPACE : err == EDQUOT ? MPI_ERR_QUOTA : MPI_ERR_IO, fn,
-                            "%s of %lld bytes at byte %lld of the view: %s", op_word(wr), (long long)n,
-                            (long long)pos, strerror(err));
+    return io_file_raise(fh, err == ENOSPC ? MPI_ERR_NO_SPACE : err == EDQUOT ? MPI_ERR_QUOTA : MPI_ERR_IO, fn,
+                         "%s of %lld bytes at byte %lld of the view: %s", op_word(wr), (long long)n,
+                         (long long)pos, strerror(err));
   return MPI_SUCCESS;
 }
 
@@ -174,42 +174,42 @@ static int data_access(MPI_File fh, const char *fn, int wr, int where, int coll,
 static int iaccess(MPI_File fh, const char *fn, int wr, int where, MPI_Offset offset, void *buf, int count,
                    MPI_Datatype dt, MPI_Request *request) {
   if (!request) {
-    tsmpi_file *f;
-    int rc = tsmpi_file_check(fh, fn, &f);
-    return rc ? rc : tsmpi_file_raise(fh, MPI_ERR_REQUEST, fn, "request is NULL");
+    io_file *f;
+    int rc = io_file_check(fh, fn, &f);
+    return rc ? rc : io_file_raise(fh, MPI_ERR_REQUEST, fn, "request is NULL");
   }
   MPI_Status st;
   int rc = data_access(fh, fn, wr, where, INDEP, offset, buf, count, dt, &st);
   if (rc) return rc;
-  tsm *R = tsm_get();
-  tsm_req *q = tsm_req_new(R);
+  st_rank *R = st_get();
+  st_req *q = st_req_new(R);
   q->kind = RQ_RECV;
   q->state = RS_DONE;
   q->comm = MPI_COMM_NULL;
   q->fn = fn;
   q->st = st;
-  *request = tsm_req_handle(q);
+  *request = st_req_handle(q);
   return MPI_SUCCESS;
 }
 
 /* A split collective's begin: the whole call, its result kept for _end. */
 static int begin(MPI_File fh, const char *fn, int kind, int wr, int where, MPI_Offset offset, void *buf, int count,
                  MPI_Datatype dt) {
-  tsmpi_file *f;
-  int rc = tsmpi_file_check(fh, fn, &f);
+  io_file *f;
+  int rc = io_file_check(fh, fn, &f);
   if (rc) return rc;
-  if (f->split) return tsmpi_file_raise(fh, MPI_ERR_OTHER, fn, "a split collective call is already active on the file");
+  if (f->split) return io_file_raise(fh, MPI_ERR_OTHER, fn, "a split collective call is already active on the file");
   rc = data_access(fh, fn, wr, where, COLL, offset, buf, count, dt, &f->split_st);
   if (rc == MPI_SUCCESS) f->split = kind;
   return rc;
 }
 
 static int end(MPI_File fh, const char *fn, int kind, MPI_Status *st) {
-  tsmpi_file *f;
-  int rc = tsmpi_file_check(fh, fn, &f);
+  io_file *f;
+  int rc = io_file_check(fh, fn, &f);
   if (rc) return rc;
   if (f->split != kind)
-    return tsmpi_file_raise(fh, MPI_ERR_OTHER, fn, "%s", f->split ? "the active split collective is another one"
+    return io_file_raise(fh, MPI_ERR_OTHER, fn, "%s", f->split ? "the active split collective is another one"
                                                                   : "no split collective call is active on the file");
   f->split = 0;
   if (st != MPI_STATUS_IGNORE) *st = f->split_st;

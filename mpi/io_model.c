@@ -15,9 +15,9 @@
 
 enum { MOUNTS_MAX = 16 };
 
-struct tsmpi_fs {
+struct io_fs {
   char mount[256];         /* "/scratch" */
-  char dir[TSMPI_PATH_MAX];/* its files' host directory; "" : the same path */
+  char dir[IO_PATH_MAX];/* its files' host directory; "" : the same path */
   int scratch;             /* dir is the default scratch directory (made when used) */
   double latency;          /* seconds a request */
   double bandwidth;        /* bytes a second */
@@ -26,7 +26,7 @@ struct tsmpi_fs {
 
 /* The run's file systems (set before the ranks start) and the servers'
  * state, under one lock (threads share them). */
-static tsmpi_fs mounts[MOUNTS_MAX];
+static io_fs mounts[MOUNTS_MAX];
 static int nmounts;
 static int users;          /* ranks between their first I/O call and their end */
 static pthread_mutex_t lock = PTHREAD_MUTEX_INITIALIZER;
@@ -45,7 +45,7 @@ static void defaults(void) {
   nmounts = 2;
 }
 
-void tsmpi_fs_reset(void) {
+void io_fs_reset(void) {
   pthread_mutex_lock(&lock);
   defaults();
   users = 0;
@@ -61,11 +61,11 @@ static void ensure(void) {
 /* path made absolute (the working directory's if relative) and lexically
  * clean: no "", "." or ".." components.  0, or -1 if too long. */
 static int clean(const char *path, char *out, size_t len) {
-  char buf[TSMPI_PATH_MAX];
+  char buf[IO_PATH_MAX];
   if (path[0] == '/') {
     if (snprintf(buf, sizeof buf, "%s", path) >= (int)sizeof buf) return -1;
   } else {
-    char cwd[TSMPI_PATH_MAX];
+    char cwd[IO_PATH_MAX];
     if (!getcwd(cwd, sizeof cwd)) return -1;
     if (snprintf(buf, sizeof buf, "%s/%s", cwd, path) >= (int)sizeof buf) return -1;
   }
@@ -98,11 +98,11 @@ static int prefix(const char *m, const char *p) {
 }
 
 /* The default scratch directory, made if missing (caller holds the lock). */
-static int scratch_dir(tsmpi_fs *fs, char *err, size_t errlen) {
+static int scratch_dir(io_fs *fs, char *err, size_t errlen) {
   if (fs->dir[0]) return 0;
   const char *tmp = getenv("TMPDIR");
   if (!tmp || !*tmp) tmp = "/tmp";
-  char d[TSMPI_PATH_MAX];
+  char d[IO_PATH_MAX];
   if (snprintf(d, sizeof d, "%s/tilesim-scratch-%ld", tmp, (long)getuid()) >= (int)sizeof d) {
     snprintf(err, errlen, "%s: $TMPDIR is too long", fs->mount);
     return -1;
@@ -115,19 +115,19 @@ static int scratch_dir(tsmpi_fs *fs, char *err, size_t errlen) {
   return 0;
 }
 
-tsmpi_fs *tsmpi_fs_of(const char *path, char *host, char *err, size_t errlen) {
-  char abs[TSMPI_PATH_MAX];
+io_fs *io_fs_of(const char *path, char *host, char *err, size_t errlen) {
+  char abs[IO_PATH_MAX];
   if (!*path) {
     snprintf(err, errlen, "an empty file name");
     return NULL;
   }
-  if (strlen(path) >= TSMPI_PATH_MAX || clean(path, abs, sizeof abs) != 0) {
+  if (strlen(path) >= IO_PATH_MAX || clean(path, abs, sizeof abs) != 0) {
     snprintf(err, errlen, "the file name is too long (%zu bytes)", strlen(path));
     return NULL;
   }
   pthread_mutex_lock(&lock);
   ensure();
-  tsmpi_fs *best = NULL;
+  io_fs *best = NULL;
   int blen = -1;
   for (int i = 0; i < nmounts; i++) {
     int k = prefix(mounts[i].mount, abs);
@@ -136,9 +136,9 @@ tsmpi_fs *tsmpi_fs_of(const char *path, char *host, char *err, size_t errlen) {
   int rc = best->scratch ? scratch_dir(best, err, errlen) : 0;
   pthread_mutex_unlock(&lock);
   if (rc) return NULL;
-  int n = best->dir[0] ? snprintf(host, TSMPI_PATH_MAX, "%s%s", best->dir, abs + blen)
-                       : snprintf(host, TSMPI_PATH_MAX, "%s", path);
-  if (n >= TSMPI_PATH_MAX) {
+  int n = best->dir[0] ? snprintf(host, IO_PATH_MAX, "%s%s", best->dir, abs + blen)
+                       : snprintf(host, IO_PATH_MAX, "%s", path);
+  if (n >= IO_PATH_MAX) {
     snprintf(err, errlen, "the file's host path is too long");
     return NULL;
   }
@@ -147,21 +147,21 @@ tsmpi_fs *tsmpi_fs_of(const char *path, char *host, char *err, size_t errlen) {
 
 /* ==== the servers ========================================================= */
 
-void tsmpi_fs_enter(void) {
+void io_fs_enter(void) {
   pthread_mutex_lock(&lock);
   ensure();
   users++;
   pthread_mutex_unlock(&lock);
 }
 
-void tsmpi_fs_leave(void) {
+void io_fs_leave(void) {
   pthread_mutex_lock(&lock);
   if (users > 0 && --users == 0)
     for (int i = 0; i < nmounts; i++) mounts[i].free = 0;
   pthread_mutex_unlock(&lock);
 }
 
-double tsmpi_fs_request(tsmpi_fs *fs, double t, double bytes) {
+double io_fs_request(io_fs *fs, double t, double bytes) {
   pthread_mutex_lock(&lock);
   double start = fs->free > t ? fs->free : t;
   double end = start + fs->latency + (bytes > 0 ? bytes / fs->bandwidth : 0);
@@ -170,14 +170,14 @@ double tsmpi_fs_request(tsmpi_fs *fs, double t, double bytes) {
   return end;
 }
 
-const char *tsmpi_fs_mount(const tsmpi_fs *fs) { return fs->mount; }
-double tsmpi_fs_latency(const tsmpi_fs *fs) { return fs->latency; }
-double tsmpi_fs_bandwidth(const tsmpi_fs *fs) { return fs->bandwidth; }
+const char *io_fs_mount(const io_fs *fs) { return fs->mount; }
+double io_fs_latency(const io_fs *fs) { return fs->latency; }
+double io_fs_bandwidth(const io_fs *fs) { return fs->bandwidth; }
 
 /* ==== --fs ================================================================ */
 
-int tsmpi_fs_option(const char *spec, char *err, size_t errlen) {
-  char buf[TSMPI_PATH_MAX + 256], mount[TSMPI_PATH_MAX];
+int io_fs_option(const char *spec, char *err, size_t errlen) {
+  char buf[IO_PATH_MAX + 256], mount[IO_PATH_MAX];
   if (snprintf(buf, sizeof buf, "%s", spec) >= (int)sizeof buf) {
     snprintf(err, errlen, "--fs: the value is too long");
     return -1;
@@ -188,7 +188,7 @@ int tsmpi_fs_option(const char *spec, char *err, size_t errlen) {
              spec);
     return -1;
   }
-  tsmpi_fs fs = {.latency = default_latency, .bandwidth = default_bandwidth};
+  io_fs fs = {.latency = default_latency, .bandwidth = default_bandwidth};
   memcpy(fs.mount, mount, strlen(mount) + 1);
   pthread_mutex_lock(&lock);
   ensure();

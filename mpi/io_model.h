@@ -27,26 +27,26 @@
 
 #include <stddef.h>
 
-typedef struct tsmpi_fs tsmpi_fs;   /* a mounted file system of the run */
+typedef struct io_fs io_fs;   /* a mounted file system of the run */
 
-enum { TSMPI_PATH_MAX = 4096 };
+enum { IO_PATH_MAX = 4096 };
 
 /* The file system of program path `path` and its host path (host: at least
- * TSMPI_PATH_MAX bytes).  NULL and why (errlen bytes) if the path is empty
+ * IO_PATH_MAX bytes).  NULL and why (errlen bytes) if the path is empty
  * or too long, or the mount's directory cannot be made. */
-tsmpi_fs *tsmpi_fs_of(const char *path, char *host, char *err, size_t errlen);
+io_fs *io_fs_of(const char *path, char *host, char *err, size_t errlen);
 
 /* A rank starts using the file systems (its first I/O call) and stops (its
  * end): the servers are idle again when the last one stops. */
-void tsmpi_fs_enter(void);
-void tsmpi_fs_leave(void);
+void io_fs_enter(void);
+void io_fs_leave(void);
 
 /* A request of `bytes` bytes coming at t: when it ends. */
-double tsmpi_fs_request(tsmpi_fs *fs, double t, double bytes);
+double io_fs_request(io_fs *fs, double t, double bytes);
 
 /* The mount's path ("/scratch"), its latency and bandwidth. */
-const char *tsmpi_fs_mount(const tsmpi_fs *fs);
-double tsmpi_fs_latency(const tsmpi_fs *fs);
-double tsmpi_fs_bandwidth(const tsmpi_fs *fs);
+const char *io_fs_mount(const io_fs *fs);
+double io_fs_latency(const io_fs *fs);
+double io_fs_bandwidth(const io_fs *fs);
 
 #endif

@@ -9,12 +9,12 @@
 #ifndef TSMPI_IO_SG_H
 #define TSMPI_IO_SG_H
 
-typedef struct tsmpi_sg_file tsmpi_sg_file;
+typedef struct io_sg_file io_sg_file;
 
-tsmpi_sg_file *sg_file_open(const char *fullpath, void *data);
-void sg_file_close(tsmpi_sg_file *fd);
-void sg_file_unlink(tsmpi_sg_file *fd);
-const char *sg_file_get_name(const tsmpi_sg_file *fd);
-unsigned long long sg_file_get_size(const tsmpi_sg_file *fd);
+io_sg_file *sg_file_open(const char *fullpath, void *data);
+void sg_file_close(io_sg_file *fd);
+void sg_file_unlink(io_sg_file *fd);
+const char *sg_file_get_name(const io_sg_file *fd);
+unsigned long long sg_file_get_size(const io_sg_file *fd);
 
 #endif

@@ -8,7 +8,7 @@
 
 #include "mpi/dtype.h"
 
-void tsmpi_view_default(tsmpi_view *v) {
+void io_view_default(io_view *v) {
   static MPI_Aint zero = 0, one = 1;
   static MPI_Offset none = 0;
   memset(v, 0, sizeof *v);
@@ -22,14 +22,14 @@ void tsmpi_view_default(tsmpi_view *v) {
   snprintf(v->datarep, sizeof v->datarep, "native");
 }
 
-void tsmpi_view_free(tsmpi_view *v) {
+void io_view_free(io_view *v) {
   if (v->heap) {
     free(v->off);
     free(v->len);
     free(v->before);
   }
-  tsmpi_type_release(v->etype);
-  tsmpi_type_release(v->ftype);
+  dtype_release(v->etype);
+  dtype_release(v->ftype);
   v->off = v->len = NULL;
   v->before = NULL;
   v->nrun = 0;
@@ -49,18 +49,18 @@ static void one_run(void *ud, MPI_Aint disp, MPI_Aint len) {
   r->len[r->n++] = len;
 }
 
-int tsmpi_view_set(tsmpi_view *v, MPI_Offset disp, MPI_Datatype etype, MPI_Datatype ftype, const char *datarep,
-                   char *why, size_t len) {
+int io_view_set(io_view *v, MPI_Offset disp, MPI_Datatype etype, MPI_Datatype ftype, const char *datarep,
+                char *why, size_t len) {
   char w[96];
   if (disp < 0) {
     snprintf(why, len, "displacement %lld < 0", (long long)disp);
     return MPI_ERR_ARG;
   }
-  if (tsmpi_type_check(etype, w, sizeof w) != MPI_SUCCESS) {
+  if (dtype_check(etype, w, sizeof w) != MPI_SUCCESS) {
     snprintf(why, len, "invalid etype: %s", w);
     return MPI_ERR_TYPE;
   }
-  if (tsmpi_type_check(ftype, w, sizeof w) != MPI_SUCCESS) {
+  if (dtype_check(ftype, w, sizeof w) != MPI_SUCCESS) {
     snprintf(why, len, "invalid filetype: %s", w);
     return MPI_ERR_TYPE;
   }
@@ -68,14 +68,14 @@ int tsmpi_view_set(tsmpi_view *v, MPI_Offset disp, MPI_Datatype etype, MPI_Datat
     snprintf(why, len, "data representation \"%.40s\": tilesim has \"native\" and \"internal\" (the same)", datarep);
     return MPI_ERR_UNSUPPORTED_DATAREP;
   }
-  MPI_Aint esize = (MPI_Aint)tsmpi_type_size(etype);
-  MPI_Offset fsize = (MPI_Offset)tsmpi_type_size(ftype);
+  MPI_Aint esize = (MPI_Aint)dtype_size(etype);
+  MPI_Offset fsize = (MPI_Offset)dtype_size(ftype);
   if (esize == 0 || fsize == 0 || fsize % esize) {
     snprintf(why, len, "%s", esize == 0 ? "the etype has no data" : fsize == 0 ? "the filetype has no data"
                                                                      : "the filetype is not whole etypes");
     return MPI_ERR_ARG;
   }
-  size_t n = tsmpi_type_segments(ftype, NULL, NULL);
+  size_t n = dtype_segments(ftype, NULL, NULL);
   runs r = {malloc(n * sizeof *r.off), malloc(n * sizeof *r.len), 0, 0};
   MPI_Offset *before = malloc(n * sizeof *before);
   if (!r.off || !r.len || !before) {
@@ -83,21 +83,21 @@ int tsmpi_view_set(tsmpi_view *v, MPI_Offset disp, MPI_Datatype etype, MPI_Datat
     snprintf(why, len, "out of memory for %zu runs", n);
     return MPI_ERR_NO_MEM;
   }
-  tsmpi_type_segments(ftype, one_run, &r);
+  dtype_segments(ftype, one_run, &r);
   if (r.bad) {
     free(r.off), free(r.len), free(before);
     snprintf(why, len, "the filetype's displacements must be >= 0 and increase (MPI 3.1 section 13.3)");
     return MPI_ERR_ARG;
   }
   for (size_t k = 0; k < n; k++) before[k] = k ? before[k - 1] + r.len[k - 1] : 0;
-  tsmpi_type_hold(etype);
-  tsmpi_type_hold(ftype);
-  tsmpi_view_free(v);
+  dtype_hold(etype);
+  dtype_hold(ftype);
+  io_view_free(v);
   v->disp = disp;
   v->etype = etype;
   v->ftype = ftype;
   v->esize = esize;
-  v->fext = tsmpi_type_extent(ftype);
+  v->fext = dtype_extent(ftype);
   v->fsize = fsize;
   v->nrun = n;
   v->off = r.off;
@@ -110,7 +110,7 @@ int tsmpi_view_set(tsmpi_view *v, MPI_Offset disp, MPI_Datatype etype, MPI_Datat
 
 /* The run of the tile's data holding the tile's data byte b (0 <= b <
  * fsize): the last k with before[k] <= b. */
-static size_t run_of(const tsmpi_view *v, MPI_Offset b) {
+static size_t run_of(const io_view *v, MPI_Offset b) {
   size_t lo = 0, hi = v->nrun;
   while (hi - lo > 1) {
     size_t mid = lo + (hi - lo) / 2;
@@ -120,14 +120,14 @@ static size_t run_of(const tsmpi_view *v, MPI_Offset b) {
   return lo;
 }
 
-MPI_Offset tsmpi_view_byte(const tsmpi_view *v, MPI_Offset pos) {
+MPI_Offset io_view_byte(const io_view *v, MPI_Offset pos) {
   MPI_Offset tile = pos / v->fsize, b = pos % v->fsize;
   size_t k = run_of(v, b);
   return v->disp + tile * v->fext + v->off[k] + (b - v->before[k]);
 }
 
-int tsmpi_view_map(const tsmpi_view *v, MPI_Offset pos, MPI_Offset bytes,
-                   int (*f)(void *ud, MPI_Offset off, MPI_Offset n, MPI_Offset at), void *ud) {
+int io_view_map(const io_view *v, MPI_Offset pos, MPI_Offset bytes,
+                int (*f)(void *ud, MPI_Offset off, MPI_Offset n, MPI_Offset at), void *ud) {
   MPI_Offset at = 0, poff = 0, pn = 0, pat = 0;   /* the piece being merged */
   MPI_Offset tile = pos / v->fsize, b = pos % v->fsize;
   size_t k = run_of(v, b);
@@ -153,7 +153,7 @@ int tsmpi_view_map(const tsmpi_view *v, MPI_Offset pos, MPI_Offset bytes,
   return pn ? f(ud, poff, pn, pat) : 0;
 }
 
-MPI_Offset tsmpi_view_stream(const tsmpi_view *v, MPI_Offset off) {
+MPI_Offset io_view_stream(const io_view *v, MPI_Offset off) {
   if (off <= v->disp) return 0;
   MPI_Offset rel = off - v->disp, tile = v->fext > 0 ? rel / v->fext : 0, in = rel - tile * v->fext, s = 0;
   for (size_t k = 0; k < v->nrun; k++) {

@@ -31,14 +31,14 @@ static void tag_words(char *buf, size_t len, size_t *at, const char *what, int t
     add(buf, len, at, ", %s=%d", what, t);
 }
 
-void tsm_label_describe(void *ud, char *buf, size_t len) {
-  const tsm_label *l = ud;
+void label_describe(void *ud, char *buf, size_t len) {
+  const label_rec *l = ud;
   size_t at = 0;
   char b[32];
   add(buf, len, &at, "%s(", l->fn);
   switch (l->what) {
   case L_COMM:
-    add(buf, len, &at, "%s)", tsm_pair_name(l->pair, b));
+    add(buf, len, &at, "%s)", st_pair_name(l->pair, b));
     return;
   case L_SEND:
     peer_words(buf, len, &at, "dest", l->peer);
@@ -59,7 +59,7 @@ void tsm_label_describe(void *ud, char *buf, size_t len) {
   case L_REQS: {
     int shown = 0;
     for (int i = 0; i < l->n; i++) {
-      tsm_req *q = tsm_req_get(l->R, l->reqs[i]);
+      st_req *q = st_req_get(l->R, l->reqs[i]);
       if (!q || q->state != RS_ACTIVE) continue;
       if (shown++ == 4) {
         add(buf, len, &at, ", ...");
@@ -72,16 +72,16 @@ void tsm_label_describe(void *ud, char *buf, size_t len) {
       add(buf, len, &at, "%s%s(", shown > 1 ? ", " : "", q->fn);
       if (q->kind == RQ_COLL) {   /* a nonblocking collective: its root, if any, and communicator */
         if (q->peer >= 0) add(buf, len, &at, "root=%d, ", q->peer);
-        add(buf, len, &at, "%s)", tsm_pair_name(q->pair, b));
+        add(buf, len, &at, "%s)", st_pair_name(q->pair, b));
         continue;
       }
       peer_words(buf, len, &at, q->kind == RQ_SEND ? "dest" : "source", q->peer);
       tag_words(buf, len, &at, "tag", q->tag);
-      add(buf, len, &at, ", %s)", tsm_pair_name(q->pair, b));
+      add(buf, len, &at, ", %s)", st_pair_name(q->pair, b));
     }
     add(buf, len, &at, ")");
     return;
   }
   }
-  add(buf, len, &at, ", %s)", tsm_pair_name(l->pair, b));
+  add(buf, len, &at, ", %s)", st_pair_name(l->pair, b));
 }

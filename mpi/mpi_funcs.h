@@ -6,7 +6,7 @@
  *
  *   impl      1: tilesim implements it; 0: it is declared so that programs
  *             compile, and defined as a stub that stops the run when called
- *             (tsmpi_unimplemented in mpi/funcs.h: "rank 3 called
+ *             (funcs_unimplemented in mpi/funcs.h: "rank 3 called
  *             MPI_Comm_spawn, which tilesim does not implement").
  *   chapter   ENV (environment, errors), P2P, DTYPE (datatypes), COLL
  *             (collectives and operations), COMM (groups, communicators,
@@ -24,7 +24,7 @@
  *
  * Define TSMPI_FN, include this file, undefine it: mpi.h declares every
  * function and its PMPI_ name so; mpi/funcs.c defines the stubs and the list
- * as data (tsmpi_funcs[], funcs.h), mpi/pmpi.c the implemented functions'
+ * as data (funcs_table[], funcs.h), mpi/pmpi.c the implemented functions'
  * PMPI_ names; tests/test_mpilist.c links every function and writes the list
  * of doc/mpi-support.md (which must agree: edit here, then run
  * build/chk/tests/test_mpilist --write doc/mpi-support.md).

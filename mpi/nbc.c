@@ -9,7 +9,7 @@
 /* A started collective: its schedule and the program's request. */
 typedef struct nbc {
   struct nbc *next;
-  tsmpi_sched *s;
+  coll_sched *s;
   MPI_Request req;
 } nbc;
 
@@ -28,13 +28,13 @@ static void list_release(void *ud) {   /* the rank's end: the schedules go with 
 }
 
 static list *rank_list(void) {
-  list *l = tsmpi_part(TSMPI_PART_NBC);
+  list *l = st_part(ST_PART_NBC);
   if (!l) {
     if (!(l = calloc(1, sizeof *l))) {
       fprintf(stderr, "tilesim: a nonblocking collective: out of memory\n");
       abort();
     }
-    tsmpi_part_set(TSMPI_PART_NBC, l, list_release);
+    st_part_set(ST_PART_NBC, l, list_release);
   }
   return l;
 }
@@ -42,22 +42,22 @@ static list *rank_list(void) {
 /* e's schedule is at its end: its request completes, it goes, and so does
  * its hold on the communicator (held: it was). */
 static void finish(nbc *e, int held) {
-  MPI_Comm comm = tsmpi_sched_group(e->s)->comm;
-  tsmpi_req_coll_complete(e->req, tsmpi_sched_error(e->s));
-  tsmpi_sched_free(e->s);
+  MPI_Comm comm = coll_sched_group(e->s)->comm;
+  coll_req_complete(e->req, coll_sched_error(e->s));
+  coll_sched_free(e->s);
   free(e);
-  if (held) tsmpi_comm_release(comm);
+  if (held) comm_release(comm);
 }
 
 /* The engine completed a watched request: step every live schedule that can
  * go on, in start order (one that finishes is taken out). */
 static void progress(void) {
-  list *l = tsmpi_part(TSMPI_PART_NBC);
+  list *l = st_part(ST_PART_NBC);
   if (!l) return;
   nbc **pp = &l->head, *prev = NULL;
   while (*pp) {
     nbc *e = *pp;
-    if (!tsmpi_sched_step(e->s)) {
+    if (!coll_sched_step(e->s)) {
       prev = e;
       pp = &e->next;
       continue;
@@ -66,11 +66,11 @@ static void progress(void) {
     if (l->tail == e) l->tail = prev;
     finish(e, 1);
   }
-  if (!l->head) tsmpi_set_progress(progress, 0);
+  if (!l->head) coll_set_progress(progress, 0);
 }
 
-void tsmpi_nbc_start(tsmpi_sched *s, const char *fn, MPI_Comm comm, int root, MPI_Request *req) {
-  MPI_Request h = tsmpi_req_coll(fn, comm, root);
+void nbc_start(coll_sched *s, const char *fn, MPI_Comm comm, int root, MPI_Request *req) {
+  MPI_Request h = coll_req(fn, comm, root);
   *req = h;
   nbc *e = malloc(sizeof *e);
   if (!e) {
@@ -80,16 +80,16 @@ void tsmpi_nbc_start(tsmpi_sched *s, const char *fn, MPI_Comm comm, int root, MP
   e->next = NULL;
   e->s = s;
   e->req = h;
-  if (tsmpi_sched_step(s)) {   /* nothing to wait for */
+  if (coll_sched_step(s)) {   /* nothing to wait for */
     finish(e, 0);
     return;
   }
-  tsmpi_comm_hold(comm);
+  comm_hold(comm);
   list *l = rank_list();
   if (l->tail)
     l->tail->next = e;
   else
     l->head = e;
   l->tail = e;
-  tsmpi_set_progress(progress, 1);
+  coll_set_progress(progress, 1);
 }

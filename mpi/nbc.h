@@ -2,7 +2,7 @@
  * program's, moved on as its messages arrive.
  *
  * Not for programs.  Progress: a schedule waits at a receive (or a waitall) until the engine
- * completes it; the engine then runs this part's progress (tsmpi_set_progress), which steps
+ * completes it; the engine then runs this part's progress (coll_set_progress), which steps
  * every live schedule that can go on, in the order they started.  That happens in any MPI
  * call of the rank that acts on messages (a wait of any kind, a test, a blocking receive,
  * another collective), and while the rank computes (mp_set_progress: each message that comes
@@ -18,6 +18,6 @@
 /* Start schedule s (built for collective fn on comm, root or -1): *req becomes its request,
  * done at once if s needs no message; else it is stepped by the progress until its end, when
  * the request completes and s is freed. */
-void tsmpi_nbc_start(tsmpi_sched *s, const char *fn, MPI_Comm comm, int root, MPI_Request *req);
+void nbc_start(coll_sched *s, const char *fn, MPI_Comm comm, int root, MPI_Request *req);
 
 #endif

@@ -123,7 +123,7 @@ static const char *const op_names[OP_N] = {
  * on floating point, as MPICH 3 and SMPI (its test suite checks it; MPICH 4
  * and Open MPI refuse): 1 where both operands' truth (non-zero) gives
  * true, else 0. */
-#define C(x) (1u << TSMPI_CLASS_##x)
+#define C(x) (1u << DTYPE_CLASS_##x)
 static const unsigned op_classes[OP_N] = {
   [OP_MAX] = C(CINT) | C(FINT) | C(FLOAT) | C(MULTI),
   [OP_MIN] = C(CINT) | C(FINT) | C(FLOAT) | C(MULTI),
@@ -153,17 +153,17 @@ static int log2size(int size) {
 
 /* The kernel of predefined operation o on predefined type i, or NULL. */
 static kernel *pick(int o, int i) {
-  const tsmpi_predef *p = tsmpi_predef_get(i);
+  const dtype_predef *p = dtype_predef_get(i);
   if (!p || o <= 0 || o >= OP_N || !(op_classes[o] & (1u << p->cls))) return NULL;
   switch (p->rep) {
-  case TSMPI_REP_INT:
-  case TSMPI_REP_UINT:
-  case TSMPI_REP_BOOL: {
+  case DTYPE_REP_INT:
+  case DTYPE_REP_UINT:
+  case DTYPE_REP_BOOL: {
     int l = log2size(p->size);
     if (l < 0 || o > OP_BXOR) return NULL;
-    return int_k[p->rep != TSMPI_REP_INT][l][o];
+    return int_k[p->rep != DTYPE_REP_INT][l][o];
   }
-  case TSMPI_REP_FLOAT: {
+  case DTYPE_REP_FLOAT: {
     /* by operation: MAX MIN SUM PROD LAND BAND LOR BOR LXOR */
     kernel *k32[] = {NULL, f32_max, f32_min, f32_sum, f32_prod, f32_land, NULL, f32_lor, NULL, f32_lxor};
     kernel *k64[] = {NULL, f64_max, f64_min, f64_sum, f64_prod, f64_land, NULL, f64_lor, NULL, f64_lxor};
@@ -174,13 +174,13 @@ static kernel *pick(int o, int i) {
     if (p->size == (int)sizeof(long double)) return kld[o];
     return NULL;
   }
-  case TSMPI_REP_COMPLEX:
+  case DTYPE_REP_COMPLEX:
     if (o != OP_SUM && o != OP_PROD) return NULL;
     if (p->size == (int)sizeof(float _Complex)) return o == OP_SUM ? c32_sum : c32_prod;
     if (p->size == (int)sizeof(double _Complex)) return o == OP_SUM ? c64_sum : c64_prod;
     if (p->size == (int)sizeof(long double _Complex)) return o == OP_SUM ? cld_sum : cld_prod;
     return NULL;
-  case TSMPI_REP_PAIR: {
+  case DTYPE_REP_PAIR: {
     int min = o == OP_MINLOC;
     switch (i) {
     case MPI_FLOAT_INT & 0xffff: return min ? float_int_minloc : float_int_maxloc;
@@ -208,7 +208,7 @@ typedef struct {
   MPI_User_function *fn;
   int commute;
   int used;
-  int holds;    /* tsmpi_op_hold's, not released yet */
+  int holds;    /* op_hold's, not released yet */
   int freed;    /* MPI_Op_free'd while held: gone when the last hold goes */
 } user_op;
 
@@ -224,11 +224,11 @@ static void table_release(void *p) {
 }
 
 static table *tab(int create) {
-  table *tb = tsmpi_part(TSMPI_PART_OP);
+  table *tb = st_part(ST_PART_OP);
   if (tb || !create) return tb;
   tb = calloc(1, sizeof *tb);
   if (!tb) return NULL;
-  tsmpi_part_set(TSMPI_PART_OP, tb, table_release);
+  st_part_set(ST_PART_OP, tb, table_release);
   return tb;
 }
 
@@ -245,7 +245,7 @@ static user_op *user(MPI_Op op) {
   return tb && i < tb->n && tb->slot[i].used ? &tb->slot[i] : NULL;
 }
 
-int tsmpi_op_valid(MPI_Op op, char *why, size_t len) {
+int op_valid(MPI_Op op, char *why, size_t len) {
   const char *w = NULL;
   if (op == MPI_OP_NULL) w = "MPI_OP_NULL";
   else if ((op & 0xff000000) != 0x04000000) w = "not an operation";
@@ -256,32 +256,32 @@ int tsmpi_op_valid(MPI_Op op, char *why, size_t len) {
   return MPI_ERR_OP;
 }
 
-int tsmpi_op_is_predefined(MPI_Op op) { return predefined(op) != 0; }
+int op_is_predefined(MPI_Op op) { return predefined(op) != 0; }
 
-int tsmpi_op_commutative(MPI_Op op) {
+int op_commutative(MPI_Op op) {
   const user_op *u = user(op);
   return u ? u->commute : 1;
 }
 
-const char *tsmpi_op_name(MPI_Op op) {
+const char *op_name(MPI_Op op) {
   int o = predefined(op);
   return o ? op_names[o] : "a user operation";
 }
 
-int tsmpi_op_check(MPI_Op op, MPI_Datatype dt, char *why, size_t len) {
+int op_check(MPI_Op op, MPI_Datatype dt, char *why, size_t len) {
   int o = predefined(op);
   if (!o) return MPI_SUCCESS;
   MPI_Count per;
-  int e = tsmpi_type_elem(dt, &per);
-  const char *tn = tsmpi_type_name(dt);
-  if (tsmpi_type_size(dt) == 0) return MPI_SUCCESS;   /* nothing to combine */
+  int e = dtype_elem(dt, &per);
+  const char *tn = dtype_name(dt);
+  if (dtype_size(dt) == 0) return MPI_SUCCESS;   /* nothing to combine */
   if (!e) {
     if (why && len) snprintf(why, len, "%s does not apply to a type of several basic types", op_names[o]);
     return MPI_ERR_OP;
   }
   if (pick(o, e)) return MPI_SUCCESS;
   if (why && len) {
-    const char *en = tsmpi_predef_get(e)->name;
+    const char *en = dtype_predef_get(e)->name;
     if (o == OP_REPLACE || o == OP_NO_OP)
       snprintf(why, len, "%s is only for MPI_Accumulate", op_names[o]);
     else if (e == (dt & 0xffff) && !(dt & 0x800000))
@@ -296,10 +296,10 @@ int tsmpi_op_check(MPI_Op op, MPI_Datatype dt, char *why, size_t len) {
 
 static void predefined_packed(int o, MPI_Datatype dt, const void *in, void *inout, int count) {
   MPI_Count per;
-  int e = tsmpi_type_elem(dt, &per);
-  const tsmpi_predef *p = tsmpi_predef_get(e);
+  int e = dtype_elem(dt, &per);
+  const dtype_predef *p = dtype_predef_get(e);
   if (!p || count == 0) return;
-  size_t ioff = p->rep == TSMPI_REP_PAIR ? (size_t)tsmpi_predef_get(p->pair_value)->size : 0;
+  size_t ioff = p->rep == DTYPE_REP_PAIR ? (size_t)dtype_predef_get(p->pair_value)->size : 0;
   pick(o, e)(in, inout, (size_t)(per * count), (size_t)p->size, ioff);
 }
 
@@ -316,19 +316,19 @@ static void one_run(void *ud, MPI_Aint disp, MPI_Count n) {
 }
 
 static void predefined_laid_out(int o, MPI_Datatype dt, const void *in, void *inout, int count) {
-  int e = tsmpi_type_elem(dt, NULL);
-  const tsmpi_predef *p = tsmpi_predef_get(e);
+  int e = dtype_elem(dt, NULL);
+  const dtype_predef *p = dtype_predef_get(e);
   if (!p) return;
-  MPI_Aint ext = tsmpi_type_extent(dt);
-  runs_ud r = {pick(o, e), NULL, NULL, (size_t)p->extent, p->rep == TSMPI_REP_PAIR ? (size_t)p->pair_off : 0};
+  MPI_Aint ext = dtype_extent(dt);
+  runs_ud r = {pick(o, e), NULL, NULL, (size_t)p->extent, p->rep == DTYPE_REP_PAIR ? (size_t)p->pair_off : 0};
   for (int i = 0; i < count; i++) {
     r.in = (const char *)((uintptr_t)in + (uintptr_t)((MPI_Aint)i * ext));
     r.io = (char *)((uintptr_t)inout + (uintptr_t)((MPI_Aint)i * ext));
-    tsmpi_type_runs(dt, one_run, &r);
+    dtype_runs(dt, one_run, &r);
   }
 }
 
-void tsmpi_op_reduce(MPI_Op op, MPI_Datatype dt, const void *in, void *inout, int count) {
+void op_reduce(MPI_Op op, MPI_Datatype dt, const void *in, void *inout, int count) {
   int o = predefined(op);
   if (o) {
     predefined_laid_out(o, dt, in, inout, count);
@@ -340,7 +340,7 @@ void tsmpi_op_reduce(MPI_Op op, MPI_Datatype dt, const void *in, void *inout, in
   u->fn((void *)in, inout, &n, &d);
 }
 
-void tsmpi_op_reduce_packed(MPI_Op op, MPI_Datatype dt, const void *in, void *inout, int count) {
+void op_reduce_packed(MPI_Op op, MPI_Datatype dt, const void *in, void *inout, int count) {
   int o = predefined(op);
   if (o) {
     predefined_packed(o, dt, in, inout, count);
@@ -349,13 +349,13 @@ void tsmpi_op_reduce_packed(MPI_Op op, MPI_Datatype dt, const void *in, void *in
   if (count == 0) return;
   /* A user function sees the elements laid out: packed elements of a
    * contiguous type are, others are unpacked into scratch and back. */
-  if (tsmpi_type_contiguous(dt, count)) {
-    uintptr_t shift = (uintptr_t)tsmpi_type_true_lb(dt);
-    tsmpi_op_reduce(op, dt, (const void *)((uintptr_t)in - shift), (void *)((uintptr_t)inout - shift), count);
+  if (dtype_contiguous(dt, count)) {
+    uintptr_t shift = (uintptr_t)dtype_true_lb(dt);
+    op_reduce(op, dt, (const void *)((uintptr_t)in - shift), (void *)((uintptr_t)inout - shift), count);
     return;
   }
-  MPI_Aint ext = tsmpi_type_extent(dt), tlb = tsmpi_type_true_lb(dt);
-  size_t span = (size_t)((MPI_Aint)(count - 1) * (ext < 0 ? -ext : ext) + tsmpi_type_true_extent(dt));
+  MPI_Aint ext = dtype_extent(dt), tlb = dtype_true_lb(dt);
+  size_t span = (size_t)((MPI_Aint)(count - 1) * (ext < 0 ? -ext : ext) + dtype_true_extent(dt));
   char *a = malloc(span ? span : 1), *b = malloc(span ? span : 1);
   if (!a || !b) {
     fprintf(stderr, "tilesim: out of memory (%zu bytes) for a user reduction\n", 2 * span);
@@ -364,18 +364,18 @@ void tsmpi_op_reduce_packed(MPI_Op op, MPI_Datatype dt, const void *in, void *in
   /* The scratch's start is the lowest byte the elements touch. */
   MPI_Aint low = tlb + (ext < 0 ? (MPI_Aint)(count - 1) * ext : 0);
   char *abase = (char *)((uintptr_t)a - (uintptr_t)low), *bbase = (char *)((uintptr_t)b - (uintptr_t)low);
-  size_t bytes = tsmpi_type_size(dt) * (size_t)count;
-  tsmpi_type_unpack(in, bytes, abase, count, dt);
-  tsmpi_type_unpack(inout, bytes, bbase, count, dt);
-  tsmpi_op_reduce(op, dt, abase, bbase, count);
-  tsmpi_type_pack(bbase, count, dt, inout);
+  size_t bytes = dtype_size(dt) * (size_t)count;
+  dtype_unpack(in, bytes, abase, count, dt);
+  dtype_unpack(inout, bytes, bbase, count, dt);
+  op_reduce(op, dt, abase, bbase, count);
+  dtype_pack(bbase, count, dt, inout);
   free(a);
   free(b);
 }
 
 /* ==== creating and freeing ================================================ */
 
-int tsmpi_op_create(MPI_User_function *fn, int commute, MPI_Op *op) {
+int op_create(MPI_User_function *fn, int commute, MPI_Op *op) {
   table *tb = tab(1);
   if (!tb) return MPI_ERR_NO_MEM;
   int i;
@@ -397,7 +397,7 @@ int tsmpi_op_create(MPI_User_function *fn, int commute, MPI_Op *op) {
   return MPI_SUCCESS;
 }
 
-int tsmpi_op_free(MPI_Op op) {
+int op_free(MPI_Op op) {
   user_op *u = user(op);
   if (!u || u->freed) return MPI_ERR_OP;
   if (u->holds)
@@ -407,12 +407,12 @@ int tsmpi_op_free(MPI_Op op) {
   return MPI_SUCCESS;
 }
 
-void tsmpi_op_hold(MPI_Op op) {
+void op_hold(MPI_Op op) {
   user_op *u = user(op);
   if (u) u->holds++;
 }
 
-void tsmpi_op_release(MPI_Op op) {
+void op_release(MPI_Op op) {
   user_op *u = user(op);
   if (!u || u->holds <= 0) return;
   if (--u->holds == 0 && u->freed) u->used = u->freed = 0;

@@ -28,38 +28,38 @@
 
 /* MPI_SUCCESS if op is an operation of this rank (predefined, or created
  * and not freed); else MPI_ERR_OP and why. */
-int tsmpi_op_valid(MPI_Op op, char *why, size_t len);
+int op_valid(MPI_Op op, char *why, size_t len);
 
 /* MPI_SUCCESS if op (valid) can reduce elements of dt (checked) in a
  * collective; else MPI_ERR_OP and why ("MPI_SUM does not apply to
  * MPI_WCHAR").  MPI_REPLACE and MPI_NO_OP apply to none (they are for
  * MPI_Accumulate). */
-int tsmpi_op_check(MPI_Op op, MPI_Datatype dt, char *why, size_t len);
+int op_check(MPI_Op op, MPI_Datatype dt, char *why, size_t len);
 
 /* 1 if op (valid) is predefined (MPICH's "builtin"). */
-int tsmpi_op_is_predefined(MPI_Op op);
+int op_is_predefined(MPI_Op op);
 
 /* 1 if op (valid) is commutative: every predefined one is. */
-int tsmpi_op_commutative(MPI_Op op);
+int op_commutative(MPI_Op op);
 
 /* "MPI_SUM", or "a user operation". */
-const char *tsmpi_op_name(MPI_Op op);
+const char *op_name(MPI_Op op);
 
 /* inout = in op inout for count elements of dt, both packed (dtype.h).
- * op and dt passed tsmpi_op_check. */
-void tsmpi_op_reduce_packed(MPI_Op op, MPI_Datatype dt, const void *in, void *inout, int count);
+ * op and dt passed op_check. */
+void op_reduce_packed(MPI_Op op, MPI_Datatype dt, const void *in, void *inout, int count);
 
 /* The same on count elements laid out as dt says (MPI_Reduce_local). */
-void tsmpi_op_reduce(MPI_Op op, MPI_Datatype dt, const void *in, void *inout, int count);
+void op_reduce(MPI_Op op, MPI_Datatype dt, const void *in, void *inout, int count);
 
 /* A new operation of the calling rank (MPI_Op_create), and its end. */
-int tsmpi_op_create(MPI_User_function *fn, int commute, MPI_Op *op);
-int tsmpi_op_free(MPI_Op op);   /* MPI_ERR_OP for a predefined one */
+int op_create(MPI_User_function *fn, int commute, MPI_Op *op);
+int op_free(MPI_Op op);   /* MPI_ERR_OP for a predefined one */
 
-/* Keep a valid operation usable by tsmpi_op_reduce(_packed) until
- * tsmpi_op_release, whatever MPI_Op_free does meanwhile (a nonblocking
+/* Keep a valid operation usable by op_reduce(_packed) until
+ * op_release, whatever MPI_Op_free does meanwhile (a nonblocking
  * collective started with it); nothing for a predefined one. */
-void tsmpi_op_hold(MPI_Op op);
-void tsmpi_op_release(MPI_Op op);
+void op_hold(MPI_Op op);
+void op_release(MPI_Op op);
 
 #endif

@@ -10,19 +10,19 @@
 
 int PMPI_Op_create(MPI_User_function *user_fn, int commute, MPI_Op *op) {
   static const char fn[] = "MPI_Op_create";
-  if (!user_fn || !op) return tsmpi_raise(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "%s is NULL", user_fn ? "op" : "user_fn");
-  int rc = tsmpi_op_create(user_fn, commute, op);
-  return rc ? tsmpi_raise(MPI_COMM_WORLD, rc, fn, "out of memory") : rc;
+  if (!user_fn || !op) return err_comm_raise(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "%s is NULL", user_fn ? "op" : "user_fn");
+  int rc = op_create(user_fn, commute, op);
+  return rc ? err_comm_raise(MPI_COMM_WORLD, rc, fn, "out of memory") : rc;
 }
 
 int PMPI_Op_free(MPI_Op *op) {
   static const char fn[] = "MPI_Op_free";
   char why[96];
-  if (!op) return tsmpi_raise(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "op is NULL");
-  if (tsmpi_op_valid(*op, why, sizeof why) != MPI_SUCCESS)
-    return tsmpi_raise(MPI_COMM_WORLD, MPI_ERR_OP, fn, "invalid operation: %s", why);
-  if (tsmpi_op_free(*op) != MPI_SUCCESS)
-    return tsmpi_raise(MPI_COMM_WORLD, MPI_ERR_OP, fn, "%s is predefined and cannot be freed", tsmpi_op_name(*op));
+  if (!op) return err_comm_raise(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "op is NULL");
+  if (op_valid(*op, why, sizeof why) != MPI_SUCCESS)
+    return err_comm_raise(MPI_COMM_WORLD, MPI_ERR_OP, fn, "invalid operation: %s", why);
+  if (op_free(*op) != MPI_SUCCESS)
+    return err_comm_raise(MPI_COMM_WORLD, MPI_ERR_OP, fn, "%s is predefined and cannot be freed", op_name(*op));
   *op = MPI_OP_NULL;
   return MPI_SUCCESS;
 }
@@ -30,10 +30,10 @@ int PMPI_Op_free(MPI_Op *op) {
 int PMPI_Op_commutative(MPI_Op op, int *commute) {
   static const char fn[] = "MPI_Op_commutative";
   char why[96];
-  if (tsmpi_op_valid(op, why, sizeof why) != MPI_SUCCESS)
-    return tsmpi_raise(MPI_COMM_WORLD, MPI_ERR_OP, fn, "invalid operation: %s", why);
-  if (!commute) return tsmpi_raise(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "commute is NULL");
-  *commute = tsmpi_op_commutative(op);
+  if (op_valid(op, why, sizeof why) != MPI_SUCCESS)
+    return err_comm_raise(MPI_COMM_WORLD, MPI_ERR_OP, fn, "invalid operation: %s", why);
+  if (!commute) return err_comm_raise(MPI_COMM_WORLD, MPI_ERR_ARG, fn, "commute is NULL");
+  *commute = op_commutative(op);
   return MPI_SUCCESS;
 }
 
@@ -43,16 +43,16 @@ int PMPI_Reduce_local(const void *inbuf, void *inoutbuf, int count, MPI_Datatype
   MPI_Comm w = MPI_COMM_WORLD;
   char why[96];
   int rc;
-  if ((rc = tsmpi_check_count(w, fn, count))) return rc;
-  if (tsmpi_type_check(datatype, why, sizeof why) != MPI_SUCCESS)
-    return tsmpi_raise(w, MPI_ERR_TYPE, fn, "invalid datatype: %s", why);
-  if (tsmpi_op_valid(op, why, sizeof why) != MPI_SUCCESS)
-    return tsmpi_raise(w, MPI_ERR_OP, fn, "invalid operation: %s", why);
-  if (tsmpi_op_check(op, datatype, why, sizeof why) != MPI_SUCCESS) return tsmpi_raise(w, MPI_ERR_OP, fn, "%s", why);
+  if ((rc = err_comm_check_count(w, fn, count))) return rc;
+  if (dtype_check(datatype, why, sizeof why) != MPI_SUCCESS)
+    return err_comm_raise(w, MPI_ERR_TYPE, fn, "invalid datatype: %s", why);
+  if (op_valid(op, why, sizeof why) != MPI_SUCCESS)
+    return err_comm_raise(w, MPI_ERR_OP, fn, "invalid operation: %s", why);
+  if (op_check(op, datatype, why, sizeof why) != MPI_SUCCESS) return err_comm_raise(w, MPI_ERR_OP, fn, "%s", why);
   if (inbuf == MPI_IN_PLACE || inoutbuf == MPI_IN_PLACE)
-    return tsmpi_raise(w, MPI_ERR_BUFFER, fn, "MPI_IN_PLACE is not allowed here");
-  if ((rc = tsmpi_check_buf(w, fn, inbuf, count, datatype)) || (rc = tsmpi_check_buf(w, fn, inoutbuf, count, datatype)))
+    return err_comm_raise(w, MPI_ERR_BUFFER, fn, "MPI_IN_PLACE is not allowed here");
+  if ((rc = err_comm_check_buf(w, fn, inbuf, count, datatype)) || (rc = err_comm_check_buf(w, fn, inoutbuf, count, datatype)))
     return rc;
-  if (count > 0) tsmpi_op_reduce(op, datatype, inbuf, inoutbuf, count);
+  if (count > 0) op_reduce(op, datatype, inbuf, inoutbuf, count);
   return MPI_SUCCESS;
 }

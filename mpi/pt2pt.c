@@ -15,8 +15,8 @@
 
 /* ==== starting sends and receives ========================================= */
 
-void tsm_send_fill(tsm_req *q, const tsm_comm *c, int coll, int mode, const void *buf, int count,
-                   MPI_Datatype dt, int dst, int tag, MPI_Comm comm, const char *fn) {
+void pt2pt_send_fill(st_req *q, const st_comm *c, int coll, int mode, const void *buf, int count,
+                     MPI_Datatype dt, int dst, int tag, MPI_Comm comm, const char *fn) {
   q->next = q->prev = NULL;
   q->kind = RQ_SEND;
   q->mode = (unsigned char)mode;
@@ -33,7 +33,7 @@ void tsm_send_fill(tsm_req *q, const tsm_comm *c, int coll, int mode, const void
   q->comm = comm;
   q->pair = c->pair;
   q->fn = fn;
-  q->wpeer = dst >= 0 ? tsm_world_of(c, dst) : -1;
+  q->wpeer = dst >= 0 ? st_world_of(c, dst) : -1;
   q->ctx = 2 * c->pair + coll;
   /* A request's send goes by reference, settled when the request ends (a
    * buffered one is copied into the attached buffer, which the next one
@@ -44,28 +44,28 @@ void tsm_send_fill(tsm_req *q, const tsm_comm *c, int coll, int mode, const void
   q->prom = NULL;
 }
 
-void tsm_status_empty(MPI_Status *st) {
+void pt2pt_status_empty(MPI_Status *st) {
   *st = (MPI_Status){.MPI_SOURCE = MPI_ANY_SOURCE, .MPI_TAG = MPI_ANY_TAG, .MPI_ERROR = MPI_SUCCESS};
 }
 
-int tsm_send_start(tsm *R, tsm_req *q, const tsm_comm *c) {
+int pt2pt_send_start(st_rank *R, st_req *q, const st_comm *c) {
   if (q->peer == MPI_PROC_NULL) {
-    tsm_status_empty(&q->st);
+    pt2pt_status_empty(&q->st);
     q->state = RS_DONE;
     return MPI_SUCCESS;
   }
-  size_t len = (size_t)q->count * tsmpi_type_size(q->dt);
+  size_t len = (size_t)q->count * dtype_size(q->dt);
   if (q->mode == SM_BUFFERED) {
     /* The message is copied into the attached buffer and leaves at once
      * (eager): the space is free again when the call returns. */
     size_t need = len + MPI_BSEND_OVERHEAD;
     if (!R->bbuf || need > (size_t)R->bsize) {
-      tsm_status_empty(&q->st);
+      pt2pt_status_empty(&q->st);
       q->state = RS_DONE;
       if (!R->bbuf)
-        return tsm_raise(R, c, MPI_ERR_BUFFER, q->fn,
+        return err_raise(R, c, MPI_ERR_BUFFER, q->fn,
                          "no buffer attached (MPI_Buffer_attach) for a %zu-byte message", len);
-      return tsm_raise(R, c, MPI_ERR_BUFFER, q->fn,
+      return err_raise(R, c, MPI_ERR_BUFFER, q->fn,
                        "a %zu-byte message needs %zu bytes of the attached buffer "
                        "(MPI_BSEND_OVERHEAD = %d more), which has %d",
                        len, need, MPI_BSEND_OVERHEAD, R->bsize);
@@ -74,22 +74,22 @@ int tsm_send_start(tsm *R, tsm_req *q, const tsm_comm *c) {
      * copy of its own, freed when the request ends: it can be cancelled
      * (withdrawn) until a receive reads it, as MPICH's can. */
     void *to = q->slot >= 0 ? xmalloc(len ? len : 1) : R->bbuf;
-    const void *p = tsmpi_type_contig(q->buf, q->count, q->dt);
+    const void *p = dtype_contig(q->buf, q->count, q->dt);
     if (p)
       memcpy(to, p, len);
     else
-      tsmpi_type_pack(q->buf, q->count, q->dt, to);
+      dtype_pack(q->buf, q->count, q->dt, to);
     q->byref = q->slot >= 0;
     eng_send(R, q, to, len);
     if (q->slot >= 0) q->tmp = to;
     return MPI_SUCCESS;
   }
-  const void *p = len ? tsmpi_type_contig(q->buf, q->count, q->dt) : NULL;
+  const void *p = len ? dtype_contig(q->buf, q->count, q->dt) : NULL;
   if (p || len == 0) {
     eng_send(R, q, p, len);
   } else {
     void *tmp = xmalloc(len);
-    tsmpi_type_pack(q->buf, q->count, q->dt, tmp);
+    dtype_pack(q->buf, q->count, q->dt, tmp);
     eng_send(R, q, tmp, len);
     if (q->ref)
       q->tmp = tmp;   /* the message refers to it until settled */
@@ -100,8 +100,8 @@ int tsm_send_start(tsm *R, tsm_req *q, const tsm_comm *c) {
   return MPI_SUCCESS;
 }
 
-void tsm_recv_fill(tsm_req *q, const tsm_comm *c, int coll, void *buf, int count, MPI_Datatype dt,
-                   int src, int tag, MPI_Comm comm, const char *fn) {
+void pt2pt_recv_fill(st_req *q, const st_comm *c, int coll, void *buf, int count, MPI_Datatype dt,
+                     int src, int tag, MPI_Comm comm, const char *fn) {
   q->next = q->prev = NULL;
   q->kind = RQ_RECV;
   q->mode = SM_STANDARD;
@@ -116,10 +116,10 @@ void tsm_recv_fill(tsm_req *q, const tsm_comm *c, int coll, void *buf, int count
   q->comm = comm;
   q->pair = c->pair;
   q->fn = fn;
-  q->wpeer = src >= 0 ? tsm_world_of(c, src) : MP_ANY;
+  q->wpeer = src >= 0 ? st_world_of(c, src) : MP_ANY;
   q->ctx = 2 * c->pair + coll;
-  q->cap = (size_t)count * tsmpi_type_size(dt);
-  q->contig = q->cap ? (void *)tsmpi_type_contig(buf, count, dt) : NULL;
+  q->cap = (size_t)count * dtype_size(dt);
+  q->contig = q->cap ? (void *)dtype_contig(buf, count, dt) : NULL;
   q->g = c->g;
   q->byref = 0;
   q->ref = NULL;
@@ -127,28 +127,28 @@ void tsm_recv_fill(tsm_req *q, const tsm_comm *c, int coll, void *buf, int count
   q->prom = NULL;
 }
 
-static void proc_null(tsm_req *q) {
+static void proc_null(st_req *q) {
   q->st = (MPI_Status){.MPI_SOURCE = MPI_PROC_NULL, .MPI_TAG = MPI_ANY_TAG, .MPI_ERROR = MPI_SUCCESS};
   q->msglen = 0;
   q->g = NULL;
   q->state = RS_DONE;
 }
 
-void tsm_recv_start(tsm *R, tsm_req *q) {
+void pt2pt_recv_start(st_rank *R, st_req *q) {
   if (q->peer == MPI_PROC_NULL)
     proc_null(q);
   else
     eng_recv_start(R, q);
 }
 
-void tsm_recv_block(tsm *R, tsm_req *q) {
+void pt2pt_recv_block(st_rank *R, st_req *q) {
   if (q->peer == MPI_PROC_NULL)
     proc_null(q);
   else
     eng_recv(R, q);
 }
 
-void tsm_status_out(MPI_Status *out, const MPI_Status *in, int with_error) {
+void pt2pt_status_out(MPI_Status *out, const MPI_Status *in, int with_error) {
   if (out == MPI_STATUS_IGNORE) return;
   out->MPI_SOURCE = in->MPI_SOURCE;
   out->MPI_TAG = in->MPI_TAG;
@@ -165,63 +165,63 @@ void tsm_status_out(MPI_Status *out, const MPI_Status *in, int with_error) {
  * One call where check, size and contig would be five. */
 static inline size_t dense_predef(MPI_Datatype dt) {
   if (((unsigned)dt & 0xff800000u) != 0x03000000u) return 0;
-  const tsmpi_predef *p = tsmpi_predef_get((int)((unsigned)dt & 0x7fffffu));
+  const dtype_predef *p = dtype_predef_get((int)((unsigned)dt & 0x7fffffu));
   return p && p->size == p->extent ? (size_t)p->size : 0;
 }
 
 /* The common case in a few compares; anything odd goes through the checks
  * one by one, which say what is wrong.  *es: dense_predef(dt). */
-static inline int args_fine(tsm_comm *c, const void *buf, int count, MPI_Datatype dt, int peer, int tag,
+static inline int args_fine(st_comm *c, const void *buf, int count, MPI_Datatype dt, int peer, int tag,
                             int any_ok, size_t *es) {
   *es = 0;
   if (!c || count < 0) return 0;
-  if ((unsigned)tag > TSM_TAG_UB && !(any_ok && tag == MPI_ANY_TAG)) return 0;
+  if ((unsigned)tag > ST_TAG_UB && !(any_ok && tag == MPI_ANY_TAG)) return 0;
   if ((unsigned)peer >= (unsigned)c->size && peer != MPI_PROC_NULL && !(any_ok && peer == MPI_ANY_SOURCE))
     return 0;
   if (!buf && count) return 0;
   if ((*es = dense_predef(dt))) return 1;
   char why[64];
-  return tsmpi_type_check(dt, why, sizeof why) == MPI_SUCCESS;
+  return dtype_check(dt, why, sizeof why) == MPI_SUCCESS;
 }
 
-static int send_args(tsm *R, const char *fn, const void *buf, int count, MPI_Datatype dt, int dst,
-                     int tag, MPI_Comm comm, tsm_comm **cp) {
-  tsm_comm *c = comm == MPI_COMM_WORLD ? &R->world : tsm_comm_get(R, comm);
+static int send_args(st_rank *R, const char *fn, const void *buf, int count, MPI_Datatype dt, int dst,
+                     int tag, MPI_Comm comm, st_comm **cp) {
+  st_comm *c = comm == MPI_COMM_WORLD ? &R->world : st_comm_get(R, comm);
   *cp = c;
   size_t es;
   if (args_fine(c, buf, count, dt, dst, tag, 0, &es)) return MPI_SUCCESS;
   int rc;
-  if ((rc = tsm_check_comm(R, comm, fn, cp))) return rc;
-  if ((rc = tsm_check_count(R, c, fn, count))) return rc;
-  if ((rc = tsm_check_type(R, c, fn, dt))) return rc;
-  if ((rc = tsm_check_tag(R, c, fn, tag, 0))) return rc;
-  if ((rc = tsm_check_peer(R, c, fn, dst, 0))) return rc;
-  return tsm_check_buf(R, c, fn, buf, count, dt);
+  if ((rc = err_check_comm(R, comm, fn, cp))) return rc;
+  if ((rc = err_check_count(R, c, fn, count))) return rc;
+  if ((rc = err_check_type(R, c, fn, dt))) return rc;
+  if ((rc = err_check_tag(R, c, fn, tag, 0))) return rc;
+  if ((rc = err_check_peer(R, c, fn, dst, 0))) return rc;
+  return err_check_buf(R, c, fn, buf, count, dt);
 }
 
-static int recv_args(tsm *R, const char *fn, const void *buf, int count, MPI_Datatype dt, int src,
-                     int tag, MPI_Comm comm, tsm_comm **cp) {
-  tsm_comm *c = comm == MPI_COMM_WORLD ? &R->world : tsm_comm_get(R, comm);
+static int recv_args(st_rank *R, const char *fn, const void *buf, int count, MPI_Datatype dt, int src,
+                     int tag, MPI_Comm comm, st_comm **cp) {
+  st_comm *c = comm == MPI_COMM_WORLD ? &R->world : st_comm_get(R, comm);
   *cp = c;
   size_t es;
   if (args_fine(c, buf, count, dt, src, tag, 1, &es)) return MPI_SUCCESS;
   int rc;
-  if ((rc = tsm_check_comm(R, comm, fn, cp))) return rc;
-  if ((rc = tsm_check_count(R, c, fn, count))) return rc;
-  if ((rc = tsm_check_type(R, c, fn, dt))) return rc;
-  if ((rc = tsm_check_tag(R, c, fn, tag, 1))) return rc;
-  if ((rc = tsm_check_peer(R, c, fn, src, 1))) return rc;
-  return tsm_check_buf(R, c, fn, buf, count, dt);
+  if ((rc = err_check_comm(R, comm, fn, cp))) return rc;
+  if ((rc = err_check_count(R, c, fn, count))) return rc;
+  if ((rc = err_check_type(R, c, fn, dt))) return rc;
+  if ((rc = err_check_tag(R, c, fn, tag, 1))) return rc;
+  if ((rc = err_check_peer(R, c, fn, src, 1))) return rc;
+  return err_check_buf(R, c, fn, buf, count, dt);
 }
 
-static int recv_result(tsm *R, const tsm_comm *c, const tsm_req *q) {
+static int recv_result(st_rank *R, const st_comm *c, const st_req *q) {
   if (q->st.MPI_ERROR == MPI_SUCCESS) return MPI_SUCCESS;
-  return tsm_req_error(R, c, q, q->fn);
+  return pt2pt_req_error(R, c, q, q->fn);
 }
 
-int tsm_req_error(tsm *R, const tsm_comm *c, const tsm_req *q, const char *fn) {
+int pt2pt_req_error(st_rank *R, const st_comm *c, const st_req *q, const char *fn) {
   int other = fn != q->fn;   /* completed by MPI_Wait*, MPI_Test* */
-  return tsm_raise(R, c, MPI_ERR_TRUNCATE, fn,
+  return err_raise(R, c, MPI_ERR_TRUNCATE, fn,
                    "%s%sa %zu-byte message from rank %d (tag %d) is longer than the receive buffer "
                    "(%d elements, %zu bytes): truncated",
                    other ? q->fn : "", other ? ": " : "", q->msglen,
@@ -232,34 +232,34 @@ int tsm_req_error(tsm *R, const tsm_comm *c, const tsm_req *q, const char *fn) {
 
 static int send_block(const char *fn, int mode, const void *buf, int count, MPI_Datatype dt, int dst,
                       int tag, MPI_Comm comm) {
-  tsm *R = tsm_need(fn);
-  tsm_comm *c;
+  st_rank *R = st_need(fn);
+  st_comm *c;
   int rc = send_args(R, fn, buf, count, dt, dst, tag, comm, &c);
   if (rc || dst == MPI_PROC_NULL) return rc;
-  tsm_req q;
-  tsm_req_stack(&q);
-  tsm_send_fill(&q, c, 0, mode, buf, count, dt, dst, tag, comm, fn);
-  if ((rc = tsm_send_start(R, &q, c))) return rc;
+  st_req q;
+  st_req_stack(&q);
+  pt2pt_send_fill(&q, c, 0, mode, buf, count, dt, dst, tag, comm, fn);
+  if ((rc = pt2pt_send_start(R, &q, c))) return rc;
   if (q.state == RS_ACTIVE) {   /* synchronous: until the receive starts */
-    tsm_label l = {.fn = fn, .what = L_SEND, .peer = dst, .tag = tag, .pair = c->pair};
-    tsm_label_set(R, &l);
+    label_rec l = {.fn = fn, .what = L_SEND, .peer = dst, .tag = tag, .pair = c->pair};
+    label_set(R, &l);
     eng_wait(R, &q);
-    tsm_unlabel(R);
+    label_clear(R);
   }
   return MPI_SUCCESS;
 }
 
 int PMPI_Send(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm) {
   static const char fn[] = "MPI_Send";
-  tsm *R = tsm_need(fn);
-  tsm_comm *c = comm == MPI_COMM_WORLD ? &R->world : tsm_comm_get(R, comm);
+  st_rank *R = st_need(fn);
+  st_comm *c = comm == MPI_COMM_WORLD ? &R->world : st_comm_get(R, comm);
   size_t es;
   if (args_fine(c, buf, count, datatype, dest, tag, 0, &es) && dest != MPI_PROC_NULL) {
     /* The fast path: a contiguous message leaves from the buffer. */
-    size_t len = (size_t)count * (es ? es : tsmpi_type_size(datatype));
-    const void *p = !len ? NULL : es ? buf : tsmpi_type_contig(buf, count, datatype);
+    size_t len = (size_t)count * (es ? es : dtype_size(datatype));
+    const void *p = !len ? NULL : es ? buf : dtype_contig(buf, count, datatype);
     if (p || !len) {
-      eng_send_data(R, tsm_world_of(c, dest), 2 * c->pair, tag, p, len);
+      eng_send_data(R, st_world_of(c, dest), 2 * c->pair, tag, p, len);
       return MPI_SUCCESS;
     }
   }
@@ -282,25 +282,25 @@ int PMPI_Bsend(const void *buf, int count, MPI_Datatype datatype, int dest, int 
 
 static int send_req(const char *fn, int mode, int persistent, const void *buf, int count,
                     MPI_Datatype dt, int dst, int tag, MPI_Comm comm, MPI_Request *request) {
-  tsm *R = tsm_need(fn);
-  tsm_comm *c;
+  st_rank *R = st_need(fn);
+  st_comm *c;
   int rc = send_args(R, fn, buf, count, dt, dst, tag, comm, &c);
   if (rc) return rc;
-  if (!request) return tsm_raise(R, c, MPI_ERR_ARG, fn, "NULL request argument");
-  tsm_req *q = tsm_req_new(R);
-  tsm_send_fill(q, c, 0, mode, buf, count, dt, dst, tag, comm, fn);
+  if (!request) return err_raise(R, c, MPI_ERR_ARG, fn, "NULL request argument");
+  st_req *q = st_req_new(R);
+  pt2pt_send_fill(q, c, 0, mode, buf, count, dt, dst, tag, comm, fn);
   if (persistent) {
-    tsmpi_type_hold(dt);   /* MPI_Type_free may come before the last MPI_Start */
+    dtype_hold(dt);   /* MPI_Type_free may come before the last MPI_Start */
     q->held = 1;
     q->persistent = 1;
     q->state = RS_INACTIVE;
-    tsm_status_empty(&q->st);
-  } else if ((rc = tsm_send_start(R, q, c))) {
-    tsm_req_free(R, q);
+    pt2pt_status_empty(&q->st);
+  } else if ((rc = pt2pt_send_start(R, q, c))) {
+    st_req_free(R, q);
     *request = MPI_REQUEST_NULL;
     return rc;
   }
-  *request = tsm_req_handle(q);
+  *request = st_req_handle(q);
   return MPI_SUCCESS;
 }
 
@@ -349,26 +349,26 @@ int PMPI_Bsend_init(const void *buf, int count, MPI_Datatype datatype, int dest,
 int PMPI_Recv(void *buf, int count, MPI_Datatype datatype, int source, int tag, MPI_Comm comm,
              MPI_Status *status) {
   static const char fn[] = "MPI_Recv";
-  tsm *R = tsm_need(fn);
-  tsm_comm *c = comm == MPI_COMM_WORLD ? &R->world : tsm_comm_get(R, comm);
+  st_rank *R = st_need(fn);
+  st_comm *c = comm == MPI_COMM_WORLD ? &R->world : st_comm_get(R, comm);
   int rc;
   size_t es;
   if (!args_fine(c, buf, count, datatype, source, tag, 1, &es) &&
       (rc = recv_args(R, fn, buf, count, datatype, source, tag, comm, &c)))
     return rc;
-  tsm_label l = {.fn = fn, .what = L_RECV, .peer = source, .tag = tag, .pair = c->pair};
-  tsm_label_set(R, &l);
+  label_rec l = {.fn = fn, .what = L_RECV, .peer = source, .tag = tag, .pair = c->pair};
+  label_set(R, &l);
   if (source != MPI_PROC_NULL && !R->nunexp && !R->posted) {
     /* The fast path: the source's next message, straight into a
      * contiguous buffer, when it is the one. */
-    size_t cap = (size_t)count * (es ? es : tsmpi_type_size(datatype));
-    void *p = !cap ? NULL : es ? buf : (void *)tsmpi_type_contig(buf, count, datatype);
+    size_t cap = (size_t)count * (es ? es : dtype_size(datatype));
+    void *p = !cap ? NULL : es ? buf : (void *)dtype_contig(buf, count, datatype);
     mp_status got;
     if ((p || !cap) &&
-        eng_recv_data(R, source >= 0 ? tsm_world_of(c, source) : MP_ANY, 2 * c->pair, tag, p, cap, &got)) {
-      tsm_unlabel(R);
+        eng_recv_data(R, source >= 0 ? st_world_of(c, source) : MP_ANY, 2 * c->pair, tag, p, cap, &got)) {
+      label_clear(R);
       if (status != MPI_STATUS_IGNORE) {
-        status->MPI_SOURCE = c->g->world ? tsm_comm_rank_of(c, got.source) : got.source;
+        status->MPI_SOURCE = c->g->world ? st_comm_rank_of(c, got.source) : got.source;
         status->MPI_TAG = got.tag;
         status->tsmpi_cancelled = 0;
         status->tsmpi_count = (MPI_Count)got.len;
@@ -376,35 +376,35 @@ int PMPI_Recv(void *buf, int count, MPI_Datatype datatype, int source, int tag, 
       return MPI_SUCCESS;
     }
   }
-  tsm_req q;
-  tsm_req_stack(&q);
-  tsm_recv_fill(&q, c, 0, buf, count, datatype, source, tag, comm, fn);
-  tsm_recv_block(R, &q);
-  tsm_unlabel(R);
-  tsm_status_out(status, &q.st, 0);
+  st_req q;
+  st_req_stack(&q);
+  pt2pt_recv_fill(&q, c, 0, buf, count, datatype, source, tag, comm, fn);
+  pt2pt_recv_block(R, &q);
+  label_clear(R);
+  pt2pt_status_out(status, &q.st, 0);
   return recv_result(R, c, &q);
 }
 
 static int recv_req(const char *fn, int persistent, void *buf, int count, MPI_Datatype dt, int src,
                     int tag, MPI_Comm comm, MPI_Request *request) {
-  tsm *R = tsm_need(fn);
-  tsm_comm *c;
+  st_rank *R = st_need(fn);
+  st_comm *c;
   int rc = recv_args(R, fn, buf, count, dt, src, tag, comm, &c);
   if (rc) return rc;
-  if (!request) return tsm_raise(R, c, MPI_ERR_ARG, fn, "NULL request argument");
-  tsm_req *q = tsm_req_new(R);
-  tsm_recv_fill(q, c, 0, buf, count, dt, src, tag, comm, fn);
-  tsmpi_type_hold(dt);   /* MPI_Type_free may come before the receive completes */
+  if (!request) return err_raise(R, c, MPI_ERR_ARG, fn, "NULL request argument");
+  st_req *q = st_req_new(R);
+  pt2pt_recv_fill(q, c, 0, buf, count, dt, src, tag, comm, fn);
+  dtype_hold(dt);   /* MPI_Type_free may come before the receive completes */
   q->held = 1;
   if (persistent) {
     q->persistent = 1;
     q->state = RS_INACTIVE;
     q->g = NULL;
-    tsm_status_empty(&q->st);
+    pt2pt_status_empty(&q->st);
   } else {
-    tsm_recv_start(R, q);
+    pt2pt_recv_start(R, q);
   }
-  *request = tsm_req_handle(q);
+  *request = st_req_handle(q);
   return MPI_SUCCESS;
 }
 
@@ -427,25 +427,25 @@ int PMPI_Recv_init(void *buf, int count, MPI_Datatype datatype, int source, int 
 static int sendrecv(const char *fn, const void *sendbuf, int sendcount, MPI_Datatype sendtype,
                     int dest, int sendtag, void *recvbuf, int recvcount, MPI_Datatype recvtype,
                     int source, int recvtag, MPI_Comm comm, MPI_Status *status) {
-  tsm *R = tsm_need(fn);
-  tsm_comm *c;
+  st_rank *R = st_need(fn);
+  st_comm *c;
   int rc = send_args(R, fn, sendbuf, sendcount, sendtype, dest, sendtag, comm, &c);
   if (rc) return rc;
   if ((rc = recv_args(R, fn, recvbuf, recvcount, recvtype, source, recvtag, comm, &c))) return rc;
-  tsm_req s, q;
-  tsm_req_stack(&s);
-  tsm_req_stack(&q);
-  tsm_send_fill(&s, c, 0, SM_STANDARD, sendbuf, sendcount, sendtype, dest, sendtag, comm, fn);
+  st_req s, q;
+  st_req_stack(&s);
+  st_req_stack(&q);
+  pt2pt_send_fill(&s, c, 0, SM_STANDARD, sendbuf, sendcount, sendtype, dest, sendtag, comm, fn);
   s.byref = sendbuf != recvbuf;   /* Sendrecv_replace's send is copied out before the receive */
-  tsm_send_start(R, &s, c);
-  tsm_recv_fill(&q, c, 0, recvbuf, recvcount, recvtype, source, recvtag, comm, fn);
-  tsm_label l = {.fn = fn, .what = L_SENDRECV, .peer = dest, .tag = sendtag, .peer2 = source,
+  pt2pt_send_start(R, &s, c);
+  pt2pt_recv_fill(&q, c, 0, recvbuf, recvcount, recvtype, source, recvtag, comm, fn);
+  label_rec l = {.fn = fn, .what = L_SENDRECV, .peer = dest, .tag = sendtag, .peer2 = source,
                  .tag2 = recvtag, .pair = c->pair};
-  tsm_label_set(R, &l);
-  tsm_recv_block(R, &q);
-  tsm_unlabel(R);
+  label_set(R, &l);
+  pt2pt_recv_block(R, &q);
+  label_clear(R);
   eng_settle(R, &s);
-  tsm_status_out(status, &q.st, 0);
+  pt2pt_status_out(status, &q.st, 0);
   return recv_result(R, c, &q);
 }
 
@@ -470,25 +470,25 @@ int PMPI_Sendrecv_replace(void *buf, int count, MPI_Datatype datatype, int dest,
 static int isendrecv(const char *fn, const void *sendbuf, int sendcount, MPI_Datatype sendtype, int dest,
                      int sendtag, void *recvbuf, int recvcount, MPI_Datatype recvtype, int source, int recvtag,
                      MPI_Comm comm, MPI_Request *request) {
-  tsm *R = tsm_need(fn);
-  tsm_comm *c;
+  st_rank *R = st_need(fn);
+  st_comm *c;
   int rc = send_args(R, fn, sendbuf, sendcount, sendtype, dest, sendtag, comm, &c);
   if (rc) return rc;
   if ((rc = recv_args(R, fn, recvbuf, recvcount, recvtype, source, recvtag, comm, &c))) return rc;
-  if (!request) return tsm_raise(R, c, MPI_ERR_ARG, fn, "NULL request argument");
-  tsm_req s, *q = tsm_req_new(R);
-  tsm_req_stack(&s);
-  tsm_send_fill(&s, c, 0, SM_STANDARD, sendbuf, sendcount, sendtype, dest, sendtag, comm, fn);
+  if (!request) return err_raise(R, c, MPI_ERR_ARG, fn, "NULL request argument");
+  st_req s, *q = st_req_new(R);
+  st_req_stack(&s);
+  pt2pt_send_fill(&s, c, 0, SM_STANDARD, sendbuf, sendcount, sendtype, dest, sendtag, comm, fn);
   s.byref = sendbuf != recvbuf;
-  tsm_send_start(R, &s, c);
-  tsm_recv_fill(q, c, 0, recvbuf, recvcount, recvtype, source, recvtag, comm, fn);
+  pt2pt_send_start(R, &s, c);
+  pt2pt_recv_fill(q, c, 0, recvbuf, recvcount, recvtype, source, recvtag, comm, fn);
   eng_unhold(R, &s);
   q->ref = s.ref;   /* the send's, settled when the request ends */
   q->tmp = s.tmp;
-  tsmpi_type_hold(recvtype);
+  dtype_hold(recvtype);
   q->held = 1;
-  tsm_recv_start(R, q);
-  *request = tsm_req_handle(q);
+  pt2pt_recv_start(R, q);
+  *request = st_req_handle(q);
   return MPI_SUCCESS;
 }
 
@@ -511,52 +511,52 @@ int PMPI_Isendrecv_replace(void *buf, int count, MPI_Datatype datatype, int dest
  * the message shown is taken out of matching into *message. */
 static int probe(const char *fn, int block, int source, int tag, MPI_Comm comm, int *flag,
                  MPI_Message *message, int matched, MPI_Status *status) {
-  tsm *R = tsm_need(fn);
-  tsm_comm *c;
+  st_rank *R = st_need(fn);
+  st_comm *c;
   int rc;
-  if ((rc = tsm_check_comm(R, comm, fn, &c))) return rc;
-  if ((rc = tsm_check_tag(R, c, fn, tag, 1))) return rc;
-  if ((rc = tsm_check_peer(R, c, fn, source, 1))) return rc;
-  if (!block && !flag) return tsm_raise(R, c, MPI_ERR_ARG, fn, "NULL flag argument");
-  if (matched && !message) return tsm_raise(R, c, MPI_ERR_ARG, fn, "NULL message argument");
+  if ((rc = err_check_comm(R, comm, fn, &c))) return rc;
+  if ((rc = err_check_tag(R, c, fn, tag, 1))) return rc;
+  if ((rc = err_check_peer(R, c, fn, source, 1))) return rc;
+  if (!block && !flag) return err_raise(R, c, MPI_ERR_ARG, fn, "NULL flag argument");
+  if (matched && !message) return err_raise(R, c, MPI_ERR_ARG, fn, "NULL message argument");
   if (source == MPI_PROC_NULL) {
     if (flag) *flag = 1;
     if (matched) *message = MPI_MESSAGE_NO_PROC;
     if (status != MPI_STATUS_IGNORE) {
-      tsm_req q;
-      tsm_req_stack(&q);
+      st_req q;
+      st_req_stack(&q);
       proc_null(&q);
-      tsm_status_out(status, &q.st, 0);
+      pt2pt_status_out(status, &q.st, 0);
     }
     return MPI_SUCCESS;
   }
-  int wsrc = source >= 0 ? tsm_world_of(c, source) : MP_ANY, src, mtag;
+  int wsrc = source >= 0 ? st_world_of(c, source) : MP_ANY, src, mtag;
   size_t len;
   int found;
-  tsm_msg *m = NULL;
+  st_msg *m = NULL;
   if (block) {
-    tsm_label l = {.fn = fn, .what = L_PROBE, .peer = source, .tag = tag, .pair = c->pair};
-    tsm_label_set(R, &l);
+    label_rec l = {.fn = fn, .what = L_PROBE, .peer = source, .tag = tag, .pair = c->pair};
+    label_set(R, &l);
     found = eng_probe(R, wsrc, 2 * c->pair, tag, 1, &src, &mtag, &len, matched ? &m : NULL);
-    tsm_unlabel(R);
+    label_clear(R);
   } else {
     found = eng_probe(R, wsrc, 2 * c->pair, tag, 0, &src, &mtag, &len, matched ? &m : NULL);
   }
   if (flag) *flag = found;
   if (!found) {
     if (matched) *message = MPI_MESSAGE_NULL;
-    double cost = tsmpi_poll_cost();
-    if (cost > 0 && mp_busy(R->self, cost) != MP_OK) tsm_stopped(R);
-    tsm_spin(R, fn);
+    double cost = init_poll_cost();
+    if (cost > 0 && mp_busy(R->self, cost) != MP_OK) st_stopped(R);
+    spin_count(R, fn);
     return MPI_SUCCESS;
   }
-  tsm_unspin(R);
+  spin_reset(R);
   if (matched) {
     m->comm = comm;
-    *message = tsm_msg_handle(R, m);
+    *message = st_msg_handle(R, m);
   }
   if (status != MPI_STATUS_IGNORE) {
-    status->MPI_SOURCE = tsm_comm_rank_of(c, src);
+    status->MPI_SOURCE = st_comm_rank_of(c, src);
     status->MPI_TAG = mtag;
     status->tsmpi_cancelled = 0;
     status->tsmpi_count = (MPI_Count)len;
@@ -584,46 +584,46 @@ int PMPI_Improbe(int source, int tag, MPI_Comm comm, int *flag, MPI_Message *mes
  * took, received into buf (the request done at once). */
 static int mrecv(const char *fn, void *buf, int count, MPI_Datatype dt, MPI_Message *message, MPI_Status *status,
                  MPI_Request *request, int nonblocking) {
-  tsm *R = tsm_need(fn);
+  st_rank *R = st_need(fn);
   if (!message || (nonblocking && !request))
-    return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL %s argument", message ? "request" : "message");
-  tsm_req sq, *q = &sq;
+    return err_raise(R, NULL, MPI_ERR_ARG, fn, "NULL %s argument", message ? "request" : "message");
+  st_req sq, *q = &sq;
   if (*message == MPI_MESSAGE_NO_PROC) {   /* from MPI_PROC_NULL: done, empty */
     if (nonblocking) {
-      q = tsm_req_new(R);
+      q = st_req_new(R);
       q->kind = RQ_RECV;
       q->fn = fn;
       q->comm = MPI_COMM_NULL;
-      *request = tsm_req_handle(q);
+      *request = st_req_handle(q);
     }
     proc_null(q);
-    if (!nonblocking) tsm_status_out(status, &q->st, 0);
+    if (!nonblocking) pt2pt_status_out(status, &q->st, 0);
     *message = MPI_MESSAGE_NULL;
     return MPI_SUCCESS;
   }
-  tsm_msg *m = tsm_msg_take(R, *message);
+  st_msg *m = st_msg_take(R, *message);
   if (!m)
-    return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "invalid message handle 0x%x (%s)", (unsigned)*message,
+    return err_raise(R, NULL, MPI_ERR_ARG, fn, "invalid message handle 0x%x (%s)", (unsigned)*message,
                      *message == MPI_MESSAGE_NULL ? "MPI_MESSAGE_NULL" : "received already, or not a message");
-  tsm_comm *c = tsm_comm_get(R, m->comm);
-  int rc = !c ? tsm_check_comm(R, m->comm, fn, &c) : tsm_check_count(R, c, fn, count);
-  if (!rc) rc = tsm_check_type(R, c, fn, dt);
-  if (!rc) rc = tsm_check_buf(R, c, fn, buf, count, dt);
+  st_comm *c = st_comm_get(R, m->comm);
+  int rc = !c ? err_check_comm(R, m->comm, fn, &c) : err_check_count(R, c, fn, count);
+  if (!rc) rc = err_check_type(R, c, fn, dt);
+  if (!rc) rc = err_check_buf(R, c, fn, buf, count, dt);
   if (rc) {   /* the message stays the program's to receive */
-    *message = tsm_msg_handle(R, m);
+    *message = st_msg_handle(R, m);
     return rc;
   }
   if (nonblocking) {
-    q = tsm_req_new(R);
-    *request = tsm_req_handle(q);
+    q = st_req_new(R);
+    *request = st_req_handle(q);
   } else {
-    tsm_req_stack(q);
+    st_req_stack(q);
   }
-  tsm_recv_fill(q, c, 0, buf, count, dt, tsm_comm_rank_of(c, m->src), m->tag, m->comm, fn);
+  pt2pt_recv_fill(q, c, 0, buf, count, dt, st_comm_rank_of(c, m->src), m->tag, m->comm, fn);
   eng_msg_read(R, q, m);
   *message = MPI_MESSAGE_NULL;
   if (nonblocking) return MPI_SUCCESS;
-  tsm_status_out(status, &q->st, 0);
+  pt2pt_status_out(status, &q->st, 0);
   return recv_result(R, c, q);
 }
 
@@ -639,11 +639,11 @@ int PMPI_Imrecv(void *buf, int count, MPI_Datatype datatype, MPI_Message *messag
 
 int PMPI_Get_count(const MPI_Status *status, MPI_Datatype datatype, int *count) {
   static const char fn[] = "MPI_Get_count";
-  tsm *R = tsm_need(fn);
-  int rc = tsm_check_type(R, NULL, fn, datatype);
+  st_rank *R = st_need(fn);
+  int rc = err_check_type(R, NULL, fn, datatype);
   if (rc) return rc;
-  if (!status || !count) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL status or count argument");
-  size_t size = tsmpi_type_size(datatype);
+  if (!status || !count) return err_raise(R, NULL, MPI_ERR_ARG, fn, "NULL status or count argument");
+  size_t size = dtype_size(datatype);
   MPI_Count bytes = status->tsmpi_count;
   if (size == 0)
     *count = 0;   /* MPI 3.1 section 3.2.5: a type of size zero gives zero */
@@ -658,11 +658,11 @@ int PMPI_Get_count(const MPI_Status *status, MPI_Datatype datatype, int *count) 
 
 int PMPI_Buffer_attach(void *buffer, int size) {
   static const char fn[] = "MPI_Buffer_attach";
-  tsm *R = tsm_need(fn);
+  st_rank *R = st_need(fn);
   if (R->bbuf)
-    return tsm_raise(R, NULL, MPI_ERR_BUFFER, fn, "a buffer is attached already (%d bytes)", R->bsize);
-  if (size < 0) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "invalid size %d", size);
-  if (!buffer && size > 0) return tsm_raise(R, NULL, MPI_ERR_BUFFER, fn, "NULL buffer of %d bytes", size);
+    return err_raise(R, NULL, MPI_ERR_BUFFER, fn, "a buffer is attached already (%d bytes)", R->bsize);
+  if (size < 0) return err_raise(R, NULL, MPI_ERR_ARG, fn, "invalid size %d", size);
+  if (!buffer && size > 0) return err_raise(R, NULL, MPI_ERR_BUFFER, fn, "NULL buffer of %d bytes", size);
   R->bbuf = buffer;
   R->bsize = size;
   return MPI_SUCCESS;
@@ -670,8 +670,8 @@ int PMPI_Buffer_attach(void *buffer, int size) {
 
 int PMPI_Buffer_detach(void *buffer_addr, int *size) {
   static const char fn[] = "MPI_Buffer_detach";
-  tsm *R = tsm_need(fn);
-  if (!buffer_addr || !size) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL argument");
+  st_rank *R = st_need(fn);
+  if (!buffer_addr || !size) return err_raise(R, NULL, MPI_ERR_ARG, fn, "NULL argument");
   /* Every buffered message has left already (they are eager). */
   void *b = R->bbuf;
   memcpy(buffer_addr, &b, sizeof b);

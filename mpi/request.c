@@ -1,7 +1,7 @@
 /* request.c -- completing requests: the Wait and Test families,
  * MPI_Request_free, MPI_Request_get_status, starting persistent requests
  * (MPI_Start, MPI_Startall), and requests of a kind of their own (core.h:
- * tsmpi_req_start, tsmpi_req_complete).
+ * req_start, req_complete).
  *
  * A request is active from its start until it is done (a send: at once,
  * or when its ack comes; a receive: when a message is matched to it); a
@@ -27,21 +27,21 @@
 
 /* The request *h names: *q (NULL for MPI_REQUEST_NULL); MPI_SUCCESS, or
  * MPI_ERR_REQUEST raised. */
-static int lookup(tsm *R, const char *fn, MPI_Request h, tsm_req **q) {
+static int lookup(st_rank *R, const char *fn, MPI_Request h, st_req **q) {
   *q = NULL;
   if (h == MPI_REQUEST_NULL) return MPI_SUCCESS;
-  *q = tsm_req_get(R, h);
+  *q = st_req_get(R, h);
   if (*q) return MPI_SUCCESS;
-  return tsm_raise(R, NULL, MPI_ERR_REQUEST, fn, "invalid request handle 0x%x (%s)", (unsigned)h,
+  return err_raise(R, NULL, MPI_ERR_REQUEST, fn, "invalid request handle 0x%x (%s)", (unsigned)h,
                    H_KIND(h) == HK_REQ ? "freed, or not this rank's" : "not a request");
 }
 
 /* Lookups of n handles (after the array is checked). */
-static int lookup_all(tsm *R, const char *fn, int n, const MPI_Request *reqs) {
-  if (n < 0) return tsm_raise(R, NULL, MPI_ERR_COUNT, fn, "invalid count %d (must be >= 0)", n);
-  if (n > 0 && !reqs) return tsm_raise(R, NULL, MPI_ERR_REQUEST, fn, "NULL array of requests");
+static int lookup_all(st_rank *R, const char *fn, int n, const MPI_Request *reqs) {
+  if (n < 0) return err_raise(R, NULL, MPI_ERR_COUNT, fn, "invalid count %d (must be >= 0)", n);
+  if (n > 0 && !reqs) return err_raise(R, NULL, MPI_ERR_REQUEST, fn, "NULL array of requests");
   for (int i = 0; i < n; i++) {
-    tsm_req *q;
+    st_req *q;
     int rc = lookup(R, fn, reqs[i], &q);
     if (rc) return rc;
   }
@@ -50,75 +50,75 @@ static int lookup_all(tsm *R, const char *fn, int n, const MPI_Request *reqs) {
 
 /* Whether the request needs completing: 0 for MPI_REQUEST_NULL and an
  * inactive persistent request (their status is the empty one). */
-static int live(const tsm_req *q) { return q && q->state != RS_INACTIVE; }
+static int live(const st_req *q) { return q && q->state != RS_INACTIVE; }
 
 /* q (done) completes: its status out, its end; *h nulled unless it is
  * persistent.  Returns its error class, raised on its communicator for
  * call fn when raise is set (the single-status calls). */
-static int finish(tsm *R, const char *fn, MPI_Request *h, tsm_req *q, MPI_Status *st, int with_error,
+static int finish(st_rank *R, const char *fn, MPI_Request *h, st_req *q, MPI_Status *st, int with_error,
                   int raise) {
   if (q->kind == RQ_KIND) {   /* its kind's status, then its end */
     MPI_Status ks;
-    tsm_status_empty(&ks);
+    pt2pt_status_empty(&ks);
     int err = q->ops->status ? q->ops->status(q->ext, &ks) : MPI_SUCCESS;
     ks.MPI_ERROR = err;
-    tsm_status_out(st, &ks, with_error);
+    pt2pt_status_out(st, &ks, with_error);
     const char *made = q->fn;
-    int e2 = tsm_req_free(R, q);
+    int e2 = st_req_free(R, q);
     *h = MPI_REQUEST_NULL;
     if (!err) err = e2;
     if (err && raise)
-      return tsm_raise(R, NULL, err, fn, "the request of %s failed (error %d from its callbacks)", made, err);
+      return err_raise(R, NULL, err, fn, "the request of %s failed (error %d from its callbacks)", made, err);
     return err;
   }
-  tsm_status_out(st, &q->st, with_error);
+  pt2pt_status_out(st, &q->st, with_error);
   int err = q->st.MPI_ERROR;
   if (q->persistent) eng_settle(R, q);
   if (err && raise && q->kind != RQ_COLL) {   /* a collective's error was raised when it happened */
-    tsm_req copy = *q;
+    st_req copy = *q;
     if (q->persistent)
       q->state = RS_INACTIVE;
     else
-      tsm_req_free(R, q), *h = MPI_REQUEST_NULL;
-    return tsm_req_error(R, tsm_comm_get(R, copy.comm), &copy, fn);
+      st_req_free(R, q), *h = MPI_REQUEST_NULL;
+    return pt2pt_req_error(R, st_comm_get(R, copy.comm), &copy, fn);
   }
   if (q->persistent) {
     q->state = RS_INACTIVE;
   } else {
-    tsm_req_free(R, q);
+    st_req_free(R, q);
     *h = MPI_REQUEST_NULL;
   }
   return err;
 }
 
 /* Every active request of a kind of its own among n handles advances. */
-static void advance_all(tsm *R, int n, const MPI_Request *reqs) {
+static void advance_all(st_rank *R, int n, const MPI_Request *reqs) {
   for (int i = 0; i < n; i++) {
-    tsm_req *q = tsm_req_get(R, reqs[i]);
+    st_req *q = st_req_get(R, reqs[i]);
     if (q && q->kind == RQ_KIND) eng_advance(R, q);
   }
 }
 
 static void empty_out(MPI_Status *st, int with_error) {
   MPI_Status e;
-  tsm_status_empty(&e);
-  tsm_status_out(st, &e, with_error);
+  pt2pt_status_empty(&e);
+  pt2pt_status_out(st, &e, with_error);
 }
 
 /* A test of fn that found nothing done. */
-static void poll_charge(tsm *R, const char *fn) {
-  double cost = tsmpi_poll_cost();
-  if (cost > 0 && mp_busy(R->self, cost) != MP_OK) tsm_stopped(R);
-  tsm_spin(R, fn);
+static void poll_charge(st_rank *R, const char *fn) {
+  double cost = init_poll_cost();
+  if (cost > 0 && mp_busy(R->self, cost) != MP_OK) st_stopped(R);
+  spin_count(R, fn);
 }
 
 /* Several statuses: the first request that failed, raised as
  * MPI_ERR_IN_STATUS on its communicator. */
-static int in_status(tsm *R, const char *fn, const tsm_req *failed, int err) {
+static int in_status(st_rank *R, const char *fn, const st_req *failed, int err) {
   if (failed->kind == RQ_KIND || failed->kind == RQ_COLL)
-    return tsm_raise(R, NULL, MPI_ERR_IN_STATUS, fn, "the request of %s failed (error %d in its status)",
+    return err_raise(R, NULL, MPI_ERR_IN_STATUS, fn, "the request of %s failed (error %d in its status)",
                      failed->fn, err);
-  return tsm_raise(R, tsm_comm_get(R, failed->comm), MPI_ERR_IN_STATUS, fn,
+  return err_raise(R, st_comm_get(R, failed->comm), MPI_ERR_IN_STATUS, fn,
                    "%s (from rank %d, tag %d): a %zu-byte message is longer than the receive buffer "
                    "(%d elements, %zu bytes): truncated (MPI_ERR_TRUNCATE in its status)",
                    failed->fn, failed->st.MPI_SOURCE, failed->st.MPI_TAG, failed->msglen, failed->count,
@@ -127,17 +127,17 @@ static int in_status(tsm *R, const char *fn, const tsm_req *failed, int err) {
 
 /* Waitall's and Testall's end: every request (all done) completes; the
  * first that failed raised as MPI_ERR_IN_STATUS. */
-static int finish_all(tsm *R, const char *fn, int count, MPI_Request reqs[], MPI_Status sts[]) {
-  tsm_req failed = {.slot = -1};
+static int finish_all(st_rank *R, const char *fn, int count, MPI_Request reqs[], MPI_Status sts[]) {
+  st_req failed = {.slot = -1};
   int nfailed = 0, ferr = 0;
   for (int i = 0; i < count; i++) {
     MPI_Status *st = sts == MPI_STATUSES_IGNORE ? MPI_STATUS_IGNORE : &sts[i];
-    tsm_req *q = tsm_req_get(R, reqs[i]);
+    st_req *q = st_req_get(R, reqs[i]);
     if (!live(q)) {
       empty_out(st, 1);
       continue;
     }
-    tsm_req copy = *q;
+    st_req copy = *q;
     int e = finish(R, fn, &reqs[i], q, st, 1, 0);
     if (e && !nfailed++) failed = copy, ferr = e;
   }
@@ -148,9 +148,9 @@ static int finish_all(tsm *R, const char *fn, int count, MPI_Request reqs[], MPI
 
 int PMPI_Wait(MPI_Request *request, MPI_Status *status) {
   static const char fn[] = "MPI_Wait";
-  tsm *R = tsm_need(fn);
-  if (!request) return tsm_raise(R, NULL, MPI_ERR_REQUEST, fn, "NULL request argument");
-  tsm_req *q;
+  st_rank *R = st_need(fn);
+  if (!request) return err_raise(R, NULL, MPI_ERR_REQUEST, fn, "NULL request argument");
+  st_req *q;
   int rc = lookup(R, fn, *request, &q);
   if (rc) return rc;
   if (!live(q)) {
@@ -158,58 +158,58 @@ int PMPI_Wait(MPI_Request *request, MPI_Status *status) {
     return MPI_SUCCESS;
   }
   if (q->state == RS_ACTIVE) {
-    tsm_label l = {.fn = fn, .what = L_REQS, .R = R, .reqs = request, .n = 1};
-    tsm_label_set(R, &l);
+    label_rec l = {.fn = fn, .what = L_REQS, .R = R, .reqs = request, .n = 1};
+    label_set(R, &l);
     eng_wait(R, q);
-    tsm_unlabel(R);
+    label_clear(R);
   }
   return finish(R, fn, request, q, status, 0, 1);
 }
 
 int PMPI_Waitall(int count, MPI_Request array_of_requests[], MPI_Status array_of_statuses[]) {
   static const char fn[] = "MPI_Waitall";
-  tsm *R = tsm_need(fn);
+  st_rank *R = st_need(fn);
   int rc = lookup_all(R, fn, count, array_of_requests);
   if (rc) return rc;
-  tsm_label l = {.fn = fn, .what = L_REQS, .R = R, .reqs = array_of_requests, .n = count};
+  label_rec l = {.fn = fn, .what = L_REQS, .R = R, .reqs = array_of_requests, .n = count};
   int labelled = 0;
   for (int i = 0; i < count; i++) {
-    tsm_req *q = tsm_req_get(R, array_of_requests[i]);
+    st_req *q = st_req_get(R, array_of_requests[i]);
     if (!q || q->state != RS_ACTIVE) continue;
-    if (!labelled++) tsm_label_set(R, &l);
+    if (!labelled++) label_set(R, &l);
     eng_wait(R, q);
   }
-  if (labelled) tsm_unlabel(R);
+  if (labelled) label_clear(R);
   return finish_all(R, fn, count, array_of_requests, array_of_statuses);
 }
 
 int PMPI_Waitany(int count, MPI_Request array_of_requests[], int *index, MPI_Status *status) {
   static const char fn[] = "MPI_Waitany";
-  tsm *R = tsm_need(fn);
+  st_rank *R = st_need(fn);
   int rc = lookup_all(R, fn, count, array_of_requests);
   if (rc) return rc;
-  if (!index) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL index argument");
-  tsm_label l = {.fn = fn, .what = L_REQS, .R = R, .reqs = array_of_requests, .n = count};
+  if (!index) return err_raise(R, NULL, MPI_ERR_ARG, fn, "NULL index argument");
+  label_rec l = {.fn = fn, .what = L_REQS, .R = R, .reqs = array_of_requests, .n = count};
   int labelled = 0;
   for (;;) {
     int any = 0;
     advance_all(R, count, array_of_requests);
     for (int i = 0; i < count; i++) {
-      tsm_req *q = tsm_req_get(R, array_of_requests[i]);
+      st_req *q = st_req_get(R, array_of_requests[i]);
       if (!live(q)) continue;
       any = 1;
       if (q->state != RS_DONE) continue;
-      if (labelled) tsm_unlabel(R);
+      if (labelled) label_clear(R);
       *index = i;
       return finish(R, fn, &array_of_requests[i], q, status, 0, 1);
     }
     if (!any) {   /* nothing to wait for */
-      if (labelled) tsm_unlabel(R);
+      if (labelled) label_clear(R);
       *index = MPI_UNDEFINED;
       empty_out(status, 0);
       return MPI_SUCCESS;
     }
-    if (!labelled++) tsm_label_set(R, &l);
+    if (!labelled++) label_set(R, &l);
     eng_step(R);
   }
 }
@@ -218,24 +218,24 @@ int PMPI_Waitany(int count, MPI_Request array_of_requests[], int *index, MPI_Sta
  * is done). */
 static int some(const char *fn, int block, int incount, MPI_Request reqs[], int *outcount,
                 int indices[], MPI_Status sts[]) {
-  tsm *R = tsm_need(fn);
+  st_rank *R = st_need(fn);
   int rc = lookup_all(R, fn, incount, reqs);
   if (rc) return rc;
   if (!outcount || (incount > 0 && !indices))
-    return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL outcount or indices argument");
-  tsm_label l = {.fn = fn, .what = L_REQS, .R = R, .reqs = reqs, .n = incount};
+    return err_raise(R, NULL, MPI_ERR_ARG, fn, "NULL outcount or indices argument");
+  label_rec l = {.fn = fn, .what = L_REQS, .R = R, .reqs = reqs, .n = incount};
   int labelled = 0, polled = 0;
   for (;;) {
     int any = 0, done = 0;
     advance_all(R, incount, reqs);
     for (int i = 0; i < incount; i++) {
-      tsm_req *q = tsm_req_get(R, reqs[i]);
+      st_req *q = st_req_get(R, reqs[i]);
       if (!live(q)) continue;
       any = 1;
       done += q->state == RS_DONE;
     }
     if (!any) {
-      if (labelled) tsm_unlabel(R);
+      if (labelled) label_clear(R);
       *outcount = MPI_UNDEFINED;
       return MPI_SUCCESS;
     }
@@ -245,16 +245,16 @@ static int some(const char *fn, int block, int incount, MPI_Request reqs[], int 
       polled = 1;
       continue;   /* (advance_all at the top) */
     }
-    if (!labelled++) tsm_label_set(R, &l);
+    if (!labelled++) label_set(R, &l);
     eng_step(R);
   }
-  if (labelled) tsm_unlabel(R);
+  if (labelled) label_clear(R);
   int n = 0, nfailed = 0, ferr = 0;
-  tsm_req failed = {.slot = -1};
+  st_req failed = {.slot = -1};
   for (int i = 0; i < incount; i++) {
-    tsm_req *q = tsm_req_get(R, reqs[i]);
+    st_req *q = st_req_get(R, reqs[i]);
     if (!live(q) || q->state != RS_DONE) continue;
-    tsm_req copy = *q;
+    st_req copy = *q;
     int e = finish(R, fn, &reqs[i], q, sts == MPI_STATUSES_IGNORE ? MPI_STATUS_IGNORE : &sts[n], 1, 0);
     if (e && !nfailed++) failed = copy, ferr = e;
     indices[n++] = i;
@@ -263,7 +263,7 @@ static int some(const char *fn, int block, int incount, MPI_Request reqs[], int 
   if (n == 0)
     poll_charge(R, fn);
   else
-    tsm_unspin(R);
+    spin_reset(R);
   return nfailed ? in_status(R, fn, &failed, ferr) : MPI_SUCCESS;
 }
 
@@ -277,9 +277,9 @@ int PMPI_Waitsome(int incount, MPI_Request array_of_requests[], int *outcount,
 
 int PMPI_Test(MPI_Request *request, int *flag, MPI_Status *status) {
   static const char fn[] = "MPI_Test";
-  tsm *R = tsm_need(fn);
-  if (!request || !flag) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL request or flag argument");
-  tsm_req *q;
+  st_rank *R = st_need(fn);
+  if (!request || !flag) return err_raise(R, NULL, MPI_ERR_ARG, fn, "NULL request or flag argument");
+  st_req *q;
   int rc = lookup(R, fn, *request, &q);
   if (rc) return rc;
   if (!live(q)) {
@@ -297,21 +297,21 @@ int PMPI_Test(MPI_Request *request, int *flag, MPI_Status *status) {
     return MPI_SUCCESS;
   }
   *flag = 1;
-  tsm_unspin(R);
+  spin_reset(R);
   return finish(R, fn, request, q, status, 0, 1);
 }
 
 int PMPI_Testall(int count, MPI_Request array_of_requests[], int *flag, MPI_Status array_of_statuses[]) {
   static const char fn[] = "MPI_Testall";
-  tsm *R = tsm_need(fn);
+  st_rank *R = st_need(fn);
   int rc = lookup_all(R, fn, count, array_of_requests);
   if (rc) return rc;
-  if (!flag) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL flag argument");
+  if (!flag) return err_raise(R, NULL, MPI_ERR_ARG, fn, "NULL flag argument");
   int pending = 0;
   for (int pass = 0; pass < 2; pass++) {
     pending = 0;
     for (int i = 0; i < count; i++) {
-      tsm_req *q = tsm_req_get(R, array_of_requests[i]);
+      st_req *q = st_req_get(R, array_of_requests[i]);
       pending += live(q) && q->state == RS_ACTIVE;
     }
     if (!pending || pass) break;
@@ -324,26 +324,26 @@ int PMPI_Testall(int count, MPI_Request array_of_requests[], int *flag, MPI_Stat
     return MPI_SUCCESS;
   }
   *flag = 1;
-  tsm_unspin(R);
+  spin_reset(R);
   return finish_all(R, fn, count, array_of_requests, array_of_statuses);
 }
 
 int PMPI_Testany(int count, MPI_Request array_of_requests[], int *index, int *flag, MPI_Status *status) {
   static const char fn[] = "MPI_Testany";
-  tsm *R = tsm_need(fn);
+  st_rank *R = st_need(fn);
   int rc = lookup_all(R, fn, count, array_of_requests);
   if (rc) return rc;
-  if (!index || !flag) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL index or flag argument");
+  if (!index || !flag) return err_raise(R, NULL, MPI_ERR_ARG, fn, "NULL index or flag argument");
   for (int pass = 0; pass < 2; pass++) {
     int any = 0;
     for (int i = 0; i < count; i++) {
-      tsm_req *q = tsm_req_get(R, array_of_requests[i]);
+      st_req *q = st_req_get(R, array_of_requests[i]);
       if (!live(q)) continue;
       any = 1;
       if (q->state != RS_DONE) continue;
       *flag = 1;
       *index = i;
-      tsm_unspin(R);
+      spin_reset(R);
       return finish(R, fn, &array_of_requests[i], q, status, 0, 1);
     }
     if (!any) {   /* nothing active: flag true, no index (MPI 3.1 section 3.7.5) */
@@ -371,9 +371,9 @@ int PMPI_Testsome(int incount, MPI_Request array_of_requests[], int *outcount, i
 
 int PMPI_Request_get_status(MPI_Request request, int *flag, MPI_Status *status) {
   static const char fn[] = "MPI_Request_get_status";
-  tsm *R = tsm_need(fn);
-  if (!flag) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL flag argument");
-  tsm_req *q;
+  st_rank *R = st_need(fn);
+  if (!flag) return err_raise(R, NULL, MPI_ERR_ARG, fn, "NULL flag argument");
+  st_req *q;
   int rc = lookup(R, fn, request, &q);
   if (rc) return rc;
   if (!live(q)) {
@@ -390,16 +390,16 @@ int PMPI_Request_get_status(MPI_Request request, int *flag, MPI_Status *status) 
     poll_charge(R, fn);
     return MPI_SUCCESS;
   }
-  tsm_unspin(R);
+  spin_reset(R);
   if (q->kind != RQ_KIND) {
-    tsm_status_out(status, &q->st, 0);
+    pt2pt_status_out(status, &q->st, 0);
     return MPI_SUCCESS;
   }
   MPI_Status ks;   /* its kind's status; the request stays */
-  tsm_status_empty(&ks);
+  pt2pt_status_empty(&ks);
   int err = q->ops->status ? q->ops->status(q->ext, &ks) : MPI_SUCCESS;
-  tsm_status_out(status, &ks, 0);
-  return err ? tsm_raise(R, NULL, err, fn, "the request of %s failed (error %d from its callbacks)", q->fn, err)
+  pt2pt_status_out(status, &ks, 0);
+  return err ? err_raise(R, NULL, err, fn, "the request of %s failed (error %d from its callbacks)", q->fn, err)
              : MPI_SUCCESS;
 }
 
@@ -407,10 +407,10 @@ int PMPI_Request_get_status(MPI_Request request, int *flag, MPI_Status *status) 
 
 int PMPI_Request_free(MPI_Request *request) {
   static const char fn[] = "MPI_Request_free";
-  tsm *R = tsm_need(fn);
+  st_rank *R = st_need(fn);
   if (!request || *request == MPI_REQUEST_NULL)
-    return tsm_raise(R, NULL, MPI_ERR_REQUEST, fn, "MPI_REQUEST_NULL");
-  tsm_req *q;
+    return err_raise(R, NULL, MPI_ERR_REQUEST, fn, "MPI_REQUEST_NULL");
+  st_req *q;
   int rc = lookup(R, fn, *request, &q);
   if (rc) return rc;
   *request = MPI_REQUEST_NULL;
@@ -419,41 +419,41 @@ int PMPI_Request_free(MPI_Request *request) {
     return MPI_SUCCESS;
   }
   const char *made = q->fn;
-  int err = tsm_req_free(R, q);
-  return err ? tsm_raise(R, NULL, err, fn, "the request of %s failed (error %d from its free callback)", made, err)
+  int err = st_req_free(R, q);
+  return err ? err_raise(R, NULL, err, fn, "the request of %s failed (error %d from its free callback)", made, err)
              : MPI_SUCCESS;
 }
 
-static int start(tsm *R, const char *fn, MPI_Request h) {
-  tsm_req *q;
+static int start(st_rank *R, const char *fn, MPI_Request h) {
+  st_req *q;
   int rc = lookup(R, fn, h, &q);
   if (rc) return rc;
-  if (!q) return tsm_raise(R, NULL, MPI_ERR_REQUEST, fn, "MPI_REQUEST_NULL");
+  if (!q) return err_raise(R, NULL, MPI_ERR_REQUEST, fn, "MPI_REQUEST_NULL");
   if (!q->persistent || q->state != RS_INACTIVE)
-    return tsm_raise(R, NULL, MPI_ERR_REQUEST, fn, "request 0x%x is %s", (unsigned)h,
+    return err_raise(R, NULL, MPI_ERR_REQUEST, fn, "request 0x%x is %s", (unsigned)h,
                      q->persistent ? "active already" : "not persistent (made by MPI_Send_init, MPI_Recv_init, ...)");
-  tsm_comm *c = tsm_comm_get(R, q->comm);
+  st_comm *c = st_comm_get(R, q->comm);
   if (!c) {
     char b[64];
-    return tsm_raise(R, NULL, MPI_ERR_COMM, fn, "the request's communicator is gone: %s",
-                     tsm_comm_words(q->comm, b));
+    return err_raise(R, NULL, MPI_ERR_COMM, fn, "the request's communicator is gone: %s",
+                     err_comm_words(q->comm, b));
   }
-  if (q->kind == RQ_SEND) return tsm_send_start(R, q, c);
+  if (q->kind == RQ_SEND) return pt2pt_send_start(R, q, c);
   q->g = c->g;
-  tsm_recv_start(R, q);
+  pt2pt_recv_start(R, q);
   return MPI_SUCCESS;
 }
 
 int PMPI_Start(MPI_Request *request) {
   static const char fn[] = "MPI_Start";
-  tsm *R = tsm_need(fn);
-  if (!request) return tsm_raise(R, NULL, MPI_ERR_REQUEST, fn, "NULL request argument");
+  st_rank *R = st_need(fn);
+  if (!request) return err_raise(R, NULL, MPI_ERR_REQUEST, fn, "NULL request argument");
   return start(R, fn, *request);
 }
 
 int PMPI_Startall(int count, MPI_Request array_of_requests[]) {
   static const char fn[] = "MPI_Startall";
-  tsm *R = tsm_need(fn);
+  st_rank *R = st_need(fn);
   int rc = lookup_all(R, fn, count, array_of_requests);
   if (rc) return rc;
   for (int i = 0; i < count; i++)
@@ -463,9 +463,9 @@ int PMPI_Startall(int count, MPI_Request array_of_requests[]) {
 
 /* ==== requests of a kind of their own (core.h) ============================= */
 
-int tsmpi_req_start(const tsmpi_kind *kind, void *state, MPI_Request *req) {
-  tsm *R = tsm_need(kind->name);
-  tsm_req *q = tsm_req_new(R);
+int req_start(const req_kind *kind, void *state, MPI_Request *req) {
+  st_rank *R = st_need(kind->name);
+  st_req *q = st_req_new(R);
   q->kind = RQ_KIND;
   q->ops = kind;
   q->ext = state;
@@ -473,16 +473,16 @@ int tsmpi_req_start(const tsmpi_kind *kind, void *state, MPI_Request *req) {
   q->comm = MPI_COMM_NULL;
   q->peer = MPI_PROC_NULL;
   q->state = RS_ACTIVE;
-  tsm_status_empty(&q->st);
+  pt2pt_status_empty(&q->st);
   R->nkinds++;
-  *req = tsm_req_handle(q);
+  *req = st_req_handle(q);
   return MPI_SUCCESS;
 }
 
-int tsmpi_req_complete(MPI_Request req) {
-  tsm *R = tsm_need("tsmpi_req_complete");
-  tsm_req *q = tsm_req_get(R, req);
+int req_complete(MPI_Request req) {
+  st_rank *R = st_need("req_complete");
+  st_req *q = st_req_get(R, req);
   if (!q || q->kind != RQ_KIND || q->state != RS_ACTIVE) return MPI_ERR_REQUEST;
   q->state = RS_DONE;
-  return q->freed ? tsm_req_free(R, q) : MPI_SUCCESS;
+  return q->freed ? st_req_free(R, q) : MPI_SUCCESS;
 }

@@ -71,19 +71,19 @@ struct rma_tgt {
 
 /* ==== time ================================================================ */
 
-static void mpok(tsm *R, int rc) {
+static void mpok(st_rank *R, int rc) {
   if (rc == MP_OK) return;
-  if (rc == MP_ESTOPPED || rc == MP_EDEADLOCK) tsm_stopped(R);
+  if (rc == MP_ESTOPPED || rc == MP_EDEADLOCK) st_stopped(R);
   fprintf(stderr, "tilesim MPI: internal error: rank %d: one-sided: %s\n", R->wrank, mp_strerror(rc));
   abort();
 }
 
-void tsm_until(tsm *R, double t) {
+void rma_until(st_rank *R, double t) {
   double now = mp_time(R->self);
   if (t > now) mpok(R, mp_sleep(R->self, t - now));
 }
 
-static double now_of(tsm *R) { return mp_time(R->self); }
+static double now_of(st_rank *R) { return mp_time(R->self); }
 static double maxd(double a, double b) { return a > b ? a : b; }
 
 /* ==== the targets a rank knows ============================================ */
@@ -91,7 +91,7 @@ static double maxd(double a, double b) { return a > b ? a : b; }
 static unsigned tg_hash(int t, int cap) { return ((unsigned)t * 2654435761u) & (unsigned)(cap - 1); }
 
 /* The entry of target, or NULL if this rank never knew it. */
-static rma_tgt *tgt_find(tsm_win *w, int target) {
+static rma_tgt *tgt_find(rma_window *w, int target) {
   if (!w->captg) return NULL;
   unsigned h = tg_hash(target, w->captg);
   while (w->tg[h].target >= 0) {
@@ -102,7 +102,7 @@ static rma_tgt *tgt_find(tsm_win *w, int target) {
 }
 
 /* The entry of target, made if new (a new one may move the others). */
-static rma_tgt *tgt(tsm_win *w, int target) {
+static rma_tgt *tgt(rma_window *w, int target) {
   rma_tgt *e = tgt_find(w, target);
   if (e) return e;
   if (2 * (w->ntg + 1) > w->captg) {
@@ -127,14 +127,14 @@ static rma_tgt *tgt(tsm_win *w, int target) {
   return &w->tg[h];
 }
 
-int rma_locked(tsm_win *w, int target) {
+int rma_locked(rma_window *w, int target) {
   rma_tgt *t = tgt_find(w, target);
   return t ? t->lock : 0;
 }
 
 /* ==== the list of operations ============================================== */
 
-static void insert(tsm_win *w, rma_op *op) {
+static void insert(rma_window *w, rma_op *op) {
   rma_op **at = &w->ops;
   if (w->ops_tail && (w->ops_tail->at < op->at || (w->ops_tail->at == op->at && w->ops_tail->seq < op->seq))) {
     at = &w->ops_tail->next;
@@ -149,7 +149,7 @@ static void insert(tsm_win *w, rma_op *op) {
 static int with_data(const rma_op *op) { return op->kind == OP_GET || op->kind == OP_GACC || op->kind == OP_CAS; }
 
 /* op's request leaves now for its target. */
-static void send(tsm *R, tsm_win *w, rma_op *op) {
+static void send(st_rank *R, rma_window *w, rma_op *op) {
   op->at = mp_transfer(R->self, R->wrank, w->sh->part[op->target].wrank, op->len, now_of(R));
   rma_tgt *t = tgt(w, op->target);
   t->last = maxd(t->last, op->at);
@@ -157,16 +157,16 @@ static void send(tsm *R, tsm_win *w, rma_op *op) {
   insert(w, op);
 }
 
-static void op_free(rma_op *op) {
-  if (op->tdt) tsmpi_type_release(op->tdt);
-  if (op->rdt) tsmpi_type_release(op->rdt);
+static void free_op(rma_op *op) {
+  if (op->tdt) dtype_release(op->tdt);
+  if (op->rdt) dtype_release(op->rdt);
   free(op->data);
   free(op);
 }
 
 /* ==== issuing ============================================================= */
 
-void rma_issue(tsm *R, tsm_win *w, const rma_args *a, rma_done *done) {
+void rma_issue(st_rank *R, rma_window *w, const rma_args *a, rma_done *done) {
   rma_op *op = xcalloc(1, sizeof *op);
   op->kind = a->kind;
   op->target = a->target;
@@ -180,30 +180,30 @@ void rma_issue(tsm *R, tsm_win *w, const rma_args *a, rma_done *done) {
   size_t tbytes = 0;
   if (a->kind <= OP_CAS) {
     op->tdt = a->tdt;
-    tsmpi_type_hold(a->tdt);
-    tbytes = (size_t)a->tcount * tsmpi_type_size(a->tdt);
+    dtype_hold(a->tdt);
+    tbytes = (size_t)a->tcount * dtype_size(a->tdt);
   }
   int carries = a->kind == OP_PUT || a->kind == OP_ACC || a->kind == OP_CAS ||
                 (a->kind == OP_GACC && a->op != MPI_NO_OP);
   if (carries) {
-    size_t olen = (size_t)a->ocount * tsmpi_type_size(a->odt);
+    size_t olen = (size_t)a->ocount * dtype_size(a->odt);
     op->len = a->kind == OP_CAS ? 2 * olen : olen;
     if (op->len) {
       op->data = xmalloc(op->len);
-      tsmpi_type_pack(a->obuf, a->ocount, a->odt, op->data);
-      if (a->kind == OP_CAS) tsmpi_type_pack(a->compare, a->ocount, a->odt, op->data + olen);
+      dtype_pack(a->obuf, a->ocount, a->odt, op->data);
+      if (a->kind == OP_CAS) dtype_pack(a->compare, a->ocount, a->odt, op->data + olen);
     }
   }
   if (with_data(op)) {
     op->rbuf = a->rbuf;
     op->rcount = a->rcount;
     op->rdt = a->rdt;
-    tsmpi_type_hold(a->rdt);
+    dtype_hold(a->rdt);
     op->reply = tbytes;
   }
   if (a->kind == OP_ACC || a->kind == OP_GACC) {
     MPI_Count per = 0;
-    int idx = tsmpi_type_elem(a->tdt, &per);
+    int idx = dtype_elem(a->tdt, &per);
     op->basic = (MPI_Datatype)(3 << 24 | idx);
     op->nbasic = (int)(per * a->tcount);
   }
@@ -220,7 +220,7 @@ void rma_issue(tsm *R, tsm_win *w, const rma_args *a, rma_done *done) {
   rma_progress(R, w, now_of(R));
 }
 
-void rma_posted(tsm *R, tsm_win *w, int target) {
+void rma_posted(st_rank *R, rma_window *w, int target) {
   rma_op **at = &w->deferred;
   while (*at) {
     rma_op *op = *at;
@@ -236,9 +236,9 @@ void rma_posted(tsm *R, tsm_win *w, int target) {
 
 /* ==== applying ============================================================ */
 
-static int compatible(const tsm_wpart *p, int excl) { return excl ? !p->excl && !p->shared : !p->excl; }
+static int compatible(const rma_part *p, int excl) { return excl ? !p->excl && !p->shared : !p->excl; }
 
-static void take(tsm_wpart *p, int excl) {
+static void take(rma_part *p, int excl) {
   if (excl)
     p->excl = 1;
   else
@@ -250,57 +250,57 @@ static void combine(const rma_op *op, const unsigned char *in, unsigned char *in
   if (op->op == MPI_REPLACE)
     memcpy(inout, in, n);
   else if (op->op != MPI_NO_OP)
-    tsmpi_op_reduce_packed(op->op, op->basic, in, inout, op->nbasic);
+    op_reduce_packed(op->op, op->basic, in, inout, op->nbasic);
 }
 
 /* Apply op at its target (its arrival is now): the data moved, the lock
  * taken or released, and its reply sent back. */
-static void apply(tsm *R, tsm_win *w, rma_op *op) {
-  tsm_wshared *sh = w->sh;
-  tsm_wpart *p = &sh->part[op->target];
-  size_t tb = op->tdt ? (size_t)op->tcount * tsmpi_type_size(op->tdt) : 0;
+static void apply(st_rank *R, rma_window *w, rma_op *op) {
+  rma_shared *sh = w->sh;
+  rma_part *p = &sh->part[op->target];
+  size_t tb = op->tdt ? (size_t)op->tcount * dtype_size(op->tdt) : 0;
   unsigned char *tmp = with_data(op) || op->kind == OP_ACC ? xmalloc(tb ? tb : 1) : NULL;
   int granted = 1, *lets = NULL, ng = 0;
   pthread_mutex_lock(&sh->mu);
   switch (op->kind) {
   case OP_PUT:
-    if (tb) tsmpi_type_unpack(op->data, tb, op->taddr, op->tcount, op->tdt);
+    if (tb) dtype_unpack(op->data, tb, op->taddr, op->tcount, op->tdt);
     break;
   case OP_GET:
-    if (tb) tsmpi_type_pack(op->taddr, op->tcount, op->tdt, tmp);
+    if (tb) dtype_pack(op->taddr, op->tcount, op->tdt, tmp);
     break;
   case OP_ACC:
     if (!tb || op->op == MPI_NO_OP) break;
     if (op->op == MPI_REPLACE) {
-      tsmpi_type_unpack(op->data, tb, op->taddr, op->tcount, op->tdt);
+      dtype_unpack(op->data, tb, op->taddr, op->tcount, op->tdt);
       break;
     }
-    tsmpi_type_pack(op->taddr, op->tcount, op->tdt, tmp);
+    dtype_pack(op->taddr, op->tcount, op->tdt, tmp);
     combine(op, op->data, tmp, tb);
-    tsmpi_type_unpack(tmp, tb, op->taddr, op->tcount, op->tdt);
+    dtype_unpack(tmp, tb, op->taddr, op->tcount, op->tdt);
     break;
   case OP_GACC:
     if (!tb) break;
-    tsmpi_type_pack(op->taddr, op->tcount, op->tdt, tmp);
+    dtype_pack(op->taddr, op->tcount, op->tdt, tmp);
     if (op->op != MPI_NO_OP) {
       unsigned char *upd = xmalloc(tb);
       memcpy(upd, tmp, tb);
       combine(op, op->data, upd, tb);
-      tsmpi_type_unpack(upd, tb, op->taddr, op->tcount, op->tdt);
+      dtype_unpack(upd, tb, op->taddr, op->tcount, op->tdt);
       free(upd);
     }
     break;
   case OP_CAS:
     if (!tb) break;
-    tsmpi_type_pack(op->taddr, op->tcount, op->tdt, tmp);
-    if (memcmp(tmp, op->data + tb, tb) == 0) tsmpi_type_unpack(op->data, tb, op->taddr, op->tcount, op->tdt);
+    dtype_pack(op->taddr, op->tcount, op->tdt, tmp);
+    if (memcmp(tmp, op->data + tb, tb) == 0) dtype_unpack(op->data, tb, op->taddr, op->tcount, op->tdt);
     break;
   case OP_LOCK:
     if (p->nq == 0 && compatible(p, op->lock == MPI_LOCK_EXCLUSIVE)) {
       take(p, op->lock == MPI_LOCK_EXCLUSIVE);
     } else {
       if (p->nq == p->capq) p->q = xreallocarray(p->q, (size_t)(p->capq = p->capq ? 2 * p->capq : 4), sizeof *p->q);
-      p->q[p->nq++] = (tsm_lockwait){w->rank, op->lock == MPI_LOCK_EXCLUSIVE};
+      p->q[p->nq++] = (rma_lockwait){w->rank, op->lock == MPI_LOCK_EXCLUSIVE};
       granted = 0;
     }
     break;
@@ -319,14 +319,14 @@ static void apply(tsm *R, tsm_win *w, rma_op *op) {
     break;
   }
   pthread_mutex_unlock(&sh->mu);
-  if (tmp && tb && with_data(op)) tsmpi_type_unpack(tmp, tb, op->rbuf, op->rcount, op->rdt);
+  if (tmp && tb && with_data(op)) dtype_unpack(tmp, tb, op->rbuf, op->rcount, op->rdt);
   free(tmp);
   /* The grants leave the target now, for each origin let in. */
   double now = op->at;
   for (int i = 0; i < ng; i++) {
     int to = sh->part[lets[i]].wrank;
     double arr = mp_transfer(R->self, p->wrank, to, 0, now);
-    mpok(R, mp_notify(R->self, to, env_encode(K_DATA, 2 * w->c->pair, WTAG_GRANT), arr));
+    mpok(R, mp_notify(R->self, to, st_env_encode(K_DATA, 2 * w->c->pair, WTAG_GRANT), arr));
   }
   free(lets);
   rma_tgt *t = tgt(w, op->target);
@@ -342,20 +342,20 @@ static void apply(tsm *R, tsm_win *w, rma_op *op) {
     op->done->applied = 1;
     op->done->at = reply;   /* -1: a lock queued, its grant to come */
   }
-  op_free(op);
+  free_op(op);
 }
 
-void rma_progress(tsm *R, tsm_win *w, double t) {
+void rma_progress(st_rank *R, rma_window *w, double t) {
   while (w->ops && w->ops->at <= t) {
     rma_op *op = w->ops;
     w->ops = op->next;
     if (!w->ops) w->ops_tail = NULL;
-    tsm_until(R, op->at);
+    rma_until(R, op->at);
     apply(R, w, op);
   }
 }
 
-void rma_wait_done(tsm *R, tsm_win *w, rma_done *d) {
+void rma_wait_done(st_rank *R, rma_window *w, rma_done *d) {
   while (!d->applied) {
     if (!w->ops) {   /* deferred for a post: it is waited for */
       for (int i = 0; i < w->nacc; i++)
@@ -364,17 +364,17 @@ void rma_wait_done(tsm *R, tsm_win *w, rma_done *d) {
     }
     rma_progress(R, w, w->ops->at);
   }
-  tsm_until(R, d->at);
+  rma_until(R, d->at);
 }
 
 /* ==== completing ========================================================== */
 
-void rma_complete(tsm *R, tsm_win *w, int target, int local) {
+void rma_complete(st_rank *R, rma_window *w, int target, int local) {
   if (target >= 0) {
     rma_tgt *t = tgt_find(w, target);
     if (!t) return;
     if (t->npend) rma_progress(R, w, local ? t->lastget : t->last);
-    tsm_until(R, local ? t->ldone : t->done);
+    rma_until(R, local ? t->ldone : t->done);
     return;
   }
   double until = -INFINITY, last = -INFINITY;
@@ -387,22 +387,22 @@ void rma_complete(tsm *R, tsm_win *w, int target, int local) {
   if (last > -INFINITY) rma_progress(R, w, last);
   for (int i = 0; i < w->captg; i++)
     if (w->tg[i].target >= 0) until = maxd(until, local ? w->tg[i].ldone : w->tg[i].done);
-  tsm_until(R, until);
+  rma_until(R, until);
 }
 
 /* ==== locks =============================================================== */
 
 /* Wait for n grants of queued lock requests (the caller's label set). */
-static void grants(tsm *R, tsm_win *w, int n) {
+static void grants(st_rank *R, rma_window *w, int n) {
   for (int i = 0; i < n; i++) {
-    tsm_req q;
-    tsm_req_stack(&q);
-    tsm_recv_fill(&q, w->c, 0, NULL, 0, MPI_BYTE, MPI_ANY_SOURCE, WTAG_GRANT, w->comm, "MPI_Win_lock");
-    tsm_recv_block(R, &q);
+    st_req q;
+    st_req_stack(&q);
+    pt2pt_recv_fill(&q, w->c, 0, NULL, 0, MPI_BYTE, MPI_ANY_SOURCE, WTAG_GRANT, w->comm, "MPI_Win_lock");
+    pt2pt_recv_block(R, &q);
   }
 }
 
-void rma_lock(tsm *R, tsm_win *w, int target, int lock, int nocheck) {
+void rma_lock(st_rank *R, rma_window *w, int target, int lock, int nocheck) {
   if (nocheck) {
     rma_tgt *t = tgt(w, target);
     t->lock = lock;
@@ -419,7 +419,7 @@ void rma_lock(tsm *R, tsm_win *w, int target, int lock, int nocheck) {
   t->nocheck = 0;
 }
 
-void rma_unlock(tsm *R, tsm_win *w, int target) {
+void rma_unlock(st_rank *R, rma_window *w, int target) {
   if (!tgt(w, target)->nocheck) {
     rma_args a = {.kind = OP_UNLOCK, .target = target};
     rma_issue(R, w, &a, NULL);
@@ -429,7 +429,7 @@ void rma_unlock(tsm *R, tsm_win *w, int target) {
   t->lock = t->nocheck = 0;
 }
 
-void rma_lock_all(tsm *R, tsm_win *w) {
+void rma_lock_all(st_rank *R, rma_window *w) {
   rma_done *d = xmallocarray((size_t)w->size, sizeof *d);
   for (int r = 0; r < w->size; r++) {
     rma_args a = {.kind = OP_LOCK, .target = r, .lock = MPI_LOCK_SHARED};
@@ -442,7 +442,7 @@ void rma_lock_all(tsm *R, tsm_win *w) {
   grants(R, w, queued);
 }
 
-void rma_unlock_all(tsm *R, tsm_win *w) {
+void rma_unlock_all(st_rank *R, rma_window *w) {
   for (int r = 0; r < w->size; r++) {
     rma_args a = {.kind = OP_UNLOCK, .target = r};
     rma_issue(R, w, &a, NULL);
@@ -454,10 +454,10 @@ void rma_unlock_all(tsm *R, tsm_win *w) {
 
 /* The post of start group member i has come (its receive done): its
  * request freed, the operations deferred for it sent. */
-static int post_came(tsm *R, tsm_win *w, int i) {
-  tsm_req *q = tsm_req_get(R, w->postrq[i]);
+static int post_came(st_rank *R, rma_window *w, int i) {
+  st_req *q = st_req_get(R, w->postrq[i]);
   if (q && q->state == RS_ACTIVE) return 0;
-  if (q) tsm_req_free(R, q);
+  if (q) st_req_free(R, q);
   w->postrq[i] = MPI_REQUEST_NULL;
   rma_tgt *t = tgt(w, w->acc[i]);
   t->posted = 1;
@@ -465,26 +465,26 @@ static int post_came(tsm *R, tsm_win *w, int i) {
   return 1;
 }
 
-void rma_access_begin(tsm *R, tsm_win *w) {
+void rma_access_begin(st_rank *R, rma_window *w) {
   w->postrq = xmallocarray((size_t)w->nacc + 1, sizeof *w->postrq);
   for (int i = 0; i < w->nacc; i++) {
     rma_tgt *t = tgt(w, w->acc[i]);
     t->inacc = 1;
     t->posted = 0;
     t->acci = i;
-    tsm_req *q = tsm_req_new(R);
-    tsm_recv_fill(q, w->c, 0, NULL, 0, MPI_BYTE, w->acc[i], WTAG_POST, w->comm, "MPI_Win_start");
-    tsm_recv_start(R, q);
-    w->postrq[i] = tsm_req_handle(q);
+    st_req *q = st_req_new(R);
+    pt2pt_recv_fill(q, w->c, 0, NULL, 0, MPI_BYTE, w->acc[i], WTAG_POST, w->comm, "MPI_Win_start");
+    pt2pt_recv_start(R, q);
+    w->postrq[i] = st_req_handle(q);
   }
 }
 
-int rma_access_has(tsm_win *w, int target) {
+int rma_access_has(rma_window *w, int target) {
   rma_tgt *t = tgt_find(w, target);
   return t && t->inacc;
 }
 
-int rma_access_posted(tsm *R, tsm_win *w, int target) {
+int rma_access_posted(st_rank *R, rma_window *w, int target) {
   rma_tgt *t = tgt_find(w, target);
   if (!t || !t->inacc) return 0;
   if (t->posted) return 1;
@@ -492,7 +492,7 @@ int rma_access_posted(tsm *R, tsm_win *w, int target) {
   return post_came(R, w, t->acci);
 }
 
-void rma_access_end(tsm *R, tsm_win *w) {
+void rma_access_end(st_rank *R, rma_window *w) {
   /* Every post, the deferred operations leaving as each comes. */
   for (;;) {
     int left = 0;
@@ -512,28 +512,28 @@ void rma_access_end(tsm *R, tsm_win *w) {
   }
   if (last > -INFINITY) rma_progress(R, w, last);
   for (int i = 0; i < w->nacc; i++) {
-    mpok(R, mp_notify(R->self, w->sh->part[w->acc[i]].wrank, env_encode(K_DATA, 2 * w->c->pair, WTAG_DONE), d[i]));
+    mpok(R, mp_notify(R->self, w->sh->part[w->acc[i]].wrank, st_env_encode(K_DATA, 2 * w->c->pair, WTAG_DONE), d[i]));
     rma_tgt *e = tgt(w, w->acc[i]);
     e->inacc = e->posted = 0;
     until = maxd(until, e->ldone);
   }
   free(d);
   /* Local completion: the gets' data are in. */
-  tsm_until(R, until);
+  rma_until(R, until);
   free(w->postrq);
   w->postrq = NULL;
 }
 
 /* ==== the end ============================================================= */
 
-void rma_release(tsm_win *w) {
+void rma_release(rma_window *w) {
   for (rma_op *op = w->ops, *n; op; op = n) {
     n = op->next;
-    op_free(op);
+    free_op(op);
   }
   for (rma_op *op = w->deferred, *n; op; op = n) {
     n = op->next;
-    op_free(op);
+    free_op(op);
   }
   w->ops = w->ops_tail = w->deferred = NULL;
   free(w->tg);

@@ -28,8 +28,8 @@
 /* What one call gives: the window, its target, and the sides' elements. */
 typedef struct {
   const char *fn;
-  tsm *R;
-  tsm_win *w;
+  st_rank *R;
+  rma_window *w;
   int kind;
   int target;
   MPI_Aint disp;
@@ -47,28 +47,28 @@ typedef struct {
 
 static int type_ok(const call *c, const char *what, MPI_Datatype dt) {
   char why[128] = "";
-  if (tsmpi_type_check(dt, why, sizeof why) == MPI_SUCCESS) return MPI_SUCCESS;
-  return tsm_win_raise(c->R, c->w, MPI_ERR_TYPE, c->fn, "invalid %s datatype: %s", what, why);
+  if (dtype_check(dt, why, sizeof why) == MPI_SUCCESS) return MPI_SUCCESS;
+  return rma_win_raise(c->R, c->w, MPI_ERR_TYPE, c->fn, "invalid %s datatype: %s", what, why);
 }
 
 static int count_ok(const call *c, const char *what, int n) {
   if (n >= 0) return MPI_SUCCESS;
-  return tsm_win_raise(c->R, c->w, MPI_ERR_COUNT, c->fn, "invalid %s count %d (must be >= 0)", what, n);
+  return rma_win_raise(c->R, c->w, MPI_ERR_COUNT, c->fn, "invalid %s count %d (must be >= 0)", what, n);
 }
 
 static int buf_ok(const call *c, const char *what, const void *buf, int n, MPI_Datatype dt) {
-  if (buf || tsmpi_type_bottom_ok(dt, n)) return MPI_SUCCESS;
-  return tsm_win_raise(c->R, c->w, MPI_ERR_BUFFER, c->fn, "NULL %s buffer for %d element%s", what, n, n == 1 ? "" : "s");
+  if (buf || dtype_bottom_ok(dt, n)) return MPI_SUCCESS;
+  return rma_win_raise(c->R, c->w, MPI_ERR_BUFFER, c->fn, "NULL %s buffer for %d element%s", what, n, n == 1 ? "" : "s");
 }
 
-static size_t bytes(int n, MPI_Datatype dt) { return (size_t)n * tsmpi_type_size(dt); }
+static size_t bytes(int n, MPI_Datatype dt) { return (size_t)n * dtype_size(dt); }
 
 /* The target's elements inside its memory: their address in *taddr, or
  * MPI_ERR_RMA_RANGE raised. */
 static int target_at(const call *c, char **taddr) {
-  tsm_win *w = c->w;
-  tsm_wpart *p = &w->sh->part[c->target];
-  MPI_Aint lb = tsmpi_type_true_lb(c->tdt), ext = tsmpi_type_extent(c->tdt), tex = tsmpi_type_true_extent(c->tdt);
+  rma_window *w = c->w;
+  rma_part *p = &w->sh->part[c->target];
+  MPI_Aint lb = dtype_true_lb(c->tdt), ext = dtype_extent(c->tdt), tex = dtype_true_extent(c->tdt);
   MPI_Aint lo = lb, hi = c->tcount ? (MPI_Aint)(c->tcount - 1) * ext + lb + tex : lb;
   if (ext < 0) lo += (MPI_Aint)(c->tcount - 1) * ext, hi = lb + tex;
   if (w->flavor == MPI_WIN_FLAVOR_DYNAMIC) {
@@ -80,13 +80,13 @@ static int target_at(const call *c, char **taddr) {
     pthread_mutex_unlock(&w->sh->mu);
     *taddr = a;
     if (in) return MPI_SUCCESS;
-    return tsm_win_raise(c->R, w, MPI_ERR_RMA_RANGE, c->fn, "address %p (%td bytes) is not in a region attached at rank %d",
+    return rma_win_raise(c->R, w, MPI_ERR_RMA_RANGE, c->fn, "address %p (%td bytes) is not in a region attached at rank %d",
                          (void *)(a + lo), (ptrdiff_t)(hi - lo), c->target);
   }
   MPI_Aint off = c->disp * p->disp_unit;
   *taddr = p->base + off;
   if (off + lo >= 0 && off + hi <= p->size) return MPI_SUCCESS;
-  return tsm_win_raise(c->R, w, MPI_ERR_RMA_RANGE, c->fn,
+  return rma_win_raise(c->R, w, MPI_ERR_RMA_RANGE, c->fn,
                        "bytes %td to %td of rank %d's window, which has %td", (ptrdiff_t)(off + lo),
                        (ptrdiff_t)(off + hi), c->target, (ptrdiff_t)p->size);
 }
@@ -94,34 +94,34 @@ static int target_at(const call *c, char **taddr) {
 /* An accumulate's elements and operation. */
 static int acc_ok(const call *c) {
   char why[128];
-  if (tsmpi_op_valid(c->op, why, sizeof why) != MPI_SUCCESS)
-    return tsm_win_raise(c->R, c->w, MPI_ERR_OP, c->fn, "%s", why);
-  if (!tsmpi_op_is_predefined(c->op))
-    return tsm_win_raise(c->R, c->w, MPI_ERR_OP, c->fn, "a user operation (accumulates take predefined ones)");
+  if (op_valid(c->op, why, sizeof why) != MPI_SUCCESS)
+    return rma_win_raise(c->R, c->w, MPI_ERR_OP, c->fn, "%s", why);
+  if (!op_is_predefined(c->op))
+    return rma_win_raise(c->R, c->w, MPI_ERR_OP, c->fn, "a user operation (accumulates take predefined ones)");
   MPI_Count per;
-  int te = tsmpi_type_elem(c->tdt, &per);
+  int te = dtype_elem(c->tdt, &per);
   if (!te && bytes(c->tcount, c->tdt))
-    return tsm_win_raise(c->R, c->w, MPI_ERR_TYPE, c->fn, "the target datatype's elements are of several predefined types");
+    return rma_win_raise(c->R, c->w, MPI_ERR_TYPE, c->fn, "the target datatype's elements are of several predefined types");
   int carries = c->op != MPI_NO_OP && c->kind != OP_GET;
   if (carries && bytes(c->ocount, c->odt)) {
-    int oe = tsmpi_type_elem(c->odt, &per);
+    int oe = dtype_elem(c->odt, &per);
     if (oe != te)
-      return tsm_win_raise(c->R, c->w, MPI_ERR_TYPE, c->fn,
+      return rma_win_raise(c->R, c->w, MPI_ERR_TYPE, c->fn,
                            "the origin's and the target's elements are not of one predefined type");
   }
   if (te && c->op != MPI_REPLACE && c->op != MPI_NO_OP &&
-      tsmpi_op_check(c->op, (MPI_Datatype)(3 << 24 | te), why, sizeof why) != MPI_SUCCESS)
-    return tsm_win_raise(c->R, c->w, MPI_ERR_OP, c->fn, "%s", why);
+      op_check(c->op, (MPI_Datatype)(3 << 24 | te), why, sizeof why) != MPI_SUCCESS)
+    return rma_win_raise(c->R, c->w, MPI_ERR_OP, c->fn, "%s", why);
   return MPI_SUCCESS;
 }
 
 /* Check a call; MPI_SUCCESS and *go = 1 if it moves anything. */
 static int check(call *c, MPI_Win win, int *go) {
   *go = 0;
-  tsm *R = c->R = tsm_need(c->fn);
-  int rc = tsm_win_check(R, win, c->fn, &c->w);
+  st_rank *R = c->R = st_need(c->fn);
+  int rc = rma_win_check(R, win, c->fn, &c->w);
   if (rc) return rc;
-  tsm_win *w = c->w;
+  rma_window *w = c->w;
   int carries = c->kind == OP_PUT || c->kind == OP_ACC || c->kind == OP_CAS ||
                 (c->kind == OP_GACC && c->op != MPI_NO_OP);
   int fetches = c->kind == OP_GET || c->kind == OP_GACC || c->kind == OP_CAS;
@@ -131,22 +131,22 @@ static int check(call *c, MPI_Win win, int *go) {
   if (c->kind == OP_GET && ((rc = count_ok(c, "origin", c->rcount)) || (rc = type_ok(c, "origin", c->rdt)))) return rc;
   if ((rc = count_ok(c, "target", c->tcount)) || (rc = type_ok(c, "target", c->tdt))) return rc;
   if (c->target != MPI_PROC_NULL && (c->target < 0 || c->target >= w->size))
-    return tsm_win_raise(R, w, MPI_ERR_RANK, c->fn, "invalid target rank %d (the window has %d rank%s)", c->target,
+    return rma_win_raise(R, w, MPI_ERR_RANK, c->fn, "invalid target rank %d (the window has %d rank%s)", c->target,
                          w->size, w->size == 1 ? "" : "s");
   if ((c->kind == OP_ACC || c->kind == OP_GACC) && (rc = acc_ok(c))) return rc;
   size_t tb = bytes(c->tcount, c->tdt);
   if (carries && bytes(c->ocount, c->odt) != tb)
-    return tsm_win_raise(R, w, MPI_ERR_SIZE, c->fn, "the origin's %zu bytes and the target's %zu differ",
+    return rma_win_raise(R, w, MPI_ERR_SIZE, c->fn, "the origin's %zu bytes and the target's %zu differ",
                          bytes(c->ocount, c->odt), tb);
   if (fetches && bytes(c->rcount, c->rdt) != tb)
-    return tsm_win_raise(R, w, MPI_ERR_SIZE, c->fn, "the %s %zu bytes and the target's %zu differ",
+    return rma_win_raise(R, w, MPI_ERR_SIZE, c->fn, "the %s %zu bytes and the target's %zu differ",
                          c->kind == OP_GET ? "origin's" : "result's", bytes(c->rcount, c->rdt), tb);
   if (c->target == MPI_PROC_NULL || tb == 0) return MPI_SUCCESS;
   if (carries && (rc = buf_ok(c, "origin", c->obuf, c->ocount, c->odt))) return rc;
   if (fetches && (rc = buf_ok(c, c->kind == OP_GET ? "origin" : "result", c->rbuf, c->rcount, c->rdt))) return rc;
   if (c->kind == OP_CAS && (rc = buf_ok(c, "compare", c->compare, 1, c->tdt))) return rc;
   if (!w->fence && !w->lockall && !rma_locked(w, c->target) && !rma_access_has(w, c->target))
-    return tsm_win_raise(R, w, MPI_ERR_RMA_SYNC, c->fn, "rank %d is in no access epoch of this rank's", c->target);
+    return rma_win_raise(R, w, MPI_ERR_RMA_SYNC, c->fn, "rank %d is in no access epoch of this rank's", c->target);
   *go = 1;
   return MPI_SUCCESS;
 }
@@ -168,24 +168,24 @@ static int run(call *c, MPI_Win win, MPI_Request *req) {
     if (req && fetches) rma_wait_done(c->R, c->w, &d);
   }
   if (req) {
-    tsm_req *q = tsm_req_new(c->R);
+    st_req *q = st_req_new(c->R);
     q->kind = RQ_SEND;
     q->state = RS_DONE;
     q->fn = c->fn;
     q->comm = c->w->comm;
     q->peer = MPI_PROC_NULL;
-    tsm_status_empty(&q->st);
-    *req = tsm_req_handle(q);
+    pt2pt_status_empty(&q->st);
+    *req = st_req_handle(q);
   }
   return MPI_SUCCESS;
 }
 
 static int request_arg(const char *fn, MPI_Win win, MPI_Request *request) {
   if (request) return MPI_SUCCESS;
-  tsm *R = tsm_need(fn);
-  tsm_win *w;
-  int rc = tsm_win_check(R, win, fn, &w);
-  return rc ? rc : tsm_win_raise(R, w, MPI_ERR_ARG, fn, "NULL request argument");
+  st_rank *R = st_need(fn);
+  rma_window *w;
+  int rc = rma_win_check(R, win, fn, &w);
+  return rc ? rc : rma_win_raise(R, w, MPI_ERR_ARG, fn, "NULL request argument");
 }
 
 /* ==== the calls =========================================================== */

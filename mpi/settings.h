@@ -3,8 +3,8 @@
  *
  * The setting is per run, not per rank: set it before the ranks start, and
  * leave it alone while they run. */
-#ifndef TSMPI_TSMPI_H
-#define TSMPI_TSMPI_H
+#ifndef TSMPI_SETTINGS_H
+#define TSMPI_SETTINGS_H
 
 #include <stddef.h>
 #include <stdio.h>
@@ -17,14 +17,14 @@
  * applied left to right on top of the earlier ones.  0, or -1 with a
  * message in err ("--coll: bcast has no algorithm 'ring' (linear, binomial,
  * ...)") and nothing changed. */
-int tsmpi_coll_option(const char *spec, char *err, size_t errlen);
+int coll_option(const char *spec, char *err, size_t errlen);
 
 /* Back to MPICH's choices everywhere. */
-void tsmpi_coll_reset(void);
+void coll_reset(void);
 
 /* The collectives and their algorithms, one line each ("bcast: auto linear
  * binomial scatter_recursive_doubling_allgather ..."), for --help. */
-void tsmpi_coll_usage(FILE *out);
+void coll_usage(FILE *out);
 
 /* Apply one --fs argument: MOUNT[,dir=DIR][,latency=S][,bandwidth=B], a
  * file system of the simulated machine mounted at the absolute path MOUNT
@@ -33,9 +33,9 @@ void tsmpi_coll_usage(FILE *out);
  * seconds (default 1e-4) and bytes / bandwidth (bytes a second, default
  * 1e9).  A mount given again is changed ("/scratch" is there from the
  * start).  0, or -1 with a message in err and nothing changed. */
-int tsmpi_fs_option(const char *spec, char *err, size_t errlen);
+int io_fs_option(const char *spec, char *err, size_t errlen);
 
 /* Back to the default file systems: / and /scratch. */
-void tsmpi_fs_reset(void);
+void io_fs_reset(void);
 
 #endif

@@ -3,7 +3,7 @@
  * poll cost and a wtime cost of 0, tilesim-mpirun's --poll-cost 0 and the
  * default --wtime-cost 0).  On the simulator nothing can arrive then: the
  * clock stands still and no other rank runs until this one waits.  After
- * TSM_SPIN_MAX such calls in a row the run stops with one line naming the
+ * SPIN_MAX such calls in a row the run stops with one line naming the
  * rank, the call and the clock:
  *   rank 1: MPI_Iprobe called 100000 times at t=0.25 s without the rank's
  *   clock moving: nothing can arrive, it would poll forever (a polling loop
@@ -15,12 +15,12 @@
 
 #include "mpi/state.h"
 
-enum { TSM_SPIN_MAX = 100000 };
+enum { SPIN_MAX = 100000 };
 
 /* A poll of call fn found nothing (after charging its cost, if any). */
-void tsm_spin(tsm *R, const char *fn);
+void spin_count(st_rank *R, const char *fn);
 
 /* A poll found something. */
-static inline void tsm_unspin(tsm *R) { R->spins = 0; }
+static inline void spin_reset(st_rank *R) { R->spins = 0; }
 
 #endif

@@ -17,45 +17,45 @@
 
 /* ==== finding the rank's state ============================================ */
 
-tsm *tsm_get(void) {
+st_rank *st_get(void) {
   mp *self = mp_self();
   if (!self) return NULL;
   void *u = mp_user(self);
-  return u == TSM_MARK_FINALIZED || u == TSM_MARK_STOPPED ? NULL : u;
+  return u == INIT_MARK_FINALIZED || u == INIT_MARK_STOPPED ? NULL : u;
 }
 
-tsm *tsm_need(const char *fn) {
+st_rank *st_need(const char *fn) {
   mp *self = mp_self();
   if (!self) {
     fprintf(stderr, "tilesim MPI: %s called outside a rank: MPI programs run under tilesim-mpirun\n", fn);
     exit(1);
   }
   void *u = mp_user(self);
-  if (u && u != TSM_MARK_FINALIZED && u != TSM_MARK_STOPPED) return u;
+  if (u && u != INIT_MARK_FINALIZED && u != INIT_MARK_STOPPED) return u;
   char why[200];
   snprintf(why, sizeof why, "rank %d: %s called %s", mp_rank(self), fn,
            u ? "after MPI_Finalize" : "before MPI_Init");
   mp_abort(self, 1, why);
 }
 
-_Noreturn void tsm_stopped(tsm *R) {
+_Noreturn void st_stopped(st_rank *R) {
   mp *self = R->self;
-  tsm_release(R);
-  mp_set_user(self, TSM_MARK_STOPPED);
+  st_release(R);
+  mp_set_user(self, INIT_MARK_STOPPED);
   mp_exit(self);
 }
 
 /* ==== the other parts' slots ============================================== */
 
-void *tsmpi_part(int part) {
-  tsm *R = tsm_get();
-  return R && part >= 0 && part < TSMPI_PARTS ? R->part[part] : NULL;
+void *st_part(int part) {
+  st_rank *R = st_get();
+  return R && part >= 0 && part < ST_PARTS ? R->part[part] : NULL;
 }
 
-void tsmpi_part_set(int part, void *p, void (*release)(void *p)) {
-  tsm *R = tsm_need("tsmpi_part_set");
-  if (part < 0 || part >= TSMPI_PARTS) {
-    fprintf(stderr, "tilesim MPI: internal error: tsmpi_part_set(%d)\n", part);
+void st_part_set(int part, void *p, void (*release)(void *p)) {
+  st_rank *R = st_need("st_part_set");
+  if (part < 0 || part >= ST_PARTS) {
+    fprintf(stderr, "tilesim MPI: internal error: st_part_set(%d)\n", part);
     abort();
   }
   R->part[part] = p;
@@ -69,8 +69,8 @@ static int cmp_pair(const void *a, const void *b) {
   return (x[0] > y[0]) - (x[0] < y[0]);
 }
 
-tsm_ranks *tsm_ranks_new(int n, const int *world) {
-  tsm_ranks *g = xcalloc(1, sizeof *g);
+st_ranks *st_ranks_new(int n, const int *world) {
+  st_ranks *g = xcalloc(1, sizeof *g);
   g->refs = 1;
   g->n = n;
   int ident = 1;
@@ -94,7 +94,7 @@ tsm_ranks *tsm_ranks_new(int n, const int *world) {
   return g;
 }
 
-void tsm_ranks_drop(tsm_ranks *g) {
+void st_ranks_drop(st_ranks *g) {
   if (!g || --g->refs > 0) return;
   free(g->world);
   free(g->sw);
@@ -102,7 +102,7 @@ void tsm_ranks_drop(tsm_ranks *g) {
   free(g);
 }
 
-int tsm_ranks_find(const tsm_ranks *g, int w) {
+int st_ranks_find(const st_ranks *g, int w) {
   if (!g->world) return w >= 0 && w < g->n ? w : -1;
   int lo = 0, hi = g->n - 1;
   while (lo <= hi) {
@@ -118,7 +118,7 @@ int tsm_ranks_find(const tsm_ranks *g, int w) {
 
 /* ==== communicators ======================================================= */
 
-tsm_comm *tsm_comm_get(tsm *R, MPI_Comm comm) {
+st_comm *st_comm_get(st_rank *R, MPI_Comm comm) {
   if (comm == MPI_COMM_WORLD) return &R->world;
   if (comm == MPI_COMM_SELF) return &R->selfc;
   unsigned slot = (unsigned)comm - (unsigned)(HK_COMM << H_KIND_SHIFT | H_CREATED);
@@ -126,17 +126,17 @@ tsm_comm *tsm_comm_get(tsm *R, MPI_Comm comm) {
   return NULL;
 }
 
-tsm_comm *tsm_comm_must(tsm *R, MPI_Comm comm, const char *fn) {
-  tsm_comm *c = tsm_comm_get(R, comm);
+st_comm *st_comm_must(st_rank *R, MPI_Comm comm, const char *fn) {
+  st_comm *c = st_comm_get(R, comm);
   if (c) return c;
   fprintf(stderr, "tilesim MPI: internal error: rank %d: %s on an unchecked communicator 0x%x\n", R->wrank,
           fn, (unsigned)comm);
   abort();
 }
 
-int tsm_comm_rank_of(const tsm_comm *c, int w) { return tsm_ranks_find(c->g, w); }
+int st_comm_rank_of(const st_comm *c, int w) { return st_ranks_find(c->g, w); }
 
-const char *tsm_pair_name(int pair, char *buf) {
+const char *st_pair_name(int pair, char *buf) {
   if (pair == 0) return "MPI_COMM_WORLD";
   if (pair == 1) return "MPI_COMM_SELF";
   snprintf(buf, 32, "communicator %d", pair);
@@ -145,8 +145,8 @@ const char *tsm_pair_name(int pair, char *buf) {
 
 /* ==== requests ============================================================ */
 
-tsm_req *tsm_req_new(tsm *R) {
-  tsm_req *q = R->freereq;
+st_req *st_req_new(st_rank *R) {
+  st_req *q = R->freereq;
   if (q) {
     R->freereq = q->next;
   } else {
@@ -168,14 +168,14 @@ tsm_req *tsm_req_new(tsm *R) {
   return q;
 }
 
-tsm_req *tsm_req_get(tsm *R, MPI_Request h) {
+st_req *st_req_get(st_rank *R, MPI_Request h) {
   unsigned slot = (unsigned)h - (unsigned)(HK_REQ << H_KIND_SHIFT | H_CREATED);
   if (slot >= (unsigned)R->nreqs) return NULL;
-  tsm_req *q = R->reqs[slot];
+  st_req *q = R->reqs[slot];
   return q->used ? q : NULL;
 }
 
-int tsm_req_free(tsm *R, tsm_req *q) {
+int st_req_free(st_rank *R, st_req *q) {
   eng_settle(R, q);
   if (q->slot < 0) return MPI_SUCCESS;
   int err = MPI_SUCCESS;
@@ -183,7 +183,7 @@ int tsm_req_free(tsm *R, tsm_req *q) {
     R->nkinds--;
     if (q->ops->free) err = q->ops->free(q->ext);
   }
-  if (q->held) tsmpi_type_release(q->dt);
+  if (q->held) dtype_release(q->dt);
   q->held = 0;
   q->used = 0;
   q->kind = RQ_SEND;   /* no kind's callbacks once freed */
@@ -194,7 +194,7 @@ int tsm_req_free(tsm *R, tsm_req *q) {
 
 /* ==== matched probes' messages ============================================ */
 
-MPI_Message tsm_msg_handle(tsm *R, tsm_msg *m) {
+MPI_Message st_msg_handle(st_rank *R, st_msg *m) {
   int slot = 0;
   while (slot < R->nmsgs && R->msgs[slot]) slot++;
   if (slot == R->nmsgs) {
@@ -211,24 +211,24 @@ MPI_Message tsm_msg_handle(tsm *R, tsm_msg *m) {
   return (MPI_Message)(HK_MSG << H_KIND_SHIFT | H_CREATED | slot);
 }
 
-tsm_msg *tsm_msg_take(tsm *R, MPI_Message h) {
+st_msg *st_msg_take(st_rank *R, MPI_Message h) {
   unsigned slot = (unsigned)h - (unsigned)(HK_MSG << H_KIND_SHIFT | H_CREATED);
   if (slot >= (unsigned)R->nmsgs || !R->msgs[slot]) return NULL;
-  tsm_msg *m = R->msgs[slot];
+  st_msg *m = R->msgs[slot];
   R->msgs[slot] = NULL;
   return m;
 }
 
 /* ==== the end ============================================================= */
 
-void tsm_release(tsm *R) {
+void st_release(st_rank *R) {
   mp_set_progress(R->self, NULL, NULL);   /* no nonblocking collective goes on past the rank's MPI */
   eng_settle_all(R);                      /* before the parts free what sends refer to */
-  for (int i = TSMPI_PARTS - 1; i >= 0; i--)
+  for (int i = ST_PARTS - 1; i >= 0; i--)
     if (R->release[i]) R->release[i](R->part[i]);
   eng_release(R);
   for (int i = 0; i < R->nreqs; i++) {
-    tsm_req *q = R->reqs[i];
+    st_req *q = R->reqs[i];
     if (q->used && q->kind == RQ_KIND && q->ops->drop) q->ops->drop(q->ext);
   }
   for (int i = 0; i < R->nmsgs; i++)
@@ -238,19 +238,19 @@ void tsm_release(tsm *R) {
   free(R->reqs);
   for (int i = 0; i < R->ncomms; i++) {
     if (!R->comms[i]) continue;
-    tsm_ranks_drop(R->comms[i]->g);
-    if (R->comms[i]->inter) tsm_ranks_drop(R->comms[i]->lg);
-    tsmpi_topo_unref(R->comms[i]->topo);
+    st_ranks_drop(R->comms[i]->g);
+    if (R->comms[i]->inter) st_ranks_drop(R->comms[i]->lg);
+    ptopo_unref(R->comms[i]->topo);
     free(R->comms[i]);
   }
   free(R->comms);
-  for (int i = 0; i < R->ngroups; i++) tsm_ranks_drop(R->groups[i]);
+  for (int i = 0; i < R->ngroups; i++) st_ranks_drop(R->groups[i]);
   free(R->groups);
-  tsm_ranks_drop(R->world.g);
-  tsm_ranks_drop(R->selfc.g);
-  tsm_ranks_drop(R->empty);
-  tsm_attrs_release(R);
-  tsm_errs_release(R);
-  tsm_infos_release(R);
+  st_ranks_drop(R->world.g);
+  st_ranks_drop(R->selfc.g);
+  st_ranks_drop(R->empty);
+  attr_release_all(R);
+  errh_release_all(R);
+  info_release_all(R);
   free(R);
 }

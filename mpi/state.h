@@ -5,7 +5,7 @@
  *
  * A rank's state hangs on its mp handle (mp_user) from MPI_Init to
  * MPI_Finalize: nothing of it is global, so ranks that run as coroutines
- * (the simulator) or threads share nothing.  tsm_get() finds it in two loads
+ * (the simulator) or threads share nothing.  st_get() finds it in two loads
  * and a thread-local read. */
 #ifndef TSMPI_STATE_H
 #define TSMPI_STATE_H
@@ -46,26 +46,26 @@ enum {
   ENV_TAG_BITS = 18,
   ENV_CTX_BITS = 11,
   ENV_KIND_SHIFT = ENV_TAG_BITS + ENV_CTX_BITS,
-  TSM_TAG_UB = (1 << ENV_TAG_BITS) - 1,   /* MPI_TAG_UB: 262143 */
+  ST_TAG_UB = (1 << ENV_TAG_BITS) - 1,   /* MPI_TAG_UB: 262143 */
   CTX_PAIRS = 1 << (ENV_CTX_BITS - 1),     /* 1024 */
   K_DATA = 0,
   K_SYNC = 1,
   K_ACK = 2
 };
 
-static inline int env_encode(int kind, int ctx, int tag) {
+static inline int st_env_encode(int kind, int ctx, int tag) {
   return kind << ENV_KIND_SHIFT | ctx << ENV_TAG_BITS | tag;
 }
-static inline int env_kind(int mptag) { return mptag >> ENV_KIND_SHIFT; }
-static inline int env_ctx(int mptag) { return (mptag >> ENV_TAG_BITS) & ((1 << ENV_CTX_BITS) - 1); }
-static inline int env_tag(int mptag) { return mptag & TSM_TAG_UB; }
+static inline int st_env_kind(int mptag) { return mptag >> ENV_KIND_SHIFT; }
+static inline int st_env_ctx(int mptag) { return (mptag >> ENV_TAG_BITS) & ((1 << ENV_CTX_BITS) - 1); }
+static inline int st_env_tag(int mptag) { return mptag & ST_TAG_UB; }
 
 /* Tags the communicator constructors use on the parent's collective
- * context, above the collectives' own (core.h: TSMPI_COLL_TAG_MAX). */
-enum { TAG_CTXID = TSMPI_COLL_TAG_MAX + 1, TAG_CTXID_BCAST, TAG_SPLIT, TAG_SPLIT_BCAST, TAG_INTER, TAG_INTER_BCAST };
+ * context, above the collectives' own (core.h: COLL_TAG_MAX). */
+enum { TAG_CTXID = COLL_TAG_MAX + 1, TAG_CTXID_BCAST, TAG_SPLIT, TAG_SPLIT_BCAST, TAG_INTER, TAG_INTER_BCAST };
 /* MPI_Comm_create_group's, by the program's tag (tag % TAG_GROUP_N): a pair
  * each, so that groups made at once with different tags keep apart. */
-enum { TAG_GROUP_N = 64, TAG_GROUP = TSM_TAG_UB + 1 - 2 * TAG_GROUP_N };
+enum { TAG_GROUP_N = 64, TAG_GROUP = ST_TAG_UB + 1 - 2 * TAG_GROUP_N };
 
 /* ==== groups and communicators ============================================ */
 
@@ -76,51 +76,51 @@ typedef struct {
   int *world;   /* world[i]: the MPI_COMM_WORLD rank of rank i; NULL: i itself */
   int *sw;      /* the world ranks sorted, and ... */
   int *sr;      /* ... sr[k] the rank of sw[k] (NULL with world NULL) */
-} tsm_ranks;
+} st_ranks;
 
 /* An intracommunicator's g and size are its group; an
  * intercommunicator's are the remote group's, which its point-to-point
  * ranks name (so that sends, receives and statuses need nothing else),
  * and lg is its local group; rank is always the calling rank's in its own
- * group.  Use tsm_comm_lsize and tsm_comm_lgroup for the local side. */
+ * group.  Use st_comm_lsize and st_comm_lgroup for the local side. */
 typedef struct {
   int live;            /* 0: a free slot */
   int pair;            /* context pair: ctx 2 * pair, collectives 2 * pair + 1 */
   int rank, size;      /* the calling rank's rank in it, and its size */
-  tsm_ranks *g;
+  st_ranks *g;
   MPI_Errhandler eh;   /* predefined, or a handler of the rank's (errh.c): counted */
   char name[MPI_MAX_OBJECT_NAME];   /* MPI_Comm_set_name's */
-  char words[32];      /* tsmpi_comm_name's answer */
+  char words[32];      /* comm_get_name's answer */
   MPI_Comm h;          /* its own handle */
   int inter;           /* an intercommunicator */
   int low;             /* intercommunicators: the local leader's world rank is below
                           the remote leader's (its group comes first when merged) */
-  tsm_ranks *lg;       /* intercommunicators: the local group (counted) */
+  st_ranks *lg;       /* intercommunicators: the local group (counted) */
   MPI_Comm local;      /* intercommunicators: an intracommunicator of the local
                           group, with a context pair of its own, for the
                           collectives' local steps (hidden from the program) */
   int hidden;          /* such a local communicator */
-  unsigned hints;      /* the info hints it keeps (info.c: TSM_HINT_*) */
-  unsigned nbc_seq;    /* nonblocking collectives started on it (tsmpi_comm_nbc_tag) */
-  struct tsmpi_topo *topo;   /* its process topology (topo.h), counted, or NULL */
-  int holds;           /* nonblocking collectives on it going on (tsmpi_comm_hold) */
+  unsigned hints;      /* the info hints it keeps (info.c: INFO_HINT_*) */
+  unsigned nbc_seq;    /* nonblocking collectives started on it (comm_nbc_tag) */
+  struct ptopo *topo;   /* its process topology (topo.h), counted, or NULL */
+  int holds;           /* nonblocking collectives on it going on (comm_hold) */
   int freed;           /* MPI_Comm_free'd while held: gone for the program, and
                           ended when the last hold goes */
-} tsm_comm;
+} st_comm;
 
-static inline int tsm_comm_lsize(const tsm_comm *c) { return c->inter ? c->lg->n : c->size; }
-static inline tsm_ranks *tsm_comm_lgroup(const tsm_comm *c) { return c->inter ? c->lg : c->g; }
+static inline int st_comm_lsize(const st_comm *c) { return c->inter ? c->lg->n : c->size; }
+static inline st_ranks *st_comm_lgroup(const st_comm *c) { return c->inter ? c->lg : c->g; }
 
 /* ==== requests ============================================================ */
 
 enum { RQ_SEND, RQ_RECV, RQ_KIND, RQ_COLL };   /* RQ_KIND: a kind of its own (q->ops, core.h);
-                                                RQ_COLL: a nonblocking collective (tsmpi_req_coll) */
+                                                RQ_COLL: a nonblocking collective (coll_req) */
 enum { SM_STANDARD, SM_SYNC, SM_BUFFERED, SM_READY };
 enum { RS_INACTIVE, RS_ACTIVE, RS_DONE };
 
-typedef struct tsm_req tsm_req;
-struct tsm_req {
-  tsm_req *next, *prev;    /* the posted queue (receives), the sync list (sends),
+typedef struct st_req st_req;
+struct st_req {
+  st_req *next, *prev;    /* the posted queue (receives), the sync list (sends),
                               the free list */
   int slot;                /* its handle's slot; -1: not in the table (a blocking
                               call's request on the stack) */
@@ -130,9 +130,9 @@ struct tsm_req {
   unsigned char persistent;/* made by MPI_*_init */
   unsigned char freed;     /* MPI_Request_free while active: goes when done */
   unsigned char used;      /* in the table and not freed */
-  unsigned char held;      /* holds dt (tsmpi_type_hold) until freed */
+  unsigned char held;      /* holds dt (dtype_hold) until freed */
   unsigned char watch;     /* a nonblocking collective's step: when done, the
-                              rank's progress function runs (tsmpi_p2p_watch) */
+                              rank's progress function runs (coll_p2p_watch) */
   /* the call's arguments */
   void *buf;
   int count;
@@ -149,10 +149,10 @@ struct tsm_req {
   size_t cap;              /* receives: the buffer's bytes (count * type size) */
   void *contig;            /* receives: where those bytes lie if the type is
                               contiguous there, else NULL (unpacked) */
-  tsm_ranks *g;            /* active receives: comm's ranks (counted), to name
+  st_ranks *g;            /* active receives: comm's ranks (counted), to name
                               the source in the status */
-  /* RQ_KIND: its kind and its state (core.h: tsmpi_req_start) */
-  const tsmpi_kind *ops;
+  /* RQ_KIND: its kind and its state (core.h: req_start) */
+  const req_kind *ops;
   void *ext;
   /* the message path (engine.h: what is copied when) */
   unsigned char byref;     /* sends: the message goes by reference (mp_send_ref) */
@@ -165,9 +165,9 @@ struct tsm_req {
 
 /* ==== unexpected messages ================================================= */
 
-typedef struct tsm_msg tsm_msg;
-struct tsm_msg {
-  tsm_msg *next, *prev;
+typedef struct st_msg st_msg;
+struct st_msg {
+  st_msg *next, *prev;
   int src;                 /* world rank */
   int kind, ctx, tag;      /* the envelope */
   size_t len;
@@ -177,38 +177,38 @@ struct tsm_msg {
 
 /* ==== the rank ============================================================ */
 
-enum { TSM_LIVE = 1, TSM_FINALIZED = 2 };
+enum { ST_LIVE = 1, ST_FINALIZED = 2 };
 
-typedef struct tsm tsm;
-struct tsm {
-  int state;               /* TSM_LIVE */
+typedef struct st_rank st_rank;
+struct st_rank {
+  int state;               /* ST_LIVE */
   mp *self;
   int wrank, wsize;        /* in MPI_COMM_WORLD */
   int thread_level;        /* what MPI_Init_thread provided */
   /* communicators: MPI_COMM_WORLD, MPI_COMM_SELF, then created ones by slot */
-  tsm_comm world, selfc;
-  tsm_comm **comms;
+  st_comm world, selfc;
+  st_comm **comms;
   int ncomms;
   unsigned char pairs[CTX_PAIRS / 8];   /* context pairs in use: bit set */
   /* groups by slot (MPI_GROUP_EMPTY is predefined) */
-  tsm_ranks **groups;
+  st_ranks **groups;
   int ngroups;
-  tsm_ranks *empty;        /* MPI_GROUP_EMPTY */
+  st_ranks *empty;        /* MPI_GROUP_EMPTY */
   /* requests by slot, and the free ones */
-  tsm_req **reqs;
+  st_req **reqs;
   int nreqs;
-  tsm_req *freereq;
+  st_req *freereq;
   /* the matching engine (engine.c) */
-  tsm_req *posted, *posted_tail;   /* receives posted and not matched, in order */
+  st_req *posted, *posted_tail;   /* receives posted and not matched, in order */
   int posted_plain;                /* ... of those, the ones without a promise */
-  tsm_msg *unexp, *unexp_tail;     /* messages taken off mp and not matched, in order */
+  st_msg *unexp, *unexp_tail;     /* messages taken off mp and not matched, in order */
   long nunexp;
-  tsm_req *sync, *sync_tail;       /* synchronous sends waiting for their ack */
+  st_req *sync, *sync_tail;       /* synchronous sends waiting for their ack */
   mp_ref *held_ref;                /* a blocking call's send by reference, and its */
   void *held_tmp;                  /* packed copy, until settled (eng_hold) */
   int attr[8];             /* MPI_Comm_get_attr's values, by predefined key */
   /* matched probes' messages by slot (MPI_Mprobe), and the free slots */
-  tsm_msg **msgs;
+  st_msg **msgs;
   int nmsgs;
   /* a rank that polls without its clock moving (spin.h) */
   long spins;
@@ -220,80 +220,80 @@ struct tsm {
   /* MPI_Buffer_attach */
   void *bbuf;
   int bsize;
-  /* the nonblocking collectives' progress (tsmpi_set_progress) */
+  /* the nonblocking collectives' progress (coll_set_progress) */
   void (*progress)(void);
   int progress_due;        /* a watched request completed since it last ran */
   int in_progress;         /* it runs */
   /* the other parts' slots (core.h) */
-  void *part[TSMPI_PARTS];
-  void (*release[TSMPI_PARTS])(void *);
+  void *part[ST_PARTS];
+  void (*release[ST_PARTS])(void *);
   /* attribute keys and attributes (attr.c), error handlers and the
    * program's error classes and codes (errh.c), info objects (info.c) */
-  struct tsm_attrs *attrs;
-  struct tsm_errs *errs;
-  struct tsm_infos *infos;
+  struct attr_table *attrs;
+  struct errh_table *errs;
+  struct info_table *infos;
   int argc;                /* what MPI_Init was given (0 and NULL if nothing), */
   char **argv;             /* for MPI_INFO_ENV, made when first asked for */
 };
 
 /* The calling rank's state: NULL before MPI_Init, after MPI_Finalize and
  * outside a rank. */
-tsm *tsm_get(void);
+st_rank *st_get(void);
 
 /* The state for call fn, or the run ends: outside a rank, before MPI_Init or
  * after MPI_Finalize (a clear message, exit status 1). */
-tsm *tsm_need(const char *fn);
+st_rank *st_need(const char *fn);
 
 /* The rank ends here (the run was stopped: an MPI_Abort, a deadlock): its
  * state is released and mp_exit never returns. */
-_Noreturn void tsm_stopped(tsm *R);
+_Noreturn void st_stopped(st_rank *R);
 
 /* Release everything of the rank's state (MPI_Finalize, a stopped run). */
-void tsm_release(tsm *R);
+void st_release(st_rank *R);
 
 /* Communicator comm of R, or NULL (freed, null, not a communicator). */
-tsm_comm *tsm_comm_get(tsm *R, MPI_Comm comm);
+st_comm *st_comm_get(st_rank *R, MPI_Comm comm);
 
 /* The same for call fn on a communicator its caller has checked: a bad one
  * is a bug of the layer (the run ends). */
-tsm_comm *tsm_comm_must(tsm *R, MPI_Comm comm, const char *fn);
+st_comm *st_comm_must(st_rank *R, MPI_Comm comm, const char *fn);
 
 /* The rank in c of world rank w, or -1 if w is not in c. */
-int tsm_comm_rank_of(const tsm_comm *c, int w);
+int st_comm_rank_of(const st_comm *c, int w);
 
 /* Requests: a new one in the table (zeroed but for its slot), the one a
  * handle names (NULL if none), its handle, and its end (out of the table, or
  * just freed for one on the stack; a send by reference settled; a kind of
  * its own's free called, whose error class is returned). */
-tsm_req *tsm_req_new(tsm *R);
-tsm_req *tsm_req_get(tsm *R, MPI_Request h);
-static inline MPI_Request tsm_req_handle(const tsm_req *q) {
+st_req *st_req_new(st_rank *R);
+st_req *st_req_get(st_rank *R, MPI_Request h);
+static inline MPI_Request st_req_handle(const st_req *q) {
   return (MPI_Request)(HK_REQ << H_KIND_SHIFT | H_CREATED | q->slot);
 }
-int tsm_req_free(tsm *R, tsm_req *q);
+int st_req_free(st_rank *R, st_req *q);
 
 /* Matched probes' messages (MPI_Mprobe): a handle for m, and the message a
  * handle names, taken out of the table (NULL: none). */
-MPI_Message tsm_msg_handle(tsm *R, tsm_msg *m);
-tsm_msg *tsm_msg_take(tsm *R, MPI_Message h);
+MPI_Message st_msg_handle(st_rank *R, st_msg *m);
+st_msg *st_msg_take(st_rank *R, MPI_Message h);
 
 /* A blocking call's request, on its stack (the fill functions of pt2pt.h
  * set the rest; no zeroing of the whole struct on the fast path). */
-static inline void tsm_req_stack(tsm_req *q) {
+static inline void st_req_stack(st_req *q) {
   q->slot = -1;
   q->used = q->held = 0;
 }
 
 /* A communicator's context pair as a name for messages: "MPI_COMM_WORLD",
  * "MPI_COMM_SELF", "communicator N" (buf: at least 32 bytes). */
-const char *tsm_pair_name(int pair, char *buf);
+const char *st_pair_name(int pair, char *buf);
 
 /* The world rank of rank r of c (0 <= r < c->size). */
-static inline int tsm_world_of(const tsm_comm *c, int r) { return c->g->world ? c->g->world[r] : r; }
+static inline int st_world_of(const st_comm *c, int r) { return c->g->world ? c->g->world[r] : r; }
 
 /* Groups' ranks: a new set of n ranks (world NULL: the identity), counted. */
-tsm_ranks *tsm_ranks_new(int n, const int *world);
-void tsm_ranks_drop(tsm_ranks *g);
-int tsm_ranks_find(const tsm_ranks *g, int w);   /* rank of world rank w, or -1 */
+st_ranks *st_ranks_new(int n, const int *world);
+void st_ranks_drop(st_ranks *g);
+int st_ranks_find(const st_ranks *g, int w);   /* rank of world rank w, or -1 */
 
 #endif

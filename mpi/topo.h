@@ -3,7 +3,7 @@
  *
  * Not for programs.  A topology is made by MPI_Cart_create, MPI_Cart_sub, MPI_Graph_create,
  * MPI_Dist_graph_create(_adjacent) (topo_cart.c, topo_graph.c), hangs on its communicator
- * (core.h: tsmpi_comm_topo), never changes, and is shared, counted, by the communicator's
+ * (core.h: comm_topo), never changes, and is shared, counted, by the communicator's
  * duplicates (MPI_Comm_dup keeps it, MPI 3.1 section 7.1); it goes with the last of them.
  *
  * NEIGHBOURS (MPI 3.1 section 7.6).  Cartesian: for each dimension in turn, the rank one step
@@ -16,8 +16,8 @@
 
 #include "mpi/mpi.h"
 
-typedef struct tsmpi_topo tsmpi_topo;
-struct tsmpi_topo {
+typedef struct ptopo ptopo;
+struct ptopo {
   int refs;
   int kind;               /* MPI_CART, MPI_GRAPH, MPI_DIST_GRAPH */
   /* Cartesian */
@@ -35,28 +35,28 @@ struct tsmpi_topo {
 
 /* A new topology of kind (counted once, zeroed), and its arrays: n ints each, from src
  * (NULL: zeros) into memory of the topology's own. */
-tsmpi_topo *tsmpi_topo_new(int kind);
-int *tsmpi_topo_ints(const int *src, int n);
+ptopo *ptopo_new(int kind);
+int *ptopo_ints(const int *src, int n);
 
-void tsmpi_topo_ref(tsmpi_topo *t);
-void tsmpi_topo_unref(tsmpi_topo *t);   /* NULL: nothing */
+void ptopo_ref(ptopo *t);
+void ptopo_unref(ptopo *t);   /* NULL: nothing */
 
 /* The Cartesian coordinates of rank r (t Cartesian) into coords (ndims), and back (a
  * coordinate out of its dimension is taken round a periodic one; -1 if it lies outside a
  * non-periodic one). */
-void tsmpi_cart_coords(const tsmpi_topo *t, int r, int *coords);
-int tsmpi_cart_rank(const tsmpi_topo *t, const int *coords);
+void ptopo_cart_coords(const ptopo *t, int r, int *coords);
+int ptopo_cart_rank(const ptopo *t, const int *coords);
 
 /* The calling rank's (rank me of comm, of size size) neighbours of a Cartesian or graph
  * topology, filled in t's sources and dests. */
-void tsmpi_topo_neighbours(tsmpi_topo *t, int me);
+void ptopo_neighbours(ptopo *t, int me);
 
 /* comm (checked) an intracommunicator, as a topology's constructors need:
  * else MPI_ERR_COMM raised for fn. */
-int tsmpi_topo_intra_ok(MPI_Comm comm, const char *fn);
+int ptopo_intra_ok(MPI_Comm comm, const char *fn);
 
 /* The topology of comm for call fn, of any kind (kind 0) or that kind; NULL and the error
  * raised (MPI_ERR_TOPOLOGY) under comm's handler in *rc if it has none, or another. */
-tsmpi_topo *tsmpi_topo_of(MPI_Comm comm, const char *fn, int kind, int *rc);
+ptopo *ptopo_of(MPI_Comm comm, const char *fn, int kind, int *rc);
 
 #endif

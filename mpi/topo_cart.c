@@ -41,32 +41,32 @@ static long long grid_size(int ndims, const int *dims) {
 /* The checks of a Cartesian grid's arguments for fn on comm: its size in *nnodes. */
 static int grid_ok(MPI_Comm comm, const char *fn, int ndims, const int *dims, const int *periods,
                    long long *nnodes) {
-  if (ndims < 0) return tsmpi_raise(comm, MPI_ERR_DIMS, fn, "ndims %d < 0", ndims);
-  if (ndims > 0 && (!dims || !periods)) return tsmpi_raise(comm, MPI_ERR_ARG, fn, "NULL dims or periods argument");
+  if (ndims < 0) return err_comm_raise(comm, MPI_ERR_DIMS, fn, "ndims %d < 0", ndims);
+  if (ndims > 0 && (!dims || !periods)) return err_comm_raise(comm, MPI_ERR_ARG, fn, "NULL dims or periods argument");
   *nnodes = grid_size(ndims, dims);
   if (*nnodes == -1) {
     int i = 0;
     while (dims[i] > 0) i++;
-    return tsmpi_raise(comm, MPI_ERR_DIMS, fn, "dims[%d] = %d (must be > 0)", i, dims[i]);
+    return err_comm_raise(comm, MPI_ERR_DIMS, fn, "dims[%d] = %d (must be > 0)", i, dims[i]);
   }
-  if (*nnodes == -2) return tsmpi_raise(comm, MPI_ERR_DIMS, fn, "the grid has more than INT_MAX processes");
-  int size = tsmpi_comm_size(comm);
+  if (*nnodes == -2) return err_comm_raise(comm, MPI_ERR_DIMS, fn, "the grid has more than INT_MAX processes");
+  int size = comm_size(comm);
   if (*nnodes > size)
-    return tsmpi_raise(comm, MPI_ERR_ARG, fn, "the grid has %lld processes, %s only %d", *nnodes,
-                       tsmpi_comm_name(comm), size);
+    return err_comm_raise(comm, MPI_ERR_ARG, fn, "the grid has %lld processes, %s only %d", *nnodes,
+                          comm_get_name(comm), size);
   return MPI_SUCCESS;
 }
 
 /* The Cartesian topology of (ndims, dims, periods) for the calling rank, rank me of it, on
  * newcomm. */
 static void attach(MPI_Comm newcomm, int ndims, const int *dims, const int *periods) {
-  tsmpi_topo *t = tsmpi_topo_new(MPI_CART);
+  ptopo *t = ptopo_new(MPI_CART);
   t->ndims = ndims;
-  t->dims = tsmpi_topo_ints(dims, ndims);
-  t->periods = tsmpi_topo_ints(NULL, ndims);
+  t->dims = ptopo_ints(dims, ndims);
+  t->periods = ptopo_ints(NULL, ndims);
   for (int i = 0; i < ndims; i++) t->periods[i] = periods[i] != 0;
-  tsmpi_topo_neighbours(t, tsmpi_comm_rank(newcomm));
-  tsmpi_comm_set_topo(newcomm, t);
+  ptopo_neighbours(t, comm_rank(newcomm));
+  comm_set_topo(newcomm, t);
 }
 
 int PMPI_Cart_create(MPI_Comm comm_old, int ndims, const int dims[], const int periods[], int reorder,
@@ -75,11 +75,11 @@ int PMPI_Cart_create(MPI_Comm comm_old, int ndims, const int dims[], const int p
   long long nnodes;
   int rc;
   (void)reorder;   /* never reordered: see the top of the file */
-  if ((rc = tsmpi_comm_check(comm_old, fn)) || (rc = tsmpi_topo_intra_ok(comm_old, fn)) ||
+  if ((rc = comm_check(comm_old, fn)) || (rc = ptopo_intra_ok(comm_old, fn)) ||
       (rc = grid_ok(comm_old, fn, ndims, dims, periods, &nnodes)))
     return rc;
-  if (!comm_cart) return tsmpi_raise(comm_old, MPI_ERR_ARG, fn, "NULL comm_cart argument");
-  int me = tsmpi_comm_rank(comm_old);
+  if (!comm_cart) return err_comm_raise(comm_old, MPI_ERR_ARG, fn, "NULL comm_cart argument");
+  int me = comm_rank(comm_old);
   if ((rc = PMPI_Comm_split(comm_old, me < nnodes ? 0 : MPI_UNDEFINED, me, comm_cart))) return rc;
   if (*comm_cart != MPI_COMM_NULL) attach(*comm_cart, ndims, dims, periods);
   return MPI_SUCCESS;
@@ -87,15 +87,15 @@ int PMPI_Cart_create(MPI_Comm comm_old, int ndims, const int dims[], const int p
 
 int PMPI_Cart_sub(MPI_Comm comm, const int remain_dims[], MPI_Comm *newcomm) {
   static const char fn[] = "MPI_Cart_sub";
-  int rc = tsmpi_comm_check(comm, fn);
+  int rc = comm_check(comm, fn);
   if (rc) return rc;
-  tsmpi_topo *t = tsmpi_topo_of(comm, fn, MPI_CART, &rc);
+  ptopo *t = ptopo_of(comm, fn, MPI_CART, &rc);
   if (!t) return rc;
-  if (t->ndims > 0 && !remain_dims) return tsmpi_raise(comm, MPI_ERR_ARG, fn, "NULL remain_dims argument");
-  if (!newcomm) return tsmpi_raise(comm, MPI_ERR_ARG, fn, "NULL newcomm argument");
-  int nd = t->ndims, *c = tsmpi_topo_ints(NULL, nd), *dims = tsmpi_topo_ints(NULL, nd),
-      *periods = tsmpi_topo_ints(NULL, nd), kept = 0, color = 0, key = 0;
-  tsmpi_cart_coords(t, tsmpi_comm_rank(comm), c);
+  if (t->ndims > 0 && !remain_dims) return err_comm_raise(comm, MPI_ERR_ARG, fn, "NULL remain_dims argument");
+  if (!newcomm) return err_comm_raise(comm, MPI_ERR_ARG, fn, "NULL newcomm argument");
+  int nd = t->ndims, *c = ptopo_ints(NULL, nd), *dims = ptopo_ints(NULL, nd),
+      *periods = ptopo_ints(NULL, nd), kept = 0, color = 0, key = 0;
+  ptopo_cart_coords(t, comm_rank(comm), c);
   /* The ranks with the same coordinates in the dimensions dropped make one
    * communicator, ordered by their coordinates in those kept. */
   for (int d = 0; d < nd; d++) {
@@ -109,7 +109,7 @@ int PMPI_Cart_sub(MPI_Comm comm, const int remain_dims[], MPI_Comm *newcomm) {
   }
   /* No dimension kept: a grid of one process, rank 0's (as MPICH: the
    * others get MPI_COMM_NULL). */
-  if (!kept) color = tsmpi_comm_rank(comm) == 0 ? 0 : MPI_UNDEFINED;
+  if (!kept) color = comm_rank(comm) == 0 ? 0 : MPI_UNDEFINED;
   rc = PMPI_Comm_split(comm, color, key, newcomm);
   if (!rc && *newcomm != MPI_COMM_NULL) attach(*newcomm, kept, dims, periods);
   free(c);
@@ -122,9 +122,9 @@ int PMPI_Cart_map(MPI_Comm comm, int ndims, const int dims[], const int periods[
   static const char fn[] = "MPI_Cart_map";
   long long nnodes;
   int rc;
-  if ((rc = tsmpi_comm_check(comm, fn)) || (rc = grid_ok(comm, fn, ndims, dims, periods, &nnodes))) return rc;
-  if (!newrank) return tsmpi_raise(comm, MPI_ERR_ARG, fn, "NULL newrank argument");
-  int me = tsmpi_comm_rank(comm);
+  if ((rc = comm_check(comm, fn)) || (rc = grid_ok(comm, fn, ndims, dims, periods, &nnodes))) return rc;
+  if (!newrank) return err_comm_raise(comm, MPI_ERR_ARG, fn, "NULL newrank argument");
+  int me = comm_rank(comm);
   *newrank = me < nnodes ? me : MPI_UNDEFINED;
   return MPI_SUCCESS;
 }
@@ -133,26 +133,26 @@ int PMPI_Cart_map(MPI_Comm comm, int ndims, const int dims[], const int periods[
 
 int PMPI_Cartdim_get(MPI_Comm comm, int *ndims) {
   static const char fn[] = "MPI_Cartdim_get";
-  int rc = tsmpi_comm_check(comm, fn);
+  int rc = comm_check(comm, fn);
   if (rc) return rc;
-  tsmpi_topo *t = tsmpi_topo_of(comm, fn, MPI_CART, &rc);
+  ptopo *t = ptopo_of(comm, fn, MPI_CART, &rc);
   if (!t) return rc;
-  if (!ndims) return tsmpi_raise(comm, MPI_ERR_ARG, fn, "NULL ndims argument");
+  if (!ndims) return err_comm_raise(comm, MPI_ERR_ARG, fn, "NULL ndims argument");
   *ndims = t->ndims;
   return MPI_SUCCESS;
 }
 
 int PMPI_Cart_get(MPI_Comm comm, int maxdims, int dims[], int periods[], int coords[]) {
   static const char fn[] = "MPI_Cart_get";
-  int rc = tsmpi_comm_check(comm, fn);
+  int rc = comm_check(comm, fn);
   if (rc) return rc;
-  tsmpi_topo *t = tsmpi_topo_of(comm, fn, MPI_CART, &rc);
+  ptopo *t = ptopo_of(comm, fn, MPI_CART, &rc);
   if (!t) return rc;
   int n = maxdims < t->ndims ? maxdims : t->ndims;
   if (n > 0 && (!dims || !periods || !coords))
-    return tsmpi_raise(comm, MPI_ERR_ARG, fn, "NULL dims, periods or coords argument");
-  int *c = tsmpi_topo_ints(NULL, t->ndims);
-  tsmpi_cart_coords(t, tsmpi_comm_rank(comm), c);
+    return err_comm_raise(comm, MPI_ERR_ARG, fn, "NULL dims, periods or coords argument");
+  int *c = ptopo_ints(NULL, t->ndims);
+  ptopo_cart_coords(t, comm_rank(comm), c);
   for (int i = 0; i < n; i++) {
     dims[i] = t->dims[i];
     periods[i] = t->periods[i];
@@ -164,33 +164,33 @@ int PMPI_Cart_get(MPI_Comm comm, int maxdims, int dims[], int periods[], int coo
 
 int PMPI_Cart_coords(MPI_Comm comm, int rank, int maxdims, int coords[]) {
   static const char fn[] = "MPI_Cart_coords";
-  int rc = tsmpi_comm_check(comm, fn);
+  int rc = comm_check(comm, fn);
   if (rc) return rc;
-  tsmpi_topo *t = tsmpi_topo_of(comm, fn, MPI_CART, &rc);
+  ptopo *t = ptopo_of(comm, fn, MPI_CART, &rc);
   if (!t) return rc;
-  if (rank < 0 || rank >= tsmpi_comm_size(comm))
-    return tsmpi_raise(comm, MPI_ERR_RANK, fn, "invalid rank %d (%s has %d ranks)", rank, tsmpi_comm_name(comm),
-                       tsmpi_comm_size(comm));
+  if (rank < 0 || rank >= comm_size(comm))
+    return err_comm_raise(comm, MPI_ERR_RANK, fn, "invalid rank %d (%s has %d ranks)", rank, comm_get_name(comm),
+                          comm_size(comm));
   if (maxdims < t->ndims)
-    return tsmpi_raise(comm, MPI_ERR_ARG, fn, "maxdims %d < the topology's %d dimensions", maxdims, t->ndims);
-  if (t->ndims > 0 && !coords) return tsmpi_raise(comm, MPI_ERR_ARG, fn, "NULL coords argument");
-  tsmpi_cart_coords(t, rank, coords);
+    return err_comm_raise(comm, MPI_ERR_ARG, fn, "maxdims %d < the topology's %d dimensions", maxdims, t->ndims);
+  if (t->ndims > 0 && !coords) return err_comm_raise(comm, MPI_ERR_ARG, fn, "NULL coords argument");
+  ptopo_cart_coords(t, rank, coords);
   return MPI_SUCCESS;
 }
 
 int PMPI_Cart_rank(MPI_Comm comm, const int coords[], int *rank) {
   static const char fn[] = "MPI_Cart_rank";
-  int rc = tsmpi_comm_check(comm, fn);
+  int rc = comm_check(comm, fn);
   if (rc) return rc;
-  tsmpi_topo *t = tsmpi_topo_of(comm, fn, MPI_CART, &rc);
+  ptopo *t = ptopo_of(comm, fn, MPI_CART, &rc);
   if (!t) return rc;
-  if (!rank || (t->ndims > 0 && !coords)) return tsmpi_raise(comm, MPI_ERR_ARG, fn, "NULL coords or rank argument");
-  int r = tsmpi_cart_rank(t, coords);
+  if (!rank || (t->ndims > 0 && !coords)) return err_comm_raise(comm, MPI_ERR_ARG, fn, "NULL coords or rank argument");
+  int r = ptopo_cart_rank(t, coords);
   if (r < 0) {
     int d = 0;
     while (t->periods[d] || (coords[d] >= 0 && coords[d] < t->dims[d])) d++;
-    return tsmpi_raise(comm, MPI_ERR_ARG, fn, "coords[%d] = %d is outside the non-periodic dimension of %d", d,
-                       coords[d], t->dims[d]);
+    return err_comm_raise(comm, MPI_ERR_ARG, fn, "coords[%d] = %d is outside the non-periodic dimension of %d", d,
+                          coords[d], t->dims[d]);
   }
   *rank = r;
   return MPI_SUCCESS;
@@ -198,18 +198,18 @@ int PMPI_Cart_rank(MPI_Comm comm, const int coords[], int *rank) {
 
 int PMPI_Cart_shift(MPI_Comm comm, int direction, int disp, int *rank_source, int *rank_dest) {
   static const char fn[] = "MPI_Cart_shift";
-  int rc = tsmpi_comm_check(comm, fn);
+  int rc = comm_check(comm, fn);
   if (rc) return rc;
-  tsmpi_topo *t = tsmpi_topo_of(comm, fn, MPI_CART, &rc);
+  ptopo *t = ptopo_of(comm, fn, MPI_CART, &rc);
   if (!t) return rc;
-  if (!rank_source || !rank_dest) return tsmpi_raise(comm, MPI_ERR_ARG, fn, "NULL rank_source or rank_dest argument");
+  if (!rank_source || !rank_dest) return err_comm_raise(comm, MPI_ERR_ARG, fn, "NULL rank_source or rank_dest argument");
   if (direction < 0 || direction >= t->ndims)
-    return tsmpi_raise(comm, MPI_ERR_ARG, fn, "direction %d is not a dimension (0 .. %d)", direction, t->ndims - 1);
-  int *c = tsmpi_topo_ints(NULL, t->ndims), me = tsmpi_comm_rank(comm);
+    return err_comm_raise(comm, MPI_ERR_ARG, fn, "direction %d is not a dimension (0 .. %d)", direction, t->ndims - 1);
+  int *c = ptopo_ints(NULL, t->ndims), me = comm_rank(comm);
   for (int k = 0; k < 2; k++) {
-    tsmpi_cart_coords(t, me, c);
+    ptopo_cart_coords(t, me, c);
     c[direction] += k ? disp : -disp;
-    int r = tsmpi_cart_rank(t, c);
+    int r = ptopo_cart_rank(t, c);
     *(k ? rank_dest : rank_source) = r < 0 ? MPI_PROC_NULL : r;
   }
   free(c);
@@ -284,23 +284,23 @@ static void balanced(const divisors *D, int m, int j, int *out) {
 int PMPI_Dims_create(int nnodes, int ndims, int dims[]) {
   static const char fn[] = "MPI_Dims_create";
   MPI_Comm w = MPI_COMM_WORLD;
-  if (nnodes <= 0) return tsmpi_raise(w, MPI_ERR_ARG, fn, "nnodes %d (must be > 0)", nnodes);
-  if (ndims < 0) return tsmpi_raise(w, MPI_ERR_DIMS, fn, "ndims %d < 0", ndims);
-  if (ndims > 0 && !dims) return tsmpi_raise(w, MPI_ERR_ARG, fn, "NULL dims argument");
+  if (nnodes <= 0) return err_comm_raise(w, MPI_ERR_ARG, fn, "nnodes %d (must be > 0)", nnodes);
+  if (ndims < 0) return err_comm_raise(w, MPI_ERR_DIMS, fn, "ndims %d < 0", ndims);
+  if (ndims > 0 && !dims) return err_comm_raise(w, MPI_ERR_ARG, fn, "NULL dims argument");
   long long fixed = 1;
   int free_dims = 0;
   for (int i = 0; i < ndims; i++) {
-    if (dims[i] < 0) return tsmpi_raise(w, MPI_ERR_DIMS, fn, "dims[%d] = %d < 0", i, dims[i]);
+    if (dims[i] < 0) return err_comm_raise(w, MPI_ERR_DIMS, fn, "dims[%d] = %d < 0", i, dims[i]);
     if (dims[i] == 0)
       free_dims++;
     else if ((fixed *= dims[i]) > nnodes)
       fixed = (long long)nnodes + 1;
   }
   if (nnodes % fixed)
-    return tsmpi_raise(w, MPI_ERR_DIMS, fn, "the dimensions given do not divide nnodes %d", nnodes);
+    return err_comm_raise(w, MPI_ERR_DIMS, fn, "the dimensions given do not divide nnodes %d", nnodes);
   if (!free_dims) {
     if (fixed != nnodes)
-      return tsmpi_raise(w, MPI_ERR_DIMS, fn, "the dimensions given make %lld processes, not %d", fixed, nnodes);
+      return err_comm_raise(w, MPI_ERR_DIMS, fn, "the dimensions given make %lld processes, not %d", fixed, nnodes);
     return MPI_SUCCESS;
   }
   int m = (int)(nnodes / fixed), nlow = 0, nd = 0;
@@ -309,7 +309,7 @@ int PMPI_Dims_create(int nnodes, int ndims, int dims[]) {
   if (!divs || !out) {
     free(divs);
     free(out);
-    return tsmpi_raise(w, MPI_ERR_NO_MEM, fn, "out of memory");
+    return err_comm_raise(w, MPI_ERR_NO_MEM, fn, "out of memory");
   }
   /* The divisors of m, ascending: those up to its root, then their cofactors. */
   for (long long d = 1; d * d <= m; d++)

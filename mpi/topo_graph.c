@@ -21,19 +21,19 @@
 
 /* The checks of a graph's arguments for fn on comm. */
 static int graph_ok(MPI_Comm comm, const char *fn, int nnodes, const int *index, const int *edges) {
-  if (nnodes < 0) return tsmpi_raise(comm, MPI_ERR_ARG, fn, "nnodes %d < 0", nnodes);
-  if (nnodes > tsmpi_comm_size(comm))
-    return tsmpi_raise(comm, MPI_ERR_ARG, fn, "the graph has %d nodes, %s only %d ranks", nnodes,
-                       tsmpi_comm_name(comm), tsmpi_comm_size(comm));
+  if (nnodes < 0) return err_comm_raise(comm, MPI_ERR_ARG, fn, "nnodes %d < 0", nnodes);
+  if (nnodes > comm_size(comm))
+    return err_comm_raise(comm, MPI_ERR_ARG, fn, "the graph has %d nodes, %s only %d ranks", nnodes,
+                          comm_get_name(comm), comm_size(comm));
   if (nnodes == 0) return MPI_SUCCESS;
-  if (!index) return tsmpi_raise(comm, MPI_ERR_ARG, fn, "NULL index argument");
+  if (!index) return err_comm_raise(comm, MPI_ERR_ARG, fn, "NULL index argument");
   for (int i = 0; i < nnodes; i++)
     if (index[i] < (i ? index[i - 1] : 0))
-      return tsmpi_raise(comm, MPI_ERR_ARG, fn, "index[%d] = %d is less than the one before", i, index[i]);
-  if (index[nnodes - 1] > 0 && !edges) return tsmpi_raise(comm, MPI_ERR_ARG, fn, "NULL edges argument");
+      return err_comm_raise(comm, MPI_ERR_ARG, fn, "index[%d] = %d is less than the one before", i, index[i]);
+  if (index[nnodes - 1] > 0 && !edges) return err_comm_raise(comm, MPI_ERR_ARG, fn, "NULL edges argument");
   for (int k = 0; k < index[nnodes - 1]; k++)
     if (edges[k] < 0 || edges[k] >= nnodes)
-      return tsmpi_raise(comm, MPI_ERR_ARG, fn, "edges[%d] = %d is not a node (0 .. %d)", k, edges[k], nnodes - 1);
+      return err_comm_raise(comm, MPI_ERR_ARG, fn, "edges[%d] = %d is not a node (0 .. %d)", k, edges[k], nnodes - 1);
   return MPI_SUCCESS;
 }
 
@@ -42,39 +42,39 @@ int PMPI_Graph_create(MPI_Comm comm_old, int nnodes, const int indx[], const int
   static const char fn[] = "MPI_Graph_create";
   int rc;
   (void)reorder;
-  if ((rc = tsmpi_comm_check(comm_old, fn)) || (rc = tsmpi_topo_intra_ok(comm_old, fn)) ||
+  if ((rc = comm_check(comm_old, fn)) || (rc = ptopo_intra_ok(comm_old, fn)) ||
       (rc = graph_ok(comm_old, fn, nnodes, indx, edges)))
     return rc;
-  if (!comm_graph) return tsmpi_raise(comm_old, MPI_ERR_ARG, fn, "NULL comm_graph argument");
-  int me = tsmpi_comm_rank(comm_old);
+  if (!comm_graph) return err_comm_raise(comm_old, MPI_ERR_ARG, fn, "NULL comm_graph argument");
+  int me = comm_rank(comm_old);
   if ((rc = PMPI_Comm_split(comm_old, me < nnodes ? 0 : MPI_UNDEFINED, me, comm_graph))) return rc;
   if (*comm_graph == MPI_COMM_NULL) return MPI_SUCCESS;
-  tsmpi_topo *t = tsmpi_topo_new(MPI_GRAPH);
+  ptopo *t = ptopo_new(MPI_GRAPH);
   t->nnodes = nnodes;
-  t->index = tsmpi_topo_ints(indx, nnodes);
-  t->edges = tsmpi_topo_ints(edges, indx[nnodes - 1]);
-  tsmpi_topo_neighbours(t, me);
-  tsmpi_comm_set_topo(*comm_graph, t);
+  t->index = ptopo_ints(indx, nnodes);
+  t->edges = ptopo_ints(edges, indx[nnodes - 1]);
+  ptopo_neighbours(t, me);
+  comm_set_topo(*comm_graph, t);
   return MPI_SUCCESS;
 }
 
 int PMPI_Graph_map(MPI_Comm comm, int nnodes, const int indx[], const int edges[], int *newrank) {
   static const char fn[] = "MPI_Graph_map";
   int rc;
-  if ((rc = tsmpi_comm_check(comm, fn)) || (rc = graph_ok(comm, fn, nnodes, indx, edges))) return rc;
-  if (!newrank) return tsmpi_raise(comm, MPI_ERR_ARG, fn, "NULL newrank argument");
-  int me = tsmpi_comm_rank(comm);
+  if ((rc = comm_check(comm, fn)) || (rc = graph_ok(comm, fn, nnodes, indx, edges))) return rc;
+  if (!newrank) return err_comm_raise(comm, MPI_ERR_ARG, fn, "NULL newrank argument");
+  int me = comm_rank(comm);
   *newrank = me < nnodes ? me : MPI_UNDEFINED;
   return MPI_SUCCESS;
 }
 
 int PMPI_Graphdims_get(MPI_Comm comm, int *nnodes, int *nedges) {
   static const char fn[] = "MPI_Graphdims_get";
-  int rc = tsmpi_comm_check(comm, fn);
+  int rc = comm_check(comm, fn);
   if (rc) return rc;
-  tsmpi_topo *t = tsmpi_topo_of(comm, fn, MPI_GRAPH, &rc);
+  ptopo *t = ptopo_of(comm, fn, MPI_GRAPH, &rc);
   if (!t) return rc;
-  if (!nnodes || !nedges) return tsmpi_raise(comm, MPI_ERR_ARG, fn, "NULL nnodes or nedges argument");
+  if (!nnodes || !nedges) return err_comm_raise(comm, MPI_ERR_ARG, fn, "NULL nnodes or nedges argument");
   *nnodes = t->nnodes;
   *nedges = t->index[t->nnodes - 1];
   return MPI_SUCCESS;
@@ -82,24 +82,24 @@ int PMPI_Graphdims_get(MPI_Comm comm, int *nnodes, int *nedges) {
 
 int PMPI_Graph_get(MPI_Comm comm, int maxindex, int maxedges, int indx[], int edges[]) {
   static const char fn[] = "MPI_Graph_get";
-  int rc = tsmpi_comm_check(comm, fn);
+  int rc = comm_check(comm, fn);
   if (rc) return rc;
-  tsmpi_topo *t = tsmpi_topo_of(comm, fn, MPI_GRAPH, &rc);
+  ptopo *t = ptopo_of(comm, fn, MPI_GRAPH, &rc);
   if (!t) return rc;
   int ni = maxindex < t->nnodes ? maxindex : t->nnodes, ne = t->index[t->nnodes - 1];
   if (maxedges < ne) ne = maxedges;
-  if ((ni > 0 && !indx) || (ne > 0 && !edges)) return tsmpi_raise(comm, MPI_ERR_ARG, fn, "NULL index or edges argument");
+  if ((ni > 0 && !indx) || (ne > 0 && !edges)) return err_comm_raise(comm, MPI_ERR_ARG, fn, "NULL index or edges argument");
   for (int i = 0; i < ni; i++) indx[i] = t->index[i];
   for (int k = 0; k < ne; k++) edges[k] = t->edges[k];
   return MPI_SUCCESS;
 }
 
 /* A graph's node r of comm (checked: fn's error raised in *rc). */
-static tsmpi_topo *graph_node(MPI_Comm comm, const char *fn, int r, int *rc) {
-  if ((*rc = tsmpi_comm_check(comm, fn))) return NULL;
-  tsmpi_topo *t = tsmpi_topo_of(comm, fn, MPI_GRAPH, rc);
+static ptopo *graph_node(MPI_Comm comm, const char *fn, int r, int *rc) {
+  if ((*rc = comm_check(comm, fn))) return NULL;
+  ptopo *t = ptopo_of(comm, fn, MPI_GRAPH, rc);
   if (t && (r < 0 || r >= t->nnodes)) {
-    *rc = tsmpi_raise(comm, MPI_ERR_RANK, fn, "invalid rank %d (the graph has %d nodes)", r, t->nnodes);
+    *rc = err_comm_raise(comm, MPI_ERR_RANK, fn, "invalid rank %d (the graph has %d nodes)", r, t->nnodes);
     return NULL;
   }
   return t;
@@ -108,9 +108,9 @@ static tsmpi_topo *graph_node(MPI_Comm comm, const char *fn, int r, int *rc) {
 int PMPI_Graph_neighbors_count(MPI_Comm comm, int rank, int *nneighbors) {
   static const char fn[] = "MPI_Graph_neighbors_count";
   int rc;
-  tsmpi_topo *t = graph_node(comm, fn, rank, &rc);
+  ptopo *t = graph_node(comm, fn, rank, &rc);
   if (!t) return rc;
-  if (!nneighbors) return tsmpi_raise(comm, MPI_ERR_ARG, fn, "NULL nneighbors argument");
+  if (!nneighbors) return err_comm_raise(comm, MPI_ERR_ARG, fn, "NULL nneighbors argument");
   *nneighbors = t->index[rank] - (rank ? t->index[rank - 1] : 0);
   return MPI_SUCCESS;
 }
@@ -118,11 +118,11 @@ int PMPI_Graph_neighbors_count(MPI_Comm comm, int rank, int *nneighbors) {
 int PMPI_Graph_neighbors(MPI_Comm comm, int rank, int maxneighbors, int neighbors[]) {
   static const char fn[] = "MPI_Graph_neighbors";
   int rc;
-  tsmpi_topo *t = graph_node(comm, fn, rank, &rc);
+  ptopo *t = graph_node(comm, fn, rank, &rc);
   if (!t) return rc;
   int lo = rank ? t->index[rank - 1] : 0, n = t->index[rank] - lo;
   if (maxneighbors < n) n = maxneighbors;
-  if (n > 0 && !neighbors) return tsmpi_raise(comm, MPI_ERR_ARG, fn, "NULL neighbors argument");
+  if (n > 0 && !neighbors) return err_comm_raise(comm, MPI_ERR_ARG, fn, "NULL neighbors argument");
   for (int k = 0; k < n; k++) neighbors[k] = t->edges[lo + k];
   return MPI_SUCCESS;
 }
@@ -131,13 +131,13 @@ int PMPI_Graph_neighbors(MPI_Comm comm, int rank, int maxneighbors, int neighbor
 
 /* n ranks of comm in list (what: "sources"), each a rank of it. */
 static int ranks_ok(MPI_Comm comm, const char *fn, const char *what, const int *list, int n) {
-  if (n < 0) return tsmpi_raise(comm, MPI_ERR_ARG, fn, "a negative count of %s (%d)", what, n);
-  if (n > 0 && !list) return tsmpi_raise(comm, MPI_ERR_ARG, fn, "NULL %s argument", what);
-  int size = tsmpi_comm_size(comm);
+  if (n < 0) return err_comm_raise(comm, MPI_ERR_ARG, fn, "a negative count of %s (%d)", what, n);
+  if (n > 0 && !list) return err_comm_raise(comm, MPI_ERR_ARG, fn, "NULL %s argument", what);
+  int size = comm_size(comm);
   for (int i = 0; i < n; i++)
     if (list[i] < 0 || list[i] >= size)
-      return tsmpi_raise(comm, MPI_ERR_RANK, fn, "%s[%d] = %d is not a rank of %s", what, i, list[i],
-                         tsmpi_comm_name(comm));
+      return err_comm_raise(comm, MPI_ERR_RANK, fn, "%s[%d] = %d is not a rank of %s", what, i, list[i],
+                            comm_get_name(comm));
   return MPI_SUCCESS;
 }
 
@@ -148,20 +148,20 @@ static int weighted(const int *w) { return w != MPI_UNWEIGHTED; }
  * MPI_UNWEIGHTED, an error for a NULL array or a negative weight. */
 static int weights_ok(MPI_Comm comm, const char *fn, const char *what, const int *w, int n) {
   if (!weighted(w) || n == 0) return MPI_SUCCESS;
-  if (!w || w == MPI_WEIGHTS_EMPTY) return tsmpi_raise(comm, MPI_ERR_ARG, fn, "no %s for %d edges", what, n);
+  if (!w || w == MPI_WEIGHTS_EMPTY) return err_comm_raise(comm, MPI_ERR_ARG, fn, "no %s for %d edges", what, n);
   for (int i = 0; i < n; i++)
-    if (w[i] < 0) return tsmpi_raise(comm, MPI_ERR_ARG, fn, "%s[%d] = %d < 0", what, i, w[i]);
+    if (w[i] < 0) return err_comm_raise(comm, MPI_ERR_ARG, fn, "%s[%d] = %d < 0", what, i, w[i]);
   return MPI_SUCCESS;
 }
 
 /* The new communicator (a duplicate of comm_old) with t. */
-static int dist_attach(MPI_Comm comm_old, tsmpi_topo *t, MPI_Comm *out) {
+static int dist_attach(MPI_Comm comm_old, ptopo *t, MPI_Comm *out) {
   int rc = PMPI_Comm_dup(comm_old, out);
   if (rc) {
-    tsmpi_topo_unref(t);
+    ptopo_unref(t);
     return rc;
   }
-  tsmpi_comm_set_topo(*out, t);
+  comm_set_topo(*out, t);
   return MPI_SUCCESS;
 }
 
@@ -171,22 +171,22 @@ int PMPI_Dist_graph_create_adjacent(MPI_Comm comm_old, int indegree, const int s
   static const char fn[] = "MPI_Dist_graph_create_adjacent";
   int rc;
   (void)info, (void)reorder;
-  if ((rc = tsmpi_comm_check(comm_old, fn)) || (rc = tsmpi_topo_intra_ok(comm_old, fn)) ||
+  if ((rc = comm_check(comm_old, fn)) || (rc = ptopo_intra_ok(comm_old, fn)) ||
       (rc = ranks_ok(comm_old, fn, "sources", sources, indegree)) ||
       (rc = ranks_ok(comm_old, fn, "destinations", destinations, outdegree)) ||
       (rc = weights_ok(comm_old, fn, "sourceweights", sourceweights, indegree)) ||
       (rc = weights_ok(comm_old, fn, "destweights", destweights, outdegree)))
     return rc;
-  if (!comm_dist_graph) return tsmpi_raise(comm_old, MPI_ERR_ARG, fn, "NULL comm_dist_graph argument");
-  tsmpi_topo *t = tsmpi_topo_new(MPI_DIST_GRAPH);
+  if (!comm_dist_graph) return err_comm_raise(comm_old, MPI_ERR_ARG, fn, "NULL comm_dist_graph argument");
+  ptopo *t = ptopo_new(MPI_DIST_GRAPH);
   t->indeg = indegree;
   t->outdeg = outdegree;
-  t->sources = tsmpi_topo_ints(sources, indegree);
-  t->dests = tsmpi_topo_ints(destinations, outdegree);
+  t->sources = ptopo_ints(sources, indegree);
+  t->dests = ptopo_ints(destinations, outdegree);
   t->weighted = weighted(sourceweights) && weighted(destweights);
   if (t->weighted) {
-    t->sweights = tsmpi_topo_ints(indegree ? sourceweights : NULL, indegree);
-    t->dweights = tsmpi_topo_ints(outdegree ? destweights : NULL, outdegree);
+    t->sweights = ptopo_ints(indegree ? sourceweights : NULL, indegree);
+    t->dweights = ptopo_ints(outdegree ? destweights : NULL, outdegree);
   }
   return dist_attach(comm_old, t, comm_dist_graph);
 }
@@ -197,30 +197,30 @@ int PMPI_Dist_graph_create(MPI_Comm comm_old, int n, const int sources[], const 
   static const char fn[] = "MPI_Dist_graph_create";
   int rc;
   (void)info, (void)reorder;
-  if ((rc = tsmpi_comm_check(comm_old, fn)) || (rc = tsmpi_topo_intra_ok(comm_old, fn)) ||
+  if ((rc = comm_check(comm_old, fn)) || (rc = ptopo_intra_ok(comm_old, fn)) ||
       (rc = ranks_ok(comm_old, fn, "sources", sources, n)))
     return rc;
-  if (n > 0 && !degrees) return tsmpi_raise(comm_old, MPI_ERR_ARG, fn, "NULL degrees argument");
+  if (n > 0 && !degrees) return err_comm_raise(comm_old, MPI_ERR_ARG, fn, "NULL degrees argument");
   long long nedges = 0;
   for (int i = 0; i < n; i++) {
-    if (degrees[i] < 0) return tsmpi_raise(comm_old, MPI_ERR_ARG, fn, "degrees[%d] = %d < 0", i, degrees[i]);
+    if (degrees[i] < 0) return err_comm_raise(comm_old, MPI_ERR_ARG, fn, "degrees[%d] = %d < 0", i, degrees[i]);
     nedges += degrees[i];
   }
-  if (nedges > 0x7fffffff / 3) return tsmpi_raise(comm_old, MPI_ERR_ARG, fn, "%lld edges", nedges);
+  if (nedges > 0x7fffffff / 3) return err_comm_raise(comm_old, MPI_ERR_ARG, fn, "%lld edges", nedges);
   if ((rc = ranks_ok(comm_old, fn, "destinations", destinations, (int)nedges)) ||
       (rc = weights_ok(comm_old, fn, "weights", weights, (int)nedges)))
     return rc;
-  if (!comm_dist_graph) return tsmpi_raise(comm_old, MPI_ERR_ARG, fn, "NULL comm_dist_graph argument");
+  if (!comm_dist_graph) return err_comm_raise(comm_old, MPI_ERR_ARG, fn, "NULL comm_dist_graph argument");
   /* Every edge (s, d, w) goes to s (for its destinations) and to d (for
    * its sources): three ints each, in the order given, to ranks in turn. */
-  int size = tsmpi_comm_size(comm_old), me = tsmpi_comm_rank(comm_old), w = weighted(weights);
+  int size = comm_size(comm_old), me = comm_rank(comm_old), w = weighted(weights);
   int *scount = calloc(4 * (size_t)size, sizeof *scount), *sdispl = scount + size, *rcount = sdispl + size,
       *rdispl = rcount + size;
   int *sbuf = malloc((6 * (size_t)nedges + 1) * sizeof *sbuf), *rbuf = NULL;
   if (!scount || !sbuf) {
     free(scount);
     free(sbuf);
-    return tsmpi_raise(comm_old, MPI_ERR_NO_MEM, fn, "out of memory");
+    return err_comm_raise(comm_old, MPI_ERR_NO_MEM, fn, "out of memory");
   }
   for (int pass = 0; pass < 2; pass++) {   /* counts, then the edges in place */
     int k = 0, *at = pass ? rcount : NULL;
@@ -252,11 +252,11 @@ int PMPI_Dist_graph_create(MPI_Comm comm_old, int n, const int sources[], const 
     total += rcount[r];
   }
   if (!(rbuf = malloc(((size_t)total + 1) * sizeof *rbuf))) {
-    rc = tsmpi_raise(comm_old, MPI_ERR_NO_MEM, fn, "out of memory");
+    rc = err_comm_raise(comm_old, MPI_ERR_NO_MEM, fn, "out of memory");
     goto out;
   }
   if ((rc = PMPI_Alltoallv(sbuf, scount, sdispl, MPI_INT, rbuf, rcount, rdispl, MPI_INT, comm_old))) goto out;
-  tsmpi_topo *t = tsmpi_topo_new(MPI_DIST_GRAPH);
+  ptopo *t = ptopo_new(MPI_DIST_GRAPH);
   t->weighted = w;   /* MPI_UNWEIGHTED on every rank or on none (MPI 3.1 section 7.5.4) */
   for (int pass = 0; pass < 2; pass++) {   /* count, then fill */
     int in = 0, outd = 0;
@@ -280,11 +280,11 @@ int PMPI_Dist_graph_create(MPI_Comm comm_old, int n, const int sources[], const 
     if (!pass) {
       t->indeg = in;
       t->outdeg = outd;
-      t->sources = tsmpi_topo_ints(NULL, in);
-      t->dests = tsmpi_topo_ints(NULL, outd);
+      t->sources = ptopo_ints(NULL, in);
+      t->dests = ptopo_ints(NULL, outd);
       if (t->weighted) {
-        t->sweights = tsmpi_topo_ints(NULL, in);
-        t->dweights = tsmpi_topo_ints(NULL, outd);
+        t->sweights = ptopo_ints(NULL, in);
+        t->dweights = ptopo_ints(NULL, outd);
       }
     }
   }
@@ -298,11 +298,11 @@ out:
 
 int PMPI_Dist_graph_neighbors_count(MPI_Comm comm, int *indegree, int *outdegree, int *weighted_) {
   static const char fn[] = "MPI_Dist_graph_neighbors_count";
-  int rc = tsmpi_comm_check(comm, fn);
+  int rc = comm_check(comm, fn);
   if (rc) return rc;
-  tsmpi_topo *t = tsmpi_topo_of(comm, fn, MPI_DIST_GRAPH, &rc);
+  ptopo *t = ptopo_of(comm, fn, MPI_DIST_GRAPH, &rc);
   if (!t) return rc;
-  if (!indegree || !outdegree || !weighted_) return tsmpi_raise(comm, MPI_ERR_ARG, fn, "a NULL argument");
+  if (!indegree || !outdegree || !weighted_) return err_comm_raise(comm, MPI_ERR_ARG, fn, "a NULL argument");
   *indegree = t->indeg;
   *outdegree = t->outdeg;
   *weighted_ = t->weighted;
@@ -312,13 +312,13 @@ int PMPI_Dist_graph_neighbors_count(MPI_Comm comm, int *indegree, int *outdegree
 int PMPI_Dist_graph_neighbors(MPI_Comm comm, int maxindegree, int sources[], int sourceweights[], int maxoutdegree,
                              int destinations[], int destweights[]) {
   static const char fn[] = "MPI_Dist_graph_neighbors";
-  int rc = tsmpi_comm_check(comm, fn);
+  int rc = comm_check(comm, fn);
   if (rc) return rc;
-  tsmpi_topo *t = tsmpi_topo_of(comm, fn, MPI_DIST_GRAPH, &rc);
+  ptopo *t = ptopo_of(comm, fn, MPI_DIST_GRAPH, &rc);
   if (!t) return rc;
   int ni = maxindegree < t->indeg ? maxindegree : t->indeg, no = maxoutdegree < t->outdeg ? maxoutdegree : t->outdeg;
   if ((ni > 0 && !sources) || (no > 0 && !destinations))
-    return tsmpi_raise(comm, MPI_ERR_ARG, fn, "NULL sources or destinations argument");
+    return err_comm_raise(comm, MPI_ERR_ARG, fn, "NULL sources or destinations argument");
   for (int i = 0; i < ni; i++) {
     sources[i] = t->sources[i];
     if (t->weighted && weighted(sourceweights) && sourceweights) sourceweights[i] = t->sweights[i];

@@ -31,13 +31,13 @@ enum { HK_WIN = 8 };   /* mpi.h: a window's handle is 8 << 24 | index */
 /* ==== the rank's windows ================================================== */
 
 typedef struct {
-  tsm *R;
-  tsm_win **w;
+  st_rank *R;
+  rma_window **w;
   int n;
 } wtable;
 
-static void drop_shared(tsm_wshared *sh);
-static void win_end(tsm *R, tsm_win *w);
+static void drop_shared(rma_shared *sh);
+static void win_end(st_rank *R, rma_window *w);
 
 static void table_release(void *p) {
   wtable *t = p;
@@ -47,62 +47,62 @@ static void table_release(void *p) {
   free(t);
 }
 
-static wtable *table(tsm *R) {
-  wtable *t = tsmpi_part(TSMPI_PART_WIN);
+static wtable *table(st_rank *R) {
+  wtable *t = st_part(ST_PART_WIN);
   if (!t) {
     t = xcalloc(1, sizeof *t);
     t->R = R;
-    tsmpi_part_set(TSMPI_PART_WIN, t, table_release);
+    st_part_set(ST_PART_WIN, t, table_release);
   }
   return t;
 }
 
-tsm_win *tsm_win_get(tsm *R, MPI_Win h) {
-  wtable *t = tsmpi_part(TSMPI_PART_WIN);
+rma_window *rma_win_get(st_rank *R, MPI_Win h) {
+  wtable *t = st_part(ST_PART_WIN);
   unsigned slot = (unsigned)h - (unsigned)(HK_WIN << H_KIND_SHIFT | H_CREATED);
   (void)R;
   return t && slot < (unsigned)t->n ? t->w[slot] : NULL;
 }
 
-int tsm_win_check(tsm *R, MPI_Win h, const char *fn, tsm_win **w) {
-  *w = tsm_win_get(R, h);
+int rma_win_check(st_rank *R, MPI_Win h, const char *fn, rma_window **w) {
+  *w = rma_win_get(R, h);
   if (*w) return MPI_SUCCESS;
-  return tsm_raise(R, NULL, MPI_ERR_WIN, fn, "invalid window: %s",
+  return err_raise(R, NULL, MPI_ERR_WIN, fn, "invalid window: %s",
                    h == MPI_WIN_NULL           ? "MPI_WIN_NULL"
                    : H_KIND(h) == HK_WIN ? "freed, or not this rank's"
                                                : "not a window");
 }
 
-int tsm_win_raise(tsm *R, tsm_win *w, int cls, const char *fn, const char *fmt, ...) {
+int rma_win_raise(st_rank *R, rma_window *w, int cls, const char *fn, const char *fmt, ...) {
   char msg[300];
   va_list ap;
   va_start(ap, fmt);
   vsnprintf(msg, sizeof msg, fmt, ap);
   va_end(ap);
-  return tsm_raise_on(R, w->eh, w->h, cls, fn, "%s", msg);
+  return err_raise_on(R, w->eh, w->h, cls, fn, "%s", msg);
 }
 
-const char *tsm_win_words(const tsm_win *w, char *buf) {
+const char *rma_win_words(const rma_window *w, char *buf) {
   snprintf(buf, 32, "window %d", w->c->pair);
   return buf;
 }
 
 static void wlabel_describe(void *ud, char *buf, size_t len) {
-  const tsm_wlabel *l = ud;
+  const rma_wlabel *l = ud;
   char b[32];
   const char *lk = l->lock == MPI_LOCK_EXCLUSIVE ? "MPI_LOCK_EXCLUSIVE, " : l->lock == MPI_LOCK_SHARED ? "MPI_LOCK_SHARED, " : "";
   if (l->rank >= 0)
-    snprintf(buf, len, "%s(%srank=%d, %s)", l->fn, lk, l->rank, tsm_win_words(l->w, b));
+    snprintf(buf, len, "%s(%srank=%d, %s)", l->fn, lk, l->rank, rma_win_words(l->w, b));
   else
-    snprintf(buf, len, "%s(%s)", l->fn, tsm_win_words(l->w, b));
+    snprintf(buf, len, "%s(%s)", l->fn, rma_win_words(l->w, b));
 }
 
-void tsm_wlabel_set(tsm *R, tsm_wlabel *l) { mp_label(R->self, wlabel_describe, l); }
+void rma_wlabel_set(st_rank *R, rma_wlabel *l) { mp_label(R->self, wlabel_describe, l); }
 
 /* ==== hints =============================================================== */
 
-static void hints_default(tsm_whints *h) {
-  *h = (tsm_whints){0};
+static void hints_default(rma_hints *h) {
+  *h = (rma_hints){0};
   snprintf(h->ordering, sizeof h->ordering, "rar,raw,war,waw");
   snprintf(h->ops, sizeof h->ops, "same_op_no_op");
 }
@@ -111,20 +111,20 @@ static int truth(const char *v) { return !strcmp(v, "true"); }
 
 /* The hints of info that windows know (the others are ignored, as MPICH):
  * MPI_SUCCESS, or MPI_ERR_INFO raised (on c, or on w when c is NULL). */
-static int hints_take(tsm *R, const tsm_comm *c, tsm_win *w, const char *fn, MPI_Info info, tsm_whints *h) {
+static int hints_take(st_rank *R, const st_comm *c, rma_window *w, const char *fn, MPI_Info info, rma_hints *h) {
   char v[MPI_MAX_INFO_VAL + 1];
-  int rc = tsm_info_value(R, info, "no_locks", v, sizeof v);
+  int rc = info_value(R, info, "no_locks", v, sizeof v);
   if (rc < 0) {
-    if (w) return tsm_win_raise(R, w, MPI_ERR_INFO, fn, "invalid info object (freed, or not an info object)");
-    return tsm_raise(R, c, MPI_ERR_INFO, fn, "invalid info object (freed, or not an info object)");
+    if (w) return rma_win_raise(R, w, MPI_ERR_INFO, fn, "invalid info object (freed, or not an info object)");
+    return err_raise(R, c, MPI_ERR_INFO, fn, "invalid info object (freed, or not an info object)");
   }
   if (rc > 0) h->no_locks = truth(v);
-  if (tsm_info_value(R, info, "same_size", v, sizeof v) > 0) h->same_size = truth(v);
-  if (tsm_info_value(R, info, "same_disp_unit", v, sizeof v) > 0) h->same_disp_unit = truth(v);
-  if (tsm_info_value(R, info, "alloc_shared_noncontig", v, sizeof v) > 0) h->alloc_shared_noncontig = truth(v);
-  if (tsm_info_value(R, info, "accumulate_ordering", v, sizeof v) > 0)
+  if (info_value(R, info, "same_size", v, sizeof v) > 0) h->same_size = truth(v);
+  if (info_value(R, info, "same_disp_unit", v, sizeof v) > 0) h->same_disp_unit = truth(v);
+  if (info_value(R, info, "alloc_shared_noncontig", v, sizeof v) > 0) h->alloc_shared_noncontig = truth(v);
+  if (info_value(R, info, "accumulate_ordering", v, sizeof v) > 0)
     snprintf(h->ordering, sizeof h->ordering, "%.63s", v);
-  if (tsm_info_value(R, info, "accumulate_ops", v, sizeof v) > 0 &&
+  if (info_value(R, info, "accumulate_ops", v, sizeof v) > 0 &&
       (!strcmp(v, "same_op") || !strcmp(v, "same_op_no_op")))
     snprintf(h->ops, sizeof h->ops, "%.31s", v);
   return MPI_SUCCESS;
@@ -144,18 +144,18 @@ typedef struct {
 
 /* The window's communicator: a duplicate of c (its own context pair),
  * hidden from the program. */
-static int own_comm(tsm *R, tsm_comm *c, const char *fn, MPI_Comm *out) {
-  int pair = tsm_agree_pair(R, 2 * c->pair + 1, c->g, c->rank, TAG_CTXID);
-  if (pair < 0) return tsm_no_pair(R, c, fn);
+static int own_comm(st_rank *R, st_comm *c, const char *fn, MPI_Comm *out) {
+  int pair = comm_agree_pair(R, 2 * c->pair + 1, c->g, c->rank, TAG_CTXID);
+  if (pair < 0) return comm_no_pair(R, c, fn);
   c->g->refs++;
-  *out = tsm_comm_add(R, c->g, pair, c->rank, MPI_ERRORS_ARE_FATAL, 0);
-  tsm_comm_get(R, *out)->hidden = 1;
+  *out = comm_add(R, c->g, pair, c->rank, MPI_ERRORS_ARE_FATAL, 0);
+  st_comm_get(R, *out)->hidden = 1;
   return MPI_SUCCESS;
 }
 
 /* Rank 0's: the shared object of n parts, held by rank 0. */
-static tsm_wshared *shared_new(int n) {
-  tsm_wshared *sh = xcalloc(1, sizeof *sh + (size_t)n * sizeof(tsm_wpart));
+static rma_shared *shared_new(int n) {
+  rma_shared *sh = xcalloc(1, sizeof *sh + (size_t)n * sizeof(rma_part));
   pthread_mutex_init(&sh->mu, NULL);
   sh->refs = 1;
   sh->n = n;
@@ -165,13 +165,13 @@ static tsm_wshared *shared_new(int n) {
 /* Another rank holds it once it has its address (before any rank can let
  * go of it: that comes after the barrier that ends the making, or when the
  * run stops, and then the others' broadcast fails). */
-static void hold_shared(tsm_wshared *sh) {
+static void hold_shared(rma_shared *sh) {
   pthread_mutex_lock(&sh->mu);
   sh->refs++;
   pthread_mutex_unlock(&sh->mu);
 }
 
-static void drop_shared(tsm_wshared *sh) {
+static void drop_shared(rma_shared *sh) {
   if (!sh) return;
   pthread_mutex_lock(&sh->mu);
   int last = --sh->refs == 0;
@@ -190,7 +190,7 @@ static void drop_shared(tsm_wshared *sh) {
 /* MPI_Win_allocate_shared's memory: rank 0 lays the parts out one after
  * the other (each at a multiple of 4096 bytes with alloc_shared_noncontig)
  * in one block, once every size is known. */
-static void shared_layout(tsm_wshared *sh, int noncontig) {
+static void shared_layout(rma_shared *sh, int noncontig) {
   size_t total = 0;
   for (int i = 0; i < sh->n; i++) {
     if (noncontig) total = (total + 4095) & ~(size_t)4095;
@@ -207,36 +207,36 @@ static void shared_layout(tsm_wshared *sh, int noncontig) {
 
 static int make(const wmake *m, MPI_Info info, MPI_Comm comm, MPI_Win *win) {
   const char *fn = m->fn;
-  tsm *R = tsm_need(fn);
-  tsm_comm *c;
-  int rc = tsm_check_comm(R, comm, fn, &c);
+  st_rank *R = st_need(fn);
+  st_comm *c;
+  int rc = err_check_comm(R, comm, fn, &c);
   if (rc) return rc;
-  if (c->inter) return tsm_raise(R, c, MPI_ERR_COMM, fn, "an intercommunicator (windows are made on intracommunicators)");
-  if (!win) return tsm_raise(R, c, MPI_ERR_ARG, fn, "NULL win argument");
-  if (m->size < 0) return tsm_raise(R, c, MPI_ERR_SIZE, fn, "invalid size %td (must be >= 0)", (ptrdiff_t)m->size);
+  if (c->inter) return err_raise(R, c, MPI_ERR_COMM, fn, "an intercommunicator (windows are made on intracommunicators)");
+  if (!win) return err_raise(R, c, MPI_ERR_ARG, fn, "NULL win argument");
+  if (m->size < 0) return err_raise(R, c, MPI_ERR_SIZE, fn, "invalid size %td (must be >= 0)", (ptrdiff_t)m->size);
   if (m->flavor != MPI_WIN_FLAVOR_DYNAMIC && m->disp_unit <= 0)
-    return tsm_raise(R, c, MPI_ERR_DISP, fn, "invalid disp_unit %d (must be > 0)", m->disp_unit);
+    return err_raise(R, c, MPI_ERR_DISP, fn, "invalid disp_unit %d (must be > 0)", m->disp_unit);
   if (m->flavor == MPI_WIN_FLAVOR_CREATE && m->size > 0 && !m->base)
-    return tsm_raise(R, c, MPI_ERR_ARG, fn, "NULL base for %td bytes", (ptrdiff_t)m->size);
+    return err_raise(R, c, MPI_ERR_ARG, fn, "NULL base for %td bytes", (ptrdiff_t)m->size);
   if ((m->flavor == MPI_WIN_FLAVOR_ALLOCATE || m->flavor == MPI_WIN_FLAVOR_SHARED) && !m->baseptr)
-    return tsm_raise(R, c, MPI_ERR_ARG, fn, "NULL baseptr argument");
-  tsm_whints hints;
+    return err_raise(R, c, MPI_ERR_ARG, fn, "NULL baseptr argument");
+  rma_hints hints;
   hints_default(&hints);
   if ((rc = hints_take(R, c, NULL, fn, info, &hints))) return rc;
   *win = MPI_WIN_NULL;
 
-  tsm_label l = {.fn = fn, .what = L_COMM, .pair = c->pair};
-  tsm_label_set(R, &l);
+  label_rec l = {.fn = fn, .what = L_COMM, .pair = c->pair};
+  label_set(R, &l);
   MPI_Comm own = MPI_COMM_NULL;
   rc = own_comm(R, c, fn, &own);
-  tsm_unlabel(R);
+  label_clear(R);
   if (rc) return rc;
   /* In the rank's table at once, so that a run stopped while it is made
    * frees it (its handle is the program's when the call returns). */
-  tsm_win *w = xcalloc(1, sizeof *w);
+  rma_window *w = xcalloc(1, sizeof *w);
   w->flavor = m->flavor;
   w->comm = own;
-  w->c = tsm_comm_get(R, own);
+  w->c = st_comm_get(R, own);
   w->rank = c->rank;
   w->size = c->size;
   w->eh = MPI_ERRORS_ARE_FATAL;
@@ -248,10 +248,10 @@ static int make(const wmake *m, MPI_Info info, MPI_Comm comm, MPI_Win *win) {
   t->w[slot] = w;
   w->h = (MPI_Win)(HK_WIN << H_KIND_SHIFT | H_CREATED | slot);
   /* Rank 0 makes the shared object; each rank fills in its part. */
-  tsm_wshared *sh = w->sh = w->rank == 0 ? shared_new(w->size) : NULL;
+  rma_shared *sh = w->sh = w->rank == 0 ? shared_new(w->size) : NULL;
   PMPI_Bcast(&sh, (int)sizeof sh, MPI_BYTE, 0, own);
   if (w->rank != 0) hold_shared(w->sh = sh);
-  tsm_wpart *p = &sh->part[w->rank];
+  rma_part *p = &sh->part[w->rank];
   p->wrank = R->wrank;
   p->size = m->flavor == MPI_WIN_FLAVOR_DYNAMIC ? 0 : m->size;
   p->disp_unit = m->flavor == MPI_WIN_FLAVOR_DYNAMIC ? 1 : m->disp_unit;
@@ -291,42 +291,42 @@ int PMPI_Win_create_dynamic(MPI_Info info, MPI_Comm comm, MPI_Win *win) {
 /* ==== freeing ============================================================= */
 
 /* The rank's part of w ends (its operations complete, or a stopped run). */
-static void win_end(tsm *R, tsm_win *w) {
+static void win_end(st_rank *R, rma_window *w) {
   rma_release(w);
   free(w->acc);
   free(w->expo);
   free(w->postrq);
   free(w->donerq);
   drop_shared(w->sh);
-  tsm_errh_drop(R, w->eh);
+  errh_drop(R, w->eh);
   free(w);
 }
 
 int PMPI_Win_free(MPI_Win *win) {
   static const char fn[] = "MPI_Win_free";
-  tsm *R = tsm_need(fn);
-  if (!win) return tsm_raise(R, NULL, MPI_ERR_ARG, fn, "NULL win argument");
-  tsm_win *w;
-  int rc = tsm_win_check(R, *win, fn, &w);
+  st_rank *R = st_need(fn);
+  if (!win) return err_raise(R, NULL, MPI_ERR_ARG, fn, "NULL win argument");
+  rma_window *w;
+  int rc = rma_win_check(R, *win, fn, &w);
   if (rc) return rc;
   if (w->acc || w->expo || w->lockall || w->nlocked)
-    return tsm_win_raise(R, w, MPI_ERR_RMA_SYNC, fn, "an epoch is still open (%s)",
+    return rma_win_raise(R, w, MPI_ERR_RMA_SYNC, fn, "an epoch is still open (%s)",
                          w->acc ? "MPI_Win_start without MPI_Win_complete"
                          : w->expo ? "MPI_Win_post without MPI_Win_wait"
                          : w->lockall ? "MPI_Win_lock_all without MPI_Win_unlock_all"
                                       : "MPI_Win_lock without MPI_Win_unlock");
   char why[128];
-  if ((rc = tsm_attr_delete_all(R, TSM_AK_WIN, w->h, why))) return tsm_win_raise(R, w, rc, fn, "%s", why);
-  tsm_wlabel l = {.fn = fn, .w = w, .rank = -1};
-  tsm_wlabel_set(R, &l);
+  if ((rc = attr_delete_all(R, ATTR_WIN, w->h, why))) return rma_win_raise(R, w, rc, fn, "%s", why);
+  rma_wlabel l = {.fn = fn, .w = w, .rank = -1};
+  rma_wlabel_set(R, &l);
   rma_complete(R, w, -1, 0);
   PMPI_Barrier(w->comm);
-  tsm_unlabel(R);
+  label_clear(R);
   MPI_Comm own = w->comm;
   wtable *t = table(R);
   t->w[(unsigned)*win & H_SLOT_MASK] = NULL;
   win_end(R, w);
-  tsm_comm_end(R, &own);
+  comm_end(R, &own);
   *win = MPI_WIN_NULL;
   return MPI_SUCCESS;
 }
@@ -335,21 +335,21 @@ int PMPI_Win_free(MPI_Win *win) {
 
 int PMPI_Win_shared_query(MPI_Win win, int rank, MPI_Aint *size, int *disp_unit, void *baseptr) {
   static const char fn[] = "MPI_Win_shared_query";
-  tsm *R = tsm_need(fn);
-  tsm_win *w;
-  int rc = tsm_win_check(R, win, fn, &w);
+  st_rank *R = st_need(fn);
+  rma_window *w;
+  int rc = rma_win_check(R, win, fn, &w);
   if (rc) return rc;
   if (w->flavor != MPI_WIN_FLAVOR_SHARED)
-    return tsm_win_raise(R, w, MPI_ERR_RMA_FLAVOR, fn, "not a window of MPI_Win_allocate_shared");
+    return rma_win_raise(R, w, MPI_ERR_RMA_FLAVOR, fn, "not a window of MPI_Win_allocate_shared");
   if (rank != MPI_PROC_NULL && (rank < 0 || rank >= w->size))
-    return tsm_win_raise(R, w, MPI_ERR_RANK, fn, "invalid rank %d (the window has %d rank%s)", rank, w->size,
+    return rma_win_raise(R, w, MPI_ERR_RANK, fn, "invalid rank %d (the window has %d rank%s)", rank, w->size,
                          w->size == 1 ? "" : "s");
-  if (!size || !disp_unit || !baseptr) return tsm_win_raise(R, w, MPI_ERR_ARG, fn, "NULL argument");
+  if (!size || !disp_unit || !baseptr) return rma_win_raise(R, w, MPI_ERR_ARG, fn, "NULL argument");
   if (rank == MPI_PROC_NULL) {   /* the lowest rank with memory */
     rank = 0;
     while (rank < w->size - 1 && w->sh->part[rank].size == 0) rank++;
   }
-  const tsm_wpart *p = &w->sh->part[rank];
+  const rma_part *p = &w->sh->part[rank];
   *size = p->size;
   *disp_unit = p->disp_unit;
   *(void **)baseptr = p->base;
@@ -358,39 +358,39 @@ int PMPI_Win_shared_query(MPI_Win win, int rank, MPI_Aint *size, int *disp_unit,
 
 int PMPI_Win_attach(MPI_Win win, void *base, MPI_Aint size) {
   static const char fn[] = "MPI_Win_attach";
-  tsm *R = tsm_need(fn);
-  tsm_win *w;
-  int rc = tsm_win_check(R, win, fn, &w);
+  st_rank *R = st_need(fn);
+  rma_window *w;
+  int rc = rma_win_check(R, win, fn, &w);
   if (rc) return rc;
   if (w->flavor != MPI_WIN_FLAVOR_DYNAMIC)
-    return tsm_win_raise(R, w, MPI_ERR_RMA_FLAVOR, fn, "not a window of MPI_Win_create_dynamic");
-  if (size < 0) return tsm_win_raise(R, w, MPI_ERR_SIZE, fn, "invalid size %td (must be >= 0)", (ptrdiff_t)size);
-  if (size > 0 && !base) return tsm_win_raise(R, w, MPI_ERR_ARG, fn, "NULL base for %td bytes", (ptrdiff_t)size);
-  tsm_wpart *p = &w->sh->part[w->rank];
+    return rma_win_raise(R, w, MPI_ERR_RMA_FLAVOR, fn, "not a window of MPI_Win_create_dynamic");
+  if (size < 0) return rma_win_raise(R, w, MPI_ERR_SIZE, fn, "invalid size %td (must be >= 0)", (ptrdiff_t)size);
+  if (size > 0 && !base) return rma_win_raise(R, w, MPI_ERR_ARG, fn, "NULL base for %td bytes", (ptrdiff_t)size);
+  rma_part *p = &w->sh->part[w->rank];
   char *b = base;
   pthread_mutex_lock(&w->sh->mu);
   for (int i = 0; i < p->nregs; i++) {
     if (size && p->regs[i].size && b < p->regs[i].base + p->regs[i].size && p->regs[i].base < b + size) {
       pthread_mutex_unlock(&w->sh->mu);
-      return tsm_win_raise(R, w, MPI_ERR_RMA_ATTACH, fn, "the region overlaps one attached already");
+      return rma_win_raise(R, w, MPI_ERR_RMA_ATTACH, fn, "the region overlaps one attached already");
     }
   }
   if (p->nregs == p->capregs)
     p->regs = xreallocarray(p->regs, (size_t)(p->capregs = p->capregs ? 2 * p->capregs : 4), sizeof *p->regs);
-  p->regs[p->nregs++] = (tsm_region){b, size};
+  p->regs[p->nregs++] = (rma_region){b, size};
   pthread_mutex_unlock(&w->sh->mu);
   return MPI_SUCCESS;
 }
 
 int PMPI_Win_detach(MPI_Win win, const void *base) {
   static const char fn[] = "MPI_Win_detach";
-  tsm *R = tsm_need(fn);
-  tsm_win *w;
-  int rc = tsm_win_check(R, win, fn, &w);
+  st_rank *R = st_need(fn);
+  rma_window *w;
+  int rc = rma_win_check(R, win, fn, &w);
   if (rc) return rc;
   if (w->flavor != MPI_WIN_FLAVOR_DYNAMIC)
-    return tsm_win_raise(R, w, MPI_ERR_RMA_FLAVOR, fn, "not a window of MPI_Win_create_dynamic");
-  tsm_wpart *p = &w->sh->part[w->rank];
+    return rma_win_raise(R, w, MPI_ERR_RMA_FLAVOR, fn, "not a window of MPI_Win_create_dynamic");
+  rma_part *p = &w->sh->part[w->rank];
   pthread_mutex_lock(&w->sh->mu);
   for (int i = 0; i < p->nregs; i++) {
     if (p->regs[i].base != base) continue;
@@ -400,18 +400,18 @@ int PMPI_Win_detach(MPI_Win win, const void *base) {
     return MPI_SUCCESS;
   }
   pthread_mutex_unlock(&w->sh->mu);
-  return tsm_win_raise(R, w, MPI_ERR_RMA_ATTACH, fn, "no region attached at %p", base);
+  return rma_win_raise(R, w, MPI_ERR_RMA_ATTACH, fn, "no region attached at %p", base);
 }
 
 int PMPI_Win_get_group(MPI_Win win, MPI_Group *group) {
   static const char fn[] = "MPI_Win_get_group";
-  tsm *R = tsm_need(fn);
-  tsm_win *w;
-  int rc = tsm_win_check(R, win, fn, &w);
+  st_rank *R = st_need(fn);
+  rma_window *w;
+  int rc = rma_win_check(R, win, fn, &w);
   if (rc) return rc;
-  if (!group) return tsm_win_raise(R, w, MPI_ERR_ARG, fn, "NULL group argument");
+  if (!group) return rma_win_raise(R, w, MPI_ERR_ARG, fn, "NULL group argument");
   w->c->g->refs++;
-  *group = tsm_group_add(R, w->c->g);
+  *group = group_add(R, w->c->g);
   return MPI_SUCCESS;
 }
 
@@ -419,8 +419,8 @@ int PMPI_Win_get_group(MPI_Win win, MPI_Group *group) {
 
 /* The predefined attributes' values: where each lies (the window's
  * memory, or a copy the window keeps). */
-static int predefined(tsm_win *w, int key, void **value) {
-  tsm_wpart *p = &w->sh->part[w->rank];
+static int predefined(rma_window *w, int key, void **value) {
+  rma_part *p = &w->sh->part[w->rank];
   switch (key) {
   case MPI_WIN_BASE: *value = p->base; return 1;
   case MPI_WIN_SIZE: *value = &p->size; return 1;
@@ -439,24 +439,24 @@ static int is_predefined(int key) { return key >= MPI_WIN_BASE && key <= MPI_WIN
 
 int PMPI_Win_set_attr(MPI_Win win, int win_keyval, void *attribute_val) {
   static const char fn[] = "MPI_Win_set_attr";
-  tsm *R = tsm_need(fn);
-  tsm_win *w;
-  int rc = tsm_win_check(R, win, fn, &w);
+  st_rank *R = st_need(fn);
+  rma_window *w;
+  int rc = rma_win_check(R, win, fn, &w);
   if (rc) return rc;
   if (is_predefined(win_keyval))
-    return tsm_win_raise(R, w, MPI_ERR_KEYVAL, fn, "keyval %d is predefined and cannot be set", win_keyval);
+    return rma_win_raise(R, w, MPI_ERR_KEYVAL, fn, "keyval %d is predefined and cannot be set", win_keyval);
   char why[128];
-  rc = tsm_attr_set(R, TSM_AK_WIN, win, win_keyval, attribute_val, why);
-  return rc ? tsm_win_raise(R, w, rc, fn, "%s", why) : rc;
+  rc = attr_set(R, ATTR_WIN, win, win_keyval, attribute_val, why);
+  return rc ? rma_win_raise(R, w, rc, fn, "%s", why) : rc;
 }
 
 int PMPI_Win_get_attr(MPI_Win win, int win_keyval, void *attribute_val, int *flag) {
   static const char fn[] = "MPI_Win_get_attr";
-  tsm *R = tsm_need(fn);
-  tsm_win *w;
-  int rc = tsm_win_check(R, win, fn, &w);
+  st_rank *R = st_need(fn);
+  rma_window *w;
+  int rc = rma_win_check(R, win, fn, &w);
   if (rc) return rc;
-  if (!attribute_val || !flag) return tsm_win_raise(R, w, MPI_ERR_ARG, fn, "NULL argument");
+  if (!attribute_val || !flag) return rma_win_raise(R, w, MPI_ERR_ARG, fn, "NULL argument");
   void *v;
   if (predefined(w, win_keyval, &v)) {
     *flag = 1;
@@ -464,44 +464,44 @@ int PMPI_Win_get_attr(MPI_Win win, int win_keyval, void *attribute_val, int *fla
     return MPI_SUCCESS;
   }
   char why[128];
-  if ((rc = tsm_attr_get(R, TSM_AK_WIN, win, win_keyval, &v, flag, why))) return tsm_win_raise(R, w, rc, fn, "%s", why);
+  if ((rc = attr_get(R, ATTR_WIN, win, win_keyval, &v, flag, why))) return rma_win_raise(R, w, rc, fn, "%s", why);
   if (*flag) *(void **)attribute_val = v;
   return MPI_SUCCESS;
 }
 
 int PMPI_Win_delete_attr(MPI_Win win, int win_keyval) {
   static const char fn[] = "MPI_Win_delete_attr";
-  tsm *R = tsm_need(fn);
-  tsm_win *w;
-  int rc = tsm_win_check(R, win, fn, &w);
+  st_rank *R = st_need(fn);
+  rma_window *w;
+  int rc = rma_win_check(R, win, fn, &w);
   if (rc) return rc;
   if (is_predefined(win_keyval))
-    return tsm_win_raise(R, w, MPI_ERR_KEYVAL, fn, "keyval %d is predefined and cannot be deleted", win_keyval);
+    return rma_win_raise(R, w, MPI_ERR_KEYVAL, fn, "keyval %d is predefined and cannot be deleted", win_keyval);
   char why[128];
-  rc = tsm_attr_delete(R, TSM_AK_WIN, win, win_keyval, why);
-  return rc ? tsm_win_raise(R, w, rc, fn, "%s", why) : rc;
+  rc = attr_delete(R, ATTR_WIN, win, win_keyval, why);
+  return rc ? rma_win_raise(R, w, rc, fn, "%s", why) : rc;
 }
 
 /* ==== names and info ====================================================== */
 
 int PMPI_Win_set_name(MPI_Win win, const char *win_name) {
   static const char fn[] = "MPI_Win_set_name";
-  tsm *R = tsm_need(fn);
-  tsm_win *w;
-  int rc = tsm_win_check(R, win, fn, &w);
+  st_rank *R = st_need(fn);
+  rma_window *w;
+  int rc = rma_win_check(R, win, fn, &w);
   if (rc) return rc;
-  if (!win_name) return tsm_win_raise(R, w, MPI_ERR_ARG, fn, "NULL win_name argument");
+  if (!win_name) return rma_win_raise(R, w, MPI_ERR_ARG, fn, "NULL win_name argument");
   snprintf(w->name, sizeof w->name, "%s", win_name);
   return MPI_SUCCESS;
 }
 
 int PMPI_Win_get_name(MPI_Win win, char *win_name, int *resultlen) {
   static const char fn[] = "MPI_Win_get_name";
-  tsm *R = tsm_need(fn);
-  tsm_win *w;
-  int rc = tsm_win_check(R, win, fn, &w);
+  st_rank *R = st_need(fn);
+  rma_window *w;
+  int rc = rma_win_check(R, win, fn, &w);
   if (rc) return rc;
-  if (!win_name || !resultlen) return tsm_win_raise(R, w, MPI_ERR_ARG, fn, "NULL argument");
+  if (!win_name || !resultlen) return rma_win_raise(R, w, MPI_ERR_ARG, fn, "NULL argument");
   snprintf(win_name, MPI_MAX_OBJECT_NAME, "%s", w->name);
   *resultlen = (int)strlen(win_name);
   return MPI_SUCCESS;
@@ -509,22 +509,22 @@ int PMPI_Win_get_name(MPI_Win win, char *win_name, int *resultlen) {
 
 int PMPI_Win_set_info(MPI_Win win, MPI_Info info) {
   static const char fn[] = "MPI_Win_set_info";
-  tsm *R = tsm_need(fn);
-  tsm_win *w;
-  int rc = tsm_win_check(R, win, fn, &w);
+  st_rank *R = st_need(fn);
+  rma_window *w;
+  int rc = rma_win_check(R, win, fn, &w);
   if (rc) return rc;
-  if (info == MPI_INFO_NULL) return tsm_win_raise(R, w, MPI_ERR_INFO, fn, "MPI_INFO_NULL");
+  if (info == MPI_INFO_NULL) return rma_win_raise(R, w, MPI_ERR_INFO, fn, "MPI_INFO_NULL");
   return hints_take(R, NULL, w, fn, info, &w->hints);
 }
 
 int PMPI_Win_get_info(MPI_Win win, MPI_Info *info_used) {
   static const char fn[] = "MPI_Win_get_info";
-  tsm *R = tsm_need(fn);
-  tsm_win *w;
-  int rc = tsm_win_check(R, win, fn, &w);
+  st_rank *R = st_need(fn);
+  rma_window *w;
+  int rc = rma_win_check(R, win, fn, &w);
   if (rc) return rc;
-  if (!info_used) return tsm_win_raise(R, w, MPI_ERR_ARG, fn, "NULL info_used argument");
-  const tsm_whints *h = &w->hints;
+  if (!info_used) return rma_win_raise(R, w, MPI_ERR_ARG, fn, "NULL info_used argument");
+  const rma_hints *h = &w->hints;
   PMPI_Info_create(info_used);
   PMPI_Info_set(*info_used, "no_locks", h->no_locks ? "true" : "false");
   PMPI_Info_set(*info_used, "accumulate_ordering", h->ordering[0] ? h->ordering : "none");
@@ -539,14 +539,14 @@ int PMPI_Win_get_info(MPI_Win win, MPI_Info *info_used) {
 
 int PMPI_Win_set_errhandler(MPI_Win win, MPI_Errhandler errhandler) {
   static const char fn[] = "MPI_Win_set_errhandler";
-  tsm *R = tsm_need(fn);
-  tsm_win *w;
-  int rc = tsm_win_check(R, win, fn, &w);
+  st_rank *R = st_need(fn);
+  rma_window *w;
+  int rc = rma_win_check(R, win, fn, &w);
   if (rc) return rc;
   char why[96];
-  if (tsm_errh_check(R, errhandler, TSM_EH_WIN, why)) return tsm_win_raise(R, w, MPI_ERR_ARG, fn, "%s", why);
-  tsm_errh_hold(R, errhandler);
-  tsm_errh_drop(R, w->eh);
+  if (errh_check(R, errhandler, ERRH_WIN, why)) return rma_win_raise(R, w, MPI_ERR_ARG, fn, "%s", why);
+  errh_hold(R, errhandler);
+  errh_drop(R, w->eh);
   w->eh = errhandler;
   return MPI_SUCCESS;
 }
@@ -554,24 +554,24 @@ int PMPI_Win_set_errhandler(MPI_Win win, MPI_Errhandler errhandler) {
 /* The handler is the program's to free (MPI 3.1 section 8.3.2). */
 int PMPI_Win_get_errhandler(MPI_Win win, MPI_Errhandler *errhandler) {
   static const char fn[] = "MPI_Win_get_errhandler";
-  tsm *R = tsm_need(fn);
-  tsm_win *w;
-  int rc = tsm_win_check(R, win, fn, &w);
+  st_rank *R = st_need(fn);
+  rma_window *w;
+  int rc = rma_win_check(R, win, fn, &w);
   if (rc) return rc;
-  if (!errhandler) return tsm_win_raise(R, w, MPI_ERR_ARG, fn, "NULL errhandler argument");
-  tsm_errh_hold(R, w->eh);
+  if (!errhandler) return rma_win_raise(R, w, MPI_ERR_ARG, fn, "NULL errhandler argument");
+  errh_hold(R, w->eh);
   *errhandler = w->eh;
   return MPI_SUCCESS;
 }
 
 int PMPI_Win_call_errhandler(MPI_Win win, int errorcode) {
   static const char fn[] = "MPI_Win_call_errhandler";
-  tsm *R = tsm_need(fn);
-  tsm_win *w;
-  int rc = tsm_win_check(R, win, fn, &w);
+  st_rank *R = st_need(fn);
+  rma_window *w;
+  int rc = rma_win_check(R, win, fn, &w);
   if (rc) return rc;
-  int cls = tsm_err_class(R, errorcode);
-  const char *s = cls < 0 ? "" : tsm_err_string(R, errorcode);
-  tsm_win_raise(R, w, errorcode, fn, "error code %d%s%s", errorcode, *s ? ": " : "", s);
+  int cls = errh_class(R, errorcode);
+  const char *s = cls < 0 ? "" : errh_string(R, errorcode);
+  rma_win_raise(R, w, errorcode, fn, "error code %d%s%s", errorcode, *s ? ": " : "", s);
   return MPI_SUCCESS;   /* once the handler has returned */
 }

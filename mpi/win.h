@@ -24,7 +24,7 @@
  * open).  On the threads backend an operation is applied when it is
  * issued.
  *
- * SHARED STATE.  The ranks of a window share one object (tsm_wshared),
+ * SHARED STATE.  The ranks of a window share one object (rma_shared),
  * made by the window's rank 0: each rank's memory (base, size, unit), the
  * regions attached to a dynamic window, and each rank's passive-target lock
  * with its queue of waiting origins.  Its mutex guards all of it and every
@@ -55,12 +55,12 @@ enum { WTAG_POST = 1, WTAG_DONE = 2, WTAG_GRANT = 3, WTAG_WAKE = 4 };
 typedef struct {
   char *base;
   MPI_Aint size;
-} tsm_region;
+} rma_region;
 
 typedef struct {
   int rank;                /* the origin's rank in the window */
   int excl;                /* it asked for MPI_LOCK_EXCLUSIVE */
-} tsm_lockwait;
+} rma_lockwait;
 
 /* One rank's part of a window. */
 typedef struct {
@@ -69,21 +69,21 @@ typedef struct {
   int disp_unit;
   int wrank;               /* its MPI_COMM_WORLD rank */
   char *mem;               /* MPI_Win_allocate's memory, freed with the window */
-  tsm_region *regs;        /* a dynamic window's attached regions */
+  rma_region *regs;        /* a dynamic window's attached regions */
   int nregs, capregs;
   int excl;                /* its lock: held exclusively, */
   int shared;              /* or by this many shared holders */
-  tsm_lockwait *q;         /* origins waiting for it, in the order their requests came */
+  rma_lockwait *q;         /* origins waiting for it, in the order their requests came */
   int nq, capq;
-} tsm_wpart;
+} rma_part;
 
 typedef struct {
   pthread_mutex_t mu;      /* everything here, and data moves into the window's memory */
   int refs;                /* ranks that still hold it */
   int n;
   char *seg;               /* MPI_Win_allocate_shared's memory, freed with it */
-  tsm_wpart part[];        /* n: rank r's at part[r] */
-} tsm_wshared;
+  rma_part part[];        /* n: rank r's at part[r] */
+} rma_shared;
 
 /* ==== a rank's window ===================================================== */
 
@@ -97,18 +97,18 @@ typedef struct {
   int alloc_shared_noncontig;
   char ordering[64];       /* accumulate_ordering */
   char ops[32];            /* accumulate_ops */
-} tsm_whints;
+} rma_hints;
 
 typedef struct {
   MPI_Win h;
   int flavor;              /* MPI_WIN_FLAVOR_* */
   MPI_Comm comm;           /* its own communicator (hidden) */
-  tsm_comm *c;             /* that communicator */
+  st_comm *c;             /* that communicator */
   int rank, size;          /* in it */
-  tsm_wshared *sh;
+  rma_shared *sh;
   char name[MPI_MAX_OBJECT_NAME];
   MPI_Errhandler eh;       /* held */
-  tsm_whints hints;
+  rma_hints hints;
   /* epochs */
   int fence;               /* a fence's epoch is open: every rank may be a target */
   int lockall;             /* MPI_Win_lock_all's epoch */
@@ -126,35 +126,35 @@ typedef struct {
   rma_tgt *tg;             /* the targets it has known: open addressing */
   int ntg, captg;
   double done_all;         /* the latest reply of every operation applied */
-} tsm_win;
+} rma_window;
 
 /* The calling rank's window of handle h, or NULL (MPI_WIN_NULL, freed, not a window). */
-tsm_win *tsm_win_get(tsm *R, MPI_Win h);
+rma_window *rma_win_get(st_rank *R, MPI_Win h);
 
 /* h valid for call fn: *w, or the error raised (MPI_ERR_WIN under
  * MPI_COMM_WORLD's handler, as MPICH: a window that is not one has none). */
-int tsm_win_check(tsm *R, MPI_Win h, const char *fn, tsm_win **w);
+int rma_win_check(st_rank *R, MPI_Win h, const char *fn, rma_window **w);
 
 /* An error of call fn on w under its handler: the class returned, or the
  * run ended (fatal). */
 #if defined(__GNUC__)
 __attribute__((format(printf, 5, 6)))
 #endif
-int tsm_win_raise(tsm *R, tsm_win *w, int cls, const char *fn, const char *fmt, ...);
+int rma_win_raise(st_rank *R, rma_window *w, int cls, const char *fn, const char *fmt, ...);
 
 /* The window's name for messages and deadlock reports: "window N" (N its
  * communicator's context pair, the same on its every rank). */
-const char *tsm_win_words(const tsm_win *w, char *buf);
+const char *rma_win_words(const rma_window *w, char *buf);
 
 /* What a rank blocked in a window's call waits in, for the deadlock
  * report: "MPI_Win_lock(MPI_LOCK_EXCLUSIVE, rank=1, window 3)". */
 typedef struct {
   const char *fn;
-  const tsm_win *w;
+  const rma_window *w;
   int rank;                /* a target, or -1 */
   int lock;                /* MPI_LOCK_*, or 0 */
-} tsm_wlabel;
-void tsm_wlabel_set(tsm *R, tsm_wlabel *l);
+} rma_wlabel;
+void rma_wlabel_set(st_rank *R, rma_wlabel *l);
 
 /* ==== operations (rma.c) ================================================== */
 
@@ -194,23 +194,23 @@ typedef struct {
  * while the target's post has not come, in a post/start epoch), the origin
  * data are copied, the types held; applied when it arrives (rma_progress).
  * done (or NULL) learns its completion. */
-void rma_issue(tsm *R, tsm_win *w, const rma_args *a, rma_done *done);
+void rma_issue(st_rank *R, rma_window *w, const rma_args *a, rma_done *done);
 
 /* Apply every operation that has arrived by time t (sleeping to each
  * arrival, in order). */
-void rma_progress(tsm *R, tsm_win *w, double t);
+void rma_progress(st_rank *R, rma_window *w, double t);
 
 /* Wait until the operation that done belongs to is complete (its reply
  * back). */
-void rma_wait_done(tsm *R, tsm_win *w, rma_done *d);
+void rma_wait_done(st_rank *R, rma_window *w, rma_done *d);
 
 /* Complete the operations to target (-1: every target): apply them all and
  * sleep until their replies have come (local = 1: only those whose reply
  * carries data, MPI_Win_flush_local). */
-void rma_complete(tsm *R, tsm_win *w, int target, int local);
+void rma_complete(st_rank *R, rma_window *w, int target, int local);
 
 /* Issue the operations deferred for target's post, which has come. */
-void rma_posted(tsm *R, tsm_win *w, int target);
+void rma_posted(st_rank *R, rma_window *w, int target);
 
 /* Lock target (MPI_LOCK_SHARED or MPI_LOCK_EXCLUSIVE) or release it: the
  * request travels, is granted or queued at the target, and the call
@@ -218,35 +218,35 @@ void rma_posted(tsm *R, tsm_win *w, int target);
  * operation's reply) is back; with nocheck (MPI_MODE_NOCHECK) nothing is
  * asked of the target, and the release only completes the operations.  The
  * _all forms ask every rank at once (the caller does nocheck's nothing). */
-void rma_lock(tsm *R, tsm_win *w, int target, int lock, int nocheck);
-void rma_unlock(tsm *R, tsm_win *w, int target);
-void rma_lock_all(tsm *R, tsm_win *w);
-void rma_unlock_all(tsm *R, tsm_win *w);
+void rma_lock(st_rank *R, rma_window *w, int target, int lock, int nocheck);
+void rma_unlock(st_rank *R, rma_window *w, int target);
+void rma_lock_all(st_rank *R, rma_window *w);
+void rma_unlock_all(st_rank *R, rma_window *w);
 
 /* The lock w holds on target (0: none). */
-int rma_locked(tsm_win *w, int target);
+int rma_locked(rma_window *w, int target);
 
 /* MPI_Win_start's group (w->acc, w->nacc): a receive for each target's
  * post; operations to a target whose post has not come wait for it. */
-void rma_access_begin(tsm *R, tsm_win *w);
+void rma_access_begin(st_rank *R, rma_window *w);
 
 /* 1 if target is in the start group. */
-int rma_access_has(tsm_win *w, int target);
+int rma_access_has(rma_window *w, int target);
 
 /* 1 if target is in the start group and its post has come. */
-int rma_access_posted(tsm *R, tsm_win *w, int target);
+int rma_access_posted(st_rank *R, rma_window *w, int target);
 
 /* MPI_Win_complete: every post waited for (the operations deferred for one
  * leave when it comes), a done notification to each target (leaving now,
  * after the operations on its channel, sent once they are applied), and
  * the operations complete locally (their replies with data in). */
-void rma_access_end(tsm *R, tsm_win *w);
+void rma_access_end(st_rank *R, rma_window *w);
 
 /* Free the window's operation state (its end; nothing pending). */
-void rma_release(tsm_win *w);
+void rma_release(rma_window *w);
 
 /* The clock moves on to t if it is before (mp_sleep: the processor is free
  * meanwhile). */
-void tsm_until(tsm *R, double t);
+void rma_until(st_rank *R, double t);
 
 #endif

@@ -40,29 +40,29 @@
  * acts on what has arrived and the run's poll cost is charged, so that a
  * loop of such calls waiting for another rank moves the clock (with a poll
  * cost of 0 the simulator stops it after a million tries at one clock). */
-static void idle(tsm *R, double t0) {
+static void idle(st_rank *R, double t0) {
   if (mp_time(R->self) != t0) return;
   eng_poll(R);
-  double cost = tsmpi_poll_cost();
-  if (cost > 0 && mp_busy(R->self, cost) != MP_OK) tsm_stopped(R);
+  double cost = init_poll_cost();
+  if (cost > 0 && mp_busy(R->self, cost) != MP_OK) st_stopped(R);
 }
 
 /* ==== fence =============================================================== */
 
-static int any_epoch(const tsm_win *w) { return w->acc || w->expo || w->lockall || w->nlocked; }
+static int any_epoch(const rma_window *w) { return w->acc || w->expo || w->lockall || w->nlocked; }
 
 int PMPI_Win_fence(int assert, MPI_Win win) {
   static const char fn[] = "MPI_Win_fence";
-  tsm *R = tsm_need(fn);
-  tsm_win *w;
-  int rc = tsm_win_check(R, win, fn, &w);
+  st_rank *R = st_need(fn);
+  rma_window *w;
+  int rc = rma_win_check(R, win, fn, &w);
   if (rc) return rc;
-  if (any_epoch(w)) return tsm_win_raise(R, w, MPI_ERR_RMA_SYNC, fn, "inside a post/start or lock epoch");
-  tsm_wlabel l = {.fn = fn, .w = w, .rank = -1};
-  tsm_wlabel_set(R, &l);
+  if (any_epoch(w)) return rma_win_raise(R, w, MPI_ERR_RMA_SYNC, fn, "inside a post/start or lock epoch");
+  rma_wlabel l = {.fn = fn, .w = w, .rank = -1};
+  rma_wlabel_set(R, &l);
   rma_complete(R, w, -1, 0);
   PMPI_Barrier(w->comm);
-  tsm_unlabel(R);
+  label_clear(R);
   w->fence = !(assert & MPI_MODE_NOSUCCEED);
   return MPI_SUCCESS;
 }
@@ -71,20 +71,20 @@ int PMPI_Win_fence(int assert, MPI_Win win) {
 
 /* The window ranks of group's members, malloc'd (*n of them), or NULL
  * with the error raised in *rc. */
-static int *members(tsm *R, tsm_win *w, const char *fn, MPI_Group group, int *n, int *rc) {
-  tsm_ranks *g = tsm_group_get(R, group);
+static int *members(st_rank *R, rma_window *w, const char *fn, MPI_Group group, int *n, int *rc) {
+  st_ranks *g = group_get(R, group);
   *rc = MPI_SUCCESS;
   if (!g || group == MPI_GROUP_NULL) {
-    *rc = tsm_win_raise(R, w, MPI_ERR_GROUP, fn, "invalid group");
+    *rc = rma_win_raise(R, w, MPI_ERR_GROUP, fn, "invalid group");
     return NULL;
   }
   int *r = xmallocarray((size_t)g->n + 1, sizeof *r);
   for (int i = 0; i < g->n; i++) {
     int world = g->world ? g->world[i] : i;
-    r[i] = tsm_comm_rank_of(w->c, world);
+    r[i] = st_comm_rank_of(w->c, world);
     if (r[i] < 0) {
       free(r);
-      *rc = tsm_win_raise(R, w, MPI_ERR_GROUP, fn, "member %d of the group (MPI_COMM_WORLD rank %d) is not in the window",
+      *rc = rma_win_raise(R, w, MPI_ERR_GROUP, fn, "member %d of the group (MPI_COMM_WORLD rank %d) is not in the window",
                           i, world);
       return NULL;
     }
@@ -95,12 +95,12 @@ static int *members(tsm *R, tsm_win *w, const char *fn, MPI_Group group, int *n,
 
 int PMPI_Win_post(MPI_Group group, int assert, MPI_Win win) {
   static const char fn[] = "MPI_Win_post";
-  tsm *R = tsm_need(fn);
-  tsm_win *w;
-  int rc = tsm_win_check(R, win, fn, &w);
+  st_rank *R = st_need(fn);
+  rma_window *w;
+  int rc = rma_win_check(R, win, fn, &w);
   (void)assert;
   if (rc) return rc;
-  if (w->expo) return tsm_win_raise(R, w, MPI_ERR_RMA_SYNC, fn, "an exposure epoch is open already (MPI_Win_post without MPI_Win_wait)");
+  if (w->expo) return rma_win_raise(R, w, MPI_ERR_RMA_SYNC, fn, "an exposure epoch is open already (MPI_Win_post without MPI_Win_wait)");
   int n, *r = members(R, w, fn, group, &n, &rc);
   if (!r) return rc;
   w->fence = 0;
@@ -108,29 +108,29 @@ int PMPI_Win_post(MPI_Group group, int assert, MPI_Win win) {
   w->nexpo = n;
   w->donerq = xmallocarray((size_t)n + 1, sizeof *w->donerq);
   for (int i = 0; i < n; i++) {
-    tsm_req *q = tsm_req_new(R);
-    tsm_recv_fill(q, w->c, 0, NULL, 0, MPI_BYTE, r[i], WTAG_DONE, w->comm, "MPI_Win_post");
-    tsm_recv_start(R, q);
-    w->donerq[i] = tsm_req_handle(q);
+    st_req *q = st_req_new(R);
+    pt2pt_recv_fill(q, w->c, 0, NULL, 0, MPI_BYTE, r[i], WTAG_DONE, w->comm, "MPI_Win_post");
+    pt2pt_recv_start(R, q);
+    w->donerq[i] = st_req_handle(q);
   }
   for (int i = 0; i < n; i++) {
-    tsm_req q;
-    tsm_req_stack(&q);
-    tsm_send_fill(&q, w->c, 0, SM_STANDARD, NULL, 0, MPI_BYTE, r[i], WTAG_POST, w->comm, fn);
-    tsm_send_start(R, &q, w->c);
+    st_req q;
+    st_req_stack(&q);
+    pt2pt_send_fill(&q, w->c, 0, SM_STANDARD, NULL, 0, MPI_BYTE, r[i], WTAG_POST, w->comm, fn);
+    pt2pt_send_start(R, &q, w->c);
   }
   return MPI_SUCCESS;
 }
 
 int PMPI_Win_start(MPI_Group group, int assert, MPI_Win win) {
   static const char fn[] = "MPI_Win_start";
-  tsm *R = tsm_need(fn);
-  tsm_win *w;
-  int rc = tsm_win_check(R, win, fn, &w);
+  st_rank *R = st_need(fn);
+  rma_window *w;
+  int rc = rma_win_check(R, win, fn, &w);
   (void)assert;
   if (rc) return rc;
   if (w->acc || w->lockall || w->nlocked)
-    return tsm_win_raise(R, w, MPI_ERR_RMA_SYNC, fn, "an access epoch is open already");
+    return rma_win_raise(R, w, MPI_ERR_RMA_SYNC, fn, "an access epoch is open already");
   int n, *r = members(R, w, fn, group, &n, &rc);
   if (!r) return rc;
   w->fence = 0;
@@ -142,15 +142,15 @@ int PMPI_Win_start(MPI_Group group, int assert, MPI_Win win) {
 
 int PMPI_Win_complete(MPI_Win win) {
   static const char fn[] = "MPI_Win_complete";
-  tsm *R = tsm_need(fn);
-  tsm_win *w;
-  int rc = tsm_win_check(R, win, fn, &w);
+  st_rank *R = st_need(fn);
+  rma_window *w;
+  int rc = rma_win_check(R, win, fn, &w);
   if (rc) return rc;
-  if (!w->acc) return tsm_win_raise(R, w, MPI_ERR_RMA_SYNC, fn, "no access epoch (MPI_Win_start) is open");
-  tsm_wlabel l = {.fn = fn, .w = w, .rank = -1};
-  tsm_wlabel_set(R, &l);
+  if (!w->acc) return rma_win_raise(R, w, MPI_ERR_RMA_SYNC, fn, "no access epoch (MPI_Win_start) is open");
+  rma_wlabel l = {.fn = fn, .w = w, .rank = -1};
+  rma_wlabel_set(R, &l);
   rma_access_end(R, w);
-  tsm_unlabel(R);
+  label_clear(R);
   free(w->acc);
   w->acc = NULL;
   w->nacc = 0;
@@ -158,10 +158,10 @@ int PMPI_Win_complete(MPI_Win win) {
 }
 
 /* The exposure epoch ends: its requests are all done. */
-static void exposure_end(tsm *R, tsm_win *w) {
+static void exposure_end(st_rank *R, rma_window *w) {
   for (int i = 0; i < w->nexpo; i++) {
-    tsm_req *q = tsm_req_get(R, w->donerq[i]);
-    if (q) tsm_req_free(R, q);
+    st_req *q = st_req_get(R, w->donerq[i]);
+    if (q) st_req_free(R, q);
   }
   free(w->donerq);
   free(w->expo);
@@ -172,33 +172,33 @@ static void exposure_end(tsm *R, tsm_win *w) {
 
 int PMPI_Win_wait(MPI_Win win) {
   static const char fn[] = "MPI_Win_wait";
-  tsm *R = tsm_need(fn);
-  tsm_win *w;
-  int rc = tsm_win_check(R, win, fn, &w);
+  st_rank *R = st_need(fn);
+  rma_window *w;
+  int rc = rma_win_check(R, win, fn, &w);
   if (rc) return rc;
-  if (!w->expo) return tsm_win_raise(R, w, MPI_ERR_RMA_SYNC, fn, "no exposure epoch (MPI_Win_post) is open");
-  tsm_wlabel l = {.fn = fn, .w = w, .rank = -1};
-  tsm_wlabel_set(R, &l);
+  if (!w->expo) return rma_win_raise(R, w, MPI_ERR_RMA_SYNC, fn, "no exposure epoch (MPI_Win_post) is open");
+  rma_wlabel l = {.fn = fn, .w = w, .rank = -1};
+  rma_wlabel_set(R, &l);
   for (int i = 0; i < w->nexpo; i++) {
-    tsm_req *q = tsm_req_get(R, w->donerq[i]);
+    st_req *q = st_req_get(R, w->donerq[i]);
     if (q->state == RS_ACTIVE) eng_wait(R, q);
   }
-  tsm_unlabel(R);
+  label_clear(R);
   exposure_end(R, w);
   return MPI_SUCCESS;
 }
 
 int PMPI_Win_test(MPI_Win win, int *flag) {
   static const char fn[] = "MPI_Win_test";
-  tsm *R = tsm_need(fn);
-  tsm_win *w;
-  int rc = tsm_win_check(R, win, fn, &w);
+  st_rank *R = st_need(fn);
+  rma_window *w;
+  int rc = rma_win_check(R, win, fn, &w);
   if (rc) return rc;
-  if (!flag) return tsm_win_raise(R, w, MPI_ERR_ARG, fn, "NULL flag argument");
-  if (!w->expo) return tsm_win_raise(R, w, MPI_ERR_RMA_SYNC, fn, "no exposure epoch (MPI_Win_post) is open");
+  if (!flag) return rma_win_raise(R, w, MPI_ERR_ARG, fn, "NULL flag argument");
+  if (!w->expo) return rma_win_raise(R, w, MPI_ERR_RMA_SYNC, fn, "no exposure epoch (MPI_Win_post) is open");
   eng_poll(R);
   *flag = 1;
-  for (int i = 0; i < w->nexpo && *flag; i++) *flag = tsm_req_get(R, w->donerq[i])->state != RS_ACTIVE;
+  for (int i = 0; i < w->nexpo && *flag; i++) *flag = st_req_get(R, w->donerq[i])->state != RS_ACTIVE;
   if (*flag)
     exposure_end(R, w);
   else
@@ -209,112 +209,112 @@ int PMPI_Win_test(MPI_Win win, int *flag) {
 /* ==== passive target ====================================================== */
 
 /* target a rank of w, or MPI_PROC_NULL: MPI_SUCCESS or MPI_ERR_RANK raised. */
-static int check_rank(tsm *R, tsm_win *w, const char *fn, int rank) {
+static int check_rank(st_rank *R, rma_window *w, const char *fn, int rank) {
   if (rank == MPI_PROC_NULL || (rank >= 0 && rank < w->size)) return MPI_SUCCESS;
-  return tsm_win_raise(R, w, MPI_ERR_RANK, fn, "invalid rank %d (the window has %d rank%s)", rank, w->size,
+  return rma_win_raise(R, w, MPI_ERR_RANK, fn, "invalid rank %d (the window has %d rank%s)", rank, w->size,
                        w->size == 1 ? "" : "s");
 }
 
 int PMPI_Win_lock(int lock_type, int rank, int assert, MPI_Win win) {
   static const char fn[] = "MPI_Win_lock";
-  tsm *R = tsm_need(fn);
-  tsm_win *w;
-  int rc = tsm_win_check(R, win, fn, &w);
+  st_rank *R = st_need(fn);
+  rma_window *w;
+  int rc = rma_win_check(R, win, fn, &w);
   if (rc || (rc = check_rank(R, w, fn, rank))) return rc;
   if (lock_type != MPI_LOCK_SHARED && lock_type != MPI_LOCK_EXCLUSIVE)
-    return tsm_win_raise(R, w, MPI_ERR_LOCKTYPE, fn, "invalid lock_type %d (MPI_LOCK_SHARED or MPI_LOCK_EXCLUSIVE)",
+    return rma_win_raise(R, w, MPI_ERR_LOCKTYPE, fn, "invalid lock_type %d (MPI_LOCK_SHARED or MPI_LOCK_EXCLUSIVE)",
                          lock_type);
   if (rank == MPI_PROC_NULL) return MPI_SUCCESS;
   if (w->acc || w->lockall || rma_locked(w, rank))
-    return tsm_win_raise(R, w, MPI_ERR_RMA_SYNC, fn, "rank %d is in an access epoch already", rank);
+    return rma_win_raise(R, w, MPI_ERR_RMA_SYNC, fn, "rank %d is in an access epoch already", rank);
   w->fence = 0;
-  tsm_wlabel l = {.fn = fn, .w = w, .rank = rank, .lock = lock_type};
-  tsm_wlabel_set(R, &l);
+  rma_wlabel l = {.fn = fn, .w = w, .rank = rank, .lock = lock_type};
+  rma_wlabel_set(R, &l);
   double t0 = mp_time(R->self);
   rma_lock(R, w, rank, lock_type, (assert & MPI_MODE_NOCHECK) != 0);
   idle(R, t0);
-  tsm_unlabel(R);
+  label_clear(R);
   w->nlocked++;
   return MPI_SUCCESS;
 }
 
 int PMPI_Win_unlock(int rank, MPI_Win win) {
   static const char fn[] = "MPI_Win_unlock";
-  tsm *R = tsm_need(fn);
-  tsm_win *w;
-  int rc = tsm_win_check(R, win, fn, &w);
+  st_rank *R = st_need(fn);
+  rma_window *w;
+  int rc = rma_win_check(R, win, fn, &w);
   if (rc || (rc = check_rank(R, w, fn, rank))) return rc;
   if (rank == MPI_PROC_NULL) return MPI_SUCCESS;
-  if (!rma_locked(w, rank)) return tsm_win_raise(R, w, MPI_ERR_RMA_SYNC, fn, "rank %d is not locked", rank);
-  tsm_wlabel l = {.fn = fn, .w = w, .rank = rank};
-  tsm_wlabel_set(R, &l);
+  if (!rma_locked(w, rank)) return rma_win_raise(R, w, MPI_ERR_RMA_SYNC, fn, "rank %d is not locked", rank);
+  rma_wlabel l = {.fn = fn, .w = w, .rank = rank};
+  rma_wlabel_set(R, &l);
   double t0 = mp_time(R->self);
   rma_unlock(R, w, rank);
   idle(R, t0);
-  tsm_unlabel(R);
+  label_clear(R);
   w->nlocked--;
   return MPI_SUCCESS;
 }
 
 int PMPI_Win_lock_all(int assert, MPI_Win win) {
   static const char fn[] = "MPI_Win_lock_all";
-  tsm *R = tsm_need(fn);
-  tsm_win *w;
-  int rc = tsm_win_check(R, win, fn, &w);
+  st_rank *R = st_need(fn);
+  rma_window *w;
+  int rc = rma_win_check(R, win, fn, &w);
   if (rc) return rc;
-  if (w->acc || w->lockall || w->nlocked) return tsm_win_raise(R, w, MPI_ERR_RMA_SYNC, fn, "an access epoch is open already");
+  if (w->acc || w->lockall || w->nlocked) return rma_win_raise(R, w, MPI_ERR_RMA_SYNC, fn, "an access epoch is open already");
   w->fence = 0;
   if (assert & MPI_MODE_NOCHECK) {
     w->lockall = 2;
     return MPI_SUCCESS;
   }
-  tsm_wlabel l = {.fn = fn, .w = w, .rank = -1, .lock = MPI_LOCK_SHARED};
-  tsm_wlabel_set(R, &l);
+  rma_wlabel l = {.fn = fn, .w = w, .rank = -1, .lock = MPI_LOCK_SHARED};
+  rma_wlabel_set(R, &l);
   double t0 = mp_time(R->self);
   rma_lock_all(R, w);
   idle(R, t0);
-  tsm_unlabel(R);
+  label_clear(R);
   w->lockall = 1;
   return MPI_SUCCESS;
 }
 
 int PMPI_Win_unlock_all(MPI_Win win) {
   static const char fn[] = "MPI_Win_unlock_all";
-  tsm *R = tsm_need(fn);
-  tsm_win *w;
-  int rc = tsm_win_check(R, win, fn, &w);
+  st_rank *R = st_need(fn);
+  rma_window *w;
+  int rc = rma_win_check(R, win, fn, &w);
   if (rc) return rc;
-  if (!w->lockall) return tsm_win_raise(R, w, MPI_ERR_RMA_SYNC, fn, "no MPI_Win_lock_all epoch is open");
-  tsm_wlabel l = {.fn = fn, .w = w, .rank = -1};
-  tsm_wlabel_set(R, &l);
+  if (!w->lockall) return rma_win_raise(R, w, MPI_ERR_RMA_SYNC, fn, "no MPI_Win_lock_all epoch is open");
+  rma_wlabel l = {.fn = fn, .w = w, .rank = -1};
+  rma_wlabel_set(R, &l);
   double t0 = mp_time(R->self);
   if (w->lockall == 2)
     rma_complete(R, w, -1, 0);
   else
     rma_unlock_all(R, w);
   idle(R, t0);
-  tsm_unlabel(R);
+  label_clear(R);
   w->lockall = 0;
   return MPI_SUCCESS;
 }
 
 /* The flushes: in a passive-target epoch on rank (all: on every rank). */
 static int flush(const char *fn, int rank, int all, MPI_Win win, int local) {
-  tsm *R = tsm_need(fn);
-  tsm_win *w;
-  int rc = tsm_win_check(R, win, fn, &w);
+  st_rank *R = st_need(fn);
+  rma_window *w;
+  int rc = rma_win_check(R, win, fn, &w);
   if (rc) return rc;
   if (all) rank = -1;
   if (!all && (rc = check_rank(R, w, fn, rank))) return rc;
   if (rank == MPI_PROC_NULL) return MPI_SUCCESS;
   if (!w->lockall && (all ? !w->nlocked : !rma_locked(w, rank)))
-    return tsm_win_raise(R, w, MPI_ERR_RMA_SYNC, fn, "not in a passive-target epoch%s", all ? "" : " on that rank");
-  tsm_wlabel l = {.fn = fn, .w = w, .rank = rank};
-  tsm_wlabel_set(R, &l);
+    return rma_win_raise(R, w, MPI_ERR_RMA_SYNC, fn, "not in a passive-target epoch%s", all ? "" : " on that rank");
+  rma_wlabel l = {.fn = fn, .w = w, .rank = rank};
+  rma_wlabel_set(R, &l);
   double t0 = mp_time(R->self);
   rma_complete(R, w, rank, local);
   idle(R, t0);
-  tsm_unlabel(R);
+  label_clear(R);
   return MPI_SUCCESS;
 }
 
@@ -327,9 +327,9 @@ int PMPI_Win_flush_local_all(MPI_Win win) { return flush("MPI_Win_flush_local_al
  * address space): MPI_Win_sync is a memory barrier. */
 int PMPI_Win_sync(MPI_Win win) {
   static const char fn[] = "MPI_Win_sync";
-  tsm *R = tsm_need(fn);
-  tsm_win *w;
-  int rc = tsm_win_check(R, win, fn, &w);
+  st_rank *R = st_need(fn);
+  rma_window *w;
+  int rc = rma_win_check(R, win, fn, &w);
   if (rc) return rc;
   double t0 = mp_time(R->self);
   rma_progress(R, w, t0);

@@ -40,15 +40,15 @@ static void sleep_for(int64_t s, int64_t ns) {
 
 static const struct {
   const char *name;
-  tsmpi_any_fn fn;
+  rlibc_fn fn;
 } bound[] = {
-    {"_ZNSt6chrono3_V212system_clock3nowEv", (tsmpi_any_fn)system_now},
-    {"_ZNSt6chrono3_V212steady_clock3nowEv", (tsmpi_any_fn)steady_now},
+    {"_ZNSt6chrono3_V212system_clock3nowEv", (rlibc_fn)system_now},
+    {"_ZNSt6chrono3_V212steady_clock3nowEv", (rlibc_fn)steady_now},
     {"_ZNSt11this_thread11__sleep_forENSt6chrono8durationIlSt5ratioILl1ELl1EEEENS1_IlS2_ILl1ELl1000000000EEEE",
-     (tsmpi_any_fn)sleep_for},
+     (rlibc_fn)sleep_for},
 };
 
-int cxx_bind(const char *name, tsmpi_any_fn *fn) {
+int cxx_bind(const char *name, rlibc_fn *fn) {
   if (name[0] != '_') return 0;
   for (size_t i = 0; i < sizeof bound / sizeof *bound; i++)
     if (strcmp(bound[i].name, name) == 0) {

@@ -19,7 +19,7 @@
 
 /* What the program's reference to `name` binds to in libstdc++'s place: 1
  * and *fn, or 0 for a name that stays the library's. */
-int cxx_bind(const char *name, tsmpi_any_fn *fn);
+int cxx_bind(const char *name, rlibc_fn *fn);
 
 /* One exception record per rank for n ranks that share the calling thread
  * (the simulator), get_globals being libstdc++'s __cxa_get_globals; until

@@ -63,8 +63,8 @@ typedef struct {
 static rank_libc *ranks;   /* [n], one per rank of the run */
 static int nranks;
 static rank_libc outside;  /* calls outside any rank */
-static tsmpi_exit_fn on_exit_fn;
-static tsmpi_abort_fn on_abort_fn;
+static rlibc_exit_fn on_exit_fn;
+static rlibc_abort_fn on_abort_fn;
 
 static void seed_random(rank_libc *s, uint32_t seed);
 
@@ -76,7 +76,7 @@ static void init_one(rank_libc *s) {
   seed_random(s, 1);   /* glibc: as if srandom(1) */
 }
 
-void tsmpi_libc_setup(int n, tsmpi_exit_fn fn, tsmpi_abort_fn afn) {
+void rlibc_setup(int n, rlibc_exit_fn fn, rlibc_abort_fn afn) {
   free(ranks);
   ranks = xmallocarray((size_t)n, sizeof *ranks);
   nranks = n;
@@ -86,7 +86,7 @@ void tsmpi_libc_setup(int n, tsmpi_exit_fn fn, tsmpi_abort_fn afn) {
   on_abort_fn = afn;
 }
 
-void tsmpi_libc_free(void) {
+void rlibc_free(void) {
   for (int i = 0; i < nranks; i++) {
     free(ranks[i].at_exit.h);
     free(ranks[i].tls_dtors.h);
@@ -104,12 +104,12 @@ static rank_libc *me(void) {
 
 /* ==== getopt ============================================================== */
 
-void *tsmpi_libc_var(int r, int var) {
+void *rlibc_var(int r, int var) {
   rank_libc *s = r >= 0 && r < nranks ? &ranks[r] : &outside;
   switch (var) {
-  case TSMPI_OPTIND: return &s->optind;
-  case TSMPI_OPTARG: return &s->optarg;
-  case TSMPI_OPTERR: return &s->opterr;
+  case RLIBC_OPTIND: return &s->optind;
+  case RLIBC_OPTARG: return &s->optarg;
+  case RLIBC_OPTERR: return &s->opterr;
   default: return &s->optopt;
   }
 }
@@ -328,7 +328,7 @@ static void run(handlers *hs, int status, void *dso) {
   }
 }
 
-void tsmpi_libc_run_exit(int r, int status) {
+void rlibc_run_exit(int r, int status) {
   rank_libc *s = r >= 0 && r < nranks ? &ranks[r] : &outside;
   run(&s->tls_dtors, status, NULL);
   run(&s->at_exit, status, NULL);
@@ -390,16 +390,16 @@ static pid_t r_getpid(void) {
 
 /* ==== the names bound here ================================================ */
 
-#define F(name, fn) {name, (tsmpi_any_fn)(fn), -1}
+#define F(name, fn) {name, (rlibc_fn)(fn), -1}
 #define V(name, var) {name, NULL, var}
 static const struct {
   const char *name;
-  tsmpi_any_fn fn;
+  rlibc_fn fn;
   int var;
 } bound[] = {
     F("getopt", r_getopt), F("getopt_long", r_getopt_long), F("getopt_long_only", r_getopt_long_only),
-    F("__posix_getopt", r_posix_getopt), V("optind", TSMPI_OPTIND), V("optarg", TSMPI_OPTARG),
-    V("opterr", TSMPI_OPTERR), V("optopt", TSMPI_OPTOPT),
+    F("__posix_getopt", r_posix_getopt), V("optind", RLIBC_OPTIND), V("optarg", RLIBC_OPTARG),
+    V("opterr", RLIBC_OPTERR), V("optopt", RLIBC_OPTOPT),
     F("rand", r_rand), F("srand", r_srand), F("random", r_random), F("srandom", r_srandom), F("drand48", r_drand48),
     F("lrand48", r_lrand48), F("mrand48", r_mrand48), F("srand48", r_srand48), F("seed48", r_seed48),
     F("strtok", r_strtok),
@@ -413,7 +413,7 @@ static const struct {
 #undef F
 #undef V
 
-int tsmpi_libc_bind(const char *name, tsmpi_any_fn *fn, int *var) {
+int rlibc_bind(const char *name, rlibc_fn *fn, int *var) {
   for (size_t i = 0; i < sizeof bound / sizeof *bound; i++)
     if (strcmp(bound[i].name, name) == 0) {
       *fn = bound[i].fn;

@@ -23,43 +23,43 @@
  *   abort: stops the run; getpid: 100000 + the rank, the same on every run.
  * Each works on the calling rank's state (mp_self); called outside any rank,
  * it behaves as libc's own. */
-#ifndef TSMPI_LIBC_H
-#define TSMPI_LIBC_H
+#ifndef TSMPI_RLIBC_H
+#define TSMPI_RLIBC_H
 
 #include "mp/mp.h"
 
 /* A rank called exit(status) or _exit(status) (run_handlers: exit, which
  * runs its handlers first): the runner's say before the rank ends (it may
  * stop the run with mp_abort instead).  The runner runs the rank's handlers
- * (tsmpi_libc_run_exit) and the program's destructors when run_handlers. */
-typedef void (*tsmpi_exit_fn)(mp *self, int status, int run_handlers);
+ * (rlibc_run_exit) and the program's destructors when run_handlers. */
+typedef void (*rlibc_exit_fn)(mp *self, int status, int run_handlers);
 
 /* A rank called abort(): the runner's last word before the run stops. */
-typedef void (*tsmpi_abort_fn)(mp *self);
+typedef void (*rlibc_abort_fn)(mp *self);
 
 /* State for n ranks, all as a fresh process has it; on_exit and on_abort
  * (or NULL) hear of every exit and abort.  Call before loading the program
- * (its variables' addresses are bound then); tsmpi_libc_free after the run. */
-void tsmpi_libc_setup(int n, tsmpi_exit_fn on_exit, tsmpi_abort_fn on_abort);
-void tsmpi_libc_free(void);
+ * (its variables' addresses are bound then); rlibc_free after the run. */
+void rlibc_setup(int n, rlibc_exit_fn on_exit, rlibc_abort_fn on_abort);
+void rlibc_free(void);
 
 /* The per-rank variables a program may name. */
-enum { TSMPI_OPTIND, TSMPI_OPTARG, TSMPI_OPTERR, TSMPI_OPTOPT, TSMPI_NVARS };
+enum { RLIBC_OPTIND, RLIBC_OPTARG, RLIBC_OPTERR, RLIBC_OPTOPT, RLIBC_NVARS };
 
 /* What the program's reference to `name` binds to in libc's place: 1 with
  * *fn (a function of this module, to be called with libc's function's
- * arguments) or with *fn NULL and *var (a per-rank variable, TSMPI_OPT*);
+ * arguments) or with *fn NULL and *var (a per-rank variable, RLIBC_OPT*);
  * 0 for a name that stays libc's. */
-typedef void (*tsmpi_any_fn)(void);
-int tsmpi_libc_bind(const char *name, tsmpi_any_fn *fn, int *var);
+typedef void (*rlibc_fn)(void);
+int rlibc_bind(const char *name, rlibc_fn *fn, int *var);
 
-/* Rank r's variable var (after tsmpi_libc_setup): where its GOT points. */
-void *tsmpi_libc_var(int r, int var);
+/* Rank r's variable var (after rlibc_setup): where its GOT points. */
+void *rlibc_var(int r, int var);
 
 /* Run rank r's exit handlers, each once: its thread-local destructors, then
  * those of atexit, on_exit (given status) and __cxa_atexit, the last
  * registered first, as libc's exit does (a handler may register more).  On
  * the rank's own thread or coroutine. */
-void tsmpi_libc_run_exit(int r, int status);
+void rlibc_run_exit(int r, int status);
 
 #endif

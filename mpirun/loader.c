@@ -79,7 +79,7 @@ typedef struct {
 
 typedef struct {
   uint64_t off;   /* in the writable span */
-  int var;        /* TSMPI_OPT* */
+  int var;        /* RLIBC_OPT* */
   int64_t add;
 } rankfix;
 
@@ -258,11 +258,11 @@ static int resolve(loader *l, uint32_t k, binding *b, char *err, size_t errlen) 
     return 0;
   }
   const elf_sym *s = &l->e.syms[k];
-  tsmpi_any_fn fn = NULL;
+  rlibc_fn fn = NULL;
   int var = -1;
   if (s->defined) {
     *b = (binding){s->tls ? B_TLS : B_OWN, s->value};
-  } else if (tsmpi_libc_bind(s->name, &fn, &var) || cxx_bind(s->name, &fn)) {
+  } else if (rlibc_bind(s->name, &fn, &var) || cxx_bind(s->name, &fn)) {
     *b = fn ? (binding){B_ABS, (uint64_t)(uintptr_t)fn} : (binding){B_VAR, (uint64_t)var};
   } else if (strcmp(s->name, "__tls_get_addr") == 0) {
     *b = (binding){B_ABS, (uint64_t)(uintptr_t)tls_get_addr};
@@ -394,7 +394,7 @@ static void instantiate(loader *l, int r) {
   }
   for (size_t i = 0; i < l->nbase; i++) put64(rw + l->basefix[i], get64(rw + l->basefix[i]) + b);
   for (size_t i = 0; i < l->nrfix; i++)
-    put64(rw + l->rfix[i].off, (uint64_t)(uintptr_t)tsmpi_libc_var(r, l->rfix[i].var) + (uint64_t)l->rfix[i].add);
+    put64(rw + l->rfix[i].off, (uint64_t)(uintptr_t)rlibc_var(r, l->rfix[i].var) + (uint64_t)l->rfix[i].add);
 }
 
 /* The IRELATIVE relocations: each resolver runs once, in rank 0's image, and
@@ -652,7 +652,7 @@ loader_main_fn loader_start(loader *l, int r, int argc, char **argv, char **envp
 }
 
 void loader_finish(loader *l, int r, int status) {
-  tsmpi_libc_run_exit(r, status);
+  rlibc_run_exit(r, status);
   if (!l->made[r] || l->ended[r]) return;
   l->ended[r] = 1;
   uintptr_t b = base(l, r);

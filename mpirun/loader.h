@@ -37,7 +37,7 @@ typedef int (*loader_main_fn)(int argc, char **argv, char **envp);
 
 typedef struct loader loader;
 
-/* The program at path, for n ranks (tsmpi_libc_setup(n, ...) first: the
+/* The program at path, for n ranks (rlibc_setup(n, ...) first: the
  * ranks' getopt variables are bound now).  NULL and a message naming the
  * program and what is wrong (a name nothing defines, a library that cannot
  * be loaded, a layout that would need more kernel mappings than the system

@@ -59,8 +59,8 @@ void smpi_execute_flops(double flops) { called(); }
 void smpi_execute(double seconds) { called(); }
 void smpi_execute_benched(double seconds) { called(); }
 void __sanitizer_cov_trace_pc(void) { called(); }
-tsmpi_sg_file *sg_file_open(const char *fullpath, void *data) { called(); }
-void sg_file_close(tsmpi_sg_file *fd) { called(); }
-void sg_file_unlink(tsmpi_sg_file *fd) { called(); }
-const char *sg_file_get_name(const tsmpi_sg_file *fd) { called(); }
-unsigned long long sg_file_get_size(const tsmpi_sg_file *fd) { called(); }
+io_sg_file *sg_file_open(const char *fullpath, void *data) { called(); }
+void sg_file_close(io_sg_file *fd) { called(); }
+void sg_file_unlink(io_sg_file *fd) { called(); }
+const char *sg_file_get_name(const io_sg_file *fd) { called(); }
+unsigned long long sg_file_get_size(const io_sg_file *fd) { called(); }

@@ -183,8 +183,8 @@ static int interp_source(void) {
 
 static int implemented(const char *name) {
   if (strncmp(name, "PMPI_", 5) == 0) name++;
-  for (int i = 0; i < tsmpi_nfuncs; i++)
-    if (strcmp(tsmpi_funcs[i].name, name) == 0) return tsmpi_funcs[i].implemented;
+  for (int i = 0; i < funcs_n; i++)
+    if (strcmp(funcs_table[i].name, name) == 0) return funcs_table[i].implemented;
   return 1;   /* a callback or a compute call: tilesim-mpirun has it */
 }
 

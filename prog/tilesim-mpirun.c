@@ -113,8 +113,8 @@ static loader *ld;
 static void on_exit_call(mp *self, int status, int run_handlers) {
   rank_info *ri = &info[mp_rank(self)];
   if (run_handlers) loader_finish(ld, mp_rank(self), status);
-  int mpi = tsmpi_rank_end(self);
-  if (mpi == TSMPI_UNFINALIZED) {
+  int mpi = init_rank_end(self);
+  if (mpi == INIT_UNFINALIZED) {
     char why[160];
     snprintf(why, sizeof why, "rank %d called exit(%d) without calling MPI_Finalize", mp_rank(self), status);
     mp_abort(self, 1, why);
@@ -124,7 +124,7 @@ static void on_exit_call(mp *self, int status, int run_handlers) {
 }
 
 /* A rank called abort(): its MPI state goes before the run stops. */
-static void on_abort_call(mp *self) { tsmpi_rank_end(self); }
+static void on_abort_call(mp *self) { init_rank_end(self); }
 
 static void rank_entry(mp *self, void *ud) {
   rank_info *ri = ud;
@@ -134,7 +134,7 @@ static void rank_entry(mp *self, void *ud) {
   loader_finish(ld, r, status);   /* as exit(status) after main returns */
   compute_settle();   /* what it computed after its last call */
   fflush(stdout);
-  if (tsmpi_rank_end(self) == TSMPI_UNFINALIZED) {
+  if (init_rank_end(self) == INIT_UNFINALIZED) {
     char why[160];
     snprintf(why, sizeof why, "rank %d returned from main without calling MPI_Finalize", mp_rank(self));
     mp_abort(self, 1, why);
@@ -290,20 +290,20 @@ int main(int argc, char **argv) {
       if (args_long(a, v, 1, MACHINE_MAX_RANKS, &np, err, sizeof err) != 0) return bad_usage(err, NULL);
     } else if (strcmp(a, "--coll") == 0) {
       if (strcmp(v, "help") == 0) {
-        tsmpi_coll_usage(stdout);
+        coll_usage(stdout);
         return 0;
       }
-      if (tsmpi_coll_option(v, err, sizeof err) != 0) return bad_usage(err, NULL);
+      if (coll_option(v, err, sizeof err) != 0) return bad_usage(err, NULL);
     } else if (strcmp(a, "--fs") == 0) {
-      if (tsmpi_fs_option(v, err, sizeof err) != 0) return bad_usage(err, NULL);
+      if (io_fs_option(v, err, sizeof err) != 0) return bad_usage(err, NULL);
     } else if (strcmp(a, "--stats") == 0) {
       if (args_name(a, v, "a file name or -", 1, err, sizeof err) != 0) return bad_usage(err, NULL);
       stats = v;
     } else if (strcmp(a, "--poll-cost") == 0 || strcmp(a, "--wtime-cost") == 0) {
       double s;
       if (args_real(a, v, "seconds", 0, 1, &s, err, sizeof err) != 0) return bad_usage(err, NULL);
-      if (a[2] == 'p') tsmpi_set_poll_cost(s);
-      else tsmpi_set_wtime_cost(s);
+      if (a[2] == 'p') init_set_poll_cost(s);
+      else init_set_wtime_cost(s);
     } else if ((k = compute_option(&cc, a, v, err, sizeof err)) != 0) {
       if (k < 0) return bad_usage(err, NULL);
     } else if ((k = machine_option(&mc, a, v, err, sizeof err)) < 0) {
@@ -350,12 +350,12 @@ int main(int argc, char **argv) {
       return 1;
     }
 
-  tsmpi_libc_setup(n, on_exit_call, on_abort_call);
+  rlibc_setup(n, on_exit_call, on_abort_call);
   name_process(path);
   ld = loader_new(path, n, err, sizeof err);
   if (!ld) {
     fprintf(stderr, "%s: %s\n", prog, err);
-    tsmpi_libc_free();
+    rlibc_free();
     return 1;
   }
   info = xcalloc((size_t)n, sizeof *info);
@@ -397,6 +397,6 @@ int main(int argc, char **argv) {
   free(procs);
   if (cxx) cxx_ranks_end();
   loader_free(ld);
-  tsmpi_libc_free();
+  rlibc_free();
   return status;
 }

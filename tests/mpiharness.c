@@ -41,7 +41,7 @@ static void rank_main(mp *self, void *ud) {
   /* A rank stopped inside an MPI call never comes back here: its exit
    * stays MPIH_NOEXIT and its end -1. */
   j->res->exit[r] = j->main_fn ? j->main_fn(j->argc, j->argv) : j->fn(j->ud);
-  j->res->end[r] = tsmpi_rank_end(self);
+  j->res->end[r] = init_rank_end(self);
 }
 
 static int run(const mpih_config *cfg, job *j, mpih_result *res);
@@ -81,7 +81,7 @@ static int run(const mpih_config *cfg, job *j, mpih_result *res) {
   res->end = xmallocarray((size_t)n, sizeof *res->end);
   res->finish = xcalloc((size_t)n, sizeof *res->finish);
   for (int i = 0; i < n; i++) res->exit[i] = MPIH_NOEXIT, res->end[i] = -1;
-  tsmpi_set_poll_cost(cfg->poll_cost);
+  init_set_poll_cost(cfg->poll_cost);
   mp_proc *pr = xmallocarray((size_t)n, sizeof *pr);
   for (int i = 0; i < n; i++) pr[i] = (mp_proc){rank_main, j};
   if (cfg->backend == MPIH_SIM) {

@@ -19,7 +19,7 @@ typedef struct {
   int ranks;            /* >= 1 */
   sim_config sim;       /* the simulator's machine (mpih_config_init: --net
                            ideal, binary-fraction costs, one processor per rank) */
-  double poll_cost;     /* tsmpi_set_poll_cost (default 1e-6) */
+  double poll_cost;     /* init_set_poll_cost (default 1e-6) */
   FILE *warn;           /* the backend's warnings (default NULL: quiet) */
 } mpih_config;
 
@@ -29,7 +29,7 @@ typedef struct {
   int rc;               /* sim_run / mpt_run: 0, or -1 with err */
   char err[2048];
   int *exit;            /* per rank: main's return value, or MPIH_NOEXIT */
-  int *end;             /* per rank: tsmpi_rank_end's answer (TSMPI_*) */
+  int *end;             /* per rank: init_rank_end's answer (TSMPI_*) */
   double *finish;       /* per rank: simulated finish (the simulator) */
   double makespan;      /* the simulator's */
   long long messages;   /* mp messages sent */

@@ -253,9 +253,9 @@ static void spinning(void) {
     mpih_config cfg;
     mpih_config_init(&cfg, MPIH_SIM, 2);
     cfg.poll_cost = 0.0625;
-    if (k == P_WTIME) tsmpi_set_wtime_cost(0.0625);
+    if (k == P_WTIME) init_set_wtime_cost(0.0625);
     mpih_run_fn(&cfg, polls, &S, &res);
-    tsmpi_set_wtime_cost(0);
+    init_set_wtime_cost(0);
     long due = k == P_WTIME ? 17 : 15;   /* the 17th Wtime reads 1 s; the 15th poll ends at 1 s */
     CHECK(res.rc == 0 && S.polls == due, "%s with a poll cost: %s (%ld polls, %ld due)", pname[k], res.err, S.polls,
           due);
@@ -275,7 +275,7 @@ typedef struct {
 static int x_progress(void *state) {
   xchg *x = state;
   x->progress++;
-  int a = tsmpi_p2p_done(&x->r[0], MPI_STATUS_IGNORE), b = tsmpi_p2p_done(&x->r[1], MPI_STATUS_IGNORE);
+  int a = coll_p2p_done(&x->r[0], MPI_STATUS_IGNORE), b = coll_p2p_done(&x->r[1], MPI_STATUS_IGNORE);
   return a && b && !x->never;
 }
 
@@ -292,7 +292,7 @@ static int x_free(void *state) {
   return MPI_SUCCESS;
 }
 
-static const tsmpi_kind xchg_kind = {"MPI_Ixchg", x_progress, NULL, x_status, x_free, NULL};
+static const req_kind xchg_kind = {"MPI_Ixchg", x_progress, NULL, x_status, x_free, NULL};
 
 typedef struct {
   int wait;           /* MPI_Wait, else MPI_Test until done */
@@ -309,11 +309,11 @@ static int kinds(void *ud) {
   xchg *x = &K->x[r];
   x->v = 100 + r;
   x->never = K->never;
-  tsmpi_p2p_irecv(&x->w, 1, MPI_INT, (r + n - 1) % n, 3, MPI_COMM_WORLD, &x->r[0]);
-  tsmpi_p2p_isend(&x->v, 1, MPI_INT, (r + 1) % n, 3, MPI_COMM_WORLD, &x->r[1]);
+  coll_p2p_irecv(&x->w, 1, MPI_INT, (r + n - 1) % n, 3, MPI_COMM_WORLD, &x->r[0]);
+  coll_p2p_isend(&x->v, 1, MPI_INT, (r + 1) % n, 3, MPI_COMM_WORLD, &x->r[1]);
   MPI_Request q;
   MPI_Status st;
-  tsmpi_req_start(&xchg_kind, x, &q);
+  req_start(&xchg_kind, x, &q);
   if (K->wait) {
     MPI_Wait(&q, &st);
   } else {
@@ -364,17 +364,17 @@ typedef struct {
 
 static int relay_progress(void *state) {
   relay *x = state;
-  if (x->stage == 0 && tsmpi_p2p_done(&x->in, MPI_STATUS_IGNORE)) {
-    tsmpi_p2p_isend(&x->v, 1, MPI_INT, 1, 11, MPI_COMM_WORLD, &x->out);
+  if (x->stage == 0 && coll_p2p_done(&x->in, MPI_STATUS_IGNORE)) {
+    coll_p2p_isend(&x->v, 1, MPI_INT, 1, 11, MPI_COMM_WORLD, &x->out);
     x->stage = 1;
   }
-  return x->stage == 1 && tsmpi_p2p_done(&x->out, MPI_STATUS_IGNORE);
+  return x->stage == 1 && coll_p2p_done(&x->out, MPI_STATUS_IGNORE);
 }
 
-static int answer_progress(void *state) { return tsmpi_p2p_done(&((relay *)state)->answer, MPI_STATUS_IGNORE); }
+static int answer_progress(void *state) { return coll_p2p_done(&((relay *)state)->answer, MPI_STATUS_IGNORE); }
 
-static const tsmpi_kind relay_kind = {"MPI_Irelay", relay_progress, NULL, NULL, NULL, NULL};
-static const tsmpi_kind answer_kind = {"MPI_Ianswer", answer_progress, NULL, NULL, NULL, NULL};
+static const req_kind relay_kind = {"MPI_Irelay", relay_progress, NULL, NULL, NULL, NULL};
+static const req_kind answer_kind = {"MPI_Ianswer", answer_progress, NULL, NULL, NULL, NULL};
 
 typedef struct {
   double t;
@@ -387,18 +387,18 @@ static int relays(void *ud) {
   if (r == 0) {
     relay x = {.stage = 0};
     MPI_Request a, b;
-    tsmpi_p2p_irecv(&x.v, 1, MPI_INT, 1, 10, MPI_COMM_WORLD, &x.in);
-    tsmpi_req_start(&relay_kind, &x, &b);
-    tsmpi_p2p_irecv(&K->w, 1, MPI_INT, 1, 12, MPI_COMM_WORLD, &x.answer);
-    tsmpi_req_start(&answer_kind, &x, &a);
+    coll_p2p_irecv(&x.v, 1, MPI_INT, 1, 10, MPI_COMM_WORLD, &x.in);
+    req_start(&relay_kind, &x, &b);
+    coll_p2p_irecv(&K->w, 1, MPI_INT, 1, 12, MPI_COMM_WORLD, &x.answer);
+    req_start(&answer_kind, &x, &a);
     MPI_Wait(&a, MPI_STATUS_IGNORE);
     K->t = MPI_Wtime();
     MPI_Wait(&b, MPI_STATUS_IGNORE);
   } else if (r == 1) {
-    tsmpi_p2p_send(&v, 1, MPI_INT, 0, 10, MPI_COMM_WORLD);
-    tsmpi_p2p_recv(&K->v, 1, MPI_INT, 0, 11, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    coll_p2p_send(&v, 1, MPI_INT, 0, 10, MPI_COMM_WORLD);
+    coll_p2p_recv(&K->v, 1, MPI_INT, 0, 11, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
     K->v++;
-    tsmpi_p2p_send(&K->v, 1, MPI_INT, 0, 12, MPI_COMM_WORLD);
+    coll_p2p_send(&K->v, 1, MPI_INT, 0, 12, MPI_COMM_WORLD);
   }
   MPI_Finalize();
   return 0;

@@ -45,11 +45,11 @@ static void mounts(job *j, const char *dir, int n) {
   char spec[512], err[256];
   snprintf(j->dir, sizeof j->dir, "%s", dir);
   j->n = n;
-  tsmpi_fs_reset();
+  io_fs_reset();
   snprintf(spec, sizeof spec, "/fsa,dir=%s,latency=0.5,bandwidth=16", j->dir);
-  CHECK(tsmpi_fs_option(spec, err, sizeof err) == 0, "--fs %s: %s", spec, err);
+  CHECK(io_fs_option(spec, err, sizeof err) == 0, "--fs %s: %s", spec, err);
   snprintf(spec, sizeof spec, "/fsb,dir=%s/b,latency=0.5,bandwidth=16", j->dir);
-  CHECK(tsmpi_fs_option(spec, err, sizeof err) == 0, "--fs %s: %s", spec, err);
+  CHECK(io_fs_option(spec, err, sizeof err) == 0, "--fs %s: %s", spec, err);
 }
 
 /* Open, an independent write each, a collective write, close. */
@@ -169,7 +169,7 @@ static void separate(const char *dir) {
 static void threads(const char *dir) {
   job j = {0};
   mounts(&j, dir, 8);
-  tsmpi_fs_option("/fsa,latency=0,bandwidth=1e15", (char[64]){0}, 64);
+  io_fs_option("/fsa,latency=0,bandwidth=1e15", (char[64]){0}, 64);
   char f[300], data[64];
   snprintf(f, sizeof f, "%s/f", dir);
   remove(f);
@@ -241,24 +241,24 @@ static void options(const char *dir) {
                                     "/x,latency=abc", ""};
   for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
     err[0] = 0;
-    CHECK(tsmpi_fs_option(bad[i], err, sizeof err) == -1 && strstr(err, "--fs"), "--fs '%s' accepted (%s)", bad[i],
+    CHECK(io_fs_option(bad[i], err, sizeof err) == -1 && strstr(err, "--fs"), "--fs '%s' accepted (%s)", bad[i],
           err);
   }
-  tsmpi_fs_reset();
+  io_fs_reset();
   char spec[300];
   snprintf(spec, sizeof spec, "/scratch,dir=%s", dir);
-  CHECK(tsmpi_fs_option(spec, err, sizeof err) == 0, "--fs %s: %s", spec, err);
+  CHECK(io_fs_option(spec, err, sizeof err) == 0, "--fs %s: %s", spec, err);
   char host[300];
   snprintf(host, sizeof host, "%s/s.txt", dir);
   FILE *f = fopen(host, "w");
   if (f) fclose(f);
-  tsmpi_sg_file *sg = sg_file_open("/scratch/./x/../s.txt", NULL);
+  io_sg_file *sg = sg_file_open("/scratch/./x/../s.txt", NULL);
   CHECK(sg && !strcmp(sg_file_get_name(sg), "/scratch/./x/../s.txt") && sg_file_get_size(sg) == 0,
         "sg_file_open of /scratch/s.txt");
   sg_file_unlink(sg);
   struct stat st;
   CHECK(stat(host, &st) != 0, "sg_file_unlink left %s", host);
-  tsmpi_fs_reset();
+  io_fs_reset();
 }
 
 int main(void) {
@@ -279,6 +279,6 @@ int main(void) {
   snprintf(f, sizeof f, "%s/f", d);
   remove(f);
   rmdir(d);
-  tsmpi_fs_reset();
+  io_fs_reset();
   return check_done("test_mpi_io");
 }

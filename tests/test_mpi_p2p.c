@@ -340,8 +340,8 @@ static void rank_ends(void) {
   for (int b = 0; b < 2; b++) {
     seen s = {0};
     mpih_result res = run(b, 3, ends, &s);
-    CHECK(res.rc == 0 && res.end[0] == TSMPI_NEVER && res.end[1] == TSMPI_UNFINALIZED &&
-              res.end[2] == TSMPI_FINALIZED,
+    CHECK(res.rc == 0 && res.end[0] == INIT_NEVER && res.end[1] == INIT_UNFINALIZED &&
+              res.end[2] == INIT_FINALIZED,
           "%s: ends %d %d %d", bname[b], res.end[0], res.end[1], res.end[2]);
     CHECK(s.flags[0] == 0 && s.flags[1] == 1 && s.flags[2] == 1 && s.flags[3] == 1, "%s: flags %d %d %d %d",
           bname[b], s.flags[0], s.flags[1], s.flags[2], s.flags[3]);

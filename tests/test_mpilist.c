@@ -57,23 +57,23 @@ static char *render(void) {
     n += (size_t)k_;                                                 \
   } while (0)
   int all = 0, impl = 0, mpi4 = 0;
-  for (int i = 0; i < tsmpi_nfuncs; i++)
-    all++, impl += tsmpi_funcs[i].implemented, mpi4 += !strcmp(tsmpi_funcs[i].chapter, "MPI4");
+  for (int i = 0; i < funcs_n; i++)
+    all++, impl += funcs_table[i].implemented, mpi4 += !strcmp(funcs_table[i].chapter, "MPI4");
   OUT("%s", BEGIN);
   OUT("%d functions: the %d of MPI 3.1, %d that MPI 3.0 removed and %d of MPI-4; %d implemented, %d declared "
       "only.\n",
       all, all - 10 - mpi4, 10, mpi4, impl, all - impl);
   for (int c = 0; c < NCHAPTERS; c++) {
     int ci = 0, cn = 0;
-    for (int i = 0; i < tsmpi_nfuncs; i++)
-      if (!strcmp(tsmpi_funcs[i].chapter, chapters[c].id)) cn++, ci += tsmpi_funcs[i].implemented;
+    for (int i = 0; i < funcs_n; i++)
+      if (!strcmp(funcs_table[i].chapter, chapters[c].id)) cn++, ci += funcs_table[i].implemented;
     OUT("\n### %s: %d of %d implemented\n", chapters[c].title, ci, cn);
     for (int want = 1; want >= 0; want--) {
       int k = 0;
-      for (int i = 0; i < tsmpi_nfuncs; i++) {
-        if (strcmp(tsmpi_funcs[i].chapter, chapters[c].id) || tsmpi_funcs[i].implemented != want) continue;
+      for (int i = 0; i < funcs_n; i++) {
+        if (strcmp(funcs_table[i].chapter, chapters[c].id) || funcs_table[i].implemented != want) continue;
         OUT("%s`%s`", k ? ", " : want ? "\nImplemented: " : "\nDeclared only (a call stops the run): ",
-            tsmpi_funcs[i].name);
+            funcs_table[i].name);
         k++;
       }
       if (k) OUT(".\n");
@@ -156,13 +156,13 @@ int main(int argc, char **argv) {
   /* The list: 417 distinct functions (then MPI-4's), each linked, with its
    * PMPI_ name. */
   int mpi3 = 0;
-  for (int i = 0; i < tsmpi_nfuncs; i++) mpi3 += strcmp(tsmpi_funcs[i].chapter, "MPI4") != 0;
-  CHECK(mpi3 == 417 && (int)(sizeof linked / sizeof linked[0]) == tsmpi_nfuncs,
+  for (int i = 0; i < funcs_n; i++) mpi3 += strcmp(funcs_table[i].chapter, "MPI4") != 0;
+  CHECK(mpi3 == 417 && (int)(sizeof linked / sizeof linked[0]) == funcs_n,
         "%d functions of MPI 3.1 in the list (want 407 and 10 removed)", mpi3);
   int dup = 0, nulls = 0;
-  for (int i = 0; i < tsmpi_nfuncs; i++) {
+  for (int i = 0; i < funcs_n; i++) {
     nulls += !linked[i].fn || !linked[i].pfn || linked[i].fn == linked[i].pfn;
-    for (int j = 0; j < i; j++) dup += !strcmp(tsmpi_funcs[i].name, tsmpi_funcs[j].name);
+    for (int j = 0; j < i; j++) dup += !strcmp(funcs_table[i].name, funcs_table[j].name);
   }
   CHECK(dup == 0 && nulls == 0, "%d names twice, %d functions without their own address", dup, nulls);
 

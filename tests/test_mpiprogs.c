@@ -36,7 +36,7 @@ static int mine(const char *name) {
  * forcing for it (the others run MPICH's choice and linear only). */
 static const struct {
   const char *prefix;
-  tsmpi_coll colls[COLL_N];
+  coll_id colls[COLL_N];
   int n;
   int np[2];   /* forced on these rank counts only (0: on every one of forced_np) */
 } uses[] = {
@@ -55,8 +55,8 @@ static const struct {
  * "bcast=binomial"); 1 if it passed. */
 static int run(const char *name, mpih_main fn, int np, const char *setting, int backend) {
   char err[256];
-  tsmpi_coll_reset();
-  if (tsmpi_coll_option(setting, err, sizeof err) != 0) {
+  coll_reset();
+  if (coll_option(setting, err, sizeof err) != 0) {
     CHECK(0, "%s: %s", name, err);
     return 0;
   }
@@ -72,7 +72,7 @@ static int run(const char *name, mpih_main fn, int np, const char *setting, int 
         backend == MPIH_SIM ? "simulator" : "threads", setting, rc ? "bad configuration: " : "",
         rc || res.rc ? res.err : "a check failed", bad, bad >= 0 ? res.exit[bad] : 0);
   mpih_result_free(&res);
-  tsmpi_coll_reset();
+  coll_reset();
   return ok;
 }
 
@@ -94,12 +94,12 @@ static void settings(int p, int np, int all) {
     if (strncmp(progs[p].name, uses[u].prefix, strlen(uses[u].prefix))) continue;
     if (!all && uses[u].np[0] && np != uses[u].np[0] && np != uses[u].np[1]) continue;
     for (int c = 0; c < uses[u].n; c++) {
-      tsmpi_coll coll = uses[u].colls[c];
+      coll_id coll = uses[u].colls[c];
       for (int a = ALG_DISSEMINATION; a < ALG_N; a++) {
         char setting[96], err[256];
-        snprintf(setting, sizeof setting, "%s=%s", tsmpi_coll_name(coll), tsmpi_alg_name((tsmpi_alg)a));
-        if (tsmpi_coll_option(setting, err, sizeof err) != 0) continue;   /* not one of its algorithms */
-        tsmpi_coll_reset();
+        snprintf(setting, sizeof setting, "%s=%s", coll_name(coll), coll_alg_name((coll_alg)a));
+        if (coll_option(setting, err, sizeof err) != 0) continue;   /* not one of its algorithms */
+        coll_reset();
         run(progs[p].name, progs[p].fn, np, setting, MPIH_SIM);
       }
     }
@@ -144,7 +144,7 @@ static int traced_main(int argc, char **argv) {
 static void traced_rank(mp *self, void *ud) {
   char *argv[] = {"traced", NULL};
   ((int *)ud)[mp_rank(self)] = traced_main(1, argv);
-  tsmpi_rank_end(self);
+  init_rank_end(self);
 }
 
 static void trace_names_calls(void) {
