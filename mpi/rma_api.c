@@ -25,24 +25,14 @@
 
 /* ==== checks ============================================================== */
 
-/* What one call gives: the window, its target, and the sides' elements. */
+/* What one call gives: the window, the target's displacement, and the
+ * operation (win.h: its taddr is found from disp once the call is checked). */
 typedef struct {
   const char *fn;
   st_rank *R;
   rma_window *w;
-  int kind;
-  int target;
   MPI_Aint disp;
-  int tcount;
-  MPI_Datatype tdt;
-  const void *obuf;
-  int ocount;
-  MPI_Datatype odt;
-  void *rbuf;
-  int rcount;
-  MPI_Datatype rdt;
-  MPI_Op op;
-  const void *compare;     /* MPI_Compare_and_swap's */
+  rma_args a;
 } call;
 
 static int type_ok(const call *c, const char *what, MPI_Datatype dt) {
@@ -67,10 +57,10 @@ static size_t bytes(int n, MPI_Datatype dt) { return (size_t)n * dtype_size(dt);
  * MPI_ERR_RMA_RANGE raised. */
 static int target_at(const call *c, char **taddr) {
   rma_window *w = c->w;
-  rma_part *p = &w->sh->part[c->target];
-  MPI_Aint lb = dtype_true_lb(c->tdt), ext = dtype_extent(c->tdt), tex = dtype_true_extent(c->tdt);
-  MPI_Aint lo = lb, hi = c->tcount ? (MPI_Aint)(c->tcount - 1) * ext + lb + tex : lb;
-  if (ext < 0) lo += (MPI_Aint)(c->tcount - 1) * ext, hi = lb + tex;
+  rma_part *p = &w->sh->part[c->a.target];
+  MPI_Aint lb = dtype_true_lb(c->a.tdt), ext = dtype_extent(c->a.tdt), tex = dtype_true_extent(c->a.tdt);
+  MPI_Aint lo = lb, hi = c->a.tcount ? (MPI_Aint)(c->a.tcount - 1) * ext + lb + tex : lb;
+  if (ext < 0) lo += (MPI_Aint)(c->a.tcount - 1) * ext, hi = lb + tex;
   if (w->flavor == MPI_WIN_FLAVOR_DYNAMIC) {
     char *a = (char *)(intptr_t)c->disp;
     int in = 0;
@@ -81,36 +71,36 @@ static int target_at(const call *c, char **taddr) {
     *taddr = a;
     if (in) return MPI_SUCCESS;
     return rma_win_raise(c->R, w, MPI_ERR_RMA_RANGE, c->fn, "address %p (%td bytes) is not in a region attached at rank %d",
-                         (void *)(a + lo), (ptrdiff_t)(hi - lo), c->target);
+                         (void *)(a + lo), (ptrdiff_t)(hi - lo), c->a.target);
   }
   MPI_Aint off = c->disp * p->disp_unit;
   *taddr = p->base + off;
   if (off + lo >= 0 && off + hi <= p->size) return MPI_SUCCESS;
   return rma_win_raise(c->R, w, MPI_ERR_RMA_RANGE, c->fn,
                        "bytes %td to %td of rank %d's window, which has %td", (ptrdiff_t)(off + lo),
-                       (ptrdiff_t)(off + hi), c->target, (ptrdiff_t)p->size);
+                       (ptrdiff_t)(off + hi), c->a.target, (ptrdiff_t)p->size);
 }
 
 /* An accumulate's elements and operation. */
 static int acc_ok(const call *c) {
   char why[128];
-  if (op_valid(c->op, why, sizeof why) != MPI_SUCCESS)
+  if (op_valid(c->a.op, why, sizeof why) != MPI_SUCCESS)
     return rma_win_raise(c->R, c->w, MPI_ERR_OP, c->fn, "%s", why);
-  if (!op_is_predefined(c->op))
+  if (!op_is_predefined(c->a.op))
     return rma_win_raise(c->R, c->w, MPI_ERR_OP, c->fn, "a user operation (accumulates take predefined ones)");
   MPI_Count per;
-  int te = dtype_elem(c->tdt, &per);
-  if (!te && bytes(c->tcount, c->tdt))
+  int te = dtype_elem(c->a.tdt, &per);
+  if (!te && bytes(c->a.tcount, c->a.tdt))
     return rma_win_raise(c->R, c->w, MPI_ERR_TYPE, c->fn, "the target datatype's elements are of several predefined types");
-  int carries = c->op != MPI_NO_OP && c->kind != OP_GET;
-  if (carries && bytes(c->ocount, c->odt)) {
-    int oe = dtype_elem(c->odt, &per);
+  int carries = c->a.op != MPI_NO_OP && c->a.kind != OP_GET;
+  if (carries && bytes(c->a.ocount, c->a.odt)) {
+    int oe = dtype_elem(c->a.odt, &per);
     if (oe != te)
       return rma_win_raise(c->R, c->w, MPI_ERR_TYPE, c->fn,
                            "the origin's and the target's elements are not of one predefined type");
   }
-  if (te && c->op != MPI_REPLACE && c->op != MPI_NO_OP &&
-      op_check(c->op, (MPI_Datatype)(3 << 24 | te), why, sizeof why) != MPI_SUCCESS)
+  if (te && c->a.op != MPI_REPLACE && c->a.op != MPI_NO_OP &&
+      op_check(c->a.op, (MPI_Datatype)(3 << 24 | te), why, sizeof why) != MPI_SUCCESS)
     return rma_win_raise(c->R, c->w, MPI_ERR_OP, c->fn, "%s", why);
   return MPI_SUCCESS;
 }
@@ -122,31 +112,31 @@ static int check(call *c, MPI_Win win, int *go) {
   int rc = rma_win_check(R, win, c->fn, &c->w);
   if (rc) return rc;
   rma_window *w = c->w;
-  int carries = c->kind == OP_PUT || c->kind == OP_ACC || c->kind == OP_CAS ||
-                (c->kind == OP_GACC && c->op != MPI_NO_OP);
-  int fetches = c->kind == OP_GET || c->kind == OP_GACC || c->kind == OP_CAS;
-  if (carries && ((rc = count_ok(c, "origin", c->ocount)) || (rc = type_ok(c, "origin", c->odt)))) return rc;
-  if (c->kind == OP_GACC && (rc = count_ok(c, "result", c->rcount))) return rc;
-  if (c->kind != OP_GET && c->kind != OP_PUT && c->kind != OP_ACC && (rc = type_ok(c, "result", c->rdt))) return rc;
-  if (c->kind == OP_GET && ((rc = count_ok(c, "origin", c->rcount)) || (rc = type_ok(c, "origin", c->rdt)))) return rc;
-  if ((rc = count_ok(c, "target", c->tcount)) || (rc = type_ok(c, "target", c->tdt))) return rc;
-  if (c->target != MPI_PROC_NULL && (c->target < 0 || c->target >= w->size))
-    return rma_win_raise(R, w, MPI_ERR_RANK, c->fn, "invalid target rank %d (the window has %d rank%s)", c->target,
+  int carries = c->a.kind == OP_PUT || c->a.kind == OP_ACC || c->a.kind == OP_CAS ||
+                (c->a.kind == OP_GACC && c->a.op != MPI_NO_OP);
+  int fetches = c->a.kind == OP_GET || c->a.kind == OP_GACC || c->a.kind == OP_CAS;
+  if (carries && ((rc = count_ok(c, "origin", c->a.ocount)) || (rc = type_ok(c, "origin", c->a.odt)))) return rc;
+  if (c->a.kind == OP_GACC && (rc = count_ok(c, "result", c->a.rcount))) return rc;
+  if (c->a.kind != OP_GET && c->a.kind != OP_PUT && c->a.kind != OP_ACC && (rc = type_ok(c, "result", c->a.rdt))) return rc;
+  if (c->a.kind == OP_GET && ((rc = count_ok(c, "origin", c->a.rcount)) || (rc = type_ok(c, "origin", c->a.rdt)))) return rc;
+  if ((rc = count_ok(c, "target", c->a.tcount)) || (rc = type_ok(c, "target", c->a.tdt))) return rc;
+  if (c->a.target != MPI_PROC_NULL && (c->a.target < 0 || c->a.target >= w->size))
+    return rma_win_raise(R, w, MPI_ERR_RANK, c->fn, "invalid target rank %d (the window has %d rank%s)", c->a.target,
                          w->size, w->size == 1 ? "" : "s");
-  if ((c->kind == OP_ACC || c->kind == OP_GACC) && (rc = acc_ok(c))) return rc;
-  size_t tb = bytes(c->tcount, c->tdt);
-  if (carries && bytes(c->ocount, c->odt) != tb)
+  if ((c->a.kind == OP_ACC || c->a.kind == OP_GACC) && (rc = acc_ok(c))) return rc;
+  size_t tb = bytes(c->a.tcount, c->a.tdt);
+  if (carries && bytes(c->a.ocount, c->a.odt) != tb)
     return rma_win_raise(R, w, MPI_ERR_SIZE, c->fn, "the origin's %zu bytes and the target's %zu differ",
-                         bytes(c->ocount, c->odt), tb);
-  if (fetches && bytes(c->rcount, c->rdt) != tb)
+                         bytes(c->a.ocount, c->a.odt), tb);
+  if (fetches && bytes(c->a.rcount, c->a.rdt) != tb)
     return rma_win_raise(R, w, MPI_ERR_SIZE, c->fn, "the %s %zu bytes and the target's %zu differ",
-                         c->kind == OP_GET ? "origin's" : "result's", bytes(c->rcount, c->rdt), tb);
-  if (c->target == MPI_PROC_NULL || tb == 0) return MPI_SUCCESS;
-  if (carries && (rc = buf_ok(c, "origin", c->obuf, c->ocount, c->odt))) return rc;
-  if (fetches && (rc = buf_ok(c, c->kind == OP_GET ? "origin" : "result", c->rbuf, c->rcount, c->rdt))) return rc;
-  if (c->kind == OP_CAS && (rc = buf_ok(c, "compare", c->compare, 1, c->tdt))) return rc;
-  if (!w->fence && !w->lockall && !rma_locked(w, c->target) && !rma_access_has(w, c->target))
-    return rma_win_raise(R, w, MPI_ERR_RMA_SYNC, c->fn, "rank %d is in no access epoch of this rank's", c->target);
+                         c->a.kind == OP_GET ? "origin's" : "result's", bytes(c->a.rcount, c->a.rdt), tb);
+  if (c->a.target == MPI_PROC_NULL || tb == 0) return MPI_SUCCESS;
+  if (carries && (rc = buf_ok(c, "origin", c->a.obuf, c->a.ocount, c->a.odt))) return rc;
+  if (fetches && (rc = buf_ok(c, c->a.kind == OP_GET ? "origin" : "result", c->a.rbuf, c->a.rcount, c->a.rdt))) return rc;
+  if (c->a.kind == OP_CAS && (rc = buf_ok(c, "compare", c->a.compare, 1, c->a.tdt))) return rc;
+  if (!w->fence && !w->lockall && !rma_locked(w, c->a.target) && !rma_access_has(w, c->a.target))
+    return rma_win_raise(R, w, MPI_ERR_RMA_SYNC, c->fn, "rank %d is in no access epoch of this rank's", c->a.target);
   *go = 1;
   return MPI_SUCCESS;
 }
@@ -159,12 +149,9 @@ static int run(call *c, MPI_Win win, MPI_Request *req) {
   if (rc) return rc;
   rma_done d = {.applied = 1, .at = -1};
   if (go) {
-    rma_args a = {.kind = c->kind, .target = c->target, .tcount = c->tcount, .tdt = c->tdt, .obuf = c->obuf,
-                  .ocount = c->ocount, .odt = c->odt, .rbuf = c->rbuf, .rcount = c->rcount, .rdt = c->rdt,
-                  .compare = c->compare, .op = c->op};
-    if ((rc = target_at(c, &a.taddr))) return rc;
-    int fetches = c->kind == OP_GET || c->kind == OP_GACC || c->kind == OP_CAS;
-    rma_issue(c->R, c->w, &a, req && fetches ? &d : NULL);
+    if ((rc = target_at(c, &c->a.taddr))) return rc;
+    int fetches = c->a.kind == OP_GET || c->a.kind == OP_GACC || c->a.kind == OP_CAS;
+    rma_issue(c->R, c->w, &c->a, req && fetches ? &d : NULL);
     if (req && fetches) rma_wait_done(c->R, c->w, &d);
   }
   if (req) {
@@ -191,13 +178,13 @@ static int request_arg(const char *fn, MPI_Win win, MPI_Request *request) {
 /* ==== the calls =========================================================== */
 
 #define PUT_CALL(name, kindv)                                                                                   \
-  call c = {.fn = name, .kind = kindv, .target = target_rank, .disp = target_disp, .tcount = target_count,    \
-            .tdt = target_datatype}
+  call c = {.fn = name, .disp = target_disp, .a.kind = kindv, .a.target = target_rank, .a.tcount = target_count, \
+            .a.tdt = target_datatype}
 
 int PMPI_Put(const void *origin_addr, int origin_count, MPI_Datatype origin_datatype, int target_rank,
              MPI_Aint target_disp, int target_count, MPI_Datatype target_datatype, MPI_Win win) {
   PUT_CALL("MPI_Put", OP_PUT);
-  c.obuf = origin_addr, c.ocount = origin_count, c.odt = origin_datatype;
+  c.a.obuf = origin_addr, c.a.ocount = origin_count, c.a.odt = origin_datatype;
   return run(&c, win, NULL);
 }
 
@@ -205,7 +192,7 @@ int PMPI_Rput(const void *origin_addr, int origin_count, MPI_Datatype origin_dat
               MPI_Aint target_disp, int target_count, MPI_Datatype target_datatype, MPI_Win win,
               MPI_Request *request) {
   PUT_CALL("MPI_Rput", OP_PUT);
-  c.obuf = origin_addr, c.ocount = origin_count, c.odt = origin_datatype;
+  c.a.obuf = origin_addr, c.a.ocount = origin_count, c.a.odt = origin_datatype;
   int rc = request_arg(c.fn, win, request);
   return rc ? rc : run(&c, win, request);
 }
@@ -213,7 +200,7 @@ int PMPI_Rput(const void *origin_addr, int origin_count, MPI_Datatype origin_dat
 int PMPI_Get(void *origin_addr, int origin_count, MPI_Datatype origin_datatype, int target_rank,
              MPI_Aint target_disp, int target_count, MPI_Datatype target_datatype, MPI_Win win) {
   PUT_CALL("MPI_Get", OP_GET);
-  c.rbuf = origin_addr, c.rcount = origin_count, c.rdt = origin_datatype;
+  c.a.rbuf = origin_addr, c.a.rcount = origin_count, c.a.rdt = origin_datatype;
   return run(&c, win, NULL);
 }
 
@@ -221,7 +208,7 @@ int PMPI_Rget(void *origin_addr, int origin_count, MPI_Datatype origin_datatype,
               MPI_Aint target_disp, int target_count, MPI_Datatype target_datatype, MPI_Win win,
               MPI_Request *request) {
   PUT_CALL("MPI_Rget", OP_GET);
-  c.rbuf = origin_addr, c.rcount = origin_count, c.rdt = origin_datatype;
+  c.a.rbuf = origin_addr, c.a.rcount = origin_count, c.a.rdt = origin_datatype;
   int rc = request_arg(c.fn, win, request);
   return rc ? rc : run(&c, win, request);
 }
@@ -229,7 +216,7 @@ int PMPI_Rget(void *origin_addr, int origin_count, MPI_Datatype origin_datatype,
 int PMPI_Accumulate(const void *origin_addr, int origin_count, MPI_Datatype origin_datatype, int target_rank,
                     MPI_Aint target_disp, int target_count, MPI_Datatype target_datatype, MPI_Op op, MPI_Win win) {
   PUT_CALL("MPI_Accumulate", OP_ACC);
-  c.obuf = origin_addr, c.ocount = origin_count, c.odt = origin_datatype, c.op = op;
+  c.a.obuf = origin_addr, c.a.ocount = origin_count, c.a.odt = origin_datatype, c.a.op = op;
   return run(&c, win, NULL);
 }
 
@@ -237,7 +224,7 @@ int PMPI_Raccumulate(const void *origin_addr, int origin_count, MPI_Datatype ori
                      MPI_Aint target_disp, int target_count, MPI_Datatype target_datatype, MPI_Op op, MPI_Win win,
                      MPI_Request *request) {
   PUT_CALL("MPI_Raccumulate", OP_ACC);
-  c.obuf = origin_addr, c.ocount = origin_count, c.odt = origin_datatype, c.op = op;
+  c.a.obuf = origin_addr, c.a.ocount = origin_count, c.a.odt = origin_datatype, c.a.op = op;
   int rc = request_arg(c.fn, win, request);
   return rc ? rc : run(&c, win, request);
 }
@@ -247,8 +234,8 @@ int PMPI_Get_accumulate(const void *origin_addr, int origin_count, MPI_Datatype 
                         MPI_Aint target_disp, int target_count, MPI_Datatype target_datatype, MPI_Op op,
                         MPI_Win win) {
   PUT_CALL("MPI_Get_accumulate", OP_GACC);
-  c.obuf = origin_addr, c.ocount = origin_count, c.odt = origin_datatype, c.op = op;
-  c.rbuf = result_addr, c.rcount = result_count, c.rdt = result_datatype;
+  c.a.obuf = origin_addr, c.a.ocount = origin_count, c.a.odt = origin_datatype, c.a.op = op;
+  c.a.rbuf = result_addr, c.a.rcount = result_count, c.a.rdt = result_datatype;
   return run(&c, win, NULL);
 }
 
@@ -257,24 +244,24 @@ int PMPI_Rget_accumulate(const void *origin_addr, int origin_count, MPI_Datatype
                          MPI_Aint target_disp, int target_count, MPI_Datatype target_datatype, MPI_Op op,
                          MPI_Win win, MPI_Request *request) {
   PUT_CALL("MPI_Rget_accumulate", OP_GACC);
-  c.obuf = origin_addr, c.ocount = origin_count, c.odt = origin_datatype, c.op = op;
-  c.rbuf = result_addr, c.rcount = result_count, c.rdt = result_datatype;
+  c.a.obuf = origin_addr, c.a.ocount = origin_count, c.a.odt = origin_datatype, c.a.op = op;
+  c.a.rbuf = result_addr, c.a.rcount = result_count, c.a.rdt = result_datatype;
   int rc = request_arg(c.fn, win, request);
   return rc ? rc : run(&c, win, request);
 }
 
 int PMPI_Fetch_and_op(const void *origin_addr, void *result_addr, MPI_Datatype datatype, int target_rank,
                       MPI_Aint target_disp, MPI_Op op, MPI_Win win) {
-  call c = {.fn = "MPI_Fetch_and_op", .kind = OP_GACC, .target = target_rank, .disp = target_disp, .tcount = 1,
-            .tdt = datatype, .obuf = origin_addr, .ocount = 1, .odt = datatype, .rbuf = result_addr, .rcount = 1,
-            .rdt = datatype, .op = op};
+  call c = {.fn = "MPI_Fetch_and_op", .disp = target_disp, .a.kind = OP_GACC, .a.target = target_rank,
+            .a.tcount = 1, .a.tdt = datatype, .a.obuf = origin_addr, .a.ocount = 1, .a.odt = datatype,
+            .a.rbuf = result_addr, .a.rcount = 1, .a.rdt = datatype, .a.op = op};
   return run(&c, win, NULL);
 }
 
 int PMPI_Compare_and_swap(const void *origin_addr, const void *compare_addr, void *result_addr,
                           MPI_Datatype datatype, int target_rank, MPI_Aint target_disp, MPI_Win win) {
-  call c = {.fn = "MPI_Compare_and_swap", .kind = OP_CAS, .target = target_rank, .disp = target_disp,
-            .tcount = 1, .tdt = datatype, .obuf = origin_addr, .ocount = 1, .odt = datatype,
-            .rbuf = result_addr, .rcount = 1, .rdt = datatype, .op = MPI_REPLACE, .compare = compare_addr};
+  call c = {.fn = "MPI_Compare_and_swap", .disp = target_disp, .a.kind = OP_CAS, .a.target = target_rank,
+            .a.tcount = 1, .a.tdt = datatype, .a.obuf = origin_addr, .a.ocount = 1, .a.odt = datatype,
+            .a.rbuf = result_addr, .a.rcount = 1, .a.rdt = datatype, .a.op = MPI_REPLACE, .a.compare = compare_addr};
   return run(&c, win, NULL);
 }
