@@ -136,6 +136,24 @@ static void rsag_scatter(coll_sched *s, char *work, char *tmp, int newrank, int 
   }
 }
 
+/* A step at distance mask of the gather by recursive doubling that follows
+ * rsag_scatter (MPICH's): the blocks from send_idx this rank sends
+ * (*send_cnt elements) and those from *recv_idx it receives (*recv_cnt),
+ * up: its partner's rank is above its own; *last_idx moves on. */
+static void gather_step(const int *cnts, int pof2, int mask, int up, int send_idx, int *last_idx, int *recv_idx,
+                        int *send_cnt, int *recv_cnt) {
+  if (up) {
+    if (mask != pof2 / 2) *last_idx += pof2 / (mask * 2);
+    *recv_idx = send_idx + pof2 / (mask * 2);
+    *send_cnt = sum(cnts, send_idx, *recv_idx);
+    *recv_cnt = sum(cnts, *recv_idx, *last_idx);
+  } else {
+    *recv_idx = send_idx - pof2 / (mask * 2);
+    *send_cnt = sum(cnts, send_idx, *last_idx);
+    *recv_cnt = sum(cnts, *recv_idx, send_idx);
+  }
+}
+
 /* Rabenseifner's reduce: beyond a power of two, the first odd ranks fold
  * their operands into their left neighbours; a reduce-scatter by recursive
  * halving among the pof2 remaining ranks; then a binomial gather of the
@@ -196,16 +214,7 @@ void coll_reduce_scatter_gather(coll_sched *s, const void *sbuf, void *rbuf, int
       int newdst = newrank ^ mask, dst = newdst < rem ? newdst * 2 : newdst + rem, recv_idx, send_cnt, recv_cnt;
       if (newdst == 0 && root < 2 * rem && root % 2) dst = root;
       int newdst_tree_root = newdst >> j << j, newroot_tree_root = newroot >> j << j;
-      if (newrank < newdst) {
-        if (mask != pof2 / 2) last_idx = last_idx + pof2 / (mask * 2);
-        recv_idx = send_idx + pof2 / (mask * 2);
-        send_cnt = sum(cnts, send_idx, recv_idx);
-        recv_cnt = sum(cnts, recv_idx, last_idx);
-      } else {
-        recv_idx = send_idx - pof2 / (mask * 2);
-        send_cnt = sum(cnts, send_idx, last_idx);
-        recv_cnt = sum(cnts, recv_idx, send_idx);
-      }
+      gather_step(cnts, pof2, mask, newrank < newdst, send_idx, &last_idx, &recv_idx, &send_cnt, &recv_cnt);
       if (newdst_tree_root == newroot_tree_root) {
         coll_sched_send(s, work + (size_t)disps[send_idx] * ts, (size_t)send_cnt * ts, dst);
         break;
@@ -296,16 +305,7 @@ void coll_allreduce_reduce_scatter_allgather(coll_sched *s, void *buffer, int co
     rsag_scatter(s, buf, tmp, newrank, pof2, rem, 1, cnts, disps, &send_idx, &last_idx);
     for (int mask = pof2 >> 1; mask > 0; mask >>= 1) {
       int newdst = newrank ^ mask, dst = newdst < rem ? newdst * 2 + 1 : newdst + rem, recv_idx, send_cnt, recv_cnt;
-      if (newrank < newdst) {
-        if (mask != pof2 / 2) last_idx = last_idx + pof2 / (mask * 2);
-        recv_idx = send_idx + pof2 / (mask * 2);
-        send_cnt = sum(cnts, send_idx, recv_idx);
-        recv_cnt = sum(cnts, recv_idx, last_idx);
-      } else {
-        recv_idx = send_idx - pof2 / (mask * 2);
-        send_cnt = sum(cnts, send_idx, last_idx);
-        recv_cnt = sum(cnts, recv_idx, send_idx);
-      }
+      gather_step(cnts, pof2, mask, newrank < newdst, send_idx, &last_idx, &recv_idx, &send_cnt, &recv_cnt);
       coll_sched_sendrecv(s, buf + (size_t)disps[send_idx] * ts, (size_t)send_cnt * ts, dst,
                           buf + (size_t)disps[recv_idx] * ts, (size_t)recv_cnt * ts, dst);
       if (newrank > newdst) send_idx = recv_idx;
