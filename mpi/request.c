@@ -275,22 +275,33 @@ int PMPI_Waitsome(int incount, MPI_Request array_of_requests[], int *outcount,
 
 /* ==== the Test family ===================================================== */
 
+/* What MPI_Test and MPI_Request_get_status see of request h: a null or
+ * inactive one is complete (*flag 1, the empty status, MPI_ERROR
+ * (MPI_SUCCESS) too, as MPI 3.1 3.7.3 defines it) and *q NULL; a live one
+ * in *q, moved on by the engine.  Returns the error raised for a bad h. */
+static int look(st_rank *R, const char *fn, MPI_Request h, int *flag, MPI_Status *status, st_req **q) {
+  int rc = lookup(R, fn, h, q);
+  if (rc) return rc;
+  if (!live(*q)) {
+    *flag = 1;
+    empty_out(status, 1);
+    *q = NULL;
+    return MPI_SUCCESS;
+  }
+  if ((*q)->state == RS_ACTIVE) {
+    eng_poll(R);
+    eng_advance(R, *q);
+  }
+  return MPI_SUCCESS;
+}
+
 int PMPI_Test(MPI_Request *request, int *flag, MPI_Status *status) {
   static const char fn[] = "MPI_Test";
   st_rank *R = st_need(fn);
   if (!request || !flag) return err_raise(R, NULL, MPI_ERR_ARG, fn, "NULL request or flag argument");
   st_req *q;
-  int rc = lookup(R, fn, *request, &q);
-  if (rc) return rc;
-  if (!live(q)) {
-    *flag = 1;
-    empty_out(status, 1);   /* the empty status, MPI_ERROR (MPI_SUCCESS) too, as MPI 3.1 3.7.3 defines it */
-    return MPI_SUCCESS;
-  }
-  if (q->state == RS_ACTIVE) {
-    eng_poll(R);
-    eng_advance(R, q);
-  }
+  int rc = look(R, fn, *request, flag, status, &q);
+  if (rc || !q) return rc;
   if (q->state != RS_DONE) {
     *flag = 0;
     poll_charge(R, fn);
@@ -374,17 +385,8 @@ int PMPI_Request_get_status(MPI_Request request, int *flag, MPI_Status *status) 
   st_rank *R = st_need(fn);
   if (!flag) return err_raise(R, NULL, MPI_ERR_ARG, fn, "NULL flag argument");
   st_req *q;
-  int rc = lookup(R, fn, request, &q);
-  if (rc) return rc;
-  if (!live(q)) {
-    *flag = 1;
-    empty_out(status, 1);   /* the empty status, MPI_ERROR (MPI_SUCCESS) too, as MPI 3.1 3.7.3 defines it */
-    return MPI_SUCCESS;
-  }
-  if (q->state == RS_ACTIVE) {
-    eng_poll(R);
-    eng_advance(R, q);
-  }
+  int rc = look(R, fn, request, flag, status, &q);
+  if (rc || !q) return rc;
   *flag = q->state == RS_DONE;
   if (!*flag) {
     poll_charge(R, fn);
