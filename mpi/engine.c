@@ -77,31 +77,44 @@ static void unpromise(st_rank *R, st_req *q) {
 
 /* ==== queues ============================================================== */
 
+/* The rank's queues (posted receives, synchronous sends, unexpected
+ * messages) are doubly linked through their items' next and prev, with a
+ * head and a tail: x appended, or unlinked (its next and prev left as they
+ * were). */
+#define QUEUE_APPEND(head, tail, x) \
+  do {                              \
+    (x)->next = NULL;               \
+    (x)->prev = (tail);             \
+    if (tail)                       \
+      (tail)->next = (x);           \
+    else                            \
+      (head) = (x);                 \
+    (tail) = (x);                   \
+  } while (0)
+#define QUEUE_UNLINK(head, tail, x)     \
+  do {                                  \
+    if ((x)->prev)                      \
+      (x)->prev->next = (x)->next;      \
+    else                                \
+      (head) = (x)->next;               \
+    if ((x)->next)                      \
+      (x)->next->prev = (x)->prev;      \
+    else                                \
+      (tail) = (x)->prev;               \
+  } while (0)
+
 /* q goes to the end of the posted queue, with a promise if it may. */
 static void post(st_rank *R, st_req *q) {
   q->prom = promise_of(R, q->wpeer, q->ctx, q->tag, q->contig, q->cap);
   if (!q->prom) R->posted_plain++;
-  q->next = NULL;
-  q->prev = R->posted_tail;
-  if (R->posted_tail)
-    R->posted_tail->next = q;
-  else
-    R->posted = q;
-  R->posted_tail = q;
+  QUEUE_APPEND(R->posted, R->posted_tail, q);
   q->state = RS_ACTIVE;
   q->g->refs++;
 }
 
 static void unlink_posted(st_rank *R, st_req *q) {
   if (!q->prom) R->posted_plain--;
-  if (q->prev)
-    q->prev->next = q->next;
-  else
-    R->posted = q->next;
-  if (q->next)
-    q->next->prev = q->prev;
-  else
-    R->posted_tail = q->prev;
+  QUEUE_UNLINK(R->posted, R->posted_tail, q);
   q->next = q->prev = NULL;
 }
 
@@ -112,37 +125,15 @@ void eng_unpost(st_rank *R, st_req *q) {
   q->g = NULL;
 }
 
-static void sync_add(st_rank *R, st_req *q) {
-  q->next = NULL;
-  q->prev = R->sync_tail;
-  if (R->sync_tail)
-    R->sync_tail->next = q;
-  else
-    R->sync = q;
-  R->sync_tail = q;
-}
+static void sync_add(st_rank *R, st_req *q) { QUEUE_APPEND(R->sync, R->sync_tail, q); }
 
 static void sync_unlink(st_rank *R, st_req *q) {
-  if (q->prev)
-    q->prev->next = q->next;
-  else
-    R->sync = q->next;
-  if (q->next)
-    q->next->prev = q->prev;
-  else
-    R->sync_tail = q->prev;
+  QUEUE_UNLINK(R->sync, R->sync_tail, q);
   q->next = q->prev = NULL;
 }
 
 static void unexp_unlink(st_rank *R, st_msg *m) {
-  if (m->prev)
-    m->prev->next = m->next;
-  else
-    R->unexp = m->next;
-  if (m->next)
-    m->next->prev = m->prev;
-  else
-    R->unexp_tail = m->prev;
+  QUEUE_UNLINK(R->unexp, R->unexp_tail, m);
   R->nunexp--;
 }
 
@@ -247,13 +238,7 @@ static void unexpected(st_rank *R, const mp_status *st, mp_msg *h) {
   m->tag = st_env_tag(st->tag);
   m->len = st->len;
   m->h = h;
-  m->next = NULL;
-  m->prev = R->unexp_tail;
-  if (R->unexp_tail)
-    R->unexp_tail->next = m;
-  else
-    R->unexp = m;
-  R->unexp_tail = m;
+  QUEUE_APPEND(R->unexp, R->unexp_tail, m);
   R->nunexp++;
 }
 
