@@ -81,6 +81,12 @@ void errh_drop(st_rank *R, MPI_Errhandler eh) {
   if (h && --h->refs == 0) h->kind = 0;
 }
 
+void errh_set(st_rank *R, MPI_Errhandler *slot, MPI_Errhandler eh) {
+  errh_hold(R, eh);
+  errh_drop(R, *slot);
+  *slot = eh;
+}
+
 errh_fn *errh_function(st_rank *R, MPI_Errhandler eh) {
   handler *h = created(R, eh);
   return h ? h->fn : NULL;
@@ -121,9 +127,7 @@ static int set(const char *fn, MPI_Comm comm, MPI_Errhandler errhandler) {
   if (rc) return rc;
   char why[96];
   if (errh_check(R, errhandler, ERRH_COMM, why)) return err_raise(R, c, MPI_ERR_ARG, fn, "%s", why);
-  errh_hold(R, errhandler);
-  errh_drop(R, c->eh);
-  c->eh = errhandler;
+  errh_set(R, &c->eh, errhandler);
   return MPI_SUCCESS;
 }
 

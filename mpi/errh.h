@@ -36,6 +36,10 @@ int errh_check(st_rank *R, MPI_Errhandler eh, int kind, char *why);
 void errh_hold(st_rank *R, MPI_Errhandler eh);
 void errh_drop(st_rank *R, MPI_Errhandler eh);
 
+/* An object's handler *slot becomes eh (checked by the caller): eh held,
+ * the one it had dropped. */
+void errh_set(st_rank *R, MPI_Errhandler *slot, MPI_Errhandler eh);
+
 /* The program's function of a created handler (NULL for the predefined). */
 errh_fn *errh_function(st_rank *R, MPI_Errhandler eh);
 

@@ -71,9 +71,7 @@ MPI_Errhandler io_file_null_eh(void) {
 void io_file_set_null_eh(MPI_Errhandler eh) {
   table *tb = tab(1);
   if (!tb) return;
-  errh_hold(st_get(), eh);
-  errh_drop(st_get(), tb->null_eh);
-  tb->null_eh = eh;
+  errh_set(st_get(), &tb->null_eh, eh);
 }
 
 /* ==== errors ============================================================== */

@@ -364,9 +364,7 @@ int PMPI_File_set_errhandler(MPI_File file, MPI_Errhandler errhandler) {
     io_file_set_null_eh(errhandler);
     return MPI_SUCCESS;
   }
-  errh_hold(st_get(), errhandler);
-  errh_drop(st_get(), f->eh);
-  f->eh = errhandler;
+  errh_set(st_get(), &f->eh, errhandler);
   return MPI_SUCCESS;
 }
 

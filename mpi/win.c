@@ -545,9 +545,7 @@ int PMPI_Win_set_errhandler(MPI_Win win, MPI_Errhandler errhandler) {
   if (rc) return rc;
   char why[96];
   if (errh_check(R, errhandler, ERRH_WIN, why)) return rma_win_raise(R, w, MPI_ERR_ARG, fn, "%s", why);
-  errh_hold(R, errhandler);
-  errh_drop(R, w->eh);
-  w->eh = errhandler;
+  errh_set(R, &w->eh, errhandler);
   return MPI_SUCCESS;
 }
 
