@@ -209,4 +209,11 @@ void dtype_envelope(MPI_Datatype dt, int *ni, int *na, int *nd, int *combiner);
 int dtype_contents(MPI_Datatype dt, int ni, int na, int nd, int *ints, MPI_Aint *aints,
                    MPI_Datatype *types);
 
+/* The packed buffer's checks of MPI_Pack, MPI_Unpack and their external
+ * forms, raised on comm for call fn: position not NULL (pos: its value),
+ * n bytes at pos within the buffer's size (packing: they fit; unpacking:
+ * they are there), buf (the packed side's) not NULL when n > 0. */
+int dtype_room_ok(MPI_Comm comm, const char *fn, int packing, const void *position, long pos, long size,
+                  MPI_Count n, const void *buf);
+
 #endif

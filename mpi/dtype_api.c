@@ -672,6 +672,16 @@ static int commtype_ok(MPI_Comm comm, const char *fn, MPI_Datatype dt) {
   return fail(comm, MPI_ERR_TYPE, fn, "invalid datatype: %s", why);
 }
 
+int dtype_room_ok(MPI_Comm comm, const char *fn, int packing, const void *position, long pos, long size,
+                  MPI_Count n, const void *buf) {
+  if (!position) return fail(comm, MPI_ERR_ARG, fn, "position is NULL");
+  if (pos < 0 || size < 0 || pos > size || n > size - pos)
+    return fail(comm, MPI_ERR_TRUNCATE, fn, "%lld bytes %s at position %ld of a %ld-byte buffer", (long long)n,
+                packing ? "do not fit" : "are not there", pos, size);
+  if (n > 0 && !buf) return fail(comm, MPI_ERR_BUFFER, fn, "%s is NULL", packing ? "outbuf" : "inbuf");
+  return MPI_SUCCESS;
+}
+
 int PMPI_Pack(const void *inbuf, int incount, MPI_Datatype datatype, void *outbuf, int outsize, int *position,
              MPI_Comm comm) {
   static const char fn[] = "MPI_Pack";
@@ -679,12 +689,8 @@ int PMPI_Pack(const void *inbuf, int incount, MPI_Datatype datatype, void *outbu
   if ((rc = comm_check(comm, fn)) || (rc = err_comm_check_count(comm, fn, incount)) ||
       (rc = commtype_ok(comm, fn, datatype)) || (rc = err_comm_check_buf(comm, fn, inbuf, incount, datatype)))
     return rc;
-  if (!position) return fail(comm, MPI_ERR_ARG, fn, "position is NULL");
   MPI_Count n = (MPI_Count)dtype_size(datatype) * incount;
-  if (*position < 0 || outsize < 0 || *position > outsize || n > outsize - *position)
-    return fail(comm, MPI_ERR_TRUNCATE, fn, "%lld bytes do not fit at position %d of a %d-byte buffer",
-                (long long)n, *position, outsize);
-  if (n > 0 && !outbuf) return fail(comm, MPI_ERR_BUFFER, fn, "outbuf is NULL");
+  if ((rc = dtype_room_ok(comm, fn, 1, position, position ? *position : 0, outsize, n, outbuf))) return rc;
   if (n > 0) dtype_pack(inbuf, incount, datatype, (char *)outbuf + *position);
   *position += (int)n;
   return MPI_SUCCESS;
@@ -697,12 +703,8 @@ int PMPI_Unpack(const void *inbuf, int insize, int *position, void *outbuf, int 
   if ((rc = comm_check(comm, fn)) || (rc = err_comm_check_count(comm, fn, outcount)) ||
       (rc = commtype_ok(comm, fn, datatype)) || (rc = err_comm_check_buf(comm, fn, outbuf, outcount, datatype)))
     return rc;
-  if (!position) return fail(comm, MPI_ERR_ARG, fn, "position is NULL");
   MPI_Count n = (MPI_Count)dtype_size(datatype) * outcount;
-  if (*position < 0 || insize < 0 || *position > insize || n > insize - *position)
-    return fail(comm, MPI_ERR_TRUNCATE, fn, "%lld bytes are not there at position %d of a %d-byte buffer",
-                (long long)n, *position, insize);
-  if (n > 0 && !inbuf) return fail(comm, MPI_ERR_BUFFER, fn, "inbuf is NULL");
+  if ((rc = dtype_room_ok(comm, fn, 0, position, position ? *position : 0, insize, n, inbuf))) return rc;
   if (n > 0) dtype_unpack((const char *)inbuf + *position, (size_t)n, outbuf, outcount, datatype);
   *position += (int)n;
   return MPI_SUCCESS;

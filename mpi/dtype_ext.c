@@ -270,12 +270,8 @@ int PMPI_Pack_external(const char datarep[], const void *inbuf, int incount, MPI
   MPI_Comm w = MPI_COMM_WORLD;
   int rc = ext_args(fn, datarep, incount, datatype);
   if (rc || (rc = err_comm_check_buf(w, fn, inbuf, incount, datatype))) return rc;
-  if (!position) return err_comm_raise(w, MPI_ERR_ARG, fn, "position is NULL");
   MPI_Count n = dtype_ext32_size(datatype) * incount;
-  if (*position < 0 || outsize < 0 || *position > outsize || n > outsize - *position)
-    return err_comm_raise(w, MPI_ERR_TRUNCATE, fn, "%lld bytes do not fit at position %ld of a %ld-byte buffer",
-                          (long long)n, (long)*position, (long)outsize);
-  if (n > 0 && !outbuf) return err_comm_raise(w, MPI_ERR_BUFFER, fn, "outbuf is NULL");
+  if ((rc = dtype_room_ok(w, fn, 1, position, position ? (long)*position : 0, (long)outsize, n, outbuf))) return rc;
   if (n > 0) dtype_ext32_pack(inbuf, incount, datatype, (char *)outbuf + *position);
   *position += (MPI_Aint)n;
   return MPI_SUCCESS;
@@ -287,12 +283,8 @@ int PMPI_Unpack_external(const char datarep[], const void *inbuf, MPI_Aint insiz
   MPI_Comm w = MPI_COMM_WORLD;
   int rc = ext_args(fn, datarep, outcount, datatype);
   if (rc || (rc = err_comm_check_buf(w, fn, outbuf, outcount, datatype))) return rc;
-  if (!position) return err_comm_raise(w, MPI_ERR_ARG, fn, "position is NULL");
   MPI_Count n = dtype_ext32_size(datatype) * outcount;
-  if (*position < 0 || insize < 0 || *position > insize || n > insize - *position)
-    return err_comm_raise(w, MPI_ERR_TRUNCATE, fn, "%lld bytes are not there at position %ld of a %ld-byte buffer",
-                          (long long)n, (long)*position, (long)insize);
-  if (n > 0 && !inbuf) return err_comm_raise(w, MPI_ERR_BUFFER, fn, "inbuf is NULL");
+  if ((rc = dtype_room_ok(w, fn, 0, position, position ? (long)*position : 0, (long)insize, n, inbuf))) return rc;
   if (n > 0) dtype_ext32_unpack((const char *)inbuf + *position, outbuf, outcount, datatype);
   *position += (MPI_Aint)n;
   return MPI_SUCCESS;
