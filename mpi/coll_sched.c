@@ -75,6 +75,16 @@ static void oom(size_t n) {
   abort();
 }
 
+/* Array p of *cap items of size bytes, full, with room for more: first
+ * items, or twice as many. */
+static void *grow(void *p, int *cap, int first, size_t size) {
+  int n = *cap ? 2 * *cap : first;
+  void *q = realloc(p, (size_t)n * size);
+  if (!q) oom((size_t)n * size);
+  *cap = n;
+  return q;
+}
+
 static void *xalloc(size_t n) {
   void *p = malloc(n ? n : 1);
   if (!p) oom(n);
@@ -144,13 +154,7 @@ static void emit(coll_sched *s, const op *o) {
     if (!s->err) run_now(s, o);
     return;
   }
-  if (s->nops == s->cap) {
-    int cap = s->cap ? 2 * s->cap : 16;
-    op *p = realloc(s->ops, (size_t)cap * sizeof *p);
-    if (!p) oom((size_t)cap * sizeof *p);
-    s->ops = p;
-    s->cap = cap;
-  }
+  if (s->nops == s->cap) s->ops = grow(s->ops, &s->cap, 16, sizeof *s->ops);
   s->ops[s->nops++] = *o;
 }
 
@@ -198,13 +202,7 @@ void coll_sched_unpack(coll_sched *s, const void *p, size_t n, void *buf, int co
   op o = {.kind = OP_UNPACK, .peer = count, .dt = dt, .n = n, .a.p = buf, .b = p};
   emit(s, &o);
   if (s->now || (s->nheld && s->held[s->nheld - 1] == dt)) return;   /* used now, or held already */
-  if (s->nheld == s->capheld) {
-    int cap = s->capheld ? 2 * s->capheld : 4;
-    MPI_Datatype *h = realloc(s->held, (size_t)cap * sizeof *h);
-    if (!h) oom((size_t)cap * sizeof *h);
-    s->held = h;
-    s->capheld = cap;
-  }
+  if (s->nheld == s->capheld) s->held = grow(s->held, &s->capheld, 4, sizeof *s->held);
   dtype_hold(dt);
   s->held[s->nheld++] = dt;
 }
@@ -228,13 +226,7 @@ static void local(coll_sched *s, const op *o) {
 }
 
 static void req_add(coll_sched *s, MPI_Request r) {
-  if (s->nreqs == s->capreqs) {
-    int cap = s->capreqs ? 2 * s->capreqs : 8;
-    MPI_Request *q = realloc(s->reqs, (size_t)cap * sizeof *q);
-    if (!q) oom((size_t)cap * sizeof *q);
-    s->reqs = q;
-    s->capreqs = cap;
-  }
+  if (s->nreqs == s->capreqs) s->reqs = grow(s->reqs, &s->capreqs, 8, sizeof *s->reqs);
   s->reqs[s->nreqs++] = r;
 }
 
