@@ -42,6 +42,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "util/dlist.h"
 #include "util/xmem.h"
 
 /* ==== mp calls ============================================================ */
@@ -79,42 +80,20 @@ static void unpromise(st_rank *R, st_req *q) {
 
 /* The rank's queues (posted receives, synchronous sends, unexpected
  * messages) are doubly linked through their items' next and prev, with a
- * head and a tail: x appended, or unlinked (its next and prev left as they
- * were). */
-#define QUEUE_APPEND(head, tail, x) \
-  do {                              \
-    (x)->next = NULL;               \
-    (x)->prev = (tail);             \
-    if (tail)                       \
-      (tail)->next = (x);           \
-    else                            \
-      (head) = (x);                 \
-    (tail) = (x);                   \
-  } while (0)
-#define QUEUE_UNLINK(head, tail, x)     \
-  do {                                  \
-    if ((x)->prev)                      \
-      (x)->prev->next = (x)->next;      \
-    else                                \
-      (head) = (x)->next;               \
-    if ((x)->next)                      \
-      (x)->next->prev = (x)->prev;      \
-    else                                \
-      (tail) = (x)->prev;               \
-  } while (0)
+ * head and a tail (util/dlist.h). */
 
 /* q goes to the end of the posted queue, with a promise if it may. */
 static void post(st_rank *R, st_req *q) {
   q->prom = promise_of(R, q->wpeer, q->ctx, q->tag, q->contig, q->cap);
   if (!q->prom) R->posted_plain++;
-  QUEUE_APPEND(R->posted, R->posted_tail, q);
+  DLIST_APPEND(R->posted, R->posted_tail, q);
   q->state = RS_ACTIVE;
   q->g->refs++;
 }
 
 static void unlink_posted(st_rank *R, st_req *q) {
   if (!q->prom) R->posted_plain--;
-  QUEUE_UNLINK(R->posted, R->posted_tail, q);
+  DLIST_UNLINK(R->posted, R->posted_tail, q);
   q->next = q->prev = NULL;
 }
 
@@ -125,15 +104,15 @@ void eng_unpost(st_rank *R, st_req *q) {
   q->g = NULL;
 }
 
-static void sync_add(st_rank *R, st_req *q) { QUEUE_APPEND(R->sync, R->sync_tail, q); }
+static void sync_add(st_rank *R, st_req *q) { DLIST_APPEND(R->sync, R->sync_tail, q); }
 
 static void sync_unlink(st_rank *R, st_req *q) {
-  QUEUE_UNLINK(R->sync, R->sync_tail, q);
+  DLIST_UNLINK(R->sync, R->sync_tail, q);
   q->next = q->prev = NULL;
 }
 
 static void unexp_unlink(st_rank *R, st_msg *m) {
-  QUEUE_UNLINK(R->unexp, R->unexp_tail, m);
+  DLIST_UNLINK(R->unexp, R->unexp_tail, m);
   R->nunexp--;
 }
 
@@ -238,7 +217,7 @@ static void unexpected(st_rank *R, const mp_status *st, mp_msg *h) {
   m->tag = st_env_tag(st->tag);
   m->len = st->len;
   m->h = h;
-  QUEUE_APPEND(R->unexp, R->unexp_tail, m);
+  DLIST_APPEND(R->unexp, R->unexp_tail, m);
   R->nunexp++;
 }
 

@@ -229,13 +229,7 @@ promise *promise_add(mstore *st, mbox *b, int src, int tag, int mask, void *buf,
   p->held = NULL;
   p->done = 0;
   p->mark = 0;
-  p->next = NULL;
-  p->prev = b->ptail;
-  if (b->ptail)
-    b->ptail->next = p;
-  else
-    b->phead = p;
-  b->ptail = p;
+  DLIST_APPEND(b->phead, b->ptail, p);
   return p;
 }
 
