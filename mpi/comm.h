@@ -1,5 +1,6 @@
 /* comm.h -- what the communicator constructors share (comm.c, intercomm.c,
- * comm_info.c): messages among the ranks that make a communicator,
+ * and the calls of comm_query.c, info.c, win.c and coll_transport.c that
+ * make or read one): messages among the ranks that make a communicator,
  * agreeing on a context pair, and a new communicator in the rank's table.
  *
  * CONTEXTS.  A new communicator needs a context pair (state.h) that no rank
