@@ -33,7 +33,7 @@ static void say(const char *s) {
 __attribute__((constructor)) static void run_alone(int argc, char **argv) {
   const char *name = argc > 0 && argv && argv[0] ? argv[0] : "PROGRAM";
   say(name);
-  say(": an MPI program for tilesim's simulated machine, built by tilesim-mpicc: run it with\n"
+  say(": an MPI program built for tilesim's simulated machine: run it with\n"
       "  tilesim-mpirun -np N ");
   say(name);
   say("\n");
