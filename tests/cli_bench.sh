@@ -42,7 +42,7 @@ for args in "--frob" "--ring" "--ring 0 --laps 1" "--ring 4" "--ring 4 --laps x"
             "--procs 0" "--procs 1..x" "--points 2" "--alloc third" "--min-diag 0" "--m -1" "--jobs 0" \
             "--tiler --points 1" "--procs 4 --net token" "--backend mpi" "--backend threads --jobs 2" \
             "--stack -j 0" "--stack -j 1,x" "--stack --repeat 0" "--stack --frob" \
-            "--model --backend threads" \
+            "--model --backend threads" "--procs 2 --points 50 --trace $tmp.json" \
             "--union 3:100" "--union blob:0:100" "--union star:3:2" "--union blob:3:100x" "--union --repeat 0"; do
   # shellcheck disable=SC2086
   "$bench" $args >"$tmp.out" 2>"$tmp.err"; rc=$?

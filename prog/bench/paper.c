@@ -106,6 +106,11 @@ void bench_machine_init(bench_machine *bm) {
 }
 
 int bench_option(bench_machine *bm, const char *opt, const char *val, char *err, size_t errlen) {
+  if (strcmp(opt, "--trace") == 0) {   /* every machine option but this one means the same here */
+    snprintf(err, errlen, "--trace: bench's sweeps write no trace (tile --trace writes one run's; bench --ring "
+                          "takes --trace-csv and --trace-json)");
+    return -1;
+  }
   int k = par_config_option(&bm->pc, opt, val, err, errlen);
   return k ? k : machine_option(&bm->mc, opt, val, err, errlen);
 }
