@@ -41,7 +41,8 @@ typedef struct {
 } facts;
 
 /* Every rank leaves at the same time (three or more ranks): two rounds of
- * 0-byte messages from every rank to every other (examples/mpi/halo_fence.c). */
+ * 0-byte messages from every rank to every other, as examples/mpi/level.h
+ * does for the examples (which include an MPI library's <mpi.h>). */
 static void level(void) {
   int p, r;
   MPI_Comm_size(MPI_COMM_WORLD, &p);
