@@ -1,5 +1,5 @@
-/* test_mpstress.c -- the threads backend (mp/threads.c, mp/threads_calls.c) under stress: many
- * random matching programs of up to 24 ranks (more threads than this
+/* test_mpstress.c -- the threads backend (mp/threads.c, threads_calls.c)
+ * under stress: many random matching programs of up to 24 ranks (more threads than this
  * machine has processors), messages of every size class of the channels
  * (inline, at the inline limit, by pointer, across 16 KiB chunks), each
  * rank receiving by source and tag, by source, from any source, or from
