@@ -94,7 +94,7 @@ static void diag_area(const weights *w, int k, int a, int b, const double *restr
   const double *restrict cx = w->cx + 1, *restrict cy = w->cy + 1;
   const double *restrict cfx = w->cfx + 1, *restrict cfy = w->cfy + 1;
   const double *restrict cff = w->cff + 1;
-  double sc = w->sc;
+  double sc = w->sc, shadow = w->shadow;
   uint8_t f[64];
   for (int c0 = a; c0 <= b; c0 += 64) {
     int len = b - c0 + 1 < 64 ? b - c0 + 1 : 64;
@@ -103,9 +103,9 @@ static void diag_area(const weights *w, int k, int a, int b, const double *restr
       /* V(r-1, c): edge R_{r-1} R_r (row r-1 is at index base+c+1), apex C_c.
        * H(r, c-1): edge C_{c-1} C_c, apex R_r. */
       double v = weights_tri(ree[c + 1], rex[c + 1], rey[c + 1], rx[c + 1], ry[c + 1], cx[c],
-                             cy[c], sc);
+                             cy[c], sc, shadow);
       double h = weights_tri(cff[c - 1], cfx[c - 1], cfy[c - 1], cx[c - 1], cy[c - 1], rx[c],
-                             ry[c], sc);
+                             ry[c], sc, shadow);
       double up = prev[c] + v, left = prev[c - 1] + h;
       f[i] = up <= left;
       cur[c] = up <= left ? up : left;
@@ -149,7 +149,7 @@ static void table_chunk(const weights *w, int r, int c0, int len, double *restri
   const double *restrict cx = w->cx + 1 + c0, *restrict cy = w->cy + 1 + c0;
   const double *restrict cfx = w->cfx + c0, *restrict cfy = w->cfy + c0;
   const double *restrict cff = w->cff + c0;
-  double sc = w->sc, h2 = w->h2;
+  double sc = w->sc, h2 = w->h2, shadow = w->shadow;
   tv += c0;
   if (w->kind == COST_SPAN) {
     /* |R_{r'} C_c|: the in-edge weight of node (r', c). */
@@ -158,9 +158,9 @@ static void table_chunk(const weights *w, int r, int c0, int len, double *restri
   }
   th += c0;
   for (int i = 0; i < len; i++) {
-    tv[i] = weights_tri(ree[i], rex[i], rey[i], rx[i], ry[i], cx[i], cy[i], sc);
+    tv[i] = weights_tri(ree[i], rex[i], rey[i], rx[i], ry[i], cx[i], cy[i], sc, shadow);
     /* H(r', c-1): edge C_{c-1} C_c (column index c-1, stored at c), apex R_{r'}. */
-    th[i] = weights_tri(cff[i], cfx[i], cfy[i], cx[i - 1], cy[i - 1], rx[i], ry[i], sc);
+    th[i] = weights_tri(cff[i], cfx[i], cfy[i], cx[i - 1], cy[i - 1], rx[i], ry[i], sc, shadow);
   }
 }
 
@@ -227,7 +227,8 @@ AVX2 static void diag_span_table_avx2(const weights *w, int k, int a, int b,
 }
 
 /* weights_round(sqrt(ee + cz*cz) * sc) with cz = ex (py - ay) - ey (px - ax),
- * four at a time, operation for operation as weights_tri. */
+ * four at a time, operation for operation as weights_tri with shadow = 0 (the
+ * on-the-fly AVX2 kernel serves shadow = 0 only: kernel_diag). */
 AVX2 static inline __m256d tri4(__m256d ee, __m256d ex, __m256d ey, __m256d ax, __m256d ay,
                                 __m256d px, __m256d py, __m256d sc) {
   const __m256d big = _mm256_set1_pd(0x1p52);
@@ -262,9 +263,9 @@ AVX2 static void diag_area_avx2(const weights *w, int k, int a, int b, const dou
   }
   for (; c <= b; c++) {
     double v = weights_tri(ree[c + 1], rex[c + 1], rey[c + 1], rx[c + 1], ry[c + 1], cx[c],
-                           cy[c], sc);
+                           cy[c], sc, 0);
     double h = weights_tri(cff[c - 1], cfx[c - 1], cfy[c - 1], cx[c - 1], cy[c - 1], rx[c],
-                           ry[c], sc);
+                           ry[c], sc, 0);
     double up = prev[c] + v, left = prev[c - 1] + h;
     cur[c] = up <= left ? up : left;
     PUT_BITS(up <= left, 1);
@@ -324,7 +325,7 @@ void kernel_diag(const weights *w, int k, int a, int b, const double *prev, doub
 #ifdef HAVE_AVX2_KERNEL
   if (simd)
     f = w->tv ? (w->kind == COST_AREA ? diag_table_avx2 : diag_span_table_avx2)
-              : (w->kind == COST_AREA ? diag_area_avx2 : diag_span_avx2);
+              : (w->kind == COST_AREA ? (w->shadow == 0 ? diag_area_avx2 : diag_area) : diag_span_avx2);
   else
 #endif
     f = w->tv ? (w->kind == COST_AREA ? diag_table : diag_span_table)

@@ -60,6 +60,9 @@ enum {
 };
 
 enum { PAR_TASK_PATH = 1, PAR_TASK_LOCAL, PAR_TASK_REPORT, PAR_TASK_QUIT };
+/* In POINTS' kind field: the header carries the shadow's weight after
+ * zr, zc (par_pair.shadow); without it the paper's bytes stay. */
+enum { PAR_SHADOW = 0x100 };
 enum { PAR_AS_T = 1, PAR_AS_B = 2, PAR_AS_BOTH = 3 };   /* how a BOUND is taken */
 
 /* Message kinds in the report (section 7.2 counts the boundary ones). */

@@ -221,9 +221,10 @@ static int one_pair(master *M, par_pair *pr, cost_kind kind) {
   M->m = m, M->n = n, M->T = m + n;
   M->maxlen = par_maxlen(m, n);
   double t0 = mp_time(M->mp);
-  weights *w = weights_new(R, m, zr, C, n, zc, kind, 0);   /* for the quantum */
+  weights *w = weights_new_shadow(R, m, zr, C, n, zc, kind, pr->shadow, 0);   /* for the quantum */
   memset(&pr->t, 0, sizeof pr->t);
   pr->t.m = m, pr->t.n = n, pr->t.transposed = tr, pr->t.quantum = weights_quantum(w);
+  pr->t.shadow = w->shadow;
   pr->t.qexp = weights_qexp(w);
   pr->t.col = xmallocarray((size_t)M->T + 1, sizeof *pr->t.col);
   weights_free(w);
@@ -234,10 +235,11 @@ static int one_pair(master *M, par_pair *pr, cost_kind kind) {
     par_buf_reset(&M->out);
     par_put_i32(&M->out, m);
     par_put_i32(&M->out, n);
-    par_put_i32(&M->out, (int)kind);
+    par_put_i32(&M->out, (int)kind | (pr->t.shadow != 0 ? PAR_SHADOW : 0));
     par_put_i32(&M->out, M->arg->opt.min_diag);
     par_put_f64(&M->out, zr);
     par_put_f64(&M->out, zc);
+    if (pr->t.shadow != 0) par_put_f64(&M->out, pr->t.shadow);   /* only then: the paper's bytes stay */
     if (M->arg->opt.block > 1) par_put_i32(&M->out, M->arg->opt.block);   /* par_block.h */
     if (M->arg->opt.table > 0 || M->arg->opt.back > 0) {   /* only then: the paper's bytes stay */
       par_put_f64(&M->out, M->arg->opt.table);

@@ -17,6 +17,7 @@ typedef struct {
   const vec2 *Q;
   int nq;
   double zq;
+  double shadow;       /* the weights' (weights_new_shadow), 0 for the paper's areas */
   /* Out. */
   tiling t;            /* the optimum and its path, as tiling_solve gives it;
                           t.count.nodes and t.count.paths summed over the slaves */

@@ -77,13 +77,16 @@ static void free_pair(slave *S) {
   S->first_path = keep.first_path;
 }
 
-/* POINTS: header {m, n, kind, d} and {zr, zc}, then the points. */
+/* POINTS: header {m, n, kind, d} and {zr, zc} (and the shadow's weight
+ * when kind carries PAR_SHADOW), then the points. */
 static int points(slave *S, par_rd *r) {
   free_pair(S);
   int m = par_get_i32(r), n = par_get_i32(r);
-  cost_kind kind = (cost_kind)par_get_i32(r);
+  int k = par_get_i32(r);
+  cost_kind kind = (cost_kind)(k & ~PAR_SHADOW);
   S->d = par_get_i32(r);
   double zr = par_get_f64(r), zc = par_get_f64(r);
+  double shadow = k & PAR_SHADOW ? par_get_f64(r) : 0;
   /* Then --block k (par_block.h), if above 1, and the prices of a table
    * cell and a backtracking step, if either is set: 0, 4, 16 or 20 bytes. */
   S->k = (r->end - r->p) % 8 == 4 ? par_get_i32(r) : 1;
@@ -99,7 +102,7 @@ static int points(slave *S, par_rd *r) {
   par_get_f64s(&pr, (double *)S->R, 2 * m);
   par_get_f64s(&pr, (double *)S->C, 2 * n);
   /* Tables only when the slaves are few: par_slave_table. */
-  S->w = weights_new(S->R, m, zr, S->C, n, zc, kind, par_slave_table(mp_size(S->mp) - 1));
+  S->w = weights_new_shadow(S->R, m, zr, S->C, n, zc, kind, shadow, par_slave_table(mp_size(S->mp) - 1));
   if (S->table > 0 && weights_has_table(S->w))   /* its build, charged where asked */
     TRY(mp_compute(S->mp, (double)m * (double)(n + 1) * S->table));
   S->ws = band_ws_new(m, n);

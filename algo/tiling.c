@@ -85,6 +85,7 @@ void tiling_solve_w(const weights *w, tiling *out) {
   out->n = n;
   out->quantum = weights_quantum(w);
   out->qexp = weights_qexp(w);
+  out->shadow = w->shadow;
   out->col = xmallocarray((size_t)(m + n + 1), sizeof *out->col);
   tiling_best best = {HUGE_VAL, 0, out->col};
   band_ws *ws = band_ws_new(m, n);
@@ -105,9 +106,14 @@ void tiling_solve_w(const weights *w, tiling *out) {
 
 void tiling_solve(const vec2 *P, int np, double zp, const vec2 *Q, int nq, double zq,
                   cost_kind kind, int table, tiling *out) {
+  tiling_solve_shadow(P, np, zp, Q, nq, zq, kind, 0, table, out);
+}
+
+void tiling_solve_shadow(const vec2 *P, int np, double zp, const vec2 *Q, int nq, double zq,
+                         cost_kind kind, double shadow, int table, tiling *out) {
   int tr = nq < np;
-  weights *w = tr ? weights_new(Q, nq, zq, P, np, zp, kind, table)
-                  : weights_new(P, np, zp, Q, nq, zq, kind, table);
+  weights *w = tr ? weights_new_shadow(Q, nq, zq, P, np, zp, kind, shadow, table)
+                  : weights_new_shadow(P, np, zp, Q, nq, zq, kind, shadow, table);
   tiling_solve_w(w, out);
   out->transposed = tr;
   weights_free(w);
@@ -162,6 +168,7 @@ double tiling_path_cost(const tiling *t, const vec2 *P, int np, double zp, const
       double ux = bx - ax, uy = by - ay, vx = cx - ax, vy = cy - ay;
       double x = uy * hs, y = -ux * hs, z = ux * vy - uy * vx;
       sum += 0.5 * hypot(hypot(x, y), z);   /* (squares of a tiny height would underflow) */
+      if (t->shadow != 0) sum += t->shadow * 0.5 * z;   /* its shadow, as weights_tri */
     } else {                   /* the span from the edge's end to the apex */
       sum += hypot(hypot(cx - bx, cy - by), hs);
     }

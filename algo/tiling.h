@@ -25,6 +25,7 @@ typedef struct {
   int start;         /* its start row in the rows contour */
   int m, n;          /* rows and columns of the graph, m <= n */
   int transposed;    /* 0: the rows are the first contour of the pair; 1: the second */
+  double shadow;     /* the weights' (weights_new_shadow); 0 for plain areas */
   int *col;          /* the optimal path, col[t] for t = 0..m+n (band.h) */
   band_count count;  /* work done */
 } tiling;
@@ -37,6 +38,10 @@ void tiling_solve_w(const weights *w, tiling *out);
  * contour (P when np == nq).  table as in weights_new. */
 void tiling_solve(const vec2 *P, int np, double zp, const vec2 *Q, int nq, double zq,
                   cost_kind kind, int table, tiling *out);
+
+/* The same on weights_new_shadow's weights. */
+void tiling_solve_shadow(const vec2 *P, int np, double zp, const vec2 *Q, int nq, double zq,
+                         cost_kind kind, double shadow, int table, tiling *out);
 
 void tiling_free(tiling *t);
 
@@ -69,8 +74,9 @@ void tiling_tiles(const tiling *t, int (*tile)[3], unsigned char *on);
  * of the graph: next to that tile the path's own can be small (slices very
  * close for the contours' width), and t->cost then lies far from the path's
  * true cost (2.25e15 for 3.41e15 at 1e15 wide and 1 apart; 0 at 1e20).
- * This is the true one, to the tiles' own rounding.  P, np, zp, Q, nq, zq,
- * kind as given to tiling_solve (or the weights t was solved on). */
+ * This is the true one, to the tiles' own rounding, with t->shadow times
+ * the tiles' shadows added when it is not 0.  P, np, zp, Q, nq, zq, kind as
+ * given to tiling_solve (or the weights t was solved on). */
 double tiling_path_cost(const tiling *t, const vec2 *P, int np, double zp, const vec2 *Q, int nq, double zq,
                         cost_kind kind);
 

@@ -117,10 +117,16 @@ static double bound(const double *rx, const double *ry, int m, const double *cx,
 
 weights *weights_new(const vec2 *R, int m, double zr, const vec2 *C, int n, double zc,
                      cost_kind kind, int table) {
+  return weights_new_shadow(R, m, zr, C, n, zc, kind, 0, table);
+}
+
+weights *weights_new_shadow(const vec2 *R, int m, double zr, const vec2 *C, int n, double zc,
+                            cost_kind kind, double shadow, int table) {
   weights *w = xcalloc(1, sizeof *w);
   w->m = m;
   w->n = n;
   w->kind = kind;
+  w->shadow = kind == COST_AREA ? shadow : 0;
 
   /* The pair scaled by 2^-e (see above). */
   int e = scale_exponent(R, m, C, n, zr, zc);
@@ -133,8 +139,10 @@ weights *weights_new(const vec2 *R, int m, double zr, const vec2 *C, int n, doub
   for (int i = 0; i < n; i++) tx[i] = ldexp(C[i].x, -e), ty[i] = ldexp(C[i].y, -e);
 
   /* The scale S = 2^s: (m+n+1) weights of at most bound*S + 1 quanta each
-   * stay below 2^52, so every path sum is an exact integer. */
-  double wb = bound(sx, sy, m, tx, ty, n, w->h2, kind) * 1.001 + DBL_MIN;
+   * stay below 2^52, so every path sum is an exact integer.  A shadow is
+   * at most its tile's area: the bound grows by 1 + |shadow| (by 1 exactly
+   * for shadow = 0). */
+  double wb = bound(sx, sy, m, tx, ty, n, w->h2, kind) * (1 + fabs(w->shadow)) * 1.001 + DBL_MIN;
   double room = (0x1p52 / (double)(m + n + 1) - 1) / wb;
   int k;
   frexp(room, &k);   /* room = f 2^k, f in [0.5, 1): 2^(k-1) <= room */
@@ -191,7 +199,7 @@ double weights_v(const weights *w, int i, int j) {
   if (w->kind == COST_SPAN)   /* the span R_{i+1} C_j */
     return weights_len(w->rx[ri - 1], w->ry[ri - 1], w->cx[ci], w->cy[ci], w->h2, w->sc);
   return weights_tri(w->ree[ri], w->rex[ri], w->rey[ri], w->rx[ri], w->ry[ri], w->cx[ci],
-                     w->cy[ci], w->sc);
+                     w->cy[ci], w->sc, w->shadow);
 }
 
 double weights_h(const weights *w, int i, int j) {
@@ -200,7 +208,7 @@ double weights_h(const weights *w, int i, int j) {
   if (w->kind == COST_SPAN)   /* the span R_i C_{j+1} */
     return weights_len(w->rx[ri], w->ry[ri], w->cx[ci + 1], w->cy[ci + 1], w->h2, w->sc);
   return weights_tri(w->cff[ci], w->cfx[ci], w->cfy[ci], w->cx[ci], w->cy[ci], w->rx[ri],
-                     w->ry[ri], w->sc);
+                     w->ry[ri], w->sc, w->shadow);
 }
 
 double weights_quantum(const weights *w) { return w->quantum; }

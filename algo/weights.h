@@ -43,6 +43,18 @@ typedef struct weights weights;
  * weights on the fly, -1 decides by size.  The caller keeps R and C. */
 weights *weights_new(const vec2 *R, int m, double zr, const vec2 *C, int n, double zc,
                      cost_kind kind, int table);
+
+/* The same with each tile's shadow added to its area: the weight of the
+ * tile with edge A -> B on one contour and apex P on the other is its area
+ * plus `shadow` times the signed area of A B P projected on the slices'
+ * plane (positive when P lies left of A -> B), |shadow| <= 15/16, so that no
+ * weight is negative.  shadow = 0 gives weights_new's weights, bit for bit.
+ * Over an acceptable path the shadows sum, up to a constant of the pair, to
+ * a multiple of the volume the band closes with its two slices' regions, so
+ * `shadow` trades area for volume: a larger one gives a band of no less
+ * signed volume (surface/follow.h).  COST_AREA only (span ignores it). */
+weights *weights_new_shadow(const vec2 *R, int m, double zr, const vec2 *C, int n, double zc,
+                            cost_kind kind, double shadow, int table);
 void weights_free(weights *w);
 
 double weights_v(const weights *w, int i, int j);   /* tile R_i R_{i+1} C_j, in quanta */
@@ -66,6 +78,7 @@ struct weights {
   double sc;        /* scale: S/2 for area, S for span, S = 2^k */
   double quantum;   /* 2^qexp: one quantum in the caller's units (may be 0 or inf) */
   int qexp;
+  double shadow;    /* weights_new_shadow's; 0 for weights_new */
   /* The points, scaled by a power of two into [-1, 1) (weights.c), so the
    * weights' arithmetic cannot overflow.
    * Rows r = -1 .. 2m+1 stored reversed at index 2m+1-r, so that along a
@@ -86,12 +99,14 @@ static inline double weights_round(double q) { return (q + 0x1p52) - 0x1p52; }
 
 /* The tile with edge A -> A+e on one contour and apex P on the other:
  * area = |e x (P - A)| / 2 in 3D = sqrt(h^2 |e|^2 + (e x d)^2) / 2, where
- * ee = h^2 |e|^2 and d = P - A in the plane. */
+ * ee = h^2 |e|^2 and d = P - A in the plane; plus `shadow` times the
+ * tile's shadow cz / 2 (weights_new_shadow).  With shadow = 0 the sum adds
+ * a zero: the same bits as the area alone. */
 static inline double weights_tri(double ee, double ex, double ey, double ax, double ay,
-                                 double px, double py, double sc) {
+                                 double px, double py, double sc, double shadow) {
   double dx = px - ax, dy = py - ay;
   double cz = ex * dy - ey * dx;
-  return weights_round(sqrt(ee + cz * cz) * sc);
+  return weights_round((sqrt(ee + cz * cz) + shadow * cz) * sc);
 }
 
 /* The span from A to P: sqrt(|P - A|^2 + h^2). */

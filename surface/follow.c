@@ -8,6 +8,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "geom/geom.h"
 #include "util/xmem.h"
 
 static void corners(const vec2 *p, int n, follow_side *s) {
@@ -51,4 +52,100 @@ void follow_free(follow_side *s) {
   free(s->pt);
   free(s->at);
   s->pt = NULL, s->at = NULL;
+}
+
+/* --- the shadow's weight (follow_shadow) -------------------------------- */
+
+typedef struct {
+  const follow_side *a, *b;
+  const vec2 *lo, *hi;
+  int e;            /* the scale: coordinates and heights times 2^-e */
+  vec2 o;           /* the origin, lo[0] scaled */
+  double h;         /* z1 - z0 scaled */
+  double top;       /* the upper region's share: h A_hi / 3, scaled */
+  cost_kind kind;
+  double z0, z1;
+} judge;
+
+static vec2 at(const judge *j, vec2 p) {
+  return (vec2){geom_ldexp(p.x, -j->e) - j->o.x, geom_ldexp(p.y, -j->e) - j->o.y};
+}
+
+/* det(p - o, q - o, r - o) for points of the two planes, z 0 or h. */
+static double det(vec2 p, double pz, vec2 q, double qz, vec2 r, double rz) {
+  return p.x * (q.y * rz - qz * r.y) + p.y * (qz * r.x - q.x * rz) + pz * (q.x * r.y - q.y * r.x);
+}
+
+/* The signed volume the band of the pair's solution t closes with its two
+ * slices' regions, on the contours where they lie (a tile on an edge between
+ * corners stands for its fan, of the same volume), oriented as the stack
+ * orients its triangles: at the judge's scale. */
+static double band_volume(const judge *j, const tiling *t) {
+  int steps = j->a->n + j->b->n;
+  int (*tile)[3] = xmallocarray((size_t)steps, sizeof *tile);
+  unsigned char *on = xmalloc((size_t)steps);
+  tiling_tiles(t, tile, on);
+  double v = 0;
+  for (int k = 0; k < steps; k++) {
+    if (!on[k]) {   /* edge on lo, apex on hi */
+      vec2 p = at(j, j->lo[j->a->at[tile[k][0]]]), q = at(j, j->lo[j->a->at[tile[k][1]]]);
+      vec2 r = at(j, j->hi[j->b->at[tile[k][2]]]);
+      v += det(p, 0, q, 0, r, j->h);
+    } else {        /* edge on hi, backwards, apex on lo */
+      vec2 p = at(j, j->hi[j->b->at[tile[k][1]]]), q = at(j, j->hi[j->b->at[tile[k][0]]]);
+      vec2 r = at(j, j->lo[j->a->at[tile[k][2]]]);
+      v += det(p, j->h, q, j->h, r, 0);
+    }
+  }
+  free(tile);
+  free(on);
+  return v / 6 + j->top;
+}
+
+/* The band at weight wgt: its solution into *t, its volume returned. */
+static double volume_at(const judge *j, double wgt, tiling *t) {
+  tiling_solve_shadow(j->a->pt, j->a->n, j->z0, j->b->pt, j->b->n, j->z1, j->kind, wgt, -1, t);
+  return band_volume(j, t);
+}
+
+double follow_shadow(const follow_side *a, const follow_side *b, const vec2 *lo, const vec2 *hi, double z0,
+                     double z1, cost_kind kind, tiling *t) {
+  judge j = {a, b, lo, hi, 0, {0, 0}, 0, 0, kind, z0, z1};
+  double mx = fmax(fabs(z0), fabs(z1));
+  for (int k = 0; k < a->full; k++) mx = fmax(mx, fmax(fabs(lo[k].x), fabs(lo[k].y)));
+  for (int k = 0; k < b->full; k++) mx = fmax(mx, fmax(fabs(hi[k].x), fabs(hi[k].y)));
+  j.e = geom_scale_exp(mx);
+  j.o = (vec2){geom_ldexp(lo[0].x, -j.e), geom_ldexp(lo[0].y, -j.e)};
+  j.h = geom_ldexp(z1, -j.e) - geom_ldexp(z0, -j.e);
+  double a0 = 0.5 * geom_area2_at(lo, a->full, j.e), a1 = 0.5 * geom_area2_at(hi, b->full, j.e);
+  j.top = j.h * a1 / 3;
+  double v = volume_at(&j, 0, t);
+  if (kind != COST_AREA || !(a0 * a1 > 0) || !(j.h > 0) || !isfinite(v)) return 0;
+  /* The frustum's volume over the two areas (signed: holes negative). */
+  double target = j.h * (a0 + a1 + copysign(sqrt(a0 * a1), a0)) / 3, tol = FOLLOW_TOLERANCE * fabs(target);
+  double best = 0, gap = fabs(v - target);
+  if (gap <= tol) return 0;
+  /* The volume does not fall as the weight rises: bisect towards the
+   * target from the heaviest weight, keeping the nearest band. */
+  double dir = v < target ? 1 : -1, lo_w = 0, hi_w = dir * FOLLOW_SHADOW_MAX;
+  for (int it = 0; it <= FOLLOW_STEPS; it++) {
+    double wgt = it == 0 ? hi_w : 0.5 * (lo_w + hi_w);
+    tiling u;
+    double vw = volume_at(&j, wgt, &u);
+    if (fabs(vw - target) < gap) {
+      gap = fabs(vw - target), best = wgt;
+      tiling_free(t);
+      *t = u;
+    } else {
+      tiling_free(&u);
+    }
+    if (gap <= tol / 2) break;
+    if ((vw - target) * dir < 0) {
+      if (it == 0) break;   /* even the heaviest weight falls short */
+      lo_w = wgt;
+    } else {
+      hi_w = wgt;
+    }
+  }
+  return best;
 }

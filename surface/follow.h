@@ -53,6 +53,22 @@ void follow_pair(const vec2 *lo, int nlo, const vec2 *hi, int nhi, follow_side *
 void follow_tiles(const tiling *t, const follow_side *a, const follow_side *b, int (*tile)[3],
                   unsigned char *on);
 
+/* The shadow's weight (weights_new_shadow) for the band from lo (at z0) to
+ * hi (at z1, above), a and b their pair (follow_pair), and in *t the pair's
+ * solution with it (free with tiling_free).  0 when the band of the plain
+ * areas closes, with the two slices' regions, a volume within
+ * FOLLOW_TOLERANCE of the frustum's over their areas,
+ * h (A0 + A1 + sqrt(A0 A1)) / 3 (signed, as the areas); else the weight,
+ * |w| <= FOLLOW_SHADOW_MAX, whose band comes nearest to it: a bisection of
+ * at most FOLLOW_STEPS more solves, since the volume never falls as the
+ * weight rises.  Prisms and frustums keep 0: their band is exact already.
+ * COST_SPAN: 0. */
+#define FOLLOW_TOLERANCE 0.002
+#define FOLLOW_SHADOW_MAX 0.9375
+#define FOLLOW_STEPS 12
+double follow_shadow(const follow_side *a, const follow_side *b, const vec2 *lo, const vec2 *hi, double z0,
+                     double z1, cost_kind kind, tiling *t);
+
 void follow_free(follow_side *s);
 
 #endif

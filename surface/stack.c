@@ -45,6 +45,8 @@ typedef struct {
   composite lo, hi;
   int followed;       /* a 1-1 band tiled on its aligned pair (follow.h): fa, fb */
   follow_side fa, fb;
+  double shadow;      /* the weight of the tiles' shadows (follow_shadow), or 0 */
+  int solved;         /* t holds the exact tiler's solution already (follow_shadow) */
   const vec2 *P, *Q;  /* the pair the tiler sees: lo.pt and hi.pt, or fa.pt and fb.pt */
   int np, nq;
   tiling t;
@@ -98,6 +100,9 @@ static void pair_of(const work *w, band *b) {
   follow_pair(b->lo.pt, b->lo.n, b->hi.pt, b->hi.n, &b->fa, &b->fb);
   b->followed = 1;
   b->P = b->fa.pt, b->np = b->fa.n, b->Q = b->fb.pt, b->nq = b->fb.n;
+  b->shadow = follow_shadow(&b->fa, &b->fb, b->lo.pt, b->hi.pt, w->sl->z[b->slice], w->sl->z[b->slice + 1],
+                            w->o->kind, &b->t);
+  b->solved = 1;
 }
 
 static void bridge_job(void *ud, int i) {
@@ -121,7 +126,9 @@ static void tile_job(void *ud, int i) {
   work *w = ud;
   band *b = &w->b[i];
   const slices *sl = w->sl;
-  tiling_solve(b->P, b->np, sl->z[b->slice], b->Q, b->nq, sl->z[b->slice + 1], w->o->kind, -1, &b->t);
+  if (!b->solved)
+    tiling_solve_shadow(b->P, b->np, sl->z[b->slice], b->Q, b->nq, sl->z[b->slice + 1], w->o->kind, b->shadow,
+                        -1, &b->t);
   if (w->o->progress) w->o->progress(w->o->progress_ud, atomic_fetch_add(&w->tiled, 1) + 1, w->nb);
 }
 
@@ -193,7 +200,8 @@ static void mesh_job(void *ud, int i) {
     b->pinched_cost = tiling_path_cost(&b->t, b->P, b->np, sl->z[b->slice], b->Q, b->nq, sl->z[b->slice + 1],
                                        w->o->kind);
     b->pinched = 2;
-    if (unpinch_solve(b->P, b->np, sl->z[b->slice], b->Q, b->nq, sl->z[b->slice + 1], w->o->kind, &t2) == 0) {
+    if (unpinch_solve(b->P, b->np, sl->z[b->slice], b->Q, b->nq, sl->z[b->slice + 1], w->o->kind, b->shadow,
+                      &t2) == 0) {
       t2.count.nodes += b->t.count.nodes;
       tiling_free(&b->t);
       b->t = t2;
@@ -291,10 +299,12 @@ static int tile_bands(work *w, stack_surface *ss, char *err, size_t errlen) {
     par_pair *p = &ss->pairs[i];
     p->P = w->b[i].P, p->np = w->b[i].np, p->zp = sl->z[w->b[i].slice];
     p->Q = w->b[i].Q, p->nq = w->b[i].nq, p->zq = sl->z[w->b[i].slice + 1];
+    p->shadow = w->b[i].shadow;
   }
   const stack_tiler *tl = w->o->tiler;
   if (tl->pairs(tl->ud, ss->pairs, nb, err, errlen) != 0) res = -2;
   for (int i = 0; i < nb; i++) {
+    tiling_free(&w->b[i].t);   /* the exact tiler's, if follow_shadow solved it: the same path */
     w->b[i].t = ss->pairs[i].t;
     ss->pairs[i].t.col = NULL;
   }

@@ -92,11 +92,12 @@ static void program(const weights *w, int s, double *cost, unsigned char *par, d
 }
 
 int unpinch_solve(const vec2 *P, int np, double zp, const vec2 *Q, int nq, double zq, cost_kind kind,
-                  tiling *out) {
+                  double shadow, tiling *out) {
   int tr = nq < np;
   int m = tr ? nq : np, n = tr ? np : nq;
   if (m < 2 || n < 2 || (double)m * m * n > 4194304.0) return -1;
-  weights *w = tr ? weights_new(Q, nq, zq, P, np, zp, kind, 0) : weights_new(P, np, zp, Q, nq, zq, kind, 0);
+  weights *w = tr ? weights_new_shadow(Q, nq, zq, P, np, zp, kind, shadow, 0)
+                  : weights_new_shadow(P, np, zp, Q, nq, zq, kind, shadow, 0);
   size_t cells = (size_t)(m + 1) * (size_t)(n + 1) * NS;
   double *cost = xmallocarray(cells, sizeof *cost);
   uint64_t nodes = 0;
@@ -129,7 +130,7 @@ int unpinch_solve(const vec2 *P, int np, double zp, const vec2 *Q, int nq, doubl
   }
   XASSERT(x >= 0);
   memset(out, 0, sizeof *out);
-  out->m = m, out->n = n, out->transposed = tr, out->start = bs;
+  out->m = m, out->n = n, out->transposed = tr, out->start = bs, out->shadow = w->shadow;
   out->quantum = weights_quantum(w);
   out->qexp = weights_qexp(w);
   out->quanta = fin;

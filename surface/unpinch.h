@@ -24,11 +24,12 @@
  * are one span), else 0. */
 int unpinch_repeats(const tiling *t);
 
-/* The cheapest path of the pair (as tiling_solve: rows the smaller contour,
- * P when equal) that uses no span twice, in *out (free with tiling_free).
+/* The cheapest path of the pair (as tiling_solve_shadow: rows the smaller
+ * contour, P when equal) that uses no span twice, in *out (free with
+ * tiling_free).
  * Returns 0, or -1 when the pair is too large for the O(m^2 n) program
  * (m^2 n > 2^22 nodes; out untouched) or no such path exists (m or n < 2). */
 int unpinch_solve(const vec2 *P, int np, double zp, const vec2 *Q, int nq, double zq, cost_kind kind,
-                  tiling *out);
+                  double shadow, tiling *out);
 
 #endif

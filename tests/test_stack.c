@@ -580,7 +580,7 @@ static void test_unpinch(rng *g) {
     tiling t, u;
     tiling_solve(p, np, 0, q, nq, 1, COST_AREA, -1, &t);
     pinched += unpinch_repeats(&t);
-    if (unpinch_solve(p, np, 0, q, nq, 1, COST_AREA, &u) != 0) {
+    if (unpinch_solve(p, np, 0, q, nq, 1, COST_AREA, 0, &u) != 0) {
       bad++;
       tiling_free(&t);
       continue;

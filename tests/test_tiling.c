@@ -1,6 +1,7 @@
 /* test_tiling.c -- the exact solver against brute force and the naive
- * one-DP-per-start reference, on thousands of random pairs; path invariants;
- * the weights against an independent 3D computation. */
+ * one-DP-per-start reference, on thousands of random pairs, with areas,
+ * spans and areas with their shadows weighted (weights_new_shadow); path
+ * invariants; the weights against an independent 3D computation. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,13 +14,22 @@
 #include "algo/tiling.h"
 #include "util/xmem.h"
 
-/* Independent 3D geometry: the triangle's area by the cross product. */
+/* Independent 3D geometry: the triangle's area by the cross product; its
+ * shadow, the signed area of its projection (a, b, c in this order). */
 static double area3(vec2 a, double za, vec2 b, double zb, vec2 c, double zc) {
   double ux = b.x - a.x, uy = b.y - a.y, uz = zb - za;
   double vx = c.x - a.x, vy = c.y - a.y, vz = zc - za;
   double x = uy * vz - uz * vy, y = uz * vx - ux * vz, z = ux * vy - uy * vx;
   return 0.5 * sqrt(x * x + y * y + z * z);
 }
+
+static double shadow2(vec2 a, vec2 b, vec2 c) {
+  return 0.5 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+}
+
+/* A weight of the shadows: 0 for a third of the calls, else k / 16 in
+ * [-15/16, 15/16]. */
+static double some_shadow(rng *g) { return rng_int(g, 0, 2) ? rng_int(g, -15, 15) / 16.0 : 0; }
 
 static void check_weights(rng *g) {
   for (int trial = 0; trial < 50; trial++) {
@@ -28,9 +38,11 @@ static void check_weights(rng *g) {
     gen_star(g, R, m, 0, 0, 10, 0.3);
     gen_star(g, C, n, 1, -1, 7, 0.3);
     double zr = 0.5, zc = 2.75;
-    for (int kind = 0; kind < 2; kind++) {
-      weights *w = weights_new(R, m, zr, C, n, zc, (cost_kind)kind, 0);
-      weights *wt = weights_new(R, m, zr, C, n, zc, (cost_kind)kind, 1);
+    for (int way = 0; way < 3; way++) {   /* area, span, area with shadows */
+      cost_kind kind = way == 1 ? COST_SPAN : COST_AREA;
+      double sw = way == 2 ? rng_int(g, -15, 15) / 16.0 : 0;
+      weights *w = weights_new_shadow(R, m, zr, C, n, zc, kind, sw, 0);
+      weights *wt = weights_new_shadow(R, m, zr, C, n, zc, kind, sw, 1);
       double q = weights_quantum(w);
       int bad = 0, badt = 0;
       for (int i = -m; i < 2 * m; i++)
@@ -39,8 +51,8 @@ static void check_weights(rng *g) {
           vec2 r0 = R[ii], r1 = R[(ii + 1) % m], c0 = C[jj], c1 = C[(jj + 1) % n];
           double ev, eh;
           if (kind == COST_AREA) {
-            ev = area3(r0, zr, r1, zr, c0, zc);
-            eh = area3(r0, zr, c0, zc, c1, zc);
+            ev = area3(r0, zr, r1, zr, c0, zc) + sw * shadow2(r0, r1, c0);
+            eh = area3(r0, zr, c0, zc, c1, zc) + sw * shadow2(c0, c1, r0);
           } else {
             ev = sqrt((r1.x - c0.x) * (r1.x - c0.x) + (r1.y - c0.y) * (r1.y - c0.y) + 2.25 * 2.25);
             eh = sqrt((r0.x - c1.x) * (r0.x - c1.x) + (r0.y - c1.y) * (r0.y - c1.y) + 2.25 * 2.25);
@@ -50,8 +62,8 @@ static void check_weights(rng *g) {
           if (fabs(v * q - ev) > 1e-12 * ev + q || fabs(h * q - eh) > 1e-12 * eh + q) bad++;
           if (weights_v(wt, i, j) != v || weights_h(wt, i, j) != h) badt++;
         }
-      CHECK(bad == 0, "%s weights: %d disagree with the 3D formula (m=%d n=%d)",
-            cost_name((cost_kind)kind), bad, m, n);
+      CHECK(bad == 0, "%s weights (shadow %g): %d disagree with the 3D formula (m=%d n=%d)",
+            cost_name(kind), sw, bad, m, n);
       /* The tables, entry by entry, against the weights computed on the fly. */
       for (int k = 1; k <= 2 * m + n; k++)
         for (int c = 0; c <= n; c++) {
@@ -164,22 +176,24 @@ static void compare(rng *g, shape sh, int maxn, int brute, int count) {
     int np, nq;
     make_pair(g, sh, maxn, P, &np, Q, &nq);
     cost_kind kind = rng_int(g, 0, 3) ? COST_AREA : COST_SPAN;
+    double sw = kind == COST_AREA ? some_shadow(g) : 0;
     double zp = 0, zq = 1 + rng_uniform(g);
     /* The reference in the pair's own orientation (P = rows), which is the
      * transpose of the solver's whenever np > nq. */
-    weights *wr = weights_new(P, np, zp, Q, nq, zq, kind, 0);
+    weights *wr = weights_new_shadow(P, np, zp, Q, nq, zq, kind, sw, 0);
     int rs;
     double ref = brute ? naive_brute(wr, &rs) : naive_dp(wr, &rs);
     tiling t, tt, tg;
-    tiling_solve(P, np, zp, Q, nq, zq, kind, 0, &t);
-    tiling_solve(P, np, zp, Q, nq, zq, kind, 1, &tt);
+    tiling_solve_shadow(P, np, zp, Q, nq, zq, kind, sw, 0, &t);
+    tiling_solve_shadow(P, np, zp, Q, nq, zq, kind, sw, 1, &tt);
     /* The portable kernel against the SIMD one, when there is one. */
     int simd = kernel_simd(-1);
     kernel_simd(!simd);
-    tiling_solve(P, np, zp, Q, nq, zq, kind, trial & 1, &tg);
+    tiling_solve_shadow(P, np, zp, Q, nq, zq, kind, sw, trial & 1, &tg);
     kernel_simd(simd);
-    char what[96];
-    snprintf(what, sizeof what, "%s %s m=%d n=%d trial %d", shape_name[sh], cost_name(kind), np, nq, trial);
+    char what[120];
+    snprintf(what, sizeof what, "%s %s (shadow %g) m=%d n=%d trial %d", shape_name[sh], cost_name(kind), sw, np, nq,
+             trial);
     if (t.quanta != ref) mism++;
     CHECK(t.quanta == ref, "%s: solver %.17g, %s %.17g", what, t.quanta, brute ? "brute force" : "naive", ref);
     CHECK(t.quanta == tt.quanta && t.start == tt.start &&
@@ -190,7 +204,7 @@ static void compare(rng *g, shape sh, int maxn, int brute, int count) {
               memcmp(tg.col, same->col, sizeof *t.col * (size_t)(t.m + t.n + 1)) == 0,
           "%s: portable and SIMD kernels differ", what);
     CHECK(t.transposed == (nq < np) && t.m == (np < nq ? np : nq), "%s: orientation", what);
-    weights *ws = t.transposed ? weights_new(Q, nq, zq, P, np, zp, kind, 0) : wr;
+    weights *ws = t.transposed ? weights_new_shadow(Q, nq, zq, P, np, zp, kind, sw, 0) : wr;
     check_path(&t, ws, what);
     CHECK(t.cost == t.quanta * weights_quantum(ws), "%s: cost is not quanta * quantum", what);
     if (ws != wr) weights_free(ws);
