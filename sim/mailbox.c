@@ -25,6 +25,7 @@
 #include <string.h>
 #include <sys/mman.h>
 
+#include "util/bigcopy.h"
 #include "util/xmem.h"
 
 enum {
@@ -116,7 +117,7 @@ static void own_payload(mstore *st, msg *m, const void *from) {
     m->data = pool_get(st, m->len);
     m->where = P_POOL;
   }
-  if (m->len) memcpy(m->data, from, m->len);
+  bigcopy(m->data, from, m->len);
 }
 
 /* m (out of its mailbox) is on the live list until both sides are done. */
@@ -183,7 +184,7 @@ static promise *promise_for(const mbox *b, const msg *m) {
 }
 
 static void deliver(mbox *b, msg *m, promise *p, const void *from) {
-  if (m->len) memcpy(p->buf, from, m->len);
+  bigcopy(p->buf, from, m->len);
   m->data = p->buf;
   m->where = P_PROMISE;
   m->at = p;
@@ -270,7 +271,7 @@ static void copy_out(mstore *st, msg *m, void *buf, size_t n) {
   if (b->nheld)
     for (promise *q = b->phead; q; q = q->next)
       if (q->held && q->held != m && overlap(q->buf, q->held->len, buf, n)) evict(st, q->held);
-  memcpy(buf, m->data, n);
+  bigcopy(buf, m->data, n);
 }
 
 void msg_read_any(mstore *st, msg *m, void *buf, size_t n) {
