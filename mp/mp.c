@@ -277,6 +277,8 @@ void mp_set_self(mp *self) { self_now = self; }
 void *mp_user(const mp *self) { return self->user; }
 void mp_set_user(mp *self, void *p) { self->user = p; }
 
+void *mp_self_user(void) { return self_now ? self_now->user : NULL; }
+
 void mp_label(mp *self, mp_describe describe, void *ud) {
   self->describe = describe;
   self->describe_ud = ud;
@@ -290,6 +292,8 @@ void mp_set_progress(mp *self, mp_progress fn, void *ud) {
 int mp_progressing(const mp *self) { return self->progress != NULL; }
 
 int mp_traced(const mp *self) { return self->traced; }
+
+mp *mp_self_watched(void) { return self_now && (self_now->traced || self_now->progress) ? self_now : NULL; }
 
 void mp_stack(const mp *self, void **lo, size_t *size, void **guard) {
   *lo = self->stack_lo;

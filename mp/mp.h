@@ -98,6 +98,10 @@ mp    *mp_self(void);
 void  *mp_user(const mp *self);
 void   mp_set_user(mp *self, void *p);
 
+/* mp_user(mp_self()), or NULL outside a rank: one call where a layer's
+ * every call would make two. */
+void  *mp_self_user(void);
+
 /* Block until a message from src (or MP_ANY) with tag (or MP_ANY) can be
  * received, fill *st with the one mp_recv(src, tag) would take now, and
  * leave it there (a blocking mp_probe).  No processor time is charged: the
@@ -178,6 +182,11 @@ int    mp_traced(const mp *self);
 
 /* 1 while a progress function is set (mp_set_progress), else 0. */
 int    mp_progressing(const mp *self);
+
+/* mp_self() if its calls are traced or a progress function is set (what a
+ * layer's call wrapper acts on: mp_traced, mp_progressing), else NULL, as
+ * outside a rank: the common case in one call. */
+mp    *mp_self_watched(void);
 
 /* The rank's own stack, where the backend knows it (the simulator's
  * coroutines): its lowest address and size, and the start of the guard

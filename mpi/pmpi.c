@@ -21,17 +21,19 @@ int PMPI_Pcontrol(const int level, ...) {
 }
 
 /* The calling rank's call begins and ends, where a trace shows it (outside
- * a rank, or untraced: nothing but the test; traced is set for a whole run). */
+ * a rank, or untraced and not progressing: nothing but one call and the
+ * test; traced is set for a whole run). */
 #define TSMPI_PMPI_0(ret, name, params, args)
-#define TSMPI_PMPI_1(ret, name, params, args)         \
-  ret name params {                                    \
-    mp *self_ = mp_self();                             \
-    int traced_ = self_ && mp_traced(self_);           \
-    if (self_ && mp_progressing(self_)) mp_time(self_); \
-    if (traced_) mp_call_begin(self_, #name);          \
-    ret r_ = P##name args;                             \
-    if (traced_) mp_call_end(self_);                   \
-    return r_;                                         \
+#define TSMPI_PMPI_1(ret, name, params, args)   \
+  ret name params {                              \
+    mp *self_ = mp_self_watched();               \
+    if (!self_) return P##name args;             \
+    int traced_ = mp_traced(self_);              \
+    if (mp_progressing(self_)) mp_time(self_);   \
+    if (traced_) mp_call_begin(self_, #name);    \
+    ret r_ = P##name args;                       \
+    if (traced_) mp_call_end(self_);             \
+    return r_;                                   \
   }
 #define TSMPI_FN(impl, chapter, ret, name, params, args) TSMPI_PMPI_##impl(ret, name, params, args)
 #include "mpi/mpi_funcs.h"
