@@ -297,13 +297,30 @@ const char *mp_strerror(int code) {
  * process (MPI), or the simulator's thread, whose coroutines take turns. */
 static _Thread_local mp *self_now;
 
+/* What mp.h's inline mp_self_user and mp_self_watched read: self_now's
+ * user pointer and self_now if watched, set again whenever self_now, its
+ * user pointer or its progress function changes (a backend sets traced
+ * for a whole run, before its ranks start). */
+_Thread_local void *mp_user_now;
+_Thread_local mp *mp_watched_now;
+
+static void now_again(void) {
+  mp *s = self_now;
+  mp_user_now = s ? s->user : NULL;
+  mp_watched_now = s && (s->traced || s->progress) ? s : NULL;
+}
+
 mp *mp_self(void) { return self_now; }
-void mp_set_self(mp *self) { self_now = self; }
+void mp_set_self(mp *self) {
+  self_now = self;
+  now_again();
+}
 
 void *mp_user(const mp *self) { return self->user; }
-void mp_set_user(mp *self, void *p) { self->user = p; }
-
-void *mp_self_user(void) { return self_now ? self_now->user : NULL; }
+void mp_set_user(mp *self, void *p) {
+  self->user = p;
+  if (self == self_now) now_again();
+}
 
 void mp_label(mp *self, mp_describe describe, void *ud) {
   self->describe = describe;
@@ -313,13 +330,12 @@ void mp_label(mp *self, mp_describe describe, void *ud) {
 void mp_set_progress(mp *self, mp_progress fn, void *ud) {
   self->progress = fn;
   self->progress_ud = ud;
+  if (self == self_now) now_again();
 }
 
 int mp_progressing(const mp *self) { return self->progress != NULL; }
 
 int mp_traced(const mp *self) { return self->traced; }
-
-mp *mp_self_watched(void) { return self_now && (self_now->traced || self_now->progress) ? self_now : NULL; }
 
 void mp_stack(const mp *self, void **lo, size_t *size, void **guard) {
   *lo = self->stack_lo;
