@@ -48,12 +48,14 @@
 /* ==== mp calls ============================================================ */
 
 /* An mp call's result: a stopped run ends the rank; anything else but MP_OK
- * is a bug of this layer (the arguments are ours). */
-static void mpok(st_rank *R, int rc, const char *call) {
-  if (rc == MP_OK) return;
+ * is a bug of this layer (the arguments are ours): failed. */
+static _Noreturn void failed(st_rank *R, int rc, const char *call) {
   if (rc == MP_ESTOPPED || rc == MP_EDEADLOCK) st_stopped(R);
   fprintf(stderr, "tilesim MPI: internal error: rank %d: %s: %s\n", R->wrank, call, mp_strerror(rc));
   abort();
+}
+static inline void mpok(st_rank *R, int rc, const char *call) {
+  if (rc != MP_OK) failed(R, rc, call);
 }
 
 /* ==== promises ============================================================ */
