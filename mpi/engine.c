@@ -271,8 +271,9 @@ void eng_send(st_rank *R, st_req *q, const void *data, size_t len) {
   }
 }
 
-void eng_send_data(st_rank *R, int wdst, int ctx, int tag, const void *data, size_t len) {
+int eng_send_data(st_rank *R, int wdst, int ctx, int tag, const void *data, size_t len) {
   mpok(R, mp_send(R->self, wdst, st_env_encode(K_DATA, ctx, tag), data, len), "mp_send");
+  return MPI_SUCCESS;
 }
 
 void eng_hold(st_rank *R, st_req *q) {

@@ -169,19 +169,37 @@ static inline size_t dense_predef(MPI_Datatype dt) {
   return p && p->size == p->extent ? (size_t)p->size : 0;
 }
 
-/* The common case in a few compares; anything odd goes through the checks
- * one by one, which say what is wrong.  *es: dense_predef(dt). */
-static inline int args_fine(st_comm *c, const void *buf, int count, MPI_Datatype dt, int peer, int tag,
-                            int any_ok, size_t *es) {
-  *es = 0;
+/* A call's path out of its common case's code (no registers saved there). */
+#if defined(__GNUC__)
+#define SIDE __attribute__((noinline))
+#else
+#define SIDE
+#endif
+
+/* dt passes dtype_check (out of line: not the fast paths' own case). */
+static SIDE int type_fine(MPI_Datatype dt) {
+  char why[64];
+  return dtype_check(dt, why, sizeof why) == MPI_SUCCESS;
+}
+
+/* Every argument but the type fine, in a few compares (c NULL: the
+ * communicator is not). */
+static inline int args_plain(const st_comm *c, const void *buf, int count, int peer, int tag, int any_ok) {
   if (!c || count < 0) return 0;
   if ((unsigned)tag > ST_TAG_UB && !(any_ok && tag == MPI_ANY_TAG)) return 0;
   if ((unsigned)peer >= (unsigned)c->size && peer != MPI_PROC_NULL && !(any_ok && peer == MPI_ANY_SOURCE))
     return 0;
-  if (!buf && count) return 0;
+  return buf || !count;
+}
+
+/* The common case: args_plain and the type; anything odd goes through the
+ * checks one by one, which say what is wrong.  *es: dense_predef(dt). */
+static inline int args_fine(st_comm *c, const void *buf, int count, MPI_Datatype dt, int peer, int tag,
+                            int any_ok, size_t *es) {
+  *es = 0;
+  if (!args_plain(c, buf, count, peer, tag, any_ok)) return 0;
   if ((*es = dense_predef(dt))) return 1;
-  char why[64];
-  return dtype_check(dt, why, sizeof why) == MPI_SUCCESS;
+  return type_fine(dt);
 }
 
 static int send_args(st_rank *R, const char *fn, const void *buf, int count, MPI_Datatype dt, int dst,
@@ -249,21 +267,32 @@ static int send_block(const char *fn, int mode, const void *buf, int count, MPI_
   return MPI_SUCCESS;
 }
 
-int PMPI_Send(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm) {
+/* MPI_Send but its commonest case: a contiguous message leaves from the
+ * buffer, anything else by send_block. */
+static SIDE int send_general(st_rank *R, const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
+                             MPI_Comm comm) {
   static const char fn[] = "MPI_Send";
-  st_rank *R = st_need(fn);
   st_comm *c = comm == MPI_COMM_WORLD ? &R->world : st_comm_get(R, comm);
   size_t es;
   if (args_fine(c, buf, count, datatype, dest, tag, 0, &es) && dest != MPI_PROC_NULL) {
-    /* The fast path: a contiguous message leaves from the buffer. */
     size_t len = (size_t)count * (es ? es : dtype_size(datatype));
     const void *p = !len ? NULL : es ? buf : dtype_contig(buf, count, datatype);
-    if (p || !len) {
-      eng_send_data(R, st_world_of(c, dest), 2 * c->pair, tag, p, len);
-      return MPI_SUCCESS;
-    }
+    if (p || !len) return eng_send_data(R, st_world_of(c, dest), 2 * c->pair, tag, p, len);
   }
   return send_block(fn, SM_STANDARD, buf, count, datatype, dest, tag, comm);
+}
+
+int PMPI_Send(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm) {
+  st_rank *R = st_need("MPI_Send");
+  /* The fast path: a dense predefined type on MPI_COMM_WORLD, the same
+   * message send_general sends. */
+  size_t es;
+  if (comm == MPI_COMM_WORLD && dest != MPI_PROC_NULL && args_plain(&R->world, buf, count, dest, tag, 0) &&
+      (es = dense_predef(datatype))) {
+    size_t len = (size_t)count * es;
+    return eng_send_data(R, st_world_of(&R->world, dest), 2 * R->world.pair, tag, len ? buf : NULL, len);
+  }
+  return send_general(R, buf, count, datatype, dest, tag, comm);
 }
 
 int PMPI_Ssend(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm) {
