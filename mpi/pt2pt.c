@@ -375,10 +375,42 @@ int PMPI_Bsend_init(const void *buf, int count, MPI_Datatype datatype, int dest,
 
 /* ==== receives ============================================================ */
 
-int PMPI_Recv(void *buf, int count, MPI_Datatype datatype, int source, int tag, MPI_Comm comm,
-             MPI_Status *status) {
-  static const char fn[] = "MPI_Recv";
-  st_rank *R = st_need(fn);
+static const char recv_fn[] = "MPI_Recv";
+
+/* A blocking receive by a request on the stack, matched by the engine (its
+ * label set by the caller, cleared here). */
+static SIDE int recv_queued(st_rank *R, st_comm *c, void *buf, int count, MPI_Datatype datatype, int source,
+                            int tag, MPI_Comm comm, MPI_Status *status) {
+  st_req q;
+  st_req_stack(&q);
+  pt2pt_recv_fill(&q, c, 0, buf, count, datatype, source, tag, comm, recv_fn);
+  pt2pt_recv_block(R, &q);
+  label_clear(R);
+  pt2pt_status_out(status, &q.st, 0);
+  return recv_result(R, c, &q);
+}
+
+/* The receive's fast way: the source's next message, straight into a
+ * contiguous buffer of cap bytes at p, when it is the one (1, the status
+ * filled); else 0, the message left to the engine. */
+static inline int recv_next(st_rank *R, const st_comm *c, void *p, size_t cap, int source, int tag,
+                            MPI_Status *status) {
+  mp_status got;
+  if (!eng_recv_data(R, source >= 0 ? st_world_of(c, source) : MP_ANY, 2 * c->pair, tag, p, cap, &got)) return 0;
+  label_clear(R);
+  if (status != MPI_STATUS_IGNORE) {
+    status->MPI_SOURCE = c->g->world ? st_comm_rank_of(c, got.source) : got.source;
+    status->MPI_TAG = got.tag;
+    status->tsmpi_cancelled = 0;
+    status->tsmpi_count = (MPI_Count)got.len;
+  }
+  return 1;
+}
+
+/* MPI_Recv but its commonest case. */
+static SIDE int recv_general(st_rank *R, void *buf, int count, MPI_Datatype datatype, int source, int tag,
+                             MPI_Comm comm, MPI_Status *status) {
+  const char *fn = recv_fn;
   st_comm *c = comm == MPI_COMM_WORLD ? &R->world : st_comm_get(R, comm);
   int rc;
   size_t es;
@@ -388,30 +420,30 @@ int PMPI_Recv(void *buf, int count, MPI_Datatype datatype, int source, int tag, 
   label_rec l = {.fn = fn, .what = L_RECV, .peer = source, .tag = tag, .pair = c->pair};
   label_set(R, &l);
   if (source != MPI_PROC_NULL && !R->nunexp && !R->posted) {
-    /* The fast path: the source's next message, straight into a
-     * contiguous buffer, when it is the one. */
+    /* The fast way, when the buffer is contiguous. */
     size_t cap = (size_t)count * (es ? es : dtype_size(datatype));
     void *p = !cap ? NULL : es ? buf : (void *)dtype_contig(buf, count, datatype);
-    mp_status got;
-    if ((p || !cap) &&
-        eng_recv_data(R, source >= 0 ? st_world_of(c, source) : MP_ANY, 2 * c->pair, tag, p, cap, &got)) {
-      label_clear(R);
-      if (status != MPI_STATUS_IGNORE) {
-        status->MPI_SOURCE = c->g->world ? st_comm_rank_of(c, got.source) : got.source;
-        status->MPI_TAG = got.tag;
-        status->tsmpi_cancelled = 0;
-        status->tsmpi_count = (MPI_Count)got.len;
-      }
-      return MPI_SUCCESS;
-    }
+    if ((p || !cap) && recv_next(R, c, p, cap, source, tag, status)) return MPI_SUCCESS;
   }
-  st_req q;
-  st_req_stack(&q);
-  pt2pt_recv_fill(&q, c, 0, buf, count, datatype, source, tag, comm, fn);
-  pt2pt_recv_block(R, &q);
-  label_clear(R);
-  pt2pt_status_out(status, &q.st, 0);
-  return recv_result(R, c, &q);
+  return recv_queued(R, c, buf, count, datatype, source, tag, comm, status);
+}
+
+int PMPI_Recv(void *buf, int count, MPI_Datatype datatype, int source, int tag, MPI_Comm comm,
+             MPI_Status *status) {
+  st_rank *R = st_need(recv_fn);
+  /* The fast path: a dense predefined type on MPI_COMM_WORLD, nothing
+   * posted or unexpected; what recv_general does then. */
+  size_t es;
+  if (comm == MPI_COMM_WORLD && source != MPI_PROC_NULL && !R->nunexp && !R->posted &&
+      args_plain(&R->world, buf, count, source, tag, 1) && (es = dense_predef(datatype))) {
+    st_comm *c = &R->world;
+    size_t cap = (size_t)count * es;
+    label_rec l = {.fn = recv_fn, .what = L_RECV, .peer = source, .tag = tag, .pair = c->pair};
+    label_set(R, &l);
+    if (recv_next(R, c, cap ? buf : NULL, cap, source, tag, status)) return MPI_SUCCESS;
+    return recv_queued(R, c, buf, count, datatype, source, tag, comm, status);
+  }
+  return recv_general(R, buf, count, datatype, source, tag, comm, status);
 }
 
 static int recv_req(const char *fn, int persistent, void *buf, int count, MPI_Datatype dt, int src,
