@@ -254,24 +254,19 @@ typedef struct {
   int n, cap;
 } chanset;
 
-void chans_grow(chanset *c);
-
 static inline unsigned chan_hash(int dst, int cap) {
   return ((unsigned)dst * 2654435761u) & (unsigned)(cap - 1);
 }
 
-/* The latest arrival on the channel to dst (-infinity if none yet). */
+/* The latest arrival on the channel to dst: found, or made (chan_add,
+ * -infinity: none yet). */
+double *chan_add(chanset *c, int dst);
 static inline double *chan_last(chanset *c, int dst) {
-  if (2 * (c->n + 1) > c->cap) chans_grow(c);
-  unsigned h = chan_hash(dst, c->cap);
-  while (c->t[h].dst >= 0) {
-    if (c->t[h].dst == dst) return &c->t[h].last;
-    h = (h + 1) & (unsigned)(c->cap - 1);
+  if (c->cap) {
+    for (unsigned h = chan_hash(dst, c->cap); c->t[h].dst >= 0; h = (h + 1) & (unsigned)(c->cap - 1))
+      if (c->t[h].dst == dst) return &c->t[h].last;
   }
-  c->t[h].dst = dst;
-  c->t[h].last = -INFINITY;
-  c->n++;
-  return &c->t[h].last;
+  return chan_add(c, dst);
 }
 
 /* Free every message of b into st (the run's end; references are void)
