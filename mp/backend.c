@@ -20,7 +20,7 @@ void mp_enter(mp *self, mp_main main, void *ud) {
   self->describe = NULL;
   self->call_depth = 0;   /* a rank that left inside a call */
   self->call_name = NULL;
-  self->progress = NULL;
+  mp_set_progress(self, NULL, NULL);
 }
 
 const char *mp_label_text(const mp *self, char *buf, size_t len) {

@@ -33,6 +33,14 @@ void mp_set_hooks(const mp_hooks *h) { hooks = h; }
 
 /* ==== the arguments ======================================================= */
 
+/* A path of the calls taken only when something is wrong or hooked, kept
+ * out of their common case's code (no registers saved there). */
+#if defined(__GNUC__)
+#define SIDE __attribute__((noinline))
+#else
+#define SIDE
+#endif
+
 /* A bad argument: the backend rejects the call (backend.h), why says it. */
 static MP_PRINTF(3, 4) int bad(mp *self, int code, const char *fmt, ...) {
   char why[256];
@@ -43,7 +51,7 @@ static MP_PRINTF(3, 4) int bad(mp *self, int code, const char *fmt, ...) {
   return self->ops->reject(self, code, why);
 }
 
-static int bad_send(mp *self, const char *call, int dst, int tag, size_t len) {
+static SIDE int bad_send(mp *self, const char *call, int dst, int tag, size_t len) {
   int me = self->rank, max = self->ops->tag_max;
   if (dst < 0 || dst >= self->size)
     return bad(self, MP_ERANK, "rank %d: %s to rank %d, which does not exist (%d ranks)", me, call, dst,
@@ -56,12 +64,15 @@ static int bad_send(mp *self, const char *call, int dst, int tag, size_t len) {
 }
 
 /* A send's destination, tag and buffer: MP_OK, or the call rejected. */
+static inline int send_ok(const mp *self, int dst, int tag, const void *buf, size_t len) {
+  return dst >= 0 && dst < self->size && tag >= 0 && tag <= self->ops->tag_max && (buf || !len);
+}
 static inline int send_args(mp *self, const char *call, int dst, int tag, const void *buf, size_t len) {
-  if (dst >= 0 && dst < self->size && tag >= 0 && tag <= self->ops->tag_max && (buf || !len)) return MP_OK;
+  if (send_ok(self, dst, tag, buf, len)) return MP_OK;
   return bad_send(self, call, dst, tag, len);
 }
 
-static int bad_match(mp *self, const char *call, int src, int tag) {
+static SIDE int bad_match(mp *self, const char *call, int src, int tag) {
   int me = self->rank, max = self->ops->tag_max;
   if (src < MP_ANY || src >= self->size)
     return bad(self, MP_ERANK, "rank %d: %s from rank %d, which does not exist (%d ranks)", me, call, src,
@@ -71,8 +82,11 @@ static int bad_match(mp *self, const char *call, int src, int tag) {
 }
 
 /* A receive's or probe's source and tag: MP_OK, or the call rejected. */
+static inline int match_ok(const mp *self, int src, int tag) {
+  return src >= MP_ANY && src < self->size && tag >= MP_ANY && tag <= self->ops->tag_max;
+}
 static inline int match_args(mp *self, const char *call, int src, int tag) {
-  if (src >= MP_ANY && src < self->size && tag >= MP_ANY && tag <= self->ops->tag_max) return MP_OK;
+  if (match_ok(self, src, tag)) return MP_OK;
   return bad_match(self, call, src, tag);
 }
 
@@ -85,8 +99,14 @@ static inline int send_(mp *self, int dst, int tag, const void *buf, size_t len)
   return rc != MP_OK ? rc : self->ops->send(self, dst, tag, buf, len);
 }
 
-int mp_send(mp *self, int dst, int tag, const void *buf, size_t len) {
+static SIDE int send_hooked(mp *self, int dst, int tag, const void *buf, size_t len) {
   HOOKED(int, self, send_(self, dst, tag, buf, len));
+}
+
+int mp_send(mp *self, int dst, int tag, const void *buf, size_t len) {
+  /* The common case (no hooks, the arguments fine) straight to the backend. */
+  if (!hooks && send_ok(self, dst, tag, buf, len)) return self->ops->send(self, dst, tag, buf, len);
+  return send_hooked(self, dst, tag, buf, len);
 }
 
 static inline int recv_(mp *self, int src, int tag, void *buf, size_t cap, mp_status *st) {
@@ -195,9 +215,15 @@ static int recv_msg_(mp *self, int src, int tag, mp_msg **msg, mp_status *st) {
   return self->ops->recv_msg(self, src, tag, msg, st);
 }
 
+static SIDE int recv_msg_hooked(mp *self, int src, int tag, mp_msg **msg, mp_status *st) {
+  HOOKED(int, self, recv_msg_(self, src, tag, msg, st));
+}
+
 int mp_recv_msg(mp *self, int src, int tag, mp_msg **msg, mp_status *st) {
   *msg = NULL;
-  HOOKED(int, self, recv_msg_(self, src, tag, msg, st));
+  if (!hooks && self->ops->recv_msg && match_ok(self, src, tag))   /* the common case, as mp_send's */
+    return self->ops->recv_msg(self, src, tag, msg, st);
+  return recv_msg_hooked(self, src, tag, msg, st);
 }
 
 int mp_msg_read(mp *self, mp_msg *msg, void *buf, size_t cap) {
@@ -271,11 +297,30 @@ const char *mp_strerror(int code) {
  * process (MPI), or the simulator's thread, whose coroutines take turns. */
 static _Thread_local mp *self_now;
 
+/* What mp.h's inline mp_self_user and mp_self_watched read: self_now's
+ * user pointer and self_now if watched, set again whenever self_now, its
+ * user pointer or its progress function changes (a backend sets traced
+ * for a whole run, before its ranks start). */
+_Thread_local void *mp_user_now;
+_Thread_local mp *mp_watched_now;
+
+static void now_again(void) {
+  mp *s = self_now;
+  mp_user_now = s ? s->user : NULL;
+  mp_watched_now = s && (s->traced || s->progress) ? s : NULL;
+}
+
 mp *mp_self(void) { return self_now; }
-void mp_set_self(mp *self) { self_now = self; }
+void mp_set_self(mp *self) {
+  self_now = self;
+  now_again();
+}
 
 void *mp_user(const mp *self) { return self->user; }
-void mp_set_user(mp *self, void *p) { self->user = p; }
+void mp_set_user(mp *self, void *p) {
+  self->user = p;
+  if (self == self_now) now_again();
+}
 
 void mp_label(mp *self, mp_describe describe, void *ud) {
   self->describe = describe;
@@ -285,6 +330,7 @@ void mp_label(mp *self, mp_describe describe, void *ud) {
 void mp_set_progress(mp *self, mp_progress fn, void *ud) {
   self->progress = fn;
   self->progress_ud = ud;
+  if (self == self_now) now_again();
 }
 
 int mp_progressing(const mp *self) { return self->progress != NULL; }

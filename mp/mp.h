@@ -20,6 +20,12 @@
 extern "C" {
 #endif
 
+#ifdef __cplusplus
+#define MP_THREAD_LOCAL thread_local
+#else
+#define MP_THREAD_LOCAL _Thread_local
+#endif
+
 #if defined(__STDC_VERSION__) && __STDC_VERSION__ >= 201112L
 #define MP_NORETURN _Noreturn
 #elif defined(__GNUC__)
@@ -97,6 +103,12 @@ mp    *mp_self(void);
 /* One pointer per rank for the layer above (NULL when the rank starts). */
 void  *mp_user(const mp *self);
 void   mp_set_user(mp *self, void *p);
+
+/* mp_user(mp_self()), or NULL outside a rank: a thread-local read where a
+ * layer's every call would make two calls (mp keeps mp_user_now; read it
+ * through mp_self_user, never write it). */
+extern MP_THREAD_LOCAL void *mp_user_now;
+static inline void *mp_self_user(void) { return mp_user_now; }
 
 /* Block until a message from src (or MP_ANY) with tag (or MP_ANY) can be
  * received, fill *st with the one mp_recv(src, tag) would take now, and
@@ -178,6 +190,13 @@ int    mp_traced(const mp *self);
 
 /* 1 while a progress function is set (mp_set_progress), else 0. */
 int    mp_progressing(const mp *self);
+
+/* mp_self() if its calls are traced or a progress function is set (what a
+ * layer's call wrapper acts on: mp_traced, mp_progressing), else NULL, as
+ * outside a rank: the common case in a thread-local read (mp keeps
+ * mp_watched_now; read it through mp_self_watched, never write it). */
+extern MP_THREAD_LOCAL mp *mp_watched_now;
+static inline mp *mp_self_watched(void) { return mp_watched_now; }
 
 /* The rank's own stack, where the backend knows it (the simulator's
  * coroutines): its lowest address and size, and the start of the guard

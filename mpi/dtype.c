@@ -111,11 +111,7 @@ typedef struct { int32_t v, i; } pair_2integer;
   [IDX(h)] = {#h, VSIZE(st) + ISIZE(st), (int)sizeof(st), (int)_Alignof(st), DTYPE_CLASS_PAIR, \
               DTYPE_REP_PAIR, IDX(vh), IDX(ih), IOFF(st)},
 #define DESC_M(h, l, u) [IDX(h)] = {#h, 0, 0, 1, DTYPE_CLASS_NONE, DTYPE_REP_NONE, 0, 0, 0},
-static const dtype_predef predef[DTYPE_PREDEF_N] = {PREDEF_LIST(DESC_B, DESC_P, DESC_M)};
-
-const dtype_predef *dtype_predef_get(int i) {
-  return i > 0 && i < DTYPE_PREDEF_N && predef[i].name ? &predef[i] : NULL;
-}
+const dtype_predef dtype_predefs[DTYPE_PREDEF_N] = {PREDEF_LIST(DESC_B, DESC_P, DESC_M)};
 
 /* ==== type objects ======================================================== */
 
@@ -227,7 +223,7 @@ static dt *obj(MPI_Datatype h) {
   if ((h & 0xff000000) != 0x03000000) return NULL;
   if (!(h & 0x800000)) {
     int i = h & 0xffff;
-    return (h & 0x7f0000) == 0 && i > 0 && i < DTYPE_PREDEF_N && predef[i].name ? (dt *)&pre_obj[i] : NULL;
+    return (h & 0x7f0000) == 0 && i > 0 && i < DTYPE_PREDEF_N && dtype_predefs[i].name ? (dt *)&pre_obj[i] : NULL;
   }
   table *tb = tab(0);
   int i = h & SLOT_MASK;
@@ -386,10 +382,10 @@ MPI_Count dtype_elements(MPI_Datatype h, MPI_Count bytes) {
   if (t->size == 0) return 0;
   MPI_Count n = bytes / t->size * t->nbasic, rest = bytes % t->size;
   for (size_t k = 0; k < t->nrun && rest > 0; k++) {
-    const dtype_predef *p = &predef[t->runs[k].type];
+    const dtype_predef *p = &dtype_predefs[t->runs[k].type];
     for (MPI_Count j = 0; j < t->runs[k].n && rest > 0; j++) {
       if (p->rep == DTYPE_REP_PAIR) {
-        int vs = predef[p->pair_value].size;
+        int vs = dtype_predefs[p->pair_value].size;
         if (rest < vs) return MPI_UNDEFINED;
         rest -= vs;
         n++;
@@ -412,13 +408,13 @@ MPI_Count dtype_elements_bytes(MPI_Datatype h, MPI_Count n) {
   if (t->nbasic == 0) return n > 0 ? -1 : 0;
   MPI_Count bytes = n / t->nbasic * t->size, rest = n % t->nbasic;
   for (size_t k = 0; k < t->nrun && rest > 0; k++) {
-    const dtype_predef *p = &predef[t->runs[k].type];
+    const dtype_predef *p = &dtype_predefs[t->runs[k].type];
     int two = p->rep == DTYPE_REP_PAIR;
     MPI_Count whole = rest / (two ? 2 : 1) < t->runs[k].n ? rest / (two ? 2 : 1) : t->runs[k].n;
     bytes += whole * p->size;
     rest -= whole * (two ? 2 : 1);
     if (rest > 0 && whole < t->runs[k].n && two) {   /* the value of one more pair */
-      bytes += predef[p->pair_value].size;
+      bytes += dtype_predefs[p->pair_value].size;
       rest = 0;
     }
   }
@@ -477,7 +473,7 @@ static void add_run(builder *b, MPI_Aint disp, MPI_Count n, int type) {
   if (n == 0 || b->oom) return;
   if (b->nr) {
     run *l = &b->r[b->nr - 1];
-    if (l->type == type && l->disp + l->n * predef[type].extent == disp) {
+    if (l->type == type && l->disp + l->n * dtype_predefs[type].extent == disp) {
       l->n += n;
       return;
     }
@@ -509,7 +505,7 @@ static void add_seg(builder *b, MPI_Aint disp, MPI_Aint len) {
 static void add_type(builder *b, const dt *t, MPI_Aint disp, MPI_Count reps) {
   MPI_Aint ext = t->ub - t->lb;
   if (t->size == 0 || reps == 0) return;
-  if (t->nrun == 1 && t->runs[0].n * predef[t->runs[0].type].extent == ext)
+  if (t->nrun == 1 && t->runs[0].n * dtype_predefs[t->runs[0].type].extent == ext)
     add_run(b, disp + t->runs[0].disp, t->runs[0].n * reps, t->runs[0].type);
   else
     for (MPI_Count j = 0; j < reps && !b->oom; j++)
@@ -565,7 +561,7 @@ static void finish(dt *t) {
   t->elem = t->nrun ? t->runs[0].type : 0;
   t->per_elem = 0;
   for (size_t k = 0; k < t->nrun; k++) {
-    const dtype_predef *p = &predef[t->runs[k].type];
+    const dtype_predef *p = &dtype_predefs[t->runs[k].type];
     t->size += t->runs[k].n * p->size;
     t->nbasic += t->runs[k].n * (p->rep == DTYPE_REP_PAIR ? 2 : 1);
     if (t->runs[k].type != t->elem) t->elem = 0;
@@ -753,7 +749,7 @@ const char *dtype_name(MPI_Datatype h) {
   const table *tb = t->predef ? tab(0) : NULL;
   if (tb && tb->pname[t->predef]) return tb->pname[t->predef];
   if (t->name) return t->name;
-  return t->predef ? predef[t->predef].name : "";
+  return t->predef ? dtype_predefs[t->predef].name : "";
 }
 
 int dtype_set_name(MPI_Datatype h, const char *name) {

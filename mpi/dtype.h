@@ -131,8 +131,12 @@ typedef struct {
 
 enum { DTYPE_PREDEF_N = 0x3f };   /* predefined indices are 1 .. DTYPE_PREDEF_N - 1 */
 
-/* The predefined type of index i (1 .. DTYPE_PREDEF_N - 1), or NULL. */
-const dtype_predef *dtype_predef_get(int i);
+/* The predefined types by index (dtype.c's table; unused indices have no
+ * name), and the one of index i (1 .. DTYPE_PREDEF_N - 1), or NULL. */
+extern const dtype_predef dtype_predefs[DTYPE_PREDEF_N];
+static inline const dtype_predef *dtype_predef_get(int i) {
+  return i > 0 && i < DTYPE_PREDEF_N && dtype_predefs[i].name ? &dtype_predefs[i] : NULL;
+}
 
 /* The index of the one predefined type all of dt's basic entries are (a
  * pair type counts as one), or 0 if they are of several types or dt has

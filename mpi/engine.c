@@ -48,12 +48,14 @@
 /* ==== mp calls ============================================================ */
 
 /* An mp call's result: a stopped run ends the rank; anything else but MP_OK
- * is a bug of this layer (the arguments are ours). */
-static void mpok(st_rank *R, int rc, const char *call) {
-  if (rc == MP_OK) return;
+ * is a bug of this layer (the arguments are ours): failed. */
+static _Noreturn void failed(st_rank *R, int rc, const char *call) {
   if (rc == MP_ESTOPPED || rc == MP_EDEADLOCK) st_stopped(R);
   fprintf(stderr, "tilesim MPI: internal error: rank %d: %s: %s\n", R->wrank, call, mp_strerror(rc));
   abort();
+}
+static inline void mpok(st_rank *R, int rc, const char *call) {
+  if (rc != MP_OK) failed(R, rc, call);
 }
 
 /* ==== promises ============================================================ */
@@ -269,8 +271,9 @@ void eng_send(st_rank *R, st_req *q, const void *data, size_t len) {
   }
 }
 
-void eng_send_data(st_rank *R, int wdst, int ctx, int tag, const void *data, size_t len) {
+int eng_send_data(st_rank *R, int wdst, int ctx, int tag, const void *data, size_t len) {
   mpok(R, mp_send(R->self, wdst, st_env_encode(K_DATA, ctx, tag), data, len), "mp_send");
+  return MPI_SUCCESS;
 }
 
 void eng_hold(st_rank *R, st_req *q) {
@@ -294,29 +297,30 @@ void eng_settle(st_rank *R, st_req *q) {
   }
 }
 
-int eng_recv_data(st_rank *R, int wsrc, int ctx, int tag, void *p, size_t cap, mp_status *got) {
-  mp_status st;
-  if (cap < ENG_REF_MIN) {
-    /* The source's next message, taken; read into p if it is the one, else
-     * acted on as a message taken off mp (no posted receive wants it). */
-    mp_msg *h;
-    mpok(R, mp_recv_msg(R->self, wsrc, MP_ANY, &h, &st), "mp_recv_msg");
-    int kind = st_env_kind(st.tag);
-    if (kind == K_DATA && st_env_ctx(st.tag) == ctx && (tag < 0 || st_env_tag(st.tag) == tag) && st.len <= cap) {
-      mp_msg_read(R->self, h, p, st.len);
-      *got = (mp_status){st.source, st_env_tag(st.tag), st.len};
-      return 1;
-    }
-    if (kind == K_ACK) {
-      mp_msg_read(R->self, h, NULL, 0);
-      acked(R, st.source, st_env_ctx(st.tag), st_env_tag(st.tag));
-    } else {
-      unexpected(R, &st, h);
-    }
-    return 0;
+/* A path of the receives out of their common case's code (no registers
+ * saved there). */
+#if defined(__GNUC__)
+#define SIDE __attribute__((noinline))
+#else
+#define SIDE
+#endif
+
+/* eng_recv_data's message (held at h, its envelope st) that is not the one:
+ * an ack acted on, anything else unexpected.  0. */
+static SIDE int recv_other(st_rank *R, const mp_status *st, mp_msg *h) {
+  if (st_env_kind(st->tag) == K_ACK) {
+    mp_msg_read(R->self, h, NULL, 0);
+    acked(R, st->source, st_env_ctx(st->tag), st_env_tag(st->tag));
+  } else {
+    unexpected(R, st, h);
   }
-  /* Long enough for a promise: the message is received into p, where its
-   * sender may have copied it already. */
+  return 0;
+}
+
+/* eng_recv_data of cap >= ENG_REF_MIN bytes: the message is received into
+ * p, where its sender may have copied it already (a promise). */
+static SIDE int recv_promised(st_rank *R, int wsrc, int ctx, int tag, void *p, size_t cap, mp_status *got) {
+  mp_status st;
   mp_promise *pr = promise_of(R, wsrc, ctx, tag, p, cap);
   mpok(R, mp_wait(R->self, wsrc, MP_ANY, &st), "mp_wait");
   if (st_env_kind(st.tag) != K_DATA || st_env_ctx(st.tag) != ctx || (tag >= 0 && st_env_tag(st.tag) != tag) ||
@@ -328,6 +332,22 @@ int eng_recv_data(st_rank *R, int wsrc, int ctx, int tag, void *p, size_t cap, m
   if (pr) mp_promise_drop(R->self, pr, 0);
   *got = (mp_status){st.source, st_env_tag(st.tag), st.len};
   return 1;
+}
+
+int eng_recv_data(st_rank *R, int wsrc, int ctx, int tag, void *p, size_t cap, mp_status *got) {
+  if (cap >= ENG_REF_MIN) return recv_promised(R, wsrc, ctx, tag, p, cap, got);
+  /* The source's next message, taken; read into p if it is the one, else
+   * acted on as a message taken off mp (no posted receive wants it). */
+  mp_status st;
+  mp_msg *h;
+  mpok(R, mp_recv_msg(R->self, wsrc, MP_ANY, &h, &st), "mp_recv_msg");
+  if (st_env_kind(st.tag) == K_DATA && st_env_ctx(st.tag) == ctx && (tag < 0 || st_env_tag(st.tag) == tag) &&
+      st.len <= cap) {
+    mp_msg_read(R->self, h, p, st.len);
+    *got = (mp_status){st.source, st_env_tag(st.tag), st.len};
+    return 1;
+  }
+  return recv_other(R, &st, h);
 }
 
 /* m, an unexpected message taken out of matching, read into q, which

@@ -52,7 +52,8 @@ void eng_settle_all(st_rank *R);
 
 /* The fast paths of MPI_Send and MPI_Recv (the common case of a blocking
  * exchange, with no request made):
- *   eng_send_data: an eager message of len bytes to world rank wdst;
+ *   eng_send_data: an eager message of len bytes to world rank wdst
+ *     (MPI_SUCCESS, MPI_Send's result);
  *   eng_recv_data: when nothing is posted and nothing unexpected, the next
  *     message from wsrc (MP_ANY) is waited for; if it is an eager one that
  *     a receive of (ctx, tag) takes and it fits cap bytes at p, it is
@@ -60,7 +61,7 @@ void eng_settle_all(st_rank *R);
  *     the general way (eng_recv) finds the same message: in mp's mailbox,
  *     or, for cap < ENG_REF_MIN, taken already into the unexpected queue
  *     (an ack acted on). */
-void eng_send_data(st_rank *R, int wdst, int ctx, int tag, const void *data, size_t len);
+int eng_send_data(st_rank *R, int wdst, int ctx, int tag, const void *data, size_t len);
 int eng_recv_data(st_rank *R, int wsrc, int ctx, int tag, void *p, size_t cap, mp_status *got);
 
 /* A receive starts: matched at once by the first unexpected message that

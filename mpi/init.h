@@ -53,10 +53,7 @@ int init_rank_end(mp *self);
 
 /* --- private part: for the layer's own files ------------------------------ */
 
-/* What mp_user holds after MPI_Finalize, and after the rank was stopped
- * inside an MPI call (its state released): marks, not states. */
-extern const char init_marks[2];
-#define INIT_MARK_FINALIZED ((void *)&init_marks[0])
-#define INIT_MARK_STOPPED ((void *)&init_marks[1])
+/* The marks mp_user holds after MPI_Finalize and after a stop (INIT_MARK_*)
+ * are state.h's: st_need tests them inline. */
 
 #endif

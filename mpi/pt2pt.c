@@ -169,19 +169,37 @@ static inline size_t dense_predef(MPI_Datatype dt) {
   return p && p->size == p->extent ? (size_t)p->size : 0;
 }
 
-/* The common case in a few compares; anything odd goes through the checks
- * one by one, which say what is wrong.  *es: dense_predef(dt). */
-static inline int args_fine(st_comm *c, const void *buf, int count, MPI_Datatype dt, int peer, int tag,
-                            int any_ok, size_t *es) {
-  *es = 0;
+/* A call's path out of its common case's code (no registers saved there). */
+#if defined(__GNUC__)
+#define SIDE __attribute__((noinline))
+#else
+#define SIDE
+#endif
+
+/* dt passes dtype_check (out of line: not the fast paths' own case). */
+static SIDE int type_fine(MPI_Datatype dt) {
+  char why[64];
+  return dtype_check(dt, why, sizeof why) == MPI_SUCCESS;
+}
+
+/* Every argument but the type fine, in a few compares (c NULL: the
+ * communicator is not). */
+static inline int args_plain(const st_comm *c, const void *buf, int count, int peer, int tag, int any_ok) {
   if (!c || count < 0) return 0;
   if ((unsigned)tag > ST_TAG_UB && !(any_ok && tag == MPI_ANY_TAG)) return 0;
   if ((unsigned)peer >= (unsigned)c->size && peer != MPI_PROC_NULL && !(any_ok && peer == MPI_ANY_SOURCE))
     return 0;
-  if (!buf && count) return 0;
+  return buf || !count;
+}
+
+/* The common case: args_plain and the type; anything odd goes through the
+ * checks one by one, which say what is wrong.  *es: dense_predef(dt). */
+static inline int args_fine(st_comm *c, const void *buf, int count, MPI_Datatype dt, int peer, int tag,
+                            int any_ok, size_t *es) {
+  *es = 0;
+  if (!args_plain(c, buf, count, peer, tag, any_ok)) return 0;
   if ((*es = dense_predef(dt))) return 1;
-  char why[64];
-  return dtype_check(dt, why, sizeof why) == MPI_SUCCESS;
+  return type_fine(dt);
 }
 
 static int send_args(st_rank *R, const char *fn, const void *buf, int count, MPI_Datatype dt, int dst,
@@ -249,21 +267,32 @@ static int send_block(const char *fn, int mode, const void *buf, int count, MPI_
   return MPI_SUCCESS;
 }
 
-int PMPI_Send(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm) {
+/* MPI_Send but its commonest case: a contiguous message leaves from the
+ * buffer, anything else by send_block. */
+static SIDE int send_general(st_rank *R, const void *buf, int count, MPI_Datatype datatype, int dest, int tag,
+                             MPI_Comm comm) {
   static const char fn[] = "MPI_Send";
-  st_rank *R = st_need(fn);
   st_comm *c = comm == MPI_COMM_WORLD ? &R->world : st_comm_get(R, comm);
   size_t es;
   if (args_fine(c, buf, count, datatype, dest, tag, 0, &es) && dest != MPI_PROC_NULL) {
-    /* The fast path: a contiguous message leaves from the buffer. */
     size_t len = (size_t)count * (es ? es : dtype_size(datatype));
     const void *p = !len ? NULL : es ? buf : dtype_contig(buf, count, datatype);
-    if (p || !len) {
-      eng_send_data(R, st_world_of(c, dest), 2 * c->pair, tag, p, len);
-      return MPI_SUCCESS;
-    }
+    if (p || !len) return eng_send_data(R, st_world_of(c, dest), 2 * c->pair, tag, p, len);
   }
   return send_block(fn, SM_STANDARD, buf, count, datatype, dest, tag, comm);
+}
+
+int PMPI_Send(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm) {
+  st_rank *R = st_need("MPI_Send");
+  /* The fast path: a dense predefined type on MPI_COMM_WORLD, the same
+   * message send_general sends. */
+  size_t es;
+  if (comm == MPI_COMM_WORLD && dest != MPI_PROC_NULL && args_plain(&R->world, buf, count, dest, tag, 0) &&
+      (es = dense_predef(datatype))) {
+    size_t len = (size_t)count * es;
+    return eng_send_data(R, st_world_of(&R->world, dest), 2 * R->world.pair, tag, len ? buf : NULL, len);
+  }
+  return send_general(R, buf, count, datatype, dest, tag, comm);
 }
 
 int PMPI_Ssend(const void *buf, int count, MPI_Datatype datatype, int dest, int tag, MPI_Comm comm) {
@@ -346,10 +375,42 @@ int PMPI_Bsend_init(const void *buf, int count, MPI_Datatype datatype, int dest,
 
 /* ==== receives ============================================================ */
 
-int PMPI_Recv(void *buf, int count, MPI_Datatype datatype, int source, int tag, MPI_Comm comm,
-             MPI_Status *status) {
-  static const char fn[] = "MPI_Recv";
-  st_rank *R = st_need(fn);
+static const char recv_fn[] = "MPI_Recv";
+
+/* A blocking receive by a request on the stack, matched by the engine (its
+ * label set by the caller, cleared here). */
+static SIDE int recv_queued(st_rank *R, st_comm *c, void *buf, int count, MPI_Datatype datatype, int source,
+                            int tag, MPI_Comm comm, MPI_Status *status) {
+  st_req q;
+  st_req_stack(&q);
+  pt2pt_recv_fill(&q, c, 0, buf, count, datatype, source, tag, comm, recv_fn);
+  pt2pt_recv_block(R, &q);
+  label_clear(R);
+  pt2pt_status_out(status, &q.st, 0);
+  return recv_result(R, c, &q);
+}
+
+/* The receive's fast way: the source's next message, straight into a
+ * contiguous buffer of cap bytes at p, when it is the one (1, the status
+ * filled); else 0, the message left to the engine. */
+static inline int recv_next(st_rank *R, const st_comm *c, void *p, size_t cap, int source, int tag,
+                            MPI_Status *status) {
+  mp_status got;
+  if (!eng_recv_data(R, source >= 0 ? st_world_of(c, source) : MP_ANY, 2 * c->pair, tag, p, cap, &got)) return 0;
+  label_clear(R);
+  if (status != MPI_STATUS_IGNORE) {
+    status->MPI_SOURCE = c->g->world ? st_comm_rank_of(c, got.source) : got.source;
+    status->MPI_TAG = got.tag;
+    status->tsmpi_cancelled = 0;
+    status->tsmpi_count = (MPI_Count)got.len;
+  }
+  return 1;
+}
+
+/* MPI_Recv but its commonest case. */
+static SIDE int recv_general(st_rank *R, void *buf, int count, MPI_Datatype datatype, int source, int tag,
+                             MPI_Comm comm, MPI_Status *status) {
+  const char *fn = recv_fn;
   st_comm *c = comm == MPI_COMM_WORLD ? &R->world : st_comm_get(R, comm);
   int rc;
   size_t es;
@@ -359,30 +420,30 @@ int PMPI_Recv(void *buf, int count, MPI_Datatype datatype, int source, int tag, 
   label_rec l = {.fn = fn, .what = L_RECV, .peer = source, .tag = tag, .pair = c->pair};
   label_set(R, &l);
   if (source != MPI_PROC_NULL && !R->nunexp && !R->posted) {
-    /* The fast path: the source's next message, straight into a
-     * contiguous buffer, when it is the one. */
+    /* The fast way, when the buffer is contiguous. */
     size_t cap = (size_t)count * (es ? es : dtype_size(datatype));
     void *p = !cap ? NULL : es ? buf : (void *)dtype_contig(buf, count, datatype);
-    mp_status got;
-    if ((p || !cap) &&
-        eng_recv_data(R, source >= 0 ? st_world_of(c, source) : MP_ANY, 2 * c->pair, tag, p, cap, &got)) {
-      label_clear(R);
-      if (status != MPI_STATUS_IGNORE) {
-        status->MPI_SOURCE = c->g->world ? st_comm_rank_of(c, got.source) : got.source;
-        status->MPI_TAG = got.tag;
-        status->tsmpi_cancelled = 0;
-        status->tsmpi_count = (MPI_Count)got.len;
-      }
-      return MPI_SUCCESS;
-    }
+    if ((p || !cap) && recv_next(R, c, p, cap, source, tag, status)) return MPI_SUCCESS;
   }
-  st_req q;
-  st_req_stack(&q);
-  pt2pt_recv_fill(&q, c, 0, buf, count, datatype, source, tag, comm, fn);
-  pt2pt_recv_block(R, &q);
-  label_clear(R);
-  pt2pt_status_out(status, &q.st, 0);
-  return recv_result(R, c, &q);
+  return recv_queued(R, c, buf, count, datatype, source, tag, comm, status);
+}
+
+int PMPI_Recv(void *buf, int count, MPI_Datatype datatype, int source, int tag, MPI_Comm comm,
+             MPI_Status *status) {
+  st_rank *R = st_need(recv_fn);
+  /* The fast path: a dense predefined type on MPI_COMM_WORLD, nothing
+   * posted or unexpected; what recv_general does then. */
+  size_t es;
+  if (comm == MPI_COMM_WORLD && source != MPI_PROC_NULL && !R->nunexp && !R->posted &&
+      args_plain(&R->world, buf, count, source, tag, 1) && (es = dense_predef(datatype))) {
+    st_comm *c = &R->world;
+    size_t cap = (size_t)count * es;
+    label_rec l = {.fn = recv_fn, .what = L_RECV, .peer = source, .tag = tag, .pair = c->pair};
+    label_set(R, &l);
+    if (recv_next(R, c, cap ? buf : NULL, cap, source, tag, status)) return MPI_SUCCESS;
+    return recv_queued(R, c, buf, count, datatype, source, tag, comm, status);
+  }
+  return recv_general(R, buf, count, datatype, source, tag, comm, status);
 }
 
 static int recv_req(const char *fn, int persistent, void *buf, int count, MPI_Datatype dt, int src,

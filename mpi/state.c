@@ -24,14 +24,13 @@ st_rank *st_get(void) {
   return u == INIT_MARK_FINALIZED || u == INIT_MARK_STOPPED ? NULL : u;
 }
 
-st_rank *st_need(const char *fn) {
+_Noreturn void st_need_fail(const char *fn) {
   mp *self = mp_self();
   if (!self) {
     fprintf(stderr, "tilesim MPI: %s called outside a rank: MPI programs run under tilesim-mpirun\n", fn);
     exit(1);
   }
   void *u = mp_user(self);
-  if (u && u != INIT_MARK_FINALIZED && u != INIT_MARK_STOPPED) return u;
   char why[200];
   snprintf(why, sizeof why, "rank %d: %s called %s", mp_rank(self), fn,
            u ? "after MPI_Finalize" : "before MPI_Init");

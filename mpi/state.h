@@ -240,9 +240,20 @@ struct st_rank {
  * outside a rank. */
 st_rank *st_get(void);
 
+/* What mp_user holds after MPI_Finalize, and after the rank was stopped
+ * inside an MPI call (its state released): marks, not states (init.c's). */
+extern const char init_marks[2];
+#define INIT_MARK_FINALIZED ((void *)&init_marks[0])
+#define INIT_MARK_STOPPED ((void *)&init_marks[1])
+
 /* The state for call fn, or the run ends: outside a rank, before MPI_Init or
- * after MPI_Finalize (a clear message, exit status 1). */
-st_rank *st_need(const char *fn);
+ * after MPI_Finalize (a clear message, exit status 1: st_need_fail). */
+_Noreturn void st_need_fail(const char *fn);
+static inline st_rank *st_need(const char *fn) {
+  void *u = mp_self_user();
+  if (u && u != INIT_MARK_FINALIZED && u != INIT_MARK_STOPPED) return u;
+  st_need_fail(fn);
+}
 
 /* The rank ends here (the run was stopped: an MPI_Abort, a deadlock): its
  * state is released and mp_exit never returns. */

@@ -447,7 +447,7 @@ static inline msg *receive(sim *s, rank *r, int src, int tag, int *rc) {
 
 /* mp_recv into buf (cap bytes), or, with hold, mp_recv_msg: *hold holds
  * the message. */
-static int recv_msg(mp *self, int src, int tag, void *buf, size_t cap, mp_status *st, mp_msg **hold) {
+static inline int recv_msg(mp *self, int src, int tag, void *buf, size_t cap, mp_status *st, mp_msg **hold) {
   rank *r = (rank *)self;
   sim *s = r->s;
   int rc;

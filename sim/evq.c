@@ -27,7 +27,7 @@ static void place(evq *q, int i, evq_entry e) {
   q->pos[e.id] = i;
 }
 
-static void sift_up(evq *q, int i) {
+static inline void sift_up(evq *q, int i) {
   evq_entry e = q->heap[i];
   while (i > 0) {
     int p = (i - 1) / 2;

@@ -341,7 +341,7 @@ void box_clear(mbox *b, mstore *st) {
   while (b->phead) promise_drop(st, b, b->phead, 0);
 }
 
-void chans_grow(chanset *c) {
+static void chans_grow(chanset *c) {
   int cap = c->cap ? 2 * c->cap : 4;
   chan *old = c->t, *t = xmallocarray((size_t)cap, sizeof *t);
   for (int i = 0; i < cap; i++) t[i].dst = -1;
@@ -354,6 +354,16 @@ void chans_grow(chanset *c) {
   free(old);
   c->t = t;
   c->cap = cap;
+}
+
+double *chan_add(chanset *c, int dst) {
+  if (2 * (c->n + 1) > c->cap) chans_grow(c);
+  unsigned h = chan_hash(dst, c->cap);
+  while (c->t[h].dst >= 0) h = (h + 1) & (unsigned)(c->cap - 1);
+  c->t[h].dst = dst;
+  c->t[h].last = -INFINITY;
+  c->n++;
+  return &c->t[h].last;
 }
 
 void mstore_sweep(mstore *st) {

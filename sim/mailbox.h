@@ -116,12 +116,32 @@ static inline msg *msg_new(mstore *st, mbox *b, size_t len) {
   return m;
 }
 
+/* n bytes (at most MSG_INLINE) between a buffer and a message's own
+ * payload, which never overlap: eight at a time (the last eight overlapping
+ * the ones before), or four, or one by one, without a call to memcpy. */
+static inline void msg_copy_short(void *to, const void *from, size_t n) {
+  unsigned char *d = to;
+  const unsigned char *f = from;
+  if (n >= 8) {
+    size_t i = 0;
+    for (; i + 8 <= n; i += 8) memcpy(d + i, f + i, 8);
+    if (i < n) memcpy(d + n - 8, f + n - 8, 8);
+  } else if (n >= 4) {
+    memcpy(d, f, 4);
+    memcpy(d + n - 4, f + n - 4, 4);
+  } else if (n) {
+    d[0] = f[0];
+    d[n / 2] = f[n / 2];
+    d[n - 1] = f[n - 1];
+  }
+}
+
 void box_place_any(mstore *st, msg *m, const void *buf);
 static inline void box_place(mstore *st, msg *m, const void *buf) {
   if (m->len <= MSG_INLINE && !m->box->phead) {
     m->data = m->inl;
     m->where = P_INLINE;
-    if (m->len) memcpy(m->inl, buf, m->len);
+    msg_copy_short(m->inl, buf, m->len);
   } else {
     box_place_any(st, m, buf);
   }
@@ -171,7 +191,7 @@ void msg_read_any(mstore *st, msg *m, void *buf, size_t n);
 static inline void msg_read(mstore *st, msg *m, void *buf, size_t n) {
   if (m->where == P_INLINE && !m->ref && !m->box->phead) {
     box_unlink(m);
-    if (n) memcpy(buf, m->data, n);
+    msg_copy_short(buf, m->data, n);
     m->next = st->free;
     st->free = m;
   } else {
@@ -194,7 +214,7 @@ static inline void msg_hold(mstore *st, msg *m) {
 void msg_take_any(mstore *st, msg *m, void *buf, size_t n);
 static inline void msg_take(mstore *st, msg *m, void *buf, size_t n) {
   if (m->where == P_INLINE && !m->ref && m->state == M_HELD) {
-    if (n) memcpy(buf, m->data, n);
+    msg_copy_short(buf, m->data, n);
     if (m->prev)   /* off the live list */
       m->prev->next = m->next;
     else
@@ -234,24 +254,19 @@ typedef struct {
   int n, cap;
 } chanset;
 
-void chans_grow(chanset *c);
-
 static inline unsigned chan_hash(int dst, int cap) {
   return ((unsigned)dst * 2654435761u) & (unsigned)(cap - 1);
 }
 
-/* The latest arrival on the channel to dst (-infinity if none yet). */
+/* The latest arrival on the channel to dst: found, or made (chan_add,
+ * -infinity: none yet). */
+double *chan_add(chanset *c, int dst);
 static inline double *chan_last(chanset *c, int dst) {
-  if (2 * (c->n + 1) > c->cap) chans_grow(c);
-  unsigned h = chan_hash(dst, c->cap);
-  while (c->t[h].dst >= 0) {
-    if (c->t[h].dst == dst) return &c->t[h].last;
-    h = (h + 1) & (unsigned)(c->cap - 1);
+  if (c->cap) {
+    for (unsigned h = chan_hash(dst, c->cap); c->t[h].dst >= 0; h = (h + 1) & (unsigned)(c->cap - 1))
+      if (c->t[h].dst == dst) return &c->t[h].last;
   }
-  c->t[h].dst = dst;
-  c->t[h].last = -INFINITY;
-  c->n++;
-  return &c->t[h].last;
+  return chan_add(c, dst);
 }
 
 /* Free every message of b into st (the run's end; references are void)
