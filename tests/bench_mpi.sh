@@ -36,6 +36,10 @@
 #   RING_RANKS (16)  RING_LAPS (62500)
 #   RANKS (1000,10000,100000)  AR_COUNT (256)  AR_ITERS (4)
 #   MP_RANKS (1000000; 0: none)  SMPI_RANKS (1000)  SMPI (auto, or no)
+#   ROUNDS (1) each run this many times, tilesim-mpirun and smpirun taking
+#              turns: the CSV has a row per run, the table and the pictures
+#              the median of each one's wall time and of its peak (the host's
+#              own noise, page faults above all, moves single runs a lot)
 #   TIMEOUT    seconds a run may take before it is stopped and marked so (900)
 #   BIN, PLOT, EXAMPLES   where tilesim-mpirun and tilesim-mpicc are (.), the
 #              plotter (build/plot), examples/ring (build/examples)
@@ -73,6 +77,7 @@ AR_ITERS=${AR_ITERS:-4}
 MP_RANKS=${MP_RANKS:-1000000}
 SMPI_RANKS=${SMPI_RANKS:-1000}
 SMPI=${SMPI:-auto}
+ROUNDS=${ROUNDS:-1}
 TIMEOUT=${TIMEOUT:-900}
 BIN=${BIN:-.}
 PLOT=${PLOT:-build/plot}
@@ -91,6 +96,7 @@ list AR_ITERS "$AR_ITERS" 1 1000000
 list MP_RANKS "$MP_RANKS" 0 1000000
 list SMPI_RANKS "$SMPI_RANKS" 0 1000000
 list TIMEOUT "$TIMEOUT" 1 86400
+list ROUNDS "$ROUNDS" 1 1000
 case $SMPI in auto | no) ;; *) usage "SMPI takes auto or no ($SMPI)" ;; esac
 [ -n "$OUT" ] || usage "OUT names the output folder, and is empty"
 [ -f tests/bench_mpi.sh ] || die "run from the source tree's root (make bench-mpi does)"
@@ -185,12 +191,16 @@ run() {
 both() {
   name=$1 exe=$2 np=$3 bytes=$4
   shift 4
-  # shellcheck disable=SC2086
-  run "$name" tilesim "$np" "$bytes" "$BIN/tilesim-mpirun" -np "$np" $TSOPT "$W/$exe" "$@"
-  [ -n "$SG" ] && [ "$np" -le "$SMPI_RANKS" ] || return 0
-  platform "$np"
-  # shellcheck disable=SC2086
-  run "$name" smpi "$np" "$bytes" smpirun -np "$np" -platform "$W/plat$np.xml" -hostfile "$W/hosts$np" $SGOPT "$W/$exe.sg" "$@"
+  i=0
+  while [ $i -lt "$ROUNDS" ]; do
+    i=$((i + 1))
+    # shellcheck disable=SC2086
+    run "$name" tilesim "$np" "$bytes" "$BIN/tilesim-mpirun" -np "$np" $TSOPT "$W/$exe" "$@"
+    [ -n "$SG" ] && [ "$np" -le "$SMPI_RANKS" ] || continue
+    platform "$np"
+    # shellcheck disable=SC2086
+    run "$name" smpi "$np" "$bytes" smpirun -np "$np" -platform "$W/plat$np.xml" -hostfile "$W/hosts$np" $SGOPT "$W/$exe.sg" "$@"
+  done
 }
 
 say "host: $(nproc 2> /dev/null || echo ?) cores, $(awk '/^MemTotal:/ { printf "%.1f GiB", $2 / 1048576 }' /proc/meminfo 2> /dev/null); load $(cut -d' ' -f1-3 /proc/loadavg 2> /dev/null)"
@@ -204,6 +214,21 @@ done
 [ "$MP_RANKS" -gt 0 ] && run mp-ring tilesim "$MP_RANKS" 8 "$EXAMPLES/ring" --ranks "$MP_RANKS" --procs 4096 --net ideal --m "$M" \
   --per-byte 0 --stats none -- 1 8
 mv "$W/rows" "$OUT/bench-mpi.csv"
+# A row per program, ranks, size and simulator: the median of its runs' wall
+# times and of their peaks (ROUNDS), the first ok run's simulated time and
+# checksum, and ok only if every run was (else the first failure's status).
+awk -F, 'function median(list,   v, n, i, j, x) { n = split(list, v, " ")
+      for (i = 2; i <= n; i++) { x = v[i] + 0; for (j = i - 1; j >= 1 && v[j] + 0 > x; j--) v[j + 1] = v[j]; v[j + 1] = x }
+      return n % 2 ? v[(n + 1) / 2] : (v[n / 2] + v[n / 2 + 1]) / 2 }
+  NR == 1 { print; next }
+  { k = $1 "," $2 "," $3 "," $4; if (!(k in st)) { o[++n] = k; st[k] = $9; s[k] = $7; c[k] = $8 }
+    else if (st[k] == "\"ok\"" && $9 != "\"ok\"") st[k] = $9
+    if ($9 == "\"ok\"" && s[k] == "") s[k] = $7
+    if ($9 == "\"ok\"" && c[k] == "") c[k] = $8
+    w[k] = w[k] " " $5; if ($6 != "") r[k] = r[k] " " $6 }
+  END { for (i = 1; i <= n; i++) { k = o[i]
+      printf "%s,%.3f,%s,%s,%s,%s\n", k, median(w[k]), r[k] == "" ? "" : sprintf("%.0f", median(r[k])), s[k], c[k], st[k] } }' \
+  "$OUT/bench-mpi.csv" > "$W/med.csv"
 
 # ---- the tables ----------------------------------------------------------------
 commit=$(git rev-parse --short=12 HEAD 2> /dev/null || echo unknown)
@@ -215,7 +240,8 @@ commit=$(git rev-parse --short=12 HEAD 2> /dev/null || echo unknown)
     "$(awk '/^MemTotal:/ { printf "%.1f GiB", $2 / 1048576 }' /proc/meminfo 2> /dev/null), commit $commit;" \
     "$(smpirun --version 2> /dev/null | head -n 1 | sed 's/ *$//')."
   echo "Every message costs 2^-12 s on both; wall is the host's seconds for the whole run (start-up included)," \
-    "peak the largest resident size; ratio = smpirun's / tilesim's."
+    "peak the largest resident size$([ "$ROUNDS" -gt 1 ] && echo ", each the median of $ROUNDS runs (the two simulators taking turns)");" \
+    "ratio = smpirun's / tilesim's."
   echo "bw: $WINDOW nonblocking sends of the size from rank 0 to rank 1, $BW_ITERS times;" \
     "alltoall: MPI_Alltoall of the size a pair, $A2A_ITERS times; ring: a token of 8 bytes, $RING_LAPS laps;" \
     "startup: MPI_Init, an allreduce of one integer, MPI_Finalize; allreduce: $AR_ITERS of $AR_COUNT integers;" \
@@ -241,17 +267,17 @@ commit=$(git rev-parse --short=12 HEAD 2> /dev/null || echo unknown)
         }
         printf "| %s | %s | %s %s%s| %s | %s | %s | %s |\n", a[1], a[2], a[3], cell(k, "tilesim"), cell(k, "smpi"), tr, mr, sims, cs
       }
-    }' "$OUT/bench-mpi.csv"
+    }' "$W/med.csv"
   echo
   echo "The settings: BW_SIZES=$BW_SIZES WINDOW=$WINDOW BW_ITERS=$BW_ITERS A2A_SIZES=$A2A_SIZES A2A_RANKS=$A2A_RANKS" \
     "A2A_ITERS=$A2A_ITERS RING_RANKS=$RING_RANKS RING_LAPS=$RING_LAPS RANKS=$RANKS AR_COUNT=$AR_COUNT AR_ITERS=$AR_ITERS" \
-    "MP_RANKS=$MP_RANKS SMPI_RANKS=$SMPI_RANKS."
+    "MP_RANKS=$MP_RANKS SMPI_RANKS=$SMPI_RANKS ROUNDS=$ROUNDS."
 } > "$W/md" && mv "$W/md" "$OUT/bench-mpi.md"
 
 # ---- the pictures: log2 of the size, log10 of the ranks -----------------------
 awk -F, 'NR == 1 { print "program,simulator,log2_bytes,log10_ranks,wall_s,peak_rss_mib"; next }
   $9 == "\"ok\"" { printf "%s,%s,%.3f,%.3f,%s,%.1f\n", $1, $2, log($4) / log(2), log($3) / log(10), $5, $6 / 1024 }' \
-  "$OUT/bench-mpi.csv" > "$W/plot.csv"
+  "$W/med.csv" > "$W/plot.csv"
 pic() {   # pic FILE X Y XLABEL YLABEL TITLE WHERE...
   f=$1 x=$2 y=$3 xl=$4 yl=$5 ti=$6
   shift 6

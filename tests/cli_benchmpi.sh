@@ -4,9 +4,10 @@
 # runs every program (beside smpirun where make check found SimGrid), and
 # writes a CSV whose checksums are the programs' closed forms, the same on
 # both simulators with the same simulated times, a Markdown table with a row
-# per run, four SVG pictures and nothing else; a run over TIMEOUT is a row
-# that says so and the benchmark goes on; bad settings are refused with one
-# line and nothing written.
+# per run, four SVG pictures and nothing else; with ROUNDS a row per run in
+# the CSV and the medians in the table; a run over TIMEOUT is a row that says
+# so and the benchmark goes on; bad settings are refused with one line and
+# nothing written.
 BUILD=${BUILD:-build/chk}
 . tests/clilib.sh
 if [ "${SMPI_STATUS:-}" = yes ]; then SMPI=auto; else SMPI=no; echo "cli_benchmpi: skipped: the runs beside smpirun (${SMPI_STATUS:-make check sets SMPI_STATUS})"; fi
@@ -66,6 +67,22 @@ run OUT="$T/b" TIMEOUT=1 RING_LAPS=100000000 BW_SIZES=64 A2A_SIZES=64 RANKS=3 SM
 left=$(for f in /proc/[0-9]*/cmdline; do { tr '\0' ' ' < "$f"; } 2> /dev/null; echo; done | grep -c -- ' 100000000 8 $')
 [ "$left" -eq 0 ] && ok || bad "$left runs left behind after TIMEOUT"
 
+# ---- ROUNDS: a row per run, the table the medians ---------------------------------
+run OUT="$T/m" ROUNDS=3 BW_SIZES=4096 A2A_SIZES=64 RANKS=3 MP_RANKS=0 > "$T/m.out" 2> "$T/m.err"; rc=$?
+csv=$T/m/bench-mpi.csv md=$T/m/bench-mpi.md
+[ $rc -eq 0 ] && [ "$(awk -F, 'NR > 1 && $1 == "bw" && $2 == "tilesim"' "$csv" | wc -l)" -eq 3 ] \
+  && [ "$(grep -c '^| bw | 2 | 4096 | ' "$md")" -eq 1 ] && grep -q 'each the median of 3 runs' "$md" && ok \
+  || bad "ROUNDS=3: exit $rc: $(cat "$csv" "$T/m.err" 2> /dev/null | head -20)"
+# The table's tilesim wall and peak, against the median of the CSV's three runs
+# (sorted here by sort(1)).
+for p in bw alltoall ring startup allreduce; do
+  want=$(awk -F, -v p=$p 'NR > 1 && $1 == p && $2 == "tilesim" { print $5 }' "$csv" | sort -g | sed -n 2p)
+  peak=$(awk -F, -v p=$p 'NR > 1 && $1 == p && $2 == "tilesim" { print $6 }' "$csv" | sort -g | sed -n 2p)
+  got=$(awk -F'|' -v p=$p '$2 == " " p " " { print $5 "|" $6; exit }' "$md")
+  want=$(printf '%s s | %.0f MiB' "$want" "$(awk -v k="$peak" 'BEGIN { printf "%.0f", k / 1024 }')")
+  [ "$(echo "$got" | sed 's/^ *//; s/ *$//')" = "$want" ] && ok || bad "ROUNDS=3, $p: the table says '$got', the median of the runs '$want'"
+done
+
 # ---- refusals: one line, the usage line, status 2, nothing written ---------------
 refused() {   # refused MESSAGE SETTING...
   msg=$1
@@ -78,6 +95,7 @@ refused "WINDOW takes whole numbers from 1 to 4096 (0)" WINDOW=0
 refused "BW_SIZES takes whole numbers separated by commas (64,,128)" BW_SIZES=64,,128
 refused "RANKS takes whole numbers from 2 to 1000000 (2000000)" RANKS=2000000
 refused "SMPI takes auto or no (yes)" SMPI=yes
+refused "ROUNDS takes whole numbers from 1 to 1000 (0)" ROUNDS=0
 env OUT="$T/r" sh tests/bench_mpi.sh now > "$T/r.out" 2> "$T/r.err"; rc=$?
 [ $rc -eq 2 ] && [ "$(head -n 1 "$T/r.err")" = "bench-mpi: the settings go in the environment, not as arguments (now)" ] \
   && [ ! -e "$T/r" ] && ok || bad "an argument: exit $rc: $(cat "$T/r.err")"
