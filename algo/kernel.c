@@ -226,36 +226,39 @@ AVX2 static void diag_span_table_avx2(const weights *w, int k, int a, int b,
   if (nb) *bits = word;
 }
 
-/* weights_round(sqrt(ee + cz*cz) * sc) with cz = ex (py - ay) - ey (px - ax),
- * four at a time, operation for operation as weights_tri with shadow = 0 (the
- * on-the-fly AVX2 kernel serves shadow = 0 only: kernel_diag). */
+/* weights_round((sqrt(ee + cz*cz) + shadow cz) * sc) with
+ * cz = ex (py - ay) - ey (px - ax), four at a time, operation for operation
+ * as weights_tri; without the shadow's two operations where `shadowed` is 0
+ * (a constant in each caller: the paper's kernel keeps its work). */
 AVX2 static inline __m256d tri4(__m256d ee, __m256d ex, __m256d ey, __m256d ax, __m256d ay,
-                                __m256d px, __m256d py, __m256d sc) {
+                                __m256d px, __m256d py, __m256d sc, __m256d sh, int shadowed) {
   const __m256d big = _mm256_set1_pd(0x1p52);
   __m256d dx = _mm256_sub_pd(px, ax), dy = _mm256_sub_pd(py, ay);
   __m256d cz = _mm256_sub_pd(_mm256_mul_pd(ex, dy), _mm256_mul_pd(ey, dx));
-  __m256d q = _mm256_mul_pd(_mm256_sqrt_pd(_mm256_add_pd(ee, _mm256_mul_pd(cz, cz))), sc);
+  __m256d r = _mm256_sqrt_pd(_mm256_add_pd(ee, _mm256_mul_pd(cz, cz)));
+  if (shadowed) r = _mm256_add_pd(r, _mm256_mul_pd(sh, cz));
+  __m256d q = _mm256_mul_pd(r, sc);
   return _mm256_sub_pd(_mm256_add_pd(q, big), big);
 }
 
 #define L4(p) _mm256_loadu_pd(p)
 
-AVX2 static void diag_area_avx2(const weights *w, int k, int a, int b, const double *prev,
-                                double *cur, uint64_t *bits) {
+AVX2 static inline void diag_area_avx2_of(const weights *w, int k, int a, int b, const double *prev,
+                                          double *cur, uint64_t *bits, int shadowed) {
   int base = 2 * w->m + 1 - k;
   const double *rx = w->rx + base, *ry = w->ry + base, *rex = w->rex + base;
   const double *rey = w->rey + base, *ree = w->ree + base;
   const double *cx = w->cx + 1, *cy = w->cy + 1, *cfx = w->cfx + 1, *cfy = w->cfy + 1;
   const double *cff = w->cff + 1;
-  double sc = w->sc;
-  __m256d sc4 = _mm256_set1_pd(sc);
+  double sc = w->sc, shadow = shadowed ? w->shadow : 0;
+  __m256d sc4 = _mm256_set1_pd(sc), sh4 = _mm256_set1_pd(shadow);
   uint64_t word = 0;
   int nb = 0, c = a;
   for (; c + 3 <= b; c += 4) {
     __m256d v = tri4(L4(ree + c + 1), L4(rex + c + 1), L4(rey + c + 1), L4(rx + c + 1),
-                     L4(ry + c + 1), L4(cx + c), L4(cy + c), sc4);
+                     L4(ry + c + 1), L4(cx + c), L4(cy + c), sc4, sh4, shadowed);
     __m256d h = tri4(L4(cff + c - 1), L4(cfx + c - 1), L4(cfy + c - 1), L4(cx + c - 1),
-                     L4(cy + c - 1), L4(rx + c), L4(ry + c), sc4);
+                     L4(cy + c - 1), L4(rx + c), L4(ry + c), sc4, sh4, shadowed);
     __m256d up = _mm256_add_pd(L4(prev + c), v), left = _mm256_add_pd(L4(prev + c - 1), h);
     __m256d le = _mm256_cmp_pd(up, left, _CMP_LE_OQ);
     _mm256_storeu_pd(cur + c, _mm256_blendv_pd(left, up, le));
@@ -263,14 +266,24 @@ AVX2 static void diag_area_avx2(const weights *w, int k, int a, int b, const dou
   }
   for (; c <= b; c++) {
     double v = weights_tri(ree[c + 1], rex[c + 1], rey[c + 1], rx[c + 1], ry[c + 1], cx[c],
-                           cy[c], sc, 0);
+                           cy[c], sc, shadow);
     double h = weights_tri(cff[c - 1], cfx[c - 1], cfy[c - 1], cx[c - 1], cy[c - 1], rx[c],
-                           ry[c], sc, 0);
+                           ry[c], sc, shadow);
     double up = prev[c] + v, left = prev[c - 1] + h;
     cur[c] = up <= left ? up : left;
     PUT_BITS(up <= left, 1);
   }
   if (nb) *bits = word;
+}
+
+AVX2 static void diag_area_avx2(const weights *w, int k, int a, int b, const double *prev, double *cur,
+                                uint64_t *bits) {
+  diag_area_avx2_of(w, k, a, b, prev, cur, bits, 0);
+}
+
+AVX2 static void diag_shadow_avx2(const weights *w, int k, int a, int b, const double *prev, double *cur,
+                                  uint64_t *bits) {
+  diag_area_avx2_of(w, k, a, b, prev, cur, bits, 1);
 }
 
 AVX2 static void diag_span_avx2(const weights *w, int k, int a, int b, const double *prev,
@@ -325,7 +338,7 @@ void kernel_diag(const weights *w, int k, int a, int b, const double *prev, doub
 #ifdef HAVE_AVX2_KERNEL
   if (simd)
     f = w->tv ? (w->kind == COST_AREA ? diag_table_avx2 : diag_span_table_avx2)
-              : (w->kind == COST_AREA ? (w->shadow == 0 ? diag_area_avx2 : diag_area) : diag_span_avx2);
+              : (w->kind == COST_AREA ? (w->shadow == 0 ? diag_area_avx2 : diag_shadow_avx2) : diag_span_avx2);
   else
 #endif
     f = w->tv ? (w->kind == COST_AREA ? diag_table : diag_span_table)

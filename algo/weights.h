@@ -100,13 +100,14 @@ static inline double weights_round(double q) { return (q + 0x1p52) - 0x1p52; }
 /* The tile with edge A -> A+e on one contour and apex P on the other:
  * area = |e x (P - A)| / 2 in 3D = sqrt(h^2 |e|^2 + (e x d)^2) / 2, where
  * ee = h^2 |e|^2 and d = P - A in the plane; plus `shadow` times the
- * tile's shadow cz / 2 (weights_new_shadow).  With shadow = 0 the sum adds
- * a zero: the same bits as the area alone. */
+ * tile's shadow cz / 2 (weights_new_shadow); with shadow = 0 the area
+ * alone, as before there were shadows. */
 static inline double weights_tri(double ee, double ex, double ey, double ax, double ay,
                                  double px, double py, double sc, double shadow) {
   double dx = px - ax, dy = py - ay;
-  double cz = ex * dy - ey * dx;
-  return weights_round((sqrt(ee + cz * cz) + shadow * cz) * sc);
+  double cz = ex * dy - ey * dx, r = sqrt(ee + cz * cz);
+  if (shadow != 0) r += shadow * cz;   /* (a loop's invariant: unswitched) */
+  return weights_round(r * sc);
 }
 
 /* The span from A to P: sqrt(|P - A|^2 + h^2). */

@@ -125,11 +125,24 @@ double follow_shadow(const follow_side *a, const follow_side *b, const vec2 *lo,
   double target = j.h * (a0 + a1 + copysign(sqrt(a0 * a1), a0)) / 3, tol = FOLLOW_TOLERANCE * fabs(target);
   double best = 0, gap = fabs(v - target);
   if (gap <= tol) return 0;
-  /* The volume does not fall as the weight rises: bisect towards the
-   * target from the heaviest weight, keeping the nearest band. */
-  double dir = v < target ? 1 : -1, lo_w = 0, hi_w = dir * FOLLOW_SHADOW_MAX;
-  for (int it = 0; it <= FOLLOW_STEPS; it++) {
-    double wgt = it == 0 ? hi_w : 0.5 * (lo_w + hi_w);
+  /* The volume does not fall as the weight rises, and moves most near 0:
+   * weights 1/64, 1/8 and FOLLOW_SHADOW_MAX towards the target until one
+   * passes it, then false position with the Illinois rule between the last
+   * two (a few solves where the volume moves smoothly with the weight, as
+   * between contours of many points; a bisection's pace at worst), keeping
+   * the nearest band. */
+  static const double probe[] = {0x1p-6, 0x1p-3, FOLLOW_SHADOW_MAX};
+  double dir = v < target ? 1 : -1, lo_w = 0, hi_w = 0, f_lo = v - target, f_hi = 0;
+  int side = 0, bracketed = 0;
+  for (int it = 0; it < FOLLOW_STEPS; it++) {
+    double wgt;
+    if (!bracketed) {
+      if (it == 3) break;   /* even the heaviest weight falls short */
+      wgt = dir * probe[it];
+    } else {
+      wgt = lo_w + (hi_w - lo_w) * (f_lo / (f_lo - f_hi));
+      if (!(wgt > fmin(lo_w, hi_w) && wgt < fmax(lo_w, hi_w))) wgt = 0.5 * (lo_w + hi_w);
+    }
     tiling u;
     double vw = volume_at(&j, wgt, &u);
     if (fabs(vw - target) < gap) {
@@ -140,12 +153,17 @@ double follow_shadow(const follow_side *a, const follow_side *b, const vec2 *lo,
       tiling_free(&u);
     }
     if (gap <= tol / 2) break;
-    if ((vw - target) * dir < 0) {
-      if (it == 0) break;   /* even the heaviest weight falls short */
-      lo_w = wgt;
-    } else {
-      hi_w = wgt;
+    if ((vw - target) * dir < 0) {   /* short of it */
+      lo_w = wgt, f_lo = vw - target;
+      if (side < 0) f_hi /= 2;
+      side = bracketed ? -1 : 0;
+    } else {                         /* past it */
+      hi_w = wgt, f_hi = vw - target;
+      if (side > 0) f_lo /= 2;
+      side = bracketed ? 1 : 0;
+      bracketed = 1;
     }
+    if (bracketed && fabs(hi_w - lo_w) <= 0x1p-14) break;
   }
   return best;
 }

@@ -59,13 +59,13 @@ void follow_tiles(const tiling *t, const follow_side *a, const follow_side *b, i
  * areas closes, with the two slices' regions, a volume within
  * FOLLOW_TOLERANCE of the frustum's over their areas,
  * h (A0 + A1 + sqrt(A0 A1)) / 3 (signed, as the areas); else the weight,
- * |w| <= FOLLOW_SHADOW_MAX, whose band comes nearest to it: a bisection of
- * at most FOLLOW_STEPS more solves, since the volume never falls as the
- * weight rises.  Prisms and frustums keep 0: their band is exact already.
+ * |w| <= FOLLOW_SHADOW_MAX, whose band comes nearest to it: a search of at
+ * most FOLLOW_STEPS more solves (follow.c), since the volume never falls
+ * as the weight rises.  Prisms and frustums keep 0: their band is exact already.
  * COST_SPAN: 0. */
 #define FOLLOW_TOLERANCE 0.002
 #define FOLLOW_SHADOW_MAX 0.9375
-#define FOLLOW_STEPS 12
+#define FOLLOW_STEPS 14
 double follow_shadow(const follow_side *a, const follow_side *b, const vec2 *lo, const vec2 *hi, double z0,
                      double z1, cost_kind kind, tiling *t);
 
