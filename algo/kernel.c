@@ -84,9 +84,11 @@ static void diag_span_table(const weights *w, int k, int a, int b,
   }
 }
 
-/* Row r of node (k-c, c) is stored at index 2m+1-r = base + c. */
-static void diag_area(const weights *w, int k, int a, int b, const double *restrict prev,
-                      double *restrict cur, uint64_t *restrict bits) {
+/* Row r of node (k-c, c) is stored at index 2m+1-r = base + c.  shadowed:
+ * a constant in each caller (diag_area, diag_shadow), so that the paper's
+ * weights keep their vectorised loop. */
+static inline void diag_area_of(const weights *w, int k, int a, int b, const double *restrict prev,
+                                double *restrict cur, uint64_t *restrict bits, int shadowed) {
   int base = 2 * w->m + 1 - k;
   const double *restrict rx = w->rx + base, *restrict ry = w->ry + base;
   const double *restrict rex = w->rex + base, *restrict rey = w->rey + base;
@@ -94,7 +96,7 @@ static void diag_area(const weights *w, int k, int a, int b, const double *restr
   const double *restrict cx = w->cx + 1, *restrict cy = w->cy + 1;
   const double *restrict cfx = w->cfx + 1, *restrict cfy = w->cfy + 1;
   const double *restrict cff = w->cff + 1;
-  double sc = w->sc, shadow = w->shadow;
+  double sc = w->sc, shadow = shadowed ? w->shadow : 0;
   uint8_t f[64];
   for (int c0 = a; c0 <= b; c0 += 64) {
     int len = b - c0 + 1 < 64 ? b - c0 + 1 : 64;
@@ -112,6 +114,16 @@ static void diag_area(const weights *w, int k, int a, int b, const double *restr
     }
     *bits++ = pack(f, len);
   }
+}
+
+static void diag_area(const weights *w, int k, int a, int b, const double *restrict prev, double *restrict cur,
+                      uint64_t *restrict bits) {
+  diag_area_of(w, k, a, b, prev, cur, bits, 0);
+}
+
+static void diag_shadow(const weights *w, int k, int a, int b, const double *restrict prev, double *restrict cur,
+                        uint64_t *restrict bits) {
+  diag_area_of(w, k, a, b, prev, cur, bits, 1);
 }
 
 static void diag_span(const weights *w, int k, int a, int b, const double *restrict prev,
@@ -157,9 +169,16 @@ static void table_chunk(const weights *w, int r, int c0, int len, double *restri
     return;
   }
   th += c0;
+  if (shadow == 0) {   /* (a loop of its own, vectorised as before there were shadows) */
+    for (int i = 0; i < len; i++) {
+      tv[i] = weights_tri(ree[i], rex[i], rey[i], rx[i], ry[i], cx[i], cy[i], sc, 0);
+      /* H(r', c-1): edge C_{c-1} C_c (column index c-1, stored at c), apex R_{r'}. */
+      th[i] = weights_tri(cff[i], cfx[i], cfy[i], cx[i - 1], cy[i - 1], rx[i], ry[i], sc, 0);
+    }
+    return;
+  }
   for (int i = 0; i < len; i++) {
     tv[i] = weights_tri(ree[i], rex[i], rey[i], rx[i], ry[i], cx[i], cy[i], sc, shadow);
-    /* H(r', c-1): edge C_{c-1} C_c (column index c-1, stored at c), apex R_{r'}. */
     th[i] = weights_tri(cff[i], cfx[i], cfy[i], cx[i - 1], cy[i - 1], rx[i], ry[i], sc, shadow);
   }
 }
@@ -342,6 +361,6 @@ void kernel_diag(const weights *w, int k, int a, int b, const double *prev, doub
   else
 #endif
     f = w->tv ? (w->kind == COST_AREA ? diag_table : diag_span_table)
-              : (w->kind == COST_AREA ? diag_area : diag_span);
+              : (w->kind == COST_AREA ? (w->shadow == 0 ? diag_area : diag_shadow) : diag_span);
   f(w, k, a, b, prev, cur, bits);
 }
