@@ -202,34 +202,31 @@ static inline int args_fine(st_comm *c, const void *buf, int count, MPI_Datatype
   return type_fine(dt);
 }
 
-static int send_args(st_rank *R, const char *fn, const void *buf, int count, MPI_Datatype dt, int dst,
-                     int tag, MPI_Comm comm, st_comm **cp) {
+/* A send's (any_ok 0: dst) or a receive's (any_ok 1: src, wildcards
+ * allowed) arguments: MPI_SUCCESS and *cp, or the first error raised. */
+static int peer_args(st_rank *R, const char *fn, const void *buf, int count, MPI_Datatype dt, int peer, int tag,
+                     MPI_Comm comm, int any_ok, st_comm **cp) {
   st_comm *c = comm == MPI_COMM_WORLD ? &R->world : st_comm_get(R, comm);
   *cp = c;
   size_t es;
-  if (args_fine(c, buf, count, dt, dst, tag, 0, &es)) return MPI_SUCCESS;
+  if (args_fine(c, buf, count, dt, peer, tag, any_ok, &es)) return MPI_SUCCESS;
   int rc;
   if ((rc = err_check_comm(R, comm, fn, cp))) return rc;
   if ((rc = err_check_count(R, c, fn, count))) return rc;
   if ((rc = err_check_type(R, c, fn, dt))) return rc;
-  if ((rc = err_check_tag(R, c, fn, tag, 0))) return rc;
-  if ((rc = err_check_peer(R, c, fn, dst, 0))) return rc;
+  if ((rc = err_check_tag(R, c, fn, tag, any_ok))) return rc;
+  if ((rc = err_check_peer(R, c, fn, peer, any_ok))) return rc;
   return err_check_buf(R, c, fn, buf, count, dt);
+}
+
+static int send_args(st_rank *R, const char *fn, const void *buf, int count, MPI_Datatype dt, int dst,
+                     int tag, MPI_Comm comm, st_comm **cp) {
+  return peer_args(R, fn, buf, count, dt, dst, tag, comm, 0, cp);
 }
 
 static int recv_args(st_rank *R, const char *fn, const void *buf, int count, MPI_Datatype dt, int src,
                      int tag, MPI_Comm comm, st_comm **cp) {
-  st_comm *c = comm == MPI_COMM_WORLD ? &R->world : st_comm_get(R, comm);
-  *cp = c;
-  size_t es;
-  if (args_fine(c, buf, count, dt, src, tag, 1, &es)) return MPI_SUCCESS;
-  int rc;
-  if ((rc = err_check_comm(R, comm, fn, cp))) return rc;
-  if ((rc = err_check_count(R, c, fn, count))) return rc;
-  if ((rc = err_check_type(R, c, fn, dt))) return rc;
-  if ((rc = err_check_tag(R, c, fn, tag, 1))) return rc;
-  if ((rc = err_check_peer(R, c, fn, src, 1))) return rc;
-  return err_check_buf(R, c, fn, buf, count, dt);
+  return peer_args(R, fn, buf, count, dt, src, tag, comm, 1, cp);
 }
 
 static int recv_result(st_rank *R, const st_comm *c, const st_req *q) {
