@@ -28,6 +28,7 @@ typedef struct mp_ops {
   int (*wait)(mp *, int src, int tag, mp_status *st);
   int (*busy)(mp *, double seconds);
   int (*sleep_for)(mp *, double seconds);   /* not "sleep": SimGrid's headers define that macro */
+  int (*yield)(mp *);                        /* mp_yield; NULL: nothing to do */
   void (*stop)(mp *, int code, const char *why);   /* mp_abort's effect on the run */
   void (*call)(mp *, const char *name, int begin); /* mp_call_begin/end, where traced */
   /* Messages without copies: NULL where the backend copies (mp.c then

@@ -162,6 +162,10 @@ static int sleep_(mp *self, double seconds) {
 
 int mp_sleep(mp *self, double seconds) { HOOKED(int, self, sleep_(self, seconds)); }
 
+static int yield_(mp *self) { return self->ops->yield ? self->ops->yield(self) : MP_OK; }
+
+int mp_yield(mp *self) { HOOKED(int, self, yield_(self)); }
+
 /* ==== messages without copies ============================================= */
 
 /* A held message where the backend copies: its bytes, taken by mp_recv. */

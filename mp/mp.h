@@ -135,6 +135,12 @@ int    mp_busy(mp *self, double seconds);
  * or MP_EARG. */
 int    mp_sleep(mp *self, double seconds);
 
+/* Give way: on the simulator the ranks due at this rank's simulated time act
+ * before it goes on (it is queued behind them, as when its clock moves; the
+ * clock stays).  Nothing happens within a progress function (mp_set_progress)
+ * nor on real backends.  MP_OK (MP_ESTOPPED once the run has stopped). */
+int    mp_yield(mp *self);
+
 /* End this rank here, as if its main had returned (never returns). */
 MP_NORETURN void mp_exit(mp *self);
 

@@ -258,6 +258,7 @@ static void advance_all(st_rank *R);
 
 void eng_send(st_rank *R, st_req *q, const void *data, size_t len) {
   int kind = q->mode == SM_SYNC ? K_SYNC : K_DATA, mptag = st_env_encode(kind, q->ctx, q->tag);
+  q->sendlen = len;
   if (q->byref)
     mpok(R, mp_send_ref(R->self, q->wpeer, mptag, data, len, &q->ref), "mp_send_ref");
   else
@@ -283,6 +284,10 @@ void eng_hold(st_rank *R, st_req *q) {
 
 void eng_unhold(st_rank *R, const st_req *q) {
   if (q->slot < 0 && q->ref && q->ref == R->held_ref) R->held_ref = NULL, R->held_tmp = NULL;
+}
+
+void eng_send_done(st_rank *R, const st_req *q) {
+  if (q->ref && q->sendlen >= ENG_YIELD_MIN) mpok(R, mp_yield(R->self), "mp_yield");
 }
 
 void eng_settle(st_rank *R, st_req *q) {

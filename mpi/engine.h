@@ -28,6 +28,10 @@
  * copied twice: cheaper than the bookkeeping). */
 enum { ENG_REF_MIN = 1024 };
 
+/* A send request of this many bytes or more gives way when it completes
+ * (eng_send_done): util/bigcopy.h's big payloads. */
+enum { ENG_YIELD_MIN = 256 << 10 };
+
 /* A send's message leaves: len bytes at data to q->wpeer with q's context,
  * tag and mode (SM_SYNC: q waits in R->sync for its ack, state RS_ACTIVE;
  * else q is RS_DONE).  With q->byref, by reference: data must stay as it
@@ -38,6 +42,15 @@ void eng_send(st_rank *R, st_req *q, const void *data, size_t len);
  * packed copy freed): when a request ends, or a blocking call that sent by
  * reference returns. */
 void eng_settle(st_rank *R, st_req *q);
+/* Send request q is complete (a Wait or Test returns it, before its
+ * eng_settle): a send by reference of ENG_YIELD_MIN bytes or more gives way
+ * first (mp_yield), so that a receiver due at the same simulated time posts
+ * its receive before the settle.  Its promise then takes the payload
+ * straight from the sender's buffer, where the settle would otherwise copy
+ * it into the simulator's memory (fresh pages: 256 MB for a window of 64
+ * sends of 4 MB) for the receive to copy it again.  A rule of the model
+ * (doc/mpi-semantics.md), whatever was copied. */
+void eng_send_done(st_rank *R, const st_req *q);
 /* q, a blocking call's request on its stack, sent by reference: until
  * eng_settle(q), the rank's end (eng_settle_all, a run stopped inside the
  * call) settles its message and frees its packed copy. */

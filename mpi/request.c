@@ -57,6 +57,7 @@ static int live(const st_req *q) { return q && q->state != RS_INACTIVE; }
  * call fn when raise is set (the single-status calls). */
 static int finish(st_rank *R, const char *fn, MPI_Request *h, st_req *q, MPI_Status *st, int with_error,
                   int raise) {
+  eng_send_done(R, q);
   if (q->kind == RQ_KIND) {   /* its kind's status, then its end */
     MPI_Status ks;
     pt2pt_status_empty(&ks);

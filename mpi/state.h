@@ -143,6 +143,7 @@ struct st_req {
   int pair;                /* comm's context pair, for messages */
   const char *fn;          /* the MPI call that made it, for messages */
   size_t msglen;           /* receives: the length of the message taken */
+  size_t sendlen;          /* sends: the message's length */
   /* matching */
   int wpeer;               /* peer's world rank, or MP_ANY */
   int ctx;                 /* its context */

@@ -163,7 +163,9 @@ static int busy_progress(sim *s, rank *r, double end) {
     if (r->now >= end) break;
     double t = r->now, saved = s->busy[r->proc];
     s->busy[r->proc] = t;
+    r->in_progress = 1;
     r->base.progress(&r->base, r->base.progress_ud);
+    r->in_progress = 0;
     double x = r->now - t;
     s->busy[r->proc] = saved + x;
     end += x;
@@ -223,6 +225,19 @@ static int sim_sleep(mp *self, double seconds) {
   r->now += seconds;
   if (r->now > t0) moved(s, r);
   return MP_OK;
+}
+
+/* mp_yield: the ranks queued at r's time act first (r queued behind them,
+ * as moved does when the clock reaches the earliest time).  Not from a
+ * progress function: busy_progress has lent it the processor meanwhile. */
+static int sim_yield(mp *self) {
+  rank *r = (rank *)self;
+  sim *s = r->s;
+  if (s->stopped) return stopped_call(s, r);
+  if (r->in_progress || evq_min(s->q) > r->now) return MP_OK;
+  evq_set(s->q, r->base.rank, r->now, s->seq++);
+  give_way(s, r);
+  return s->stopped ? stopped_call(s, r) : MP_OK;
 }
 
 /* When len bytes that leave processor a->proc for d's at t arrive, and the
@@ -582,6 +597,7 @@ static void sim_call(mp *self, const char *name, int begin) {
 
 const mp_ops sim_ops = {.send = sim_send, .recv = sim_recv, .probe = sim_probe, .compute = sim_compute,
                                .time = sim_time, .wait = sim_wait, .busy = sim_busy, .sleep_for = sim_sleep,
+                               .yield = sim_yield,
                                .stop = sim_stop, .call = sim_call, .send_ref = sim_send_ref,
                                .settle = sim_settle, .withdraw = sim_withdraw, .recv_msg = sim_recv_msg,
                                .msg_read = sim_msg_read, .msg_gone = sim_msg_gone, .promise = sim_promise,

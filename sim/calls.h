@@ -41,6 +41,7 @@ struct rank {
   long stopped_calls;      /* mp calls since the run stopped */
   double call_t0;          /* mp_call_begin: when the outermost call began, */
   long long call_msgs;     /* and the messages sent and received by then */
+  int in_progress;         /* its progress function runs (busy_progress) */
   long probe_spins;        /* fruitless probes in a row at probe_at */
   double probe_at;
   sim_rank_stats st;

@@ -116,6 +116,7 @@ static void own_payload(mstore *st, msg *m, const void *from) {
   } else {
     m->data = pool_get(st, m->len);
     m->where = P_POOL;
+    st->pooled += (long long)m->len;
   }
   bigcopy(m->data, from, m->len);
 }

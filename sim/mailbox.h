@@ -90,6 +90,7 @@ typedef struct {
   msg *live;
   void *blocks[POOL_CLASSES];   /* free blocks of 2^k bytes, linked through their first word */
   size_t cached;                /* bytes in blocks */
+  long long pooled;             /* payload bytes copied into blocks (sim_stats) */
   promise *pfree;
 } mstore;
 

@@ -196,6 +196,7 @@ int sim_run(sim *s, const mp_proc *procs, char *err, size_t errlen) {
       XASSERT(woken > 0);
     }
     sweep_unread(s);
+    s->st.pooled = s->msgs.pooled;
     if (s->tr && trace_end(s->tr, cerr, sizeof cerr) != 0) mp_fail(&s->log, "sim_run: %s", cerr);
   }
   /* Ranks whose stacks share guard pages (coro.h) may have overflowed

@@ -13,7 +13,9 @@
  *   Clocks.  Each rank has a clock `now` (mp_time), from 0.  Each processor
  *   has `busy_until`.  Actions are executed in global (time, seq) order: a
  *   rank acts only when its `now` is the earliest pending time; ties go to
- *   the rank that was queued first.
+ *   the rank that was queued first.  The running rank is queued again when
+ *   its clock moves to (or past) another's pending time, and when it calls
+ *   mp_yield while another is due at its time.
  *
  *   Compute.  mp_compute(u): start = max(now, busy_until[proc]);
  *   end = start + u*c; busy_until[proc] = end; now = end.  Ranks that share
@@ -243,6 +245,9 @@ typedef struct {
   double makespan;          /* the latest finish, simulated seconds */
   long long events;         /* mp calls simulated (send, recv, probe, compute) */
   long long switches;       /* context switches between coroutines */
+  long long pooled;         /* payload bytes the host copied into the simulator's
+                               own memory, to be copied again by their receive:
+                               no receive or promise (mp.h) had taken them */
 } sim_stats;
 
 /* Statistics of one rank (0 <= rank < nranks) and of the run.  Valid until

@@ -95,6 +95,7 @@ static int run(const mpih_config *cfg, job *j, mpih_result *res) {
     res->rc = sim_run(s, pr, res->err, sizeof res->err);
     const sim_stats *st = sim_stats_get(s);
     res->makespan = st->makespan;
+    res->pooled = st->pooled;
     TAKE_COUNTS(res, st);
     for (int i = 0; i < n; i++) res->finish[i] = sim_rank(s, i)->finish;
     sim_free(s);

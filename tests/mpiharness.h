@@ -32,6 +32,7 @@ typedef struct {
   int *end;             /* per rank: init_rank_end's answer (TSMPI_*) */
   double *finish;       /* per rank: simulated finish (the simulator) */
   double makespan;      /* the simulator's */
+  long long pooled;     /* the simulator's payload bytes copied twice (sim_stats) */
   long long messages;   /* mp messages sent */
   long long bytes;
   long long unread;

@@ -1,5 +1,5 @@
 /* test_mpext.c -- the calls mp.h offers layers above it (mp_self, mp_user,
- * mp_wait, mp_label, mp_busy, mp_sleep, mp_exit, mp_abort), on the
+ * mp_wait, mp_label, mp_busy, mp_sleep, mp_yield, mp_exit, mp_abort), on the
  * simulator and on threads.
  *
  * On the simulator, times are checked against the model of sim.h with
@@ -209,6 +209,102 @@ static void test_bad_nap(int b) {
   result r = run(b, 1, 1, bad_nap_main, NULL);
   CHECK(r.rc != 0 && strstr(r.err, "mp_busy(-1)") && strstr(r.err, "mp_sleep(nan)"),
         "%s: bad mp_busy/mp_sleep: rc %d, '%s'", backend[b], r.rc, r.err);
+}
+
+/* ==== mp_yield ============================================================ */
+
+typedef struct {
+  atomic_int next;     /* the order the ranks' steps ran in */
+  int at[4];           /* step k's place in it */
+  int yield;           /* 0: rank 0 does not yield (the reference order) */
+  int rc[2];           /* mp_yield's answers */
+  double t[2];         /* rank 0's clock after each yield */
+} yieldcheck;
+
+static void step(yieldcheck *c, int k) { c->at[k] = atomic_fetch_add(&c->next, 1); }
+
+/* A progress function that yields: mp_yield does nothing there. */
+static void yield_progress(mp *self, void *ud) {
+  yieldcheck *c = ud;
+  mp_status st;
+  while (mp_probe(self, MP_ANY, MP_ANY, &st) == 1) {
+    char b;
+    mp_recv(self, st.source, st.tag, &b, 1, NULL);
+  }
+  c->rc[1] = mp_yield(self);
+  c->t[1] = mp_time(self);
+}
+
+/* Ranks 0 to 2 due at 0 on their own processors.  Rank 0 runs first (step
+ * 0), yields, and goes on (step 1); rank 1 takes step 2 at 0; rank 2
+ * computes 8 units (1 s), then takes step 3.  With the yield rank 1 acts
+ * between rank 0's steps, and rank 2 starts computing there too: 0 2 1 3;
+ * without it 0 1 2 3.  Then rank 0 computes while rank 1's message comes
+ * and its progress function yields (nothing to do there). */
+static void yield_main(mp *self, void *ud) {
+  yieldcheck *c = ud;
+  int me = mp_rank(self);
+  if (me == 0) {
+    step(c, 0);
+    c->rc[0] = c->yield ? mp_yield(self) : MP_OK;
+    c->t[0] = mp_time(self);
+    step(c, 1);
+    mp_set_progress(self, yield_progress, c);
+    mp_compute(self, 16);
+    mp_set_progress(self, NULL, NULL);
+  } else if (me == 1) {
+    step(c, 2);
+    mp_send(self, 0, 5, "x", 1);
+  } else {
+    mp_compute(self, 8);
+    step(c, 3);
+  }
+}
+
+/* One processor: rank 0 computes 16 units (2 s) with yield_progress set;
+ * rank 1 sends it a byte at 0 (local: it comes at 1/2), sleeps until then,
+ * and computes 8 units, waiting for the processor until 2: it ends at 3.
+ * (Were the progress function's yield to give way, rank 1 would compute at
+ * 1/2 on a processor lent to rank 0's progress.) */
+static void lent_main(mp *self, void *ud) {
+  yieldcheck *c = ud;
+  if (mp_rank(self) == 0) {
+    mp_set_progress(self, yield_progress, c);
+    mp_compute(self, 16);
+    mp_set_progress(self, NULL, NULL);
+  } else {
+    mp_send(self, 0, 5, "x", 1);
+    mp_sleep(self, 0.5);
+    mp_compute(self, 8);
+  }
+}
+
+static void test_yield(int b) {
+  if (b == SIM) {
+    yieldcheck c;
+    memset(&c, 0, sizeof c);
+    result r = run(SIM, 2, 1, lent_main, &c);
+    CHECK(r.rc == 0 && c.rc[1] == MP_OK && c.t[1] == 0.5 && r.finish[0] == 2 && r.finish[1] == 3,
+          "sim: mp_yield in a progress function: rc %d, at %g, ends %g %g (0.5, 2, 3 due): %s", r.rc, c.t[1],
+          r.finish[0], r.finish[1], r.err);
+  }
+  for (int y = 0; y < 2; y++) {
+    yieldcheck c;
+    memset(&c, 0, sizeof c);
+    c.yield = y;
+    result r = run(b, 3, 3, yield_main, &c);
+    CHECK(r.rc == 0 && c.rc[0] == MP_OK && c.rc[1] == MP_OK, "%s: mp_yield: rc %d (%d, %d): %s", backend[b], r.rc,
+          c.rc[0], c.rc[1], r.err);
+    if (b != SIM) continue;
+    int order = c.at[0] == 0 && c.at[1] == (y ? 2 : 1) && c.at[2] == (y ? 1 : 2) && c.at[3] == 3;
+    CHECK(order, "sim: %s: steps ran at %d %d %d %d", y ? "mp_yield" : "no yield", c.at[0], c.at[1], c.at[2],
+          c.at[3]);
+    /* The clock stays; rank 1's byte (sent at 0) comes at m + 1/16 = 5/16 into rank 0's 2 s of computing,
+     * which the progress function's yield leaves as they are. */
+    CHECK(c.t[0] == 0 && c.t[1] == 0.3125 && r.finish[0] == 2 && r.finish[2] == 1,
+          "sim: mp_yield moved a clock: %g %g, ends %g %g (0, 0.3125, 2, 1 due)", c.t[0], c.t[1], r.finish[0],
+          r.finish[2]);
+  }
 }
 
 /* ==== mp_exit ============================================================= */
@@ -433,6 +529,7 @@ int main(void) {
     test_abort(b);
     test_label(b);
     test_hooks(b);
+    test_yield(b);
   }
   test_nap();
   test_calls();

@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mpi/engine.h"
 #include "mpi/init.h"
 #include "mpi/mpi.h"
 #include "tests/check.h"
@@ -316,6 +317,80 @@ static void closed_forms(void) {
   mpih_result_free(&res);
 }
 
+/* ==== a window of big sends: one copy each ================================ */
+
+enum { WIN = 4 };
+
+typedef struct {
+  int len;        /* bytes a send */
+  int late;       /* units rank 1 computes before it posts its receives */
+  int same;       /* 1: every send from one buffer (as osu_bw) */
+  long wrong;     /* bytes received wrong */
+  double done;    /* rank 0's clock when its sends completed */
+} window;
+
+static char wbyte(int w, long i) { return (char)(i * 7 + w * 13 + 1); }
+
+/* Rank 0 sends WIN messages of len bytes to rank 1 with MPI_Isend and
+ * waits for all, then overwrites its buffers; rank 1 posts as many
+ * MPI_Irecv (after `late` units of computing) and waits for all. */
+static int big_window(void *ud) {
+  window *W = ud;
+  int r = mpih_init();
+  char *buf[WIN];
+  MPI_Request q[WIN];
+  for (int w = 0; w < WIN; w++) {
+    buf[w] = malloc((size_t)W->len);
+    for (long i = 0; i < W->len; i++) buf[w][i] = r == 0 ? wbyte(W->same ? 0 : w, i) : 0;
+  }
+  if (r == 0) {
+    for (int w = 0; w < WIN; w++) MPI_Isend(buf[W->same ? 0 : w], W->len, MPI_BYTE, 1, w, MPI_COMM_WORLD, &q[w]);
+    MPI_Waitall(WIN, q, MPI_STATUSES_IGNORE);
+    W->done = MPI_Wtime();
+    for (int w = 0; w < WIN; w++) memset(buf[w], 0x5a, (size_t)W->len);   /* the program's own again */
+  } else if (r == 1) {
+    if (W->late) mp_compute(mp_self(), W->late);
+    for (int w = 0; w < WIN; w++) MPI_Irecv(buf[w], W->len, MPI_BYTE, 0, w, MPI_COMM_WORLD, &q[w]);
+    MPI_Waitall(WIN, q, MPI_STATUSES_IGNORE);
+    for (int w = 0; w < WIN; w++)
+      for (long i = 0; i < W->len; i++) W->wrong += buf[w][i] != wbyte(W->same ? 0 : w, i);
+  }
+  for (int w = 0; w < WIN; w++) free(buf[w]);
+  MPI_Finalize();
+  return 0;
+}
+
+/* A send request of ENG_YIELD_MIN bytes or more gives way when it
+ * completes (engine.h), so a receiver due at the same simulated time posts
+ * first and each payload is copied once, straight into its receive: the
+ * simulator pools nothing.  A receiver that posts later in simulated time,
+ * and sends below the size, get the pool's copy; every byte arrives, and
+ * the sends complete at 0 (eager) in every case. */
+static void one_copy(void) {
+  static const struct {
+    int len, late, same, pooled;
+  } cases[] = {
+      {ENG_YIELD_MIN, 0, 0, 0},
+      {ENG_YIELD_MIN, 0, 1, 0},
+      {ENG_YIELD_MIN + 4099, 0, 0, 0},
+      {ENG_YIELD_MIN, 16, 0, 1},
+      {ENG_YIELD_MIN - 1, 0, 0, 1},
+  };
+  for (size_t k = 0; k < sizeof cases / sizeof *cases; k++)
+    for (int b = 0; b < 2; b++) {
+      window W = {cases[k].len, cases[k].late, cases[k].same, 0, -1};
+      mpih_result res = run(b, 2, big_window, &W);
+      long long pooled = cases[k].pooled ? (long long)WIN * cases[k].len : 0;
+      CHECK(res.rc == 0 && W.wrong == 0 && (b != MPIH_SIM || W.done == 0), "%s: window of %d x %d bytes (late %d%s): rc %d, %ld bytes wrong, "
+            "sends done at %g: %s", bname[b], WIN, cases[k].len, cases[k].late, cases[k].same ? ", one buffer" : "",
+            res.rc, W.wrong, W.done, res.err);
+      if (b == MPIH_SIM)
+        CHECK(res.pooled == pooled, "sim: window of %d x %d bytes (late %d%s): %lld bytes pooled (%lld due)", WIN,
+              cases[k].len, cases[k].late, cases[k].same ? ", one buffer" : "", res.pooled, pooled);
+      mpih_result_free(&res);
+    }
+}
+
 /* ==== the runner's view of a rank ========================================= */
 
 typedef struct {
@@ -354,6 +429,7 @@ int main(void) {
   errors_returned();
   deadlock_words();
   closed_forms();
+  one_copy();
   rank_ends();
   return check_done("test_mpi_p2p");
 }
