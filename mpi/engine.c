@@ -259,6 +259,7 @@ static void advance_all(st_rank *R);
 void eng_send(st_rank *R, st_req *q, const void *data, size_t len) {
   int kind = q->mode == SM_SYNC ? K_SYNC : K_DATA, mptag = st_env_encode(kind, q->ctx, q->tag);
   q->sendlen = len;
+  if (!q->byref && len >= ENG_YIELD_MIN) mpok(R, mp_yield(R->self), "mp_yield");   /* a copy now: see eng_send_done */
   if (q->byref)
     mpok(R, mp_send_ref(R->self, q->wpeer, mptag, data, len, &q->ref), "mp_send_ref");
   else
@@ -273,6 +274,7 @@ void eng_send(st_rank *R, st_req *q, const void *data, size_t len) {
 }
 
 int eng_send_data(st_rank *R, int wdst, int ctx, int tag, const void *data, size_t len) {
+  if (len >= ENG_YIELD_MIN) mpok(R, mp_yield(R->self), "mp_yield");   /* as eng_send's copy */
   mpok(R, mp_send(R->self, wdst, st_env_encode(K_DATA, ctx, tag), data, len), "mp_send");
   return MPI_SUCCESS;
 }

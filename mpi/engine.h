@@ -28,14 +28,18 @@
  * copied twice: cheaper than the bookkeeping). */
 enum { ENG_REF_MIN = 1024 };
 
-/* A send request of this many bytes or more gives way when it completes
- * (eng_send_done): util/bigcopy.h's big payloads. */
+/* A send of this many bytes or more gives way: one copied at once (a
+ * blocking send, eng_send without byref, eng_send_data) before it leaves,
+ * a request's when it completes (eng_send_done); util/bigcopy.h's big
+ * payloads. */
 enum { ENG_YIELD_MIN = 256 << 10 };
 
 /* A send's message leaves: len bytes at data to q->wpeer with q's context,
  * tag and mode (SM_SYNC: q waits in R->sync for its ack, state RS_ACTIVE;
  * else q is RS_DONE).  With q->byref, by reference: data must stay as it
- * is until eng_settle(q). */
+ * is until eng_settle(q); without, copied now, after giving way (mp_yield)
+ * if it is ENG_YIELD_MIN bytes or more: a receiver due at the same time
+ * then posts its receive first, and the copy goes straight there. */
 void eng_send(st_rank *R, st_req *q, const void *data, size_t len);
 
 /* q's buffers are the program's again (a send by reference settled, its

@@ -360,10 +360,41 @@ static int big_window(void *ud) {
   return 0;
 }
 
-/* A send request of ENG_YIELD_MIN bytes or more gives way when it
- * completes (engine.h), so a receiver due at the same simulated time posts
- * first and each payload is copied once, straight into its receive: the
- * simulator pools nothing.  A receiver that posts later in simulated time,
+/* Blocking sends of len bytes at 0: rank 0 MPI_Send to rank 1's MPI_Recv
+ * (how 0), or to it through a derived type (how 1: send_block), or
+ * MPI_Bcast from rank 0 to all 4 (how 2); rank 1 late by `late` units. */
+static int big_blocking(void *ud) {
+  window *W = ud;
+  int r = mpih_init(), n = W->len;
+  char *b = malloc((size_t)n);
+  for (long i = 0; i < n; i++) b[i] = r == 0 ? wbyte(1, i) : 0;
+  MPI_Datatype two;
+  MPI_Type_contiguous(2, MPI_BYTE, &two);
+  MPI_Type_commit(&two);
+  if (r == 1 && W->late) mp_compute(mp_self(), W->late);
+  if (W->same == 2) {
+    MPI_Bcast(b, n, MPI_BYTE, 0, MPI_COMM_WORLD);
+  } else if (r == 0) {
+    if (W->same == 1)
+      MPI_Send(b, n / 2, two, 1, 0, MPI_COMM_WORLD);
+    else
+      MPI_Send(b, n, MPI_BYTE, 1, 0, MPI_COMM_WORLD);
+    W->done = MPI_Wtime();
+  } else if (r == 1) {
+    MPI_Recv(b, n, MPI_BYTE, 0, 0, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  }
+  if (r != 0 && (W->same == 2 || r == 1))
+    for (long i = 0; i < n; i++) W->wrong += b[i] != wbyte(1, i);
+  MPI_Type_free(&two);
+  free(b);
+  MPI_Finalize();
+  return 0;
+}
+
+/* A send of ENG_YIELD_MIN bytes or more gives way (engine.h): a request's
+ * when it completes, a blocking one before it leaves.  So a receiver due at
+ * the same simulated time posts first and each payload is copied once,
+ * straight into its receive: the simulator pools nothing.  A receiver that posts later in simulated time,
  * and sends below the size, get the pool's copy; every byte arrives, and
  * the sends complete at 0 (eager) in every case. */
 static void one_copy(void) {
@@ -387,6 +418,29 @@ static void one_copy(void) {
       if (b == MPIH_SIM)
         CHECK(res.pooled == pooled, "sim: window of %d x %d bytes (late %d%s): %lld bytes pooled (%lld due)", WIN,
               cases[k].len, cases[k].late, cases[k].same ? ", one buffer" : "", res.pooled, pooled);
+      mpih_result_free(&res);
+    }
+  static const struct {
+    int len, late, how, ranks, pooled;
+  } blocking[] = {
+      {ENG_YIELD_MIN, 0, 0, 2, 0},
+      {ENG_YIELD_MIN, 0, 1, 2, 0},
+      {ENG_YIELD_MIN, 0, 2, 4, 0},
+      {ENG_YIELD_MIN, 16, 0, 2, 1},
+      {ENG_YIELD_MIN - 2, 0, 0, 2, 1},
+  };
+  for (size_t k = 0; k < sizeof blocking / sizeof *blocking; k++)
+    for (int b = 0; b < 2; b++) {
+      window W = {blocking[k].len, blocking[k].late, blocking[k].how, 0, -1};
+      mpih_result res = run(b, blocking[k].ranks, big_blocking, &W);
+      long long pooled = blocking[k].pooled ? blocking[k].len : 0;
+      static const char *const how[] = {"MPI_Send", "MPI_Send of a derived type", "MPI_Bcast"};
+      CHECK(res.rc == 0 && W.wrong == 0 && (b != MPIH_SIM || blocking[k].how == 2 || W.done == 0),
+            "%s: %s of %d bytes (late %d): rc %d, %ld bytes wrong, sent at %g: %s", bname[b], how[blocking[k].how],
+            blocking[k].len, blocking[k].late, res.rc, W.wrong, W.done, res.err);
+      if (b == MPIH_SIM)
+        CHECK(res.pooled == pooled, "sim: %s of %d bytes (late %d): %lld bytes pooled (%lld due)", how[blocking[k].how],
+              blocking[k].len, blocking[k].late, res.pooled, pooled);
       mpih_result_free(&res);
     }
 }
