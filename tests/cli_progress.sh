@@ -3,7 +3,8 @@
 # with stderr not a terminal, a whole line every TILESIM_PROGRESS_S
 # seconds (default 5; 0 here, a line a step) and a last line when done;
 # nothing for a run shorter than the interval, nothing with -q, and stdout
-# untouched.  ./tile serial (-j 2) and parallel, and bench's sweep.
+# untouched.  ./tile serial (-j 2) and parallel, bench's sweep, the ring
+# on threads, tilesim-mpirun with no count to give.
 BUILD=${BUILD:-build/chk}
 DATA=tests/data/slicerrt
 . tests/clilib.sh
@@ -49,6 +50,29 @@ if longer "$t0" "$t1" 0.8; then
   grep -q '^ring: 4 ranks on threads, [0-9]* s$' "$T/err" && tail -n 1 "$T/err" | grep -qx 'ring: 4 ranks on threads, done in [0-9]* s' \
     && ok || bad "ring on threads: no progress: $(cat "$T/err")"
 else echo "cli_progress: skipped: ring on threads took under 0.8 s here (no long run to show)"; fi
+
+# tilesim-mpirun with nothing to count and no simulated clock to show (a
+# program that computes on the host between two calls, its clock() the
+# simulated one): "running" lines, and a last line that says only how long.
+cat > "$T/slow.c" << 'EOF'
+#include <mpi.h>
+int main(int argc, char **argv) {
+  MPI_Init(&argc, &argv);
+  volatile unsigned long x = 0;
+  for (unsigned long i = 0; i < 1500000000ul; i++) x += i;
+  MPI_Finalize();
+  return 0;
+}
+EOF
+if "$BUILD/tilesim-mpicc" "$T/slow.c" -o "$T/slow" > "$T/log" 2>&1; then
+  t0=$(now); TILESIM_PROGRESS_S=0.2 "$BUILD/tilesim-mpirun" -np 1 "$T/slow" > "$T/out" 2> "$T/err"; t1=$(now)
+  if longer "$t0" "$t1" 0.8; then
+    grep -q '^tilesim-mpirun: running, [0-9]* s$' "$T/err" && tail -n 1 "$T/err" | grep -qx 'tilesim-mpirun: done in [0-9]* s' \
+      && ok || bad "tilesim-mpirun, a slow program: $(cat "$T/err")"
+  else echo "cli_progress: skipped: the slow MPI program took under 0.8 s here"; fi
+else
+  bad "tilesim-mpicc slow.c: $(cat "$T/log")"
+fi
 
 # Workers forked beside the thread that repeats the lines: a fork that
 # copied that thread's lock (the allocator's, while it started) left a

@@ -149,9 +149,11 @@ void progress_end(progress *p) {
   if (p->tty) fputs("\r\033[K", stderr);
   else if (p->lines && p->note[0])
     fprintf(stderr, "%s: %s, done in %.0f s\n", p->prog, p->note, wallclock() - p->start);
-  else if (p->lines)
+  else if (p->lines && p->total > 0)
     fprintf(stderr, "%s: %s %lld of %lld, done in %.0f s\n", p->prog, p->what, p->done, p->total,
             wallclock() - p->start);
+  else if (p->lines)   /* no count to give: "running" lines before */
+    fprintf(stderr, "%s: done in %.0f s\n", p->prog, wallclock() - p->start);
   fflush(stderr);
   pthread_cond_destroy(&p->wake);
   pthread_mutex_destroy(&p->lock);
