@@ -181,17 +181,17 @@ int PMPI_Abort(MPI_Comm comm, int errorcode) {
 
 /* ==== the clock and the machine =========================================== */
 
+double init_clock_read(mp *self, const char *fn) {
+  double t = mp_time(self);
+  st_rank *R = st_get();
+  if (wtime_cost > 0 && mp_busy(self, wtime_cost) != MP_OK && R) st_stopped(R);
+  if (R) spin_count(R, fn);   /* a loop that waits for a clock that cannot move */
+  return t;
+}
+
 double PMPI_Wtime(void) {
   mp *self = mp_self();
-  if (!self) return 0;
-  double t = mp_time(self);
-  if (wtime_cost > 0 && mp_busy(self, wtime_cost) != MP_OK) {
-    st_rank *R = st_get();
-    if (R) st_stopped(R);
-  }
-  st_rank *R = st_get();
-  if (R) spin_count(R, "MPI_Wtime");   /* a loop that waits for a clock that cannot move */
-  return t;
+  return self ? init_clock_read(self, "MPI_Wtime") : 0;
 }
 
 double PMPI_Wtick(void) { return 1e-9; }

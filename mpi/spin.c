@@ -15,7 +15,7 @@ void spin_count(st_rank *R, const char *fn) {
   char why[400];
   snprintf(why, sizeof why,
            "rank %d: %s called %d times at t=%.9g s without the rank's clock moving: nothing can arrive, it would "
-           "poll forever (a polling loop needs a --poll-cost above 0, or --wtime-cost for MPI_Wtime); run stopped",
+           "poll forever (a polling loop needs a --poll-cost above 0, a loop on the clock a --wtime-cost); run stopped",
            R->wrank, fn, SPIN_MAX, t);
   mp *self = R->self;
   st_release(R);

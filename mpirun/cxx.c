@@ -8,23 +8,24 @@
 #include <time.h>
 
 #include "mp/mp.h"
+#include "mpi/init.h"
 #include "util/xmem.h"
 
 /* ==== clocks and sleeps =================================================== */
 
 /* Nanoseconds: the rank's simulated clock (from the run's start), or the
  * host's clock outside a rank. */
-static int64_t now_ns(clockid_t host) {
+static int64_t now_ns(clockid_t host, const char *fn) {
   mp *self = mp_self();
-  if (self) return (int64_t)(mp_time(self) * 1e9 + 0.5);
+  if (self) return (int64_t)(init_clock_read(self, fn) * 1e9 + 0.5);
   struct timespec ts;
   clock_gettime(host, &ts);
   return (int64_t)ts.tv_sec * 1000000000 + ts.tv_nsec;
 }
 
 /* time_point<..., nanoseconds> holds one 64-bit count: returned as one. */
-static int64_t system_now(void) { return now_ns(CLOCK_REALTIME); }
-static int64_t steady_now(void) { return now_ns(CLOCK_MONOTONIC); }
+static int64_t system_now(void) { return now_ns(CLOCK_REALTIME, "std::chrono::system_clock::now"); }
+static int64_t steady_now(void) { return now_ns(CLOCK_MONOTONIC, "std::chrono::steady_clock::now"); }
 
 /* this_thread::__sleep_for(seconds, nanoseconds): two 64-bit counts. */
 static void sleep_for(int64_t s, int64_t ns) {

@@ -28,6 +28,7 @@
 #include <unistd.h>
 
 #include "mp/mp.h"
+#include "mpi/init.h"
 #include "util/xmem.h"
 
 /* ==== a rank's libc ======================================================= */
@@ -246,38 +247,40 @@ static char *r_strtok(char *restrict str, const char *restrict delim) { return s
 
 /* ==== clocks and sleeps: the simulated machine's ========================== */
 
-/* The rank's clock (simulated on the simulator), or the host's outside a rank. */
-static int now(double *t) {
+/* The rank's clock (simulated on the simulator), as the program's call fn
+ * reads it (init_clock_read: the wtime cost, a loop that waits for the
+ * clock stopped); 0 outside a rank (the host's clock, then). */
+static int now(double *t, const char *fn) {
   mp *self = mp_self();
   if (!self) return 0;
-  *t = mp_time(self);
+  *t = init_clock_read(self, fn);
   return 1;
 }
 
 static time_t r_time(time_t *t) {
   double s;
-  time_t v = now(&s) ? (time_t)s : time(NULL);
+  time_t v = now(&s, "time") ? (time_t)s : time(NULL);
   if (t) *t = v;
   return v;
 }
 
 static int r_gettimeofday(struct timeval *restrict tv, void *restrict tz) {
   double s;
-  if (!now(&s)) return gettimeofday(tv, tz);
+  if (!now(&s, "gettimeofday")) return gettimeofday(tv, tz);
   if (tv) *tv = (struct timeval){.tv_sec = (time_t)s, .tv_usec = (suseconds_t)((s - (double)(time_t)s) * 1e6)};
   return 0;
 }
 
 static int r_clock_gettime(clockid_t id, struct timespec *tp) {
   double s;
-  if (!now(&s)) return clock_gettime(id, tp);
+  if (!now(&s, "clock_gettime")) return clock_gettime(id, tp);
   if (tp) *tp = (struct timespec){.tv_sec = (time_t)s, .tv_nsec = (long)((s - (double)(time_t)s) * 1e9)};
   return 0;
 }
 
 static clock_t r_clock(void) {
   double s;
-  return now(&s) ? (clock_t)(s * CLOCKS_PER_SEC) : clock();
+  return now(&s, "clock") ? (clock_t)(s * CLOCKS_PER_SEC) : clock();
 }
 
 static void nap(double seconds) {

@@ -9,6 +9,9 @@
 #   - privatization (tests/mpirun/privatize.c): a static, a global array,
 #     getopt's state, rand, random, drand48 and strtok, each rank's own: the
 #     same lines as Open MPI's processes print;
+#   - a loop that waits for the clock (tests/mpirun/clockwait.c: libc's
+#     clocks and MPI_Wtime): stopped, naming the call; 1024 reads with a
+#     --wtime-cost of 2^-10;
 #   - closed forms on --net ideal with binary costs, exactly
 #     (tests/mpirun/closed.c): a ping-pong, a binomial broadcast, a
 #     dissemination barrier, a ring allgather, a recursive-doubling allreduce;
@@ -131,6 +134,20 @@ build posix "$T/posix.c"
 "$RUN" -np 3 "$T/posix" -a one rest -c > "$T/out" 2> "$T/err"
 [ "$(grep -c 'getopt a=one ; optind 3 of 5, first operand rest' "$T/out")" -eq 3 ] && ok \
   || bad "getopt in POSIX mode (stops at the first operand): $(cat "$T/out" "$T/err")"
+
+# ---- a loop that waits for the clock ----------------------------------------------
+# libc's clocks and MPI_Wtime are the rank's simulated clock: a loop that
+# reads one until a second has passed is stopped with one line naming the
+# call (the clock cannot move), and with --wtime-cost 2^-10 takes 1024 reads.
+build clockwait tests/mpirun/clockwait.c
+for how in 0:gettimeofday 1:clock 2:time 3:clock_gettime 4:MPI_Wtime; do
+  n=${how%%:*} call=${how#*:}
+  timeout 60 "$RUN" -np 2 "$T/clockwait" $n > "$T/out" 2> "$T/err"; rc=$?
+  [ $rc -eq 1 ] && grep -q "^tilesim-mpirun: rank 0: $call called 100000 times at t=0 s without the rank's clock moving" "$T/err" \
+    && grep -q -- '--wtime-cost' "$T/err" && [ ! -s "$T/out" ] && ok || bad "a loop on $call: exit $rc: $(cat "$T/out" "$T/err")"
+  "$RUN" -np 2 --wtime-cost 0.0009765625 "$T/clockwait" $n > "$T/out" 2> "$T/err" \
+    && [ "$(cat "$T/out")" = "waited a second in 1024 reads" ] && ok || bad "a loop on $call, --wtime-cost: $(cat "$T/out" "$T/err")"
+done
 
 # ---- closed forms: --net ideal, m = 1/4, per_byte = 1/16 -----------------------------
 build closed tests/mpirun/closed.c
