@@ -185,7 +185,10 @@ double init_clock_read(mp *self, const char *fn) {
   double t = mp_time(self);
   st_rank *R = st_get();
   if (wtime_cost > 0 && mp_busy(self, wtime_cost) != MP_OK && R) st_stopped(R);
-  if (R) spin_count(R, fn);   /* a loop that waits for a clock that cannot move */
+  if (R)
+    spin_count(R, fn);   /* a loop that waits for a clock that cannot move */
+  else
+    spin_count_outside(self, fn);
   return t;
 }
 

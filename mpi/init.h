@@ -37,10 +37,9 @@ double init_poll_cost(void);
 int init_set_wtime_cost(double seconds);
 
 /* A read of the rank's clock by the program's call fn ("MPI_Wtime",
- * "gettimeofday", ...): the clock, the wtime cost charged after; between
- * MPI_Init and MPI_Finalize a loop that reads it SPIN_MAX times in a row
- * without it moving is stopped, naming fn (mpi/spin.h), as a polling loop
- * is. */
+ * "gettimeofday", ...): the clock, the wtime cost charged after; a loop
+ * that reads it SPIN_MAX times in a row without it moving is stopped,
+ * naming fn (mpi/spin.h), as a polling loop is, inside MPI or out. */
 double init_clock_read(mp *self, const char *fn);
 
 /* ==== a rank's end ======================================================== */

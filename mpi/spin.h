@@ -20,6 +20,10 @@ enum { SPIN_MAX = 100000 };
 /* A poll of call fn found nothing (after charging its cost, if any). */
 void spin_count(st_rank *R, const char *fn);
 
+/* The same for a rank outside MPI (before MPI_Init, after MPI_Finalize):
+ * its reads of the clock. */
+void spin_count_outside(mp *self, const char *fn);
+
 /* A poll found something. */
 static inline void spin_reset(st_rank *R) { R->spins = 0; }
 

@@ -10,8 +10,8 @@
 #     getopt's state, rand, random, drand48 and strtok, each rank's own: the
 #     same lines as Open MPI's processes print;
 #   - a loop that waits for the clock (tests/mpirun/clockwait.c: libc's
-#     clocks and MPI_Wtime): stopped, naming the call; 1024 reads with a
-#     --wtime-cost of 2^-10;
+#     clocks and MPI_Wtime, inside MPI and out): stopped, naming the call;
+#     1024 reads with a --wtime-cost of 2^-10;
 #   - closed forms on --net ideal with binary costs, exactly
 #     (tests/mpirun/closed.c): a ping-pong, a binomial broadcast, a
 #     dissemination barrier, a ring allgather, a recursive-doubling allreduce;
@@ -147,6 +147,14 @@ for how in 0:gettimeofday 1:clock 2:time 3:clock_gettime 4:MPI_Wtime; do
     && grep -q -- '--wtime-cost' "$T/err" && [ ! -s "$T/out" ] && ok || bad "a loop on $call: exit $rc: $(cat "$T/out" "$T/err")"
   "$RUN" -np 2 --wtime-cost 0.0009765625 "$T/clockwait" $n > "$T/out" 2> "$T/err" \
     && [ "$(cat "$T/out")" = "waited a second in 1024 reads" ] && ok || bad "a loop on $call, --wtime-cost: $(cat "$T/out" "$T/err")"
+done
+for when in before after; do   # outside MPI too
+  timeout 60 "$RUN" -np 2 "$T/clockwait" 1 $when > "$T/out" 2> "$T/err"; rc=$?
+  [ $rc -eq 1 ] && grep -q "^tilesim-mpirun: rank 0: clock called 100000 times at t=" "$T/err" && [ ! -s "$T/out" ] \
+    && ok || bad "a loop on clock $when MPI: exit $rc: $(cat "$T/out" "$T/err")"
+  "$RUN" -np 2 --wtime-cost 0.0009765625 "$T/clockwait" 1 $when > "$T/out" 2> "$T/err" \
+    && [ "$(cat "$T/out")" = "waited a second in 1024 reads" ] && ok \
+    || bad "a loop on clock $when MPI, --wtime-cost: $(cat "$T/out" "$T/err")"
 done
 
 # ---- closed forms: --net ideal, m = 1/4, per_byte = 1/16 -----------------------------
