@@ -256,14 +256,31 @@ static void act(st_rank *R, const mp_status *st) {
 
 static void advance_all(st_rank *R);
 
+/* A message copied now (mp_send).  One of ENG_YIELD_MIN bytes or more
+ * gives way first (engine.h), out of line: the small message's path saves
+ * no registers for it. */
+#ifdef __GNUC__
+__attribute__((noinline))
+#endif
+static void send_big(st_rank *R, int wdst, int mptag, const void *data, size_t len) {
+  mpok(R, mp_yield(R->self), "mp_yield");
+  mpok(R, mp_send(R->self, wdst, mptag, data, len), "mp_send");
+}
+
+static inline void send_copy(st_rank *R, int wdst, int mptag, const void *data, size_t len) {
+  if (len >= ENG_YIELD_MIN)
+    send_big(R, wdst, mptag, data, len);
+  else
+    mpok(R, mp_send(R->self, wdst, mptag, data, len), "mp_send");
+}
+
 void eng_send(st_rank *R, st_req *q, const void *data, size_t len) {
   int kind = q->mode == SM_SYNC ? K_SYNC : K_DATA, mptag = st_env_encode(kind, q->ctx, q->tag);
   q->sendlen = len;
-  if (!q->byref && len >= ENG_YIELD_MIN) mpok(R, mp_yield(R->self), "mp_yield");   /* a copy now: see eng_send_done */
   if (q->byref)
     mpok(R, mp_send_ref(R->self, q->wpeer, mptag, data, len, &q->ref), "mp_send_ref");
   else
-    mpok(R, mp_send(R->self, q->wpeer, mptag, data, len), "mp_send");
+    send_copy(R, q->wpeer, mptag, data, len);
   q->st = (MPI_Status){.MPI_SOURCE = MPI_ANY_SOURCE, .MPI_TAG = MPI_ANY_TAG, .MPI_ERROR = MPI_SUCCESS};
   if (kind == K_SYNC) {
     q->state = RS_ACTIVE;
@@ -273,20 +290,8 @@ void eng_send(st_rank *R, st_req *q, const void *data, size_t len) {
   }
 }
 
-/* eng_send_data's big message: it gives way first, as eng_send's copy does
- * (out of line: the small message's path saves no registers for it). */
-#ifdef __GNUC__
-__attribute__((noinline))
-#endif
-static int send_data_big(st_rank *R, int wdst, int ctx, int tag, const void *data, size_t len) {
-  mpok(R, mp_yield(R->self), "mp_yield");
-  mpok(R, mp_send(R->self, wdst, st_env_encode(K_DATA, ctx, tag), data, len), "mp_send");
-  return MPI_SUCCESS;
-}
-
 int eng_send_data(st_rank *R, int wdst, int ctx, int tag, const void *data, size_t len) {
-  if (len >= ENG_YIELD_MIN) return send_data_big(R, wdst, ctx, tag, data, len);
-  mpok(R, mp_send(R->self, wdst, st_env_encode(K_DATA, ctx, tag), data, len), "mp_send");
+  send_copy(R, wdst, st_env_encode(K_DATA, ctx, tag), data, len);
   return MPI_SUCCESS;
 }
 
