@@ -150,6 +150,15 @@ int coll_req_ok(MPI_Comm comm, const char *fn, const MPI_Request *req);
 /* count elements of dt at buf packed into the schedule's memory, and the
  * step that unpacks them at the end. */
 char *coll_pack(coll_sched *s, const void *buf, int count, MPI_Datatype dt);
+/* count elements of dt at buf as packed bytes to read: where they lie when
+ * they are contiguous (dtype_contig: no copy), else coll_pack's. */
+const char *coll_view(coll_sched *s, const void *buf, int count, MPI_Datatype dt);
+/* Where a collective builds the packed bytes it leaves in count elements of
+ * dt at buf: buf's own bytes when they are contiguous, else the schedule's
+ * memory (packed from buf first when fill), which coll_sched_unpack copies
+ * back at the end; onto bytes in place, coll_sched_unpack does nothing.  So
+ * a contiguous buffer costs no copy and no memory of the collective's. */
+char *coll_place(coll_sched *s, void *buf, int count, MPI_Datatype dt, int fill);
 /* Element i of dt at buf (i extents on). */
 void *coll_at(const void *buf, MPI_Aint i, MPI_Datatype dt);
 

@@ -62,7 +62,7 @@ static int bcast(const char *fn, void *buffer, int count, MPI_Datatype datatype,
   coll_sched *s = coll_start(fn, comm, COLL_BCAST, root, req);
   const coll_cg *g = coll_sched_group(s);
   if (n == 0 || g->size == 1) return coll_finish(s);
-  char *p = g->rank == root ? coll_pack(s, buffer, count, datatype) : coll_sched_mem(s, n);
+  char *p = coll_place(s, buffer, count, datatype, g->rank == root);   /* in place when contiguous */
   coll_alg a = coll_setting(COLL_BCAST);
   if (a == ALG_AUTO) {
     /* MPICH bcast.c: binomial below MPIR_CVAR_BCAST_SHORT_MSG_SIZE (12288)
@@ -115,9 +115,9 @@ static int gather(const char *fn, const void *sendbuf, int sendcount, MPI_Dataty
     return err_comm_raise(comm, MPI_ERR_TRUNCATE, fn, "the root sends %zu bytes to itself and receives %zu",
                           dtype_size(sendtype) * (size_t)sendcount, n);
   coll_sched *s = coll_start(fn, comm, COLL_GATHER, root, req);
-  char *mine = in_place ? coll_pack(s, coll_at(recvbuf, (MPI_Aint)root * recvcount, recvtype), recvcount, recvtype)
-                        : coll_pack(s, sendbuf, sendcount, sendtype);
-  char *all = me == root ? coll_sched_mem(s, n * (size_t)size) : NULL;
+  const char *mine = in_place ? coll_pack(s, coll_at(recvbuf, (MPI_Aint)root * recvcount, recvtype), recvcount, recvtype)
+                              : coll_view(s, sendbuf, sendcount, sendtype);
+  char *all = me == root ? coll_place(s, recvbuf, recvcount * size, recvtype, 0) : NULL;
   /* MPICH gather.c: the binomial tree always. */
   if (coll_setting(COLL_GATHER) == ALG_LINEAR)
     coll_gather_linear(s, mine, all, n, root);
@@ -230,8 +230,8 @@ static int scatter(const char *fn, const void *sendbuf, int sendcount, MPI_Datat
     return err_comm_raise(comm, MPI_ERR_TRUNCATE, fn, "the root sends %zu bytes to itself and receives at most %zu", n,
                           dtype_size(recvtype) * (size_t)recvcount);
   coll_sched *s = coll_start(fn, comm, COLL_SCATTER, root, req);
-  char *all = me == root ? coll_pack(s, sendbuf, sendcount * size, sendtype) : NULL;
-  char *mine = in_place ? NULL : coll_sched_mem(s, n);
+  const char *all = me == root ? coll_view(s, sendbuf, sendcount * size, sendtype) : NULL;
+  char *mine = in_place ? NULL : coll_place(s, recvbuf, recvcount, recvtype, 0);
   /* MPICH scatter.c: the binomial tree always. */
   if (coll_setting(COLL_SCATTER) == ALG_LINEAR)
     coll_scatter_linear(s, all, mine, n, root);

@@ -125,6 +125,17 @@ char *coll_pack(coll_sched *s, const void *buf, int count, MPI_Datatype dt) {
   return p;
 }
 
+const char *coll_view(coll_sched *s, const void *buf, int count, MPI_Datatype dt) {
+  const char *p = dtype_contig(buf, count, dt);
+  return p ? p : coll_pack(s, buf, count, dt);
+}
+
+char *coll_place(coll_sched *s, void *buf, int count, MPI_Datatype dt, int fill) {
+  char *p = (char *)dtype_contig(buf, count, dt);
+  if (p) return p;
+  return fill ? coll_pack(s, buf, count, dt) : coll_sched_mem(s, dtype_size(dt) * (size_t)count);
+}
+
 /* Element i of dt at buf (i * extent bytes on). */
 void *coll_at(const void *buf, MPI_Aint i, MPI_Datatype dt) {
   return (char *)buf + i * dtype_extent(dt);

@@ -58,7 +58,7 @@ static int reduce(const char *fn, const void *sendbuf, void *recvbuf, int count,
   size_t n = r.tsize * (size_t)count;
   if (n == 0) return coll_finish(s);
   char *in = coll_pack(s, sendbuf == MPI_IN_PLACE ? recvbuf : sendbuf, count, datatype);
-  char *out = me == root ? coll_sched_mem(s, n) : NULL;
+  char *out = me == root ? coll_place(s, recvbuf, count, datatype, 0) : NULL;
   int pof2 = coll_pof2(size), rsg_ok = op_is_predefined(op) && count >= pof2;
   coll_alg a = coll_setting(COLL_REDUCE);
   /* MPICH reduce.c: Rabenseifner's above MPIR_CVAR_REDUCE_SHORT_MSG_SIZE
@@ -105,7 +105,9 @@ static int allreduce(const char *fn, const void *sendbuf, void *recvbuf, int cou
   int size = coll_sched_group(s)->size;
   size_t n = r.tsize * (size_t)count;
   if (n == 0) return coll_finish(s);
-  char *buf = coll_pack(s, sendbuf == MPI_IN_PLACE ? recvbuf : sendbuf, count, datatype);
+  /* MPICH's way: sendbuf copied into recvbuf, reduced there (when contiguous) */
+  char *buf = coll_place(s, recvbuf, count, datatype, sendbuf == MPI_IN_PLACE);
+  if (sendbuf != MPI_IN_PLACE) dtype_pack(sendbuf, count, datatype, buf);
   int pof2 = coll_pof2(size), rsag_ok = op_is_predefined(op) && count >= pof2;
   coll_alg a = coll_setting(COLL_ALLREDUCE);
   /* MPICH allreduce.c: recursive doubling up to

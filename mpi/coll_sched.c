@@ -1,6 +1,7 @@
 /* coll_sched.c -- schedules: building, running in line, stepping as messages arrive (coll_sched.h). */
 #include "mpi/coll_sched.h"
 
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -139,8 +140,12 @@ void coll_sched_set_red(coll_sched *s, const coll_red *r) {
 void *coll_sched_frame(const coll_sched *s) { return s->frame; }
 void coll_sched_set_frame(coll_sched *s, void *frame) { s->frame = frame; }
 
+static _Atomic long long mem_given;   /* coll_sched_mem's bytes, every rank's */
+long long coll_sched_mem_given(void) { return atomic_load_explicit(&mem_given, memory_order_relaxed); }
+
 void *coll_sched_mem(coll_sched *s, size_t n) {
   if (n > (size_t)-1 - sizeof(block)) oom(n);
+  atomic_fetch_add_explicit(&mem_given, (long long)n, memory_order_relaxed);
   block *b = xalloc(sizeof *b + n);
   b->next = s->mem;
   s->mem = b;
@@ -198,7 +203,7 @@ void coll_sched_copy(coll_sched *s, void *dst, const void *src, size_t n) {
 }
 
 void coll_sched_unpack(coll_sched *s, const void *p, size_t n, void *buf, int count, MPI_Datatype dt) {
-  if (n == 0) return;
+  if (n == 0 || p == dtype_contig(buf, count, dt)) return;   /* nothing, or in place already */
   op o = {.kind = OP_UNPACK, .peer = count, .dt = dt, .n = n, .a.p = buf, .b = p};
   emit(s, &o);
   if (s->now || (s->nheld && s->held[s->nheld - 1] == dt)) return;   /* used now, or held already */

@@ -50,6 +50,9 @@ void coll_sched_set_frame(coll_sched *s, void *frame);
 
 /* n bytes (uninitialized) that live as long as the schedule. */
 void *coll_sched_mem(coll_sched *s, size_t n);
+/* The bytes coll_sched_mem has given since the process started, every rank's (the
+ * collectives' own memory, which a contiguous buffer spares: coll.h, coll_place). */
+long long coll_sched_mem_given(void);
 
 /* The steps.  Bytes to and from ranks of the group (MPI_PROC_NULL: nothing); a receive takes
  * at most n bytes (a longer message is the ranks disagreeing on counts: MPI_ERR_TRUNCATE). */
@@ -65,7 +68,8 @@ void coll_sched_waitall(coll_sched *s);
 void coll_sched_reduce(coll_sched *s, const void *left, void *right, int count);
 void coll_sched_copy(coll_sched *s, void *dst, const void *src, size_t n);
 /* n packed bytes at p into buf, at most count elements of dt (dt held until the schedule is
- * freed: the program may free it before a nonblocking collective completes). */
+ * freed: the program may free it before a nonblocking collective completes); nothing when p
+ * is buf's own contiguous bytes (coll.h: coll_place). */
 void coll_sched_unpack(coll_sched *s, const void *p, size_t n, void *buf, int count, MPI_Datatype dt);
 /* A local step of the algorithm's own: fn(ud) (ud in the schedule's memory, typically). */
 void coll_sched_call(coll_sched *s, void (*fn)(void *ud), void *ud);

@@ -61,12 +61,13 @@ static int allgather(const char *fn, const void *sendbuf, int sendcount, MPI_Dat
     bc[i] = n;
     bd[i] = (size_t)i * n;
   }
-  char *all = coll_sched_mem(s, n * (size_t)size);
-  if (in_place)
+  /* recvbuf itself when contiguous: in place, this rank's block is there already */
+  char *all = coll_place(s, recvbuf, recvcount * size, recvtype, 0);
+  if (!in_place)
+    dtype_pack(sendbuf, sendcount, sendtype, all + bd[g->rank]);
+  else if (all != dtype_contig(recvbuf, recvcount * size, recvtype))
     dtype_pack(coll_at(recvbuf, (MPI_Aint)g->rank * recvcount, recvtype), recvcount, recvtype,
                all + bd[g->rank]);
-  else
-    dtype_pack(sendbuf, sendcount, sendtype, all + bd[g->rank]);
   if (size > 1) allgather_build(s, allgather_alg(COLL_ALLGATHER, size, n * (size_t)size), all, bc, bd, 0, 0, 0);
   coll_sched_unpack(s, all, n * (size_t)size, recvbuf, recvcount * size, recvtype);
   return coll_finish(s);

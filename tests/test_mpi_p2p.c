@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mpi/coll_sched.h"
 #include "mpi/engine.h"
 #include "mpi/init.h"
 #include "mpi/mpi.h"
@@ -445,6 +446,101 @@ static void one_copy(void) {
     }
 }
 
+/* ==== collectives on the program's own buffers ============================ */
+
+/* A collective on contiguous buffers reads and builds its data where it
+ * lies (coll.h: coll_view, coll_place); on a type with gaps it packs into
+ * memory of its own and unpacks at the end.  The same collective of the
+ * same bytes in both types differs in the collective's memory by exactly
+ * the packed copies (coll_sched_mem_given): the algorithms' own buffers
+ * are the same. */
+enum { CI_RANKS = 8, CI_INTS = 1 << 16 };
+typedef struct {
+  int op, gaps;
+  long wrong;
+} collcase;
+
+static int cival(int r, long i) { return (int)(i * 3 + r * 1000 + 1); }
+
+static int coll_bufs(void *ud) {
+  collcase *C = ud;
+  int r = mpih_init(), p = CI_RANKS, m = CI_INTS / p;
+  MPI_Datatype t = MPI_INT, gappy;
+  MPI_Type_create_resized(MPI_INT, 0, 2 * sizeof(int), &gappy);   /* an int, then a gap of one */
+  MPI_Type_commit(&gappy);
+  if (C->gaps) t = gappy;
+  int step = C->gaps ? 2 : 1;
+  int *a = calloc((size_t)CI_INTS * 2, sizeof(int)), *b = calloc((size_t)CI_INTS * 2, sizeof(int));
+  long wrong = 0;
+  switch (C->op) {
+  case 0:   /* MPI_Bcast from rank 0 */
+    for (long i = 0; i < CI_INTS; i++) a[i * step] = r == 0 ? cival(0, i) : 0;
+    MPI_Bcast(a, CI_INTS, t, 0, MPI_COMM_WORLD);
+    for (long i = 0; i < CI_INTS; i++) wrong += a[i * step] != cival(0, i);
+    break;
+  case 1:   /* MPI_Allgather, sent as ints, received in t */
+    for (long i = 0; i < m; i++) a[i] = cival(r, i);
+    MPI_Allgather(a, m, MPI_INT, b, m, t, MPI_COMM_WORLD);
+    for (long i = 0; i < CI_INTS; i++) wrong += b[i * step] != cival((int)(i / m), i % m);
+    break;
+  case 2:   /* MPI_Gather to rank 0, received in t */
+    for (long i = 0; i < m; i++) a[i] = cival(r, i);
+    MPI_Gather(a, m, MPI_INT, b, m, t, 0, MPI_COMM_WORLD);
+    for (long i = 0; r == 0 && i < CI_INTS; i++) wrong += b[i * step] != cival((int)(i / m), i % m);
+    break;
+  case 3:   /* MPI_Scatter from rank 0, sent and received in t */
+    for (long i = 0; r == 0 && i < CI_INTS; i++) a[i * step] = cival((int)(i / m), i % m);
+    MPI_Scatter(a, m, t, b, m, t, 0, MPI_COMM_WORLD);
+    for (long i = 0; i < m; i++) wrong += b[i * step] != cival(r, i);
+    break;
+  default:   /* MPI_Allreduce, or MPI_Reduce to rank 0: MPI_SUM of ints in t */
+    for (long i = 0; i < CI_INTS; i++) a[i * step] = cival(r, i);
+    if (C->op == 4)
+      MPI_Allreduce(a, b, CI_INTS, t, MPI_SUM, MPI_COMM_WORLD);
+    else
+      MPI_Reduce(a, b, CI_INTS, t, MPI_SUM, 0, MPI_COMM_WORLD);
+    for (long i = 0; i < CI_INTS && (C->op == 4 || r == 0); i++) {
+      long want = 0;
+      for (int q = 0; q < p; q++) want += cival(q, i);
+      wrong += b[i * step] != (int)want;
+    }
+  }
+  C->wrong += wrong;
+  free(a);
+  free(b);
+  MPI_Type_free(&gappy);
+  MPI_Finalize();
+  return 0;
+}
+
+static void coll_in_place(void) {
+  static const char *const name[] = {"MPI_Bcast",   "MPI_Allgather", "MPI_Gather",
+                                     "MPI_Scatter", "MPI_Allreduce", "MPI_Reduce"};
+  /* The packed copies a type with gaps costs: bcast, every rank's buffer;
+   * allgather, every rank's receive buffer of all the blocks; gather, the
+   * root's; scatter, the root's send buffer and every rank's block;
+   * allreduce, every rank's result; reduce, the root's (its input is
+   * packed in both types: the algorithms reduce into it). */
+  const long long n = (long long)CI_INTS * (long long)sizeof(int), p = CI_RANKS;
+  const long long packed[] = {p * n, p * n, n, 2 * n, p * n, n};
+  for (int op = 0; op < 6; op++)
+    for (int b = 0; b < 2; b++) {
+      long long mem[2];
+      for (int gaps = 0; gaps < 2; gaps++) {
+        collcase C = {op, gaps, 0};
+        long long before = coll_sched_mem_given();
+        mpih_result res = run(b, CI_RANKS, coll_bufs, &C);
+        mem[gaps] = coll_sched_mem_given() - before;
+        CHECK(res.rc == 0 && C.wrong == 0, "%s: %s of %d ints%s on %d ranks: rc %d, %ld wrong: %s", bname[b], name[op],
+              CI_INTS, gaps ? " with gaps" : "", CI_RANKS, res.rc, C.wrong, res.err);
+        mpih_result_free(&res);
+      }
+      CHECK(mem[1] - mem[0] == packed[op],
+            "%s: %s of %d ints: the collective's memory %lld bytes with gaps, %lld contiguous: %lld more, %lld due",
+            bname[b], name[op], CI_INTS, mem[1], mem[0], mem[1] - mem[0], packed[op]);
+    }
+}
+
 /* ==== the runner's view of a rank ========================================= */
 
 typedef struct {
@@ -484,6 +580,7 @@ int main(void) {
   deadlock_words();
   closed_forms();
   one_copy();
+  coll_in_place();
   rank_ends();
   return check_done("test_mpi_p2p");
 }
