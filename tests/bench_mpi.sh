@@ -12,6 +12,8 @@
 #              BW_SIZES from rank 0 to rank 1, BW_ITERS times (2 ranks)
 #   alltoall   MPI_Alltoall of each size of A2A_SIZES a pair, A2A_ITERS times,
 #              on A2A_RANKS ranks (pairwise exchange on both simulators)
+#   bcast      MPI_Bcast of each size of BC_SIZES from rank 0, BC_ITERS times,
+#              on BC_RANKS ranks (scatter and ring allgather on both)
 #   ring       a token of 8 bytes round RING_RANKS ranks, RING_LAPS laps
 #   startup    MPI_Init, an allreduce of one integer, MPI_Finalize, on each
 #              number of RANKS (the whole run is the start-up)
@@ -33,6 +35,7 @@
 #              (against the ranks), bench-mpi.log (the progress)
 #   BW_SIZES (1024,65536,1048576,4194304)  WINDOW (64)  BW_ITERS (10)
 #   A2A_SIZES (1024,16384,262144)  A2A_RANKS (16)  A2A_ITERS (10)
+#   BC_SIZES (16777216)  BC_RANKS (16)  BC_ITERS (3)
 #   RING_RANKS (16)  RING_LAPS (62500)
 #   RANKS (1000,10000,100000)  AR_COUNT (256)  AR_ITERS (4)
 #   MP_RANKS (1000000; 0: none)  SMPI_RANKS (1000)  SMPI (auto, or no)
@@ -69,6 +72,9 @@ BW_ITERS=${BW_ITERS:-10}
 A2A_SIZES=${A2A_SIZES:-1024,16384,262144}
 A2A_RANKS=${A2A_RANKS:-16}
 A2A_ITERS=${A2A_ITERS:-10}
+BC_SIZES=${BC_SIZES:-16777216}
+BC_RANKS=${BC_RANKS:-16}
+BC_ITERS=${BC_ITERS:-3}
 RING_RANKS=${RING_RANKS:-16}
 RING_LAPS=${RING_LAPS:-62500}
 RANKS=${RANKS:-1000,10000,100000}
@@ -88,6 +94,9 @@ list BW_ITERS "$BW_ITERS" 1 1000000
 list A2A_SIZES "$A2A_SIZES" 16 67108864
 list A2A_RANKS "$A2A_RANKS" 2 4096
 list A2A_ITERS "$A2A_ITERS" 1 1000000
+list BC_SIZES "$BC_SIZES" 32 1073741824
+list BC_RANKS "$BC_RANKS" 2 4096
+list BC_ITERS "$BC_ITERS" 1 1000000
 list RING_RANKS "$RING_RANKS" 2 1000000
 list RING_LAPS "$RING_LAPS" 1 100000000
 list RANKS "$RANKS" 2 1000000
@@ -127,7 +136,7 @@ TO=
 command -v timeout > /dev/null 2>&1 && TO="timeout -s KILL $TIMEOUT"
 
 # ---- the programs, built by both compilers ----------------------------------
-PROGS="bw alltoall ring allreduce"
+PROGS="bw alltoall bcast ring allreduce"
 for p in $PROGS; do
   "$BIN/tilesim-mpicc" -O2 "tests/mpirun/$p.c" -o "$W/$p" 2> "$W/cc.err" || die "tilesim-mpicc $p.c: $(head -n 3 "$W/cc.err")"
 done
@@ -140,10 +149,10 @@ fi
 [ "$SMPI" = auto ] && [ -z "$SG" ] && ! command -v smpirun > /dev/null 2>&1 && say "smpirun is not installed: tilesim alone"
 
 M=0.000244140625   # 2^-12 s a message
-TSOPT="--net ideal --m $M --per-byte 0 --coll allreduce=recursive_doubling,alltoall=pairwise"
+TSOPT="--net ideal --m $M --per-byte 0 --coll allreduce=recursive_doubling,alltoall=pairwise,bcast=scatter_ring_allgather"
 SGOPT="--cfg=network/model:Constant --cfg=network/latency-factor:$M --cfg=smpi/simulate-computation:no
   --cfg=smpi/host-speed:1Gf --cfg=smpi/wtime:0 --cfg=smpi/test:0 --cfg=smpi/async-small-thresh:1000000000
-  --cfg=smpi/send-is-detached-thresh:1000000000 --cfg=smpi/allreduce:rdb --cfg=smpi/alltoall:pair
+  --cfg=smpi/send-is-detached-thresh:1000000000 --cfg=smpi/allreduce:rdb --cfg=smpi/alltoall:pair --cfg=smpi/bcast:scatter_LR_allgather
   --log=xbt_cfg.thres:warning --log=smpi_config.thres:warning --log=smpi.thres:warning"
 # A platform of N hosts of 2^30 flop/s and no links (the Constant model), and its hostfile.
 platform() {
@@ -206,6 +215,7 @@ both() {
 say "host: $(nproc 2> /dev/null || echo ?) cores, $(awk '/^MemTotal:/ { printf "%.1f GiB", $2 / 1048576 }' /proc/meminfo 2> /dev/null); load $(cut -d' ' -f1-3 /proc/loadavg 2> /dev/null)"
 for s in $(echo "$BW_SIZES" | tr , ' '); do both bw bw 2 "$s" "$s" "$WINDOW" "$BW_ITERS"; done
 for s in $(echo "$A2A_SIZES" | tr , ' '); do both alltoall alltoall "$A2A_RANKS" "$s" "$s" "$A2A_ITERS"; done
+for s in $(echo "$BC_SIZES" | tr , ' '); do both bcast bcast "$BC_RANKS" "$s" "$s" "$BC_ITERS"; done
 both ring ring "$RING_RANKS" 8 "$RING_LAPS" 8
 for n in $(echo "$RANKS" | tr , ' '); do
   both startup allreduce "$n" 8 1 1
@@ -243,7 +253,8 @@ commit=$(git rev-parse --short=12 HEAD 2> /dev/null || echo unknown)
     "peak the largest resident size$([ "$ROUNDS" -gt 1 ] && echo ", each the median of $ROUNDS runs (the two simulators taking turns)");" \
     "ratio = smpirun's / tilesim's."
   echo "bw: $WINDOW nonblocking sends of the size from rank 0 to rank 1, $BW_ITERS times;" \
-    "alltoall: MPI_Alltoall of the size a pair, $A2A_ITERS times; ring: a token of 8 bytes, $RING_LAPS laps;" \
+    "alltoall: MPI_Alltoall of the size a pair, $A2A_ITERS times; bcast: MPI_Bcast of the size, $BC_ITERS times;" \
+    "ring: a token of 8 bytes, $RING_LAPS laps;" \
     "startup: MPI_Init, an allreduce of one integer, MPI_Finalize; allreduce: $AR_ITERS of $AR_COUNT integers;" \
     "mp-ring: examples/ring.c (mp.h, no MPI), one lap.  A row that failed says why."
   echo
@@ -270,7 +281,7 @@ commit=$(git rev-parse --short=12 HEAD 2> /dev/null || echo unknown)
     }' "$W/med.csv"
   echo
   echo "The settings: BW_SIZES=$BW_SIZES WINDOW=$WINDOW BW_ITERS=$BW_ITERS A2A_SIZES=$A2A_SIZES A2A_RANKS=$A2A_RANKS" \
-    "A2A_ITERS=$A2A_ITERS RING_RANKS=$RING_RANKS RING_LAPS=$RING_LAPS RANKS=$RANKS AR_COUNT=$AR_COUNT AR_ITERS=$AR_ITERS" \
+    "A2A_ITERS=$A2A_ITERS BC_SIZES=$BC_SIZES BC_RANKS=$BC_RANKS BC_ITERS=$BC_ITERS RING_RANKS=$RING_RANKS RING_LAPS=$RING_LAPS RANKS=$RANKS AR_COUNT=$AR_COUNT AR_ITERS=$AR_ITERS" \
     "MP_RANKS=$MP_RANKS SMPI_RANKS=$SMPI_RANKS ROUNDS=$ROUNDS."
 } > "$W/md" && mv "$W/md" "$OUT/bench-mpi.md"
 
@@ -289,9 +300,9 @@ pic() {   # pic FILE X Y XLABEL YLABEL TITLE WHERE...
     -o "$OUT/$f" 2> "$W/plot.err" || say "$f: $(head -n 1 "$W/plot.err")"
 }
 pic bench-mpi-size.svg log2_bytes wall_s "log2 of the message size (bytes)" "host seconds" \
-  "bw (2 ranks) and alltoall: host time against the message size" bw alltoall
+  "bw (2 ranks), alltoall and bcast: host time against the message size" bw alltoall bcast
 pic bench-mpi-size-rss.svg log2_bytes peak_rss_mib "log2 of the message size (bytes)" "peak resident MiB" \
-  "bw (2 ranks) and alltoall: peak memory against the message size" bw alltoall
+  "bw (2 ranks), alltoall and bcast: peak memory against the message size" bw alltoall bcast
 pic bench-mpi-ranks.svg log10_ranks wall_s "log10 of the ranks" "host seconds" \
   "start-up, allreduce and the mp.h ring: host time against the ranks" startup allreduce mp-ring
 pic bench-mpi-ranks-rss.svg log10_ranks peak_rss_mib "log10 of the ranks" "peak resident MiB" \

@@ -13,7 +13,7 @@ BUILD=${BUILD:-build/chk}
 if [ "${SMPI_STATUS:-}" = yes ]; then SMPI=auto; else SMPI=no; echo "cli_benchmpi: skipped: the runs beside smpirun (${SMPI_STATUS:-make check sets SMPI_STATUS})"; fi
 run() {
   env BIN="$BUILD" PLOT="$BUILD/plot" EXAMPLES="$BUILD/examples" SMPI=$SMPI BW_SIZES=64,4096 WINDOW=4 BW_ITERS=2 \
-    A2A_RANKS=4 A2A_SIZES=64,1024 A2A_ITERS=2 RING_RANKS=4 RING_LAPS=10 RANKS=3,8 AR_COUNT=4 AR_ITERS=2 MP_RANKS=100 \
+    A2A_RANKS=4 A2A_SIZES=64,1024 A2A_ITERS=2 BC_SIZES=4096 BC_RANKS=4 BC_ITERS=2 RING_RANKS=4 RING_LAPS=10 RANKS=3,8 AR_COUNT=4 AR_ITERS=2 MP_RANKS=100 \
     SMPI_RANKS=8 "$@" sh tests/bench_mpi.sh
 }
 
@@ -27,7 +27,7 @@ csv=$T/a/bench-mpi.csv
 [ "$(head -n 1 "$csv")" = "program,simulator,ranks,bytes,wall_s,peak_rss_kb,sim_time,checksum,status" ] && ok \
   || bad "the CSV's header: $(head -n 1 "$csv")"
 n=$(awk -F, 'NR > 1 && $2 == "tilesim"' "$csv" | wc -l)
-[ "$n" -eq 10 ] && ok || bad "$n runs on tilesim, not 10: $(cat "$csv")"
+[ "$n" -eq 11 ] && ok || bad "$n runs on tilesim, not 11: $(cat "$csv")"
 awk -F, 'NR > 1 && $9 != "\"ok\""' "$csv" > "$T/notok"
 [ ! -s "$T/notok" ] && ok || bad "runs not ok: $(cat "$T/notok")"
 # The checksums, from the programs' closed forms (tests/mpirun/*.c).
@@ -35,8 +35,10 @@ awk -F, '
   function bw(b, w, it,   s, i, k) { for (i = 0; i < it; i++) for (k = 0; k < w; k++) s += 2 * ((i + 1) * 1000003 + k * 7919) + 1; return s }
   function a2a(p, it,   s, a, d, i) { for (a = 0; a < p; a++) for (d = 0; d < p; d++) for (i = 0; i < it; i++)
       s += 2 * (a * 2 ^ 40 + d * 2 ^ 20) + (2 * i + 1) + (2 * i + 2); return s }
+  function bc(p, size, it,   s, i, at) { for (i = 0; i < it; i++) { for (at = 0; at + 8 <= size; at += 4096) s += i * 2 ^ 40 + 2 * at + 1
+      s += i * 2 ^ 40 + 2 * (size - 8) + 1 } return p * s }
   function ar(p, c, it,   s, i, k) { for (k = 0; k < it; k++) for (i = 0; i < c; i++) s += p * (p - 1) / 2 + p * (i + k); return s }
-  NR > 1 { want = $1 == "bw" ? bw($4, 4, 2) : $1 == "alltoall" ? a2a($3, 2) : $1 == "ring" ? $3 * 10 \
+  NR > 1 { want = $1 == "bw" ? bw($4, 4, 2) : $1 == "alltoall" ? a2a($3, 2) : $1 == "bcast" ? bc($3, $4, 2) : $1 == "ring" ? $3 * 10 \
       : $1 == "startup" ? ar($3, 1, 1) : $1 == "allreduce" ? ar($3, 4, 2) : $1 == "mp-ring" ? $3 : -1
     if (sprintf("%.0f", want) != $8) { print "row " NR ": " $0 " (the closed form: " sprintf("%.0f", want) ")"; bad = 1 } }
   END { exit bad }' "$csv" > "$T/sums" && ok || bad "checksums: $(cat "$T/sums")"
@@ -44,14 +46,14 @@ awk -F, 'NR > 1 && ($5 + 0 <= 0 || $6 + 0 <= 0 || $7 + 0 <= 0)' "$csv" > "$T/zer
 [ ! -s "$T/zero" ] && ok || bad "rows without a time, a peak or a simulated time: $(cat "$T/zero")"
 if [ $SMPI = auto ]; then
   n=$(awk -F, 'NR > 1 && $2 == "smpi"' "$csv" | wc -l)
-  [ "$n" -eq 9 ] && ok || bad "$n runs on smpirun, not 9 (all but the mp.h ring): $(cat "$csv")"
+  [ "$n" -eq 10 ] && ok || bad "$n runs on smpirun, not 10 (all but the mp.h ring): $(cat "$csv")"
   awk -F, 'NR > 1 { k = $1 "," $3 "," $4; if (k in s && (s[k] != $7 || c[k] != $8)) { print "differ: " $0; bad = 1 } s[k] = $7; c[k] = $8 }
     END { exit bad }' "$csv" > "$T/diff" && ok || bad "the two simulators: $(cat "$T/diff")"
 fi
 # The Markdown: a table, a row per program, ranks and size.
 md=$T/a/bench-mpi.md
 rows=$(grep -c '^| [a-z]' "$md")
-[ "$rows" -eq 11 ] && grep -q '^Measured by `make bench-mpi` on ' "$md" && grep -q '^| mp-ring | 100 | 8 | ' "$md" \
+[ "$rows" -eq 12 ] && grep -q '^Measured by `make bench-mpi` on ' "$md" && grep -q '^| mp-ring | 100 | 8 | ' "$md" \
   && awk '/^\|/ { n = gsub(/\|/, "|"); if (!w) w = n; else if (n != w) exit 1 }' "$md" && ok || bad "bench-mpi.md: $(cat "$md")"
 for f in size size-rss ranks ranks-rss; do
   svg=$T/a/bench-mpi-$f.svg
@@ -75,7 +77,7 @@ csv=$T/m/bench-mpi.csv md=$T/m/bench-mpi.md
   || bad "ROUNDS=3: exit $rc: $(cat "$csv" "$T/m.err" 2> /dev/null | head -20)"
 # The table's tilesim wall and peak, against the median of the CSV's three runs
 # (sorted here by sort(1)).
-for p in bw alltoall ring startup allreduce; do
+for p in bw alltoall bcast ring startup allreduce; do
   want=$(awk -F, -v p=$p 'NR > 1 && $1 == p && $2 == "tilesim" { print $5 }' "$csv" | sort -g | sed -n 2p)
   peak=$(awk -F, -v p=$p 'NR > 1 && $1 == p && $2 == "tilesim" { print $6 }' "$csv" | sort -g | sed -n 2p)
   got=$(awk -F'|' -v p=$p '$2 == " " p " " { print $5 "|" $6; exit }' "$md")
@@ -96,6 +98,7 @@ refused "BW_SIZES takes whole numbers separated by commas (64,,128)" BW_SIZES=64
 refused "RANKS takes whole numbers from 2 to 1000000 (2000000)" RANKS=2000000
 refused "SMPI takes auto or no (yes)" SMPI=yes
 refused "ROUNDS takes whole numbers from 1 to 1000 (0)" ROUNDS=0
+refused "BC_SIZES takes whole numbers from 32 to 1073741824 (16)" BC_SIZES=16
 env OUT="$T/r" sh tests/bench_mpi.sh now > "$T/r.out" 2> "$T/r.err"; rc=$?
 [ $rc -eq 2 ] && [ "$(head -n 1 "$T/r.err")" = "bench-mpi: the settings go in the environment, not as arguments (now)" ] \
   && [ ! -e "$T/r" ] && ok || bad "an argument: exit $rc: $(cat "$T/r.err")"
