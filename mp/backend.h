@@ -37,6 +37,8 @@ typedef struct mp_ops {
   void (*settle)(mp *, mp_ref *ref);
   int (*withdraw)(mp *, mp_ref *ref);
   int (*recv_msg)(mp *, int src, int tag, mp_msg **msg, mp_status *st);
+  int (*recv_msg_into)(mp *, int src, int tag, int mask, int want, void *buf, size_t cap, mp_msg **msg,
+                       mp_status *st);   /* NULL: recv_msg, then msg_read when it fits */
   int (*msg_read)(mp *, mp_msg *msg, void *buf, size_t cap);
   int (*msg_gone)(mp *, const mp_msg *msg);
   mp_promise *(*promise)(mp *, int src, int tag, int mask, void *buf, size_t cap);

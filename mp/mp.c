@@ -230,6 +230,36 @@ int mp_recv_msg(mp *self, int src, int tag, mp_msg **msg, mp_status *st) {
   return recv_msg_hooked(self, src, tag, msg, st);
 }
 
+/* The message mp_recv_msg takes, read at once where it fits. */
+static int recv_into_(mp *self, int src, int tag, int mask, int want, void *buf, size_t cap, mp_msg **msg,
+                      mp_status *st) {
+  int rc = match_args(self, "mp_recv_msg", src, tag);
+  if (rc != MP_OK) return rc;
+  if (self->ops->recv_msg_into) return self->ops->recv_msg_into(self, src, tag, mask, want, buf, cap, msg, st);
+  mp_status got;
+  rc = self->ops->recv_msg ? self->ops->recv_msg(self, src, tag, msg, &got) : recv_copy(self, src, tag, msg, &got);
+  if (rc != MP_OK) return rc;
+  if (st) *st = got;
+  if (((got.tag ^ want) & mask) == 0 && got.len <= cap) {
+    rc = mp_msg_read(self, *msg, buf, cap);
+    *msg = NULL;
+  }
+  return rc;
+}
+
+static SIDE int recv_into_hooked(mp *self, int src, int tag, int mask, int want, void *buf, size_t cap, mp_msg **msg,
+                                 mp_status *st) {
+  HOOKED(int, self, recv_into_(self, src, tag, mask, want, buf, cap, msg, st));
+}
+
+int mp_recv_msg_into(mp *self, int src, int tag, int mask, int want, void *buf, size_t cap, mp_msg **msg,
+                     mp_status *st) {
+  *msg = NULL;
+  if (!hooks && self->ops->recv_msg_into && match_ok(self, src, tag))   /* the common case */
+    return self->ops->recv_msg_into(self, src, tag, mask, want, buf, cap, msg, st);
+  return recv_into_hooked(self, src, tag, mask, want, buf, cap, msg, st);
+}
+
 int mp_msg_read(mp *self, mp_msg *msg, void *buf, size_t cap) {
   if (self->ops->msg_read) return self->ops->msg_read(self, msg, buf, cap);
   size_t n = msg->len < cap ? msg->len : cap;

@@ -255,6 +255,15 @@ int    mp_withdraw(mp *self, mp_ref *ref);
  * mp_msg_read.  MP_OK, MP_EDEADLOCK or MP_ESTOPPED (*msg NULL), as mp_recv. */
 int    mp_recv_msg(mp *self, int src, int tag, mp_msg **msg, mp_status *st);
 
+/* mp_recv_msg and mp_msg_read in one call where the message is the one the
+ * caller wants: if its tag t has (t & mask) == (want & mask) and it is at
+ * most cap bytes long, it is read into buf at once and *msg is NULL; any
+ * other is held in *msg as mp_recv_msg holds it.  *st is its envelope
+ * either way; the same choice of message, costs and statistics as
+ * mp_recv_msg.  MP_OK, MP_EDEADLOCK or MP_ESTOPPED (*msg NULL). */
+int    mp_recv_msg_into(mp *self, int src, int tag, int mask, int want, void *buf, size_t cap, mp_msg **msg,
+                        mp_status *st);
+
 /* Copy the held message's first min(len, cap) bytes into buf and release
  * it (buf NULL, cap 0: release only).  MP_OK, MP_ETRUNC (it was longer
  * than cap), or MP_EGONE (its sender withdrew it: nothing copied). */

@@ -363,10 +363,10 @@ int eng_recv_data(st_rank *R, int wsrc, int ctx, int tag, void *p, size_t cap, m
    * acted on as a message taken off mp (no posted receive wants it). */
   mp_status st;
   mp_msg *h;
-  mpok(R, mp_recv_msg(R->self, wsrc, MP_ANY, &h, &st), "mp_recv_msg");
-  if (st_env_kind(st.tag) == K_DATA && st_env_ctx(st.tag) == ctx && (tag < 0 || st_env_tag(st.tag) == tag) &&
-      st.len <= cap) {
-    mp_msg_read(R->self, h, p, st.len);
+  int mask = tag < 0 ? ~ST_TAG_UB : -1;   /* a data message of ctx, of the tag or any */
+  mpok(R, mp_recv_msg_into(R->self, wsrc, MP_ANY, mask, st_env_encode(K_DATA, ctx, tag < 0 ? 0 : tag), p, cap, &h, &st),
+       "mp_recv_msg");
+  if (!h) {
     *got = (mp_status){st.source, st_env_tag(st.tag), st.len};
     return 1;
   }

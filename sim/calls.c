@@ -461,8 +461,11 @@ static inline msg *receive(sim *s, rank *r, int src, int tag, int *rc) {
 }
 
 /* mp_recv into buf (cap bytes), or, with hold, mp_recv_msg: *hold holds
- * the message. */
-static inline int recv_msg(mp *self, int src, int tag, void *buf, size_t cap, mp_status *st, mp_msg **hold) {
+ * the message, unless fit and it fits (mp_recv_msg_into: its tag t has
+ * (t & mask) == (want & mask), its length at most cap), when it is read into
+ * buf as mp_recv reads it. */
+static inline int recv_msg(mp *self, int src, int tag, void *buf, size_t cap, mp_status *st, mp_msg **hold, int fit,
+                           int mask, int want) {
   rank *r = (rank *)self;
   sim *s = r->s;
   int rc;
@@ -485,7 +488,7 @@ static inline int recv_msg(mp *self, int src, int tag, void *buf, size_t cap, mp
   s->st.received++;
   if (s->tr) trace_recv(s->tr, r->base.rank, r->proc, t0, o, m->src, m->tag, m->len, m->seq);
   rc = MP_OK;
-  if (hold) {
+  if (hold && !(fit && ((m->tag ^ want) & mask) == 0 && m->len <= cap)) {
     msg_hold(&s->msgs, m);
     *hold = (mp_msg *)m;
   } else {
@@ -501,11 +504,16 @@ static inline int recv_msg(mp *self, int src, int tag, void *buf, size_t cap, mp
 }
 
 static int sim_recv(mp *self, int src, int tag, void *buf, size_t cap, mp_status *st) {
-  return recv_msg(self, src, tag, buf, cap, st, NULL);
+  return recv_msg(self, src, tag, buf, cap, st, NULL, 0, 0, 0);
 }
 
 static int sim_recv_msg(mp *self, int src, int tag, mp_msg **hold, mp_status *st) {
-  return recv_msg(self, src, tag, NULL, 0, st, hold);
+  return recv_msg(self, src, tag, NULL, 0, st, hold, 0, 0, 0);
+}
+
+static int sim_recv_msg_into(mp *self, int src, int tag, int mask, int want, void *buf, size_t cap, mp_msg **hold,
+                             mp_status *st) {
+  return recv_msg(self, src, tag, buf, cap, st, hold, 1, mask, want);
 }
 
 static int sim_msg_read(mp *self, mp_msg *hold, void *buf, size_t cap) {
@@ -600,6 +608,7 @@ const mp_ops sim_ops = {.send = sim_send, .recv = sim_recv, .probe = sim_probe, 
                                .yield = sim_yield,
                                .stop = sim_stop, .call = sim_call, .send_ref = sim_send_ref,
                                .settle = sim_settle, .withdraw = sim_withdraw, .recv_msg = sim_recv_msg,
+                               .recv_msg_into = sim_recv_msg_into,
                                .msg_read = sim_msg_read, .msg_gone = sim_msg_gone, .promise = sim_promise,
                                .promise_drop = sim_promise_drop, .transfer = sim_transfer,
                                .notify = sim_notify, .reject = sim_reject, .tag_max = INT_MAX,

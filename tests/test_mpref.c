@@ -1,5 +1,5 @@
 /* test_mpref.c -- mp.h's messages without copies (mp_send_ref, mp_settle,
- * mp_withdraw, mp_recv_msg, mp_msg_read, mp_msg_gone, mp_promise_make,
+ * mp_withdraw, mp_recv_msg, mp_recv_msg_into, mp_msg_read, mp_msg_gone, mp_promise_make,
  * mp_promise_drop) on the simulator and on threads, against oracles of the
  * test's own:
  *   - small fixed programs, each with what must come out: bytes, statuses,
@@ -323,7 +323,8 @@ typedef struct {
   int src, dst, tag, len;
   unsigned char byref;     /* sent by reference (else mp_send) */
   unsigned char lag;       /* ... settled after this many more steps of its sender */
-  unsigned char how;       /* received: 0 mp_recv, 1 held and read at once, 2 held and read later */
+  unsigned char how;       /* received: 0 mp_recv, 1 held and read at once, 2 held and read later,
+                              3 mp_recv_msg_into (read at once where it fits, else held and read) */
   unsigned char withdraw;  /* taken back at once (the withdrawal variant) */
 } rp_msg;
 
@@ -377,7 +378,7 @@ static void rmake(rprog *p, uint64_t seed, int back, int with_withdraw) {
     m->len = k < 3 ? rng_int(&r, 8, 64) : k < 5 ? rng_int(&r, 65, 1100) : rng_int(&r, 1100, RP_LEN);
     m->byref = rng_int(&r, 0, 2) > 0;
     m->lag = (unsigned char)rng_int(&r, 0, RP_LAG);
-    m->how = (unsigned char)rng_int(&r, 0, 2);
+    m->how = (unsigned char)rng_int(&r, 0, 3);
     m->withdraw = with_withdraw && m->byref && m->src != m->dst && rng_int(&r, 0, 3) == 0;
   }
   for (int k = 0; k < p->n; k++) {
@@ -485,7 +486,23 @@ static void rmain(mp *self, void *ud) {
       } else {
         for (;;) {   /* a held message withdrawn meanwhile: the next one */
           mp_msg *h;
-          if (mp_recv_msg(self, src, tag, &h, &st) != MP_OK) {
+          if (m->how == 3) {
+            /* It fits when it is this step's tag and at most cap bytes (a
+             * receive of any tag may take another message first): cap one
+             * byte short of the message, its length, or room to spare. */
+            size_t cap = i % 3 == 0 ? (size_t)m->len - 1 : i % 3 == 1 ? (size_t)m->len : RP_LEN;
+            memset(rb, 0, RP_LEN);
+            if (mp_recv_msg_into(self, src, tag, -1, m->tag, rb, cap, &h, &st) != MP_OK) {
+              rwrong(p, me, "recv_msg_into", i);
+              break;
+            }
+            int fits = st.tag == m->tag && st.len <= cap;
+            if (fits != !h) rwrong(p, me, fits ? "recv_msg_into held a fit" : "recv_msg_into read a misfit", i);
+            if (!h) {
+              got(p, me, i, &st, rb, st.len);
+              break;
+            }
+          } else if (mp_recv_msg(self, src, tag, &h, &st) != MP_OK) {
             rwrong(p, me, "recv_msg", i);
             break;
           }
