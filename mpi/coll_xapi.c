@@ -233,6 +233,24 @@ static void *block_at(const side *d, int i) {
   return coll_at(d->buf, d->displs[i], d->type);
 }
 
+/* Where every block of a side with bytes (cnt[i] of them) lies contiguous
+ * in the program's buffer: the lowest such block's address, and each
+ * block's distance from it in off[]; NULL (off untouched) if some block has
+ * gaps, or none has bytes. */
+static char *side_direct(const side *d, int size, const size_t *cnt, size_t *off) {
+  const char *base = NULL;
+  for (int i = 0; i < size; i++) {
+    if (!cnt[i]) continue;
+    const char *p = dtype_contig(block_at(d, i), d->counts[i], type_at(d, i));
+    if (!p) return NULL;
+    if (!base || p < base) base = p;
+  }
+  if (!base) return NULL;
+  for (int i = 0; i < size; i++)
+    off[i] = cnt[i] ? (size_t)((const char *)dtype_contig(block_at(d, i), d->counts[i], type_at(d, i)) - base) : 0;
+  return (char *)base;
+}
+
 /* Checks of one side's arrays and types. */
 static int side_ok(MPI_Comm comm, const char *fn, const char *what, const char *twhat, const side *d, int size) {
   int rc;
@@ -276,9 +294,19 @@ static int alltoallvw(const char *fn, coll_id c, side snd, side rcv, MPI_Comm co
    * sendrecv_replace schedule; else "scattered". */
   coll_alg a = coll_setting(c);
   if (a == ALG_AUTO) a = in_place ? ALG_PAIRWISE_SENDRECV_REPLACE : ALG_SCATTERED;
-  char *out = coll_sched_mem(s, rtot), *in = coll_sched_mem(s, stot);
-  for (int i = 0; i < size; i++)
-    if (sc[i]) dtype_pack(block_at(&snd, i), snd.counts[i], type_at(&snd, i), in + sd[i]);
+  /* Not in place, a side whose blocks are contiguous is read or written
+   * where it lies (as MPI_Alltoall's: no packed copy); else packed. */
+  char *out = NULL, *in = NULL;
+  if (!in_place && a != ALG_PAIRWISE_SENDRECV_REPLACE) {
+    out = side_direct(&rcv, size, rcn, rd);
+    in = side_direct(&snd, size, sc, sd);
+  }
+  if (!out) out = coll_sched_mem(s, rtot);
+  if (!in) {
+    in = coll_sched_mem(s, stot);
+    for (int i = 0; i < size; i++)
+      if (sc[i]) dtype_pack(block_at(&snd, i), snd.counts[i], type_at(&snd, i), in + sd[i]);
+  }
   if (a == ALG_PAIRWISE_SENDRECV_REPLACE && stot == rtot && !memcmp(sc, rcn, (size_t)size * sizeof *sc)) {
     /* Each block goes out from and comes back into one place (in place,
      * the counts of both directions are the receive counts, as MPI says;

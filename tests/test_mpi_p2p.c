@@ -493,6 +493,16 @@ static int coll_bufs(void *ud) {
     MPI_Scatter(a, m, t, b, m, t, 0, MPI_COMM_WORLD);
     for (long i = 0; i < m; i++) wrong += b[i * step] != cival(r, i);
     break;
+  case 6: {   /* MPI_Alltoallv, sent as ints, received in t; blocks in reverse order at both ends */
+    int cnt[CI_RANKS], sd[CI_RANKS], rd[CI_RANKS];
+    for (int q = 0; q < p; q++) cnt[q] = m, sd[q] = rd[q] = (p - 1 - q) * m;
+    for (int q = 0; q < p; q++)
+      for (long i = 0; i < m; i++) a[sd[q] + i] = cival(r, q * m + i);
+    MPI_Alltoallv(a, cnt, sd, MPI_INT, b, cnt, rd, t, MPI_COMM_WORLD);
+    for (int q = 0; q < p; q++)
+      for (long i = 0; i < m; i++) wrong += b[(rd[q] + i) * step] != cival(q, r * m + i);
+    break;
+  }
   default:   /* MPI_Allreduce, or MPI_Reduce to rank 0: MPI_SUM of ints in t */
     for (long i = 0; i < CI_INTS; i++) a[i * step] = cival(r, i);
     if (C->op == 4)
@@ -514,16 +524,17 @@ static int coll_bufs(void *ud) {
 }
 
 static void coll_in_place(void) {
-  static const char *const name[] = {"MPI_Bcast",   "MPI_Allgather", "MPI_Gather",
-                                     "MPI_Scatter", "MPI_Allreduce", "MPI_Reduce"};
+  static const char *const name[] = {"MPI_Bcast",     "MPI_Allgather", "MPI_Gather",   "MPI_Scatter",
+                                     "MPI_Allreduce", "MPI_Reduce",    "MPI_Alltoallv"};
   /* The packed copies a type with gaps costs: bcast, every rank's buffer;
    * allgather, every rank's receive buffer of all the blocks; gather, the
    * root's; scatter, the root's send buffer and every rank's block;
    * allreduce, every rank's result; reduce, the root's (its input is
-   * packed in both types: the algorithms reduce into it). */
+   * packed in both types: the algorithms reduce into it); alltoallv, every
+   * rank's receive buffer. */
   const long long n = (long long)CI_INTS * (long long)sizeof(int), p = CI_RANKS;
-  const long long packed[] = {p * n, p * n, n, 2 * n, p * n, n};
-  for (int op = 0; op < 6; op++)
+  const long long packed[] = {p * n, p * n, n, 2 * n, p * n, n, p * n};
+  for (int op = 0; op < 7; op++)
     for (int b = 0; b < 2; b++) {
       long long mem[2];
       for (int gaps = 0; gaps < 2; gaps++) {
