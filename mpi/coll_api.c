@@ -187,7 +187,9 @@ static int gatherv(const char *fn, const void *sendbuf, int sendcount, MPI_Datat
   char *mine = in_place ? coll_pack(s, coll_at(recvbuf, displs[root], recvtype), recvcounts[root], recvtype)
                         : coll_pack(s, sendbuf, sendcount, sendtype);
   size_t sn = in_place ? bc[root] : dtype_size(sendtype) * (size_t)sendcount;
-  char *all = me == root ? coll_sched_mem(s, total) : NULL;
+  char *all = NULL;
+  if (me == root && !(all = coll_vdirect(recvbuf, recvcounts, displs, recvtype, size, bc, bd)))
+    all = coll_sched_mem(s, total);   /* blocks with gaps: received packed, unpacked at the end */
   /* MPICH gatherv.c: the linear algorithm always. */
   coll_gatherv_linear(s, mine, sn, all, bc, bd, root);
   if (me == root)
@@ -284,11 +286,13 @@ static int scatterv(const char *fn, const void *sendbuf, const int sendcounts[],
     MPI_Aint ss = dtype_size(sendtype);
     bc = byte_blocks(s, sendcounts, (size_t)ss, &total);
     bd = bc + size;
-    all = coll_sched_mem(s, total);
-    for (int i = 0; i < size; i++)
-      if (bc[i]) dtype_pack(coll_at(sendbuf, displs[i], sendtype), sendcounts[i], sendtype, all + bd[i]);
+    if (!(all = coll_vdirect(sendbuf, sendcounts, displs, sendtype, size, bc, bd))) {   /* else packed */
+      all = coll_sched_mem(s, total);
+      for (int i = 0; i < size; i++)
+        if (bc[i]) dtype_pack(coll_at(sendbuf, displs[i], sendtype), sendcounts[i], sendtype, all + bd[i]);
+    }
   }
-  char *mine = in_place ? NULL : coll_sched_mem(s, rn);
+  char *mine = in_place ? NULL : coll_place(s, recvbuf, recvcount, recvtype, 0);
   /* MPICH scatterv.c: the linear algorithm always. */
   coll_scatterv_linear(s, all, bc, bd, mine, rn, root);
   if (!in_place) coll_sched_unpack(s, mine, rn, recvbuf, recvcount, recvtype);

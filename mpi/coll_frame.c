@@ -136,6 +136,21 @@ char *coll_place(coll_sched *s, void *buf, int count, MPI_Datatype dt, int fill)
   return fill ? coll_pack(s, buf, count, dt) : coll_sched_mem(s, dtype_size(dt) * (size_t)count);
 }
 
+char *coll_vdirect(const void *buf, const int *counts, const int *displs, MPI_Datatype dt, int n, const size_t *bytes,
+                   size_t *off) {
+  const char *base = NULL;
+  for (int i = 0; i < n; i++) {
+    if (!bytes[i]) continue;
+    const char *p = dtype_contig(coll_at(buf, displs[i], dt), counts[i], dt);
+    if (!p) return NULL;
+    if (!base || p < base) base = p;
+  }
+  if (!base) return NULL;
+  for (int i = 0; i < n; i++)
+    off[i] = bytes[i] ? (size_t)((const char *)dtype_contig(coll_at(buf, displs[i], dt), counts[i], dt) - base) : 0;
+  return (char *)base;
+}
+
 /* Element i of dt at buf (i * extent bytes on). */
 void *coll_at(const void *buf, MPI_Aint i, MPI_Datatype dt) {
   return (char *)buf + i * dtype_extent(dt);

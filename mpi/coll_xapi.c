@@ -112,10 +112,18 @@ static int allgatherv(const char *fn, const void *sendbuf, int sendcount, MPI_Da
   }
   /* MPICH: nothing to do when the total is 0. */
   if (total == 0) return coll_finish(s);
-  char *all = coll_sched_mem(s, total);
-  if (bc[me])
-    dtype_pack(in_place ? coll_at(recvbuf, displs[me], recvtype) : sendbuf,
-               in_place ? recvcounts[me] : sendcount, in_place ? recvtype : sendtype, all + bd[me]);
+  /* recvbuf itself when its blocks are contiguous and lie in rank order,
+   * back to back (the algorithms send runs of blocks): in place, this rank's
+   * block is there already. */
+  size_t *off = coll_sched_mem(s, (size_t)size * sizeof *off);
+  char *all = coll_vdirect(recvbuf, recvcounts, displs, recvtype, size, bc, off);
+  for (int i = 0; all && i < size; i++)
+    if (bc[i] && off[i] != bd[i]) all = NULL;
+  if (!all) all = coll_sched_mem(s, total);
+  if (bc[me] && !in_place)
+    dtype_pack(sendbuf, sendcount, sendtype, all + bd[me]);
+  else if (bc[me] && all + bd[me] != dtype_contig(coll_at(recvbuf, displs[me], recvtype), recvcounts[me], recvtype))
+    dtype_pack(coll_at(recvbuf, displs[me], recvtype), recvcounts[me], recvtype, all + bd[me]);
   if (size > 1)
     allgather_build(s, allgather_alg(COLL_ALLGATHERV, size, total), all, bc, bd, 1, rs,
                     (size_t)dtype_extent(recvtype));

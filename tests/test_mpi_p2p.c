@@ -503,6 +503,27 @@ static int coll_bufs(void *ud) {
       for (long i = 0; i < m; i++) wrong += b[(rd[q] + i) * step] != cival(q, r * m + i);
     break;
   }
+  case 7:   /* MPI_Allgatherv, sent as ints, received in t, blocks in rank order */
+  case 8:   /* MPI_Gatherv to rank 0, sent as ints, received in t, blocks in reverse order */
+  case 9: {   /* MPI_Scatterv from rank 0, sent in t, blocks in reverse order, received in t */
+    int cnt[CI_RANKS], at[CI_RANKS];
+    for (int q = 0; q < p; q++) cnt[q] = m, at[q] = (C->op == 7 ? q : p - 1 - q) * m;
+    if (C->op == 9) {
+      for (int q = 0; r == 0 && q < p; q++)
+        for (long i = 0; i < m; i++) a[(at[q] + i) * step] = cival(q, i);
+      MPI_Scatterv(a, cnt, at, t, b, m, t, 0, MPI_COMM_WORLD);
+      for (long i = 0; i < m; i++) wrong += b[i * step] != cival(r, i);
+      break;
+    }
+    for (long i = 0; i < m; i++) a[i] = cival(r, i);
+    if (C->op == 7)
+      MPI_Allgatherv(a, m, MPI_INT, b, cnt, at, t, MPI_COMM_WORLD);
+    else
+      MPI_Gatherv(a, m, MPI_INT, b, cnt, at, t, 0, MPI_COMM_WORLD);
+    for (int q = 0; q < p && (C->op == 7 || r == 0); q++)
+      for (long i = 0; i < m; i++) wrong += b[(at[q] + i) * step] != cival(q, i);
+    break;
+  }
   default:   /* MPI_Allreduce, or MPI_Reduce to rank 0: MPI_SUM of ints in t */
     for (long i = 0; i < CI_INTS; i++) a[i * step] = cival(r, i);
     if (C->op == 4)
@@ -524,17 +545,19 @@ static int coll_bufs(void *ud) {
 }
 
 static void coll_in_place(void) {
-  static const char *const name[] = {"MPI_Bcast",     "MPI_Allgather", "MPI_Gather",   "MPI_Scatter",
-                                     "MPI_Allreduce", "MPI_Reduce",    "MPI_Alltoallv"};
+  static const char *const name[] = {"MPI_Bcast",      "MPI_Allgather", "MPI_Gather",    "MPI_Scatter",
+                                     "MPI_Allreduce",  "MPI_Reduce",    "MPI_Alltoallv", "MPI_Allgatherv",
+                                     "MPI_Gatherv",    "MPI_Scatterv"};
   /* The packed copies a type with gaps costs: bcast, every rank's buffer;
    * allgather, every rank's receive buffer of all the blocks; gather, the
    * root's; scatter, the root's send buffer and every rank's block;
    * allreduce, every rank's result; reduce, the root's (its input is
-   * packed in both types: the algorithms reduce into it); alltoallv, every
-   * rank's receive buffer. */
+   * packed in both types: the algorithms reduce into it); alltoallv and
+   * allgatherv, every rank's receive buffer; gatherv, the root's; scatterv,
+   * the root's send buffer and every rank's block. */
   const long long n = (long long)CI_INTS * (long long)sizeof(int), p = CI_RANKS;
-  const long long packed[] = {p * n, p * n, n, 2 * n, p * n, n, p * n};
-  for (int op = 0; op < 7; op++)
+  const long long packed[] = {p * n, p * n, n, 2 * n, p * n, n, p * n, p * n, n, 2 * n};
+  for (int op = 0; op < 10; op++)
     for (int b = 0; b < 2; b++) {
       long long mem[2];
       for (int gaps = 0; gaps < 2; gaps++) {
