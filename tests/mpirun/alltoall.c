@@ -44,18 +44,7 @@ int main(int argc, char **argv) {
     }
   }
   double t = MPI_Wtime() - t0;
-  uint64_t mine[2] = {sum, bad}, all[2] = {0, 0};
-  MPI_Reduce(mine, all, 2, MPI_UINT64_T, MPI_SUM, 0, MPI_COMM_WORLD);
-  int status = 0;
-  if (r == 0) {
-    if (all[1] != 0) {
-      printf("alltoall: wrong: %llu blocks were not what their sender wrote\n", (unsigned long long)all[1]);
-      status = 1;
-    } else {
-      printf("alltoall: %d ranks, %ld bytes, %ld iterations: checksum %llu, %.17g s\n", p, size, iters,
-             (unsigned long long)all[0], t);
-    }
-  }
+  int status = mpibench_report(&b, "alltoall", sum, bad, "blocks were not what their sender wrote", size, iters, t);
   free(out);
   free(in);
   MPI_Finalize();

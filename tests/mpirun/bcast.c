@@ -47,18 +47,7 @@ int main(int argc, char **argv) {
     sum += m;
   }
   double t = MPI_Wtime() - t0;
-  uint64_t mine[2] = {sum, bad}, all[2] = {0, 0};
-  MPI_Reduce(mine, all, 2, MPI_UINT64_T, MPI_SUM, 0, MPI_COMM_WORLD);
-  int status = 0;
-  if (r == 0) {
-    if (all[1] != 0) {
-      printf("bcast: wrong: %llu marks were not what the root sent\n", (unsigned long long)all[1]);
-      status = 1;
-    } else {
-      printf("bcast: %d ranks, %ld bytes, %ld iterations: checksum %llu, %.17g s\n", b.p, size, iters,
-             (unsigned long long)all[0], t);
-    }
-  }
+  int status = mpibench_report(&b, "bcast", sum, bad, "marks were not what the root sent", size, iters, t);
   free(buf);
   MPI_Finalize();
   return status;
