@@ -196,7 +196,7 @@ static int redscat(const char *fn, coll_id c, const void *sendbuf, void *recvbuf
   int *cnt = coll_sched_mem(s, (size_t)size * sizeof *cnt);
   for (int i = 0; i < size; i++) cnt[i] = counts ? counts[i] : recvcount;
   char *buf = coll_pack(s, sendbuf == MPI_IN_PLACE ? recvbuf : sendbuf, (int)total, datatype);
-  char *out = coll_sched_mem(s, (size_t)mine * r.tsize);
+  char *out = coll_place(s, recvbuf, mine, datatype, 0);   /* buf is a copy even in place */
   redscat_build(s, c, buf, out, cnt);
   coll_sched_unpack(s, out, (size_t)mine * r.tsize, recvbuf, mine, datatype);
   return coll_finish(s);
@@ -257,9 +257,11 @@ static int scan(const char *fn, coll_id c, const void *sendbuf, void *recvbuf, i
   coll_sched_set_red(s, &r);
   size_t n = r.tsize * (size_t)count;
   if (n == 0) return coll_finish(s);
-  char *in = coll_pack(s, sendbuf == MPI_IN_PLACE ? recvbuf : sendbuf, count, datatype);
-  char *out = coll_sched_mem(s, n);
   int incl = c == COLL_SCAN;
+  char *in = coll_pack(s, sendbuf == MPI_IN_PLACE ? recvbuf : sendbuf, count, datatype);
+  /* The result in recvbuf itself where contiguous (in is a copy even in
+   * place), but for MPI_Exscan's rank 0, whose recvbuf is left alone. */
+  char *out = incl || g->rank != 0 ? coll_place(s, recvbuf, count, datatype, 0) : coll_sched_mem(s, n);
   /* MPICH scan.c and exscan.c: recursive doubling. */
   if (g->size == 1)
     coll_sched_copy(s, out, in, n);

@@ -524,15 +524,27 @@ static int coll_bufs(void *ud) {
       for (long i = 0; i < m; i++) wrong += b[(at[q] + i) * step] != cival(q, i);
     break;
   }
-  default:   /* MPI_Allreduce, or MPI_Reduce to rank 0: MPI_SUM of ints in t */
+  case 10: {   /* MPI_Reduce_scatter_block, MPI_SUM of ints in t: rank r's block r of the sums */
+    for (long i = 0; i < CI_INTS; i++) a[i * step] = cival(r, i);
+    MPI_Reduce_scatter_block(a, b, m, t, MPI_SUM, MPI_COMM_WORLD);
+    for (long i = 0; i < m; i++) {
+      long want = 0;
+      for (int q = 0; q < p; q++) want += cival(q, r * m + i);
+      wrong += b[i * step] != (int)want;
+    }
+    break;
+  }
+  default:   /* MPI_Allreduce, MPI_Reduce to rank 0 or MPI_Scan: MPI_SUM of ints in t */
     for (long i = 0; i < CI_INTS; i++) a[i * step] = cival(r, i);
     if (C->op == 4)
       MPI_Allreduce(a, b, CI_INTS, t, MPI_SUM, MPI_COMM_WORLD);
-    else
+    else if (C->op == 5)
       MPI_Reduce(a, b, CI_INTS, t, MPI_SUM, 0, MPI_COMM_WORLD);
-    for (long i = 0; i < CI_INTS && (C->op == 4 || r == 0); i++) {
+    else
+      MPI_Scan(a, b, CI_INTS, t, MPI_SUM, MPI_COMM_WORLD);
+    for (long i = 0; i < CI_INTS && (C->op != 5 || r == 0); i++) {
       long want = 0;
-      for (int q = 0; q < p; q++) want += cival(q, i);
+      for (int q = 0; q < (C->op == 11 ? r + 1 : p); q++) want += cival(q, i);
       wrong += b[i * step] != (int)want;
     }
   }
@@ -547,17 +559,19 @@ static int coll_bufs(void *ud) {
 static void coll_in_place(void) {
   static const char *const name[] = {"MPI_Bcast",      "MPI_Allgather", "MPI_Gather",    "MPI_Scatter",
                                      "MPI_Allreduce",  "MPI_Reduce",    "MPI_Alltoallv", "MPI_Allgatherv",
-                                     "MPI_Gatherv",    "MPI_Scatterv"};
+                                     "MPI_Gatherv",    "MPI_Scatterv",  "MPI_Reduce_scatter_block",
+                                     "MPI_Scan"};
   /* The packed copies a type with gaps costs: bcast, every rank's buffer;
    * allgather, every rank's receive buffer of all the blocks; gather, the
    * root's; scatter, the root's send buffer and every rank's block;
    * allreduce, every rank's result; reduce, the root's (its input is
    * packed in both types: the algorithms reduce into it); alltoallv and
    * allgatherv, every rank's receive buffer; gatherv, the root's; scatterv,
-   * the root's send buffer and every rank's block. */
+   * the root's send buffer and every rank's block; reduce_scatter_block,
+   * every rank's block of the result; scan, every rank's result. */
   const long long n = (long long)CI_INTS * (long long)sizeof(int), p = CI_RANKS;
-  const long long packed[] = {p * n, p * n, n, 2 * n, p * n, n, p * n, p * n, n, 2 * n};
-  for (int op = 0; op < 10; op++)
+  const long long packed[] = {p * n, p * n, n, 2 * n, p * n, n, p * n, p * n, n, 2 * n, n, p * n};
+  for (int op = 0; op < 12; op++)
     for (int b = 0; b < 2; b++) {
       long long mem[2];
       for (int gaps = 0; gaps < 2; gaps++) {
