@@ -159,12 +159,13 @@ const char *coll_view(coll_sched *s, const void *buf, int count, MPI_Datatype dt
  * back at the end; onto bytes in place, coll_sched_unpack does nothing.  So
  * a contiguous buffer costs no copy and no memory of the collective's. */
 char *coll_place(coll_sched *s, void *buf, int count, MPI_Datatype dt, int fill);
-/* A v collective's blocks where they lie: block i, counts[i] elements of dt
- * at displs[i] extents from buf, of bytes[i] bytes.  If every block with
+/* A v or w collective's blocks where they lie: block i, of bytes[i] bytes, is
+ * counts[i] elements of types[i] at displs[i] bytes from buf (the w forms),
+ * or, types NULL, of dt at displs[i] extents of dt.  If every block with
  * bytes is contiguous, the lowest one's address, each block's distance from
  * it in off[] (0 for empty blocks); else NULL, off untouched. */
-char *coll_vdirect(const void *buf, const int *counts, const int *displs, MPI_Datatype dt, int n, const size_t *bytes,
-                   size_t *off);
+char *coll_vdirect(const void *buf, const int *counts, const int *displs, const MPI_Datatype *types, MPI_Datatype dt,
+                   int n, const size_t *bytes, size_t *off);
 /* Element i of dt at buf (i extents on). */
 void *coll_at(const void *buf, MPI_Aint i, MPI_Datatype dt);
 

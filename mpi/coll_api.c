@@ -115,8 +115,9 @@ static int gather(const char *fn, const void *sendbuf, int sendcount, MPI_Dataty
     return err_comm_raise(comm, MPI_ERR_TRUNCATE, fn, "the root sends %zu bytes to itself and receives %zu",
                           dtype_size(sendtype) * (size_t)sendcount, n);
   coll_sched *s = coll_start(fn, comm, COLL_GATHER, root, req);
-  const char *mine = in_place ? coll_pack(s, coll_at(recvbuf, (MPI_Aint)root * recvcount, recvtype), recvcount, recvtype)
-                              : coll_view(s, sendbuf, sendcount, sendtype);
+  const char *mine = in_place
+                         ? coll_pack(s, coll_at(recvbuf, (MPI_Aint)root * recvcount, recvtype), recvcount, recvtype)
+                         : coll_view(s, sendbuf, sendcount, sendtype);
   char *all = me == root ? coll_place(s, recvbuf, recvcount * size, recvtype, 0) : NULL;
   /* MPICH gather.c: the binomial tree always. */
   if (coll_setting(COLL_GATHER) == ALG_LINEAR)
@@ -188,7 +189,7 @@ static int gatherv(const char *fn, const void *sendbuf, int sendcount, MPI_Datat
                         : coll_pack(s, sendbuf, sendcount, sendtype);
   size_t sn = in_place ? bc[root] : dtype_size(sendtype) * (size_t)sendcount;
   char *all = NULL;
-  if (me == root && !(all = coll_vdirect(recvbuf, recvcounts, displs, recvtype, size, bc, bd)))
+  if (me == root && !(all = coll_vdirect(recvbuf, recvcounts, displs, NULL, recvtype, size, bc, bd)))
     all = coll_sched_mem(s, total);   /* blocks with gaps: received packed, unpacked at the end */
   /* MPICH gatherv.c: the linear algorithm always. */
   coll_gatherv_linear(s, mine, sn, all, bc, bd, root);
@@ -286,7 +287,7 @@ static int scatterv(const char *fn, const void *sendbuf, const int sendcounts[],
     MPI_Aint ss = dtype_size(sendtype);
     bc = byte_blocks(s, sendcounts, (size_t)ss, &total);
     bd = bc + size;
-    if (!(all = coll_vdirect(sendbuf, sendcounts, displs, sendtype, size, bc, bd))) {   /* else packed */
+    if (!(all = coll_vdirect(sendbuf, sendcounts, displs, NULL, sendtype, size, bc, bd))) {   /* else packed */
       all = coll_sched_mem(s, total);
       for (int i = 0; i < size; i++)
         if (bc[i]) dtype_pack(coll_at(sendbuf, displs[i], sendtype), sendcounts[i], sendtype, all + bd[i]);

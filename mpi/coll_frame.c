@@ -136,18 +136,25 @@ char *coll_place(coll_sched *s, void *buf, int count, MPI_Datatype dt, int fill)
   return fill ? coll_pack(s, buf, count, dt) : coll_sched_mem(s, dtype_size(dt) * (size_t)count);
 }
 
-char *coll_vdirect(const void *buf, const int *counts, const int *displs, MPI_Datatype dt, int n, const size_t *bytes,
-                   size_t *off) {
+/* Block i's bytes where they lie contiguous, else NULL (coll_vdirect's blocks). */
+static const char *vblock(const void *buf, const int *counts, const int *displs, const MPI_Datatype *types,
+                          MPI_Datatype dt, int i) {
+  if (types) return dtype_contig((const char *)buf + displs[i], counts[i], types[i]);
+  return dtype_contig(coll_at(buf, displs[i], dt), counts[i], dt);
+}
+
+char *coll_vdirect(const void *buf, const int *counts, const int *displs, const MPI_Datatype *types, MPI_Datatype dt,
+                   int n, const size_t *bytes, size_t *off) {
   const char *base = NULL;
   for (int i = 0; i < n; i++) {
     if (!bytes[i]) continue;
-    const char *p = dtype_contig(coll_at(buf, displs[i], dt), counts[i], dt);
+    const char *p = vblock(buf, counts, displs, types, dt, i);
     if (!p) return NULL;
     if (!base || p < base) base = p;
   }
   if (!base) return NULL;
   for (int i = 0; i < n; i++)
-    off[i] = bytes[i] ? (size_t)((const char *)dtype_contig(coll_at(buf, displs[i], dt), counts[i], dt) - base) : 0;
+    off[i] = bytes[i] ? (size_t)(vblock(buf, counts, displs, types, dt, i) - base) : 0;
   return (char *)base;
 }
 

@@ -116,7 +116,7 @@ static int allgatherv(const char *fn, const void *sendbuf, int sendcount, MPI_Da
    * back to back (the algorithms send runs of blocks): in place, this rank's
    * block is there already. */
   size_t *off = coll_sched_mem(s, (size_t)size * sizeof *off);
-  char *all = coll_vdirect(recvbuf, recvcounts, displs, recvtype, size, bc, off);
+  char *all = coll_vdirect(recvbuf, recvcounts, displs, NULL, recvtype, size, bc, off);
   for (int i = 0; all && i < size; i++)
     if (bc[i] && off[i] != bd[i]) all = NULL;
   if (!all) all = coll_sched_mem(s, total);
@@ -241,24 +241,6 @@ static void *block_at(const side *d, int i) {
   return coll_at(d->buf, d->displs[i], d->type);
 }
 
-/* Where every block of a side with bytes (cnt[i] of them) lies contiguous
- * in the program's buffer: the lowest such block's address, and each
- * block's distance from it in off[]; NULL (off untouched) if some block has
- * gaps, or none has bytes. */
-static char *side_direct(const side *d, int size, const size_t *cnt, size_t *off) {
-  const char *base = NULL;
-  for (int i = 0; i < size; i++) {
-    if (!cnt[i]) continue;
-    const char *p = dtype_contig(block_at(d, i), d->counts[i], type_at(d, i));
-    if (!p) return NULL;
-    if (!base || p < base) base = p;
-  }
-  if (!base) return NULL;
-  for (int i = 0; i < size; i++)
-    off[i] = cnt[i] ? (size_t)((const char *)dtype_contig(block_at(d, i), d->counts[i], type_at(d, i)) - base) : 0;
-  return (char *)base;
-}
-
 /* Checks of one side's arrays and types. */
 static int side_ok(MPI_Comm comm, const char *fn, const char *what, const char *twhat, const side *d, int size) {
   int rc;
@@ -306,8 +288,8 @@ static int alltoallvw(const char *fn, coll_id c, side snd, side rcv, MPI_Comm co
    * where it lies (as MPI_Alltoall's: no packed copy); else packed. */
   char *out = NULL, *in = NULL;
   if (!in_place && a != ALG_PAIRWISE_SENDRECV_REPLACE) {
-    out = side_direct(&rcv, size, rcn, rd);
-    in = side_direct(&snd, size, sc, sd);
+    out = coll_vdirect(rcv.buf, rcv.counts, rcv.displs, rcv.types, rcv.type, size, rcn, rd);
+    in = coll_vdirect(snd.buf, snd.counts, snd.displs, snd.types, snd.type, size, sc, sd);
   }
   if (!out) out = coll_sched_mem(s, rtot);
   if (!in) {
